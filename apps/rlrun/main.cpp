@@ -1,1 +1,40 @@
-int main() { return 0; }
+// rlrun: train, evaluate and inspect RL agents from YAML experiment files.
+// Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure.
+#include <iostream>
+
+#include "commands.hpp"
+#include "rlrun/core/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rlrun " RLRUN_VERSION
+               ": Stable-Baselines3-style reinforcement learning from YAML experiment files"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", RLRUN_VERSION);
+  rlrun::cli::Action train = rlrun::cli::add_train(app);
+  rlrun::cli::Action eval = rlrun::cli::add_eval(app);
+  rlrun::cli::Action list = rlrun::cli::add_list(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? rlrun::kExitOk : rlrun::kExitUsage;
+  }
+  try {
+    if (app.got_subcommand("train")) return train();
+    if (app.got_subcommand("eval")) return eval();
+    if (app.got_subcommand("list")) return list();
+  } catch (const rlrun::ConfigError& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return rlrun::kExitUsage;
+  } catch (const rlrun::UsageError& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return rlrun::kExitUsage;
+  } catch (const rlrun::RuntimeFailure& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return rlrun::kExitRuntime;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return rlrun::kExitRuntime;
+  }
+  return rlrun::kExitUsage;
+}

@@ -1,0 +1,60 @@
+#pragma once
+// The algorithm interface (SB3's BaseAlgorithm, reduced to what the runtime needs).
+// An algorithm is built from its Config and the env's spaces; learn() trains it on a VecEnv;
+// predict() maps observations to env-ready actions (clipped to the action space) for
+// evaluation and recording; save/load move every tensor in and out of the model file.
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "rlrun/core/logger.hpp"
+#include "rlrun/core/space.hpp"
+#include "rlrun/core/tensor.hpp"
+
+namespace rlrun {
+
+class VecEnv;
+
+struct AlgorithmSetup {
+  Space observation_space;
+  Space action_space;
+  int n_envs = 1;
+  uint64_t seed = 0;
+};
+
+// What learn() reports to and asks of the runtime.
+struct TrainingHooks {
+  Logger* logger = nullptr;
+  // Called after every VecEnv step with the total env steps so far; false stops training
+  // (SB3's callback.on_step()).
+  std::function<bool(int64_t num_timesteps)> on_step;
+  // Called after each log dump (console progress bar, etc.).
+  std::function<void(int64_t num_timesteps)> on_log;
+  // Log every `log_interval` iterations (on-policy) as SB3's learn(log_interval=...).
+  int log_interval = 1;
+};
+
+class Algorithm {
+ public:
+  virtual ~Algorithm() = default;
+  virtual std::string id() const = 0;
+
+  // Trains until num_timesteps() >= total_timesteps (counting all envs' steps, like SB3).
+  virtual void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) = 0;
+
+  // obs: obs_dim x batch. actions: resized to act_dim x batch, valid for the env.
+  virtual void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+                       Eigen::MatrixXf& actions) = 0;
+
+  virtual void save(TensorMap& tensors) const = 0;
+  // Throws std::runtime_error when a tensor is missing or has another shape.
+  virtual void load(const TensorMap& tensors) = 0;
+
+  int64_t num_timesteps() const { return num_timesteps_; }
+
+ protected:
+  int64_t num_timesteps_ = 0;
+};
+
+}  // namespace rlrun

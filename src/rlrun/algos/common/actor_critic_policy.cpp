@@ -1,0 +1,159 @@
+#include "rlrun/algos/common/actor_critic_policy.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rlrun {
+
+void save_mlp(const Mlp& mlp, const std::string& tower, const std::string& head, TensorMap& out) {
+  const int last = mlp.num_layers() - 1;
+  for (int l = 0; l <= last; ++l) {
+    const std::string name = l == last ? head : tower + "." + std::to_string(2 * l);
+    out[name + ".weight"] = to_tensor(Eigen::MatrixXf(mlp.weight(l)));
+    out[name + ".bias"] = to_tensor(Eigen::VectorXf(mlp.bias(l)));
+  }
+}
+
+void load_mlp(Mlp& mlp, const std::string& tower, const std::string& head, const TensorMap& in) {
+  const int last = mlp.num_layers() - 1;
+  for (int l = 0; l <= last; ++l) {
+    const std::string name = l == last ? head : tower + "." + std::to_string(2 * l);
+    from_tensor(in, name + ".weight", mlp.weight(l));
+    from_tensor(in, name + ".bias", mlp.bias(l));
+  }
+}
+
+ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,
+                                     const ActorCriticPolicyConfig& config, Rng& init_rng) {
+  if (!observation_space.is_box())
+    throw std::invalid_argument("ActorCriticPolicy: observation space " +
+                                observation_space.describe() + " is not supported yet (Box only)");
+  if (action_space.is_discrete()) {
+    discrete_ = true;
+    action_dim_ = 1;
+  } else if (action_space.is_box()) {
+    discrete_ = false;
+    action_dim_ = action_space.flat_dim();
+    low_ = Eigen::Map<const Eigen::VectorXf>(action_space.low().data(), action_dim_);
+    high_ = Eigen::Map<const Eigen::VectorXf>(action_space.high().data(), action_dim_);
+  } else {
+    throw std::invalid_argument("ActorCriticPolicy: action space " + action_space.describe() +
+                                " is not supported yet (Discrete or Box)");
+  }
+  const Activation act = parse_activation(config.activation_fn);
+  const int obs_dim = observation_space.flat_dim();
+  const int head_dim = discrete_ ? static_cast<int>(action_space.n()) : action_dim_;
+  actor_ = Mlp(obs_dim, config.net_arch, head_dim, act);
+  critic_ = Mlp(obs_dim, config.net_arch, 1, act);
+  if (config.ortho_init) {
+    // SB3 policies.py: module_gains = {mlp_extractor: sqrt(2), action_net: 0.01, value_net: 1}.
+    actor_.init_orthogonal(init_rng, std::sqrt(2.0f), 0.01f);
+    critic_.init_orthogonal(init_rng, std::sqrt(2.0f), 1.0f);
+  } else {
+    throw std::invalid_argument("ortho_init: false is not supported (torch's default init)");
+  }
+  log_std_ = Eigen::VectorXf::Constant(discrete_ ? 0 : action_dim_,
+                                       static_cast<float>(config.log_std_init));
+  log_std_grad_ = Eigen::VectorXf::Zero(log_std_.size());
+}
+
+void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
+                            bool deterministic, Eigen::MatrixXf& actions,
+                            Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs) {
+  const Eigen::Index n = obs.cols();
+  actions.resize(action_dim_, n);
+  values.resize(n);
+  log_probs.resize(n);
+  const Eigen::MatrixXf& head = actor_.forward(obs);
+  if (discrete_) {
+    categorical_.set_logits(head);
+    // A 1 x n row of a column-major matrix has a stride; go through a contiguous row.
+    action_row_.resize(n);
+    if (deterministic)
+      categorical_.mode(action_row_);
+    else
+      categorical_.sample(rng, action_row_);
+    categorical_.log_prob(action_row_, log_probs);
+    actions.row(0) = action_row_;
+  } else {
+    gaussian_.set(head, log_std_);
+    if (deterministic)
+      gaussian_.mode(actions);
+    else
+      gaussian_.sample(rng, actions);
+    gaussian_.log_prob(actions, log_probs);
+  }
+  values = critic_.forward(obs);
+}
+
+void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                                       Eigen::RowVectorXf& values) {
+  values = critic_.forward(obs);
+}
+
+void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                                         const Eigen::Ref<const Eigen::MatrixXf>& actions,
+                                         Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
+                                         Eigen::RowVectorXf& entropy) {
+  const Eigen::Index n = obs.cols();
+  values.resize(n);
+  log_prob.resize(n);
+  entropy.resize(n);
+  actions_ = actions;
+  const Eigen::MatrixXf& head = actor_.forward(obs);
+  if (discrete_) {
+    categorical_.set_logits(head);
+    action_row_ = actions.row(0);
+    categorical_.log_prob(action_row_, log_prob);
+    categorical_.entropy(entropy);
+  } else {
+    gaussian_.set(head, log_std_);
+    gaussian_.log_prob(actions, log_prob);
+    gaussian_.entropy(entropy);
+  }
+  values = critic_.forward(obs);
+}
+
+void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
+                                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
+                                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy) {
+  if (discrete_) {
+    categorical_.backward(action_row_, grad_log_prob, grad_entropy, grad_head_);
+  } else {
+    gaussian_.backward(actions_, grad_log_prob, grad_entropy, grad_head_, grad_log_std_batch_);
+    log_std_grad_ += grad_log_std_batch_;
+  }
+  actor_.backward(grad_head_);
+  critic_.backward(grad_values);
+}
+
+void ActorCriticPolicy::zero_grad() {
+  actor_.zero_grad();
+  critic_.zero_grad();
+  log_std_grad_.setZero();
+}
+
+std::vector<ParamBlock> ActorCriticPolicy::param_blocks() {
+  std::vector<ParamBlock> blocks{actor_.block(), critic_.block()};
+  if (!discrete_) blocks.push_back({log_std_.data(), log_std_grad_.data(), log_std_.size()});
+  return blocks;
+}
+
+double ActorCriticPolicy::mean_std() const {
+  if (discrete_) return std::nan("");
+  return log_std_.array().exp().mean();
+}
+
+void ActorCriticPolicy::save(TensorMap& tensors) const {
+  save_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
+  save_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
+  if (!discrete_) tensors["log_std"] = to_tensor(log_std_);
+}
+
+void ActorCriticPolicy::load(const TensorMap& tensors) {
+  load_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
+  load_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
+  if (!discrete_) from_tensor(tensors, "log_std", log_std_);
+}
+
+}  // namespace rlrun

@@ -1,0 +1,92 @@
+#pragma once
+// SB3's ActorCriticPolicy for MlpPolicy (stable_baselines3/common/policies.py), used by PPO and
+// A2C: separate actor and critic towers (net_arch [64, 64] each by default since SB3 1.8),
+// orthogonal init with gains sqrt(2) (towers), 0.01 (action_net) and 1 (value_net), a
+// Categorical head for Discrete actions and a diagonal Gaussian with a state-independent
+// `log_std` parameter for Box actions.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/rng.hpp"
+#include "rlrun/core/space.hpp"
+#include "rlrun/core/tensor.hpp"
+#include "rlrun/nn/categorical.hpp"
+#include "rlrun/nn/diag_gaussian.hpp"
+#include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/param_block.hpp"
+
+namespace rlrun {
+
+struct ActorCriticPolicyConfig {
+  std::vector<int> net_arch = {64, 64};  // hidden sizes of both the actor and the critic tower
+  std::string activation_fn = "tanh";   // tanh or relu (SB3 default nn.Tanh)
+  bool ortho_init = true;               // orthogonal init with SB3's gains
+  double log_std_init = 0.0;            // initial log std of Gaussian actions
+
+  template <class V>
+  void visit(V& v) {
+    v("net_arch", net_arch, "hidden layer sizes of the actor and of the critic");
+    v("activation_fn", activation_fn, "activation between hidden layers: tanh or relu");
+    v("ortho_init", ortho_init, "orthogonal init (gains sqrt(2), 0.01 actor head, 1 critic head)");
+    v("log_std_init", log_std_init, "initial log standard deviation for Box actions");
+  }
+};
+
+class ActorCriticPolicy {
+ public:
+  // Throws std::invalid_argument for unsupported spaces (Box observations; Discrete or Box
+  // actions).
+  ActorCriticPolicy(const Space& observation_space, const Space& action_space,
+                    const ActorCriticPolicyConfig& config, Rng& init_rng);
+
+  bool discrete() const { return discrete_; }
+  int action_dim() const { return action_dim_; }
+
+  // Rollout step: actions (act_dim x n, as sampled: unclipped), values and log-probs.
+  void act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng, bool deterministic,
+           Eigen::MatrixXf& actions, Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs);
+  void predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::RowVectorXf& values);
+
+  // Training forward pass (SB3 evaluate_actions); keeps what backward() needs.
+  void evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                        const Eigen::Ref<const Eigen::MatrixXf>& actions, Eigen::RowVectorXf& values,
+                        Eigen::RowVectorXf& log_prob, Eigen::RowVectorXf& entropy);
+  // Adds the gradients of a loss with the given partial derivatives w.r.t. the outputs of the
+  // last evaluate_actions() to every parameter's gradient.
+  void backward(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
+                const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
+                const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy);
+
+  void zero_grad();
+  std::vector<ParamBlock> param_blocks();
+  // exp(log_std).mean(), SB3's train/std; NaN for Discrete.
+  double mean_std() const;
+
+  // SB3 state_dict names: mlp_extractor.policy_net.0.weight, action_net.weight, log_std, ...
+  void save(TensorMap& tensors) const;
+  void load(const TensorMap& tensors);
+
+  const Mlp& actor() const { return actor_; }
+  const Mlp& critic() const { return critic_; }
+
+ private:
+  bool discrete_ = false;
+  int action_dim_ = 1;
+  Eigen::VectorXf low_, high_;
+  Mlp actor_, critic_;
+  Eigen::VectorXf log_std_, log_std_grad_;
+  Categorical categorical_;
+  DiagGaussian gaussian_;
+  // Workspaces for backward.
+  Eigen::MatrixXf actions_, grad_head_, gaussian_sample_;
+  Eigen::VectorXf grad_log_std_batch_;
+  Eigen::RowVectorXf action_row_;
+};
+
+// Writes an Mlp's layers under SB3 names: hidden layer i -> `<tower>.<2i>.weight/bias`
+// (torch Sequential indices skip the activations), the output layer -> `<head>.weight/bias`.
+void save_mlp(const Mlp& mlp, const std::string& tower, const std::string& head, TensorMap& out);
+void load_mlp(Mlp& mlp, const std::string& tower, const std::string& head, const TensorMap& in);
+
+}  // namespace rlrun

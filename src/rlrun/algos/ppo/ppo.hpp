@@ -1,0 +1,96 @@
+#pragma once
+// Proximal Policy Optimization (Schulman et al. 2017, arXiv:1707.06347) with SB3's semantics,
+// defaults and key names (stable_baselines3/ppo/ppo.py, common/on_policy_algorithm.py):
+// rollouts of n_steps per env with timeout bootstrapping, GAE, n_epochs of shuffled
+// minibatches, clipped surrogate, optional clipped value loss, advantage normalisation,
+// global gradient-norm clipping, Adam (eps 1e-5 as SB3's ActorCriticPolicy sets it).
+#include <optional>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/actor_critic_policy.hpp"
+#include "rlrun/algos/common/episode_stats.hpp"
+#include "rlrun/algos/common/gae.hpp"
+#include "rlrun/core/schedule.hpp"
+#include "rlrun/nn/adam.hpp"
+
+namespace rlrun {
+
+class PPO : public Algorithm {
+ public:
+  struct Config {
+    Schedule learning_rate = Schedule::constant(3e-4);
+    int n_steps = 2048;
+    int batch_size = 64;
+    int n_epochs = 10;
+    double gamma = 0.99;
+    double gae_lambda = 0.95;
+    Schedule clip_range = Schedule::constant(0.2);
+    std::optional<Schedule> clip_range_vf;
+    bool normalize_advantage = true;
+    double ent_coef = 0.0;
+    double vf_coef = 0.5;
+    double max_grad_norm = 0.5;
+    std::optional<double> target_kl;
+    ActorCriticPolicyConfig policy;
+
+    template <class V>
+    void visit(V& v) {
+      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>");
+      v("n_steps", n_steps, "steps per env per rollout (rollout size = n_steps * n_envs)");
+      v("batch_size", batch_size, "minibatch size");
+      v("n_epochs", n_epochs, "passes over each rollout");
+      v("gamma", gamma, "discount factor");
+      v("gae_lambda", gae_lambda, "GAE bias/variance trade-off");
+      v("clip_range", clip_range, "surrogate clipping: a number or lin_<initial>");
+      v("clip_range_vf", clip_range_vf, "value clipping around old values (null = off)");
+      v("normalize_advantage", normalize_advantage, "normalise advantages per minibatch");
+      v("ent_coef", ent_coef, "entropy bonus coefficient");
+      v("vf_coef", vf_coef, "value loss coefficient");
+      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
+      v("target_kl", target_kl, "stop an update's epochs when approx KL > 1.5 * target_kl (null = off)");
+      v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");
+    }
+  };
+
+  PPO(const Config& config, const AlgorithmSetup& setup);
+
+  std::string id() const override { return "PPO"; }
+  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
+  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+               Eigen::MatrixXf& actions) override;
+  void save(TensorMap& tensors) const override;
+  void load(const TensorMap& tensors) override;
+
+  const ActorCriticPolicy& policy() const { return policy_; }
+
+ private:
+  // Returns false when a callback asked to stop.
+  bool collect_rollouts(VecEnv& env, TrainingHooks& hooks);
+  void train(Logger* logger);
+  void clip_to_action_space(Eigen::MatrixXf& actions) const;
+
+  Config config_;
+  AlgorithmSetup setup_;
+  Rng init_rng_, action_rng_, shuffle_rng_;
+  ActorCriticPolicy policy_;
+  Adam optimizer_;
+  double progress_remaining_ = 1.0;
+  EpisodeStats episode_stats_;
+  int64_t n_updates_ = 0;
+
+  // Rollout buffer (SB3 RolloutBuffer): sample k = step * n_envs + env.
+  Eigen::MatrixXf obs_buf_, act_buf_;
+  StepEnvMatrix rewards_, values_, episode_starts_, log_probs_, advantages_, returns_;
+  Eigen::MatrixXf last_obs_;
+  Eigen::RowVectorXf last_episode_starts_;
+  // Rollout and minibatch workspaces, allocated once in the constructor.
+  Eigen::MatrixXf step_actions_, env_actions_, final_obs_col_;
+  Eigen::RowVectorXf step_values_, step_log_probs_, terminal_value_;
+  std::vector<int> indices_;
+  Eigen::MatrixXf mb_obs_, mb_act_;
+  Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;
+  Eigen::RowVectorXf values_pred_, log_prob_, entropy_, grad_values_, grad_log_prob_,
+      grad_entropy_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,89 @@
+#pragma once
+// A YAML node that remembers where it came from, so every config error can name the file,
+// line, column and key path ("configs/x.yaml:7:3: algo.n_stps: unknown key; did you mean
+// 'n_steps'?"). Values set with `--set key=value` are reported as coming from the command line.
+#include <yaml-cpp/yaml.h>
+
+#include <memory>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace rlrun {
+
+class ConfigNode {
+ public:
+  ConfigNode() = default;
+  // YAML::Node's operator= assigns the VALUE into the referenced node, and reset() throws for
+  // an absent key's node; a ConfigNode is a handle, so assignment re-constructs the node.
+  ConfigNode(const ConfigNode& other) = default;
+  ConfigNode& operator=(const ConfigNode& other) {
+    if (this != &other) {
+      node_.~Node();
+      new (&node_) YAML::Node(other.node_);
+      context_ = other.context_;
+      path_ = other.path_;
+    }
+    return *this;
+  }
+  // Parses a YAML file; a syntax error is a ConfigError naming file:line:col.
+  static ConfigNode load_file(const std::string& path);
+  // Parses YAML text; `origin` names it in messages (e.g. "model.zip:config.yaml").
+  static ConfigNode load_string(const std::string& text, const std::string& origin);
+  // Wraps an existing node (e.g. built in code); positions are unknown.
+  static ConfigNode from_yaml(YAML::Node node, const std::string& origin, std::string path = "");
+
+  // Applies `--set a.b.c=value`: the value is parsed as YAML, missing maps are created.
+  void apply_override(const std::string& assignment);
+
+  const YAML::Node& yaml() const { return node_; }
+  YAML::Node& yaml() { return node_; }
+  const std::string& path() const { return path_; }
+  const std::string& origin() const { return context_->origin; }
+  bool defined() const { return node_.IsDefined() && !node_.IsNull(); }
+  // Absent keys give "invalid" yaml-cpp nodes whose Type() throws: check IsDefined() first.
+  bool is_map() const { return node_.IsDefined() && node_.IsMap(); }
+  bool is_sequence() const { return node_.IsDefined() && node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsDefined() && node_.IsScalar(); }
+  std::size_t size() const { return node_.IsDefined() ? node_.size() : 0; }
+
+  bool has(const std::string& key) const;
+  // Child of a map (undefined node if absent) and of a sequence.
+  ConfigNode child(const std::string& key) const;
+  ConfigNode at(std::size_t index) const;
+  std::vector<std::string> keys() const;
+
+  // "file:line:col" of this node, "--set path=value" for a command-line override, or the
+  // origin alone when the position is unknown.
+  std::string where() const;
+  // Throws ConfigError "<where>: <path>: <message>".
+  [[noreturn]] void fail(const std::string& message) const;
+  // Same, positioned at the KEY `key` of this map (for unknown keys: the key is the typo).
+  [[noreturn]] void fail_at_key(const std::string& key, const std::string& message) const;
+
+  // Scalar conversions with clear errors ("expected an integer, got 'abc'").
+  std::string as_string() const;
+  double as_double() const;
+  int64_t as_int() const;
+  bool as_bool() const;
+
+ private:
+  struct Context {
+    std::string origin;                        // file name or description
+    std::vector<std::string> override_paths;  // paths set from the command line
+    std::vector<std::string> override_texts;  // "path=value" as typed
+  };
+  ConfigNode(YAML::Node node, std::shared_ptr<Context> context, std::string path)
+      : node_(std::move(node)), context_(std::move(context)), path_(std::move(path)) {}
+
+  YAML::Node node_;
+  std::shared_ptr<Context> context_ = std::make_shared<Context>();
+  std::string path_;
+};
+
+// Closest candidate by edit distance, or "" if none is plausibly meant.
+std::string closest_name(const std::string& name, const std::vector<std::string>& candidates);
+// " (did you mean 'x'?)" or "" — appended to unknown-name messages.
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& candidates);
+
+}  // namespace rlrun

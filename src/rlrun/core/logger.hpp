@@ -1,0 +1,41 @@
+#pragma once
+// Key/value logger with SB3's semantics (stable_baselines3/common/logger.py): algorithms
+// `record("train/value_loss", v)` during an interval, then `dump(num_timesteps)` writes one
+// row to every sink (progress.csv, the console table, log.txt) and starts a new interval.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rlrun {
+
+using LogRow = std::map<std::string, double>;  // sorted by key, as SB3 prints them
+
+class LogSink {
+ public:
+  virtual ~LogSink() = default;
+  virtual void write(const LogRow& row, int64_t step) = 0;
+  virtual void flush() {}
+};
+
+class Logger {
+ public:
+  void record(const std::string& key, double value) { row_[key] = value; }
+  void dump(int64_t step) {
+    if (row_.empty()) return;
+    for (auto& sink : sinks_) sink->write(row_, step);
+    row_.clear();
+  }
+  void add_sink(std::unique_ptr<LogSink> sink) { sinks_.push_back(std::move(sink)); }
+  void flush() {
+    for (auto& sink : sinks_) sink->flush();
+  }
+  const LogRow& pending() const { return row_; }
+
+ private:
+  LogRow row_;
+  std::vector<std::unique_ptr<LogSink>> sinks_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,17 @@
+#pragma once
+// Reading and writing zip files of named members (libzip). Writes are atomic: the archive is
+// built under a temporary name in the same directory and renamed over the target, so a crash
+// never leaves a half-written model (DESIGN.md §5).
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rlrun {
+
+using ZipMembers = std::map<std::string, std::vector<uint8_t>>;
+
+// Throws RuntimeFailure with the path and libzip's reason.
+void write_zip_atomic(const std::string& path, const ZipMembers& members);
+ZipMembers read_zip(const std::string& path);
+
+}  // namespace rlrun

@@ -1,0 +1,183 @@
+#include "rlrun/env/env_checker.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <sstream>
+
+#include "rlrun/core/rng.hpp"
+
+namespace rlrun {
+
+namespace {
+
+using Obs = std::vector<float>;
+
+std::string format(std::span<const float> x) {
+  std::ostringstream out;
+  out << "[";
+  for (size_t i = 0; i < x.size(); ++i) out << (i ? ", " : "") << x[i];
+  out << "]";
+  return out.str();
+}
+
+// Bitwise equality, so that NaN == NaN and -0 != +0 (Gymnasium's data_equivalence(exact=True)).
+bool identical(std::span<const float> a, std::span<const float> b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+bool identical_values(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+class Checker {
+ public:
+  Checker(Env& env, uint64_t seed, int steps) : env_(env), seed_(seed), steps_(steps) {}
+
+  std::vector<std::string> run() {
+    if (!check_spaces()) return problems_;
+    try {
+      check_reset_seeding();
+      check_trajectory_determinism();
+    } catch (const std::exception& e) {
+      problem("the env threw: " + std::string(e.what()));
+    }
+    return problems_;
+  }
+
+ private:
+  // One recorded step, for comparing two rollouts.
+  struct Record {
+    Obs obs;
+    double reward;
+    bool terminated, truncated;
+    std::vector<double> info;
+  };
+
+  void problem(std::string message) {
+    // The same defect tends to repeat every step; report each message once.
+    for (const auto& p : problems_)
+      if (p == message) return;
+    problems_.push_back(std::move(message));
+  }
+
+  bool check_spaces() {
+    const Space& obs_space = env_.observation_space();
+    const Space& act_space = env_.action_space();
+    if (obs_space.flat_dim() <= 0) problem("observation_space has no elements");
+    if (act_space.flat_dim() <= 0) problem("action_space has no elements");
+    for (const Space* s : {&obs_space, &act_space})
+      if (s->is_box())
+        for (size_t i = 0; i < s->low().size(); ++i)
+          if (!(s->low()[i] <= s->high()[i]))
+            problem("space " + s->describe() + " has low > high at index " + std::to_string(i));
+    return problems_.empty();
+  }
+
+  Obs reset(std::optional<uint64_t> seed, const char* what) {
+    Obs obs(env_.observation_space().flat_dim());
+    env_.reset(seed, obs);
+    if (!env_.observation_space().contains(obs))
+      problem(std::string("the observation returned by ") + what + " " + format(obs) +
+              " is not inside " + env_.observation_space().describe());
+    return obs;
+  }
+
+  void check_reset_seeding() {
+    const Obs a1 = reset(seed_, "reset(seed)");
+    const Obs a2 = reset(std::nullopt, "reset()");
+    const Obs a3 = reset(std::nullopt, "reset()");
+    const Obs b1 = reset(seed_, "reset(seed)");
+    const Obs b2 = reset(std::nullopt, "reset()");
+    const Obs b3 = reset(std::nullopt, "reset()");
+    if (!identical(a1, b1))
+      problem("reset(seed) is not deterministic: " + format(a1) + " then " + format(b1));
+    else if (!identical(a2, b2) || !identical(a3, b3))
+      problem("reset() after reset(seed) is not deterministic (the env's RNG stream differs)");
+
+    // A different seed must change the resets, unless the reset is not random at all (an env
+    // may always start in the same state, e.g. a fixed maze). Three resets make a random
+    // start that happens to repeat practically impossible.
+    const Obs c1 = reset(seed_ + 1, "reset(seed + 1)");
+    const Obs c2 = reset(std::nullopt, "reset()");
+    const Obs c3 = reset(std::nullopt, "reset()");
+    const bool random_start = !identical(a1, a2) || !identical(a2, a3);
+    if (random_start && identical(a1, c1) && identical(a2, c2) && identical(a3, c3))
+      problem("reset(seed) ignores the seed: seeds " + std::to_string(seed_) + " and " +
+              std::to_string(seed_ + 1) + " give the same resets");
+  }
+
+  // Rolls out `steps_` steps from reset(seed_) with actions drawn from an Rng seeded with
+  // seed_, resetting (without a seed) whenever an episode ends.
+  std::vector<Record> rollout() {
+    const Space& act_space = env_.action_space();
+    const Space& obs_space = env_.observation_space();
+    Rng action_rng(seed_);
+    std::vector<float> action(act_space.flat_dim());
+    std::vector<Record> records;
+    records.reserve(steps_ + 1);
+    Record first{reset(seed_, "reset(seed)"), 0.0, false, false, env_.info().values()};
+    records.push_back(std::move(first));
+    for (int t = 0; t < steps_; ++t) {
+      act_space.sample(action_rng, action);
+      Record r{Obs(obs_space.flat_dim()), 0.0, false, false, {}};
+      const StepResult result = env_.step(action, r.obs);
+      r.reward = result.reward;
+      r.terminated = result.terminated;
+      r.truncated = result.truncated;
+      r.info = env_.info().values();
+      if (!obs_space.contains(r.obs))
+        problem("the observation returned by step() " + format(r.obs) + " is not inside " +
+                obs_space.describe() + " (step " + std::to_string(t) + ")");
+      if (!std::isfinite(r.reward))
+        problem("step() returned a non-finite reward " + std::to_string(r.reward) + " (step " +
+                std::to_string(t) + ")");
+      records.push_back(std::move(r));
+      if (result.terminated || result.truncated) {
+        // The new episode's first observation is part of the trajectory too.
+        Obs first_obs = reset(std::nullopt, "reset() after the episode ended");
+        records.push_back({std::move(first_obs), 0.0, false, false, env_.info().values()});
+      }
+    }
+    return records;
+  }
+
+  void check_trajectory_determinism() {
+    const std::vector<Record> a = rollout();
+    const std::vector<Record> b = rollout();
+    if (a.size() != b.size()) {
+      problem("the same seed and actions gave episodes of different lengths");
+      return;
+    }
+    for (size_t t = 0; t < a.size(); ++t) {
+      const std::string where = " (record " + std::to_string(t) + ")";
+      if (!identical(a[t].obs, b[t].obs)) {
+        problem("the same seed and actions gave different observations: " + format(a[t].obs) +
+                " vs " + format(b[t].obs) + where);
+        return;
+      }
+      if (a[t].reward != b[t].reward || a[t].terminated != b[t].terminated ||
+          a[t].truncated != b[t].truncated) {
+        problem("the same seed and actions gave different rewards or flags" + where);
+        return;
+      }
+      if (!identical_values(a[t].info, b[t].info)) {
+        problem("the same seed and actions gave different info values" + where);
+        return;
+      }
+    }
+  }
+
+  Env& env_;
+  uint64_t seed_;
+  int steps_;
+  std::vector<std::string> problems_;
+};
+
+}  // namespace
+
+std::vector<std::string> check_env(Env& env, uint64_t seed, int steps) {
+  return Checker(env, seed, steps).run();
+}
+
+}  // namespace rlrun

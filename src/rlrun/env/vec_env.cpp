@@ -1,0 +1,91 @@
+#include "rlrun/env/vec_env.hpp"
+
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace rlrun {
+
+VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
+  if (envs_.empty()) throw std::invalid_argument("VecEnv: needs at least one env");
+  for (size_t i = 0; i < envs_.size(); ++i) {
+    if (!envs_[i]) throw std::invalid_argument("VecEnv: env " + std::to_string(i) + " is null");
+    // SB3 builds every env from one factory; differing spaces mean a wrong env list.
+    if (!(envs_[i]->observation_space() == envs_[0]->observation_space()))
+      throw std::invalid_argument("VecEnv: env " + std::to_string(i) + " has observation space " +
+                                  envs_[i]->observation_space().describe() + " but env 0 has " +
+                                  envs_[0]->observation_space().describe());
+    if (!(envs_[i]->action_space() == envs_[0]->action_space()))
+      throw std::invalid_argument("VecEnv: env " + std::to_string(i) + " has action space " +
+                                  envs_[i]->action_space().describe() + " but env 0 has " +
+                                  envs_[0]->action_space().describe());
+  }
+  const int n = num_envs();
+  obs_dim_ = observation_space().flat_dim();
+  act_dim_ = action_space().flat_dim();
+  seeds_.assign(n, std::nullopt);
+  obs_.setZero(obs_dim_, n);
+  final_obs_.setConstant(obs_dim_, n, std::numeric_limits<float>::quiet_NaN());
+  rewards_.setZero(n);
+  terminated_.assign(n, 0);
+  truncated_.assign(n, 0);
+  infos_.resize(n);
+  for (int i = 0; i < n; ++i) copy_info(i);
+}
+
+void VecEnv::seed(uint64_t seed) {
+  for (int i = 0; i < num_envs(); ++i) seeds_[i] = seed + static_cast<uint64_t>(i);
+}
+
+const Eigen::MatrixXf& VecEnv::reset() {
+  for (int i = 0; i < num_envs(); ++i) {
+    envs_[i]->reset(seeds_[i], std::span<float>(obs_.col(i).data(), obs_dim_));
+    copy_info(i);
+    terminated_[i] = truncated_[i] = 0;
+    rewards_[i] = 0.0;
+  }
+  // SB3 _reset_seeds: a seed applies to one reset only.
+  seeds_.assign(seeds_.size(), std::nullopt);
+  final_obs_.setConstant(std::numeric_limits<float>::quiet_NaN());
+  return obs_;
+}
+
+void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
+  if (actions.rows() != act_dim_ || actions.cols() != num_envs())
+    throw std::invalid_argument("VecEnv::step: actions must be " + std::to_string(act_dim_) +
+                                " x " + std::to_string(num_envs()) + ", got " +
+                                std::to_string(actions.rows()) + " x " +
+                                std::to_string(actions.cols()));
+  for (int i = 0; i < num_envs(); ++i) {
+    const std::span<float> obs(obs_.col(i).data(), obs_dim_);
+    const StepResult r =
+        envs_[i]->step(std::span<const float>(actions.col(i).data(), act_dim_), obs);
+    rewards_[i] = r.reward;
+    terminated_[i] = r.terminated;
+    truncated_[i] = r.truncated;
+    copy_info(i);
+    if (r.terminated || r.truncated) {
+      final_obs_.col(i) = obs_.col(i);
+      envs_[i]->reset(std::nullopt, obs);
+    } else {
+      final_obs_.col(i).setConstant(std::numeric_limits<float>::quiet_NaN());
+    }
+  }
+}
+
+void VecEnv::copy_info(int i) {
+  const Info& src = envs_[i]->info();
+  Info& dst = infos_[i];
+  // Keys are declared when an env is built, so this branch runs once per env; an env that
+  // declares a key late costs one allocation here, never a wrong value.
+  if (dst.keys().size() != src.keys().size()) {
+    dst = Info();
+    for (const auto& key : src.keys()) dst.add_key(key);
+  }
+  for (size_t k = 0; k < src.values().size(); ++k)
+    dst.set(static_cast<int>(k), src.get(static_cast<int>(k)));
+}
+
+}  // namespace rlrun

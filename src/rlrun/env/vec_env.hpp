@@ -1,0 +1,73 @@
+#pragma once
+// VecEnv: n envs stepped in lockstep, with Stable-Baselines3's DummyVecEnv semantics
+// (stable_baselines3/common/vec_env/dummy_vec_env.py, base_vec_env.py):
+//   * seed(s) makes the NEXT reset() reset env i with seed s + i; later resets, including the
+//     automatic ones, pass no seed so each env continues its own stream.
+//   * step() auto-resets every env whose episode ended (terminated || truncated) in the same
+//     call: final_obs() column i holds the observation that ended the episode (SB3's
+//     info["terminal_observation"]), obs() column i the new episode's first observation.
+//   * info(i) is env i's Info of that step, copied before the auto-reset (SB3 keeps the
+//     step's info dict; the reset info is separate).
+// Observations and actions are one column per env (features x n_envs, DESIGN.md §3).
+// All buffers are allocated in the constructor; step() does not allocate.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rlrun/core/space.hpp"
+#include "rlrun/env/env.hpp"
+#include "rlrun/env/info.hpp"
+
+namespace rlrun {
+
+class VecEnv {
+ public:
+  // Throws std::invalid_argument if `envs` is empty, holds a null env, or the envs disagree
+  // on their observation or action space.
+  explicit VecEnv(std::vector<EnvPtr> envs);
+
+  int num_envs() const { return static_cast<int>(envs_.size()); }
+  const Space& observation_space() const { return envs_.front()->observation_space(); }
+  const Space& action_space() const { return envs_.front()->action_space(); }
+
+  // The next reset() seeds env i with seed + i (SB3 VecEnv.seed).
+  void seed(uint64_t seed);
+
+  // Resets every env; returns the observations (obs_dim x n_envs).
+  const Eigen::MatrixXf& reset();
+  // Steps every env with its column of `actions` (act_dim x n_envs) and auto-resets the
+  // envs that finished. Throws std::invalid_argument on a wrong shape.
+  void step(const Eigen::Ref<const Eigen::MatrixXf>& actions);
+
+  const Eigen::MatrixXf& obs() const { return obs_; }
+  const Eigen::VectorXd& rewards() const { return rewards_; }
+  bool terminated(int i) const { return terminated_[i] != 0; }
+  bool truncated(int i) const { return truncated_[i] != 0; }
+  bool done(int i) const { return terminated(i) || truncated(i); }
+  // Column i is the last observation of env i's finished episode when done(i); NaN otherwise.
+  const Eigen::MatrixXf& final_obs() const { return final_obs_; }
+  // Env i's info of the last step (or of the last reset(), before any step).
+  const Info& info(int i) const { return infos_[i]; }
+
+  Env& env(int i) { return *envs_[i]; }
+  const Env& env(int i) const { return *envs_[i]; }
+
+ private:
+  void copy_info(int i);
+
+  std::vector<EnvPtr> envs_;
+  std::vector<std::optional<uint64_t>> seeds_;
+  int obs_dim_ = 0;
+  int act_dim_ = 0;
+  Eigen::MatrixXf obs_;
+  Eigen::MatrixXf final_obs_;
+  Eigen::VectorXd rewards_;
+  // uint8_t rather than vector<bool> so that element access is a plain load.
+  std::vector<uint8_t> terminated_;
+  std::vector<uint8_t> truncated_;
+  std::vector<Info> infos_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,47 @@
+#pragma once
+// Acrobot-v1: gymnasium/envs/classic_control/acrobot.py (Gymnasium 1.0.0), Sutton's two-link
+// under-actuated robot ("book" dynamics of Sutton & Barto 1998), integrated with one RK4 step
+// of dt = 0.2 s. Torque noise is 0 as in Gymnasium, so the env draws randomness only in reset.
+#include <array>
+#include <span>
+#include <string>
+
+#include "rlrun/envs/classic/classic_control_env.hpp"
+
+namespace rlrun {
+
+class Acrobot : public ClassicControlEnv {
+ public:
+  // gymnasium.make("Acrobot-v1") takes no keyword arguments besides render_mode.
+  struct Config {
+    template <class V>
+    void visit(V&) {}
+  };
+
+  // Registered TimeLimit of Acrobot-v1 (gymnasium/envs/__init__.py).
+  static constexpr int kMaxEpisodeSteps = 500;
+
+  // Gymnasium's defaults. (A separate overload because a default argument `= {}` cannot
+  // use Config's member initialisers inside the enclosing class.)
+  Acrobot() : Acrobot(Config{}) {}
+  explicit Acrobot(const Config& config);
+
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+  std::string id() const override { return "Acrobot-v1"; }
+
+  int state_dim() const override { return 4; }
+  void get_state(std::span<double> state) const override;
+
+  const Config& config() const { return config_; }
+
+ protected:
+  void sample_initial_state() override;
+  void load_state(std::span<const double> state) override;
+  void write_observation(std::span<float> obs) const override;
+
+ private:
+  Config config_;
+  std::array<double, 4> state_{};  // theta1, theta2, dtheta1, dtheta2
+};
+
+}  // namespace rlrun

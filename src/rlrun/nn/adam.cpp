@@ -1,0 +1,48 @@
+#include "rlrun/nn/adam.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace rlrun {
+
+Adam::Adam(std::vector<ParamBlock> blocks, AdamConfig cfg) : blocks_(std::move(blocks)), cfg_(cfg) {
+  for (const ParamBlock& b : blocks_) {
+    exp_avg_.push_back(Eigen::VectorXf::Zero(b.size));
+    exp_avg_sq_.push_back(Eigen::VectorXf::Zero(b.size));
+  }
+}
+
+void Adam::rebind(std::vector<ParamBlock> blocks) {
+  if (blocks.size() != blocks_.size()) throw std::invalid_argument("Adam::rebind: block count");
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    if (blocks[i].size != blocks_[i].size) throw std::invalid_argument("Adam::rebind: block size");
+  }
+  blocks_ = std::move(blocks);
+}
+
+void Adam::step(float lr) {
+  ++steps_;
+  // Scalars in double, as torch computes them from Python floats, then rounded once.
+  const double t = static_cast<double>(steps_);
+  const double bias_c1 = 1.0 - std::pow(cfg_.beta1, t);
+  const double bias_c2 = 1.0 - std::pow(cfg_.beta2, t);
+  const float step_size = static_cast<float>(lr / bias_c1);
+  const float inv_bias_c2_sqrt = static_cast<float>(1.0 / std::sqrt(bias_c2));
+  const auto w1 = static_cast<float>(1.0 - cfg_.beta1);  // torch: exp_avg.lerp_(grad, 1 - beta1)
+  const auto beta2 = static_cast<float>(cfg_.beta2);
+  const auto w2 = static_cast<float>(1.0 - cfg_.beta2);
+  const auto eps = static_cast<float>(cfg_.eps);
+  for (size_t i = 0; i < blocks_.size(); ++i) {
+    const ParamBlock& b = blocks_[i];
+    Eigen::Map<Eigen::ArrayXf> p(b.value, b.size);
+    const Eigen::Map<const Eigen::ArrayXf> g(b.grad, b.size);
+    auto m = exp_avg_[i].array();
+    auto v = exp_avg_sq_[i].array();
+    m += w1 * (g - m);
+    v = beta2 * v + w2 * g.square();
+    p -= step_size * m / (v.sqrt() * inv_bias_c2_sqrt + eps);
+  }
+}
+
+}  // namespace rlrun

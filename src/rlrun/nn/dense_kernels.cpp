@@ -1,0 +1,239 @@
+#include "rlrun/nn/dense_kernels.hpp"
+
+namespace rlrun::dense {
+
+namespace {
+
+namespace ei = Eigen::internal;
+using Packet = ei::packet_traits<float>::type;
+constexpr int kLanes = ei::packet_traits<float>::size;
+
+// tanh of one float through the packet routine, so every element of a layer gets the same
+// rounding whichever path (packet or scalar tail, any batch size) computed it.
+inline float scalar_tanh(float x) { return ei::pfirst(ei::ptanh(ei::pset1<Packet>(x))); }
+
+// Epilogues: packet(acc, i, j) handles rows i..i+kLanes-1 of column j; scalar(acc, i, j) one
+// element. All are tiny structs so the tile loops inline them.
+struct StoreEpi {
+  float* c;
+  Index ldc;
+  void packet(Packet s, Index i, Index j) const { ei::pstoreu(c + i + j * ldc, s); }
+  void scalar(float s, Index i, Index j) const { c[i + j * ldc] = s; }
+};
+
+struct AddEpi {
+  float* c;
+  Index ldc;
+  void packet(Packet s, Index i, Index j) const {
+    float* p = c + i + j * ldc;
+    ei::pstoreu(p, ei::padd(ei::ploadu<Packet>(p), s));
+  }
+  void scalar(float s, Index i, Index j) const { c[i + j * ldc] += s; }
+};
+
+struct AddTransposedEpi {
+  float* c;
+  Index ldc;
+  void packet(Packet s, Index i, Index j) const {
+    alignas(64) float lanes[kLanes];
+    ei::pstoreu(lanes, s);
+    for (int q = 0; q < kLanes; ++q) c[j + (i + q) * ldc] += lanes[q];
+  }
+  void scalar(float s, Index i, Index j) const { c[j + i * ldc] += s; }
+};
+
+enum class Act { kNone, kTanh, kReLU };
+
+template <Act kAct>
+struct BiasEpi {
+  float* c;
+  Index ldc;
+  const float* bias;
+  static Packet activate(Packet v) {
+    if constexpr (kAct == Act::kTanh) return ei::ptanh(v);
+    if constexpr (kAct == Act::kReLU) return ei::pmax(v, ei::pzero(v));
+    return v;
+  }
+  void packet(Packet s, Index i, Index j) const {
+    ei::pstoreu(c + i + j * ldc, activate(ei::padd(s, ei::ploadu<Packet>(bias + i))));
+  }
+  void scalar(float s, Index i, Index j) const {
+    const float v = s + bias[i];
+    if constexpr (kAct == Act::kTanh) {
+      c[i + j * ldc] = scalar_tanh(v);
+    } else if constexpr (kAct == Act::kReLU) {
+      c[i + j * ldc] = v > 0.0f ? v : 0.0f;
+    } else {
+      c[i + j * ldc] = v;
+    }
+  }
+};
+
+// Backward through the activation, read off the stored output a: tanh' = 1 - a^2 and
+// relu' = [a > 0] (torch's threshold_backward also gives 0 at exactly 0).
+template <Act kAct>
+struct ActGradEpi {
+  float* c;
+  Index ldc;
+  const float* act;
+  Index ld_act;
+  void packet(Packet s, Index i, Index j) const {
+    const Packet a = ei::ploadu<Packet>(act + i + j * ld_act);
+    Packet g;
+    if constexpr (kAct == Act::kTanh) {
+      g = ei::pmul(s, ei::psub(ei::pset1<Packet>(1.0f), ei::pmul(a, a)));
+    } else {
+      g = ei::pand(s, ei::pcmp_lt(ei::pzero(a), a));
+    }
+    ei::pstoreu(c + i + j * ldc, g);
+  }
+  void scalar(float s, Index i, Index j) const {
+    const float a = act[i + j * ld_act];
+    if constexpr (kAct == Act::kTanh) {
+      c[i + j * ldc] = s * (1.0f - a * a);
+    } else {
+      c[i + j * ldc] = a > 0.0f ? s : 0.0f;
+    }
+  }
+};
+
+// ---- gemm_rows: C = A B, vectorised over rows of A and C -----------------------------------
+
+// One register tile: kMp packets of rows (kMp * kLanes rows) by kNr columns, summed over k.
+// a points at row i0 of A, b at column j0 of B.
+template <int kMp, int kNr, class Epi>
+inline void rows_tile(Index k, const float* a, Index lda, const float* b, Index b_k, Index b_j,
+                      Index i0, Index j0, const Epi& epi) {
+  Packet acc[kMp][kNr];
+  for (int p = 0; p < kMp; ++p) {
+    for (int r = 0; r < kNr; ++r) acc[p][r] = ei::pset1<Packet>(0.0f);
+  }
+  for (Index kk = 0; kk < k; ++kk) {
+    Packet av[kMp];
+    for (int p = 0; p < kMp; ++p) av[p] = ei::ploadu<Packet>(a + kk * lda + p * kLanes);
+    const float* bk = b + kk * b_k;
+    for (int r = 0; r < kNr; ++r) {
+      const Packet bv = ei::pset1<Packet>(bk[r * b_j]);
+      for (int p = 0; p < kMp; ++p) acc[p][r] = ei::pmadd(av[p], bv, acc[p][r]);
+    }
+  }
+  for (int r = 0; r < kNr; ++r) {
+    for (int p = 0; p < kMp; ++p) epi.packet(acc[p][r], i0 + p * kLanes, j0 + r);
+  }
+}
+
+// All rows for kNr columns starting at j0: 2-packet tiles, a 1-packet tile, then scalar rows.
+template <int kNr, class Epi>
+void rows_column_block(Index m, Index k, const float* a, Index lda, const float* b, Index b_k,
+                       Index b_j, Index j0, const Epi& epi) {
+  const float* bj = b + j0 * b_j;
+  Index i = 0;
+  for (; i + 2 * kLanes <= m; i += 2 * kLanes) {
+    rows_tile<2, kNr>(k, a + i, lda, bj, b_k, b_j, i, j0, epi);
+  }
+  for (; i + kLanes <= m; i += kLanes) rows_tile<1, kNr>(k, a + i, lda, bj, b_k, b_j, i, j0, epi);
+  for (; i < m; ++i) {
+    for (int r = 0; r < kNr; ++r) {
+      float s = 0.0f;
+      for (Index kk = 0; kk < k; ++kk) s += a[i + kk * lda] * bj[kk * b_k + r * b_j];
+      epi.scalar(s, i, j0 + r);
+    }
+  }
+}
+
+template <class Epi>
+void rows_run(Index m, Index n, Index k, const float* a, Index lda, const float* b, Index b_k,
+              Index b_j, const Epi& epi) {
+  constexpr int kNr = 6;
+  Index j = 0;
+  for (; j + kNr <= n; j += kNr) rows_column_block<kNr>(m, k, a, lda, b, b_k, b_j, j, epi);
+  switch (n - j) {
+    case 5: rows_column_block<5>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 4: rows_column_block<4>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 3: rows_column_block<3>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 2: rows_column_block<2>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 1: rows_column_block<1>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    default: break;
+  }
+}
+
+// ---- gemm_dot: C(i, j) = X(:, i) . Y(:, j), vectorised over the reduction -------------------
+
+template <int kMi, int kNj, class Epi>
+inline void dot_tile(Index p, const float* x, Index ldx, const float* y, Index ldy, Index i0,
+                     Index j0, const Epi& epi) {
+  Packet acc[kMi][kNj];
+  for (int r = 0; r < kMi; ++r) {
+    for (int c = 0; c < kNj; ++c) acc[r][c] = ei::pset1<Packet>(0.0f);
+  }
+  const float* xs = x + i0 * ldx;
+  const float* ys = y + j0 * ldy;
+  Index pp = 0;
+  for (; pp + kLanes <= p; pp += kLanes) {
+    Packet xv[kMi];
+    for (int r = 0; r < kMi; ++r) xv[r] = ei::ploadu<Packet>(xs + r * ldx + pp);
+    for (int c = 0; c < kNj; ++c) {
+      const Packet yv = ei::ploadu<Packet>(ys + c * ldy + pp);
+      for (int r = 0; r < kMi; ++r) acc[r][c] = ei::pmadd(xv[r], yv, acc[r][c]);
+    }
+  }
+  for (int r = 0; r < kMi; ++r) {
+    for (int c = 0; c < kNj; ++c) {
+      float s = ei::predux(acc[r][c]);
+      for (Index q = pp; q < p; ++q) s += xs[r * ldx + q] * ys[c * ldy + q];
+      epi.scalar(s, i0 + r, j0 + c);
+    }
+  }
+}
+
+template <int kMi, int kNj, class Epi>
+void dot_row_block(Index n, Index p, const float* x, Index ldx, const float* y, Index ldy,
+                   Index i0, const Epi& epi) {
+  Index j = 0;
+  for (; j + kNj <= n; j += kNj) dot_tile<kMi, kNj>(p, x, ldx, y, ldy, i0, j, epi);
+  for (; j < n; ++j) dot_tile<kMi, 1>(p, x, ldx, y, ldy, i0, j, epi);
+}
+
+template <class Epi>
+void dot_run(Index m, Index n, Index p, const float* x, Index ldx, const float* y, Index ldy,
+             const Epi& epi) {
+  Index i = 0;
+  for (; i + 4 <= m; i += 4) dot_row_block<4, 3>(n, p, x, ldx, y, ldy, i, epi);
+  switch (m - i) {
+    case 3: dot_row_block<3, 4>(n, p, x, ldx, y, ldy, i, epi); break;
+    case 2: dot_row_block<2, 6>(n, p, x, ldx, y, ldy, i, epi); break;
+    case 1: dot_row_block<1, 8>(n, p, x, ldx, y, ldy, i, epi); break;
+    default: break;
+  }
+}
+
+// Turns the run-time epilogue choice into a compile-time one, once per product.
+template <class Run>
+void dispatch(Epilogue epilogue, const EpilogueArgs& g, Run&& run) {
+  switch (epilogue) {
+    case Epilogue::kStore: return run(StoreEpi{g.c, g.ldc});
+    case Epilogue::kAdd: return run(AddEpi{g.c, g.ldc});
+    case Epilogue::kAddTransposed: return run(AddTransposedEpi{g.c, g.ldc});
+    case Epilogue::kBias: return run(BiasEpi<Act::kNone>{g.c, g.ldc, g.bias});
+    case Epilogue::kBiasTanh: return run(BiasEpi<Act::kTanh>{g.c, g.ldc, g.bias});
+    case Epilogue::kBiasReLU: return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
+    case Epilogue::kTanhGrad: return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
+    case Epilogue::kReLUGrad: return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
+  }
+}
+
+}  // namespace
+
+void gemm_rows(Index m, Index n, Index k, const float* a, Index lda, const float* b, Index b_k,
+               Index b_j, Epilogue epilogue, const EpilogueArgs& args) {
+  dispatch(epilogue, args, [&](const auto& epi) { rows_run(m, n, k, a, lda, b, b_k, b_j, epi); });
+}
+
+void gemm_dot(Index m, Index n, Index p, const float* x, Index ldx, const float* y, Index ldy,
+              Epilogue epilogue, const EpilogueArgs& args) {
+  dispatch(epilogue, args, [&](const auto& epi) { dot_run(m, n, p, x, ldx, y, ldy, epi); });
+}
+
+int packet_size() { return kLanes; }
+
+}  // namespace rlrun::dense

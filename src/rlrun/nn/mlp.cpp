@@ -1,0 +1,163 @@
+#include "rlrun/nn/mlp.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rlrun/nn/dense_kernels.hpp"
+#include "rlrun/nn/orthogonal_init.hpp"
+
+namespace rlrun {
+
+Mlp::Mlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act)
+    : hidden_(std::move(hidden)), act_(act) {
+  dims_.reserve(hidden_.size() + 2);
+  dims_.push_back(in_dim);
+  for (int h : hidden_) dims_.push_back(h);
+  dims_.push_back(out_dim);
+  for (int d : dims_) {
+    if (d <= 0) throw std::invalid_argument("Mlp: layer sizes must be positive, got " +
+                                            std::to_string(d));
+  }
+  const int layers = static_cast<int>(dims_.size()) - 1;
+  Eigen::Index offset = 0;
+  for (int l = 0; l < layers; ++l) {
+    w_offset_.push_back(offset);
+    offset += static_cast<Eigen::Index>(dims_[l + 1]) * dims_[l];
+    b_offset_.push_back(offset);
+    offset += dims_[l + 1];
+  }
+  params_ = Eigen::VectorXf::Zero(offset);
+  grads_ = Eigen::VectorXf::Zero(offset);
+  acts_.assign(layers + 1, Eigen::MatrixXf());
+  deltas_.assign(layers - 1, Eigen::MatrixXf());
+  for (int l = 0; l < layers; ++l) wt_.emplace_back(dims_[l], dims_[l + 1]);
+}
+
+Eigen::Map<Eigen::MatrixXf> Mlp::weight(int layer) {
+  return {params_.data() + w_offset_[layer], dims_[layer + 1], dims_[layer]};
+}
+Eigen::Map<const Eigen::MatrixXf> Mlp::weight(int layer) const {
+  return {params_.data() + w_offset_[layer], dims_[layer + 1], dims_[layer]};
+}
+Eigen::Map<Eigen::VectorXf> Mlp::bias(int layer) {
+  return {params_.data() + b_offset_[layer], dims_[layer + 1]};
+}
+Eigen::Map<const Eigen::VectorXf> Mlp::bias(int layer) const {
+  return {params_.data() + b_offset_[layer], dims_[layer + 1]};
+}
+Eigen::Map<Eigen::MatrixXf> Mlp::weight_grad(int layer) {
+  return {grads_.data() + w_offset_[layer], dims_[layer + 1], dims_[layer]};
+}
+Eigen::Map<const Eigen::MatrixXf> Mlp::weight_grad(int layer) const {
+  return {grads_.data() + w_offset_[layer], dims_[layer + 1], dims_[layer]};
+}
+Eigen::Map<Eigen::VectorXf> Mlp::bias_grad(int layer) {
+  return {grads_.data() + b_offset_[layer], dims_[layer + 1]};
+}
+Eigen::Map<const Eigen::VectorXf> Mlp::bias_grad(int layer) const {
+  return {grads_.data() + b_offset_[layer], dims_[layer + 1]};
+}
+
+void Mlp::init_orthogonal(Rng& rng, float hidden_gain, float output_gain) {
+  const int layers = num_layers();
+  for (int l = 0; l < layers; ++l) {
+    orthogonal_init(weight(l), l + 1 < layers ? hidden_gain : output_gain, rng);
+    bias(l).setZero();
+  }
+}
+
+const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) {
+  if (x.rows() != in_dim()) {
+    throw std::invalid_argument("Mlp::forward: input has " + std::to_string(x.rows()) +
+                                " rows, network expects " + std::to_string(in_dim()));
+  }
+  const int layers = num_layers();
+  const Eigen::Index batch = x.cols();
+  acts_[0] = x;  // kept for the first layer's weight gradient; resizes only on a new batch size
+  if (ones_.size() != batch) ones_.setOnes(batch);
+  for (int l = 0; l < layers; ++l) {
+    const Eigen::Index in = dims_[l];
+    const Eigen::Index out = dims_[l + 1];
+    Eigen::MatrixXf& z = acts_[l + 1];
+    z.resize(out, batch);
+    dense::Epilogue epilogue = dense::Epilogue::kBias;
+    if (l + 1 < layers) {
+      epilogue = act_ == Activation::kTanh ? dense::Epilogue::kBiasTanh : dense::Epilogue::kBiasReLU;
+    }
+    const dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = bias(l).data()};
+    if (out >= dense::packet_size()) {
+      dense::gemm_rows(out, batch, in, weight(l).data(), out, acts_[l].data(), 1, in, epilogue,
+                       args);
+    } else {
+      // Few output units (a value or small action head): dot products over the input features.
+      wt_[l] = weight(l).transpose();
+      dense::gemm_dot(out, batch, in, wt_[l].data(), in, acts_[l].data(), in, epilogue, args);
+    }
+  }
+  return acts_.back();
+}
+
+void Mlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                   Eigen::MatrixXf* grad_input) {
+  const int layers = num_layers();
+  const Eigen::Index batch = acts_[0].cols();
+  if (grad_output.rows() != out_dim() || grad_output.cols() != batch) {
+    throw std::invalid_argument("Mlp::backward: grad_output is " +
+                                std::to_string(grad_output.rows()) + "x" +
+                                std::to_string(grad_output.cols()) + ", last forward gave " +
+                                std::to_string(out_dim()) + "x" + std::to_string(batch));
+  }
+  const int lanes = dense::packet_size();
+  for (int l = layers - 1; l >= 0; --l) {
+    const Eigen::Index in = dims_[l];
+    const Eigen::Index out = dims_[l + 1];
+    // dL/dz of layer l: the caller's gradient for the linear head, else our buffer.
+    const float* delta = l + 1 == layers ? grad_output.data() : deltas_[l].data();
+    const Eigen::Index ld_delta = l + 1 == layers ? grad_output.outerStride() : out;
+    const float* input = acts_[l].data();
+
+    // dW += delta input^T, vectorised over whichever of out / in is wider.
+    if (out >= lanes || out >= in) {
+      dense::gemm_rows(out, in, batch, delta, ld_delta, input, in, 1, dense::Epilogue::kAdd,
+                       {.c = weight_grad(l).data(), .ldc = out});
+    } else {
+      dense::gemm_rows(in, out, batch, input, in, delta, ld_delta, 1,
+                       dense::Epilogue::kAddTransposed, {.c = weight_grad(l).data(), .ldc = out});
+    }
+    // db += delta 1 (a row sum as a matrix-vector product, which Eigen vectorises well).
+    bias_grad(l).noalias() +=
+        Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>(
+            delta, out, batch, Eigen::OuterStride<>(ld_delta)) *
+        ones_;
+
+    // dL/d(input) = W^T delta, times act'(input) when the input is a hidden activation:
+    // tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation.
+    float* target = nullptr;
+    dense::EpilogueArgs args;
+    dense::Epilogue epilogue = dense::Epilogue::kStore;
+    if (l > 0) {
+      deltas_[l - 1].resize(in, batch);
+      target = deltas_[l - 1].data();
+      epilogue = act_ == Activation::kTanh ? dense::Epilogue::kTanhGrad : dense::Epilogue::kReLUGrad;
+      args.act = input;
+      args.ld_act = in;
+    } else if (grad_input != nullptr) {
+      grad_input->resize(in, batch);
+      target = grad_input->data();
+    } else {
+      continue;
+    }
+    args.c = target;
+    args.ldc = in;
+    if (in >= lanes) {
+      wt_[l] = weight(l).transpose();
+      dense::gemm_rows(in, batch, out, wt_[l].data(), in, delta, 1, ld_delta, epilogue, args);
+    } else {
+      dense::gemm_dot(in, batch, out, weight(l).data(), out, delta, ld_delta, epilogue, args);
+    }
+  }
+}
+
+}  // namespace rlrun

@@ -1,0 +1,95 @@
+#pragma once
+// A fully connected network: Linear -> act -> ... -> Linear, the last layer linear. This is
+// SB3's mlp_extractor (common/torch_layers.py create_mlp / MlpExtractor) with the action_net or
+// value_net head stacked on top, i.e. one of the two towers of an ActorCriticPolicy, a SAC
+// actor's latent_pi + mu, or a ContinuousCritic's q-network.
+//
+// Layout: one sample per column; forward maps (in_dim x batch) to (out_dim x batch).
+// Parameters: ALL weights and biases live in one contiguous params_ vector (per layer: the
+// out x in weight, column-major, then the out-long bias) with a same-sized grads_. So copying an
+// Mlp, `target.params() = online.params()`, Polyak averaging and optimizers are plain vector
+// operations. Per-layer views are Eigen::Maps built on demand from stored offsets; no pointer
+// into params_ is ever stored, so an Mlp is safely copyable and movable.
+// Note for export: torch stores Linear.weight row-major (out, in); weight(l) is the same matrix
+// stored column-major, i.e. a Fortran-order (out, in) array.
+#include <Eigen/Core>
+#include <vector>
+
+#include "rlrun/core/rng.hpp"
+#include "rlrun/nn/activation.hpp"
+#include "rlrun/nn/param_block.hpp"
+
+namespace rlrun {
+
+class Mlp {
+ public:
+  Mlp() = default;
+  // hidden may be empty (a single linear layer). Parameters start at zero: call
+  // init_orthogonal (SB3's init) or write params() directly. Throws std::invalid_argument for
+  // non-positive sizes.
+  Mlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act);
+
+  int in_dim() const { return dims_.empty() ? 0 : dims_.front(); }
+  int out_dim() const { return dims_.empty() ? 0 : dims_.back(); }
+  const std::vector<int>& hidden() const { return hidden_; }
+  Activation activation() const { return act_; }
+  int num_layers() const { return static_cast<int>(w_offset_.size()); }
+  // Input and output width of layer l.
+  int layer_in(int layer) const { return dims_[layer]; }
+  int layer_out(int layer) const { return dims_[layer + 1]; }
+  Eigen::Index num_params() const { return params_.size(); }
+
+  Eigen::VectorXf& params() { return params_; }
+  const Eigen::VectorXf& params() const { return params_; }
+  Eigen::VectorXf& grads() { return grads_; }
+  const Eigen::VectorXf& grads() const { return grads_; }
+  // The whole network as one optimizer block (valid until this Mlp is moved or reassigned).
+  ParamBlock block() { return {params_.data(), grads_.data(), params_.size()}; }
+  void zero_grad() { grads_.setZero(); }
+
+  // Views of layer l's parameters and gradients; weight is (out x in) like torch's.
+  Eigen::Map<Eigen::MatrixXf> weight(int layer);
+  Eigen::Map<const Eigen::MatrixXf> weight(int layer) const;
+  Eigen::Map<Eigen::VectorXf> bias(int layer);
+  Eigen::Map<const Eigen::VectorXf> bias(int layer) const;
+  Eigen::Map<Eigen::MatrixXf> weight_grad(int layer);
+  Eigen::Map<const Eigen::MatrixXf> weight_grad(int layer) const;
+  Eigen::Map<Eigen::VectorXf> bias_grad(int layer);
+  Eigen::Map<const Eigen::VectorXf> bias_grad(int layer) const;
+
+  // torch.nn.init.orthogonal_ on every weight (hidden_gain for all but the last layer,
+  // output_gain for the last), zero biases: SB3 ActorCriticPolicy uses sqrt(2) and 0.01 (policy)
+  // or 1 (value). Layers are initialised first to last from rng.
+  void init_orthogonal(Rng& rng, float hidden_gain, float output_gain);
+
+  // Runs the network on x (in_dim x batch) and returns the output (out_dim x batch). Keeps a
+  // copy of x and every layer's output for backward; the buffers are reused, so no allocation
+  // happens while the batch size stays the same. The reference stays valid until the next call.
+  const Eigen::MatrixXf& forward(const Eigen::Ref<const Eigen::MatrixXf>& x);
+  // The output of the last forward.
+  const Eigen::MatrixXf& output() const { return acts_.back(); }
+
+  // Backpropagates dL/doutput (out_dim x batch of the last forward) and ADDS the parameter
+  // gradients to grads() (so several losses through the same network sum, as in torch before
+  // optimizer.zero_grad()). If grad_input is given it receives dL/dx (in_dim x batch).
+  void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                Eigen::MatrixXf* grad_input = nullptr);
+
+ private:
+  std::vector<int> hidden_;
+  std::vector<int> dims_;  // in, hidden..., out
+  Activation act_ = Activation::kTanh;
+  std::vector<Eigen::Index> w_offset_;  // start of layer l's weight in params_
+  std::vector<Eigen::Index> b_offset_;  // start of layer l's bias in params_
+  Eigen::VectorXf params_;
+  Eigen::VectorXf grads_;
+  // acts_[0] = input, acts_[l + 1] = output of layer l (after its activation when hidden).
+  std::vector<Eigen::MatrixXf> acts_{1};
+  // deltas_[l] = dL/d(pre-activation of hidden layer l), (dims_[l + 1] x batch).
+  std::vector<Eigen::MatrixXf> deltas_;
+  // wt_[l] = weight(l)^T (in x out), refreshed whenever a kernel wants the transposed layout.
+  std::vector<Eigen::MatrixXf> wt_;
+  Eigen::VectorXf ones_;  // batch ones, for the bias gradient as a matrix-vector product
+};
+
+}  // namespace rlrun

@@ -1,0 +1,40 @@
+#include "rlrun/runtime/env_factory.hpp"
+
+#include <chrono>
+
+#include "rlrun/wrappers/monitor.hpp"
+#include "rlrun/wrappers/time_limit.hpp"
+
+namespace rlrun {
+
+double unix_time_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
+                double t_start) {
+  const EnvEntry& entry = registry.env(spec.id, spec.id_node);
+  EnvPtr env = entry.make(spec.kwargs);
+  const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
+  if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
+  env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start);
+  for (const ConfigNode& w : spec.wrappers) {
+    const WrapperEntry& wrapper = registry.wrapper(w.child("id").as_string(), w.child("id"));
+    env = wrapper.make(std::move(env), w);
+  }
+  return env;
+}
+
+VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
+                    const std::string& monitor_dir) {
+  std::vector<EnvPtr> envs;
+  const double t_start = unix_time_now();
+  for (int i = 0; i < n_envs; ++i) {
+    const std::string path =
+        monitor_dir.empty() ? "" : monitor_dir + "/" + std::to_string(i) + ".monitor.csv";
+    envs.push_back(make_env(spec, registry, path, t_start));
+  }
+  return VecEnv(std::move(envs));
+}
+
+}  // namespace rlrun

@@ -1,0 +1,23 @@
+#pragma once
+// Builds the env stack for an experiment, in the order SB3's make_vec_env and gymnasium.make
+// use: registered env -> TimeLimit (registered limit or override) -> Monitor (true episode
+// returns, `<rank>.monitor.csv`) -> the user's wrappers in YAML order.
+#include <string>
+
+#include "rlrun/env/vec_env.hpp"
+#include "rlrun/runtime/experiment.hpp"
+
+namespace rlrun {
+
+// `monitor_path` empty: statistics only, no file.
+EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
+                double t_start);
+
+// n copies; env i writes `<monitor_dir>/<i>.monitor.csv` unless monitor_dir is empty.
+VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
+                    const std::string& monitor_dir);
+
+// Current Unix time in seconds (the Monitor's t_start).
+double unix_time_now();
+
+}  // namespace rlrun

@@ -1,0 +1,61 @@
+#include "rlrun/runtime/evaluator.hpp"
+
+#include <cmath>
+
+namespace rlrun {
+
+namespace {
+double mean_of(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? std::nan("") : s / static_cast<double>(v.size());
+}
+}  // namespace
+
+double EvalResult::mean_return() const { return mean_of(returns); }
+
+double EvalResult::std_return() const {
+  const double m = mean_return();
+  double s = 0;
+  for (double x : returns) s += (x - m) * (x - m);
+  return returns.empty() ? std::nan("") : std::sqrt(s / static_cast<double>(returns.size()));
+}
+
+double EvalResult::mean_length() const {
+  double s = 0;
+  for (auto l : lengths) s += static_cast<double>(l);
+  return lengths.empty() ? std::nan("") : s / static_cast<double>(lengths.size());
+}
+
+EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
+                           std::optional<uint64_t> seed) {
+  EvalResult result;
+  const int obs_dim = env.observation_space().flat_dim();
+  Eigen::MatrixXf obs(obs_dim, 1);
+  Eigen::MatrixXf actions;
+  const int r_key = env.info().find("episode.r");
+  const int l_key = env.info().find("episode.l");
+  const int success_key = env.info().find("is_success");
+  for (int episode = 0; episode < n_episodes; ++episode) {
+    env.reset(episode == 0 ? seed : std::nullopt, {obs.data(), static_cast<size_t>(obs_dim)});
+    double episode_return = 0;
+    int64_t length = 0;
+    while (true) {
+      algorithm.predict(obs, deterministic, actions);
+      const StepResult step = env.step({actions.data(), static_cast<size_t>(actions.size())},
+                                       {obs.data(), static_cast<size_t>(obs_dim)});
+      episode_return += step.reward;
+      ++length;
+      if (step.terminated || step.truncated) {
+        const Info& info = env.info();
+        result.returns.push_back(info.has(r_key) ? info.get(r_key) : episode_return);
+        result.lengths.push_back(info.has(l_key) ? static_cast<int64_t>(info.get(l_key)) : length);
+        if (info.has(success_key)) result.successes.push_back(info.get(success_key));
+        break;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,28 @@
+#pragma once
+// SB3's evaluate_policy (stable_baselines3/common/evaluation.py) for one env: runs n episodes
+// with the algorithm's predict(), the first reset seeded, and reports the Monitor's episode
+// returns (the env's true reward, before reward wrappers) when the env has a Monitor.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/env/env.hpp"
+
+namespace rlrun {
+
+struct EvalResult {
+  std::vector<double> returns;
+  std::vector<int64_t> lengths;
+  std::vector<double> successes;  // one per episode where the env reports is_success
+
+  double mean_return() const;
+  double std_return() const;  // population std, as numpy's std in SB3
+  double mean_length() const;
+};
+
+EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
+                           std::optional<uint64_t> seed);
+
+}  // namespace rlrun

@@ -1,0 +1,109 @@
+#include "rlrun/runtime/experiment.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "rlrun/core/config_fields.hpp"
+#include "rlrun/core/errors.hpp"
+
+namespace rlrun {
+
+namespace {
+
+std::string required_id(const ConfigNode& section, const char* what) {
+  if (!section.defined()) section.fail(std::string("missing section (needs at least `id`)"));
+  if (!section.is_map()) section.fail("expected a map with `id` and " + std::string(what) + " settings");
+  const ConfigNode id = section.child("id");
+  if (!id.defined()) section.fail(std::string("missing `id` (the ") + what + " to use)");
+  return id.as_string();
+}
+
+}  // namespace
+
+Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
+  if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval");
+  const std::vector<std::string> sections{"run", "env", "algo", "eval"};
+  for (const auto& key : root.keys())
+    if (std::find(sections.begin(), sections.end(), key) == sections.end())
+      root.fail_at_key(key, "unknown section '" + key + "'" + did_you_mean(key, sections) +
+                           "; valid sections: run, env, algo, eval");
+
+  Experiment exp;
+  exp.source = root.origin();
+  exp.run = read_config<RunConfig>(root.child("run"));
+  if (exp.run.total_timesteps < 1) root.child("run").child("total_timesteps").fail("must be >= 1");
+  if (exp.run.log_interval < 1) root.child("run").child("log_interval").fail("must be >= 1");
+
+  // env
+  const ConfigNode env = root.child("env");
+  exp.env.id = required_id(env, "environment");
+  exp.env.id_node = env.child("id");
+  exp.env.section = read_config<EnvSectionConfig>(env, {"id", "kwargs", "wrappers"});
+  if (exp.env.section.n_envs < 1) env.child("n_envs").fail("must be >= 1");
+  const EnvEntry& env_entry = registry.env(exp.env.id, exp.env.id_node);
+  exp.env.kwargs = env.child("kwargs");
+  YAML::Node resolved_env(YAML::NodeType::Map);
+  resolved_env["id"] = exp.env.id;
+  for (const auto& kv : write_config(exp.env.section)) resolved_env[kv.first] = kv.second;
+  if (!exp.env.section.max_episode_steps) resolved_env["max_episode_steps"] = env_entry.max_episode_steps;
+  resolved_env["kwargs"] = env_entry.resolve(exp.env.kwargs);
+  YAML::Node resolved_wrappers(YAML::NodeType::Sequence);
+  const ConfigNode wrappers = env.child("wrappers");
+  if (wrappers.defined()) {
+    if (!wrappers.is_sequence()) wrappers.fail("expected a list of {id: ..., <params>}");
+    for (std::size_t i = 0; i < wrappers.size(); ++i) {
+      const ConfigNode w = wrappers.at(i);
+      const std::string id = required_id(w, "wrapper");
+      const WrapperEntry& entry = registry.wrapper(id, w.child("id"));
+      YAML::Node r(YAML::NodeType::Map);
+      r["id"] = id;
+      for (const auto& kv : entry.resolve(w)) r[kv.first] = kv.second;
+      resolved_wrappers.push_back(r);
+      exp.env.wrappers.push_back(w);
+    }
+  }
+  resolved_wrappers.SetStyle(YAML::EmitterStyle::Flow);
+  resolved_env["wrappers"] = resolved_wrappers;
+
+  // algo
+  const ConfigNode algo = root.child("algo");
+  exp.algo_id = required_id(algo, "algorithm");
+  const AlgorithmEntry& algo_entry = registry.algorithm(exp.algo_id, algo.child("id"));
+  exp.algo_node = algo;
+  YAML::Node resolved_algo(YAML::NodeType::Map);
+  resolved_algo["id"] = exp.algo_id;
+  for (const auto& kv : algo_entry.resolve(algo)) resolved_algo[kv.first] = kv.second;
+
+  exp.eval = read_config<EvalConfig>(root.child("eval"));
+  if (exp.eval.freq < 0) root.child("eval").child("freq").fail("must be >= 0");
+  if (exp.eval.n_episodes < 1) root.child("eval").child("n_episodes").fail("must be >= 1");
+
+  exp.resolved = YAML::Node(YAML::NodeType::Map);
+  exp.resolved["run"] = write_config(exp.run);
+  exp.resolved["env"] = resolved_env;
+  exp.resolved["algo"] = resolved_algo;
+  exp.resolved["eval"] = write_config(exp.eval);
+  return exp;
+}
+
+Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
+                           const Registry& registry) {
+  ConfigNode root = ConfigNode::load_file(path);
+  if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval");
+  for (const auto& o : overrides) root.apply_override(o);
+  const ConfigNode name = root.child("run").child("name");
+  if (!name.defined()) {
+    if (!root.yaml()["run"].IsMap()) root.yaml()["run"] = YAML::Node(YAML::NodeType::Map);
+    root.yaml()["run"]["name"] = std::filesystem::path(path).stem().string();
+  }
+  return parse_experiment(root, registry);
+}
+
+std::string dump_yaml(const YAML::Node& node) {
+  YAML::Emitter out;
+  out.SetIndent(2);
+  out << node;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace rlrun

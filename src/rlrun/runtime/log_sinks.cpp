@@ -1,0 +1,140 @@
+#include "rlrun/runtime/log_sinks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "rlrun/core/errors.hpp"
+
+namespace rlrun {
+
+namespace {
+
+std::string csv_value(double v) {
+  if (std::isnan(v)) return "nan";
+  std::ostringstream out;
+  out.precision(9);
+  out << v;
+  return out.str();
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+}  // namespace
+
+CsvSink::CsvSink(std::string path, bool append) : path_(std::move(path)) {
+  if (append) {
+    std::ifstream in(path_);
+    std::string header;
+    if (in && std::getline(in, header)) keys_ = split_csv_line(header);
+  }
+  file_.open(path_, append ? std::ios::app : std::ios::trunc);
+  if (!file_) throw RuntimeFailure("cannot write " + path_);
+}
+
+void CsvSink::rewrite_with_header() {
+  file_.close();
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(path_);
+    std::string line;
+    std::getline(in, line);  // old header
+    while (std::getline(in, line)) lines.push_back(line);
+  }
+  std::ofstream out(path_, std::ios::trunc);
+  for (size_t i = 0; i < keys_.size(); ++i) out << (i ? "," : "") << keys_[i];
+  out << '\n';
+  for (const auto& line : lines) {
+    const size_t cells = split_csv_line(line).size();
+    out << line << std::string(keys_.size() - std::min(cells, keys_.size()), ',') << '\n';
+  }
+  out.close();
+  file_.open(path_, std::ios::app);
+}
+
+void CsvSink::write(const LogRow& row, int64_t /*step*/) {
+  bool new_keys = false;
+  for (const auto& [key, value] : row) {
+    if (std::find(keys_.begin(), keys_.end(), key) == keys_.end()) {
+      keys_.push_back(key);
+      new_keys = true;
+    }
+  }
+  if (new_keys) rewrite_with_header();
+  for (size_t i = 0; i < keys_.size(); ++i) {
+    if (i) file_ << ',';
+    const auto it = row.find(keys_[i]);
+    if (it != row.end()) file_ << csv_value(it->second);
+  }
+  file_ << '\n';
+  file_.flush();
+}
+
+void CsvSink::flush() { file_.flush(); }
+
+std::string format_log_value(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::floor(v) == v && std::abs(v) < 1e15) {
+    std::ostringstream out;
+    out << static_cast<long long>(v);
+    return out.str();
+  }
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
+}
+
+void ConsoleTableSink::write(const LogRow& row, int64_t /*step*/) {
+  const auto now = std::chrono::steady_clock::now();
+  const double since = std::chrono::duration<double>(now - last_print_).count();
+  if (printed_any_ && since < min_interval_s_) {
+    last_unprinted_ = row;
+    return;
+  }
+  print(row);
+  last_print_ = now;
+  printed_any_ = true;
+  last_unprinted_.clear();
+}
+
+void ConsoleTableSink::flush() {
+  if (!last_unprinted_.empty()) print(last_unprinted_);
+  last_unprinted_.clear();
+}
+
+void ConsoleTableSink::print(const LogRow& row) const {
+  // SB3 HumanOutputFormat: group "a/b" keys under "a/", indent the leaf names.
+  std::vector<std::pair<std::string, std::string>> lines;
+  std::string group;
+  for (const auto& [key, value] : row) {
+    const auto slash = key.find('/');
+    const std::string prefix = slash == std::string::npos ? "" : key.substr(0, slash);
+    if (prefix != group && !prefix.empty()) lines.emplace_back(prefix + "/", "");
+    group = prefix;
+    lines.emplace_back(slash == std::string::npos ? key : "    " + key.substr(slash + 1),
+                       format_log_value(value));
+  }
+  size_t key_width = 0, value_width = 0;
+  for (const auto& [k, v] : lines) {
+    key_width = std::max(key_width, k.size());
+    value_width = std::max(value_width, v.size());
+  }
+  const std::string dashes(key_width + value_width + 7, '-');
+  std::ostringstream out;
+  out << dashes << '\n';
+  for (const auto& [k, v] : lines)
+    out << "| " << k << std::string(key_width - k.size(), ' ') << " | " << v
+        << std::string(value_width - v.size(), ' ') << " |\n";
+  out << dashes << '\n';
+  if (before_print_) before_print_();
+  out_ << out.str() << std::flush;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,51 @@
+#pragma once
+// Model files (DESIGN.md §5): a zip whose tensors are `<name>.npy` members, so
+// `numpy.load("model.zip")` lists the weights, plus `config.yaml` (the resolved experiment) and
+// `meta.json` (format version, rlrun version, algorithm, env id, spaces, timesteps).
+// Loading refuses, with the reason, files of another format version, of another algorithm than
+// the caller expects, or whose spaces do not match the env they are used with.
+#include <memory>
+#include <string>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/core/tensor.hpp"
+#include "rlrun/runtime/experiment.hpp"
+
+namespace rlrun {
+
+inline constexpr int kModelFormatVersion = 1;
+
+struct ModelMeta {
+  int format_version = kModelFormatVersion;
+  std::string rlrun_version;
+  std::string algorithm;
+  std::string env_id;
+  std::string observation_space;  // Space::describe()
+  std::string action_space;
+  int64_t num_timesteps = 0;
+};
+
+struct ModelFile {
+  std::string path;
+  ModelMeta meta;
+  std::string config_yaml;
+  TensorMap tensors;
+};
+
+// Writes atomically (temp file + rename).
+void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
+                const Space& observation_space, const Space& action_space);
+
+// Throws RuntimeFailure naming the file and the reason.
+ModelFile read_model(const std::string& path);
+
+// Rebuilds the experiment stored in a model file (env, algorithm config), and an algorithm
+// with the stored weights, checking the spaces against `observation_space`/`action_space`.
+Experiment experiment_from_model(const ModelFile& model, const Registry& registry);
+std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
+                                                const Registry& registry,
+                                                const Space& observation_space,
+                                                const Space& action_space);
+
+}  // namespace rlrun

@@ -1,0 +1,139 @@
+#pragma once
+// The component registry: ids (as written in YAML) -> factories. Only runtime/builtins.cpp
+// fills it (DESIGN.md §7: explicit registration in one function); `rlrun list` prints it.
+// Lookups of unknown ids fail with the YAML position and the closest registered id.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/config_fields.hpp"
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/env/env.hpp"
+
+namespace rlrun {
+
+class Algorithm;
+struct AlgorithmSetup;
+
+struct EnvEntry {
+  std::string id;
+  std::string description;
+  int max_episode_steps = 0;  // TimeLimit added by make_env, like gymnasium.make; 0 = none
+  std::function<EnvPtr(const ConfigNode& kwargs)> make;
+  std::function<YAML::Node(const ConfigNode& kwargs)> resolve;  // kwargs with defaults filled
+  std::function<std::vector<FieldDoc>()> params;
+};
+
+struct WrapperEntry {
+  std::string id;
+  std::string description;
+  std::function<EnvPtr(EnvPtr inner, const ConfigNode& params)> make;
+  std::function<YAML::Node(const ConfigNode& params)> resolve;
+  std::function<std::vector<FieldDoc>()> params;
+};
+
+struct AlgorithmEntry {
+  std::string id;
+  std::string description;
+  std::function<std::unique_ptr<Algorithm>(const ConfigNode& params, const AlgorithmSetup&)> make;
+  std::function<YAML::Node(const ConfigNode& params)> resolve;
+  std::function<std::vector<FieldDoc>()> params;
+};
+
+class Registry {
+ public:
+  void add(EnvEntry entry) { envs_.push_back(std::move(entry)); }
+  void add(WrapperEntry entry) { wrappers_.push_back(std::move(entry)); }
+  void add(AlgorithmEntry entry) { algorithms_.push_back(std::move(entry)); }
+
+  // `id_node` is the YAML node holding the id, for the error position.
+  const EnvEntry& env(const std::string& id, const ConfigNode& id_node) const {
+    return find(envs_, id, id_node, "environment");
+  }
+  const WrapperEntry& wrapper(const std::string& id, const ConfigNode& id_node) const {
+    return find(wrappers_, id, id_node, "wrapper");
+  }
+  const AlgorithmEntry& algorithm(const std::string& id, const ConfigNode& id_node) const {
+    return find(algorithms_, id, id_node, "algorithm");
+  }
+  const EnvEntry* find_env(const std::string& id) const { return find_or_null(envs_, id); }
+  const AlgorithmEntry* find_algorithm(const std::string& id) const {
+    return find_or_null(algorithms_, id);
+  }
+
+  const std::vector<EnvEntry>& envs() const { return envs_; }
+  const std::vector<WrapperEntry>& wrappers() const { return wrappers_; }
+  const std::vector<AlgorithmEntry>& algorithms() const { return algorithms_; }
+
+ private:
+  template <class Entry>
+  static const Entry* find_or_null(const std::vector<Entry>& entries, const std::string& id) {
+    for (const auto& e : entries)
+      if (e.id == id) return &e;
+    return nullptr;
+  }
+  template <class Entry>
+  static const Entry& find(const std::vector<Entry>& entries, const std::string& id,
+                           const ConfigNode& id_node, const char* kind) {
+    if (const Entry* e = find_or_null(entries, id)) return *e;
+    std::vector<std::string> ids;
+    for (const auto& e : entries) ids.push_back(e.id);
+    id_node.fail(std::string("unknown ") + kind + " '" + id + "'" + did_you_mean(id, ids) +
+                 "; run `rlrun list` to see all");
+  }
+
+  std::vector<EnvEntry> envs_;
+  std::vector<WrapperEntry> wrappers_;
+  std::vector<AlgorithmEntry> algorithms_;
+};
+
+// Registration helpers for components whose constructor takes their own `Config`.
+template <class E>
+EnvEntry make_env_entry(std::string id, std::string description, int max_episode_steps) {
+  EnvEntry entry;
+  entry.id = std::move(id);
+  entry.description = std::move(description);
+  entry.max_episode_steps = max_episode_steps;
+  entry.make = [](const ConfigNode& kwargs) -> EnvPtr {
+    return std::make_unique<E>(read_config<typename E::Config>(kwargs));
+  };
+  entry.resolve = [](const ConfigNode& kwargs) {
+    return write_config(read_config<typename E::Config>(kwargs));
+  };
+  entry.params = [] { return document_config<typename E::Config>(); };
+  return entry;
+}
+
+template <class W>
+WrapperEntry make_wrapper_entry(std::string id, std::string description) {
+  WrapperEntry entry;
+  entry.id = std::move(id);
+  entry.description = std::move(description);
+  entry.make = [](EnvPtr inner, const ConfigNode& params) -> EnvPtr {
+    return std::make_unique<W>(std::move(inner), read_config<typename W::Config>(params, {"id"}));
+  };
+  entry.resolve = [](const ConfigNode& params) {
+    return write_config(read_config<typename W::Config>(params, {"id"}));
+  };
+  entry.params = [] { return document_config<typename W::Config>(); };
+  return entry;
+}
+
+template <class A>
+AlgorithmEntry make_algorithm_entry(std::string id, std::string description) {
+  AlgorithmEntry entry;
+  entry.id = std::move(id);
+  entry.description = std::move(description);
+  entry.make = [](const ConfigNode& params,
+                  const AlgorithmSetup& setup) -> std::unique_ptr<Algorithm> {
+    return std::make_unique<A>(read_config<typename A::Config>(params, {"id"}), setup);
+  };
+  entry.resolve = [](const ConfigNode& params) {
+    return write_config(read_config<typename A::Config>(params, {"id"}));
+  };
+  entry.params = [] { return document_config<typename A::Config>(); };
+  return entry;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,101 @@
+#include "rlrun/wrappers/monitor.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "rlrun/core/errors.hpp"
+
+namespace rlrun {
+
+namespace {
+// SB3 rounds r and t to 6 decimals before writing.
+double round6(double v) { return std::round(v * 1e6) / 1e6; }
+}  // namespace
+
+Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
+                 std::vector<std::string> info_keywords)
+    : Wrapper(std::move(inner)), t_start_(t_start), clock_start_(std::chrono::steady_clock::now()) {
+  const Info& inner_info = inner_->info();
+  for (const auto& key : inner_info.keys()) inner_to_own_.push_back(info_.add_key(key));
+  episode_r_ = info_.add_key("episode.r");
+  episode_l_ = info_.add_key("episode.l");
+  episode_t_ = info_.add_key("episode.t");
+  std::vector<std::string> columns;
+  for (const auto& keyword : info_keywords) {
+    const int index = inner_info.find(keyword);
+    if (index < 0) continue;
+    keyword_inner_index_.push_back(index);
+    columns.push_back(keyword);
+  }
+  if (path.empty()) return;
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) throw RuntimeFailure("cannot write monitor file " + path);
+  char t_start_text[64];
+  std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);
+  std::fprintf(file_, "#{\"t_start\": %s, \"env_id\": \"%s\"}\nr,l,t", t_start_text,
+               inner_->id().c_str());
+  for (const auto& column : columns) std::fprintf(file_, ",%s", column.c_str());
+  std::fprintf(file_, "\n");
+  std::fflush(file_);
+}
+
+Monitor::~Monitor() {
+  if (file_) std::fclose(file_);
+}
+
+void Monitor::copy_inner_info() {
+  const auto& values = inner_->info().values();
+  for (size_t i = 0; i < inner_to_own_.size(); ++i) info_.set(inner_to_own_[i], values[i]);
+  info_.set(episode_r_, Info::kAbsent);
+  info_.set(episode_l_, Info::kAbsent);
+  info_.set(episode_t_, Info::kAbsent);
+}
+
+void Monitor::reset(std::optional<uint64_t> seed, std::span<float> obs) {
+  inner_->reset(seed, obs);
+  copy_inner_info();
+  episode_return_ = 0.0;
+  episode_length_ = 0;
+  needs_reset_ = false;
+}
+
+StepResult Monitor::step(std::span<const float> action, std::span<float> obs) {
+  if (needs_reset_)
+    throw RuntimeFailure("Monitor: tried to step " + id() +
+                         " after its episode ended; call reset() first (SB3's Monitor rule)");
+  const StepResult result = inner_->step(action, obs);
+  copy_inner_info();
+  episode_return_ += result.reward;
+  ++episode_length_;
+  ++total_steps_;
+  if (result.terminated || result.truncated) {
+    needs_reset_ = true;
+    ++total_episodes_;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start_).count();
+    const double r = round6(episode_return_);
+    const double t = round6(elapsed);
+    info_.set(episode_r_, r);
+    info_.set(episode_l_, static_cast<double>(episode_length_));
+    info_.set(episode_t_, t);
+    if (file_) {
+      std::fprintf(file_, "%s,%lld,%s", python_float_repr(r).c_str(),
+                   static_cast<long long>(episode_length_), python_float_repr(t).c_str());
+      const auto& values = inner_->info().values();
+      for (int index : keyword_inner_index_) {
+        const double v = values[index];
+        if (std::isnan(v))
+          std::fprintf(file_, ",");
+        else if (v == 0.0 || v == 1.0)
+          std::fprintf(file_, ",%s", v == 1.0 ? "True" : "False");
+        else
+          std::fprintf(file_, ",%s", python_float_repr(v).c_str());
+      }
+      std::fprintf(file_, "\n");
+      std::fflush(file_);
+    }
+  }
+  return result;
+}
+
+}  // namespace rlrun

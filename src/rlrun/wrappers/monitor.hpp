@@ -1,0 +1,53 @@
+#pragma once
+// SB3's Monitor wrapper (stable_baselines3/common/monitor.py): records each episode's return,
+// length and time, writes them to `<rank>.monitor.csv` in SB3's exact format so that
+// `stable_baselines3.common.monitor.load_results` reads it:
+//     #{"t_start": 1732243200.123456, "env_id": "CartPole-v1"}
+//     r,l,t
+//     21.0,21,0.000153
+// and reports a finished episode through info keys `episode.r`, `episode.l`, `episode.t` (SB3's
+// info["episode"]), which the algorithms read for rollout/ep_rew_mean. Info keys the env
+// declares among `info_keywords` (default: is_success when present) become extra columns.
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/float_format.hpp"
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class Monitor : public Wrapper {
+ public:
+  // `path` empty: no file, statistics only. `t_start` is Unix time in seconds.
+  Monitor(EnvPtr inner, const std::string& path, double t_start,
+          std::vector<std::string> info_keywords = {"is_success"});
+  ~Monitor() override;
+  Monitor(const Monitor&) = delete;
+  Monitor& operator=(const Monitor&) = delete;
+
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+  const Info& info() const override { return info_; }
+
+  int total_episodes() const { return total_episodes_; }
+  int64_t total_steps() const { return total_steps_; }
+
+ private:
+  void copy_inner_info();
+  std::FILE* file_ = nullptr;
+  double t_start_;
+  std::chrono::steady_clock::time_point clock_start_;
+  Info info_;
+  std::vector<int> inner_to_own_;        // inner info index -> own index
+  std::vector<int> keyword_inner_index_; // info_keywords present in the inner env
+  int episode_r_ = -1, episode_l_ = -1, episode_t_ = -1;
+  double episode_return_ = 0.0;
+  int64_t episode_length_ = 0;
+  int total_episodes_ = 0;
+  int64_t total_steps_ = 0;
+  bool needs_reset_ = true;
+};
+
+}  // namespace rlrun

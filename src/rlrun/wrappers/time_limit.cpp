@@ -1,0 +1,29 @@
+#include "rlrun/wrappers/time_limit.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace rlrun {
+
+TimeLimit::TimeLimit(EnvPtr inner, int max_episode_steps)
+    : Wrapper(std::move(inner)), max_episode_steps_(max_episode_steps) {
+  if (!inner_) throw std::invalid_argument("TimeLimit: the wrapped env is null");
+  if (max_episode_steps <= 0)
+    throw std::invalid_argument("TimeLimit: max_episode_steps must be positive, got " +
+                                std::to_string(max_episode_steps));
+}
+
+void TimeLimit::reset(std::optional<uint64_t> seed, std::span<float> obs) {
+  elapsed_steps_ = 0;
+  inner_->reset(seed, obs);
+}
+
+StepResult TimeLimit::step(std::span<const float> action, std::span<float> obs) {
+  StepResult result = inner_->step(action, obs);
+  ++elapsed_steps_;
+  if (elapsed_steps_ >= max_episode_steps_) result.truncated = true;
+  return result;
+}
+
+}  // namespace rlrun

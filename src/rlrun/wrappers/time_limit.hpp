@@ -1,0 +1,29 @@
+#pragma once
+// TimeLimit: gymnasium/wrappers/common.py. Counts steps since the last reset() and reports
+// truncated = true once elapsed >= max_episode_steps. `terminated` passes through untouched,
+// so a terminal step on the last allowed step reports both flags, as Gymnasium does.
+#include <optional>
+#include <span>
+
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class TimeLimit : public Wrapper {
+ public:
+  // Throws std::invalid_argument unless max_episode_steps > 0 (Gymnasium asserts it).
+  TimeLimit(EnvPtr inner, int max_episode_steps);
+
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+
+  int max_episode_steps() const { return max_episode_steps_; }
+  // Steps taken since the last reset().
+  int elapsed_steps() const { return elapsed_steps_; }
+
+ private:
+  int max_episode_steps_;
+  int elapsed_steps_ = 0;
+};
+
+}  // namespace rlrun

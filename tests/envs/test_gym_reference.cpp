@@ -1,0 +1,373 @@
+// Replays trajectories recorded from the real Gymnasium 1.0.0 classic-control envs
+// (../shared/reference/README.md) through our ports and checks every observation, reward
+// and flag. The directory is $RLRUN_GYM_REFERENCE if set (DESIGN.md §8), otherwise
+// RLRUN_DEFAULT_GYM_REFERENCE from tests/CMakeLists.txt. Every `<id>.csv` + `<id>.init.csv`
+// pair in it is replayed; nothing is hard-coded about which ids exist.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rlrun/envs/classic/acrobot.hpp"
+#include "rlrun/envs/classic/cartpole.hpp"
+#include "rlrun/envs/classic/classic_control_env.hpp"
+#include "rlrun/envs/classic/mountain_car.hpp"
+#include "rlrun/envs/classic/mountain_car_continuous.hpp"
+#include "rlrun/envs/classic/pendulum.hpp"
+#include "rlrun/wrappers/time_limit.hpp"
+
+namespace fs = std::filesystem;
+using namespace rlrun;
+
+namespace {
+
+constexpr double kObsTolerance = 1e-5;
+constexpr double kContinuousRewardTolerance = 1e-5;
+
+// The env as gymnasium.make(id) builds it: the raw env inside its registered TimeLimit.
+// Returns nullptr for an id this test does not know. (The registry will replace this.)
+EnvPtr make_reference_env(const std::string& id) {
+  auto limited = [](auto env) {
+    const int steps = decltype(env)::element_type::kMaxEpisodeSteps;
+    return std::make_unique<TimeLimit>(std::move(env), steps);
+  };
+  if (id == "CartPole-v1") return limited(std::make_unique<CartPole>());
+  if (id == "Pendulum-v1") return limited(std::make_unique<Pendulum>());
+  if (id == "MountainCar-v0") return limited(std::make_unique<MountainCar>());
+  if (id == "MountainCarContinuous-v0") return limited(std::make_unique<MountainCarContinuous>());
+  if (id == "Acrobot-v1") return limited(std::make_unique<Acrobot>());
+  return nullptr;
+}
+
+// Continuous-action envs compute the reward from float32 actions in numpy; the README
+// promises them to 1e-5 only. Discrete envs pay constants and must match exactly.
+bool reward_is_exact(const Env& env) { return !env.action_space().is_box(); }
+
+fs::path reference_dir() {
+  if (const char* dir = std::getenv("RLRUN_GYM_REFERENCE"); dir && *dir) return dir;
+  return RLRUN_DEFAULT_GYM_REFERENCE;
+}
+
+// Ids that have both `<id>.csv` and `<id>.init.csv` in `dir`, sorted.
+std::vector<std::string> reference_ids(const fs::path& dir) {
+  std::vector<std::string> ids;
+  if (!fs::is_directory(dir)) return ids;
+  const std::string init_suffix = ".init.csv";
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= init_suffix.size() ||
+        name.compare(name.size() - init_suffix.size(), init_suffix.size(), init_suffix) != 0)
+      continue;
+    const std::string id = name.substr(0, name.size() - init_suffix.size());
+    if (fs::is_regular_file(dir / (id + ".csv"))) ids.push_back(id);
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  int column(const std::string& name) const {
+    for (size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) return static_cast<int>(i);
+    return -1;
+  }
+  // Indices of the columns named prefix0, prefix1, ... in order.
+  std::vector<int> numbered(const std::string& prefix) const {
+    std::vector<int> cols;
+    for (int k = 0;; ++k) {
+      const int c = column(prefix + std::to_string(k));
+      if (c < 0) return cols;
+      cols.push_back(c);
+    }
+  }
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+Csv read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path.string());
+  Csv csv;
+  std::string line;
+  if (std::getline(in, line)) csv.header = split(line);
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    csv.rows.push_back(split(line));
+    if (csv.rows.back().size() != csv.header.size())
+      throw std::runtime_error(path.string() + ": row " + std::to_string(csv.rows.size()) +
+                               " has " + std::to_string(csv.rows.back().size()) +
+                               " fields, header has " + std::to_string(csv.header.size()));
+  }
+  return csv;
+}
+
+double number(const std::string& field) {
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (field.empty() || *end != '\0') throw std::runtime_error("not a number: '" + field + "'");
+  return v;
+}
+
+std::string full(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+struct ReplayResult {
+  int episodes = 0;
+  int steps = 0;
+  std::string error;  // the first mismatch; empty when everything matched
+};
+
+// Replays `<dir>/<id>.csv` from the states in `<dir>/<id>.init.csv`.
+ReplayResult replay(const fs::path& dir, const std::string& id) {
+  ReplayResult result;
+  auto fail = [&](const std::string& message) {
+    result.error = id + ": " + message;
+    return result;
+  };
+  EnvPtr env = make_reference_env(id);
+  if (!env) return fail("unknown env id (no factory entry in test_gym_reference.cpp)");
+  auto* classic = dynamic_cast<ClassicControlEnv*>(&env->unwrapped());
+  if (!classic) return fail("the unwrapped env is not a ClassicControlEnv (no set_state)");
+
+  Csv init, traj;
+  try {
+    init = read_csv(dir / (id + ".init.csv"));
+    traj = read_csv(dir / (id + ".csv"));
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+
+  std::map<long, std::vector<double>> start_states;
+  const std::vector<int> state_cols = init.numbered("s");
+  if (init.column("episode") < 0 || static_cast<int>(state_cols.size()) != classic->state_dim())
+    return fail("init file needs columns episode,s0..s" + std::to_string(classic->state_dim() - 1));
+  for (const auto& row : init.rows) {
+    std::vector<double> s;
+    for (int c : state_cols) s.push_back(number(row[c]));
+    start_states[static_cast<long>(number(row[init.column("episode")]))] = s;
+  }
+
+  const int c_episode = traj.column("episode"), c_step = traj.column("step");
+  const int c_reward = traj.column("reward"), c_term = traj.column("terminated");
+  const int c_trunc = traj.column("truncated");
+  const std::vector<int> act_cols = traj.numbered("a"), obs_cols = traj.numbered("o");
+  if (c_episode < 0 || c_step < 0 || c_reward < 0 || c_term < 0 || c_trunc < 0)
+    return fail("trajectory file lacks one of episode,step,reward,terminated,truncated");
+  if (static_cast<int>(obs_cols.size()) != env->observation_space().flat_dim())
+    return fail("trajectory has " + std::to_string(obs_cols.size()) + " observation columns, " +
+                env->observation_space().describe() + " needs " +
+                std::to_string(env->observation_space().flat_dim()));
+  if (static_cast<int>(act_cols.size()) != env->action_space().flat_dim())
+    return fail("trajectory has " + std::to_string(act_cols.size()) + " action columns, " +
+                env->action_space().describe() + " needs " +
+                std::to_string(env->action_space().flat_dim()));
+
+  const bool exact_reward = reward_is_exact(*env);
+  std::vector<float> obs(obs_cols.size()), action(act_cols.size());
+  long episode = -1, step = -1;
+  for (size_t r = 0; r < traj.rows.size(); ++r) {
+    const auto& row = traj.rows[r];
+    const long row_episode = static_cast<long>(number(row[c_episode]));
+    const long row_step = static_cast<long>(number(row[c_step]));
+    const std::string where = "episode " + std::to_string(row_episode) + " step " +
+                              std::to_string(row_step) + " (line " + std::to_string(r + 2) + ")";
+    if (row_step == 0) {
+      auto it = start_states.find(row_episode);
+      if (it == start_states.end()) return fail(where + ": no init state for this episode");
+      // Gymnasium: env.reset() then env.unwrapped.state = init; TimeLimit's count is 0.
+      env->reset(static_cast<uint64_t>(row_episode), obs);
+      classic->set_state(it->second, obs);
+      episode = row_episode;
+      step = 0;
+      ++result.episodes;
+    } else {
+      if (row_episode != episode || row_step != step + 1)
+        return fail(where + ": rows out of order (expected episode " + std::to_string(episode) +
+                    " step " + std::to_string(step + 1) + ")");
+      step = row_step;
+      for (size_t k = 0; k < act_cols.size(); ++k)
+        action[k] = static_cast<float>(number(row[act_cols[k]]));
+      const StepResult got = env->step(action, obs);
+      ++result.steps;
+      const double want_reward = number(row[c_reward]);
+      const bool reward_ok = exact_reward
+                                 ? got.reward == want_reward
+                                 : std::abs(got.reward - want_reward) <= kContinuousRewardTolerance;
+      if (!reward_ok)
+        return fail(where + " column reward: expected " + full(want_reward) + " got " +
+                    full(got.reward));
+      const bool want_term = number(row[c_term]) != 0, want_trunc = number(row[c_trunc]) != 0;
+      if (got.terminated != want_term)
+        return fail(where + " column terminated: expected " + std::to_string(want_term) +
+                    " got " + std::to_string(got.terminated));
+      if (got.truncated != want_trunc)
+        return fail(where + " column truncated: expected " + std::to_string(want_trunc) +
+                    " got " + std::to_string(got.truncated));
+    }
+    for (size_t k = 0; k < obs_cols.size(); ++k) {
+      const double want = number(row[obs_cols[k]]);
+      if (!(std::abs(obs[k] - want) <= kObsTolerance))
+        return fail(where + " column o" + std::to_string(k) + ": expected " + full(want) +
+                    " got " + full(obs[k]));
+    }
+  }
+  return result;
+}
+
+// Writes a reference set for `id` in the README's format from our own env: `episodes`
+// episodes seeded `seed + e`, with actions drawn from the action space widened by 25 %.
+void write_reference(const fs::path& dir, const std::string& id, int episodes, uint64_t seed) {
+  EnvPtr env = make_reference_env(id);
+  auto& classic = dynamic_cast<ClassicControlEnv&>(env->unwrapped());
+  const Space& act = env->action_space();
+  std::ofstream init(dir / (id + ".init.csv")), traj(dir / (id + ".csv"));
+  init << "episode";
+  for (int k = 0; k < classic.state_dim(); ++k) init << ",s" << k;
+  traj << "episode,step";
+  for (int k = 0; k < act.flat_dim(); ++k) traj << ",a" << k;
+  traj << ",reward,terminated,truncated";
+  const int obs_dim = env->observation_space().flat_dim();
+  for (int k = 0; k < obs_dim; ++k) traj << ",o" << k;
+  init << "\n";
+  traj << "\n";
+
+  Rng action_rng(seed);
+  std::vector<float> obs(obs_dim), action(act.flat_dim());
+  std::vector<double> state(classic.state_dim());
+  for (int e = 0; e < episodes; ++e) {
+    env->reset(seed + e, obs);
+    classic.get_state(state);
+    init << e;
+    for (double s : state) init << "," << full(s);
+    init << "\n";
+    traj << e << ",0" << std::string(act.flat_dim() + 3, ',');
+    for (float o : obs) traj << "," << full(o);
+    traj << "\n";
+    for (int t = 1;; ++t) {
+      act.sample(action_rng, action);
+      if (act.is_box())
+        for (int k = 0; k < act.flat_dim(); ++k)
+          action[k] = static_cast<float>(action_rng.uniform(1.25 * act.low()[k], 1.25 * act.high()[k]));
+      const StepResult r = env->step(action, obs);
+      traj << e << "," << t;
+      for (float a : action) traj << "," << full(a);
+      traj << "," << full(r.reward) << "," << r.terminated << "," << r.truncated;
+      for (float o : obs) traj << "," << full(o);
+      traj << "\n";
+      if (r.terminated || r.truncated) break;
+    }
+  }
+}
+
+// A fresh, empty directory under the system temp dir, removed on destruction.
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& tag) {
+    static int counter = 0;
+    path = fs::temp_directory_path() /
+           ("rlrun_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("classic envs replay the Gymnasium 1.0.0 reference trajectories", "[envs]") {
+  const fs::path dir = reference_dir();
+  INFO("reference directory: " << dir.string());
+  const std::vector<std::string> ids = reference_ids(dir);
+  INFO("a reference directory must hold at least one <id>.csv + <id>.init.csv pair");
+  REQUIRE_FALSE(ids.empty());
+  for (const std::string& id : ids) {
+    const ReplayResult r = replay(dir, id);
+    INFO(id << ": " << r.episodes << " episodes, " << r.steps << " steps replayed");
+    INFO("first mismatch: " << r.error);
+    CHECK(r.error.empty());
+    CHECK(r.episodes > 0);
+    CHECK(r.steps > 0);
+  }
+}
+
+TEST_CASE("the reference replay reads any directory in the same format", "[envs]") {
+  TempDir tmp("gymref");
+  for (const std::string id : {"CartPole-v1", "Pendulum-v1", "MountainCarContinuous-v0"})
+    write_reference(tmp.path, id, 3, 42);
+
+  SECTION("RLRUN_GYM_REFERENCE redirects the replay") {
+    const char* old = std::getenv("RLRUN_GYM_REFERENCE");
+    const std::string saved = old ? old : "";
+    ::setenv("RLRUN_GYM_REFERENCE", tmp.path.c_str(), 1);
+    const fs::path dir = reference_dir();
+    if (old)
+      ::setenv("RLRUN_GYM_REFERENCE", saved.c_str(), 1);
+    else
+      ::unsetenv("RLRUN_GYM_REFERENCE");
+    CHECK(dir == tmp.path);
+    const auto ids = reference_ids(dir);
+    REQUIRE(ids == std::vector<std::string>{"CartPole-v1", "MountainCarContinuous-v0",
+                                            "Pendulum-v1"});
+    for (const auto& id : ids) {
+      const ReplayResult r = replay(dir, id);
+      INFO(r.error);
+      CHECK(r.error.empty());
+      CHECK(r.episodes == 3);
+    }
+  }
+
+  SECTION("a wrong value is reported with episode, step, column, expected and got") {
+    const fs::path path = tmp.path / "CartPole-v1.csv";
+    Csv csv = read_csv(path);
+    csv.rows[3][csv.column("o2")] = "0.5";  // episode 0, step 3
+    std::ofstream out(path);
+    for (size_t i = 0; i < csv.header.size(); ++i) out << (i ? "," : "") << csv.header[i];
+    out << "\n";
+    for (const auto& row : csv.rows) {
+      for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+      out << "\n";
+    }
+    out.close();
+    const ReplayResult r = replay(tmp.path, "CartPole-v1");
+    CHECK_THAT(r.error, Catch::Contains("episode 0 step 3") && Catch::Contains("column o2") &&
+                            Catch::Contains("expected 0.5 got"));
+  }
+
+  SECTION("an unknown id fails with a clear message") {
+    std::ofstream(tmp.path / "Foo-v0.csv") << "episode,step,a0,reward,terminated,truncated,o0\n";
+    std::ofstream(tmp.path / "Foo-v0.init.csv") << "episode,s0\n";
+    const auto ids = reference_ids(tmp.path);
+    CHECK(std::find(ids.begin(), ids.end(), "Foo-v0") != ids.end());
+    CHECK_THAT(replay(tmp.path, "Foo-v0").error, Catch::Contains("unknown env id"));
+  }
+
+  SECTION("a directory without pairs has no ids") {
+    TempDir empty("gymref_empty");
+    std::ofstream(empty.path / "CartPole-v1.csv") << "episode,step\n";  // no init file
+    CHECK(reference_ids(empty.path).empty());
+    CHECK(reference_ids(empty.path / "missing").empty());
+  }
+}

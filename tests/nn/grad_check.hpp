@@ -1,0 +1,50 @@
+#pragma once
+// Helpers for finite-difference gradient checks. The reference loss is evaluated in double
+// (the tests re-implement each forward pass in double), so a central difference with h = 1e-6
+// is accurate to ~1e-9 and the comparison with the float analytic gradient can be tight.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include <catch2/catch.hpp>
+
+namespace rlrun::test {
+
+// Central differences of f at x (double), one coordinate at a time.
+inline Eigen::VectorXd numeric_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
+                                        Eigen::VectorXd x, double h = 1e-6) {
+  Eigen::VectorXd g(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    const double saved = x(i);
+    x(i) = saved + h;
+    const double up = f(x);
+    x(i) = saved - h;
+    const double down = f(x);
+    x(i) = saved;
+    g(i) = (up - down) / (2.0 * h);
+  }
+  return g;
+}
+
+// Every element: |analytic - numeric| <= rtol * max(|numeric|, scale) where scale is
+// atol_frac * max|numeric| (so near-zero entries are judged against the gradient's size).
+// rtol = 1e-3 catches any wrong sign or factor while tolerating float32 rounding.
+inline void require_grad_close(const Eigen::VectorXd& analytic, const Eigen::VectorXd& numeric,
+                               double rtol = 1e-3, double atol_frac = 5e-2) {
+  REQUIRE(analytic.size() == numeric.size());
+  const double scale = std::max(numeric.cwiseAbs().maxCoeff(), 1e-12) * atol_frac;
+  for (Eigen::Index i = 0; i < numeric.size(); ++i) {
+    const double tol = rtol * std::max(std::abs(numeric(i)), scale);
+    INFO("index " << i << ": analytic " << analytic(i) << " numeric " << numeric(i));
+    CHECK(std::abs(analytic(i) - numeric(i)) <= tol);
+  }
+}
+
+template <typename Derived>
+Eigen::VectorXd flat(const Eigen::DenseBase<Derived>& m) {
+  Eigen::MatrixXd d = m.derived().template cast<double>();
+  return Eigen::Map<const Eigen::VectorXd>(d.data(), d.size());
+}
+
+}  // namespace rlrun::test

@@ -1,0 +1,222 @@
+#include "rlrun/nn/mlp.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "grad_check.hpp"
+#include "rlrun/core/rng.hpp"
+
+namespace rlrun {
+namespace {
+
+using test::flat;
+using test::numeric_gradient;
+using test::require_grad_close;
+
+Eigen::MatrixXf random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng, double scale = 1.0) {
+  Eigen::MatrixXf m(rows, cols);
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    for (Eigen::Index i = 0; i < rows; ++i) m(i, j) = static_cast<float>(scale * rng.normal());
+  }
+  return m;
+}
+
+// The same network in double: params laid out as Mlp documents (per layer W col-major, then b).
+Eigen::MatrixXd reference_forward(const Mlp& net, const Eigen::VectorXd& params,
+                                  const Eigen::MatrixXd& x) {
+  Eigen::MatrixXd a = x;
+  Eigen::Index offset = 0;
+  for (int l = 0; l < net.num_layers(); ++l) {
+    const int in = net.layer_in(l);
+    const int out = net.layer_out(l);
+    const Eigen::Map<const Eigen::MatrixXd> w(params.data() + offset, out, in);
+    offset += static_cast<Eigen::Index>(in) * out;
+    const Eigen::Map<const Eigen::VectorXd> b(params.data() + offset, out);
+    offset += out;
+    Eigen::MatrixXd z = (w * a).colwise() + b;
+    if (l + 1 < net.num_layers()) {
+      if (net.activation() == Activation::kTanh) {
+        z = z.array().tanh().matrix();
+      } else {
+        z = z.cwiseMax(0.0);
+      }
+    }
+    a = z;
+  }
+  return a;
+}
+
+struct Case {
+  int in;
+  std::vector<int> hidden;
+  int out;
+  Activation act;
+  int batch;
+};
+
+void check_mlp_gradients(const Case& c, uint64_t seed) {
+  Rng rng(seed);
+  Mlp net(c.in, c.hidden, c.out, c.act);
+  net.init_orthogonal(rng, std::sqrt(2.0f), 1.0f);
+  // Non-zero biases so that their gradients flow through a generic point.
+  for (int l = 0; l < net.num_layers(); ++l) {
+    net.bias(l) = random_matrix(net.layer_out(l), 1, rng, 0.1);
+  }
+  const Eigen::MatrixXf x = random_matrix(c.in, c.batch, rng);
+  const Eigen::MatrixXf weights = random_matrix(c.out, c.batch, rng);  // L = sum(weights .* y)
+
+  const Eigen::MatrixXf& y = net.forward(x);
+  const Eigen::VectorXd params = net.params().cast<double>();
+  const Eigen::MatrixXd xd = x.cast<double>();
+  const Eigen::MatrixXd wd = weights.cast<double>();
+  const Eigen::MatrixXd y_ref = reference_forward(net, params, xd);
+  CHECK((y.cast<double>() - y_ref).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + y_ref.cwiseAbs().maxCoeff()));
+
+  net.zero_grad();
+  Eigen::MatrixXf grad_x;
+  net.backward(weights, &grad_x);
+  REQUIRE(grad_x.rows() == c.in);
+  REQUIRE(grad_x.cols() == c.batch);
+
+  const auto loss_of_params = [&](const Eigen::VectorXd& p) {
+    return (reference_forward(net, p, xd).array() * wd.array()).sum();
+  };
+  const auto loss_of_input = [&](const Eigen::VectorXd& xv) {
+    const Eigen::Map<const Eigen::MatrixXd> xm(xv.data(), c.in, c.batch);
+    return (reference_forward(net, params, xm).array() * wd.array()).sum();
+  };
+  {
+    INFO("parameter gradient");
+    require_grad_close(net.grads().cast<double>(), numeric_gradient(loss_of_params, params));
+  }
+  {
+    INFO("input gradient");
+    require_grad_close(flat(grad_x), numeric_gradient(loss_of_input, flat(x)));
+  }
+}
+
+TEST_CASE("Mlp gradients match finite differences", "[nn]") {
+  const std::vector<Case> cases = {
+      {3, {5, 7}, 2, Activation::kTanh, 4},    {3, {5, 7}, 2, Activation::kReLU, 4},
+      {1, {1}, 1, Activation::kTanh, 1},       {1, {3}, 1, Activation::kReLU, 1},
+      {6, {}, 3, Activation::kTanh, 2},        {4, {64, 64}, 2, Activation::kTanh, 3},
+      {7, {9, 3, 11}, 5, Activation::kReLU, 13}, {2, {33}, 1, Activation::kTanh, 17},
+  };
+  uint64_t seed = 11;
+  for (const Case& c : cases) {
+    INFO("in " << c.in << " hidden " << c.hidden.size() << " out " << c.out << " act "
+               << activation_name(c.act) << " batch " << c.batch);
+    check_mlp_gradients(c, seed++);
+  }
+}
+
+TEST_CASE("Mlp backward accumulates into grads", "[nn]") {
+  Rng rng(3);
+  Mlp net(4, {8}, 2, Activation::kTanh);
+  net.init_orthogonal(rng, std::sqrt(2.0f), 1.0f);
+  const Eigen::MatrixXf x = random_matrix(4, 5, rng);
+  const Eigen::MatrixXf g = random_matrix(2, 5, rng);
+  net.forward(x);
+  net.backward(g);
+  const Eigen::VectorXf once = net.grads();
+  net.backward(g);
+  CHECK(net.grads().isApprox(2.0f * once, 1e-6f));
+  net.zero_grad();
+  CHECK(net.grads().isZero());
+}
+
+TEST_CASE("Mlp layout, copies and buffer reuse", "[nn]") {
+  Mlp net(3, {4, 5}, 2, Activation::kReLU);
+  CHECK(net.in_dim() == 3);
+  CHECK(net.out_dim() == 2);
+  CHECK(net.num_layers() == 3);
+  CHECK(net.hidden() == std::vector<int>{4, 5});
+  CHECK(net.activation() == Activation::kReLU);
+  CHECK(net.num_params() == 4 * 3 + 4 + 5 * 4 + 5 + 2 * 5 + 2);
+  CHECK(net.grads().size() == net.num_params());
+  const ParamBlock block = net.block();
+  CHECK(block.value == net.params().data());
+  CHECK(block.grad == net.grads().data());
+  CHECK(block.size == net.num_params());
+
+  // weight(l) is an (out x in) column-major view at the documented offset.
+  net.params().setLinSpaced(net.num_params(), 0.0f, static_cast<float>(net.num_params() - 1));
+  CHECK(net.weight(0).rows() == 4);
+  CHECK(net.weight(0).cols() == 3);
+  CHECK(net.weight(0)(1, 2) == 2 * 4 + 1);
+  CHECK(net.bias(0)(0) == 12);
+  CHECK(net.weight(1)(0, 0) == 16);
+  CHECK(net.bias(2)(1) == net.num_params() - 1);
+
+  Rng rng(5);
+  net.init_orthogonal(rng, std::sqrt(2.0f), 0.01f);
+  Mlp copy = net;
+  const Eigen::MatrixXf x = random_matrix(3, 6, rng);
+  CHECK(copy.forward(x) == net.forward(x));
+  copy.params().array() += 1.0f;  // the copy owns its parameters
+  CHECK_FALSE(copy.forward(x) == net.forward(x));
+  copy.params() = net.params();  // target.params() = online.params()
+  CHECK(copy.forward(x) == net.forward(x));
+
+  // Same batch size: the output buffer is reused. Batch-1 forward matches the batch columns.
+  const float* data = net.forward(x).data();
+  CHECK(net.forward(x).data() == data);
+  const Eigen::MatrixXf batched = net.forward(x);
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    CHECK(net.forward(x.col(j)).isApprox(batched.col(j), 1e-5f));
+  }
+  CHECK_THROWS_AS(net.forward(Eigen::MatrixXf::Zero(2, 3)), std::invalid_argument);
+  CHECK_THROWS_AS(Mlp(3, {0}, 2, Activation::kTanh), std::invalid_argument);
+}
+
+TEST_CASE("Mlp init_orthogonal gives (semi-)orthogonal weights and zero biases", "[nn]") {
+  Rng rng(42);
+  Mlp net(4, {64, 64}, 2, Activation::kTanh);
+  net.bias(1).setOnes();
+  const float hidden_gain = std::sqrt(2.0f);
+  const float output_gain = 0.01f;
+  net.init_orthogonal(rng, hidden_gain, output_gain);
+  for (int l = 0; l < net.num_layers(); ++l) {
+    const Eigen::MatrixXf w = net.weight(l);
+    const float gain = l + 1 < net.num_layers() ? hidden_gain : output_gain;
+    // rows <= cols: orthonormal rows (W W^T), else orthonormal columns (W^T W).
+    const Eigen::MatrixXf gram = w.rows() <= w.cols() ? Eigen::MatrixXf(w * w.transpose())
+                                                      : Eigen::MatrixXf(w.transpose() * w);
+    const Eigen::MatrixXf expected =
+        gain * gain * Eigen::MatrixXf::Identity(gram.rows(), gram.cols());
+    INFO("layer " << l << " (" << w.rows() << " x " << w.cols() << ")");
+    CHECK((gram - expected).cwiseAbs().maxCoeff() < 1e-4f * gain * gain);
+    CHECK(net.bias(l).isZero());
+  }
+  // Square, wide and tall single layers; different draws from different seeds.
+  for (const auto& [rows, cols] : std::vector<std::pair<int, int>>{{7, 7}, {3, 10}, {10, 3}}) {
+    Mlp layer(cols, {}, rows, Activation::kTanh);
+    layer.init_orthogonal(rng, 1.0f, 1.0f);
+    const Eigen::MatrixXf w = layer.weight(0);
+    const Eigen::MatrixXf gram = rows <= cols ? Eigen::MatrixXf(w * w.transpose())
+                                              : Eigen::MatrixXf(w.transpose() * w);
+    CHECK(gram.isApprox(Eigen::MatrixXf::Identity(gram.rows(), gram.cols()), 1e-5f));
+  }
+  Rng a(1), b(1), c(2);
+  Mlp na(3, {5}, 2, Activation::kTanh), nb = na, nc = na;
+  na.init_orthogonal(a, 1.0f, 1.0f);
+  nb.init_orthogonal(b, 1.0f, 1.0f);
+  nc.init_orthogonal(c, 1.0f, 1.0f);
+  CHECK(na.params() == nb.params());
+  CHECK_FALSE(na.params() == nc.params());
+}
+
+TEST_CASE("parse_activation and activation_name", "[nn]") {
+  CHECK(parse_activation("tanh") == Activation::kTanh);
+  CHECK(parse_activation("relu") == Activation::kReLU);
+  CHECK(activation_name(Activation::kTanh) == "tanh");
+  CHECK(activation_name(Activation::kReLU) == "relu");
+  CHECK_THROWS_AS(parse_activation("Tanh"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_activation("sigmoid"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rlrun
