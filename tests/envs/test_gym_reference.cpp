@@ -3,14 +3,18 @@
 // and flag. The directory is $RLRUN_GYM_REFERENCE if set (DESIGN.md §8), otherwise
 // RLRUN_DEFAULT_GYM_REFERENCE from tests/CMakeLists.txt. Every `<id>.csv` + `<id>.init.csv`
 // pair in it is replayed; nothing is hard-coded about which ids exist.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -131,23 +135,73 @@ std::string full(double v) {
   return buf;
 }
 
+// Free-running replay is checked strictly for this many steps of every episode. Beyond it a
+// divergence is reported but tolerated, because of CartPole: replayed open loop, the pole is
+// an unstable system whose errors grow e-fold about every 13 steps, so a last-bit difference
+// in one sin/cos (Gymnasium's NumPy may not use glibc's correctly rounded ones) reaches 1e-5
+// after about 330 steps. 200 steps keeps a safety factor of e^10 on that. The one-step check
+// below still covers every step of every episode, so no step goes unchecked.
+constexpr int kFreeRunHorizon = 200;
+
 struct ReplayResult {
   int episodes = 0;
   int steps = 0;
-  std::string error;  // the first mismatch; empty when everything matched
+  std::string error;       // the first failure; empty when the replay passed
+  int diverged = 0;        // episodes whose free run left the tolerance after the horizon
+  std::string divergence;  // the first such divergence, for the log
 };
 
-// Replays `<dir>/<id>.csv` from the states in `<dir>/<id>.init.csv`.
+// The physical state behind a reference observation, to float32 precision. Used to restart
+// the env from Gymnasium's own trajectory at every step (the one-step check).
+std::vector<double> state_from_observation(const std::string& id, std::span<const float> o) {
+  if (id == "Pendulum-v1") return {std::atan2(o[1], o[0]), o[2]};
+  if (id == "Acrobot-v1") return {std::atan2(o[1], o[0]), std::atan2(o[3], o[2]), o[4], o[5]};
+  return {o.begin(), o.end()};  // CartPole, MountainCar(Continuous): obs = float32(state)
+}
+
+// Compares one step; returns "" or a message naming the column, expected and got.
+std::string compare_step(const StepResult& got, std::span<const float> obs,
+                         const std::vector<std::string>& row, const Csv& csv,
+                         const std::vector<int>& obs_cols, bool exact_reward) {
+  const double want_reward = number(row[csv.column("reward")]);
+  const bool reward_ok = exact_reward
+                             ? got.reward == want_reward
+                             : std::abs(got.reward - want_reward) <= kContinuousRewardTolerance;
+  if (!reward_ok)
+    return "column reward: expected " + full(want_reward) + " got " + full(got.reward);
+  const bool want_term = number(row[csv.column("terminated")]) != 0;
+  const bool want_trunc = number(row[csv.column("truncated")]) != 0;
+  if (got.terminated != want_term)
+    return "column terminated: expected " + std::to_string(want_term) + " got " +
+           std::to_string(got.terminated);
+  if (got.truncated != want_trunc)
+    return "column truncated: expected " + std::to_string(want_trunc) + " got " +
+           std::to_string(got.truncated);
+  for (size_t k = 0; k < obs_cols.size(); ++k) {
+    const double want = number(row[obs_cols[k]]);
+    if (!(std::abs(obs[k] - want) <= kObsTolerance))
+      return "column o" + std::to_string(k) + ": expected " + full(want) + " got " + full(obs[k]);
+  }
+  return "";
+}
+
+// Replays `<dir>/<id>.csv` from the states in `<dir>/<id>.init.csv`, two ways at once:
+//  * free run: reset, set the recorded start state, then feed the recorded actions and
+//    compare everything, as `gymnasium.make(id)` produced it (TimeLimit included);
+//  * one step: before every step, restart a second env from the state behind the previous
+//    recorded observation, so each transition is checked without accumulated error.
 ReplayResult replay(const fs::path& dir, const std::string& id) {
   ReplayResult result;
   auto fail = [&](const std::string& message) {
     result.error = id + ": " + message;
     return result;
   };
-  EnvPtr env = make_reference_env(id);
+  EnvPtr env = make_reference_env(id), teacher = make_reference_env(id);
   if (!env) return fail("unknown env id (no factory entry in test_gym_reference.cpp)");
   auto* classic = dynamic_cast<ClassicControlEnv*>(&env->unwrapped());
-  if (!classic) return fail("the unwrapped env is not a ClassicControlEnv (no set_state)");
+  auto* teacher_classic = dynamic_cast<ClassicControlEnv*>(&teacher->unwrapped());
+  if (!classic || !teacher_classic)
+    return fail("the unwrapped env is not a ClassicControlEnv (no set_state)");
 
   Csv init, traj;
   try {
@@ -168,11 +222,9 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
   }
 
   const int c_episode = traj.column("episode"), c_step = traj.column("step");
-  const int c_reward = traj.column("reward"), c_term = traj.column("terminated");
-  const int c_trunc = traj.column("truncated");
   const std::vector<int> act_cols = traj.numbered("a"), obs_cols = traj.numbered("o");
-  if (c_episode < 0 || c_step < 0 || c_reward < 0 || c_term < 0 || c_trunc < 0)
-    return fail("trajectory file lacks one of episode,step,reward,terminated,truncated");
+  for (const char* name : {"episode", "step", "reward", "terminated", "truncated"})
+    if (traj.column(name) < 0) return fail(std::string("trajectory file lacks column ") + name);
   if (static_cast<int>(obs_cols.size()) != env->observation_space().flat_dim())
     return fail("trajectory has " + std::to_string(obs_cols.size()) + " observation columns, " +
                 env->observation_space().describe() + " needs " +
@@ -183,8 +235,10 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
                 std::to_string(env->action_space().flat_dim()));
 
   const bool exact_reward = reward_is_exact(*env);
-  std::vector<float> obs(obs_cols.size()), action(act_cols.size());
+  const size_t obs_dim = obs_cols.size();
+  std::vector<float> obs(obs_dim), teacher_obs(obs_dim), previous(obs_dim), action(act_cols.size());
   long episode = -1, step = -1;
+  bool free_running = false;
   for (size_t r = 0; r < traj.rows.size(); ++r) {
     const auto& row = traj.rows[r];
     const long row_episode = static_cast<long>(number(row[c_episode]));
@@ -194,12 +248,21 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
     if (row_step == 0) {
       auto it = start_states.find(row_episode);
       if (it == start_states.end()) return fail(where + ": no init state for this episode");
-      // Gymnasium: env.reset() then env.unwrapped.state = init; TimeLimit's count is 0.
+      // Gymnasium: env.reset() then env.unwrapped.state[:] = init; TimeLimit's count is 0.
       env->reset(static_cast<uint64_t>(row_episode), obs);
       classic->set_state(it->second, obs);
+      teacher->reset(static_cast<uint64_t>(row_episode), teacher_obs);
+      teacher_classic->set_state(it->second, teacher_obs);
       episode = row_episode;
       step = 0;
+      free_running = true;
       ++result.episodes;
+      for (size_t k = 0; k < obs_dim; ++k) {
+        const double want = number(row[obs_cols[k]]);
+        if (!(std::abs(obs[k] - want) <= kObsTolerance))
+          return fail(where + " column o" + std::to_string(k) + ": expected " + full(want) +
+                      " got " + full(obs[k]));
+      }
     } else {
       if (row_episode != episode || row_step != step + 1)
         return fail(where + ": rows out of order (expected episode " + std::to_string(episode) +
@@ -207,29 +270,24 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
       step = row_step;
       for (size_t k = 0; k < act_cols.size(); ++k)
         action[k] = static_cast<float>(number(row[act_cols[k]]));
-      const StepResult got = env->step(action, obs);
       ++result.steps;
-      const double want_reward = number(row[c_reward]);
-      const bool reward_ok = exact_reward
-                                 ? got.reward == want_reward
-                                 : std::abs(got.reward - want_reward) <= kContinuousRewardTolerance;
-      if (!reward_ok)
-        return fail(where + " column reward: expected " + full(want_reward) + " got " +
-                    full(got.reward));
-      const bool want_term = number(row[c_term]) != 0, want_trunc = number(row[c_trunc]) != 0;
-      if (got.terminated != want_term)
-        return fail(where + " column terminated: expected " + std::to_string(want_term) +
-                    " got " + std::to_string(got.terminated));
-      if (got.truncated != want_trunc)
-        return fail(where + " column truncated: expected " + std::to_string(want_trunc) +
-                    " got " + std::to_string(got.truncated));
+
+      if (step > 1) teacher_classic->set_state(state_from_observation(id, previous), teacher_obs);
+      const StepResult one = teacher->step(action, teacher_obs);
+      if (std::string m = compare_step(one, teacher_obs, row, traj, obs_cols, exact_reward);
+          !m.empty())
+        return fail(where + " (one step from the recorded state) " + m);
+
+      if (free_running) {
+        const StepResult got = env->step(action, obs);
+        if (std::string m = compare_step(got, obs, row, traj, obs_cols, exact_reward); !m.empty()) {
+          if (step <= kFreeRunHorizon) return fail(where + " (free run) " + m);
+          free_running = false;
+          if (result.diverged++ == 0) result.divergence = id + ": " + where + " " + m;
+        }
+      }
     }
-    for (size_t k = 0; k < obs_cols.size(); ++k) {
-      const double want = number(row[obs_cols[k]]);
-      if (!(std::abs(obs[k] - want) <= kObsTolerance))
-        return fail(where + " column o" + std::to_string(k) + ": expected " + full(want) +
-                    " got " + full(obs[k]));
-    }
+    for (size_t k = 0; k < obs_dim; ++k) previous[k] = static_cast<float>(number(row[obs_cols[k]]));
   }
   return result;
 }
@@ -267,7 +325,8 @@ void write_reference(const fs::path& dir, const std::string& id, int episodes, u
       act.sample(action_rng, action);
       if (act.is_box())
         for (int k = 0; k < act.flat_dim(); ++k)
-          action[k] = static_cast<float>(action_rng.uniform(1.25 * act.low()[k], 1.25 * act.high()[k]));
+          action[k] =
+              static_cast<float>(action_rng.uniform(1.25 * act.low()[k], 1.25 * act.high()[k]));
       const StepResult r = env->step(action, obs);
       traj << e << "," << t;
       for (float a : action) traj << "," << full(a);
@@ -310,6 +369,9 @@ TEST_CASE("classic envs replay the Gymnasium 1.0.0 reference trajectories", "[en
     CHECK(r.error.empty());
     CHECK(r.episodes > 0);
     CHECK(r.steps > 0);
+    if (r.diverged > 0)
+      WARN(r.diverged << " free-run episode(s) drifted past 1e-5 after step " << kFreeRunHorizon
+                      << " (one-step checks passed); first: " << r.divergence);
   }
 }
 
@@ -329,8 +391,8 @@ TEST_CASE("the reference replay reads any directory in the same format", "[envs]
       ::unsetenv("RLRUN_GYM_REFERENCE");
     CHECK(dir == tmp.path);
     const auto ids = reference_ids(dir);
-    REQUIRE(ids == std::vector<std::string>{"CartPole-v1", "MountainCarContinuous-v0",
-                                            "Pendulum-v1"});
+    REQUIRE(ids ==
+            std::vector<std::string>{"CartPole-v1", "MountainCarContinuous-v0", "Pendulum-v1"});
     for (const auto& id : ids) {
       const ReplayResult r = replay(dir, id);
       INFO(r.error);
@@ -354,6 +416,8 @@ TEST_CASE("the reference replay reads any directory in the same format", "[envs]
     const ReplayResult r = replay(tmp.path, "CartPole-v1");
     CHECK_THAT(r.error, Catch::Contains("episode 0 step 3") && Catch::Contains("column o2") &&
                             Catch::Contains("expected 0.5 got"));
+    // The edited row makes the one-step check of step 4 start from a wrong state too, but the
+    // first failure reported is step 3's.
   }
 
   SECTION("an unknown id fails with a clear message") {

@@ -1,5 +1,7 @@
 #include "rlrun/core/float_format.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -9,17 +11,50 @@ namespace rlrun {
 std::string python_float_repr(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[40];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
+  if (value == 0.0) return std::signbit(value) ? "-0.0" : "0.0";
+  // Shortest round-tripping significand, as Python's repr (float_repr_style 'short').
+  char buffer[64];
+  int precision = 0;
+  for (; precision < 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*e", precision, value);
     if (std::strtod(buffer, nullptr) == value) break;
   }
-  std::string s = buffer;
-  // %g writes integral values without a point ("21"); Python writes "21.0". Exponents: %g
-  // gives "1e-05" like Python; Python switches to exponents at 1e16, %g at the precision,
-  // which only matters for huge integral values (written "1e+16" vs "1e+16": same).
-  if (s.find_first_of(".en") == std::string::npos) s += ".0";
-  return s;
+  const std::string sci = buffer;  // e.g. "-1.2345e-05"
+  const auto e_pos = sci.find('e');
+  const int exponent = std::atoi(sci.c_str() + e_pos + 1);
+  std::string digits;
+  for (size_t i = 0; i < e_pos; ++i)
+    if (std::isdigit(static_cast<unsigned char>(sci[i]))) digits += sci[i];
+  const std::string sign = value < 0 ? "-" : "";
+  // Python uses fixed notation for 1e-4 <= |x| < 1e16, else scientific.
+  if (exponent >= -4 && exponent < 16) {
+    std::string out = sign;
+    if (exponent >= 0) {
+      const size_t int_digits = static_cast<size_t>(exponent) + 1;
+      out.append(digits, 0, std::min(int_digits, digits.size()));
+      out.append(int_digits > digits.size() ? int_digits - digits.size() : 0, '0');
+      out += '.';
+      if (digits.size() > int_digits)
+        out.append(digits, int_digits, std::string::npos);
+      else
+        out += '0';
+    } else {
+      out += "0.";
+      out.append(static_cast<size_t>(-exponent - 1), '0');
+      out += digits;
+    }
+    return out;
+  }
+  char exp_text[16];
+  std::snprintf(exp_text, sizeof exp_text, "e%c%02d", exponent < 0 ? '-' : '+', std::abs(exponent));
+  std::string out = sign;
+  out += digits[0];
+  if (digits.size() > 1) {
+    out += '.';
+    out.append(digits, 1, std::string::npos);
+  }
+  out += exp_text;
+  return out;
 }
 
 }  // namespace rlrun

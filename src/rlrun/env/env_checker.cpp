@@ -40,7 +40,7 @@ class Checker {
       check_reset_seeding();
       check_trajectory_determinism();
     } catch (const std::exception& e) {
-      problem("the env threw: " + std::string(e.what()));
+      problem("the env threw during " + phase_ + ": " + e.what());
     }
     return problems_;
   }
@@ -76,6 +76,7 @@ class Checker {
 
   Obs reset(std::optional<uint64_t> seed, const char* what) {
     Obs obs(env_.observation_space().flat_dim());
+    phase_ = what;
     env_.reset(seed, obs);
     if (!env_.observation_space().contains(obs))
       problem(std::string("the observation returned by ") + what + " " + format(obs) +
@@ -121,6 +122,7 @@ class Checker {
     for (int t = 0; t < steps_; ++t) {
       act_space.sample(action_rng, action);
       Record r{Obs(obs_space.flat_dim()), 0.0, false, false, {}};
+      phase_ = "step() " + std::to_string(t);
       const StepResult result = env_.step(action, r.obs);
       r.reward = result.reward;
       r.terminated = result.terminated;
@@ -172,6 +174,7 @@ class Checker {
   uint64_t seed_;
   int steps_;
   std::vector<std::string> problems_;
+  std::string phase_ = "setup";  // what the env was doing, for exception reports
 };
 
 }  // namespace

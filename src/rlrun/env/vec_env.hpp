@@ -10,11 +10,10 @@
 //     step's info dict; the reset info is separate).
 // Observations and actions are one column per env (features x n_envs, DESIGN.md §3).
 // All buffers are allocated in the constructor; step() does not allocate.
+#include <Eigen/Core>
 #include <cstdint>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"

@@ -122,23 +122,41 @@ inline void rows_tile(Index k, const float* a, Index lda, const float* b, Index 
   }
 }
 
-// All rows for kNr columns starting at j0: 2-packet tiles, a 1-packet tile, then scalar rows.
-template <int kNr, class Epi>
-void rows_column_block(Index m, Index k, const float* a, Index lda, const float* b, Index b_k,
-                       Index b_j, Index j0, const Epi& epi) {
-  const float* bj = b + j0 * b_j;
-  Index i = 0;
-  for (; i + 2 * kLanes <= m; i += 2 * kLanes) {
-    rows_tile<2, kNr>(k, a + i, lda, bj, b_k, b_j, i, j0, epi);
+// Rows i0.. of kNr columns starting at j0 (b already points at column j0): tiles of kMp packets
+// while they fit, then halving tiles, then scalar rows. Narrow column blocks use taller tiles so
+// that enough independent accumulators hide the FMA latency (a 1-column product with a single
+// 2-packet tile would wait on one dependency chain per k).
+template <int kMp, int kNr, class Epi>
+void rows_column_block(Index i0, Index m, Index k, const float* a, Index lda, const float* b,
+                       Index b_k, Index b_j, Index j0, const Epi& epi) {
+  Index i = i0;
+  for (; i + kMp * kLanes <= m; i += kMp * kLanes) {
+    rows_tile<kMp, kNr>(k, a + i, lda, b, b_k, b_j, i, j0, epi);
   }
-  for (; i + kLanes <= m; i += kLanes) rows_tile<1, kNr>(k, a + i, lda, bj, b_k, b_j, i, j0, epi);
-  for (; i < m; ++i) {
-    for (int r = 0; r < kNr; ++r) {
-      float s = 0.0f;
-      for (Index kk = 0; kk < k; ++kk) s += a[i + kk * lda] * bj[kk * b_k + r * b_j];
-      epi.scalar(s, i, j0 + r);
+  if constexpr (kMp > 1) {
+    rows_column_block<kMp / 2, kNr>(i, m, k, a, lda, b, b_k, b_j, j0, epi);
+  } else {
+    for (; i < m; ++i) {
+      for (int r = 0; r < kNr; ++r) {
+        float s = 0.0f;
+        for (Index kk = 0; kk < k; ++kk) s += a[i + kk * lda] * b[kk * b_k + r * b_j];
+        epi.scalar(s, i, j0 + r);
+      }
     }
   }
+}
+
+// Tile height for kNr columns: at most 12 accumulators (16 vector registers with AVX2).
+template <int kNr>
+constexpr int rows_tile_packets() {
+  return kNr == 1 ? 8 : kNr == 2 ? 4 : 2;
+}
+
+template <int kNr, class Epi>
+void rows_columns(Index m, Index k, const float* a, Index lda, const float* b, Index b_k,
+                  Index b_j, Index j0, const Epi& epi) {
+  rows_column_block<rows_tile_packets<kNr>(), kNr>(0, m, k, a, lda, b + j0 * b_j, b_k, b_j, j0,
+                                                   epi);
 }
 
 template <class Epi>
@@ -146,13 +164,13 @@ void rows_run(Index m, Index n, Index k, const float* a, Index lda, const float*
               Index b_j, const Epi& epi) {
   constexpr int kNr = 6;
   Index j = 0;
-  for (; j + kNr <= n; j += kNr) rows_column_block<kNr>(m, k, a, lda, b, b_k, b_j, j, epi);
+  for (; j + kNr <= n; j += kNr) rows_columns<kNr>(m, k, a, lda, b, b_k, b_j, j, epi);
   switch (n - j) {
-    case 5: rows_column_block<5>(m, k, a, lda, b, b_k, b_j, j, epi); break;
-    case 4: rows_column_block<4>(m, k, a, lda, b, b_k, b_j, j, epi); break;
-    case 3: rows_column_block<3>(m, k, a, lda, b, b_k, b_j, j, epi); break;
-    case 2: rows_column_block<2>(m, k, a, lda, b, b_k, b_j, j, epi); break;
-    case 1: rows_column_block<1>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 5: rows_columns<5>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 4: rows_columns<4>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 3: rows_columns<3>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 2: rows_columns<2>(m, k, a, lda, b, b_k, b_j, j, epi); break;
+    case 1: rows_columns<1>(m, k, a, lda, b, b_k, b_j, j, epi); break;
     default: break;
   }
 }

@@ -8,6 +8,7 @@
 
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/explained_variance.hpp"
+#include "rlrun/algos/ppo/ppo_loss.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/nn/clip_grad.hpp"
 
@@ -111,8 +112,9 @@ bool PPO::collect_rollouts(VecEnv& env, TrainingHooks& hooks) {
 void PPO::train(Logger* logger) {
   const float lr = static_cast<float>(config_.learning_rate(progress_remaining_));
   const float clip_range = static_cast<float>(config_.clip_range(progress_remaining_));
-  const bool clip_vf = config_.clip_range_vf.has_value();
-  const float clip_range_vf = clip_vf ? static_cast<float>((*config_.clip_range_vf)(progress_remaining_)) : 0.0f;
+  std::optional<float> clip_range_vf;
+  if (config_.clip_range_vf)
+    clip_range_vf = static_cast<float>((*config_.clip_range_vf)(progress_remaining_));
   const float ent_coef = static_cast<float>(config_.ent_coef);
   const float vf_coef = static_cast<float>(config_.vf_coef);
   const int size = static_cast<int>(indices_.size());
@@ -152,57 +154,21 @@ void PPO::train(Logger* logger) {
       }
       policy_.evaluate_actions(mb_obs_, mb_act_, values_pred_, log_prob_, entropy_);
 
-      if (config_.normalize_advantage && batch > 1) {
-        // torch's std() is the unbiased (n - 1) estimate.
-        const float mean = mb_adv_.mean();
-        const float var = (mb_adv_.array() - mean).square().sum() / static_cast<float>(batch - 1);
-        mb_adv_ = (mb_adv_.array() - mean) / (std::sqrt(var) + 1e-8f);
-      }
-
-      // Losses and their derivatives w.r.t. log_prob, value and entropy (loss is a mean).
-      const float inv_batch = 1.0f / static_cast<float>(batch);
-      double pg_loss = 0, value_loss = 0, entropy_sum = 0, clipped = 0, approx_kl = 0;
-      for (int j = 0; j < batch; ++j) {
-        const float log_ratio = log_prob_(j) - mb_old_logp_(j);
-        const float ratio = std::exp(log_ratio);
-        const float adv = mb_adv_(j);
-        const float surrogate = adv * ratio;
-        const float clipped_surrogate = adv * std::clamp(ratio, 1.0f - clip_range, 1.0f + clip_range);
-        pg_loss -= std::min(surrogate, clipped_surrogate);
-        // d(-min(.))/dlog_prob: the unclipped branch passes adv * ratio; where the clipped
-        // branch is smaller the clamp is active and the gradient is zero.
-        grad_log_prob_(j) = surrogate <= clipped_surrogate ? -adv * ratio * inv_batch : 0.0f;
-        clipped += std::abs(ratio - 1.0f) > clip_range;
-        approx_kl += (ratio - 1.0f) - log_ratio;
-
-        float value_pred = values_pred_(j);
-        float value_grad_gate = 1.0f;
-        if (clip_vf) {
-          const float delta = value_pred - mb_old_val_(j);
-          const float clamped = std::clamp(delta, -clip_range_vf, clip_range_vf);
-          value_grad_gate = clamped == delta ? 1.0f : 0.0f;
-          value_pred = mb_old_val_(j) + clamped;
-        }
-        const float value_error = value_pred - mb_ret_(j);
-        value_loss += value_error * value_error;
-        grad_values_(j) = vf_coef * 2.0f * value_error * inv_batch * value_grad_gate;
-        entropy_sum += entropy_(j);
-        grad_entropy_(j) = -ent_coef * inv_batch;
-      }
-      pg_loss *= inv_batch;
-      value_loss *= inv_batch;
-      approx_kl *= inv_batch;
-      const double entropy_loss = -entropy_sum * inv_batch;
-      pg_loss_sum += pg_loss;
-      value_loss_sum += value_loss;
-      entropy_loss_sum += entropy_loss;
-      clip_fraction_sum += clipped * inv_batch;
-      ++n_minibatches;
-      approx_kl_sum += approx_kl;
+      if (config_.normalize_advantage) normalize_advantages(mb_adv_);
+      const PpoLossTerms t = ppo_loss({values_pred_, log_prob_, entropy_, mb_old_logp_,
+                                       mb_old_val_, mb_adv_, mb_ret_},
+                                      clip_range, clip_range_vf, ent_coef, vf_coef, grad_values_,
+                                      grad_log_prob_, grad_entropy_);
+      pg_loss_sum += t.policy_loss;
+      value_loss_sum += t.value_loss;
+      entropy_loss_sum += t.entropy_loss;
+      clip_fraction_sum += t.clip_fraction;
+      approx_kl_sum += t.approx_kl;
       ++approx_kl_count;
-      last_loss = pg_loss + config_.ent_coef * entropy_loss + config_.vf_coef * value_loss;
+      ++n_minibatches;
+      last_loss = t.loss;
 
-      if (config_.target_kl && approx_kl > 1.5 * *config_.target_kl) {
+      if (config_.target_kl && t.approx_kl > 1.5 * *config_.target_kl) {
         continue_training = false;
         break;
       }
@@ -227,7 +193,7 @@ void PPO::train(Logger* logger) {
   if (!policy_.discrete()) logger->record("train/std", policy_.mean_std());
   logger->record("train/n_updates", static_cast<double>(n_updates_));
   logger->record("train/clip_range", clip_range);
-  if (clip_vf) logger->record("train/clip_range_vf", clip_range_vf);
+  if (clip_range_vf) logger->record("train/clip_range_vf", *clip_range_vf);
   logger->record("train/learning_rate", lr);
 }
 

@@ -62,6 +62,9 @@ class PPO : public Algorithm {
   void load(const TensorMap& tensors) override;
 
   const ActorCriticPolicy& policy() const { return policy_; }
+  // The last rollout's rewards (after timeout bootstrapping) and values, n_steps x n_envs.
+  const StepEnvMatrix& rollout_rewards() const { return rewards_; }
+  const StepEnvMatrix& rollout_values() const { return values_; }
 
  private:
   // Returns false when a callback asked to stop.

@@ -31,8 +31,8 @@ State5 dsdt(const State5& s) {
   constexpr double g = 9.8;
   const double a = s[4];
   const double theta1 = s[0], theta2 = s[1], dtheta1 = s[2], dtheta2 = s[3];
-  const double d1 = m1 * (lc1 * lc1) +
-                    m2 * ((l1 * l1) + (lc2 * lc2) + 2 * l1 * lc2 * std::cos(theta2)) + I1 + I2;
+  const double d1 =
+      m1 * (lc1 * lc1) + m2 * ((l1 * l1) + (lc2 * lc2) + 2 * l1 * lc2 * std::cos(theta2)) + I1 + I2;
   const double d2 = m2 * ((lc2 * lc2) + l1 * lc2 * std::cos(theta2)) + I2;
   const double phi2 = m2 * lc2 * g * std::cos(theta1 + theta2 - kPi / 2.0);
   const double phi1 = -m2 * l1 * lc2 * (dtheta2 * dtheta2) * std::sin(theta2) -
@@ -77,12 +77,11 @@ double bound(double x, double m, double big_m) { return std::min(std::max(x, m),
 }  // namespace
 
 Acrobot::Acrobot(const Config& config)
-    : ClassicControlEnv(
-          Space::box({-1.0f, -1.0f, -1.0f, -1.0f, static_cast<float>(-kMaxVel1),
-                      static_cast<float>(-kMaxVel2)},
-                     {1.0f, 1.0f, 1.0f, 1.0f, static_cast<float>(kMaxVel1),
-                      static_cast<float>(kMaxVel2)}),
-          Space::discrete(3)),
+    : ClassicControlEnv(Space::box({-1.0f, -1.0f, -1.0f, -1.0f, static_cast<float>(-kMaxVel1),
+                                    static_cast<float>(-kMaxVel2)},
+                                   {1.0f, 1.0f, 1.0f, 1.0f, static_cast<float>(kMaxVel1),
+                                    static_cast<float>(kMaxVel2)}),
+                        Space::discrete(3)),
       config_(config) {}
 
 StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
@@ -96,6 +95,7 @@ StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
   state_[1] = wrap(ns[1], -kPi, kPi);
   state_[2] = bound(ns[2], -kMaxVel1, kMaxVel1);
   state_[3] = bound(ns[3], -kMaxVel2, kMaxVel2);
+  state_is_float32_ = false;
 
   // _terminal: the free end is more than one link length above the pivot.
   const bool terminated = -std::cos(state_[0]) - std::cos(state_[1] + state_[0]) > 1.0;
@@ -106,6 +106,7 @@ StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
 void Acrobot::sample_initial_state() {
   // np_random.uniform(-0.1, 0.1, size=(4,)).astype(np.float32): the start state is float32.
   for (double& s : state_) s = static_cast<float>(rng_.uniform(-kResetBound, kResetBound));
+  state_is_float32_ = true;
 }
 
 void Acrobot::get_state(std::span<double> state) const {
@@ -113,7 +114,8 @@ void Acrobot::get_state(std::span<double> state) const {
 }
 
 void Acrobot::load_state(std::span<const double> state) {
-  for (size_t i = 0; i < state_.size(); ++i) state_[i] = state[i];
+  for (size_t i = 0; i < state_.size(); ++i)
+    state_[i] = state_is_float32_ ? static_cast<float>(state[i]) : state[i];
 }
 
 void Acrobot::write_observation(std::span<float> obs) const {

@@ -42,6 +42,10 @@ class Acrobot : public ClassicControlEnv {
  private:
   Config config_;
   std::array<double, 4> state_{};  // theta1, theta2, dtheta1, dtheta2
+  // Gymnasium's state array is float32 right after reset() (`.astype(np.float32)`) and
+  // float64 after a step (rk4 returns float64); set_state keeps that dtype, like an in-place
+  // `env.unwrapped.state[:] = values` does.
+  bool state_is_float32_ = false;
 };
 
 }  // namespace rlrun

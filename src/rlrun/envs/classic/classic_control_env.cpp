@@ -40,10 +40,9 @@ void ClassicControlEnv::require_reset() const {
 
 int ClassicControlEnv::discrete_action(std::span<const float> action) const {
   if (!action_space_.contains(action))
-    throw std::invalid_argument(id() + ": action " +
-                                (action.empty() ? std::string("<empty>")
-                                                : std::to_string(action[0])) +
-                                " is not in " + action_space_.describe());
+    throw std::invalid_argument(
+        id() + ": action " + (action.empty() ? std::string("<empty>") : std::to_string(action[0])) +
+        " is not in " + action_space_.describe());
   return static_cast<int>(action[0]);
 }
 

@@ -31,9 +31,11 @@ class ClassicControlEnv : public Env {
   virtual int state_dim() const = 0;
   // Copies the physical state, in Gymnasium's `env.unwrapped.state` order, into `state`.
   virtual void get_state(std::span<double> state) const = 0;
-  // Equivalent of `env.unwrapped.state = state` followed by reading the observation Gymnasium
-  // would return for it. Only the state changes (no RNG draw, no episode bookkeeping), exactly
-  // like the Python assignment. Throws std::invalid_argument on a wrong size.
+  // Equivalent of Gymnasium's `env.unwrapped.state[:] = state` followed by reading the
+  // observation the env would return for it. Only the state changes (no RNG draw, no episode
+  // bookkeeping), and the values keep the dtype Gymnasium's state array has at that moment:
+  // Acrobot's is float32 right after reset(), MountainCarContinuous's is float32 after a
+  // step, all others are float64. Throws std::invalid_argument on a wrong size.
   void set_state(std::span<const double> state, std::span<float> obs);
 
   Rng& rng() { return rng_; }

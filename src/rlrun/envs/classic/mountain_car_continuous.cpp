@@ -33,6 +33,9 @@ StepResult MountainCarContinuous::step(std::span<const float> action, std::span<
   info_.clear();
   // The clipped action is the force; the reward below uses the raw action.
   const double force = std::min(std::max(action[0], kMinAction), kMaxAction);
+  // Everything below runs in float64, including 3 * position on the float32 state. That is
+  // NumPy 1.x scalar promotion (float32 scalar * Python number -> float64) and matches the
+  // Gymnasium 1.0.0 reference trajectories bit for bit; NumPy 2 (NEP 50) would keep float32.
   double position = position_;
   double velocity = velocity_;
   velocity += force * kPower - 0.0025 * std::cos(3 * position);
@@ -51,6 +54,7 @@ StepResult MountainCarContinuous::step(std::span<const float> action, std::span<
   // self.state = np.array([position, velocity], dtype=np.float32)
   position_ = static_cast<float>(position);
   velocity_ = static_cast<float>(velocity);
+  state_is_float32_ = true;
   write_observation(obs);
   return {reward, terminated, false};
 }
@@ -58,6 +62,7 @@ StepResult MountainCarContinuous::step(std::span<const float> action, std::span<
 void MountainCarContinuous::sample_initial_state() {
   position_ = rng_.uniform(-0.6, -0.4);
   velocity_ = 0.0;
+  state_is_float32_ = false;
 }
 
 void MountainCarContinuous::get_state(std::span<double> state) const {
@@ -66,8 +71,8 @@ void MountainCarContinuous::get_state(std::span<double> state) const {
 }
 
 void MountainCarContinuous::load_state(std::span<const double> state) {
-  position_ = state[0];
-  velocity_ = state[1];
+  position_ = state_is_float32_ ? static_cast<float>(state[0]) : state[0];
+  velocity_ = state_is_float32_ ? static_cast<float>(state[1]) : state[1];
 }
 
 void MountainCarContinuous::write_observation(std::span<float> obs) const {

@@ -45,9 +45,11 @@ class MountainCarContinuous : public ClassicControlEnv {
  private:
   Config config_;
   // Gymnasium keeps the state as float64 after reset but as a float32 array after every
-  // step; both are held here as doubles and rounded to float after each step.
+  // step; both are held here as doubles and rounded to float after each step. set_state
+  // keeps the current dtype, like an in-place `env.unwrapped.state[:] = values`.
   double position_ = 0.0;
   double velocity_ = 0.0;
+  bool state_is_float32_ = false;
 };
 
 }  // namespace rlrun

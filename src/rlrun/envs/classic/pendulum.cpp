@@ -46,7 +46,8 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   const double costs = th_norm * th_norm + 0.1 * (theta_dot_ * theta_dot_) + 0.001 * (u * u);
 
   double new_theta_dot =
-      theta_dot_ + (3 * g / (2 * kLength) * std::sin(theta_) + 3.0 / (kMass * kLength * kLength) * u) * kDt;
+      theta_dot_ +
+      (3 * g / (2 * kLength) * std::sin(theta_) + 3.0 / (kMass * kLength * kLength) * u) * kDt;
   new_theta_dot = std::clamp(new_theta_dot, -kMaxSpeed, kMaxSpeed);
   theta_ = theta_ + new_theta_dot * kDt;
   theta_dot_ = new_theta_dot;

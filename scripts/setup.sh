@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package rlrun uses (DESIGN.md §2) and builds into build/.
+# Idempotent: packages already present are not reinstalled, the build is incremental.
+#   scripts/setup.sh            # install + build (Release)
+#   RLRUN_SKIP_INSTALL=1 ...    # build only
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  cmake ninja-build g++ pkg-config          # toolchain
+  libeigen3-dev                             # networks (nn/)
+  libyaml-cpp-dev                           # experiment files
+  libcli11-dev                              # command line
+  nlohmann-json3-dev                        # meta.json in model files
+  libspdlog-dev libfmt-dev                  # logging
+  catch2                                    # tests (v2.13)
+  libzip-dev zip unzip                      # model files are zips
+  libbullet-dev                             # 3D grasp task
+  sumo sumo-tools                           # traffic task (SUMO + TraCI)
+  libcairo2-dev ffmpeg                      # rendering and video
+  python3-numpy python3-pandas              # tests: read our files with the tools SB3 users use
+)
+
+if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
+  missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]})); then
+    echo "setup: installing ${missing[*]}"
+    SUDO=""
+    if [[ $(id -u) -ne 0 ]]; then
+      command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+      SUDO=sudo
+    fi
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  fi
+fi
+
+# SUMO's tools look for their data here (DESIGN.md §2).
+export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build --parallel "$(nproc)"
+echo "setup: built build/rlrun"

@@ -1,0 +1,37 @@
+#pragma once
+// PPO's minibatch loss (stable_baselines3/ppo/ppo.py, train()) and its derivatives with respect
+// to the policy outputs, so that the policy can backpropagate them:
+//   loss = -mean(min(A r, A clip(r, 1-eps, 1+eps)))             (clipped surrogate)
+//        + vf_coef * mean((R - V_pred)^2)                         (V_pred optionally clipped)
+//        + ent_coef * (-mean(H))
+// with r = exp(log_prob - old_log_prob). Advantages are normalised before (SB3 does it per
+// minibatch, with torch's unbiased std).
+#include <Eigen/Core>
+#include <optional>
+
+namespace rlrun {
+
+struct PpoLossInputs {
+  const Eigen::RowVectorXf& values;        // V(s) of the current policy
+  const Eigen::RowVectorXf& log_prob;      // log pi(a|s) of the current policy
+  const Eigen::RowVectorXf& entropy;       // H(pi(.|s))
+  const Eigen::RowVectorXf& old_log_prob;  // from the rollout
+  const Eigen::RowVectorXf& old_values;    // from the rollout (for value clipping)
+  const Eigen::RowVectorXf& advantages;    // already normalised if requested
+  const Eigen::RowVectorXf& returns;
+};
+
+struct PpoLossTerms {
+  double policy_loss = 0, value_loss = 0, entropy_loss = 0, loss = 0;
+  double clip_fraction = 0, approx_kl = 0;  // approx_kl: mean((r - 1) - log r), Schulman's k3
+};
+
+// Writes dloss/dvalues, dloss/dlog_prob, dloss/dentropy (each 1 x batch, pre-sized).
+PpoLossTerms ppo_loss(const PpoLossInputs& in, float clip_range, std::optional<float> clip_range_vf,
+                      float ent_coef, float vf_coef, Eigen::RowVectorXf& grad_values,
+                      Eigen::RowVectorXf& grad_log_prob, Eigen::RowVectorXf& grad_entropy);
+
+// In place: (a - mean) / (std + 1e-8) with the unbiased std, as torch's .std() in SB3.
+void normalize_advantages(Eigen::RowVectorXf& advantages);
+
+}  // namespace rlrun
