@@ -173,3 +173,19 @@ TEST_CASE("learning: configs/cartpole_ppo.yaml reaches 475 for seeds 1, 2, 3", "
     CHECK(parse_mean_reward(eval.output) >= 475.0);
   }
 }
+
+TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
+  TempDir dir("sigint");
+  // Start a long run in the background, interrupt it after a moment.
+  const std::string cmd = std::string(RLRUN_BINARY) + " train " + kSource +
+                          "/configs/cartpole_ppo.yaml --set run.total_timesteps=100000000 "
+                          "--set run.out_dir=" + dir.str() + " > " + dir / "out.txt" +
+                          " 2>&1 & pid=$!; sleep 1.5; kill -INT $pid; wait $pid; echo exit=$?";
+  const auto r = run_command(cmd);
+  INFO(r.output << read_file(dir / "out.txt"));
+  CHECK(r.output.find("exit=130") != std::string::npos);
+  CHECK(fs::exists(dir / "cartpole_ppo/seed1/model.zip"));
+  CHECK(read_file(dir / "out.txt").find("interrupted") != std::string::npos);
+  // The interrupted model is a valid model file.
+  CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code == 0);
+}

@@ -1,0 +1,84 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "rlrun/core/rng.hpp"
+#include "rlrun/core/space.hpp"
+
+using namespace rlrun;
+
+TEST_CASE("spaces: contains, sample and describe", "[core][space]") {
+  Rng rng(1);
+  const Space box = Space::box({-1.0f, 0.0f}, {1.0f, 2.0f});
+  CHECK(box.flat_dim() == 2);
+  CHECK(box.describe() == "Box([-1.0 0.0], [1.0 2.0], (2,), float32)");
+  CHECK(Space::box(-2.0f, 2.0f, {1}).describe() == "Box(-2.0, 2.0, (1,), float32)");
+  std::vector<float> x(2);
+  for (int i = 0; i < 200; ++i) {
+    box.sample(rng, x);
+    CHECK(box.contains(x));
+  }
+  CHECK(!box.contains(std::vector<float>{1.5f, 0.0f}));
+  CHECK(!box.contains(std::vector<float>{0.0f}));
+  CHECK(!box.contains(std::vector<float>{NAN, 0.0f}));
+
+  const Space d = Space::discrete(3);
+  CHECK(d.describe() == "Discrete(3)");
+  CHECK(d.flat_dim() == 1);
+  std::vector<float> a(1);
+  int counts[3] = {0, 0, 0};
+  for (int i = 0; i < 3000; ++i) {
+    d.sample(rng, a);
+    REQUIRE(d.contains(a));
+    ++counts[static_cast<int>(a[0])];
+  }
+  for (int c : counts) CHECK(c == Approx(1000).margin(120));
+  CHECK(!d.contains(std::vector<float>{3.0f}));
+  CHECK(!d.contains(std::vector<float>{0.5f}));
+  CHECK(Space::discrete(3, 1).describe() == "Discrete(3, start=1)");
+
+  const Space md = Space::multi_discrete({5, 5});
+  CHECK(md.describe() == "MultiDiscrete([5 5])");
+  CHECK(md.contains(std::vector<float>{4.0f, 0.0f}));
+  CHECK(!md.contains(std::vector<float>{5.0f, 0.0f}));
+  const Space mb = Space::multi_binary(3);
+  CHECK(mb.describe() == "MultiBinary(3)");
+  CHECK(mb.contains(std::vector<float>{1.0f, 0.0f, 1.0f}));
+  CHECK(!mb.contains(std::vector<float>{2.0f, 0.0f, 1.0f}));
+
+  // Unbounded dimensions sample from a normal, half-bounded from an exponential.
+  const Space open = Space::box({-INFINITY, 0.0f}, {INFINITY, INFINITY});
+  for (int i = 0; i < 100; ++i) {
+    open.sample(rng, x);
+    CHECK(open.contains(x));
+  }
+  CHECK_THROWS(Space::box({1.0f}, {0.0f}));
+  CHECK_THROWS(Space::discrete(0));
+}
+
+TEST_CASE("rng: serialisable, reproducible, uniform", "[core][rng]") {
+  Rng a(123), b(123), c(124);
+  CHECK(a.next_u64() == b.next_u64());
+  CHECK(a.next_u64() != c.next_u64());
+  a.normal();  // leaves a cached spare normal in the state
+  const Rng::State saved = a.state();
+  const double n1 = a.normal(), u1 = a.uniform();
+  Rng restored;
+  restored.set_state(saved);
+  CHECK(restored.normal() == n1);
+  CHECK(restored.uniform() == u1);
+  double sum = 0, sq = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double z = a.normal();
+    sum += z;
+    sq += z * z;
+  }
+  CHECK(sum / n == Approx(0.0).margin(0.03));
+  CHECK(sq / n == Approx(1.0).margin(0.05));
+  for (int i = 0; i < 1000; ++i) {
+    const double u = a.uniform();
+    REQUIRE(u >= 0.0);
+    REQUIRE(u < 1.0);
+    REQUIRE(a.below(7) < 7u);
+  }
+}
