@@ -64,6 +64,7 @@ TEST_CASE("Mlp forward+backward micro-benchmark", "[.bench][nn_bench]") {
   bench(4, {64, 64}, 2, Activation::kTanh, 1);
   bench(4, {64, 64}, 2, Activation::kTanh, 8);
   bench(17, {256, 256}, 6, Activation::kReLU, 256);
+  bench(4, {64, 64}, 2, Activation::kReLU, 256);
 }
 
 }  // namespace

@@ -104,6 +104,10 @@ TEST_CASE("Mlp gradients match finite differences", "[nn]") {
       {1, {1}, 1, Activation::kTanh, 1},       {1, {3}, 1, Activation::kReLU, 1},
       {6, {}, 3, Activation::kTanh, 2},        {4, {64, 64}, 2, Activation::kTanh, 3},
       {7, {9, 3, 11}, 5, Activation::kReLU, 13}, {2, {33}, 1, Activation::kTanh, 17},
+      // Batch 1 and 2 take the dot-product path for the input gradient of wide layers.
+      {5, {16, 24}, 3, Activation::kTanh, 2},  {4, {64, 64}, 2, Activation::kReLU, 1},
+      // Every tile shape of the kernels: 2-packet, 1-packet and scalar rows, 6..1 columns.
+      {20, {40, 17}, 9, Activation::kReLU, 37}, {9, {8}, 12, Activation::kTanh, 11},
   };
   uint64_t seed = 11;
   for (const Case& c : cases) {
@@ -126,6 +130,34 @@ TEST_CASE("Mlp backward accumulates into grads", "[nn]") {
   CHECK(net.grads().isApprox(2.0f * once, 1e-6f));
   net.zero_grad();
   CHECK(net.grads().isZero());
+}
+
+TEST_CASE("Mlp backward reads a strided grad_output and any batch size", "[nn]") {
+  Rng rng(8);
+  Mlp net(6, {32, 16}, 3, Activation::kTanh);
+  net.init_orthogonal(rng, std::sqrt(2.0f), 1.0f);
+  const Eigen::MatrixXf x = random_matrix(6, 10, rng);
+  const Eigen::MatrixXf big = random_matrix(5, 10, rng);  // rows 1..3 are the gradient
+  const Eigen::MatrixXf g = big.middleRows(1, 3);
+  net.forward(x);
+  Eigen::MatrixXf gx_strided, gx_plain;
+  net.backward(big.middleRows(1, 3), &gx_strided);
+  const Eigen::VectorXf strided = net.grads();
+  net.zero_grad();
+  net.backward(g, &gx_plain);
+  CHECK(net.grads() == strided);
+  CHECK(gx_plain == gx_strided);
+
+  // Column by column (batch 1, other code paths) sums to the batched gradient.
+  const Eigen::VectorXf batched = net.grads();
+  net.zero_grad();
+  Eigen::MatrixXf gx_col;
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    net.forward(x.col(j));
+    net.backward(g.col(j), &gx_col);
+    CHECK(gx_col.isApprox(gx_plain.col(j), 1e-5f));
+  }
+  CHECK(net.grads().isApprox(batched, 1e-5f));
 }
 
 TEST_CASE("Mlp layout, copies and buffer reuse", "[nn]") {

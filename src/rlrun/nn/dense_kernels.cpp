@@ -81,7 +81,7 @@ struct ActGradEpi {
     const Packet a = ei::ploadu<Packet>(act + i + j * ld_act);
     Packet g;
     if constexpr (kAct == Act::kTanh) {
-      g = ei::pmul(s, ei::psub(ei::pset1<Packet>(1.0f), ei::pmul(a, a)));
+      g = ei::pmul(s, ei::psub(ei::pset1<Packet>(1.0f), a));
     } else {
       g = ei::pand(s, ei::pcmp_lt(ei::pzero(a), a));
     }

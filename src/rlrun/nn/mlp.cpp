@@ -12,8 +12,8 @@ namespace rlrun {
 
 namespace {
 // Below this batch size the backward input gradient uses dot products instead of transposing W
-// (measured crossover on a 64-64 layer: ~8 columns).
-constexpr Eigen::Index kMinBatchForTranspose = 1;
+// (measured crossover on a 64-64 layer: between 2 and 4 columns).
+constexpr Eigen::Index kMinBatchForTranspose = 3;
 }  // namespace
 
 Mlp::Mlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act)

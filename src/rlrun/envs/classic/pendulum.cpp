@@ -38,7 +38,9 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   require_reset();
   if (action.size() != 1) throw std::invalid_argument("Pendulum-v1: action must have 1 value");
   info_.clear();
-  // np.clip on the float32 action keeps float32; the physics then runs in float64.
+  // The clipped torque enters the dynamics and the cost in float64: that matches the
+  // Gymnasium reference to the last bit, rounding 3 * u or u * u to float32 (what NumPy 2
+  // does with a float32 action) does not.
   const double u = std::clamp(action[0], -kMaxTorque, kMaxTorque);
   const double g = config_.g;
 
