@@ -3,9 +3,11 @@
 // Prints throughput; asserts nothing about time (DESIGN.md §8). FLOPs are counted as
 // 2 * in * out * batch per layer forward and twice that backward (weight and input gradients),
 // the usual 3x-forward convention.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -57,7 +59,58 @@ void bench(int in, std::vector<int> hidden, int out, Activation act, int batch) 
   CHECK(net.output().allFinite());
 }
 
+// The same 4-64-64-2 tanh step written as plain Eigen (noalias products, separate bias/tanh
+// passes), the baseline the kernels are measured against.
+void bench_plain_eigen(int batch) {
+  Rng rng(1);
+  const int in = 4, h = 64, out = 2;
+  Eigen::MatrixXf w1 = Eigen::MatrixXf::Random(h, in), w2 = Eigen::MatrixXf::Random(h, h);
+  Eigen::MatrixXf w3 = Eigen::MatrixXf::Random(out, h);
+  Eigen::VectorXf b1 = Eigen::VectorXf::Random(h), b2 = Eigen::VectorXf::Random(h);
+  Eigen::VectorXf b3 = Eigen::VectorXf::Random(out);
+  Eigen::MatrixXf gw1 = w1, gw2 = w2, gw3 = w3;
+  Eigen::VectorXf gb1 = b1, gb2 = b2, gb3 = b3;
+  Eigen::MatrixXf x = Eigen::MatrixXf::Random(in, batch), g = Eigen::MatrixXf::Random(out, batch);
+  Eigen::MatrixXf a1(h, batch), a2(h, batch), y(out, batch), d2(h, batch), d1(h, batch);
+  const auto step = [&] {
+    a1.noalias() = w1 * x;
+    a1.colwise() += b1;
+    a1.array() = a1.array().tanh();
+    a2.noalias() = w2 * a1;
+    a2.colwise() += b2;
+    a2.array() = a2.array().tanh();
+    y.noalias() = w3 * a2;
+    y.colwise() += b3;
+    gw3.noalias() += g * a2.transpose();
+    gb3 += g.rowwise().sum();
+    d2.noalias() = w3.transpose() * g;
+    d2.array() *= 1.0f - a2.array().square();
+    gw2.noalias() += d2 * a1.transpose();
+    gb2 += d2.rowwise().sum();
+    d1.noalias() = w2.transpose() * d2;
+    d1.array() *= 1.0f - a1.array().square();
+    gw1.noalias() += d1 * x.transpose();
+    gb1 += d1.rowwise().sum();
+  };
+  for (int i = 0; i < 50; ++i) step();
+  const double flops = 3.0 * 2.0 * (in * h + h * h + h * out) * batch;
+  const int iters = std::max(10, static_cast<int>(0.06e9 / flops * 10));
+  double best = 1e30;
+  for (int rep = 0; rep < 5; ++rep) {
+    auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < iters; ++i) step();
+    auto t1 = std::chrono::steady_clock::now();
+    best = std::min(best, std::chrono::duration<double>(t1 - t0).count() / iters);
+  }
+  std::printf("plain Eigen 4-64-64-2 tanh batch %4d: fwd+bwd %8.2f us  %10.0f samples/s  %6.1f "
+              "GFLOP/s\n",
+              batch, best * 1e6, batch / best, flops / best * 1e-9);
+  CHECK(gw1.allFinite());
+}
+
 TEST_CASE("Mlp forward+backward micro-benchmark", "[.bench][nn_bench]") {
+  bench_plain_eigen(256);
+  bench_plain_eigen(64);
   bench(4, {64, 64}, 2, Activation::kTanh, 256);
   bench(4, {64, 64}, 2, Activation::kTanh, 64);
   bench(4, {64, 64}, 1, Activation::kTanh, 256);

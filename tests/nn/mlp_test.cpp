@@ -241,6 +241,24 @@ TEST_CASE("Mlp init_orthogonal gives (semi-)orthogonal weights and zero biases",
   CHECK_FALSE(na.params() == nc.params());
 }
 
+TEST_CASE("Mlp init_torch_default draws U(-1/sqrt(fan_in), 1/sqrt(fan_in))", "[nn]") {
+  Rng rng(77);
+  Mlp net(16, {256}, 4, Activation::kReLU);
+  net.init_torch_default(rng);
+  for (int l = 0; l < net.num_layers(); ++l) {
+    const double bound = 1.0 / std::sqrt(static_cast<double>(net.layer_in(l)));
+    const Eigen::VectorXd w = flat(net.weight(l));
+    INFO("layer " << l);
+    CHECK(w.cwiseAbs().maxCoeff() <= bound);
+    CHECK(net.bias(l).cwiseAbs().maxCoeff() <= bound);
+    CHECK_FALSE(net.bias(l).isZero());
+    // Uniform variance bound^2 / 3; 1024 or 4096 draws give a few percent accuracy.
+    const double var = w.array().square().mean();
+    CHECK(var == Approx(bound * bound / 3.0).epsilon(0.1));
+    CHECK(std::abs(w.mean()) < 4.0 * bound / std::sqrt(3.0 * w.size()));
+  }
+}
+
 TEST_CASE("parse_activation and activation_name", "[nn]") {
   CHECK(parse_activation("tanh") == Activation::kTanh);
   CHECK(parse_activation("relu") == Activation::kReLU);

@@ -75,7 +75,7 @@ TEST_CASE("cli: a YAML typo exits 2 naming file:line:col and the suggested key",
   CHECK(run_rlrun("train " + dir / "missing.yaml").exit_code == 2);
 }
 
-TEST_CASE("cli: train writes the run directory; eval needs only the model file", "[cli]") {
+TEST_CASE("cli: train writes the run directory, eval needs only the model file", "[cli]") {
   TempDir dir("train");
   const std::string config = dir / "tiny.yaml";
   write_file(config,

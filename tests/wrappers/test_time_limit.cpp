@@ -31,7 +31,7 @@ TEST_CASE("TimeLimit truncates exactly at max_episode_steps", "[wrappers]") {
   CHECK(env.step(action, obs).truncated);
 }
 
-TEST_CASE("TimeLimit passes terminated through; both flags can be set", "[wrappers]") {
+TEST_CASE("TimeLimit passes terminated through, both flags can be set", "[wrappers]") {
   TimeLimit env(std::make_unique<CartPole>(), 1);
   std::vector<float> obs(4);
   env.reset(0, obs);

@@ -81,7 +81,7 @@ struct ActGradEpi {
     const Packet a = ei::ploadu<Packet>(act + i + j * ld_act);
     Packet g;
     if constexpr (kAct == Act::kTanh) {
-      g = ei::pmul(s, ei::psub(ei::pset1<Packet>(1.0f), a));
+      g = ei::pmul(s, ei::psub(ei::pset1<Packet>(1.0f), ei::pmul(a, a)));
     } else {
       g = ei::pand(s, ei::pcmp_lt(ei::pzero(a), a));
     }
@@ -149,7 +149,7 @@ void rows_column_block(Index i0, Index m, Index k, const float* a, Index lda, co
 // Tile height for kNr columns: at most 12 accumulators (16 vector registers with AVX2).
 template <int kNr>
 constexpr int rows_tile_packets() {
-  return kNr == 1 ? 8 : kNr == 2 ? 4 : 2;
+  return kNr == 1 ? 8 : kNr <= 3 ? 4 : 2;
 }
 
 template <int kNr, class Epi>

@@ -74,6 +74,20 @@ void Mlp::init_orthogonal(Rng& rng, float hidden_gain, float output_gain) {
   }
 }
 
+void Mlp::init_torch_default(Rng& rng) {
+  for (int l = 0; l < num_layers(); ++l) {
+    // kaiming_uniform_ with a = sqrt(5): gain sqrt(2 / (1 + 5)), bound gain * sqrt(3 / fan_in)
+    // = 1 / sqrt(fan_in); the bias bound is 1 / sqrt(fan_in) too.
+    const double bound = 1.0 / std::sqrt(static_cast<double>(dims_[l]));
+    auto w = weight(l);
+    for (Eigen::Index k = 0; k < w.size(); ++k) {
+      w.data()[k] = static_cast<float>(rng.uniform(-bound, bound));
+    }
+    auto b = bias(l);
+    for (Eigen::Index k = 0; k < b.size(); ++k) b(k) = static_cast<float>(rng.uniform(-bound, bound));
+  }
+}
+
 const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) {
   if (x.rows() != in_dim()) {
     throw std::invalid_argument("Mlp::forward: input has " + std::to_string(x.rows()) +

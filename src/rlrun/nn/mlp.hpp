@@ -12,6 +12,12 @@
 // into params_ is ever stored, so an Mlp is safely copyable and movable.
 // Note for export: torch stores Linear.weight row-major (out, in); weight(l) is the same matrix
 // stored column-major, i.e. a Fortran-order (out, in) array.
+// Speed: the products run on register-blocked kernels with bias + activation fused
+// (dense_kernels.hpp); no allocation happens in forward/backward while the batch size is
+// unchanged.
+// One forward, then its backward: forward overwrites the cached activations, so run the
+// backward of one batch before the next forward through the same Mlp (SAC's target networks are
+// separate Mlp copies anyway). Not thread-safe: each thread needs its own Mlp.
 #include <Eigen/Core>
 #include <vector>
 
@@ -61,6 +67,10 @@ class Mlp {
   // output_gain for the last), zero biases: SB3 ActorCriticPolicy uses sqrt(2) and 0.01 (policy)
   // or 1 (value). Layers are initialised first to last from rng.
   void init_orthogonal(Rng& rng, float hidden_gain, float output_gain);
+  // torch.nn.Linear.reset_parameters, i.e. what SB3's off-policy networks (SAC, TD3, DQN) get,
+  // since they never call init_weights: kaiming_uniform_(a = sqrt(5)) on the weight and
+  // U(-1/sqrt(fan_in), 1/sqrt(fan_in)) on the bias, which both reduce to that same uniform law.
+  void init_torch_default(Rng& rng);
 
   // Runs the network on x (in_dim x batch) and returns the output (out_dim x batch). Keeps a
   // copy of x and every layer's output for backward; the buffers are reused, so no allocation
@@ -69,9 +79,10 @@ class Mlp {
   // The output of the last forward.
   const Eigen::MatrixXf& output() const { return acts_.back(); }
 
-  // Backpropagates dL/doutput (out_dim x batch of the last forward) and ADDS the parameter
-  // gradients to grads() (so several losses through the same network sum, as in torch before
-  // optimizer.zero_grad()). If grad_input is given it receives dL/dx (in_dim x batch).
+  // Backpropagates dL/doutput (out_dim x batch of the last forward; any outer stride) and ADDS
+  // the parameter gradients to grads() (so several losses through the same network sum, as in
+  // torch before optimizer.zero_grad()). If grad_input is given it is resized to in_dim x batch
+  // and receives dL/dx (e.g. dQ/da for SAC's actor loss through the critic).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                 Eigen::MatrixXf* grad_input = nullptr);
 

@@ -1,6 +1,7 @@
 #include "rlrun/nn/orthogonal_init.hpp"
 
 #include <Eigen/QR>
+#include <algorithm>
 
 namespace rlrun {
 

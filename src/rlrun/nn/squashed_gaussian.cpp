@@ -1,5 +1,6 @@
 #include "rlrun/nn/squashed_gaussian.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
