@@ -33,7 +33,7 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
   if (config_.n_epochs < 1) throw std::invalid_argument("PPO: n_epochs must be >= 1");
   // SB3 ActorCriticPolicy: Adam with eps=1e-5 "to avoid NaN".
   AdamConfig adam;
-  adam.eps = 1e-5f;
+  adam.eps = 1e-5;
   optimizer_ = Adam(policy_.param_blocks(), adam);
 
   const int obs_dim = setup.observation_space.flat_dim();
