@@ -31,8 +31,9 @@ struct TrainingHooks {
   std::function<bool(int64_t num_timesteps)> on_step;
   // Called after each log dump (console progress bar, etc.).
   std::function<void(int64_t num_timesteps)> on_log;
-  // Log every `log_interval` iterations (on-policy) as SB3's learn(log_interval=...).
-  int log_interval = 1;
+  // SB3's learn(log_interval=...): dump logs every N iterations (on-policy) or N episodes
+  // (off-policy); 0 = the algorithm's SB3 default (1 on-policy, 4 off-policy).
+  int log_interval = 0;
 };
 
 class Algorithm {

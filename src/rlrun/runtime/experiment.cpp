@@ -32,7 +32,8 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
   exp.source = root.origin();
   exp.run = read_config<RunConfig>(root.child("run"));
   if (exp.run.total_timesteps < 1) root.child("run").child("total_timesteps").fail("must be >= 1");
-  if (exp.run.log_interval < 1) root.child("run").child("log_interval").fail("must be >= 1");
+  if (exp.run.log_interval && *exp.run.log_interval < 1)
+    root.child("run").child("log_interval").fail("must be >= 1 (or null for the algorithm's default)");
 
   // env
   const ConfigNode env = root.child("env");

@@ -21,7 +21,8 @@ struct RunConfig {
   uint64_t seed = 0;                // env i is seeded seed + i; all RNGs derive from it
   int64_t total_timesteps = 100000; // env steps over all envs, as SB3's learn(total_timesteps)
   std::string out_dir = "runs";     // run directory = <out_dir>/<name>/seed<seed>
-  int log_interval = 1;             // iterations between progress.csv rows (SB3 log_interval)
+  std::optional<int> log_interval;  // progress.csv rows every N iterations (on-policy) or
+                                    // episodes (off-policy); null = SB3's default (1 / 4)
   double console_interval = 2.0;    // min seconds between console tables
 
   template <class V>
@@ -30,7 +31,8 @@ struct RunConfig {
     v("seed", seed, "random seed; env i gets seed + i");
     v("total_timesteps", total_timesteps, "total env steps to train for (all envs together)");
     v("out_dir", out_dir, "root directory of run outputs");
-    v("log_interval", log_interval, "training iterations between progress.csv rows");
+    v("log_interval", log_interval,
+      "progress.csv row every N iterations (on-policy) / episodes (off-policy); null = SB3 default");
     v("console_interval", console_interval, "minimum seconds between console summaries");
   }
 };

@@ -36,6 +36,7 @@ struct WrapperEntry {
 struct AlgorithmEntry {
   std::string id;
   std::string description;
+  std::vector<SpaceKind> action_spaces;  // SB3's support table (docs/guide/algos.rst)
   std::function<std::unique_ptr<Algorithm>(const ConfigNode& params, const AlgorithmSetup&)> make;
   std::function<YAML::Node(const ConfigNode& params)> resolve;
   std::function<std::vector<FieldDoc>()> params;
@@ -125,6 +126,7 @@ AlgorithmEntry make_algorithm_entry(std::string id, std::string description) {
   AlgorithmEntry entry;
   entry.id = std::move(id);
   entry.description = std::move(description);
+  entry.action_spaces.assign(std::begin(A::kActionSpaces), std::end(A::kActionSpaces));
   entry.make = [](const ConfigNode& params,
                   const AlgorithmSetup& setup) -> std::unique_ptr<Algorithm> {
     return std::make_unique<A>(read_config<typename A::Config>(params, {"id"}), setup);

@@ -154,7 +154,7 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
 
   TrainingHooks hooks;
   hooks.logger = &logger;
-  hooks.log_interval = run.log_interval;
+  hooks.log_interval = run.log_interval.value_or(0);
   hooks.on_step = [&](int64_t num_timesteps) {
     bar.update(num_timesteps);
     if (evaluator) {

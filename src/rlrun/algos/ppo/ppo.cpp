@@ -211,7 +211,8 @@ void PPO::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
     if (!collect_rollouts(env, hooks)) break;
     ++iteration;
     progress_remaining_ = 1.0 - static_cast<double>(num_timesteps_) / static_cast<double>(total_timesteps);
-    if (hooks.logger && hooks.log_interval > 0 && iteration % hooks.log_interval == 0) {
+    const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 1;
+    if (hooks.logger && iteration % log_interval == 0) {
       // SB3 OnPolicyAlgorithm._dump_logs, written before this iteration's train() as SB3 does.
       const double elapsed =
           std::max(1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

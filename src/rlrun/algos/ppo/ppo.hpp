@@ -52,6 +52,9 @@ class PPO : public Algorithm {
     }
   };
 
+  // Action spaces PPO handles (SB3 also has MultiDiscrete/MultiBinary: not yet here).
+  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete, SpaceKind::kBox};
+
   PPO(const Config& config, const AlgorithmSetup& setup);
 
   std::string id() const override { return "PPO"; }

@@ -1,0 +1,97 @@
+#include "rlrun/algos/common/off_policy.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "rlrun/env/vec_env.hpp"
+
+namespace rlrun {
+
+void decode(const ConfigNode& node, TrainFreq& out) {
+  if (node.is_scalar()) {
+    out.frequency = static_cast<int>(node.as_int());
+    out.episodes = false;
+  } else if (node.is_sequence() && node.size() == 2) {
+    out.frequency = static_cast<int>(node.at(0).as_int());
+    const std::string unit = node.at(1).as_string();
+    if (unit != "step" && unit != "episode")
+      node.at(1).fail("train_freq unit must be 'step' or 'episode', got '" + unit + "'");
+    out.episodes = unit == "episode";
+  } else {
+    node.fail("expected an integer (steps) or [N, step|episode]");
+  }
+  if (out.frequency < 1) node.fail("train_freq must be >= 1");
+}
+
+YAML::Node encode(const TrainFreq& value) {
+  YAML::Node node(YAML::NodeType::Sequence);
+  node.push_back(value.frequency);
+  node.push_back(value.episodes ? "episode" : "step");
+  node.SetStyle(YAML::EmitterStyle::Flow);
+  return node;
+}
+
+void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
+                      const OffPolicyConfig& config, OffPolicyState& state,
+                      const OffPolicyCallbacks& callbacks, int64_t& num_timesteps) {
+  const auto start = std::chrono::steady_clock::now();
+  const int64_t start_timesteps = num_timesteps;
+  const int n_envs = env.num_envs();
+  const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 4;
+  Eigen::MatrixXf last_obs = env.reset();
+  Eigen::MatrixXf env_actions, buffer_actions;
+
+  auto dump_logs = [&] {
+    // SB3 OffPolicyAlgorithm._dump_logs.
+    if (!hooks.logger) return;
+    Logger& log = *hooks.logger;
+    const double elapsed = std::max(
+        1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    log.record("time/episodes", static_cast<double>(state.episode_num));
+    state.episode_stats.record(log);
+    log.record("time/fps", std::floor(static_cast<double>(num_timesteps - start_timesteps) / elapsed));
+    log.record("time/time_elapsed", std::floor(elapsed));
+    log.record("time/total_timesteps", static_cast<double>(num_timesteps));
+    log.dump(num_timesteps);
+    if (hooks.on_log) hooks.on_log(num_timesteps);
+  };
+
+  while (num_timesteps < total_timesteps) {
+    // collect_rollouts: train_freq steps per env, or train_freq episodes.
+    int64_t collected_steps = 0, collected_episodes = 0;
+    bool continue_training = true;
+    while (config.train_freq.episodes ? collected_episodes < config.train_freq.frequency
+                                      : collected_steps < config.train_freq.frequency) {
+      const bool warmup = num_timesteps < config.learning_starts;
+      callbacks.select_actions(last_obs, warmup, env_actions, buffer_actions);
+      env.step(env_actions);
+      num_timesteps += n_envs;
+      ++collected_steps;
+      if (hooks.on_step && !hooks.on_step(num_timesteps)) {
+        continue_training = false;
+        break;
+      }
+      state.episode_stats.update(env);
+      state.buffer.add(last_obs, buffer_actions, env);
+      last_obs = env.obs();
+      state.progress_remaining =
+          1.0 - static_cast<double>(num_timesteps) / static_cast<double>(total_timesteps);
+      if (callbacks.on_step) callbacks.on_step();
+      for (int e = 0; e < n_envs; ++e) {
+        if (!env.done(e)) continue;
+        ++collected_episodes;
+        ++state.episode_num;
+        if (callbacks.on_episode_end) callbacks.on_episode_end(e);
+        if (state.episode_num % log_interval == 0) dump_logs();
+      }
+    }
+    if (!continue_training) break;
+    if (num_timesteps > 0 && num_timesteps > config.learning_starts) {
+      const int64_t steps = config.gradient_steps >= 0 ? config.gradient_steps : collected_steps * n_envs;
+      if (steps > 0) callbacks.train(static_cast<int>(steps), hooks.logger);
+    }
+  }
+}
+
+}  // namespace rlrun

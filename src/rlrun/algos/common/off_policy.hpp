@@ -1,0 +1,80 @@
+#pragma once
+// What DQN, SAC, TD3 and DDPG share (SB3 common/off_policy_algorithm.py): their common
+// hyperparameters and the learning loop — collect `train_freq` steps (or episodes) into the
+// replay buffer, then run `gradient_steps` updates once num_timesteps > learning_starts; random
+// actions from the action space before learning_starts; logs dumped every `log_interval`
+// finished episodes (SB3's default for off-policy algorithms is 4).
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/episode_stats.hpp"
+#include "rlrun/algos/common/replay_buffer.hpp"
+#include "rlrun/core/config_fields.hpp"
+
+namespace rlrun {
+
+// SB3 TrainFreq: `train_freq: 4` (steps) or `train_freq: [1, episode]`.
+struct TrainFreq {
+  int frequency = 1;
+  bool episodes = false;  // false: unit is env steps (per env), true: episodes
+};
+void decode(const ConfigNode& node, TrainFreq& out);
+YAML::Node encode(const TrainFreq& value);
+
+struct OffPolicyConfig {
+  int64_t buffer_size = 1000000;   // transitions kept (all envs together)
+  int64_t learning_starts = 100;   // env steps of random actions before learning
+  int batch_size = 256;            // minibatch size
+  double tau = 0.005;              // target network soft-update coefficient (1 = hard copy)
+  double gamma = 0.99;             // discount factor
+  TrainFreq train_freq;            // collect this many steps/episodes between updates
+  int gradient_steps = 1;          // updates after each collection; -1 = as many as env steps
+  bool handle_timeout_termination = true;  // bootstrap truncated (time-limit) transitions
+
+  template <class V>
+  void visit(V& v) {
+    v("buffer_size", buffer_size, "replay buffer size in transitions");
+    v("learning_starts", learning_starts, "env steps with random actions before learning starts");
+    v("batch_size", batch_size, "minibatch size per gradient step");
+    v("tau", tau, "soft update coefficient for target networks (1 = hard copy)");
+    v("gamma", gamma, "discount factor");
+    v("train_freq", train_freq, "update every N steps, or [N, episode]");
+    v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)");
+    v("handle_timeout_termination", handle_timeout_termination,
+      "treat time-limit truncation as not done (bootstrap), as SB3");
+  }
+};
+
+// What the loop asks of the algorithm.
+struct OffPolicyCallbacks {
+  // Actions for `obs` (obs_dim x n_envs): `env_actions` in the env's action space and
+  // `buffer_actions` as stored in the replay buffer (Box: scaled to [-1, 1]). `warmup` is
+  // true before learning_starts: the algorithm samples its action space uniformly.
+  std::function<void(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                     Eigen::MatrixXf& buffer_actions)>
+      select_actions;
+  // After every env step (SB3 _on_step: DQN's target update and exploration schedule).
+  std::function<void()> on_step;
+  // Called for each env whose episode just ended (e.g. noise reset).
+  std::function<void(int env)> on_episode_end;
+  // `gradient_steps` updates from the replay buffer; records train/ values on the logger.
+  std::function<void(int gradient_steps, Logger* logger)> train;
+};
+
+// Off-policy state that persists across learn() calls (and into checkpoints).
+struct OffPolicyState {
+  ReplayBuffer buffer;
+  EpisodeStats episode_stats;
+  int64_t episode_num = 0;
+  double progress_remaining = 1.0;
+};
+
+// SB3 OffPolicyAlgorithm.learn + collect_rollouts. `num_timesteps` is the algorithm's counter.
+// Uses hooks.log_interval as episodes between dumps (0 = SB3's off-policy default, 4).
+void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
+                      const OffPolicyConfig& config, OffPolicyState& state,
+                      const OffPolicyCallbacks& callbacks, int64_t& num_timesteps);
+
+}  // namespace rlrun
