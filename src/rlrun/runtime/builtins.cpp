@@ -1,12 +1,15 @@
 // The ONLY file that names concrete envs, wrappers and algorithms (DESIGN.md §1).
 #include "rlrun/runtime/builtins.hpp"
 
+#include "rlrun/algos/a2c/a2c.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/envs/classic/acrobot.hpp"
 #include "rlrun/envs/classic/cartpole.hpp"
 #include "rlrun/envs/classic/mountain_car.hpp"
 #include "rlrun/envs/classic/mountain_car_continuous.hpp"
 #include "rlrun/envs/classic/pendulum.hpp"
+#include "rlrun/wrappers/box_as_discrete.hpp"
+#include "rlrun/wrappers/discrete_as_box.hpp"
 
 namespace rlrun {
 
@@ -29,7 +32,14 @@ Registry make_builtins() {
   r.add(make_env_entry<Acrobot>("Acrobot-v1", "swing a two-link arm above a line; Discrete(3)",
                                 Acrobot::kMaxEpisodeSteps));
 
+  // Wrappers usable in `env.wrappers`, applied in order after the Monitor.
+  r.add(make_wrapper_entry<DiscreteAsBox>(
+      "DiscreteAsBox", "Box(-1, 1, (n,)) scores -> argmax action of a Discrete(n) env (SAC/TD3 on CartPole)"));
+  r.add(make_wrapper_entry<BoxAsDiscrete>(
+      "BoxAsDiscrete", "Discrete(bins^dims) grid over a Box action space (DQN on Pendulum)"));
+
   r.add(make_algorithm_entry<PPO>("PPO", "Proximal Policy Optimization (SB3 semantics); Discrete/Box actions"));
+  r.add(make_algorithm_entry<A2C>("A2C", "Advantage Actor-Critic (SB3 semantics, RMSprop); Discrete/Box actions"));
   return r;
 }
 

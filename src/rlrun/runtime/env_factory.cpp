@@ -1,5 +1,6 @@
 #include "rlrun/runtime/env_factory.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "rlrun/wrappers/monitor.hpp"
@@ -22,7 +23,29 @@ EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string
     const WrapperEntry& wrapper = registry.wrapper(w.child("id").as_string(), w.child("id"));
     env = wrapper.make(std::move(env), w);
   }
-  return env;
+  return adapt_action_space(std::move(env), spec, registry);
+}
+
+EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& registry) {
+  const auto& accepted = spec.accepted_action_spaces;
+  const SpaceKind kind = env->action_space().kind();
+  if (accepted.empty() || std::find(accepted.begin(), accepted.end(), kind) != accepted.end())
+    return env;
+  auto accepts = [&](SpaceKind k) { return std::find(accepted.begin(), accepted.end(), k) != accepted.end(); };
+  std::string fix;
+  if (kind == SpaceKind::kDiscrete && accepts(SpaceKind::kBox)) fix = "DiscreteAsBox";
+  if (kind == SpaceKind::kBox && accepts(SpaceKind::kDiscrete)) fix = "BoxAsDiscrete";
+  if (!fix.empty() && spec.section.auto_wrap) {
+    const ConfigNode params = ConfigNode::from_yaml(YAML::Node(YAML::NodeType::Map), "auto_wrap");
+    return registry.wrapper(fix, params).make(std::move(env), params);
+  }
+  std::string names;
+  for (SpaceKind k : accepted) names += std::string(names.empty() ? "" : " or ") + (k == SpaceKind::kBox ? "Box" : k == SpaceKind::kDiscrete ? "Discrete" : k == SpaceKind::kMultiDiscrete ? "MultiDiscrete" : "MultiBinary");
+  std::string message = spec.algorithm_id + " supports " + names + " actions, but " + spec.id +
+                        " has " + env->action_space().describe();
+  if (!fix.empty())
+    message += ": add `wrappers: [{id: " + fix + "}]` to env, or set `env.auto_wrap: true`";
+  spec.id_node.fail(message);
 }
 
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,

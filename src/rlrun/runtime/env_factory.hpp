@@ -13,6 +13,10 @@ namespace rlrun {
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
                 double t_start);
 
+// Checks the env's action space against spec.accepted_action_spaces; with auto_wrap adds
+// DiscreteAsBox or BoxAsDiscrete, otherwise a ConfigError names the wrapper that fixes it.
+EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& registry);
+
 // n copies; env i writes `<monitor_dir>/<i>.monitor.csv` unless monitor_dir is empty.
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                     const std::string& monitor_dir);

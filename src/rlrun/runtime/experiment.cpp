@@ -5,6 +5,7 @@
 
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/env_factory.hpp"
 
 namespace rlrun {
 
@@ -70,6 +71,8 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
   const ConfigNode algo = root.child("algo");
   exp.algo_id = required_id(algo, "algorithm");
   const AlgorithmEntry& algo_entry = registry.algorithm(exp.algo_id, algo.child("id"));
+  exp.env.accepted_action_spaces = algo_entry.action_spaces;
+  exp.env.algorithm_id = exp.algo_id;
   exp.algo_node = algo;
   YAML::Node resolved_algo(YAML::NodeType::Map);
   resolved_algo["id"] = exp.algo_id;
@@ -78,6 +81,14 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
   exp.eval = read_config<EvalConfig>(root.child("eval"));
   if (exp.eval.freq < 0) root.child("eval").child("freq").fail("must be >= 0");
   if (exp.eval.n_episodes < 1) root.child("eval").child("n_episodes").fail("must be >= 1");
+
+  // Build one env now: bad kwargs, wrapper parameters or an action space the algorithm cannot
+  // handle are reported before any run directory exists.
+  try {
+    make_env(exp.env, registry, "", 0.0);
+  } catch (const std::invalid_argument& e) {
+    env.fail(e.what());
+  }
 
   exp.resolved = YAML::Node(YAML::NodeType::Map);
   exp.resolved["run"] = write_config(exp.run);

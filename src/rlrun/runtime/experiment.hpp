@@ -40,10 +40,13 @@ struct RunConfig {
 struct EnvSectionConfig {
   int n_envs = 1;                          // parallel env copies (SB3 n_envs)
   std::optional<int> max_episode_steps;    // override the registered time limit
+  bool auto_wrap = false;                  // add the action-space wrapper the algorithm needs
   template <class V>
   void visit(V& v) {
     v("n_envs", n_envs, "number of env copies stepped together");
     v("max_episode_steps", max_episode_steps, "time limit override (null = registered limit)");
+    v("auto_wrap", auto_wrap,
+      "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm needs it");
   }
 };
 
@@ -65,6 +68,10 @@ struct EnvSpec {
   EnvSectionConfig section;
   ConfigNode kwargs;
   std::vector<ConfigNode> wrappers;  // each a map with `id`
+  // Set from the algorithm: the action spaces it supports and its id, for the check (and
+  // auto_wrap) at the end of the env stack. Empty: no check.
+  std::vector<SpaceKind> accepted_action_spaces;
+  std::string algorithm_id;
 };
 
 struct Experiment {

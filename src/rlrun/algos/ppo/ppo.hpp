@@ -8,8 +8,7 @@
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
-#include "rlrun/algos/common/episode_stats.hpp"
-#include "rlrun/algos/common/gae.hpp"
+#include "rlrun/algos/common/on_policy.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
 
@@ -66,32 +65,23 @@ class PPO : public Algorithm {
 
   const ActorCriticPolicy& policy() const { return policy_; }
   // The last rollout's rewards (after timeout bootstrapping) and values, n_steps x n_envs.
-  const StepEnvMatrix& rollout_rewards() const { return rewards_; }
-  const StepEnvMatrix& rollout_values() const { return values_; }
+  const StepEnvMatrix& rollout_rewards() const { return collector_.buffer().rewards; }
+  const StepEnvMatrix& rollout_values() const { return collector_.buffer().values; }
 
  private:
-  // Returns false when a callback asked to stop.
-  bool collect_rollouts(VecEnv& env, TrainingHooks& hooks);
-  void train(Logger* logger);
-  void clip_to_action_space(Eigen::MatrixXf& actions) const;
+  void train(double progress_remaining, Logger* logger);
 
   Config config_;
   AlgorithmSetup setup_;
   Rng init_rng_, action_rng_, shuffle_rng_;
   ActorCriticPolicy policy_;
   Adam optimizer_;
-  double progress_remaining_ = 1.0;
-  EpisodeStats episode_stats_;
+  OnPolicyCollector collector_;
   int64_t n_updates_ = 0;
 
-  // Rollout buffer (SB3 RolloutBuffer): sample k = step * n_envs + env.
-  Eigen::MatrixXf obs_buf_, act_buf_;
-  StepEnvMatrix rewards_, values_, episode_starts_, log_probs_, advantages_, returns_;
-  Eigen::MatrixXf last_obs_;
-  Eigen::RowVectorXf last_episode_starts_;
-  // Rollout and minibatch workspaces, allocated once in the constructor.
-  Eigen::MatrixXf step_actions_, env_actions_, final_obs_col_;
-  Eigen::RowVectorXf step_values_, step_log_probs_, terminal_value_;
+  // Minibatch workspaces, allocated once in the constructor.
+  Eigen::MatrixXf predict_actions_;
+  Eigen::RowVectorXf predict_values_, predict_log_probs_;
   std::vector<int> indices_;
   Eigen::MatrixXf mb_obs_, mb_act_;
   Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;

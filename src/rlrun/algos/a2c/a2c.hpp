@@ -1,0 +1,76 @@
+#pragma once
+// Advantage Actor-Critic (Mnih et al. 2016, synchronous variant) with SB3's semantics and
+// defaults (stable_baselines3/a2c/a2c.py): n_steps 5 rollouts, one gradient step on the whole
+// rollout, loss = -mean(A log pi) + vf_coef mse(R, V) - ent_coef mean(H), RMSprop
+// (alpha 0.99, eps 1e-5) by default, advantages not normalised, GAE lambda 1 (plain n-step
+// returns).
+#include <optional>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/actor_critic_policy.hpp"
+#include "rlrun/algos/common/on_policy.hpp"
+#include "rlrun/core/schedule.hpp"
+#include "rlrun/nn/adam.hpp"
+#include "rlrun/nn/rmsprop.hpp"
+
+namespace rlrun {
+
+class A2C : public Algorithm {
+ public:
+  struct Config {
+    Schedule learning_rate = Schedule::constant(7e-4);
+    int n_steps = 5;
+    double gamma = 0.99;
+    double gae_lambda = 1.0;
+    double ent_coef = 0.0;
+    double vf_coef = 0.5;
+    double max_grad_norm = 0.5;
+    double rms_prop_eps = 1e-5;
+    bool use_rms_prop = true;
+    bool normalize_advantage = false;
+    ActorCriticPolicyConfig policy;
+
+    template <class V>
+    void visit(V& v) {
+      v("learning_rate", learning_rate, "optimizer step size: a number or lin_<initial>");
+      v("n_steps", n_steps, "steps per env per update (rollout size = n_steps * n_envs)");
+      v("gamma", gamma, "discount factor");
+      v("gae_lambda", gae_lambda, "GAE lambda (1 = n-step returns)");
+      v("ent_coef", ent_coef, "entropy bonus coefficient");
+      v("vf_coef", vf_coef, "value loss coefficient");
+      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
+      v("rms_prop_eps", rms_prop_eps, "RMSprop epsilon");
+      v("use_rms_prop", use_rms_prop, "RMSprop (true, SB3 default) or Adam");
+      v("normalize_advantage", normalize_advantage, "normalise advantages over the rollout");
+      v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");
+    }
+  };
+  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete, SpaceKind::kBox};
+
+  A2C(const Config& config, const AlgorithmSetup& setup);
+
+  std::string id() const override { return "A2C"; }
+  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
+  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+               Eigen::MatrixXf& actions) override;
+  void save(TensorMap& tensors) const override { policy_.save(tensors); }
+  void load(const TensorMap& tensors) override { policy_.load(tensors); }
+
+ private:
+  void train(double progress_remaining, Logger* logger);
+
+  Config config_;
+  AlgorithmSetup setup_;
+  Rng init_rng_, action_rng_;
+  ActorCriticPolicy policy_;
+  std::optional<RmsProp> rmsprop_;
+  std::optional<Adam> adam_;
+  OnPolicyCollector collector_;
+  int64_t n_updates_ = 0;
+
+  Eigen::MatrixXf predict_actions_;
+  Eigen::RowVectorXf advantages_, returns_, values_, log_prob_, entropy_, grad_values_,
+      grad_log_prob_, grad_entropy_, predict_values_, predict_log_probs_;
+};
+
+}  // namespace rlrun

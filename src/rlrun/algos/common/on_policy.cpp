@@ -1,0 +1,114 @@
+#include "rlrun/algos/common/on_policy.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "rlrun/env/vec_env.hpp"
+
+namespace rlrun {
+
+RolloutBuffer::RolloutBuffer(int n_steps, int n_envs, int obs_dim, int act_dim)
+    : obs(obs_dim, n_steps * n_envs), actions(act_dim, n_steps * n_envs) {
+  for (StepEnvMatrix* m : {&rewards, &values, &episode_starts, &log_probs, &advantages, &returns})
+    m->resize(n_steps, n_envs);
+}
+
+void clip_to_box(const Space& space, Eigen::MatrixXf& actions) {
+  if (!space.is_box()) return;
+  for (Eigen::Index j = 0; j < actions.cols(); ++j)
+    for (Eigen::Index i = 0; i < actions.rows(); ++i)
+      actions(i, j) = std::clamp(actions(i, j), space.low()[i], space.high()[i]);
+}
+
+OnPolicyCollector::OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim)
+    : action_space_(setup.action_space),
+      buffer_(n_steps, setup.n_envs, setup.observation_space.flat_dim(), act_dim),
+      last_obs_(setup.observation_space.flat_dim(), setup.n_envs),
+      env_actions_(setup.action_space.flat_dim(), setup.n_envs),
+      final_obs_(setup.observation_space.flat_dim(), 1),
+      last_episode_starts_(Eigen::RowVectorXf::Ones(setup.n_envs)) {
+  if (n_steps < 1) throw std::invalid_argument("n_steps must be >= 1");
+}
+
+void OnPolicyCollector::start(VecEnv& env) {
+  if (env.num_envs() != last_obs_.cols())
+    throw std::invalid_argument("the env has " + std::to_string(env.num_envs()) +
+                                " copies, the algorithm was built for " +
+                                std::to_string(last_obs_.cols()));
+  last_obs_ = env.reset();
+  last_episode_starts_.setOnes();
+}
+
+bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng, float gamma,
+                                float gae_lambda, TrainingHooks& hooks, int64_t& num_timesteps) {
+  const int n_envs = env.num_envs();
+  const int n_steps = static_cast<int>(buffer_.rewards.rows());
+  for (int step = 0; step < n_steps; ++step) {
+    policy.act(last_obs_, rng, false, step_actions_, step_values_, step_log_probs_);
+    env_actions_ = step_actions_;
+    clip_to_box(action_space_, env_actions_);
+    env.step(env_actions_);
+    num_timesteps += n_envs;
+    if (hooks.on_step && !hooks.on_step(num_timesteps)) return false;
+    episode_stats_.update(env);
+
+    for (int e = 0; e < n_envs; ++e) {
+      float reward = static_cast<float>(env.rewards()(e));
+      // Timeout bootstrap (SB3 on_policy_algorithm.py): a truncated, non-terminal step gets
+      // gamma * V(final_obs) added to its reward, since GAE then treats it as an episode end.
+      if (env.truncated(e) && !env.terminated(e)) {
+        final_obs_ = env.final_obs().col(e);
+        policy.predict_values(final_obs_, terminal_value_);
+        reward += gamma * terminal_value_(0);
+      }
+      const int k = step * n_envs + e;
+      buffer_.obs.col(k) = last_obs_.col(e);
+      buffer_.actions.col(k) = step_actions_.col(e);
+      buffer_.rewards(step, e) = reward;
+      buffer_.episode_starts(step, e) = last_episode_starts_(e);
+      buffer_.values(step, e) = step_values_(e);
+      buffer_.log_probs(step, e) = step_log_probs_(e);
+      last_episode_starts_(e) = env.done(e) ? 1.0f : 0.0f;
+    }
+    last_obs_ = env.obs();
+  }
+  policy.predict_values(last_obs_, terminal_value_);
+  compute_gae(buffer_.rewards, buffer_.values, buffer_.episode_starts, terminal_value_,
+              last_episode_starts_, gamma, gae_lambda, buffer_.advantages, buffer_.returns);
+  return true;
+}
+
+void on_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
+                     OnPolicyCollector& collector, int64_t& num_timesteps,
+                     const std::function<bool()>& collect,
+                     const std::function<void(double progress_remaining)>& train) {
+  const auto start = std::chrono::steady_clock::now();
+  const int64_t start_timesteps = num_timesteps;
+  collector.start(env);
+  const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 1;
+  int64_t iteration = 0;
+  while (num_timesteps < total_timesteps) {
+    if (!collect()) break;
+    ++iteration;
+    const double progress_remaining =
+        1.0 - static_cast<double>(num_timesteps) / static_cast<double>(total_timesteps);
+    if (hooks.logger && iteration % log_interval == 0) {
+      // SB3 OnPolicyAlgorithm._dump_logs, written before this iteration's train() as SB3 does.
+      const double elapsed = std::max(
+          1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      Logger& log = *hooks.logger;
+      log.record("time/iterations", static_cast<double>(iteration));
+      collector.episode_stats().record(log);
+      log.record("time/fps", std::floor(static_cast<double>(num_timesteps - start_timesteps) / elapsed));
+      log.record("time/time_elapsed", std::floor(elapsed));
+      log.record("time/total_timesteps", static_cast<double>(num_timesteps));
+      log.dump(num_timesteps);
+      if (hooks.on_log) hooks.on_log(num_timesteps);
+    }
+    train(progress_remaining);
+  }
+}
+
+}  // namespace rlrun
