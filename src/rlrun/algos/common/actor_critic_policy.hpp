@@ -5,6 +5,7 @@
 // Categorical head for Discrete actions and a diagonal Gaussian with a state-independent
 // `log_std` parameter for Box actions.
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,9 @@ class ActorCriticPolicy {
   const Mlp& critic() const { return critic_; }
 
  private:
+  static void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
+                       const std::function<void()>& critic_part);
+
   bool discrete_ = false;
   int action_dim_ = 1;
   Eigen::VectorXf low_, high_;
