@@ -159,19 +159,36 @@ TEST_CASE("cli: SB3 users' tools read the outputs (pandas load_results, numpy.lo
   CHECK(model.output.find("value_net.bias float32 (1,)") != std::string::npos);
 }
 
-// The issue's bar: rl-zoo's PPO CartPole config reaches >= 475 in 10 deterministic evaluation
-// episodes for seeds 1, 2 and 3 (about 2-4 s each).
-TEST_CASE("learning: configs/cartpole_ppo.yaml reaches 475 for seeds 1, 2, 3", "[cli][learning]") {
-  TempDir dir("learning");
+// Learning bars at rl-zoo's budgets (10 deterministic evaluation episodes per seed).
+// The walking-skeleton issue asks every seed of cartpole_ppo to reach 475; the algorithms
+// issue asks each config to reach its task's bar in at least 2 of 3 seeds. Only configs that
+// train in a few seconds run here; the slower ones are in learning_slow below.
+namespace {
+int seeds_reaching(const std::string& config, double bar, TempDir& dir) {
+  int reached = 0;
   for (int seed : {1, 2, 3}) {
-    const auto train = run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --seed " +
+    const auto train = run_rlrun("train " + kSource + "/configs/" + config + ".yaml --seed " +
                                  std::to_string(seed) + " --set run.out_dir=" + dir.str());
     REQUIRE(train.exit_code == 0);
-    const auto eval = run_rlrun("eval --model " + dir.str() + "/cartpole_ppo/seed" +
+    const auto eval = run_rlrun("eval --model " + dir.str() + "/" + config + "/seed" +
                                 std::to_string(seed) + "/model.zip --episodes 10");
-    INFO("seed " << seed << ": " << eval.output);
-    CHECK(parse_mean_reward(eval.output) >= 475.0);
+    const double mean = parse_mean_reward(eval.output);
+    UNSCOPED_INFO(config << " seed " << seed << ": " << mean);
+    reached += mean >= bar;
   }
+  return reached;
+}
+}  // namespace
+
+TEST_CASE("learning: configs/cartpole_ppo.yaml reaches 475 for seeds 1, 2, 3", "[cli][learning]") {
+  TempDir dir("learning_ppo");
+  CHECK(seeds_reaching("cartpole_ppo", 475.0, dir) == 3);
+}
+
+TEST_CASE("learning: fast configs reach their bar in at least 2 of 3 seeds", "[cli][learning]") {
+  TempDir dir("learning_fast");
+  CHECK(seeds_reaching("cartpole_a2c", 475.0, dir) >= 2);
+  CHECK(seeds_reaching("pendulum_ppo", -200.0, dir) >= 2);
 }
 
 TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
