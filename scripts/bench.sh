@@ -1,32 +1,84 @@
 #!/usr/bin/env bash
-# Measures training speed and the return reached, for each config and seed:
-#   scripts/bench.sh [CONFIG...]          (default: configs/cartpole_ppo.yaml)
-#   SEEDS="1 2 3" scripts/bench.sh ...
-# Prints a Markdown table (wall s, env steps/s, final 10-episode deterministic evaluation) to
-# paste into docs/benchmarks.md. Runs one training at a time, on one core (the networks are
-# single-threaded), so that numbers are comparable with ../shared/reference/anchors.md.
+# Training speed and the return reached, per config over seeds, beside SB3's wall time on the
+# same machine kind (../shared/reference/anchors.md, quiet-machine medians).
+#   scripts/bench.sh [--update-docs] [CONFIG...]    (default: every configs/*.yaml)
+#   SEEDS="1 2 3" JOBS=1 scripts/bench.sh ...
+# Each training runs single-threaded; JOBS=2 runs two trainings at once (one per core: faster
+# to collect, slightly slower per run). --update-docs replaces the table between the
+# `bench:begin` / `bench:end` markers in docs/benchmarks.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+update_docs=0
+if [[ "${1:-}" == "--update-docs" ]]; then update_docs=1; shift; fi
 RLRUN_SKIP_INSTALL=${RLRUN_SKIP_INSTALL:-} scripts/setup.sh >/dev/null
 configs=("$@")
-((${#configs[@]})) || configs=(configs/cartpole_ppo.yaml)
+((${#configs[@]})) || configs=(configs/*.yaml)
 seeds=${SEEDS:-"1 2 3"}
+jobs=${JOBS:-1}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-echo "| config | seed | timesteps | wall s | env steps/s | eval return (10 ep) |"
-echo "|---|---|---|---|---|---|"
+# SB3 2.4.1 learn() wall seconds on this machine kind (anchors.md), by "ALGO ENV".
+sb3_seconds() {
+  case "$1" in
+    "PPO CartPole-v1") echo 18.4 ;; "DQN CartPole-v1") echo 53.9 ;; "A2C CartPole-v1") echo 40.1 ;;
+    "SAC Pendulum-v1") echo 237.6 ;; "TD3 Pendulum-v1") echo 116.7 ;; *) echo "" ;;
+  esac
+}
+
+# One training + evaluation; writes "wall steps_per_s eval_mean eval_std" to $out/<name>.<seed>.
+run_one() {
+  local config=$1 seed=$2 name
+  name=$(basename "$config" .yaml)
+  local log summary model
+  log=$(build/rlrun train "$config" --seed "$seed" --set run.out_dir="$out/runs" \
+        --set run.name="$name" --set run.console_interval=1e9)
+  summary=$(grep -E "^trained [0-9]+ steps in" <<<"$log" | tail -1)
+  model=$(sed -E 's/.*model saved to (.*)$/\1/' <<<"$summary")
+  local eval_line
+  eval_line=$(build/rlrun eval --model "$model" --episodes 10)
+  echo "$(awk '{print $2, $5}' <<<"$summary") $(sed -E 's/.*\(([0-9]+) steps\/s\).*/\1/' <<<"$summary") \
+$(sed -E 's/.*mean_reward = ([-0-9.]+) \+\/- ([0-9.]+).*/\1 \2/' <<<"$eval_line")" >"$out/$name.$seed"
+  cp "$(dirname "$model")/config.yaml" "$out/$name.config.yaml"
+}
+export -f run_one
+export out
+
+for config in "${configs[@]}"; do for seed in $seeds; do echo "$config $seed"; done; done |
+  xargs -P "$jobs" -n 2 bash -c 'run_one "$0" "$1"'
+
+median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+
+table="| algo | env | timesteps | wall s (median) | env steps/s | eval return per seed (10 ep) | SB3 wall s | speed-up |
+|---|---|---|---|---|---|---|---|"
 for config in "${configs[@]}"; do
-  for seed in $seeds; do
-    log=$(build/rlrun train "$config" --seed "$seed" --set run.out_dir="$out" --set run.console_interval=1e9)
-    summary=$(grep -E "^trained [0-9]+ steps in" <<<"$log" | tail -1)
-    steps=$(awk '{print $2}' <<<"$summary")
-    wall=$(awk '{print $5}' <<<"$summary")
-    rate=$(sed -E 's/.*\(([0-9]+) steps\/s\).*/\1/' <<<"$summary")
-    model=$(sed -E 's/.*model saved to (.*)$/\1/' <<<"$summary")
-    eval=$(build/rlrun eval --model "$model" --episodes 10 | sed -E 's/.*mean_reward = ([-0-9.]+ \+\/- [0-9.]+).*/\1/')
-    echo "| $(basename "$config" .yaml) | $seed | $steps | $wall | $rate | $eval |"
-  done
+  name=$(basename "$config" .yaml)
+  algo=$(awk '/^algo:/{f=1} f&&/^  id:/{print $2; exit}' "$out/$name.config.yaml")
+  env=$(awk '/^env:/{f=1} f&&/^  id:/{print $2; exit}' "$out/$name.config.yaml")
+  steps=$(cat "$out/$name".[0-9]* | awk '{print $1}' | median)
+  wall=$(cat "$out/$name".[0-9]* | awk '{print $2}' | median)
+  rate=$(cat "$out/$name".[0-9]* | awk '{print $3}' | median)
+  evals=$(for s in $seeds; do awk '{printf "%.1f ± %.1f", $4, $5}' "$out/$name.$s"; echo -n " / "; done | sed 's| / $||')
+  sb3=$(sb3_seconds "$algo $env")
+  speedup=""
+  [[ -n "$sb3" ]] && speedup=$(awk -v a="$sb3" -v b="$wall" 'BEGIN {printf "%.1fx", a / b}')
+  table+=$'\n'"| $algo | $env | $steps | $wall | $rate | $evals | ${sb3:-—} | ${speedup:-—} |"
 done
+machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, $(date -u +%Y-%m-%d)"
+echo "$table"
 echo
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%Y-%m-%d)"
+echo "machine: $machine"
+if ((update_docs)); then
+  block="$table"$'\n\n'"Measured by \`scripts/bench.sh\` on $machine."
+  BLOCK="$block" python3 - <<'PY'
+import os, re
+path = "docs/benchmarks.md"
+text = open(path).read()
+new = "<!-- bench:begin -->\n" + os.environ["BLOCK"] + "\n<!-- bench:end -->"
+text, n = re.subn(r"<!-- bench:begin -->.*?<!-- bench:end -->", lambda m: new, text, flags=re.S)
+if n == 0:
+    text += "\n## All configs (scripts/bench.sh)\n\n" + new + "\n"
+open(path, "w").write(text)
+PY
+  echo "updated docs/benchmarks.md"
+fi
