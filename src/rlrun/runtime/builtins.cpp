@@ -2,7 +2,11 @@
 #include "rlrun/runtime/builtins.hpp"
 
 #include "rlrun/algos/a2c/a2c.hpp"
+#include "rlrun/algos/ddpg/ddpg.hpp"
+#include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
+#include "rlrun/algos/sac/sac.hpp"
+#include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/envs/classic/acrobot.hpp"
 #include "rlrun/envs/classic/cartpole.hpp"
 #include "rlrun/envs/classic/mountain_car.hpp"
@@ -40,6 +44,10 @@ Registry make_builtins() {
 
   r.add(make_algorithm_entry<PPO>("PPO", "Proximal Policy Optimization (SB3 semantics); Discrete/Box actions"));
   r.add(make_algorithm_entry<A2C>("A2C", "Advantage Actor-Critic (SB3 semantics, RMSprop); Discrete/Box actions"));
+  r.add(make_algorithm_entry<SAC>("SAC", "Soft Actor-Critic (SB3 semantics, learned entropy coefficient); Box actions"));
+  r.add(make_algorithm_entry<DQN>("DQN", "Deep Q-Network (SB3 semantics, epsilon-greedy, Huber loss); Discrete actions"));
+  r.add(make_algorithm_entry<TD3>("TD3", "Twin Delayed DDPG (SB3 semantics, clipped double-Q, delayed actor); Box actions"));
+  r.add(make_algorithm_entry<DDPG>("DDPG", "Deep Deterministic Policy Gradient (SB3 semantics: TD3 without its tricks); Box actions"));
   return r;
 }
 

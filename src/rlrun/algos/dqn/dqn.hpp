@@ -1,0 +1,146 @@
+#pragma once
+// Deep Q-Network (Mnih et al. 2015, doi:10.1038/nature14236) with SB3 2.x semantics, defaults
+// and key names (stable_baselines3/dqn/dqn.py, dqn/policies.py, common/off_policy_algorithm.py):
+// an online Q-network and a target copy, epsilon-greedy exploration on a linear schedule,
+// 1-step TD targets from the target network's max, Huber (smooth L1) loss, gradient-norm
+// clipping, Adam with torch's defaults, and the target refreshed every
+// target_update_interval env steps (counted per VecEnv step, divided by n_envs, as SB3).
+// Collection, replay and the train_freq / gradient_steps cadence are the shared
+// off_policy_learn loop.
+#include <cstdint>
+#include <string>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/off_policy.hpp"
+#include "rlrun/algos/common/replay_buffer.hpp"
+#include "rlrun/algos/dqn/exploration_schedule.hpp"
+#include "rlrun/algos/dqn/q_network.hpp"
+#include "rlrun/algos/dqn/q_updater.hpp"
+#include "rlrun/core/schedule.hpp"
+#include "rlrun/nn/mlp.hpp"
+
+namespace rlrun {
+
+// SB3 DQN.__init__ defaults for the hyperparameters every off-policy algorithm shares.
+inline OffPolicyConfig dqn_off_policy_defaults() {
+  OffPolicyConfig c;
+  c.buffer_size = 1000000;
+  c.learning_starts = 100;
+  c.batch_size = 32;
+  c.tau = 1.0;
+  c.gamma = 0.99;
+  c.train_freq = TrainFreq{4, false};
+  c.gradient_steps = 1;
+  return c;
+}
+
+class DQN : public Algorithm {
+ public:
+  struct Config {
+    Schedule learning_rate = Schedule::constant(1e-4);
+    OffPolicyConfig off_policy = dqn_off_policy_defaults();
+    int64_t target_update_interval = 10000;
+    double exploration_fraction = 0.1;
+    double exploration_initial_eps = 1.0;
+    double exploration_final_eps = 0.05;
+    double max_grad_norm = 10.0;
+    QNetworkConfig policy;
+    int n_threads = 1;
+
+    template <class V>
+    void visit(V& v) {
+      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>");
+      off_policy.visit(v);  // buffer_size ... handle_timeout_termination, flattened as in SB3
+      v("target_update_interval", target_update_interval,
+        "env steps between target network updates");
+      v("exploration_fraction", exploration_fraction,
+        "fraction of training over which epsilon decays");
+      v("exploration_initial_eps", exploration_initial_eps, "initial epsilon (random action probability)");
+      v("exploration_final_eps", exploration_final_eps, "final epsilon");
+      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
+      v("policy", policy, "Q-network: net_arch, activation_fn");
+      v("n_threads", n_threads,
+        "threads for the gradient updates (rlrun addition; bit-exact for a given count)");
+    }
+  };
+
+  // SB3 DQN: supported_action_spaces=(spaces.Discrete,).
+  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete};
+
+  // Throws std::invalid_argument for a non-Box observation space, a non-Discrete action space
+  // or an out-of-range hyperparameter.
+  DQN(const Config& config, const AlgorithmSetup& setup);
+  // The updater points into the networks' storage: no copies or moves.
+  DQN(const DQN&) = delete;
+  DQN& operator=(const DQN&) = delete;
+
+  std::string id() const override { return "DQN"; }
+  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
+  // SB3 DQN.predict: greedy (deterministic) or epsilon-greedy with the current exploration
+  // rate, one coin for the whole batch as SB3 draws it.
+  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+               Eigen::MatrixXf& actions) override;
+  // Tensors `q_net.<i>.weight/bias`, `q_net_target.<i>.weight/bias` (SB3's policy state_dict
+  // without its `q_net.` / `q_net_target.` module prefix) and the scalar `exploration_rate`
+  // (SB3 saves it with the model; optional on load).
+  void save(TensorMap& tensors) const override;
+  void load(const TensorMap& tensors) override;
+
+  // One gradient evaluation of SB3's loss on `batch`: targets from q_net_target, smooth L1 of
+  // Q(s, a); q_net's gradients are zeroed and then hold d(loss)/d(params). Returns the loss.
+  double loss_and_grad(const ReplayBatch& batch);
+  // The TD targets of the last loss_and_grad.
+  const Eigen::RowVectorXf& td_targets() const { return updater_.td_targets(); }
+
+  // Writable access (tests, tools) may change the weights: the acting copy and the update
+  // threads' replicas are refreshed before their next use.
+  Mlp& q_net() {
+    act_net_stale_ = true;
+    updater_.invalidate_q_net();
+    return q_net_;
+  }
+  const Mlp& q_net() const { return q_net_; }
+  Mlp& q_net_target() {
+    updater_.invalidate_target();
+    return q_net_target_;
+  }
+  const Mlp& q_net_target() const { return q_net_target_; }
+  const ReplayBuffer& replay_buffer() const { return state_.buffer; }
+  double exploration_rate() const { return exploration_rate_; }
+  int64_t n_calls() const { return n_calls_; }
+  int64_t n_updates() const { return n_updates_; }
+
+ private:
+  void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                      Eigen::MatrixXf& buffer_actions);
+  void on_step(Logger* logger);
+  void train(int gradient_steps, Logger* logger);
+  void random_actions(Eigen::Index n, Eigen::MatrixXf& actions);
+
+  Config config_;
+  AlgorithmSetup setup_;
+  float action_start_ = 0.0f;  // Discrete(n, start): env action = start + Q-network index
+  Rng init_rng_, action_rng_, replay_rng_;
+  Mlp q_net_, q_net_target_;
+  // A copy of q_net_ for acting (batch n_envs or the evaluator's), so that q_net_'s buffers
+  // keep the training batch size and nothing reallocates; refreshed after each train().
+  Mlp act_net_;
+  bool act_net_stale_ = false;
+  // Loss, backward, clipping and Adam (SB3 2.x DQNPolicy: Adam over q_net's parameters only,
+  // torch defaults, eps 1e-8), on config.n_threads threads.
+  QUpdater updater_;
+  LinearDecay exploration_schedule_;
+  OffPolicyState state_;
+  double exploration_rate_ = 0.0;  // SB3 starts at 0 and sets it in the first _on_step
+  int64_t n_calls_ = 0;
+  int64_t n_updates_ = 0;
+
+  ReplayBatch batch_;  // sized in the constructor
+  // Logger keys built once (a std::string per record would allocate every step).
+  const std::string key_exploration_rate_ = "rollout/exploration_rate";
+  const std::string key_learning_rate_ = "train/learning_rate";
+  const std::string key_loss_ = "train/loss";
+  const std::string key_n_updates_ = "train/n_updates";
+};
+
+}  // namespace rlrun

@@ -1,0 +1,41 @@
+#pragma once
+// SB3's QNetwork for MlpPolicy (stable_baselines3/dqn/policies.py): the flattened observation
+// through create_mlp(features_dim, n_actions, net_arch, activation_fn) -> one Q-value per
+// action. Default net_arch [64, 64] and nn.ReLU. SB3 never calls init_weights on it, so the
+// layers keep torch's default nn.Linear init.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/rng.hpp"
+#include "rlrun/core/tensor.hpp"
+#include "rlrun/nn/mlp.hpp"
+
+namespace rlrun {
+
+struct QNetworkConfig {
+  std::vector<int> net_arch = {64, 64};  // hidden layer sizes
+  std::string activation_fn = "relu";    // relu or tanh (SB3 QNetwork default nn.ReLU)
+
+  template <class V>
+  void visit(V& v) {
+    v("net_arch", net_arch, "hidden layer sizes of the Q-network");
+    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh");
+  }
+};
+
+// obs_dim -> net_arch -> n_actions with torch's default Linear init from rng. Throws
+// std::invalid_argument for a bad size or activation name.
+Mlp make_q_network(int obs_dim, int n_actions, const QNetworkConfig& config, Rng& init_rng);
+
+// Column-wise argmax of q (n_actions x batch) into actions (1 x batch) as floats, offset by
+// `start` (Discrete(n, start)). Ties go to the lowest index, as torch.argmax.
+void greedy_actions(const Eigen::Ref<const Eigen::MatrixXf>& q, float start,
+                    Eigen::MatrixXf& actions);
+
+// SB3 state_dict names, without the policy prefix: `<name>.0.weight`, `<name>.2.weight`, ...
+// (torch Sequential indices skip the activations), the output layer included.
+void save_q_network(const Mlp& net, const std::string& name, TensorMap& out);
+void load_q_network(Mlp& net, const std::string& name, const TensorMap& in);
+
+}  // namespace rlrun

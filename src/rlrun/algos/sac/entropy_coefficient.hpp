@@ -1,0 +1,51 @@
+#pragma once
+// SAC's entropy coefficient alpha (SB3 sac/sac.py _setup_model and train; Haarnoja et al.
+// 2018b, "Soft Actor-Critic Algorithms and Applications", arXiv:1812.05905, section 5):
+// either a fixed number, or learned ("auto", "auto_<initial>") by Adam on log(alpha) with
+//   ent_coef_loss = -mean(log_alpha * (log_prob + target_entropy))   (log_prob detached)
+// SB3 optimises log(alpha) rather than alpha (softlearning issue #37) and starts it at
+// log(initial) (1.0 unless "auto_<initial>" says otherwise).
+#include <Eigen/Core>
+#include <string>
+
+#include "rlrun/core/tensor.hpp"
+#include "rlrun/nn/adam.hpp"
+#include "rlrun/nn/param_vector.hpp"
+
+namespace rlrun {
+
+class EntropyCoefficient {
+ public:
+  // spec: "auto", "auto_<positive number>" or a number (fixed). target_entropy: "auto"
+  // (= -action_dim, SB3's -prod(action_space.shape)) or a number. Throws
+  // std::invalid_argument naming the bad value.
+  EntropyCoefficient(const std::string& spec, const std::string& target_entropy, int action_dim);
+  EntropyCoefficient(const EntropyCoefficient&) = delete;
+  EntropyCoefficient& operator=(const EntropyCoefficient&) = delete;
+
+  bool learned() const { return learned_; }
+  float target_entropy() const { return target_entropy_; }
+  // alpha = exp(log_alpha) now (SB3 reads it before this step's update), or the fixed value.
+  float value() const;
+  float log_value() const { return log_ent_coef_.value(0); }
+
+  // One Adam step on log_alpha from this batch's log-probabilities (1 x batch); returns the
+  // ent_coef_loss before the step. Must only be called when learned().
+  double update(const Eigen::Ref<const Eigen::RowVectorXf>& log_prob, float lr);
+
+  // SB3 saves the learned value as the pytorch variable `log_ent_coef`, a fixed one as
+  // `ent_coef_tensor`.
+  void save(TensorMap& tensors) const;
+  void load(const TensorMap& tensors);
+
+  const Adam& optimizer() const { return adam_; }
+
+ private:
+  bool learned_ = true;
+  float fixed_ = 0.0f;
+  float target_entropy_ = 0.0f;
+  ParamVector log_ent_coef_;
+  Adam adam_;
+};
+
+}  // namespace rlrun

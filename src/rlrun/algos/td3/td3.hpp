@@ -1,0 +1,162 @@
+#pragma once
+// Twin Delayed DDPG (Fujimoto et al. 2018, arXiv:1802.09477) with SB3 2.x semantics, defaults
+// and key names (stable_baselines3/td3/td3.py, td3/policies.py, common/policies.py
+// ContinuousCritic, common/off_policy_algorithm.py): a deterministic tanh actor, n_critics (2)
+// Q-networks on concat(obs, action), clipped double-Q targets with target policy smoothing,
+// the actor and all targets updated every policy_delay-th gradient step. Actions live in
+// [-1, 1] inside the algorithm (replay buffer, critics, noise) and are rescaled to the Box
+// bounds for the env. DDPG (ddpg/ddpg.hpp) is this class with policy_delay 1, no smoothing and
+// one critic, as SB3's DDPG is a TD3 subclass with those settings.
+//
+// One gradient step (train_on_batch) reads top to bottom like TD3.train's loop body. A
+// training-sized minibatch is split over two Td3Lane replicas that run on the two cores (see
+// td3_lane.hpp); the split depends on the batch size only, so results do not depend on whether
+// the second core is available (RLRUN_THREADS=1).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/action_noise.hpp"
+#include "rlrun/algos/common/off_policy.hpp"
+#include "rlrun/algos/td3/td3_lane.hpp"
+#include "rlrun/core/schedule.hpp"
+#include "rlrun/nn/adam.hpp"
+
+namespace rlrun {
+
+// SB3 TD3Policy keyword arguments (policy_kwargs in rl-zoo).
+struct Td3PolicyConfig {
+  std::vector<int> net_arch = {400, 300};  // hidden sizes of the actor and of each critic
+  std::string activation_fn = "relu";      // relu or tanh (SB3 default nn.ReLU)
+  int n_critics = 2;                       // number of Q-networks; targets use their minimum
+
+  template <class V>
+  void visit(V& v) {
+    v("net_arch", net_arch, "hidden layer sizes of the actor and of each critic");
+    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh");
+    v("n_critics", n_critics, "number of Q-networks; targets use their minimum");
+  }
+};
+
+// What one gradient step computed (TD3.train logs the means over a train() call).
+struct Td3StepStats {
+  double critic_loss = 0.0;  // sum over critics of mse(Q_i, y)
+  double actor_loss = 0.0;   // -mean Q_1(s, mu(s)); only when actor_updated
+  bool actor_updated = false;
+};
+
+class TD3 : public Algorithm {
+ public:
+  struct Config {
+    Schedule learning_rate = Schedule::constant(1e-3);
+    OffPolicyConfig off_policy;      // SB3 TD3 defaults: 1e6, 100, 256, 0.005, 0.99, 1, 1
+    ActionNoiseConfig action_noise;  // none by default (rl-zoo: normal, std 0.1)
+    int policy_delay = 2;
+    double target_policy_noise = 0.2;
+    double target_noise_clip = 0.5;
+    Td3PolicyConfig policy;
+
+    template <class V>
+    void visit(V& v) {
+      v("learning_rate", learning_rate,
+        "Adam step size of the actor and the critics: a number or lin_<initial>");
+      off_policy.visit(v);
+      action_noise.visit(v);
+      v("policy_delay", policy_delay,
+        "update the actor and the targets every N gradient steps (critics every step)");
+      v("target_policy_noise", target_policy_noise,
+        "std of the Gaussian smoothing noise on target actions");
+      v("target_noise_clip", target_noise_clip, "clip of the target smoothing noise");
+      v("policy", policy, "networks: net_arch, activation_fn, n_critics");
+    }
+  };
+
+  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kBox};
+
+  // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
+  // actions). `id` names the algorithm in logs and model files (DDPG reuses this class).
+  TD3(const Config& config, const AlgorithmSetup& setup, std::string id = "TD3");
+  TD3(const TD3&) = delete;
+  TD3& operator=(const TD3&) = delete;
+
+  std::string id() const override { return id_; }
+  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
+  // actor(obs) rescaled to the Box bounds; deterministic or not alike (SB3 TD3Policy._predict).
+  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+               Eigen::MatrixXf& actions) override;
+  void save(TensorMap& tensors) const override;
+  void load(const TensorMap& tensors) override;
+
+  // SB3 OffPolicyAlgorithm._sample_action: warmup = uniform samples of the action space,
+  // otherwise actor(obs); exploration noise added and clipped to [-1, 1] in both cases.
+  // buffer_actions in [-1, 1], env_actions in [low, high].
+  void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                      Eigen::MatrixXf& buffer_actions);
+
+  // One iteration of TD3.train's loop on `batch` (actions in [-1, 1]) with learning rate lr:
+  // n_updates += 1, critic update, and on every policy_delay-th update the actor update and
+  // the Polyak updates. Public for tests and benchmarks.
+  Td3StepStats train_on_batch(const ReplayBatch& batch, float lr);
+
+  // The two halves of train_on_batch without the optimizer steps, public so that tests can
+  // check each one. critic_loss_and_gradients draws the smoothing noise, computes the target y
+  // (-> last_critic_target()) and returns sum_i mse(Q_i(s, a), y), leaving each critic's
+  // gradient in critics()[i].q().grads().
+  double critic_loss_and_gradients(const ReplayBatch& batch);
+  // -mean(Q_1(s, actor(s))), its gradient left in actor().net().grads(). Critic 1's own
+  // gradient buffer also receives a contribution, as torch's actor_loss.backward() does; the
+  // critic's next update overwrites it (zero_grad), so it never reaches the critic optimizer.
+  double actor_loss_and_gradient(const ReplayBatch& batch);
+
+  const Config& config() const { return config_; }
+  // The trained networks (the primary lane's).
+  Td3Actor& actor() { return lanes_.front().actor(); }
+  const Td3Actor& actor() const { return lanes_.front().actor(); }
+  Td3Actor& actor_target() { return lanes_.front().actor_target(); }
+  const Td3Actor& actor_target() const { return lanes_.front().actor_target(); }
+  std::vector<Td3Critic>& critics() { return lanes_.front().critics(); }
+  const std::vector<Td3Critic>& critics() const { return lanes_.front().critics(); }
+  int64_t n_updates() const { return n_updates_; }
+  // From the last critic_loss_and_gradients: y (1 x batch) and the clipped smoothing noise
+  // (action_dim x batch).
+  const Eigen::MatrixXf& last_critic_target() const { return target_q_; }
+  const Eigen::MatrixXf& last_smoothing_noise() const { return smoothing_noise_; }
+
+ private:
+  // `gradient_steps` updates from the replay buffer (SB3 TD3.train), logging the means.
+  void train(int gradient_steps, Logger* logger);
+  // Runs fn(lane, begin, count) for each lane's slice of a batch of n columns: one lane below
+  // kMinSplitBatch, else two halves, lane 1 on ForkJoin's worker. Returns the lanes used.
+  template <class F>
+  int run_lanes(Eigen::Index n, F&& fn);
+  // The acting copy of the actor (a separate Mlp, so acting on n_envs observations never
+  // resizes the training network's batch buffers) takes the trained weights when they changed.
+  void sync_acting_actor();
+  // SB3 unscale_action, clamped so that rounding at +-1 never leaves the Box.
+  void to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const;
+
+  std::string id_;
+  Config config_;
+  AlgorithmSetup setup_;
+  int obs_dim_ = 0;
+  int action_dim_ = 0;
+  Rng init_rng_, action_rng_, noise_rng_, sample_rng_, smoothing_rng_;
+  std::vector<Td3Lane> lanes_;  // [0] holds the trained parameters; [1] a replica
+  Adam actor_optimizer_;
+  std::vector<Adam> critic_optimizers_;  // one per critic, on lanes_[0]'s parameters
+  Td3Actor acting_actor_;
+  ActionNoise action_noise_;
+  bool acting_stale_ = true;
+  std::optional<OffPolicyState> state_;  // replay buffer etc., created by the first learn()
+  int64_t n_updates_ = 0;
+
+  // Training workspaces (a gradient step allocates nothing while the batch size is unchanged).
+  ReplayBatch batch_;
+  Eigen::MatrixXf smoothing_noise_, target_q_;
+  double lane_losses_[2] = {0.0, 0.0};
+  // Acting workspaces.
+  Eigen::MatrixXf scaled_actions_, exploration_noise_;
+};
+
+}  // namespace rlrun

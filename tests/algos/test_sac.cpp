@@ -1,0 +1,527 @@
+// SAC (src/rlrun/algos/sac/): the soft Bellman target, the critic and actor loss gradients
+// (finite differences against double re-implementations), the entropy-coefficient update,
+// action scaling, model tensors, and short runs through the registry. The learning bars are
+// hidden ([.slow]); the update micro-benchmark too ([.bench]).
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "nn/grad_check.hpp"
+#include "rlrun/algos/common/action_scaling.hpp"
+#include "rlrun/algos/sac/entropy_coefficient.hpp"
+#include "rlrun/algos/sac/sac.hpp"
+#include "rlrun/algos/sac/sac_loss.hpp"
+#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/evaluator.hpp"
+#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/trainer.hpp"
+#include "runtime/cli_runner.hpp"
+
+using namespace rlrun;
+using test::numeric_gradient;
+using test::require_grad_close;
+
+namespace {
+
+constexpr double kHalfLog2Pi = 0.91893853320467274;
+
+// ---- double re-implementations (independent of the float code under test) --------------
+
+// An Mlp's forward in double from its parameter vector `p` (same layout as Mlp::params()).
+Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
+  Eigen::VectorXd h = x;
+  Eigen::Index offset = 0;
+  for (int l = 0; l < net.num_layers(); ++l) {
+    const int in = net.layer_in(l), out = net.layer_out(l);
+    const Eigen::Map<const Eigen::MatrixXd> w(p.data() + offset, out, in);
+    offset += static_cast<Eigen::Index>(in) * out;
+    const Eigen::Map<const Eigen::VectorXd> b(p.data() + offset, out);
+    offset += out;
+    Eigen::VectorXd z = w * h + b;
+    if (l + 1 < net.num_layers()) {
+      for (Eigen::Index k = 0; k < z.size(); ++k)
+        z(k) = net.activation() == Activation::kReLU ? std::max(z(k), 0.0) : std::tanh(z(k));
+    }
+    h = z;
+  }
+  return h;
+}
+
+Eigen::VectorXd params_of(const Mlp& net) { return net.params().cast<double>(); }
+
+// SB3's Actor.action_log_prob for one observation with fixed noise: (action, log_prob).
+std::pair<Eigen::VectorXd, double> actor_sample(const Mlp& net, const Eigen::VectorXd& p, int a_dim,
+                                                const Eigen::VectorXd& obs,
+                                                const Eigen::VectorXd& noise) {
+  const Eigen::VectorXd out = mlp_forward(net, p, obs);
+  Eigen::VectorXd a(a_dim);
+  double logp = 0.0;
+  for (int i = 0; i < a_dim; ++i) {
+    const double mu = out(i);
+    const double log_std = std::clamp(out(a_dim + i), -20.0, 2.0);
+    const double std = std::exp(log_std);
+    const double u = mu + std * noise(i);
+    a(i) = std::tanh(u);
+    // Normal(mu, std).log_prob(u) - log(1 - tanh(u)^2 + 1e-6), from u as torch computes it.
+    logp += -(u - mu) * (u - mu) / (2 * std * std) - log_std - kHalfLog2Pi -
+            std::log(1.0 - a(i) * a(i) + 1e-6);
+  }
+  return {a, logp};
+}
+
+Eigen::VectorXd concat(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  Eigen::VectorXd c(a.size() + b.size());
+  c << a, b;
+  return c;
+}
+
+Eigen::MatrixXf random_matrix(Rng& rng, int rows, int cols, double scale = 1.0) {
+  Eigen::MatrixXf m(rows, cols);
+  for (Eigen::Index k = 0; k < m.size(); ++k) m(k) = static_cast<float>(scale * rng.normal());
+  return m;
+}
+
+SAC::Config small_config() {
+  SAC::Config c;
+  c.policy.net_arch = {8, 8};
+  c.off_policy.batch_size = 6;
+  c.off_policy.buffer_size = 1000;
+  c.off_policy.gamma = 0.9;
+  c.off_policy.tau = 0.1;
+  c.ent_coef = "auto_0.5";
+  return c;
+}
+
+AlgorithmSetup box_setup(int obs_dim, int act_dim, uint64_t seed = 7) {
+  std::vector<float> low(act_dim), high(act_dim);
+  for (int i = 0; i < act_dim; ++i) {
+    low[i] = -2.0f + static_cast<float>(i);
+    high[i] = 2.0f + 3.0f * static_cast<float>(i);
+  }
+  return AlgorithmSetup{Space::box(-10.0f, 10.0f, {obs_dim}), Space::box(low, high, {act_dim}), 1,
+                        seed};
+}
+
+ReplayBatch random_batch(Rng& rng, int obs_dim, int act_dim, int n) {
+  ReplayBatch b;
+  b.obs = random_matrix(rng, obs_dim, n);
+  b.next_obs = random_matrix(rng, obs_dim, n);
+  b.actions = random_matrix(rng, act_dim, n, 0.5).cwiseMax(-0.99f).cwiseMin(0.99f);
+  b.rewards = random_matrix(rng, 1, n);
+  b.dones = Eigen::RowVectorXf::Zero(n);
+  for (int j = 0; j < n; j += 3) b.dones(j) = 1.0f;
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("SAC soft Bellman target on hand-made numbers", "[algos][sac]") {
+  Eigen::RowVectorXf rewards(3), dones(3), next_logp(3);
+  rewards << 1.0f, -0.5f, 2.0f;
+  dones << 0.0f, 1.0f, 0.0f;
+  next_logp << -1.0f, 0.5f, 0.2f;
+  Eigen::MatrixXf q1(1, 3), q2(1, 3), y;
+  q1 << 3.0f, 1.0f, -2.0f;
+  q2 << 2.5f, 4.0f, -1.0f;
+  sac_critic_target(rewards, dones, {&q1, &q2}, next_logp, 0.2f, 0.9f, y);
+  // y = r + (1 - d) * 0.9 * (min(q1, q2) - 0.2 * logp)
+  CHECK(y(0) == Approx(1.0 + 0.9 * (2.5 + 0.2)));
+  CHECK(y(1) == Approx(-0.5));                       // terminal: no bootstrap
+  CHECK(y(2) == Approx(2.0 + 0.9 * (-2.0 - 0.04)));  // = 0.164
+}
+
+TEST_CASE("SAC actor loss picks the smaller critic per sample", "[algos][sac]") {
+  Eigen::MatrixXf q1(1, 2), q2(1, 2);
+  q1 << 1.0f, 5.0f;
+  q2 << 2.0f, 3.0f;
+  Eigen::RowVectorXf logp(2), grad_logp;
+  logp << -1.0f, 2.0f;
+  std::vector<Eigen::MatrixXf> grad_q(2);
+  const double loss = sac_actor_loss({&q1, &q2}, logp, 0.5f, grad_q, grad_logp);
+  CHECK(loss == Approx(((0.5 * -1.0 - 1.0) + (0.5 * 2.0 - 3.0)) / 2));
+  CHECK(grad_q[0](0) == Approx(-0.5));
+  CHECK(grad_q[0](1) == 0.0f);
+  CHECK(grad_q[1](0) == 0.0f);
+  CHECK(grad_q[1](1) == Approx(-0.5));
+  CHECK(grad_logp(0) == Approx(0.25));
+}
+
+TEST_CASE(
+    "SAC train step: critic target, critic loss and Polyak update match a double "
+    "re-computation",
+    "[algos][sac]") {
+  const int obs_dim = 3, act_dim = 2, n = 6;
+  SAC sac(small_config(), box_setup(obs_dim, act_dim));
+  Rng rng(11);
+  ReplayBatch b = random_batch(rng, obs_dim, act_dim, n);
+  // Parameters before the step.
+  const Eigen::VectorXd actor_p = params_of(sac.actor().net());
+  std::vector<Eigen::VectorXd> online_p, target_p;
+  for (const SacCritic& c : sac.critics()) {
+    online_p.push_back(params_of(c.q()));
+    target_p.push_back(params_of(c.target()));
+  }
+  const double alpha = std::exp(static_cast<double>(sac.ent_coef().log_value()));
+  CHECK(alpha == Approx(0.5));
+
+  const SacStepStats stats = sac.train_on_batch(b, 1e-3f, true);
+  CHECK(stats.ent_coef == Approx(alpha));
+  const Eigen::MatrixXf& noise = sac.last_next_noise();
+  const Eigen::MatrixXf& y = sac.last_critic_target();
+  double critic_loss = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const auto [a, logp] =
+        actor_sample(sac.actor().net(), actor_p, act_dim, b.next_obs.col(j).cast<double>(),
+                     noise.col(j).cast<double>());
+    const Eigen::VectorXd x = concat(b.next_obs.col(j).cast<double>(), a);
+    double min_q = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < target_p.size(); ++i)
+      min_q = std::min(min_q, mlp_forward(sac.critics()[i].target(), target_p[i], x)(0));
+    const double expected = b.rewards(j) + (1.0 - b.dones(j)) * 0.9 * (min_q - alpha * logp);
+    INFO("sample " << j);
+    CHECK(y(0, j) == Approx(expected).epsilon(1e-4).margin(1e-5));
+    const Eigen::VectorXd xa = concat(b.obs.col(j).cast<double>(), b.actions.col(j).cast<double>());
+    for (size_t i = 0; i < online_p.size(); ++i) {
+      const double d = mlp_forward(sac.critics()[i].q(), online_p[i], xa)(0) - y(0, j);
+      critic_loss += 0.5 * d * d / n;
+    }
+  }
+  CHECK(stats.critic_loss == Approx(critic_loss).epsilon(1e-4));
+  // target <- (1 - tau) target + tau * online (after the critic step), tau = 0.1.
+  for (size_t i = 0; i < target_p.size(); ++i) {
+    const Eigen::VectorXd expected = 0.9 * target_p[i] + 0.1 * params_of(sac.critics()[i].q());
+    CHECK((params_of(sac.critics()[i].target()) - expected).cwiseAbs().maxCoeff() < 1e-6);
+    // The critics and the actor moved.
+    CHECK((params_of(sac.critics()[i].q()) - online_p[i]).cwiseAbs().maxCoeff() > 1e-4);
+  }
+  CHECK((params_of(sac.actor().net()) - actor_p).cwiseAbs().maxCoeff() > 1e-4);
+}
+
+TEST_CASE("SAC critic loss gradient matches finite differences", "[algos][sac][gradcheck]") {
+  Rng rng(5);
+  const int obs_dim = 3, act_dim = 2, n = 7;
+  SacCritic critic(obs_dim + act_dim, {8, 8}, Activation::kReLU, rng);
+  const Eigen::MatrixXf x = random_matrix(rng, obs_dim + act_dim, n);
+  const Eigen::MatrixXf y = random_matrix(rng, 1, n);
+  const double loss = critic.loss_and_gradient(x, y);
+  const auto loss_of = [&](const Eigen::VectorXd& p) {
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double d = mlp_forward(critic.q(), p, x.col(j).cast<double>())(0) - y(0, j);
+      sum += d * d;
+    }
+    return 0.5 * sum / n;
+  };
+  const Eigen::VectorXd p = params_of(critic.q());
+  CHECK(loss == Approx(loss_of(p)).epsilon(1e-5));
+  require_grad_close(critic.q().grads().cast<double>(), numeric_gradient(loss_of, p));
+}
+
+TEST_CASE(
+    "SAC actor loss gradient through the critics and the squashed Gaussian matches "
+    "finite differences",
+    "[algos][sac][gradcheck]") {
+  Rng rng(9);
+  const int obs_dim = 3, act_dim = 2, n = 8;
+  SacActor actor(obs_dim, act_dim, {8, 8}, Activation::kReLU);
+  actor.net().init_torch_default(rng);
+  // Second log_std head pushed below LOG_STD_MIN: the clamp must cut its gradient. (Below, not
+  // above: at std = e^2 tanh saturates and float32's 1 - a^2 loses the digits a finite
+  // difference in double would compare against.)
+  const int last = actor.net().num_layers() - 1;
+  actor.net().bias(last)(act_dim + 1) = -25.0f;
+  std::vector<SacCritic> critics;
+  for (int i = 0; i < 2; ++i)
+    critics.emplace_back(obs_dim + act_dim, std::vector<int>{8, 8}, Activation::kReLU, rng);
+  const Eigen::MatrixXf obs = random_matrix(rng, obs_dim, n);
+  const Eigen::MatrixXf noise = random_matrix(rng, act_dim, n);
+  const float alpha = 0.3f;
+
+  // The same sequence as SAC::train_on_batch's actor phase.
+  Eigen::MatrixXf actions(act_dim, n), x(obs_dim + act_dim, n);
+  Eigen::RowVectorXf logp(n), grad_logp;
+  actor.sample_from_noise(obs, noise, actions, logp);
+  x << obs, actions;
+  for (SacCritic& c : critics) c.compute_values(x);
+  std::vector<Eigen::MatrixXf> grad_q(2);
+  const double loss =
+      sac_actor_loss({&critics[0].values(), &critics[1].values()}, logp, alpha, grad_q, grad_logp);
+  Eigen::MatrixXf grad_actions = Eigen::MatrixXf::Zero(act_dim, n);
+  for (int i = 0; i < 2; ++i) {
+    critics[i].compute_action_gradient(grad_q[i], act_dim);
+    grad_actions += critics[i].action_gradient();
+  }
+  actor.net().zero_grad();
+  actor.backward(grad_actions, grad_logp);
+
+  std::vector<Eigen::VectorXd> critic_p;
+  for (const SacCritic& c : critics) critic_p.push_back(params_of(c.q()));
+  const auto loss_of = [&](const Eigen::VectorXd& p) {
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const Eigen::VectorXd o = obs.col(j).cast<double>();
+      const auto [a, lp] = actor_sample(actor.net(), p, act_dim, o, noise.col(j).cast<double>());
+      double min_q = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 2; ++i)
+        min_q = std::min(min_q, mlp_forward(critics[i].q(), critic_p[i], concat(o, a))(0));
+      sum += alpha * lp - min_q;
+    }
+    return sum / n;
+  };
+  const Eigen::VectorXd p = params_of(actor.net());
+  CHECK(loss == Approx(loss_of(p)).epsilon(1e-4));
+  const Eigen::VectorXd analytic = actor.net().grads().cast<double>();
+  require_grad_close(analytic, numeric_gradient(loss_of, p));
+  // The clamped head gets exactly no gradient.
+  CHECK(actor.net().bias_grad(last)(act_dim + 1) == 0.0f);
+  CHECK(actor.net().bias_grad(last)(act_dim) != 0.0f);
+}
+
+TEST_CASE("SAC entropy coefficient: parsing and the direction and size of its update",
+          "[algos][sac]") {
+  SECTION("auto starts at 1 and targets -dim(A)") {
+    EntropyCoefficient e("auto", "auto", 3);
+    CHECK(e.learned());
+    CHECK(e.value() == Approx(1.0));
+    CHECK(e.target_entropy() == -3.0f);
+  }
+  SECTION("entropy above the target (log_prob + target < 0): alpha goes down by ~lr") {
+    EntropyCoefficient e("auto_0.5", "auto", 1);
+    Eigen::RowVectorXf logp(4);
+    logp << 0.2f, 0.4f, 0.6f, 0.8f;  // mean 0.5; + target (-1) = -0.5
+    const double loss = e.update(logp, 0.01f);
+    CHECK(loss == Approx(-std::log(0.5) * -0.5));  // -log_alpha * mean(logp + target)
+    // Adam's first step is lr * g / (|g| + eps) = lr * sign(g), g = -mean = +0.5.
+    CHECK(e.log_value() == Approx(std::log(0.5) - 0.01).epsilon(1e-6));
+    CHECK(e.value() < 0.5f);
+  }
+  SECTION("entropy below the target: alpha goes up") {
+    EntropyCoefficient e("auto", "-2", 2);
+    CHECK(e.target_entropy() == -2.0f);
+    Eigen::RowVectorXf logp = Eigen::RowVectorXf::Constant(5, 3.0f);  // + target = 1
+    e.update(logp, 3e-4f);
+    CHECK(e.log_value() == Approx(3e-4).epsilon(1e-5));
+    e.update(logp, 3e-4f);  // constant gradient: Adam keeps stepping by lr
+    CHECK(e.log_value() == Approx(6e-4).epsilon(1e-5));
+  }
+  SECTION("fixed coefficients and bad values") {
+    EntropyCoefficient e("0.2", "auto", 1);
+    CHECK_FALSE(e.learned());
+    CHECK(e.value() == 0.2f);
+    CHECK_THROWS_AS(EntropyCoefficient("autox", "auto", 1), std::invalid_argument);
+    CHECK_THROWS_AS(EntropyCoefficient("auto_-1", "auto", 1), std::invalid_argument);
+    CHECK_THROWS_AS(EntropyCoefficient("auto_", "auto", 1), std::invalid_argument);
+    CHECK_THROWS_AS(EntropyCoefficient("abc", "auto", 1), std::invalid_argument);
+    CHECK_THROWS_AS(EntropyCoefficient("auto", "high", 1), std::invalid_argument);
+  }
+}
+
+TEST_CASE("SAC action scaling: [low, high] <-> [-1, 1] round trip and env actions in bounds",
+          "[algos][sac]") {
+  const Space space = Space::box({-2.0f, 0.0f}, {2.0f, 5.0f}, {2});
+  Eigen::MatrixXf actions(2, 3), scaled, back;
+  actions << -2.0f, 0.0f, 1.5f,  //
+      0.0f, 2.5f, 5.0f;
+  scale_actions(space, actions, scaled);
+  CHECK(scaled(0, 0) == Approx(-1.0));
+  CHECK(scaled(1, 1) == Approx(0.0));
+  CHECK(scaled(1, 2) == Approx(1.0));
+  unscale_actions(space, scaled, back);
+  CHECK((back - actions).cwiseAbs().maxCoeff() < 1e-6f);
+
+  // Through SAC: warmup samples, policy samples with noise, and predict stay consistent.
+  SAC::Config cfg = small_config();
+  cfg.action_noise.noise_type = "normal";
+  cfg.action_noise.noise_std = 0.5;
+  SAC sac(cfg, AlgorithmSetup{Space::box(-1.0f, 1.0f, {3}), space, 1, 3});
+  Rng rng(2);
+  const Eigen::MatrixXf obs = random_matrix(rng, 3, 1);
+  Eigen::MatrixXf env_actions, buffer_actions, expected;
+  for (bool warmup : {true, false}) {
+    for (int k = 0; k < 50; ++k) {
+      sac.select_actions(obs, warmup, env_actions, buffer_actions);
+      CHECK(buffer_actions.cwiseAbs().maxCoeff() <= 1.0f);
+      unscale_actions(space, buffer_actions, expected);
+      CHECK((env_actions - expected).cwiseAbs().maxCoeff() < 1e-5f);
+      CHECK(space.contains(std::span<const float>(env_actions.data(), 2)));
+    }
+  }
+  // Deterministic predict = unscale(tanh(mu)).
+  Eigen::MatrixXf predicted, mode(2, 1);
+  sac.predict(obs, true, predicted);
+  sac.actor().mode(obs, mode);
+  unscale_actions(space, mode, expected);
+  CHECK((predicted - expected).cwiseAbs().maxCoeff() < 1e-5f);
+}
+
+TEST_CASE("SAC model tensors use SB3's names and load back", "[algos][sac]") {
+  SAC::Config cfg = small_config();
+  SAC a(cfg, box_setup(3, 1, 1));
+  Rng rng(4);
+  a.train_on_batch(random_batch(rng, 3, 1, 6), 1e-2f, true);  // targets now differ from init
+  TensorMap t;
+  a.save(t);
+  for (const char* name :
+       {"actor.latent_pi.0.weight", "actor.latent_pi.2.bias", "actor.mu.weight", "actor.mu.bias",
+        "actor.log_std.weight", "actor.log_std.bias", "critic.qf0.0.weight", "critic.qf0.4.weight",
+        "critic.qf1.2.bias", "critic_target.qf0.0.weight", "critic_target.qf1.4.bias",
+        "log_ent_coef"}) {
+    INFO(name);
+    CHECK(t.count(name) == 1);
+  }
+  CHECK(t.at("actor.mu.weight").shape == std::vector<int64_t>{1, 8});
+  CHECK(t.at("critic.qf0.0.weight").shape == std::vector<int64_t>{8, 4});
+  CHECK(t.size() == 8 + 2 * 2 * 6 + 1);
+
+  SAC b(cfg, box_setup(3, 1, 99));
+  b.load(t);
+  const Eigen::MatrixXf obs = random_matrix(rng, 3, 4);
+  Eigen::MatrixXf pa, pb;
+  a.predict(obs, true, pa);
+  b.predict(obs, true, pb);
+  CHECK(pa == pb);
+  CHECK(b.critics()[1].target().params() == a.critics()[1].target().params());
+  CHECK(b.ent_coef().log_value() == a.ent_coef().log_value());
+  t.erase("critic.qf1.2.bias");
+  CHECK_THROWS(b.load(t));
+}
+
+namespace {
+Experiment pendulum_experiment(const std::string& out_dir, int64_t steps, uint64_t seed,
+                               const std::string& algo_extra) {
+  const std::string yaml = "run: {name: sac_smoke, seed: " + std::to_string(seed) +
+                           ", total_timesteps: " + std::to_string(steps) + ", out_dir: " + out_dir +
+                           ", console_interval: 1000}\n"
+                           "env: {id: Pendulum-v1}\n"
+                           "algo: {id: SAC" +
+                           algo_extra + "}\n";
+  return parse_experiment(ConfigNode::load_string(yaml, "sac.yaml"), builtin_registry());
+}
+}  // namespace
+
+TEST_CASE(
+    "SAC trains a few hundred steps on Pendulum-v1 through the registry, "
+    "deterministically",
+    "[algos][sac]") {
+  testing::TempDir dir("sac_smoke");
+  const auto run = [&](uint64_t seed) {
+    const Experiment e =
+        pendulum_experiment(dir.str(), 400, seed,
+                            ", learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32]}");
+    const TrainOutcome outcome = train_experiment(e, builtin_registry());
+    CHECK(outcome.timesteps == 400);
+    return read_model(outcome.model_path);
+  };
+  const ModelFile m1 = run(3);
+  const ModelFile m2 = run(3);
+  CHECK(m1.tensors.at("actor.mu.weight").bytes == m2.tensors.at("actor.mu.weight").bytes);
+  CHECK(m1.tensors.at("log_ent_coef").bytes == m2.tensors.at("log_ent_coef").bytes);
+  // 300 updates of the learned alpha from 1.0 with lr 3e-4: it moved, and not beyond Adam's
+  // ~lr per step.
+  const float log_alpha = *m1.tensors.at("log_ent_coef").data<float>();
+  CHECK(log_alpha != 0.0f);
+  CHECK(std::abs(log_alpha) <= 300 * 3e-4 * 1.01);
+
+  const Experiment stored = experiment_from_model(m1, builtin_registry());
+  EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
+  auto loaded = algorithm_from_model(m1, stored, builtin_registry(), env->observation_space(),
+                                     env->action_space());
+  const EvalResult r = evaluate_policy(*loaded, *env, 1, true, 5);
+  REQUIRE(r.returns.size() == 1);
+  CHECK(r.lengths[0] == 200);
+}
+
+TEST_CASE("SAC rejects bad settings with a message", "[algos][sac]") {
+  SAC::Config c;
+  c.ent_coef = "sometimes";
+  CHECK_THROWS_AS(SAC(c, box_setup(3, 1)), std::invalid_argument);
+  c = SAC::Config();
+  c.target_update_interval = 0;
+  CHECK_THROWS_AS(SAC(c, box_setup(3, 1)), std::invalid_argument);
+  c = SAC::Config();
+  CHECK_THROWS_AS(SAC(c, AlgorithmSetup{Space::box(-1.0f, 1.0f, {3}), Space::discrete(2), 1, 0}),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(SAC(c, AlgorithmSetup{Space::box(-1.0f, 1.0f, {3}),
+                                        Space::box(-std::numeric_limits<float>::infinity(),
+                                                   std::numeric_limits<float>::infinity(), {1}),
+                                        1, 0}),
+                  std::invalid_argument);
+}
+
+// ---- hidden: speed and learning bars ------------------------------------------------------
+
+namespace {
+// Network FLOPs of one SAC gradient step as counted in anchors.md (2 in out per layer and
+// sample forward, twice that backward), for what train_on_batch runs: actor forward on s' and
+// s, actor backward; per critic: target forward, forward + backward (critic loss), forward +
+// backward (actor loss, through the critic to the action).
+double sac_step_flops(const SAC& sac, int batch) {
+  const auto fwd = [&](const Mlp& m) {
+    double f = 0.0;
+    for (int l = 0; l < m.num_layers(); ++l) f += 2.0 * m.layer_in(l) * m.layer_out(l) * batch;
+    return f;
+  };
+  double flops = 4.0 * fwd(sac.actor().net());
+  for (const SacCritic& c : sac.critics()) flops += 7.0 * fwd(c.q());
+  return flops;
+}
+}  // namespace
+
+TEST_CASE("SAC update micro-benchmark (rl-zoo Pendulum sizes)", "[.bench][sac_bench]") {
+  SAC::Config cfg;  // 256x256, batch 256
+  SAC sac(cfg, box_setup(3, 1));
+  Rng rng(1);
+  const ReplayBatch b = random_batch(rng, 3, 1, 256);
+  for (int i = 0; i < 50; ++i) sac.train_on_batch(b, 1e-3f, true);
+  const int iters = 400;
+  double best = 1e30;
+  for (int rep = 0; rep < 3; ++rep) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < iters; ++i) sac.train_on_batch(b, 1e-3f, true);
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / iters);
+  }
+  const double flops = sac_step_flops(sac, 256);
+  std::printf(
+      "SAC gradient step (3-256-256-2 actor, 2x 4-256-256-1 critics, batch 256): %.3f ms, "
+      "%.1f MFLOP, %.1f GFLOP/s (%.0f%% of 102)\n",
+      best * 1e3, flops * 1e-6, flops / best * 1e-9, flops / best * 1e-9 / 102 * 100);
+  CHECK(sac.actor().net().params().allFinite());
+}
+
+namespace {
+double train_and_evaluate(const std::string& config, uint64_t seed) {
+  testing::TempDir dir("sac_slow_" + std::to_string(seed));
+  Experiment e = load_experiment(std::string(RLRUN_SOURCE_DIR) + "/configs/" + config,
+                                 {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed)},
+                                 builtin_registry());
+  const TrainOutcome outcome = train_experiment(e, builtin_registry());
+  const ModelFile model = read_model(outcome.model_path);
+  const Experiment stored = experiment_from_model(model, builtin_registry());
+  EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
+  auto loaded = algorithm_from_model(model, stored, builtin_registry(), env->observation_space(),
+                                     env->action_space());
+  const double mean = evaluate_policy(*loaded, *env, 10, true, 1000 + seed).mean_return();
+  std::printf("%s seed %llu: %.1f s, eval %.1f\n", config.c_str(),
+              static_cast<unsigned long long>(seed), outcome.wall_seconds, mean);
+  return mean;
+}
+}  // namespace
+
+TEST_CASE("SAC learns Pendulum-v1 (rl-zoo settings, 2e4 steps) in 2 of 3 seeds",
+          "[.slow][algos][sac_slow]") {
+  int passed = 0;
+  for (uint64_t seed : {1, 2, 3}) passed += train_and_evaluate("pendulum_sac.yaml", seed) >= -200.0;
+  CHECK(passed >= 2);
+}
+
+TEST_CASE("SAC learns MountainCarContinuous-v0 in 2 of 3 seeds", "[.slow][algos][sac_slow]") {
+  int passed = 0;
+  for (uint64_t seed : {1, 2, 3})
+    passed += train_and_evaluate("mountaincarcontinuous_sac.yaml", seed) >= 90.0;
+  CHECK(passed >= 2);
+}
