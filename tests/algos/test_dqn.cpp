@@ -3,9 +3,8 @@
 // re-implementation), the epsilon schedule, the target-update period with several envs,
 // timeout bootstrapping, model tensors, and short runs through the registry. The learning
 // bars are hidden ([.slow]); the update micro-benchmark too ([.bench]).
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -100,7 +99,7 @@ TEST_CASE("DQN TD target: r + (1 - done) gamma max_a' Q_target(s', a')", "[algos
 TEST_CASE("DQN Huber loss and its gradient on a hand-made batch", "[algos][dqn]") {
   // Three samples: |diff| = 0.5 (quadratic part), 2 (linear, negative), 1.5 (linear, positive).
   Eigen::MatrixXf q(3, 3);
-  q << 1, 7, 7,  //
+  q << 1, 7, 7,   //
       7, 7, 4.5,  //
       7, -1, 7;
   Eigen::MatrixXf actions(1, 3);
@@ -129,7 +128,7 @@ TEST_CASE("DQN loss and gradient through linear Q-networks with set weights", "[
   DQN dqn(cfg, discrete_setup(2, 2));
   dqn.q_net().weight(0) << 1, 0,  //
       0, 2;
-  dqn.q_net().bias(0) << 0, 1;  // Q(s) = (s0, 2 s1 + 1)
+  dqn.q_net().bias(0) << 0, 1;             // Q(s) = (s0, 2 s1 + 1)
   dqn.q_net_target().weight(0) << 0.5, 0,  //
       0, 0.5;
   dqn.q_net_target().bias(0) << 0, 0;  // Q'(s') = s' / 2
@@ -220,8 +219,10 @@ TEST_CASE("DQN loss gradient w.r.t. every q_net parameter matches finite differe
   require_grad_close(analytic, numeric_gradient(double_loss, p0));
 }
 
-TEST_CASE("DQN loss gradient at rl-zoo sizes (6-256-256-3, batch 128) matches finite "
-          "differences on sampled parameters", "[algos][dqn][gradcheck]") {
+TEST_CASE(
+    "DQN loss gradient at rl-zoo sizes (6-256-256-3, batch 128) matches finite "
+    "differences on sampled parameters",
+    "[algos][dqn][gradcheck]") {
   // The production kernel paths for 256-wide layers and a 128-column batch; every layer's
   // weights and biases are sampled (a full check would take minutes in double).
   DQN::Config cfg;
@@ -333,8 +334,7 @@ TEST_CASE("DQN sets epsilon after every env step from the progress so far", "[al
   REQUIRE(seen.size() == 20);
   // The hook of step k runs before that step's _on_step: epsilon is from progress (k-1) * 2 / 40.
   const LinearDecay schedule{0.8, 0.2, 0.5};
-  for (int k = 2; k <= 20; ++k)
-    CHECK(seen[k - 1] == Approx(schedule(1.0 - (k - 1) * 2.0 / 40.0)));
+  for (int k = 2; k <= 20; ++k) CHECK(seen[k - 1] == Approx(schedule(1.0 - (k - 1) * 2.0 / 40.0)));
   CHECK(seen[5] == Approx(0.8 - 0.6 * (10.0 / 40.0) / 0.5));
   CHECK(dqn.exploration_rate() == Approx(0.2));
 }
@@ -456,7 +456,7 @@ TEST_CASE("DQN predict: greedy when deterministic, epsilon-greedy otherwise", "[
   cfg.policy.net_arch = {};
   DQN dqn(cfg, discrete_setup(2, 3));
   dqn.q_net().weight(0) << 1, 0,  //
-      0, 1,                        //
+      0, 1,                       //
       -1, -1;
   dqn.q_net().bias(0).setZero();
   Eigen::MatrixXf obs(2, 3);
@@ -477,9 +477,9 @@ TEST_CASE("DQN saves SB3-named q_net and q_net_target tensors and loads them bac
   DQN a(cfg, discrete_setup(4, 2, 1, 1));
   TensorMap t;
   a.save(t);
-  for (const char* name : {"q_net.0.weight", "q_net.0.bias", "q_net.2.weight", "q_net.4.weight",
-                           "q_net.4.bias", "q_net_target.0.weight", "q_net_target.4.bias",
-                           "exploration_rate"})
+  for (const char* name :
+       {"q_net.0.weight", "q_net.0.bias", "q_net.2.weight", "q_net.4.weight", "q_net.4.bias",
+        "q_net_target.0.weight", "q_net_target.4.bias", "exploration_rate"})
     CHECK(t.count(name) == 1);
   CHECK(t.at("q_net.0.weight").shape == std::vector<int64_t>{16, 4});
   CHECK(t.at("q_net.4.weight").shape == std::vector<int64_t>{2, 8});
@@ -500,8 +500,9 @@ TEST_CASE("DQN saves SB3-named q_net and q_net_target tensors and loads them bac
 
 TEST_CASE("DQN rejects unsupported spaces and bad settings with a message", "[algos][dqn]") {
   const DQN::Config ok;
-  CHECK_THROWS_AS(DQN(ok, AlgorithmSetup{Space::box(-1.0f, 1.0f, {3}), Space::box(-1.0f, 1.0f, {1}), 1, 0}),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(
+      DQN(ok, AlgorithmSetup{Space::box(-1.0f, 1.0f, {3}), Space::box(-1.0f, 1.0f, {1}), 1, 0}),
+      std::invalid_argument);
   CHECK_THROWS_AS(DQN(ok, AlgorithmSetup{Space::discrete(3), Space::discrete(2), 1, 0}),
                   std::invalid_argument);
   const auto rejects = [](auto change) {
@@ -528,8 +529,8 @@ TEST_CASE("DQN rejects unsupported spaces and bad settings with a message", "[al
 namespace {
 Experiment cartpole_experiment(const std::string& out_dir, int64_t steps, uint64_t seed) {
   const std::string yaml = "run: {name: dqn_smoke, seed: " + std::to_string(seed) +
-                           ", total_timesteps: " + std::to_string(steps) + ", out_dir: " +
-                           out_dir + ", console_interval: 1000}\n"
+                           ", total_timesteps: " + std::to_string(steps) + ", out_dir: " + out_dir +
+                           ", console_interval: 1000}\n"
                            "env: {id: CartPole-v1, n_envs: 2}\n"
                            "algo: {id: DQN, learning_starts: 100, batch_size: 16, "
                            "train_freq: 8, gradient_steps: 2, target_update_interval: 50, "
@@ -538,12 +539,14 @@ Experiment cartpole_experiment(const std::string& out_dir, int64_t steps, uint64
 }
 }  // namespace
 
-TEST_CASE("DQN trains a few hundred steps on CartPole-v1 through the registry, "
-          "deterministically", "[algos][dqn]") {
+TEST_CASE(
+    "DQN trains a few hundred steps on CartPole-v1 through the registry, "
+    "deterministically",
+    "[algos][dqn]") {
   testing::TempDir dir("dqn_smoke");
   const auto run = [&](uint64_t seed) {
-    const TrainOutcome outcome = train_experiment(cartpole_experiment(dir.str(), 600, seed),
-                                                  builtin_registry());
+    const TrainOutcome outcome =
+        train_experiment(cartpole_experiment(dir.str(), 600, seed), builtin_registry());
     CHECK(outcome.timesteps == 608);  // whole train_freq rounds of 8 steps x 2 envs, as SB3
     return read_model(outcome.model_path);
   };
@@ -581,15 +584,18 @@ TEST_CASE("DQN update micro-benchmark (rl-zoo CartPole sizes)", "[.bench][dqn_be
     for (int rep = 0; rep < 3; ++rep) {
       const auto t0 = std::chrono::steady_clock::now();
       for (int i = 0; i < iters; ++i) updater.step(b, 0.99f, 10.0f, 1e-6f);
-      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / iters);
+      best = std::min(
+          best,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / iters);
     }
     double fwd = 0.0;
     for (int l = 0; l < q.num_layers(); ++l) fwd += 2.0 * q.layer_in(l) * q.layer_out(l) * 64;
     const double flops = 4.0 * fwd;
-    std::printf("DQN gradient step (4-256-256-2, batch 64, %d thread%s): %.1f us, %.1f MFLOP, "
-                "%.1f GFLOP/s; 24.5k steps: %.1f s\n",
-                n_threads, n_threads > 1 ? "s" : "", best * 1e6, flops * 1e-6,
-                flops / best * 1e-9, best * 24.5e3);
+    std::printf(
+        "DQN gradient step (4-256-256-2, batch 64, %d thread%s): %.1f us, %.1f MFLOP, "
+        "%.1f GFLOP/s; 24.5k steps: %.1f s\n",
+        n_threads, n_threads > 1 ? "s" : "", best * 1e6, flops * 1e-6, flops / best * 1e-9,
+        best * 24.5e3);
     CHECK(q.params().allFinite());
   }
 }
@@ -623,7 +629,8 @@ TEST_CASE("DQN learns CartPole-v1 (rl-zoo settings, 5e4 steps) in 2 of 3 seeds",
 TEST_CASE("DQN learns MountainCar-v0 (rl-zoo settings, 1.2e5 steps) in 2 of 3 seeds",
           "[.slow][algos][dqn_slow]") {
   int passed = 0;
-  for (uint64_t seed : {0, 1, 2}) passed += train_and_evaluate("mountaincar_dqn.yaml", seed) >= -110.0;
+  for (uint64_t seed : {0, 1, 2})
+    passed += train_and_evaluate("mountaincar_dqn.yaml", seed) >= -110.0;
   CHECK(passed >= 2);
 }
 

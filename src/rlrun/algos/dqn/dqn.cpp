@@ -65,7 +65,9 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
       state_{ReplayBuffer(config.off_policy.buffer_size, setup.n_envs,
                           setup.observation_space.flat_dim(), /*act_dim=*/1,
                           config.off_policy.handle_timeout_termination),
-             {}, 0, 1.0} {
+             {},
+             0,
+             1.0} {
   const int obs_dim = setup.observation_space.flat_dim();
   const int batch = config_.off_policy.batch_size;
   batch_.obs.resize(obs_dim, batch);
@@ -114,7 +116,8 @@ void DQN::on_step(Logger* logger) {
   ++n_calls_;
   const int64_t period = std::max<int64_t>(config_.target_update_interval / setup_.n_envs, 1);
   if (n_calls_ % period == 0) {
-    polyak_update(q_net_.params(), q_net_target_.params(), static_cast<float>(config_.off_policy.tau));
+    polyak_update(q_net_.params(), q_net_target_.params(),
+                  static_cast<float>(config_.off_policy.tau));
     updater_.invalidate_target();
   }
   exploration_rate_ = exploration_schedule_(state_.progress_remaining);

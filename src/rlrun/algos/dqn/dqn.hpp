@@ -55,7 +55,8 @@ class DQN : public Algorithm {
         "env steps between target network updates");
       v("exploration_fraction", exploration_fraction,
         "fraction of training over which epsilon decays");
-      v("exploration_initial_eps", exploration_initial_eps, "initial epsilon (random action probability)");
+      v("exploration_initial_eps", exploration_initial_eps,
+        "initial epsilon (random action probability)");
       v("exploration_final_eps", exploration_final_eps, "final epsilon");
       v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
       v("policy", policy, "Q-network: net_arch, activation_fn");

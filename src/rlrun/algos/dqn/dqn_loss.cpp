@@ -38,8 +38,8 @@ double dqn_huber_loss(const Eigen::Ref<const Eigen::MatrixXf>& q,
     // th.gather(q, dim=1, index=actions.long()): the float action truncates to its index.
     const auto a = static_cast<Eigen::Index>(actions(0, j));
     if (a < 0 || a >= n_actions)
-      throw std::out_of_range("dqn_huber_loss: action " + std::to_string(a) +
-                              " outside [0, " + std::to_string(n_actions) + ")");
+      throw std::out_of_range("dqn_huber_loss: action " + std::to_string(a) + " outside [0, " +
+                              std::to_string(n_actions) + ")");
     const float diff = q(a, j) - targets(j);
     const float abs_diff = std::abs(diff);
     // torch smooth_l1_loss, beta = 1: 0.5 d^2 where |d| < 1, else |d| - 0.5; its derivative is d

@@ -148,8 +148,8 @@ void QUpdater::run_part(Phase phase, int k) {
       dqn_td_targets(next_q, batch_->rewards.segment(c0, cols), batch_->dones.segment(c0, cols),
                      gamma_, targets_.segment(c0, cols));
       const Eigen::MatrixXf& q = part.q->forward(batch_->obs.middleCols(c0, cols));
-      part.loss = dqn_huber_loss(q, batch_->actions.middleCols(c0, cols), targets_.segment(c0, cols),
-                                 grad_q_.middleCols(c0, cols), batch);
+      part.loss = dqn_huber_loss(q, batch_->actions.middleCols(c0, cols),
+                                 targets_.segment(c0, cols), grad_q_.middleCols(c0, cols), batch);
       part.q->backward(grad_q_.middleCols(c0, cols));
       return;
     }
@@ -191,7 +191,8 @@ double QUpdater::loss_and_grad(const ReplayBatch& batch, float gamma) {
   sync_replicas();
   const Eigen::Index size = batch.obs.cols();
   if (targets_.size() != size) targets_.resize(size);
-  if (grad_q_.rows() != q_net_.out_dim() || grad_q_.cols() != size) grad_q_.resize(q_net_.out_dim(), size);
+  if (grad_q_.rows() != q_net_.out_dim() || grad_q_.cols() != size)
+    grad_q_.resize(q_net_.out_dim(), size);
   batch_ = &batch;
   gamma_ = gamma;
   run_all(Phase::kLoss);

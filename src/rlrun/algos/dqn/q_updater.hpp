@@ -55,7 +55,7 @@ class QUpdater {
   enum class Phase { kLoss, kReduce, kApply, kStop };
   // What one thread owns.
   struct Part {
-    Mlp* q = nullptr;       // thread 0: the real networks; others: their own replicas
+    Mlp* q = nullptr;  // thread 0: the real networks; others: their own replicas
     Mlp* target = nullptr;
     Mlp q_copy, target_copy;
     Eigen::Index param_begin = 0, param_count = 0;  // this thread's share of the parameters
