@@ -9,9 +9,9 @@
 // one critic, as SB3's DDPG is a TD3 subclass with those settings.
 //
 // One gradient step (train_on_batch) reads top to bottom like TD3.train's loop body. A
-// training-sized minibatch is split over two Td3Lane replicas that run on the two cores (see
-// td3_lane.hpp); the split depends on the batch size only, so results do not depend on whether
-// the second core is available (RLRUN_THREADS=1).
+// training-sized minibatch is split over two Td3Lane replicas (see td3_lane.hpp) that run on
+// both cores when ForkJoin's worker is on (RLRUN_THREADS=2), one after the other otherwise. The
+// split depends on the batch size only, so a run is bit-identical either way.
 #include <optional>
 #include <string>
 #include <vector>
