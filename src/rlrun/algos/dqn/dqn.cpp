@@ -42,7 +42,6 @@ const DQN::Config& checked(const DQN::Config& c, const AlgorithmSetup& setup) {
   require(c.exploration_final_eps >= 0.0 && c.exploration_final_eps <= 1.0,
           "exploration_final_eps must be in [0, 1]");
   require(c.max_grad_norm > 0.0, "max_grad_norm must be > 0");
-  require(c.n_threads >= 1 && c.n_threads <= 64, "n_threads must be in [1, 64]");
   return c;
 }
 }  // namespace
@@ -59,7 +58,7 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
                             static_cast<int>(setup.action_space.n()), config.policy, init_rng_)),
       q_net_target_(q_net_),
       act_net_(q_net_),
-      updater_(q_net_, q_net_target_, config.n_threads),
+      updater_(q_net_, q_net_target_),
       exploration_schedule_{config.exploration_initial_eps, config.exploration_final_eps,
                             config.exploration_fraction},
       state_{ReplayBuffer(config.off_policy.buffer_size, setup.n_envs,

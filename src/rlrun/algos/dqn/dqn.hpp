@@ -45,7 +45,6 @@ class DQN : public Algorithm {
     double exploration_final_eps = 0.05;
     double max_grad_norm = 10.0;
     QNetworkConfig policy;
-    int n_threads = 1;
 
     template <class V>
     void visit(V& v) {
@@ -60,8 +59,6 @@ class DQN : public Algorithm {
       v("exploration_final_eps", exploration_final_eps, "final epsilon");
       v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
       v("policy", policy, "Q-network: net_arch, activation_fn");
-      v("n_threads", n_threads,
-        "threads for the gradient updates (rlrun addition; bit-exact for a given count)");
     }
   };
 
@@ -93,8 +90,8 @@ class DQN : public Algorithm {
   // The TD targets of the last loss_and_grad.
   const Eigen::RowVectorXf& td_targets() const { return updater_.td_targets(); }
 
-  // Writable access (tests, tools) may change the weights: the acting copy and the update
-  // threads' replicas are refreshed before their next use.
+  // Writable access (tests, tools) may change the weights: the acting copy and the updater's
+  // replicas are refreshed before their next use.
   Mlp& q_net() {
     act_net_stale_ = true;
     updater_.invalidate_q_net();
@@ -128,7 +125,7 @@ class DQN : public Algorithm {
   Mlp act_net_;
   bool act_net_stale_ = false;
   // Loss, backward, clipping and Adam (SB3 2.x DQNPolicy: Adam over q_net's parameters only,
-  // torch defaults, eps 1e-8), on config.n_threads threads.
+  // torch defaults, eps 1e-8), in two lanes that use the second core with RLRUN_THREADS=2.
   QUpdater updater_;
   LinearDecay exploration_schedule_;
   OffPolicyState state_;

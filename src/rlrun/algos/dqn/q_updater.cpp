@@ -2,41 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
-#include <stdexcept>
 
 #include "rlrun/algos/dqn/dqn_loss.hpp"
 
 namespace rlrun {
 
 namespace {
-
-// Spins before a thread blocks in the kernel: the waits between the phases of one step are a
-// few microseconds, far below a futex round trip; the waits between train() calls are long.
-constexpr int kSpins = 2000;
-
-inline void cpu_relax() {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_ia32_pause();
-#endif
-}
-
-template <class T>
-void wait_while_equal(const std::atomic<T>& a, T value) {
-  for (int i = 0; i < kSpins; ++i) {
-    if (a.load(std::memory_order_acquire) != value) return;
-    cpu_relax();
-  }
-  while (a.load(std::memory_order_acquire) == value) a.wait(value, std::memory_order_acquire);
-}
-
-void wait_until_zero(const std::atomic<int>& a) {
-  for (int i = 0; i < kSpins; ++i) {
-    if (a.load(std::memory_order_acquire) == 0) return;
-    cpu_relax();
-  }
-  for (int v; (v = a.load(std::memory_order_acquire)) != 0;) a.wait(v, std::memory_order_acquire);
-}
 
 // Sum of squares in float chunks (vectorised) accumulated in double: the clipping coefficient
 // needs no more (torch itself reduces in float32).
@@ -48,142 +19,77 @@ double sum_of_squares(const float* g, Eigen::Index n) {
   return sum;
 }
 
-// Thread k's share [begin, end) of n items in `parts` pieces; starts aligned to `align`.
-Eigen::Index share_begin(Eigen::Index n, int parts, int k, Eigen::Index align) {
-  if (k == 0) return 0;
-  if (k == parts) return n;
-  return (n * k / parts) / align * align;
-}
-
 }  // namespace
 
-QUpdater::QUpdater(Mlp& q_net, Mlp& q_net_target, int n_threads, AdamConfig adam)
-    : q_net_(q_net), q_net_target_(q_net_target) {
-  if (n_threads < 1) throw std::invalid_argument("QUpdater: n_threads must be >= 1");
+QUpdater::QUpdater(Mlp& q_net, Mlp& q_net_target, ForkJoin& fork_join, AdamConfig adam)
+    : q_net_(q_net),
+      q_net_target_(q_net_target),
+      fork_join_(fork_join),
+      q_replica_(q_net),
+      target_replica_(q_net_target) {
+  lanes_[0].q = &q_net_;
+  lanes_[0].target = &q_net_target_;
+  lanes_[1].q = &q_replica_;
+  lanes_[1].target = &target_replica_;
+  // Halves start on a 64-byte line (16 floats), so the lanes never write the same cache line.
   const Eigen::Index n_params = q_net.num_params();
-  for (int k = 0; k < n_threads; ++k) {
-    auto part = std::make_unique<Part>();
-    if (k == 0) {
-      part->q = &q_net_;
-      part->target = &q_net_target_;
-    } else {
-      part->q_copy = q_net_;
-      part->target_copy = q_net_target_;
-      part->q = &part->q_copy;
-      part->target = &part->target_copy;
-    }
-    // 16 floats = one 64-byte cache line, so that no two threads write the same line.
-    part->param_begin = share_begin(n_params, n_threads, k, 16);
-    part->param_count = share_begin(n_params, n_threads, k + 1, 16) - part->param_begin;
-    part->adam = Adam({ParamBlock{q_net_.params().data() + part->param_begin,
-                                  q_net_.grads().data() + part->param_begin, part->param_count}},
-                      adam);
-    parts_.push_back(std::move(part));
-  }
-  errors_.resize(n_threads);
-  for (int k = 1; k < n_threads; ++k) workers_.emplace_back([this, k] { worker_loop(k); });
+  const Eigen::Index split = n_params / 2 / 16 * 16;
+  lanes_[0].param_count = split;
+  lanes_[1].param_begin = split;
+  lanes_[1].param_count = n_params - split;
+  for (Lane& lane : lanes_)
+    lane.adam = Adam({ParamBlock{q_net_.params().data() + lane.param_begin,
+                                 q_net_.grads().data() + lane.param_begin, lane.param_count}},
+                     adam);
 }
 
-QUpdater::~QUpdater() {
-  if (workers_.empty()) return;
-  phase_ = Phase::kStop;
-  generation_.fetch_add(1, std::memory_order_release);
-  generation_.notify_all();
-  for (std::thread& t : workers_) t.join();
-}
-
-void QUpdater::worker_loop(int k) {
-  uint32_t seen = 0;
-  for (;;) {
-    wait_while_equal(generation_, seen);
-    seen = generation_.load(std::memory_order_acquire);
-    const Phase phase = phase_;
-    if (phase == Phase::kStop) return;
-    try {
-      run_part(phase, k);
-    } catch (...) {
-      errors_[k] = std::current_exception();
-    }
-    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
-  }
-}
-
-void QUpdater::run_all(Phase phase) {
-  if (workers_.empty()) {
-    run_part(phase, 0);
+template <class F>
+void QUpdater::run_lanes(int lanes, F&& fn) {
+  if (lanes == 1) {
+    fn(0);
     return;
   }
-  phase_ = phase;
-  pending_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);
-  generation_.fetch_add(1, std::memory_order_release);
-  generation_.notify_all();
-  std::exception_ptr own;
-  try {
-    run_part(phase, 0);
-  } catch (...) {
-    own = std::current_exception();
-  }
-  wait_until_zero(pending_);
-  if (own) std::rethrow_exception(own);
-  for (std::exception_ptr& e : errors_) {
-    if (!e) continue;
-    std::exception_ptr error = e;
-    e = nullptr;
-    std::rethrow_exception(error);
-  }
+  fork_join_.run([&] { fn(0); }, [&] { fn(1); });
 }
 
-void QUpdater::run_part(Phase phase, int k) {
-  Part& part = *parts_[k];
-  const int n = n_threads();
-  switch (phase) {
-    case Phase::kLoss: {
-      const Eigen::Index batch = batch_->obs.cols();
-      const Eigen::Index c0 = share_begin(batch, n, k, 1);
-      const Eigen::Index cols = share_begin(batch, n, k + 1, 1) - c0;
-      part.q->zero_grad();
-      part.loss = 0.0;
-      if (cols == 0) return;  // fewer samples than threads
-      const Eigen::MatrixXf& next_q = part.target->forward(batch_->next_obs.middleCols(c0, cols));
-      dqn_td_targets(next_q, batch_->rewards.segment(c0, cols), batch_->dones.segment(c0, cols),
-                     gamma_, targets_.segment(c0, cols));
-      const Eigen::MatrixXf& q = part.q->forward(batch_->obs.middleCols(c0, cols));
-      part.loss = dqn_huber_loss(q, batch_->actions.middleCols(c0, cols),
-                                 targets_.segment(c0, cols), grad_q_.middleCols(c0, cols), batch);
-      part.q->backward(grad_q_.middleCols(c0, cols));
-      return;
-    }
-    case Phase::kReduce: {
-      float* g = q_net_.grads().data() + part.param_begin;
-      Eigen::Map<Eigen::VectorXf> total(g, part.param_count);
-      for (int j = 1; j < n; ++j)
-        total += Eigen::Map<const Eigen::VectorXf>(parts_[j]->q->grads().data() + part.param_begin,
-                                                   part.param_count);
-      part.sum_sq = sum_of_squares(g, part.param_count);
-      return;
-    }
-    case Phase::kApply: {
-      if (clip_)
-        Eigen::Map<Eigen::VectorXf>(q_net_.grads().data() + part.param_begin, part.param_count) *=
-            clip_coef_;
-      part.adam.step(lr_);
-      const Eigen::Map<const Eigen::VectorXf> fresh(q_net_.params().data() + part.param_begin,
-                                                    part.param_count);
-      for (int j = 1; j < n; ++j)
-        Eigen::Map<Eigen::VectorXf>(parts_[j]->q->params().data() + part.param_begin,
-                                    part.param_count) = fresh;
-      return;
-    }
-    case Phase::kStop:
-      return;
-  }
+void QUpdater::lane_loss(int k, int lanes) {
+  Lane& lane = lanes_[k];
+  const Eigen::Index batch = batch_->obs.cols();
+  const Eigen::Index c0 = k == 0 ? 0 : batch / 2;
+  const Eigen::Index cols = lanes == 1 ? batch : (k == 0 ? batch / 2 : batch - batch / 2);
+  const Eigen::MatrixXf& next_q = lane.target->forward(batch_->next_obs.middleCols(c0, cols));
+  dqn_td_targets(next_q, batch_->rewards.segment(c0, cols), batch_->dones.segment(c0, cols), gamma_,
+                 targets_.segment(c0, cols));
+  const Eigen::MatrixXf& q = lane.q->forward(batch_->obs.middleCols(c0, cols));
+  lane.loss = dqn_huber_loss(q, batch_->actions.middleCols(c0, cols), targets_.segment(c0, cols),
+                             grad_q_.middleCols(c0, cols), batch);
+  lane.q->zero_grad();
+  lane.q->backward(grad_q_.middleCols(c0, cols));
+}
+
+void QUpdater::lane_reduce(int k, int lanes) {
+  Lane& lane = lanes_[k];
+  Eigen::Map<Eigen::VectorXf> total(q_net_.grads().data() + lane.param_begin, lane.param_count);
+  if (lanes == 2)
+    total += Eigen::Map<const Eigen::VectorXf>(q_replica_.grads().data() + lane.param_begin,
+                                               lane.param_count);
+  lane.sum_sq = sum_of_squares(total.data(), lane.param_count);
+}
+
+void QUpdater::lane_apply(int k) {
+  Lane& lane = lanes_[k];
+  if (clip_)
+    Eigen::Map<Eigen::VectorXf>(q_net_.grads().data() + lane.param_begin, lane.param_count) *=
+        clip_coef_;
+  lane.adam.step(lr_);
+  Eigen::Map<Eigen::VectorXf>(q_replica_.params().data() + lane.param_begin, lane.param_count) =
+      Eigen::Map<const Eigen::VectorXf>(q_net_.params().data() + lane.param_begin,
+                                        lane.param_count);
 }
 
 void QUpdater::sync_replicas() {
-  for (int k = 1; k < n_threads(); ++k) {
-    if (q_stale_) parts_[k]->q->params() = q_net_.params();
-    if (target_stale_) parts_[k]->target->params() = q_net_target_.params();
-  }
+  if (q_stale_) q_replica_.params() = q_net_.params();
+  if (target_stale_) target_replica_.params() = q_net_target_.params();
   q_stale_ = target_stale_ = false;
 }
 
@@ -195,25 +101,23 @@ double QUpdater::loss_and_grad(const ReplayBatch& batch, float gamma) {
     grad_q_.resize(q_net_.out_dim(), size);
   batch_ = &batch;
   gamma_ = gamma;
-  run_all(Phase::kLoss);
-  run_all(Phase::kReduce);
+  batch_lanes_ = size >= kMinSplitBatch ? 2 : 1;
+  run_lanes(batch_lanes_, [this](int k) { lane_loss(k, batch_lanes_); });
+  // Both halves of the parameter vector, whatever the batch used.
+  run_lanes(2, [this](int k) { lane_reduce(k, batch_lanes_); });
   batch_ = nullptr;
-  double loss = 0.0;
-  for (const auto& part : parts_) loss += part->loss;
-  return loss;
+  return batch_lanes_ == 2 ? lanes_[0].loss + lanes_[1].loss : lanes_[0].loss;
 }
 
 double QUpdater::step(const ReplayBatch& batch, float gamma, float max_grad_norm, float lr) {
   const double loss = loss_and_grad(batch, gamma);
   // th.nn.utils.clip_grad_norm_: total = ||g||_2 over all parameters, coef = max_norm /
   // (total + 1e-6), applied when below 1 (a NaN norm propagates, as torch's default does).
-  double sum_sq = 0.0;
-  for (const auto& part : parts_) sum_sq += part->sum_sq;
-  last_grad_norm_ = static_cast<float>(std::sqrt(sum_sq));
+  last_grad_norm_ = static_cast<float>(std::sqrt(lanes_[0].sum_sq + lanes_[1].sum_sq));
   clip_coef_ = max_grad_norm / (last_grad_norm_ + 1e-6f);
   clip_ = clip_coef_ < 1.0f || std::isnan(clip_coef_);
   lr_ = lr;
-  run_all(Phase::kApply);
+  run_lanes(2, [this](int k) { lane_apply(k); });
   return loss;
 }
 
