@@ -3,8 +3,9 @@
 # same machine kind (../shared/reference/anchors.md, quiet-machine medians).
 #   scripts/bench.sh [--update-docs] [CONFIG...]    (default: every configs/*.yaml)
 #   SEEDS="1 2 3" JOBS=1 scripts/bench.sh ...
-# Each training runs single-threaded; JOBS=2 runs two trainings at once (one per core: faster
-# to collect, slightly slower per run). --update-docs replaces the table between the
+# JOBS=1 (default) runs one training at a time on both cores (rlrun's default --threads 2);
+# JOBS=2 runs two trainings at once with --threads 1 each (faster to collect, slower per run).
+# THREADS=1|2 forces the per-run thread count. --update-docs replaces the table between the
 # `bench:begin` / `bench:end` markers in docs/benchmarks.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,7 @@ configs=("$@")
 ((${#configs[@]})) || configs=(configs/*.yaml)
 seeds=${SEEDS:-"1 2 3"}
 jobs=${JOBS:-1}
+threads=${THREADS:-$(( jobs > 1 ? 1 : 2 ))}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
@@ -31,7 +33,7 @@ run_one() {
   local config=$1 seed=$2 name
   name=$(basename "$config" .yaml)
   local log summary model
-  log=$(build/rlrun train "$config" --seed "$seed" --set run.out_dir="$out/runs" \
+  log=$(build/rlrun --threads "$threads" train "$config" --seed "$seed" --set run.out_dir="$out/runs" \
         --set run.name="$name" --set run.console_interval=1e9)
   summary=$(grep -E "^trained [0-9]+ steps in" <<<"$log" | tail -1)
   model=$(sed -E 's/.*model saved to (.*)$/\1/' <<<"$summary")
@@ -42,7 +44,7 @@ $(sed -E 's/.*mean_reward = ([-0-9.]+) \+\/- ([0-9.]+).*/\1 \2/' <<<"$eval_line"
   cp "$(dirname "$model")/config.yaml" "$out/$name.config.yaml"
 }
 export -f run_one
-export out
+export out threads
 
 for config in "${configs[@]}"; do for seed in $seeds; do echo "$config $seed"; done; done |
   xargs -P "$jobs" -n 2 bash -c 'run_one "$0" "$1"'
@@ -64,7 +66,7 @@ for config in "${configs[@]}"; do
   [[ -n "$sb3" ]] && speedup=$(awk -v a="$sb3" -v b="$wall" 'BEGIN {printf "%.1fx", a / b}')
   table+=$'\n'"| $algo | $env | $steps | $wall | $rate | $evals | ${sb3:-—} | ${speedup:-—} |"
 done
-machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, $(date -u +%Y-%m-%d)"
+machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, threads=$threads, $(date -u +%Y-%m-%d)"
 echo "$table"
 echo
 echo "machine: $machine"

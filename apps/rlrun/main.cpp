@@ -4,12 +4,19 @@
 
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/fork_join.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"rlrun " RLRUN_VERSION
                ": Stable-Baselines3-style reinforcement learning from YAML experiment files"};
   app.require_subcommand(1);
   app.set_version_flag("--version", RLRUN_VERSION);
+  // A global option, accepted before or after the subcommand (fallthrough).
+  int threads = 0;
+  app.add_option("--threads", threads,
+                 "cores per run, 1 or 2 (default: RLRUN_THREADS, else 2 when two CPUs are "
+                 "available; use 1 when several runs share the cores). Results are identical.");
+  app.fallthrough();
   rlrun::cli::Action train = rlrun::cli::add_train(app);
   rlrun::cli::Action eval = rlrun::cli::add_eval(app);
   rlrun::cli::Action list = rlrun::cli::add_list(app);
@@ -20,6 +27,7 @@ int main(int argc, char** argv) {
     return code == 0 ? rlrun::kExitOk : rlrun::kExitUsage;
   }
   try {
+    rlrun::ForkJoin::configure_shared(threads != 0 ? threads : rlrun::ForkJoin::default_threads());
     if (app.got_subcommand("train")) return train();
     if (app.got_subcommand("eval")) return eval();
     if (app.got_subcommand("list")) return list();

@@ -1,7 +1,10 @@
 #include <catch2/catch.hpp>
+#include <cstdlib>
+#include <string>
 #include <stdexcept>
 #include <thread>
 
+#include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
 
 using namespace rlrun;
@@ -24,4 +27,24 @@ TEST_CASE("ForkJoin runs both parts, on two threads when enabled, and rethrows",
     pool.run([&] { ++a; }, [&] { ++b; });
     CHECK(a + b == 4002);
   }
+}
+
+TEST_CASE("The thread count comes from RLRUN_THREADS, else from the CPUs available",
+          "[core][fork_join]") {
+  const char* saved = std::getenv("RLRUN_THREADS");
+  const std::string saved_value = saved ? saved : "";
+  setenv("RLRUN_THREADS", "1", 1);
+  CHECK(ForkJoin::default_threads() == 1);
+  setenv("RLRUN_THREADS", "2", 1);
+  CHECK(ForkJoin::default_threads() == 2);
+  for (const char* bad : {"3", "0", "two", "2x"}) {
+    setenv("RLRUN_THREADS", bad, 1);
+    CHECK_THROWS_AS(ForkJoin::default_threads(), UsageError);
+  }
+  unsetenv("RLRUN_THREADS");
+  const int n = ForkJoin::default_threads();
+  CHECK((n == 1 || n == 2));
+  if (std::thread::hardware_concurrency() == 1) CHECK(n == 1);
+  CHECK_THROWS_AS(ForkJoin::configure_shared(4), UsageError);
+  if (saved) setenv("RLRUN_THREADS", saved_value.c_str(), 1);
 }

@@ -1,7 +1,12 @@
 #include "rlrun/core/fork_join.hpp"
 
+#include <sched.h>
+
 #include <cstdlib>
-#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "rlrun/core/errors.hpp"
 
 namespace rlrun {
 
@@ -33,12 +38,51 @@ ForkJoin::~ForkJoin() {
   worker_.join();
 }
 
+namespace {
+// 0 = not configured yet; set by configure_shared before the first shared().
+int g_shared_threads = 0;
+bool g_shared_created = false;
+
+int checked_thread_count(int threads, const std::string& source) {
+  if (threads != 1 && threads != 2)
+    throw UsageError(source + " must be 1 or 2 (a run uses at most two cores), got " +
+                     std::to_string(threads));
+  return threads;
+}
+}  // namespace
+
+int ForkJoin::default_threads() {
+  if (const char* env = std::getenv("RLRUN_THREADS"); env && *env) {
+    char* end = nullptr;
+    const long value = std::strtol(env, &end, 10);
+    if (*end != '\0') throw UsageError(std::string("RLRUN_THREADS must be 1 or 2, got '") + env + "'");
+    return checked_thread_count(static_cast<int>(value), "RLRUN_THREADS");
+  }
+  // On by default: on a quiet 2-core machine the second core makes PPO 1.6x and DQN/TD3 ~1.8x
+  // faster (docs/benchmarks.md). Runs sharing the cores (parallel sweeps) should pass
+  // --threads 1: a descheduled worker makes every hand-off wait for a scheduler tick.
+  cpu_set_t cpus;
+  if (sched_getaffinity(0, sizeof(cpus), &cpus) == 0) return CPU_COUNT(&cpus) >= 2 ? 2 : 1;
+  return std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+}
+
+void ForkJoin::configure_shared(int threads) {
+  checked_thread_count(threads, "--threads");
+  if (g_shared_created) throw std::logic_error("ForkJoin::configure_shared after first use");
+  g_shared_threads = threads;
+}
+
 ForkJoin& ForkJoin::shared() {
-  // Opt-in (RLRUN_THREADS=2): on a loaded machine a descheduled worker makes every hand-off
-  // wait a scheduler tick, which costs far more than the halved work (docs/benchmarks.md).
   static ForkJoin instance([] {
-    const char* threads = std::getenv("RLRUN_THREADS");
-    return threads && std::strcmp(threads, "2") == 0;
+    g_shared_created = true;
+    if (g_shared_threads == 0) {
+      try {
+        g_shared_threads = default_threads();
+      } catch (const UsageError&) {
+        g_shared_threads = 1;  // main() reports a bad RLRUN_THREADS before training starts
+      }
+    }
+    return g_shared_threads == 2;
   }());
   return instance;
 }

@@ -26,8 +26,18 @@ class ForkJoin {
 
   bool enabled() const { return worker_.joinable(); }
 
-  // The process-wide instance; the worker runs only with RLRUN_THREADS=2 in the environment.
+  // The process-wide instance used by the algorithms. Its worker runs when the thread count
+  // (see configure_shared) is 2.
   static ForkJoin& shared();
+
+  // Sets the shared instance's thread count, 1 or 2, before its first use (main() calls this
+  // from --threads / RLRUN_THREADS). Throws UsageError for other counts and std::logic_error
+  // once shared() has been created.
+  static void configure_shared(int threads);
+
+  // The default thread count: RLRUN_THREADS when set (must be 1 or 2, else UsageError), else
+  // 2 when this process may run on at least two CPUs (sched_getaffinity), else 1.
+  static int default_threads();
 
  private:
   enum State : int { kIdle, kWork, kDone, kStop };
