@@ -17,7 +17,7 @@ PACKAGES=(
   libzip-dev zip unzip                      # model files are zips
   libbullet-dev                             # 3D grasp task
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
-  libcairo2-dev ffmpeg                      # rendering and video
+  libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video
   python3-numpy python3-pandas              # tests: read our files with the tools SB3 users use
 )
 

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
 
@@ -51,7 +52,10 @@ Action add_list(CLI::App& app) {
   auto id = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand("list", "list registered environments, wrappers and algorithms");
   sub->add_option("id", *id, "show the parameters of one component, e.g. `rlrun list PPO`");
-  return [id]() {
+  auto plugins = std::make_shared<std::vector<std::string>>();
+  add_plugin_option(sub, *plugins);
+  return [id, plugins]() {
+    load_plugin_options(*plugins);
     const Registry& r = builtin_registry();
     if (id->empty()) {
       print_table("environments", r.envs());

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/trainer.hpp"
@@ -14,6 +15,7 @@ Action add_train(CLI::App& app) {
     std::vector<std::string> configs;
     std::vector<std::string> overrides;
     std::optional<uint64_t> seed;
+    std::vector<std::string> plugins;
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("train", "train an agent from one or more experiment files");
@@ -23,7 +25,9 @@ Action add_train(CLI::App& app) {
   sub->add_option("--set", options->overrides,
                   "override a config value, e.g. --set algo.learning_rate=3e-4 (repeatable)");
   sub->add_option("--seed", options->seed, "set run.seed (overrides the files)");
+  add_plugin_option(sub, options->plugins);
   return [options]() {
+    load_plugin_options(options->plugins);
     const Registry& registry = builtin_registry();
     std::vector<std::string> overrides = options->overrides;
     if (options->seed) overrides.push_back("run.seed=" + std::to_string(*options->seed));

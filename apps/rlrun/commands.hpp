@@ -11,5 +11,7 @@ using Action = std::function<int()>;
 Action add_train(CLI::App& app);
 Action add_eval(CLI::App& app);
 Action add_list(CLI::App& app);
+Action add_check_env(CLI::App& app);
+Action add_record(CLI::App& app);
 
 }  // namespace rlrun::cli

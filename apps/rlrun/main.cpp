@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   rlrun::cli::Action train = rlrun::cli::add_train(app);
   rlrun::cli::Action eval = rlrun::cli::add_eval(app);
   rlrun::cli::Action list = rlrun::cli::add_list(app);
+  rlrun::cli::Action check_env = rlrun::cli::add_check_env(app);
+  rlrun::cli::Action record = rlrun::cli::add_record(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -31,6 +33,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("train")) return train();
     if (app.got_subcommand("eval")) return eval();
     if (app.got_subcommand("list")) return list();
+    if (app.got_subcommand("check-env")) return check_env();
+    if (app.got_subcommand("record")) return record();
   } catch (const rlrun::ConfigError& e) {
     std::cerr << "error: " << e.what() << std::endl;
     return rlrun::kExitUsage;

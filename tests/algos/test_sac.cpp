@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <limits>
 #include <vector>
 
@@ -124,7 +125,7 @@ TEST_CASE("SAC soft Bellman target on hand-made numbers", "[algos][sac]") {
   rewards << 1.0f, -0.5f, 2.0f;
   dones << 0.0f, 1.0f, 0.0f;
   next_logp << -1.0f, 0.5f, 0.2f;
-  Eigen::MatrixXf q1(1, 3), q2(1, 3), y;
+  Eigen::MatrixXf q1(1, 3), q2(1, 3), y(1, 3);
   q1 << 3.0f, 1.0f, -2.0f;
   q2 << 2.5f, 4.0f, -1.0f;
   sac_critic_target(rewards, dones, {&q1, &q2}, next_logp, 0.2f, 0.9f, y);
@@ -141,27 +142,36 @@ TEST_CASE("SAC actor loss picks the smaller critic per sample", "[algos][sac]") 
   Eigen::RowVectorXf logp(2), grad_logp;
   logp << -1.0f, 2.0f;
   std::vector<Eigen::MatrixXf> grad_q(2);
-  const double loss = sac_actor_loss({&q1, &q2}, logp, 0.5f, grad_q, grad_logp);
+  const double loss = sac_actor_loss({&q1, &q2}, logp, 0.5f, 0.5f, grad_q, grad_logp);
   CHECK(loss == Approx(((0.5 * -1.0 - 1.0) + (0.5 * 2.0 - 3.0)) / 2));
   CHECK(grad_q[0](0) == Approx(-0.5));
   CHECK(grad_q[0](1) == 0.0f);
   CHECK(grad_q[1](0) == 0.0f);
   CHECK(grad_q[1](1) == Approx(-0.5));
   CHECK(grad_logp(0) == Approx(0.25));
+  // The second sample alone, as one lane's part of that batch of 2: its term of the mean.
+  const Eigen::MatrixXf q1b = q1.rightCols(1), q2b = q2.rightCols(1);
+  const double part = sac_actor_loss({&q1b, &q2b}, logp.tail(1), 0.5f, 0.5f, grad_q, grad_logp);
+  CHECK(part == Approx((0.5 * 2.0 - 3.0) / 2));
+  CHECK(grad_q[1](0) == Approx(-0.5));
+  CHECK(grad_logp.size() == 1);
 }
 
 TEST_CASE(
-    "SAC train step: critic target, critic loss and Polyak update match a double "
+    "SAC train step: critic target, critic loss, actor loss and Polyak update match a double "
     "re-computation",
     "[algos][sac]") {
-  const int obs_dim = 3, act_dim = 2, n = 6;
+  // 6: one lane; 40: the batch is split over two lanes (batch_lanes.hpp).
+  const int n = GENERATE(6, 40);
+  INFO("batch " << n);
+  const int obs_dim = 3, act_dim = 2;
   SAC sac(small_config(), box_setup(obs_dim, act_dim));
   Rng rng(11);
   ReplayBatch b = random_batch(rng, obs_dim, act_dim, n);
   // Parameters before the step.
   const Eigen::VectorXd actor_p = params_of(sac.actor().net());
   std::vector<Eigen::VectorXd> online_p, target_p;
-  for (const SacCritic& c : sac.critics()) {
+  for (const ContinuousCritic& c : sac.critics()) {
     online_p.push_back(params_of(c.q()));
     target_p.push_back(params_of(c.target()));
   }
@@ -191,6 +201,18 @@ TEST_CASE(
     }
   }
   CHECK(stats.critic_loss == Approx(critic_loss).epsilon(1e-4));
+  // Actor loss mean(alpha log pi(a_pi|s) - min_i Q_i(s, a_pi)) with the stepped critics.
+  double actor_loss = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const Eigen::VectorXd o = b.obs.col(j).cast<double>();
+    const auto [a, logp] = actor_sample(sac.actor().net(), actor_p, act_dim, o,
+                                        sac.last_policy_noise().col(j).cast<double>());
+    double min_q = std::numeric_limits<double>::infinity();
+    for (const ContinuousCritic& c : sac.critics())
+      min_q = std::min(min_q, mlp_forward(c.q(), params_of(c.q()), concat(o, a))(0));
+    actor_loss += (alpha * logp - min_q) / n;
+  }
+  CHECK(stats.actor_loss == Approx(actor_loss).epsilon(1e-4).margin(1e-5));
   // target <- (1 - tau) target + tau * online (after the critic step), tau = 0.1.
   for (size_t i = 0; i < target_p.size(); ++i) {
     const Eigen::VectorXd expected = 0.9 * target_p[i] + 0.1 * params_of(sac.critics()[i].q());
@@ -204,10 +226,11 @@ TEST_CASE(
 TEST_CASE("SAC critic loss gradient matches finite differences", "[algos][sac][gradcheck]") {
   Rng rng(5);
   const int obs_dim = 3, act_dim = 2, n = 7;
-  SacCritic critic(obs_dim + act_dim, {8, 8}, Activation::kReLU, rng);
+  ContinuousCritic critic(obs_dim + act_dim, {8, 8}, Activation::kReLU);
+  critic.init(rng);
   const Eigen::MatrixXf x = random_matrix(rng, obs_dim + act_dim, n);
   const Eigen::MatrixXf y = random_matrix(rng, 1, n);
-  const double loss = critic.loss_and_gradient(x, y);
+  const double loss = critic.loss_and_gradient(x, y, 0.5f / n);  // SAC's 0.5 * mse
   const auto loss_of = [&](const Eigen::VectorXd& p) {
     double sum = 0.0;
     for (int j = 0; j < n; ++j) {
@@ -234,22 +257,24 @@ TEST_CASE(
   // difference in double would compare against.)
   const int last = actor.net().num_layers() - 1;
   actor.net().bias(last)(act_dim + 1) = -25.0f;
-  std::vector<SacCritic> critics;
-  for (int i = 0; i < 2; ++i)
-    critics.emplace_back(obs_dim + act_dim, std::vector<int>{8, 8}, Activation::kReLU, rng);
+  std::vector<ContinuousCritic> critics;
+  for (int i = 0; i < 2; ++i) {
+    critics.emplace_back(obs_dim + act_dim, std::vector<int>{8, 8}, Activation::kReLU);
+    critics.back().init(rng);
+  }
   const Eigen::MatrixXf obs = random_matrix(rng, obs_dim, n);
   const Eigen::MatrixXf noise = random_matrix(rng, act_dim, n);
   const float alpha = 0.3f;
 
-  // The same sequence as SAC::train_on_batch's actor phase.
+  // The same sequence as SacLane::actor_pass.
   Eigen::MatrixXf actions(act_dim, n), x(obs_dim + act_dim, n);
   Eigen::RowVectorXf logp(n), grad_logp;
   actor.sample_from_noise(obs, noise, actions, logp);
   x << obs, actions;
-  for (SacCritic& c : critics) c.compute_values(x);
+  for (ContinuousCritic& c : critics) c.compute_values(x);
   std::vector<Eigen::MatrixXf> grad_q(2);
-  const double loss =
-      sac_actor_loss({&critics[0].values(), &critics[1].values()}, logp, alpha, grad_q, grad_logp);
+  const double loss = sac_actor_loss({&critics[0].values(), &critics[1].values()}, logp, alpha,
+                                     1.0f / n, grad_q, grad_logp);
   Eigen::MatrixXf grad_actions = Eigen::MatrixXf::Zero(act_dim, n);
   for (int i = 0; i < 2; ++i) {
     critics[i].compute_action_gradient(grad_q[i], act_dim);
@@ -259,7 +284,10 @@ TEST_CASE(
   actor.backward(grad_actions, grad_logp);
 
   std::vector<Eigen::VectorXd> critic_p;
-  for (const SacCritic& c : critics) critic_p.push_back(params_of(c.q()));
+  for (const ContinuousCritic& c : critics) {
+    critic_p.push_back(params_of(c.q()));
+    CHECK(c.q().grads().isZero(0.0f));  // input gradient only (SB3 discards this part)
+  }
   const auto loss_of = [&](const Eigen::VectorXd& p) {
     double sum = 0.0;
     for (int j = 0; j < n; ++j) {
@@ -457,8 +485,9 @@ TEST_CASE("SAC rejects bad settings with a message", "[algos][sac]") {
 namespace {
 // Network FLOPs of one SAC gradient step as counted in anchors.md (2 in out per layer and
 // sample forward, twice that backward), for what train_on_batch runs: actor forward on s' and
-// s, actor backward; per critic: target forward, forward + backward (critic loss), forward +
-// backward (actor loss, through the critic to the action).
+// s, actor backward (4 forward-equivalents); per critic: target forward, forward + backward
+// (critic loss), forward + input-only backward (actor loss) (6). anchors.md's 10.9 TFLOP for
+// 2e4 steps is this count.
 double sac_step_flops(const SAC& sac, int batch) {
   const auto fwd = [&](const Mlp& m) {
     double f = 0.0;
@@ -466,7 +495,7 @@ double sac_step_flops(const SAC& sac, int batch) {
     return f;
   };
   double flops = 4.0 * fwd(sac.actor().net());
-  for (const SacCritic& c : sac.critics()) flops += 7.0 * fwd(c.q());
+  for (const ContinuousCritic& c : sac.critics()) flops += 6.0 * fwd(c.q());
   return flops;
 }
 }  // namespace
@@ -478,18 +507,25 @@ TEST_CASE("SAC update micro-benchmark (rl-zoo Pendulum sizes)", "[.bench][sac_be
   const ReplayBatch b = random_batch(rng, 3, 1, 256);
   for (int i = 0; i < 50; ++i) sac.train_on_batch(b, 1e-3f, true);
   const int iters = 400;
-  double best = 1e30;
+  double best = 1e30, best_cpu = 1e30;
   for (int rep = 0; rep < 3; ++rep) {
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     for (int i = 0; i < iters; ++i) sac.train_on_batch(b, 1e-3f, true);
+    best_cpu = std::min(best_cpu, static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC / iters);
     best = std::min(
         best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / iters);
   }
   const double flops = sac_step_flops(sac, 256);
+  // Wall time is what a run takes; process CPU time (both threads) is steadier on a shared
+  // machine. Percentages are of one core's 102 GFLOP/s.
   std::printf(
-      "SAC gradient step (3-256-256-2 actor, 2x 4-256-256-1 critics, batch 256): %.3f ms, "
-      "%.1f MFLOP, %.1f GFLOP/s (%.0f%% of 102)\n",
-      best * 1e3, flops * 1e-6, flops / best * 1e-9, flops / best * 1e-9 / 102 * 100);
+      "SAC gradient step (3-256-256-2 actor, 2x 4-256-256-1 critics, batch 256): %.0f us wall, "
+      "%.0f us CPU, %.1f MFLOP, %.1f GFLOP/s wall (%.0f%% of 102), %.1f GFLOP/s per CPU-s "
+      "(%.0f%%)\n",
+      best * 1e6, best_cpu * 1e6, flops * 1e-6, flops / best * 1e-9,
+      flops / best * 1e-9 / 102 * 100, flops / best_cpu * 1e-9,
+      flops / best_cpu * 1e-9 / 102 * 100);
   CHECK(sac.actor().net().params().allFinite());
 }
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <regex>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/algos/td3/td3_target.hpp"
+#include "rlrun/core/fork_join.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
@@ -92,7 +94,7 @@ void perturb_targets(TD3& td3) {
     for (Eigen::Index k = 0; k < p.size(); ++k) p(k) += static_cast<float>(rng.uniform(-0.2, 0.2));
   };
   jitter(td3.actor_target().net().params());
-  for (Td3Critic& c : td3.critics()) jitter(c.target().params());
+  for (ContinuousCritic& c : td3.critics()) jitter(c.target().params());
 }
 
 }  // namespace
@@ -160,7 +162,7 @@ TEST_CASE("TD3 critic target matches an independent double-precision computation
               .cwiseMax(-1.0)
               .cwiseMin(1.0);
       Eigen::RowVectorXd min_q = Eigen::RowVectorXd::Constant(n, 1e300);
-      for (const Td3Critic& c : td3.critics())
+      for (const ContinuousCritic& c : td3.critics())
         min_q =
             min_q.cwiseMin(forward_double(c.target(), params_of(c.target()), stack(s2, next_a)));
       const Eigen::RowVectorXd y = b.rewards.cast<double>().array() +
@@ -183,7 +185,7 @@ TEST_CASE("TD3 critic loss gradient matches finite differences", "[algos][td3][g
     const Eigen::MatrixXd x = stack(b.obs.cast<double>(), b.actions.cast<double>());
 
     double expected_loss = 0.0;
-    for (Td3Critic& c : td3.critics()) {
+    for (ContinuousCritic& c : td3.critics()) {
       // Loss = sum_i mse(Q_i, y) with y fixed: only critic i's own term depends on its
       // parameters.
       auto mse = [&](const Eigen::VectorXd& p) {
@@ -229,7 +231,7 @@ TEST_CASE("TD3 updates the actor and the targets only every policy_delay-th step
     const Eigen::VectorXf actor = td3.actor().net().params();
     const Eigen::VectorXf actor_target = td3.actor_target().net().params();
     std::vector<Eigen::VectorXf> q, q_target;
-    for (Td3Critic& c : td3.critics()) {
+    for (ContinuousCritic& c : td3.critics()) {
       q.push_back(c.q().params());
       q_target.push_back(c.target().params());
     }
@@ -238,7 +240,7 @@ TEST_CASE("TD3 updates the actor and the targets only every policy_delay-th step
     const bool delayed = step % 2 == 0;
     CHECK(stats.actor_updated == delayed);
     for (size_t i = 0; i < q.size(); ++i) {
-      const Td3Critic& c = td3.critics()[i];
+      const ContinuousCritic& c = td3.critics()[i];
       CHECK(c.q().params() != q[i]);  // the critics learn every step
       if (delayed) {
         const Eigen::VectorXf expected = (1.0f - tau) * q_target[i] + tau * c.q().params();
@@ -486,16 +488,23 @@ TEST_CASE("bench: TD3 gradient steps at rl-zoo Pendulum size", "[.td3_bench]") {
     for (int i = 0; i < 20; ++i) td3.train_on_batch(b, 1e-3f);
     const int steps = 400;
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     for (int i = 0; i < steps; ++i) td3.train_on_batch(b, 1e-3f);
+    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // FLOPs per sample: 2 in out per layer forward, twice that backward (one fwd-equivalent
     // for the first layer's backward without input gradient would be exact; counted as 2).
     const double fwd = 2.0 * (4 * 400 + 400 * 300 + 300);
     const int n_critics = cfg.policy.n_critics;
     // Per step: actor target fwd, n target critics fwd, n critics fwd+bwd; per actor update:
-    // actor fwd+bwd and critic 1 fwd+bwd.
-    const double per_step = fwd * (1 + n_critics + 3 * n_critics + 6.0 / cfg.policy_delay) * 256;
-    std::printf("%s train_on_batch: %.2f ms/step, %.1f GFLOP/s (%.3f GFLOP/step)\n", algo,
-                s / steps * 1e3, per_step * steps / s * 1e-9, per_step * 1e-9);
+    // actor fwd+bwd (3), critic 1 fwd + input-only bwd (2).
+    const double per_step = fwd * (1 + n_critics + 3 * n_critics + 5.0 / cfg.policy_delay) * 256;
+    // Wall time is what a run takes; process CPU time (both threads) is steadier on a shared
+    // machine.
+    std::printf("%s (%d threads) train_on_batch: %.0f us/step wall, %.0f us CPU, %.1f GFLOP/s "
+                "wall (%.0f%% of one core's 102), %.1f GFLOP/s per CPU-s (%.3f GFLOP/step)\n",
+                algo, ForkJoin::shared().enabled() ? 2 : 1, s / steps * 1e6, cpu / steps * 1e6,
+                per_step * steps / s * 1e-9, per_step * steps / s * 1e-9 / 102 * 100,
+                per_step * steps / cpu * 1e-9, per_step * 1e-9);
   }
 }

@@ -108,6 +108,8 @@ TEST_CASE("Mlp gradients match finite differences", "[nn]") {
       {5, {16, 24}, 3, Activation::kTanh, 2},  {4, {64, 64}, 2, Activation::kReLU, 1},
       // Every tile shape of the kernels: 2-packet, 1-packet and scalar rows, 6..1 columns.
       {20, {40, 17}, 9, Activation::kReLU, 37}, {9, {8}, 12, Activation::kTanh, 11},
+      // Widths off the packet size: the overlapping last packet in every product.
+      {13, {300, 13}, 3, Activation::kReLU, 9},
   };
   uint64_t seed = 11;
   for (const Case& c : cases) {
@@ -158,6 +160,45 @@ TEST_CASE("Mlp backward reads a strided grad_output and any batch size", "[nn]")
     CHECK(gx_col.isApprox(gx_plain.col(j), 1e-5f));
   }
   CHECK(net.grads().isApprox(batched, 1e-5f));
+}
+
+TEST_CASE("Mlp backward_input gives backward's input gradient and no parameter gradient",
+          "[nn]") {
+  // Widths off the packet size (TD3's 300-wide layer among them) and both input-gradient paths
+  // (batch 2: dot products; larger: transposed weights).
+  struct Shape {
+    int in;
+    std::vector<int> hidden;
+    Activation act;
+    int batch;
+    int first;
+  };
+  const std::vector<Shape> shapes = {{4, {400, 300}, Activation::kReLU, 19, 3},
+                                     {13, {13, 9}, Activation::kTanh, 2, 0},
+                                     {20, {16}, Activation::kTanh, 40, 5},
+                                     {11, {8, 8}, Activation::kReLU, 7, 10}};
+  Rng rng(41);
+  for (const Shape& sh : shapes) {
+    INFO("in " << sh.in << " batch " << sh.batch << " first " << sh.first);
+    Mlp net(sh.in, sh.hidden, 1, sh.act);
+    net.init_torch_default(rng);
+    const Eigen::MatrixXf x = random_matrix(sh.in, sh.batch, rng);
+    const Eigen::MatrixXf g = random_matrix(1, sh.batch, rng);
+    net.forward(x);
+    Eigen::MatrixXf full, part;
+    net.zero_grad();
+    net.backward(g, &full);
+    const Eigen::VectorXf grads = net.grads();
+    net.backward_input(g, part, sh.first);
+    CHECK(net.grads() == grads);  // unchanged
+    REQUIRE(part.rows() == sh.in - sh.first);
+    REQUIRE(part.cols() == sh.batch);
+    CHECK(part.isApprox(full.bottomRows(sh.in - sh.first), 1e-5f));
+  }
+  Mlp net(3, {4}, 1, Activation::kReLU);
+  net.forward(Eigen::MatrixXf::Ones(3, 2));
+  Eigen::MatrixXf gx;
+  CHECK_THROWS_AS(net.backward_input(Eigen::MatrixXf::Ones(1, 2), gx, 3), std::invalid_argument);
 }
 
 TEST_CASE("Mlp layout, copies and buffer reuse", "[nn]") {

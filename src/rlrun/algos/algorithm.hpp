@@ -6,10 +6,12 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include "rlrun/core/logger.hpp"
 #include "rlrun/core/space.hpp"
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 
 namespace rlrun {
@@ -31,6 +33,11 @@ struct TrainingHooks {
   std::function<bool(int64_t num_timesteps)> on_step;
   // Called after each log dump (console progress bar, etc.).
   std::function<void(int64_t num_timesteps)> on_log;
+  // Called where learn() can stop and later resume exactly (after each train(): on-policy
+  // once per iteration, off-policy once per collect-and-train round). The runtime writes
+  // checkpoints here; false stops training (Ctrl-C waits for this point so that the checkpoint
+  // it writes resumes exactly).
+  std::function<bool(int64_t num_timesteps)> at_safe_point;
   // SB3's learn(log_interval=...): dump logs every N iterations (on-policy) or N episodes
   // (off-policy); 0 = the algorithm's SB3 default (1 on-policy, 4 off-policy).
   int log_interval = 0;
@@ -51,6 +58,17 @@ class Algorithm {
   virtual void save(TensorMap& tensors) const = 0;
   // Throws std::runtime_error when a tensor is missing or has another shape.
   virtual void load(const TensorMap& tensors) = 0;
+
+  // Exact resume: everything learn() needs beyond save()'s tensors to continue as if it had
+  // never stopped — optimizer moments, RNG streams, counters, buffers, the last observations.
+  // Valid at a safe point (TrainingHooks::at_safe_point) or before the first learn(). After
+  // load_training_state, learn() continues with the env as restored, without resetting it.
+  virtual void save_training_state(StateWriter& /*out*/) const {
+    throw std::logic_error(id() + " cannot save its training state for resume yet");
+  }
+  virtual void load_training_state(const StateReader& /*in*/) {
+    throw std::logic_error(id() + " cannot restore a training state yet");
+  }
 
   int64_t num_timesteps() const { return num_timesteps_; }
 

@@ -1,5 +1,6 @@
 #include "rlrun/env/vec_env.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -73,6 +74,44 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
       final_obs_.col(i).setConstant(std::numeric_limits<float>::quiet_NaN());
     }
   }
+}
+
+bool VecEnv::can_save_state() const {
+  for (const EnvPtr& env : envs_)
+    if (!env->can_save_state()) return false;
+  return true;
+}
+
+void VecEnv::write_state(StateWriter& out) const {
+  for (int i = 0; i < num_envs(); ++i) {
+    StateWriter env_out = out.sub(std::to_string(i));
+    envs_[i]->write_state(env_out);
+  }
+  out.put_matrix("obs", obs_);
+  std::vector<uint64_t> pending(seeds_.size());
+  std::vector<int64_t> has_pending(seeds_.size());
+  for (size_t i = 0; i < seeds_.size(); ++i) {
+    pending[i] = seeds_[i].value_or(0);
+    has_pending[i] = seeds_[i].has_value();
+  }
+  out.put_vector("pending_seed", pending);
+  out.put_vector("has_pending_seed", has_pending);
+}
+
+void VecEnv::read_state(const StateReader& in) {
+  for (int i = 0; i < num_envs(); ++i) {
+    envs_[i]->read_state(in.sub(std::to_string(i)));
+    copy_info(i);
+  }
+  in.get_matrix("obs", obs_);
+  const auto pending = in.get_span<uint64_t>("pending_seed", num_envs());
+  const auto has_pending = in.get_span<int64_t>("has_pending_seed", num_envs());
+  for (int i = 0; i < num_envs(); ++i)
+    seeds_[i] = has_pending[i] ? std::optional<uint64_t>(pending[i]) : std::nullopt;
+  final_obs_.setConstant(std::numeric_limits<float>::quiet_NaN());
+  rewards_.setZero();
+  std::fill(terminated_.begin(), terminated_.end(), 0);
+  std::fill(truncated_.begin(), truncated_.end(), 0);
 }
 
 void VecEnv::copy_info(int i) {

@@ -50,6 +50,13 @@ class VecEnv {
   // Env i's info of the last step (or of the last reset(), before any step).
   const Info& info(int i) const { return infos_[i]; }
 
+  // Resume: every env's state under "<i>/", the current observations and pending seeds. A
+  // restored VecEnv continues without reset(); can_save_state() is false when any env cannot
+  // snapshot itself.
+  bool can_save_state() const;
+  void write_state(StateWriter& out) const;
+  void read_state(const StateReader& in);
+
   Env& env(int i) { return *envs_[i]; }
   const Env& env(int i) const { return *envs_[i]; }
 

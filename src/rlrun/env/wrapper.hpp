@@ -22,10 +22,31 @@ class Wrapper : public Env {
   const Info& info() const override { return inner_->info(); }
   std::string id() const override { return inner_->id(); }
   Env& unwrapped() override { return inner_->unwrapped(); }
+  RenderSpec render_spec() const override { return inner_->render_spec(); }
+  bool render(Frame& frame) const override { return inner_->render(frame); }
+  bool render_observation(std::span<const float> obs, Frame& frame) const override {
+    return inner_->render_observation(obs, frame);
+  }
+
+  // A wrapper's state is its own (write_own_state) plus its inner env's under "inner/".
+  bool can_save_state() const override { return inner_->can_save_state(); }
+  void write_state(StateWriter& out) const override {
+    write_own_state(out);
+    StateWriter inner = out.sub("inner");
+    inner_->write_state(inner);
+  }
+  void read_state(const StateReader& in) override {
+    read_own_state(in);
+    inner_->read_state(in.sub("inner"));
+  }
 
   Env& inner() { return *inner_; }
 
  protected:
+  // Wrappers that keep state between steps (counters, running statistics) save it here.
+  virtual void write_own_state(StateWriter& /*out*/) const {}
+  virtual void read_own_state(const StateReader& /*in*/) {}
+
   EnvPtr inner_;
 };
 

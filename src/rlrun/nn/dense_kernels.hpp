@@ -47,6 +47,11 @@ void gemm_rows(Index m, Index n, Index k, const float* a, Index lda, const float
 void gemm_dot(Index m, Index n, Index p, const float* x, Index ldx, const float* y, Index ldy,
               Epilogue epilogue, const EpilogueArgs& args);
 
+// B = A^T for A rows x cols (column-major, lda) into B cols x rows (ldb), in packet-sized
+// square blocks (a plain element loop writes with a stride and ran ~10x slower; Mlp transposes
+// a weight for every backward pass).
+void transpose(Index rows, Index cols, const float* a, Index lda, float* b, Index ldb);
+
 // Number of floats in one SIMD packet (8 with AVX2).
 int packet_size();
 

@@ -112,7 +112,7 @@ const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) 
                        args);
     } else {
       // Few output units (a value or small action head): dot products over the input features.
-      wt_[l] = weight(l).transpose();
+      dense::transpose(out, in, weight(l).data(), out, wt_[l].data(), in);
       dense::gemm_dot(out, batch, in, wt_[l].data(), in, acts_[l].data(), in, epilogue, args);
     }
   }
@@ -121,6 +121,21 @@ const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) 
 
 void Mlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                    Eigen::MatrixXf* grad_input) {
+  backward_pass(grad_output, true, grad_input, 0);
+}
+
+void Mlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                         Eigen::MatrixXf& grad_input, int first_input_row) {
+  if (first_input_row < 0 || first_input_row >= in_dim()) {
+    throw std::invalid_argument("Mlp::backward_input: first_input_row " +
+                                std::to_string(first_input_row) + " is not below in_dim " +
+                                std::to_string(in_dim()));
+  }
+  backward_pass(grad_output, false, &grad_input, first_input_row);
+}
+
+void Mlp::backward_pass(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool param_grads,
+                        Eigen::MatrixXf* grad_input, int first_input_row) {
   const int layers = num_layers();
   const Eigen::Index batch = acts_[0].cols();
   if (grad_output.rows() != out_dim() || grad_output.cols() != batch) {
@@ -138,47 +153,55 @@ void Mlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
     const Eigen::Index ld_delta = l + 1 == layers ? grad_output.outerStride() : out;
     const float* input = acts_[l].data();
 
-    // dW += delta input^T, vectorised over whichever of out / in is wider.
-    if (out >= lanes || out >= in) {
-      dense::gemm_rows(out, in, batch, delta, ld_delta, input, in, 1, dense::Epilogue::kAdd,
-                       {.c = weight_grad(l).data(), .ldc = out});
-    } else {
-      dense::gemm_rows(in, out, batch, input, in, delta, ld_delta, 1,
-                       dense::Epilogue::kAddTransposed, {.c = weight_grad(l).data(), .ldc = out});
+    if (param_grads) {
+      // dW += delta input^T, vectorised over whichever of out / in is wider.
+      if (out >= lanes || out >= in) {
+        dense::gemm_rows(out, in, batch, delta, ld_delta, input, in, 1, dense::Epilogue::kAdd,
+                         {.c = weight_grad(l).data(), .ldc = out});
+      } else {
+        dense::gemm_rows(in, out, batch, input, in, delta, ld_delta, 1,
+                         dense::Epilogue::kAddTransposed,
+                         {.c = weight_grad(l).data(), .ldc = out});
+      }
+      // db += delta 1 (a row sum as a matrix-vector product, which Eigen vectorises well).
+      bias_grad(l).noalias() +=
+          Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>(
+              delta, out, batch, Eigen::OuterStride<>(ld_delta)) *
+          ones_;
     }
-    // db += delta 1 (a row sum as a matrix-vector product, which Eigen vectorises well).
-    bias_grad(l).noalias() +=
-        Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>(
-            delta, out, batch, Eigen::OuterStride<>(ld_delta)) *
-        ones_;
 
     // dL/d(input) = W^T delta, times act'(input) when the input is a hidden activation:
-    // tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation.
-    float* target = nullptr;
+    // tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation. For the network's
+    // input only rows [first, in) are wanted: the columns [first, in) of W.
+    Eigen::Index first = 0;
     dense::EpilogueArgs args;
     dense::Epilogue epilogue = dense::Epilogue::kStore;
     if (l > 0) {
       deltas_[l - 1].resize(in, batch);
-      target = deltas_[l - 1].data();
-      epilogue = act_ == Activation::kTanh ? dense::Epilogue::kTanhGrad : dense::Epilogue::kReLUGrad;
+      args.c = deltas_[l - 1].data();
+      epilogue =
+          act_ == Activation::kTanh ? dense::Epilogue::kTanhGrad : dense::Epilogue::kReLUGrad;
       args.act = input;
       args.ld_act = in;
     } else if (grad_input != nullptr) {
-      grad_input->resize(in, batch);
-      target = grad_input->data();
+      first = first_input_row;
+      grad_input->resize(in - first, batch);
+      args.c = grad_input->data();
     } else {
       continue;
     }
-    args.c = target;
-    args.ldc = in;
+    const Eigen::Index rows = in - first;
+    args.ldc = rows;
     // Large batches: transpose W once (in x out, cheap next to the product) and vectorise over
     // the rows of the result. Small batches (environment stepping) or narrow inputs: dot
     // products against W's columns, which needs no transpose.
-    if (in >= lanes && batch >= kMinBatchForTranspose) {
-      wt_[l] = weight(l).transpose();
-      dense::gemm_rows(in, batch, out, wt_[l].data(), in, delta, 1, ld_delta, epilogue, args);
+    if (rows >= lanes && batch >= kMinBatchForTranspose) {
+      dense::transpose(out, in, weight(l).data(), out, wt_[l].data(), in);
+      dense::gemm_rows(rows, batch, out, wt_[l].data() + first, in, delta, 1, ld_delta, epilogue,
+                       args);
     } else {
-      dense::gemm_dot(in, batch, out, weight(l).data(), out, delta, ld_delta, epilogue, args);
+      dense::gemm_dot(rows, batch, out, weight(l).data() + first * out, out, delta, ld_delta,
+                      epilogue, args);
     }
   }
 }

@@ -85,8 +85,20 @@ class Mlp {
   // and receives dL/dx (e.g. dQ/da for SAC's actor loss through the critic).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                 Eigen::MatrixXf* grad_input = nullptr);
+  // Backpropagates dL/doutput of the last forward to the input only: grad_input is resized to
+  // (in_dim - first_input_row) x batch and receives rows [first_input_row, in_dim) of dL/dx;
+  // grads() is left unchanged. This is about half of backward()'s work: what an actor loss
+  // through a critic needs (SB3's TD3/SAC actor_loss.backward() also fills the critic's .grad,
+  // but the critic's optimizer.zero_grad() discards it before it is ever used).
+  void backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                      Eigen::MatrixXf& grad_input, int first_input_row = 0);
 
  private:
+  // The layers' backward pass: parameter gradients when param_grads, dL/dx rows
+  // [first_input_row, in_dim) into grad_input when it is given.
+  void backward_pass(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool param_grads,
+                     Eigen::MatrixXf* grad_input, int first_input_row);
+
   std::vector<int> hidden_;
   std::vector<int> dims_;  // in, hidden..., out
   Activation act_ = Activation::kTanh;

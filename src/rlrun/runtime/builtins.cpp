@@ -12,8 +12,18 @@
 #include "rlrun/envs/classic/mountain_car.hpp"
 #include "rlrun/envs/classic/mountain_car_continuous.hpp"
 #include "rlrun/envs/classic/pendulum.hpp"
+#include "rlrun/envs/grasp2d/grasp2d.hpp"
+#include "rlrun/envs/grid_world/grid_world.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
+#include "rlrun/wrappers/clip_action.hpp"
+#include "rlrun/wrappers/frame_stack.hpp"
+#include "rlrun/wrappers/normalize_observation.hpp"
+#include "rlrun/wrappers/normalize_reward.hpp"
+#include "rlrun/wrappers/rescale_action.hpp"
+#include "rlrun/wrappers/reward_shaping.hpp"
+#include "rlrun/wrappers/transform_reward.hpp"
 #include "rlrun/wrappers/discrete_as_box.hpp"
+#include "rlrun/wrappers/one_hot_observation.hpp"
 
 namespace rlrun {
 
@@ -35,12 +45,39 @@ Registry make_builtins() {
       MountainCarContinuous::kMaxEpisodeSteps));
   r.add(make_env_entry<Acrobot>("Acrobot-v1", "swing a two-link arm above a line; Discrete(3)",
                                 Acrobot::kMaxEpisodeSteps));
+  // Custom tasks (issue 6): the course's 2D grasp env and the tutorial's wrapped GridWorld.
+  r.add(make_env_entry<Grasp2D>(
+      "Grasp2D-v0",
+      "move an arm to an object and close the gripper; Discrete(6): left right up down open close",
+      Grasp2D::kMaxEpisodeSteps));
+  // No TimeLimit: GridWorld truncates itself after max_steps, with its timeout penalty.
+  r.add(make_env_entry<GridWorld>(
+      "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (use OneHotObservation)",
+      0));
 
   // Wrappers usable in `env.wrappers`, applied in order after the Monitor.
   r.add(make_wrapper_entry<DiscreteAsBox>(
       "DiscreteAsBox", "Box(-1, 1, (n,)) scores -> argmax action of a Discrete(n) env (SAC/TD3 on CartPole)"));
   r.add(make_wrapper_entry<BoxAsDiscrete>(
       "BoxAsDiscrete", "Discrete(bins^dims) grid over a Box action space (DQN on Pendulum)"));
+  // Workflow wrappers (issue 4): SB3 VecNormalize halves (statistics stored in the model file),
+  // Gymnasium's action/observation/reward wrappers, reward shaping from YAML.
+  r.add(make_wrapper_entry<NormalizeObservation>(
+      "NormalizeObservation", "running mean/std observation normalisation (SB3 VecNormalize norm_obs)"));
+  r.add(make_wrapper_entry<NormalizeReward>(
+      "NormalizeReward", "reward / running std of the discounted return (SB3 VecNormalize norm_reward)"));
+  r.add(make_wrapper_entry<ClipAction>(
+      "ClipAction", "clip actions to the env's Box bounds; agent sees Box(-inf, inf) (Gymnasium)"));
+  r.add(make_wrapper_entry<RescaleAction>(
+      "RescaleAction", "agent acts in Box(min_action, max_action), mapped onto the env's bounds (Gymnasium)"));
+  r.add(make_wrapper_entry<FrameStack>(
+      "FrameStack", "the last n_stack observations stacked, oldest first (SB3 VecFrameStack)"));
+  r.add(make_wrapper_entry<TransformReward>(
+      "TransformReward", "reward' = clip(scale * reward + offset, clip_min, clip_max)"));
+  r.add(make_wrapper_entry<RewardShaping>(
+      "RewardShaping", "adds YAML-configured terms to the reward (obs_above_for, obs_abs, action_sq, ...)"));
+  r.add(make_wrapper_entry<OneHotObservation>(
+      "OneHotObservation", "Discrete/MultiDiscrete/MultiBinary observations as SB3's one-hot Box"));
 
   r.add(make_algorithm_entry<PPO>("PPO", "Proximal Policy Optimization (SB3 semantics); Discrete/Box actions"));
   r.add(make_algorithm_entry<A2C>("A2C", "Advantage Actor-Critic (SB3 semantics, RMSprop); Discrete/Box actions"));
@@ -53,9 +90,11 @@ Registry make_builtins() {
 
 }  // namespace
 
-const Registry& builtin_registry() {
-  static const Registry registry = make_builtins();
+Registry& mutable_builtin_registry() {
+  static Registry registry = make_builtins();
   return registry;
 }
+
+const Registry& builtin_registry() { return mutable_builtin_registry(); }
 
 }  // namespace rlrun

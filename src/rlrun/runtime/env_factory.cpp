@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "rlrun/wrappers/monitor.hpp"
+#include "rlrun/wrappers/observation_tap.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
 namespace rlrun {
@@ -13,12 +14,13 @@ double unix_time_now() {
 }
 
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
-                double t_start) {
+                double t_start, bool tap_observations) {
   const EnvEntry& entry = registry.env(spec.id, spec.id_node);
   EnvPtr env = entry.make(spec.kwargs);
   const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
   env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start);
+  if (tap_observations) env = std::make_unique<ObservationTap>(std::move(env));
   for (const ConfigNode& w : spec.wrappers) {
     const WrapperEntry& wrapper = registry.wrapper(w.child("id").as_string(), w.child("id"));
     env = wrapper.make(std::move(env), w);
@@ -49,13 +51,13 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
 }
 
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
-                    const std::string& monitor_dir) {
+                    const std::string& monitor_dir, int tap_env) {
   std::vector<EnvPtr> envs;
   const double t_start = unix_time_now();
   for (int i = 0; i < n_envs; ++i) {
     const std::string path =
         monitor_dir.empty() ? "" : monitor_dir + "/" + std::to_string(i) + ".monitor.csv";
-    envs.push_back(make_env(spec, registry, path, t_start));
+    envs.push_back(make_env(spec, registry, path, t_start, i == tap_env));
   }
   return VecEnv(std::move(envs));
 }

@@ -5,15 +5,19 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/zip_archive.hpp"
+#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
 
 namespace rlrun {
 
 void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
-                const Space& observation_space, const Space& action_space) {
+                const Space& observation_space, const Space& action_space,
+                const TensorMap& env_tensors) {
   TensorMap tensors;
   algorithm.save(tensors);
   ZipMembers members;
   for (const auto& [name, tensor] : tensors) members[name + ".npy"] = encode_npy(tensor);
+  for (const auto& [name, tensor] : env_tensors) members[name + ".npy"] = encode_npy(tensor);
   const std::string config = dump_yaml(experiment.resolved);
   members["config.yaml"] = std::vector<uint8_t>(config.begin(), config.end());
   nlohmann::ordered_json meta;
@@ -58,8 +62,10 @@ ModelFile read_model(const std::string& path) {
   model.config_yaml.assign(config_it->second.begin(), config_it->second.end());
   for (const auto& [name, bytes] : members) {
     if (name.size() < 4 || name.substr(name.size() - 4) != ".npy") continue;
+    const std::string key = name.substr(0, name.size() - 4);
+    TensorMap& into = key.rfind(kWrapperStatisticsPrefix, 0) == 0 ? model.wrapper_statistics : model.tensors;
     try {
-      model.tensors[name.substr(0, name.size() - 4)] = decode_npy(bytes, path + ":" + name);
+      into[key] = decode_npy(bytes, path + ":" + name);
     } catch (const std::runtime_error& e) {
       throw RuntimeFailure(e.what());
     }
@@ -97,6 +103,18 @@ std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Ex
     throw RuntimeFailure(model.path + ": " + e.what());
   }
   return algorithm;
+}
+
+EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
+                      const Registry& registry, const std::string& monitor_path) {
+  EnvPtr env = make_env(experiment.env, registry, monitor_path, unix_time_now());
+  try {
+    load_model_statistics(*env, model.wrapper_statistics, /*training=*/false);
+  } catch (const StateMismatch& e) {
+    throw RuntimeFailure(model.path + ": the model's env normalises with statistics the file does not hold: " +
+                         e.what());
+  }
+  return env;
 }
 
 }  // namespace rlrun

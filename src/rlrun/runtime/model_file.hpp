@@ -2,6 +2,9 @@
 // Model files (DESIGN.md §5): a zip whose tensors are `<name>.npy` members, so
 // `numpy.load("model.zip")` lists the weights, plus `config.yaml` (the resolved experiment) and
 // `meta.json` (format version, rlrun version, algorithm, env id, spaces, timesteps).
+// Wrappers with model statistics (NormalizeObservation, NormalizeReward) add their running
+// mean/var/count as `wrappers/<name>/<field>.npy` (runtime/env_statistics.hpp); make_model_env()
+// puts them back, frozen, into the env it builds.
 // Loading refuses, with the reason, files of another format version, of another algorithm than
 // the caller expects, or whose spaces do not match the env they are used with.
 #include <memory>
@@ -30,12 +33,15 @@ struct ModelFile {
   std::string path;
   ModelMeta meta;
   std::string config_yaml;
-  TensorMap tensors;
+  TensorMap tensors;              // the algorithm's
+  TensorMap wrapper_statistics;   // `wrappers/...` members (see env_statistics.hpp)
 };
 
-// Writes atomically (temp file + rename).
+// Writes atomically (temp file + rename). `env_tensors` are stored beside the algorithm's
+// (save_model_statistics() of the training env: normalisation statistics).
 void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
-                const Space& observation_space, const Space& action_space);
+                const Space& observation_space, const Space& action_space,
+                const TensorMap& env_tensors = {});
 
 // Throws RuntimeFailure naming the file and the reason.
 ModelFile read_model(const std::string& path);
@@ -47,5 +53,12 @@ std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Ex
                                                 const Registry& registry,
                                                 const Space& observation_space,
                                                 const Space& action_space);
+
+// The env the model was trained on (make_env of its stored config), with the stored
+// normalisation statistics loaded and frozen (SB3: VecNormalize.load + training = False), as
+// eval and record need it. `monitor_path` as in make_env. Throws RuntimeFailure when the file
+// lacks statistics its config's wrappers need.
+EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
+                      const Registry& registry, const std::string& monitor_path = "");
 
 }  // namespace rlrun

@@ -8,14 +8,15 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <memory>
+#include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/vec_env.hpp"
+#include "rlrun/runtime/callback.hpp"
 #include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/evaluator.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/progress_bar.hpp"
@@ -45,68 +46,6 @@ class RunLog {
   std::ofstream file_;
 };
 
-// EvalCallback (SB3 common/callbacks.py) counting TOTAL env steps: evaluates when
-// num_timesteps crosses a multiple of `freq`, appends to evaluations.csv, keeps best_model.zip.
-class PeriodicEvaluator {
- public:
-  PeriodicEvaluator(const Experiment& experiment, const Registry& registry, const std::string& run_dir,
-                    const Space& obs_space, const Space& act_space)
-      : experiment_(experiment),
-        run_dir_(run_dir),
-        obs_space_(obs_space),
-        act_space_(act_space),
-        env_(make_env(experiment.env, registry, "", unix_time_now())),
-        next_(experiment.eval.freq) {
-    csv_.open(run_dir + "/evaluations.csv", std::ios::trunc);
-    csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
-    csv_.flush();
-  }
-
-  // Returns the message to log when an evaluation ran.
-  std::string maybe_evaluate(Algorithm& algorithm, int64_t num_timesteps) {
-    if (num_timesteps < next_) return "";
-    while (next_ <= num_timesteps) next_ += experiment_.eval.freq;
-    // Evaluation env seeded apart from the training envs (seed + n_envs onwards).
-    const uint64_t seed = experiment_.run.seed + static_cast<uint64_t>(experiment_.env.section.n_envs) +
-                          static_cast<uint64_t>(evaluations_++);
-    const EvalResult r = evaluate_policy(algorithm, *env_, experiment_.eval.n_episodes,
-                                         experiment_.eval.deterministic, seed);
-    double success = std::numeric_limits<double>::quiet_NaN();
-    if (!r.successes.empty()) {
-      success = 0;
-      for (double s : r.successes) success += s;
-      success /= static_cast<double>(r.successes.size());
-    }
-    char line[256];
-    std::snprintf(line, sizeof line, "%lld,%.6g,%.6g,%.6g,", static_cast<long long>(num_timesteps),
-                  r.mean_return(), r.std_return(), r.mean_length());
-    csv_ << line;
-    if (!std::isnan(success)) csv_ << success;
-    csv_ << '\n';
-    csv_.flush();
-    std::string message = "eval at " + std::to_string(num_timesteps) + " steps: return " +
-                          format_log_value(r.mean_return()) + " +/- " +
-                          format_log_value(r.std_return()) + ", length " +
-                          format_log_value(r.mean_length());
-    if (r.mean_return() > best_) {
-      best_ = r.mean_return();
-      save_model(run_dir_ + "/best_model.zip", algorithm, experiment_, obs_space_, act_space_);
-      message += " (new best, saved best_model.zip)";
-    }
-    return message;
-  }
-
- private:
-  const Experiment& experiment_;
-  std::string run_dir_;
-  Space obs_space_, act_space_;
-  EnvPtr env_;
-  int64_t next_;
-  int evaluations_ = 0;
-  double best_ = -std::numeric_limits<double>::infinity();
-  std::ofstream csv_;
-};
-
 }  // namespace
 
 void install_interrupt_handlers() {
@@ -127,7 +66,11 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
            std::to_string(run.seed) + ", " + std::to_string(experiment.env.section.n_envs) +
            " envs) -> " + outcome.run_dir);
 
-  VecEnv env = make_vec_env(experiment.env, registry, experiment.env.section.n_envs, outcome.run_dir);
+  // obs_log taps the env's own observations of one training env (obs_log_callback.hpp).
+  const int tap_env = experiment.obs_log.freq > 0 ? experiment.obs_log.env : -1;
+  VecEnv env = make_vec_env(experiment.env, registry, experiment.env.section.n_envs,
+                            outcome.run_dir, tap_env);
+  share_model_statistics(env);  // one set of normalisation statistics, like VecNormalize
   env.seed(run.seed);
   const AlgorithmSetup setup{env.observation_space(), env.action_space(), env.num_envs(), run.seed};
   const AlgorithmEntry& entry =
@@ -147,35 +90,52 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
                                                      [&bar] { bar.clear(); }));
   logger.add_sink(std::make_unique<ConsoleTableSink>(log.file(), 0.0));
 
-  std::unique_ptr<PeriodicEvaluator> evaluator;
-  if (experiment.eval.freq > 0)
-    evaluator = std::make_unique<PeriodicEvaluator>(experiment, registry, outcome.run_dir,
-                                                    env.observation_space(), env.action_space());
+  // Model files carry the normalisation statistics of training env 0 (shared by all envs).
+  const auto save_with_statistics = [&](const std::string& path) {
+    TensorMap statistics;
+    save_model_statistics(env.env(0), statistics);
+    save_model(path, *algorithm, experiment, env.observation_space(), env.action_space(),
+               statistics);
+  };
+  TrainingContext context{experiment,
+                          registry,
+                          outcome.run_dir,
+                          *algorithm,
+                          env,
+                          &logger,
+                          [&](const std::string& message) {
+                            bar.clear();
+                            log.line(message);
+                          },
+                          save_with_statistics,
+                          save_with_statistics};
+  const std::vector<std::unique_ptr<Callback>> callbacks = make_callbacks(context);
 
   TrainingHooks hooks;
   hooks.logger = &logger;
   hooks.log_interval = run.log_interval.value_or(0);
   hooks.on_step = [&](int64_t num_timesteps) {
     bar.update(num_timesteps);
-    if (evaluator) {
-      const std::string message = evaluator->maybe_evaluate(*algorithm, num_timesteps);
-      if (!message.empty()) {
-        bar.clear();
-        log.line(message);
-      }
-    }
-    return !interrupt_requested();
+    bool continue_training = true;  // SB3 CallbackList: every callback runs, any can stop
+    for (const auto& callback : callbacks)
+      continue_training = callback->on_step(num_timesteps) && continue_training;
+    return continue_training && !interrupt_requested();
   };
 
   const auto start = std::chrono::steady_clock::now();
   algorithm->learn(env, run.total_timesteps, hooks);
   outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.timesteps = algorithm->num_timesteps();
+  for (const auto& callback : callbacks) {
+    callback->on_training_end(outcome.timesteps);
+    if (outcome.stop_reason.empty()) outcome.stop_reason = callback->stop_reason();
+  }
   bar.finish();
   logger.flush();
-  outcome.timesteps = algorithm->num_timesteps();
   outcome.interrupted = interrupt_requested();
   outcome.model_path = outcome.run_dir + "/model.zip";
-  save_model(outcome.model_path, *algorithm, experiment, env.observation_space(), env.action_space());
+  save_with_statistics(outcome.model_path);
+  if (!outcome.stop_reason.empty()) log.line("stopped early: " + outcome.stop_reason);
   char summary[256];
   std::snprintf(summary, sizeof summary, "%s %lld steps in %.2f s (%.0f steps/s); model saved to %s",
                 outcome.interrupted ? "interrupted after" : "trained",

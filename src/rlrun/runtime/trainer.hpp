@@ -1,7 +1,8 @@
 #pragma once
 // Runs one experiment end to end: run directory, resolved config.yaml, envs with monitor
-// files, the algorithm, logging (progress.csv, console, log.txt), periodic evaluation
-// (evaluations.csv, best_model.zip), and model.zip at the end or on Ctrl-C.
+// files, the algorithm, logging (progress.csv, console, log.txt), the callbacks the config
+// turns on (runtime/callback.hpp: eval, checkpoint, obs_log), and model.zip at the end, after
+// an early stop or on Ctrl-C. Model files hold the normalisation statistics.
 #include <string>
 
 #include "rlrun/runtime/experiment.hpp"
@@ -14,6 +15,7 @@ struct TrainOutcome {
   int64_t timesteps = 0;
   double wall_seconds = 0;
   bool interrupted = false;
+  std::string stop_reason;  // set when a callback stopped training early
 };
 
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry);

@@ -13,7 +13,7 @@ double round6(double v) { return std::round(v * 1e6) / 1e6; }
 }  // namespace
 
 Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
-                 std::vector<std::string> info_keywords)
+                 std::vector<std::string> info_keywords, bool append)
     : Wrapper(std::move(inner)), t_start_(t_start), clock_start_(std::chrono::steady_clock::now()) {
   const Info& inner_info = inner_->info();
   for (const auto& key : inner_info.keys()) inner_to_own_.push_back(info_.add_key(key));
@@ -28,8 +28,9 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
     columns.push_back(keyword);
   }
   if (path.empty()) return;
-  file_ = std::fopen(path.c_str(), "w");
+  file_ = std::fopen(path.c_str(), append ? "a" : "w");
   if (!file_) throw RuntimeFailure("cannot write monitor file " + path);
+  if (append) return;
   char t_start_text[64];
   std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);
   std::fprintf(file_, "#{\"t_start\": %s, \"env_id\": \"%s\"}\nr,l,t", t_start_text,
@@ -41,6 +42,32 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
 
 Monitor::~Monitor() {
   if (file_) std::fclose(file_);
+}
+
+void Monitor::write_own_state(StateWriter& out) const {
+  StateWriter own = out.sub("monitor");
+  own.put_double("episode_return", episode_return_);
+  own.put_int("episode_length", episode_length_);
+  own.put_int("total_episodes", total_episodes_);
+  own.put_int("total_steps", total_steps_);
+  own.put_bool("needs_reset", needs_reset_);
+  own.put_double("t_start", t_start_);
+}
+
+void Monitor::read_own_state(const StateReader& in) {
+  const StateReader own = in.sub("monitor");
+  episode_return_ = own.get_double("episode_return");
+  episode_length_ = own.get_int("episode_length");
+  total_episodes_ = static_cast<int>(own.get_int("total_episodes"));
+  total_steps_ = own.get_int("total_steps");
+  needs_reset_ = own.get_bool("needs_reset");
+  t_start_ = own.get_double("t_start");
+  const double since_start =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() -
+      t_start_;
+  clock_start_ = std::chrono::steady_clock::now() -
+                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                     std::chrono::duration<double>(since_start));
 }
 
 void Monitor::copy_inner_info() {

@@ -20,9 +20,10 @@ namespace rlrun {
 
 class Monitor : public Wrapper {
  public:
-  // `path` empty: no file, statistics only. `t_start` is Unix time in seconds.
+  // `path` empty: no file, statistics only. `t_start` is Unix time in seconds. `append`
+  // continues an existing file of a resumed run (no new header).
   Monitor(EnvPtr inner, const std::string& path, double t_start,
-          std::vector<std::string> info_keywords = {"is_success"});
+          std::vector<std::string> info_keywords = {"is_success"}, bool append = false);
   ~Monitor() override;
   Monitor(const Monitor&) = delete;
   Monitor& operator=(const Monitor&) = delete;
@@ -33,6 +34,12 @@ class Monitor : public Wrapper {
 
   int total_episodes() const { return total_episodes_; }
   int64_t total_steps() const { return total_steps_; }
+
+ protected:
+  // Resume: the running episode's return and length, the totals, and t_start (so that the
+  // `t` column keeps counting wall time from the original start).
+  void write_own_state(StateWriter& out) const override;
+  void read_own_state(const StateReader& in) override;
 
  private:
   void copy_inner_info();

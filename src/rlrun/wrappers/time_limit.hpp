@@ -21,6 +21,14 @@ class TimeLimit : public Wrapper {
   // Steps taken since the last reset().
   int elapsed_steps() const { return elapsed_steps_; }
 
+ protected:
+  void write_own_state(StateWriter& out) const override {
+    out.put_int("time_limit/elapsed_steps", elapsed_steps_);
+  }
+  void read_own_state(const StateReader& in) override {
+    elapsed_steps_ = static_cast<int>(in.get_int("time_limit/elapsed_steps"));
+  }
+
  private:
   int max_episode_steps_;
   int elapsed_steps_ = 0;

@@ -4,15 +4,13 @@
 #include <stdexcept>
 
 #include "rlrun/algos/common/explained_variance.hpp"
+#include "rlrun/algos/common/rng_streams.hpp"
+#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/algos/ppo/ppo_loss.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/nn/clip_grad.hpp"
 
 namespace rlrun {
-
-namespace {
-constexpr uint64_t kActionStream = 0x5851f42d4c957f2dULL;
-}  // namespace
 
 A2C::A2C(const Config& config, const AlgorithmSetup& setup)
     : config_(config),
@@ -99,6 +97,25 @@ void A2C::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
       env, total_timesteps, hooks, collector_, num_timesteps_,
       [&] { return collector_.collect(env, policy_, action_rng_, gamma, gae_lambda, hooks, num_timesteps_); },
       [&](double progress_remaining) { train(progress_remaining, hooks.logger); });
+}
+
+// The policy's parameters travel in save(); this is the rest of SB3's training state.
+void A2C::save_training_state(StateWriter& out) const {
+  out.put_int("num_timesteps", num_timesteps_);
+  out.put_int("n_updates", n_updates_);
+  out.put_rng("action_rng", action_rng_);
+  if (rmsprop_) write_rmsprop(out.sub("optimizer"), *rmsprop_);
+  if (adam_) write_adam(out.sub("optimizer"), *adam_);
+  collector_.write_state(out.sub("collector"));
+}
+
+void A2C::load_training_state(const StateReader& in) {
+  num_timesteps_ = in.get_int("num_timesteps");
+  n_updates_ = in.get_int("n_updates");
+  in.get_rng("action_rng", action_rng_);
+  if (rmsprop_) read_rmsprop(in.sub("optimizer"), *rmsprop_);
+  if (adam_) read_adam(in.sub("optimizer"), *adam_);
+  collector_.read_state(in.sub("collector"));
 }
 
 }  // namespace rlrun

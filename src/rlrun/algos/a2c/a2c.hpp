@@ -55,6 +55,8 @@ class A2C : public Algorithm {
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override { policy_.save(tensors); }
   void load(const TensorMap& tensors) override { policy_.load(tensors); }
+  void save_training_state(StateWriter& out) const override;
+  void load_training_state(const StateReader& in) override;
 
  private:
   void train(double progress_remaining, Logger* logger);

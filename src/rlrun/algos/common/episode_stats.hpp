@@ -4,8 +4,10 @@
 // rollout/ep_rew_mean and rollout/ep_len_mean; plus `is_success` for rollout/success_rate.
 #include <cmath>
 #include <deque>
+#include <vector>
 
 #include "rlrun/core/logger.hpp"
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
@@ -35,6 +37,21 @@ class EpisodeStats {
       logger.record("rollout/ep_len_mean", mean(lengths_));
     }
     if (!successes_.empty()) logger.record("rollout/success_rate", mean(successes_));
+  }
+
+  void write_state(StateWriter out) const {
+    out.put_vector("returns", std::vector<double>(returns_.begin(), returns_.end()));
+    out.put_vector("lengths", std::vector<double>(lengths_.begin(), lengths_.end()));
+    out.put_vector("successes", std::vector<double>(successes_.begin(), successes_.end()));
+  }
+  void read_state(const StateReader& in) {
+    const auto load = [&](const char* name, std::deque<double>& d) {
+      const std::vector<double> v = in.get_span<double>(name);
+      d.assign(v.begin(), v.end());
+    };
+    load("returns", returns_);
+    load("lengths", lengths_);
+    load("successes", successes_);
   }
 
   bool empty() const { return returns_.empty(); }

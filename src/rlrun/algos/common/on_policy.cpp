@@ -37,8 +37,28 @@ void OnPolicyCollector::start(VecEnv& env) {
     throw std::invalid_argument("the env has " + std::to_string(env.num_envs()) +
                                 " copies, the algorithm was built for " +
                                 std::to_string(last_obs_.cols()));
+  if (restored_) {
+    restored_ = false;
+    return;
+  }
   last_obs_ = env.reset();
   last_episode_starts_.setOnes();
+  iterations_ = 0;
+}
+
+void OnPolicyCollector::write_state(StateWriter out) const {
+  out.put_matrix("last_obs", last_obs_);
+  out.put_matrix("last_episode_starts", last_episode_starts_);
+  out.put_int("iterations", iterations_);
+  episode_stats_.write_state(out.sub("episode_stats"));
+}
+
+void OnPolicyCollector::read_state(const StateReader& in) {
+  in.get_matrix("last_obs", last_obs_);
+  in.get_matrix("last_episode_starts", last_episode_starts_);
+  iterations_ = in.get_int("iterations");
+  episode_stats_.read_state(in.sub("episode_stats"));
+  restored_ = true;
 }
 
 bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng, float gamma,
@@ -88,7 +108,7 @@ void on_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
   const int64_t start_timesteps = num_timesteps;
   collector.start(env);
   const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 1;
-  int64_t iteration = 0;
+  int64_t& iteration = collector.iterations();
   while (num_timesteps < total_timesteps) {
     if (!collect()) break;
     ++iteration;
@@ -108,6 +128,7 @@ void on_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
       if (hooks.on_log) hooks.on_log(num_timesteps);
     }
     train(progress_remaining);
+    if (hooks.at_safe_point && !hooks.at_safe_point(num_timesteps)) break;
   }
 }
 

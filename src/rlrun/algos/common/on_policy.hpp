@@ -31,8 +31,15 @@ class OnPolicyCollector {
   // stopped training. `num_timesteps` counts all envs' steps.
   bool collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng, float gamma, float gae_lambda,
                TrainingHooks& hooks, int64_t& num_timesteps);
-  // Called by learn() at its start: reset the envs, every env starts an episode.
+  // Called by learn() at its start: reset the envs, every env starts an episode — unless a
+  // training state was just restored, in which case the envs continue where they were.
   void start(VecEnv& env);
+
+  // Resume: last observations, episode-start flags, the episode statistics and the iteration
+  // count (SB3 logs every log_interval iterations of one learn() call).
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
+  int64_t& iterations() { return iterations_; }
 
   RolloutBuffer& buffer() { return buffer_; }
   const RolloutBuffer& buffer() const { return buffer_; }
@@ -42,6 +49,8 @@ class OnPolicyCollector {
   Space action_space_;
   RolloutBuffer buffer_;
   EpisodeStats episode_stats_;
+  bool restored_ = false;
+  int64_t iterations_ = 0;
   Eigen::MatrixXf last_obs_, step_actions_, env_actions_, final_obs_;
   Eigen::RowVectorXf last_episode_starts_, step_values_, step_log_probs_, terminal_value_;
 };

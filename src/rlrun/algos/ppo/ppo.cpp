@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "rlrun/algos/common/explained_variance.hpp"
+#include "rlrun/algos/common/rng_streams.hpp"
+#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/algos/ppo/ppo_loss.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/nn/clip_grad.hpp"
@@ -13,8 +15,8 @@
 namespace rlrun {
 
 namespace {
-// Distinct streams from one seed: weights, action sampling, minibatch shuffling.
-constexpr uint64_t kActionStream = 0x5851f42d4c957f2dULL;
+// Distinct streams from one seed: weights (the seed), action sampling (kActionStream,
+// rng_streams.hpp), minibatch shuffling.
 constexpr uint64_t kShuffleStream = 0x14057b7ef767814fULL;
 }  // namespace
 
@@ -152,5 +154,24 @@ void PPO::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
 
 void PPO::save(TensorMap& tensors) const { policy_.save(tensors); }
 void PPO::load(const TensorMap& tensors) { policy_.load(tensors); }
+
+// The policy's parameters travel in save(); this is the rest of SB3's training state.
+void PPO::save_training_state(StateWriter& out) const {
+  out.put_int("num_timesteps", num_timesteps_);
+  out.put_int("n_updates", n_updates_);
+  out.put_rng("action_rng", action_rng_);
+  write_adam(out.sub("optimizer"), optimizer_);
+  out.put_rng("shuffle_rng", shuffle_rng_);
+  collector_.write_state(out.sub("collector"));
+}
+
+void PPO::load_training_state(const StateReader& in) {
+  num_timesteps_ = in.get_int("num_timesteps");
+  n_updates_ = in.get_int("n_updates");
+  in.get_rng("action_rng", action_rng_);
+  read_adam(in.sub("optimizer"), optimizer_);
+  in.get_rng("shuffle_rng", shuffle_rng_);
+  collector_.read_state(in.sub("collector"));
+}
 
 }  // namespace rlrun

@@ -62,6 +62,8 @@ class PPO : public Algorithm {
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
+  void save_training_state(StateWriter& out) const override;
+  void load_training_state(const StateReader& in) override;
 
   const ActorCriticPolicy& policy() const { return policy_; }
   // The last rollout's rewards (after timeout bootstrapping) and values, n_steps x n_envs.

@@ -7,20 +7,21 @@
 // coefficient that is fixed or learned towards target_entropy. Actions live in [-1, 1] inside
 // the algorithm (replay buffer, critics, noise) and are rescaled to the Box bounds for the env.
 //
-// One gradient step (train_on_batch) reads top to bottom like SAC.train. The per-critic work is
-// grouped into three phases (target values; critic update + Q on the policy's actions; action
-// gradient + target update) that touch disjoint state: for_each_critic() is the one place
-// where they can be spread over cores.
+// One gradient step (train_on_batch) reads top to bottom like SAC.train. A training-sized
+// minibatch is split over two SacLane replicas (algos/common/batch_lanes.hpp) that run on both
+// cores when ForkJoin's worker is on (RLRUN_THREADS=2), one after the other otherwise. The
+// split depends on the batch size only, so a run is bit-identical either way.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
+#include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/sac/entropy_coefficient.hpp"
 #include "rlrun/algos/sac/sac_actor.hpp"
-#include "rlrun/algos/sac/sac_critic.hpp"
+#include "rlrun/algos/sac/sac_lane.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
 
@@ -79,6 +80,8 @@ class SAC : public Algorithm {
   // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
   // actions).
   SAC(const Config& config, const AlgorithmSetup& setup);
+  SAC(const SAC&) = delete;
+  SAC& operator=(const SAC&) = delete;
 
   std::string id() const override { return "SAC"; }
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
@@ -99,10 +102,11 @@ class SAC : public Algorithm {
                       Eigen::MatrixXf& buffer_actions);
 
   const Config& config() const { return config_; }
-  const SacActor& actor() const { return actor_; }
-  SacActor& actor() { return actor_; }
-  const std::vector<SacCritic>& critics() const { return critics_; }
-  std::vector<SacCritic>& critics() { return critics_; }
+  // The trained networks (the primary lane's).
+  const SacActor& actor() const { return lanes_.front().actor(); }
+  SacActor& actor() { return lanes_.front().actor(); }
+  const std::vector<ContinuousCritic>& critics() const { return lanes_.front().critics(); }
+  std::vector<ContinuousCritic>& critics() { return lanes_.front().critics(); }
   const EntropyCoefficient& ent_coef() const { return ent_coef_; }
   int64_t n_updates() const { return n_updates_; }
   // From the last train_on_batch: the soft Bellman target y (1 x batch) and the standard
@@ -114,43 +118,34 @@ class SAC : public Algorithm {
  private:
   // `gradient_steps` updates from the replay buffer (SB3 SAC.train), logging the means.
   void train(int gradient_steps, Logger* logger);
-  // Runs fn(i) for each critic. Serial today; the phases it runs write disjoint state, so this
-  // is where a second core can take half of the critics.
-  template <class F>
-  void for_each_critic(F&& fn) {
-    for (size_t i = 0; i < critics_.size(); ++i) fn(i);
-  }
   void resize_workspaces(Eigen::Index batch);
   // The acting copy of the actor (a separate Mlp so that batch-1 acting never resizes the
   // training network's buffers) gets the trained weights when they changed.
   void sync_acting_actor();
-  void to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const;
 
   Config config_;
   AlgorithmSetup setup_;
   int obs_dim_ = 0;
   int action_dim_ = 0;
-  Rng init_rng_, action_rng_, noise_rng_, sample_rng_, train_rng_, predict_rng_;
-  SacActor actor_;
+  Rng init_rng_, sample_rng_, train_rng_, predict_rng_;
+  std::vector<SacLane> lanes_;  // [0] holds the trained parameters; [1] a replica
   Adam actor_optimizer_;
-  std::vector<SacCritic> critics_;
+  std::vector<Adam> critic_optimizers_;  // one per critic, on lanes_[0]'s parameters
   EntropyCoefficient ent_coef_;
-  ActionNoise action_noise_;
   SacActor acting_actor_;
+  BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
   bool acting_stale_ = true;
   std::optional<OffPolicyState> state_;  // replay buffer etc., created by the first learn()
   int64_t n_updates_ = 0;
 
-  // Training workspaces (one gradient step allocates nothing).
+  // Training workspaces (one gradient step allocates nothing while the batch size is
+  // unchanged): whole-batch noise, log pi(a_pi|s) and y, the lanes' loss parts.
   ReplayBatch batch_;
-  Eigen::MatrixXf policy_noise_, next_noise_, actions_pi_, next_actions_;
-  Eigen::RowVectorXf log_prob_, next_log_prob_, grad_log_prob_;
-  Eigen::MatrixXf obs_action_, next_obs_action_, obs_action_pi_, target_q_, grad_actions_;
-  std::vector<Eigen::MatrixXf> grad_q_;
-  std::vector<double> critic_losses_;
-  std::vector<const Eigen::MatrixXf*> target_values_, q_values_;
+  Eigen::MatrixXf policy_noise_, next_noise_, target_q_;
+  Eigen::RowVectorXf log_prob_;
+  double lane_losses_[2] = {0.0, 0.0};
   // Acting workspaces.
-  Eigen::MatrixXf scaled_actions_, exploration_noise_;
+  Eigen::MatrixXf scaled_actions_;
   Eigen::RowVectorXf acting_log_prob_;
 };
 

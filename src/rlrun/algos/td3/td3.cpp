@@ -1,53 +1,26 @@
 #include "rlrun/algos/td3/td3.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <functional>
-#include <span>
 #include <stdexcept>
-#include <type_traits>
+#include <string>
+#include <utility>
 
-#include "rlrun/algos/common/action_scaling.hpp"
+#include "rlrun/algos/common/batch_lanes.hpp"
 #include "rlrun/algos/common/polyak.hpp"
+#include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/algos/td3/td3_target.hpp"
-#include "rlrun/core/fork_join.hpp"
 #include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
 
 namespace {
-// Distinct streams from one seed: weights, warmup actions, exploration noise, replay sampling,
-// target policy smoothing noise.
-constexpr uint64_t kActionStream = 0x5851f42d4c957f2dULL;
-constexpr uint64_t kNoiseStream = 0x2545f4914f6cdd1dULL;
-constexpr uint64_t kSampleStream = 0x14057b7ef767814fULL;
-constexpr uint64_t kSmoothingStream = 0xc2b2ae3d27d4eb4fULL;
-
-// Batches of at least this many samples are split over two lanes (below, handing half of the
-// work to the other core costs more than it saves).
-constexpr Eigen::Index kMinSplitBatch = 32;
+// Weights use the seed itself; rng_streams.hpp has the acting, noise and replay streams.
+constexpr uint64_t kSmoothingStream = 0xc2b2ae3d27d4eb4fULL;  // target policy smoothing noise
 
 // Logger keys built once (the logger takes std::string; these outgrow the small-string buffer).
 const std::string kKeyNUpdates = "train/n_updates";
 const std::string kKeyActorLoss = "train/actor_loss";
 const std::string kKeyCriticLoss = "train/critic_loss";
 const std::string kKeyLearningRate = "train/learning_rate";
-
-int checked_action_dim(const AlgorithmSetup& setup, const std::string& id) {
-  if (!setup.observation_space.is_box())
-    throw std::invalid_argument(id + ": observation space " + setup.observation_space.describe() +
-                                " is not supported (Box only)");
-  const Space& a = setup.action_space;
-  if (!a.is_box())
-    throw std::invalid_argument(
-        id + ": action space " + a.describe() +
-        " is not supported (Box only; wrap Discrete envs with DiscreteAsBox)");
-  for (size_t i = 0; i < a.low().size(); ++i)
-    if (!std::isfinite(a.low()[i]) || !std::isfinite(a.high()[i]) || !(a.low()[i] < a.high()[i]))
-      throw std::invalid_argument(id + ": the action space " + a.describe() +
-                                  " must have finite bounds low < high (the actor ends in tanh)");
-  return a.flat_dim();
-}
 
 const TD3::Config& checked(const TD3::Config& c, const std::string& id) {
   const OffPolicyConfig& o = c.off_policy;
@@ -68,15 +41,13 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
       config_(checked(config, id_)),
       setup_(setup),
       obs_dim_(setup.observation_space.flat_dim()),
-      action_dim_(checked_action_dim(setup, id_)),
+      action_dim_(BoxActionSelection::checked_action_dim(setup, id_)),
       init_rng_(setup.seed),
-      action_rng_(setup.seed ^ kActionStream),
-      noise_rng_(setup.seed ^ kNoiseStream),
       sample_rng_(setup.seed ^ kSampleStream),
       smoothing_rng_(setup.seed ^ kSmoothingStream),
       acting_actor_(obs_dim_, action_dim_, config.policy.net_arch,
                     parse_activation(config.policy.activation_fn)),
-      action_noise_(config.action_noise, action_dim_, setup.n_envs) {
+      acting_(setup, config.action_noise) {
   const Activation act = parse_activation(config_.policy.activation_fn);
   lanes_.reserve(2);
   for (int lane = 0; lane < 2; ++lane)
@@ -90,30 +61,10 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
   primary.init(init_rng_);
   acting_actor_.net().params() = primary.actor().net().params();
   actor_optimizer_ = Adam({primary.actor().net().block()});
-  for (Td3Critic& c : primary.critics())
+  for (ContinuousCritic& c : primary.critics())
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{c.q().block()});
   smoothing_noise_.resize(action_dim_, config_.off_policy.batch_size);
   target_q_.resize(1, config_.off_policy.batch_size);
-}
-
-template <class F>
-int TD3::run_lanes(Eigen::Index n, F&& fn) {
-  if (n < kMinSplitBatch) {
-    fn(0, Eigen::Index{0}, n);
-    return 1;
-  }
-  // Each half is captured through one reference, so std::function stores it in place (no
-  // allocation per gradient step).
-  struct Slice {
-    std::remove_reference_t<F>* fn;
-    int lane;
-    Eigen::Index begin, count;
-    void operator()() const { (*fn)(lane, begin, count); }
-  };
-  const Eigen::Index half = n / 2;
-  const Slice first{&fn, 0, 0, half}, second{&fn, 1, half, n - half};
-  ForkJoin::shared().run([&first] { first(); }, [&second] { second(); });
-  return 2;
 }
 
 void TD3::sync_acting_actor() {
@@ -122,41 +73,23 @@ void TD3::sync_acting_actor() {
   acting_stale_ = false;
 }
 
-void TD3::to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const {
-  unscale_actions(setup_.action_space, scaled, env_actions);
-  const Space& space = setup_.action_space;
-  for (Eigen::Index j = 0; j < env_actions.cols(); ++j)
-    for (Eigen::Index i = 0; i < env_actions.rows(); ++i)
-      env_actions(i, j) = std::clamp(env_actions(i, j), space.low()[i], space.high()[i]);
-}
-
 void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
                          Eigen::MatrixXf& buffer_actions) {
-  const Eigen::Index n = obs.cols();
-  if (warmup) {
-    // np.array([action_space.sample() for _ in range(n_envs)]), then scale_action.
-    env_actions.resize(action_dim_, n);
-    for (Eigen::Index e = 0; e < n; ++e)
-      setup_.action_space.sample(action_rng_,
-                                 std::span<float>(env_actions.col(e).data(), action_dim_));
-    scale_actions(setup_.action_space, env_actions, buffer_actions);
-  } else {
-    // SB3 predicts (actor, unscaled to the bounds) and scales back to [-1, 1]; the actor's tanh
-    // output is that scaled action already.
-    sync_acting_actor();
-    buffer_actions = acting_actor_.forward(obs);
-  }
-  if (action_noise_.enabled()) {
-    action_noise_.sample(noise_rng_, exploration_noise_);
-    buffer_actions = (buffer_actions + exploration_noise_).cwiseMax(-1.0f).cwiseMin(1.0f);
-  }
-  to_env_actions(buffer_actions, env_actions);
+  // SB3 predicts (actor, unscaled to the bounds) and scales back to [-1, 1]; the actor's tanh
+  // output is that scaled action already.
+  acting_.select(
+      obs, warmup,
+      [&](Rng&, Eigen::MatrixXf& actions) {
+        sync_acting_actor();
+        actions = acting_actor_.forward(obs);
+      },
+      env_actions, buffer_actions);
 }
 
 void TD3::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,
                   Eigen::MatrixXf& actions) {
   sync_acting_actor();
-  to_env_actions(acting_actor_.forward(obs), actions);
+  acting_.to_env_actions(acting_actor_.forward(obs), actions);
 }
 
 double TD3::critic_loss_and_gradients(const ReplayBatch& batch) {
@@ -170,12 +103,12 @@ double TD3::critic_loss_and_gradients(const ReplayBatch& batch) {
                                 static_cast<float>(config_.target_noise_clip), smoothing_noise_);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
   const float inv_batch = 1.0f / static_cast<float>(n);
-  const int lanes = run_lanes(n, [&](int lane, Eigen::Index begin, Eigen::Index count) {
+  const int lanes = run_batch_lanes(n, [&](int lane, Eigen::Index begin, Eigen::Index count) {
     if (lane > 0) lanes_[lane].pull_critic_pass_params(lanes_[0]);
     lane_losses_[lane] = lanes_[lane].critic_pass(batch, begin, count, smoothing_noise_, gamma,
                                                   inv_batch, target_q_);
   });
-  std::vector<Td3Critic>& critics = lanes_[0].critics();
+  std::vector<ContinuousCritic>& critics = lanes_[0].critics();
   for (int lane = 1; lane < lanes; ++lane)
     for (size_t i = 0; i < critics.size(); ++i)
       critics[i].q().grads() += lanes_[lane].critics()[i].q().grads();
@@ -185,7 +118,7 @@ double TD3::critic_loss_and_gradients(const ReplayBatch& batch) {
 double TD3::actor_loss_and_gradient(const ReplayBatch& batch) {
   const Eigen::Index n = batch.obs.cols();
   const float inv_batch = 1.0f / static_cast<float>(n);
-  const int lanes = run_lanes(n, [&](int lane, Eigen::Index begin, Eigen::Index count) {
+  const int lanes = run_batch_lanes(n, [&](int lane, Eigen::Index begin, Eigen::Index count) {
     if (lane > 0) lanes_[lane].pull_actor_pass_params(lanes_[0]);
     lane_losses_[lane] = lanes_[lane].actor_pass(batch, begin, count, inv_batch);
   });
@@ -208,7 +141,7 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& batch, float lr) {
     actor_optimizer_.step(lr);
     acting_stale_ = true;
     const auto tau = static_cast<float>(config_.off_policy.tau);
-    for (Td3Critic& c : critics()) c.soft_update(tau);
+    for (ContinuousCritic& c : critics()) c.soft_update(tau);
     polyak_update(actor().net().params(), actor_target().net().params(), tau);
   }
   return stats;
@@ -255,7 +188,7 @@ void TD3::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
     select_actions(obs, warmup, env_actions, buffer_actions);
   };
   // SB3 collect_rollouts: action_noise.reset(indices=[idx]) for each finished episode.
-  callbacks.on_episode_end = [this](int e) { action_noise_.reset(e); };
+  callbacks.on_episode_end = [this](int e) { acting_.on_episode_end(e); };
   callbacks.train = [this](int gradient_steps, Logger* logger) { train(gradient_steps, logger); };
   off_policy_learn(env, total_timesteps, hooks, config_.off_policy, *state_, callbacks,
                    num_timesteps_);

@@ -9,15 +9,16 @@
 // one critic, as SB3's DDPG is a TD3 subclass with those settings.
 //
 // One gradient step (train_on_batch) reads top to bottom like TD3.train's loop body. A
-// training-sized minibatch is split over two Td3Lane replicas (see td3_lane.hpp) that run on
-// both cores when ForkJoin's worker is on (RLRUN_THREADS=2), one after the other otherwise. The
-// split depends on the batch size only, so a run is bit-identical either way.
+// training-sized minibatch is split over two Td3Lane replicas (algos/common/batch_lanes.hpp)
+// that run on both cores when ForkJoin's worker is on (RLRUN_THREADS=2), one after the other
+// otherwise. The split depends on the batch size only, so a run is bit-identical either way.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
+#include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/td3/td3_lane.hpp"
 #include "rlrun/core/schedule.hpp"
@@ -104,9 +105,9 @@ class TD3 : public Algorithm {
   // (-> last_critic_target()) and returns sum_i mse(Q_i(s, a), y), leaving each critic's
   // gradient in critics()[i].q().grads().
   double critic_loss_and_gradients(const ReplayBatch& batch);
-  // -mean(Q_1(s, actor(s))), its gradient left in actor().net().grads(). Critic 1's own
-  // gradient buffer also receives a contribution, as torch's actor_loss.backward() does; the
-  // critic's next update overwrites it (zero_grad), so it never reaches the critic optimizer.
+  // -mean(Q_1(s, actor(s))), its gradient left in actor().net().grads(). Only dQ_1/da is
+  // propagated through critic 1: torch's actor_loss.backward() also fills critic 1's .grad, but
+  // its next update zeroes that first, so it never reaches the critic optimizer.
   double actor_loss_and_gradient(const ReplayBatch& batch);
 
   const Config& config() const { return config_; }
@@ -115,8 +116,8 @@ class TD3 : public Algorithm {
   const Td3Actor& actor() const { return lanes_.front().actor(); }
   Td3Actor& actor_target() { return lanes_.front().actor_target(); }
   const Td3Actor& actor_target() const { return lanes_.front().actor_target(); }
-  std::vector<Td3Critic>& critics() { return lanes_.front().critics(); }
-  const std::vector<Td3Critic>& critics() const { return lanes_.front().critics(); }
+  std::vector<ContinuousCritic>& critics() { return lanes_.front().critics(); }
+  const std::vector<ContinuousCritic>& critics() const { return lanes_.front().critics(); }
   int64_t n_updates() const { return n_updates_; }
   // From the last critic_loss_and_gradients: y (1 x batch) and the clipped smoothing noise
   // (action_dim x batch).
@@ -126,27 +127,21 @@ class TD3 : public Algorithm {
  private:
   // `gradient_steps` updates from the replay buffer (SB3 TD3.train), logging the means.
   void train(int gradient_steps, Logger* logger);
-  // Runs fn(lane, begin, count) for each lane's slice of a batch of n columns: one lane below
-  // kMinSplitBatch, else two halves, lane 1 on ForkJoin's worker. Returns the lanes used.
-  template <class F>
-  int run_lanes(Eigen::Index n, F&& fn);
   // The acting copy of the actor (a separate Mlp, so acting on n_envs observations never
   // resizes the training network's batch buffers) takes the trained weights when they changed.
   void sync_acting_actor();
-  // SB3 unscale_action, clamped so that rounding at +-1 never leaves the Box.
-  void to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const;
 
   std::string id_;
   Config config_;
   AlgorithmSetup setup_;
   int obs_dim_ = 0;
   int action_dim_ = 0;
-  Rng init_rng_, action_rng_, noise_rng_, sample_rng_, smoothing_rng_;
+  Rng init_rng_, sample_rng_, smoothing_rng_;
   std::vector<Td3Lane> lanes_;  // [0] holds the trained parameters; [1] a replica
   Adam actor_optimizer_;
   std::vector<Adam> critic_optimizers_;  // one per critic, on lanes_[0]'s parameters
   Td3Actor acting_actor_;
-  ActionNoise action_noise_;
+  BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
   bool acting_stale_ = true;
   std::optional<OffPolicyState> state_;  // replay buffer etc., created by the first learn()
   int64_t n_updates_ = 0;
@@ -155,8 +150,6 @@ class TD3 : public Algorithm {
   ReplayBatch batch_;
   Eigen::MatrixXf smoothing_noise_, target_q_;
   double lane_losses_[2] = {0.0, 0.0};
-  // Acting workspaces.
-  Eigen::MatrixXf scaled_actions_, exploration_noise_;
 };
 
 }  // namespace rlrun

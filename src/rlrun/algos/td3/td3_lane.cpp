@@ -13,26 +13,26 @@ Td3Lane::Td3Lane(int obs_dim, int action_dim, const std::vector<int>& net_arch,
   critics_.reserve(n_critics);
   for (int i = 0; i < n_critics; ++i)
     critics_.emplace_back(obs_dim + action_dim, net_arch, activation);
-  for (const Td3Critic& c : critics_) target_values_.push_back(&c.target_values());
+  for (const ContinuousCritic& c : critics_) target_values_.push_back(&c.target_values());
 }
 
 void Td3Lane::init(Rng& rng) {
   actor_.net().init_torch_default(rng);
   actor_target_.net().params() = actor_.net().params();
-  for (Td3Critic& c : critics_) c.init(rng);
+  for (ContinuousCritic& c : critics_) c.init(rng);
 }
 
 void Td3Lane::pull_critic_pass_params(const Td3Lane& primary) {
   actor_target_.net().params() = primary.actor_target_.net().params();
   for (size_t i = 0; i < critics_.size(); ++i) {
-    critics_[i].q().params() = primary.critics_[i].q().params();
-    critics_[i].target().params() = primary.critics_[i].target().params();
+    critics_[i].pull_online(primary.critics_[i]);
+    critics_[i].pull_target(primary.critics_[i]);
   }
 }
 
 void Td3Lane::pull_actor_pass_params(const Td3Lane& primary) {
   actor_.net().params() = primary.actor_.net().params();
-  critics_.front().q().params() = primary.critics_.front().q().params();
+  critics_.front().pull_online(primary.critics_.front());
 }
 
 void Td3Lane::resize_workspaces(Eigen::Index count) {
@@ -54,7 +54,7 @@ double Td3Lane::critic_pass(const ReplayBatch& batch, Eigen::Index begin, Eigen:
                           next_actions_);
   next_obs_action_.topRows(obs_dim_) = next_obs;
   next_obs_action_.bottomRows(action_dim_) = next_actions_;
-  for (Td3Critic& c : critics_) c.compute_target_values(next_obs_action_);
+  for (ContinuousCritic& c : critics_) c.compute_target_values(next_obs_action_);
   auto y_slice = y.middleCols(begin, count);
   td3_target(target_values_, batch.rewards.segment(begin, count), batch.dones.segment(begin, count),
              gamma, y_slice);
@@ -63,7 +63,8 @@ double Td3Lane::critic_pass(const ReplayBatch& batch, Eigen::Index begin, Eigen:
   obs_action_.topRows(obs_dim_) = batch.obs.middleCols(begin, count);
   obs_action_.bottomRows(action_dim_) = batch.actions.middleCols(begin, count);
   double loss = 0.0;
-  for (Td3Critic& c : critics_) loss += c.loss_and_gradient(obs_action_, y_slice, inv_batch);
+  for (ContinuousCritic& c : critics_)
+    loss += c.loss_and_gradient(obs_action_, y_slice, inv_batch);
   return loss;
 }
 
@@ -74,7 +75,7 @@ double Td3Lane::actor_pass(const ReplayBatch& batch, Eigen::Index begin, Eigen::
   const auto obs = batch.obs.middleCols(begin, count);
   obs_action_pi_.topRows(obs_dim_) = obs;
   obs_action_pi_.bottomRows(action_dim_) = actor_.forward(obs);
-  Td3Critic& q1 = critics_.front();
+  ContinuousCritic& q1 = critics_.front();
   q1.compute_values(obs_action_pi_);
   const double loss = -static_cast<double>(q1.values().sum()) * inv_batch;
   grad_q_.setConstant(-inv_batch);

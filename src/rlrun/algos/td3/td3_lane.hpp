@@ -1,20 +1,17 @@
 #pragma once
 // One replica of TD3's networks (actor, actor_target, critics and their targets) that runs the
-// forward and backward passes of one slice of a minibatch. TD3 splits each minibatch of a
-// training-sized batch over two lanes, one per core (data parallelism): every product then
-// runs on half the columns, and the replica's gradients are added to the primary lane's before
-// the optimizer steps, which is the gradient torch computes over the whole batch. Unlike
-// splitting by network (the twin critics), this keeps both cores busy through the actor update
-// too, which costs as much as the two critics' updates, and works for DDPG's single critic.
+// forward and backward passes of one slice of a minibatch (algos/common/batch_lanes.hpp: TD3
+// splits each training-sized minibatch over two lanes, one per core, and adds the replica's
+// gradients to the primary lane's before the optimizer steps).
 //
 // Lane 0 holds the trained parameters; a replica lane copies the ones a pass reads from it
 // first (pull_*). The passes write only the lane's own members and their own columns of y.
 #include <Eigen/Core>
 #include <vector>
 
+#include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/algos/td3/td3_actor.hpp"
-#include "rlrun/algos/td3/td3_critic.hpp"
 
 namespace rlrun {
 
@@ -32,8 +29,8 @@ class Td3Lane {
   const Td3Actor& actor() const { return actor_; }
   Td3Actor& actor_target() { return actor_target_; }
   const Td3Actor& actor_target() const { return actor_target_; }
-  std::vector<Td3Critic>& critics() { return critics_; }
-  const std::vector<Td3Critic>& critics() const { return critics_; }
+  std::vector<ContinuousCritic>& critics() { return critics_; }
+  const std::vector<ContinuousCritic>& critics() const { return critics_; }
 
   // Copies what critic_pass reads (actor_target, every critic and critic target) / what
   // actor_pass reads (actor, critic 1) from `primary`.
@@ -58,7 +55,7 @@ class Td3Lane {
   int obs_dim_ = 0;
   int action_dim_ = 0;
   Td3Actor actor_, actor_target_;
-  std::vector<Td3Critic> critics_;
+  std::vector<ContinuousCritic> critics_;
   std::vector<const Eigen::MatrixXf*> target_values_;
   Eigen::MatrixXf next_actions_, obs_action_, next_obs_action_, obs_action_pi_, grad_q_;
 };

@@ -28,6 +28,8 @@ class Acrobot : public ClassicControlEnv {
 
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   std::string id() const override { return "Acrobot-v1"; }
+  // acrobot.py: SCREEN_DIM 500, render_fps 15.
+  RenderSpec render_spec() const override { return {500, 500, 15}; }
 
   int state_dim() const override { return 4; }
   void get_state(std::span<double> state) const override;
@@ -38,6 +40,9 @@ class Acrobot : public ClassicControlEnv {
   void sample_initial_state() override;
   void load_state(std::span<const double> state) override;
   void write_observation(std::span<float> obs) const override;
+  void draw_state(std::span<const double> state, bool current, Frame& frame) const override;
+  void state_from_observation(std::span<const float> obs,
+                              std::span<double> state) const override;
 
  private:
   Config config_;
@@ -46,6 +51,12 @@ class Acrobot : public ClassicControlEnv {
   // float64 after a step (rk4 returns float64); set_state keeps that dtype, like an in-place
   // `env.unwrapped.state[:] = values` does.
   bool state_is_float32_ = false;
+  void write_extra_state(StateWriter& out) const override {
+    out.put_bool("state_is_float32", state_is_float32_);
+  }
+  void read_extra_state(const StateReader& in) override {
+    state_is_float32_ = in.get_bool("state_is_float32");
+  }
 };
 
 }  // namespace rlrun

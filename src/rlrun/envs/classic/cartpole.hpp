@@ -33,6 +33,8 @@ class CartPole : public ClassicControlEnv {
 
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   std::string id() const override { return "CartPole-v1"; }
+  // cartpole.py: screen 600x400, render_fps 50.
+  RenderSpec render_spec() const override { return {600, 400, 50}; }
 
   int state_dim() const override { return 4; }
   void get_state(std::span<double> state) const override;
@@ -43,12 +45,21 @@ class CartPole : public ClassicControlEnv {
   void sample_initial_state() override;
   void load_state(std::span<const double> state) override;
   void write_observation(std::span<float> obs) const override;
+  void draw_state(std::span<const double> state, bool current, Frame& frame) const override;
+  void state_from_observation(std::span<const float> obs,
+                              std::span<double> state) const override;
 
  private:
   Config config_;
   std::array<double, 4> state_{};  // x, x_dot, theta, theta_dot
   // Gymnasium's steps_beyond_terminated: -1 stands for Python's None.
   int steps_beyond_terminated_ = -1;
+  void write_extra_state(StateWriter& out) const override {
+    out.put_int("steps_beyond_terminated", steps_beyond_terminated_);
+  }
+  void read_extra_state(const StateReader& in) override {
+    steps_beyond_terminated_ = static_cast<int>(in.get_int("steps_beyond_terminated"));
+  }
 };
 
 }  // namespace rlrun

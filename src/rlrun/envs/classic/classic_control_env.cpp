@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace rlrun {
 
@@ -32,6 +33,25 @@ void ClassicControlEnv::set_state(std::span<const double> state, std::span<float
   load_state(state);
   has_state_ = true;
   write_observation(obs);
+}
+
+void ClassicControlEnv::write_state(StateWriter& out) const {
+  out.put_rng("rng", rng_);
+  out.put_bool("ever_seeded", ever_seeded_);
+  out.put_bool("has_state", has_state_);
+  std::vector<double> state(static_cast<size_t>(state_dim()));
+  get_state(state);
+  out.put_vector("state", state);
+  write_extra_state(out);
+}
+
+void ClassicControlEnv::read_state(const StateReader& in) {
+  in.get_rng("rng", rng_);
+  ever_seeded_ = in.get_bool("ever_seeded");
+  has_state_ = in.get_bool("has_state");
+  // Extra state first: it may say how the physical state is stored (float32 or float64).
+  read_extra_state(in);
+  load_state(in.get_span<double>("state", state_dim()));
 }
 
 void ClassicControlEnv::require_reset() const {

@@ -40,6 +40,19 @@ class ClassicControlEnv : public Env {
 
   Rng& rng() { return rng_; }
 
+  // Rendering (Gymnasium's render_mode="rgb_array", drawn like its pygame code; the drawing
+  // of each env lives in <env>_render.cpp). render() draws the current state and throws
+  // std::logic_error before the first reset(); render_observation() draws the state an
+  // observation describes (all five observations determine the picture).
+  bool render(Frame& frame) const override;
+  bool render_observation(std::span<const float> obs, Frame& frame) const override;
+
+  // Resume: the Rng, the seeding/reset flags, the physical state and each env's extra
+  // bookkeeping (write_extra_state), so a restored env continues bit-identically.
+  bool can_save_state() const override { return true; }
+  void write_state(StateWriter& out) const override;
+  void read_state(const StateReader& in) override;
+
  protected:
   ClassicControlEnv(Space observation_space, Space action_space);
 
@@ -49,6 +62,16 @@ class ClassicControlEnv : public Env {
   virtual void load_state(std::span<const double> state) = 0;
   // Writes the float32 observation of the current state.
   virtual void write_observation(std::span<float> obs) const = 0;
+  // Draws a physical state (state_dim() values, get_state() order) into `frame`. `current`
+  // says it is the env's own current state, so extras such as Pendulum's last-torque arrow
+  // may be drawn too (an observation does not carry them).
+  virtual void draw_state(std::span<const double> state, bool current, Frame& frame) const = 0;
+  // The physical state an observation describes, as far as drawing needs it.
+  virtual void state_from_observation(std::span<const float> obs,
+                                      std::span<double> state) const = 0;
+  // State beyond the physical state vector (e.g. CartPole's steps_beyond_terminated).
+  virtual void write_extra_state(StateWriter& /*out*/) const {}
+  virtual void read_extra_state(const StateReader& /*in*/) {}
 
   // Throws std::logic_error when step() runs before the first reset() (Gymnasium asserts).
   void require_reset() const;

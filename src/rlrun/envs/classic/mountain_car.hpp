@@ -31,6 +31,8 @@ class MountainCar : public ClassicControlEnv {
 
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   std::string id() const override { return "MountainCar-v0"; }
+  // mountain_car.py: screen 600x400, render_fps 30.
+  RenderSpec render_spec() const override { return {600, 400, 30}; }
 
   int state_dim() const override { return 2; }
   void get_state(std::span<double> state) const override;
@@ -41,6 +43,9 @@ class MountainCar : public ClassicControlEnv {
   void sample_initial_state() override;
   void load_state(std::span<const double> state) override;
   void write_observation(std::span<float> obs) const override;
+  void draw_state(std::span<const double> state, bool current, Frame& frame) const override;
+  void state_from_observation(std::span<const float> obs,
+                              std::span<double> state) const override;
 
  private:
   Config config_;

@@ -31,6 +31,8 @@ class MountainCarContinuous : public ClassicControlEnv {
 
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   std::string id() const override { return "MountainCarContinuous-v0"; }
+  // continuous_mountain_car.py: screen 600x400, render_fps 30.
+  RenderSpec render_spec() const override { return {600, 400, 30}; }
 
   int state_dim() const override { return 2; }
   void get_state(std::span<double> state) const override;
@@ -41,6 +43,9 @@ class MountainCarContinuous : public ClassicControlEnv {
   void sample_initial_state() override;
   void load_state(std::span<const double> state) override;
   void write_observation(std::span<float> obs) const override;
+  void draw_state(std::span<const double> state, bool current, Frame& frame) const override;
+  void state_from_observation(std::span<const float> obs,
+                              std::span<double> state) const override;
 
  private:
   Config config_;
@@ -50,6 +55,12 @@ class MountainCarContinuous : public ClassicControlEnv {
   double position_ = 0.0;
   double velocity_ = 0.0;
   bool state_is_float32_ = false;
+  void write_extra_state(StateWriter& out) const override {
+    out.put_bool("state_is_float32", state_is_float32_);
+  }
+  void read_extra_state(const StateReader& in) override {
+    state_is_float32_ = in.get_bool("state_is_float32");
+  }
 };
 
 }  // namespace rlrun

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -53,6 +54,7 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   new_theta_dot = std::clamp(new_theta_dot, -kMaxSpeed, kMaxSpeed);
   theta_ = theta_ + new_theta_dot * kDt;
   theta_dot_ = new_theta_dot;
+  last_u_ = u;  // for rendering only
 
   write_observation(obs);
   return {-costs, false, false};
@@ -61,6 +63,7 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
 void Pendulum::sample_initial_state() {
   theta_ = rng_.uniform(-kResetTheta, kResetTheta);
   theta_dot_ = rng_.uniform(-kResetThetaDot, kResetThetaDot);
+  last_u_ = std::numeric_limits<double>::quiet_NaN();
 }
 
 void Pendulum::get_state(std::span<double> state) const {

@@ -1,6 +1,7 @@
 #pragma once
 // Pendulum-v1: gymnasium/envs/classic_control/pendulum.py (Gymnasium 1.0.0). Swing a
 // frictionless pendulum up; torque clipped to [-2, 2], angular speed clipped to [-8, 8].
+#include <limits>
 #include <span>
 #include <string>
 
@@ -31,6 +32,8 @@ class Pendulum : public ClassicControlEnv {
 
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   std::string id() const override { return "Pendulum-v1"; }
+  // pendulum.py: screen_dim 500, render_fps 30.
+  RenderSpec render_spec() const override { return {500, 500, 30}; }
 
   int state_dim() const override { return 2; }
   void get_state(std::span<double> state) const override;
@@ -41,11 +44,16 @@ class Pendulum : public ClassicControlEnv {
   void sample_initial_state() override;
   void load_state(std::span<const double> state) override;
   void write_observation(std::span<float> obs) const override;
+  void draw_state(std::span<const double> state, bool current, Frame& frame) const override;
+  void state_from_observation(std::span<const float> obs,
+                              std::span<double> state) const override;
 
  private:
   Config config_;
   double theta_ = 0.0;      // angle, 0 = upright; not wrapped (only the cost wraps it)
   double theta_dot_ = 0.0;  // angular velocity
+  // Last clipped torque, only for the torque arrow (pendulum.py's self.last_u); NaN = None.
+  double last_u_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace rlrun

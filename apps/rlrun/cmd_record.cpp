@@ -1,0 +1,186 @@
+// rlrun record: video (mp4) and/or PNG frames of a policy acting in its env.
+//   rlrun record --model FILE --output video.mp4 [--episodes N] [--fps F] [--size WxH]
+//                [--deterministic|--stochastic] [--seed S] [--frames DIR] [--no-overlay]
+//   rlrun record --config CFG --policy random ...     (no model; the config's env)
+//   rlrun record --env ID --policy random ...         (no model, no config)
+//   rlrun record --from-obs DIR_OR_NPY --env ID --output video.mp4   (an observation log)
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <regex>
+
+#include "commands.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/rng.hpp"
+#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/observation_log.hpp"
+#include "rlrun/runtime/recorder.hpp"
+#include "rlrun/runtime/trainer.hpp"
+
+namespace rlrun::cli {
+
+namespace {
+
+struct Options {
+  std::string model, config, env_id, from_obs, policy;
+  std::vector<std::string> overrides;
+  std::string output, frames, size;
+  int episodes = 1;
+  uint64_t seed = 0;
+  std::optional<double> fps;
+  bool stochastic = false;
+  bool no_overlay = false;
+};
+
+// "600x400" -> width, height.
+void parse_size(const std::string& text, RecordOptions& record) {
+  static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern))
+    throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 600x400");
+  record.width = std::stoi(m[1]);
+  record.height = std::stoi(m[2]);
+  if (record.width < 2 || record.height < 2) throw UsageError("--size " + text + ": too small");
+}
+
+// An env by id alone, with its registered defaults (TimeLimit, Monitor), as `env: {id: ID}`.
+EnvPtr env_by_id(const std::string& id, const Registry& registry) {
+  EnvSpec spec;
+  spec.id = id;
+  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "--env", "env.id");
+  try {
+    return make_env(spec, registry, "", unix_time_now());
+  } catch (const ConfigError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void print_summary(const RecordResult& r, const std::string& what, const Options& o) {
+  std::string targets = o.output;
+  if (!o.frames.empty()) targets += (targets.empty() ? "" : " and ") + o.frames + "/";
+  std::printf("%s: %lld frames at %dx%d, %g fps -> %s\n", what.c_str(),
+              static_cast<long long>(r.frames), r.width, r.height, r.fps, targets.c_str());
+  if (!r.episodes.returns.empty())
+    std::printf("mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f over %zu episodes\n",
+                r.episodes.mean_return(), r.episodes.std_return(), r.episodes.mean_length(),
+                r.episodes.returns.size());
+  if (r.interrupted) std::printf("interrupted: the video holds the frames recorded so far\n");
+}
+
+int run(const Options& o) {
+  const int sources =
+      !o.model.empty() + !o.config.empty() + !o.from_obs.empty() +
+      (o.model.empty() && o.config.empty() && o.from_obs.empty() && !o.env_id.empty());
+  if (sources != 1)
+    throw UsageError(
+        "record needs exactly one of --model FILE, --config CFG --policy random, "
+        "--env ID --policy random, or --from-obs PATH --env ID");
+  if (o.output.empty() && o.frames.empty())
+    throw UsageError("record needs --output video.mp4 and/or --frames DIR");
+  if (!o.overrides.empty() && o.config.empty()) throw UsageError("--set only applies to --config");
+
+  RecordOptions record;
+  record.video_path = o.output;
+  record.frames_dir = o.frames;
+  record.episodes = o.episodes;
+  record.seed = o.seed;
+  record.fps = o.fps;
+  record.overlay = !o.no_overlay;
+  if (!o.size.empty()) parse_size(o.size, record);
+  install_interrupt_handlers();
+  record.keep_going = [] { return !interrupt_requested(); };
+  const Registry& registry = builtin_registry();
+
+  if (!o.from_obs.empty()) {
+    if (o.env_id.empty()) throw UsageError("--from-obs needs --env ID (the env that logged them)");
+    EnvPtr env = env_by_id(o.env_id, registry);
+    const RecordResult r = record_observations(*env, observation_log_files(o.from_obs), record);
+    print_summary(r, "recorded observation log " + o.from_obs + " of " + o.env_id, o);
+    return r.interrupted ? 130 : 0;
+  }
+
+  const std::string policy = o.policy.empty() ? (o.model.empty() ? "" : "model") : o.policy;
+  if (policy == "model" && o.model.empty()) throw UsageError("--policy model needs --model FILE");
+  if (policy.empty()) throw UsageError("without --model, choose a policy: --policy random");
+
+  EnvPtr env;
+  std::unique_ptr<Algorithm> algorithm;
+  std::string algo_id;
+  if (!o.model.empty()) {
+    const ModelFile model = read_model(o.model);
+    const Experiment experiment = experiment_from_model(model, registry);
+    env = make_model_env(model, experiment, registry);  // normalisation statistics frozen
+    algorithm = algorithm_from_model(model, experiment, registry, env->observation_space(),
+                                     env->action_space());
+    algo_id = model.meta.algorithm;
+  } else if (!o.config.empty()) {
+    const Experiment experiment = load_experiment(o.config, o.overrides, registry);
+    env = make_env(experiment.env, registry, "", unix_time_now());
+  } else {
+    env = env_by_id(o.env_id, registry);
+  }
+
+  PolicyFn act;
+  if (policy == "model") {
+    const bool deterministic = !o.stochastic;
+    record.policy_label = algo_id + (deterministic ? " deterministic" : " stochastic");
+    act = [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
+      algorithm->predict(obs, deterministic, action);
+    };
+  } else if (policy == "random") {
+    // Uniform actions from the action space, their own stream seeded from --seed.
+    record.policy_label = "random policy";
+    auto rng = std::make_shared<Rng>(o.seed ^ 0x5eedull);
+    const Space space = env->action_space();
+    act = [rng, space](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
+      action.resize(space.flat_dim(), 1);
+      space.sample(*rng, {action.data(), static_cast<size_t>(action.size())});
+    };
+  } else {
+    throw UsageError("--policy " + policy + ": expected model or random");
+  }
+  const RecordResult r = record_episodes(*env, act, record);
+  print_summary(r,
+                "recorded " + std::to_string(r.episodes.returns.size()) + " episodes of " +
+                    env->id() + " (" + record.policy_label + ")",
+                o);
+  return r.interrupted ? 130 : 0;
+}
+
+}  // namespace
+
+Action add_record(CLI::App& app) {
+  auto options = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "record", "record a policy as an mp4 video (needs the ffmpeg program) and/or PNG frames");
+  sub->add_option("--model", options->model, "model.zip written by rlrun train");
+  sub->add_option("--config", options->config,
+                  "experiment file whose env to record (with --policy random)");
+  sub->add_option("--set", options->overrides, "override a --config value (repeatable)");
+  sub->add_option("--env", options->env_id, "env id (with --policy random or --from-obs)");
+  sub->add_option("--policy", options->policy, "model (default with --model) or random");
+  sub->add_option("--from-obs", options->from_obs,
+                  "observation log to draw: a .npy file or a directory of .npy chunks (obs_log)");
+  sub->add_option("--output,-o", options->output, "mp4 file to write (H.264, yuv420p)");
+  sub->add_option("--frames", options->frames,
+                  "also (or instead) write PNG frames into this directory");
+  sub->add_option("--episodes", options->episodes, "number of episodes")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--fps", options->fps,
+                  "frames per second (default: the env's, e.g. 50 for CartPole)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--size", options->size,
+                  "frame size WIDTHxHEIGHT (default: the env's, e.g. 600x400)");
+  sub->add_option("--seed", options->seed, "seed of the first episode's reset (default 0)");
+  auto deterministic = std::make_shared<bool>(false);
+  CLI::Option* det =
+      sub->add_flag("--deterministic", *deterministic, "use the deterministic policy (default)");
+  sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")
+      ->excludes(det);
+  sub->add_flag("--no-overlay", options->no_overlay, "no text (env id, episode, step, return)");
+  return [options, deterministic]() { return run(*options); };
+}
+
+}  // namespace rlrun::cli

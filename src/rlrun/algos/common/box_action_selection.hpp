@@ -1,0 +1,68 @@
+#pragma once
+// How SAC, TD3 and DDPG act in a Box action space, SB3 OffPolicyAlgorithm._sample_action:
+// before learning_starts a uniform sample of the action space per env (then scale_action);
+// afterwards the policy's action, already in [-1, 1] (a tanh-squashed actor); in both cases
+// the exploration noise added and the result clipped to [-1, 1], which is what the replay
+// buffer stores; the env gets it unscaled to [low, high] (unscale_action). The actors end in
+// tanh, so the Box must be bounded.
+#include <Eigen/Core>
+#include <string>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/action_noise.hpp"
+#include "rlrun/core/rng.hpp"
+#include "rlrun/core/space.hpp"
+
+namespace rlrun {
+
+class BoxActionSelection {
+ public:
+  // Throws std::invalid_argument, naming the algorithm `id`, unless the observations are a Box
+  // and the actions a Box with finite bounds low < high. Returns the action dimension.
+  static int checked_action_dim(const AlgorithmSetup& setup, const std::string& id);
+
+  // The action stream is seed ^ kActionStream and the noise stream seed ^ kNoiseStream
+  // (rng_streams.hpp). Throws std::invalid_argument for an unknown noise type.
+  BoxActionSelection(const AlgorithmSetup& setup, const ActionNoiseConfig& noise);
+
+  // Actions for obs (obs_dim x n_envs): `policy(action_rng, buffer_actions)` writes the
+  // policy's actions in [-1, 1] (it may draw from action_rng, SAC's sampling does) unless
+  // `warmup`. buffer_actions end in [-1, 1], env_actions in [low, high].
+  template <class Policy>
+  void select(const Eigen::MatrixXf& obs, bool warmup, Policy&& policy,
+              Eigen::MatrixXf& env_actions, Eigen::MatrixXf& buffer_actions) {
+    if (warmup) {
+      sample_uniform(obs.cols(), env_actions, buffer_actions);
+    } else {
+      policy(action_rng_, buffer_actions);
+    }
+    add_noise(buffer_actions);
+    to_env_actions(buffer_actions, env_actions);
+  }
+
+  // SB3 unscale_action: [-1, 1] -> [low, high], clamped so that rounding at +-1 never leaves
+  // the Box (predict() uses it too).
+  void to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const;
+
+  // SB3 collect_rollouts: action_noise.reset(indices=[env]) when an episode ends.
+  void on_episode_end(int env) { noise_.reset(env); }
+
+  // State for exact resume.
+  Rng& action_rng() { return action_rng_; }
+  Rng& noise_rng() { return noise_rng_; }
+  ActionNoise& noise() { return noise_; }
+
+ private:
+  // np.array([action_space.sample() for _ in range(n_envs)]), then scale_action.
+  void sample_uniform(Eigen::Index n, Eigen::MatrixXf& env_actions,
+                      Eigen::MatrixXf& buffer_actions);
+  // clip(actions + noise(), -1, 1) when there is noise (SB3 adds it in warmup too).
+  void add_noise(Eigen::MatrixXf& buffer_actions);
+
+  Space space_;
+  Rng action_rng_, noise_rng_;
+  ActionNoise noise_;
+  Eigen::MatrixXf noise_sample_;
+};
+
+}  // namespace rlrun

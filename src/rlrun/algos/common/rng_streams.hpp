@@ -1,0 +1,18 @@
+#pragma once
+// The random streams an algorithm derives from its one seed (DESIGN.md §3: one explicit RNG per
+// component). The weights use `seed` itself; every other purpose gets `seed ^ k<Purpose>`, so
+// that, e.g., drawing more exploration noise never shifts the replay sampling. The constants
+// are arbitrary odd 64-bit words (PCG's and SplitMix64's multipliers, golden-ratio bits); they
+// are fixed forever, since changing one changes every run of a seed.
+#include <cstdint>
+
+namespace rlrun {
+
+// Action sampling while collecting (on-policy samples; off-policy warmup and stochastic acting).
+inline constexpr uint64_t kActionStream = 0x5851f42d4c957f2dULL;
+// Off-policy exploration noise (NormalActionNoise / Ornstein-Uhlenbeck).
+inline constexpr uint64_t kNoiseStream = 0x2545f4914f6cdd1dULL;
+// Replay-buffer sampling (off-policy) and minibatch shuffling (on-policy).
+inline constexpr uint64_t kSampleStream = 0x14057b7ef767814fULL;
+
+}  // namespace rlrun

@@ -1,0 +1,51 @@
+#pragma once
+// Checkpoint helpers shared by the algorithms' save_training_state / load_training_state:
+// optimizer moments (torch's optimizer.state_dict(): exp_avg, exp_avg_sq, step; square_avg
+// for RMSprop) and network parameters under a prefix. Shapes come from the configuration, so
+// reading checks them and names the key that does not fit.
+#include <string>
+
+#include "rlrun/core/state_dict.hpp"
+#include "rlrun/nn/adam.hpp"
+#include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/rmsprop.hpp"
+
+namespace rlrun {
+
+inline void write_adam(StateWriter out, const Adam& adam) {
+  out.put_int("step", adam.steps());
+  for (size_t i = 0; i < adam.exp_avg().size(); ++i) {
+    out.put_matrix("exp_avg." + std::to_string(i), adam.exp_avg()[i]);
+    out.put_matrix("exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
+  }
+}
+
+inline void read_adam(const StateReader& in, Adam& adam) {
+  adam.set_steps(in.get_int("step"));
+  for (size_t i = 0; i < adam.exp_avg().size(); ++i) {
+    in.get_matrix("exp_avg." + std::to_string(i), adam.exp_avg()[i]);
+    in.get_matrix("exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
+  }
+}
+
+inline void write_rmsprop(StateWriter out, const RmsProp& rmsprop) {
+  out.put_int("step", rmsprop.steps());
+  for (size_t i = 0; i < rmsprop.square_avg().size(); ++i)
+    out.put_matrix("square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
+}
+
+inline void read_rmsprop(const StateReader& in, RmsProp& rmsprop) {
+  rmsprop.set_steps(in.get_int("step"));
+  for (size_t i = 0; i < rmsprop.square_avg().size(); ++i)
+    in.get_matrix("square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
+}
+
+// The flat parameter vector (target networks and other state the model file does not hold).
+inline void write_params(StateWriter& out, const std::string& name, const Mlp& net) {
+  out.put_matrix(name, net.params());
+}
+inline void read_params(const StateReader& in, const std::string& name, Mlp& net) {
+  in.get_matrix(name, net.params());
+}
+
+}  // namespace rlrun

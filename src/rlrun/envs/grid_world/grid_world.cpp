@@ -1,0 +1,119 @@
+#include "rlrun/envs/grid_world/grid_world.hpp"
+
+#include <random>
+#include <stdexcept>
+
+namespace rlrun {
+
+GridWorld::GridWorld(const Config& config)
+    : config_(config),
+      observation_space_(Space::multi_discrete(
+          {config.size > 0 ? config.size : 1, config.size > 0 ? config.size : 1})),
+      action_space_(Space::discrete(kNumActions)) {
+  if (config_.size < 2) throw std::invalid_argument("GridWorld-v0: size must be >= 2");
+  if (config_.max_steps < 1) throw std::invalid_argument("GridWorld-v0: max_steps must be >= 1");
+  key_success_ = info_.add_key("is_success");
+  key_bumped_ = info_.add_key("bumped");
+}
+
+int GridWorld::shortest_path_length(int row, int col) const {
+  return (config_.size - 1 - row) + (config_.size - 1 - col);
+}
+
+void GridWorld::reset(std::optional<uint64_t> seed, std::span<float> obs) {
+  // Gymnasium seeding (gymnasium/core.py Env.reset), as every rlrun env.
+  if (seed) {
+    rng_.reseed(*seed);
+    ever_seeded_ = true;
+  } else if (!ever_seeded_) {
+    std::random_device device;
+    rng_.reseed((static_cast<uint64_t>(device()) << 32) ^ device());
+    ever_seeded_ = true;
+  }
+  row_ = col_ = 0;
+  if (config_.random_start) {
+    // Cells in row-major order; the goal is the last one, so [0, n - 1) excludes it.
+    const int cell =
+        static_cast<int>(rng_.below(static_cast<uint64_t>(config_.size * config_.size - 1)));
+    row_ = cell / config_.size;
+    col_ = cell % config_.size;
+  }
+  steps_ = 0;
+  has_state_ = true;
+  info_.clear();
+  info_.set(key_success_, 0.0);
+  info_.set(key_bumped_, 0.0);
+  write_observation(obs);
+}
+
+StepResult GridWorld::step(std::span<const float> action, std::span<float> obs) {
+  if (!has_state_) throw std::logic_error("GridWorld-v0: call reset() before step()");
+  if (!action_space_.contains(action))
+    throw std::invalid_argument(
+        "GridWorld-v0: action " +
+        (action.empty() ? std::string("<empty>") : std::to_string(action[0])) + " is not in " +
+        action_space_.describe());
+  int row = row_, col = col_;
+  switch (static_cast<int>(action[0])) {
+    case kUp:
+      --row;
+      break;
+    case kRight:
+      ++col;
+      break;
+    case kDown:
+      ++row;
+      break;
+    case kLeft:
+      --col;
+      break;
+    default:
+      break;
+  }
+  const bool bumped = row < 0 || row >= config_.size || col < 0 || col >= config_.size;
+  if (!bumped) {
+    row_ = row;
+    col_ = col;
+  }
+  ++steps_;
+  StepResult result;
+  result.reward = bumped ? config_.wall_reward : config_.move_reward;
+  const bool at_goal = row_ == config_.size - 1 && col_ == config_.size - 1;
+  if (at_goal) {
+    result.reward += config_.goal_reward;
+    result.terminated = true;
+  } else if (steps_ >= config_.max_steps) {
+    result.reward += config_.timeout_reward;
+    result.truncated = true;
+  }
+  info_.clear();
+  info_.set(key_success_, at_goal ? 1.0 : 0.0);
+  info_.set(key_bumped_, bumped ? 1.0 : 0.0);
+  write_observation(obs);
+  return result;
+}
+
+void GridWorld::write_observation(std::span<float> obs) const {
+  obs[0] = static_cast<float>(row_);
+  obs[1] = static_cast<float>(col_);
+}
+
+void GridWorld::write_state(StateWriter& out) const {
+  out.put_rng("rng", rng_);
+  out.put_bool("ever_seeded", ever_seeded_);
+  out.put_bool("has_state", has_state_);
+  out.put_int("row", row_);
+  out.put_int("col", col_);
+  out.put_int("steps", steps_);
+}
+
+void GridWorld::read_state(const StateReader& in) {
+  in.get_rng("rng", rng_);
+  ever_seeded_ = in.get_bool("ever_seeded");
+  has_state_ = in.get_bool("has_state");
+  row_ = static_cast<int>(in.get_int("row"));
+  col_ = static_cast<int>(in.get_int("col"));
+  steps_ = static_cast<int>(in.get_int("steps"));
+}
+
+}  // namespace rlrun

@@ -1,0 +1,59 @@
+#pragma once
+// Training callbacks (SB3 stable_baselines3/common/callbacks.py), each configured by a YAML
+// section: eval (EvalCallback + StopTrainingOnRewardThreshold +
+// StopTrainingOnNoModelImprovement), checkpoint (CheckpointCallback), obs_log (the course's
+// ObsSaveCallback). The trainer calls every callback after every VecEnv step of every
+// algorithm (TrainingHooks::on_step), with num_timesteps = total env steps over all envs.
+// Frequencies in rlrun count those TOTAL steps (SB3's count calls, i.e. per-env steps).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/core/logger.hpp"
+#include "rlrun/env/vec_env.hpp"
+#include "rlrun/runtime/experiment.hpp"
+
+namespace rlrun {
+
+// What callbacks may use; owned by the trainer, alive for the whole training.
+struct TrainingContext {
+  const Experiment& experiment;
+  const Registry& registry;
+  std::string run_dir;
+  Algorithm& algorithm;
+  VecEnv& env;                                          // the training envs
+  Logger* logger = nullptr;                             // records land in the next progress.csv row
+  std::function<void(const std::string&)> message;      // a line on the console and in log.txt
+  std::function<void(const std::string&)> save_model;   // model file (with wrapper statistics)
+  std::function<void(const std::string&)> save_checkpoint;  // what checkpoints/ holds
+};
+
+class Callback {
+ public:
+  virtual ~Callback() = default;
+  // After every VecEnv step; false stops training (SB3's callback.on_step()).
+  virtual bool on_step(int64_t num_timesteps) = 0;
+  // Once after training ends, also after an early stop or Ctrl-C (SB3 on_training_end).
+  virtual void on_training_end(int64_t /*num_timesteps*/) {}
+  // Why on_step() returned false (empty while training goes on).
+  const std::string& stop_reason() const { return stop_reason_; }
+
+ protected:
+  std::string stop_reason_;
+};
+
+// True when num_timesteps reached `next`; then advances `next` past num_timesteps in steps of
+// `freq` (one trigger even if a step of n_envs crossed several multiples).
+inline bool crossed(int64_t num_timesteps, int64_t freq, int64_t& next) {
+  if (freq <= 0 || num_timesteps < next) return false;
+  while (next <= num_timesteps) next += freq;
+  return true;
+}
+
+// The callbacks the experiment's sections turn on, in order eval, checkpoint, obs_log, video.
+std::vector<std::unique_ptr<Callback>> make_callbacks(TrainingContext& context);
+
+}  // namespace rlrun

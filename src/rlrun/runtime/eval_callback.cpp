@@ -1,0 +1,100 @@
+#include "rlrun/runtime/eval_callback.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/evaluator.hpp"
+#include "rlrun/runtime/log_sinks.hpp"
+
+namespace rlrun {
+
+EvalCallback::EvalCallback(TrainingContext& context)
+    : context_(context),
+      config_(context.experiment.eval),
+      env_(make_env(context.experiment.env, context.registry, "", unix_time_now())),
+      next_(context.experiment.eval.freq) {
+  set_statistics_training(*env_, false);
+  const std::string path = context.run_dir + "/evaluations.csv";
+  csv_.open(path, std::ios::trunc);
+  if (!csv_) throw RuntimeFailure("cannot write " + path);
+  csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
+  csv_.flush();
+}
+
+bool EvalCallback::on_step(int64_t num_timesteps) {
+  if (!crossed(num_timesteps, config_.freq, next_)) return true;
+  // SB3 sync_envs_normalization: the eval env normalises with the training statistics.
+  TensorMap statistics;
+  save_model_statistics(context_.env.env(0), statistics);
+  load_model_statistics(*env_, statistics, /*training=*/false);
+  // A separate seed stream: the training envs use seed .. seed + n_envs - 1.
+  const uint64_t seed = context_.experiment.run.seed +
+                        static_cast<uint64_t>(context_.experiment.env.section.n_envs) +
+                        static_cast<uint64_t>(evaluations_++);
+  const EvalResult r =
+      evaluate_policy(context_.algorithm, *env_, config_.n_episodes, config_.deterministic, seed);
+  double success = std::nan("");
+  if (!r.successes.empty()) {
+    success = 0;
+    for (double s : r.successes) success += s;
+    success /= static_cast<double>(r.successes.size());
+  }
+  char line[256];
+  std::snprintf(line, sizeof line, "%lld,%.6g,%.6g,%.6g,", static_cast<long long>(num_timesteps),
+                r.mean_return(), r.std_return(), r.mean_length());
+  csv_ << line;
+  if (!std::isnan(success)) csv_ << success;
+  csv_ << '\n';
+  csv_.flush();
+  if (context_.logger) {
+    context_.logger->record("eval/mean_reward", r.mean_return());
+    context_.logger->record("eval/mean_ep_length", r.mean_length());
+    if (!std::isnan(success)) context_.logger->record("eval/success_rate", success);
+  }
+
+  std::string message = "eval at " + std::to_string(num_timesteps) + " steps: return " +
+                        format_log_value(r.mean_return()) + " +/- " +
+                        format_log_value(r.std_return()) + ", length " +
+                        format_log_value(r.mean_length());
+  if (!std::isnan(success)) message += ", success rate " + format_log_value(success);
+  if (r.mean_return() > best_) {
+    best_ = r.mean_return();
+    context_.save_model(context_.run_dir + "/best_model.zip");
+    message += " (new best, saved best_model.zip)";
+  }
+  context_.message(message);
+  return check_stop_rules();
+}
+
+bool EvalCallback::check_stop_rules() {
+  // StopTrainingOnRewardThreshold: continue while best_mean_reward < reward_threshold.
+  if (config_.reward_threshold && !(best_ < *config_.reward_threshold)) {
+    stop_reason_ = "best mean reward " + format_log_value(best_) + " reached eval.reward_threshold " +
+                   format_log_value(*config_.reward_threshold);
+    return false;
+  }
+  // StopTrainingOnNoModelImprovement: its n_calls is the number of evaluations so far.
+  if (config_.max_no_improvement_evals) {
+    bool stop = false;
+    if (evaluations_ > config_.min_evals) {
+      if (best_ > last_best_) {
+        no_improvement_evals_ = 0;
+      } else if (++no_improvement_evals_ > *config_.max_no_improvement_evals) {
+        stop = true;
+      }
+    }
+    last_best_ = best_;
+    if (stop) {
+      stop_reason_ = "no new best model in the last " + std::to_string(no_improvement_evals_) +
+                     " evaluations (eval.max_no_improvement_evals " +
+                     std::to_string(*config_.max_no_improvement_evals) + ")";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace rlrun

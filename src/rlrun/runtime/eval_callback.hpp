@@ -1,0 +1,47 @@
+#pragma once
+// `eval:` — SB3's EvalCallback with its two stop callbacks
+// (stable_baselines3/common/callbacks.py), counting TOTAL env steps:
+//   * every `freq` total steps (all n_envs counted; SB3's eval_freq counts per-env steps),
+//     runs `n_episodes` on a separate env (seeded run.seed + n_envs + k for the k-th
+//     evaluation) whose normalisation statistics are copied from training env 0 and frozen
+//     (SB3 sync_envs_normalization);
+//   * appends `timesteps,mean_reward,std_reward,mean_ep_length,success_rate` to
+//     evaluations.csv (success_rate empty unless the env reports `is_success`), records
+//     eval/mean_reward, eval/mean_ep_length (and eval/success_rate) for progress.csv;
+//   * saves best_model.zip on a new best mean reward;
+//   * reward_threshold: stops once the best mean reward >= it (StopTrainingOnRewardThreshold);
+//   * max_no_improvement_evals / min_evals: stops when, after more than min_evals evaluations,
+//     more than max_no_improvement_evals evaluations in a row brought no new best
+//     (StopTrainingOnNoModelImprovement, same counting as SB3).
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "rlrun/runtime/callback.hpp"
+
+namespace rlrun {
+
+class EvalCallback : public Callback {
+ public:
+  explicit EvalCallback(TrainingContext& context);
+  bool on_step(int64_t num_timesteps) override;
+
+  double best_mean_reward() const { return best_; }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  bool check_stop_rules();
+
+  TrainingContext& context_;
+  const EvalConfig& config_;
+  EnvPtr env_;
+  int64_t next_;
+  int evaluations_ = 0;
+  double best_ = -std::numeric_limits<double>::infinity();
+  // StopTrainingOnNoModelImprovement state.
+  double last_best_ = -std::numeric_limits<double>::infinity();
+  int no_improvement_evals_ = 0;
+  std::ofstream csv_;
+};
+
+}  // namespace rlrun

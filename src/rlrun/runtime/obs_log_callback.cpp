@@ -1,0 +1,65 @@
+#include "rlrun/runtime/obs_log_callback.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/npy.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
+
+namespace rlrun {
+
+namespace fs = std::filesystem;
+
+ObsLogCallback::ObsLogCallback(TrainingContext& context)
+    : context_(context),
+      config_(context.experiment.obs_log),
+      tap_(find_wrapper<ObservationTap>(context.env.env(context.experiment.obs_log.env))),
+      dir_(context.run_dir + "/obs_log"),
+      next_(context.experiment.obs_log.freq) {
+  if (!tap_) throw std::logic_error("obs_log: training env has no ObservationTap");
+  obs_dim_ = static_cast<int>(tap_->last_step_obs().size());
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) throw RuntimeFailure("cannot create " + dir_ + ": " + ec.message());
+  // One chunk's rows, allocated once: the step loop does not allocate.
+  const int64_t rows = config_.freq / context.env.num_envs() + 2;
+  rows_.reserve(static_cast<size_t>(rows * obs_dim_));
+}
+
+bool ObsLogCallback::on_step(int64_t num_timesteps) {
+  const std::span<const float> obs = tap_->last_step_obs();
+  rows_.insert(rows_.end(), obs.begin(), obs.end());
+  if (crossed(num_timesteps, config_.freq, next_)) save_chunk(num_timesteps);
+  return true;
+}
+
+void ObsLogCallback::on_training_end(int64_t num_timesteps) {
+  if (!rows_.empty()) save_chunk(num_timesteps);
+}
+
+void ObsLogCallback::save_chunk(int64_t num_timesteps) {
+  Tensor t;
+  t.dtype = DType::kFloat32;
+  t.shape = {static_cast<int64_t>(rows_.size() / obs_dim_), obs_dim_};
+  t.bytes.resize(rows_.size() * sizeof(float));
+  std::memcpy(t.bytes.data(), rows_.data(), t.bytes.size());
+  const std::vector<uint8_t> bytes = encode_npy(t);
+  char name[64];
+  std::snprintf(name, sizeof name, "/obs_%010lld.npy", static_cast<long long>(num_timesteps));
+  const std::string path = dir_ + name, temp = path + ".tmp";
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) throw RuntimeFailure("cannot write " + temp);
+  }
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) throw RuntimeFailure("cannot rename " + temp + " to " + path + ": " + ec.message());
+  rows_.clear();  // keeps its capacity
+}
+
+}  // namespace rlrun

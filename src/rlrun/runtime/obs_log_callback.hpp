@@ -1,0 +1,42 @@
+#pragma once
+// `obs_log: {freq, env}` — the course's ObsSaveCallback: records the observations of training
+// env `env` (default 0) and saves them every `freq` TOTAL env steps as
+//     <run_dir>/obs_log/obs_<N>.npy      float32, shape (rows, obs_dim), C order
+// where N (zero-padded to 10 digits, so names sort in time order) is the total step count at
+// the end of the chunk, and the rest at the end of training (also after Ctrl-C or an early
+// stop). One row per VecEnv step: the observation that step returned, i.e. the final
+// observation when the step ended an episode (never the auto-reset one), so consecutive rows
+// are the states the env went through. They are the env's OWN observations, recorded below
+// the YAML wrappers (an ObservationTap above the Monitor): NormalizeObservation or FrameStack
+// do not change them, and `rlrun record --from-obs` can draw them. With freq F and n_envs E a
+// chunk holds F / E rows.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rlrun/runtime/callback.hpp"
+#include "rlrun/wrappers/observation_tap.hpp"
+
+namespace rlrun {
+
+class ObsLogCallback : public Callback {
+ public:
+  // Throws std::logic_error if training env `config.env` has no ObservationTap (the trainer
+  // adds it when obs_log.freq > 0).
+  explicit ObsLogCallback(TrainingContext& context);
+  bool on_step(int64_t num_timesteps) override;
+  void on_training_end(int64_t num_timesteps) override;
+
+ private:
+  void save_chunk(int64_t num_timesteps);
+
+  TrainingContext& context_;
+  const ObsLogConfig& config_;
+  const ObservationTap* tap_;
+  std::string dir_;
+  int obs_dim_;
+  int64_t next_;
+  std::vector<float> rows_;  // obs_dim floats per row
+};
+
+}  // namespace rlrun

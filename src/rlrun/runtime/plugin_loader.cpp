@@ -1,0 +1,212 @@
+#include "rlrun/runtime/plugin_loader.hpp"
+
+#include <dlfcn.h>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "rlrun/core/config_fields.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/plugin.hpp"
+#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/plugin_env.hpp"
+
+namespace rlrun {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Which plugin registered which env id, and which libraries are loaded (process-wide, as
+// the libraries themselves are).
+std::map<std::string, std::string>& env_plugins() {
+  static std::map<std::string, std::string> map;
+  return map;
+}
+std::set<std::string>& loaded_plugins() {
+  static std::set<std::string> set;
+  return set;
+}
+
+// Lets a plugin Config's visit() talk to one of rlrun's config visitors (strict YAML reader,
+// resolved-config writer, `rlrun list` documenter).
+template <class Inner>
+class ForwardingVisitor final : public api::FieldVisitor {
+ public:
+  explicit ForwardingVisitor(Inner& inner) : inner_(inner) {}
+  void field(const char* k, bool& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, int& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, int64_t& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, float& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, double& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, std::string& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, std::vector<double>& v, const char* d) override { inner_(k, v, d); }
+  void field(const char* k, std::vector<int64_t>& v, const char* d) override { inner_(k, v, d); }
+
+ private:
+  Inner& inner_;
+};
+
+EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFactory> factory,
+                    const std::string& plugin) {
+  EnvEntry entry;
+  entry.id = spec.id;
+  entry.description = spec.description + " [plugin " + fs::path(plugin).filename().string() + "]";
+  entry.max_episode_steps = spec.max_episode_steps;
+  const std::string id = spec.id;
+  entry.make = [factory, id](const ConfigNode& kwargs) -> EnvPtr {
+    {  // Strict read first, so a typo is reported before the env is built.
+      ConfigReader reader(kwargs);
+      ForwardingVisitor<ConfigReader> visitor(reader);
+      api::FieldVisitor* visitors[] = {&visitor};
+      factory->make(visitors, false);
+      reader.finish();
+    }
+    ConfigReader reader(kwargs);
+    ForwardingVisitor<ConfigReader> visitor(reader);
+    api::FieldVisitor* visitors[] = {&visitor};
+    return std::make_unique<PluginEnv>(factory->make(visitors, true), id);
+  };
+  entry.resolve = [factory](const ConfigNode& kwargs) {
+    ConfigReader reader(kwargs);
+    ConfigWriter writer;
+    ForwardingVisitor<ConfigReader> read(reader);
+    ForwardingVisitor<ConfigWriter> write(writer);
+    api::FieldVisitor* visitors[] = {&read, &write};
+    factory->make(visitors, false);
+    reader.finish();
+    return writer.node();
+  };
+  entry.params = [factory] {
+    ConfigDocumenter documenter;
+    ForwardingVisitor<ConfigDocumenter> visitor(documenter);
+    api::FieldVisitor* visitors[] = {&visitor};
+    factory->make(visitors, false);
+    return documenter.rows();
+  };
+  return entry;
+}
+
+std::string loaded_with_file_name(const std::string& file_name) {
+  for (const auto& path : loaded_plugins())
+    if (fs::path(path).filename() == file_name) return path;
+  return "";
+}
+
+class HostRegistrar final : public api::Registrar {
+ public:
+  HostRegistrar(Registry& registry, std::string plugin)
+      : registry_(registry), plugin_(std::move(plugin)) {}
+
+  void add_env_factory(const api::EnvSpec& spec,
+                       std::unique_ptr<api::EnvFactory> factory) override {
+    if (spec.id.empty()) throw std::invalid_argument("an env id must not be empty");
+    if (!factory) throw std::invalid_argument("env '" + spec.id + "' has no factory");
+    if (registry_.find_env(spec.id)) {
+      const auto it = env_plugins().find(spec.id);
+      throw std::invalid_argument(
+          "env id '" + spec.id + "' is already registered " +
+          (it == env_plugins().end() ? std::string("as a built-in env") : "by " + it->second) +
+          ": give the plugin's env another id (e.g. a new -vN suffix)");
+    }
+    std::shared_ptr<const api::EnvFactory> shared(std::move(factory));
+    registry_.add(make_entry(spec, shared, plugin_));
+    env_plugins()[spec.id] = plugin_;
+  }
+
+ private:
+  Registry& registry_;
+  std::string plugin_;
+};
+
+}  // namespace
+
+std::string resolve_plugin_path(const std::string& path, const std::string& base_dir) {
+  if (path.empty()) throw UsageError("empty plugin path");
+  const fs::path p(path);
+  const fs::path candidate = p.is_absolute() || base_dir.empty() ? p : fs::path(base_dir) / p;
+  std::error_code ec;
+  if (fs::is_regular_file(candidate, ec))
+    return fs::weakly_canonical(fs::absolute(candidate)).string();
+  if (!p.has_parent_path()) return path;  // a bare name: the dynamic loader's search path
+  throw UsageError("plugin '" + path + "' not found (looked for " +
+                   fs::absolute(candidate).lexically_normal().string() +
+                   "); build it first, e.g. `cmake --build build` in the plugin's directory");
+}
+
+void register_plugin(PluginEntry entry, const std::string& name, Registry& registry) {
+  HostRegistrar registrar(registry, name);
+  uint32_t plugin_version = 0;
+  try {
+    plugin_version = entry(api::kApiVersion, &registrar);
+  } catch (const std::exception& e) {
+    throw UsageError("plugin " + name + " failed to register its envs: " + e.what());
+  }
+  if (plugin_version != api::kApiVersion)
+    throw UsageError("plugin " + name + " was built for rlrun plugin API version " +
+                     std::to_string(plugin_version) +
+                     ", but this rlrun (" RLRUN_VERSION ") implements version " +
+                     std::to_string(api::kApiVersion) +
+                     ": rebuild the plugin against this rlrun's headers (re-run cmake with "
+                     "rlrun_DIR pointing at this rlrun's build or install directory)");
+}
+
+std::string load_plugin(const std::string& path, Registry& registry) {
+  const std::string resolved = resolve_plugin_path(path);
+  if (loaded_plugins().count(resolved)) return resolved;
+  // RTLD_NOW: a missing symbol is reported here, not in the middle of training.
+  void* handle = dlopen(resolved.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* error = dlerror();
+    throw UsageError("cannot load plugin " + resolved + ": " + (error ? error : "unknown error"));
+  }
+  dlerror();
+  void* symbol = dlsym(handle, RLRUN_PLUGIN_ENTRY_SYMBOL);
+  if (!symbol) {
+    dlclose(handle);
+    throw UsageError(resolved + " is not an rlrun plugin: it exports no `" +
+                     std::string(RLRUN_PLUGIN_ENTRY_SYMBOL) +
+                     "` function (define one with RLRUN_PLUGIN from <rlrun/plugin.hpp>)");
+  }
+  // The library stays loaded for the life of the process: its code backs the envs.
+  loaded_plugins().insert(resolved);
+  register_plugin(reinterpret_cast<PluginEntry>(symbol), resolved, registry);
+  return resolved;
+}
+
+std::vector<std::string> load_plugins_section(const ConfigNode& plugins) {
+  std::vector<std::string> loaded;
+  if (!plugins.defined()) return loaded;
+  if (!plugins.is_sequence())
+    plugins.fail("expected a list of plugin libraries, e.g. [build/libmyenv.so]");
+  // Relative paths are relative to the experiment file, so configs work from any directory.
+  std::string base_dir;
+  std::error_code ec;
+  if (fs::is_regular_file(plugins.origin(), ec))
+    base_dir = fs::absolute(plugins.origin()).parent_path().string();
+  for (std::size_t i = 0; i < plugins.size(); ++i) {
+    const ConfigNode item = plugins.at(i);
+    const std::string path = item.as_string();
+    try {
+      loaded.push_back(
+          load_plugin(resolve_plugin_path(path, base_dir), mutable_builtin_registry()));
+    } catch (const UsageError& e) {
+      // A model file records where its plugin was; when the library has moved since, a
+      // --plugin naming the same file at its new place stands in for it.
+      const std::string moved = loaded_with_file_name(fs::path(path).filename().string());
+      if (moved.empty()) item.fail(e.what());
+      loaded.push_back(moved);
+    }
+  }
+  return loaded;
+}
+
+std::string plugin_of_env(const std::string& id) {
+  const auto it = env_plugins().find(id);
+  return it == env_plugins().end() ? "" : it->second;
+}
+
+}  // namespace rlrun

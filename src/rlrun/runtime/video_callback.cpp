@@ -1,0 +1,59 @@
+#include "rlrun/runtime/video_callback.hpp"
+
+#include <cstdio>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/render/video_writer.hpp"
+#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/log_sinks.hpp"
+#include "rlrun/runtime/recorder.hpp"
+#include "rlrun/runtime/trainer.hpp"
+
+namespace rlrun {
+
+VideoCallback::VideoCallback(TrainingContext& context)
+    : context_(context),
+      config_(context.experiment.video),
+      env_(make_env(context.experiment.env, context.registry, "", unix_time_now())),
+      next_(context.experiment.video.freq) {
+  VideoWriter::find_ffmpeg();  // fail now, not after the first `freq` steps
+  if (env_->render_spec().width <= 0)
+    throw UsageError("video.freq > 0 but " + context.experiment.env.id + " cannot render frames");
+  set_statistics_training(*env_, false);
+}
+
+bool VideoCallback::on_step(int64_t num_timesteps) {
+  if (!crossed(num_timesteps, config_.freq, next_)) return true;
+  TensorMap statistics;
+  save_model_statistics(context_.env.env(0), statistics);
+  load_model_statistics(*env_, statistics, /*training=*/false);
+
+  RecordOptions options;
+  options.video_path = context_.run_dir + "/videos/step_" + std::to_string(num_timesteps) + ".mp4";
+  options.episodes = config_.n_episodes;
+  options.seed = context_.experiment.run.seed +
+                 static_cast<uint64_t>(context_.experiment.env.section.n_envs) +
+                 static_cast<uint64_t>(videos_++);
+  options.fps = config_.fps;
+  options.width = config_.width;
+  options.height = config_.height;
+  options.overlay = config_.overlay;
+  options.policy_label = context_.algorithm.id() + " at step " + std::to_string(num_timesteps);
+  options.keep_going = [] { return !interrupt_requested(); };
+  const bool deterministic = config_.deterministic;
+  Algorithm& algorithm = context_.algorithm;
+  const RecordResult r = record_episodes(
+      *env_,
+      [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
+        algorithm.predict(obs, deterministic, action);
+      },
+      options);
+  if (context_.message)
+    context_.message("video at " + std::to_string(num_timesteps) + " steps: " + options.video_path +
+                     " (" + std::to_string(r.frames) + " frames, return " +
+                     format_log_value(r.episodes.mean_return()) + ")");
+  return true;
+}
+
+}  // namespace rlrun

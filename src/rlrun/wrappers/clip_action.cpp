@@ -1,0 +1,26 @@
+#include "rlrun/wrappers/clip_action.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace rlrun {
+
+ClipAction::ClipAction(EnvPtr inner, const Config& /*config*/) : Wrapper(std::move(inner)) {
+  const Space& inner_space = inner_->action_space();
+  if (!inner_space.is_box())
+    throw std::invalid_argument("ClipAction needs a Box action space, " + inner_->id() + " has " +
+                                inner_space.describe());
+  const float inf = std::numeric_limits<float>::infinity();
+  space_ = Space::box(-inf, inf, inner_space.shape());
+  clipped_.resize(inner_space.flat_dim());
+}
+
+StepResult ClipAction::step(std::span<const float> action, std::span<float> obs) {
+  const Space& inner_space = inner_->action_space();
+  for (size_t i = 0; i < clipped_.size(); ++i)
+    clipped_[i] = std::clamp(action[i], inner_space.low()[i], inner_space.high()[i]);
+  return inner_->step(clipped_, obs);
+}
+
+}  // namespace rlrun

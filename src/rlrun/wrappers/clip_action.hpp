@@ -1,0 +1,31 @@
+#pragma once
+// ClipAction: gymnasium/wrappers/transform_action.py. Actions are clipped to the inner env's
+// Box bounds, and the action space the agent sees becomes Box(-inf, inf) of the same shape, as
+// in Gymnasium 1.0 (so an algorithm does not clip them itself first). Algorithms that need
+// bounded actions (SAC, TD3, DDPG squash into the bounds) refuse such a space: use
+// RescaleAction with them instead.
+#include <vector>
+
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class ClipAction : public Wrapper {
+ public:
+  struct Config {
+    template <class V>
+    void visit(V& /*v*/) {}
+  };
+  // Throws std::invalid_argument for a non-Box action space.
+  ClipAction(EnvPtr inner, const Config& config);
+  explicit ClipAction(EnvPtr inner) : ClipAction(std::move(inner), Config()) {}
+
+  const Space& action_space() const override { return space_; }
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+
+ private:
+  Space space_;
+  std::vector<float> clipped_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,55 @@
+#pragma once
+// FrameStack: the last `n_stack` observations side by side, oldest first, newest last.
+// Shape (n_stack, *obs_shape) as gymnasium/wrappers/stateful_observation.py's
+// FrameStackObservation; for 1-D observations the flat vector is exactly SB3's VecFrameStack
+// (stable_baselines3/common/vec_env/stacked_observations.py, stacking on the last axis).
+// After reset() the older frames are zeros (`padding: zero`, SB3 VecFrameStack and rl-zoo's
+// `frame_stack`) or copies of the first observation (`padding: reset`, Gymnasium's default).
+// The final observation of an episode holds that episode's frames; the next reset starts a
+// fresh stack.
+#include <string>
+#include <vector>
+
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class FrameStack : public Wrapper {
+ public:
+  struct Config {
+    int n_stack = 4;               // frames per observation
+    std::string padding = "zero";  // what fills the stack after reset: zero | reset
+    template <class V>
+    void visit(V& v) {
+      v("n_stack", n_stack, "number of consecutive observations stacked (oldest first)");
+      v("padding", padding,
+        "frames before the first one after reset: zero (SB3 VecFrameStack) or reset (copies, Gymnasium)");
+    }
+  };
+  // Throws std::invalid_argument for a non-Box observation space, n_stack < 1 or an unknown
+  // padding.
+  FrameStack(EnvPtr inner, const Config& config);
+  explicit FrameStack(EnvPtr inner) : FrameStack(std::move(inner), Config()) {}
+
+  const Space& observation_space() const override { return space_; }
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+
+ protected:
+  void write_own_state(StateWriter& out) const override { out.put_vector("frame_stack/frames", stack_); }
+  void read_own_state(const StateReader& in) override {
+    in.get_into<float>("frame_stack/frames", stack_);
+  }
+
+ private:
+  void push(std::span<float> obs);
+
+  Space space_;
+  int n_stack_;
+  bool pad_with_reset_;
+  int frame_dim_;
+  std::vector<float> frame_;  // the inner observation
+  std::vector<float> stack_;  // n_stack * frame_dim, oldest first
+};
+
+}  // namespace rlrun

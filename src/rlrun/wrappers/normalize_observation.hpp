@@ -1,0 +1,75 @@
+#pragma once
+// NormalizeObservation: the observation half of SB3's VecNormalize
+// (stable_baselines3/common/vec_env/vec_normalize.py):
+//     obs' = clip((obs - mean) / sqrt(var + epsilon), -clip_obs, clip_obs)   (float64, then float32)
+// with mean/var a RunningMeanStd updated, while training, with every observation reset() and
+// step() return, except the last observation of an episode: as in VecNormalize, whose
+// statistics see the auto-reset observation instead (the VecEnv resets this wrapper right
+// after such a step, which adds the reset observation).
+//
+// One statistics object is shared by the n copies of a training VecEnv (see
+// model_statistics.hpp), so the statistics after every VecEnv step equal VecNormalize's (up to
+// rounding: n single-sample updates instead of one batch update). Difference from
+// VecNormalize: within one VecEnv step, env i is normalised with statistics that already hold
+// envs 0..i of that step (VecNormalize: all n), and a final observation with statistics
+// before (VecNormalize: after) the reset observation was added. With n_envs = 1 the
+// statistics and all other observations are bit-identical to SB3's.
+// The observation space becomes Box(-clip_obs, clip_obs) of the same shape.
+// A threaded VecEnv must not step two copies sharing statistics at the same time.
+#include <memory>
+#include <vector>
+
+#include "rlrun/env/wrapper.hpp"
+#include "rlrun/wrappers/model_statistics.hpp"
+#include "rlrun/wrappers/running_mean_std.hpp"
+
+namespace rlrun {
+
+class NormalizeObservation : public Wrapper, public ModelStatistics {
+ public:
+  struct Config {
+    double clip_obs = 10.0;  // SB3 VecNormalize clip_obs
+    double epsilon = 1e-8;   // SB3 VecNormalize epsilon
+    template <class V>
+    void visit(V& v) {
+      v("clip_obs", clip_obs, "normalised observations are clipped to [-clip_obs, clip_obs]");
+      v("epsilon", epsilon, "added to the variance before the square root");
+    }
+  };
+  // Throws std::invalid_argument for a non-Box observation space or clip_obs <= 0.
+  NormalizeObservation(EnvPtr inner, const Config& config);
+  explicit NormalizeObservation(EnvPtr inner) : NormalizeObservation(std::move(inner), Config()) {}
+
+  const Space& observation_space() const override { return space_; }
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+
+  std::string statistics_name() const override { return "NormalizeObservation"; }
+  void save_statistics(StateWriter& out) const override { rms_->write(out); }
+  void load_statistics(const StateReader& in) override { rms_->read(in); }
+  void set_training(bool training) override { training_ = training; }
+  bool training() const override { return training_; }
+  void share_statistics_with(ModelStatistics& first) override;
+
+  const RunningMeanStd& statistics() const { return *rms_; }
+  // The observation of the last reset()/step() before normalisation (SB3 get_original_obs).
+  std::span<const float> original_obs() const { return original_; }
+
+ protected:
+  void write_own_state(StateWriter& out) const override {
+    StateWriter own = out.sub("normalize_observation");
+    rms_->write(own);
+  }
+  void read_own_state(const StateReader& in) override { rms_->read(in.sub("normalize_observation")); }
+
+ private:
+  void normalize(std::span<float> obs) const;
+
+  Config config_;
+  Space space_;
+  std::shared_ptr<RunningMeanStd> rms_;
+  bool training_ = true;
+  std::vector<float> original_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,31 @@
+#pragma once
+// ObservationTap: keeps a copy of the observation each step() returns, unchanged. The trainer
+// puts it right above the Monitor of training env 0 when `obs_log` is on, so the observation
+// log holds the env's own observations (what render_observation() can draw), not the
+// normalised or stacked ones the policy sees. Not in the registry: runtime-internal.
+#include <algorithm>
+#include <vector>
+
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class ObservationTap : public Wrapper {
+ public:
+  explicit ObservationTap(EnvPtr inner)
+      : Wrapper(std::move(inner)), last_(inner_->observation_space().flat_dim(), 0.0f) {}
+
+  StepResult step(std::span<const float> action, std::span<float> obs) override {
+    const StepResult result = inner_->step(action, obs);
+    std::copy(obs.begin(), obs.end(), last_.begin());
+    return result;
+  }
+
+  // The observation the last step() returned (the final one when that step ended an episode).
+  std::span<const float> last_step_obs() const { return last_; }
+
+ private:
+  std::vector<float> last_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,56 @@
+#include "rlrun/wrappers/rescale_action.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rlrun {
+
+namespace {
+
+std::vector<float> broadcast(const std::vector<double>& values, int dims, const char* name) {
+  if (values.size() == 1) return std::vector<float>(dims, static_cast<float>(values[0]));
+  if (static_cast<int>(values.size()) != dims)
+    throw std::invalid_argument(std::string("RescaleAction: ") + name + " has " +
+                                std::to_string(values.size()) + " values, the action space " +
+                                std::to_string(dims) + " dimensions");
+  return std::vector<float>(values.begin(), values.end());
+}
+
+}  // namespace
+
+RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : Wrapper(std::move(inner)) {
+  const Space& inner_space = inner_->action_space();
+  if (!inner_space.is_box())
+    throw std::invalid_argument("RescaleAction needs a Box action space, " + inner_->id() +
+                                " has " + inner_space.describe());
+  const int dims = inner_space.flat_dim();
+  const std::vector<float> lo = broadcast(config.min_action.values, dims, "min_action");
+  const std::vector<float> hi = broadcast(config.max_action.values, dims, "max_action");
+  gradient_.resize(dims);
+  intercept_.resize(dims);
+  for (int i = 0; i < dims; ++i) {
+    const float low = inner_space.low()[i], high = inner_space.high()[i];
+    if (!std::isfinite(low) || !std::isfinite(high))
+      throw std::invalid_argument("RescaleAction needs finite action bounds, " + inner_->id() +
+                                  " has " + inner_space.describe());
+    if (!(lo[i] < hi[i]))
+      throw std::invalid_argument("RescaleAction: min_action must be below max_action");
+    // Gymnasium 1.0: gradient = (high - low) / (max - min); intercept = gradient * -min + low.
+    gradient_[i] = (high - low) / (hi[i] - lo[i]);
+    intercept_[i] = gradient_[i] * -lo[i] + low;
+  }
+  space_ = Space::box(lo, hi, inner_space.shape());
+  inner_action_.resize(dims);
+}
+
+StepResult RescaleAction::step(std::span<const float> action, std::span<float> obs) {
+  const Space& inner_space = inner_->action_space();
+  for (size_t i = 0; i < inner_action_.size(); ++i)
+    inner_action_[i] = std::clamp(gradient_[i] * action[i] + intercept_[i], inner_space.low()[i],
+                                  inner_space.high()[i]);
+  return inner_->step(inner_action_, obs);
+}
+
+}  // namespace rlrun

@@ -1,0 +1,38 @@
+#pragma once
+// TransformReward: reward' = clip(scale * reward + offset, clip_min, clip_max), a
+// configurable form of gymnasium/wrappers/transform_reward.py's TransformReward / ClipReward.
+// E.g. `{id: TransformReward, scale: 0.01}` for large rewards, `{id: TransformReward,
+// clip_min: -1, clip_max: 1}` for Atari-style clipping. Applied after the Monitor, so logged
+// episode returns stay the env's own.
+#include <optional>
+
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class TransformReward : public Wrapper {
+ public:
+  struct Config {
+    double scale = 1.0;               // multiplies the reward first
+    double offset = 0.0;              // then is added
+    std::optional<double> clip_min;   // then the result is clipped from below (null: no bound)
+    std::optional<double> clip_max;   // and from above (null: no bound)
+    template <class V>
+    void visit(V& v) {
+      v("scale", scale, "factor applied to the reward first");
+      v("offset", offset, "added after scaling");
+      v("clip_min", clip_min, "lower clip of the result (null = none)");
+      v("clip_max", clip_max, "upper clip of the result (null = none)");
+    }
+  };
+  // Throws std::invalid_argument when clip_min > clip_max.
+  TransformReward(EnvPtr inner, const Config& config);
+  explicit TransformReward(EnvPtr inner) : TransformReward(std::move(inner), Config()) {}
+
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+
+ private:
+  Config config_;
+};
+
+}  // namespace rlrun

@@ -1,0 +1,94 @@
+// examples/custom_env as its README tells a user: copy the directory, configure and build it
+// against this build tree's CMake package, `rlrun check-env` it, train on it with the
+// `plugins:` line of its experiment file and with --plugin, and evaluate the model file.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "runtime/cli_runner.hpp"
+
+using namespace rlrun::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSource = RLRUN_SOURCE_DIR;
+
+// The CMake package lives in the build directory, next to the binary.
+std::string build_dir() { return fs::path(RLRUN_BINARY).parent_path().string(); }
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("plugin example: builds out of tree, passes check-env, trains and evaluates",
+          "[plugin][cli]") {
+  // Per process: test binaries of other build directories may run this test at the same time.
+  TempDir dir("plugin_example_" + std::to_string(getpid()));
+  const std::string example = dir / "custom_env";
+  fs::copy(kSource + "/examples/custom_env", example, fs::copy_options::recursive);
+  fs::remove_all(example + "/build");  // a user's own earlier build, if any
+
+  const auto configure =
+      run_command("cmake -S " + example + " -B " + example + "/build -Drlrun_DIR=" + build_dir());
+  INFO(configure.output);
+  REQUIRE(configure.exit_code == 0);
+  const auto build = run_command("cmake --build " + example + "/build");
+  INFO(build.output);
+  REQUIRE(build.exit_code == 0);
+  CHECK(build.output.find("warning") == std::string::npos);
+  const std::string library = example + "/build/libgo_left.so";
+  REQUIRE(fs::exists(library));
+
+  // Step 2 of the README.
+  const auto check = run_rlrun("check-env GoLeft-v0 --plugin " + library);
+  INFO(check.output);
+  CHECK(check.exit_code == 0);
+  CHECK(check.output.find("check_env: passed") != std::string::npos);
+  CHECK(check.output.find("Discrete(2)") != std::string::npos);
+  CHECK(check.output.find("100 steps (TimeLimit)") != std::string::npos);
+  CHECK(run_rlrun("check-env GoLeft-v0 --plugin " + library + " --set grid_size=1").exit_code == 2);
+  CHECK(run_rlrun("list GoLeft-v0 --plugin " + library).output.find("grid_size") !=
+        std::string::npos);
+  const auto unknown = run_rlrun("check-env GoLeft-v0");
+  CHECK(unknown.exit_code == 2);
+
+  // Step 3: the experiment file loads the plugin itself (path relative to the file).
+  const auto train =
+      run_rlrun("train " + example + "/go_left_a2c.yaml --set run.out_dir=" + dir / "runs");
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const std::string run_dir = dir / "runs/go_left_a2c/seed1";
+  CHECK(read_file(run_dir + "/config.yaml").find(library) != std::string::npos);
+
+  // Step 4: the model file alone names the plugin; the policy walks straight left.
+  const auto eval = run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10");
+  INFO(eval.output);
+  REQUIRE(eval.exit_code == 0);
+  CHECK(eval.output.find("mean_reward = 1.00") != std::string::npos);
+  CHECK(eval.output.find("mean_ep_length = 9.0") != std::string::npos);
+  CHECK(eval.output.find("success_rate = 1.000") != std::string::npos);
+
+  // --plugin instead of the `plugins:` line; a missing library is a clear usage error.
+  {
+    std::ofstream out(dir / "no_plugins_line.yaml");
+    out << "run: {total_timesteps: 200, out_dir: " << dir / "runs"
+        << "}\n"
+        << "env: {id: GoLeft-v0}\nalgo: {id: PPO, n_steps: 64, batch_size: 64}\n";
+  }
+  CHECK(run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + library).exit_code == 0);
+  const auto missing =
+      run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + dir / "nowhere/libgo_left.so");
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.output.find("not found") != std::string::npos);
+}
