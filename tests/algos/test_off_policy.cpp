@@ -128,7 +128,7 @@ struct LoopTrace {
 
 LoopTrace run_loop(OffPolicyConfig config, int n_envs, int episode_length, int64_t total) {
   VecEnv env = constant_vec_env(n_envs, /*truncate=*/false, episode_length);
-  OffPolicyState state{ReplayBuffer(config.buffer_size, n_envs, 1, 1), {}, 0, 1.0};
+  OffPolicyState state(config, n_envs, 1, 1);
   LoopTrace trace;
   int64_t num_timesteps = 0;
   OffPolicyCallbacks callbacks;

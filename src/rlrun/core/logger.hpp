@@ -31,7 +31,10 @@ class Logger {
   void flush() {
     for (auto& sink : sinks_) sink->flush();
   }
+  // The values recorded since the last dump (checkpoints keep them: the next row of a resumed
+  // run is the row the uninterrupted run would have written).
   const LogRow& pending() const { return row_; }
+  void restore_pending(LogRow row) { row_ = std::move(row); }
 
  private:
   LogRow row_;

@@ -61,6 +61,12 @@ class StateWriter {
     tensors_[prefix_ + name] = to_tensor(dense, Derived::ColsAtCompileTime == 1);
   }
 
+  // Text (a CSV header, a file name), one int64 per byte: numpy shows it as a number array.
+  void put_string(const std::string& name, const std::string& text) {
+    std::vector<int64_t> bytes(text.begin(), text.end());
+    put_vector(name, bytes);
+  }
+
   void put_rng(const std::string& name, const Rng& rng) {
     const Rng::State& s = rng.state();
     const uint64_t words[6] = {s.s[0], s.s[1], s.s[2], s.s[3], s.has_spare_normal ? 1u : 0u,
@@ -118,6 +124,11 @@ class StateReader {
   template <class Derived>
   void get_matrix(const std::string& name, Eigen::MatrixBase<Derived>&& m) const {
     get_matrix(name, m);
+  }
+
+  std::string get_string(const std::string& name) const {
+    const std::vector<int64_t> bytes = get_span<int64_t>(name);
+    return std::string(bytes.begin(), bytes.end());
   }
 
   void get_rng(const std::string& name, Rng& rng) const {

@@ -29,6 +29,7 @@ struct TrainingContext {
   std::function<void(const std::string&)> message;      // a line on the console and in log.txt
   std::function<void(const std::string&)> save_model;   // model file (with wrapper statistics)
   std::function<void(const std::string&)> save_checkpoint;  // what checkpoints/ holds
+  bool resuming = false;  // continuing a run: append to its files, do not start them anew
 };
 
 class Callback {
@@ -36,8 +37,20 @@ class Callback {
   virtual ~Callback() = default;
   // After every VecEnv step; false stops training (SB3's callback.on_step()).
   virtual bool on_step(int64_t num_timesteps) = 0;
+  // At each point where training can stop and resume exactly (TrainingHooks::at_safe_point:
+  // after each PPO/A2C iteration, after each off-policy collect-and-train round).
+  virtual void at_safe_point(int64_t /*num_timesteps*/) {}
   // Once after training ends, also after an early stop or Ctrl-C (SB3 on_training_end).
-  virtual void on_training_end(int64_t /*num_timesteps*/) {}
+  // `resumable`: training stopped at a safe point that a checkpoint holds (Ctrl-C), so work
+  // in progress belongs in that checkpoint, not in files.
+  virtual void on_training_end(int64_t /*num_timesteps*/, bool /*resumable*/) {}
+
+  // Exact resume: what decides when the callback fires next (written into checkpoints).
+  virtual void write_state(StateWriter& /*out*/) const {}
+  virtual void read_state(const StateReader& /*in*/) {}
+  // Before a checkpoint: write buffered file output, so that the run's files end where the
+  // checkpoint's state does.
+  virtual void flush() {}
   // Why on_step() returned false (empty while training goes on).
   const std::string& stop_reason() const { return stop_reason_; }
 

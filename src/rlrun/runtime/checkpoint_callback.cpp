@@ -37,9 +37,25 @@ std::vector<std::string> CheckpointCallback::list_checkpoints(const std::string&
 }
 
 bool CheckpointCallback::on_step(int64_t num_timesteps) {
+  if (crossed(num_timesteps, config_.freq, next_)) due_ = true;
+  return true;
+}
+
+void CheckpointCallback::write_state(StateWriter& out) const {
+  out.put_int("next", next_);
+  out.put_bool("due", due_);
+}
+
+void CheckpointCallback::read_state(const StateReader& in) {
+  next_ = in.get_int("next");
+  due_ = in.get_bool("due");
+}
+
+void CheckpointCallback::at_safe_point(int64_t num_timesteps) {
   // The step count of the checkpoint is the one it was taken at, also when n_envs steps at
   // once crossed the multiple of freq (SB3 names its files by num_timesteps the same way).
-  if (!crossed(num_timesteps, config_.freq, next_)) return true;
+  if (!due_) return;
+  due_ = false;  // before saving: the checkpoint holds the state after this point
   const std::string path = dir_ + "/step_" + std::to_string(num_timesteps) + ".zip";
   context_.save_checkpoint(path);
   kept_.erase(std::remove(kept_.begin(), kept_.end(), path), kept_.end());
@@ -54,7 +70,6 @@ bool CheckpointCallback::on_step(int64_t num_timesteps) {
   std::string message = "checkpoint saved to " + path;
   if (!removed.empty()) message.append(" (removed").append(removed).append(")");
   context_.message(message);
-  return true;
 }
 
 }  // namespace rlrun

@@ -14,12 +14,13 @@ double unix_time_now() {
 }
 
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
-                double t_start, bool tap_observations) {
+                double t_start, bool tap_observations, bool append_monitor) {
   const EnvEntry& entry = registry.env(spec.id, spec.id_node);
   EnvPtr env = entry.make(spec.kwargs);
   const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
-  env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start);
+  env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start,
+                                  std::vector<std::string>{"is_success"}, append_monitor);
   if (tap_observations) env = std::make_unique<ObservationTap>(std::move(env));
   for (const ConfigNode& w : spec.wrappers) {
     const WrapperEntry& wrapper = registry.wrapper(w.child("id").as_string(), w.child("id"));
@@ -51,15 +52,16 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
 }
 
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
-                    const std::string& monitor_dir, int tap_env) {
+                    const std::string& monitor_dir, int tap_env, bool append_monitor) {
   std::vector<EnvPtr> envs;
   const double t_start = unix_time_now();
   for (int i = 0; i < n_envs; ++i) {
-    const std::string path =
-        monitor_dir.empty() ? "" : monitor_dir + "/" + std::to_string(i) + ".monitor.csv";
-    envs.push_back(make_env(spec, registry, path, t_start, i == tap_env));
+    const std::string path = monitor_dir.empty() ? "" : monitor_dir + "/" + monitor_file_name(i);
+    envs.push_back(make_env(spec, registry, path, t_start, i == tap_env, append_monitor));
   }
   return VecEnv(std::move(envs));
 }
+
+std::string monitor_file_name(int i) { return std::to_string(i) + ".monitor.csv"; }
 
 }  // namespace rlrun

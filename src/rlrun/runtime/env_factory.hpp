@@ -11,8 +11,9 @@ namespace rlrun {
 
 // `monitor_path` empty: statistics only, no file. `tap_observations` puts an ObservationTap
 // (wrappers/observation_tap.hpp) right above the Monitor, for the obs_log callback.
+// `append_monitor` continues the monitor file of a resumed run.
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
-                double t_start, bool tap_observations = false);
+                double t_start, bool tap_observations = false, bool append_monitor = false);
 
 // Checks the env's action space against spec.accepted_action_spaces; with auto_wrap adds
 // DiscreteAsBox or BoxAsDiscrete, otherwise a ConfigError names the wrapper that fixes it.
@@ -21,7 +22,10 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
 // n copies; env i writes `<monitor_dir>/<i>.monitor.csv` unless monitor_dir is empty. Env
 // `tap_env` (if >= 0) gets an ObservationTap.
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
-                    const std::string& monitor_dir, int tap_env = -1);
+                    const std::string& monitor_dir, int tap_env = -1, bool append_monitor = false);
+
+// `<i>.monitor.csv`: the monitor file of training env i, relative to the run directory.
+std::string monitor_file_name(int i);
 
 // Current Unix time in seconds (the Monitor's t_start).
 double unix_time_now();

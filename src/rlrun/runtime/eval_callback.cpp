@@ -18,10 +18,26 @@ EvalCallback::EvalCallback(TrainingContext& context)
       next_(context.experiment.eval.freq) {
   set_statistics_training(*env_, false);
   const std::string path = context.run_dir + "/evaluations.csv";
-  csv_.open(path, std::ios::trunc);
+  csv_.open(path, context.resuming ? std::ios::app : std::ios::trunc);
   if (!csv_) throw RuntimeFailure("cannot write " + path);
-  csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
+  if (!context.resuming) csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
   csv_.flush();
+}
+
+void EvalCallback::write_state(StateWriter& out) const {
+  out.put_int("next", next_);
+  out.put_int("evaluations", evaluations_);
+  out.put_double("best", best_);
+  out.put_double("last_best", last_best_);
+  out.put_int("no_improvement_evals", no_improvement_evals_);
+}
+
+void EvalCallback::read_state(const StateReader& in) {
+  next_ = in.get_int("next");
+  evaluations_ = static_cast<int>(in.get_int("evaluations"));
+  best_ = in.get_double("best");
+  last_best_ = in.get_double("last_best");
+  no_improvement_evals_ = static_cast<int>(in.get_int("no_improvement_evals"));
 }
 
 bool EvalCallback::on_step(int64_t num_timesteps) {

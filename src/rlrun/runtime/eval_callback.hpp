@@ -25,6 +25,9 @@ class EvalCallback : public Callback {
  public:
   explicit EvalCallback(TrainingContext& context);
   bool on_step(int64_t num_timesteps) override;
+  void write_state(StateWriter& out) const override;
+  void read_state(const StateReader& in) override;
+  void flush() override { csv_.flush(); }
 
   double best_mean_reward() const { return best_; }
   int evaluations() const { return evaluations_; }

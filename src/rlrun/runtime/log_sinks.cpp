@@ -19,6 +19,8 @@ std::string csv_value(double v) {
   return out.str();
 }
 
+}  // namespace
+
 std::vector<std::string> split_csv_line(const std::string& line) {
   std::vector<std::string> cells;
   std::stringstream ss(line);
@@ -26,8 +28,6 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   if (!line.empty() && line.back() == ',') cells.emplace_back();
   return cells;
 }
-
-}  // namespace
 
 CsvSink::CsvSink(std::string path, bool append) : path_(std::move(path)) {
   if (append) {

@@ -16,6 +16,9 @@ namespace rlrun {
 // progress.csv: one row per dump, header of every key seen so far. When a new key appears
 // (e.g. rollout/ep_rew_mean after the first finished episode) the file is rewritten with the
 // wider header and empty cells in older rows, exactly as SB3 does.
+// The cells of one line of a CSV file without quoting (progress.csv: keys and numbers).
+std::vector<std::string> split_csv_line(const std::string& line);
+
 class CsvSink : public LogSink {
  public:
   // `append`: continue an existing file (resumed runs), keeping its header.

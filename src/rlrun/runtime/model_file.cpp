@@ -63,7 +63,9 @@ ModelFile read_model(const std::string& path) {
   for (const auto& [name, bytes] : members) {
     if (name.size() < 4 || name.substr(name.size() - 4) != ".npy") continue;
     const std::string key = name.substr(0, name.size() - 4);
-    TensorMap& into = key.rfind(kWrapperStatisticsPrefix, 0) == 0 ? model.wrapper_statistics : model.tensors;
+    TensorMap& into = key.rfind(kWrapperStatisticsPrefix, 0) == 0 ? model.wrapper_statistics
+                      : key.rfind(kTrainingStatePrefix, 0) == 0  ? model.training_state
+                                                                 : model.tensors;
     try {
       into[key] = decode_npy(bytes, path + ":" + name);
     } catch (const std::runtime_error& e) {

@@ -5,6 +5,8 @@
 // Wrappers with model statistics (NormalizeObservation, NormalizeReward) add their running
 // mean/var/count as `wrappers/<name>/<field>.npy` (runtime/env_statistics.hpp); make_model_env()
 // puts them back, frozen, into the env it builds.
+// Checkpoints (checkpoints/step_<N>.zip) are model files that also hold the training state for
+// `rlrun train --resume` as `training/...` members (core/state_dict.hpp).
 // Loading refuses, with the reason, files of another format version, of another algorithm than
 // the caller expects, or whose spaces do not match the env they are used with.
 #include <memory>
@@ -18,6 +20,7 @@
 namespace rlrun {
 
 inline constexpr int kModelFormatVersion = 1;
+inline constexpr const char* kTrainingStatePrefix = "training/";
 
 struct ModelMeta {
   int format_version = kModelFormatVersion;
@@ -35,6 +38,7 @@ struct ModelFile {
   std::string config_yaml;
   TensorMap tensors;              // the algorithm's
   TensorMap wrapper_statistics;   // `wrappers/...` members (see env_statistics.hpp)
+  TensorMap training_state;       // `training/...` members (checkpoints only)
 };
 
 // Writes atomically (temp file + rename). `env_tensors` are stored beside the algorithm's

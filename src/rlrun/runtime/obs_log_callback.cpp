@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
@@ -33,12 +34,41 @@ ObsLogCallback::ObsLogCallback(TrainingContext& context)
 bool ObsLogCallback::on_step(int64_t num_timesteps) {
   const std::span<const float> obs = tap_->last_step_obs();
   rows_.insert(rows_.end(), obs.begin(), obs.end());
-  if (crossed(num_timesteps, config_.freq, next_)) save_chunk(num_timesteps);
+  if (crossed(num_timesteps, config_.freq, next_)) {
+    save_chunk(num_timesteps);
+    last_chunk_step_ = num_timesteps;
+  }
   return true;
 }
 
-void ObsLogCallback::on_training_end(int64_t num_timesteps) {
+void ObsLogCallback::on_training_end(int64_t num_timesteps, bool /*resumable*/) {
+  // Also when resumable: the partial chunk is what a user who does not resume gets; a resume
+  // removes it (read_state) and writes the full chunk.
   if (!rows_.empty()) save_chunk(num_timesteps);
+}
+
+void ObsLogCallback::write_state(StateWriter& out) const {
+  out.put_int("next", next_);
+  out.put_int("last_chunk_step", last_chunk_step_);
+  out.put_vector("rows", rows_);
+}
+
+void ObsLogCallback::read_state(const StateReader& in) {
+  next_ = in.get_int("next");
+  last_chunk_step_ = in.get_int("last_chunk_step");
+  const std::vector<float> rows = in.get_span<float>("rows");
+  if (rows.size() % static_cast<size_t>(obs_dim_) != 0)
+    throw StateMismatch("checkpoint obs_log rows do not match the observation size " +
+                        std::to_string(obs_dim_));
+  rows_.assign(rows.begin(), rows.end());
+  static const std::regex name("obs_([0-9]+)\\.npy");
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir_, ec)) {
+    std::smatch m;
+    const std::string file = entry.path().filename().string();
+    if (std::regex_match(file, m, name) && std::stoll(m[1]) > last_chunk_step_)
+      fs::remove(entry.path(), ec);
+  }
 }
 
 void ObsLogCallback::save_chunk(int64_t num_timesteps) {

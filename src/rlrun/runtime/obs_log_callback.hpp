@@ -9,7 +9,9 @@
 // are the states the env went through. They are the env's OWN observations, recorded below
 // the YAML wrappers (an ObservationTap above the Monitor): NormalizeObservation or FrameStack
 // do not change them, and `rlrun record --from-obs` can draw them. With freq F and n_envs E a
-// chunk holds F / E rows.
+// chunk holds F / E rows. A resumed run continues the chunk in progress at its checkpoint
+// (whose rows the checkpoint holds) and removes the chunks written after it, so the files
+// are those of an uninterrupted run.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,7 +27,9 @@ class ObsLogCallback : public Callback {
   // adds it when obs_log.freq > 0).
   explicit ObsLogCallback(TrainingContext& context);
   bool on_step(int64_t num_timesteps) override;
-  void on_training_end(int64_t num_timesteps) override;
+  void on_training_end(int64_t num_timesteps, bool resumable) override;
+  void write_state(StateWriter& out) const override;
+  void read_state(const StateReader& in) override;
 
  private:
   void save_chunk(int64_t num_timesteps);
@@ -36,6 +40,7 @@ class ObsLogCallback : public Callback {
   std::string dir_;
   int obs_dim_;
   int64_t next_;
+  int64_t last_chunk_step_ = 0;  // N of the last full chunk written
   std::vector<float> rows_;  // obs_dim floats per row
 };
 

@@ -1,8 +1,20 @@
 #pragma once
 // Runs one experiment end to end: run directory, resolved config.yaml, envs with monitor
 // files, the algorithm, logging (progress.csv, console, log.txt), the callbacks the config
-// turns on (runtime/callback.hpp: eval, checkpoint, obs_log), and model.zip at the end, after
-// an early stop or on Ctrl-C. Model files hold the normalisation statistics.
+// turns on (runtime/callback.hpp: eval, checkpoint, obs_log, video), and model.zip at the end,
+// after an early stop or on Ctrl-C. Model files hold the normalisation statistics.
+//
+// Exact resume (`rlrun train --resume`): a checkpoint (checkpoints/step_<N>.zip) holds, beside
+// the model, the training state — the algorithm's counters, optimizer moments, RNG streams and
+// replay buffer, every env's state with its wrappers (normalisation statistics, Monitor
+// counters), the callbacks' counters, the logger's pending values and how far each CSV file had
+// got. Resuming cuts the files back to the checkpoint and continues: the weights, progress.csv
+// and monitor files end as those of the uninterrupted run.
+//
+// Ctrl-C (SIGINT/SIGTERM) asks training to stop at the next safe point (after the current
+// PPO/A2C update or off-policy round), where a checkpoint is written; a second Ctrl-C stops at
+// the next env step without one. A NaN or inf in a loss or a parameter stops the run with a
+// RuntimeFailure naming the step and the quantity; nothing non-finite is ever saved.
 #include <string>
 
 #include "rlrun/runtime/experiment.hpp"
@@ -15,12 +27,22 @@ struct TrainOutcome {
   int64_t timesteps = 0;
   double wall_seconds = 0;
   bool interrupted = false;
-  std::string stop_reason;  // set when a callback stopped training early
+  std::string checkpoint_path;  // written on interruption: resume from it
+  std::string stop_reason;      // set when a callback stopped training early
 };
 
-TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry);
+// `resume_checkpoint` non-empty: continue the run that checkpoint belongs to (its run
+// directory), with `experiment` loaded from that run's config.yaml.
+TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
+                              const std::string& resume_checkpoint = "");
 
-// Set by SIGINT/SIGTERM; training stops at the next env step and saves its model.
+// `--resume` accepts a checkpoint file or a run directory (its newest checkpoint). Throws
+// UsageError when there is nothing to resume from, saying why.
+std::string resolve_resume_checkpoint(const std::string& run_dir_or_checkpoint);
+// The run directory of `<run_dir>/checkpoints/step_<N>.zip`.
+std::string run_dir_of_checkpoint(const std::string& checkpoint);
+
+// First SIGINT/SIGTERM: stop at the next safe point with a checkpoint; second: stop now.
 void install_interrupt_handlers();
 bool interrupt_requested();
 

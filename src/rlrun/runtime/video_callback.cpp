@@ -56,4 +56,14 @@ bool VideoCallback::on_step(int64_t num_timesteps) {
   return true;
 }
 
+void VideoCallback::write_state(StateWriter& out) const {
+  out.put_int("next", next_);
+  out.put_int("videos", videos_);
+}
+
+void VideoCallback::read_state(const StateReader& in) {
+  next_ = in.get_int("next");
+  videos_ = static_cast<int>(in.get_int("videos"));
+}
+
 }  // namespace rlrun

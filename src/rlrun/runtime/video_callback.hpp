@@ -18,6 +18,8 @@ class VideoCallback : public Callback {
   // Throws RuntimeFailure when ffmpeg is missing, UsageError when the env cannot render.
   explicit VideoCallback(TrainingContext& context);
   bool on_step(int64_t num_timesteps) override;
+  void write_state(StateWriter& out) const override;
+  void read_state(const StateReader& in) override;
 
   int videos() const { return videos_; }
 

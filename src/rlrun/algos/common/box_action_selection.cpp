@@ -56,4 +56,18 @@ void BoxActionSelection::to_env_actions(const Eigen::MatrixXf& scaled,
       env_actions(i, j) = std::clamp(env_actions(i, j), space_.low()[i], space_.high()[i]);
 }
 
+void BoxActionSelection::write_state(StateWriter out) const {
+  out.put_rng("action_rng", action_rng_);
+  out.put_rng("noise_rng", noise_rng_);
+  out.put_matrix("noise_state", noise_.state());
+}
+
+void BoxActionSelection::read_state(const StateReader& in) {
+  in.get_rng("action_rng", action_rng_);
+  in.get_rng("noise_rng", noise_rng_);
+  Eigen::MatrixXf noise_state = noise_.state();
+  in.get_matrix("noise_state", noise_state);
+  noise_.set_state(noise_state);
+}
+
 }  // namespace rlrun

@@ -10,6 +10,7 @@
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/rng.hpp"
 #include "rlrun/core/space.hpp"
 
@@ -47,7 +48,9 @@ class BoxActionSelection {
   // SB3 collect_rollouts: action_noise.reset(indices=[env]) when an episode ends.
   void on_episode_end(int env) { noise_.reset(env); }
 
-  // State for exact resume.
+  // Exact resume: both RNG streams and the Ornstein-Uhlenbeck state.
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
   Rng& action_rng() { return action_rng_; }
   Rng& noise_rng() { return noise_rng_; }
   ActionNoise& noise() { return noise_; }

@@ -39,7 +39,10 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
   const int64_t start_timesteps = num_timesteps;
   const int n_envs = env.num_envs();
   const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 4;
-  Eigen::MatrixXf last_obs = env.reset();
+  // A restored state continues the envs where the checkpoint left them; the last
+  // observations are the VecEnv's (the loop below keeps last_obs == env.obs() at safe points).
+  Eigen::MatrixXf last_obs = state.restored ? env.obs() : env.reset();
+  state.restored = false;
   Eigen::MatrixXf env_actions, buffer_actions;
 
   auto dump_logs = [&] {
@@ -91,7 +94,24 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
       const int64_t steps = config.gradient_steps >= 0 ? config.gradient_steps : collected_steps * n_envs;
       if (steps > 0) callbacks.train(static_cast<int>(steps), hooks.logger);
     }
+    // Between rounds nothing is in flight: the state can be saved and resumed exactly.
+    if (hooks.at_safe_point && !hooks.at_safe_point(num_timesteps)) break;
   }
+}
+
+void OffPolicyState::write_state(StateWriter out) const {
+  buffer.write_state(out.sub("replay_buffer"));
+  episode_stats.write_state(out.sub("episode_stats"));
+  out.put_int("episode_num", episode_num);
+  out.put_double("progress_remaining", progress_remaining);
+}
+
+void OffPolicyState::read_state(const StateReader& in) {
+  buffer.read_state(in.sub("replay_buffer"));
+  episode_stats.read_state(in.sub("episode_stats"));
+  episode_num = in.get_int("episode_num");
+  progress_remaining = in.get_double("progress_remaining");
+  restored = true;
 }
 
 }  // namespace rlrun

@@ -65,10 +65,20 @@ struct OffPolicyCallbacks {
 
 // Off-policy state that persists across learn() calls (and into checkpoints).
 struct OffPolicyState {
+  OffPolicyState(const OffPolicyConfig& config, int n_envs, int obs_dim, int act_dim)
+      : buffer(config.buffer_size, n_envs, obs_dim, act_dim, config.handle_timeout_termination) {}
+
   ReplayBuffer buffer;
   EpisodeStats episode_stats;
   int64_t episode_num = 0;
   double progress_remaining = 1.0;
+  // Set by read_state: the next learn() continues from the restored envs' observations
+  // instead of resetting them (SB3 learn(reset_num_timesteps=False) after loading a buffer).
+  bool restored = false;
+
+  // Exact resume: the replay buffer, episode statistics and counters.
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
 };
 
 // SB3 OffPolicyAlgorithm.learn + collect_rollouts. `num_timesteps` is the algorithm's counter.

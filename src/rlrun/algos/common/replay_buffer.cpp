@@ -63,28 +63,33 @@ void ReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const {
   }
 }
 
-void ReplayBuffer::save(TensorMap& tensors, const std::string& prefix) const {
-  const int64_t used = full_ ? slots_ * n_envs_ : pos_ * n_envs_;
-  tensors[prefix + "obs"] = to_tensor(Eigen::MatrixXf(obs_.leftCols(used)));
-  tensors[prefix + "next_obs"] = to_tensor(Eigen::MatrixXf(next_obs_.leftCols(used)));
-  tensors[prefix + "actions"] = to_tensor(Eigen::MatrixXf(actions_.leftCols(used)));
-  tensors[prefix + "rewards"] = to_tensor(Eigen::VectorXf(rewards_.head(used).transpose()));
-  tensors[prefix + "dones"] = to_tensor(Eigen::VectorXf(dones_.head(used).transpose()));
-  tensors[prefix + "pos"] = scalar_tensor<int64_t>(pos_);
-  tensors[prefix + "full"] = scalar_tensor<int64_t>(full_ ? 1 : 0);
+void ReplayBuffer::write_state(StateWriter out) const {
+  // Only the filled columns: a checkpoint early in a 1e6-transition run stays small.
+  const int64_t used = size();
+  out.put_matrix("obs", obs_.leftCols(used));
+  out.put_matrix("next_obs", next_obs_.leftCols(used));
+  out.put_matrix("actions", actions_.leftCols(used));
+  out.put_matrix("rewards", rewards_.head(used).transpose());
+  out.put_matrix("dones", dones_.head(used).transpose());
+  out.put_int("pos", pos_);
+  out.put_bool("full", full_);
+  out.put_int("capacity", capacity());
 }
 
-void ReplayBuffer::load(const TensorMap& tensors, const std::string& prefix) {
-  pos_ = scalar_from<int64_t>(tensors, prefix + "pos");
-  full_ = scalar_from<int64_t>(tensors, prefix + "full") != 0;
-  const int64_t used = full_ ? slots_ * n_envs_ : pos_ * n_envs_;
-  from_tensor(tensors, prefix + "obs", obs_.leftCols(used));
-  from_tensor(tensors, prefix + "next_obs", next_obs_.leftCols(used));
-  from_tensor(tensors, prefix + "actions", actions_.leftCols(used));
+void ReplayBuffer::read_state(const StateReader& in) {
+  if (in.get_int("capacity") != capacity())
+    throw StateMismatch("checkpoint replay buffer holds " + std::to_string(in.get_int("capacity")) +
+                        " transitions, this run's buffer_size gives " + std::to_string(capacity()));
+  pos_ = in.get_int("pos");
+  full_ = in.get_bool("full");
+  const int64_t used = size();
+  in.get_matrix("obs", obs_.leftCols(used));
+  in.get_matrix("next_obs", next_obs_.leftCols(used));
+  in.get_matrix("actions", actions_.leftCols(used));
   Eigen::VectorXf column(used);
-  from_tensor(tensors, prefix + "rewards", column);
+  in.get_matrix("rewards", column);
   rewards_.head(used) = column.transpose();
-  from_tensor(tensors, prefix + "dones", column);
+  in.get_matrix("dones", column);
   dones_.head(used) = column.transpose();
 }
 

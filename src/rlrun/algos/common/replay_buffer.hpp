@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "rlrun/core/rng.hpp"
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 
 namespace rlrun {
@@ -34,8 +35,10 @@ class ReplayBuffer {
   int64_t size() const { return (full_ ? slots_ : pos_) * n_envs_; }
   int64_t capacity() const { return slots_ * n_envs_; }
 
-  void save(TensorMap& tensors, const std::string& prefix) const;
-  void load(const TensorMap& tensors, const std::string& prefix);
+  // Exact resume (checkpoints): the filled transitions and the write position. Reading
+  // refuses a buffer of another capacity (StateMismatch).
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
 
  private:
   int64_t slots_;  // per env

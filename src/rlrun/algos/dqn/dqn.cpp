@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "rlrun/algos/common/polyak.hpp"
+#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
@@ -61,12 +62,7 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
       updater_(q_net_, q_net_target_),
       exploration_schedule_{config.exploration_initial_eps, config.exploration_final_eps,
                             config.exploration_fraction},
-      state_{ReplayBuffer(config.off_policy.buffer_size, setup.n_envs,
-                          setup.observation_space.flat_dim(), /*act_dim=*/1,
-                          config.off_policy.handle_timeout_termination),
-             {},
-             0,
-             1.0} {
+      state_(config.off_policy, setup.n_envs, setup.observation_space.flat_dim(), /*act_dim=*/1) {
   const int obs_dim = setup.observation_space.flat_dim();
   const int batch = config_.off_policy.batch_size;
   batch_.obs.resize(obs_dim, batch);
@@ -176,6 +172,28 @@ void DQN::load(const TensorMap& tensors) {
   act_net_stale_ = true;
   updater_.invalidate_q_net();
   updater_.invalidate_target();
+}
+
+void DQN::save_training_state(StateWriter& out) const {
+  out.put_int("num_timesteps", num_timesteps_);
+  out.put_int("n_calls", n_calls_);
+  out.put_int("n_updates", n_updates_);
+  out.put_double("exploration_rate", exploration_rate_);
+  out.put_rng("action_rng", action_rng_);
+  out.put_rng("replay_rng", replay_rng_);
+  updater_.write_state(out.sub("optimizer"));
+  state_.write_state(out.sub("off_policy"));
+}
+
+void DQN::load_training_state(const StateReader& in) {
+  num_timesteps_ = in.get_int("num_timesteps");
+  n_calls_ = in.get_int("n_calls");
+  n_updates_ = in.get_int("n_updates");
+  exploration_rate_ = in.get_double("exploration_rate");
+  in.get_rng("action_rng", action_rng_);
+  in.get_rng("replay_rng", replay_rng_);
+  updater_.read_state(in.sub("optimizer"));
+  state_.read_state(in.sub("off_policy"));
 }
 
 }  // namespace rlrun

@@ -83,6 +83,10 @@ class DQN : public Algorithm {
   // (SB3 saves it with the model; optional on load).
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
+  // Resume: counters, exploration rate, RNG streams, Adam moments and the replay buffer
+  // (the networks, target included, are in the model tensors).
+  void save_training_state(StateWriter& out) const override;
+  void load_training_state(const StateReader& in) override;
 
   // One gradient evaluation of SB3's loss on `batch`: targets from q_net_target, smooth L1 of
   // Q(s, a); q_net's gradients are zeroed and then hold d(loss)/d(params). Returns the loss.

@@ -1,5 +1,7 @@
 #include "rlrun/algos/dqn/q_updater.hpp"
 
+#include "rlrun/algos/common/training_state.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -119,6 +121,14 @@ double QUpdater::step(const ReplayBatch& batch, float gamma, float max_grad_norm
   lr_ = lr;
   run_lanes(2, [this](int k) { lane_apply(k); });
   return loss;
+}
+
+void QUpdater::write_state(StateWriter out) const {
+  for (size_t k = 0; k < lanes_.size(); ++k) write_adam(out.sub("adam" + std::to_string(k)), lanes_[k].adam);
+}
+
+void QUpdater::read_state(const StateReader& in) {
+  for (size_t k = 0; k < lanes_.size(); ++k) read_adam(in.sub("adam" + std::to_string(k)), lanes_[k].adam);
 }
 
 }  // namespace rlrun

@@ -18,6 +18,7 @@
 
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/nn/adam.hpp"
 #include "rlrun/nn/mlp.hpp"
 
@@ -47,6 +48,9 @@ class QUpdater {
   void invalidate_target() { target_stale_ = true; }
 
   const Eigen::RowVectorXf& td_targets() const { return targets_; }
+  // Exact resume: the Adam moments of both parameter halves.
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
   // The total gradient norm before clipping of the last step.
   float last_grad_norm() const { return last_grad_norm_; }
 

@@ -1,5 +1,7 @@
 #include "rlrun/algos/sac/entropy_coefficient.hpp"
 
+#include "rlrun/algos/common/training_state.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -76,6 +78,14 @@ void EntropyCoefficient::save(TensorMap& tensors) const {
 void EntropyCoefficient::load(const TensorMap& tensors) {
   // A fixed coefficient comes from the config; only the learned one is state.
   if (learned_) from_tensor(tensors, "log_ent_coef", log_ent_coef_.value);
+}
+
+void EntropyCoefficient::write_state(StateWriter out) const {
+  if (learned_) write_adam(out.sub("adam"), adam_);
+}
+
+void EntropyCoefficient::read_state(const StateReader& in) {
+  if (learned_) read_adam(in.sub("adam"), adam_);
 }
 
 }  // namespace rlrun

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/adam.hpp"
 #include "rlrun/nn/param_vector.hpp"
@@ -39,6 +40,9 @@ class EntropyCoefficient {
   void load(const TensorMap& tensors);
 
   const Adam& optimizer() const { return adam_; }
+  // Exact resume: log_alpha's Adam moments (log_alpha itself is in the model tensors).
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
 
  private:
   bool learned_ = true;

@@ -90,6 +90,10 @@ class SAC : public Algorithm {
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
+  // Resume: counters, RNG streams, exploration noise, every Adam's moments and the replay
+  // buffer (the networks, targets included, are in the model tensors).
+  void save_training_state(StateWriter& out) const override;
+  void load_training_state(const StateReader& in) override;
 
   // One gradient step of SAC.train on `batch` (actions in [-1, 1]) with learning rate lr;
   // update_target applies the Polyak update afterwards. Public for tests and benchmarks.
@@ -135,7 +139,10 @@ class SAC : public Algorithm {
   SacActor acting_actor_;
   BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
   bool acting_stale_ = true;
-  std::optional<OffPolicyState> state_;  // replay buffer etc., created by the first learn()
+  std::optional<OffPolicyState> state_;  // replay buffer etc., created by off_policy_state()
+  // The replay buffer is allocated on first use (learn or resume), not for a model that is
+  // only evaluated.
+  OffPolicyState& off_policy_state();
   int64_t n_updates_ = 0;
 
   // Training workspaces (one gradient step allocates nothing while the batch size is

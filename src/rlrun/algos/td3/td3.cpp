@@ -7,6 +7,7 @@
 #include "rlrun/algos/common/batch_lanes.hpp"
 #include "rlrun/algos/common/polyak.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
+#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/algos/td3/td3_target.hpp"
 #include "rlrun/env/vec_env.hpp"
 
@@ -174,14 +175,7 @@ void TD3::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
     throw std::invalid_argument(id_ + ": env has " + std::to_string(env.num_envs()) +
                                 " copies, the algorithm was built for " +
                                 std::to_string(setup_.n_envs));
-  if (!state_) {
-    state_.emplace(
-        OffPolicyState{ReplayBuffer(config_.off_policy.buffer_size, setup_.n_envs, obs_dim_,
-                                    action_dim_, config_.off_policy.handle_timeout_termination),
-                       {},
-                       0,
-                       1.0});
-  }
+  OffPolicyState& state = off_policy_state();
   OffPolicyCallbacks callbacks;
   callbacks.select_actions = [this](const Eigen::MatrixXf& obs, bool warmup,
                                     Eigen::MatrixXf& env_actions, Eigen::MatrixXf& buffer_actions) {
@@ -190,7 +184,7 @@ void TD3::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
   // SB3 collect_rollouts: action_noise.reset(indices=[idx]) for each finished episode.
   callbacks.on_episode_end = [this](int e) { acting_.on_episode_end(e); };
   callbacks.train = [this](int gradient_steps, Logger* logger) { train(gradient_steps, logger); };
-  off_policy_learn(env, total_timesteps, hooks, config_.off_policy, *state_, callbacks,
+  off_policy_learn(env, total_timesteps, hooks, config_.off_policy, state, callbacks,
                    num_timesteps_);
 }
 
@@ -212,6 +206,37 @@ void TD3::load(const TensorMap& tensors) {
     const std::string q = "qf" + std::to_string(i);
     critics()[i].load("critic." + q, "critic_target." + q, tensors);
   }
+  acting_stale_ = true;
+}
+
+OffPolicyState& TD3::off_policy_state() {
+  if (!state_) state_.emplace(config_.off_policy, setup_.n_envs, obs_dim_, action_dim_);
+  return *state_;
+}
+
+void TD3::save_training_state(StateWriter& out) const {
+  out.put_int("num_timesteps", num_timesteps_);
+  out.put_int("n_updates", n_updates_);
+  out.put_rng("sample_rng", sample_rng_);
+  out.put_rng("smoothing_rng", smoothing_rng_);
+  acting_.write_state(out.sub("acting"));
+  write_adam(out.sub("actor_optimizer"), actor_optimizer_);
+  for (size_t i = 0; i < critic_optimizers_.size(); ++i)
+    write_adam(out.sub("critic_optimizer" + std::to_string(i)), critic_optimizers_[i]);
+  out.put_bool("has_off_policy", state_.has_value());
+  if (state_) state_->write_state(out.sub("off_policy"));
+}
+
+void TD3::load_training_state(const StateReader& in) {
+  num_timesteps_ = in.get_int("num_timesteps");
+  n_updates_ = in.get_int("n_updates");
+  in.get_rng("sample_rng", sample_rng_);
+  in.get_rng("smoothing_rng", smoothing_rng_);
+  acting_.read_state(in.sub("acting"));
+  read_adam(in.sub("actor_optimizer"), actor_optimizer_);
+  for (size_t i = 0; i < critic_optimizers_.size(); ++i)
+    read_adam(in.sub("critic_optimizer" + std::to_string(i)), critic_optimizers_[i]);
+  if (in.get_bool("has_off_policy")) off_policy_state().read_state(in.sub("off_policy"));
   acting_stale_ = true;
 }
 

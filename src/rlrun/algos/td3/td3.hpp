@@ -88,6 +88,10 @@ class TD3 : public Algorithm {
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
+  // Resume: counters, RNG streams, exploration noise, every Adam's moments and the replay
+  // buffer (the networks, targets included, are in the model tensors).
+  void save_training_state(StateWriter& out) const override;
+  void load_training_state(const StateReader& in) override;
 
   // SB3 OffPolicyAlgorithm._sample_action: warmup = uniform samples of the action space,
   // otherwise actor(obs); exploration noise added and clipped to [-1, 1] in both cases.
@@ -143,7 +147,10 @@ class TD3 : public Algorithm {
   Td3Actor acting_actor_;
   BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
   bool acting_stale_ = true;
-  std::optional<OffPolicyState> state_;  // replay buffer etc., created by the first learn()
+  std::optional<OffPolicyState> state_;  // replay buffer etc., created by off_policy_state()
+  // The replay buffer is allocated on first use (learn or resume), not for a model that is
+  // only evaluated.
+  OffPolicyState& off_policy_state();
   int64_t n_updates_ = 0;
 
   // Training workspaces (a gradient step allocates nothing while the batch size is unchanged).
