@@ -38,7 +38,7 @@ run_one() {
   summary=$(grep -E "^trained [0-9]+ steps in" <<<"$log" | tail -1)
   model=$(sed -E 's/.*model saved to (.*)$/\1/' <<<"$summary")
   local eval_line
-  eval_line=$(build/rlrun eval --model "$model" --episodes 10)
+  eval_line=$(build/rlrun eval --model "$model" --episodes 10 | grep "mean_reward =")
   echo "$(awk '{print $2, $5}' <<<"$summary") $(sed -E 's/.*\(([0-9]+) steps\/s\).*/\1/' <<<"$summary") \
 $(sed -E 's/.*mean_reward = ([-0-9.]+) \+\/- ([0-9.]+).*/\1 \2/' <<<"$eval_line")" >"$out/$name.$seed"
   cp "$(dirname "$model")/config.yaml" "$out/$name.config.yaml"
