@@ -27,6 +27,7 @@ struct RunConfig {
   std::optional<int> log_interval;  // progress.csv rows every N iterations (on-policy) or
                                     // episodes (off-policy); null = SB3's default (1 / 4)
   double console_interval = 2.0;    // min seconds between console tables
+  std::string init_from;            // model file whose weights start the run (empty: none)
 
   template <class V>
   void visit(V& v) {
@@ -37,6 +38,8 @@ struct RunConfig {
     v("log_interval", log_interval,
       "progress.csv row every N iterations (on-policy) / episodes (off-policy); null = SB3 default");
     v("console_interval", console_interval, "minimum seconds between console summaries");
+    v("init_from", init_from,
+      "model file whose weights (and normalisation statistics) start this run; empty = none");
   }
 };
 

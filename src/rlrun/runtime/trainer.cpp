@@ -20,6 +20,7 @@
 #include "rlrun/runtime/checkpoint_callback.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/init_from.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/non_finite_check.hpp"
@@ -89,6 +90,23 @@ LogRow read_pending_log(const StateReader& in) {
   return row;
 }
 
+// Removes a new run directory unless dismissed: a run that fails while being set up (bad
+// --init-from model, env that cannot start) leaves no half-made directory behind, so the next
+// attempt gets the same name.
+class NewRunDirectoryGuard {
+ public:
+  explicit NewRunDirectoryGuard(std::string path) : path_(std::move(path)) {}
+  ~NewRunDirectoryGuard() {
+    if (path_.empty()) return;
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  void dismiss() { path_.clear(); }
+
+ private:
+  std::string path_;
+};
+
 std::string checkpoint_name(const std::string& run_dir, int64_t num_timesteps) {
   return run_dir + "/checkpoints/step_" + std::to_string(num_timesteps) + ".zip";
 }
@@ -101,6 +119,7 @@ void install_interrupt_handlers() {
 }
 
 bool interrupt_requested() { return g_interrupts.load() > 0; }
+int interrupt_count() { return g_interrupts.load(); }
 
 std::string run_dir_of_checkpoint(const std::string& checkpoint) {
   return fs::path(checkpoint).parent_path().parent_path().string();
@@ -151,6 +170,7 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
   } else {
     outcome.run_dir = create_run_directory(run.out_dir, run.name, run.seed);
   }
+  NewRunDirectoryGuard new_run_guard(resuming ? "" : outcome.run_dir);
   write_text_atomic(outcome.run_dir + "/config.yaml", dump_yaml(experiment.resolved));
   RunLog log(outcome.run_dir + "/log.txt");
   if (resuming)
@@ -183,6 +203,8 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
   const auto training_state = [&](const char* part) {
     return StateReader(checkpoint->training_state, std::string(kTrainingStatePrefix) + part + "/");
   };
+  if (!resuming && !run.init_from.empty())
+    log.line(initialize_from_model(run.init_from, *algorithm, env));
   if (resuming) {
     try {
       algorithm->load(checkpoint->tensors);
@@ -312,6 +334,7 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
     return false;
   };
 
+  new_run_guard.dismiss();  // set up: from here on the run's files are worth keeping
   const auto start = std::chrono::steady_clock::now();
   algorithm->learn(env, run.total_timesteps, hooks);
   outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -45,5 +45,6 @@ std::string run_dir_of_checkpoint(const std::string& checkpoint);
 // First SIGINT/SIGTERM: stop at the next safe point with a checkpoint; second: stop now.
 void install_interrupt_handlers();
 bool interrupt_requested();
+int interrupt_count();
 
 }  // namespace rlrun

@@ -1,0 +1,135 @@
+#include "parallel_runs.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/trainer.hpp"
+
+namespace rlrun::cli {
+
+namespace {
+
+struct Child {
+  size_t index = 0;
+  std::string log_path;
+};
+
+// The last `n` lines of a file.
+std::string tail_lines(const std::string& path, size_t n) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::string out;
+  for (size_t i = lines.size() > n ? lines.size() - n : 0; i < lines.size(); ++i)
+    out += "    " + lines[i] + "\n";
+  return out;
+}
+
+// The trainer's summary line ("trained N steps in ... model saved to ...").
+std::string summary_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string found;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("trained ", 0) == 0 || line.rfind("interrupted after ", 0) == 0) found = line;
+  return found;
+}
+
+pid_t start_child(const std::string& config, const std::vector<std::string>& options,
+                  const std::string& log_path) {
+  std::vector<std::string> args{"/proc/self/exe", "--threads", "1", "train", config};
+  args.insert(args.end(), options.begin(), options.end());
+  const pid_t pid = fork();
+  if (pid < 0) throw RuntimeFailure("cannot start a training process (fork failed)");
+  if (pid == 0) {
+    setpgid(0, 0);  // Ctrl-C at the terminal goes to the parent only; it forwards one SIGINT
+    const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, STDOUT_FILENO);
+      dup2(fd, STDERR_FILENO);
+      close(fd);
+    }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    std::perror("rlrun: exec");
+    _exit(127);
+  }
+  return pid;
+}
+
+}  // namespace
+
+int train_in_parallel(const std::vector<std::string>& configs,
+                      const std::vector<std::string>& child_options, int jobs) {
+  namespace fs = std::filesystem;
+  const fs::path log_dir =
+      fs::temp_directory_path() / ("rlrun-train-" + std::to_string(getpid()));
+  fs::create_directories(log_dir);
+  install_interrupt_handlers();
+  std::cout << "training " << configs.size() << " experiments, " << jobs
+            << " at a time (console output of each in " << log_dir.string() << "/)" << std::endl;
+
+  std::map<pid_t, Child> running;
+  size_t next = 0, finished = 0;
+  int failures = 0, forwarded = 0;
+  bool interrupted = false;
+  while (finished < configs.size()) {
+    // Forward each Ctrl-C received (the first also stops starting new runs).
+    while (forwarded < interrupt_count()) {
+      interrupted = true;
+      for (const auto& [pid, child] : running) kill(pid, SIGINT);
+      ++forwarded;
+    }
+    while (!interrupted && running.size() < static_cast<size_t>(jobs) && next < configs.size()) {
+      Child child{next, (log_dir / (std::to_string(next) + ".log")).string()};
+      const pid_t pid = start_child(configs[next], child_options, child.log_path);
+      running[pid] = child;
+      ++next;
+    }
+    if (running.empty()) break;  // interrupted before the rest started
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid <= 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      continue;
+    }
+    const Child child = running.at(pid);
+    running.erase(pid);
+    ++finished;
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::cout << "[" << finished << "/" << configs.size() << "] " << configs[child.index] << ": ";
+    if (code == 0) {
+      std::cout << summary_line(child.log_path) << std::endl;
+    } else if (code == 130) {
+      std::cout << "interrupted\n" << tail_lines(child.log_path, 2) << std::flush;
+    } else {
+      ++failures;
+      std::cout << "FAILED (exit " << code << "), end of its output (" << child.log_path
+                << "):\n"
+                << tail_lines(child.log_path, 8) << std::flush;
+    }
+  }
+  if (next < configs.size())
+    std::cout << configs.size() - next << " experiments were not started" << std::endl;
+  if (failures > 0) return 1;  // keep the logs of the failed runs
+  std::error_code ec;
+  fs::remove_all(log_dir, ec);  // each run's output is also in its run directory's log.txt
+  return interrupted ? 130 : 0;
+}
+
+}  // namespace rlrun::cli

@@ -1,0 +1,44 @@
+#include "rlrun/runtime/init_from.hpp"
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/model_file.hpp"
+
+namespace rlrun {
+
+std::string initialize_from_model(const std::string& path, Algorithm& algorithm, VecEnv& env) {
+  const ModelFile model = read_model(path);
+  const std::string refused = "cannot initialise from " + path + ": ";
+  if (model.meta.algorithm != algorithm.id())
+    throw UsageError(refused + "it holds a " + model.meta.algorithm + " model, this run trains " +
+                     algorithm.id());
+  if (model.meta.observation_space != env.observation_space().describe())
+    throw UsageError(refused + "it was trained on observations " + model.meta.observation_space +
+                     ", this run's env gives " + env.observation_space().describe());
+  if (model.meta.action_space != env.action_space().describe())
+    throw UsageError(refused + "it was trained with actions " + model.meta.action_space +
+                     ", this run's env takes " + env.action_space().describe());
+  try {
+    algorithm.load(model.tensors);
+  } catch (const std::exception& e) {
+    throw UsageError(refused + e.what() + " (other network sizes in algo.policy?)");
+  }
+  std::string line = "initialised from " + path + " (" + model.meta.algorithm + ", " +
+                     model.meta.env_id + ", " + std::to_string(model.meta.num_timesteps) +
+                     " steps)";
+  const bool run_normalises = !model_statistics(env.env(0)).empty();
+  if (run_normalises && !model.wrapper_statistics.empty()) {
+    try {
+      load_model_statistics(env.env(0), model.wrapper_statistics, /*training=*/true);
+      line += " with its normalisation statistics";
+    } catch (const StateMismatch&) {
+      line += "; its normalisation statistics do not fit this run's wrappers: starting them anew";
+    }
+  } else if (!model.wrapper_statistics.empty()) {
+    line += "; note: the model was trained with normalised observations or rewards, this run "
+            "has no Normalize wrapper";
+  }
+  return line;
+}
+
+}  // namespace rlrun
