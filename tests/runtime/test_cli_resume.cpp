@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "rlrun/core/zip_archive.hpp"
+#include "rlrun/runtime/log_sinks.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;
@@ -32,13 +33,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
-std::vector<std::string> cells_of(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream s(line);
-  for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
+std::vector<std::string> cells_of(const std::string& line) { return split_csv_line(line); }
 
 // progress.csv as rows of key -> value, without the wall-clock columns (time/fps,
 // time/time_elapsed differ between any two runs).

@@ -114,4 +114,9 @@ void OffPolicyState::read_state(const StateReader& in) {
   restored = true;
 }
 
+void write_off_policy_state(StateWriter out, const std::optional<OffPolicyState>& state) {
+  out.put_bool("has_off_policy", state.has_value());
+  if (state) state->write_state(out.sub("off_policy"));
+}
+
 }  // namespace rlrun

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
@@ -80,6 +81,14 @@ struct OffPolicyState {
   void write_state(StateWriter out) const;
   void read_state(const StateReader& in);
 };
+
+// For algorithms that allocate the state on first use (SAC, TD3): `off_policy/...` when it
+// exists; reading creates it with `make` only if the checkpoint has one.
+void write_off_policy_state(StateWriter out, const std::optional<OffPolicyState>& state);
+template <class Make>
+void read_off_policy_state(const StateReader& in, Make&& make) {
+  if (in.get_bool("has_off_policy")) make().read_state(in.sub("off_policy"));
+}
 
 // SB3 OffPolicyAlgorithm.learn + collect_rollouts. `num_timesteps` is the algorithm's counter.
 // Uses hooks.log_interval as episodes between dumps (0 = SB3's off-policy default, 4).

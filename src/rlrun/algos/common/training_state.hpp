@@ -4,6 +4,7 @@
 // for RMSprop) and network parameters under a prefix. Shapes come from the configuration, so
 // reading checks them and names the key that does not fit.
 #include <string>
+#include <vector>
 
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/nn/adam.hpp"
@@ -26,6 +27,14 @@ inline void read_adam(const StateReader& in, Adam& adam) {
     in.get_matrix("exp_avg." + std::to_string(i), adam.exp_avg()[i]);
     in.get_matrix("exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
   }
+}
+
+// One optimizer per network (SAC's and TD3's critics): `<name><i>/...`.
+inline void write_adams(StateWriter out, const std::string& name, const std::vector<Adam>& adams) {
+  for (size_t i = 0; i < adams.size(); ++i) write_adam(out.sub(name + std::to_string(i)), adams[i]);
+}
+inline void read_adams(const StateReader& in, const std::string& name, std::vector<Adam>& adams) {
+  for (size_t i = 0; i < adams.size(); ++i) read_adam(in.sub(name + std::to_string(i)), adams[i]);
 }
 
 inline void write_rmsprop(StateWriter out, const RmsProp& rmsprop) {

@@ -223,11 +223,9 @@ void SAC::save_training_state(StateWriter& out) const {
   out.put_rng("predict_rng", predict_rng_);
   acting_.write_state(out.sub("acting"));
   write_adam(out.sub("actor_optimizer"), actor_optimizer_);
-  for (size_t i = 0; i < critic_optimizers_.size(); ++i)
-    write_adam(out.sub("critic_optimizer" + std::to_string(i)), critic_optimizers_[i]);
+  write_adams(out, "critic_optimizer", critic_optimizers_);
   ent_coef_.write_state(out.sub("ent_coef"));
-  out.put_bool("has_off_policy", state_.has_value());
-  if (state_) state_->write_state(out.sub("off_policy"));
+  write_off_policy_state(out, state_);
 }
 
 void SAC::load_training_state(const StateReader& in) {
@@ -238,10 +236,9 @@ void SAC::load_training_state(const StateReader& in) {
   in.get_rng("predict_rng", predict_rng_);
   acting_.read_state(in.sub("acting"));
   read_adam(in.sub("actor_optimizer"), actor_optimizer_);
-  for (size_t i = 0; i < critic_optimizers_.size(); ++i)
-    read_adam(in.sub("critic_optimizer" + std::to_string(i)), critic_optimizers_[i]);
+  read_adams(in, "critic_optimizer", critic_optimizers_);
   ent_coef_.read_state(in.sub("ent_coef"));
-  if (in.get_bool("has_off_policy")) off_policy_state().read_state(in.sub("off_policy"));
+  read_off_policy_state(in, [this]() -> OffPolicyState& { return off_policy_state(); });
   acting_stale_ = true;
 }
 
