@@ -1,6 +1,7 @@
+#include "rlrun/env/discrete_action.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/envs/classic/classic_control_env.hpp"
 
-#include <random>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -12,14 +13,7 @@ ClassicControlEnv::ClassicControlEnv(Space observation_space, Space action_space
     : observation_space_(std::move(observation_space)), action_space_(std::move(action_space)) {}
 
 void ClassicControlEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
-  if (seed) {
-    rng_.reseed(*seed);
-    ever_seeded_ = true;
-  } else if (!ever_seeded_) {
-    std::random_device device;
-    rng_.reseed((static_cast<uint64_t>(device()) << 32) ^ device());
-    ever_seeded_ = true;
-  }
+  seed_on_reset(rng_, ever_seeded_, seed);
   info_.clear();
   sample_initial_state();
   has_state_ = true;
@@ -36,8 +30,7 @@ void ClassicControlEnv::set_state(std::span<const double> state, std::span<float
 }
 
 void ClassicControlEnv::write_state(StateWriter& out) const {
-  out.put_rng("rng", rng_);
-  out.put_bool("ever_seeded", ever_seeded_);
+  write_seeding_state(out, rng_, ever_seeded_);
   out.put_bool("has_state", has_state_);
   std::vector<double> state(static_cast<size_t>(state_dim()));
   get_state(state);
@@ -46,8 +39,7 @@ void ClassicControlEnv::write_state(StateWriter& out) const {
 }
 
 void ClassicControlEnv::read_state(const StateReader& in) {
-  in.get_rng("rng", rng_);
-  ever_seeded_ = in.get_bool("ever_seeded");
+  read_seeding_state(in, rng_, ever_seeded_);
   has_state_ = in.get_bool("has_state");
   // Extra state first: it may say how the physical state is stored (float32 or float64).
   read_extra_state(in);
@@ -59,11 +51,7 @@ void ClassicControlEnv::require_reset() const {
 }
 
 int ClassicControlEnv::discrete_action(std::span<const float> action) const {
-  if (!action_space_.contains(action))
-    throw std::invalid_argument(
-        id() + ": action " + (action.empty() ? std::string("<empty>") : std::to_string(action[0])) +
-        " is not in " + action_space_.describe());
-  return static_cast<int>(action[0]);
+  return checked_discrete_action(action_space_, action, id());
 }
 
 }  // namespace rlrun

@@ -1,8 +1,9 @@
+#include "rlrun/env/discrete_action.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <stdexcept>
 
 namespace rlrun {
@@ -60,14 +61,7 @@ void Grasp2D::reset(std::optional<uint64_t> seed, const ResetOptions& options,
                     std::span<float> obs) {
   // Gymnasium seeding (gymnasium/core.py Env.reset): a seed reseeds, no seed continues the
   // stream, and the very first unseeded reset seeds from OS entropy.
-  if (seed) {
-    rng_.reseed(*seed);
-    ever_seeded_ = true;
-  } else if (!ever_seeded_) {
-    std::random_device device;
-    rng_.reseed((static_cast<uint64_t>(device()) << 32) ^ device());
-    ever_seeded_ = true;
-  }
+  seed_on_reset(rng_, ever_seeded_, seed);
   const double lo = config_.spawn_margin, hi = 1.0 - config_.spawn_margin;
   arm_x_ = rng_.uniform(lo, hi);
   arm_y_ = rng_.uniform(lo, hi);
@@ -94,12 +88,7 @@ void Grasp2D::reset(std::optional<uint64_t> seed, const ResetOptions& options,
 
 StepResult Grasp2D::step(std::span<const float> action, std::span<float> obs) {
   if (!has_state_) throw std::logic_error("Grasp2D-v0: call reset() before step()");
-  if (!action_space_.contains(action))
-    throw std::invalid_argument(
-        "Grasp2D-v0: action " +
-        (action.empty() ? std::string("<empty>") : std::to_string(action[0])) + " is not in " +
-        action_space_.describe());
-  const int a = static_cast<int>(action[0]);
+  const int a = checked_discrete_action(action_space_, action, "Grasp2D-v0");
   last_action_ = a;
   double dx = 0.0, dy = 0.0;
   switch (a) {
@@ -165,8 +154,7 @@ void Grasp2D::write_observation(std::span<float> obs) const {
 }
 
 void Grasp2D::write_state(StateWriter& out) const {
-  out.put_rng("rng", rng_);
-  out.put_bool("ever_seeded", ever_seeded_);
+  write_seeding_state(out, rng_, ever_seeded_);
   out.put_bool("has_state", has_state_);
   const std::vector<double> positions{arm_x_, arm_y_, object_x_, object_y_};
   out.put_vector("positions", positions);
@@ -176,8 +164,7 @@ void Grasp2D::write_state(StateWriter& out) const {
 }
 
 void Grasp2D::read_state(const StateReader& in) {
-  in.get_rng("rng", rng_);
-  ever_seeded_ = in.get_bool("ever_seeded");
+  read_seeding_state(in, rng_, ever_seeded_);
   has_state_ = in.get_bool("has_state");
   const std::vector<double> p = in.get_span<double>("positions", 4);
   arm_x_ = p[0];

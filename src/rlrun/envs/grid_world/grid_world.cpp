@@ -1,6 +1,7 @@
+#include "rlrun/env/discrete_action.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
 
-#include <random>
 #include <stdexcept>
 
 namespace rlrun {
@@ -22,14 +23,7 @@ int GridWorld::shortest_path_length(int row, int col) const {
 
 void GridWorld::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   // Gymnasium seeding (gymnasium/core.py Env.reset), as every rlrun env.
-  if (seed) {
-    rng_.reseed(*seed);
-    ever_seeded_ = true;
-  } else if (!ever_seeded_) {
-    std::random_device device;
-    rng_.reseed((static_cast<uint64_t>(device()) << 32) ^ device());
-    ever_seeded_ = true;
-  }
+  seed_on_reset(rng_, ever_seeded_, seed);
   row_ = col_ = 0;
   if (config_.random_start) {
     // Cells in row-major order; the goal is the last one, so [0, n - 1) excludes it.
@@ -48,13 +42,9 @@ void GridWorld::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 
 StepResult GridWorld::step(std::span<const float> action, std::span<float> obs) {
   if (!has_state_) throw std::logic_error("GridWorld-v0: call reset() before step()");
-  if (!action_space_.contains(action))
-    throw std::invalid_argument(
-        "GridWorld-v0: action " +
-        (action.empty() ? std::string("<empty>") : std::to_string(action[0])) + " is not in " +
-        action_space_.describe());
+  const int chosen = checked_discrete_action(action_space_, action, "GridWorld-v0");
   int row = row_, col = col_;
-  switch (static_cast<int>(action[0])) {
+  switch (chosen) {
     case kUp:
       --row;
       break;
@@ -99,8 +89,7 @@ void GridWorld::write_observation(std::span<float> obs) const {
 }
 
 void GridWorld::write_state(StateWriter& out) const {
-  out.put_rng("rng", rng_);
-  out.put_bool("ever_seeded", ever_seeded_);
+  write_seeding_state(out, rng_, ever_seeded_);
   out.put_bool("has_state", has_state_);
   out.put_int("row", row_);
   out.put_int("col", col_);
@@ -108,8 +97,7 @@ void GridWorld::write_state(StateWriter& out) const {
 }
 
 void GridWorld::read_state(const StateReader& in) {
-  in.get_rng("rng", rng_);
-  ever_seeded_ = in.get_bool("ever_seeded");
+  read_seeding_state(in, rng_, ever_seeded_);
   has_state_ = in.get_bool("has_state");
   row_ = static_cast<int>(in.get_int("row"));
   col_ = static_cast<int>(in.get_int("col"));
