@@ -87,6 +87,17 @@ TEST_CASE("plugin example: builds out of tree, passes check-env, trains and eval
         << "env: {id: GoLeft-v0}\nalgo: {id: PPO, n_steps: 64, batch_size: 64}\n";
   }
   CHECK(run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + library).exit_code == 0);
+  // Plugin envs cannot save their state (API v1): checkpoints hold the model only, and
+  // --resume refuses them with the reason.
+  const auto checkpointed = run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + library +
+                                      " --set checkpoint.freq=64 --set run.name=checkpointed");
+  INFO(checkpointed.output);
+  CHECK(checkpointed.exit_code == 0);
+  CHECK(checkpointed.output.find("GoLeft-v0 cannot save its state") != std::string::npos);
+  CHECK(fs::exists(dir / "runs/checkpointed/seed0/checkpoints/step_64.zip"));
+  const auto refused = run_rlrun("train --resume " + dir / "runs/checkpointed/seed0 --plugin " + library);
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.output.find("holds no training state") != std::string::npos);
   const auto missing =
       run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + dir / "nowhere/libgo_left.so");
   CHECK(missing.exit_code == 2);

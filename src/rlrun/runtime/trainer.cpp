@@ -257,12 +257,23 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
     save_model(path, *algorithm, experiment, env.observation_space(), env.action_space(),
                statistics);
   };
+  // Envs that cannot snapshot themselves (plugins, external simulators) get model-only
+  // checkpoints, as SB3's CheckpointCallback writes; --resume refuses those with the reason.
+  const bool resumable = env.can_save_state();
+  if (!resumable && experiment.checkpoint.freq > 0)
+    log.line("note: " + experiment.env.id +
+             " cannot save its state, so checkpoints hold the model only and the run cannot be "
+             "resumed exactly");
   const auto save_checkpoint = [&](const std::string& path) {
     TensorMap model;
     algorithm->save(model);
     require_finite_model(model);
     TensorMap extra;
     save_model_statistics(env.env(0), extra);
+    if (!resumable) {
+      save_model(path, *algorithm, experiment, env.observation_space(), env.action_space(), extra);
+      return;
+    }
     StateWriter state(extra, kTrainingStatePrefix);
     StateWriter algo_state = state.sub(kAlgoState);
     algorithm->save_training_state(algo_state);
@@ -328,6 +339,7 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
     if (!problem.empty()) stop_diverged(problem);
     for (const auto& callback : callbacks) callback->at_safe_point(num_timesteps);
     if (!interrupt_requested()) return true;
+    if (!resumable) return false;  // nothing to resume from: just stop, model.zip follows
     const std::string path = checkpoint_name(outcome.run_dir, num_timesteps);
     if (last_checkpoint != path) save_checkpoint(path);
     outcome.checkpoint_path = path;
