@@ -151,3 +151,32 @@ TEST_CASE("train --init-from: a model that does not fit is refused with the reas
   CHECK_FALSE(fs::exists(dir / "bad/cartpole_a2c/seed1"));
   CHECK_FALSE(fs::exists(dir / "bad/pendulum_ppo/seed1"));
 }
+
+TEST_CASE("train --init-from: fine-tune a RewardShaping model on the plain reward",
+          "[cli][train_options]") {
+  TempDir dir("init_from_shaping");
+  // The course's shaped CartPole: a penalty while the cart stays right of 0.5 ...
+  REQUIRE(run_rlrun("train " + kConfigs + "cartpole_ppo.yaml --timesteps 4096 --out " +
+                    dir / "shaped" +
+                    " --set 'env.wrappers=[{id: RewardShaping, terms: [{type: obs_above_for, "
+                    "index: 0, threshold: 0.5, steps: 10, penalty: -1.0}]}]'")
+              .exit_code == 0);
+  const std::string model = dir / "shaped/cartpole_ppo/seed1/model.zip";
+  // ... then the original env and reward (no wrappers at all), trained further.
+  const auto r = run_rlrun("train " + kConfigs + "cartpole_ppo.yaml --timesteps 2048 --out " +
+                           dir / "plain" + " --init-from " + model);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(contains(r.output, "initialised from " + model + " (PPO, CartPole-v1, 4096 steps)"));
+  CHECK_FALSE(contains(r.output, "normalisation"));
+  CHECK(contains(r.output, "trained 2048 steps"));
+  const std::string run_dir = dir / "plain/cartpole_ppo/seed1";
+  const std::string config = read_text(run_dir + "/config.yaml");
+  CHECK_FALSE(contains(config, "RewardShaping"));
+  CHECK(contains(read_text(run_dir + "/log.txt"), "initialised from " + model));
+  // It trained from the loaded weights (not frozen, not restarted from scratch): the weights
+  // moved away from the model's.
+  const ZipMembers before = read_zip(model);
+  const ZipMembers after = read_zip(run_dir + "/model.zip");
+  CHECK(after.at("action_net.weight.npy") != before.at("action_net.weight.npy"));
+}

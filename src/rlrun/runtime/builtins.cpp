@@ -14,6 +14,7 @@
 #include "rlrun/envs/classic/pendulum.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
+#include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/frame_stack.hpp"
@@ -53,6 +54,12 @@ Registry make_builtins() {
   // No TimeLimit: GridWorld truncates itself after max_steps, with its timeout penalty.
   r.add(make_env_entry<GridWorld>(
       "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (use OneHotObservation)",
+      0));
+
+  // Traffic-signal control on the real SUMO (issue 7); episodes end by num_seconds.
+  r.add(make_env_entry<TrafficSignal>(
+      "TrafficSignal-v0",
+      "one traffic light at a 4-arm intersection in SUMO; Discrete(4): N, S, E or W green",
       0));
 
   // Wrappers usable in `env.wrappers`, applied in order after the Monitor.

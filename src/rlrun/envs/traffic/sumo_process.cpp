@@ -1,0 +1,183 @@
+#include "rlrun/envs/traffic/sumo_process.hpp"
+
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <libsumo/libtraci.h>
+
+#include "rlrun/core/errors.hpp"
+
+namespace rlrun {
+
+namespace {
+
+// A TCP port the kernel considers free right now (bound to port 0, then released).
+int free_port() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) throw RuntimeFailure("cannot open a socket to find a free port for SUMO");
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = 0;
+  socklen_t length = sizeof address;
+  if (bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
+      getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
+    close(fd);
+    throw RuntimeFailure("cannot find a free TCP port for SUMO");
+  }
+  const int port = ntohs(address.sin_port);
+  close(fd);
+  return port;
+}
+
+std::string next_label() {
+  static std::atomic<int> counter{0};
+  return "rlrun" + std::to_string(getpid()) + "_" + std::to_string(counter++);
+}
+
+bool process_alive(pid_t pid) {
+  int status = 0;
+  return waitpid(pid, &status, WNOHANG) == 0;
+}
+
+}  // namespace
+
+std::string find_executable(const std::string& binary) {
+  const auto executable = [](const std::string& path) { return access(path.c_str(), X_OK) == 0; };
+  if (binary.find('/') != std::string::npos) return executable(binary) ? binary : "";
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "/usr/bin:/bin");
+  for (std::string dir; std::getline(dirs, dir, ':');)
+    if (!dir.empty() && executable(dir + "/" + binary)) return dir + "/" + binary;
+  return "";
+}
+
+SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
+  // A socket whose SUMO has gone must fail with an error (reported with SUMO's output), not
+  // kill rlrun with SIGPIPE.
+  struct sigaction current;
+  if (sigaction(SIGPIPE, nullptr, &current) == 0 && current.sa_handler == SIG_DFL)
+    std::signal(SIGPIPE, SIG_IGN);
+  const std::string binary = find_executable(options.binary);
+  if (binary.empty())
+    throw RuntimeFailure("cannot run SUMO: '" + options.binary +
+                         "' was not found; install the Debian package 'sumo' (apt install sumo)");
+  if (!std::filesystem::exists(options.config))
+    throw RuntimeFailure("SUMO scenario " + options.config + " does not exist");
+  log_path_ = (std::filesystem::temp_directory_path() / (label_ + ".log")).string();
+  const int port = free_port();
+  std::vector<std::string> args{binary,
+                                "-c",
+                                options.config,
+                                "--remote-port",
+                                std::to_string(port),
+                                "--seed",
+                                std::to_string(options.seed % 2147483647ULL),
+                                "--scale",
+                                std::to_string(options.scale),
+                                "--end",
+                                std::to_string(options.end_time),
+                                "--no-step-log",
+                                "true",
+                                "--no-warnings",
+                                "true",
+                                "--duration-log.disable",
+                                "true"};
+  args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
+  const pid_t parent = getpid();
+  pid_ = fork();
+  if (pid_ < 0) throw RuntimeFailure("cannot start SUMO (fork failed)");
+  if (pid_ == 0) {
+    // SUMO dies with rlrun, whatever kills rlrun.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(1);
+    setpgid(0, 0);  // Ctrl-C at the terminal is rlrun's to handle, not SUMO's
+    const int fd = open(log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, STDOUT_FILENO);
+      dup2(fd, STDERR_FILENO);
+      close(fd);
+    }
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  // SUMO listens after loading the network (milliseconds); poll instead of libtraci's
+  // one-second retry sleep.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (true) {
+    try {
+      libtraci::Simulation::init(port, 0, "localhost", label_);
+      connected_ = true;
+      break;
+    } catch (const std::exception&) {
+      if (!process_alive(pid_)) {
+        pid_ = -1;
+        throw RuntimeFailure("SUMO exited before accepting the TraCI connection; its output:\n" +
+                             output_tail());
+      }
+      if (std::chrono::steady_clock::now() > deadline) {
+        shut_down();
+        throw RuntimeFailure("SUMO did not accept the TraCI connection within 30 s");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+}
+
+SumoProcess::~SumoProcess() {
+  shut_down();
+  std::error_code ec;
+  std::filesystem::remove(log_path_, ec);
+}
+
+void SumoProcess::activate() const { libtraci::Simulation::switchConnection(label_); }
+
+void SumoProcess::shut_down() {
+  if (connected_) {
+    connected_ = false;
+    try {
+      activate();
+      libtraci::Simulation::close();
+    } catch (const std::exception&) {
+      // Already gone (SUMO died): reaping below is all that is left.
+    }
+  }
+  if (pid_ <= 0) return;
+  for (int i = 0; i < 200 && process_alive(pid_); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (process_alive(pid_)) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  pid_ = -1;
+}
+
+std::string SumoProcess::output_tail(int lines) const {
+  std::ifstream in(log_path_);
+  std::vector<std::string> all;
+  for (std::string line; std::getline(in, line);) all.push_back(line);
+  std::string tail;
+  for (size_t i = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0; i < all.size(); ++i)
+    tail += "  " + all[i] + "\n";
+  return tail.empty() ? "  (no output)\n" : tail;
+}
+
+}  // namespace rlrun

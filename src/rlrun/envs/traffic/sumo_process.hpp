@@ -1,0 +1,57 @@
+#pragma once
+// One SUMO simulation owned by one env, driven over TraCI with SUMO's own C++ client
+// (libtracicpp, Debian package `sumo`). The process is started here, not by libtraci's
+// Simulation::start, so that rlrun knows its pid and output: `sumo -c CFG --remote-port P
+// --seed S --no-step-log ...` on a free port, stdout/stderr into a log file, connected under a
+// label of its own (libtraci keeps one connection per label: several envs, several SUMOs).
+//
+// No SUMO outlives rlrun: the destructor closes the connection and reaps the process (killing
+// it after a grace period), and the child asks the kernel for SIGKILL when rlrun dies
+// (prctl PR_SET_PDEATHSIG), which covers crashes and `kill -9`.
+#include <sys/types.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rlrun {
+
+class SumoProcess {
+ public:
+  struct Options {
+    std::string binary = "sumo";  // `sumo-gui` for gui: true
+    std::string config;           // the .sumocfg file
+    uint64_t seed = 0;
+    double scale = 1.0;           // demand multiplier (SUMO --scale)
+    double end_time = 3600.0;     // simulated seconds (SUMO --end)
+    std::vector<std::string> extra_args;  // e.g. --tripinfo-output FILE
+  };
+
+  // Throws RuntimeFailure naming the Debian package when the binary is missing, and with the
+  // tail of SUMO's output when it exits before accepting the connection.
+  explicit SumoProcess(const Options& options);
+  ~SumoProcess();
+  SumoProcess(const SumoProcess&) = delete;
+  SumoProcess& operator=(const SumoProcess&) = delete;
+
+  // Makes this simulation the target of the next libtraci calls (one label per process).
+  void activate() const;
+  const std::string& label() const { return label_; }
+  pid_t pid() const { return pid_; }
+
+  // The last lines SUMO wrote, for error messages ("SUMO stopped: ...").
+  std::string output_tail(int lines = 10) const;
+
+ private:
+  void shut_down();
+
+  std::string label_;
+  std::string log_path_;
+  pid_t pid_ = -1;
+  bool connected_ = false;
+};
+
+// Where `binary` would be run from ("" when neither a path to an executable nor on PATH).
+std::string find_executable(const std::string& binary);
+
+}  // namespace rlrun

@@ -1,0 +1,207 @@
+// TrafficSignal-v0 on the real SUMO (installed by scripts/setup.sh): the light's rules, the
+// metrics against SUMO's own tripinfo output, process ownership and SUMO failures.
+#include <catch2/catch.hpp>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/traffic_signal.hpp"
+#include "runtime/cli_runner.hpp"
+
+using namespace rlrun;
+using namespace rlrun::testing;
+
+namespace {
+
+bool process_exists(pid_t pid) { return pid > 0 && kill(pid, 0) == 0; }
+
+float act(TrafficSignal& env, int action, std::vector<float>& obs, StepResult* out = nullptr) {
+  const float a = static_cast<float>(action);
+  const StepResult r = env.step({&a, 1}, obs);
+  if (out) *out = r;
+  return static_cast<float>(r.reward);
+}
+
+// Means over the <tripinfo> elements of SUMO's tripinfo XML: duration and waitingTime.
+struct TripStats {
+  int trips = 0;
+  double duration = 0, waiting = 0;
+};
+TripStats read_tripinfo(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  static const std::regex trip(R"re(<tripinfo [^>]*duration="([0-9.]+)"[^>]*waitingTime="([0-9.]+)")re");
+  TripStats stats;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), trip); it != std::sregex_iterator(); ++it) {
+    ++stats.trips;
+    stats.duration += std::stod((*it)[1]);
+    stats.waiting += std::stod((*it)[2]);
+  }
+  if (stats.trips > 0) {
+    stats.duration /= stats.trips;
+    stats.waiting /= stats.trips;
+  }
+  return stats;
+}
+
+}  // namespace
+
+TEST_CASE("TrafficSignal: spaces, yellow on every switch, min_green", "[traffic]") {
+  TrafficSignal::Config config;
+  config.num_seconds = 60;
+  config.delta_time = 5;
+  config.yellow_time = 3;
+  config.min_green = 10;
+  TrafficSignal env(config);
+  CHECK(env.observation_space().describe() == "Box(0.0, 1.0, (10,), float32)");
+  CHECK(env.action_space().describe() == "Discrete(4)");
+  std::vector<float> obs(10);
+  env.reset(7, obs);
+  CHECK(env.green_approach() == TrafficSignal::kNorth);
+  CHECK(obs[8] == 0.0f);
+  // Asking for East before min_green keeps North.
+  act(env, TrafficSignal::kEast, obs);
+  CHECK(env.green_approach() == TrafficSignal::kNorth);
+  act(env, TrafficSignal::kEast, obs);  // 11 s of green now
+  CHECK(env.green_approach() == TrafficSignal::kNorth);
+  act(env, TrafficSignal::kEast, obs);  // switches: 3 s yellow, then East for 2 s
+  CHECK(env.green_approach() == TrafficSignal::kEast);
+  CHECK_FALSE(env.yellow());
+  CHECK(obs[8] == Approx(2.0 / 3.0));
+  CHECK(obs[9] == Approx(2.0 / 60.0));
+  for (float v : obs) {
+    CHECK(v >= 0.0f);
+    CHECK(v <= 1.0f);
+  }
+  // Truncated at num_seconds of simulated time.
+  StepResult r;
+  int steps = 3;
+  do {
+    act(env, TrafficSignal::kEast, obs, &r);
+    ++steps;
+  } while (!r.truncated && steps < 100);
+  CHECK(r.truncated);
+  CHECK_FALSE(r.terminated);
+  CHECK(env.sim_time() == Approx(61.0));  // reset's first second + 12 steps of 5 s
+}
+
+TEST_CASE("TrafficSignal: episode metrics agree with SUMO's tripinfo within 1 %", "[traffic]") {
+  TempDir dir("traffic_tripinfo");
+  TrafficSignal::Config config;
+  config.num_seconds = 900;
+  config.tripinfo_output = dir / "tripinfo.xml";
+  double waiting = 0, travel = 0, throughput = 0;
+  {
+    TrafficSignal env(config);
+    std::vector<float> obs(10);
+    env.reset(3, obs);
+    StepResult r;
+    int step = 0;
+    do {
+      act(env, (step++ / 6) % 4, obs, &r);  // a fixed cycle of 30 s greens
+    } while (!r.truncated);
+    const Info& info = env.info();
+    waiting = info.get(info.find("avg_waiting_time"));
+    travel = info.get(info.find("avg_travel_time"));
+    throughput = info.get(info.find("throughput"));
+  }  // SUMO closes and completes tripinfo.xml
+  const TripStats trips = read_tripinfo(dir / "tripinfo.xml");
+  INFO("tripinfo: " << trips.trips << " trips, duration " << trips.duration << ", waiting "
+                    << trips.waiting << "; env: " << throughput << ", " << travel << ", "
+                    << waiting);
+  REQUIRE(trips.trips > 100);
+  CHECK(throughput == Approx(trips.trips).epsilon(0.01));
+  CHECK(travel == Approx(trips.duration).epsilon(0.01));
+  CHECK(waiting == Approx(trips.waiting).epsilon(0.01));
+}
+
+TEST_CASE("TrafficSignal: same seed, same episode; reward functions", "[traffic]") {
+  TrafficSignal::Config config;
+  config.num_seconds = 120;
+  for (const char* reward_fn : {"queue", "diff-waiting-time", "average-speed", "pressure"}) {
+    config.reward_fn = reward_fn;
+    std::vector<std::vector<float>> runs;
+    for (int run = 0; run < 2; ++run) {
+      TrafficSignal env(config);
+      std::vector<float> obs(10), trace;
+      env.reset(11, obs);
+      for (int step = 0; step < 20; ++step) {
+        trace.push_back(act(env, (step / 3) % 4, obs));
+        trace.insert(trace.end(), obs.begin(), obs.end());
+      }
+      runs.push_back(trace);
+    }
+    INFO(reward_fn);
+    CHECK(runs[0] == runs[1]);
+  }
+  config.reward_fn = "speed";
+  CHECK_THROWS_WITH(TrafficSignal(config), Catch::Contains("unknown reward_fn 'speed'"));
+}
+
+TEST_CASE("TrafficSignal: SUMO processes end with their env, also when SUMO dies", "[traffic]") {
+  TrafficSignal::Config config;
+  config.num_seconds = 300;
+  std::vector<float> obs(10);
+  pid_t first = -1, second = -1;
+  {
+    TrafficSignal env(config);
+    env.reset(1, obs);
+    first = env.sumo_pid();
+    CHECK(process_exists(first));
+    env.reset(2, obs);  // every reset restarts SUMO
+    second = env.sumo_pid();
+    CHECK(second != first);
+    CHECK_FALSE(process_exists(first));
+  }
+  CHECK_FALSE(process_exists(second));
+
+  // SUMO killed mid-episode: the next step says so, with SUMO's last output; nothing is left.
+  TrafficSignal env(config);
+  env.reset(1, obs);
+  const pid_t pid = env.sumo_pid();
+  kill(pid, SIGKILL);
+  const float a = 0.0f;
+  CHECK_THROWS_AS(env.step({&a, 1}, obs), RuntimeFailure);
+  try {
+    env.step({&a, 1}, obs);
+  } catch (const RuntimeFailure& e) {
+    CHECK(std::string(e.what()).find("SUMO stopped") != std::string::npos);
+  }
+}
+
+TEST_CASE("TrafficSignal: a missing sumo binary names the package", "[traffic]") {
+  TrafficSignal::Config config;
+  config.sumo_binary = "/nonexistent/sumo";
+  TrafficSignal env(config);
+  std::vector<float> obs(10);
+  CHECK_THROWS_WITH(env.reset(1, obs), Catch::Contains("install the Debian package 'sumo'"));
+}
+
+TEST_CASE("TrafficSignal: no SUMO survives rlrun being killed", "[traffic][cli]") {
+  TempDir dir("traffic_kill");
+  // A long training run, killed with SIGKILL: its SUMO must go too (PR_SET_PDEATHSIG).
+  const std::string cmd = std::string(RLRUN_BINARY) +
+                          " train " + std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml" +
+                          " --set env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]'" +
+                          " --set env.n_envs=2 --set env.kwargs.scale=1.0001" +
+                          " --timesteps 100000000 --out " + dir.str() +
+                          " > " + dir / "out.txt" + " 2>&1 & pid=$!; sleep 2; " +
+                          "pgrep -P $pid -x sumo | wc -l; kill -9 $pid; wait $pid; sleep 0.5; " +
+                          "pgrep -f 'scale 1[.]000100' | wc -l";  // [.]: not this shell's own command line
+  const auto r = run_command(cmd);
+  INFO(r.output);
+  std::istringstream lines(r.output);
+  int before = -1, after = -1;
+  lines >> before >> after;
+  CHECK(before == 2);  // one SUMO per env
+  CHECK(after == 0);
+}
