@@ -1,5 +1,5 @@
 // rlrun eval --model FILE [--episodes N] [--seed S] [--deterministic|--stochastic] [--csv FILE]
-//            [--record video.mp4]
+//            [--record video.mp4] [--baseline fixed-time [--green-time S]]
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -8,6 +8,8 @@
 #include "commands.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/fixed_time_policy.hpp"
+#include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
@@ -15,6 +17,78 @@
 #include "rlrun/runtime/recorder.hpp"
 
 namespace rlrun::cli {
+
+namespace {
+
+// The traffic task's fixed-time plan on a fresh copy of the model's env, same episodes.
+EvalResult evaluate_fixed_time(Env& env, int green_time, int episodes, uint64_t seed) {
+  auto* traffic = dynamic_cast<TrafficSignal*>(&env.unwrapped());
+  if (!traffic)
+    throw UsageError("--baseline fixed-time is the traffic-signal baseline; this model's env is " +
+                     env.unwrapped().id());
+  FixedTimePolicy plan(green_time, traffic->config().delta_time);
+  return evaluate_policy(
+      [&](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
+        action.resize(1, 1);
+        // reset() simulates the first second: a new episode is at 1 s.
+        action(0, 0) = static_cast<float>(plan.next_action(traffic->sim_time() <= 1.0));
+      },
+      env, episodes, seed);
+}
+
+// "<what> on <env>, N episodes<how>: mean_reward = m +/- s, mean_ep_length = l", the line
+// scripts and users grep for, then the success rate and the env's own metrics.
+void print_summary(const std::string& what, const std::string& how, const std::string& env_id,
+                   int episodes, const EvalResult& r) {
+  std::printf("%s on %s, %d episodes%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
+              what.c_str(), env_id.c_str(), episodes, how.c_str(), r.mean_return(),
+              r.std_return(), r.mean_length());
+  if (!r.successes.empty()) {
+    double s = 0;
+    for (double x : r.successes) s += x;
+    std::printf("success_rate = %.3f\n", s / static_cast<double>(r.successes.size()));
+  }
+  for (size_t k = 0; k < r.metric_keys.size(); ++k) {
+    double sum = 0;
+    for (const auto& episode : r.metrics) sum += episode[k];
+    std::printf("  %s = %.3f (mean over episodes)\n", r.metric_keys[k].c_str(),
+                sum / static_cast<double>(std::max<size_t>(r.metrics.size(), 1)));
+  }
+}
+
+// One row per episode (and one `mean` row per policy when there is a baseline).
+void write_csv(const std::string& path, const std::vector<std::pair<std::string, EvalResult>>& runs) {
+  std::ofstream csv(path, std::ios::trunc);
+  if (!csv) throw RuntimeFailure("cannot write " + path);
+  const bool with_policy = runs.size() > 1;
+  const EvalResult& first = runs.front().second;
+  csv << (with_policy ? "policy," : "") << "episode,return,length"
+      << (first.successes.empty() ? "" : ",is_success");
+  for (const auto& key : first.metric_keys) csv << ',' << key;
+  csv << '\n';
+  for (const auto& [policy, r] : runs) {
+    std::vector<double> mean(3 + r.metric_keys.size(), 0.0);
+    for (size_t i = 0; i < r.returns.size(); ++i) {
+      if (with_policy) csv << policy << ',';
+      csv << i << ',' << r.returns[i] << ',' << r.lengths[i];
+      if (!r.successes.empty()) csv << ',' << (i < r.successes.size() ? r.successes[i] : 0.0);
+      for (double v : r.metrics[i]) csv << ',' << v;
+      csv << '\n';
+      mean[0] += r.returns[i];
+      mean[1] += static_cast<double>(r.lengths[i]);
+      mean[2] += i < r.successes.size() ? r.successes[i] : 0.0;
+      for (size_t k = 0; k < r.metrics[i].size(); ++k) mean[3 + k] += r.metrics[i][k];
+    }
+    if (!with_policy) continue;
+    const double n = static_cast<double>(std::max<size_t>(r.returns.size(), 1));
+    csv << policy << ",mean," << mean[0] / n << ',' << mean[1] / n;
+    if (!r.successes.empty()) csv << ',' << mean[2] / n;
+    for (size_t k = 0; k < r.metric_keys.size(); ++k) csv << ',' << mean[3 + k] / n;
+    csv << '\n';
+  }
+}
+
+}  // namespace
 
 Action add_eval(CLI::App& app) {
   struct Options {
@@ -25,6 +99,8 @@ Action add_eval(CLI::App& app) {
     std::string csv;
     std::string record;  // mp4 of the evaluation episodes
     std::vector<std::string> plugins;
+    std::string baseline;  // fixed-time (traffic task)
+    int green_time = 30;
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
@@ -37,6 +113,13 @@ Action add_eval(CLI::App& app) {
   sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")->excludes(det);
   sub->add_option("--csv", options->csv, "also write one row per episode (episode,return,length)");
   add_plugin_option(sub, options->plugins);
+  sub->add_option("--baseline", options->baseline,
+                  "also evaluate a baseline on the same episodes: fixed-time (the traffic task's "
+                  "N -> S -> E -> W plan)")
+      ->check(CLI::IsMember({"fixed-time"}));
+  sub->add_option("--green-time", options->green_time,
+                  "green seconds per approach of the fixed-time baseline")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--record", options->record,
                   "also record the episodes to this mp4 (same episodes and numbers; needs ffmpeg)");
   return [options, deterministic]() {
@@ -68,25 +151,18 @@ Action add_eval(CLI::App& app) {
       std::printf("recorded %lld frames at %dx%d -> %s\n", static_cast<long long>(recorded.frames),
                   recorded.width, recorded.height, options->record.c_str());
     }
-    if (!options->csv.empty()) {
-      std::ofstream csv(options->csv, std::ios::trunc);
-      if (!csv) throw RuntimeFailure("cannot write " + options->csv);
-      csv << "episode,return,length" << (r.successes.empty() ? "" : ",is_success") << "\n";
-      for (size_t i = 0; i < r.returns.size(); ++i) {
-        csv << i << ',' << r.returns[i] << ',' << r.lengths[i];
-        if (!r.successes.empty()) csv << ',' << (i < r.successes.size() ? r.successes[i] : 0.0);
-        csv << '\n';
-      }
+    std::vector<std::pair<std::string, EvalResult>> runs{{model.meta.algorithm, r}};
+    print_summary(model.meta.algorithm, options->stochastic ? " (stochastic)" : " (deterministic)",
+                  experiment.env.id, options->episodes, r);
+    if (options->baseline == "fixed-time") {
+      EnvPtr baseline_env = make_model_env(model, experiment, registry);
+      const EvalResult fixed =
+          evaluate_fixed_time(*baseline_env, options->green_time, options->episodes, options->seed);
+      print_summary("fixed-time", " (" + std::to_string(options->green_time) + " s green)",
+                    experiment.env.id, options->episodes, fixed);
+      runs.emplace_back("fixed-time", fixed);
     }
-    std::printf("%s on %s, %d episodes (%s): mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
-                model.meta.algorithm.c_str(), experiment.env.id.c_str(), options->episodes,
-                options->stochastic ? "stochastic" : "deterministic", r.mean_return(),
-                r.std_return(), r.mean_length());
-    if (!r.successes.empty()) {
-      double s = 0;
-      for (double x : r.successes) s += x;
-      std::printf("success_rate = %.3f\n", s / static_cast<double>(r.successes.size()));
-    }
+    if (!options->csv.empty()) write_csv(options->csv, runs);
     return 0;
   };
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/fixed_time_policy.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "runtime/cli_runner.hpp"
 
@@ -204,4 +205,47 @@ TEST_CASE("TrafficSignal: no SUMO survives rlrun being killed", "[traffic][cli]"
   lines >> before >> after;
   CHECK(before == 2);  // one SUMO per env
   CHECK(after == 0);
+}
+
+TEST_CASE("FixedTimePolicy: N, S, E, W, each for green_time rounded up to decisions", "[traffic]") {
+  FixedTimePolicy plan(12, 5);  // 12 s green at 5 s per decision: 3 decisions per approach
+  std::vector<int> actions;
+  for (int i = 0; i < 13; ++i) actions.push_back(plan.next_action(i == 0));
+  CHECK(actions == std::vector<int>{0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 0});
+  CHECK(plan.next_action(true) == 0);  // a new episode restarts the cycle
+  CHECK_THROWS(FixedTimePolicy(0, 5));
+}
+
+TEST_CASE("eval --baseline fixed-time: both policies on the same episodes, metrics in the CSV",
+          "[traffic][cli]") {
+  TempDir dir("traffic_eval");
+  const auto train = run_rlrun(
+      "train " + std::string(RLRUN_SOURCE_DIR) + "/configs/traffic_dqn.yaml --timesteps 200" +
+      " --set env.kwargs.num_seconds=300 --set algo.learning_starts=50 --out " + dir.str());
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const std::string model = dir / "traffic_dqn/seed1/model.zip";
+  const auto r = run_rlrun("eval --model " + model + " --episodes 2 --baseline fixed-time" +
+                           " --green-time 20 --csv " + dir / "eval.csv");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("fixed-time on TrafficSignal-v0, 2 episodes (20 s green): mean_reward") !=
+        std::string::npos);
+  std::ifstream in(dir / "eval.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  REQUIRE(lines.size() == 7);  // header, 2 + mean per policy
+  CHECK(lines[0] ==
+        "policy,episode,return,length,avg_waiting_time,avg_travel_time,total_queue_length,"
+        "throughput,sim_time");
+  CHECK(lines[3].rfind("DQN,mean,", 0) == 0);
+  CHECK(lines[6].rfind("fixed-time,mean,", 0) == 0);
+  // The baseline is the traffic task's: other models are refused.
+  const auto other = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
+                               "/configs/cartpole_ppo.yaml --timesteps 256 --out " + dir / "cp");
+  REQUIRE(other.exit_code == 0);
+  const auto refused = run_rlrun("eval --model " + dir / "cp/cartpole_ppo/seed1/model.zip" +
+                                 " --episodes 1 --baseline fixed-time");
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.output.find("traffic-signal baseline") != std::string::npos);
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace rlrun::testing {
 
@@ -29,11 +30,13 @@ inline CommandResult run_rlrun(const std::string& args) {
   return run_command(std::string(RLRUN_BINARY) + " " + args);
 }
 
-// A fresh temporary directory, removed when the object goes away.
+// A fresh temporary directory, removed when the object goes away. The process id is part of
+// the name: test binaries of other build directories may run the same test at the same time.
 class TempDir {
  public:
   explicit TempDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() / ("rlrun_test_" + name)) {
+      : path_(std::filesystem::temp_directory_path() /
+              ("rlrun_test_" + name + "_" + std::to_string(getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

@@ -29,6 +29,15 @@ double EvalResult::mean_length() const {
 
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
                            std::optional<uint64_t> seed) {
+  return evaluate_policy(
+      [&](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
+        algorithm.predict(obs, deterministic, actions);
+      },
+      env, n_episodes, seed);
+}
+
+EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
+                           std::optional<uint64_t> seed) {
   EvalResult result;
   const int obs_dim = env.observation_space().flat_dim();
   Eigen::MatrixXf obs(obs_dim, 1);
@@ -36,12 +45,21 @@ EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool 
   const int r_key = env.info().find("episode.r");
   const int l_key = env.info().find("episode.l");
   const int success_key = env.info().find("is_success");
+  std::vector<int> metric_indices;
+  const std::vector<std::string>& keys = env.unwrapped().info().keys();
+  for (const std::string& key : keys) {
+    if (key == "is_success" || key.rfind("episode.", 0) == 0 || key == "TimeLimit.truncated") continue;
+    const int index = env.info().find(key);
+    if (index < 0) continue;
+    result.metric_keys.push_back(key);
+    metric_indices.push_back(index);
+  }
   for (int episode = 0; episode < n_episodes; ++episode) {
     env.reset(episode == 0 ? seed : std::nullopt, {obs.data(), static_cast<size_t>(obs_dim)});
     double episode_return = 0;
     int64_t length = 0;
     while (true) {
-      algorithm.predict(obs, deterministic, actions);
+      policy(obs, actions);
       const StepResult step = env.step({actions.data(), static_cast<size_t>(actions.size())},
                                        {obs.data(), static_cast<size_t>(obs_dim)});
       episode_return += step.reward;
@@ -51,6 +69,9 @@ EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool 
         result.returns.push_back(info.has(r_key) ? info.get(r_key) : episode_return);
         result.lengths.push_back(info.has(l_key) ? static_cast<int64_t>(info.get(l_key)) : length);
         if (info.has(success_key)) result.successes.push_back(info.get(success_key));
+        std::vector<double> values;
+        for (const int index : metric_indices) values.push_back(info.get(index));
+        result.metrics.push_back(std::move(values));
         break;
       }
     }

@@ -12,10 +12,18 @@
 
 namespace rlrun {
 
+// Maps one observation (obs_dim x 1) to the env's action; a trained model's predict() or a
+// baseline such as the traffic task's fixed-time cycle.
+using ActionFn = std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf& action)>;
+
 struct EvalResult {
   std::vector<double> returns;
   std::vector<int64_t> lengths;
   std::vector<double> successes;  // one per episode where the env reports is_success
+  // The env's own info values at each episode's end (its metrics, e.g. the traffic task's
+  // avg_waiting_time), by key; Monitor/TimeLimit keys left out.
+  std::vector<std::string> metric_keys;
+  std::vector<std::vector<double>> metrics;  // [episode][key]
 
   double mean_return() const;
   double std_return() const;  // population std, as numpy's std in SB3
@@ -23,6 +31,8 @@ struct EvalResult {
 };
 
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
+                           std::optional<uint64_t> seed);
+EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
                            std::optional<uint64_t> seed);
 
 }  // namespace rlrun

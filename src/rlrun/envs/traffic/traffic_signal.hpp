@@ -85,6 +85,7 @@ class TrafficSignal : public Env {
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
 
+  const Config& config() const { return config_; }
   // The light: the approach that has (or, during yellow, had) green.
   int green_approach() const { return green_; }
   bool yellow() const { return yellow_; }
