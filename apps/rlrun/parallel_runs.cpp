@@ -50,6 +50,11 @@ pid_t start_child(const std::string& config, const std::vector<std::string>& opt
                   const std::string& log_path) {
   std::vector<std::string> args{"/proc/self/exe", "--threads", "1", "train", config};
   args.insert(args.end(), options.begin(), options.end());
+  // argv is built before fork(): this process may have a ForkJoin worker thread, and the child
+  // of a threaded process may only call async-signal-safe functions (no malloc) until exec.
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   const pid_t pid = fork();
   if (pid < 0) throw RuntimeFailure("cannot start a training process (fork failed)");
   if (pid == 0) {
@@ -62,11 +67,9 @@ pid_t start_child(const std::string& config, const std::vector<std::string>& opt
     }
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
     execv(argv[0], argv.data());
-    std::perror("rlrun: exec");
+    const char kExecFailed[] = "rlrun: cannot start /proc/self/exe (exec failed)\n";
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kExecFailed, sizeof(kExecFailed) - 1);
     _exit(127);
   }
   return pid;

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "rlrun/core/zip_archive.hpp"
@@ -70,6 +71,11 @@ TEST_CASE("train -j 2: several experiments as processes, failures reported", "[c
   CHECK(contains(r.output, "broken.yaml: FAILED (exit 1)"));
   CHECK(contains(r.output, "missing.zip"));
   CHECK(fs::exists(dir / "runs2/cartpole_a2c/seed1/model.zip"));
+  // A failed sweep keeps its children's console logs for the user; the test removes them.
+  std::smatch logs;
+  REQUIRE(std::regex_search(r.output, logs, std::regex("console output of each in (\\S+)/\\)")));
+  CHECK(fs::exists(logs[1].str() + "/1.log"));
+  fs::remove_all(logs[1].str());
 }
 
 TEST_CASE("train -j 2: Ctrl-C reaches every run, each writes a checkpoint", "[cli][train_options]") {
