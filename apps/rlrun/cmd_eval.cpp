@@ -1,6 +1,7 @@
 // rlrun eval --model FILE [--episodes N] [--seed S] [--deterministic|--stochastic] [--csv FILE]
 //            [--record video.mp4] [--baseline fixed-time [--green-time S]]
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -58,6 +59,9 @@ void print_summary(const std::string& what, const std::string& how, const std::s
 
 // One row per episode (and one `mean` row per policy when there is a baseline).
 void write_csv(const std::string& path, const std::vector<std::pair<std::string, EvalResult>>& runs) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // e.g. results/
   std::ofstream csv(path, std::ios::trunc);
   if (!csv) throw RuntimeFailure("cannot write " + path);
   const bool with_policy = runs.size() > 1;
