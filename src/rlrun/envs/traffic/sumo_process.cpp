@@ -99,6 +99,13 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
                                 "--duration-log.disable",
                                 "true"};
   args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
+  // Everything the child needs is prepared before fork(): rlrun may run a ForkJoin worker
+  // thread, and the child of a threaded process may only call async-signal-safe functions
+  // (no malloc) until exec.
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const char* log_path = log_path_.c_str();
   const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ < 0) throw RuntimeFailure("cannot start SUMO (fork failed)");
@@ -107,15 +114,12 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(1);
     setpgid(0, 0);  // Ctrl-C at the terminal is rlrun's to handle, not SUMO's
-    const int fd = open(log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fd = open(log_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, STDOUT_FILENO);
       dup2(fd, STDERR_FILENO);
       close(fd);
     }
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
     execv(argv[0], argv.data());
     _exit(127);
   }
