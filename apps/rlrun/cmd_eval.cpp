@@ -10,7 +10,6 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
-#include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
@@ -20,22 +19,6 @@
 namespace rlrun::cli {
 
 namespace {
-
-// The traffic task's fixed-time plan on a fresh copy of the model's env, same episodes.
-EvalResult evaluate_fixed_time(Env& env, int green_time, int episodes, uint64_t seed) {
-  auto* traffic = dynamic_cast<TrafficSignal*>(&env.unwrapped());
-  if (!traffic)
-    throw UsageError("--baseline fixed-time is the traffic-signal baseline; this model's env is " +
-                     env.unwrapped().id());
-  FixedTimePolicy plan(green_time, traffic->config().delta_time);
-  return evaluate_policy(
-      [&](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
-        action.resize(1, 1);
-        // reset() simulates the first second: a new episode is at 1 s.
-        action(0, 0) = static_cast<float>(plan.next_action(traffic->sim_time() <= 1.0));
-      },
-      env, episodes, seed);
-}
 
 // "<what> on <env>, N episodes<how>: mean_reward = m +/- s, mean_ep_length = l", the line
 // scripts and users grep for, then the success rate and the env's own metrics.
@@ -160,8 +143,8 @@ Action add_eval(CLI::App& app) {
                   experiment.env.id, options->episodes, r);
     if (options->baseline == "fixed-time") {
       EnvPtr baseline_env = make_model_env(model, experiment, registry);
-      const EvalResult fixed =
-          evaluate_fixed_time(*baseline_env, options->green_time, options->episodes, options->seed);
+      const EvalResult fixed = evaluate_policy(fixed_time_actions(*baseline_env, options->green_time),
+                                               *baseline_env, options->episodes, options->seed);
       print_summary("fixed-time", " (" + std::to_string(options->green_time) + " s green)",
                     experiment.env.id, options->episodes, fixed);
       runs.emplace_back("fixed-time", fixed);

@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/fixed_time_policy.hpp"
 #include "rlrun/core/rng.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -25,6 +26,7 @@ namespace {
 
 struct Options {
   std::string model, config, env_id, from_obs, policy;
+  int green_time = 30;  // --policy fixed-time
   std::vector<std::string> overrides;
   std::string output, frames, size;
   int episodes = 1;
@@ -138,8 +140,11 @@ int run(const Options& o) {
       action.resize(space.flat_dim(), 1);
       space.sample(*rng, {action.data(), static_cast<size_t>(action.size())});
     };
+  } else if (policy == "fixed-time") {
+    record.policy_label = "fixed-time " + std::to_string(o.green_time) + " s";
+    act = fixed_time_actions(*env, o.green_time);
   } else {
-    throw UsageError("--policy " + policy + ": expected model or random");
+    throw UsageError("--policy " + policy + ": expected model, random or fixed-time");
   }
   const RecordResult r = record_episodes(*env, act, record);
   print_summary(r,
@@ -160,7 +165,11 @@ Action add_record(CLI::App& app) {
                   "experiment file whose env to record (with --policy random)");
   sub->add_option("--set", options->overrides, "override a --config value (repeatable)");
   sub->add_option("--env", options->env_id, "env id (with --policy random or --from-obs)");
-  sub->add_option("--policy", options->policy, "model (default with --model) or random");
+  sub->add_option("--policy", options->policy,
+                  "model (default with --model), random, or fixed-time (traffic task)");
+  sub->add_option("--green-time", options->green_time,
+                  "green seconds per approach of --policy fixed-time")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--from-obs", options->from_obs,
                   "observation log to draw: a .npy file or a directory of .npy chunks (obs_log)");
   sub->add_option("--output,-o", options->output, "mp4 file to write (H.264, yuv420p)");

@@ -249,3 +249,21 @@ TEST_CASE("eval --baseline fixed-time: both policies on the same episodes, metri
   CHECK(refused.exit_code == 2);
   CHECK(refused.output.find("traffic-signal baseline") != std::string::npos);
 }
+
+TEST_CASE("record --policy fixed-time: an mp4 of the intersection from above", "[traffic][cli]") {
+  TempDir dir("traffic_record");
+  const auto r = run_rlrun("record --config " + std::string(RLRUN_SOURCE_DIR) +
+                           "/configs/traffic_dqn.yaml --set env.kwargs.num_seconds=100" +
+                           " --policy fixed-time --green-time 10 --output " + dir / "ft.mp4" +
+                           " --frames " + dir / "frames");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const auto probe = run_command(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " + dir / "ft.mp4");
+  // 100 s at 5 s per decision: 20 steps, plus the frame after reset.
+  CHECK(probe.output.find("h264,600,600,21") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "frames/frame_000020.png"));
+  const auto refused = run_rlrun("record --env CartPole-v1 --policy fixed-time --output " + dir / "x.mp4");
+  CHECK(refused.exit_code == 2);
+}

@@ -1,6 +1,9 @@
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
 
+#include <memory>
 #include <stdexcept>
+
+#include "rlrun/core/errors.hpp"
 
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 
@@ -17,6 +20,20 @@ int FixedTimePolicy::next_action(bool episode_start) {
   static constexpr int kCycle[] = {TrafficSignal::kNorth, TrafficSignal::kSouth,
                                    TrafficSignal::kEast, TrafficSignal::kWest};
   return kCycle[(decision_++ / decisions_per_green_) % 4];
+}
+
+std::function<void(const Eigen::MatrixXf&, Eigen::MatrixXf&)> fixed_time_actions(Env& env,
+                                                                                int green_time) {
+  auto* traffic = dynamic_cast<TrafficSignal*>(&env.unwrapped());
+  if (!traffic)
+    throw UsageError("the fixed-time plan is the traffic-signal baseline; this env is " +
+                     env.unwrapped().id());
+  auto plan = std::make_shared<FixedTimePolicy>(green_time, traffic->config().delta_time);
+  return [plan, traffic](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
+    action.resize(1, 1);
+    // reset() simulates the first second: a new episode is at 1 s.
+    action(0, 0) = static_cast<float>(plan->next_action(traffic->sim_time() <= 1.0));
+  };
 }
 
 }  // namespace rlrun

@@ -4,6 +4,9 @@
 // delta_time), the yellow the env inserts on every switch included, as a traffic engineer's
 // pre-timed plan (the course's comparison for the DQN agent; sumo-rl's `fixed_ts`).
 #include <Eigen/Core>
+#include <functional>
+
+#include "rlrun/env/env.hpp"
 
 namespace rlrun {
 
@@ -20,5 +23,11 @@ class FixedTimePolicy {
   int decisions_per_green_;
   int decision_ = 0;
 };
+
+// The plan as a policy acting on `env` (eval --baseline, record --policy fixed-time), its
+// delta_time read from the env. Throws UsageError unless the innermost env is
+// TrafficSignal-v0.
+std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf& action)> fixed_time_actions(
+    Env& env, int green_time);
 
 }  // namespace rlrun

@@ -105,6 +105,8 @@ void TrafficSignal::start_simulation(uint64_t sumo_seed) {
             lane.approach = approach_of(tc::Lane::getShape(link.fromLane), centre);
             lane.length = tc::Lane::getLength(link.fromLane);
             lane.max_speed = tc::Lane::getMaxSpeed(link.fromLane);
+            lane.width = tc::Lane::getWidth(link.fromLane);
+            for (const auto& p : tc::Lane::getShape(link.fromLane).value) lane.shape.push_back({p.x, p.y});
             incoming_.push_back(lane);
           }
           if (!known(outgoing_, link.toLane)) {
@@ -112,6 +114,8 @@ void TrafficSignal::start_simulation(uint64_t sumo_seed) {
             lane.id = link.toLane;
             lane.length = tc::Lane::getLength(link.toLane);
             lane.max_speed = tc::Lane::getMaxSpeed(link.toLane);
+            lane.width = tc::Lane::getWidth(link.toLane);
+            for (const auto& p : tc::Lane::getShape(link.toLane).value) lane.shape.push_back({p.x, p.y});
             outgoing_.push_back(lane);
           }
           const auto it = std::find_if(incoming_.begin(), incoming_.end(),
@@ -129,7 +133,8 @@ void TrafficSignal::start_simulation(uint64_t sumo_seed) {
     for (const Lane& lane : outgoing_)
       tc::Lane::subscribe(lane.id, {libsumo::LAST_STEP_VEHICLE_NUMBER});
     tc::Junction::subscribeContext(tls, libsumo::CMD_GET_VEHICLE_VARIABLE, 1e5,
-                                   {libsumo::VAR_SPEED, libsumo::VAR_LANE_ID});
+                                   {libsumo::VAR_SPEED, libsumo::VAR_LANE_ID,
+                                    libsumo::VAR_POSITION, libsumo::VAR_ANGLE});
     tc::Simulation::subscribe(std::vector<int>{libsumo::VAR_TIME, libsumo::VAR_DEPARTED_VEHICLES_IDS,
                                                libsumo::VAR_ARRIVED_VEHICLES_IDS});
   } catch (const std::exception& e) {  // TraCI errors, socket errors (tcpip::SocketException)

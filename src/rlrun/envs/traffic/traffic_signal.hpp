@@ -21,6 +21,7 @@
 //   info    avg_waiting_time, avg_travel_time (means over the vehicles that arrived this
 //           episode, as SUMO's tripinfo output computes them: waiting = seconds at < 0.1 m/s),
 //           throughput (vehicles arrived), total_queue_length (halting now), sim_time.
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -90,6 +91,11 @@ class TrafficSignal : public Env {
   int green_approach() const { return green_; }
   bool yellow() const { return yellow_; }
   double sim_time() const { return sim_time_; }
+  // A top-down picture of the roads, the vehicles (red when waiting) and the light at each
+  // stop line (traffic_signal_render.cpp); 10 frames per second of video, one per decision.
+  RenderSpec render_spec() const override { return {600, 600, 10.0}; }
+  bool render(Frame& frame) const override;
+
   // The running SUMO's process id (-1 before the first reset), for tests.
   pid_t sumo_pid() const { return sumo_ ? sumo_->pid() : -1; }
 
@@ -100,7 +106,8 @@ class TrafficSignal : public Env {
   struct Lane {
     std::string id;
     int approach = -1;  // for incoming lanes
-    double length = 0, max_speed = 0;
+    double length = 0, max_speed = 0, width = 3.2;
+    std::vector<std::array<double, 2>> shape;  // centre line, metres
     int halting = 0, vehicles = 0;
     double mean_speed = 0;
   };
