@@ -2,8 +2,10 @@
 // Gymnasium's seeding contract for an env's random stream (gymnasium/core.py Env.reset:
 // `if seed is not None: self._np_random, self._np_random_seed = seeding.np_random(seed)`):
 // a seed reseeds the stream, no seed continues it, and the very first reset of an env that was
-// never seeded draws the seed from OS entropy. Shared by every built-in env, with the two
-// values that hold the contract's state in checkpoints.
+// never seeded draws the seed from OS entropy (Env.np_random seeds itself with
+// `seeding.np_random()`, i.e. entropy, on first use). EnvSeeding holds the stream and the
+// never-seeded flag that contract needs, and saves both for checkpoints, so every built-in env
+// gets the same rules and the same state keys.
 #include <cstdint>
 #include <optional>
 #include <random>
@@ -13,6 +15,8 @@
 
 namespace rlrun {
 
+// The contract on an Rng and flag held elsewhere (TrafficSignal keeps its own); EnvSeeding
+// is the same rule with the two values in one object.
 inline void seed_on_reset(Rng& rng, bool& ever_seeded, std::optional<uint64_t> seed) {
   if (seed) {
     rng.reseed(*seed);
@@ -24,14 +28,28 @@ inline void seed_on_reset(Rng& rng, bool& ever_seeded, std::optional<uint64_t> s
   }
 }
 
-inline void write_seeding_state(StateWriter& out, const Rng& rng, bool ever_seeded) {
-  out.put_rng("rng", rng);
-  out.put_bool("ever_seeded", ever_seeded);
-}
+class EnvSeeding {
+ public:
+  // Call at the start of the env's reset(), where Gymnasium envs call super().reset(seed=seed).
+  void on_reset(std::optional<uint64_t> seed) { seed_on_reset(rng_, ever_seeded_, seed); }
 
-inline void read_seeding_state(const StateReader& in, Rng& rng, bool& ever_seeded) {
-  in.get_rng("rng", rng);
-  ever_seeded = in.get_bool("ever_seeded");
-}
+  Rng& rng() { return rng_; }
+  const Rng& rng() const { return rng_; }
+
+  // Keys "rng" and "ever_seeded", under the env's own state prefix: the names the envs wrote
+  // before this class existed, so their checkpoints still load.
+  void write_state(StateWriter& out) const {
+    out.put_rng("rng", rng_);
+    out.put_bool("ever_seeded", ever_seeded_);
+  }
+  void read_state(const StateReader& in) {
+    in.get_rng("rng", rng_);
+    ever_seeded_ = in.get_bool("ever_seeded");
+  }
+
+ private:
+  Rng rng_;
+  bool ever_seeded_ = false;
+};
 
 }  // namespace rlrun

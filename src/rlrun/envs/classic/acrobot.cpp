@@ -105,7 +105,7 @@ StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
 
 void Acrobot::sample_initial_state() {
   // np_random.uniform(-0.1, 0.1, size=(4,)).astype(np.float32): the start state is float32.
-  for (double& s : state_) s = static_cast<float>(rng_.uniform(-kResetBound, kResetBound));
+  for (double& s : state_) s = static_cast<float>(rng().uniform(-kResetBound, kResetBound));
   state_is_float32_ = true;
 }
 

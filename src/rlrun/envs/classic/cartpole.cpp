@@ -78,7 +78,7 @@ StepResult CartPole::step(std::span<const float> action, std::span<float> obs) {
 
 void CartPole::sample_initial_state() {
   // np_random.uniform(low=-0.05, high=0.05, size=(4,))
-  for (double& s : state_) s = rng_.uniform(-kResetBound, kResetBound);
+  for (double& s : state_) s = rng().uniform(-kResetBound, kResetBound);
   steps_beyond_terminated_ = -1;
 }
 

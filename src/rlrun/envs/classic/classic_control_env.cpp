@@ -1,5 +1,4 @@
 #include "rlrun/env/discrete_action.hpp"
-#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/envs/classic/classic_control_env.hpp"
 
 #include <stdexcept>
@@ -13,7 +12,7 @@ ClassicControlEnv::ClassicControlEnv(Space observation_space, Space action_space
     : observation_space_(std::move(observation_space)), action_space_(std::move(action_space)) {}
 
 void ClassicControlEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
-  seed_on_reset(rng_, ever_seeded_, seed);
+  seeding_.on_reset(seed);
   info_.clear();
   sample_initial_state();
   has_state_ = true;
@@ -30,7 +29,7 @@ void ClassicControlEnv::set_state(std::span<const double> state, std::span<float
 }
 
 void ClassicControlEnv::write_state(StateWriter& out) const {
-  write_seeding_state(out, rng_, ever_seeded_);
+  seeding_.write_state(out);
   out.put_bool("has_state", has_state_);
   std::vector<double> state(static_cast<size_t>(state_dim()));
   get_state(state);
@@ -39,7 +38,7 @@ void ClassicControlEnv::write_state(StateWriter& out) const {
 }
 
 void ClassicControlEnv::read_state(const StateReader& in) {
-  read_seeding_state(in, rng_, ever_seeded_);
+  seeding_.read_state(in);
   has_state_ = in.get_bool("has_state");
   // Extra state first: it may say how the physical state is stored (float32 or float64).
   read_extra_state(in);

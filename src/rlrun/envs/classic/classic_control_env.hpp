@@ -12,6 +12,7 @@
 #include "rlrun/core/rng.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/env/info.hpp"
 
 namespace rlrun {
@@ -38,7 +39,7 @@ class ClassicControlEnv : public Env {
   // step, all others are float64. Throws std::invalid_argument on a wrong size.
   void set_state(std::span<const double> state, std::span<float> obs);
 
-  Rng& rng() { return rng_; }
+  Rng& rng() { return seeding_.rng(); }
 
   // Rendering (Gymnasium's render_mode="rgb_array", drawn like its pygame code; the drawing
   // of each env lives in <env>_render.cpp). render() draws the current state and throws
@@ -56,7 +57,7 @@ class ClassicControlEnv : public Env {
  protected:
   ClassicControlEnv(Space observation_space, Space action_space);
 
-  // Draws the initial state from rng_ (the env's reset() body after super().reset()).
+  // Draws the initial state from rng() (the env's reset() body after super().reset()).
   virtual void sample_initial_state() = 0;
   // Overwrites the physical state; `state.size() == state_dim()` is checked by the caller.
   virtual void load_state(std::span<const double> state) = 0;
@@ -82,10 +83,9 @@ class ClassicControlEnv : public Env {
   Space observation_space_;
   Space action_space_;
   Info info_;
-  Rng rng_;
 
  private:
-  bool ever_seeded_ = false;
+  EnvSeeding seeding_;
   bool has_state_ = false;
 };
 

@@ -42,7 +42,7 @@ StepResult MountainCar::step(std::span<const float> action, std::span<float> obs
 
 void MountainCar::sample_initial_state() {
   // np.array([np_random.uniform(low=-0.6, high=-0.4), 0])
-  position_ = rng_.uniform(-0.6, -0.4);
+  position_ = rng().uniform(-0.6, -0.4);
   velocity_ = 0.0;
 }
 

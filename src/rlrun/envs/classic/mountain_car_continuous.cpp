@@ -60,7 +60,7 @@ StepResult MountainCarContinuous::step(std::span<const float> action, std::span<
 }
 
 void MountainCarContinuous::sample_initial_state() {
-  position_ = rng_.uniform(-0.6, -0.4);
+  position_ = rng().uniform(-0.6, -0.4);
   velocity_ = 0.0;
   state_is_float32_ = false;
 }

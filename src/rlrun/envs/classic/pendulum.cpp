@@ -61,8 +61,8 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
 }
 
 void Pendulum::sample_initial_state() {
-  theta_ = rng_.uniform(-kResetTheta, kResetTheta);
-  theta_dot_ = rng_.uniform(-kResetThetaDot, kResetThetaDot);
+  theta_ = rng().uniform(-kResetTheta, kResetTheta);
+  theta_dot_ = rng().uniform(-kResetThetaDot, kResetThetaDot);
   last_u_ = std::numeric_limits<double>::quiet_NaN();
 }
 

@@ -1,5 +1,4 @@
 #include "rlrun/env/discrete_action.hpp"
-#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
 
 #include <algorithm>
@@ -59,14 +58,14 @@ void Grasp2D::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 
 void Grasp2D::reset(std::optional<uint64_t> seed, const ResetOptions& options,
                     std::span<float> obs) {
-  // Gymnasium seeding (gymnasium/core.py Env.reset): a seed reseeds, no seed continues the
-  // stream, and the very first unseeded reset seeds from OS entropy.
-  seed_on_reset(rng_, ever_seeded_, seed);
+  // Gymnasium seeding (gymnasium/core.py Env.reset; env/env_seeding.hpp).
+  seeding_.on_reset(seed);
+  Rng& rng = seeding_.rng();
   const double lo = config_.spawn_margin, hi = 1.0 - config_.spawn_margin;
-  arm_x_ = rng_.uniform(lo, hi);
-  arm_y_ = rng_.uniform(lo, hi);
-  object_x_ = rng_.uniform(lo, hi);
-  object_y_ = rng_.uniform(lo, hi);
+  arm_x_ = rng.uniform(lo, hi);
+  arm_y_ = rng.uniform(lo, hi);
+  object_x_ = rng.uniform(lo, hi);
+  object_y_ = rng.uniform(lo, hi);
   if (options.arm) {
     arm_x_ = (*options.arm)[0];
     arm_y_ = (*options.arm)[1];
@@ -154,7 +153,7 @@ void Grasp2D::write_observation(std::span<float> obs) const {
 }
 
 void Grasp2D::write_state(StateWriter& out) const {
-  write_seeding_state(out, rng_, ever_seeded_);
+  seeding_.write_state(out);
   out.put_bool("has_state", has_state_);
   const std::vector<double> positions{arm_x_, arm_y_, object_x_, object_y_};
   out.put_vector("positions", positions);
@@ -164,7 +163,7 @@ void Grasp2D::write_state(StateWriter& out) const {
 }
 
 void Grasp2D::read_state(const StateReader& in) {
-  read_seeding_state(in, rng_, ever_seeded_);
+  seeding_.read_state(in);
   has_state_ = in.get_bool("has_state");
   const std::vector<double> p = in.get_span<double>("positions", 4);
   arm_x_ = p[0];

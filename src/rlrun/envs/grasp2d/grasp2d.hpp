@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/env/info.hpp"
 
 namespace rlrun {
@@ -111,9 +111,8 @@ class Grasp2D : public Env {
   Space observation_space_;
   Space action_space_;
   Info info_;
-  Rng rng_;
+  EnvSeeding seeding_;  // Gymnasium seeding rules + the env's Rng
   int key_success_, key_failure_, key_action_, key_distance_;
-  bool ever_seeded_ = false;
   bool has_state_ = false;
   double arm_x_ = 0, arm_y_ = 0, object_x_ = 0, object_y_ = 0;
   bool gripper_closed_ = false;

@@ -1,5 +1,4 @@
 #include "rlrun/env/discrete_action.hpp"
-#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
 
 #include <stdexcept>
@@ -22,13 +21,13 @@ int GridWorld::shortest_path_length(int row, int col) const {
 }
 
 void GridWorld::reset(std::optional<uint64_t> seed, std::span<float> obs) {
-  // Gymnasium seeding (gymnasium/core.py Env.reset), as every rlrun env.
-  seed_on_reset(rng_, ever_seeded_, seed);
+  // Gymnasium seeding (gymnasium/core.py Env.reset; env/env_seeding.hpp), as every rlrun env.
+  seeding_.on_reset(seed);
   row_ = col_ = 0;
   if (config_.random_start) {
     // Cells in row-major order; the goal is the last one, so [0, n - 1) excludes it.
-    const int cell =
-        static_cast<int>(rng_.below(static_cast<uint64_t>(config_.size * config_.size - 1)));
+    const auto cells = static_cast<uint64_t>(config_.size * config_.size - 1);
+    const int cell = static_cast<int>(seeding_.rng().below(cells));
     row_ = cell / config_.size;
     col_ = cell % config_.size;
   }
@@ -89,7 +88,7 @@ void GridWorld::write_observation(std::span<float> obs) const {
 }
 
 void GridWorld::write_state(StateWriter& out) const {
-  write_seeding_state(out, rng_, ever_seeded_);
+  seeding_.write_state(out);
   out.put_bool("has_state", has_state_);
   out.put_int("row", row_);
   out.put_int("col", col_);
@@ -97,7 +96,7 @@ void GridWorld::write_state(StateWriter& out) const {
 }
 
 void GridWorld::read_state(const StateReader& in) {
-  read_seeding_state(in, rng_, ever_seeded_);
+  seeding_.read_state(in);
   has_state_ = in.get_bool("has_state");
   row_ = static_cast<int>(in.get_int("row"));
   col_ = static_cast<int>(in.get_int("col"));

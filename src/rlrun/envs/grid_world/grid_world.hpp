@@ -19,9 +19,9 @@
 #include <span>
 #include <string>
 
-#include "rlrun/core/rng.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/env/info.hpp"
 
 namespace rlrun {
@@ -92,9 +92,8 @@ class GridWorld : public Env {
   Space observation_space_;
   Space action_space_;
   Info info_;
-  Rng rng_;
+  EnvSeeding seeding_;  // Gymnasium seeding rules + the env's Rng
   int key_success_, key_bumped_;
-  bool ever_seeded_ = false;
   bool has_state_ = false;
   int row_ = 0, col_ = 0;
   int steps_ = 0;
