@@ -82,13 +82,20 @@ if [[ -n "$cartpole_model" ]] && command -v ffmpeg >/dev/null; then
            -of csv=p=0 "$out/record.mp4")
   record_line="Video: \`rlrun record --model <cartpole_ppo model> --episodes 2\` writes $frames frames (600x400, H.264) in $best s (best of 3)."
 fi
+# Traffic: TrafficSignal-v0 over traci and libsumo against plain sumo, one simulated hour each
+# (tests/envs/test_traffic_bench.cpp; issue 7: traci at least 70 % of plain sumo).
+traffic_table=""
+if command -v sumo >/dev/null; then
+  traffic_table=$(build/tests/rlrun_tests "[traffic_bench]" | grep '^|' || true)
+fi
 machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, threads=$threads, $(date -u +%Y-%m-%d)"
 echo "$table"
 echo
 [[ -n "$record_line" ]] && echo "$record_line" && echo
+[[ -n "$traffic_table" ]] && echo "$traffic_table" && echo
 echo "machine: $machine"
 if ((update_docs)); then
-  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
+  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
   BLOCK="$block" python3 - <<'PY'
 import os, re
 path = "docs/benchmarks.md"

@@ -13,7 +13,9 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
+#include "rlrun/envs/traffic/traffic_scenario.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
+#include "rlrun/envs/traffic/tripinfo.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;
@@ -30,12 +32,13 @@ float act(TrafficSignal& env, int action, std::vector<float>& obs, StepResult* o
   return static_cast<float>(r.reward);
 }
 
-// Means over the <tripinfo> elements of SUMO's tripinfo XML: duration and waitingTime.
+// Means over the <tripinfo> elements of SUMO's tripinfo XML (a regex, independent of
+// read_tripinfo): duration and waitingTime.
 struct TripStats {
   int trips = 0;
   double duration = 0, waiting = 0;
 };
-TripStats read_tripinfo(const std::string& path) {
+TripStats read_trips_independently(const std::string& path) {
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
@@ -76,7 +79,6 @@ TEST_CASE("TrafficSignal: spaces, yellow on every switch, min_green", "[traffic]
   CHECK(env.green_approach() == TrafficSignal::kNorth);
   act(env, TrafficSignal::kEast, obs);  // switches: 3 s yellow, then East for 2 s
   CHECK(env.green_approach() == TrafficSignal::kEast);
-  CHECK_FALSE(env.yellow());
   CHECK(obs[8] == Approx(2.0 / 3.0));
   CHECK(obs[9] == Approx(2.0 / 60.0));
   for (float v : obs) {
@@ -95,34 +97,161 @@ TEST_CASE("TrafficSignal: spaces, yellow on every switch, min_green", "[traffic]
   CHECK(env.sim_time() == Approx(61.0));  // reset's first second + 12 steps of 5 s
 }
 
-TEST_CASE("TrafficSignal: episode metrics agree with SUMO's tripinfo within 1 %", "[traffic]") {
+// The env's light control reproduces a plain `sumo` run of the same timeline: 900 s with
+// N green from the start, then every 30 s a switch (3 s yellow, 27 s green) to S, E, W, N...
+// written as a static SUMO program. Same seed, same signal states second by second: the same
+// trips, so the env's episode metrics must equal that independent run's tripinfo (issue:
+// within 1 %), and the env's own tripinfo file too.
+TEST_CASE("TrafficSignal: metrics equal a plain SUMO run of the same signal plan", "[traffic]") {
   TempDir dir("traffic_tripinfo");
+  const std::string links[] = {"GGGGrrrrrrrrrrrr", "rrrrrrrrGGGGrrrr", "rrrrGGGGrrrrrrrr",
+                               "rrrrrrrrrrrrGGGG"};  // N, S, E, W (tls.tll.xml's link order)
+  const auto yellow = [](std::string state) {
+    for (char& c : state) c = c == 'G' ? 'y' : c;
+    return state;
+  };
+  std::string phases = "<phase duration=\"31\" state=\"" + links[0] + "\"/>";
+  for (int switch_no = 1; 31 + 30 * (switch_no - 1) < 900; ++switch_no)
+    phases += "<phase duration=\"3\" state=\"" + yellow(links[(switch_no - 1) % 4]) + "\"/>" +
+              "<phase duration=\"27\" state=\"" + links[switch_no % 4] + "\"/>";
+  std::ofstream(dir / "plan.xml") << "<additional><tlLogic id=\"C\" type=\"static\" "
+                                     "programID=\"plan\" offset=\"0\">"
+                                  << phases << "</tlLogic></additional>";
+  const std::string cfg = load_traffic_scenario(default_traffic_scenario()).sumocfg_path;
+  const auto plain = run_command("sumo -c " + cfg + " --additional-files " + dir / "plan.xml" +
+                                 // the env runs SUMO with --end num_seconds + 1 too: the
+                                 // arrivals of the step that reaches 900 s count
+                                 " --seed 3 --end 901 --no-step-log true --no-warnings true" +
+                                 " --tripinfo-output " + dir / "plain.xml");
+  INFO(plain.output);
+  REQUIRE(plain.exit_code == 0);
+
   TrafficSignal::Config config;
   config.num_seconds = 900;
-  config.tripinfo_output = dir / "tripinfo.xml";
-  double waiting = 0, travel = 0, throughput = 0;
-  {
-    TrafficSignal env(config);
-    std::vector<float> obs(10);
-    env.reset(3, obs);
-    StepResult r;
-    int step = 0;
-    do {
-      act(env, (step++ / 6) % 4, obs, &r);  // a fixed cycle of 30 s greens
-    } while (!r.truncated);
-    const Info& info = env.info();
-    waiting = info.get(info.find("avg_waiting_time"));
-    travel = info.get(info.find("avg_travel_time"));
-    throughput = info.get(info.find("throughput"));
-  }  // SUMO closes and completes tripinfo.xml
-  const TripStats trips = read_tripinfo(dir / "tripinfo.xml");
-  INFO("tripinfo: " << trips.trips << " trips, duration " << trips.duration << ", waiting "
-                    << trips.waiting << "; env: " << throughput << ", " << travel << ", "
-                    << waiting);
-  REQUIRE(trips.trips > 100);
+  config.tripinfo_output = dir / "env.xml";
+  TrafficSignal env(config);
+  std::vector<float> obs(10);
+  env.reset(3, obs);
+  StepResult r;
+  int step = 0;
+  const Info& info = env.info();
+  do {
+    act(env, (step++ / 6) % 4, obs, &r);  // N for the reset's second + 30 s, then 30 s each
+    if (!r.truncated) CHECK(info.get(info.find("throughput")) == 0);  // known at the end
+  } while (!r.truncated);
+  const double waiting = info.get(info.find("avg_waiting_time"));
+  const double travel = info.get(info.find("avg_travel_time"));
+  const double throughput = info.get(info.find("throughput"));
+  const TripStats trips = read_trips_independently(dir / "plain.xml");
+  const TripStats own = read_trips_independently(dir / "env.xml");
+  INFO("plain sumo: " << trips.trips << " trips, duration " << trips.duration << ", waiting "
+                      << trips.waiting << "; env: " << throughput << ", " << travel << ", "
+                      << waiting);
+  REQUIRE(trips.trips > 300);
+  CHECK(throughput == trips.trips);  // in fact exactly the same trips
   CHECK(throughput == Approx(trips.trips).epsilon(0.01));
   CHECK(travel == Approx(trips.duration).epsilon(0.01));
   CHECK(waiting == Approx(trips.waiting).epsilon(0.01));
+  CHECK(throughput == own.trips);
+  CHECK(travel == Approx(own.duration).epsilon(1e-12));
+  CHECK(waiting == Approx(own.waiting).epsilon(1e-12));
+}
+
+TEST_CASE("read_tripinfo: means over the trips; clear errors", "[traffic]") {
+  TempDir dir("traffic_tripinfo_reader");
+  std::ofstream(dir / "t.xml")
+      << "<tripinfos>\n  <tripinfo id=\"a\" depart=\"1.00\" duration=\"10.00\" routeLength=\"5\""
+         " waitingTime=\"4.00\" waitingCount=\"1\"/>\n  <tripinfo id=\"b\" duration=\"20.00\""
+         " waitingTime=\"0.00\"/>\n</tripinfos>\n";
+  const TripinfoSummary s = rlrun::read_tripinfo(dir / "t.xml");
+  CHECK(s.trips == 2);
+  CHECK(s.mean_duration == 15.0);
+  CHECK(s.mean_waiting == 2.0);
+  std::ofstream(dir / "bad.xml") << "<tripinfos><tripinfo id=\"a\" duration=\"3\"/></tripinfos>";
+  CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "bad.xml"), Catch::Contains("without duration and waitingTime"));
+  CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "none.xml"), Catch::Contains("is missing"));
+}
+
+// backend: libsumo runs the same client code in-process: the same episode, number for number.
+TEST_CASE("TrafficSignal: libsumo and traci backends give the same episode", "[traffic]") {
+  std::vector<std::vector<double>> traces;
+  for (const char* backend : {"traci", "libsumo"}) {
+    for (const char* reward_fn : {"queue", "diff-waiting-time", "pressure"}) {
+      TrafficSignal::Config config;
+      config.backend = backend;
+      config.reward_fn = reward_fn;
+      config.num_seconds = 400;
+      TrafficSignal env(config);
+      std::vector<float> obs(10);
+      std::vector<double> trace;
+      env.reset(5, obs);
+      StepResult r;
+      int step = 0;
+      do {
+        trace.push_back(act(env, (step * 7 / 5) % 4, obs, &r));
+        trace.insert(trace.end(), obs.begin(), obs.end());
+        ++step;
+      } while (!r.truncated);
+      for (double v : env.info().values()) trace.push_back(v);
+      traces.push_back(trace);
+    }
+  }
+  REQUIRE(traces.size() == 6);
+  for (int i = 0; i < 3; ++i) {
+    INFO("reward function " << i);
+    CHECK(traces[i] == traces[3 + i]);
+  }
+}
+
+TEST_CASE("TrafficSignal: libsumo runs one simulation per process and says so", "[traffic]") {
+  TrafficSignal::Config config;
+  config.backend = "libsumo";
+  config.num_seconds = 60;
+  std::vector<float> obs(10);
+  {
+    TrafficSignal first(config), second(config);
+    first.reset(1, obs);
+    CHECK(first.sumo_pid() == -1);  // in-process
+    CHECK_THROWS_WITH(second.reset(1, obs), Catch::Contains("one simulation per process") &&
+                                                Catch::Contains("backend: traci"));
+  }
+  TrafficSignal again(config);  // the first one's simulation closed with it
+  CHECK_NOTHROW(again.reset(2, obs));
+  config.gui = true;
+  CHECK_THROWS_WITH(TrafficSignal(config), Catch::Contains("gui: true needs backend: traci"));
+  config.gui = false;
+  config.backend = "libsumo2";
+  CHECK_THROWS_WITH(TrafficSignal(config), Catch::Contains("unknown backend 'libsumo2'"));
+}
+
+TEST_CASE("TrafficSignal: scenario files", "[traffic]") {
+  // The shipped rush-hour scenario: 1.5 x the demand, so more vehicles arrive in 10 minutes.
+  std::vector<double> arrived;
+  for (const char* scenario : {"", "scenarios/single_intersection_rush.yaml"}) {
+    TrafficSignal::Config config;
+    config.scenario = scenario;
+    config.num_seconds = 600;
+    TrafficSignal env(config);
+    std::vector<float> obs(10);
+    env.reset(1, obs);
+    StepResult r;
+    int step = 0;
+    do act(env, (step++ / 4) % 4, obs, &r);
+    while (!r.truncated);
+    arrived.push_back(env.info().get(env.info().find("throughput")));
+  }
+  INFO("default " << arrived[0] << ", rush " << arrived[1]);
+  CHECK(arrived[1] > arrived[0] * 1.1);  // 20 s greens cannot clear all of 1.5 x
+  CHECK(load_traffic_scenario("scenarios/single_intersection_rush.yaml").scale == 1.5);
+
+  TempDir dir("traffic_scenario");
+  std::ofstream(dir / "typo.yaml") << "name: x\nsumocfg: ../x.sumocfg\nscael: 2\n";
+  CHECK_THROWS_WITH(load_traffic_scenario(dir / "typo.yaml"),
+                    Catch::Contains("typo.yaml:3:1") && Catch::Contains("did you mean 'scale'"));
+  std::ofstream(dir / "nocfg.yaml") << "name: x\nsumocfg: missing.sumocfg\n";
+  CHECK_THROWS_WITH(load_traffic_scenario(dir / "nocfg.yaml"),
+                    Catch::Contains("nocfg.yaml:2") && Catch::Contains("does not exist"));
+  CHECK_THROWS_WITH(load_traffic_scenario("no/such/scenario.yaml"), Catch::Contains("does not exist"));
 }
 
 TEST_CASE("TrafficSignal: same seed, same episode; reward functions", "[traffic]") {
@@ -266,4 +395,30 @@ TEST_CASE("record --policy fixed-time: an mp4 of the intersection from above", "
   CHECK(std::filesystem::exists(dir / "frames/frame_000020.png"));
   const auto refused = run_rlrun("record --env CartPole-v1 --policy fixed-time --output " + dir / "x.mp4");
   CHECK(refused.exit_code == 2);
+}
+
+// The issue's bar: configs/traffic_dqn.yaml as shipped (5e4 decisions, ~50 s) beats the fixed
+// 30 s cycle on average waiting time over 5 evaluation hours. Hidden: a minute of training.
+TEST_CASE("traffic_dqn beats fixed-time on average waiting time", "[.slow][traffic_learning]") {
+  TempDir dir("traffic_learning");
+  const auto train = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
+                               "/configs/traffic_dqn.yaml --out " + dir.str());
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const auto r = run_rlrun("eval --model " + dir / "traffic_dqn/seed1/model.zip" +
+                           " --episodes 5 --baseline fixed-time --csv " + dir / "eval.csv");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  std::ifstream in(dir / "eval.csv");
+  double dqn = -1, fixed = -1;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (cells.size() > 4 && cells[1] == "mean") (cells[0] == "DQN" ? dqn : fixed) = std::stod(cells[4]);
+  }
+  INFO("avg waiting: DQN " << dqn << " s, fixed-time " << fixed << " s");
+  REQUIRE(dqn > 0);
+  REQUIRE(fixed > 0);
+  CHECK(dqn < fixed);
 }

@@ -10,6 +10,7 @@
 #include "rlrun/render/overlay.hpp"
 #include "rlrun/render/video_writer.hpp"
 #include "rlrun/runtime/observation_log.hpp"
+#include "rlrun/wrappers/monitor.hpp"
 
 namespace rlrun {
 
@@ -98,6 +99,15 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
   const int r_key = env.info().find("episode.r");
   const int l_key = env.info().find("episode.l");
   const int success_key = env.info().find("is_success");
+  // The overlay's running return too: the Monitor's (inside reward-changing wrappers such as
+  // TransformReward, as in rl-zoo), so that the video agrees with `rlrun eval`.
+  const Monitor* monitor = nullptr;
+  for (Env* e = &env; e && !monitor;) {
+    monitor = dynamic_cast<const Monitor*>(e);
+    auto* wrapper = dynamic_cast<Wrapper*>(e);
+    e = wrapper ? &wrapper->inner() : nullptr;
+  }
+  const auto shown_return = [&](double seen) { return monitor ? monitor->episode_return() : seen; };
   const std::string title =
       env.id() + (options.policy_label.empty() ? "" : "  " + options.policy_label);
   auto overlay = [&](int episode, int64_t step, double episode_return) {
@@ -129,7 +139,7 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
       episode_return += step.reward;
       ++length;
       draw();
-      output.emit(overlay(episode, length, episode_return));
+      output.emit(overlay(episode, length, shown_return(episode_return)));
       if (step.terminated || step.truncated) {
         const Info& info = env.info();
         EvalResult& r = result.episodes;

@@ -33,6 +33,8 @@ class Monitor : public Wrapper {
   const Info& info() const override { return info_; }
 
   int total_episodes() const { return total_episodes_; }
+  // The running episode's return so far (the reward as the inner env gives it).
+  double episode_return() const { return episode_return_; }
   int64_t total_steps() const { return total_steps_; }
 
  protected:

@@ -81,24 +81,8 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
     throw RuntimeFailure("SUMO scenario " + options.config + " does not exist");
   log_path_ = (std::filesystem::temp_directory_path() / (label_ + ".log")).string();
   const int port = free_port();
-  std::vector<std::string> args{binary,
-                                "-c",
-                                options.config,
-                                "--remote-port",
-                                std::to_string(port),
-                                "--seed",
-                                std::to_string(options.seed % 2147483647ULL),
-                                "--scale",
-                                std::to_string(options.scale),
-                                "--end",
-                                std::to_string(options.end_time),
-                                "--no-step-log",
-                                "true",
-                                "--no-warnings",
-                                "true",
-                                "--duration-log.disable",
-                                "true"};
-  args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
+  std::vector<std::string> args{binary, "--remote-port", std::to_string(port)};
+  for (std::string& a : sumo_arguments(options)) args.push_back(std::move(a));
   // Everything the child needs is prepared before fork(): rlrun may run a ForkJoin worker
   // thread, and the child of a threaded process may only call async-signal-safe functions
   // (no malloc) until exec.
@@ -138,7 +122,7 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
                              output_tail());
       }
       if (std::chrono::steady_clock::now() > deadline) {
-        shut_down();
+        stop();
         throw RuntimeFailure("SUMO did not accept the TraCI connection within 30 s");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -147,14 +131,14 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
 }
 
 SumoProcess::~SumoProcess() {
-  shut_down();
+  stop();
   std::error_code ec;
   std::filesystem::remove(log_path_, ec);
 }
 
 void SumoProcess::activate() const { libtraci::Simulation::switchConnection(label_); }
 
-void SumoProcess::shut_down() {
+void SumoProcess::stop() {
   if (connected_) {
     connected_ = false;
     try {
@@ -165,8 +149,8 @@ void SumoProcess::shut_down() {
     }
   }
   if (pid_ <= 0) return;
-  for (int i = 0; i < 200 && process_alive(pid_); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 2000 && process_alive(pid_); ++i)  // SUMO writes its outputs, then exits
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   if (process_alive(pid_)) {
     kill(pid_, SIGKILL);
     waitpid(pid_, nullptr, 0);

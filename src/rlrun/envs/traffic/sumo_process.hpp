@@ -14,18 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/envs/traffic/sumo_connection.hpp"
+
 namespace rlrun {
 
 class SumoProcess {
  public:
-  struct Options {
-    std::string binary = "sumo";  // `sumo-gui` for gui: true
-    std::string config;           // the .sumocfg file
-    uint64_t seed = 0;
-    double scale = 1.0;           // demand multiplier (SUMO --scale)
-    double end_time = 3600.0;     // simulated seconds (SUMO --end)
-    std::vector<std::string> extra_args;  // e.g. --tripinfo-output FILE
-  };
+  using Options = SumoLaunch;
 
   // Throws RuntimeFailure naming the Debian package when the binary is missing, and with the
   // tail of SUMO's output when it exits before accepting the connection.
@@ -39,11 +34,14 @@ class SumoProcess {
   const std::string& label() const { return label_; }
   pid_t pid() const { return pid_; }
 
+  // Closes the connection (SUMO completes its output files and exits) and reaps the process,
+  // killing it after a grace period. The destructor does it too.
+  void stop();
+
   // The last lines SUMO wrote, for error messages ("SUMO stopped: ...").
   std::string output_tail(int lines = 10) const;
 
  private:
-  void shut_down();
 
   std::string label_;
   std::string log_path_;

@@ -1,49 +1,37 @@
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <filesystem>
 #include <cmath>
 #include <stdexcept>
-
-#include <libsumo/libtraci.h>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/discrete_action.hpp"
 #include "rlrun/env/env_seeding.hpp"
+#include "rlrun/envs/traffic/tripinfo.hpp"
 
 namespace rlrun {
 
 namespace {
 
-constexpr double kWaitingSpeed = 0.1;       // m/s: SUMO counts a vehicle as waiting below it
 constexpr double kVehicleSpace = 5.0 + 2.5;  // length + minGap of the scenario's cars (sumo-rl)
 
-double number(const libsumo::TraCIResults& results, int variable) {
-  const auto& result = results.at(variable);
-  if (auto d = std::dynamic_pointer_cast<libsumo::TraCIDouble>(result)) return d->value;
-  if (auto i = std::dynamic_pointer_cast<libsumo::TraCIInt>(result)) return i->value;
-  throw std::runtime_error("unexpected TraCI result type for variable " + std::to_string(variable));
-}
-
-const std::vector<std::string>& strings(const libsumo::TraCIResults& results, int variable) {
-  return std::dynamic_pointer_cast<libsumo::TraCIStringList>(results.at(variable))->value;
-}
-
 // N, S, E or W: where an incoming lane starts, seen from the junction.
-int approach_of(const libsumo::TraCIPositionVector& shape, const libsumo::TraCIPosition& centre) {
-  const double dx = shape.value.front().x - centre.x, dy = shape.value.front().y - centre.y;
+int approach_of(const SumoLaneShape& lane, double centre_x, double centre_y) {
+  const double dx = lane.shape.front()[0] - centre_x, dy = lane.shape.front()[1] - centre_y;
   if (std::abs(dy) >= std::abs(dx)) return dy > 0 ? TrafficSignal::kNorth : TrafficSignal::kSouth;
   return dx > 0 ? TrafficSignal::kEast : TrafficSignal::kWest;
 }
 
 }  // namespace
 
-std::string TrafficSignal::default_scenario() {
-  return std::string(RLRUN_DATA_DIR) + "/sumo_data/single_intersection/single.sumocfg";
-}
-
 TrafficSignal::TrafficSignal(const Config& config)
     : config_(config),
-      scenario_(config.scenario.empty() ? default_scenario() : config.scenario),
+      scenario_(load_traffic_scenario(config.scenario.empty() ? default_traffic_scenario()
+                                                              : config.scenario)),
       observation_space_(Space::box(0.0f, 1.0f, {10})),
       action_space_(Space::discrete(kNumApproaches)) {
   if (config_.delta_time <= config_.yellow_time)
@@ -53,10 +41,25 @@ TrafficSignal::TrafficSignal(const Config& config)
     throw std::invalid_argument(
         "TrafficSignal-v0: need yellow_time, min_green >= 0, max_green >= 1, scale > 0 and "
         "num_seconds >= delta_time");
+  if (config_.backend != "traci" && config_.backend != "libsumo")
+    throw std::invalid_argument("TrafficSignal-v0: unknown backend '" + config_.backend +
+                                "' (traci or libsumo)");
+  if (config_.gui && config_.backend == "libsumo")
+    throw std::invalid_argument("TrafficSignal-v0: gui: true needs backend: traci (sumo-gui is a "
+                                "program of its own)");
   if (config_.reward_fn != "queue" && config_.reward_fn != "diff-waiting-time" &&
       config_.reward_fn != "average-speed" && config_.reward_fn != "pressure")
     throw std::invalid_argument("TrafficSignal-v0: unknown reward_fn '" + config_.reward_fn +
                                 "' (queue, diff-waiting-time, average-speed or pressure)");
+  needs_vehicles_ = config_.reward_fn == "diff-waiting-time" || config_.reward_fn == "average-speed";
+  // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours.
+  static std::atomic<int> instances{0};
+  tripinfo_path_ = !config_.tripinfo_output.empty()
+                       ? config_.tripinfo_output
+                       : (std::filesystem::temp_directory_path() /
+                          ("rlrun" + std::to_string(getpid()) + "_" +
+                           std::to_string(instances++) + ".tripinfo.xml"))
+                             .string();
   key_waiting_ = info_.add_key("avg_waiting_time");
   key_travel_ = info_.add_key("avg_travel_time");
   key_queue_ = info_.add_key("total_queue_length");
@@ -64,7 +67,13 @@ TrafficSignal::TrafficSignal(const Config& config)
   key_time_ = info_.add_key("sim_time");
 }
 
-TrafficSignal::~TrafficSignal() = default;
+TrafficSignal::~TrafficSignal() {
+  sumo_.reset();  // SUMO ends before its output file goes
+  if (config_.tripinfo_output.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(tripinfo_path_, ec);
+  }
+}
 
 void TrafficSignal::sumo_failed(const std::exception& e) const {
   throw RuntimeFailure("TrafficSignal-v0: SUMO stopped at simulated time " +
@@ -75,119 +84,85 @@ void TrafficSignal::sumo_failed(const std::exception& e) const {
 
 void TrafficSignal::start_simulation(uint64_t sumo_seed) {
   sumo_.reset();  // the previous episode's SUMO ends first
-  SumoProcess::Options options;
-  options.binary = config_.gui ? "sumo-gui" : config_.sumo_binary;
-  options.config = scenario_;
-  options.seed = sumo_seed;
-  options.scale = config_.scale;
-  options.end_time = config_.num_seconds + 1.0;
-  if (!config_.tripinfo_output.empty())
-    options.extra_args = {"--tripinfo-output", config_.tripinfo_output};
-  sumo_ = std::make_unique<SumoProcess>(options);
-  sumo_->activate();
+  SumoLaunch launch;
+  launch.binary = config_.gui ? "sumo-gui" : config_.sumo_binary;
+  launch.config = scenario_.sumocfg_path;
+  launch.seed = sumo_seed;
+  launch.scale = config_.scale * scenario_.scale;
+  launch.end_time = config_.num_seconds + 1.0;
+  launch.extra_args = {"--tripinfo-output", tripinfo_path_};
+  sumo_ = start_sumo(config_.backend, launch);
   try {
-    namespace tc = libtraci;
-    tls_ = tc::TrafficLight::getIDList().at(0);
-    const std::string& tls = tls_;
+    const SumoSignalLayout layout = sumo_->signal_layout();
+    tls_ = layout.tls;
     if (incoming_.empty()) {
       // The signal's links, in SUMO's link-index order, give the lanes and their approach.
-      const libsumo::TraCIPosition centre = tc::Junction::getPosition(tls);
-      const auto links = tc::TrafficLight::getControlledLinks(tls);
-      link_approach_.assign(links.size(), -1);
-      for (size_t i = 0; i < links.size(); ++i) {
-        for (const libsumo::TraCILink& link : links[i]) {
-          auto known = [](const std::vector<Lane>& lanes, const std::string& id) {
-            return std::any_of(lanes.begin(), lanes.end(), [&](const Lane& l) { return l.id == id; });
-          };
-          if (!known(incoming_, link.fromLane)) {
+      link_approach_.assign(layout.links.size(), -1);
+      const auto find = [](std::vector<Lane>& lanes, const std::string& id) {
+        return std::find_if(lanes.begin(), lanes.end(), [&](const Lane& l) { return l.id == id; });
+      };
+      for (size_t i = 0; i < layout.links.size(); ++i) {
+        for (const auto& [from, to] : layout.links[i]) {
+          if (find(incoming_, from) == incoming_.end()) {
             Lane lane;
-            lane.id = link.fromLane;
-            lane.approach = approach_of(tc::Lane::getShape(link.fromLane), centre);
-            lane.length = tc::Lane::getLength(link.fromLane);
-            lane.max_speed = tc::Lane::getMaxSpeed(link.fromLane);
-            lane.width = tc::Lane::getWidth(link.fromLane);
-            for (const auto& p : tc::Lane::getShape(link.fromLane).value) lane.shape.push_back({p.x, p.y});
+            static_cast<SumoLaneShape&>(lane) = sumo_->lane_shape(from);
+            lane.approach = approach_of(lane, layout.centre_x, layout.centre_y);
             incoming_.push_back(lane);
           }
-          if (!known(outgoing_, link.toLane)) {
+          if (find(outgoing_, to) == outgoing_.end()) {
             Lane lane;
-            lane.id = link.toLane;
-            lane.length = tc::Lane::getLength(link.toLane);
-            lane.max_speed = tc::Lane::getMaxSpeed(link.toLane);
-            lane.width = tc::Lane::getWidth(link.toLane);
-            for (const auto& p : tc::Lane::getShape(link.toLane).value) lane.shape.push_back({p.x, p.y});
+            static_cast<SumoLaneShape&>(lane) = sumo_->lane_shape(to);
             outgoing_.push_back(lane);
           }
-          const auto it = std::find_if(incoming_.begin(), incoming_.end(),
-                                       [&](const Lane& l) { return l.id == link.fromLane; });
-          link_approach_[i] = it->approach;
+          link_approach_[i] = find(incoming_, from)->approach;
         }
       }
-      for (const Lane& lane : incoming_) capacity_[lane.approach] += lane.length / kVehicleSpace;
+      // The roads (SUMO edges) the lanes belong to: what the subscriptions count.
+      const auto add_road = [](std::vector<Road>& roads, const Lane& lane) {
+        if (std::none_of(roads.begin(), roads.end(), [&](const Road& r) { return r.edge == lane.edge; }))
+          roads.push_back(Road{lane.edge, lane.approach, {}});
+      };
+      for (const Lane& lane : incoming_) {
+        capacity_[lane.approach] += lane.length / kVehicleSpace;
+        limit_[lane.approach] = std::max(limit_[lane.approach], lane.max_speed);
+        add_road(incoming_roads_, lane);
+      }
+      if (config_.reward_fn == "pressure")
+        for (const Lane& lane : outgoing_) add_road(outgoing_roads_, lane);
     }
-    // Subscriptions: every simulated second's step response carries all of it.
-    for (const Lane& lane : incoming_)
-      tc::Lane::subscribe(lane.id, {libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER,
-                                    libsumo::LAST_STEP_MEAN_SPEED,
-                                    libsumo::LAST_STEP_VEHICLE_NUMBER});
-    for (const Lane& lane : outgoing_)
-      tc::Lane::subscribe(lane.id, {libsumo::LAST_STEP_VEHICLE_NUMBER});
-    tc::Junction::subscribeContext(tls, libsumo::CMD_GET_VEHICLE_VARIABLE, 1e5,
-                                   {libsumo::VAR_SPEED, libsumo::VAR_LANE_ID,
-                                    libsumo::VAR_POSITION, libsumo::VAR_ANGLE});
-    tc::Simulation::subscribe(std::vector<int>{libsumo::VAR_TIME, libsumo::VAR_DEPARTED_VEHICLES_IDS,
-                                               libsumo::VAR_ARRIVED_VEHICLES_IDS});
+    std::vector<std::string> incoming, outgoing;
+    for (const Road& road : incoming_roads_) incoming.push_back(road.edge);
+    for (const Road& road : outgoing_roads_) outgoing.push_back(road.edge);
+    // Subscriptions: each advance's answer carries all of it.
+    sumo_->subscribe(tls_, incoming, outgoing);
   } catch (const std::exception& e) {  // TraCI errors, socket errors (tcpip::SocketException)
     sumo_failed(e);
   }
 }
 
-void TrafficSignal::set_lights() {
+std::string TrafficSignal::light_state(int approach, bool yellow) const {
   std::string state(link_approach_.size(), 'r');
   for (size_t i = 0; i < state.size(); ++i)
-    if (link_approach_[i] == green_) state[i] = yellow_ ? 'y' : 'G';
-  libtraci::TrafficLight::setRedYellowGreenState(tls_, state);
+    if (link_approach_[i] == approach) state[i] = yellow ? 'y' : 'G';
+  return state;
 }
 
-void TrafficSignal::simulate_one_second() {
-  namespace tc = libtraci;
-  tc::Simulation::step();
-  const libsumo::TraCIResults sim = tc::Simulation::getSubscriptionResults();
-  sim_time_ = number(sim, libsumo::VAR_TIME);
-  // Departure and arrival times as tripinfo counts them: the simulation time after the
-  // step that reported them (its `duration` = arrival - depart).
-  for (const std::string& id : strings(sim, libsumo::VAR_DEPARTED_VEHICLES_IDS))
-    on_road_[id] = VehicleRecord{sim_time_, 0.0};
-  for (const std::string& id : strings(sim, libsumo::VAR_ARRIVED_VEHICLES_IDS)) {
-    const auto it = on_road_.find(id);
-    if (it == on_road_.end()) continue;
-    ++arrived_;
-    arrived_travel_ += sim_time_ - it->second.depart;
-    arrived_waiting_ += it->second.waiting;
-    on_road_.erase(it);
-  }
-  vehicles_ = tc::Junction::getContextSubscriptionResults(tls_);
-  for (const auto& [id, values] : vehicles_) {
-    const auto record = on_road_.find(id);
-    if (record != on_road_.end() && number(values, libsumo::VAR_SPEED) < kWaitingSpeed)
-      record->second.waiting += 1.0;
-  }
-  const libsumo::SubscriptionResults lanes = tc::Lane::getAllSubscriptionResults();
-  for (Lane& lane : incoming_) {
-    const libsumo::TraCIResults& r = lanes.at(lane.id);
-    lane.halting = static_cast<int>(number(r, libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER));
-    lane.mean_speed = number(r, libsumo::LAST_STEP_MEAN_SPEED);
-    lane.vehicles = static_cast<int>(number(r, libsumo::LAST_STEP_VEHICLE_NUMBER));
-  }
-  for (Lane& lane : outgoing_)
-    lane.vehicles = static_cast<int>(number(lanes.at(lane.id), libsumo::LAST_STEP_VEHICLE_NUMBER));
-  ++since_change_;
-  if (yellow_ && since_change_ >= config_.yellow_time) {
-    yellow_ = false;
-    green_ = next_green_;
-    since_change_ = 0;
-    set_lights();
-  }
+void TrafficSignal::advance(int seconds) {
+  if (seconds <= 0) return;
+  sumo_->advance(sim_time_ + seconds, state_);
+  sim_time_ = state_.time;
+  since_change_ += seconds;
+  for (size_t i = 0; i < incoming_roads_.size(); ++i) incoming_roads_[i].counts = state_.incoming[i];
+  for (size_t i = 0; i < outgoing_roads_.size(); ++i) outgoing_roads_[i].counts = state_.outgoing[i];
+}
+
+void TrafficSignal::finish_episode() {
+  sumo_->finish();
+  finished_ = true;
+  const TripinfoSummary trips = read_tripinfo(tripinfo_path_);
+  throughput_ = trips.trips;
+  avg_waiting_ = trips.mean_waiting;
+  avg_travel_ = trips.mean_duration;
 }
 
 void TrafficSignal::reset(std::optional<uint64_t> seed, std::span<float> obs) {
@@ -197,16 +172,21 @@ void TrafficSignal::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   const uint64_t sumo_seed = seed ? *seed : rng_.next_u64();
   sim_time_ = 0;
   start_simulation(sumo_seed);
-  green_ = next_green_ = kNorth;
-  yellow_ = false;
+  green_ = kNorth;
   since_change_ = 0;
-  on_road_.clear();
-  vehicles_.clear();
-  arrived_ = 0;
-  arrived_waiting_ = arrived_travel_ = 0;
+  state_ = SumoState{};
+  vehicles_subscribed_ = false;
+  finished_ = false;
+  throughput_ = 0;
+  avg_waiting_ = avg_travel_ = 0;
   try {
-    set_lights();
-    simulate_one_second();  // subscriptions deliver their first values with a step
+    if (needs_vehicles_) {
+      sumo_->subscribe_vehicles(state_);
+      vehicles_subscribed_ = true;
+    }
+    sumo_->set_light_state(tls_, light_state(green_, false));
+    advance(1);  // subscriptions deliver their first values with a step
+    since_change_ = 0;
   } catch (const std::exception& e) {  // TraCI errors, socket errors (tcpip::SocketException)
     sumo_failed(e);
   }
@@ -218,24 +198,26 @@ void TrafficSignal::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 
 StepResult TrafficSignal::step(std::span<const float> action, std::span<float> obs) {
   if (!has_state_) throw std::logic_error("TrafficSignal-v0: call reset() before step()");
+  if (finished_) throw std::logic_error("TrafficSignal-v0: the episode ended; call reset()");
   const int chosen = checked_discrete_action(action_space_, action, id());
   StepResult result;
   try {
-    sumo_->activate();
     // sumo-rl TrafficSignal.set_next_phase: a different green after min_green switches
-    // through yellow; otherwise the current green goes on.
+    // through yellow_time seconds of yellow (within this step); otherwise the current green
+    // goes on.
     if (chosen != green_ && since_change_ >= config_.min_green) {
-      yellow_ = true;
-      next_green_ = chosen;
-      since_change_ = 0;
-      set_lights();
+      sumo_->switch_light(tls_, light_state(green_, true), config_.yellow_time,
+                          light_state(chosen, false));
+      green_ = chosen;
+      since_change_ = -config_.yellow_time;  // counts from the end of the yellow
     }
-    for (int s = 0; s < config_.delta_time; ++s) simulate_one_second();
+    advance(config_.delta_time);
     result.reward = reward();
+    result.truncated = sim_time_ >= config_.num_seconds;
+    if (result.truncated) finish_episode();
   } catch (const std::exception& e) {  // TraCI errors, socket errors (tcpip::SocketException)
     sumo_failed(e);
   }
-  result.truncated = sim_time_ >= config_.num_seconds;
   update_info();
   write_observation(obs);
   return result;
@@ -244,28 +226,27 @@ StepResult TrafficSignal::step(std::span<const float> action, std::span<float> o
 double TrafficSignal::reward() {
   if (config_.reward_fn == "queue") {
     int halting = 0;
-    for (const Lane& lane : incoming_) halting += lane.halting;
+    for (const Road& road : incoming_roads_) halting += road.counts.halting;
     return -static_cast<double>(halting);
   }
   if (config_.reward_fn == "pressure") {
     int in = 0, out = 0;
-    for (const Lane& lane : incoming_) in += lane.vehicles;
-    for (const Lane& lane : outgoing_) out += lane.vehicles;
+    for (const Road& road : incoming_roads_) in += road.counts.vehicles;
+    for (const Road& road : outgoing_roads_) out += road.counts.vehicles;
     return static_cast<double>(out - in);
   }
-  // The vehicles on the incoming lanes (their lane comes with the context subscription).
+  // The vehicles on the incoming lanes (their lane comes with the context subscription);
+  // sumo-rl: sum of their accumulated waiting times (SUMO's --waiting-time-memory, 100 s by
+  // default), mean of speed / allowed speed.
   double waiting = 0, speed_sum = 0;
   int count = 0;
-  for (const auto& [id, values] : vehicles_) {
-    const std::string& lane_id =
-        std::dynamic_pointer_cast<libsumo::TraCIString>(values.at(libsumo::VAR_LANE_ID))->value;
+  for (const SumoVehicle& vehicle : state_.vehicles) {
     const auto lane = std::find_if(incoming_.begin(), incoming_.end(),
-                                   [&](const Lane& l) { return l.id == lane_id; });
+                                   [&](const Lane& l) { return l.id == vehicle.lane; });
     if (lane == incoming_.end()) continue;
     ++count;
-    speed_sum += number(values, libsumo::VAR_SPEED) / lane->max_speed;
-    const auto record = on_road_.find(id);
-    if (record != on_road_.end()) waiting += record->second.waiting;
+    speed_sum += vehicle.speed / lane->max_speed;
+    waiting += vehicle.accumulated_waiting;
   }
   if (config_.reward_fn == "average-speed") return count == 0 ? 1.0 : speed_sum / count;
   // diff-waiting-time (sumo-rl): the drop of the accumulated waiting time, in 100 s.
@@ -276,30 +257,30 @@ double TrafficSignal::reward() {
 }
 
 void TrafficSignal::write_observation(std::span<float> obs) const {
+  // Per approach; a road's mean speed is SUMO's vehicle-weighted mean over its lanes.
   double halting[kNumApproaches] = {}, speed_weighted[kNumApproaches] = {},
-         vehicles[kNumApproaches] = {}, limit[kNumApproaches] = {};
-  for (const Lane& lane : incoming_) {
-    halting[lane.approach] += lane.halting;
-    speed_weighted[lane.approach] += lane.mean_speed * lane.vehicles;
-    vehicles[lane.approach] += lane.vehicles;
-    limit[lane.approach] = std::max(limit[lane.approach], lane.max_speed);
+         vehicles[kNumApproaches] = {};
+  for (const Road& road : incoming_roads_) {
+    halting[road.approach] += road.counts.halting;
+    speed_weighted[road.approach] += road.counts.mean_speed * road.counts.vehicles;
+    vehicles[road.approach] += road.counts.vehicles;
   }
   for (int a = 0; a < kNumApproaches; ++a) {
     obs[a] = static_cast<float>(std::min(1.0, halting[a] / std::max(capacity_[a], 1.0)));
     obs[kNumApproaches + a] = static_cast<float>(
-        vehicles[a] > 0 ? std::min(1.0, speed_weighted[a] / vehicles[a] / limit[a]) : 1.0);
+        vehicles[a] > 0 ? std::min(1.0, speed_weighted[a] / vehicles[a] / limit_[a]) : 1.0);
   }
-  obs[8] = static_cast<float>((yellow_ ? next_green_ : green_) / 3.0);
+  obs[8] = static_cast<float>(green_ / 3.0);
   obs[9] = static_cast<float>(std::min(1.0, static_cast<double>(since_change_) / config_.max_green));
 }
 
 void TrafficSignal::update_info() {
   int halting = 0;
-  for (const Lane& lane : incoming_) halting += lane.halting;
-  info_.set(key_waiting_, arrived_ > 0 ? arrived_waiting_ / arrived_ : 0.0);
-  info_.set(key_travel_, arrived_ > 0 ? arrived_travel_ / arrived_ : 0.0);
+  for (const Road& road : incoming_roads_) halting += road.counts.halting;
+  info_.set(key_waiting_, avg_waiting_);
+  info_.set(key_travel_, avg_travel_);
   info_.set(key_queue_, halting);
-  info_.set(key_throughput_, arrived_);
+  info_.set(key_throughput_, throughput_);
   info_.set(key_time_, sim_time_);
 }
 

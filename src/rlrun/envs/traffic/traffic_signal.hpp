@@ -7,8 +7,8 @@
 //           through, left and right movements). Switching inserts `yellow_time` seconds of
 //           yellow for the old approach; a green lasts at least `min_green` seconds (a switch
 //           asked for earlier keeps the current green), as sumo-rl.
-//   step    `delta_time` simulated seconds (yellow included), one TraCI round trip per
-//           simulated second thanks to subscriptions.
+//   step    `delta_time` simulated seconds (yellow included) in one TraCI round trip (three
+//           when the light switches), subscriptions bringing back the state.
 //   obs     Box(10) in [0, 1]: halting vehicles per approach / the approach's capacity (N, S,
 //           E, W), mean speed per approach / speed limit, current green / 3, seconds since the
 //           last change / max_green (clipped).
@@ -18,11 +18,13 @@
 //           when none) and `pressure` (vehicles on outgoing minus incoming lanes).
 //   episode truncated after `num_seconds` simulated seconds; every reset restarts SUMO
 //           (seeded: the reset's seed, else the next draw of the env's stream).
-//   info    avg_waiting_time, avg_travel_time (means over the vehicles that arrived this
-//           episode, as SUMO's tripinfo output computes them: waiting = seconds at < 0.1 m/s),
-//           throughput (vehicles arrived), total_queue_length (halting now), sim_time.
+//   info    total_queue_length (halting now), sim_time; at the episode's last step also the
+//           trip metrics, from SUMO's own tripinfo output read when SUMO closes: throughput
+//           (vehicles arrived), avg_waiting_time and avg_travel_time (their means; waiting =
+//           seconds below 0.1 m/s). They are 0 before: SUMO writes them only then, and
+//           tracking every vehicle every second instead would halve the speed.
+//   backend traci (a sumo process, TCP) or libsumo (SUMO inside rlrun, one env per process).
 #include <array>
-#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -33,17 +35,16 @@
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
 #include "rlrun/env/info.hpp"
-#include "rlrun/envs/traffic/sumo_process.hpp"
-
-// SUMO's TraCI client (libtraci namespace; it must be included as libtraci.h, which selects it).
-#include <libsumo/libtraci.h>
+#include "rlrun/envs/traffic/sumo_connection.hpp"
+#include "rlrun/envs/traffic/traffic_scenario.hpp"
 
 namespace rlrun {
 
 class TrafficSignal : public Env {
  public:
   struct Config {
-    std::string scenario;         // .sumocfg; empty = the shipped single intersection
+    std::string scenario;         // scenarios/*.yaml or a .sumocfg; empty = the shipped one
+    std::string backend = "traci";  // traci (a sumo process, socket) or libsumo (in-process)
     std::string sumo_binary = "sumo";
     bool gui = false;             // run sumo-gui instead
     double scale = 1.0;           // demand multiplier
@@ -57,10 +58,15 @@ class TrafficSignal : public Env {
 
     template <class V>
     void visit(V& v) {
-      v("scenario", scenario, "SUMO .sumocfg file; empty = sumo_data/single_intersection");
+      v("scenario", scenario,
+        "scenario file (scenarios/*.yaml) or SUMO .sumocfg; empty = "
+        "scenarios/single_intersection.yaml");
+      v("backend", backend,
+        "traci (a sumo process over a socket) or libsumo (SUMO inside rlrun: faster, one env "
+        "per process)");
       v("sumo_binary", sumo_binary, "the sumo program to run (Debian package 'sumo')");
       v("gui", gui, "run sumo-gui to watch the simulation");
-      v("scale", scale, "demand multiplier (SUMO --scale)");
+      v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)");
       v("delta_time", delta_time, "simulated seconds per action");
       v("yellow_time", yellow_time, "seconds of yellow inserted on every switch");
       v("min_green", min_green, "minimum green time in seconds");
@@ -87,9 +93,8 @@ class TrafficSignal : public Env {
   StepResult step(std::span<const float> action, std::span<float> obs) override;
 
   const Config& config() const { return config_; }
-  // The light: the approach that has (or, during yellow, had) green.
+  // The light: the approach that has green (a switch's yellow ends within the step).
   int green_approach() const { return green_; }
-  bool yellow() const { return yellow_; }
   double sim_time() const { return sim_time_; }
   // A top-down picture of the roads, the vehicles (red when waiting) and the light at each
   // stop line (traffic_signal_render.cpp); 10 frames per second of video, one per decision.
@@ -99,52 +104,59 @@ class TrafficSignal : public Env {
   // The running SUMO's process id (-1 before the first reset), for tests.
   pid_t sumo_pid() const { return sumo_ ? sumo_->pid() : -1; }
 
-  // The shipped scenario: <source dir>/sumo_data/single_intersection/single.sumocfg.
-  static std::string default_scenario();
+  const TrafficScenario& scenario() const { return scenario_; }
 
  private:
-  struct Lane {
-    std::string id;
+  struct Lane : SumoLaneShape {
     int approach = -1;  // for incoming lanes
-    double length = 0, max_speed = 0, width = 3.2;
-    std::vector<std::array<double, 2>> shape;  // centre line, metres
-    int halting = 0, vehicles = 0;
-    double mean_speed = 0;
   };
-  struct VehicleRecord {
-    double depart = 0;
-    double waiting = 0;
+  struct Road {  // a SUMO edge: what the subscriptions count
+    std::string edge;
+    int approach = -1;  // for incoming roads
+    SumoLaneCounts counts;
   };
 
   void start_simulation(uint64_t sumo_seed);
-  void simulate_one_second();
-  void set_lights();
+  // Runs `seconds` of simulation in one call and takes in the subscriptions' news.
+  void advance(int seconds);
+  // The signal state string: `approach` green (or yellow), every other link red.
+  std::string light_state(int approach, bool yellow) const;
+  // The episode's last step: SUMO closes, its tripinfo output gives the trip metrics.
+  void finish_episode();
   void write_observation(std::span<float> obs) const;
   double reward();
   void update_info();
   [[noreturn]] void sumo_failed(const std::exception& e) const;
 
   Config config_;
-  std::string scenario_;
+  TrafficScenario scenario_;
   Space observation_space_;
   Space action_space_;
   Info info_;
   Rng rng_;
   bool ever_seeded_ = false;
-  std::unique_ptr<SumoProcess> sumo_;
+  std::unique_ptr<SumoConnection> sumo_;
   std::string tls_;  // the traffic light's id in the scenario
 
   std::vector<Lane> incoming_, outgoing_;
+  std::vector<Road> incoming_roads_, outgoing_roads_;  // outgoing: for the pressure reward
   std::vector<int> link_approach_;    // approach of each signal link (by link index)
   double capacity_[kNumApproaches] = {};  // vehicles that fit on an approach's lanes
-  int green_ = kNorth, next_green_ = kNorth;
-  bool yellow_ = false;
+  double limit_[kNumApproaches] = {};     // an approach's speed limit
+  int green_ = kNorth;
   int since_change_ = 0;  // seconds since the last light change
   double sim_time_ = 0;
-  std::map<std::string, VehicleRecord> on_road_;  // vehicles in the network
-  libsumo::SubscriptionResults vehicles_;  // this second's vehicles: speed and lane
-  int arrived_ = 0;
-  double arrived_waiting_ = 0, arrived_travel_ = 0;
+  // The last advance's news: lane counts and, when subscribed, the vehicles. render() may
+  // subscribe to the vehicles (it is const, like Gymnasium's render(); the simulation is not
+  // changed by it).
+  mutable SumoState state_;
+  bool needs_vehicles_ = false;   // diff-waiting-time and average-speed look at vehicles
+  mutable bool vehicles_subscribed_ = false;
+  bool finished_ = false;         // SUMO closed at the episode's end
+  // SUMO's tripinfo at the episode's end: vehicles arrived, their mean waiting and travel time.
+  int throughput_ = 0;
+  double avg_waiting_ = 0, avg_travel_ = 0;
+  std::string tripinfo_path_;     // config.tripinfo_output, else a temporary file
   double last_waiting_sum_ = 0;  // diff-waiting-time
   int key_waiting_, key_travel_, key_queue_, key_throughput_, key_time_;
   bool has_state_ = false;

@@ -1,7 +1,8 @@
 // TrafficSignal-v0's picture: the intersection from above, as sumo-gui shows it in its
-// "standard" scheme, simplified — grey lanes, a white stop line coloured by the light of its
-// approach (green, yellow, red), and each vehicle as a 5 m x 1.8 m box at its SUMO position and
-// heading, blue when moving and red when waiting (speed < 0.1 m/s, SUMO's waiting threshold).
+// "standard" scheme, simplified — grey lanes, a stop line coloured by the light of its
+// approach (green or red: a yellow begins and ends within one step), and each vehicle as a
+// 5 m x 1.8 m box at its SUMO position and heading, blue when moving and red when waiting
+// (speed < 0.1 m/s, SUMO's waiting threshold).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -46,28 +47,33 @@ bool TrafficSignal::render(Frame& frame) const {
     const double length = std::hypot(dx, dy);
     const double nx = -dy / length * lane.width / 2, ny = dx / length * lane.width / 2;
     Rgb light{220, 30, 30};
-    if (lane.approach == green_) light = yellow_ ? Rgb{240, 200, 0} : Rgb{30, 200, 60};
+    if (lane.approach == green_) light = Rgb{30, 200, 60};  // yellow ends within a step
     frame.line(at(end[0] - nx, end[1] - ny), at(end[0] + nx, end[1] + ny), light, 3.0);
   }
 
   // Vehicles: SUMO gives the front bumper's centre and the heading in degrees clockwise from
   // north.
   constexpr double kLength = 5.0, kHalfWidth = 0.9;
-  for (const auto& [id, values] : vehicles_) {
-    const auto position =
-        std::dynamic_pointer_cast<libsumo::TraCIPosition>(values.at(libsumo::VAR_POSITION));
-    const auto angle = std::dynamic_pointer_cast<libsumo::TraCIDouble>(values.at(libsumo::VAR_ANGLE));
-    const auto speed = std::dynamic_pointer_cast<libsumo::TraCIDouble>(values.at(libsumo::VAR_SPEED));
-    if (!position || !angle || !speed) continue;
-    const double heading = angle->value * M_PI / 180.0;
+  // The vehicles come with a subscription made on the first render: unwatched training does
+  // not pay for them (a third of the speed).
+  if (!vehicles_subscribed_ && !finished_) {
+    try {
+      sumo_->subscribe_vehicles(state_);
+    } catch (const std::exception& e) {
+      sumo_failed(e);
+    }
+    vehicles_subscribed_ = true;
+  }
+  for (const SumoVehicle& vehicle : state_.vehicles) {
+    const double heading = vehicle.angle * M_PI / 180.0;
     const double fx = std::sin(heading), fy = std::cos(heading);  // forward
     const double sx = fy, sy = -fx;                              // to the right
-    const double x = position->x, y = position->y;
+    const double x = vehicle.x, y = vehicle.y;
     const Point box[] = {at(x + sx * kHalfWidth, y + sy * kHalfWidth),
                          at(x - sx * kHalfWidth, y - sy * kHalfWidth),
                          at(x - sx * kHalfWidth - fx * kLength, y - sy * kHalfWidth - fy * kLength),
                          at(x + sx * kHalfWidth - fx * kLength, y + sy * kHalfWidth - fy * kLength)};
-    frame.polygon(box, speed->value < 0.1 ? Rgb{210, 40, 40} : Rgb{60, 110, 220});
+    frame.polygon(box, vehicle.speed < 0.1 ? Rgb{210, 40, 40} : Rgb{60, 110, 220});
   }
   frame.end_scene();
   return true;

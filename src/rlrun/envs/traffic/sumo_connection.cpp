@@ -1,0 +1,80 @@
+#include "rlrun/envs/traffic/sumo_connection.hpp"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+
+#include "rlrun/core/errors.hpp"
+
+namespace rlrun {
+
+std::vector<std::string> sumo_arguments(const SumoLaunch& launch) {
+  std::vector<std::string> args{"-c", launch.config,
+                                "--seed", std::to_string(launch.seed % 2147483647ULL),
+                                "--scale", std::to_string(launch.scale),
+                                "--end", std::to_string(launch.end_time),
+                                "--no-step-log", "true",
+                                "--no-warnings", "true",
+                                "--duration-log.disable", "true"};
+  args.insert(args.end(), launch.extra_args.begin(), launch.extra_args.end());
+  return args;
+}
+
+namespace {
+
+using StartFunction = SumoConnection* (*)(const std::vector<std::string>*, std::string*);
+
+// librlrun_libsumo.so: RLRUN_LIBSUMO_MODULE if set, else beside the running program (the
+// build tree), else in <prefix>/lib of an install, else in the build tree rlrun was built in.
+std::string libsumo_module_path() {
+  if (const char* path = std::getenv("RLRUN_LIBSUMO_MODULE"); path && *path) return path;
+  constexpr const char* kName = "librlrun_libsumo.so";
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (const auto& dir : {exe.parent_path(), exe.parent_path().parent_path() / RLRUN_INSTALL_LIBDIR})
+      if (std::filesystem::exists(dir / kName)) return (dir / kName).string();
+  }
+  return std::string(RLRUN_MODULE_DIR) + "/" + kName;
+}
+
+StartFunction libsumo_entry() {
+  static std::mutex mutex;
+  static StartFunction entry = nullptr;
+  std::lock_guard lock(mutex);
+  if (entry) return entry;
+  const std::string path = libsumo_module_path();
+  // Loaded once and never unloaded: SUMO's globals live as long as rlrun.
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* error = dlerror();
+    throw RuntimeFailure(std::string("backend: libsumo needs ") + path + ", which did not load (" +
+                         (error ? error : "unknown error") +
+                         "); it is built with rlrun and needs SUMO's libsumocpp (Debian package "
+                         "'sumo'). backend: traci needs only the sumo program");
+  }
+  entry = reinterpret_cast<StartFunction>(dlsym(handle, "rlrun_start_libsumo_connection"));
+  if (!entry) throw RuntimeFailure(path + " has no rlrun_start_libsumo_connection: not rlrun's libsumo module");
+  return entry;
+}
+
+}  // namespace
+
+std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const SumoLaunch& launch) {
+  if (backend == "traci") return start_traci_connection(launch);
+  if (backend != "libsumo")
+    throw RuntimeFailure("unknown SUMO backend '" + backend + "' (traci or libsumo)");
+  if (!std::filesystem::exists(launch.config))
+    throw RuntimeFailure("SUMO scenario " + launch.config + " does not exist");
+  std::vector<std::string> command{"sumo"};
+  for (std::string& a : sumo_arguments(launch)) command.push_back(std::move(a));
+  std::string error;
+  SumoConnection* connection = libsumo_entry()(&command, &error);
+  if (!connection) throw RuntimeFailure(error);
+  return std::unique_ptr<SumoConnection>(connection);
+}
+
+}  // namespace rlrun
