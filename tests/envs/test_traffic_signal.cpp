@@ -336,6 +336,46 @@ TEST_CASE("TrafficSignal: no SUMO survives rlrun being killed", "[traffic][cli]"
   CHECK(after == 0);
 }
 
+TEST_CASE("TrafficSignal: Ctrl-C stops training, saves the model, leaves no SUMO", "[traffic][cli]") {
+  TempDir dir("traffic_sigint");
+  const std::string cmd = std::string(RLRUN_BINARY) + " train " + std::string(RLRUN_SOURCE_DIR) +
+                          "/configs/traffic_dqn.yaml --set env.n_envs=2" +
+                          " --set env.kwargs.scale=1.0002 --out " + dir.str() +
+                          " > " + dir / "out.txt" + " 2>&1 & pid=$!; sleep 2; " +
+                          "pgrep -P $pid -x sumo | wc -l; kill -INT $pid; wait $pid; echo $?; " +
+                          "sleep 0.2; pgrep -f 'scale 1[.]000200' | wc -l";
+  const auto r = run_command(cmd);
+  std::ifstream out_file(dir / "out.txt");
+  std::stringstream out;
+  out << out_file.rdbuf();
+  INFO(r.output << "\n" << out.str());
+  std::istringstream lines(r.output);
+  int before = -1, exit_code = -1, after = -1;
+  lines >> before >> exit_code >> after;
+  CHECK(before == 2);
+  CHECK(exit_code == 130);
+  CHECK(after == 0);
+  // SUMO cannot snapshot its simulation: the model is saved, but there is no resumable state.
+  CHECK(out.str().find("interrupted after") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "traffic_dqn/seed1/model.zip"));
+}
+
+TEST_CASE("rlrun train with backend: libsumo (SUMO inside rlrun)", "[traffic][cli]") {
+  TempDir dir("traffic_libsumo");
+  const auto r = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
+                           "/configs/traffic_dqn.yaml --set env.kwargs.backend=libsumo" +
+                           " --set env.kwargs.num_seconds=300 --timesteps 300" +
+                           " --set algo.learning_starts=100 --out " + dir.str());
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  const auto two = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
+                             "/configs/traffic_dqn.yaml --set env.kwargs.backend=libsumo" +
+                             " --set env.n_envs=2 --timesteps 300 --out " + dir / "two");
+  INFO(two.output);
+  CHECK(two.exit_code != 0);
+  CHECK(two.output.find("one simulation per process") != std::string::npos);
+}
+
 TEST_CASE("FixedTimePolicy: N, S, E, W, each for green_time rounded up to decisions", "[traffic]") {
   FixedTimePolicy plan(12, 5);  // 12 s green at 5 s per decision: 3 decisions per approach
   std::vector<int> actions;
