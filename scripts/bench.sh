@@ -13,7 +13,9 @@ update_docs=0
 if [[ "${1:-}" == "--update-docs" ]]; then update_docs=1; shift; fi
 RLRUN_SKIP_INSTALL=${RLRUN_SKIP_INSTALL:-} scripts/setup.sh >/dev/null
 configs=("$@")
-((${#configs[@]})) || configs=(configs/*.yaml)
+# Default: every config but those marked `# bench: skip` (grasp_sac: 1e6 steps, hours; its
+# speed is the [gripper_bench] line below).
+((${#configs[@]})) || mapfile -t configs < <(grep -L '^# bench: skip' configs/*.yaml)
 seeds=${SEEDS:-"1 2 3"}
 jobs=${JOBS:-1}
 threads=${THREADS:-$(( jobs > 1 ? 1 : 2 ))}
@@ -88,14 +90,18 @@ traffic_table=""
 if command -v sumo >/dev/null; then
   traffic_table=$(build/tests/rlrun_tests "[traffic_bench]" | grep '^|' || true)
 fi
+# Grasp: GripperLift-v0 env steps/s on one core and SAC training steps/s on it
+# (tests/envs/test_gripper_bench.cpp; issue 8: >= 3 000 env steps/s).
+gripper_table=$(build/tests/rlrun_tests "[gripper_bench]" | grep '^|' || true)
 machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, threads=$threads, $(date -u +%Y-%m-%d)"
 echo "$table"
 echo
 [[ -n "$record_line" ]] && echo "$record_line" && echo
 [[ -n "$traffic_table" ]] && echo "$traffic_table" && echo
+[[ -n "$gripper_table" ]] && echo "$gripper_table" && echo
 echo "machine: $machine"
 if ((update_docs)); then
-  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
+  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
   BLOCK="$block" python3 - <<'PY'
 import os, re
 path = "docs/benchmarks.md"

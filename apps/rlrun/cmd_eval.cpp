@@ -1,5 +1,6 @@
 // rlrun eval --model FILE [--episodes N] [--seed S] [--deterministic|--stochastic] [--csv FILE]
-//            [--record video.mp4] [--baseline fixed-time [--green-time S]]
+//            [--record video.mp4] [--baseline fixed-time [--green-time S] | --baseline scripted]
+// rlrun eval --env ID | --config CFG  --policy scripted|fixed-time|random  [--episodes N] ...
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -7,9 +8,13 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "env_by_id.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/rng.hpp"
+#include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
+#include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
@@ -75,6 +80,35 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
   }
 }
 
+// `eval --policy P --env ID | --config CFG`: a policy that needs no model file, e.g. the grasp
+// task's scripted controller (shows the task is solvable) or a uniform random policy.
+template <class Options>
+int evaluate_without_model(const Options& o, const Registry& registry) {
+  if (o.env_id.empty() == o.config.empty())
+    throw UsageError("--policy " + o.policy + " needs exactly one of --env ID or --config CFG");
+  if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
+  EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, {}, registry).env, registry,
+                                           "", unix_time_now())
+                                : env_by_id(o.env_id, registry);
+  ActionFn act;
+  if (o.policy == "scripted") {
+    act = scripted_grasp_actions(*env);
+  } else if (o.policy == "fixed-time") {
+    act = fixed_time_actions(*env, o.green_time);
+  } else {  // random: uniform actions from their own stream, seeded from --seed
+    auto rng = std::make_shared<Rng>(o.seed ^ 0x5eedull);
+    const Space space = env->action_space();
+    act = [rng, space](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
+      action.resize(space.flat_dim(), 1);
+      space.sample(*rng, {action.data(), static_cast<size_t>(action.size())});
+    };
+  }
+  const EvalResult r = evaluate_policy(act, *env, o.episodes, o.seed);
+  print_summary(o.policy, "", env->id(), o.episodes, r);
+  if (!o.csv.empty()) write_csv(o.csv, {{o.policy, r}});
+  return 0;
+}
+
 }  // namespace
 
 Action add_eval(CLI::App& app) {
@@ -86,12 +120,22 @@ Action add_eval(CLI::App& app) {
     std::string csv;
     std::string record;  // mp4 of the evaluation episodes
     std::vector<std::string> plugins;
-    std::string baseline;  // fixed-time (traffic task)
+    std::string baseline;  // fixed-time (traffic task) or scripted (grasp task)
     int green_time = 30;
+    std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
-  sub->add_option("--model", options->model, "model.zip written by rlrun train")->required();
+  CLI::Option* model_option =
+      sub->add_option("--model", options->model, "model.zip written by rlrun train");
+  CLI::Option* policy_option = sub->add_option(
+      "--policy", options->policy,
+      "evaluate a policy without a model: scripted (grasp task), fixed-time (traffic task) or "
+      "random; needs --env ID or --config CFG");
+  policy_option->check(CLI::IsMember({"scripted", "fixed-time", "random"}))->excludes(model_option);
+  sub->add_option("--env", options->env_id, "env id for --policy")->needs(policy_option);
+  sub->add_option("--config", options->config, "experiment file whose env --policy runs in")
+      ->needs(policy_option);
   sub->add_option("--episodes", options->episodes, "number of episodes")->check(CLI::PositiveNumber);
   sub->add_option("--seed", options->seed, "seed of the first episode's reset");
   auto deterministic = std::make_shared<bool>(false);
@@ -102,8 +146,8 @@ Action add_eval(CLI::App& app) {
   add_plugin_option(sub, options->plugins);
   sub->add_option("--baseline", options->baseline,
                   "also evaluate a baseline on the same episodes: fixed-time (the traffic task's "
-                  "N -> S -> E -> W plan)")
-      ->check(CLI::IsMember({"fixed-time"}));
+                  "N -> S -> E -> W plan) or scripted (the grasp task's controller)")
+      ->check(CLI::IsMember({"fixed-time", "scripted"}));
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of the fixed-time baseline")
       ->check(CLI::PositiveNumber);
@@ -112,6 +156,8 @@ Action add_eval(CLI::App& app) {
   return [options, deterministic]() {
     load_plugin_options(options->plugins);  // model files name their plugins too
     const Registry& registry = builtin_registry();
+    if (!options->policy.empty()) return evaluate_without_model(*options, registry);
+    if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
     const ModelFile model = read_model(options->model);
     const Experiment experiment = experiment_from_model(model, registry);
     EnvPtr env = make_model_env(model, experiment, registry);  // normalisation stats frozen
@@ -148,6 +194,12 @@ Action add_eval(CLI::App& app) {
       print_summary("fixed-time", " (" + std::to_string(options->green_time) + " s green)",
                     experiment.env.id, options->episodes, fixed);
       runs.emplace_back("fixed-time", fixed);
+    } else if (options->baseline == "scripted") {
+      EnvPtr baseline_env = make_model_env(model, experiment, registry);
+      const EvalResult scripted = evaluate_policy(scripted_grasp_actions(*baseline_env),
+                                                  *baseline_env, options->episodes, options->seed);
+      print_summary("scripted", "", experiment.env.id, options->episodes, scripted);
+      runs.emplace_back("scripted", scripted);
     }
     if (!options->csv.empty()) write_csv(options->csv, runs);
     return 0;

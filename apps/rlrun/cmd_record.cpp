@@ -10,7 +10,9 @@
 #include <regex>
 
 #include "commands.hpp"
+#include "env_by_id.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
 #include "rlrun/core/rng.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -47,17 +49,6 @@ void parse_size(const std::string& text, RecordOptions& record) {
   if (record.width < 2 || record.height < 2) throw UsageError("--size " + text + ": too small");
 }
 
-// An env by id alone, with its registered defaults (TimeLimit, Monitor), as `env: {id: ID}`.
-EnvPtr env_by_id(const std::string& id, const Registry& registry) {
-  EnvSpec spec;
-  spec.id = id;
-  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "--env", "env.id");
-  try {
-    return make_env(spec, registry, "", unix_time_now());
-  } catch (const ConfigError& e) {
-    throw UsageError(e.what());
-  }
-}
 
 void print_summary(const RecordResult& r, const std::string& what, const Options& o) {
   std::string targets = o.output;
@@ -77,8 +68,8 @@ int run(const Options& o) {
       (o.model.empty() && o.config.empty() && o.from_obs.empty() && !o.env_id.empty());
   if (sources != 1)
     throw UsageError(
-        "record needs exactly one of --model FILE, --config CFG --policy random, "
-        "--env ID --policy random, or --from-obs PATH --env ID");
+        "record needs exactly one of --model FILE, --config CFG --policy P, "
+        "--env ID --policy P, or --from-obs PATH --env ID");
   if (o.output.empty() && o.frames.empty())
     throw UsageError("record needs --output video.mp4 and/or --frames DIR");
   if (!o.overrides.empty() && o.config.empty()) throw UsageError("--set only applies to --config");
@@ -143,8 +134,11 @@ int run(const Options& o) {
   } else if (policy == "fixed-time") {
     record.policy_label = "fixed-time " + std::to_string(o.green_time) + " s";
     act = fixed_time_actions(*env, o.green_time);
+  } else if (policy == "scripted") {
+    record.policy_label = "scripted grasp";
+    act = scripted_grasp_actions(*env);
   } else {
-    throw UsageError("--policy " + policy + ": expected model, random or fixed-time");
+    throw UsageError("--policy " + policy + ": expected model, random, fixed-time or scripted");
   }
   const RecordResult r = record_episodes(*env, act, record);
   print_summary(r,
@@ -166,7 +160,8 @@ Action add_record(CLI::App& app) {
   sub->add_option("--set", options->overrides, "override a --config value (repeatable)");
   sub->add_option("--env", options->env_id, "env id (with --policy random or --from-obs)");
   sub->add_option("--policy", options->policy,
-                  "model (default with --model), random, or fixed-time (traffic task)");
+                  "model (default with --model), random, fixed-time (traffic task) or scripted "
+                  "(grasp task)");
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of --policy fixed-time")
       ->check(CLI::PositiveNumber);

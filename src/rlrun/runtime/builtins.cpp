@@ -14,6 +14,7 @@
 #include "rlrun/envs/classic/pendulum.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
+#include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
@@ -61,6 +62,14 @@ Registry make_builtins() {
       "TrafficSignal-v0",
       "one traffic light at a 4-arm intersection in SUMO; Discrete(4): N, S, E or W green",
       0));
+
+  // Robot grasping on Bullet (issue 8); episodes end by the scenario's episode_steps.
+  r.add(make_env_entry<GripperLift>(
+      "GripperLift-v0",
+      "3D parallel-jaw gripper (Bullet): reach a cube, grasp it, lift it 5 cm; Box(4) dx dy dz grip",
+      0));
+  r.add(make_env_entry<GripperLiftEasy>(
+      "GripperLiftEasy-v0", "GripperLift-v0 starting just above the cube (close and lift)", 0));
 
   // Wrappers usable in `env.wrappers`, applied in order after the Monitor.
   r.add(make_wrapper_entry<DiscreteAsBox>(

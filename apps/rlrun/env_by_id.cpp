@@ -1,0 +1,20 @@
+#include "env_by_id.hpp"
+
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/env_factory.hpp"
+
+namespace rlrun::cli {
+
+EnvPtr env_by_id(const std::string& id, const Registry& registry) {
+  EnvSpec spec;
+  spec.id = id;
+  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "--env", "env.id");
+  try {
+    return make_env(spec, registry, "", unix_time_now());
+  } catch (const ConfigError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace rlrun::cli

@@ -1,0 +1,14 @@
+#pragma once
+// An env by id alone, with its registered defaults (TimeLimit, Monitor), as `env: {id: ID}`
+// would make it: `record --env ID`, `eval --env ID --policy scripted`. An unknown id is a
+// UsageError naming the closest registered one.
+#include <string>
+
+#include "rlrun/env/env.hpp"
+#include "rlrun/runtime/registry.hpp"
+
+namespace rlrun::cli {
+
+EnvPtr env_by_id(const std::string& id, const Registry& registry);
+
+}  // namespace rlrun::cli
