@@ -13,5 +13,8 @@ Action add_eval(CLI::App& app);
 Action add_list(CLI::App& app);
 Action add_check_env(CLI::App& app);
 Action add_record(CLI::App& app);
+Action add_sweep(CLI::App& app);
+Action add_report(CLI::App& app);
+Action add_plot(CLI::App& app);
 
 }  // namespace rlrun::cli

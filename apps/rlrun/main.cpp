@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
   rlrun::cli::Action list = rlrun::cli::add_list(app);
   rlrun::cli::Action check_env = rlrun::cli::add_check_env(app);
   rlrun::cli::Action record = rlrun::cli::add_record(app);
+  rlrun::cli::Action sweep = rlrun::cli::add_sweep(app);
+  rlrun::cli::Action report = rlrun::cli::add_report(app);
+  rlrun::cli::Action plot = rlrun::cli::add_plot(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -35,6 +38,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("list")) return list();
     if (app.got_subcommand("check-env")) return check_env();
     if (app.got_subcommand("record")) return record();
+    if (app.got_subcommand("sweep")) return sweep();
+    if (app.got_subcommand("report")) return report();
+    if (app.got_subcommand("plot")) return plot();
   } catch (const rlrun::ConfigError& e) {
     std::cerr << "error: " << e.what() << std::endl;
     return rlrun::kExitUsage;

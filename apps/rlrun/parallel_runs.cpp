@@ -42,14 +42,15 @@ std::string summary_line(const std::string& path) {
   std::ifstream in(path);
   std::string found;
   for (std::string line; std::getline(in, line);)
-    if (line.rfind("trained ", 0) == 0 || line.rfind("interrupted after ", 0) == 0) found = line;
+    if (line.rfind("trained ", 0) == 0 || line.rfind("interrupted after ", 0) == 0 ||
+        line.rfind("sweep: ", 0) == 0)
+      found = line;
   return found;
 }
 
-pid_t start_child(const std::string& config, const std::vector<std::string>& options,
-                  const std::string& log_path) {
-  std::vector<std::string> args{"/proc/self/exe", "--threads", "1", "train", config};
-  args.insert(args.end(), options.begin(), options.end());
+pid_t start_child(const std::vector<std::string>& child_args, const std::string& log_path) {
+  std::vector<std::string> args{"/proc/self/exe"};
+  args.insert(args.end(), child_args.begin(), child_args.end());
   // argv is built before fork(): this process may have a ForkJoin worker thread, and the child
   // of a threaded process may only call async-signal-safe functions (no malloc) until exec.
   std::vector<char*> argv;
@@ -79,12 +80,22 @@ pid_t start_child(const std::string& config, const std::vector<std::string>& opt
 
 int train_in_parallel(const std::vector<std::string>& configs,
                       const std::vector<std::string>& child_options, int jobs) {
+  std::vector<ChildRun> runs;
+  for (const std::string& config : configs) {
+    ChildRun run{config, {"--threads", "1", "train", config}};
+    run.args.insert(run.args.end(), child_options.begin(), child_options.end());
+    runs.push_back(run);
+  }
+  return run_in_parallel(runs, jobs, "experiments");
+}
+
+int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::string& what) {
   namespace fs = std::filesystem;
   const fs::path log_dir =
       fs::temp_directory_path() / ("rlrun-train-" + std::to_string(getpid()));
   fs::create_directories(log_dir);
   install_interrupt_handlers();
-  std::cout << "training " << configs.size() << " experiments, " << jobs
+  std::cout << "training " << configs.size() << " " << what << ", " << jobs
             << " at a time (console output of each in " << log_dir.string() << "/)" << std::endl;
 
   std::map<pid_t, Child> running;
@@ -100,7 +111,7 @@ int train_in_parallel(const std::vector<std::string>& configs,
     }
     while (!interrupted && running.size() < static_cast<size_t>(jobs) && next < configs.size()) {
       Child child{next, (log_dir / (std::to_string(next) + ".log")).string()};
-      const pid_t pid = start_child(configs[next], child_options, child.log_path);
+      const pid_t pid = start_child(configs[next].args, child.log_path);
       running[pid] = child;
       ++next;
     }
@@ -115,7 +126,7 @@ int train_in_parallel(const std::vector<std::string>& configs,
     running.erase(pid);
     ++finished;
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::cout << "[" << finished << "/" << configs.size() << "] " << configs[child.index] << ": ";
+    std::cout << "[" << finished << "/" << configs.size() << "] " << configs[child.index].label << ": ";
     if (code == 0) {
       std::cout << summary_line(child.log_path) << std::endl;
     } else if (code == 130) {
@@ -128,7 +139,7 @@ int train_in_parallel(const std::vector<std::string>& configs,
     }
   }
   if (next < configs.size())
-    std::cout << configs.size() - next << " experiments were not started" << std::endl;
+    std::cout << configs.size() - next << " " << what << " were not started" << std::endl;
   if (failures > 0) return 1;  // keep the logs of the failed runs
   std::error_code ec;
   fs::remove_all(log_dir, ec);  // each run's output is also in its run directory's log.txt

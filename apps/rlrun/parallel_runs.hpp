@@ -1,7 +1,7 @@
 #pragma once
-// `rlrun train -j N a.yaml b.yaml ...`: up to N trainings at once, each a child process
-// `rlrun --threads 1 train <config> <same options>` (one core each, so N = 2 fills this
-// machine). Each child's console output goes to a temporary log file (kept when a run fails;
+// `rlrun train -j N a.yaml b.yaml ...` and `rlrun sweep run -j N`: up to N trainings at once,
+// each a child process such as `rlrun --threads 1 train <config> <same options>` (one core
+// each, so N = 2 fills this machine). Each child's console output goes to a temporary log file (kept when a run fails;
 // log.txt in the run directory has it too); one line per finished run gives its summary, or
 // the end of its output on failure.
 //
@@ -13,7 +13,17 @@
 
 namespace rlrun::cli {
 
-// Returns 0 when every run succeeded, 130 when interrupted, 1 when any run failed.
+// One child process: `rlrun <args...>`, shown as `label` in the summary lines.
+struct ChildRun {
+  std::string label;
+  std::vector<std::string> args;
+};
+
+// Runs up to `jobs` children at once. Returns 0 when every run succeeded, 130 when
+// interrupted, 1 when any run failed.
+int run_in_parallel(const std::vector<ChildRun>& runs, int jobs, const std::string& what);
+
+// `rlrun train -j N`: each config as `rlrun --threads 1 train <config> <child_options>`.
 int train_in_parallel(const std::vector<std::string>& configs,
                       const std::vector<std::string>& child_options, int jobs);
 

@@ -171,6 +171,8 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
     outcome.run_dir = create_run_directory(run.out_dir, run.name, run.seed);
   }
   NewRunDirectoryGuard new_run_guard(resuming ? "" : outcome.run_dir);
+  std::error_code no_marker;
+  std::filesystem::remove(outcome.run_dir + "/" + kFinishedMarker, no_marker);  // training again
   write_text_atomic(outcome.run_dir + "/config.yaml", dump_yaml(experiment.resolved));
   RunLog log(outcome.run_dir + "/log.txt");
   if (resuming)
@@ -368,6 +370,9 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
                 static_cast<double>(outcome.timesteps) / std::max(outcome.wall_seconds, 1e-9),
                 outcome.model_path.c_str());
   log.line(summary);
+  if (!outcome.interrupted)  // the last file written: `rlrun sweep run` skips such runs
+    write_text_atomic(outcome.run_dir + "/" + kFinishedMarker,
+                      "timesteps " + std::to_string(outcome.timesteps) + "\n");
   if (outcome.interrupted) {
     if (!outcome.checkpoint_path.empty())
       log.line("checkpoint saved to " + outcome.checkpoint_path +

@@ -21,6 +21,10 @@
 
 namespace rlrun {
 
+// Written into the run directory when training ends normally (not interrupted), last of all:
+// a run directory with it is complete (`rlrun sweep run` skips it).
+inline constexpr const char* kFinishedMarker = "finished";
+
 struct TrainOutcome {
   std::string run_dir;
   std::string model_path;

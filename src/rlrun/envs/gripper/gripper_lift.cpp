@@ -9,10 +9,11 @@ namespace rlrun {
 
 namespace {
 
-// Where the grasp point may be sent: above the table's 40 cm square, fingertips above the top.
-constexpr double kWorkspaceXY = 0.2;
+// Where the grasp point may be sent: above the table's central 30 cm square (the spawn area
+// and a margin), the finger tips above the table top.
+constexpr double kWorkspaceXY = 0.15;
 constexpr double kMinGraspHeight = 0.012;  // m: the finger tips 3 mm above the table
-constexpr double kMaxGraspHeight = 0.3;
+constexpr double kMaxGraspHeight = 0.2;   // m: within the camera's view
 
 double draw(Rng& rng, const std::vector<double>& range) { return rng.uniform(range[0], range[1]); }
 

@@ -88,8 +88,8 @@ void draw_shadow(Rasterizer& raster, const GripperWorld::BoxPose& box) {
 bool GripperLift::render(Frame& frame) const {
   if (!world_) throw std::logic_error(id() + ": call reset() before render()");
   Rasterizer raster(frame);
-  raster.set_camera(look_at({0.30f, -0.38f, 0.32f}, {0.0f, 0.0f, 0.07f}, {0, 0, 1}),
-                    perspective(0.70f, static_cast<float>(frame.width()) / frame.height(), 0.05f, 5.0f));
+  raster.set_camera(look_at({0.40f, -0.50f, 0.38f}, {0.0f, 0.0f, 0.09f}, {0, 0, 1}),
+                    perspective(0.85f, static_cast<float>(frame.width()) / frame.height(), 0.05f, 5.0f));
   raster.set_light(kTowardsLight, 0.35f);
   raster.clear({205, 222, 238});  // pale sky
   // The table top, checkered.

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# A real Slurm run of a sweep (issue 9): installs Debian's slurm-wlm and munge if missing,
+# starts a one-node cluster on localhost (munged, slurmctld, slurmd; no cgroups, no
+# accounting), expands a small CartPole sweep (2 learning rates x 2 seeds), submits the
+# `rlrun sweep slurm` array script with `sbatch --wait`, and checks that every run finished.
+# Stops the daemons it started on exit. Needs root (or sudo) for the packages and munged.
+#   scripts/test_slurm.sh            (CI runs it after the test suite)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+SUDO=""
+[[ $(id -u) -eq 0 ]] || SUDO=sudo
+
+need=()
+for p in slurm-wlm munge; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
+done
+if ((${#need[@]})); then
+  echo "test_slurm: installing ${need[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi
+[[ -x build/rlrun ]] || { echo "test_slurm: build/rlrun missing: run scripts/setup.sh first" >&2; exit 1; }
+
+work=$(mktemp -d /tmp/rlrun-slurm.XXXXXX)
+chmod 755 "$work"
+export SLURM_CONF=$work/slurm.conf
+started=()
+own_munged=0
+cleanup() {
+  set +e
+  scancel --quiet --name rlrun_slurm_test 2>/dev/null
+  for pid in "${started[@]}"; do $SUDO kill "$pid" 2>/dev/null; done
+  ((own_munged)) && $SUDO pkill -x munged
+  sleep 1
+  for pid in "${started[@]}"; do $SUDO kill -9 "$pid" 2>/dev/null; done
+  [[ -n "${KEEP:-}" ]] || rm -rf "$work"
+}
+trap cleanup EXIT
+
+# munge: Slurm's authentication. Its own daemon unless one already answers.
+if ! munge -n 2>/dev/null | unmunge >/dev/null 2>&1; then
+  [[ -s /etc/munge/munge.key ]] || $SUDO mungekey --create --force 2>/dev/null || $SUDO /usr/sbin/create-munge-key -f
+  $SUDO mkdir -p /run/munge && $SUDO chown munge:munge /run/munge
+  if [[ -z "$SUDO" ]]; then runuser -u munge -- /usr/sbin/munged --force
+  else sudo -u munge /usr/sbin/munged --force; fi
+  own_munged=1
+fi
+for _ in $(seq 50); do munge -n 2>/dev/null | unmunge >/dev/null 2>&1 && break; sleep 0.1; done
+munge -n | unmunge >/dev/null || { echo "test_slurm: munge does not work" >&2; exit 1; }
+
+memory=$(( $(awk '/MemTotal/ {print $2}' /proc/meminfo) / 1024 / 2 ))
+cat >"$SLURM_CONF" <<CONF
+ClusterName=rlrun
+SlurmctldHost=localhost
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+SlurmctldPort=16817
+SlurmdPort=16818
+StateSaveLocation=$work/state
+SlurmdSpoolDir=$work/spool
+SlurmctldPidFile=$work/slurmctld.pid
+SlurmdPidFile=$work/slurmd.pid
+SlurmctldLogFile=$work/slurmctld.log
+SlurmdLogFile=$work/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core_Memory
+SchedulerType=sched/backfill
+ReturnToService=2
+MpiDefault=none
+JobCompType=jobcomp/none
+AccountingStorageType=accounting_storage/none
+NodeName=localhost NodeHostname=localhost CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
+PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
+CONF
+mkdir -p "$work/state" "$work/spool"
+$SUDO env SLURM_CONF="$SLURM_CONF" slurmctld
+started+=("$(cat "$work/slurmctld.pid" 2>/dev/null || pgrep -n slurmctld)")
+$SUDO env SLURM_CONF="$SLURM_CONF" slurmd -N localhost
+sleep 1
+started+=("$(cat "$work/slurmd.pid" 2>/dev/null || pgrep -n slurmd)")
+for _ in $(seq 60); do
+  state=$(sinfo -h -N -o %T 2>/dev/null | head -1 || true)
+  [[ "$state" == idle* ]] && break
+  sleep 1
+done
+[[ "$state" == idle* ]] || { echo "test_slurm: the node did not come up ($state)"; tail -20 "$work"/*.log; exit 1; }
+echo "test_slurm: one-node cluster up ($(nproc) CPUs, ${memory} MB)"
+
+# A small sweep: CartPole PPO, 2 learning rates x 2 seeds, 20 000 steps each.
+cat >"$work/sweep.yaml" <<YAML
+name: rlrun_slurm_test
+base: $root/configs/cartpole_ppo.yaml
+out_dir: $work/sweep
+seeds: [1, 2]
+grid: {algo.learning_rate: [lin_0.001, lin_0.0003]}
+set: {run.total_timesteps: 20000}
+slurm: {time: "00:05:00", cpus_per_task: 1, mem: 500M}
+YAML
+build/rlrun sweep "$work/sweep.yaml"
+build/rlrun sweep slurm "$work/sweep/manifest.yaml"
+start=$(date +%s)
+sbatch --wait "$work/sweep/sweep.sbatch"
+echo "test_slurm: the array job ended after $(( $(date +%s) - start )) s"
+build/rlrun sweep status "$work/sweep/manifest.yaml"
+finished=$(build/rlrun sweep status "$work/sweep/manifest.yaml" | grep -c " finished ")
+logs=$(ls "$work/sweep/slurm/"*.out | wc -l)
+echo "test_slurm: $finished of 4 runs finished, $logs task logs"
+if [[ $finished -ne 4 || $logs -ne 4 ]]; then
+  for f in "$work/sweep/slurm/"*.out; do echo "== $f"; tail -5 "$f"; done
+  exit 1
+fi
+# A local re-run of the same manifest trains nothing more.
+build/rlrun sweep run "$work/sweep/manifest.yaml" | tail -1 | grep -q "4 of 4 runs finished"
+echo "test_slurm: passed"

@@ -1,0 +1,222 @@
+#include "rlrun/runtime/run_results.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/rng.hpp"
+#include "rlrun/runtime/experiment.hpp"
+
+namespace rlrun {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kLastEpisodes = 100;   // SB3's ep_info_buffer: rollout/ep_rew_mean's window
+constexpr int kBootstrapSamples = 2000;
+constexpr uint64_t kBootstrapSeed = 0;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+double number(const std::string& cell) {
+  if (cell.empty()) return kNaN;
+  try {
+    return std::stod(cell);
+  } catch (const std::exception&) {
+    return kNaN;
+  }
+}
+
+// A CSV file as columns; `skip_comment` drops a first line starting with '#' (Monitor files).
+std::map<std::string, std::vector<double>> read_columns(const fs::path& path) {
+  std::map<std::string, std::vector<double>> columns;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line) && !line.empty() && line[0] == '#') {}
+  if (line.empty()) return columns;
+  const std::vector<std::string> header = split(line);
+  for (const auto& name : header) columns[name];
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = split(line);
+    for (size_t i = 0; i < header.size(); ++i)
+      columns[header[i]].push_back(i < cells.size() ? number(cells[i]) : kNaN);
+  }
+  return columns;
+}
+
+double last_finite(const std::vector<double>& v) {
+  for (auto it = v.rbegin(); it != v.rend(); ++it)
+    if (std::isfinite(*it)) return *it;
+  return kNaN;
+}
+
+double percentile(std::vector<double> v, double p) {  // numpy's default, linear
+  std::sort(v.begin(), v.end());
+  const double pos = p / 100.0 * (v.size() - 1);
+  const size_t lo = static_cast<size_t>(std::floor(pos)), hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - lo) * (v[hi] - v[lo]);
+}
+
+}  // namespace
+
+std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths) {
+  std::vector<std::string> dirs;
+  for (const std::string& path : paths) {
+    if (!fs::is_directory(path)) throw UsageError(path + " is not a directory");
+    const size_t before = dirs.size();
+    if (fs::exists(fs::path(path) / "config.yaml")) {
+      dirs.push_back(path);
+    } else {
+      for (const auto& entry : fs::recursive_directory_iterator(path))
+        if (entry.is_directory() && fs::exists(entry.path() / "config.yaml") &&
+            fs::exists(entry.path() / "progress.csv"))
+          dirs.push_back(entry.path().string());
+    }
+    if (dirs.size() == before) throw UsageError(path + " holds no run directory (config.yaml + progress.csv)");
+  }
+  std::sort(dirs.begin(), dirs.end());
+  dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
+  return dirs;
+}
+
+RunResult read_run(const std::string& dir) {
+  RunResult r;
+  r.dir = dir;
+  const fs::path config = fs::path(dir) / "config.yaml";
+  if (!fs::exists(config)) throw RuntimeFailure(dir + " has no config.yaml: not a run directory");
+  YAML::Node node = YAML::LoadFile(config.string());
+  if (node["run"]) {
+    if (node["run"]["seed"]) r.seed = node["run"]["seed"].as<uint64_t>();
+    if (node["run"]["name"]) r.name = node["run"]["name"].as<std::string>();
+    node["run"].remove("seed");
+    node["run"].remove("out_dir");
+  }
+  r.config_key = dump_yaml(node);
+  r.progress = read_columns(fs::path(dir) / "progress.csv");
+  // Wall time: the sessions' "trained|interrupted after N steps in S s" lines of log.txt added up
+  // (a resumed run has several), else progress.csv's whole seconds.
+  std::ifstream log(fs::path(dir) / "log.txt");
+  bool logged = false;
+  for (std::string line; std::getline(log, line);) {
+    const size_t in = line.find(" steps in ");
+    if (in == std::string::npos || (line.find("trained ") == std::string::npos &&
+                                    line.find("interrupted after ") == std::string::npos))
+      continue;
+    r.wall_seconds += number(line.substr(in + 10, line.find(' ', in + 10) - in - 10));
+    logged = true;
+  }
+  if (!logged && r.progress.count("time/time_elapsed"))
+    r.wall_seconds = last_finite(r.progress["time/time_elapsed"]);
+  if (r.progress.count("time/total_timesteps")) r.timesteps = last_finite(r.progress["time/total_timesteps"]);
+
+  const auto evaluations = read_columns(fs::path(dir) / "evaluations.csv");
+  if (evaluations.count("mean_reward") && !evaluations.at("mean_reward").empty()) {
+    r.final_return = evaluations.at("mean_reward").back();
+    r.return_source = "eval";
+    if (evaluations.count("success_rate") && std::isfinite(evaluations.at("success_rate").back()))
+      r.success_rate = evaluations.at("success_rate").back();
+    return r;
+  }
+  // Else the last 100 training episodes over all monitor files, in the order they ended.
+  std::vector<std::pair<double, double>> episodes;  // (t, r)
+  std::vector<std::pair<double, double>> successes;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string file = entry.path().filename().string();
+    if (file.size() < 12 || file.substr(file.size() - 12) != ".monitor.csv") continue;
+    const auto m = read_columns(entry.path());
+    if (!m.count("r") || !m.count("t")) continue;
+    for (size_t i = 0; i < m.at("r").size(); ++i) {
+      episodes.emplace_back(m.at("t")[i], m.at("r")[i]);
+      if (m.count("is_success")) successes.emplace_back(m.at("t")[i], m.at("is_success")[i]);
+    }
+  }
+  if (episodes.empty()) {  // e.g. stopped before its first episode ended: curves only
+    r.final_return = kNaN;
+    r.return_source = "none";
+    return r;
+  }
+  const auto mean_of_last = [](std::vector<std::pair<double, double>> v) {
+    std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    const size_t from = v.size() > kLastEpisodes ? v.size() - kLastEpisodes : 0;
+    double sum = 0;
+    for (size_t i = from; i < v.size(); ++i) sum += v[i].second;
+    return sum / static_cast<double>(v.size() - from);
+  };
+  r.final_return = mean_of_last(episodes);
+  r.return_source = "monitor";
+  if (!successes.empty()) r.success_rate = mean_of_last(successes);
+  return r;
+}
+
+std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs) {
+  std::vector<RunGroup> groups;
+  std::vector<std::string> keys;
+  for (const RunResult& run : runs) {
+    const auto it = std::find(keys.begin(), keys.end(), run.config_key);
+    if (it == keys.end()) {
+      keys.push_back(run.config_key);
+      groups.push_back({run.name.empty() ? fs::path(run.dir).filename().string() : run.name, {run}});
+    } else {
+      groups[it - keys.begin()].runs.push_back(run);
+    }
+  }
+  std::map<std::string, int> uses;
+  for (const RunGroup& g : groups) ++uses[g.label];
+  std::map<std::string, int> numbered;
+  for (RunGroup& g : groups) {
+    if (uses[g.label] > 1) g.label += " #" + std::to_string(++numbered[g.label]);
+    std::sort(g.runs.begin(), g.runs.end(), [](const auto& a, const auto& b) { return a.seed < b.seed; });
+  }
+  return groups;
+}
+
+double interquartile_mean(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t cut = static_cast<size_t>(0.25 * static_cast<double>(v.size()));  // scipy trim_mean
+  const size_t end = v.size() - cut;
+  if (end <= cut) return kNaN;
+  return std::accumulate(v.begin() + cut, v.begin() + end, 0.0) / static_cast<double>(end - cut);
+}
+
+SeedStatistics seed_statistics(const std::vector<double>& all) {
+  std::vector<double> values;
+  for (double v : all)
+    if (std::isfinite(v)) values.push_back(v);
+  SeedStatistics s;
+  s.n = static_cast<int>(values.size());
+  if (values.empty()) return s;
+  s.mean = std::accumulate(values.begin(), values.end(), 0.0) / s.n;
+  double sq = 0;
+  for (double v : values) sq += (v - s.mean) * (v - s.mean);
+  s.std = std::sqrt(sq / s.n);
+  s.median = percentile(values, 50);
+  s.iqm = interquartile_mean(values);
+  Rng rng(kBootstrapSeed);
+  std::vector<double> estimates, sample(values.size());
+  estimates.reserve(kBootstrapSamples);
+  for (int b = 0; b < kBootstrapSamples; ++b) {
+    for (double& x : sample) x = values[rng.next_u64() % values.size()];
+    estimates.push_back(interquartile_mean(sample));
+  }
+  s.iqm_low = percentile(estimates, 2.5);
+  s.iqm_high = percentile(estimates, 97.5);
+  return s;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,262 @@
+#include "rlrun/runtime/sweep.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+
+#include "rlrun/core/config_fields.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/trainer.hpp"
+
+namespace rlrun {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct SweepFile {
+  std::string name;
+  std::string base;
+  std::string out_dir;
+  std::vector<int64_t> seeds{1};
+  ConfigNode grid, list, set;
+  SlurmOptions slurm;
+
+  template <class V>
+  void visit(V& v) {
+    v("name", name, "the sweep's name (default: the file's stem)");
+    v("base", base, "the experiment file every run starts from (relative to this file)");
+    v("out_dir", out_dir, "where manifest.yaml, configs/ and runs/ go (default runs/sweeps/<name>)");
+    v("seeds", seeds, "run.seed values; every configuration runs once per seed");
+    v("grid", grid, "key: [values...] per overridden key; runs the cartesian product");
+    v("list", list, "a list of {key: value} maps, one configuration each (instead of grid)");
+    v("set", set, "key: value overrides for every run");
+    v("slurm", slurm, "sbatch options for `rlrun sweep slurm`");
+  }
+};
+
+struct Override {
+  std::string key, value;  // value as YAML text
+  ConfigNode node;         // the value, where it was written
+  ConfigNode map;          // the map holding the key (errors point at the key)
+};
+
+std::string yaml_text(const YAML::Node& node) {
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out.SetMapFormat(YAML::Flow);
+  out.SetSeqFormat(YAML::Flow);
+  out << node;
+  return out.c_str();
+}
+
+// File-name-safe: letters, digits and . _ + - stay, anything else becomes '-'.
+std::string safe(const std::string& text) {
+  std::string out;
+  for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' || c == '-') ? c : '-';
+  return out;
+}
+
+std::string last_component(const std::string& key) {
+  const size_t dot = key.rfind('.');
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+std::vector<Override> map_overrides(const ConfigNode& map) {
+  if (!map.is_map()) map.fail("expected a map of key: value");
+  std::vector<Override> out;
+  for (const std::string& key : map.keys()) {
+    const ConfigNode value = map.child(key);
+    out.push_back({key, yaml_text(value.yaml()), value, map});
+  }
+  return out;
+}
+
+}  // namespace
+
+Sweep expand_sweep(const std::string& sweep_file, const Registry& registry) {
+  const ConfigNode root = ConfigNode::load_file(sweep_file);
+  SweepFile file;
+  decode(root, file);
+  if (file.base.empty()) root.fail("base: missing (the experiment file every run starts from)");
+  if (file.seeds.empty()) root.child("seeds").fail("needs at least one seed");
+  if (file.grid.defined() && file.list.defined())
+    root.child("list").fail("a sweep has a grid or a list of configurations, not both");
+  const fs::path here = fs::path(sweep_file).parent_path();
+  const std::string base = fs::path(file.base).is_absolute() ? file.base : (here / file.base).string();
+  if (!fs::exists(base)) root.child("base").fail(base + " does not exist");
+  const std::string name = file.name.empty() ? fs::path(sweep_file).stem().string() : file.name;
+  const fs::path out_dir =
+      fs::absolute(file.out_dir.empty() ? fs::path("runs/sweeps") / name : fs::path(file.out_dir))
+          .lexically_normal();
+
+  // The configurations: the grid's cartesian product (keys in file order), or the list.
+  std::vector<std::vector<Override>> combos{{}};
+  if (file.grid.defined()) {
+    for (const Override& axis : map_overrides(file.grid)) {
+      if (!axis.node.is_sequence() || axis.node.size() == 0)
+        axis.node.fail("expected a non-empty list of values, e.g. [3.0e-4, 1.0e-3]");
+      std::vector<std::vector<Override>> next;
+      for (const auto& combo : combos)
+        for (size_t i = 0; i < axis.node.size(); ++i) {
+          auto extended = combo;
+          extended.push_back({axis.key, yaml_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
+          next.push_back(extended);
+        }
+      combos = next;
+    }
+  } else if (file.list.defined()) {
+    if (!file.list.is_sequence() || file.list.size() == 0)
+      file.list.fail("expected a non-empty list of {key: value} maps");
+    combos.clear();
+    for (size_t i = 0; i < file.list.size(); ++i) combos.push_back(map_overrides(file.list.at(i)));
+  }
+  const std::vector<Override> common = file.set.defined() ? map_overrides(file.set) : std::vector<Override>{};
+
+  // Every key must exist in the base experiment: checked one by one, so the error points at
+  // the sweep file's line rather than at a generated `--set`.
+  std::vector<std::string> short_names;
+  for (const auto& combo : combos)
+    for (const Override& o : combo) short_names.push_back(last_component(o.key));
+  const auto check = [&](const Override& o) {
+    try {
+      load_experiment(base, {o.key + "=" + o.value}, registry);
+    } catch (const ConfigError& e) {
+      o.map.fail_at_key(o.key, o.key + " = " + o.value + " does not fit " + base + ": " + e.what());
+    }
+  };
+  for (const Override& o : common) check(o);
+  for (const auto& combo : combos)
+    for (const Override& o : combo) check(o);
+
+  Sweep sweep;
+  sweep.name = name;
+  sweep.source = fs::absolute(sweep_file).lexically_normal().string();
+  sweep.manifest = (out_dir / "manifest.yaml").string();
+  sweep.slurm = file.slurm;
+  fs::create_directories(out_dir / "configs");
+  std::map<std::string, int> label_uses;
+  for (const auto& combo : combos) {
+    // A label names each overridden key by its last component unless two keys share it.
+    std::string label;
+    for (const Override& o : combo) {
+      const std::string short_name = last_component(o.key);
+      const bool unique = std::count(short_names.begin(), short_names.end(), short_name) <=
+                          static_cast<long>(combos.size());
+      label += (label.empty() ? "" : "_") + safe(unique ? short_name : o.key) + "=" + safe(o.value);
+    }
+    if (label.empty()) label = "base";
+    if (label_uses[label]++ > 0) label += "_" + std::to_string(label_uses[label]);  // a repeated list entry
+    for (int64_t seed : file.seeds) {
+      SweepRun run;
+      run.index = static_cast<int>(sweep.runs.size());
+      run.label = label;
+      run.seed = static_cast<uint64_t>(seed);
+      run.id = label + "/seed" + std::to_string(seed);
+      std::vector<std::string> overrides;
+      for (const Override& o : common) overrides.push_back(o.key + "=" + o.value);
+      for (const Override& o : combo) overrides.push_back(o.key + "=" + o.value);
+      overrides.push_back("run.seed=" + std::to_string(seed));
+      overrides.push_back("run.out_dir=" + (out_dir / "runs").string());
+      overrides.push_back("run.name=" + label);
+      const Experiment experiment = load_experiment(base, overrides, registry);
+      run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
+      write_text_atomic(run.config, "# run " + run.id + " of sweep " + sweep.source +
+                                        " (written by rlrun sweep)\n" + dump_yaml(experiment.resolved));
+      run.run_dir = (out_dir / "runs" / label / ("seed" + std::to_string(seed))).string();
+      sweep.runs.push_back(run);
+    }
+  }
+
+  YAML::Emitter out;
+  out << YAML::BeginMap << YAML::Key << "sweep" << YAML::Value << sweep.source << YAML::Key << "name"
+      << YAML::Value << sweep.name << YAML::Key << "slurm" << YAML::Value << encode(sweep.slurm)
+      << YAML::Key << "runs" << YAML::Value << YAML::BeginSeq;
+  for (const SweepRun& run : sweep.runs) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "index" << YAML::Value << run.index
+        << YAML::Key << "id" << YAML::Value << run.id << YAML::Key << "seed" << YAML::Value << run.seed
+        << YAML::Key << "config" << YAML::Value
+        << fs::relative(run.config, out_dir).string() << YAML::Key << "run_dir" << YAML::Value
+        << fs::relative(run.run_dir, out_dir).string() << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  write_text_atomic(sweep.manifest, "# rlrun sweep manifest: `rlrun sweep run " + sweep.manifest +
+                                        "` trains the runs (paths relative to this file)\n" +
+                                        out.c_str() + "\n");
+  return sweep;
+}
+
+Sweep read_manifest(const std::string& manifest) {
+  if (!fs::exists(manifest))
+    throw UsageError(manifest + " does not exist (write it with `rlrun sweep SWEEP.yaml`)");
+  const ConfigNode root = ConfigNode::load_file(manifest);
+  const fs::path dir = fs::absolute(manifest).parent_path();
+  Sweep sweep;
+  sweep.manifest = fs::absolute(manifest).lexically_normal().string();
+  sweep.source = root.child("sweep").as_string();
+  sweep.name = root.child("name").as_string();
+  decode(root.child("slurm"), sweep.slurm);
+  const ConfigNode runs = root.child("runs");
+  if (!runs.is_sequence()) root.fail("runs: expected the list of runs");
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const ConfigNode r = runs.at(i);
+    SweepRun run;
+    run.index = static_cast<int>(r.child("index").as_int());
+    run.id = r.child("id").as_string();
+    run.seed = static_cast<uint64_t>(r.child("seed").as_int());
+    run.label = run.id.substr(0, run.id.rfind('/'));
+    run.config = (dir / r.child("config").as_string()).lexically_normal().string();
+    run.run_dir = (dir / r.child("run_dir").as_string()).lexically_normal().string();
+    if (run.index != static_cast<int>(i)) r.child("index").fail("expected index " + std::to_string(i));
+    sweep.runs.push_back(run);
+  }
+  return sweep;
+}
+
+RunState run_state(const SweepRun& run) {
+  if (!fs::exists(run.run_dir)) return RunState::kNew;
+  if (fs::exists(fs::path(run.run_dir) / kFinishedMarker)) return RunState::kFinished;
+  const fs::path checkpoints = fs::path(run.run_dir) / "checkpoints";
+  if (fs::exists(checkpoints))
+    for (const auto& entry : fs::directory_iterator(checkpoints))
+      if (entry.path().extension() == ".zip") return RunState::kResumable;
+  return RunState::kPartial;
+}
+
+const char* to_string(RunState state) {
+  switch (state) {
+    case RunState::kNew: return "new";
+    case RunState::kFinished: return "finished";
+    case RunState::kResumable: return "resumable";
+    case RunState::kPartial: return "partial";
+  }
+  return "?";
+}
+
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary) {
+  const fs::path dir = fs::path(sweep.manifest).parent_path();
+  const SlurmOptions& s = sweep.slurm;
+  std::string text = "#!/bin/bash\n# Written by `rlrun sweep slurm " + sweep.manifest +
+                     "`: task i trains run i of the manifest\n# (a finished run is skipped, an "
+                     "interrupted one resumed). Submit with: sbatch " +
+                     (dir / "sweep.sbatch").string() + "\n";
+  text += "#SBATCH --job-name=" + safe(sweep.name) + "\n";
+  text += "#SBATCH --array=0-" + std::to_string(sweep.runs.size() - 1) + "\n";
+  text += "#SBATCH --output=" + (dir / "slurm" / "%A_%a.out").string() + "\n";
+  text += "#SBATCH --cpus-per-task=" + std::to_string(s.cpus_per_task) + "\n";
+  if (!s.time.empty()) text += "#SBATCH --time=" + s.time + "\n";
+  if (!s.mem.empty()) text += "#SBATCH --mem=" + s.mem + "\n";
+  if (!s.partition.empty()) text += "#SBATCH --partition=" + s.partition + "\n";
+  for (const std::string& line : s.extra) text += "#SBATCH " + line + "\n";
+  const int threads = s.cpus_per_task >= 2 ? 2 : 1;
+  text += "exec " + rlrun_binary + " --threads " + std::to_string(threads) + " sweep run " +
+          sweep.manifest + " --index \"$SLURM_ARRAY_TASK_ID\"\n";
+  return text;
+}
+
+}  // namespace rlrun

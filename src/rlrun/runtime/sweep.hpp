@@ -1,0 +1,82 @@
+#pragma once
+// Sweeps: one base experiment, a grid (or list) of overrides and a list of seeds, expanded into
+// a manifest of fully resolved runs with stable ids (docs/sweeps.md). The sweep file:
+//
+//   base: ../cartpole_ppo.yaml           # relative to the sweep file
+//   out_dir: runs/sweeps/cartpole_lr     # manifest.yaml, configs/ and runs/ go here
+//   seeds: [1, 2, 3]
+//   grid: {algo.learning_rate: [3.0e-4, 1.0e-3]}   # cartesian product of the values, or
+//   list: [{algo.learning_rate: 3.0e-4}, {algo.learning_rate: 1.0e-3, algo.n_epochs: 4}]
+//   set: {run.total_timesteps: 20000}     # for every run
+//   slurm: {partition: debug, time: "00:30:00", cpus_per_task: 1, mem: 1G, extra: []}
+//
+// A run's label names its overrides ("learning_rate=0.001"; "base" without any), its id adds
+// the seed ("learning_rate=0.001/seed2"), its directory is <out_dir>/runs/<label>/seed<N>:
+// the same sweep file always gives the same ids and directories.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/runtime/registry.hpp"
+
+namespace rlrun {
+
+// A sweep file's free-form sections (grid, list, set) are read as nodes.
+inline void decode(const ConfigNode& n, ConfigNode& out) { out = n; }
+inline YAML::Node encode(const ConfigNode& n) { return n.yaml(); }
+
+struct SlurmOptions {
+  std::string partition;
+  std::string time = "01:00:00";
+  int cpus_per_task = 1;
+  std::string mem;
+  std::vector<std::string> extra;  // more `#SBATCH` lines, e.g. "--qos=short"
+
+  template <class V>
+  void visit(V& v) {
+    v("partition", partition, "sbatch --partition (empty: the cluster's default)");
+    v("time", time, "sbatch --time per run");
+    v("cpus_per_task", cpus_per_task, "sbatch --cpus-per-task; also rlrun --threads (1 or 2)");
+    v("mem", mem, "sbatch --mem (empty: the cluster's default)");
+    v("extra", extra, "further sbatch options, one per #SBATCH line");
+  }
+};
+
+struct SweepRun {
+  int index = 0;
+  std::string id;      // <label>/seed<N>
+  std::string label;   // the overrides, readable
+  uint64_t seed = 0;
+  std::string config;  // the run's resolved experiment file
+  std::string run_dir;
+};
+
+struct Sweep {
+  std::string name;
+  std::string source;    // the sweep file
+  std::string manifest;  // <out_dir>/manifest.yaml
+  SlurmOptions slurm;
+  std::vector<SweepRun> runs;
+};
+
+// Reads a sweep file, checks every override against the base experiment, writes
+// <out_dir>/configs/<label>_seed<N>.yaml (each a complete experiment file, run.out_dir and
+// run.name set so the run trains into its directory) and <out_dir>/manifest.yaml. Throws
+// ConfigError naming the sweep file's line and column for a bad key or value.
+Sweep expand_sweep(const std::string& sweep_file, const Registry& registry);
+
+// Reads a manifest written by expand_sweep (paths in it are relative to its directory).
+Sweep read_manifest(const std::string& manifest);
+
+// What `sweep run` does with a run: skip a finished one, resume one with a checkpoint, start
+// again one that began without leaving a checkpoint, start a new one.
+enum class RunState { kNew, kFinished, kResumable, kPartial };
+RunState run_state(const SweepRun& run);
+const char* to_string(RunState state);
+
+// The sbatch script for the manifest: an array job whose task i runs
+// `<rlrun> --threads <cpus> sweep run <manifest> --index i`, logs in <out_dir>/slurm/.
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary);
+
+}  // namespace rlrun
