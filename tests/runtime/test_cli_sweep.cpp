@@ -142,6 +142,22 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   CHECK(fs::last_write_time(dir / "out/runs/learning_rate=3.0e-4/seed3/model.zip") == model_time);
 }
 
+TEST_CASE("sweep: the shipped example sweep expands into 6 runs", "[sweep]") {
+  TempDir dir("sweep_example");
+  std::ifstream in(std::string(RLRUN_SOURCE_DIR) + "/configs/sweeps/cartpole_ppo_lr.yaml");
+  std::ofstream out(dir / "lr.yaml");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("base:", 0) == 0) line = "base: " + std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
+    if (line.rfind("out_dir:", 0) == 0) line = "out_dir: " + dir / "out";
+    out << line << "\n";
+  }
+  out.close();
+  const auto r = run_rlrun("sweep " + dir / "lr.yaml");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("sweep cartpole_ppo_lr: 6 runs") != std::string::npos);
+}
+
 TEST_CASE("sweep run --index: a run another process holds is left to it", "[sweep]") {
   TempDir dir("sweep_lock");
   REQUIRE(run_rlrun("sweep " + write_sweep(dir, 4096)).exit_code == 0);
