@@ -18,13 +18,6 @@ void write_file(const std::string& path, const std::string& text) {
   out << text;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string first_line(const std::string& path) {
   std::ifstream in(path);
   std::string line;
@@ -97,10 +90,10 @@ TEST_CASE("cli: train writes the run directory, eval needs only the model file",
                           "train/clip_fraction", "train/entropy_loss", "train/learning_rate"})
     CHECK(header.find(key) != std::string::npos);
   CHECK(first_line(run + "/0.monitor.csv").rfind("#{\"t_start\": ", 0) == 0);
-  CHECK(read_file(run + "/config.yaml").find("gae_lambda: 0.95") != std::string::npos);
-  CHECK(read_file(run + "/log.txt").find("model saved to") != std::string::npos);
+  CHECK(read_text(run + "/config.yaml").find("gae_lambda: 0.95") != std::string::npos);
+  CHECK(read_text(run + "/log.txt").find("model saved to") != std::string::npos);
   // evaluations.csv: header + 2 evaluations (at 2048 and 4096 steps).
-  const std::string evals = read_file(run + "/evaluations.csv");
+  const std::string evals = read_text(run + "/evaluations.csv");
   CHECK(std::count(evals.begin(), evals.end(), '\n') == 3);
 
   // A second run with the same name never overwrites the first.
@@ -113,7 +106,7 @@ TEST_CASE("cli: train writes the run directory, eval needs only the model file",
   INFO(e.output);
   CHECK(e.exit_code == 0);
   CHECK(e.output.find("mean_reward = ") != std::string::npos);
-  const std::string rows = read_file(csv);
+  const std::string rows = read_text(csv);
   CHECK(std::count(rows.begin(), rows.end(), '\n') == 5);
   CHECK(run_rlrun("eval --model " + run + "/model.zip --stochastic --episodes 2").exit_code == 0);
   // Same seed, deterministic policy: same result.
@@ -199,10 +192,10 @@ TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
                           "--set run.out_dir=" + dir.str() + " > " + dir / "out.txt" +
                           " 2>&1 & pid=$!; sleep 1.5; kill -INT $pid; wait $pid; echo exit=$?";
   const auto r = run_command(cmd);
-  INFO(r.output << read_file(dir / "out.txt"));
+  INFO(r.output << read_text(dir / "out.txt"));
   CHECK(r.output.find("exit=130") != std::string::npos);
   CHECK(fs::exists(dir / "cartpole_ppo/seed1/model.zip"));
-  CHECK(read_file(dir / "out.txt").find("interrupted") != std::string::npos);
+  CHECK(read_text(dir / "out.txt").find("interrupted") != std::string::npos);
   // The interrupted model is a valid model file.
   CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code == 0);
 }

@@ -26,13 +26,6 @@ void write_text(const std::string& path, const std::string& text) {
   out << text;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 std::vector<std::string> files_in(const std::string& dir) {

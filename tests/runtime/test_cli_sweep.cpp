@@ -17,13 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // The 2 x 3 CartPole sweep of the issue, short runs with frequent checkpoints.
 std::string write_sweep(const TempDir& dir, int timesteps) {
   const std::string path = dir / "sweep.yaml";
@@ -62,16 +55,16 @@ TEST_CASE("sweep: expansion, stable ids, errors at the sweep file's line", "[swe
   const auto r = run_rlrun("sweep " + sweep);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  const std::string manifest = read_file(dir / "out/manifest.yaml");
+  const std::string manifest = read_text(dir / "out/manifest.yaml");
   CHECK(manifest.find("id: learning_rate=lin_0.001/seed1") != std::string::npos);
   CHECK(manifest.find("id: learning_rate=3.0e-4/seed3") != std::string::npos);
   CHECK(std::count(manifest.begin(), manifest.end(), '\n') >= 6 + 8);
-  const std::string config = read_file(dir / "out/configs/learning_rate=3.0e-4_seed2.yaml");
+  const std::string config = read_text(dir / "out/configs/learning_rate=3.0e-4_seed2.yaml");
   CHECK(config.find("learning_rate: 0.0003") != std::string::npos);
   CHECK(config.find("seed: 2") != std::string::npos);
   CHECK(config.find("total_timesteps: 8192") != std::string::npos);
   CHECK(run_rlrun("sweep " + sweep).exit_code == 0);  // again: the same manifest
-  CHECK(read_file(dir / "out/manifest.yaml") == manifest);
+  CHECK(read_text(dir / "out/manifest.yaml") == manifest);
 
   std::ofstream(dir / "typo.yaml") << "base: " << RLRUN_SOURCE_DIR
                                     << "/configs/cartpole_ppo.yaml\ngrid:\n  algo.lerning_rate: [1, 2]\n";
@@ -87,7 +80,7 @@ TEST_CASE("sweep: expansion, stable ids, errors at the sweep file's line", "[swe
   const auto slurm = run_rlrun("sweep slurm " + dir / "out/manifest.yaml");
   INFO(slurm.output);
   REQUIRE(slurm.exit_code == 0);
-  const std::string script = read_file(dir / "out/sweep.sbatch");
+  const std::string script = read_text(dir / "out/sweep.sbatch");
   CHECK(script.find("#SBATCH --array=0-5") != std::string::npos);
   CHECK(script.find("#SBATCH --cpus-per-task=2") != std::string::npos);
   CHECK(script.find("#SBATCH --time=00:05:00") != std::string::npos);
@@ -106,7 +99,7 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   const std::string manifest = dir / "out/manifest.yaml";
   const auto first = run_command(std::string(RLRUN_BINARY) + " sweep run " + manifest + " -j 2 > " +
                                  dir / "first.txt" + " 2>&1 & pid=$!; sleep 1.2; kill -INT $pid; wait $pid; echo $?");
-  const std::string first_out = read_file(dir / "first.txt");
+  const std::string first_out = read_text(dir / "first.txt");
   INFO(first_out);
   CHECK(first.output.find("130") != std::string::npos);
   const auto status = run_rlrun("sweep status " + manifest);
@@ -131,7 +124,7 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
       REQUIRE(!steps.empty());
       CHECK(steps.back() >= 60000);
       for (size_t i = 1; i < steps.size(); ++i) CHECK(steps[i] > steps[i - 1]);  // no restart
-      const std::string log = read_file(run + "/log.txt");
+      const std::string log = read_text(run + "/log.txt");
       if (log.find("resuming") != std::string::npos) ++resumed;
     }
   CHECK(resumed == resumable);
@@ -222,8 +215,8 @@ TEST_CASE("report: statistics over seeds on hand-made run directories", "[report
   CHECK(r.output.find("| 0.750 | 1000 | 5.0 | 200 | eval |") != std::string::npos);
   CHECK(r.output.find("| b | 1 (1) | 100.50 | 0.00 | 100.50 | 100.50 [100.50, 100.50] | — | 2000 | 4.0 | 500 | monitor |") !=
         std::string::npos);
-  CHECK(read_file(dir / "report.md") == r.output);
-  const std::string csv = read_file(dir / "report.csv");
+  CHECK(read_text(dir / "report.md") == r.output);
+  const std::string csv = read_text(dir / "report.csv");
   CHECK(csv.find("a,4,1 2 3 4,40.000000,35.355339,25.000000,25.000000,") != std::string::npos);
 
   // The statistics themselves: scipy.stats.trim_mean(x, 0.25) and the bootstrap interval.
@@ -252,7 +245,7 @@ TEST_CASE("plot: PNG and SVG learning curves; a wrong metric is named", "[plot]"
   CHECK(probe.output.find(",560") != std::string::npos);
   const auto svg = run_rlrun("plot " + dir / "single" + " --output " + dir / "one.svg --title 'one run'");
   REQUIRE(svg.exit_code == 0);
-  CHECK(read_file(dir / "one.svg").rfind("<?xml", 0) == 0);
+  CHECK(read_text(dir / "one.svg").rfind("<?xml", 0) == 0);
   const auto wrong = run_rlrun("plot " + dir.str() + " --output " + dir / "x.png --metric rollout/ep_rew_meen");
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.output.find("did you mean 'rollout/ep_rew_mean'") != std::string::npos);

@@ -18,13 +18,6 @@ namespace {
 
 const std::string kConfigs = std::string(RLRUN_SOURCE_DIR) + "/configs/";
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;

@@ -22,13 +22,6 @@ const std::string kSource = RLRUN_SOURCE_DIR;
 // The CMake package lives in the build directory, next to the binary.
 std::string build_dir() { return fs::path(RLRUN_BINARY).parent_path().string(); }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST_CASE("plugin example: builds out of tree, passes check-env, trains and evaluates",
@@ -69,7 +62,7 @@ TEST_CASE("plugin example: builds out of tree, passes check-env, trains and eval
   INFO(train.output);
   REQUIRE(train.exit_code == 0);
   const std::string run_dir = dir / "runs/go_left_a2c/seed1";
-  CHECK(read_file(run_dir + "/config.yaml").find(library) != std::string::npos);
+  CHECK(read_text(run_dir + "/config.yaml").find(library) != std::string::npos);
 
   // Step 4: the model file alone names the plugin; the policy walks straight left.
   const auto eval = run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10");
