@@ -323,6 +323,7 @@ TEST_CASE("TrafficSignal: no SUMO survives rlrun being killed", "[traffic][cli]"
                           " train " + std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml" +
                           " --set env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]'" +
                           " --set env.n_envs=2 --set env.kwargs.scale=1.0001" +
+                          " --set env.kwargs.num_seconds=100000" +  // no SUMO restart within the test
                           " --timesteps 100000000 --out " + dir.str() +
                           " > " + dir / "out.txt" + " 2>&1 & pid=$!; sleep 2; " +
                           "pgrep -P $pid -x sumo | wc -l; kill -9 $pid; wait $pid; sleep 0.5; " +
@@ -340,7 +341,8 @@ TEST_CASE("TrafficSignal: Ctrl-C stops training, saves the model, leaves no SUMO
   TempDir dir("traffic_sigint");
   const std::string cmd = std::string(RLRUN_BINARY) + " train " + std::string(RLRUN_SOURCE_DIR) +
                           "/configs/traffic_dqn.yaml --set env.n_envs=2" +
-                          " --set env.kwargs.scale=1.0002 --out " + dir.str() +
+                          " --set env.kwargs.scale=1.0002 --set env.kwargs.num_seconds=100000" +
+                          " --out " + dir.str() +
                           " > " + dir / "out.txt" + " 2>&1 & pid=$!; sleep 2; " +
                           "pgrep -P $pid -x sumo | wc -l; kill -INT $pid; wait $pid; echo $?; " +
                           "sleep 0.2; pgrep -f 'scale 1[.]000200' | wc -l";
