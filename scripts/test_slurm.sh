@@ -31,7 +31,7 @@ cleanup() {
   set +e
   scancel --quiet --name rlrun_slurm_test 2>/dev/null
   for pid in "${started[@]}"; do $SUDO kill "$pid" 2>/dev/null; done
-  ((own_munged)) && $SUDO pkill -x munged
+  ((own_munged)) && [[ -s /run/munge/munged.pid ]] && $SUDO kill "$(cat /run/munge/munged.pid)"
   sleep 1
   for pid in "${started[@]}"; do $SUDO kill -9 "$pid" 2>/dev/null; done
   [[ -n "${KEEP:-}" ]] || rm -rf "$work"

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/fork_join.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/run_directory.hpp"
@@ -65,6 +66,10 @@ int run_one(const Sweep& sweep, int index) {
     std::printf("sweep: %s is being trained by another process; left to it\n", name.c_str());
     return 0;
   }
+  if (run_state(run) != RunState::kNew && !run_config_matches(run))
+    throw UsageError(name + ": " + run.run_dir + " was trained with other settings than " +
+                     run.config + " (the sweep file changed after the run started); delete "
+                     "that directory to train the run again, or give the sweep another out_dir");
   const Registry& registry = builtin_registry();
   install_interrupt_handlers();
   TrainOutcome outcome;
@@ -108,8 +113,10 @@ int run_all(const Sweep& sweep, int jobs) {
     const RunState state = run_state(run);
     ++before[state];
     if (state == RunState::kFinished) continue;
-    children.push_back({run.id, {"--threads", jobs > 1 ? "1" : "2", "sweep", "run", sweep.manifest,
-                                 "--index", std::to_string(run.index)}});
+    // One core per run when several share the machine; else this process's own setting.
+    const char* threads = jobs > 1 ? "1" : (ForkJoin::shared().enabled() ? "2" : "1");
+    children.push_back({run.id, {"--threads", threads, "sweep", "run", sweep.manifest, "--index",
+                                 std::to_string(run.index)}});
   }
   std::printf("sweep %s: %zu runs: %d finished before (skipped), %d to resume, %d to start "
               "(%d again, having left no checkpoint)\n",
@@ -165,7 +172,8 @@ Action add_sweep(CLI::App& app) {
     if (status->parsed()) {
       const Sweep sweep = read_manifest(options->manifest);
       for (const SweepRun& r : sweep.runs)
-        std::printf("%3d  %-10s %s  %s\n", r.index, to_string(run_state(r)), r.id.c_str(), r.run_dir.c_str());
+        std::printf("%3d  %-10s %s  %s%s\n", r.index, to_string(run_state(r)), r.id.c_str(),
+                    r.run_dir.c_str(), run_config_matches(r) ? "" : "  (settings changed since it ran)");
       return 0;
     }
     if (options->sweep_file.empty())

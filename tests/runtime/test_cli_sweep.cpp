@@ -169,6 +169,16 @@ TEST_CASE("sweep run --index: a run another process holds is left to it", "[swee
   CHECK(own.exit_code == 0);
   CHECK(fs::exists(dir / "out/runs/learning_rate=lin_0.001/seed1/finished"));
   CHECK(run_rlrun("sweep run " + manifest + " --index 6").exit_code == 2);
+
+  // The sweep file edited and expanded again: the finished run is not silently kept.
+  REQUIRE(run_rlrun("sweep " + write_sweep(dir, 8192)).exit_code == 0);
+  const auto changed = run_rlrun("sweep run " + manifest + " --index 0");
+  CHECK(changed.exit_code == 2);
+  CHECK(changed.output.find("was trained with other settings") != std::string::npos);
+  CHECK(run_rlrun("sweep status " + manifest).output.find("(settings changed since it ran)") !=
+        std::string::npos);
+  fs::remove_all(dir / "out/runs/learning_rate=lin_0.001/seed1");
+  CHECK(run_rlrun("sweep run " + manifest + " --index 0").exit_code == 0);
 }
 
 namespace {

@@ -211,7 +211,7 @@ SeedStatistics seed_statistics(const std::vector<double>& all) {
   std::vector<double> estimates, sample(values.size());
   estimates.reserve(kBootstrapSamples);
   for (int b = 0; b < kBootstrapSamples; ++b) {
-    for (double& x : sample) x = values[rng.next_u64() % values.size()];
+    for (double& x : sample) x = values[rng.below(values.size())];
     estimates.push_back(interquartile_mean(sample));
   }
   s.iqm_low = percentile(estimates, 2.5);

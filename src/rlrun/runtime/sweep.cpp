@@ -228,6 +228,13 @@ RunState run_state(const SweepRun& run) {
   return RunState::kPartial;
 }
 
+bool run_config_matches(const SweepRun& run) {
+  const fs::path trained = fs::path(run.run_dir) / "config.yaml";
+  if (!fs::exists(trained)) return true;
+  // Both are dump_yaml() of a resolved experiment; compare them parsed (comments aside).
+  return dump_yaml(YAML::LoadFile(trained.string())) == dump_yaml(YAML::LoadFile(run.config));
+}
+
 const char* to_string(RunState state) {
   switch (state) {
     case RunState::kNew: return "new";

@@ -73,6 +73,10 @@ Sweep read_manifest(const std::string& manifest);
 // again one that began without leaving a checkpoint, start a new one.
 enum class RunState { kNew, kFinished, kResumable, kPartial };
 RunState run_state(const SweepRun& run);
+// False when the run's directory holds a config.yaml other than the manifest's config for it:
+// the sweep file was changed and expanded again after the run started. `sweep run` refuses to
+// skip or resume such a run (it would keep the old settings silently).
+bool run_config_matches(const SweepRun& run);
 const char* to_string(RunState state);
 
 // The sbatch script for the manifest: an array job whose task i runs
