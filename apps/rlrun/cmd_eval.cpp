@@ -9,11 +9,9 @@
 
 #include "commands.hpp"
 #include "env_by_id.hpp"
+#include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/rng.hpp"
-#include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
-#include "rlrun/envs/traffic/fixed_time_policy.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -90,20 +88,8 @@ int evaluate_without_model(const Options& o, const Registry& registry) {
   EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, {}, registry).env, registry,
                                            "", unix_time_now())
                                 : env_by_id(o.env_id, registry);
-  ActionFn act;
-  if (o.policy == "scripted") {
-    act = scripted_grasp_actions(*env);
-  } else if (o.policy == "fixed-time") {
-    act = fixed_time_actions(*env, o.green_time);
-  } else {  // random: uniform actions from their own stream, seeded from --seed
-    auto rng = std::make_shared<Rng>(o.seed ^ 0x5eedull);
-    const Space space = env->action_space();
-    act = [rng, space](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
-      action.resize(space.flat_dim(), 1);
-      space.sample(*rng, {action.data(), static_cast<size_t>(action.size())});
-    };
-  }
-  const EvalResult r = evaluate_policy(act, *env, o.episodes, o.seed);
+  const EvalResult r =
+      evaluate_policy(named_policy(o.policy, *env, o.seed, o.green_time).act, *env, o.episodes, o.seed);
   print_summary(o.policy, "", env->id(), o.episodes, r);
   if (!o.csv.empty()) write_csv(o.csv, {{o.policy, r}});
   return 0;
@@ -187,19 +173,16 @@ Action add_eval(CLI::App& app) {
     std::vector<std::pair<std::string, EvalResult>> runs{{model.meta.algorithm, r}};
     print_summary(model.meta.algorithm, options->stochastic ? " (stochastic)" : " (deterministic)",
                   experiment.env.id, options->episodes, r);
-    if (options->baseline == "fixed-time") {
+    if (!options->baseline.empty()) {  // the same episodes, on an env of its own
       EnvPtr baseline_env = make_model_env(model, experiment, registry);
-      const EvalResult fixed = evaluate_policy(fixed_time_actions(*baseline_env, options->green_time),
-                                               *baseline_env, options->episodes, options->seed);
-      print_summary("fixed-time", " (" + std::to_string(options->green_time) + " s green)",
-                    experiment.env.id, options->episodes, fixed);
-      runs.emplace_back("fixed-time", fixed);
-    } else if (options->baseline == "scripted") {
-      EnvPtr baseline_env = make_model_env(model, experiment, registry);
-      const EvalResult scripted = evaluate_policy(scripted_grasp_actions(*baseline_env),
-                                                  *baseline_env, options->episodes, options->seed);
-      print_summary("scripted", "", experiment.env.id, options->episodes, scripted);
-      runs.emplace_back("scripted", scripted);
+      const EvalResult baseline = evaluate_policy(
+          named_policy(options->baseline, *baseline_env, options->seed, options->green_time).act,
+          *baseline_env, options->episodes, options->seed);
+      const std::string how = options->baseline == "fixed-time"
+                                  ? " (" + std::to_string(options->green_time) + " s green)"
+                                  : "";
+      print_summary(options->baseline, how, experiment.env.id, options->episodes, baseline);
+      runs.emplace_back(options->baseline, baseline);
     }
     if (!options->csv.empty()) write_csv(options->csv, runs);
     return 0;

@@ -23,8 +23,7 @@ Action add_plot(CLI::App& app) {
   sub->add_option("--metric", options->metric, "a progress.csv column (default rollout/ep_rew_mean)");
   sub->add_option("--title", options->title, "the plot's title (default: the metric)");
   return [options]() {
-    std::vector<RunResult> runs;
-    for (const std::string& dir : find_run_dirs(options->paths)) runs.push_back(read_run(dir));
+    const std::vector<RunResult> runs = read_runs(options->paths);
     std::vector<CurveGroup> groups;
     for (const RunGroup& group : group_runs(runs)) {
       CurveGroup curves{group.label, {}};

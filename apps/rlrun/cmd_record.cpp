@@ -11,10 +11,8 @@
 
 #include "commands.hpp"
 #include "env_by_id.hpp"
+#include "named_policy.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
-#include "rlrun/envs/traffic/fixed_time_policy.hpp"
-#include "rlrun/core/rng.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/model_file.hpp"
@@ -122,23 +120,10 @@ int run(const Options& o) {
     act = [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
       algorithm->predict(obs, deterministic, action);
     };
-  } else if (policy == "random") {
-    // Uniform actions from the action space, their own stream seeded from --seed.
-    record.policy_label = "random policy";
-    auto rng = std::make_shared<Rng>(o.seed ^ 0x5eedull);
-    const Space space = env->action_space();
-    act = [rng, space](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
-      action.resize(space.flat_dim(), 1);
-      space.sample(*rng, {action.data(), static_cast<size_t>(action.size())});
-    };
-  } else if (policy == "fixed-time") {
-    record.policy_label = "fixed-time " + std::to_string(o.green_time) + " s";
-    act = fixed_time_actions(*env, o.green_time);
-  } else if (policy == "scripted") {
-    record.policy_label = "scripted grasp";
-    act = scripted_grasp_actions(*env);
   } else {
-    throw UsageError("--policy " + policy + ": expected model, random, fixed-time or scripted");
+    NamedPolicy named = named_policy(policy, *env, o.seed, o.green_time);
+    act = std::move(named.act);
+    record.policy_label = named.label;
   }
   const RecordResult r = record_episodes(*env, act, record);
   print_summary(r,

@@ -54,8 +54,7 @@ Action add_report(CLI::App& app) {
   sub->add_option("--csv", options->csv, "also write the table as CSV");
   sub->add_option("--markdown", options->markdown, "also write the Markdown table to a file");
   return [options]() {
-    std::vector<RunResult> runs;
-    for (const std::string& dir : find_run_dirs(options->paths)) runs.push_back(read_run(dir));
+    const std::vector<RunResult> runs = read_runs(options->paths);
     std::vector<Row> rows;
     for (const RunGroup& group : group_runs(runs)) {
       Row row;

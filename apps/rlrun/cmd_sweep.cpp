@@ -66,14 +66,15 @@ int run_one(const Sweep& sweep, int index) {
     std::printf("sweep: %s is being trained by another process; left to it\n", name.c_str());
     return 0;
   }
-  if (run_state(run) != RunState::kNew && !run_config_matches(run))
+  const RunState state = run_state(run);
+  if (state != RunState::kNew && !run_config_matches(run))
     throw UsageError(name + ": " + run.run_dir + " was trained with other settings than " +
                      run.config + " (the sweep file changed after the run started); delete "
                      "that directory to train the run again, or give the sweep another out_dir");
   const Registry& registry = builtin_registry();
   install_interrupt_handlers();
   TrainOutcome outcome;
-  switch (run_state(run)) {
+  switch (state) {
     case RunState::kFinished:
       std::printf("sweep: %s finished before; skipped\n", name.c_str());
       return 0;

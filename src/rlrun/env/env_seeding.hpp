@@ -15,23 +15,19 @@
 
 namespace rlrun {
 
-// The contract on an Rng and flag held elsewhere (TrafficSignal keeps its own); EnvSeeding
-// is the same rule with the two values in one object.
-inline void seed_on_reset(Rng& rng, bool& ever_seeded, std::optional<uint64_t> seed) {
-  if (seed) {
-    rng.reseed(*seed);
-    ever_seeded = true;
-  } else if (!ever_seeded) {
-    std::random_device device;
-    rng.reseed((static_cast<uint64_t>(device()) << 32) ^ device());
-    ever_seeded = true;
-  }
-}
-
 class EnvSeeding {
  public:
   // Call at the start of the env's reset(), where Gymnasium envs call super().reset(seed=seed).
-  void on_reset(std::optional<uint64_t> seed) { seed_on_reset(rng_, ever_seeded_, seed); }
+  void on_reset(std::optional<uint64_t> seed) {
+    if (seed) {
+      rng_.reseed(*seed);
+      ever_seeded_ = true;
+    } else if (!ever_seeded_) {
+      std::random_device device;
+      rng_.reseed((static_cast<uint64_t>(device()) << 32) ^ device());
+      ever_seeded_ = true;
+    }
+  }
 
   Rng& rng() { return rng_; }
   const Rng& rng() const { return rng_; }

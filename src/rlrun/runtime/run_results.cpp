@@ -8,11 +8,11 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
-#include <sstream>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/rng.hpp"
 #include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/log_sinks.hpp"
 
 namespace rlrun {
 
@@ -24,14 +24,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kLastEpisodes = 100;   // SB3's ep_info_buffer: rollout/ep_rew_mean's window
 constexpr int kBootstrapSamples = 2000;
 constexpr uint64_t kBootstrapSeed = 0;
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
 
 double number(const std::string& cell) {
   if (cell.empty()) return kNaN;
@@ -49,11 +41,11 @@ std::map<std::string, std::vector<double>> read_columns(const fs::path& path) {
   std::string line;
   while (std::getline(in, line) && !line.empty() && line[0] == '#') {}
   if (line.empty()) return columns;
-  const std::vector<std::string> header = split(line);
+  const std::vector<std::string> header = split_csv_line(line);
   for (const auto& name : header) columns[name];
   while (std::getline(in, line)) {
     if (line.empty()) continue;
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = split_csv_line(line);
     for (size_t i = 0; i < header.size(); ++i)
       columns[header[i]].push_back(i < cells.size() ? number(cells[i]) : kNaN);
   }
@@ -162,6 +154,12 @@ RunResult read_run(const std::string& dir) {
   r.return_source = "monitor";
   if (!successes.empty()) r.success_rate = mean_of_last(successes);
   return r;
+}
+
+std::vector<RunResult> read_runs(const std::vector<std::string>& paths) {
+  std::vector<RunResult> runs;
+  for (const std::string& dir : find_run_dirs(paths)) runs.push_back(read_run(dir));
+  return runs;
 }
 
 std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs) {

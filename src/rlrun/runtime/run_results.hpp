@@ -39,6 +39,8 @@ struct RunGroup {
 std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths);
 // Throws RuntimeFailure for a directory without config.yaml.
 RunResult read_run(const std::string& dir);
+// read_run of every run directory find_run_dirs finds.
+std::vector<RunResult> read_runs(const std::vector<std::string>& paths);
 std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs);
 
 // Statistics over one group's seeds, as rliable reports them for a single task (Agarwal et

@@ -98,8 +98,8 @@ double GripperLift::reward_and_success() {
   const double d = std::sqrt((cube[0] - grasp[0]) * (cube[0] - grasp[0]) +
                              (cube[1] - grasp[1]) * (cube[1] - grasp[1]) +
                              (cube[2] - grasp[2]) * (cube[2] - grasp[2]));
-  const auto touching = world_->finger_contacts();
-  const bool grasped = touching[0] && touching[1];
+  touching_ = world_->finger_contacts();  // once per step: the observation reuses it
+  const bool grasped = touching_[0] && touching_[1];
   const double rise = cube[2] - resting_height_;
   success_ = grasped && rise >= kLiftHeight;
   info_.set(key_success_, success_ ? 1.0 : 0.0);
@@ -118,7 +118,6 @@ void GripperLift::write_observation(std::span<float> obs) const {
   const Vec3 cube = w.cube_position(), velocity = w.cube_velocity(),
              spin = w.cube_angular_velocity();
   const auto q = w.cube_orientation();
-  const auto touching = w.finger_contacts();
   int i = 0;
   const auto put = [&](double v) { obs[i++] = static_cast<float>(v); };
   for (double v : grasp) put(v);
@@ -130,8 +129,8 @@ void GripperLift::write_observation(std::span<float> obs) const {
   for (double v : velocity) put(v);
   for (double v : spin) put(v);
   for (int k = 0; k < 3; ++k) put(cube[k] - grasp[k]);
-  put(touching[0] ? 1.0 : 0.0);
-  put(touching[1] ? 1.0 : 0.0);
+  put(touching_[0] ? 1.0 : 0.0);
+  put(touching_[1] ? 1.0 : 0.0);
 }
 
 }  // namespace rlrun

@@ -20,6 +20,7 @@
 //           stopping; info.is_success says whether the cube is up at this step.
 //   reset   builds a new world from the scenario's ranges drawn from the env's stream, so the
 //           same seed gives the same episode bit for bit.
+#include <array>
 #include <memory>
 #include <optional>
 #include <span>
@@ -98,6 +99,7 @@ class GripperLift : public Env {
   double resting_height_ = 0;
   double last_opening_ = 0;
   double opening_rate_ = 0;
+  std::array<bool, 2> touching_{false, false};  // each finger on the cube, after this step
   bool success_ = false;
   int steps_ = 0;
   int key_success_, key_grasped_, key_lift_, key_distance_;

@@ -17,6 +17,15 @@ namespace rlrun {
 
 namespace {
 
+TrafficSignal::Reward parse_reward(const std::string& name) {
+  if (name == "queue") return TrafficSignal::Reward::kQueue;
+  if (name == "diff-waiting-time") return TrafficSignal::Reward::kDiffWaitingTime;
+  if (name == "average-speed") return TrafficSignal::Reward::kAverageSpeed;
+  if (name == "pressure") return TrafficSignal::Reward::kPressure;
+  throw std::invalid_argument("TrafficSignal-v0: unknown reward_fn '" + name +
+                              "' (queue, diff-waiting-time, average-speed or pressure)");
+}
+
 constexpr double kVehicleSpace = 5.0 + 2.5;  // length + minGap of the scenario's cars (sumo-rl)
 
 // N, S, E or W: where an incoming lane starts, seen from the junction.
@@ -30,6 +39,7 @@ int approach_of(const SumoLaneShape& lane, double centre_x, double centre_y) {
 
 TrafficSignal::TrafficSignal(const Config& config)
     : config_(config),
+      reward_(parse_reward(config.reward_fn)),
       scenario_(load_traffic_scenario(config.scenario.empty() ? default_traffic_scenario()
                                                               : config.scenario)),
       observation_space_(Space::box(0.0f, 1.0f, {10})),
@@ -47,11 +57,6 @@ TrafficSignal::TrafficSignal(const Config& config)
   if (config_.gui && config_.backend == "libsumo")
     throw std::invalid_argument("TrafficSignal-v0: gui: true needs backend: traci (sumo-gui is a "
                                 "program of its own)");
-  if (config_.reward_fn != "queue" && config_.reward_fn != "diff-waiting-time" &&
-      config_.reward_fn != "average-speed" && config_.reward_fn != "pressure")
-    throw std::invalid_argument("TrafficSignal-v0: unknown reward_fn '" + config_.reward_fn +
-                                "' (queue, diff-waiting-time, average-speed or pressure)");
-  needs_vehicles_ = config_.reward_fn == "diff-waiting-time" || config_.reward_fn == "average-speed";
   // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours.
   static std::atomic<int> instances{0};
   tripinfo_path_ = !config_.tripinfo_output.empty()
@@ -127,7 +132,7 @@ void TrafficSignal::start_simulation(uint64_t sumo_seed) {
         limit_[lane.approach] = std::max(limit_[lane.approach], lane.max_speed);
         add_road(incoming_roads_, lane);
       }
-      if (config_.reward_fn == "pressure")
+      if (reward_ == Reward::kPressure)
         for (const Lane& lane : outgoing_) add_road(outgoing_roads_, lane);
     }
     std::vector<std::string> incoming, outgoing;
@@ -166,10 +171,10 @@ void TrafficSignal::finish_episode() {
 }
 
 void TrafficSignal::reset(std::optional<uint64_t> seed, std::span<float> obs) {
-  seed_on_reset(rng_, ever_seeded_, seed);
+  seeding_.on_reset(seed);
   // SUMO's seed: the reset's seed as given (so `sumo --seed S` replays episode S), else the
   // env's stream.
-  const uint64_t sumo_seed = seed ? *seed : rng_.next_u64();
+  const uint64_t sumo_seed = seed ? *seed : seeding_.rng().next_u64();
   sim_time_ = 0;
   start_simulation(sumo_seed);
   green_ = kNorth;
@@ -180,7 +185,7 @@ void TrafficSignal::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   throughput_ = 0;
   avg_waiting_ = avg_travel_ = 0;
   try {
-    if (needs_vehicles_) {
+    if (needs_vehicles()) {
       sumo_->subscribe_vehicles(state_);
       vehicles_subscribed_ = true;
     }
@@ -224,12 +229,12 @@ StepResult TrafficSignal::step(std::span<const float> action, std::span<float> o
 }
 
 double TrafficSignal::reward() {
-  if (config_.reward_fn == "queue") {
+  if (reward_ == Reward::kQueue) {
     int halting = 0;
     for (const Road& road : incoming_roads_) halting += road.counts.halting;
     return -static_cast<double>(halting);
   }
-  if (config_.reward_fn == "pressure") {
+  if (reward_ == Reward::kPressure) {
     int in = 0, out = 0;
     for (const Road& road : incoming_roads_) in += road.counts.vehicles;
     for (const Road& road : outgoing_roads_) out += road.counts.vehicles;
@@ -248,7 +253,7 @@ double TrafficSignal::reward() {
     speed_sum += vehicle.speed / lane->max_speed;
     waiting += vehicle.accumulated_waiting;
   }
-  if (config_.reward_fn == "average-speed") return count == 0 ? 1.0 : speed_sum / count;
+  if (reward_ == Reward::kAverageSpeed) return count == 0 ? 1.0 : speed_sum / count;
   // diff-waiting-time (sumo-rl): the drop of the accumulated waiting time, in 100 s.
   const double current = waiting / 100.0;
   const double r = last_waiting_sum_ - current;

@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/env/env_seeding.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
 #include "rlrun/env/info.hpp"
@@ -78,6 +78,7 @@ class TrafficSignal : public Env {
   };
 
   enum Approach : int { kNorth = 0, kSouth, kEast, kWest, kNumApproaches };
+  enum class Reward { kQueue, kDiffWaitingTime, kAverageSpeed, kPressure };
 
   TrafficSignal() : TrafficSignal(Config{}) {}
   // Throws std::invalid_argument for inconsistent timings or an unknown reward_fn.
@@ -125,16 +126,20 @@ class TrafficSignal : public Env {
   void finish_episode();
   void write_observation(std::span<float> obs) const;
   double reward();
+  // diff-waiting-time and average-speed look at every vehicle near the junction.
+  bool needs_vehicles() const {
+    return reward_ == Reward::kDiffWaitingTime || reward_ == Reward::kAverageSpeed;
+  }
   void update_info();
   [[noreturn]] void sumo_failed(const std::exception& e) const;
 
   Config config_;
+  Reward reward_;  // config_.reward_fn, parsed once
   TrafficScenario scenario_;
   Space observation_space_;
   Space action_space_;
   Info info_;
-  Rng rng_;
-  bool ever_seeded_ = false;
+  EnvSeeding seeding_;  // Gymnasium's seeding rules; SUMO's seeds come from its stream
   std::unique_ptr<SumoConnection> sumo_;
   std::string tls_;  // the traffic light's id in the scenario
 
@@ -150,7 +155,6 @@ class TrafficSignal : public Env {
   // subscribe to the vehicles (it is const, like Gymnasium's render(); the simulation is not
   // changed by it).
   mutable SumoState state_;
-  bool needs_vehicles_ = false;   // diff-waiting-time and average-speed look at vehicles
   mutable bool vehicles_subscribed_ = false;
   bool finished_ = false;         // SUMO closed at the episode's end
   // SUMO's tripinfo at the episode's end: vehicles arrived, their mean waiting and travel time.
