@@ -62,9 +62,10 @@ CheckTarget target_from_id(const std::string& id, const std::vector<std::string>
   const EnvEntry& entry = registry.env(id, id_node);
   CheckTarget t;
   t.description = entry.description;
-  t.params = flow(entry.resolve(kwargs));
+  const AnyConfig config = entry.parse(kwargs);
+  t.params = flow(config.resolved());
   try {
-    t.env = entry.make(kwargs);
+    t.env = entry.make(config);
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     throw UsageError(what.rfind(id, 0) == 0 ? what : id + ": " + what);
@@ -81,14 +82,14 @@ CheckTarget target_from_config(const std::string& path, const std::vector<std::s
   const Registry& registry = builtin_registry();
   const Experiment exp = load_experiment(path, overrides, registry);
   CheckTarget t;
-  const EnvEntry& entry = registry.env(exp.env.id, exp.env.id_node);
+  const EnvEntry& entry = *registry.find_env(exp.env.id);
   t.description = entry.description;
   t.params = flow(exp.resolved["env"]["kwargs"]);
   t.time_limit = exp.env.section.max_episode_steps.value_or(entry.max_episode_steps);
   t.env = entry.make(exp.env.kwargs);
   if (t.time_limit > 0) t.env = std::make_unique<TimeLimit>(std::move(t.env), t.time_limit);
-  for (const ConfigNode& w : exp.env.wrappers)
-    t.env = registry.wrapper(w.child("id").as_string(), w.child("id")).make(std::move(t.env), w);
+  for (const WrapperSpec& w : exp.env.wrappers)
+    t.env = registry.find_wrapper(w.id)->make(std::move(t.env), w.params);
   t.env = adapt_action_space(std::move(t.env), exp.env, registry);
   return t;
 }

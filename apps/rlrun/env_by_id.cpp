@@ -7,11 +7,8 @@
 namespace rlrun::cli {
 
 EnvPtr env_by_id(const std::string& id, const Registry& registry) {
-  EnvSpec spec;
-  spec.id = id;
-  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "--env", "env.id");
   try {
-    return make_env(spec, registry, "", unix_time_now());
+    return make_env(default_env_spec(id, registry, "--env"), registry, "", unix_time_now());
   } catch (const ConfigError& e) {
     throw UsageError(e.what());
   }

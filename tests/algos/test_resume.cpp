@@ -15,9 +15,7 @@ using namespace rlrun;
 namespace {
 
 VecEnv make_envs(const std::string& id, int n, uint64_t seed) {
-  EnvSpec spec;
-  spec.id = id;
-  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "test");
+  EnvSpec spec = default_env_spec(id, builtin_registry(), "test");
   VecEnv env = make_vec_env(spec, builtin_registry(), n, "");
   env.seed(seed);
   return env;

@@ -379,8 +379,8 @@ TEST_CASE("TD3 training is deterministic for a seed", "[algos][td3]") {
     VecEnv env = make_vec_env(e.env, registry, 1, "");
     env.seed(3);
     auto algo =
-        registry.algorithm("TD3", e.algo_node.child("id"))
-            .make(e.algo_node, AlgorithmSetup{env.observation_space(), env.action_space(), 1, 3});
+        registry.find_algorithm("TD3")->make(
+            e.algo.params, AlgorithmSetup{env.observation_space(), env.action_space(), 1, 3});
     TrainingHooks hooks;
     algo->learn(env, 300, hooks);
     TensorMap t;

@@ -13,9 +13,7 @@ using namespace rlrun;
 namespace {
 
 VecEnv make_classic(const std::string& id, int n) {
-  EnvSpec spec;
-  spec.id = id;
-  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "test");
+  EnvSpec spec = default_env_spec(id, builtin_registry(), "test");
   return make_vec_env(spec, builtin_registry(), n, "");
 }
 

@@ -44,9 +44,7 @@ constexpr double kContinuousRewardTolerance = 1e-5;
 EnvPtr make_reference_env(const std::string& id) {
   const Registry& registry = builtin_registry();
   if (!registry.find_env(id)) return nullptr;
-  EnvSpec spec;
-  spec.id = id;
-  spec.id_node = ConfigNode::from_yaml(YAML::Node(id), "reference");
+  EnvSpec spec = default_env_spec(id, registry, "reference");
   return make_env(spec, registry, "", 0.0);
 }
 

@@ -128,7 +128,7 @@ TEST_CASE("TrafficSignal: metrics equal a plain SUMO run of the same signal plan
 
   TrafficSignal::Config config;
   config.num_seconds = 900;
-  config.tripinfo_output = dir / "env.xml";
+  config.tripinfo_output.value = dir / "env.xml";
   TrafficSignal env(config);
   std::vector<float> obs(10);
   env.reset(3, obs);
@@ -229,7 +229,7 @@ TEST_CASE("TrafficSignal: scenario files", "[traffic]") {
   std::vector<double> arrived;
   for (const char* scenario : {"", "scenarios/single_intersection_rush.yaml"}) {
     TrafficSignal::Config config;
-    config.scenario = scenario;
+    config.scenario.value = scenario;
     config.num_seconds = 600;
     TrafficSignal env(config);
     std::vector<float> obs(10);
@@ -310,7 +310,7 @@ TEST_CASE("TrafficSignal: SUMO processes end with their env, also when SUMO dies
 
 TEST_CASE("TrafficSignal: a missing sumo binary names the package", "[traffic]") {
   TrafficSignal::Config config;
-  config.sumo_binary = "/nonexistent/sumo";
+  config.sumo_binary.value = "/nonexistent/sumo";
   TrafficSignal env(config);
   std::vector<float> obs(10);
   CHECK_THROWS_WITH(env.reset(1, obs), Catch::Contains("install the Debian package 'sumo'"));

@@ -104,13 +104,13 @@ TEST_CASE("plugin: registered envs work like built-ins", "[plugin]") {
   REQUIRE(docs.size() == 3);
   CHECK(docs[0].key == "target");
   CHECK(docs[0].default_value == "3");
-  const YAML::Node resolved = entry->resolve(yaml("{target: 5}"));
+  const YAML::Node resolved = entry->parse(yaml("{target: 5}")).resolved();
   CHECK(resolved["target"].as<int>() == 5);
   CHECK(resolved["reward"].as<double>() == 1.0);
-  CHECK_THROWS_WITH(entry->make(yaml("{targte: 5}")), Catch::Contains("did you mean 'target'"));
-  CHECK_THROWS_AS(entry->make(yaml("{target: 0}")), std::invalid_argument);
+  CHECK_THROWS_WITH(entry->parse(yaml("{targte: 5}")), Catch::Contains("did you mean 'target'"));
+  CHECK_THROWS_AS(entry->make(entry->parse(yaml("{target: 0}"))), std::invalid_argument);
 
-  EnvPtr env = entry->make(yaml("{target: 2, reward: 5.0}"));
+  EnvPtr env = entry->make(entry->parse(yaml("{target: 2, reward: 5.0}")));
   CHECK(env->id() == "TestCounter-v0");
   CHECK(env->observation_space().describe() == "Box(-100.0, 100.0, (1,), float32)");
   CHECK(env->action_space().describe() == "Discrete(2)");
@@ -133,7 +133,7 @@ TEST_CASE("plugin: registered envs work like built-ins", "[plugin]") {
 TEST_CASE("plugin: invalid spaces, version mismatches and id clashes are refused", "[plugin]") {
   Registry registry = builtin_registry();
   register_plugin(&rlrun_plugin_register, "test-plugin", registry);
-  CHECK_THROWS_WITH(registry.find_env("TestBrokenSpace-v0")->make(yaml("{}")),
+  CHECK_THROWS_WITH(registry.find_env("TestBrokenSpace-v0")->make(AnyConfig::of_yaml(YAML::Node(), YAML::Node())),
                     Catch::Contains("TestBrokenSpace-v0's observation_space is not a valid space"));
 
   Registry fresh = builtin_registry();

@@ -64,8 +64,13 @@ TEST_CASE("plugin example: builds out of tree, passes check-env, trains and eval
   const std::string run_dir = dir / "runs/go_left_a2c/seed1";
   CHECK(read_text(run_dir + "/config.yaml").find(library) != std::string::npos);
 
-  // Step 4: the model file alone names the plugin; the policy walks straight left.
-  const auto eval = run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10");
+  // Step 4: the model file names the plugin, but a model file is data: rlrun loads no library
+  // it names and says which one to pass; with --plugin the policy walks straight left.
+  const auto refused_plugin = run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10");
+  CHECK(refused_plugin.exit_code == 2);
+  CHECK(refused_plugin.output.find("pass --plugin " + library) != std::string::npos);
+  const auto eval =
+      run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10 --plugin " + library);
   INFO(eval.output);
   REQUIRE(eval.exit_code == 0);
   CHECK(eval.output.find("mean_reward = 1.00") != std::string::npos);

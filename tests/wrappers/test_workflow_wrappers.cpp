@@ -26,7 +26,8 @@ std::unique_ptr<ScriptedEnv> script(std::vector<std::vector<float>> steps, int l
 // Builds a wrapper from YAML text the way make_env does.
 EnvPtr from_yaml(const std::string& yaml, EnvPtr inner) {
   const ConfigNode node = ConfigNode::load_string(yaml, "test.yaml");
-  return builtin_registry().wrapper(node.child("id").as_string(), node.child("id")).make(std::move(inner), node);
+  const WrapperEntry& entry = builtin_registry().wrapper(node.child("id").as_string(), node.child("id"));
+  return entry.make(std::move(inner), entry.parse(node));
 }
 
 }  // namespace
@@ -178,7 +179,7 @@ TEST_CASE("RewardShaping: strict parsing of terms", "[wrappers]") {
   // The resolved form lists each term with its type's defaults.
   const ConfigNode node = ConfigNode::load_string(
       "{id: RewardShaping, terms: [{type: obs_above_for, index: 0, threshold: 0.5}]}", "test.yaml");
-  const YAML::Node resolved = builtin_registry().wrapper("RewardShaping", node.child("id")).resolve(node);
+  const YAML::Node resolved = builtin_registry().wrapper("RewardShaping", node.child("id")).parse(node).resolved();
   CHECK(resolved["terms"][0]["type"].as<std::string>() == "obs_above_for");
   CHECK(resolved["terms"][0]["steps"].as<int>() == 1);
   CHECK(resolved["terms"][0]["penalty"].as<double>() == -1.0);

@@ -3,18 +3,25 @@
 // fields once, in a member template
 //     template <class V> void visit(V& v) { v("n_steps", n_steps, "rollout length per env"); }
 // The same list drives strict parsing (unknown keys are errors with a did-you-mean), writing
-// the fully resolved config, and `rlrun list --params` documentation.
+// the fully resolved config, and `rlrun list --params` documentation. A field may carry a
+// constraint (core/config_checks.hpp) as a fourth argument:
+//     v("gamma", gamma, "discount factor", unit_interval());
+// The reader reports every problem of a section at once (each with file:line:col), not only the
+// first.
 #include <yaml-cpp/yaml.h>
 
-#include <cstdint>
-#include <optional>
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_node.hpp"
+#include "rlrun/core/errors.hpp"
 #include "rlrun/core/float_format.hpp"
 #include "rlrun/core/schedule.hpp"
 
@@ -25,7 +32,13 @@ inline void decode(const ConfigNode& n, std::string& out) { out = n.as_string();
 inline void decode(const ConfigNode& n, double& out) { out = n.as_double(); }
 inline void decode(const ConfigNode& n, float& out) { out = static_cast<float>(n.as_double()); }
 inline void decode(const ConfigNode& n, bool& out) { out = n.as_bool(); }
-inline void decode(const ConfigNode& n, int& out) { out = static_cast<int>(n.as_int()); }
+inline void decode(const ConfigNode& n, int& out) {
+  const int64_t v = n.as_int();
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    n.fail("expected an integer in [" + std::to_string(std::numeric_limits<int>::min()) + ", " +
+           std::to_string(std::numeric_limits<int>::max()) + "], got " + std::to_string(v));
+  out = static_cast<int>(v);
+}
 inline void decode(const ConfigNode& n, int64_t& out) { out = n.as_int(); }
 inline void decode(const ConfigNode& n, uint64_t& out) {
   const int64_t v = n.as_int();
@@ -93,10 +106,51 @@ template <class T>
   requires requires(T t, ConfigWriter& w) { t.visit(w); }
 YAML::Node encode(const T& v);
 
+// --- checking one value against its constraint ---------------------------------------------
+inline std::string describe_check(const Bounds& b) { return b.describe(); }
+inline std::string describe_check(const OneOf& o) { return o.describe(); }
+template <class C>
+  requires requires(const C& c, const std::string& s) { c.problem(s); }
+std::string describe_check(const C& c) {
+  return c.describe();
+}
+
+template <class T>
+  requires std::is_arithmetic_v<T>
+void check_value(const ConfigNode& n, const T& value, const Bounds& bounds) {
+  const std::string problem = bounds.problem(static_cast<double>(value));
+  if (!problem.empty()) n.fail(problem);
+}
+inline void check_value(const ConfigNode& n, const Schedule& value, const Bounds& bounds) {
+  // A linear schedule starts at its initial value and ends at 0 (rl-zoo's linear_schedule).
+  const std::string problem = bounds.problem(value.initial());
+  if (!problem.empty()) n.fail(problem);
+}
+inline void check_value(const ConfigNode& n, const std::string& value, const OneOf& allowed) {
+  if (std::find(allowed.names.begin(), allowed.names.end(), value) != allowed.names.end()) return;
+  n.fail("unknown value '" + value + "'" + did_you_mean(value, allowed.names) + "; " +
+         allowed.describe());
+}
+template <class C>
+  requires requires(const C& c, const std::string& s) { c.problem(s); }
+void check_value(const ConfigNode& n, const std::string& value, const C& check) {
+  const std::string problem = check.problem(value);
+  if (!problem.empty()) n.fail(problem);
+}
+template <class T, class C>
+void check_value(const ConfigNode& n, const std::optional<T>& value, const C& check) {
+  if (value) check_value(n, *value, check);
+}
+template <class T, class C>
+void check_value(const ConfigNode& n, const std::vector<T>& values, const C& check) {
+  for (std::size_t i = 0; i < values.size(); ++i) check_value(n.at(i), values[i], check);
+}
+
 // --- visitors -------------------------------------------------------------------------------
 
 // Strict reader: fills fields present in the node, keeps defaults for the rest, and finish()
-// rejects any key that no field claimed.
+// rejects any key that no field claimed. Problems are collected, so one run shows all of a
+// section's errors; finish() throws them together as one ConfigError (one line each).
 class ConfigReader {
  public:
   // `reserved` keys belong to the enclosing section (e.g. `id`) and are not errors.
@@ -107,28 +161,52 @@ class ConfigReader {
 
   template <class T>
   void operator()(const char* key, T& field, const char* /*doc*/) {
-    known_.push_back(key);
-    if (!node_.has(key)) return;
-    const ConfigNode child = node_.child(key);
-    if (!child.defined()) {
-      if constexpr (requires { field.reset(); }) field.reset();
-      return;
-    }
-    decode(child, field);
+    read(key, field, [](const ConfigNode&, const T&) {});
+  }
+  template <class T, class C>
+  void operator()(const char* key, T& field, const char* /*doc*/, const C& check) {
+    read(key, field, [&check](const ConfigNode& n, const T& value) { check_value(n, value, check); });
   }
 
-  void finish() const {
-    if (!node_.defined()) return;
-    std::vector<std::string> valid = known_;
-    valid.insert(valid.end(), reserved_.begin(), reserved_.end());
-    for (const auto& key : node_.keys()) {
-      if (std::find(valid.begin(), valid.end(), key) != valid.end()) continue;
-      node_.fail_at_key(key, "unknown key '" + key + "'" + did_you_mean(key, known_) +
-                                 "; valid keys: " + join(known_));
+  // Unknown keys join the problems found so far; throws them all, if any.
+  void finish() {
+    if (node_.defined()) {
+      std::vector<std::string> valid = known_;
+      valid.insert(valid.end(), reserved_.begin(), reserved_.end());
+      for (const auto& key : node_.keys()) {
+        if (std::find(valid.begin(), valid.end(), key) != valid.end()) continue;
+        try {
+          node_.fail_at_key(key, "unknown key '" + key + "'" + did_you_mean(key, valid) +
+                                     "; valid keys: " + join(valid));
+        } catch (const ConfigError& e) {
+          problems_.push_back(e.what());
+        }
+      }
     }
+    if (problems_.empty()) return;
+    std::string message;
+    for (const auto& p : problems_) message += (message.empty() ? "" : "\n") + p;
+    problems_.clear();
+    throw ConfigError(message);
   }
 
  private:
+  template <class T, class Check>
+  void read(const char* key, T& field, const Check& check) {
+    known_.push_back(key);
+    if (!node_.has(key)) return;
+    const ConfigNode child = node_.child(key);
+    try {
+      if (!child.defined()) {
+        if constexpr (requires { field.reset(); }) field.reset();
+        return;
+      }
+      decode(child, field);
+      check(child, field);
+    } catch (const ConfigError& e) {
+      problems_.push_back(e.what());
+    }
+  }
   static std::string join(const std::vector<std::string>& v) {
     std::string s;
     for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
@@ -137,6 +215,7 @@ class ConfigReader {
   ConfigNode node_;
   std::vector<std::string> reserved_;
   std::vector<std::string> known_;
+  std::vector<std::string> problems_;
 };
 
 // Writes every field (defaults included) as a YAML map: the resolved config.
@@ -145,6 +224,10 @@ class ConfigWriter {
   template <class T>
   void operator()(const char* key, T& field, const char* /*doc*/) {
     node_[key] = encode(field);
+  }
+  template <class T, class C>
+  void operator()(const char* key, T& field, const char* doc, const C& /*check*/) {
+    (*this)(key, field, doc);
   }
   YAML::Node node() const { return node_; }
 
@@ -155,6 +238,7 @@ class ConfigWriter {
 // Collects (key, default, doc) rows for `rlrun list --params`.
 struct FieldDoc {
   std::string key, default_value, doc;
+  std::string constraint;  // e.g. "in [0, 1]"; empty: none
 };
 class ConfigDocumenter {
  public:
@@ -164,7 +248,12 @@ class ConfigDocumenter {
     out.SetMapFormat(YAML::Flow);
     out.SetSeqFormat(YAML::Flow);
     out << encode(field);
-    rows_.push_back({key, out.c_str(), doc});
+    rows_.push_back({key, out.c_str(), doc, ""});
+  }
+  template <class T, class C>
+  void operator()(const char* key, T& field, const char* doc, const C& check) {
+    (*this)(key, field, doc);
+    rows_.back().constraint = describe_check(check);
   }
   const std::vector<FieldDoc>& rows() const { return rows_; }
 

@@ -1,8 +1,11 @@
 #include "rlrun/core/config_node.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
@@ -43,6 +46,44 @@ std::string strip_digit_separators(std::string s) {
   return out;
 }
 
+// Counts nodes with aliases expanded (a "billion laughs" file is refused before anything walks
+// it) and refuses a key written twice in one map, naming both places.
+void check_structure(const YAML::Node& root, const std::string& origin) {
+  std::size_t visited = 0;
+  std::vector<std::string> duplicates;
+  std::vector<YAML::Node> stack{root};
+  while (!stack.empty()) {
+    const YAML::Node node = stack.back();
+    stack.pop_back();
+    if (++visited > kMaxConfigNodes)
+      throw ConfigError(origin + ": more than " + std::to_string(kMaxConfigNodes) +
+                        " YAML values (with aliases expanded); an experiment file has a few "
+                        "hundred");
+    if (node.IsSequence()) {
+      for (const auto& item : node) stack.push_back(item);
+    } else if (node.IsMap()) {
+      std::vector<std::pair<std::string, YAML::Mark>> seen;
+      for (const auto& kv : node) {
+        const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string();
+        if (!kv.first.IsScalar())
+          throw ConfigError(position(origin, kv.first.Mark()) + ": a key must be a plain name");
+        for (const auto& [other, mark] : seen)
+          if (other == key)
+            duplicates.push_back(position(origin, kv.first.Mark()) + ": key '" + key +
+                                 "' repeats the one at line " + std::to_string(mark.line + 1) +
+                                 ", column " + std::to_string(mark.column + 1) +
+                                 " of the same map: write it once");
+        seen.emplace_back(key, kv.first.Mark());
+        stack.push_back(kv.second);
+      }
+    }
+  }
+  if (duplicates.empty()) return;
+  std::string message;
+  for (const auto& d : duplicates) message += (message.empty() ? "" : "\n") + d;
+  throw ConfigError(message);
+}
+
 }  // namespace
 
 std::string closest_name(const std::string& name, const std::vector<std::string>& candidates) {
@@ -69,24 +110,43 @@ std::string did_you_mean(const std::string& name, const std::vector<std::string>
   return best.empty() ? "" : " (did you mean '" + best + "'?)";
 }
 
-ConfigNode ConfigNode::load_file(const std::string& path) {
-  std::ifstream in(path);
+ConfigNode ConfigNode::load_file(const std::string& path, ConfigTrust trust) {
+  // Only regular files: a FIFO or a device named as a config would block or never end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw ConfigError(path + ": not a regular file");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open config file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_string(text.str(), path);
+  // Read at most one byte more than the bound: a huge file is refused without reading it all.
+  std::string text(kMaxConfigBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return load_string(text, path, trust);
 }
 
-ConfigNode ConfigNode::load_string(const std::string& text, const std::string& origin) {
+ConfigNode ConfigNode::load_string(const std::string& text, const std::string& origin,
+                                   ConfigTrust trust) {
+  if (text.size() > kMaxConfigBytes)
+    throw ConfigError(origin + ": larger than " + std::to_string(kMaxConfigBytes >> 20) +
+                      " MiB; an experiment file is a few kilobytes (is this the right file?)");
+  if (text.find('\0') != std::string::npos)
+    throw ConfigError(origin + ": contains a NUL byte; a config file is text");
   auto context = std::make_shared<Context>();
   context->origin = origin;
+  context->trust = trust;
+  std::vector<YAML::Node> documents;
   try {
-    YAML::Node node = YAML::Load(text);
-    if (!node.IsDefined() || node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
-    return ConfigNode(node, context, "");
-  } catch (const YAML::ParserException& e) {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
     throw ConfigError(position(origin, e.mark) + ": invalid YAML: " + e.msg);
   }
+  if (documents.size() > 1)
+    throw ConfigError(position(origin, documents[1].Mark()) +
+                      ": a second YAML document ('---'): a config file holds one");
+  YAML::Node node = documents.empty() ? YAML::Node() : documents.front();
+  if (!node.IsDefined() || node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
+  check_structure(node, origin);
+  return ConfigNode(node, context, "");
 }
 
 ConfigNode ConfigNode::from_yaml(YAML::Node node, const std::string& origin, std::string path) {
@@ -104,8 +164,11 @@ void ConfigNode::apply_override(const std::string& assignment) {
   YAML::Node value;
   try {
     value = YAML::Load(value_text);
-  } catch (const YAML::ParserException& e) {
+    check_structure(value, "--set " + assignment);
+  } catch (const YAML::Exception& e) {
     throw UsageError("--set " + assignment + ": value is not valid YAML: " + e.msg);
+  } catch (const ConfigError& e) {
+    throw UsageError(e.what());
   }
   std::vector<std::string> parts;
   std::stringstream ss(key_path);
@@ -148,11 +211,23 @@ ConfigNode ConfigNode::at(std::size_t index) const {
   return ConfigNode(self[index], context_, path_ + "[" + std::to_string(index) + "]");
 }
 
+ConfigNode ConfigNode::without(const std::string& key) const {
+  YAML::Node copy = YAML::Clone(node_);
+  if (copy.IsMap()) copy.remove(key);
+  return ConfigNode(copy, context_, path_);
+}
+
 std::vector<std::string> ConfigNode::keys() const {
   std::vector<std::string> out;
   if (!is_map()) return out;
   for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
   return out;
+}
+
+bool ConfigNode::from_command_line() const {
+  for (const std::string& p : context_->override_paths)
+    if (path_ == p || path_.rfind(p + ".", 0) == 0 || path_.rfind(p + "[", 0) == 0) return true;
+  return false;
 }
 
 std::string ConfigNode::where() const {
@@ -187,25 +262,50 @@ std::string ConfigNode::as_string() const {
 double ConfigNode::as_double() const {
   if (!is_scalar()) fail("expected a number");
   const std::string text = strip_digit_separators(node_.Scalar());
+  // YAML 1.1/1.2 spell infinity .inf / -.inf (any case); std::stod knows inf and infinity.
+  std::string lower = text;
+  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+  if (lower == ".inf" || lower == "+.inf") return std::numeric_limits<double>::infinity();
+  if (lower == "-.inf") return -std::numeric_limits<double>::infinity();
+  if (lower.find("nan") != std::string::npos)
+    fail("expected a number, got '" + node_.Scalar() + "' (NaN is not a setting)");
+  bool out_of_range = false;
   try {
     size_t used = 0;
     const double v = std::stod(text, &used);
     if (used == text.size()) return v;
+  } catch (const std::out_of_range&) {
+    out_of_range = true;
   } catch (const std::exception&) {
   }
+  if (out_of_range) fail("number '" + node_.Scalar() + "' is out of the range of a double");
   fail("expected a number, got '" + node_.Scalar() + "'");
 }
 
 int64_t ConfigNode::as_int() const {
   if (!is_scalar()) fail("expected an integer");
-  // Accept 1e5 and 100_000: rl-zoo files write timesteps that way.
   const std::string text = strip_digit_separators(node_.Scalar());
+  // A plain integer is read exactly (seeds use all 63 bits).
+  int64_t exact = 0;
+  const char* begin = text.data() + (text.size() > 1 && text[0] == '+' ? 1 : 0);
+  const auto [end, error] = std::from_chars(begin, text.data() + text.size(), exact);
+  if (end == text.data() + text.size() && begin != end) {
+    if (error == std::errc()) return exact;
+    if (error == std::errc::result_out_of_range)
+      fail("integer " + node_.Scalar() + " is out of range (at most 9223372036854775807 = 2^63 - 1)");
+  }
+  // Accept 1e5 and 100_000: rl-zoo files write timesteps that way.
+  double v = std::numeric_limits<double>::quiet_NaN();
   try {
     size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::floor(v) == v && std::abs(v) < 9.0e15)
-      return static_cast<int64_t>(v);
+    const double parsed = std::stod(text, &used);
+    if (used == text.size()) v = parsed;
   } catch (const std::exception&) {
+  }
+  if (std::isfinite(v) && std::floor(v) == v) {
+    if (std::abs(v) < 9.0e15) return static_cast<int64_t>(v);
+    fail("integer " + node_.Scalar() +
+         " is out of range (above 9e15 write all digits; at most 2^63 - 1)");
   }
   fail("expected an integer, got '" + node_.Scalar() + "'");
 }

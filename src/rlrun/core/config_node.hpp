@@ -2,6 +2,16 @@
 // A YAML node that remembers where it came from, so every config error can name the file,
 // line, column and key path ("configs/x.yaml:7:3: algo.n_stps: unknown key; did you mean
 // 'n_steps'?"). Values set with `--set key=value` are reported as coming from the command line.
+//
+// Every node also knows whether its text is the user's own (an experiment file named on the
+// command line, or a `--set`) or came from a file rlrun does not trust (the config.yaml inside
+// a model file or checkpoint, a run directory's config.yaml, a sweep manifest's configs):
+// docs/security.md. Field types that start programs or write files refuse values from
+// untrusted text (core/trusted_values.hpp).
+//
+// Loading bounds the input before anything else reads it: at most kMaxConfigBytes of text,
+// one YAML document, at most kMaxConfigNodes nodes counted with aliases expanded (so later
+// walks are bounded too), and no key twice in one map (YAML tools disagree on which one wins).
 #include <yaml-cpp/yaml.h>
 
 #include <memory>
@@ -10,6 +20,12 @@
 #include <vector>
 
 namespace rlrun {
+
+// Where a config's text came from (docs/security.md, DESIGN.md §6b).
+enum class ConfigTrust { kUser, kUntrusted };
+
+inline constexpr std::size_t kMaxConfigBytes = 1 << 20;  // experiment files are a few KB
+inline constexpr std::size_t kMaxConfigNodes = 100000;
 
 class ConfigNode {
  public:
@@ -26,11 +42,13 @@ class ConfigNode {
     }
     return *this;
   }
-  // Parses a YAML file; a syntax error is a ConfigError naming file:line:col.
-  static ConfigNode load_file(const std::string& path);
+  // Parses a YAML file; a syntax error is a ConfigError naming file:line:col, and so is a
+  // file over the bounds above, a second document or a repeated key.
+  static ConfigNode load_file(const std::string& path, ConfigTrust trust = ConfigTrust::kUser);
   // Parses YAML text; `origin` names it in messages (e.g. "model.zip:config.yaml").
-  static ConfigNode load_string(const std::string& text, const std::string& origin);
-  // Wraps an existing node (e.g. built in code); positions are unknown.
+  static ConfigNode load_string(const std::string& text, const std::string& origin,
+                                ConfigTrust trust = ConfigTrust::kUser);
+  // Wraps an existing node (e.g. built in code, trusted); positions are unknown.
   static ConfigNode from_yaml(YAML::Node node, const std::string& origin, std::string path = "");
 
   // Applies `--set a.b.c=value`: the value is parsed as YAML, missing maps are created.
@@ -40,6 +58,9 @@ class ConfigNode {
   YAML::Node& yaml() { return node_; }
   const std::string& path() const { return path_; }
   const std::string& origin() const { return context_->origin; }
+  // True for the user's own text: a trusted file, or a value typed with --set.
+  bool trusted() const { return context_->trust == ConfigTrust::kUser || from_command_line(); }
+  bool from_command_line() const;
   bool defined() const { return node_.IsDefined() && !node_.IsNull(); }
   // Absent keys give "invalid" yaml-cpp nodes whose Type() throws: check IsDefined() first.
   bool is_map() const { return node_.IsDefined() && node_.IsMap(); }
@@ -51,6 +72,8 @@ class ConfigNode {
   // Child of a map (undefined node if absent) and of a sequence.
   ConfigNode child(const std::string& key) const;
   ConfigNode at(std::size_t index) const;
+  // A copy of this map without `key` (same origin, trust and positions).
+  ConfigNode without(const std::string& key) const;
   std::vector<std::string> keys() const;
 
   // "file:line:col" of this node, "--set path=value" for a command-line override, or the
@@ -70,6 +93,7 @@ class ConfigNode {
  private:
   struct Context {
     std::string origin;                        // file name or description
+    ConfigTrust trust = ConfigTrust::kUser;
     std::vector<std::string> override_paths;  // paths set from the command line
     std::vector<std::string> override_texts;  // "path=value" as typed
   };

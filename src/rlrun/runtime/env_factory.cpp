@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "rlrun/core/errors.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
@@ -13,18 +14,33 @@ double unix_time_now() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
+namespace {
+
+[[noreturn]] void fail_at_env(const EnvSpec& spec, const std::string& message) {
+  throw ConfigError(spec.where + ": env.id: " + message);
+}
+
+const EnvEntry& env_entry(const EnvSpec& spec, const Registry& registry) {
+  const EnvEntry* entry = registry.find_env(spec.id);
+  if (!entry) fail_at_env(spec, "unknown environment '" + spec.id + "'");
+  return *entry;
+}
+
+}  // namespace
+
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
                 double t_start, bool tap_observations, bool append_monitor) {
-  const EnvEntry& entry = registry.env(spec.id, spec.id_node);
-  EnvPtr env = entry.make(spec.kwargs);
+  const EnvEntry& entry = env_entry(spec, registry);
+  EnvPtr env = entry.make(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs);
   const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
   env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start,
                                   std::vector<std::string>{"is_success"}, append_monitor);
   if (tap_observations) env = std::make_unique<ObservationTap>(std::move(env));
-  for (const ConfigNode& w : spec.wrappers) {
-    const WrapperEntry& wrapper = registry.wrapper(w.child("id").as_string(), w.child("id"));
-    env = wrapper.make(std::move(env), w);
+  for (const WrapperSpec& w : spec.wrappers) {
+    const WrapperEntry* wrapper = registry.find_wrapper(w.id);
+    if (!wrapper) fail_at_env(spec, "unknown wrapper '" + w.id + "'");
+    env = wrapper->make(std::move(env), w.params);
   }
   return adapt_action_space(std::move(env), spec, registry);
 }
@@ -39,8 +55,8 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
   if (kind == SpaceKind::kDiscrete && accepts(SpaceKind::kBox)) fix = "DiscreteAsBox";
   if (kind == SpaceKind::kBox && accepts(SpaceKind::kDiscrete)) fix = "BoxAsDiscrete";
   if (!fix.empty() && spec.section.auto_wrap) {
-    const ConfigNode params = ConfigNode::from_yaml(YAML::Node(YAML::NodeType::Map), "auto_wrap");
-    return registry.wrapper(fix, params).make(std::move(env), params);
+    const WrapperEntry* wrapper = registry.find_wrapper(fix);
+    if (wrapper) return wrapper->make(std::move(env), wrapper->parse(ConfigNode()));
   }
   std::string names;
   for (SpaceKind k : accepted) names += std::string(names.empty() ? "" : " or ") + (k == SpaceKind::kBox ? "Box" : k == SpaceKind::kDiscrete ? "Discrete" : k == SpaceKind::kMultiDiscrete ? "MultiDiscrete" : "MultiBinary");
@@ -48,7 +64,7 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
                         " has " + env->action_space().describe();
   if (!fix.empty())
     message += ": add `wrappers: [{id: " + fix + "}]` to env, or set `env.auto_wrap: true`";
-  spec.id_node.fail(message);
+  fail_at_env(spec, message);
 }
 
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,

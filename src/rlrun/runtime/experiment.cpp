@@ -3,14 +3,46 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/plugin_loader.hpp"
+#include "rlrun/core/resource_limits.hpp"
 
 namespace rlrun {
 
 namespace {
+
+const std::vector<std::string> kSections{"run",     "env",   "algo",   "eval",   "checkpoint",
+                                         "obs_log", "video", "plugins"};
+
+// Problems found so far, one line each; a step that throws ConfigError adds its lines and
+// parsing goes on, so one run of `rlrun train` shows every problem of every file.
+class Problems {
+ public:
+  template <class F>
+  bool attempt(F&& step) {
+    try {
+      step();
+      return true;
+    } catch (const ConfigError& e) {
+      lines_.push_back(e.what());
+      return false;
+    }
+  }
+  void add(const std::string& line) { lines_.push_back(line); }
+  bool empty() const { return lines_.empty(); }
+  void throw_if_any() const {
+    if (lines_.empty()) return;
+    std::string message;
+    for (const auto& line : lines_) message += (message.empty() ? "" : "\n") + line;
+    throw ConfigError(message);
+  }
+
+ private:
+  std::vector<std::string> lines_;
+};
 
 std::string required_id(const ConfigNode& section, const char* what) {
   if (!section.defined()) section.fail(std::string("missing section (needs at least `id`)"));
@@ -20,136 +52,210 @@ std::string required_id(const ConfigNode& section, const char* what) {
   return id.as_string();
 }
 
+// The node of a dotted key inside a section ("policy.net_arch"), for a problem's position.
+ConfigNode node_at(const ConfigNode& section, const std::string& dotted) {
+  ConfigNode node = section;
+  size_t start = 0;
+  while (start <= dotted.size()) {
+    const size_t end = std::min(dotted.find('.', start), dotted.size());
+    const std::string key = dotted.substr(start, end - start);
+    if (!node.has(key)) return node.child(key);  // absent: the message names the section
+    node = node.child(key);
+    start = end + 1;
+  }
+  return node;
+}
+
+void report(Problems& problems, const ConfigNode& section, const ConfigProblems& found) {
+  for (const ConfigProblem& p : found) {
+    const ConfigNode at = node_at(section, p.key);
+    problems.attempt([&] {
+      if (at.defined()) at.fail(p.message);
+      section.fail(p.key + ": " + p.message);
+    });
+  }
+}
+
+void parse_env(const ConfigNode& env, const Registry& registry, Experiment& exp,
+               Problems& problems) {
+  if (!problems.attempt([&] { exp.env.id = required_id(env, "environment"); })) return;
+  exp.env.where = env.child("id").where();
+  // rlrun 0.1 wrote `max_episode_steps: 0` for envs without a registered limit; that still
+  // means "none" there, and is refused everywhere else (0 would silently remove a limit).
+  const EnvEntry* registered = registry.find_env(exp.env.id);
+  const ConfigNode limit = env.child("max_episode_steps");
+  const bool legacy_zero = registered && registered->max_episode_steps == 0 &&
+                           limit.is_scalar() && limit.yaml().Scalar() == "0";
+  problems.attempt([&] {
+    exp.env.section = read_config<EnvSectionConfig>(
+        legacy_zero ? env.without("max_episode_steps") : env, {"id", "kwargs", "wrappers"});
+  });
+  problems.attempt([&] {
+    const EnvEntry* entry = registry.find_env(exp.env.id);
+    if (!entry && !exp.plugins.empty() && !env.trusted())
+      env.child("id").fail("env '" + exp.env.id + "' comes from a plugin library named in " +
+                           env.origin() + "; rlrun loads no library named in a file it does "
+                           "not trust (docs/security.md). If you trust it, pass --plugin " +
+                           exp.plugins.front());
+    const EnvEntry& found = registry.env(exp.env.id, env.child("id"));
+    exp.env.kwargs = found.parse(env.child("kwargs"));
+  });
+  const ConfigNode wrappers = env.child("wrappers");
+  if (!wrappers.defined()) return;
+  if (!wrappers.is_sequence()) {
+    problems.attempt([&] { wrappers.fail("expected a list of {id: ..., <params>}"); });
+    return;
+  }
+  for (std::size_t i = 0; i < wrappers.size(); ++i) {
+    const ConfigNode w = wrappers.at(i);
+    problems.attempt([&] {
+      const std::string id = required_id(w, "wrapper");
+      exp.env.wrappers.push_back({id, registry.wrapper(id, w.child("id")).parse(w)});
+    });
+  }
+}
+
+void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems) {
+  const ConfigNode eval = root.child("eval");
+  if (problems.attempt([&] { exp.eval = read_config<EvalConfig>(eval); }))
+    for (const char* rule : {"reward_threshold", "max_no_improvement_evals"})
+      if (exp.eval.freq == 0 && eval.child(rule).defined())
+        problems.attempt([&] {
+          eval.child(rule).fail(std::string(rule) +
+                                " acts after evaluations: set eval.freq > 0 too");
+        });
+  problems.attempt([&] { exp.checkpoint = read_config<CheckpointConfig>(root.child("checkpoint")); });
+  const ConfigNode obs_log = root.child("obs_log");
+  if (problems.attempt([&] { exp.obs_log = read_config<ObsLogConfig>(obs_log); }) &&
+      exp.obs_log.env >= exp.env.section.n_envs)
+    problems.attempt([&] {
+      obs_log.child("env").fail("must be a training env index, 0.." +
+                                std::to_string(exp.env.section.n_envs - 1));
+    });
+  const ConfigNode video = root.child("video");
+  if (problems.attempt([&] { exp.video = read_config<VideoConfig>(video); })) {
+    for (const char* side : {"width", "height"})
+      if (video.child(side).defined() && video.child(side).as_int() % 2 != 0)
+        problems.attempt([&] {
+          video.child(side).fail("must be 0 (the env's size) or an even number (H.264)");
+        });
+    if ((exp.video.width == 0) != (exp.video.height == 0))
+      problems.attempt([&] { video.fail("set both width and height, or neither (the env's own size)"); });
+  }
+}
+
+// Checks that need the env itself: one env is built (as gymnasium.make would) to learn its
+// spaces; then the algorithm checks its settings against them, and the resources the run will
+// take are bounded.
+void check_against_env(const ConfigNode& root, const Registry& registry, Experiment& exp,
+                       Problems& problems) {
+  const ConfigNode env = root.child("env");
+  const ConfigNode algo = root.child("algo");
+  EnvPtr probe;
+  if (!problems.attempt([&] {
+        try {
+          probe = make_env(exp.env, registry, "", 0.0);
+        } catch (const std::invalid_argument& e) {
+          env.fail(e.what());
+        } catch (const RuntimeFailure& e) {
+          env.fail(e.what());
+        }
+      }))
+    return;
+  const AlgorithmSetup setup{probe->observation_space(), probe->action_space(),
+                             exp.env.section.n_envs, exp.run.seed};
+  const AlgorithmEntry& entry = registry.algorithm(exp.algo.id, algo.child("id"));
+  report(problems, algo, entry.check(exp.algo.params, setup));
+  problems.attempt([&] { check_open_files(exp.env.section.n_envs, env.child("n_envs")); });
+}
+
+YAML::Node resolve(const Experiment& exp, const Registry& registry) {
+  YAML::Node resolved_env(YAML::NodeType::Map);
+  resolved_env["id"] = exp.env.id;
+  for (const auto& kv : write_config(exp.env.section)) resolved_env[kv.first] = kv.second;
+  const int registered_limit = registry.find_env(exp.env.id)->max_episode_steps;
+  if (!exp.env.section.max_episode_steps && registered_limit > 0)
+    resolved_env["max_episode_steps"] = registered_limit;
+  resolved_env["kwargs"] = exp.env.kwargs.resolved();
+  YAML::Node wrappers(YAML::NodeType::Sequence);
+  for (const WrapperSpec& w : exp.env.wrappers) {
+    YAML::Node r(YAML::NodeType::Map);
+    r["id"] = w.id;
+    for (const auto& kv : w.params.resolved()) r[kv.first] = kv.second;
+    wrappers.push_back(r);
+  }
+  wrappers.SetStyle(YAML::EmitterStyle::Flow);
+  resolved_env["wrappers"] = wrappers;
+  YAML::Node algo(YAML::NodeType::Map);
+  algo["id"] = exp.algo.id;
+  for (const auto& kv : exp.algo.params.resolved()) algo[kv.first] = kv.second;
+
+  YAML::Node resolved(YAML::NodeType::Map);
+  if (!exp.plugins.empty()) resolved["plugins"] = encode(exp.plugins);
+  resolved["run"] = write_config(exp.run);
+  resolved["env"] = resolved_env;
+  resolved["algo"] = algo;
+  resolved["eval"] = write_config(exp.eval);
+  resolved["checkpoint"] = write_config(exp.checkpoint);
+  resolved["obs_log"] = write_config(exp.obs_log);
+  resolved["video"] = write_config(exp.video);
+  return resolved;
+}
+
 }  // namespace
 
 Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
   if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
-  const std::vector<std::string> sections{"run", "env", "algo", "eval", "checkpoint", "obs_log",
-                                          "video", "plugins"};
+  Problems problems;
   std::string section_list;
-  for (const auto& s : sections) section_list += (section_list.empty() ? "" : ", ") + s;
+  for (const auto& s : kSections) section_list += (section_list.empty() ? "" : ", ") + s;
   for (const auto& key : root.keys())
-    if (std::find(sections.begin(), sections.end(), key) == sections.end())
-      root.fail_at_key(key, "unknown section '" + key + "'" + did_you_mean(key, sections) +
-                           "; valid sections: " + section_list);
+    if (std::find(kSections.begin(), kSections.end(), key) == kSections.end())
+      problems.attempt([&] {
+        root.fail_at_key(key, "unknown section '" + key + "'" + did_you_mean(key, kSections) +
+                                  "; valid sections: " + section_list);
+      });
 
   Experiment exp;
   exp.source = root.origin();
-  // plugins: env libraries (runtime/plugin_loader.hpp), loaded before any env id is looked up.
-  const std::vector<std::string> plugins = load_plugins_section(root.child("plugins"));
-  exp.run = read_config<RunConfig>(root.child("run"));
-  if (exp.run.total_timesteps < 1) root.child("run").child("total_timesteps").fail("must be >= 1");
-  if (exp.run.log_interval && *exp.run.log_interval < 1)
-    root.child("run").child("log_interval").fail("must be >= 1 (or null for the algorithm's default)");
+  // plugins: env libraries (runtime/plugin_loader.hpp), loaded before any env id is looked up
+  // — only from the user's own files: a model file naming a library must not load it.
+  const ConfigNode plugins = root.child("plugins");
+  problems.attempt([&] {
+    if (plugins.defined() && plugins.trusted())
+      exp.plugins = load_plugins_section(plugins);
+    else if (plugins.defined())
+      decode(plugins, exp.plugins);
+  });
+  problems.attempt([&] { exp.run = read_config<RunConfig>(root.child("run")); });
+  parse_env(root.child("env"), registry, exp, problems);
 
-  // env
-  const ConfigNode env = root.child("env");
-  exp.env.id = required_id(env, "environment");
-  exp.env.id_node = env.child("id");
-  exp.env.section = read_config<EnvSectionConfig>(env, {"id", "kwargs", "wrappers"});
-  if (exp.env.section.n_envs < 1) env.child("n_envs").fail("must be >= 1");
-  const EnvEntry& env_entry = registry.env(exp.env.id, exp.env.id_node);
-  exp.env.kwargs = env.child("kwargs");
-  YAML::Node resolved_env(YAML::NodeType::Map);
-  resolved_env["id"] = exp.env.id;
-  for (const auto& kv : write_config(exp.env.section)) resolved_env[kv.first] = kv.second;
-  if (!exp.env.section.max_episode_steps) resolved_env["max_episode_steps"] = env_entry.max_episode_steps;
-  resolved_env["kwargs"] = env_entry.resolve(exp.env.kwargs);
-  YAML::Node resolved_wrappers(YAML::NodeType::Sequence);
-  const ConfigNode wrappers = env.child("wrappers");
-  if (wrappers.defined()) {
-    if (!wrappers.is_sequence()) wrappers.fail("expected a list of {id: ..., <params>}");
-    for (std::size_t i = 0; i < wrappers.size(); ++i) {
-      const ConfigNode w = wrappers.at(i);
-      const std::string id = required_id(w, "wrapper");
-      const WrapperEntry& entry = registry.wrapper(id, w.child("id"));
-      YAML::Node r(YAML::NodeType::Map);
-      r["id"] = id;
-      for (const auto& kv : entry.resolve(w)) r[kv.first] = kv.second;
-      resolved_wrappers.push_back(r);
-      exp.env.wrappers.push_back(w);
-    }
-  }
-  resolved_wrappers.SetStyle(YAML::EmitterStyle::Flow);
-  resolved_env["wrappers"] = resolved_wrappers;
-
-  // algo
   const ConfigNode algo = root.child("algo");
-  exp.algo_id = required_id(algo, "algorithm");
-  const AlgorithmEntry& algo_entry = registry.algorithm(exp.algo_id, algo.child("id"));
-  exp.env.accepted_action_spaces = algo_entry.action_spaces;
-  exp.env.algorithm_id = exp.algo_id;
-  exp.algo_node = algo;
-  YAML::Node resolved_algo(YAML::NodeType::Map);
-  resolved_algo["id"] = exp.algo_id;
-  for (const auto& kv : algo_entry.resolve(algo)) resolved_algo[kv.first] = kv.second;
+  problems.attempt([&] {
+    exp.algo.id = required_id(algo, "algorithm");
+    exp.algo.where = algo.child("id").where();
+    const AlgorithmEntry& entry = registry.algorithm(exp.algo.id, algo.child("id"));
+    exp.env.accepted_action_spaces = entry.action_spaces;
+    exp.env.algorithm_id = exp.algo.id;
+    exp.algo.params = entry.parse(algo);
+  });
+  parse_callbacks(root, exp, problems);
+  if (problems.empty()) check_against_env(root, registry, exp, problems);
+  problems.throw_if_any();
 
-  exp.eval = read_config<EvalConfig>(root.child("eval"));
-  if (exp.eval.freq < 0) root.child("eval").child("freq").fail("must be >= 0");
-  if (exp.eval.n_episodes < 1) root.child("eval").child("n_episodes").fail("must be >= 1");
-  const ConfigNode eval = root.child("eval");
-  if (exp.eval.min_evals < 0) eval.child("min_evals").fail("must be >= 0");
-  if (exp.eval.max_no_improvement_evals && *exp.eval.max_no_improvement_evals < 0)
-    eval.child("max_no_improvement_evals").fail("must be >= 0 (or null: never stop)");
-  for (const char* rule : {"reward_threshold", "max_no_improvement_evals"})
-    if (exp.eval.freq == 0 && eval.child(rule).defined())
-      eval.child(rule).fail(std::string(rule) + " acts after evaluations: set eval.freq > 0 too");
-
-  const ConfigNode checkpoint = root.child("checkpoint");
-  exp.checkpoint = read_config<CheckpointConfig>(checkpoint);
-  if (exp.checkpoint.freq < 0) checkpoint.child("freq").fail("must be >= 0");
-  if (exp.checkpoint.keep < 0) checkpoint.child("keep").fail("must be >= 0 (0 keeps all)");
-
-  const ConfigNode obs_log = root.child("obs_log");
-  exp.obs_log = read_config<ObsLogConfig>(obs_log);
-  if (exp.obs_log.freq < 0) obs_log.child("freq").fail("must be >= 0");
-  if (exp.obs_log.env < 0 || exp.obs_log.env >= exp.env.section.n_envs)
-    obs_log.child("env").fail("must be a training env index, 0.." +
-                              std::to_string(exp.env.section.n_envs - 1));
-
-  // video (runtime/video_callback.hpp)
-  const ConfigNode video = root.child("video");
-  exp.video = read_config<VideoConfig>(video);
-  if (exp.video.freq < 0) video.child("freq").fail("must be >= 0");
-  if (exp.video.n_episodes < 1) video.child("n_episodes").fail("must be >= 1");
-  if (exp.video.fps && !(*exp.video.fps > 0)) video.child("fps").fail("must be > 0 (or null)");
-  if (exp.video.width < 0 || exp.video.width % 2 != 0)
-    video.child("width").fail("must be 0 (the env's size) or a positive even number (H.264)");
-  if (exp.video.height < 0 || exp.video.height % 2 != 0)
-    video.child("height").fail("must be 0 (the env's size) or a positive even number (H.264)");
-  if ((exp.video.width == 0) != (exp.video.height == 0))
-    video.fail("set both width and height, or neither (the env's own size)");
-
-  // Build one env now: bad kwargs, wrapper parameters or an action space the algorithm cannot
-  // handle are reported before any run directory exists.
-  try {
-    make_env(exp.env, registry, "", 0.0);
-  } catch (const std::invalid_argument& e) {
-    env.fail(e.what());
-  }
-
-  exp.resolved = YAML::Node(YAML::NodeType::Map);
   // The libraries the run needs (absolute paths, the env's own included even when it came
-  // from --plugin), so `rlrun eval` reloads them from the model file alone.
-  std::vector<std::string> needed_plugins = plugins;
+  // from --plugin), so `rlrun eval` can name them when a model file needs one.
   const std::string env_plugin = plugin_of_env(exp.env.id);
   if (!env_plugin.empty() &&
-      std::find(needed_plugins.begin(), needed_plugins.end(), env_plugin) == needed_plugins.end())
-    needed_plugins.push_back(env_plugin);
-  if (!needed_plugins.empty()) exp.resolved["plugins"] = encode(needed_plugins);
-  exp.resolved["run"] = write_config(exp.run);
-  exp.resolved["env"] = resolved_env;
-  exp.resolved["algo"] = resolved_algo;
-  exp.resolved["eval"] = write_config(exp.eval);
-  exp.resolved["checkpoint"] = write_config(exp.checkpoint);
-  exp.resolved["obs_log"] = write_config(exp.obs_log);
-  exp.resolved["video"] = write_config(exp.video);
+      std::find(exp.plugins.begin(), exp.plugins.end(), env_plugin) == exp.plugins.end())
+    exp.plugins.push_back(env_plugin);
+  exp.resolved = resolve(exp, registry);
   return exp;
 }
 
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                           const Registry& registry) {
-  ConfigNode root = ConfigNode::load_file(path);
+                           const Registry& registry, ConfigTrust trust) {
+  ConfigNode root = ConfigNode::load_file(path, trust);
   if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
   for (const auto& o : overrides) root.apply_override(o);
   const ConfigNode name = root.child("run").child("name");
@@ -158,6 +264,16 @@ Experiment load_experiment(const std::string& path, const std::vector<std::strin
     root.yaml()["run"]["name"] = std::filesystem::path(path).stem().string();
   }
   return parse_experiment(root, registry);
+}
+
+EnvSpec default_env_spec(const std::string& id, const Registry& registry,
+                         const std::string& origin) {
+  EnvSpec spec;
+  spec.id = id;
+  spec.where = origin;
+  const ConfigNode id_node = ConfigNode::from_yaml(YAML::Node(id), origin, "env.id");
+  spec.kwargs = registry.env(id, id_node).parse(ConfigNode());
+  return spec;
 }
 
 std::string dump_yaml(const YAML::Node& node) {

@@ -14,10 +14,16 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/any_config.hpp"
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/runtime/registry.hpp"
 
 namespace rlrun {
+
+// The largest video side: H.264 level 6.2 allows 8192 pixels, but a frame of 4096 x 4096
+// already takes 48 MiB in RGB; no env draws more detail than that.
+inline constexpr int kMaxVideoSide = 4096;
 
 struct RunConfig {
   std::string name;                 // default: the config file's stem
@@ -31,17 +37,24 @@ struct RunConfig {
 
   template <class V>
   void visit(V& v) {
-    v("name", name, "run name (default: the config file name without .yaml)");
+    v("name", name, "run name (default: the config file name without .yaml)", RelativeName{});
     v("seed", seed, "random seed; env i gets seed + i");
-    v("total_timesteps", total_timesteps, "total env steps to train for (all envs together)");
-    v("out_dir", out_dir, "root directory of run outputs");
+    v("total_timesteps", total_timesteps, "total env steps to train for (all envs together)",
+      in_range(1, 1e15));
+    v("out_dir", out_dir, "root directory of run outputs", DirectoryPath{});
     v("log_interval", log_interval,
-      "progress.csv row every N iterations (on-policy) / episodes (off-policy); null = SB3 default");
-    v("console_interval", console_interval, "minimum seconds between console summaries");
+      "progress.csv row every N iterations (on-policy) / episodes (off-policy); null = SB3 default",
+      at_least(1));
+    v("console_interval", console_interval, "minimum seconds between console summaries",
+      in_range(0, 1e9));
     v("init_from", init_from,
       "model file whose weights (and normalisation statistics) start this run; empty = none");
   }
 };
+
+// An upper bound on n_envs: each env holds a monitor file open (and a simulator may hold
+// sockets); beyond a few thousand, the gain is nil on any CPU rlrun runs on.
+inline constexpr int kMaxEnvs = 4096;
 
 struct EnvSectionConfig {
   int n_envs = 1;                          // parallel env copies (SB3 n_envs)
@@ -49,8 +62,10 @@ struct EnvSectionConfig {
   bool auto_wrap = false;                  // add the action-space wrapper the algorithm needs
   template <class V>
   void visit(V& v) {
-    v("n_envs", n_envs, "number of env copies stepped together");
-    v("max_episode_steps", max_episode_steps, "time limit override (null = registered limit)");
+    v("n_envs", n_envs, "number of env copies stepped together", in_range(1, kMaxEnvs));
+    v("max_episode_steps", max_episode_steps,
+      "time limit override (null = registered limit; to remove a limit, use a large number)",
+      at_least(1));
     v("auto_wrap", auto_wrap,
       "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm needs it");
   }
@@ -66,15 +81,17 @@ struct EvalConfig {
   int min_evals = 0;                            // evaluations before counting no-improvement
   template <class V>
   void visit(V& v) {
-    v("freq", freq, "evaluate every `freq` TOTAL env steps (all envs counted; 0 = never)");
-    v("n_episodes", n_episodes, "episodes per evaluation");
+    v("freq", freq, "evaluate every `freq` TOTAL env steps (all envs counted; 0 = never)",
+      non_negative());
+    v("n_episodes", n_episodes, "episodes per evaluation", in_range(1, 1000000));
     v("deterministic", deterministic, "use the deterministic policy");
     v("reward_threshold", reward_threshold,
       "stop training once the best mean eval reward >= this (SB3 StopTrainingOnRewardThreshold; null = never)");
     v("max_no_improvement_evals", max_no_improvement_evals,
       "stop when more than this many evaluations in a row bring no new best (SB3 "
-      "StopTrainingOnNoModelImprovement; null = never)");
-    v("min_evals", min_evals, "evaluations before no-improvement is counted");
+      "StopTrainingOnNoModelImprovement; null = never)",
+      non_negative());
+    v("min_evals", min_evals, "evaluations before no-improvement is counted", non_negative());
   }
 };
 
@@ -84,8 +101,9 @@ struct CheckpointConfig {
   int keep = 0;      // newest checkpoints kept (0 = all)
   template <class V>
   void visit(V& v) {
-    v("freq", freq, "write checkpoints/step_<N>.zip every `freq` TOTAL env steps (0 = never)");
-    v("keep", keep, "keep only the newest `keep` checkpoints (0 = keep all)");
+    v("freq", freq, "write checkpoints/step_<N>.zip every `freq` TOTAL env steps (0 = never)",
+      non_negative());
+    v("keep", keep, "keep only the newest `keep` checkpoints (0 = keep all)", non_negative());
   }
 };
 
@@ -96,8 +114,9 @@ struct ObsLogConfig {
   template <class V>
   void visit(V& v) {
     v("freq", freq,
-      "save the observations of training env `env` to obs_log/obs_<N>.npy every `freq` TOTAL env steps (0 = off)");
-    v("env", env, "index of the training env whose observations are logged");
+      "save the observations of training env `env` to obs_log/obs_<N>.npy every `freq` TOTAL env steps (0 = off)",
+      non_negative());
+    v("env", env, "index of the training env whose observations are logged", non_negative());
   }
 };
 
@@ -111,47 +130,71 @@ struct VideoConfig {
   bool overlay = true;         // env id, episode, step, return
   template <class V>
   void visit(V& v) {
-    v("freq", freq, "record videos/step_<N>.mp4 every `freq` TOTAL env steps (0 = never; needs ffmpeg)");
-    v("n_episodes", n_episodes, "evaluation episodes per video");
+    v("freq", freq, "record videos/step_<N>.mp4 every `freq` TOTAL env steps (0 = never; needs ffmpeg)",
+      non_negative());
+    v("n_episodes", n_episodes, "evaluation episodes per video", in_range(1, 10000));
     v("deterministic", deterministic, "use the deterministic policy");
-    v("fps", fps, "frames per second (null = the env's, e.g. 50 for CartPole)");
-    v("width", width, "frame width in pixels (0 = the env's, e.g. 600)");
-    v("height", height, "frame height in pixels (0 = the env's, e.g. 400)");
+    v("fps", fps, "frames per second (null = the env's, e.g. 50 for CartPole)",
+      in_range(0, 1000).open_low());
+    v("width", width, "frame width in pixels (0 = the env's, e.g. 600)",
+      in_range(0, kMaxVideoSide));
+    v("height", height, "frame height in pixels (0 = the env's, e.g. 400)",
+      in_range(0, kMaxVideoSide));
     v("overlay", overlay, "draw env id, episode, step and return on the frames");
   }
 };
 
+struct WrapperSpec {
+  std::string id;
+  AnyConfig params;
+};
+
 struct EnvSpec {
   std::string id;
-  ConfigNode id_node;
+  std::string where;  // "file:line:col" of env.id, for messages after parsing
   EnvSectionConfig section;
-  ConfigNode kwargs;
-  std::vector<ConfigNode> wrappers;  // each a map with `id`
+  AnyConfig kwargs;   // the env's Config (empty: its defaults)
+  std::vector<WrapperSpec> wrappers;
   // Set from the algorithm: the action spaces it supports and its id, for the check (and
   // auto_wrap) at the end of the env stack. Empty: no check.
   std::vector<SpaceKind> accepted_action_spaces;
   std::string algorithm_id;
 };
 
+struct AlgoSpec {
+  std::string id;
+  std::string where;  // "file:line:col" of algo.id
+  AnyConfig params;   // the algorithm's Config
+};
+
 struct Experiment {
   std::string source;  // the file it came from
   RunConfig run;
   EnvSpec env;
-  std::string algo_id;
-  ConfigNode algo_node;
+  AlgoSpec algo;
   EvalConfig eval;
   CheckpointConfig checkpoint;
   ObsLogConfig obs_log;
   VideoConfig video;
+  std::vector<std::string> plugins;  // the libraries the env needs (absolute paths)
   YAML::Node resolved;
 };
 
-// Parses and validates (every id is looked up, every component's config read strictly).
+// Parses and checks a whole experiment: every section is decoded once into its typed Config;
+// ids, values, value constraints, wrapper parameters, algorithm/space compatibility (one env is
+// built to learn its spaces) and resource bounds are checked before anything runs. All problems
+// of the file come in one ConfigError, one line each with file:line:col. A trusted file's
+// `plugins:` are loaded into the built-in registry; an untrusted file's are not (docs/security.md).
 Experiment parse_experiment(const ConfigNode& root, const Registry& registry);
 
 // Loads a file, applies `--set` overrides, parses. The run name defaults to the file stem.
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                           const Registry& registry);
+                           const Registry& registry, ConfigTrust trust = ConfigTrust::kUser);
+
+// The spec of env `id` with its default parameters (env_by_id, tests). `origin` names it in
+// messages. Throws ConfigError for an unknown id.
+EnvSpec default_env_spec(const std::string& id, const Registry& registry,
+                         const std::string& origin);
 
 // Writes YAML text of a resolved config, in section order run, env, algo, eval, ...
 std::string dump_yaml(const YAML::Node& node);

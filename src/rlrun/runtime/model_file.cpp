@@ -75,12 +75,17 @@ ModelFile read_model(const std::string& path) {
   return model;
 }
 
-Experiment experiment_from_model(const ModelFile& model, const Registry& registry) {
-  const ConfigNode root = ConfigNode::load_string(model.config_yaml, model.path + ":config.yaml");
+Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
+                                 const std::vector<std::string>& overrides) {
+  // The model's config is data from anyone (docs/security.md): parsed untrusted, so it can
+  // name no plugin library, program or output file; the user's --set values can.
+  ConfigNode root = ConfigNode::load_string(model.config_yaml, model.path + ":config.yaml",
+                                            ConfigTrust::kUntrusted);
+  for (const std::string& o : overrides) root.apply_override(o);
   Experiment experiment = parse_experiment(root, registry);
-  if (experiment.algo_id != model.meta.algorithm)
+  if (experiment.algo.id != model.meta.algorithm)
     throw RuntimeFailure(model.path + ": meta.json says algorithm " + model.meta.algorithm +
-                         " but config.yaml says " + experiment.algo_id);
+                         " but config.yaml says " + experiment.algo.id);
   return experiment;
 }
 
@@ -95,10 +100,15 @@ std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Ex
   if (action_space.describe() != model.meta.action_space)
     throw RuntimeFailure(model.path + ": the model was trained on actions " +
                          model.meta.action_space + " but the env has " + action_space.describe());
-  const AlgorithmEntry& entry =
-      registry.algorithm(experiment.algo_id, experiment.algo_node.child("id"));
+  const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
+  if (!entry) throw RuntimeFailure(model.path + ": unknown algorithm " + experiment.algo.id);
   AlgorithmSetup setup{observation_space, action_space, 1, experiment.run.seed};
-  std::unique_ptr<Algorithm> algorithm = entry.make(experiment.algo_node, setup);
+  std::unique_ptr<Algorithm> algorithm;
+  try {
+    algorithm = entry->make(experiment.algo.params, setup);
+  } catch (const std::invalid_argument& e) {
+    throw RuntimeFailure(model.path + ": " + e.what());
+  }
   try {
     algorithm->load(model.tensors);
   } catch (const std::runtime_error& e) {

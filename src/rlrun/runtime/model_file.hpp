@@ -52,7 +52,9 @@ ModelFile read_model(const std::string& path);
 
 // Rebuilds the experiment stored in a model file (env, algorithm config), and an algorithm
 // with the stored weights, checking the spaces against `observation_space`/`action_space`.
-Experiment experiment_from_model(const ModelFile& model, const Registry& registry);
+// `overrides` are the user's `--set key=value` (trusted, unlike the file).
+Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
+                                 const std::vector<std::string>& overrides = {});
 std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
                                                 const Registry& registry,
                                                 const Space& observation_space,

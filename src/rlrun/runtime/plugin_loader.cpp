@@ -57,20 +57,9 @@ EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFact
   entry.description = spec.description + " [plugin " + fs::path(plugin).filename().string() + "]";
   entry.max_episode_steps = spec.max_episode_steps;
   const std::string id = spec.id;
-  entry.make = [factory, id](const ConfigNode& kwargs) -> EnvPtr {
-    {  // Strict read first, so a typo is reported before the env is built.
-      ConfigReader reader(kwargs);
-      ForwardingVisitor<ConfigReader> visitor(reader);
-      api::FieldVisitor* visitors[] = {&visitor};
-      factory->make(visitors, false);
-      reader.finish();
-    }
-    ConfigReader reader(kwargs);
-    ForwardingVisitor<ConfigReader> visitor(reader);
-    api::FieldVisitor* visitors[] = {&visitor};
-    return std::make_unique<PluginEnv>(factory->make(visitors, true), id);
-  };
-  entry.resolve = [factory](const ConfigNode& kwargs) {
+  // The plugin's Config type lives in its library: parsing checks the YAML strictly and keeps
+  // the resolved values, from which make() fills a fresh Config.
+  entry.parse = [factory](const ConfigNode& kwargs) {
     ConfigReader reader(kwargs);
     ConfigWriter writer;
     ForwardingVisitor<ConfigReader> read(reader);
@@ -78,7 +67,13 @@ EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFact
     api::FieldVisitor* visitors[] = {&read, &write};
     factory->make(visitors, false);
     reader.finish();
-    return writer.node();
+    return AnyConfig::of_yaml(writer.node(), writer.node());
+  };
+  entry.make = [factory, id](const AnyConfig& kwargs) -> EnvPtr {
+    ConfigReader reader(ConfigNode::from_yaml(kwargs.get<YAML::Node>(), id + " kwargs"));
+    ForwardingVisitor<ConfigReader> visitor(reader);
+    api::FieldVisitor* visitors[] = {&visitor};
+    return std::make_unique<PluginEnv>(factory->make(visitors, true), id);
   };
   entry.params = [factory] {
     ConfigDocumenter documenter;

@@ -1,12 +1,15 @@
 #pragma once
-// The component registry: ids (as written in YAML) -> factories. Only runtime/builtins.cpp
-// fills it (DESIGN.md §7: explicit registration in one function); `rlrun list` prints it.
+// The component registry: ids (as written in YAML) -> parsers and factories. Only
+// runtime/builtins.cpp fills it (DESIGN.md §7: explicit registration in one function), and
+// plugins add their envs; `rlrun list` prints it.
 // Lookups of unknown ids fail with the YAML position and the closest registered id.
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "rlrun/core/any_config.hpp"
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/env/env.hpp"
@@ -16,20 +19,22 @@ namespace rlrun {
 class Algorithm;
 struct AlgorithmSetup;
 
+// Each entry parses its section into a typed Config once (strictly: unknown keys, types and
+// value constraints, all problems at once as one ConfigError) and builds from that value.
 struct EnvEntry {
   std::string id;
   std::string description;
   int max_episode_steps = 0;  // TimeLimit added by make_env, like gymnasium.make; 0 = none
-  std::function<EnvPtr(const ConfigNode& kwargs)> make;
-  std::function<YAML::Node(const ConfigNode& kwargs)> resolve;  // kwargs with defaults filled
+  std::function<AnyConfig(const ConfigNode& kwargs)> parse;
+  std::function<EnvPtr(const AnyConfig& kwargs)> make;
   std::function<std::vector<FieldDoc>()> params;
 };
 
 struct WrapperEntry {
   std::string id;
   std::string description;
-  std::function<EnvPtr(EnvPtr inner, const ConfigNode& params)> make;
-  std::function<YAML::Node(const ConfigNode& params)> resolve;
+  std::function<AnyConfig(const ConfigNode& params)> parse;
+  std::function<EnvPtr(EnvPtr inner, const AnyConfig& params)> make;
   std::function<std::vector<FieldDoc>()> params;
 };
 
@@ -37,8 +42,10 @@ struct AlgorithmEntry {
   std::string id;
   std::string description;
   std::vector<SpaceKind> action_spaces;  // SB3's support table (docs/guide/algos.rst)
-  std::function<std::unique_ptr<Algorithm>(const ConfigNode& params, const AlgorithmSetup&)> make;
-  std::function<YAML::Node(const ConfigNode& params)> resolve;
+  std::function<AnyConfig(const ConfigNode& params)> parse;
+  // Checks that need the env's spaces or several values at once (before anything trains).
+  std::function<ConfigProblems(const AnyConfig& params, const AlgorithmSetup&)> check;
+  std::function<std::unique_ptr<Algorithm>(const AnyConfig& params, const AlgorithmSetup&)> make;
   std::function<std::vector<FieldDoc>()> params;
 };
 
@@ -59,6 +66,9 @@ class Registry {
     return find(algorithms_, id, id_node, "algorithm");
   }
   const EnvEntry* find_env(const std::string& id) const { return find_or_null(envs_, id); }
+  const WrapperEntry* find_wrapper(const std::string& id) const {
+    return find_or_null(wrappers_, id);
+  }
   const AlgorithmEntry* find_algorithm(const std::string& id) const {
     return find_or_null(algorithms_, id);
   }
@@ -96,11 +106,11 @@ EnvEntry make_env_entry(std::string id, std::string description, int max_episode
   entry.id = std::move(id);
   entry.description = std::move(description);
   entry.max_episode_steps = max_episode_steps;
-  entry.make = [](const ConfigNode& kwargs) -> EnvPtr {
-    return std::make_unique<E>(read_config<typename E::Config>(kwargs));
+  entry.parse = [](const ConfigNode& kwargs) {
+    return AnyConfig::of(read_config<typename E::Config>(kwargs));
   };
-  entry.resolve = [](const ConfigNode& kwargs) {
-    return write_config(read_config<typename E::Config>(kwargs));
+  entry.make = [](const AnyConfig& kwargs) -> EnvPtr {
+    return std::make_unique<E>(kwargs.get<typename E::Config>());
   };
   entry.params = [] { return document_config<typename E::Config>(); };
   return entry;
@@ -111,11 +121,11 @@ WrapperEntry make_wrapper_entry(std::string id, std::string description) {
   WrapperEntry entry;
   entry.id = std::move(id);
   entry.description = std::move(description);
-  entry.make = [](EnvPtr inner, const ConfigNode& params) -> EnvPtr {
-    return std::make_unique<W>(std::move(inner), read_config<typename W::Config>(params, {"id"}));
+  entry.parse = [](const ConfigNode& params) {
+    return AnyConfig::of(read_config<typename W::Config>(params, {"id"}));
   };
-  entry.resolve = [](const ConfigNode& params) {
-    return write_config(read_config<typename W::Config>(params, {"id"}));
+  entry.make = [](EnvPtr inner, const AnyConfig& params) -> EnvPtr {
+    return std::make_unique<W>(std::move(inner), params.get<typename W::Config>());
   };
   entry.params = [] { return document_config<typename W::Config>(); };
   return entry;
@@ -127,12 +137,15 @@ AlgorithmEntry make_algorithm_entry(std::string id, std::string description) {
   entry.id = std::move(id);
   entry.description = std::move(description);
   entry.action_spaces.assign(std::begin(A::kActionSpaces), std::end(A::kActionSpaces));
-  entry.make = [](const ConfigNode& params,
-                  const AlgorithmSetup& setup) -> std::unique_ptr<Algorithm> {
-    return std::make_unique<A>(read_config<typename A::Config>(params, {"id"}), setup);
+  entry.parse = [](const ConfigNode& params) {
+    return AnyConfig::of(read_config<typename A::Config>(params, {"id"}));
   };
-  entry.resolve = [](const ConfigNode& params) {
-    return write_config(read_config<typename A::Config>(params, {"id"}));
+  entry.check = [](const AnyConfig& params, const AlgorithmSetup& setup) {
+    return A::check(params.get<typename A::Config>(), setup);
+  };
+  entry.make = [](const AnyConfig& params,
+                  const AlgorithmSetup& setup) -> std::unique_ptr<Algorithm> {
+    return std::make_unique<A>(params.get<typename A::Config>(), setup);
   };
   entry.params = [] { return document_config<typename A::Config>(); };
   return entry;

@@ -157,10 +157,10 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
     if (checkpoint->training_state.empty())
       throw UsageError("cannot resume from " + resume_checkpoint +
                        ": it holds no training state (a model file, not a checkpoint)");
-    if (checkpoint->meta.algorithm != experiment.algo_id)
+    if (checkpoint->meta.algorithm != experiment.algo.id)
       throw UsageError("cannot resume from " + resume_checkpoint + ": it was written by " +
                        checkpoint->meta.algorithm + ", the run's config trains " +
-                       experiment.algo_id);
+                       experiment.algo.id);
     outcome.run_dir = run_dir_of_checkpoint(resume_checkpoint);
     // The files go back to where the checkpoint left them (rows written after it would
     // otherwise appear twice).
@@ -176,12 +176,12 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
   write_text_atomic(outcome.run_dir + "/config.yaml", dump_yaml(experiment.resolved));
   RunLog log(outcome.run_dir + "/log.txt");
   if (resuming)
-    log.line("rlrun " RLRUN_VERSION ": resuming " + experiment.algo_id + " on " +
+    log.line("rlrun " RLRUN_VERSION ": resuming " + experiment.algo.id + " on " +
              experiment.env.id + " from " + resume_checkpoint + " (step " +
              std::to_string(checkpoint->meta.num_timesteps) + " of " +
              std::to_string(run.total_timesteps) + ")");
   else
-    log.line("rlrun " RLRUN_VERSION ": training " + experiment.algo_id + " on " +
+    log.line("rlrun " RLRUN_VERSION ": training " + experiment.algo.id + " on " +
              experiment.env.id + " for " + std::to_string(run.total_timesteps) + " steps (seed " +
              std::to_string(run.seed) + ", " + std::to_string(experiment.env.section.n_envs) +
              " envs) -> " + outcome.run_dir);
@@ -193,13 +193,13 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
   share_model_statistics(env);  // one set of normalisation statistics, like VecNormalize
   if (!resuming) env.seed(run.seed);
   const AlgorithmSetup setup{env.observation_space(), env.action_space(), env.num_envs(), run.seed};
-  const AlgorithmEntry& entry =
-      registry.algorithm(experiment.algo_id, experiment.algo_node.child("id"));
+  const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
+  if (!entry) throw ConfigError(experiment.algo.where + ": unknown algorithm " + experiment.algo.id);
   std::unique_ptr<Algorithm> algorithm;
   try {
-    algorithm = entry.make(experiment.algo_node, setup);
+    algorithm = entry->make(experiment.algo.params, setup);
   } catch (const std::invalid_argument& e) {
-    experiment.algo_node.fail(e.what());
+    throw ConfigError(experiment.algo.where + ": algo: " + e.what());
   }
 
   const auto training_state = [&](const char* part) {

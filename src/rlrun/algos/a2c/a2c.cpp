@@ -12,6 +12,11 @@
 
 namespace rlrun {
 
+ConfigProblems A2C::check(const Config& config, const AlgorithmSetup& setup) {
+  const int64_t rollout = static_cast<int64_t>(config.n_steps) * setup.n_envs;
+  return check_actor_critic(config.policy, rollout, rollout, setup);
+}
+
 A2C::A2C(const Config& config, const AlgorithmSetup& setup)
     : config_(config),
       setup_(setup),

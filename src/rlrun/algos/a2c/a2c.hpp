@@ -6,6 +6,7 @@
 // returns).
 #include <optional>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
@@ -32,20 +33,25 @@ class A2C : public Algorithm {
 
     template <class V>
     void visit(V& v) {
-      v("learning_rate", learning_rate, "optimizer step size: a number or lin_<initial>");
-      v("n_steps", n_steps, "steps per env per update (rollout size = n_steps * n_envs)");
-      v("gamma", gamma, "discount factor");
-      v("gae_lambda", gae_lambda, "GAE lambda (1 = n-step returns)");
-      v("ent_coef", ent_coef, "entropy bonus coefficient");
-      v("vf_coef", vf_coef, "value loss coefficient");
-      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
-      v("rms_prop_eps", rms_prop_eps, "RMSprop epsilon");
+      v("learning_rate", learning_rate, "optimizer step size: a number or lin_<initial>",
+        non_negative());
+      v("n_steps", n_steps, "steps per env per update (rollout size = n_steps * n_envs)",
+        in_range(1, 1e8));
+      v("gamma", gamma, "discount factor", unit_interval());
+      v("gae_lambda", gae_lambda, "GAE lambda (1 = n-step returns)", unit_interval());
+      v("ent_coef", ent_coef, "entropy bonus coefficient", non_negative());
+      v("vf_coef", vf_coef, "value loss coefficient", non_negative());
+      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping", positive());
+      v("rms_prop_eps", rms_prop_eps, "RMSprop epsilon", positive());
       v("use_rms_prop", use_rms_prop, "RMSprop (true, SB3 default) or Adam");
       v("normalize_advantage", normalize_advantage, "normalise advantages over the rollout");
       v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");
     }
   };
   static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete, SpaceKind::kBox};
+
+  // Problems of `config` with these spaces (registry: checked before anything trains).
+  static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
 
   A2C(const Config& config, const AlgorithmSetup& setup);
 

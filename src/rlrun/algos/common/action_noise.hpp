@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/core/rng.hpp"
 
 namespace rlrun {
@@ -17,8 +18,10 @@ struct ActionNoiseConfig {
 
   template <class V>
   void visit(V& v) {
-    v("noise_type", noise_type, "exploration noise: '' (none), normal or ornstein-uhlenbeck");
-    v("noise_std", noise_std, "noise standard deviation (actions scaled to [-1, 1])");
+    v("noise_type", noise_type, "exploration noise: '' (none), normal or ornstein-uhlenbeck",
+      OneOf{{"", "normal", "ornstein-uhlenbeck"}});
+    v("noise_std", noise_std, "noise standard deviation (actions scaled to [-1, 1])",
+      non_negative());
   }
 };
 

@@ -1,8 +1,10 @@
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/resource_limits.hpp"
 #include <stdexcept>
 
 namespace rlrun {
@@ -23,6 +25,34 @@ void load_mlp(Mlp& mlp, const std::string& tower, const std::string& head, const
     from_tensor(in, name + ".weight", mlp.weight(l));
     from_tensor(in, name + ".bias", mlp.bias(l));
   }
+}
+
+ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t rollout_size,
+                                  int64_t batch, const AlgorithmSetup& setup) {
+  ConfigProblems out;
+  if (rollout_size > std::numeric_limits<int>::max())
+    out.push_back({"n_steps", "n_steps * n_envs = " + std::to_string(rollout_size) +
+                                  " steps per rollout is more than rlrun's limit of 2^31 - 1"});
+  if (!setup.observation_space.is_box())
+    out.push_back({"id", "observation space " + setup.observation_space.describe() +
+                             " is not supported yet (Box only; OneHotObservation turns Discrete "
+                             "observations into a Box)"});
+  if (!policy.ortho_init)
+    out.push_back({"policy.ortho_init",
+                   "false (torch's default init) is not supported yet; SB3's default is true"});
+  check_net_arch(out, "policy.net_arch", policy.net_arch);
+  const int obs_dim = setup.observation_space.flat_dim();
+  const int head = setup.action_space.is_discrete() ? static_cast<int>(setup.action_space.n())
+                                                    : setup.action_space.flat_dim();
+  check_network_memory(out, "policy.net_arch", obs_dim, policy.net_arch, head, 2,
+                       static_cast<double>(batch));
+  // The rollout: observations, actions and six per-step numbers (reward, value, log-prob,
+  // advantage, return, episode start) in float32.
+  const double rollout_bytes = static_cast<double>(rollout_size) *
+                               (obs_dim + setup.action_space.flat_dim() + 6) * sizeof(float);
+  const std::string problem = memory_problem(rollout_bytes, "a rollout of n_steps * n_envs steps");
+  if (!problem.empty()) out.push_back({"n_steps", problem});
+  return out;
 }
 
 ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,

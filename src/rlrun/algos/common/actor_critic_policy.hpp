@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/core/rng.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/core/tensor.hpp"
@@ -19,6 +20,12 @@
 
 namespace rlrun {
 
+struct ActorCriticPolicyConfig;
+// The checks PPO and A2C share: spaces, network shape and the memory of the networks and of a
+// rollout of `rollout_size` (n_steps * n_envs) steps, minibatches of `batch`.
+ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t rollout_size,
+                                  int64_t batch, const AlgorithmSetup& setup);
+
 struct ActorCriticPolicyConfig {
   std::vector<int> net_arch = {64, 64};  // hidden sizes of both the actor and the critic tower
   std::string activation_fn = "tanh";   // tanh or relu (SB3 default nn.Tanh)
@@ -27,10 +34,12 @@ struct ActorCriticPolicyConfig {
 
   template <class V>
   void visit(V& v) {
-    v("net_arch", net_arch, "hidden layer sizes of the actor and of the critic");
-    v("activation_fn", activation_fn, "activation between hidden layers: tanh or relu");
+    v("net_arch", net_arch, "hidden layer sizes of the actor and of the critic", layer_width());
+    v("activation_fn", activation_fn, "activation between hidden layers: tanh or relu",
+      activation_names());
     v("ortho_init", ortho_init, "orthogonal init (gains sqrt(2), 0.01 actor head, 1 critic head)");
-    v("log_std_init", log_std_init, "initial log standard deviation for Box actions");
+    v("log_std_init", log_std_init, "initial log standard deviation for Box actions",
+      in_range(-20, 20));
   }
 };
 

@@ -10,10 +10,10 @@ namespace rlrun {
 
 void decode(const ConfigNode& node, TrainFreq& out) {
   if (node.is_scalar()) {
-    out.frequency = static_cast<int>(node.as_int());
+    decode(node, out.frequency);
     out.episodes = false;
   } else if (node.is_sequence() && node.size() == 2) {
-    out.frequency = static_cast<int>(node.at(0).as_int());
+    decode(node.at(0), out.frequency);
     const std::string unit = node.at(1).as_string();
     if (unit != "step" && unit != "episode")
       node.at(1).fail("train_freq unit must be 'step' or 'episode', got '" + unit + "'");

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
@@ -36,11 +37,12 @@ struct OffPolicyConfig {
 
   template <class V>
   void visit(V& v) {
-    v("buffer_size", buffer_size, "replay buffer size in transitions");
-    v("learning_starts", learning_starts, "env steps with random actions before learning starts");
-    v("batch_size", batch_size, "minibatch size per gradient step");
-    v("tau", tau, "soft update coefficient for target networks (1 = hard copy)");
-    v("gamma", gamma, "discount factor");
+    v("buffer_size", buffer_size, "replay buffer size in transitions", at_least(1));
+    v("learning_starts", learning_starts, "env steps with random actions before learning starts",
+      non_negative());
+    v("batch_size", batch_size, "minibatch size per gradient step", in_range(1, 1e7));
+    v("tau", tau, "soft update coefficient for target networks (1 = hard copy)", unit_interval());
+    v("gamma", gamma, "discount factor", unit_interval());
     v("train_freq", train_freq, "update every N steps, or [N, episode]");
     v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)");
     v("handle_timeout_termination", handle_timeout_termination,

@@ -22,7 +22,7 @@ class DDPG : public Algorithm {
     template <class V>
     void visit(V& v) {
       v("learning_rate", learning_rate,
-        "Adam step size of the actor and the critic: a number or lin_<initial>");
+        "Adam step size of the actor and the critic: a number or lin_<initial>", non_negative());
       off_policy.visit(v);
       action_noise.visit(v);
       v("policy", policy, "networks: net_arch, activation_fn, n_critics (1)");
@@ -33,6 +33,10 @@ class DDPG : public Algorithm {
 
   // The TD3 settings SB3's DDPG.__init__ passes to TD3.__init__.
   static TD3::Config to_td3(const Config& config);
+
+  static ConfigProblems check(const Config& config, const AlgorithmSetup& setup) {
+    return TD3::check(to_td3(config), setup);
+  }
 
   // Throws std::invalid_argument for bad settings or spaces (as TD3).
   DDPG(const Config& config, const AlgorithmSetup& setup);

@@ -47,6 +47,24 @@ const DQN::Config& checked(const DQN::Config& c, const AlgorithmSetup& setup) {
 }
 }  // namespace
 
+ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
+  ConfigProblems out;
+  if (!setup.observation_space.is_box())
+    out.push_back({"id", "observation space " + setup.observation_space.describe() +
+                             " is not supported (Box only; OneHotObservation turns Discrete "
+                             "observations into a Box)"});
+  check_gradient_steps(out, config.off_policy.gradient_steps);
+  if (config.off_policy.tau == 0.0)
+    out.push_back({"tau", "must be > 0 (0 would never update the target network)"});
+  check_net_arch(out, "policy.net_arch", config.policy.net_arch);
+  const int actions = setup.action_space.is_discrete() ? static_cast<int>(setup.action_space.n()) : 1;
+  // The Q-network, its target and the two-core replicas of both.
+  check_network_memory(out, "policy.net_arch", setup.observation_space.flat_dim(),
+                       config.policy.net_arch, actions, 4, config.off_policy.batch_size);
+  check_replay_memory(out, config.off_policy.buffer_size, setup);
+  return out;
+}
+
 DQN::DQN(const Config& config, const AlgorithmSetup& setup)
     : config_(checked(config, setup)),
       setup_(setup),

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
@@ -48,16 +49,16 @@ class DQN : public Algorithm {
 
     template <class V>
     void visit(V& v) {
-      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>");
+      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>", non_negative());
       off_policy.visit(v);  // buffer_size ... handle_timeout_termination, flattened as in SB3
       v("target_update_interval", target_update_interval,
-        "env steps between target network updates");
+        "env steps between target network updates", at_least(1));
       v("exploration_fraction", exploration_fraction,
-        "fraction of training over which epsilon decays");
+        "fraction of training over which epsilon decays", in_range(0, 1).open_low());
       v("exploration_initial_eps", exploration_initial_eps,
-        "initial epsilon (random action probability)");
-      v("exploration_final_eps", exploration_final_eps, "final epsilon");
-      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
+        "initial epsilon (random action probability)", unit_interval());
+      v("exploration_final_eps", exploration_final_eps, "final epsilon", unit_interval());
+      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping", positive());
       v("policy", policy, "Q-network: net_arch, activation_fn");
     }
   };
@@ -67,6 +68,9 @@ class DQN : public Algorithm {
 
   // Throws std::invalid_argument for a non-Box observation space, a non-Discrete action space
   // or an out-of-range hyperparameter.
+  // Problems of `config` with these spaces (registry: checked before anything trains).
+  static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
+
   DQN(const Config& config, const AlgorithmSetup& setup);
   // The updater points into the networks' storage: no copies or moves.
   DQN(const DQN&) = delete;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/core/rng.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/mlp.hpp"
@@ -19,8 +20,9 @@ struct QNetworkConfig {
 
   template <class V>
   void visit(V& v) {
-    v("net_arch", net_arch, "hidden layer sizes of the Q-network");
-    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh");
+    v("net_arch", net_arch, "hidden layer sizes of the Q-network", layer_width());
+    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh",
+      activation_names());
   }
 };
 

@@ -20,6 +20,16 @@ namespace {
 constexpr uint64_t kShuffleStream = 0x14057b7ef767814fULL;
 }  // namespace
 
+ConfigProblems PPO::check(const Config& config, const AlgorithmSetup& setup) {
+  const int64_t rollout = static_cast<int64_t>(config.n_steps) * setup.n_envs;
+  ConfigProblems out = check_actor_critic(config.policy, rollout,
+                                          std::min<int64_t>(config.batch_size, rollout), setup);
+  // SB3 ppo.py asserts buffer_size > 1: advantages are normalised over a minibatch.
+  if (config.normalize_advantage && rollout < 2)
+    out.push_back({"n_steps", "n_steps * n_envs must be > 1 to normalise advantages"});
+  return out;
+}
+
 PPO::PPO(const Config& config, const AlgorithmSetup& setup)
     : config_(config),
       setup_(setup),

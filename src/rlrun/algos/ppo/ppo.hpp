@@ -6,6 +6,7 @@
 // global gradient-norm clipping, Adam (eps 1e-5 as SB3's ActorCriticPolicy sets it).
 #include <optional>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
@@ -34,25 +35,32 @@ class PPO : public Algorithm {
 
     template <class V>
     void visit(V& v) {
-      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>");
-      v("n_steps", n_steps, "steps per env per rollout (rollout size = n_steps * n_envs)");
-      v("batch_size", batch_size, "minibatch size");
-      v("n_epochs", n_epochs, "passes over each rollout");
-      v("gamma", gamma, "discount factor");
-      v("gae_lambda", gae_lambda, "GAE bias/variance trade-off");
-      v("clip_range", clip_range, "surrogate clipping: a number or lin_<initial>");
-      v("clip_range_vf", clip_range_vf, "value clipping around old values (null = off)");
+      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>", non_negative());
+      v("n_steps", n_steps, "steps per env per rollout (rollout size = n_steps * n_envs)",
+        in_range(1, 1e8));
+      // SB3 ppo.py: "batch_size > 1 ... required for advantage normalization".
+      v("batch_size", batch_size, "minibatch size", in_range(2, 1e8));
+      v("n_epochs", n_epochs, "passes over each rollout", in_range(1, 1e6));
+      v("gamma", gamma, "discount factor", unit_interval());
+      v("gae_lambda", gae_lambda, "GAE bias/variance trade-off", unit_interval());
+      v("clip_range", clip_range, "surrogate clipping: a number or lin_<initial>", positive());
+      v("clip_range_vf", clip_range_vf, "value clipping around old values (null = off)",
+        positive());
       v("normalize_advantage", normalize_advantage, "normalise advantages per minibatch");
-      v("ent_coef", ent_coef, "entropy bonus coefficient");
-      v("vf_coef", vf_coef, "value loss coefficient");
-      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping");
-      v("target_kl", target_kl, "stop an update's epochs when approx KL > 1.5 * target_kl (null = off)");
+      v("ent_coef", ent_coef, "entropy bonus coefficient", non_negative());
+      v("vf_coef", vf_coef, "value loss coefficient", non_negative());
+      v("max_grad_norm", max_grad_norm, "global gradient-norm clipping", positive());
+      v("target_kl", target_kl,
+        "stop an update's epochs when approx KL > 1.5 * target_kl (null = off)", positive());
       v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");
     }
   };
 
   // Action spaces PPO handles (SB3 also has MultiDiscrete/MultiBinary: not yet here).
   static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete, SpaceKind::kBox};
+
+  // Problems of `config` with these spaces (registry: checked before anything trains).
+  static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
 
   PPO(const Config& config, const AlgorithmSetup& setup);
 

@@ -20,6 +20,20 @@ bool parse_number(const std::string& text, double& out) {
 }
 }  // namespace
 
+std::string EntCoefSpec::problem(const std::string& spec) const {
+  double value = 0.0;
+  if (spec == "auto") return "";
+  if (spec.rfind("auto_", 0) == 0 && parse_number(spec.substr(5), value) && value > 0.0) return "";
+  if (spec.rfind("auto", 0) != 0 && parse_number(spec, value) && value >= 0.0) return "";
+  return "'" + spec + "' is not " + describe();
+}
+
+std::string TargetEntropySpec::problem(const std::string& spec) const {
+  double value = 0.0;
+  if (spec == "auto" || parse_number(spec, value)) return "";
+  return "'" + spec + "' is not " + describe();
+}
+
 EntropyCoefficient::EntropyCoefficient(const std::string& spec, const std::string& target_entropy,
                                        int action_dim) {
   double init = 1.0;

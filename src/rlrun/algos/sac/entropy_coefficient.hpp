@@ -15,6 +15,17 @@
 
 namespace rlrun {
 
+// Constraints of the YAML strings (config_fields.hpp): "auto", "auto_<initial > 0>" or a
+// number >= 0; "auto" or a number.
+struct EntCoefSpec {
+  std::string describe() const { return "auto, auto_<initial value > 0> or a number >= 0"; }
+  std::string problem(const std::string& spec) const;
+};
+struct TargetEntropySpec {
+  std::string describe() const { return "auto or a number"; }
+  std::string problem(const std::string& spec) const;
+};
+
 class EntropyCoefficient {
  public:
   // spec: "auto", "auto_<positive number>" or a number (fixed). target_entropy: "auto"

@@ -33,6 +33,21 @@ void fill_normal(Rng& rng, Eigen::MatrixXf& m) {
 }
 }  // namespace
 
+ConfigProblems SAC::check(const Config& config, const AlgorithmSetup& setup) {
+  ConfigProblems out;
+  check_box_actor_spaces(out, setup);
+  check_gradient_steps(out, config.off_policy.gradient_steps);
+  check_net_arch(out, "policy.net_arch", config.policy.net_arch);
+  const int obs = setup.observation_space.flat_dim(), act = setup.action_space.flat_dim();
+  // Actor (mean and log std heads) and, per critic, its target; each replicated per core.
+  check_network_memory(out, "policy.net_arch", obs, config.policy.net_arch, 2 * act, 2,
+                       config.off_policy.batch_size);
+  check_network_memory(out, "policy.net_arch", obs + act, config.policy.net_arch, 1,
+                       4 * config.policy.n_critics, config.off_policy.batch_size);
+  check_replay_memory(out, config.off_policy.buffer_size, setup);
+  return out;
+}
+
 SAC::SAC(const Config& config, const AlgorithmSetup& setup)
     : config_(checked(config)),
       setup_(setup),

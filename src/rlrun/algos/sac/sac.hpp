@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
@@ -35,9 +36,10 @@ struct SacPolicyConfig {
 
   template <class V>
   void visit(V& v) {
-    v("net_arch", net_arch, "hidden layer sizes of the actor and of each critic");
-    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh");
-    v("n_critics", n_critics, "number of Q-networks; targets use their minimum");
+    v("net_arch", net_arch, "hidden layer sizes of the actor and of each critic", layer_width());
+    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh",
+      activation_names());
+    v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
   }
 };
 
@@ -63,14 +65,15 @@ class SAC : public Algorithm {
     template <class V>
     void visit(V& v) {
       v("learning_rate", learning_rate,
-        "Adam step size of actor, critics and ent_coef: a number or lin_<initial>");
+        "Adam step size of actor, critics and ent_coef: a number or lin_<initial>", non_negative());
       off_policy.visit(v);
       action_noise.visit(v);
-      v("ent_coef", ent_coef, "entropy coefficient: auto, auto_<initial> (learned) or a number");
+      v("ent_coef", ent_coef, "entropy coefficient: auto, auto_<initial> (learned) or a number",
+        EntCoefSpec{});
       v("target_update_interval", target_update_interval,
-        "soft-update the target critics every N gradient steps of a train() call");
+        "soft-update the target critics every N gradient steps of a train() call", at_least(1));
       v("target_entropy", target_entropy,
-        "entropy target when ent_coef is learned: auto (-dim A) or a number");
+        "entropy target when ent_coef is learned: auto (-dim A) or a number", TargetEntropySpec{});
       v("policy", policy, "networks: net_arch, activation_fn, n_critics");
     }
   };
@@ -79,6 +82,9 @@ class SAC : public Algorithm {
 
   // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
   // actions).
+  // Problems of `config` with these spaces (registry: checked before anything trains).
+  static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
+
   SAC(const Config& config, const AlgorithmSetup& setup);
   SAC(const SAC&) = delete;
   SAC& operator=(const SAC&) = delete;

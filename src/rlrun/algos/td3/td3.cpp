@@ -37,6 +37,21 @@ const TD3::Config& checked(const TD3::Config& c, const std::string& id) {
 
 }  // namespace
 
+ConfigProblems TD3::check(const Config& config, const AlgorithmSetup& setup) {
+  ConfigProblems out;
+  check_box_actor_spaces(out, setup);
+  check_gradient_steps(out, config.off_policy.gradient_steps);
+  check_net_arch(out, "policy.net_arch", config.policy.net_arch);
+  const int obs = setup.observation_space.flat_dim(), act = setup.action_space.flat_dim();
+  // Actor and its target, critics and their targets, each replicated per core.
+  check_network_memory(out, "policy.net_arch", obs, config.policy.net_arch, act, 4,
+                       config.off_policy.batch_size);
+  check_network_memory(out, "policy.net_arch", obs + act, config.policy.net_arch, 1,
+                       4 * config.policy.n_critics, config.off_policy.batch_size);
+  check_replay_memory(out, config.off_policy.buffer_size, setup);
+  return out;
+}
+
 TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
     : id_(std::move(id)),
       config_(checked(config, id_)),

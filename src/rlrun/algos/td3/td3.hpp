@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
@@ -34,9 +35,10 @@ struct Td3PolicyConfig {
 
   template <class V>
   void visit(V& v) {
-    v("net_arch", net_arch, "hidden layer sizes of the actor and of each critic");
-    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh");
-    v("n_critics", n_critics, "number of Q-networks; targets use their minimum");
+    v("net_arch", net_arch, "hidden layer sizes of the actor and of each critic", layer_width());
+    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh",
+      activation_names());
+    v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
   }
 };
 
@@ -61,14 +63,16 @@ class TD3 : public Algorithm {
     template <class V>
     void visit(V& v) {
       v("learning_rate", learning_rate,
-        "Adam step size of the actor and the critics: a number or lin_<initial>");
+        "Adam step size of the actor and the critics: a number or lin_<initial>", non_negative());
       off_policy.visit(v);
       action_noise.visit(v);
       v("policy_delay", policy_delay,
-        "update the actor and the targets every N gradient steps (critics every step)");
+        "update the actor and the targets every N gradient steps (critics every step)",
+        at_least(1));
       v("target_policy_noise", target_policy_noise,
-        "std of the Gaussian smoothing noise on target actions");
-      v("target_noise_clip", target_noise_clip, "clip of the target smoothing noise");
+        "std of the Gaussian smoothing noise on target actions", non_negative());
+      v("target_noise_clip", target_noise_clip, "clip of the target smoothing noise",
+        non_negative());
       v("policy", policy, "networks: net_arch, activation_fn, n_critics");
     }
   };
@@ -77,6 +81,9 @@ class TD3 : public Algorithm {
 
   // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
   // actions). `id` names the algorithm in logs and model files (DDPG reuses this class).
+  // Problems of `config` with these spaces (registry: checked before anything trains).
+  static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
+
   TD3(const Config& config, const AlgorithmSetup& setup, std::string id = "TD3");
   TD3(const TD3&) = delete;
   TD3& operator=(const TD3&) = delete;

@@ -40,8 +40,8 @@ int approach_of(const SumoLaneShape& lane, double centre_x, double centre_y) {
 TrafficSignal::TrafficSignal(const Config& config)
     : config_(config),
       reward_(parse_reward(config.reward_fn)),
-      scenario_(load_traffic_scenario(config.scenario.empty() ? default_traffic_scenario()
-                                                              : config.scenario)),
+      scenario_(load_traffic_scenario(config.scenario.value.empty() ? default_traffic_scenario()
+                                                                    : config.scenario.value)),
       observation_space_(Space::box(0.0f, 1.0f, {10})),
       action_space_(Space::discrete(kNumApproaches)) {
   if (config_.delta_time <= config_.yellow_time)
@@ -59,8 +59,8 @@ TrafficSignal::TrafficSignal(const Config& config)
                                 "program of its own)");
   // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours.
   static std::atomic<int> instances{0};
-  tripinfo_path_ = !config_.tripinfo_output.empty()
-                       ? config_.tripinfo_output
+  tripinfo_path_ = !config_.tripinfo_output.value.empty()
+                       ? config_.tripinfo_output.value
                        : (std::filesystem::temp_directory_path() /
                           ("rlrun" + std::to_string(getpid()) + "_" +
                            std::to_string(instances++) + ".tripinfo.xml"))
@@ -74,7 +74,7 @@ TrafficSignal::TrafficSignal(const Config& config)
 
 TrafficSignal::~TrafficSignal() {
   sumo_.reset();  // SUMO ends before its output file goes
-  if (config_.tripinfo_output.empty()) {
+  if (config_.tripinfo_output.value.empty()) {
     std::error_code ec;
     std::filesystem::remove(tripinfo_path_, ec);
   }
@@ -90,7 +90,7 @@ void TrafficSignal::sumo_failed(const std::exception& e) const {
 void TrafficSignal::start_simulation(uint64_t sumo_seed) {
   sumo_.reset();  // the previous episode's SUMO ends first
   SumoLaunch launch;
-  launch.binary = config_.gui ? "sumo-gui" : config_.sumo_binary;
+  launch.binary = config_.gui ? "sumo-gui" : config_.sumo_binary.value;
   launch.config = scenario_.sumocfg_path;
   launch.seed = sumo_seed;
   launch.scale = config_.scale * scenario_.scale;

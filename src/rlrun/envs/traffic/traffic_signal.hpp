@@ -31,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
+#include "rlrun/core/trusted_values.hpp"
 #include "rlrun/env/env_seeding.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
@@ -43,9 +45,9 @@ namespace rlrun {
 class TrafficSignal : public Env {
  public:
   struct Config {
-    std::string scenario;         // scenarios/*.yaml or a .sumocfg; empty = the shipped one
+    SimulatorInput scenario;      // scenarios/*.yaml or a .sumocfg; empty = the shipped one
     std::string backend = "traci";  // traci (a sumo process, socket) or libsumo (in-process)
-    std::string sumo_binary = "sumo";
+    ProgramPath sumo_binary{"sumo"};
     bool gui = false;             // run sumo-gui instead
     double scale = 1.0;           // demand multiplier
     int delta_time = 5;           // simulated seconds per action
@@ -54,7 +56,7 @@ class TrafficSignal : public Env {
     int max_green = 60;           // normalisation of the phase time in the observation
     int num_seconds = 3600;       // episode length in simulated seconds
     std::string reward_fn = "queue";  // queue, diff-waiting-time, average-speed, pressure
-    std::string tripinfo_output;  // also write SUMO's tripinfo XML here (tests, analysis)
+    OutputPath tripinfo_output;   // also write SUMO's tripinfo XML here (tests, analysis)
 
     template <class V>
     void visit(V& v) {
@@ -63,16 +65,22 @@ class TrafficSignal : public Env {
         "scenarios/single_intersection.yaml");
       v("backend", backend,
         "traci (a sumo process over a socket) or libsumo (SUMO inside rlrun: faster, one env "
-        "per process)");
+        "per process)",
+        OneOf{{"traci", "libsumo"}});
       v("sumo_binary", sumo_binary, "the sumo program to run (Debian package 'sumo')");
       v("gui", gui, "run sumo-gui to watch the simulation");
-      v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)");
-      v("delta_time", delta_time, "simulated seconds per action");
-      v("yellow_time", yellow_time, "seconds of yellow inserted on every switch");
-      v("min_green", min_green, "minimum green time in seconds");
-      v("max_green", max_green, "phase time that maps to 1 in the observation");
-      v("num_seconds", num_seconds, "episode length in simulated seconds");
-      v("reward_fn", reward_fn, "queue | diff-waiting-time | average-speed | pressure");
+      v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)",
+        in_range(0.0, 1000.0).open_low());
+      v("delta_time", delta_time, "simulated seconds per action", in_range(1, 86400));
+      v("yellow_time", yellow_time, "seconds of yellow inserted on every switch",
+        in_range(0, 86400));
+      v("min_green", min_green, "minimum green time in seconds", in_range(0, 86400));
+      v("max_green", max_green, "phase time that maps to 1 in the observation",
+        in_range(1, 86400));
+      v("num_seconds", num_seconds, "episode length in simulated seconds",
+        in_range(1, 365 * 86400));
+      v("reward_fn", reward_fn, "queue | diff-waiting-time | average-speed | pressure",
+        OneOf{{"queue", "diff-waiting-time", "average-speed", "pressure"}});
       v("tripinfo_output", tripinfo_output, "also write SUMO's tripinfo XML to this file");
     }
   };

@@ -1,0 +1,70 @@
+#include "rlrun/algos/common/config_checks.hpp"
+
+#include <cmath>
+
+#include "rlrun/core/resource_limits.hpp"
+
+namespace rlrun {
+
+void check_net_arch(ConfigProblems& out, const std::string& key, const std::vector<int>& net_arch) {
+  if (static_cast<int>(net_arch.size()) > kMaxLayers)
+    out.push_back({key, "has " + std::to_string(net_arch.size()) + " layers; at most " +
+                            std::to_string(kMaxLayers)});
+}
+
+OneOf activation_names() { return OneOf{{"tanh", "relu"}}; }
+
+double mlp_parameter_count(int in, const std::vector<int>& hidden, int out) {
+  double count = 0;
+  double previous = in;
+  for (int width : hidden) {
+    count += (previous + 1) * width;
+    previous = width;
+  }
+  return count + (previous + 1) * out;
+}
+
+void check_network_memory(ConfigProblems& out, const std::string& key, int in,
+                          const std::vector<int>& hidden, int outputs, int networks,
+                          double batch) {
+  // Weights, gradients, Adam's two moments and a target or replica copy: 5 floats each.
+  const double parameters = mlp_parameter_count(in, hidden, outputs) * networks;
+  double widest = 0;
+  for (int width : hidden) widest += width;
+  const double activations = widest * std::max(batch, 1.0) * networks * 4;  // forward + backward
+  const std::string problem =
+      memory_problem((parameters * 5 + activations) * sizeof(float), "this network");
+  if (!problem.empty()) out.push_back({key, problem});
+}
+
+void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const AlgorithmSetup& setup) {
+  const double row = 2.0 * setup.observation_space.flat_dim() + setup.action_space.flat_dim() + 2;
+  const std::string problem = memory_problem(static_cast<double>(buffer_size) * row * sizeof(float),
+                                             "a replay buffer of " + std::to_string(buffer_size) +
+                                                 " transitions");
+  if (!problem.empty()) out.push_back({"buffer_size", problem});
+}
+
+void check_gradient_steps(ConfigProblems& out, int gradient_steps) {
+  if (gradient_steps == 0 || gradient_steps < -1)
+    out.push_back({"gradient_steps",
+                   "must be >= 1, or -1 (as many as env steps collected), got " +
+                       std::to_string(gradient_steps)});
+}
+
+void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup) {
+  if (!setup.observation_space.is_box())
+    out.push_back({"id", "observation space " + setup.observation_space.describe() +
+                             " is not supported (Box only)"});
+  const Space& a = setup.action_space;
+  if (!a.is_box()) return;  // make_env has named the wrapper that fixes it
+  for (size_t i = 0; i < a.low().size(); ++i)
+    if (!std::isfinite(a.low()[i]) || !std::isfinite(a.high()[i]) || !(a.low()[i] < a.high()[i])) {
+      out.push_back({"id", "the action space " + a.describe() +
+                               " must have finite bounds low < high (the actor ends in tanh; "
+                               "add a ClipAction or RescaleAction wrapper)"});
+      return;
+    }
+}
+
+}  // namespace rlrun

@@ -1,0 +1,42 @@
+#pragma once
+// Checks every algorithm's static check() shares (registry: AlgorithmEntry::check): they run
+// when the experiment is parsed, with the env's spaces, so a setting that cannot work is
+// reported with its key before anything trains, not as an exception from a constructor.
+#include <string>
+#include <vector>
+
+#include "rlrun/algos/algorithm.hpp"
+#include "rlrun/core/config_checks.hpp"
+
+namespace rlrun {
+
+inline constexpr int kMaxLayerWidth = 65536;
+inline constexpr int kMaxLayers = 64;
+
+// Per-layer bounds of a `net_arch` list (the field constraint) and its length.
+inline Bounds layer_width() { return in_range(1, kMaxLayerWidth); }
+void check_net_arch(ConfigProblems& out, const std::string& key, const std::vector<int>& net_arch);
+
+// An activation name rlrun implements (nn/activation.hpp).
+OneOf activation_names();
+
+// Parameters of an MLP in -> hidden... -> out (weights and biases).
+double mlp_parameter_count(int in, const std::vector<int>& hidden, int out);
+
+// Memory of `networks` MLPs of this shape, trained with Adam (weights, gradients, two moments,
+// a target copy) and their activations for `batch` samples; a problem at `key` when it cannot
+// fit this machine.
+void check_network_memory(ConfigProblems& out, const std::string& key, int in,
+                          const std::vector<int>& hidden, int outputs, int networks,
+                          double batch);
+
+// A replay buffer of `buffer_size` transitions (obs, next obs, action, reward, done in float32).
+void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const AlgorithmSetup& setup);
+
+// SB3's gradient_steps: >= 1, or -1 (as many as env steps collected).
+void check_gradient_steps(ConfigProblems& out, int gradient_steps);
+
+// Box observations and a finite, non-empty Box action space (actors that end in tanh).
+void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup);
+
+}  // namespace rlrun
