@@ -151,7 +151,8 @@ Action add_check_env(CLI::App& app) {
   add_plugin_option(sub, options->plugins);
   sub->add_option("--set", options->overrides,
                   "with an id: an env parameter, e.g. --set step_size=0.1; with a file: any "
-                  "config value, e.g. --set env.kwargs.step_size=0.1 (repeatable)");
+                  "config value, e.g. --set env.kwargs.step_size=0.1 (repeatable)")
+      ->allow_extra_args(false);
   sub->add_option("--seed", options->seed, "seed of the checks and the random episodes");
   sub->add_option("--steps", options->steps, "random steps per determinism rollout")
       ->check(CLI::PositiveNumber);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "env_by_id.hpp"
@@ -85,8 +86,8 @@ int evaluate_without_model(const Options& o, const Registry& registry) {
   if (o.env_id.empty() == o.config.empty())
     throw UsageError("--policy " + o.policy + " needs exactly one of --env ID or --config CFG");
   if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
-  EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, {}, registry).env, registry,
-                                           "", unix_time_now())
+  EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
+                                           registry, "", unix_time_now())
                                 : env_by_id(o.env_id, registry);
   const EvalResult r =
       evaluate_policy(named_policy(o.policy, *env, o.seed, o.green_time).act, *env, o.episodes, o.seed);
@@ -109,6 +110,7 @@ Action add_eval(CLI::App& app) {
     std::string baseline;  // fixed-time (traffic task) or scripted (grasp task)
     int green_time = 30;
     std::string policy, env_id, config;  // a policy without a model, in an env or config's env
+    std::vector<std::string> overrides;   // --set: the user's values over the model's config
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
@@ -130,6 +132,10 @@ Action add_eval(CLI::App& app) {
   sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")->excludes(det);
   sub->add_option("--csv", options->csv, "also write one row per episode (episode,return,length)");
   add_plugin_option(sub, options->plugins);
+  sub->add_option("--set", options->overrides,
+                  "override a value of the model's config or --config (a model file is "
+                  "untrusted: this is how you vouch for a program or file it names; repeatable)")
+      ->allow_extra_args(false);
   sub->add_option("--baseline", options->baseline,
                   "also evaluate a baseline on the same episodes: fixed-time (the traffic task's "
                   "N -> S -> E -> W plan) or scripted (the grasp task's controller)")
@@ -145,10 +151,19 @@ Action add_eval(CLI::App& app) {
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
     if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
     const ModelFile model = read_model(options->model);
-    const Experiment experiment = experiment_from_model(model, registry);
+    const Experiment experiment = experiment_from_model(model, registry, options->overrides);
     EnvPtr env = make_model_env(model, experiment, registry);  // normalisation stats frozen
     auto algorithm = algorithm_from_model(model, experiment, registry, env->observation_space(),
                                           env->action_space());
+    // The baseline runs the same episodes on an env of its own; it is built (and checked to
+    // fit the env) before anything is evaluated.
+    EnvPtr baseline_env;
+    std::optional<NamedPolicy> baseline_policy;
+    if (!options->baseline.empty()) {
+      baseline_env = make_model_env(model, experiment, registry);
+      baseline_policy =
+          named_policy(options->baseline, *baseline_env, options->seed, options->green_time);
+    }
     EvalResult r;
     if (options->record.empty()) {
       r = evaluate_policy(*algorithm, *env, options->episodes, !options->stochastic, options->seed);
@@ -173,11 +188,9 @@ Action add_eval(CLI::App& app) {
     std::vector<std::pair<std::string, EvalResult>> runs{{model.meta.algorithm, r}};
     print_summary(model.meta.algorithm, options->stochastic ? " (stochastic)" : " (deterministic)",
                   experiment.env.id, options->episodes, r);
-    if (!options->baseline.empty()) {  // the same episodes, on an env of its own
-      EnvPtr baseline_env = make_model_env(model, experiment, registry);
-      const EvalResult baseline = evaluate_policy(
-          named_policy(options->baseline, *baseline_env, options->seed, options->green_time).act,
-          *baseline_env, options->episodes, options->seed);
+    if (baseline_policy) {  // the same episodes, on an env of its own
+      const EvalResult baseline =
+          evaluate_policy(baseline_policy->act, *baseline_env, options->episodes, options->seed);
       const std::string how = options->baseline == "fixed-time"
                                   ? " (" + std::to_string(options->green_time) + " s green)"
                                   : "";

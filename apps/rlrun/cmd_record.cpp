@@ -18,7 +18,7 @@
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/observation_log.hpp"
 #include "rlrun/runtime/recorder.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/core/interrupt.hpp"
 
 namespace rlrun::cli {
 
@@ -101,7 +101,7 @@ int run(const Options& o) {
   std::string algo_id;
   if (!o.model.empty()) {
     const ModelFile model = read_model(o.model);
-    const Experiment experiment = experiment_from_model(model, registry);
+    const Experiment experiment = experiment_from_model(model, registry, o.overrides);
     env = make_model_env(model, experiment, registry);  // normalisation statistics frozen
     algorithm = algorithm_from_model(model, experiment, registry, env->observation_space(),
                                      env->action_space());
@@ -142,7 +142,10 @@ Action add_record(CLI::App& app) {
   sub->add_option("--model", options->model, "model.zip written by rlrun train");
   sub->add_option("--config", options->config,
                   "experiment file whose env to record (with --policy random)");
-  sub->add_option("--set", options->overrides, "override a --config value (repeatable)");
+  sub->add_option("--set", options->overrides,
+                  "override a value of --config, or of the model's config (a model file is "
+                  "untrusted: this is how you vouch for a program or file it names; repeatable)")
+      ->allow_extra_args(false);
   sub->add_option("--env", options->env_id, "env id (with --policy random or --from-obs)");
   sub->add_option("--policy", options->policy,
                   "model (default with --model), random, fixed-time (traffic task) or scripted "

@@ -12,12 +12,15 @@
 
 #include "commands.hpp"
 #include "parallel_runs.hpp"
+#include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/run_directory.hpp"
 #include "rlrun/runtime/sweep.hpp"
+#include "rlrun/core/interrupt.hpp"
+#include "rlrun/runtime/resume_point.hpp"
 #include "rlrun/runtime/trainer.hpp"
 
 namespace rlrun::cli {
@@ -34,16 +37,17 @@ std::string own_binary() {
 
 // Holds an exclusive lock on <out_dir>/locks/<index>.lock while a run trains, so two `sweep
 // run` processes (a Slurm task and a local re-run, say) never train the same run at once.
-class RunLock {
+class SweepSlotLock {
  public:
-  RunLock(const Sweep& sweep, int index) {
+  SweepSlotLock(const Sweep& sweep, int index) {
     const fs::path dir = fs::path(sweep.manifest).parent_path() / "locks";
     fs::create_directories(dir);
-    fd_ = open((dir / (std::to_string(index) + ".lock")).c_str(), O_RDWR | O_CREAT, 0644);
+    fd_ = open((dir / (std::to_string(index) + ".lock")).c_str(),
+               O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd_ < 0) throw RuntimeFailure("cannot create the lock file in " + dir.string());
     held_ = flock(fd_, LOCK_EX | LOCK_NB) == 0;
   }
-  ~RunLock() {
+  ~SweepSlotLock() {
     if (fd_ >= 0) close(fd_);  // releases the lock
   }
   bool held() const { return held_; }
@@ -55,13 +59,15 @@ class RunLock {
 
 // Trains run `index` in this process. The last line printed starts with "sweep: " (the
 // parent's summary shows it).
-int run_one(const Sweep& sweep, int index) {
+// `overrides` are the user's --set values, which vouch for values the untrusted manifest's
+// configs carry (docs/security.md); `plugins` are loaded already.
+int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overrides) {
   if (index < 0 || index >= static_cast<int>(sweep.runs.size()))
     throw UsageError("--index " + std::to_string(index) + ": the manifest has runs 0-" +
                      std::to_string(sweep.runs.size() - 1));
   const SweepRun& run = sweep.runs[index];
   const std::string name = "run " + std::to_string(index) + " (" + run.id + ")";
-  RunLock lock(sweep, index);
+  SweepSlotLock lock(sweep, index);
   if (!lock.held()) {
     std::printf("sweep: %s is being trained by another process; left to it\n", name.c_str());
     return 0;
@@ -79,11 +85,12 @@ int run_one(const Sweep& sweep, int index) {
       std::printf("sweep: %s finished before; skipped\n", name.c_str());
       return 0;
     case RunState::kResumable: {
-      const std::string checkpoint = resolve_resume_checkpoint(run.run_dir);
-      std::printf("sweep: %s resuming from %s\n", name.c_str(), checkpoint.c_str());
+      const std::vector<std::string> checkpoints = resume_candidates(run.run_dir);
+      std::printf("sweep: %s resuming from %s\n", name.c_str(), checkpoints.front().c_str());
       std::fflush(stdout);
-      const Experiment experiment = load_experiment(run.run_dir + "/config.yaml", {}, registry);
-      outcome = train_experiment(experiment, registry, checkpoint);
+      const Experiment experiment = load_experiment(run.run_dir + "/config.yaml", overrides,
+                                                    registry, ConfigTrust::kUntrusted);
+      outcome = train_experiment(experiment, registry, checkpoints);
       break;
     }
     case RunState::kPartial:
@@ -93,7 +100,14 @@ int run_one(const Sweep& sweep, int index) {
       [[fallthrough]];
     case RunState::kNew: {
       std::fflush(stdout);
-      const Experiment experiment = load_experiment(run.config, {}, registry);
+      const Experiment experiment =
+          load_experiment(run.config, overrides, registry, ConfigTrust::kUntrusted);
+      const fs::path target = fs::absolute(fs::path(experiment.run.out_dir) / experiment.run.name /
+                                           ("seed" + std::to_string(experiment.run.seed)))
+                                  .lexically_normal();
+      if (target != fs::path(run.run_dir))
+        throw UsageError(name + ": its config " + run.config + " trains into " + target.string() +
+                         ", not the manifest's " + run.run_dir);
       outcome = train_experiment(experiment, registry);
       if (fs::absolute(outcome.run_dir).lexically_normal() != fs::path(run.run_dir))
         throw RuntimeFailure("run " + run.id + " trained into " + outcome.run_dir +
@@ -107,7 +121,7 @@ int run_one(const Sweep& sweep, int index) {
   return outcome.interrupted ? 130 : 0;
 }
 
-int run_all(const Sweep& sweep, int jobs) {
+int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed_on) {
   std::map<RunState, int> before;
   std::vector<ChildRun> children;
   for (const SweepRun& run : sweep.runs) {
@@ -116,8 +130,10 @@ int run_all(const Sweep& sweep, int jobs) {
     if (state == RunState::kFinished) continue;
     // One core per run when several share the machine; else this process's own setting.
     const char* threads = jobs > 1 ? "1" : (ForkJoin::shared().enabled() ? "2" : "1");
-    children.push_back({run.id, {"--threads", threads, "sweep", "run", sweep.manifest, "--index",
-                                 std::to_string(run.index)}});
+    std::vector<std::string> args{"--threads", threads, "sweep", "run", sweep.manifest,
+                                  "--index", std::to_string(run.index)};
+    args.insert(args.end(), passed_on.begin(), passed_on.end());
+    children.push_back({run.id, args});
   }
   std::printf("sweep %s: %zu runs: %d finished before (skipped), %d to resume, %d to start "
               "(%d again, having left no checkpoint)\n",
@@ -140,6 +156,7 @@ Action add_sweep(CLI::App& app) {
     std::string sweep_file, manifest;
     int jobs = 1;
     int index = -1;
+    std::vector<std::string> overrides, plugins;
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -151,14 +168,24 @@ Action add_sweep(CLI::App& app) {
   run->add_option("-j,--jobs", options->jobs, "runs at once (each with --threads 1)")
       ->check(CLI::PositiveNumber);
   run->add_option("--index", options->index, "train only run I (what a Slurm array task does)");
+  run->add_option("--set", options->overrides,
+                  "override a value in every run's config (a manifest is untrusted: this is how "
+                  "you vouch for a program or scenario file it names; docs/security.md)")
+      ->allow_extra_args(false);
+  add_plugin_option(run, options->plugins);
   CLI::App* slurm = sub->add_subcommand("slurm", "write an sbatch --array script for a manifest");
   slurm->add_option("manifest", options->manifest, "manifest.yaml")->required();
   CLI::App* status = sub->add_subcommand("status", "print each run's state");
   status->add_option("manifest", options->manifest, "manifest.yaml")->required();
   return [options, run, slurm, status]() {
     if (run->parsed()) {
+      load_plugin_options(options->plugins);
       const Sweep sweep = read_manifest(options->manifest);
-      return options->index >= 0 ? run_one(sweep, options->index) : run_all(sweep, options->jobs);
+      if (options->index >= 0) return run_one(sweep, options->index, options->overrides);
+      std::vector<std::string> passed_on;
+      for (const std::string& o : options->overrides) passed_on.insert(passed_on.end(), {"--set", o});
+      for (const std::string& p : options->plugins) passed_on.insert(passed_on.end(), {"--plugin", p});
+      return run_all(sweep, options->jobs, passed_on);
     }
     if (slurm->parsed()) {
       const Sweep sweep = read_manifest(options->manifest);

@@ -1,14 +1,18 @@
 // rlrun train CONFIG... [--set key=value]... [--seed N] [--timesteps N] [--out DIR]
 //                       [--init-from MODEL] [-j N]
 // rlrun train --resume RUN_DIR|CHECKPOINT [--timesteps N]
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
+#include "rlrun/core/interrupt.hpp"
+#include "rlrun/runtime/resume_point.hpp"
 #include "rlrun/runtime/trainer.hpp"
 
 namespace rlrun::cli {
@@ -41,23 +45,48 @@ std::vector<std::string> all_overrides(const TrainOptions& o) {
   return overrides;
 }
 
+// True when `--set key=value` restates the value the run's config already has: the run is
+// unchanged, and the user vouches for a value the untrusted config.yaml carries (a plugin's
+// kwargs, a SUMO binary; docs/security.md).
+bool restates(const ConfigNode& config, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos) return false;
+  ConfigNode node = config;
+  std::stringstream path(assignment.substr(0, eq));
+  for (std::string key; std::getline(path, key, '.');) node = node.child(key);
+  if (!node.defined()) return false;
+  try {
+    return dump_yaml(node.yaml()) == dump_yaml(YAML::Load(assignment.substr(eq + 1)));
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
 int resume(const TrainOptions& o, const Registry& registry) {
   // A resumed run is the same run: its config.yaml, except for how long it trains.
   if (!o.configs.empty() || o.seed || !o.out.empty() || !o.init_from.empty() || o.jobs != 1)
     throw UsageError("--resume continues a run with its own config.yaml; it takes no experiment "
                      "files, --seed, --out, --init-from or -j");
+  std::error_code ec;
+  const std::string run_dir = std::filesystem::is_directory(o.resume, ec)
+                                  ? o.resume
+                                  : run_dir_of_checkpoint(o.resume);
+  const std::string config = run_dir + "/config.yaml";
   const std::vector<std::string> overrides = all_overrides(o);
+  // A run directory may come from anyone: its config.yaml is untrusted (docs/security.md).
+  const ConfigNode stored = std::filesystem::exists(config, ec)
+                                ? ConfigNode::load_file(config, ConfigTrust::kUntrusted)
+                                : ConfigNode();
   for (const std::string& override : overrides)
     if (override.rfind("run.total_timesteps=", 0) != 0 &&
-        override.rfind("run.console_interval=", 0) != 0)
+        override.rfind("run.console_interval=", 0) != 0 && !restates(stored, override))
       throw UsageError("--resume cannot change '" + override +
                        "' (only run.total_timesteps and run.console_interval): an exact resume "
                        "needs the run's settings");
-  const std::string checkpoint = resolve_resume_checkpoint(o.resume);
-  const Experiment experiment =
-      load_experiment(run_dir_of_checkpoint(checkpoint) + "/config.yaml", overrides, registry);
+  const std::vector<std::string> candidates = resume_candidates(o.resume);
+  const Experiment experiment = load_experiment(config, overrides, registry, ConfigTrust::kUntrusted);
   install_interrupt_handlers();
-  return exit_code(train_experiment(experiment, registry, checkpoint));
+  return exit_code(train_experiment(experiment, registry, candidates));
 }
 
 }  // namespace
@@ -69,7 +98,8 @@ Action add_train(CLI::App& app) {
                   "experiment YAML files (trained one after another, or -j at once)")
       ->check(CLI::ExistingFile);
   sub->add_option("--set", options->overrides,
-                  "override a config value, e.g. --set algo.learning_rate=3e-4 (repeatable)");
+                  "override a config value, e.g. --set algo.learning_rate=3e-4 (repeatable)")
+      ->allow_extra_args(false);
   sub->add_option("--seed", options->seed, "set run.seed (overrides the files)");
   sub->add_option("--timesteps", options->timesteps, "set run.total_timesteps")
       ->check(CLI::PositiveNumber);
@@ -93,9 +123,17 @@ Action add_train(CLI::App& app) {
     const std::vector<std::string> overrides = all_overrides(*options);
     // Validate every file before training any: a typo in the last file should not surface
     // after hours of training on the first.
+    // Every problem of every file is reported at once, before anything trains.
     std::vector<Experiment> experiments;
-    for (const auto& path : options->configs)
-      experiments.push_back(load_experiment(path, overrides, registry));
+    std::string problems;
+    for (const auto& path : options->configs) {
+      try {
+        experiments.push_back(load_experiment(path, overrides, registry));
+      } catch (const ConfigError& e) {
+        problems += (problems.empty() ? "" : "\n") + std::string(e.what());
+      }
+    }
+    if (!problems.empty()) throw ConfigError(problems);
     if (options->jobs > 1 && options->configs.size() > 1) {
       std::vector<std::string> child_options;
       for (const std::string& override : overrides) {

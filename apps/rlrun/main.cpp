@@ -1,10 +1,28 @@
 // rlrun: train, evaluate and inspect RL agents from YAML experiment files.
 // Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure.
+#include <algorithm>
 #include <iostream>
+#include <new>
+#include <string>
 
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
+
+namespace {
+
+// One "error: " line per problem (a config may report several at once).
+void print_error(const std::string& message) {
+  std::string::size_type start = 0;
+  while (start <= message.size()) {
+    const auto end = std::min(message.find('\n', start), message.size());
+    if (end > start || start == 0) std::cerr << "error: " << message.substr(start, end - start) << '\n';
+    start = end + 1;
+  }
+  std::cerr.flush();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"rlrun " RLRUN_VERSION
@@ -42,16 +60,22 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("report")) return report();
     if (app.got_subcommand("plot")) return plot();
   } catch (const rlrun::ConfigError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    print_error(e.what());
     return rlrun::kExitUsage;
   } catch (const rlrun::UsageError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    print_error(e.what());
     return rlrun::kExitUsage;
   } catch (const rlrun::RuntimeFailure& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    print_error(e.what());
+    return rlrun::kExitRuntime;
+  } catch (const std::bad_alloc&) {
+    // Config values are bounded when parsed (core/resource_limits.hpp); this is the machine
+    // running out while training, e.g. other processes took the memory.
+    print_error("out of memory (std::bad_alloc); free memory, or reduce buffer_size, n_envs or "
+                "net_arch");
     return rlrun::kExitRuntime;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    print_error(e.what());
     return rlrun::kExitRuntime;
   }
   return rlrun::kExitUsage;

@@ -15,7 +15,7 @@
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/core/interrupt.hpp"
 
 namespace rlrun::cli {
 

@@ -13,7 +13,8 @@ namespace rlrun::cli {
 inline void add_plugin_option(CLI::App* sub, std::vector<std::string>& plugins) {
   sub->add_option("--plugin", plugins,
                   "load environments from a plugin library built against include/rlrun/ "
-                  "(repeatable; see examples/custom_env)");
+                  "(repeatable; see examples/custom_env)")
+      ->allow_extra_args(false);
 }
 
 inline void load_plugin_options(const std::vector<std::string>& plugins) {

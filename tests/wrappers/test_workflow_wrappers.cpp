@@ -96,8 +96,9 @@ TEST_CASE("FrameStack: oldest first, zero or reset padding, a fresh stack after 
   CHECK(obs == std::vector<float>{1.0f, -2.0f, 1.0f, -2.0f, 1.0f, -2.0f});
   CHECK_THROWS_AS(from_yaml("{id: FrameStack, padding: same}", script({{0.0f, 0.0f}})),
                   std::invalid_argument);
-  CHECK_THROWS_AS(from_yaml("{id: FrameStack, n_stack: 0}", script({{0.0f, 0.0f}})),
-                  std::invalid_argument);
+  // Out-of-range values are refused when the config is parsed, with their position.
+  CHECK_THROWS_WITH(from_yaml("{id: FrameStack, n_stack: 0}", script({{0.0f, 0.0f}})),
+                    Catch::Contains("test.yaml:1:27: n_stack: must be in [1, 1000], got 0"));
 }
 
 TEST_CASE("TransformReward: scale, then offset, then clip", "[wrappers]") {

@@ -89,6 +89,15 @@ class StateReader {
   bool has(const std::string& name) const { return tensors_.count(prefix_ + name) != 0; }
 
   int64_t get_int(const std::string& name) const { return get_span<int64_t>(name, 1)[0]; }
+  // A counter or index that must lie in [low, high]: a checkpoint is untrusted data, and a
+  // value used as an index is checked before it is used (StateMismatch otherwise).
+  int64_t get_int_in(const std::string& name, int64_t low, int64_t high) const {
+    const int64_t v = get_int(name);
+    if (v < low || v > high)
+      throw StateMismatch("checkpoint state '" + prefix_ + name + "' is " + std::to_string(v) +
+                          ", outside [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+    return v;
+  }
   double get_double(const std::string& name) const { return get_span<double>(name, 1)[0]; }
   bool get_bool(const std::string& name) const { return get_int(name) != 0; }
 

@@ -1,7 +1,9 @@
 #include "rlrun/runtime/run_log_marks.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -13,10 +15,13 @@ namespace rlrun {
 
 namespace {
 
-std::vector<std::string> read_lines(const std::string& path) {
+// The first `max_lines` lines of a file (all by default).
+std::vector<std::string> read_lines(const std::string& path,
+                                    size_t max_lines = std::numeric_limits<size_t>::max()) {
   std::vector<std::string> lines;
   std::ifstream in(path);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  for (std::string line; lines.size() < max_lines && std::getline(in, line);)
+    lines.push_back(line);
   return lines;
 }
 
@@ -50,19 +55,30 @@ void write_log_marks(StateWriter out, const std::string& run_dir,
   }
 }
 
-void restore_log_marks(const StateReader& in, const std::string& run_dir) {
+void restore_log_marks(const StateReader& in, const std::string& run_dir,
+                       const std::vector<std::string>& expected) {
   const int64_t count = in.get_int("count");
+  if (count < 0 || count > static_cast<int64_t>(expected.size()))
+    throw RuntimeFailure("cannot resume: the checkpoint marks " + std::to_string(count) +
+                         " log files, this run writes " + std::to_string(expected.size()));
   for (int64_t i = 0; i < count; ++i) {
     const StateReader file = in.sub(std::to_string(i));
     const std::string name = file.get_string("name");
-    const auto kept = static_cast<size_t>(file.get_int("lines"));
+    if (std::find(expected.begin(), expected.end(), name) == expected.end())
+      throw RuntimeFailure("cannot resume: the checkpoint names a log file '" + name +
+                           "' that this run does not write (a checkpoint from elsewhere?)");
+    const int64_t lines_recorded = file.get_int("lines");
+    if (lines_recorded < 0)
+      throw RuntimeFailure("cannot resume: the checkpoint records " +
+                           std::to_string(lines_recorded) + " lines of " + name);
+    const auto kept = static_cast<size_t>(lines_recorded);
     const std::string path = run_dir + "/" + name;
     if (kept == 0) {
       std::error_code ec;
       std::filesystem::remove(path, ec);
       continue;
     }
-    std::vector<std::string> lines = read_lines(path);
+    std::vector<std::string> lines = read_lines(path, kept);
     if (lines.size() < kept)
       throw RuntimeFailure("cannot resume: " + path + " has " + std::to_string(lines.size()) +
                            " lines, the checkpoint recorded " + std::to_string(kept) +

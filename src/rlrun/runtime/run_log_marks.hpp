@@ -19,8 +19,12 @@ namespace rlrun {
 void write_log_marks(StateWriter out, const std::string& run_dir,
                      const std::vector<std::string>& files);
 
-// Cuts every recorded file back to its mark (atomically). Throws RuntimeFailure, naming the
-// file, when one is shorter than its mark (edited or truncated since the checkpoint).
-void restore_log_marks(const StateReader& in, const std::string& run_dir);
+// Cuts every recorded file back to its mark (atomically). A checkpoint is untrusted data: only
+// the names in `expected` (the files this run appends to, as write_log_marks was given them)
+// are touched, so a crafted name such as "../../x" is refused, never joined to the run
+// directory. Throws RuntimeFailure naming the file when one is unexpected, or shorter than its
+// mark (edited or truncated since the checkpoint).
+void restore_log_marks(const StateReader& in, const std::string& run_dir,
+                       const std::vector<std::string>& expected);
 
 }  // namespace rlrun

@@ -98,6 +98,15 @@ Sweep expand_sweep(const std::string& sweep_file, const Registry& registry) {
   // The configurations: the grid's cartesian product (keys in file order), or the list.
   std::vector<std::vector<Override>> combos{{}};
   if (file.grid.defined()) {
+    // The number of runs is known before anything is expanded: 8 axes of 10 values are 10^8
+    // runs, which no sweep means; refuse it instead of building them.
+    double runs = static_cast<double>(file.seeds.size());
+    for (const Override& axis : map_overrides(file.grid))
+      runs *= static_cast<double>(std::max<std::size_t>(axis.node.size(), 1));
+    if (runs > kMaxSweepRuns)
+      file.grid.fail("the grid gives " + std::to_string(static_cast<long long>(runs)) +
+                     " runs (values per key multiplied, times the seeds); a sweep has at most " +
+                     std::to_string(kMaxSweepRuns));
     for (const Override& axis : map_overrides(file.grid)) {
       if (!axis.node.is_sequence() || axis.node.size() == 0)
         axis.node.fail("expected a non-empty list of values, e.g. [3.0e-4, 1.0e-3]");
@@ -113,6 +122,9 @@ Sweep expand_sweep(const std::string& sweep_file, const Registry& registry) {
   } else if (file.list.defined()) {
     if (!file.list.is_sequence() || file.list.size() == 0)
       file.list.fail("expected a non-empty list of {key: value} maps");
+    if (static_cast<double>(file.list.size()) * static_cast<double>(file.seeds.size()) > kMaxSweepRuns)
+      file.list.fail("the list times the seeds gives more than " + std::to_string(kMaxSweepRuns) +
+                     " runs");
     combos.clear();
     for (size_t i = 0; i < file.list.size(); ++i) combos.push_back(map_overrides(file.list.at(i)));
   }
@@ -191,10 +203,23 @@ Sweep expand_sweep(const std::string& sweep_file, const Registry& registry) {
   return sweep;
 }
 
+namespace {
+
+// `dir / relative` when `relative` names a path strictly inside `dir` (no absolute path, no
+// '..' part, no control characters); else a ConfigError at the value.
+std::string inside(const fs::path& dir, const ConfigNode& value) {
+  const std::string text = value.as_string();
+  const std::string problem = RelativeName{}.problem(text);
+  if (!problem.empty()) value.fail(problem + " (manifest paths stay inside its directory)");
+  return (dir / text).lexically_normal().string();
+}
+
+}  // namespace
+
 Sweep read_manifest(const std::string& manifest) {
   if (!fs::exists(manifest))
     throw UsageError(manifest + " does not exist (write it with `rlrun sweep SWEEP.yaml`)");
-  const ConfigNode root = ConfigNode::load_file(manifest);
+  const ConfigNode root = ConfigNode::load_file(manifest, ConfigTrust::kUntrusted);
   const fs::path dir = fs::absolute(manifest).parent_path();
   Sweep sweep;
   sweep.manifest = fs::absolute(manifest).lexically_normal().string();
@@ -210,8 +235,10 @@ Sweep read_manifest(const std::string& manifest) {
     run.id = r.child("id").as_string();
     run.seed = static_cast<uint64_t>(r.child("seed").as_int());
     run.label = run.id.substr(0, run.id.rfind('/'));
-    run.config = (dir / r.child("config").as_string()).lexically_normal().string();
-    run.run_dir = (dir / r.child("run_dir").as_string()).lexically_normal().string();
+    // A manifest may come from anyone: its paths must stay inside its own directory, since
+    // `sweep run` writes (and for a run restarted from scratch, deletes) the run directory.
+    run.config = inside(dir, r.child("config"));
+    run.run_dir = inside(dir, r.child("run_dir"));
     if (run.index != static_cast<int>(i)) r.child("index").fail("expected index " + std::to_string(i));
     sweep.runs.push_back(run);
   }

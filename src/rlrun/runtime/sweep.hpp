@@ -22,6 +22,9 @@
 
 namespace rlrun {
 
+// The most runs one sweep expands into (each is a config file and a run directory).
+inline constexpr int kMaxSweepRuns = 100000;
+
 // A sweep file's free-form sections (grid, list, set) are read as nodes.
 inline void decode(const ConfigNode& n, ConfigNode& out) { out = n; }
 inline YAML::Node encode(const ConfigNode& n) { return n.yaml(); }

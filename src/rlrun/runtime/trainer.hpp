@@ -11,11 +11,14 @@
 // got. Resuming cuts the files back to the checkpoint and continues: the weights, progress.csv
 // and monitor files end as those of the uninterrupted run.
 //
-// Ctrl-C (SIGINT/SIGTERM) asks training to stop at the next safe point (after the current
+// One process trains a run directory at a time (runtime/run_lock.hpp).
+//
+// Ctrl-C (SIGINT/SIGTERM, core/interrupt.hpp) asks training to stop at the next safe point (after the current
 // PPO/A2C update or off-policy round), where a checkpoint is written; a second Ctrl-C stops at
 // the next env step without one. A NaN or inf in a loss or a parameter stops the run with a
 // RuntimeFailure naming the step and the quantity; nothing non-finite is ever saved.
 #include <string>
+#include <vector>
 
 #include "rlrun/runtime/experiment.hpp"
 
@@ -35,20 +38,10 @@ struct TrainOutcome {
   std::string stop_reason;      // set when a callback stopped training early
 };
 
-// `resume_checkpoint` non-empty: continue the run that checkpoint belongs to (its run
-// directory), with `experiment` loaded from that run's config.yaml.
+// `resume_from` non-empty: continue the run these checkpoints belong to (newest first, as
+// runtime/resume_point.hpp lists them; a damaged one is skipped with a note), with
+// `experiment` loaded from that run's config.yaml.
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
-                              const std::string& resume_checkpoint = "");
-
-// `--resume` accepts a checkpoint file or a run directory (its newest checkpoint). Throws
-// UsageError when there is nothing to resume from, saying why.
-std::string resolve_resume_checkpoint(const std::string& run_dir_or_checkpoint);
-// The run directory of `<run_dir>/checkpoints/step_<N>.zip`.
-std::string run_dir_of_checkpoint(const std::string& checkpoint);
-
-// First SIGINT/SIGTERM: stop at the next safe point with a checkpoint; second: stop now.
-void install_interrupt_handlers();
-bool interrupt_requested();
-int interrupt_count();
+                              const std::vector<std::string>& resume_from = {});
 
 }  // namespace rlrun

@@ -8,7 +8,7 @@
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/recorder.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/core/interrupt.hpp"
 
 namespace rlrun {
 

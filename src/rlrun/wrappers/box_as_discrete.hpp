@@ -5,6 +5,7 @@
 // torques -2, -1, 0, 1, 2. Used by `env.auto_wrap: true` or `{id: BoxAsDiscrete, bins: 5}`.
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
@@ -15,7 +16,8 @@ class BoxAsDiscrete : public Wrapper {
     int bins = 5;  // values per action dimension
     template <class V>
     void visit(V& v) {
-      v("bins", bins, "evenly spaced values per action dimension (low and high included)");
+      v("bins", bins, "evenly spaced values per action dimension (low and high included)",
+        in_range(2, 1000));
     }
   };
   // Throws std::invalid_argument for a non-Box or unbounded inner space, bins < 2, or more

@@ -17,6 +17,12 @@ FrameStack::FrameStack(EnvPtr inner, const Config& config)
                                 config.padding + "'");
   pad_with_reset_ = config.padding == "reset";
   frame_dim_ = inner_space.flat_dim();
+  // A stacked observation of more than 2^24 floats (64 MiB per env step) is a typo, not a
+  // network input.
+  if (static_cast<int64_t>(n_stack_) * frame_dim_ > (int64_t{1} << 24))
+    throw std::invalid_argument("FrameStack: n_stack " + std::to_string(n_stack_) + " x " +
+                                std::to_string(frame_dim_) +
+                                " floats per observation is more than 2^24");
   std::vector<float> low, high;
   for (int k = 0; k < n_stack_; ++k) {
     low.insert(low.end(), inner_space.low().begin(), inner_space.low().end());

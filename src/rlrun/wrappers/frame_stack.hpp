@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
@@ -21,7 +22,8 @@ class FrameStack : public Wrapper {
     std::string padding = "zero";  // what fills the stack after reset: zero | reset
     template <class V>
     void visit(V& v) {
-      v("n_stack", n_stack, "number of consecutive observations stacked (oldest first)");
+      v("n_stack", n_stack, "number of consecutive observations stacked (oldest first)",
+        in_range(1, 1000));
       v("padding", padding,
         "frames before the first one after reset: zero (SB3 VecFrameStack) or reset (copies, Gymnasium)");
     }

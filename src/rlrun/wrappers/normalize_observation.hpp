@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/env/wrapper.hpp"
 #include "rlrun/wrappers/model_statistics.hpp"
 #include "rlrun/wrappers/running_mean_std.hpp"
@@ -32,8 +33,9 @@ class NormalizeObservation : public Wrapper, public ModelStatistics {
     double epsilon = 1e-8;   // SB3 VecNormalize epsilon
     template <class V>
     void visit(V& v) {
-      v("clip_obs", clip_obs, "normalised observations are clipped to [-clip_obs, clip_obs]");
-      v("epsilon", epsilon, "added to the variance before the square root");
+      v("clip_obs", clip_obs, "normalised observations are clipped to [-clip_obs, clip_obs]",
+        positive());
+      v("epsilon", epsilon, "added to the variance before the square root", positive());
     }
   };
   // Throws std::invalid_argument for a non-Box observation space or clip_obs <= 0.

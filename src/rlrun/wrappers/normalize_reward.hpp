@@ -14,6 +14,7 @@
 // default); rl-zoo passes the algorithm's gamma, so set it to the same value to match.
 #include <memory>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/env/wrapper.hpp"
 #include "rlrun/wrappers/model_statistics.hpp"
 #include "rlrun/wrappers/running_mean_std.hpp"
@@ -28,9 +29,11 @@ class NormalizeReward : public Wrapper, public ModelStatistics {
     double epsilon = 1e-8;      // SB3 VecNormalize epsilon
     template <class V>
     void visit(V& v) {
-      v("gamma", gamma, "discount of the running return whose standard deviation scales rewards");
-      v("clip_reward", clip_reward, "scaled rewards are clipped to [-clip_reward, clip_reward]");
-      v("epsilon", epsilon, "added to the variance before the square root");
+      v("gamma", gamma, "discount of the running return whose standard deviation scales rewards",
+        unit_interval());
+      v("clip_reward", clip_reward, "scaled rewards are clipped to [-clip_reward, clip_reward]",
+        positive());
+      v("epsilon", epsilon, "added to the variance before the square root", positive());
     }
   };
   // Throws std::invalid_argument for gamma outside [0, 1] or clip_reward <= 0.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_fields.hpp"
 
 namespace rlrun {
@@ -32,7 +33,7 @@ struct ShapingTerm {
     if (type == "obs_above_for" || type == "obs_below_for") {
       v("index", index, "observation element");
       v("threshold", threshold, "level the element must stay above (below)");
-      v("steps", steps, "consecutive steps before the penalty applies");
+      v("steps", steps, "consecutive steps before the penalty applies", at_least(1));
       v("penalty", penalty, "added to the reward (negative = penalty)");
       v("repeat", repeat, "apply on every step of the streak (false: once per streak)");
     } else if (type == "obs_abs") {

@@ -47,6 +47,10 @@ class EpisodeStats {
   void read_state(const StateReader& in) {
     const auto load = [&](const char* name, std::deque<double>& d) {
       const std::vector<double> v = in.get_span<double>(name);
+      if (v.size() > kWindow)
+        throw StateMismatch(std::string("checkpoint episode statistics '") + name + "' hold " +
+                            std::to_string(v.size()) + " episodes, more than the window of " +
+                            std::to_string(kWindow));
       d.assign(v.begin(), v.end());
     };
     load("returns", returns_);

@@ -80,7 +80,7 @@ void ReplayBuffer::read_state(const StateReader& in) {
   if (in.get_int("capacity") != capacity())
     throw StateMismatch("checkpoint replay buffer holds " + std::to_string(in.get_int("capacity")) +
                         " transitions, this run's buffer_size gives " + std::to_string(capacity()));
-  pos_ = in.get_int("pos");
+  pos_ = in.get_int_in("pos", 0, slots_ - 1);
   full_ = in.get_bool("full");
   const int64_t used = size();
   in.get_matrix("obs", obs_.leftCols(used));

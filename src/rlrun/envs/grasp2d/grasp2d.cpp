@@ -172,7 +172,7 @@ void Grasp2D::read_state(const StateReader& in) {
   object_y_ = p[3];
   gripper_closed_ = in.get_bool("gripper_closed");
   grasped_ = in.get_bool("grasped");
-  last_action_ = static_cast<int>(in.get_int("last_action"));
+  last_action_ = static_cast<int>(in.get_int_in("last_action", -1, 5));
 }
 
 }  // namespace rlrun

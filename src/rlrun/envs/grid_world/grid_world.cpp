@@ -1,6 +1,7 @@
 #include "rlrun/env/discrete_action.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
 
+#include <limits>
 #include <stdexcept>
 
 namespace rlrun {
@@ -98,9 +99,9 @@ void GridWorld::write_state(StateWriter& out) const {
 void GridWorld::read_state(const StateReader& in) {
   seeding_.read_state(in);
   has_state_ = in.get_bool("has_state");
-  row_ = static_cast<int>(in.get_int("row"));
-  col_ = static_cast<int>(in.get_int("col"));
-  steps_ = static_cast<int>(in.get_int("steps"));
+  row_ = static_cast<int>(in.get_int_in("row", 0, config_.size - 1));
+  col_ = static_cast<int>(in.get_int_in("col", 0, config_.size - 1));
+  steps_ = static_cast<int>(in.get_int_in("steps", 0, std::numeric_limits<int>::max()));
 }
 
 }  // namespace rlrun

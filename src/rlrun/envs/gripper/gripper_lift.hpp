@@ -26,6 +26,7 @@
 #include <span>
 #include <string>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/space.hpp"
 #include "rlrun/env/env.hpp"
 #include "rlrun/env/env_seeding.hpp"
@@ -48,10 +49,13 @@ class GripperLift : public Env {
     void visit(V& v) {
       v("scenario", scenario,
         "grasp scenario file (scenarios/grasp/*.yaml); empty = the env's own");
-      v("palm_force", palm_force, "N per axis the palm servo may push with (~30: stronger slips)");
-      v("finger_force", finger_force, "N each finger squeezes with at most (>= 5)");
-      v("substeps", substeps, "physics steps of 1/240 s per action");
-      v("solver_iterations", solver_iterations, "Bullet solver iterations per step (10-20)");
+      v("palm_force", palm_force, "N per axis the palm servo may push with (~30: stronger slips)",
+        in_range(0, 10000).open_low());
+      v("finger_force", finger_force, "N each finger squeezes with at most (>= 5)",
+        in_range(0, 10000).open_low());
+      v("substeps", substeps, "physics steps of 1/240 s per action", in_range(1, 1000));
+      v("solver_iterations", solver_iterations, "Bullet solver iterations per step (10-20)",
+        in_range(1, 1000));
     }
   };
 

@@ -1,0 +1,102 @@
+#include "rlrun/runtime/resume_point.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/checkpoint_callback.hpp"
+
+namespace rlrun {
+
+namespace fs = std::filesystem;
+
+std::string run_dir_of_checkpoint(const std::string& checkpoint) {
+  return fs::path(checkpoint).parent_path().parent_path().string();
+}
+
+std::vector<std::string> resume_candidates(const std::string& run_dir_or_checkpoint) {
+  std::error_code ec;
+  if (fs::is_directory(run_dir_or_checkpoint, ec)) {
+    std::vector<std::string> found =
+        CheckpointCallback::list_checkpoints(run_dir_or_checkpoint + "/checkpoints");
+    if (found.empty())
+      throw UsageError("cannot resume " + run_dir_or_checkpoint +
+                       ": it has no checkpoints/step_<N>.zip (checkpoints are written every "
+                       "checkpoint.freq steps and when training is interrupted)");
+    std::reverse(found.begin(), found.end());
+    return found;
+  }
+  if (!fs::is_regular_file(run_dir_or_checkpoint, ec))
+    throw UsageError("cannot resume " + run_dir_or_checkpoint +
+                     ": no such run directory or checkpoint file");
+  if (fs::path(run_dir_or_checkpoint).parent_path().filename() != "checkpoints")
+    throw UsageError("cannot resume from " + run_dir_or_checkpoint +
+                     ": only checkpoints (<run_dir>/checkpoints/step_<N>.zip) hold a training "
+                     "state; to start a new run from a model's weights use --init-from");
+  return {run_dir_or_checkpoint};
+}
+
+namespace {
+
+// Why `checkpoint` cannot continue `experiment`, or "".
+std::string unfit(const std::string& path, const ModelFile& checkpoint,
+                  const Experiment& experiment) {
+  if (checkpoint.meta.algorithm != experiment.algo.id)
+    return "it was written by " + checkpoint.meta.algorithm + ", the run's config trains " +
+           experiment.algo.id;
+  const int64_t step = checkpoint.meta.num_timesteps;
+  if (step < 0 || step > experiment.run.total_timesteps)
+    return "it is at step " + std::to_string(step) + ", outside the run's 0.." +
+           std::to_string(experiment.run.total_timesteps) +
+           " (to train a finished run further, pass --timesteps with a larger total)";
+  static const std::regex name("step_([0-9]+)\\.zip");
+  std::smatch m;
+  const std::string file = fs::path(path).filename().string();
+  if (std::regex_match(file, m, name) && m[1].str() != std::to_string(step))
+    return "its name says step " + m[1].str() + " but it holds step " + std::to_string(step);
+  return "";
+}
+
+}  // namespace
+
+ResumePoint open_resume_point(const std::vector<std::string>& candidates,
+                              const Experiment& experiment) {
+  ResumePoint point;
+  for (const std::string& path : candidates) {
+    std::string problem;
+    try {
+      point.checkpoint = read_model(path);
+      if (point.checkpoint.training_state.empty())
+        throw UsageError("cannot resume from " + path +
+                         ": it holds no training state (a model file, or a checkpoint of an env "
+                         "that cannot save its state)");
+      problem = unfit(path, point.checkpoint, experiment);
+    } catch (const RuntimeFailure& e) {
+      problem = e.what();
+    }
+    if (problem.empty()) {
+      point.path = path;
+      return point;
+    }
+    if (candidates.size() == 1) throw RuntimeFailure("cannot resume from " + path + ": " + problem);
+    point.skipped.push_back(path + ": " + problem);
+  }
+  std::string tried;
+  for (const std::string& s : point.skipped) tried += "\n  " + s;
+  throw RuntimeFailure("cannot resume: no checkpoint can continue the run; tried:" + tried);
+}
+
+void remove_stale_temporaries(const std::string& run_dir) {
+  static const std::regex temporary(".+\\.tmp(\\.[A-Za-z0-9]{6})?");
+  for (const fs::path& dir : {fs::path(run_dir), fs::path(run_dir) / "checkpoints"}) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      if (!entry.is_regular_file(ec) || entry.is_symlink(ec)) continue;
+      if (std::regex_match(entry.path().filename().string(), temporary))
+        fs::remove(entry.path(), ec);
+    }
+  }
+}
+
+}  // namespace rlrun
