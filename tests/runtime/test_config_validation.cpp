@@ -86,6 +86,8 @@ TEST_CASE("validation: values SB3 or sense refuse", "[cli][config]") {
       {ppo + " --set 'run.name=\"nul\\0byte\"'", "run.name: must not contain control characters"},
       {ppo + " --set algo.gamma=.nan", "NaN is not a setting"},
       {ppo + " --set run.seed=-1", "run.seed: expected a non-negative integer"},
+      {ppo + " --set video.freq=1000 --set video.width=100000 --set video.height=100000",
+       "video.width: must be in [0, 4096], got 100000"},
   };
   for (const auto& [args, message] : cases) {
     const auto r = refused(dir, args);
