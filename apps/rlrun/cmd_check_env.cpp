@@ -16,7 +16,7 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"

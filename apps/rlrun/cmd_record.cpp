@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
+#include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -28,6 +29,7 @@ struct Options {
   std::string model, config, env_id, from_obs, policy;
   int green_time = 30;  // --policy fixed-time
   std::vector<std::string> overrides;
+  std::vector<std::string> plugins;
   std::string output, frames, size;
   int episodes = 1;
   uint64_t seed = 0;
@@ -61,6 +63,7 @@ void print_summary(const RecordResult& r, const std::string& what, const Options
 }
 
 int run(const Options& o) {
+  load_plugin_options(o.plugins);
   const int sources =
       !o.model.empty() + !o.config.empty() + !o.from_obs.empty() +
       (o.model.empty() && o.config.empty() && o.from_obs.empty() && !o.env_id.empty());
@@ -172,6 +175,7 @@ Action add_record(CLI::App& app) {
   sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")
       ->excludes(det);
   sub->add_flag("--no-overlay", options->no_overlay, "no text (env id, episode, step, return)");
+  add_plugin_option(sub, options->plugins);
   return [options, deterministic]() { return run(*options); };
 }
 

@@ -4,7 +4,7 @@
 // UsageError naming the closest registered one.
 #include <string>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 #include "rlrun/runtime/registry.hpp"
 
 namespace rlrun::cli {

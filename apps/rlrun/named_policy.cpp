@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
 

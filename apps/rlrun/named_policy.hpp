@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun::cli {
 

@@ -1,14 +1,19 @@
 // GoLeft-v0: Stable-Baselines3's custom-env tutorial env ("GoLeftEnv", SB3 docs
 // guide/custom_env and the 5_custom_gym_env notebook) as an rlrun plugin.
 // The agent stands on a 1D grid and must walk to the leftmost cell.
+//
+// It derives from rlrun::EnvBase (on rlrun::Env, the interface of rlrun's own envs), so rlrun
+// can do with it all it does with a built-in env: train, evaluate, record a video (render())
+// and resume a run exactly (write_state() / read_state()).
+#include <rlrun/frame.hpp>
 #include <rlrun/plugin.hpp>
 #include <stdexcept>
 #include <string>
 
-using rlrun::api::Space;
-using rlrun::api::StepResult;
+using rlrun::Space;
+using rlrun::StepResult;
 
-class GoLeft : public rlrun::api::Env {
+class GoLeft : public rlrun::EnvBase {
  public:
   // Parameters, set in YAML under env.kwargs (`rlrun list GoLeft-v0 --plugin ...` prints them).
   struct Config {
@@ -35,9 +40,11 @@ class GoLeft : public rlrun::api::Env {
 
   // gymnasium.Env.reset(seed=...)
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override {
-    seed_rng(seed);  // super().reset(seed=seed)
-    position_ = config_.random_start ? static_cast<int>(integers(1, config_.grid_size))
-                                     : config_.grid_size - 1;
+    seeding_.on_reset(seed);  // super().reset(seed=seed)
+    position_ = config_.random_start
+                    ? 1 + static_cast<int>(seeding_.rng().below(
+                              static_cast<uint64_t>(config_.grid_size - 1)))
+                    : config_.grid_size - 1;
     info_.clear();
     obs[0] = static_cast<float>(position_);
   }
@@ -60,6 +67,32 @@ class GoLeft : public rlrun::api::Env {
     obs[0] = static_cast<float>(position_);
     // Truncation (a time limit) is added by rlrun's TimeLimit, from the registration below.
     return {terminated ? 1.0 : 0.0, terminated, false};
+  }
+
+  // Exact resume: everything the next step depends on besides the Config.
+  bool can_save_state() const override { return true; }
+  void write_state(rlrun::StateWriter& out) const override {
+    seeding_.write_state(out);
+    out.put_int("position", position_);
+  }
+  void read_state(const rlrun::StateReader& in) override {
+    seeding_.read_state(in);
+    position_ = static_cast<int>(in.get_int_in("position", 0, config_.grid_size - 1));
+  }
+
+  // Video (render_mode="rgb_array"): the grid as squares, the agent as a circle, the goal green.
+  rlrun::RenderSpec render_spec() const override { return {60 * config_.grid_size, 60, 4.0}; }
+  bool render(rlrun::Frame& frame) const override {
+    frame.begin_scene(config_.grid_size, 1.0, {255, 255, 255});
+    for (int cell = 0; cell < config_.grid_size; ++cell) {
+      const double x = cell;
+      const rlrun::Point square[] = {{x + 0.05, 0.05}, {x + 0.95, 0.05}, {x + 0.95, 0.95},
+                                     {x + 0.05, 0.95}};
+      frame.polygon(square, cell == 0 ? rlrun::Rgb{120, 200, 120} : rlrun::Rgb{220, 220, 220});
+    }
+    frame.circle({position_ + 0.5, 0.5}, 0.3, {60, 90, 200});
+    frame.end_scene();
+    return true;
   }
 
  private:

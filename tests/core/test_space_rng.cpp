@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "rlrun/core/rng.hpp"
-#include "rlrun/core/space.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/space.hpp"
 
 using namespace rlrun;
 

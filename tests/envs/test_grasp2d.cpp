@@ -8,7 +8,7 @@
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/runtime/builtins.hpp"
 
 using namespace rlrun;

@@ -7,7 +7,7 @@
 
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/wrappers/one_hot_observation.hpp"
 

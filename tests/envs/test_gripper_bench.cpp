@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "runtime/cli_runner.hpp"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
 #include "runtime/cli_runner.hpp"

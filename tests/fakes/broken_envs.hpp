@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "rlrun/core/rng.hpp"
-#include "rlrun/env/env.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun::testing {
 

@@ -1,7 +1,7 @@
 #pragma once
 // A one-dimensional env for unit tests: observation always `value`, reward 1 per step, and
 // the episode ends after every `episode_length` steps, by termination or by truncation.
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun::fakes {
 

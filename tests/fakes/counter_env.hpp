@@ -10,7 +10,7 @@
 #include <string>
 #include <utility>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun::testing {
 

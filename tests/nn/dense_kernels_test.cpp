@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/nn/dense_kernels.hpp"
 
 namespace rlrun {

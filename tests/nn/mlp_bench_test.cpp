@@ -12,7 +12,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/nn/mlp.hpp"
 
 namespace rlrun {

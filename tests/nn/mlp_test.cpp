@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "grad_check.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 namespace {

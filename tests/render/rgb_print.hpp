@@ -2,7 +2,7 @@
 // Readable Catch2 failures for colours: "Rgb(202, 152, 101)" instead of "{?}".
 #include <ostream>
 
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 inline std::ostream& operator<<(std::ostream& out, const Rgb& c) {

@@ -14,7 +14,7 @@
 #include "rlrun/envs/classic/mountain_car.hpp"
 #include "rlrun/envs/classic/mountain_car_continuous.hpp"
 #include "rlrun/envs/classic/pendulum.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
 using rlrun::ClassicControlEnv;

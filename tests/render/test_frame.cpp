@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "render/rgb_print.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
 
 using rlrun::Frame;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "render/rgb_print.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
 #include "rlrun/render/rasterizer.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/video_writer.hpp"
 #include "runtime/cli_runner.hpp"
 

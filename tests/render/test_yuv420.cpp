@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <vector>
 
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/yuv420.hpp"
 
 namespace {

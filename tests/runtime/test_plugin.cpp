@@ -19,7 +19,7 @@ using namespace rlrun;
 namespace {
 
 // Counts up with action 1, down with action 0; reaching `target` ends the episode.
-class CounterEnv : public api::Env {
+class CounterEnv : public EnvBase {
  public:
   struct Config {
     int target = 3;
@@ -34,17 +34,17 @@ class CounterEnv : public api::Env {
   };
   explicit CounterEnv(const Config& config) : config_(config) {
     if (config_.target < 1) throw std::invalid_argument("target must be >= 1");
-    observation_space_ = api::Space::box(-100.0f, 100.0f, {1});
-    action_space_ = api::Space::discrete(2);
+    observation_space_ = Space::box(-100.0f, 100.0f, {1});
+    action_space_ = Space::discrete(2);
     success_ = info_.add_key("is_success");
   }
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override {
-    seed_rng(seed);
-    count_ = uniform(config_.start_range[0], config_.start_range[1]);
+    seeding_.on_reset(seed);
+    count_ = seeding_.rng().uniform(config_.start_range[0], config_.start_range[1]);
     info_.clear();
     obs[0] = static_cast<float>(count_);
   }
-  api::StepResult step(std::span<const float> action, std::span<float> obs) override {
+  StepResult step(std::span<const float> action, std::span<float> obs) override {
     count_ += action[0] > 0.5f ? 1.0 : -1.0;
     const bool done = count_ >= config_.target;
     info_.clear();
@@ -59,19 +59,21 @@ class CounterEnv : public api::Env {
   int success_ = 0;
 };
 
-// No Config: default-constructed; its Box has low > high, which rlrun must refuse.
-class BrokenSpaceEnv : public api::Env {
+// No Config: default-constructed; its Box has low > high, which Space refuses.
+class BrokenSpaceEnv : public EnvBase {
  public:
   BrokenSpaceEnv() {
-    observation_space_ = api::Space::box(1.0f, -1.0f, {1});
-    action_space_ = api::Space::discrete(2);
+    observation_space_ = Space::box(1.0f, -1.0f, {1});
+    action_space_ = Space::discrete(2);
   }
   void reset(std::optional<uint64_t>, std::span<float> obs) override { obs[0] = 0; }
-  api::StepResult step(std::span<const float>, std::span<float> obs) override {
+  StepResult step(std::span<const float>, std::span<float> obs) override {
     obs[0] = 0;
     return {};
   }
 };
+
+uint32_t version_one(uint32_t, api::Registrar*) { return 1; }
 
 uint32_t wrong_version(uint32_t, api::Registrar* registrar) {
   // A plugin of another version must not touch the registrar (rlrun/plugin.hpp contract).
@@ -134,7 +136,7 @@ TEST_CASE("plugin: invalid spaces, version mismatches and id clashes are refused
   Registry registry = builtin_registry();
   register_plugin(&rlrun_plugin_register, "test-plugin", registry);
   CHECK_THROWS_WITH(registry.find_env("TestBrokenSpace-v0")->make(AnyConfig::of_yaml(YAML::Node(), YAML::Node())),
-                    Catch::Contains("TestBrokenSpace-v0's observation_space is not a valid space"));
+                    Catch::Contains("TestBrokenSpace-v0: Space::box: low > high"));
 
   Registry fresh = builtin_registry();
   CHECK_THROWS_WITH(register_plugin(&wrong_version, "old.so", fresh),
@@ -142,6 +144,10 @@ TEST_CASE("plugin: invalid spaces, version mismatches and id clashes are refused
                                     std::to_string(RLRUN_PLUGIN_API_VERSION + 1)) &&
                         Catch::Contains("rebuild the plugin"));
   CHECK(fresh.find_env("TestCounter-v0") == nullptr);
+  // A plugin of API version 1 (rlrun::api::Env) is told what changed.
+  CHECK_THROWS_WITH(register_plugin(&version_one, "v1.so", fresh),
+                    Catch::Contains("derive from rlrun::Env") &&
+                        Catch::Contains("examples/custom_env/go_left.cpp"));
   // Registering the same ids again clashes with the first registration.
   CHECK_THROWS_WITH(register_plugin(&rlrun_plugin_register, "again.so", registry),
                     Catch::Contains("'TestCounter-v0' is already registered by test-plugin"));

@@ -10,8 +10,10 @@
 #include <sstream>
 #include <string>
 
+#include "rlrun/core/zip_archive.hpp"
 #include "runtime/cli_runner.hpp"
 
+using namespace rlrun;
 using namespace rlrun::testing;
 namespace fs = std::filesystem;
 
@@ -85,17 +87,39 @@ TEST_CASE("plugin example: builds out of tree, passes check-env, trains and eval
         << "env: {id: GoLeft-v0}\nalgo: {id: PPO, n_steps: 64, batch_size: 64}\n";
   }
   CHECK(run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + library).exit_code == 0);
-  // Plugin envs cannot save their state (API v1): checkpoints hold the model only, and
-  // --resume refuses them with the reason.
-  const auto checkpointed = run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + library +
-                                      " --set checkpoint.freq=64 --set run.name=checkpointed");
+  // API v2: a plugin env saves its state, so a run resumes exactly: 256 steps, then resumed to
+  // 512, ends with the weights of 512 steps at once (constant schedules: the total does not
+  // change the updates).
+  const std::string plugin = " --plugin " + library;
+  REQUIRE(run_rlrun("train " + dir / "no_plugins_line.yaml" + plugin +
+                    " --set run.total_timesteps=512 --set run.name=straight")
+              .exit_code == 0);
+  const auto checkpointed = run_rlrun("train " + dir / "no_plugins_line.yaml" + plugin +
+                                      " --set run.total_timesteps=256 --set checkpoint.freq=256"
+                                      " --set run.name=resumed");
   INFO(checkpointed.output);
-  CHECK(checkpointed.exit_code == 0);
-  CHECK(checkpointed.output.find("GoLeft-v0 cannot save its state") != std::string::npos);
-  CHECK(fs::exists(dir / "runs/checkpointed/seed0/checkpoints/step_64.zip"));
-  const auto refused = run_rlrun("train --resume " + dir / "runs/checkpointed/seed0 --plugin " + library);
-  CHECK(refused.exit_code == 2);
-  CHECK(refused.output.find("holds no training state") != std::string::npos);
+  REQUIRE(checkpointed.exit_code == 0);
+  CHECK(checkpointed.output.find("cannot save its state") == std::string::npos);
+  const auto resumed =
+      run_rlrun("train --resume " + dir / "runs/resumed/seed0" + plugin + " --timesteps 512");
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  const ZipMembers straight = read_zip(dir / "runs/straight/seed0/model.zip");
+  const ZipMembers again = read_zip(dir / "runs/resumed/seed0/model.zip");
+  int tensors = 0;
+  for (const auto& [name, bytes] : straight)
+    if (name.size() > 4 && name.substr(name.size() - 4) == ".npy") {
+      ++tensors;
+      INFO(name);
+      CHECK(again.at(name) == bytes);
+    }
+  CHECK(tensors > 4);
+  // ... and draws itself: `rlrun record` films it (render() through rlrun/frame.hpp).
+  const auto video = run_rlrun("record --model " + dir / "runs/straight/seed0/model.zip" + plugin +
+                               " --output " + dir / "go_left.mp4 --episodes 1");
+  INFO(video.output);
+  CHECK(video.exit_code == 0);
+  CHECK(fs::file_size(dir / "go_left.mp4") > 1000);
   const auto missing =
       run_rlrun("train " + dir / "no_plugins_line.yaml --plugin " + dir / "nowhere/libgo_left.so");
   CHECK(missing.exit_code == 2);

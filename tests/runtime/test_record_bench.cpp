@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "rlrun/envs/classic/cartpole.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
 #include "rlrun/render/video_writer.hpp"
 #include "runtime/cli_runner.hpp"

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun::testing {
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "rlrun/core/logger.hpp"
-#include "rlrun/core/space.hpp"
+#include "rlrun/space.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
-// A named n-d array as stored in model files: dtype, shape (numpy C order) and raw bytes.
-// Eigen matrices are column-major; to_tensor/from_tensor transpose so that a (out x in)
-// weight reads in numpy exactly like torch's `weight` of shape (out, in).
+// Eigen matrices in and out of tensors (rlrun/tensor.hpp). Eigen matrices are column-major;
+// to_tensor/from_tensor transpose so that a (out x in) weight reads in numpy exactly like
+// torch's `weight` of shape (out, in).
 #include <Eigen/Core>
 #include <cstdint>
 #include <cstring>
@@ -10,41 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/tensor.hpp"
+
 namespace rlrun {
-
-enum class DType { kFloat32, kFloat64, kInt64, kUInt64 };
-
-inline std::size_t dtype_size(DType t) { return t == DType::kFloat32 ? 4 : 8; }
-
-struct Tensor {
-  DType dtype = DType::kFloat32;
-  std::vector<int64_t> shape;
-  std::vector<uint8_t> bytes;
-
-  int64_t numel() const {
-    int64_t n = 1;
-    for (auto d : shape) n *= d;
-    return n;
-  }
-  template <class T>
-  const T* data() const {
-    return reinterpret_cast<const T*>(bytes.data());
-  }
-  template <class T>
-  T* data() {
-    return reinterpret_cast<T*>(bytes.data());
-  }
-};
-
-using TensorMap = std::map<std::string, Tensor>;
-
-template <class T>
-constexpr DType dtype_of() {
-  if constexpr (std::is_same_v<T, float>) return DType::kFloat32;
-  if constexpr (std::is_same_v<T, double>) return DType::kFloat64;
-  if constexpr (std::is_same_v<T, int64_t>) return DType::kInt64;
-  if constexpr (std::is_same_v<T, uint64_t>) return DType::kUInt64;
-}
 
 // Matrix (rows x cols) -> tensor of shape (rows, cols) in C order; a vector -> shape (n,).
 template <class Scalar, int R, int C, int O, int MR, int MC>

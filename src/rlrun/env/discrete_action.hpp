@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "rlrun/core/space.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 

@@ -5,7 +5,7 @@
 #include <exception>
 #include <sstream>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun {
 

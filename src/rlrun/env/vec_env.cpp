@@ -1,4 +1,5 @@
 #include "rlrun/env/vec_env.hpp"
+#include "rlrun/core/state_dict.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -87,7 +88,7 @@ void VecEnv::write_state(StateWriter& out) const {
     StateWriter env_out = out.sub(std::to_string(i));
     envs_[i]->write_state(env_out);
   }
-  out.put_matrix("obs", obs_);
+  put_matrix(out, "obs", obs_);
   std::vector<uint64_t> pending(seeds_.size());
   std::vector<int64_t> has_pending(seeds_.size());
   for (size_t i = 0; i < seeds_.size(); ++i) {
@@ -103,7 +104,7 @@ void VecEnv::read_state(const StateReader& in) {
     envs_[i]->read_state(in.sub(std::to_string(i)));
     copy_info(i);
   }
-  in.get_matrix("obs", obs_);
+  get_matrix(in, "obs", obs_);
   const auto pending = in.get_span<uint64_t>("pending_seed", num_envs());
   const auto has_pending = in.get_span<int64_t>("has_pending_seed", num_envs());
   for (int i = 0; i < num_envs(); ++i)

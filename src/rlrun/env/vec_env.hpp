@@ -15,9 +15,9 @@
 #include <optional>
 #include <vector>
 
-#include "rlrun/core/space.hpp"
-#include "rlrun/env/env.hpp"
-#include "rlrun/env/info.hpp"
+#include "rlrun/space.hpp"
+#include "rlrun/env.hpp"
+#include "rlrun/info.hpp"
 
 namespace rlrun {
 

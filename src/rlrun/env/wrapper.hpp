@@ -3,7 +3,7 @@
 // override only what they change.
 #include <utility>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun {
 

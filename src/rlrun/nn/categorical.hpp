@@ -5,7 +5,7 @@
 // rollout buffer keeps them.
 #include <Eigen/Core>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

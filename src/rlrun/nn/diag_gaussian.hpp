@@ -5,7 +5,7 @@
 // log_prob and entropy are summed over the d action dimensions (sum_independent_dims).
 #include <Eigen/Core>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

@@ -21,7 +21,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/nn/activation.hpp"
 #include "rlrun/nn/param_block.hpp"
 

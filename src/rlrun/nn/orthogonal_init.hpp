@@ -5,7 +5,7 @@
 // for the policy head and 1 for the value head.
 #include <Eigen/Core>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

@@ -10,7 +10,7 @@
 // through u with eps held fixed, exactly as torch autograd differentiates rsample().
 #include <Eigen/Core>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

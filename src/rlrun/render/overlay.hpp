@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

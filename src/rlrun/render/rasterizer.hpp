@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

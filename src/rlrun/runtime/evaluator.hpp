@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun {
 

@@ -1,45 +1,23 @@
 #pragma once
-// The adapter between a plugin's env (rlrun::api::Env, include/rlrun/api/env.hpp: the
-// versioned binary interface plugins compile against) and rlrun's own Env interface. It
-// converts the spaces once, forwards reset/step, and mirrors the plugin's info keys and
-// values into an rlrun Info. Everything rlrun's Env has beyond the plugin API (resume state,
-// rendering) keeps Env's defaults here, so internal additions never break compiled plugins.
+// A plugin's env as rlrun uses it. Since plugin API v2 a plugin env IS an rlrun::Env (the same
+// interface as the built-in envs, include/rlrun/env.hpp), so this wrapper only adds what the
+// registry knows and the plugin need not repeat: the registered id. It checks the spaces once
+// (a plugin could leave one empty) and forwards everything else, rendering and state included.
 #include <memory>
 #include <string>
-#include <vector>
 
-#include "rlrun/api/env.hpp"
-#include "rlrun/env/env.hpp"
+#include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
 
-// Converts a plugin's space, throwing std::invalid_argument naming `what` when it is not a
-// valid space (e.g. Box low > high, Discrete n <= 0).
-Space space_from_api(const api::Space& space, const std::string& what);
-
-class PluginEnv : public Env {
+class PluginEnv : public Wrapper {
  public:
-  // Throws std::invalid_argument when the plugin env's spaces are invalid.
-  PluginEnv(std::unique_ptr<api::Env> env, std::string id);
-
-  const Space& observation_space() const override { return observation_space_; }
-  const Space& action_space() const override { return action_space_; }
-  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
-  StepResult step(std::span<const float> action, std::span<float> obs) override;
-  const Info& info() const override { return info_; }
+  // Throws std::invalid_argument when the plugin returned no env or an empty space.
+  PluginEnv(EnvPtr env, std::string id);
   std::string id() const override { return id_; }
 
-  api::Env& plugin_env() { return *env_; }
-
  private:
-  void copy_info();
-
-  std::unique_ptr<api::Env> env_;
   std::string id_;
-  Space observation_space_;
-  Space action_space_;
-  Info info_;
-  std::vector<int> index_;  // plugin info key i -> info_ index
 };
 
 }  // namespace rlrun

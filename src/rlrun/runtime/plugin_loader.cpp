@@ -73,7 +73,13 @@ EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFact
     ConfigReader reader(ConfigNode::from_yaml(kwargs.get<YAML::Node>(), id + " kwargs"));
     ForwardingVisitor<ConfigReader> visitor(reader);
     api::FieldVisitor* visitors[] = {&visitor};
-    return std::make_unique<PluginEnv>(factory->make(visitors, true), id);
+    EnvPtr env;
+    try {
+      env = factory->make(visitors, true);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(id + ": " + e.what());
+    }
+    return std::make_unique<PluginEnv>(std::move(env), id);
   };
   entry.params = [factory] {
     ConfigDocumenter documenter;
@@ -140,6 +146,18 @@ void register_plugin(PluginEntry entry, const std::string& name, Registry& regis
   } catch (const std::exception& e) {
     throw UsageError("plugin " + name + " failed to register its envs: " + e.what());
   }
+  if (plugin_version == 1)
+    throw UsageError(
+        "plugin " + name + " was built for rlrun plugin API version 1; this rlrun (" RLRUN_VERSION
+        ") implements version " + std::to_string(api::kApiVersion) +
+        ". Version 2 has one env interface for built-in and plugin envs: derive from rlrun::Env "
+        "(#include <rlrun/plugin.hpp>) instead of rlrun::api::Env; use rlrun::Space and "
+        "rlrun::StepResult; add `std::string id() const override`, `const Space& "
+        "observation_space() const override`, `const Space& action_space() const override` and "
+        "`const Info& info() const override` returning your members; replace seed_rng(seed) "
+        "and uniform()/integers() by an rlrun::EnvSeeding member (seeding_.on_reset(seed); "
+        "seeding_.rng().uniform(...)); then rebuild against this rlrun "
+        "(examples/custom_env/go_left.cpp shows the result)");
   if (plugin_version != api::kApiVersion)
     throw UsageError("plugin " + name + " was built for rlrun plugin API version " +
                      std::to_string(plugin_version) +

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/api/registrar.hpp"
+#include "rlrun/registrar.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/runtime/registry.hpp"
 

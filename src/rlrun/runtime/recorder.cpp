@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
 #include "rlrun/render/video_writer.hpp"
 #include "rlrun/runtime/observation_log.hpp"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 #include "rlrun/runtime/evaluator.hpp"
 
 namespace rlrun {

@@ -12,7 +12,7 @@
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/config_node.hpp"
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun {
 

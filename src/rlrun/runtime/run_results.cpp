@@ -10,7 +10,7 @@
 #include <numeric>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
 

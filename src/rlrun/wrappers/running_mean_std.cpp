@@ -1,4 +1,5 @@
 #include "rlrun/wrappers/running_mean_std.hpp"
+#include "rlrun/core/state_dict.hpp"
 
 namespace rlrun {
 
@@ -40,14 +41,14 @@ void RunningMeanStd::update_from_moments(const Eigen::VectorXd& batch_mean,
 }
 
 void RunningMeanStd::write(StateWriter& out) const {
-  out.put_matrix("mean", mean_);
-  out.put_matrix("var", var_);
+  put_matrix(out, "mean", mean_);
+  put_matrix(out, "var", var_);
   out.put_double("count", count_);
 }
 
 void RunningMeanStd::read(const StateReader& in) {
-  in.get_matrix("mean", mean_);
-  in.get_matrix("var", var_);
+  get_matrix(in, "mean", mean_);
+  get_matrix(in, "var", var_);
   count_ = in.get_double("count");
 }
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

@@ -3,7 +3,7 @@
 // algorithms (tanh-squashed actors, replay buffer, noise) and in [low, high] in the env.
 #include <Eigen/Core>
 
-#include "rlrun/core/space.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 

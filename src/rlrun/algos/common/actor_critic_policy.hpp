@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/core/rng.hpp"
-#include "rlrun/core/space.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/space.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/categorical.hpp"
 #include "rlrun/nn/diag_gaussian.hpp"

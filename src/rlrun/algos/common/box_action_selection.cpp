@@ -7,6 +7,7 @@
 
 #include "rlrun/algos/common/action_scaling.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
+#include "rlrun/core/state_dict.hpp"
 
 namespace rlrun {
 
@@ -59,14 +60,14 @@ void BoxActionSelection::to_env_actions(const Eigen::MatrixXf& scaled,
 void BoxActionSelection::write_state(StateWriter out) const {
   out.put_rng("action_rng", action_rng_);
   out.put_rng("noise_rng", noise_rng_);
-  out.put_matrix("noise_state", noise_.state());
+  put_matrix(out, "noise_state", noise_.state());
 }
 
 void BoxActionSelection::read_state(const StateReader& in) {
   in.get_rng("action_rng", action_rng_);
   in.get_rng("noise_rng", noise_rng_);
   Eigen::MatrixXf noise_state = noise_.state();
-  in.get_matrix("noise_state", noise_state);
+  get_matrix(in, "noise_state", noise_state);
   noise_.set_state(noise_state);
 }
 

@@ -11,8 +11,8 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
 #include "rlrun/core/state_dict.hpp"
-#include "rlrun/core/rng.hpp"
-#include "rlrun/core/space.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "rlrun/env/vec_env.hpp"
+#include "rlrun/core/state_dict.hpp"
 
 namespace rlrun {
 
@@ -47,15 +48,15 @@ void OnPolicyCollector::start(VecEnv& env) {
 }
 
 void OnPolicyCollector::write_state(StateWriter out) const {
-  out.put_matrix("last_obs", last_obs_);
-  out.put_matrix("last_episode_starts", last_episode_starts_);
+  put_matrix(out, "last_obs", last_obs_);
+  put_matrix(out, "last_episode_starts", last_episode_starts_);
   out.put_int("iterations", iterations_);
   episode_stats_.write_state(out.sub("episode_stats"));
 }
 
 void OnPolicyCollector::read_state(const StateReader& in) {
-  in.get_matrix("last_obs", last_obs_);
-  in.get_matrix("last_episode_starts", last_episode_starts_);
+  get_matrix(in, "last_obs", last_obs_);
+  get_matrix(in, "last_episode_starts", last_episode_starts_);
   iterations_ = in.get_int("iterations");
   episode_stats_.read_state(in.sub("episode_stats"));
   restored_ = true;

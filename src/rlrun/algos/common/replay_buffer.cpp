@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "rlrun/env/vec_env.hpp"
+#include "rlrun/core/state_dict.hpp"
 
 namespace rlrun {
 
@@ -66,11 +67,11 @@ void ReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const {
 void ReplayBuffer::write_state(StateWriter out) const {
   // Only the filled columns: a checkpoint early in a 1e6-transition run stays small.
   const int64_t used = size();
-  out.put_matrix("obs", obs_.leftCols(used));
-  out.put_matrix("next_obs", next_obs_.leftCols(used));
-  out.put_matrix("actions", actions_.leftCols(used));
-  out.put_matrix("rewards", rewards_.head(used).transpose());
-  out.put_matrix("dones", dones_.head(used).transpose());
+  put_matrix(out, "obs", obs_.leftCols(used));
+  put_matrix(out, "next_obs", next_obs_.leftCols(used));
+  put_matrix(out, "actions", actions_.leftCols(used));
+  put_matrix(out, "rewards", rewards_.head(used).transpose());
+  put_matrix(out, "dones", dones_.head(used).transpose());
   out.put_int("pos", pos_);
   out.put_bool("full", full_);
   out.put_int("capacity", capacity());
@@ -83,13 +84,13 @@ void ReplayBuffer::read_state(const StateReader& in) {
   pos_ = in.get_int_in("pos", 0, slots_ - 1);
   full_ = in.get_bool("full");
   const int64_t used = size();
-  in.get_matrix("obs", obs_.leftCols(used));
-  in.get_matrix("next_obs", next_obs_.leftCols(used));
-  in.get_matrix("actions", actions_.leftCols(used));
+  get_matrix(in, "obs", obs_.leftCols(used));
+  get_matrix(in, "next_obs", next_obs_.leftCols(used));
+  get_matrix(in, "actions", actions_.leftCols(used));
   Eigen::VectorXf column(used);
-  in.get_matrix("rewards", column);
+  get_matrix(in, "rewards", column);
   rewards_.head(used) = column.transpose();
-  in.get_matrix("dones", column);
+  get_matrix(in, "dones", column);
   dones_.head(used) = column.transpose();
 }
 

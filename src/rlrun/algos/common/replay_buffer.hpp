@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 

@@ -16,16 +16,16 @@ namespace rlrun {
 inline void write_adam(StateWriter out, const Adam& adam) {
   out.put_int("step", adam.steps());
   for (size_t i = 0; i < adam.exp_avg().size(); ++i) {
-    out.put_matrix("exp_avg." + std::to_string(i), adam.exp_avg()[i]);
-    out.put_matrix("exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
+    put_matrix(out, "exp_avg." + std::to_string(i), adam.exp_avg()[i]);
+    put_matrix(out, "exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
   }
 }
 
 inline void read_adam(const StateReader& in, Adam& adam) {
   adam.set_steps(in.get_int("step"));
   for (size_t i = 0; i < adam.exp_avg().size(); ++i) {
-    in.get_matrix("exp_avg." + std::to_string(i), adam.exp_avg()[i]);
-    in.get_matrix("exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
+    get_matrix(in, "exp_avg." + std::to_string(i), adam.exp_avg()[i]);
+    get_matrix(in, "exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
   }
 }
 
@@ -40,21 +40,21 @@ inline void read_adams(const StateReader& in, const std::string& name, std::vect
 inline void write_rmsprop(StateWriter out, const RmsProp& rmsprop) {
   out.put_int("step", rmsprop.steps());
   for (size_t i = 0; i < rmsprop.square_avg().size(); ++i)
-    out.put_matrix("square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
+    put_matrix(out, "square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
 }
 
 inline void read_rmsprop(const StateReader& in, RmsProp& rmsprop) {
   rmsprop.set_steps(in.get_int("step"));
   for (size_t i = 0; i < rmsprop.square_avg().size(); ++i)
-    in.get_matrix("square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
+    get_matrix(in, "square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
 }
 
 // The flat parameter vector (target networks and other state the model file does not hold).
 inline void write_params(StateWriter& out, const std::string& name, const Mlp& net) {
-  out.put_matrix(name, net.params());
+  put_matrix(out, name, net.params());
 }
 inline void read_params(const StateReader& in, const std::string& name, Mlp& net) {
-  in.get_matrix(name, net.params());
+  get_matrix(in, name, net.params());
 }
 
 }  // namespace rlrun

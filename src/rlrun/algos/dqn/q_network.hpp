@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/mlp.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/mlp.hpp"
 

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "rlrun/core/rng.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "rlrun/envs/classic/acrobot.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

@@ -1,7 +1,7 @@
 // CartPole-v1's picture: gymnasium/envs/classic_control/cartpole.py render(), same geometry
 // and colours (600x400 scene, y up, flipped at the end like pygame.transform.flip).
 #include "rlrun/envs/classic/cartpole.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

@@ -9,11 +9,11 @@
 #include <optional>
 #include <span>
 
-#include "rlrun/core/rng.hpp"
-#include "rlrun/core/space.hpp"
-#include "rlrun/env/env.hpp"
-#include "rlrun/env/env_seeding.hpp"
-#include "rlrun/env/info.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/space.hpp"
+#include "rlrun/env.hpp"
+#include "rlrun/env_seeding.hpp"
+#include "rlrun/info.hpp"
 
 namespace rlrun {
 

@@ -2,7 +2,7 @@
 // The picture shared by MountainCar-v0 and MountainCarContinuous-v0
 // (gymnasium/envs/classic_control/mountain_car.py and continuous_mountain_car.py render(),
 // identical but for the goal position): the hill curve, the car with two wheels, the flag.
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

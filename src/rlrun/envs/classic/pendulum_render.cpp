@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "rlrun/envs/classic/pendulum.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

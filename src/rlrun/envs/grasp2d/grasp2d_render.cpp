@@ -6,7 +6,7 @@
 #include <string>
 
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

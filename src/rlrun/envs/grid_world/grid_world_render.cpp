@@ -6,7 +6,7 @@
 #include <string>
 
 #include "rlrun/envs/grid_world/grid_world.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

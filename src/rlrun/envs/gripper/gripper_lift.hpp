@@ -27,10 +27,10 @@
 #include <string>
 
 #include "rlrun/core/config_checks.hpp"
-#include "rlrun/core/space.hpp"
-#include "rlrun/env/env.hpp"
-#include "rlrun/env/env_seeding.hpp"
-#include "rlrun/env/info.hpp"
+#include "rlrun/space.hpp"
+#include "rlrun/env.hpp"
+#include "rlrun/env_seeding.hpp"
+#include "rlrun/info.hpp"
 #include "rlrun/envs/gripper/grasp_scenario.hpp"
 #include "rlrun/envs/gripper/gripper_world.hpp"
 

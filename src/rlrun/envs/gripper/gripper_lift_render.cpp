@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "rlrun/envs/gripper/gripper_lift.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/render/rasterizer.hpp"
 
 namespace rlrun {

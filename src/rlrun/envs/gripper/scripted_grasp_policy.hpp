@@ -8,7 +8,7 @@
 #include <array>
 #include <functional>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 
 namespace rlrun {

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 
-#include "rlrun/env/env.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun {
 

@@ -10,7 +10,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/discrete_action.hpp"
-#include "rlrun/env/env_seeding.hpp"
+#include "rlrun/env_seeding.hpp"
 #include "rlrun/envs/traffic/tripinfo.hpp"
 
 namespace rlrun {

@@ -33,10 +33,10 @@
 
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/trusted_values.hpp"
-#include "rlrun/env/env_seeding.hpp"
-#include "rlrun/core/space.hpp"
-#include "rlrun/env/env.hpp"
-#include "rlrun/env/info.hpp"
+#include "rlrun/env_seeding.hpp"
+#include "rlrun/space.hpp"
+#include "rlrun/env.hpp"
+#include "rlrun/info.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
 #include "rlrun/envs/traffic/traffic_scenario.hpp"
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "rlrun/envs/traffic/traffic_signal.hpp"
-#include "rlrun/render/frame.hpp"
+#include "rlrun/frame.hpp"
 
 namespace rlrun {
 

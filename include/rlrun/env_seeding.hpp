@@ -10,8 +10,8 @@
 #include <optional>
 #include <random>
 
-#include "rlrun/core/rng.hpp"
-#include "rlrun/core/state_dict.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/state.hpp"
 
 namespace rlrun {
 

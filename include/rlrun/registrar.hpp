@@ -12,8 +12,8 @@
 #include <string>
 #include <type_traits>
 
-#include "rlrun/api/config.hpp"
-#include "rlrun/api/env.hpp"
+#include "rlrun/config.hpp"
+#include "rlrun/env.hpp"
 
 namespace rlrun::api {
 
@@ -29,15 +29,15 @@ class EnvFactory {
   virtual ~EnvFactory() = default;
   // Makes a default Config, lets each visitor in turn read or write its fields, and returns
   // the env built from it, or nullptr when `construct` is false.
-  virtual std::unique_ptr<Env> make(std::span<FieldVisitor* const> visitors,
-                                    bool construct) const = 0;
+  virtual std::unique_ptr<rlrun::Env> make(std::span<FieldVisitor* const> visitors,
+                                           bool construct) const = 0;
 };
 
 template <class E>
 class EnvFactoryOf final : public EnvFactory {
  public:
-  std::unique_ptr<Env> make(std::span<FieldVisitor* const> visitors,
-                            bool construct) const override {
+  std::unique_ptr<rlrun::Env> make(std::span<FieldVisitor* const> visitors,
+                                   bool construct) const override {
     if constexpr (requires { typename E::Config; }) {
       typename E::Config config{};
       for (FieldVisitor* v : visitors) config.visit(*v);
@@ -55,7 +55,8 @@ class Registrar {
  public:
   template <class E>
   void add_env(std::string id, std::string description, int max_episode_steps = 0) {
-    static_assert(std::is_base_of_v<Env, E>, "add_env<E>: E must derive from rlrun::api::Env");
+    static_assert(std::is_base_of_v<rlrun::Env, E>,
+                  "add_env<E>: E must derive from rlrun::Env (rlrun/env.hpp)");
     add_env_factory(EnvSpec{std::move(id), std::move(description), max_episode_steps},
                     std::make_unique<EnvFactoryOf<E>>());
   }

@@ -9,13 +9,13 @@
 // them. tests/runtime/test_plugin_api.cpp keeps a fingerprint of these headers and fails
 // when they change without the version (and the fingerprint) being updated.
 //
-// rlrun's internal Env (src/rlrun/env/env.hpp) is NOT part of this interface: a plugin's env
-// is wrapped by rlrun (runtime/plugin_env.hpp), so rendering, resume and other internal
-// additions do not break compiled plugins. Exposing such a feature to plugins means adding
-// it here, which is a version bump.
+// Version 2: plugin envs derive from rlrun::Env (rlrun/env.hpp), the very interface of rlrun's
+// built-in envs, with rendering, state save/restore and the multi-agent step; Space, Info,
+// Rng, EnvSeeding, the saved-state classes and Frame are rlrun's own (header-only).
+// Version 1 had a separate rlrun::api::Env with its own Space and Info.
 #include <cstdint>
 
-#define RLRUN_PLUGIN_API_VERSION 1
+#define RLRUN_PLUGIN_API_VERSION 2
 
 namespace rlrun::api {
 inline constexpr uint32_t kApiVersion = RLRUN_PLUGIN_API_VERSION;

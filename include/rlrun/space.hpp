@@ -1,0 +1,294 @@
+#pragma once
+// Gymnasium spaces (gymnasium/spaces/*.py) as one value type: Box, Discrete, MultiDiscrete,
+// MultiBinary, and Dict of those (one level deep, as SB3's MultiInputPolicy takes them).
+// Every sample is a flat float32 vector: a Discrete value is one float holding the integer,
+// MultiDiscrete / MultiBinary one float per entry, a Dict its keys' samples one after another
+// in sorted key order (Gymnasium sorts a Dict's keys; SB3's CombinedExtractor concatenates
+// them in that order). That keeps env I/O, buffers and networks on one data type.
+//
+// Part of the plugin API (header-only: plugins build their spaces with these functions).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <span>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rlrun/rng.hpp"
+
+namespace rlrun {
+
+enum class SpaceKind : int32_t {
+  kBox = 0,
+  kDiscrete = 1,
+  kMultiDiscrete = 2,
+  kMultiBinary = 3,
+  kDict = 4
+};
+
+// "Box", "Discrete", ... as Gymnasium names the classes.
+inline const char* space_kind_name(SpaceKind kind) {
+  switch (kind) {
+    case SpaceKind::kBox: return "Box";
+    case SpaceKind::kDiscrete: return "Discrete";
+    case SpaceKind::kMultiDiscrete: return "MultiDiscrete";
+    case SpaceKind::kMultiBinary: return "MultiBinary";
+    case SpaceKind::kDict: return "Dict";
+  }
+  return "?";
+}
+
+class Space {
+ public:
+  Space() = default;
+
+  // Box(low, high, shape): bounds per element (flattened, row-major like numpy).
+  static Space box(std::vector<float> low, std::vector<float> high, std::vector<int> shape = {}) {
+    if (shape.empty()) shape = {static_cast<int>(low.size())};
+    if (low.size() != high.size() || static_cast<int64_t>(low.size()) != product(shape))
+      throw std::invalid_argument("Space::box: low, high and shape sizes differ");
+    for (size_t i = 0; i < low.size(); ++i)
+      if (!(low[i] <= high[i])) throw std::invalid_argument("Space::box: low > high (or NaN)");
+    Space s;
+    s.kind_ = SpaceKind::kBox;
+    s.low_ = std::move(low);
+    s.high_ = std::move(high);
+    s.shape_ = std::move(shape);
+    return s;
+  }
+  // Box with the same bound for every element.
+  static Space box(float low, float high, std::vector<int> shape) {
+    const int64_t n = product(shape);
+    if (n < 0) throw std::invalid_argument("Space::box: negative shape");
+    return box(std::vector<float>(static_cast<size_t>(n), low),
+               std::vector<float>(static_cast<size_t>(n), high), std::move(shape));
+  }
+  // Discrete(n, start): values start, ..., start + n - 1.
+  static Space discrete(int64_t n, int64_t start = 0) {
+    if (n <= 0) throw std::invalid_argument("Space::discrete: n must be positive");
+    Space s;
+    s.kind_ = SpaceKind::kDiscrete;
+    s.n_ = n;
+    s.start_ = start;
+    return s;
+  }
+  static Space multi_discrete(std::vector<int64_t> nvec) {
+    if (nvec.empty()) throw std::invalid_argument("Space::multi_discrete: nvec is empty");
+    for (auto n : nvec)
+      if (n <= 0) throw std::invalid_argument("Space::multi_discrete: entries must be positive");
+    Space s;
+    s.kind_ = SpaceKind::kMultiDiscrete;
+    s.shape_ = {static_cast<int>(nvec.size())};
+    s.nvec_ = std::move(nvec);
+    return s;
+  }
+  static Space multi_binary(int n) {
+    if (n <= 0) throw std::invalid_argument("Space::multi_binary: n must be positive");
+    Space s;
+    s.kind_ = SpaceKind::kMultiBinary;
+    s.shape_ = {n};
+    s.n_ = n;
+    return s;
+  }
+  // Dict of named subspaces (no Dict inside a Dict); keys are kept sorted.
+  static Space dict(std::vector<std::pair<std::string, Space>> entries) {
+    if (entries.empty()) throw std::invalid_argument("Space::dict: no keys");
+    std::sort(entries.begin(), entries.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    Space s;
+    s.kind_ = SpaceKind::kDict;
+    for (size_t i = 0; i < entries.size(); ++i) {
+      if (i > 0 && entries[i].first == entries[i - 1].first)
+        throw std::invalid_argument("Space::dict: key '" + entries[i].first + "' twice");
+      if (entries[i].second.kind_ == SpaceKind::kDict)
+        throw std::invalid_argument("Space::dict: '" + entries[i].first +
+                                    "' is a Dict; one level of keys is supported (as SB3)");
+      s.keys_.push_back(std::move(entries[i].first));
+      s.subspaces_.push_back(std::move(entries[i].second));
+    }
+    return s;
+  }
+
+  SpaceKind kind() const { return kind_; }
+  bool is_box() const { return kind_ == SpaceKind::kBox; }
+  bool is_discrete() const { return kind_ == SpaceKind::kDiscrete; }
+  bool is_dict() const { return kind_ == SpaceKind::kDict; }
+
+  // Number of floats in one flat sample (Discrete: 1; Dict: its keys' together).
+  int flat_dim() const {
+    switch (kind_) {
+      case SpaceKind::kBox: return static_cast<int>(product(shape_));
+      case SpaceKind::kDiscrete: return 1;
+      case SpaceKind::kMultiDiscrete: return static_cast<int>(nvec_.size());
+      case SpaceKind::kMultiBinary: return static_cast<int>(n_);
+      case SpaceKind::kDict: {
+        int total = 0;
+        for (const Space& s : subspaces_) total += s.flat_dim();
+        return total;
+      }
+    }
+    return 0;
+  }
+  const std::vector<int>& shape() const { return shape_; }
+  const std::vector<float>& low() const { return low_; }
+  const std::vector<float>& high() const { return high_; }
+  int64_t n() const { return n_; }
+  int64_t start() const { return start_; }
+  const std::vector<int64_t>& nvec() const { return nvec_; }
+  // Dict: the keys in sorted order and their spaces.
+  const std::vector<std::string>& keys() const { return keys_; }
+  const std::vector<Space>& subspaces() const { return subspaces_; }
+  // Dict: where key i's floats start in a flat sample.
+  int offset(size_t i) const {
+    int at = 0;
+    for (size_t k = 0; k < i; ++k) at += subspaces_[k].flat_dim();
+    return at;
+  }
+
+  bool contains(std::span<const float> x) const {
+    if (static_cast<int64_t>(x.size()) != flat_dim()) return false;
+    switch (kind_) {
+      case SpaceKind::kBox:
+        for (size_t i = 0; i < x.size(); ++i)
+          if (!(x[i] >= low_[i] && x[i] <= high_[i])) return false;
+        return true;
+      case SpaceKind::kDiscrete: {
+        const float v = x[0];
+        return v == std::floor(v) && v >= static_cast<float>(start_) &&
+               v < static_cast<float>(start_ + n_);
+      }
+      case SpaceKind::kMultiDiscrete:
+        for (size_t i = 0; i < x.size(); ++i)
+          if (!(x[i] == std::floor(x[i]) && x[i] >= 0 && x[i] < static_cast<float>(nvec_[i])))
+            return false;
+        return true;
+      case SpaceKind::kMultiBinary:
+        for (float v : x)
+          if (v != 0.0f && v != 1.0f) return false;
+        return true;
+      case SpaceKind::kDict:
+        for (size_t i = 0; i < subspaces_.size(); ++i)
+          if (!subspaces_[i].contains(x.subspan(static_cast<size_t>(offset(i)),
+                                                static_cast<size_t>(subspaces_[i].flat_dim()))))
+            return false;
+        return true;
+    }
+    return false;
+  }
+
+  // Uniform sample as gymnasium does (Box: uniform on bounded dims, shifted exponential on
+  // half-bounded ones, normal on unbounded ones, gymnasium/spaces/box.py; Discrete: uniform
+  // integer; Dict: each key in order).
+  void sample(Rng& rng, std::span<float> out) const {
+    switch (kind_) {
+      case SpaceKind::kBox:
+        for (size_t i = 0; i < out.size(); ++i) {
+          const bool lo = std::isfinite(low_[i]), hi = std::isfinite(high_[i]);
+          if (lo && hi)
+            out[i] = static_cast<float>(rng.uniform(low_[i], high_[i]));
+          else if (lo)
+            out[i] = static_cast<float>(low_[i] - std::log(1.0 - rng.uniform()));
+          else if (hi)
+            out[i] = static_cast<float>(high_[i] + std::log(1.0 - rng.uniform()));
+          else
+            out[i] = static_cast<float>(rng.normal());
+        }
+        return;
+      case SpaceKind::kDiscrete:
+        out[0] = static_cast<float>(start_ + static_cast<int64_t>(rng.below(n_)));
+        return;
+      case SpaceKind::kMultiDiscrete:
+        for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(rng.below(nvec_[i]));
+        return;
+      case SpaceKind::kMultiBinary:
+        for (float& v : out) v = static_cast<float>(rng.below(2));
+        return;
+      case SpaceKind::kDict:
+        for (size_t i = 0; i < subspaces_.size(); ++i)
+          subspaces_[i].sample(rng, out.subspan(static_cast<size_t>(offset(i)),
+                                                static_cast<size_t>(subspaces_[i].flat_dim())));
+        return;
+    }
+  }
+
+  // Readable form as Gymnasium's repr, e.g. "Box(-2.0, 2.0, (1,), float32)", "Discrete(2)",
+  // "Dict('goal': Box(...), 'position': Box(...))".
+  std::string describe() const {
+    std::ostringstream out;
+    switch (kind_) {
+      case SpaceKind::kBox:
+        if (all_equal(low_) && all_equal(high_)) {
+          out << "Box(" << format_bound(low_.front()) << ", " << format_bound(high_.front())
+              << ", " << shape_text() << ", float32)";
+        } else {
+          out << "Box([";
+          for (size_t i = 0; i < low_.size(); ++i) out << (i ? " " : "") << format_bound(low_[i]);
+          out << "], [";
+          for (size_t i = 0; i < high_.size(); ++i) out << (i ? " " : "") << format_bound(high_[i]);
+          out << "], " << shape_text() << ", float32)";
+        }
+        break;
+      case SpaceKind::kDiscrete:
+        out << "Discrete(" << n_;
+        if (start_ != 0) out << ", start=" << start_;
+        out << ")";
+        break;
+      case SpaceKind::kMultiDiscrete:
+        out << "MultiDiscrete([";
+        for (size_t i = 0; i < nvec_.size(); ++i) out << (i ? " " : "") << nvec_[i];
+        out << "])";
+        break;
+      case SpaceKind::kMultiBinary: out << "MultiBinary(" << n_ << ")"; break;
+      case SpaceKind::kDict:
+        out << "Dict(";
+        for (size_t i = 0; i < keys_.size(); ++i)
+          out << (i ? ", " : "") << "'" << keys_[i] << "': " << subspaces_[i].describe();
+        out << ")";
+        break;
+    }
+    return out.str();
+  }
+
+  bool operator==(const Space& other) const = default;
+
+ private:
+  static int64_t product(const std::vector<int>& shape) {
+    int64_t n = 1;
+    for (int d : shape) n *= d;
+    return n;
+  }
+  static std::string format_bound(float v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    std::ostringstream out;
+    out << v;
+    std::string s = out.str();
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return s;
+  }
+  static bool all_equal(const std::vector<float>& v) {
+    for (float x : v)
+      if (!(x == v.front())) return false;
+    return true;
+  }
+  std::string shape_text() const {
+    std::string s = "(";
+    for (size_t i = 0; i < shape_.size(); ++i) s += std::to_string(shape_[i]) + ",";
+    if (shape_.size() > 1) s.pop_back();
+    return s + ")";
+  }
+
+  SpaceKind kind_ = SpaceKind::kBox;
+  std::vector<int> shape_;
+  std::vector<float> low_, high_;
+  int64_t n_ = 0;
+  int64_t start_ = 0;
+  std::vector<int64_t> nvec_;
+  std::vector<std::string> keys_;
+  std::vector<Space> subspaces_;
+};
+
+}  // namespace rlrun
