@@ -53,8 +53,8 @@ bool is_config_file(const std::string& arg) {
 }
 
 // An id: the registered env with `--set` kwargs and its TimeLimit, as gymnasium.make builds it.
-CheckTarget target_from_id(const std::string& id, const std::vector<std::string>& overrides) {
-  const Registry& registry = builtin_registry();
+CheckTarget target_from_id(const std::string& id, const std::vector<std::string>& overrides,
+                           const Registry& registry) {
   // Path "" so that errors name the key as typed after --set.
   ConfigNode kwargs = ConfigNode::from_yaml(YAML::Node(YAML::NodeType::Map), "command line");
   for (const auto& o : overrides) kwargs.apply_override(o);
@@ -78,8 +78,8 @@ CheckTarget target_from_id(const std::string& id, const std::vector<std::string>
 // A config file: its env section as training builds it (env_factory.cpp make_env: time
 // limit, wrappers, action-space adapter) but without the Monitor, whose info reports wall
 // time and so would fail the determinism check.
-CheckTarget target_from_config(const std::string& path, const std::vector<std::string>& overrides) {
-  const Registry& registry = builtin_registry();
+CheckTarget target_from_config(const std::string& path, const std::vector<std::string>& overrides,
+                               Registry& registry) {
   const Experiment exp = load_experiment(path, overrides, registry);
   CheckTarget t;
   const EnvEntry& entry = *registry.find_env(exp.env.id);
@@ -134,7 +134,7 @@ RandomBaseline play_random(Env& env, int episodes, uint64_t seed) {
 
 }  // namespace
 
-Action add_check_env(CLI::App& app) {
+Action add_check_env(CLI::App& app, Registry& registry) {
   struct Options {
     std::string target;
     std::vector<std::string> plugins;
@@ -158,11 +158,11 @@ Action add_check_env(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   sub->add_option("--episodes", options->episodes, "random-policy episodes for the baseline")
       ->check(CLI::NonNegativeNumber);
-  return [options]() {
-    load_plugin_options(options->plugins);
+  return [options, &registry]() {
+    load_plugin_options(options->plugins, registry);
     CheckTarget t = is_config_file(options->target)
-                        ? target_from_config(options->target, options->overrides)
-                        : target_from_id(options->target, options->overrides);
+                        ? target_from_config(options->target, options->overrides, registry)
+                        : target_from_id(options->target, options->overrides, registry);
     Env& env = *t.env;
     std::string keys;
     for (const auto& k : env.info().keys()) keys += (keys.empty() ? "" : ", ") + k;

@@ -17,6 +17,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
+#include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/recorder.hpp"
 
@@ -79,10 +80,27 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
   }
 }
 
+// The command line's settings for a named policy (--green-time for the traffic baseline).
+template <class Options>
+PolicyOptions policy_options(const Options& o) {
+  PolicyOptions options;
+  options.seed = o.seed;
+  if (o.green_time) options.settings["green_time"] = *o.green_time;
+  return options;
+}
+
+// "" or " (green_time 30)": the settings a baseline ran with.
+std::string settings_text(const PolicyOptions& options) {
+  std::string text;
+  for (const auto& [key, value] : options.settings)
+    text += (text.empty() ? " (" : ", ") + key + " " + format_log_value(value);
+  return text.empty() ? text : text + ")";
+}
+
 // `eval --policy P --env ID | --config CFG`: a policy that needs no model file, e.g. the grasp
 // task's scripted controller (shows the task is solvable) or a uniform random policy.
 template <class Options>
-int evaluate_without_model(const Options& o, const Registry& registry) {
+int evaluate_without_model(const Options& o, Registry& registry) {
   if (o.env_id.empty() == o.config.empty())
     throw UsageError("--policy " + o.policy + " needs exactly one of --env ID or --config CFG");
   if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
@@ -90,7 +108,8 @@ int evaluate_without_model(const Options& o, const Registry& registry) {
                                            registry, "", unix_time_now())
                                 : env_by_id(o.env_id, registry);
   const EvalResult r =
-      evaluate_policy(named_policy(o.policy, *env, o.seed, o.green_time).act, *env, o.episodes, o.seed);
+      evaluate_policy(named_policy(o.policy, *env, registry, policy_options(o)).act, *env,
+                      o.episodes, o.seed);
   print_summary(o.policy, "", env->id(), o.episodes, r);
   if (!o.csv.empty()) write_csv(o.csv, {{o.policy, r}});
   return 0;
@@ -98,7 +117,7 @@ int evaluate_without_model(const Options& o, const Registry& registry) {
 
 }  // namespace
 
-Action add_eval(CLI::App& app) {
+Action add_eval(CLI::App& app, Registry& registry) {
   struct Options {
     std::string model;
     int episodes = 10;
@@ -108,7 +127,7 @@ Action add_eval(CLI::App& app) {
     std::string record;  // mp4 of the evaluation episodes
     std::vector<std::string> plugins;
     std::string baseline;  // fixed-time (traffic task) or scripted (grasp task)
-    int green_time = 30;
+    std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
     std::string policy, env_id, config;  // a policy without a model, in an env or config's env
     std::vector<std::string> overrides;   // --set: the user's values over the model's config
   };
@@ -118,9 +137,10 @@ Action add_eval(CLI::App& app) {
       sub->add_option("--model", options->model, "model.zip written by rlrun train");
   CLI::Option* policy_option = sub->add_option(
       "--policy", options->policy,
-      "evaluate a policy without a model: scripted (grasp task), fixed-time (traffic task) or "
-      "random; needs --env ID or --config CFG");
-  policy_option->check(CLI::IsMember({"scripted", "fixed-time", "random"}))->excludes(model_option);
+      "evaluate a policy without a model: random, or one that comes with the env (`rlrun list "
+      "ID` shows them: fixed-time for the traffic task, scripted for the grasp task); needs "
+      "--env ID or --config CFG");
+  policy_option->excludes(model_option);
   sub->add_option("--env", options->env_id, "env id for --policy")->needs(policy_option);
   sub->add_option("--config", options->config, "experiment file whose env --policy runs in")
       ->needs(policy_option);
@@ -137,17 +157,16 @@ Action add_eval(CLI::App& app) {
                   "untrusted: this is how you vouch for a program or file it names; repeatable)")
       ->allow_extra_args(false);
   sub->add_option("--baseline", options->baseline,
-                  "also evaluate a baseline on the same episodes: fixed-time (the traffic task's "
-                  "N -> S -> E -> W plan) or scripted (the grasp task's controller)")
-      ->check(CLI::IsMember({"fixed-time", "scripted"}));
+                  "also evaluate a baseline on the same episodes: random, or one that comes with "
+                  "the env (fixed-time: the traffic task's N -> S -> E -> W plan; scripted: the "
+                  "grasp task's controller)");
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of the fixed-time baseline")
       ->check(CLI::PositiveNumber);
   sub->add_option("--record", options->record,
                   "also record the episodes to this mp4 (same episodes and numbers; needs ffmpeg)");
-  return [options, deterministic]() {
-    load_plugin_options(options->plugins);  // model files name their plugins too
-    const Registry& registry = builtin_registry();
+  return [options, deterministic, &registry]() {
+    load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
     if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
     const ModelFile model = read_model(options->model);
@@ -162,7 +181,7 @@ Action add_eval(CLI::App& app) {
     if (!options->baseline.empty()) {
       baseline_env = make_model_env(model, experiment, registry);
       baseline_policy =
-          named_policy(options->baseline, *baseline_env, options->seed, options->green_time);
+          named_policy(options->baseline, *baseline_env, registry, policy_options(*options));
     }
     EvalResult r;
     if (options->record.empty()) {
@@ -191,10 +210,8 @@ Action add_eval(CLI::App& app) {
     if (baseline_policy) {  // the same episodes, on an env of its own
       const EvalResult baseline =
           evaluate_policy(baseline_policy->act, *baseline_env, options->episodes, options->seed);
-      const std::string how = options->baseline == "fixed-time"
-                                  ? " (" + std::to_string(options->green_time) + " s green)"
-                                  : "";
-      print_summary(options->baseline, how, experiment.env.id, options->episodes, baseline);
+      print_summary(options->baseline, settings_text(policy_options(*options)),
+                    experiment.env.id, options->episodes, baseline);
       runs.emplace_back(options->baseline, baseline);
     }
     if (!options->csv.empty()) write_csv(options->csv, runs);

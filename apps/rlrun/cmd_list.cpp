@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
 
 #include "commands.hpp"
 #include "plugin_option.hpp"
@@ -23,6 +24,25 @@ void print_table(const char* title, const Entries& entries) {
     std::printf("  %-*s  %s\n", static_cast<int>(width), e.id.c_str(), e.description.c_str());
 }
 
+// An env's spaces (as built with default parameters), time limit and policies.
+void print_env_details(const EnvEntry& entry) {
+  try {
+    const EnvPtr env = entry.make(entry.parse(ConfigNode()));
+    std::printf("%s: %s\n  observation_space  %s\n  action_space       %s\n", entry.id.c_str(),
+                entry.description.c_str(), env->observation_space().describe().c_str(),
+                env->action_space().describe().c_str());
+  } catch (const std::exception& e) {
+    std::printf("%s: %s\n  (cannot be built with default parameters: %s)\n", entry.id.c_str(),
+                entry.description.c_str(), e.what());
+  }
+  std::printf("  time limit         %s\n",
+              entry.max_episode_steps > 0 ? std::to_string(entry.max_episode_steps).c_str()
+                                          : "none (the env ends its own episodes)");
+  std::printf("  policies           random (uniform actions)\n");
+  for (const PolicyEntry& policy : entry.policies)
+    std::printf("                     %s (%s)\n", policy.name.c_str(), policy.description.c_str());
+}
+
 void print_params(const std::string& id, const std::vector<FieldDoc>& rows) {
   std::printf("%s parameters:\n", id.c_str());
   if (rows.empty()) std::printf("  (none)\n");
@@ -32,14 +52,16 @@ void print_params(const std::string& id, const std::vector<FieldDoc>& rows) {
     value_width = std::max(value_width, r.default_value.size());
   }
   for (const auto& r : rows)
-    std::printf("  %-*s  %-*s  %s\n", static_cast<int>(key_width), r.key.c_str(),
-                static_cast<int>(value_width), r.default_value.c_str(), r.doc.c_str());
+    std::printf("  %-*s  %-*s  %s%s\n", static_cast<int>(key_width), r.key.c_str(),
+                static_cast<int>(value_width), r.default_value.c_str(), r.doc.c_str(),
+                r.constraint.empty() ? "" : (" [" + r.constraint + "]").c_str());
 }
 
 template <class Entries>
 bool print_params_if_found(const Entries& entries, const std::string& id) {
   for (const auto& e : entries) {
     if (e.id != id) continue;
+    if constexpr (std::is_same_v<std::decay_t<decltype(e)>, EnvEntry>) print_env_details(e);
     print_params(e.id, e.params());
     return true;
   }
@@ -48,15 +70,15 @@ bool print_params_if_found(const Entries& entries, const std::string& id) {
 
 }  // namespace
 
-Action add_list(CLI::App& app) {
+Action add_list(CLI::App& app, Registry& registry) {
   auto id = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand("list", "list registered environments, wrappers and algorithms");
   sub->add_option("id", *id, "show the parameters of one component, e.g. `rlrun list PPO`");
   auto plugins = std::make_shared<std::vector<std::string>>();
   add_plugin_option(sub, *plugins);
-  return [id, plugins]() {
-    load_plugin_options(*plugins);
-    const Registry& r = builtin_registry();
+  return [id, plugins, &registry]() {
+    load_plugin_options(*plugins, registry);
+    const Registry& r = registry;
     if (id->empty()) {
       print_table("environments", r.envs());
       print_table("wrappers", r.wrappers());

@@ -27,7 +27,7 @@ namespace {
 
 struct Options {
   std::string model, config, env_id, from_obs, policy;
-  int green_time = 30;  // --policy fixed-time
+  std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
   std::string output, frames, size;
@@ -62,8 +62,8 @@ void print_summary(const RecordResult& r, const std::string& what, const Options
   if (r.interrupted) std::printf("interrupted: the video holds the frames recorded so far\n");
 }
 
-int run(const Options& o) {
-  load_plugin_options(o.plugins);
+int run(const Options& o, Registry& registry) {
+  load_plugin_options(o.plugins, registry);
   const int sources =
       !o.model.empty() + !o.config.empty() + !o.from_obs.empty() +
       (o.model.empty() && o.config.empty() && o.from_obs.empty() && !o.env_id.empty());
@@ -85,7 +85,6 @@ int run(const Options& o) {
   if (!o.size.empty()) parse_size(o.size, record);
   install_interrupt_handlers();
   record.keep_going = [] { return !interrupt_requested(); };
-  const Registry& registry = builtin_registry();
 
   if (!o.from_obs.empty()) {
     if (o.env_id.empty()) throw UsageError("--from-obs needs --env ID (the env that logged them)");
@@ -124,7 +123,10 @@ int run(const Options& o) {
       algorithm->predict(obs, deterministic, action);
     };
   } else {
-    NamedPolicy named = named_policy(policy, *env, o.seed, o.green_time);
+    PolicyOptions options;
+    options.seed = o.seed;
+    if (o.green_time) options.settings["green_time"] = *o.green_time;
+    NamedPolicy named = named_policy(policy, *env, registry, options);
     act = std::move(named.act);
     record.policy_label = named.label;
   }
@@ -138,7 +140,7 @@ int run(const Options& o) {
 
 }  // namespace
 
-Action add_record(CLI::App& app) {
+Action add_record(CLI::App& app, Registry& registry) {
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "record", "record a policy as an mp4 video (needs the ffmpeg program) and/or PNG frames");
@@ -151,8 +153,8 @@ Action add_record(CLI::App& app) {
       ->allow_extra_args(false);
   sub->add_option("--env", options->env_id, "env id (with --policy random or --from-obs)");
   sub->add_option("--policy", options->policy,
-                  "model (default with --model), random, fixed-time (traffic task) or scripted "
-                  "(grasp task)");
+                  "model (default with --model), random, or one that comes with the env "
+                  "(fixed-time: traffic task; scripted: grasp task)");
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of --policy fixed-time")
       ->check(CLI::PositiveNumber);
@@ -176,7 +178,7 @@ Action add_record(CLI::App& app) {
       ->excludes(det);
   sub->add_flag("--no-overlay", options->no_overlay, "no text (env id, episode, step, return)");
   add_plugin_option(sub, options->plugins);
-  return [options, deterministic]() { return run(*options); };
+  return [options, deterministic, &registry]() { return run(*options, registry); };
 }
 
 }  // namespace rlrun::cli

@@ -61,7 +61,8 @@ class SweepSlotLock {
 // parent's summary shows it).
 // `overrides` are the user's --set values, which vouch for values the untrusted manifest's
 // configs carry (docs/security.md); `plugins` are loaded already.
-int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overrides) {
+int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overrides,
+            Registry& registry) {
   if (index < 0 || index >= static_cast<int>(sweep.runs.size()))
     throw UsageError("--index " + std::to_string(index) + ": the manifest has runs 0-" +
                      std::to_string(sweep.runs.size() - 1));
@@ -77,7 +78,6 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
     throw UsageError(name + ": " + run.run_dir + " was trained with other settings than " +
                      run.config + " (the sweep file changed after the run started); delete "
                      "that directory to train the run again, or give the sweep another out_dir");
-  const Registry& registry = builtin_registry();
   install_interrupt_handlers();
   TrainOutcome outcome;
   switch (state) {
@@ -151,7 +151,7 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
 
 }  // namespace
 
-Action add_sweep(CLI::App& app) {
+Action add_sweep(CLI::App& app, Registry& registry) {
   struct Options {
     std::string sweep_file, manifest;
     int jobs = 1;
@@ -177,11 +177,11 @@ Action add_sweep(CLI::App& app) {
   slurm->add_option("manifest", options->manifest, "manifest.yaml")->required();
   CLI::App* status = sub->add_subcommand("status", "print each run's state");
   status->add_option("manifest", options->manifest, "manifest.yaml")->required();
-  return [options, run, slurm, status]() {
+  return [options, run, slurm, status, &registry]() {
     if (run->parsed()) {
-      load_plugin_options(options->plugins);
+      load_plugin_options(options->plugins, registry);
       const Sweep sweep = read_manifest(options->manifest);
-      if (options->index >= 0) return run_one(sweep, options->index, options->overrides);
+      if (options->index >= 0) return run_one(sweep, options->index, options->overrides, registry);
       std::vector<std::string> passed_on;
       for (const std::string& o : options->overrides) passed_on.insert(passed_on.end(), {"--set", o});
       for (const std::string& p : options->plugins) passed_on.insert(passed_on.end(), {"--plugin", p});
@@ -207,7 +207,7 @@ Action add_sweep(CLI::App& app) {
     if (options->sweep_file.empty())
       throw UsageError("sweep needs a sweep file (rlrun sweep configs/sweeps/x.yaml) or one of "
                        "run, slurm, status with a manifest");
-    const Sweep sweep = expand_sweep(options->sweep_file, builtin_registry());
+    const Sweep sweep = expand_sweep(options->sweep_file, registry);
     std::printf("sweep %s: %zu runs -> %s\n", sweep.name.c_str(), sweep.runs.size(),
                 sweep.manifest.c_str());
     for (const SweepRun& r : sweep.runs) std::printf("  %3d  %s\n", r.index, r.id.c_str());

@@ -62,7 +62,7 @@ bool restates(const ConfigNode& config, const std::string& assignment) {
   }
 }
 
-int resume(const TrainOptions& o, const Registry& registry) {
+int resume(const TrainOptions& o, Registry& registry) {
   // A resumed run is the same run: its config.yaml, except for how long it trains.
   if (!o.configs.empty() || o.seed || !o.out.empty() || !o.init_from.empty() || o.jobs != 1)
     throw UsageError("--resume continues a run with its own config.yaml; it takes no experiment "
@@ -91,7 +91,7 @@ int resume(const TrainOptions& o, const Registry& registry) {
 
 }  // namespace
 
-Action add_train(CLI::App& app) {
+Action add_train(CLI::App& app, Registry& registry) {
   auto options = std::make_shared<TrainOptions>();
   CLI::App* sub = app.add_subcommand("train", "train an agent from one or more experiment files");
   sub->add_option("configs", options->configs,
@@ -114,9 +114,8 @@ Action add_train(CLI::App& app) {
                   "continue an interrupted run exactly: its run directory (newest checkpoint) or "
                   "a checkpoints/step_<N>.zip file");
   add_plugin_option(sub, options->plugins);
-  return [options]() {
-    load_plugin_options(options->plugins);
-    const Registry& registry = builtin_registry();
+  return [options, &registry]() {
+    load_plugin_options(options->plugins, registry);
     if (!options->resume.empty()) return resume(*options, registry);
     if (options->configs.empty())
       throw UsageError("train needs experiment files (rlrun train configs/x.yaml) or --resume RUN_DIR");

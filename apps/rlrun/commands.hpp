@@ -4,16 +4,20 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 
+#include "rlrun/runtime/registry.hpp"
+
 namespace rlrun::cli {
 
 using Action = std::function<int()>;
 
-Action add_train(CLI::App& app);
-Action add_eval(CLI::App& app);
-Action add_list(CLI::App& app);
-Action add_check_env(CLI::App& app);
-Action add_record(CLI::App& app);
-Action add_sweep(CLI::App& app);
+// `registry` is main()'s: the built-in components, to which `--plugin` adds libraries. It
+// outlives the actions.
+Action add_train(CLI::App& app, Registry& registry);
+Action add_eval(CLI::App& app, Registry& registry);
+Action add_list(CLI::App& app, Registry& registry);
+Action add_check_env(CLI::App& app, Registry& registry);
+Action add_record(CLI::App& app, Registry& registry);
+Action add_sweep(CLI::App& app, Registry& registry);
 Action add_report(CLI::App& app);
 Action add_plot(CLI::App& app);
 

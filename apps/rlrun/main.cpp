@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
+#include "rlrun/runtime/builtins.hpp"
 
 namespace {
 
@@ -35,12 +36,14 @@ int main(int argc, char** argv) {
                  "cores per run, 1 or 2 (default: RLRUN_THREADS, else 2 when two CPUs are "
                  "available; use 1 when several runs share the cores). Results are identical.");
   app.fallthrough();
-  rlrun::cli::Action train = rlrun::cli::add_train(app);
-  rlrun::cli::Action eval = rlrun::cli::add_eval(app);
-  rlrun::cli::Action list = rlrun::cli::add_list(app);
-  rlrun::cli::Action check_env = rlrun::cli::add_check_env(app);
-  rlrun::cli::Action record = rlrun::cli::add_record(app);
-  rlrun::cli::Action sweep = rlrun::cli::add_sweep(app);
+  // The registry is built here and passed down; --plugin adds to it (runtime/builtins.hpp).
+  rlrun::Registry registry = rlrun::make_builtin_registry();
+  rlrun::cli::Action train = rlrun::cli::add_train(app, registry);
+  rlrun::cli::Action eval = rlrun::cli::add_eval(app, registry);
+  rlrun::cli::Action list = rlrun::cli::add_list(app, registry);
+  rlrun::cli::Action check_env = rlrun::cli::add_check_env(app, registry);
+  rlrun::cli::Action record = rlrun::cli::add_record(app, registry);
+  rlrun::cli::Action sweep = rlrun::cli::add_sweep(app, registry);
   rlrun::cli::Action report = rlrun::cli::add_report(app);
   rlrun::cli::Action plot = rlrun::cli::add_plot(app);
   try {

@@ -4,14 +4,13 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/rng.hpp"
-#include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
-#include "rlrun/envs/traffic/fixed_time_policy.hpp"
 
 namespace rlrun::cli {
 
-NamedPolicy named_policy(const std::string& name, Env& env, uint64_t seed, int green_time) {
+NamedPolicy named_policy(const std::string& name, Env& env, const Registry& registry,
+                         const PolicyOptions& options) {
   if (name == "random") {
-    auto rng = std::make_shared<Rng>(seed ^ 0x5eedull);
+    auto rng = std::make_shared<Rng>(options.seed ^ 0x5eedull);
     const Space space = env.action_space();
     return {[rng, space](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
               action.resize(space.flat_dim(), 1);
@@ -19,10 +18,21 @@ NamedPolicy named_policy(const std::string& name, Env& env, uint64_t seed, int g
             },
             "random policy"};
   }
-  if (name == "fixed-time")
-    return {fixed_time_actions(env, green_time), "fixed-time " + std::to_string(green_time) + " s"};
-  if (name == "scripted") return {scripted_grasp_actions(env), "scripted grasp"};
-  throw UsageError("--policy " + name + ": expected model, random, fixed-time or scripted");
+  // The env's own baselines, as its folder registered them (env/env_entry.hpp).
+  std::string offered = "random";
+  if (const EnvEntry* entry = registry.find_env(env.id())) {
+    for (const PolicyEntry& policy : entry->policies) {
+      if (policy.name == name) {
+        std::string label = name;
+        for (const auto& [key, value] : options.settings)
+          if (key == "green_time") label += " " + std::to_string(static_cast<int>(value)) + " s";
+        return {policy.make(env, options), label};
+      }
+      offered += ", " + policy.name;
+    }
+  }
+  throw UsageError("policy '" + name + "' does not come with " + env.id() +
+                   "; its policies: " + offered);
 }
 
 }  // namespace rlrun::cli

@@ -17,8 +17,8 @@ inline void add_plugin_option(CLI::App* sub, std::vector<std::string>& plugins) 
       ->allow_extra_args(false);
 }
 
-inline void load_plugin_options(const std::vector<std::string>& plugins) {
-  for (const auto& path : plugins) load_plugin(path, mutable_builtin_registry());
+inline void load_plugin_options(const std::vector<std::string>& plugins, Registry& registry) {
+  for (const auto& path : plugins) load_plugin(path, registry);
 }
 
 }  // namespace rlrun::cli

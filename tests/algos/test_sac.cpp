@@ -532,10 +532,11 @@ TEST_CASE("SAC update micro-benchmark (rl-zoo Pendulum sizes)", "[.bench][sac_be
 namespace {
 double train_and_evaluate(const std::string& config, uint64_t seed) {
   testing::TempDir dir("sac_slow_" + std::to_string(seed));
+  Registry registry = make_builtin_registry();
   Experiment e = load_experiment(
       std::string(RLRUN_SOURCE_DIR) + "/configs/" + config,
       {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed), "run.console_interval=1000"},
-      builtin_registry());
+      registry);
   const TrainOutcome outcome = train_experiment(e, builtin_registry());
   const ModelFile model = read_model(outcome.model_path);
   const Experiment stored = experiment_from_model(model, builtin_registry());

@@ -175,7 +175,8 @@ TEST_CASE("eval and record --policy scripted on the grasp task", "[gripper][cli]
   CHECK(probe.output.find("h264,480,480,51") != std::string::npos);  // reset + 50 steps
   const auto wrong = run_rlrun("eval --env CartPole-v1 --policy scripted --episodes 1");
   CHECK(wrong.exit_code == 2);
-  CHECK(wrong.output.find("grasp task") != std::string::npos);
+  CHECK(wrong.output.find("policy 'scripted' does not come with CartPole-v1; its policies: "
+                          "random") != std::string::npos);
   const auto neither = run_rlrun("eval --policy scripted --episodes 1");
   CHECK(neither.exit_code == 2);
 }

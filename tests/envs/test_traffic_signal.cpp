@@ -400,7 +400,7 @@ TEST_CASE("eval --baseline fixed-time: both policies on the same episodes, metri
                            " --green-time 20 --csv " + dir / "eval.csv");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  CHECK(r.output.find("fixed-time on TrafficSignal-v0, 2 episodes (20 s green): mean_reward") !=
+  CHECK(r.output.find("fixed-time on TrafficSignal-v0, 2 episodes (green_time 20): mean_reward") !=
         std::string::npos);
   std::ifstream in(dir / "eval.csv");
   std::vector<std::string> lines;
@@ -418,7 +418,8 @@ TEST_CASE("eval --baseline fixed-time: both policies on the same episodes, metri
   const auto refused = run_rlrun("eval --model " + dir / "cp/cartpole_ppo/seed1/model.zip" +
                                  " --episodes 1 --baseline fixed-time");
   CHECK(refused.exit_code == 2);
-  CHECK(refused.output.find("traffic-signal baseline") != std::string::npos);
+  CHECK(refused.output.find("policy 'fixed-time' does not come with CartPole-v1") !=
+        std::string::npos);
 }
 
 TEST_CASE("record --policy fixed-time: an mp4 of the intersection from above", "[traffic][cli]") {

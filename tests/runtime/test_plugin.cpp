@@ -98,8 +98,8 @@ TEST_CASE("plugin: registered envs work like built-ins", "[plugin]") {
   REQUIRE(entry != nullptr);
   CHECK(entry->max_episode_steps == 20);
   CHECK(entry->description.find("count to a target") == 0);
-  CHECK(plugin_of_env("TestCounter-v0") == "test-plugin");
-  CHECK(plugin_of_env("CartPole-v1").empty());
+  CHECK(entry->plugin == "test-plugin");
+  CHECK(registry.find_env("CartPole-v1")->plugin.empty());
 
   // Parameters: documented, resolved with defaults, read strictly.
   const auto docs = entry->params();

@@ -1,4 +1,6 @@
-// The ONLY file that names concrete envs, wrappers and algorithms (DESIGN.md §1).
+// The built-in components: the envs every env folder registers (collected by CMake into
+// builtin_env_entries(), build/generated/builtin_envs.cpp), and the wrappers and algorithms,
+// named here (DESIGN.md §1, §7).
 #include "rlrun/runtime/builtins.hpp"
 
 #include "rlrun/algos/a2c/a2c.hpp"
@@ -7,15 +9,6 @@
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
-#include "rlrun/envs/classic/acrobot.hpp"
-#include "rlrun/envs/classic/cartpole.hpp"
-#include "rlrun/envs/classic/mountain_car.hpp"
-#include "rlrun/envs/classic/mountain_car_continuous.hpp"
-#include "rlrun/envs/classic/pendulum.hpp"
-#include "rlrun/envs/grasp2d/grasp2d.hpp"
-#include "rlrun/envs/grid_world/grid_world.hpp"
-#include "rlrun/envs/gripper/gripper_lift.hpp"
-#include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/frame_stack.hpp"
@@ -33,43 +26,8 @@ namespace {
 
 Registry make_builtins() {
   Registry r;
-  // Classic control, Gymnasium 1.0 (gymnasium/envs/classic_control/*.py), with the time limits
-  // gymnasium.make applies (gymnasium/envs/__init__.py).
-  r.add(make_env_entry<CartPole>("CartPole-v1", "balance a pole on a cart; Discrete(2)",
-                                 CartPole::kMaxEpisodeSteps));
-  r.add(make_env_entry<Pendulum>("Pendulum-v1", "swing up and hold a pendulum; Box(1) torque",
-                                 Pendulum::kMaxEpisodeSteps));
-  r.add(make_env_entry<MountainCar>("MountainCar-v0",
-                                    "drive an underpowered car up a hill; Discrete(3)",
-                                    MountainCar::kMaxEpisodeSteps));
-  r.add(make_env_entry<MountainCarContinuous>(
-      "MountainCarContinuous-v0", "mountain car with a continuous force; Box(1)",
-      MountainCarContinuous::kMaxEpisodeSteps));
-  r.add(make_env_entry<Acrobot>("Acrobot-v1", "swing a two-link arm above a line; Discrete(3)",
-                                Acrobot::kMaxEpisodeSteps));
-  // Custom tasks (issue 6): the course's 2D grasp env and the tutorial's wrapped GridWorld.
-  r.add(make_env_entry<Grasp2D>(
-      "Grasp2D-v0",
-      "move an arm to an object and close the gripper; Discrete(6): left right up down open close",
-      Grasp2D::kMaxEpisodeSteps));
-  // No TimeLimit: GridWorld truncates itself after max_steps, with its timeout penalty.
-  r.add(make_env_entry<GridWorld>(
-      "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (use OneHotObservation)",
-      0));
-
-  // Traffic-signal control on the real SUMO (issue 7); episodes end by num_seconds.
-  r.add(make_env_entry<TrafficSignal>(
-      "TrafficSignal-v0",
-      "one traffic light at a 4-arm intersection in SUMO; Discrete(4): N, S, E or W green",
-      0));
-
-  // Robot grasping on Bullet (issue 8); episodes end by the scenario's episode_steps.
-  r.add(make_env_entry<GripperLift>(
-      "GripperLift-v0",
-      "3D parallel-jaw gripper (Bullet): reach a cube, grasp it, lift it 5 cm; Box(4) dx dy dz grip",
-      0));
-  r.add(make_env_entry<GripperLiftEasy>(
-      "GripperLiftEasy-v0", "GripperLift-v0 starting just above the cube (close and lift)", 0));
+  // Every env folder's register.cpp (src/rlrun/envs/*/register.cpp), collected by CMake.
+  for (EnvEntry& entry : builtin_env_entries()) r.add(std::move(entry));
 
   // Wrappers usable in `env.wrappers`, applied in order after the Monitor.
   r.add(make_wrapper_entry<DiscreteAsBox>(
@@ -106,11 +64,11 @@ Registry make_builtins() {
 
 }  // namespace
 
-Registry& mutable_builtin_registry() {
-  static Registry registry = make_builtins();
+Registry make_builtin_registry() { return make_builtins(); }
+
+const Registry& builtin_registry() {
+  static const Registry registry = make_builtins();
   return registry;
 }
-
-const Registry& builtin_registry() { return mutable_builtin_registry(); }
 
 }  // namespace rlrun

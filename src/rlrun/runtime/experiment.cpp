@@ -218,14 +218,15 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
 
   Experiment exp;
   exp.source = root.origin();
-  // plugins: env libraries (runtime/plugin_loader.hpp), loaded before any env id is looked up
-  // — only from the user's own files: a model file naming a library must not load it.
+  // plugins: env libraries (runtime/plugin_loader.hpp). load_experiment has loaded those of
+  // the user's own files into the registry; an untrusted file's list is only recorded (a model
+  // file naming a library must not load it).
   const ConfigNode plugins = root.child("plugins");
   problems.attempt([&] {
-    if (plugins.defined() && plugins.trusted())
-      exp.plugins = load_plugins_section(plugins);
-    else if (plugins.defined())
-      decode(plugins, exp.plugins);
+    if (!plugins.defined()) return;
+    decode(plugins, exp.plugins);
+    if (plugins.trusted())
+      for (std::string& path : exp.plugins) path = resolve_plugin_path(path, plugin_base_dir(plugins));
   });
   problems.attempt([&] { exp.run = read_config<RunConfig>(root.child("run")); });
   parse_env(root.child("env"), registry, exp, problems);
@@ -245,7 +246,7 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
 
   // The libraries the run needs (absolute paths, the env's own included even when it came
   // from --plugin), so `rlrun eval` can name them when a model file needs one.
-  const std::string env_plugin = plugin_of_env(exp.env.id);
+  const std::string env_plugin = registry.find_env(exp.env.id)->plugin;
   if (!env_plugin.empty() &&
       std::find(exp.plugins.begin(), exp.plugins.end(), env_plugin) == exp.plugins.end())
     exp.plugins.push_back(env_plugin);
@@ -254,10 +255,14 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
 }
 
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                           const Registry& registry, ConfigTrust trust) {
+                           Registry& registry, ConfigTrust trust) {
   ConfigNode root = ConfigNode::load_file(path, trust);
   if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
   for (const auto& o : overrides) root.apply_override(o);
+  // The user's own file may name plugin libraries: they are loaded before any env id is looked
+  // up (never those of an untrusted file; docs/security.md).
+  const ConfigNode plugins = root.child("plugins");
+  if (plugins.defined() && plugins.trusted()) load_plugins_section(plugins, registry);
   const ConfigNode name = root.child("run").child("name");
   if (!name.defined()) {
     if (!root.yaml()["run"].IsMap()) root.yaml()["run"] = YAML::Node(YAML::NodeType::Map);

@@ -183,13 +183,14 @@ struct Experiment {
 // Parses and checks a whole experiment: every section is decoded once into its typed Config;
 // ids, values, value constraints, wrapper parameters, algorithm/space compatibility (one env is
 // built to learn its spaces) and resource bounds are checked before anything runs. All problems
-// of the file come in one ConfigError, one line each with file:line:col. A trusted file's
-// `plugins:` are loaded into the built-in registry; an untrusted file's are not (docs/security.md).
+// of the file come in one ConfigError, one line each with file:line:col. Plugins must be in
+// `registry` already (load_experiment loads a trusted file's; docs/security.md).
 Experiment parse_experiment(const ConfigNode& root, const Registry& registry);
 
-// Loads a file, applies `--set` overrides, parses. The run name defaults to the file stem.
+// Loads a file, applies `--set` overrides, loads the plugins a trusted file names into
+// `registry`, parses. The run name defaults to the file stem.
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                           const Registry& registry, ConfigTrust trust = ConfigTrust::kUser);
+                           Registry& registry, ConfigTrust trust = ConfigTrust::kUser);
 
 // The spec of env `id` with its default parameters (env_by_id, tests). `origin` names it in
 // messages. Throws ConfigError for an unknown id.

@@ -20,12 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Which plugin registered which env id, and which libraries are loaded (process-wide, as
-// the libraries themselves are).
-std::map<std::string, std::string>& env_plugins() {
-  static std::map<std::string, std::string> map;
-  return map;
-}
+// The libraries this process has loaded (process-wide, as the libraries themselves are:
+// dlopen keeps one copy per process).
 std::set<std::string>& loaded_plugins() {
   static std::set<std::string> set;
   return set;
@@ -56,6 +52,7 @@ EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFact
   entry.id = spec.id;
   entry.description = spec.description + " [plugin " + fs::path(plugin).filename().string() + "]";
   entry.max_episode_steps = spec.max_episode_steps;
+  entry.plugin = plugin;
   const std::string id = spec.id;
   // The plugin's Config type lives in its library: parsing checks the YAML strictly and keeps
   // the resolved values, from which make() fills a fresh Config.
@@ -106,16 +103,13 @@ class HostRegistrar final : public api::Registrar {
                        std::unique_ptr<api::EnvFactory> factory) override {
     if (spec.id.empty()) throw std::invalid_argument("an env id must not be empty");
     if (!factory) throw std::invalid_argument("env '" + spec.id + "' has no factory");
-    if (registry_.find_env(spec.id)) {
-      const auto it = env_plugins().find(spec.id);
+    if (const EnvEntry* existing = registry_.find_env(spec.id))
       throw std::invalid_argument(
           "env id '" + spec.id + "' is already registered " +
-          (it == env_plugins().end() ? std::string("as a built-in env") : "by " + it->second) +
+          (existing->plugin.empty() ? std::string("as a built-in env") : "by " + existing->plugin) +
           ": give the plugin's env another id (e.g. a new -vN suffix)");
-    }
     std::shared_ptr<const api::EnvFactory> shared(std::move(factory));
     registry_.add(make_entry(spec, shared, plugin_));
-    env_plugins()[spec.id] = plugin_;
   }
 
  private:
@@ -169,7 +163,8 @@ void register_plugin(PluginEntry entry, const std::string& name, Registry& regis
 
 std::string load_plugin(const std::string& path, Registry& registry) {
   const std::string resolved = resolve_plugin_path(path);
-  if (loaded_plugins().count(resolved)) return resolved;
+  for (const EnvEntry& e : registry.envs())
+    if (e.plugin == resolved) return resolved;  // this registry has it already
   // RTLD_NOW: a missing symbol is reported here, not in the middle of training.
   void* handle = dlopen(resolved.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
@@ -184,31 +179,27 @@ std::string load_plugin(const std::string& path, Registry& registry) {
                      std::string(RLRUN_PLUGIN_ENTRY_SYMBOL) +
                      "` function (define one with RLRUN_PLUGIN from <rlrun/plugin.hpp>)");
   }
-  // The library stays loaded for the life of the process: its code backs the envs.
+  // The library stays loaded for the life of the process: its code backs the envs (a second
+  // dlopen of the same file returns the same handle).
   loaded_plugins().insert(resolved);
   register_plugin(reinterpret_cast<PluginEntry>(symbol), resolved, registry);
   return resolved;
 }
 
-std::vector<std::string> load_plugins_section(const ConfigNode& plugins) {
+std::vector<std::string> load_plugins_section(const ConfigNode& plugins, Registry& registry) {
   std::vector<std::string> loaded;
   if (!plugins.defined()) return loaded;
   if (!plugins.is_sequence())
     plugins.fail("expected a list of plugin libraries, e.g. [build/libmyenv.so]");
-  // Relative paths are relative to the experiment file, so configs work from any directory.
-  std::string base_dir;
-  std::error_code ec;
-  if (fs::is_regular_file(plugins.origin(), ec))
-    base_dir = fs::absolute(plugins.origin()).parent_path().string();
+  const std::string base_dir = plugin_base_dir(plugins);
   for (std::size_t i = 0; i < plugins.size(); ++i) {
     const ConfigNode item = plugins.at(i);
     const std::string path = item.as_string();
     try {
-      loaded.push_back(
-          load_plugin(resolve_plugin_path(path, base_dir), mutable_builtin_registry()));
+      loaded.push_back(load_plugin(resolve_plugin_path(path, base_dir), registry));
     } catch (const UsageError& e) {
-      // A model file records where its plugin was; when the library has moved since, a
-      // --plugin naming the same file at its new place stands in for it.
+      // A config records where its plugin was; when the library has moved since, a --plugin
+      // naming the same file at its new place stands in for it.
       const std::string moved = loaded_with_file_name(fs::path(path).filename().string());
       if (moved.empty()) item.fail(e.what());
       loaded.push_back(moved);
@@ -217,9 +208,12 @@ std::vector<std::string> load_plugins_section(const ConfigNode& plugins) {
   return loaded;
 }
 
-std::string plugin_of_env(const std::string& id) {
-  const auto it = env_plugins().find(id);
-  return it == env_plugins().end() ? "" : it->second;
+std::string plugin_base_dir(const ConfigNode& plugins) {
+  // Relative paths are relative to the experiment file, so configs work from any directory.
+  std::error_code ec;
+  if (fs::is_regular_file(plugins.origin(), ec))
+    return fs::absolute(plugins.origin()).parent_path().string();
+  return "";
 }
 
 }  // namespace rlrun

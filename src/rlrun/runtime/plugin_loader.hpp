@@ -4,7 +4,8 @@
 // once per process (later requests for the same file do nothing), its API version is checked
 // before any of its C++ objects is used, and its envs are added to the registry with their
 // Config parameters, so YAML, `--set`, `rlrun list` and model files treat them like
-// built-in envs. Libraries stay loaded until the process ends (their code backs the envs).
+// built-in envs; each entry records its library (EnvEntry::plugin). Libraries stay loaded
+// until the process ends (their code backs the envs).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,13 +35,12 @@ std::string load_plugin(const std::string& path, Registry& registry);
 // entry compiled into the test binary). `name` names the plugin in messages.
 void register_plugin(PluginEntry entry, const std::string& name, Registry& registry);
 
-// The YAML `plugins:` list of an experiment file: paths relative to the file's directory.
-// Loads each into the built-in registry and returns their resolved paths; a problem is a
-// ConfigError at the list item.
-std::vector<std::string> load_plugins_section(const ConfigNode& plugins);
+// The YAML `plugins:` list of the user's own experiment file: paths relative to the file's
+// directory. Loads each into `registry` and returns their resolved paths; a problem is a
+// ConfigError at the list item. (Lists inside untrusted files are never loaded.)
+std::vector<std::string> load_plugins_section(const ConfigNode& plugins, Registry& registry);
 
-// The plugin that registered env `id` ("" for built-in envs), so a run can record it and
-// `rlrun eval` can load it again from the model file alone.
-std::string plugin_of_env(const std::string& id);
+// The directory a `plugins:` list's relative paths start from (the file's), or "".
+std::string plugin_base_dir(const ConfigNode& plugins);
 
 }  // namespace rlrun

@@ -1,7 +1,8 @@
 #pragma once
-// The component registry: ids (as written in YAML) -> parsers and factories. Only
-// runtime/builtins.cpp fills it (DESIGN.md §7: explicit registration in one function), and
-// plugins add their envs; `rlrun list` prints it.
+// The component registry: ids (as written in YAML) -> parsers and factories. A value: main()
+// builds one (runtime/builtins.hpp: the built-in envs of every env folder, the wrappers and the
+// algorithms), adds the plugins the command line names, and passes it down; `rlrun list`
+// prints it.
 // Lookups of unknown ids fail with the YAML position and the closest registered id.
 #include <functional>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/env_entry.hpp"
 
 namespace rlrun {
 
@@ -21,15 +23,6 @@ struct AlgorithmSetup;
 
 // Each entry parses its section into a typed Config once (strictly: unknown keys, types and
 // value constraints, all problems at once as one ConfigError) and builds from that value.
-struct EnvEntry {
-  std::string id;
-  std::string description;
-  int max_episode_steps = 0;  // TimeLimit added by make_env, like gymnasium.make; 0 = none
-  std::function<AnyConfig(const ConfigNode& kwargs)> parse;
-  std::function<EnvPtr(const AnyConfig& kwargs)> make;
-  std::function<std::vector<FieldDoc>()> params;
-};
-
 struct WrapperEntry {
   std::string id;
   std::string description;
@@ -100,22 +93,6 @@ class Registry {
 };
 
 // Registration helpers for components whose constructor takes their own `Config`.
-template <class E>
-EnvEntry make_env_entry(std::string id, std::string description, int max_episode_steps) {
-  EnvEntry entry;
-  entry.id = std::move(id);
-  entry.description = std::move(description);
-  entry.max_episode_steps = max_episode_steps;
-  entry.parse = [](const ConfigNode& kwargs) {
-    return AnyConfig::of(read_config<typename E::Config>(kwargs));
-  };
-  entry.make = [](const AnyConfig& kwargs) -> EnvPtr {
-    return std::make_unique<E>(kwargs.get<typename E::Config>());
-  };
-  entry.params = [] { return document_config<typename E::Config>(); };
-  return entry;
-}
-
 template <class W>
 WrapperEntry make_wrapper_entry(std::string id, std::string description) {
   WrapperEntry entry;

@@ -79,7 +79,7 @@ std::vector<Override> map_overrides(const ConfigNode& map) {
 
 }  // namespace
 
-Sweep expand_sweep(const std::string& sweep_file, const Registry& registry) {
+Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
   const ConfigNode root = ConfigNode::load_file(sweep_file);
   SweepFile file;
   decode(root, file);

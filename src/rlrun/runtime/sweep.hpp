@@ -67,7 +67,7 @@ struct Sweep {
 // <out_dir>/configs/<label>_seed<N>.yaml (each a complete experiment file, run.out_dir and
 // run.name set so the run trains into its directory) and <out_dir>/manifest.yaml. Throws
 // ConfigError naming the sweep file's line and column for a bad key or value.
-Sweep expand_sweep(const std::string& sweep_file, const Registry& registry);
+Sweep expand_sweep(const std::string& sweep_file, Registry& registry);
 
 // Reads a manifest written by expand_sweep (paths in it are relative to its directory).
 Sweep read_manifest(const std::string& manifest);

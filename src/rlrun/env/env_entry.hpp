@@ -1,0 +1,59 @@
+#pragma once
+// What an env folder registers for each of its envs (Gymnasium's gymnasium.register): its id,
+// a description, the time limit gymnasium.make would add, how its `kwargs` are parsed into its
+// typed Config and how it is built from that, and the baseline policies that come with it
+// (`eval --policy` / `--baseline`, `record --policy`). Each folder under src/rlrun/envs/ has
+// one register.cpp listing its entries; CMake collects the folders (runtime/builtins.cpp), so
+// nothing above envs/ names a concrete env.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/any_config.hpp"
+#include "rlrun/core/config_fields.hpp"
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/env.hpp"
+#include "rlrun/env/policy.hpp"
+
+namespace rlrun {
+
+// A baseline that comes with an env. `make` throws UsageError when the env it is given does
+// not fit (another env id, settings out of range).
+struct PolicyEntry {
+  std::string name;         // as typed after --policy / --baseline, e.g. "fixed-time"
+  std::string description;  // one line for `rlrun list ID`
+  std::function<PolicyFn(Env& env, const PolicyOptions& options)> make;
+};
+
+struct EnvEntry {
+  std::string id;
+  std::string description;
+  int max_episode_steps = 0;  // TimeLimit added by make_env, like gymnasium.make; 0 = none
+  std::function<AnyConfig(const ConfigNode& kwargs)> parse;  // strict; all problems at once
+  std::function<EnvPtr(const AnyConfig& kwargs)> make;
+  std::function<std::vector<FieldDoc>()> params;
+  std::vector<PolicyEntry> policies;
+  std::string plugin;  // the library that registered it ("" for built-in envs)
+};
+
+using EnvEntries = std::vector<EnvEntry>;
+
+// The entry of an env class whose constructor takes its own `Config`.
+template <class E>
+EnvEntry make_env_entry(std::string id, std::string description, int max_episode_steps) {
+  EnvEntry entry;
+  entry.id = std::move(id);
+  entry.description = std::move(description);
+  entry.max_episode_steps = max_episode_steps;
+  entry.parse = [](const ConfigNode& kwargs) {
+    return AnyConfig::of(read_config<typename E::Config>(kwargs));
+  };
+  entry.make = [](const AnyConfig& kwargs) -> EnvPtr {
+    return std::make_unique<E>(kwargs.get<typename E::Config>());
+  };
+  entry.params = [] { return document_config<typename E::Config>(); };
+  return entry;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,14 @@
+// The tutorial's wrapped GridWorld.
+#include "rlrun/env/env_entry.hpp"
+#include "rlrun/envs/grid_world/grid_world.hpp"
+
+namespace rlrun::envs {
+
+void register_grid_world(EnvEntries& out) {
+  // No TimeLimit: GridWorld truncates itself after max_steps, with its timeout penalty.
+  out.push_back(make_env_entry<GridWorld>(
+      "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (use OneHotObservation)",
+      0));
+}
+
+}  // namespace rlrun::envs
