@@ -1,5 +1,7 @@
 #include "rlrun/runtime/callback.hpp"
 
+#include "rlrun/runtime/experiment.hpp"
+
 #include "rlrun/runtime/checkpoint_callback.hpp"
 #include "rlrun/runtime/eval_callback.hpp"
 #include "rlrun/runtime/obs_log_callback.hpp"

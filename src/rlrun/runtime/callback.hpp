@@ -14,9 +14,11 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/logger.hpp"
 #include "rlrun/env/vec_env.hpp"
-#include "rlrun/runtime/experiment.hpp"
 
 namespace rlrun {
+
+struct Experiment;  // runtime/experiment.hpp
+class Registry;     // runtime/registry.hpp
 
 // What callbacks may use; owned by the trainer, alive for the whole training.
 struct TrainingContext {

@@ -1,5 +1,7 @@
 #include "rlrun/runtime/checkpoint_callback.hpp"
 
+#include "rlrun/runtime/experiment.hpp"
+
 #include <algorithm>
 #include <filesystem>
 #include <regex>

@@ -1,5 +1,7 @@
 #include "rlrun/runtime/eval_callback.hpp"
 
+#include "rlrun/runtime/experiment.hpp"
+
 #include <cmath>
 #include <cstdio>
 

@@ -17,9 +17,35 @@
 #include <limits>
 #include <string>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/runtime/callback.hpp"
 
 namespace rlrun {
+
+// The `section:` of the experiment file: SB3 EvalCallback + its two stop callbacks.
+struct EvalConfig {
+  int64_t freq = 0;         // total env steps between evaluations (0 = off)
+  int n_episodes = 10;      // episodes per evaluation
+  bool deterministic = true;
+  std::optional<double> reward_threshold;       // stop once best mean reward >= this
+  std::optional<int> max_no_improvement_evals;  // stop after more evals than this without a new best
+  int min_evals = 0;                            // evaluations before counting no-improvement
+  template <class V>
+  void visit(V& v) {
+    v("freq", freq, "evaluate every `freq` TOTAL env steps (all envs counted; 0 = never)",
+      non_negative());
+    v("n_episodes", n_episodes, "episodes per evaluation", in_range(1, 1000000));
+    v("deterministic", deterministic, "use the deterministic policy");
+    v("reward_threshold", reward_threshold,
+      "stop training once the best mean eval reward >= this (SB3 StopTrainingOnRewardThreshold; null = never)");
+    v("max_no_improvement_evals", max_no_improvement_evals,
+      "stop when more than this many evaluations in a row bring no new best (SB3 "
+      "StopTrainingOnNoModelImprovement; null = never)",
+      non_negative());
+    v("min_evals", min_evals, "evaluations before no-improvement is counted", non_negative());
+  }
+};
+
 
 class EvalCallback : public Callback {
  public:

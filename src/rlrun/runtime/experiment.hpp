@@ -3,10 +3,8 @@
 //   run:  {name, seed, total_timesteps, out_dir, log_interval}
 //   env:  {id, n_envs, max_episode_steps, kwargs: {...}, wrappers: [{id: ..., ...}]}
 //   algo: {id, <hyperparameters>, policy: {...}}
-//   eval: {freq, n_episodes, deterministic, reward_threshold, max_no_improvement_evals, min_evals}
-//   checkpoint: {freq, keep}
-//   obs_log: {freq, env}
-//   video: {freq, n_episodes, deterministic, fps, width, height, overlay}
+//   eval, checkpoint, obs_log, video: the callbacks' sections (each Config is in its
+//   callback's header: runtime/eval_callback.hpp, checkpoint_callback.hpp, ...)
 // Every unknown key or id is a ConfigError with file:line:col and a did-you-mean. `resolved`
 // holds the whole config with every default filled in; it is saved with the run and inside
 // model files, so a model file alone can rebuild its env and policy.
@@ -17,13 +15,14 @@
 #include "rlrun/core/any_config.hpp"
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_node.hpp"
+#include "rlrun/runtime/checkpoint_callback.hpp"
+#include "rlrun/runtime/eval_callback.hpp"
+#include "rlrun/runtime/obs_log_callback.hpp"
 #include "rlrun/runtime/registry.hpp"
+#include "rlrun/runtime/video_callback.hpp"
 
 namespace rlrun {
 
-// The largest video side: H.264 level 6.2 allows 8192 pixels, but a frame of 4096 x 4096
-// already takes 48 MiB in RGB; no env draws more detail than that.
-inline constexpr int kMaxVideoSide = 4096;
 
 struct RunConfig {
   std::string name;                 // default: the config file's stem
@@ -71,78 +70,9 @@ struct EnvSectionConfig {
   }
 };
 
-// runtime/eval_callback.hpp: SB3 EvalCallback + its two stop callbacks.
-struct EvalConfig {
-  int64_t freq = 0;         // total env steps between evaluations (0 = off)
-  int n_episodes = 10;      // episodes per evaluation
-  bool deterministic = true;
-  std::optional<double> reward_threshold;       // stop once best mean reward >= this
-  std::optional<int> max_no_improvement_evals;  // stop after more evals than this without a new best
-  int min_evals = 0;                            // evaluations before counting no-improvement
-  template <class V>
-  void visit(V& v) {
-    v("freq", freq, "evaluate every `freq` TOTAL env steps (all envs counted; 0 = never)",
-      non_negative());
-    v("n_episodes", n_episodes, "episodes per evaluation", in_range(1, 1000000));
-    v("deterministic", deterministic, "use the deterministic policy");
-    v("reward_threshold", reward_threshold,
-      "stop training once the best mean eval reward >= this (SB3 StopTrainingOnRewardThreshold; null = never)");
-    v("max_no_improvement_evals", max_no_improvement_evals,
-      "stop when more than this many evaluations in a row bring no new best (SB3 "
-      "StopTrainingOnNoModelImprovement; null = never)",
-      non_negative());
-    v("min_evals", min_evals, "evaluations before no-improvement is counted", non_negative());
-  }
-};
 
-// runtime/checkpoint_callback.hpp: SB3 CheckpointCallback.
-struct CheckpointConfig {
-  int64_t freq = 0;  // total env steps between checkpoints (0 = off)
-  int keep = 0;      // newest checkpoints kept (0 = all)
-  template <class V>
-  void visit(V& v) {
-    v("freq", freq, "write checkpoints/step_<N>.zip every `freq` TOTAL env steps (0 = never)",
-      non_negative());
-    v("keep", keep, "keep only the newest `keep` checkpoints (0 = keep all)", non_negative());
-  }
-};
 
-// runtime/obs_log_callback.hpp: the course's ObsSaveCallback.
-struct ObsLogConfig {
-  int64_t freq = 0;  // total env steps between .npy chunks (0 = off)
-  int env = 0;       // which training env's observations are logged
-  template <class V>
-  void visit(V& v) {
-    v("freq", freq,
-      "save the observations of training env `env` to obs_log/obs_<N>.npy every `freq` TOTAL env steps (0 = off)",
-      non_negative());
-    v("env", env, "index of the training env whose observations are logged", non_negative());
-  }
-};
 
-// runtime/video_callback.hpp: an mp4 of evaluation episodes every `freq` steps.
-struct VideoConfig {
-  int64_t freq = 0;            // total env steps between videos (0 = off)
-  int n_episodes = 1;          // episodes per video
-  bool deterministic = true;
-  std::optional<double> fps;   // null = the env's render fps
-  int width = 0, height = 0;   // 0 = the env's frame size
-  bool overlay = true;         // env id, episode, step, return
-  template <class V>
-  void visit(V& v) {
-    v("freq", freq, "record videos/step_<N>.mp4 every `freq` TOTAL env steps (0 = never; needs ffmpeg)",
-      non_negative());
-    v("n_episodes", n_episodes, "evaluation episodes per video", in_range(1, 10000));
-    v("deterministic", deterministic, "use the deterministic policy");
-    v("fps", fps, "frames per second (null = the env's, e.g. 50 for CartPole)",
-      in_range(0, 1000).open_low());
-    v("width", width, "frame width in pixels (0 = the env's, e.g. 600)",
-      in_range(0, kMaxVideoSide));
-    v("height", height, "frame height in pixels (0 = the env's, e.g. 400)",
-      in_range(0, kMaxVideoSide));
-    v("overlay", overlay, "draw env id, episode, step and return on the frames");
-  }
-};
 
 struct WrapperSpec {
   std::string id;

@@ -1,5 +1,7 @@
 #include "rlrun/runtime/obs_log_callback.hpp"
 
+#include "rlrun/runtime/experiment.hpp"
+
 #include <cstdio>
 #include <cstring>
 #include <filesystem>

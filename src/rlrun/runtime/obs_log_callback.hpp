@@ -16,10 +16,25 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/runtime/callback.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
 
 namespace rlrun {
+
+// The `section:` of the experiment file: the course's ObsSaveCallback.
+struct ObsLogConfig {
+  int64_t freq = 0;  // total env steps between .npy chunks (0 = off)
+  int env = 0;       // which training env's observations are logged
+  template <class V>
+  void visit(V& v) {
+    v("freq", freq,
+      "save the observations of training env `env` to obs_log/obs_<N>.npy every `freq` TOTAL env steps (0 = off)",
+      non_negative());
+    v("env", env, "index of the training env whose observations are logged", non_negative());
+  }
+};
+
 
 class ObsLogCallback : public Callback {
  public:

@@ -1,5 +1,7 @@
 #include "rlrun/runtime/video_callback.hpp"
 
+#include "rlrun/runtime/experiment.hpp"
+
 #include <cstdio>
 
 #include "rlrun/core/errors.hpp"

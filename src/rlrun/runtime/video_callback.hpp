@@ -9,9 +9,39 @@
 // missing ffmpeg is reported before any training time is spent.
 #include <cstdint>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/runtime/callback.hpp"
 
 namespace rlrun {
+
+// The largest video side: H.264 level 6.2 allows 8192 pixels, but a frame of 4096 x 4096
+// already takes 48 MiB in RGB; no env draws more detail than that.
+inline constexpr int kMaxVideoSide = 4096;
+
+// The `section:` of the experiment file: an mp4 of evaluation episodes every `freq` steps.
+struct VideoConfig {
+  int64_t freq = 0;            // total env steps between videos (0 = off)
+  int n_episodes = 1;          // episodes per video
+  bool deterministic = true;
+  std::optional<double> fps;   // null = the env's render fps
+  int width = 0, height = 0;   // 0 = the env's frame size
+  bool overlay = true;         // env id, episode, step, return
+  template <class V>
+  void visit(V& v) {
+    v("freq", freq, "record videos/step_<N>.mp4 every `freq` TOTAL env steps (0 = never; needs ffmpeg)",
+      non_negative());
+    v("n_episodes", n_episodes, "evaluation episodes per video", in_range(1, 10000));
+    v("deterministic", deterministic, "use the deterministic policy");
+    v("fps", fps, "frames per second (null = the env's, e.g. 50 for CartPole)",
+      in_range(0, 1000).open_low());
+    v("width", width, "frame width in pixels (0 = the env's, e.g. 600)",
+      in_range(0, kMaxVideoSide));
+    v("height", height, "frame height in pixels (0 = the env's, e.g. 400)",
+      in_range(0, kMaxVideoSide));
+    v("overlay", overlay, "draw env id, episode, step and return on the frames");
+  }
+};
+
 
 class VideoCallback : public Callback {
  public:
