@@ -24,30 +24,44 @@ VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
                                   envs_[i]->action_space().describe() + " but env 0 has " +
                                   envs_[0]->action_space().describe());
   }
+  size_t most_agents = 1;
+  for (size_t c = 0; c < envs_.size(); ++c) {
+    const int agents = envs_[c]->num_agents();
+    if (agents < 1)
+      throw std::invalid_argument("VecEnv: env " + std::to_string(c) + " has no agents");
+    first_slot_.push_back(static_cast<int>(slot_env_.size()));
+    slot_env_.insert(slot_env_.end(), static_cast<size_t>(agents), static_cast<int>(c));
+    most_agents = std::max(most_agents, static_cast<size_t>(agents));
+  }
   const int n = num_envs();
   obs_dim_ = observation_space().flat_dim();
   act_dim_ = action_space().flat_dim();
-  seeds_.assign(n, std::nullopt);
+  seeds_.assign(envs_.size(), std::nullopt);
   obs_.setZero(obs_dim_, n);
   final_obs_.setConstant(obs_dim_, n, std::numeric_limits<float>::quiet_NaN());
   rewards_.setZero(n);
   terminated_.assign(n, 0);
   truncated_.assign(n, 0);
-  infos_.resize(n);
-  for (int i = 0; i < n; ++i) copy_info(i);
+  agent_results_.resize(most_agents);
+  infos_.resize(envs_.size());
+  for (int c = 0; c < num_copies(); ++c) copy_info(c);
 }
 
 void VecEnv::seed(uint64_t seed) {
-  for (int i = 0; i < num_envs(); ++i) seeds_[i] = seed + static_cast<uint64_t>(i);
+  for (int c = 0; c < num_copies(); ++c) seeds_[c] = seed + static_cast<uint64_t>(c);
 }
 
 const Eigen::MatrixXf& VecEnv::reset() {
-  for (int i = 0; i < num_envs(); ++i) {
-    envs_[i]->reset(seeds_[i], std::span<float>(obs_.col(i).data(), obs_dim_));
-    copy_info(i);
-    terminated_[i] = truncated_[i] = 0;
-    rewards_[i] = 0.0;
+  for (int c = 0; c < num_copies(); ++c) {
+    // A copy's agents' columns are contiguous: one agent-major span for all of them.
+    const int agents = envs_[c]->num_agents();
+    envs_[c]->reset(seeds_[c], std::span<float>(obs_.col(first_slot_[c]).data(),
+                                                static_cast<size_t>(obs_dim_) * agents));
+    copy_info(c);
   }
+  std::fill(terminated_.begin(), terminated_.end(), 0);
+  std::fill(truncated_.begin(), truncated_.end(), 0);
+  rewards_.setZero();
   // SB3 _reset_seeds: a seed applies to one reset only.
   seeds_.assign(seeds_.size(), std::nullopt);
   final_obs_.setConstant(std::numeric_limits<float>::quiet_NaN());
@@ -60,20 +74,56 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
                                 " x " + std::to_string(num_envs()) + ", got " +
                                 std::to_string(actions.rows()) + " x " +
                                 std::to_string(actions.cols()));
-  for (int i = 0; i < num_envs(); ++i) {
+  for (int c = 0; c < num_copies(); ++c) {
+    if (envs_[c]->num_agents() > 1) {
+      step_agents(c, actions);
+      continue;
+    }
+    const int i = first_slot_[c];
     const std::span<float> obs(obs_.col(i).data(), obs_dim_);
     const StepResult r =
-        envs_[i]->step(std::span<const float>(actions.col(i).data(), act_dim_), obs);
+        envs_[c]->step(std::span<const float>(actions.col(i).data(), act_dim_), obs);
     rewards_[i] = r.reward;
     terminated_[i] = r.terminated;
     truncated_[i] = r.truncated;
-    copy_info(i);
+    copy_info(c);
     if (r.terminated || r.truncated) {
       final_obs_.col(i) = obs_.col(i);
-      envs_[i]->reset(std::nullopt, obs);
+      envs_[c]->reset(std::nullopt, obs);
     } else {
       final_obs_.col(i).setConstant(std::numeric_limits<float>::quiet_NaN());
     }
+  }
+}
+
+// One step of every agent of copy c (Env::step_agents): each agent's reward and flags go to
+// its own column; the copy resets when its agents' episode ends, which must be all at once.
+void VecEnv::step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {
+  const int first = first_slot_[c];
+  const int agents = envs_[c]->num_agents();
+  const std::span<float> obs(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents);
+  const std::span<StepResult> results(agent_results_.data(), static_cast<size_t>(agents));
+  envs_[c]->step_agents(std::span<const float>(actions.col(first).data(),
+                                               static_cast<size_t>(act_dim_) * agents),
+                        obs, results);
+  int ended = 0;
+  for (int a = 0; a < agents; ++a) {
+    rewards_[first + a] = results[a].reward;
+    terminated_[first + a] = results[a].terminated;
+    truncated_[first + a] = results[a].truncated;
+    ended += results[a].terminated || results[a].truncated;
+  }
+  if (ended != 0 && ended != agents)
+    throw std::runtime_error(envs_[c]->id() + ": " + std::to_string(ended) + " of " +
+                             std::to_string(agents) +
+                             " agents ended their episode; rlrun's multi-agent envs end all "
+                             "agents together (include/rlrun/env.hpp)");
+  copy_info(c);
+  if (ended) {
+    final_obs_.middleCols(first, agents) = obs_.middleCols(first, agents);
+    envs_[c]->reset(std::nullopt, obs);
+  } else {
+    final_obs_.middleCols(first, agents).setConstant(std::numeric_limits<float>::quiet_NaN());
   }
 }
 
@@ -84,7 +134,7 @@ bool VecEnv::can_save_state() const {
 }
 
 void VecEnv::write_state(StateWriter& out) const {
-  for (int i = 0; i < num_envs(); ++i) {
+  for (int i = 0; i < num_copies(); ++i) {
     StateWriter env_out = out.sub(std::to_string(i));
     envs_[i]->write_state(env_out);
   }
@@ -100,14 +150,14 @@ void VecEnv::write_state(StateWriter& out) const {
 }
 
 void VecEnv::read_state(const StateReader& in) {
-  for (int i = 0; i < num_envs(); ++i) {
+  for (int i = 0; i < num_copies(); ++i) {
     envs_[i]->read_state(in.sub(std::to_string(i)));
     copy_info(i);
   }
   get_matrix(in, "obs", obs_);
-  const auto pending = in.get_span<uint64_t>("pending_seed", num_envs());
-  const auto has_pending = in.get_span<int64_t>("has_pending_seed", num_envs());
-  for (int i = 0; i < num_envs(); ++i)
+  const auto pending = in.get_span<uint64_t>("pending_seed", num_copies());
+  const auto has_pending = in.get_span<int64_t>("has_pending_seed", num_copies());
+  for (int i = 0; i < num_copies(); ++i)
     seeds_[i] = has_pending[i] ? std::optional<uint64_t>(pending[i]) : std::nullopt;
   final_obs_.setConstant(std::numeric_limits<float>::quiet_NaN());
   rewards_.setZero();

@@ -10,6 +10,12 @@
 //     step's info dict; the reset info is separate).
 // Observations and actions are one column per env (features x n_envs, DESIGN.md §3).
 // All buffers are allocated in the constructor; step() does not allocate.
+//
+// Multi-agent envs (Env::num_agents() > 1, include/rlrun/env.hpp) take one column per agent:
+// a VecEnv of n copies of a k-agent env has n * k columns (num_envs()), and an algorithm sees
+// k * n envs sharing one policy, as SuperSuit's pettingzoo_env_to_vec_env gives SB3. An env's
+// agents end their episode together; the env is then reset as a whole. num_copies() and
+// env(c) address the env copies themselves (monitors, statistics).
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -27,11 +33,13 @@ class VecEnv {
   // on their observation or action space.
   explicit VecEnv(std::vector<EnvPtr> envs);
 
-  int num_envs() const { return static_cast<int>(envs_.size()); }
+  // Columns: one per agent of every env copy (= the number of env copies for single-agent envs).
+  int num_envs() const { return static_cast<int>(slot_env_.size()); }
+  int num_copies() const { return static_cast<int>(envs_.size()); }
   const Space& observation_space() const { return envs_.front()->observation_space(); }
   const Space& action_space() const { return envs_.front()->action_space(); }
 
-  // The next reset() seeds env i with seed + i (SB3 VecEnv.seed).
+  // The next reset() seeds env copy i with seed + i (SB3 VecEnv.seed).
   void seed(uint64_t seed);
 
   // Resets every env; returns the observations (obs_dim x n_envs).
@@ -47,8 +55,9 @@ class VecEnv {
   bool done(int i) const { return terminated(i) || truncated(i); }
   // Column i is the last observation of env i's finished episode when done(i); NaN otherwise.
   const Eigen::MatrixXf& final_obs() const { return final_obs_; }
-  // Env i's info of the last step (or of the last reset(), before any step).
-  const Info& info(int i) const { return infos_[i]; }
+  // Column i's info of the last step (or of the last reset(), before any step): its env
+  // copy's info.
+  const Info& info(int i) const { return infos_[slot_env_[i]]; }
 
   // Resume: every env's state under "<i>/", the current observations and pending seeds. A
   // restored VecEnv continues without reset(); can_save_state() is false when any env cannot
@@ -57,13 +66,18 @@ class VecEnv {
   void write_state(StateWriter& out) const;
   void read_state(const StateReader& in);
 
-  Env& env(int i) { return *envs_[i]; }
-  const Env& env(int i) const { return *envs_[i]; }
+  // Env copy c (0 <= c < num_copies()).
+  Env& env(int c) { return *envs_[c]; }
+  const Env& env(int c) const { return *envs_[c]; }
 
  private:
   void copy_info(int i);
+  void step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions);
 
   std::vector<EnvPtr> envs_;
+  std::vector<int> first_slot_;  // env copy c's first column
+  std::vector<int> slot_env_;    // column -> env copy
+  std::vector<StepResult> agent_results_;  // step_agents() scratch, the most agents of a copy
   std::vector<std::optional<uint64_t>> seeds_;
   int obs_dim_ = 0;
   int act_dim_ = 0;

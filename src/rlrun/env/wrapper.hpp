@@ -1,6 +1,7 @@
 #pragma once
 // Base wrapper (gymnasium.Wrapper): owns the inner env and forwards everything; subclasses
 // override only what they change.
+#include <stdexcept>
 #include <utility>
 
 #include "rlrun/env.hpp"
@@ -20,6 +21,17 @@ class Wrapper : public Env {
     return inner_->step(action, obs);
   }
   const Info& info() const override { return inner_->info(); }
+  int num_agents() const override { return inner_->num_agents(); }
+  // A wrapper that transforms steps handles several agents only if it says how (TimeLimit,
+  // Monitor do); any other refuses a multi-agent env rather than step it wrongly.
+  void step_agents(std::span<const float> actions, std::span<float> obs,
+                   std::span<StepResult> results) override {
+    if (inner_->num_agents() == 1) {
+      results[0] = step(actions, obs);
+      return;
+    }
+    throw std::invalid_argument(id() + ": this wrapper does not support multi-agent envs yet");
+  }
   std::string id() const override { return inner_->id(); }
   Env& unwrapped() override { return inner_->unwrapped(); }
   RenderSpec render_spec() const override { return inner_->render_spec(); }

@@ -36,6 +36,10 @@ EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
   env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start,
                                   std::vector<std::string>{"is_success"}, append_monitor);
+  // Several agents: TimeLimit and Monitor know how to step them; other wrappers not yet.
+  if (env->num_agents() > 1 && (tap_observations || !spec.wrappers.empty()))
+    fail_at_env(spec, spec.id + " has " + std::to_string(env->num_agents()) +
+                          " agents; env.wrappers and obs_log do not support multi-agent envs yet");
   if (tap_observations) env = std::make_unique<ObservationTap>(std::move(env));
   for (const WrapperSpec& w : spec.wrappers) {
     const WrapperEntry* wrapper = registry.find_wrapper(w.id);

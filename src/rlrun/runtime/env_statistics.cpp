@@ -42,7 +42,7 @@ std::vector<ModelStatistics*> model_statistics(Env& env) {
 
 void share_model_statistics(VecEnv& env) {
   const std::vector<ModelStatistics*> first = model_statistics(env.env(0));
-  for (int i = 1; i < env.num_envs(); ++i) {
+  for (int i = 1; i < env.num_copies(); ++i) {
     const std::vector<ModelStatistics*> other = model_statistics(env.env(i));
     for (size_t k = 0; k < first.size() && k < other.size(); ++k)
       other[k]->share_statistics_with(*first[k]);

@@ -162,8 +162,9 @@ void check_against_env(const ConfigNode& root, const Registry& registry, Experim
         }
       }))
     return;
+  // Each agent of a multi-agent env is one env column of the shared policy (rlrun/env.hpp).
   const AlgorithmSetup setup{probe->observation_space(), probe->action_space(),
-                             exp.env.section.n_envs, exp.run.seed};
+                             exp.env.section.n_envs * probe->num_agents(), exp.run.seed};
   const AlgorithmEntry& entry = registry.algorithm(exp.algo.id, algo.child("id"));
   report(problems, algo, entry.check(exp.algo.params, setup));
   problems.attempt([&] { check_open_files(exp.env.section.n_envs, env.child("n_envs")); });

@@ -87,15 +87,39 @@ void Monitor::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 }
 
 StepResult Monitor::step(std::span<const float> action, std::span<float> obs) {
+  require_not_ended();
+  const StepResult result = inner_->step(action, obs);
+  account(result.reward, result.terminated || result.truncated);
+  return result;
+}
+
+// Several agents: the episode's return is the sum of all agents' rewards (PettingZoo's total
+// reward), and the episode ends when all agents' do (they end together in rlrun).
+void Monitor::step_agents(std::span<const float> actions, std::span<float> obs,
+                          std::span<StepResult> results) {
+  require_not_ended();
+  inner_->step_agents(actions, obs, results);
+  double reward = 0.0;
+  bool ended = true;
+  for (const StepResult& r : results) {
+    reward += r.reward;
+    ended = ended && (r.terminated || r.truncated);
+  }
+  account(reward, ended);
+}
+
+void Monitor::require_not_ended() const {
   if (needs_reset_)
     throw RuntimeFailure("Monitor: tried to step " + id() +
                          " after its episode ended; call reset() first (SB3's Monitor rule)");
-  const StepResult result = inner_->step(action, obs);
+}
+
+void Monitor::account(double reward, bool episode_ended) {
   copy_inner_info();
-  episode_return_ += result.reward;
+  episode_return_ += reward;
   ++episode_length_;
   ++total_steps_;
-  if (result.terminated || result.truncated) {
+  if (episode_ended) {
     needs_reset_ = true;
     ++total_episodes_;
     const double elapsed =
@@ -122,7 +146,6 @@ StepResult Monitor::step(std::span<const float> action, std::span<float> obs) {
       std::fflush(file_);
     }
   }
-  return result;
 }
 
 }  // namespace rlrun

@@ -30,6 +30,8 @@ class Monitor : public Wrapper {
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  void step_agents(std::span<const float> actions, std::span<float> obs,
+                   std::span<StepResult> results) override;
   const Info& info() const override { return info_; }
 
   int total_episodes() const { return total_episodes_; }
@@ -44,6 +46,9 @@ class Monitor : public Wrapper {
   void read_own_state(const StateReader& in) override;
 
  private:
+  void require_not_ended() const;
+  // Counts one step of `reward`; writes the episode's row when it ended.
+  void account(double reward, bool episode_ended);
   void copy_inner_info();
   std::FILE* file_ = nullptr;
   double t_start_;

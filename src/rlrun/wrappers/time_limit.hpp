@@ -16,6 +16,8 @@ class TimeLimit : public Wrapper {
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  void step_agents(std::span<const float> actions, std::span<float> obs,
+                   std::span<StepResult> results) override;
 
   int max_episode_steps() const { return max_episode_steps_; }
   // Steps taken since the last reset().
