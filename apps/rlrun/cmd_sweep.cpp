@@ -17,6 +17,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/sbatch_script.hpp"
 #include "rlrun/runtime/sweep.hpp"
 #include "rlrun/runtime/trainer.hpp"
 
@@ -167,7 +168,7 @@ Action add_sweep(CLI::App& app) {
       const std::string script = (dir / "sweep.sbatch").string();
       write_text_atomic(script, slurm_script(sweep, own_binary()));
       std::printf("wrote %s (%zu array tasks); submit it with: sbatch %s\n", script.c_str(),
-                  sweep.runs.size(), script.c_str());
+                  sweep.runs.size(), shell_quote(script).c_str());
       return 0;
     }
     if (status->parsed()) {
@@ -184,8 +185,9 @@ Action add_sweep(CLI::App& app) {
     std::printf("sweep %s: %zu runs -> %s\n", sweep.name.c_str(), sweep.runs.size(),
                 sweep.manifest.c_str());
     for (const SweepRun& r : sweep.runs) std::printf("  %3d  %s\n", r.index, r.id.c_str());
+    const std::string manifest = shell_quote(sweep.manifest);  // the commands as one would type them
     std::printf("train them: rlrun sweep run %s -j 2\n  or on Slurm: rlrun sweep slurm %s\n",
-                sweep.manifest.c_str(), sweep.manifest.c_str());
+                manifest.c_str(), manifest.c_str());
     return 0;
   };
 }
