@@ -1,0 +1,169 @@
+// SUMO's temporary files (issue 15, item 9) on the real SUMO: its log and the tripinfo file the
+// metrics come from live in private mkdtemp directories, so a symlink planted at the names
+// rlrun once used (<tmp>/rlrun<pid>_<n>.log, .tripinfo.xml) is never followed, and nothing is
+// left behind, also when SUMO fails at start-up (whose error still quotes SUMO's own lines).
+#include <catch2/catch.hpp>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/private_temp_dir.hpp"
+#include "rlrun/envs/traffic/sumo_process.hpp"
+#include "rlrun/envs/traffic/traffic_signal.hpp"
+#include "runtime/cli_runner.hpp"
+
+using namespace rlrun;
+using namespace rlrun::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Points TMPDIR at `path` while alive (std::filesystem::temp_directory_path reads it each time).
+class ScopedTmpdir {
+ public:
+  explicit ScopedTmpdir(const std::string& path) {
+    if (const char* old = std::getenv("TMPDIR")) old_ = old;
+    setenv("TMPDIR", path.c_str(), 1);
+  }
+  ~ScopedTmpdir() {
+    if (old_.empty())
+      unsetenv("TMPDIR");
+    else
+      setenv("TMPDIR", old_.c_str(), 1);
+  }
+
+ private:
+  std::string old_;
+};
+
+std::set<std::string> entries(const std::string& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+bool process_exists(pid_t pid) { return pid > 0 && kill(pid, 0) == 0; }
+
+}  // namespace
+
+TEST_CASE("PrivateTempDir: mode 0700, O_EXCL files, removed with its contents", "[traffic]") {
+  TempDir dir("private_temp_dir");
+  ScopedTmpdir tmpdir(dir.str());
+  std::string path;
+  {
+    PrivateTempDir temp("rlrun-test-");
+    path = temp.path();
+    CHECK(fs::path(path).parent_path() == fs::path(dir.str()));
+    struct stat st {};
+    REQUIRE(lstat(path.c_str(), &st) == 0);
+    CHECK(S_ISDIR(st.st_mode));
+    CHECK((st.st_mode & 0777) == 0700);
+    const int fd = temp.create_file("a.log");
+    CHECK(fd >= 0);
+    close(fd);
+    CHECK_THROWS_AS(temp.create_file("a.log"), RuntimeFailure);  // exists: O_EXCL
+    fs::create_symlink(dir / "elsewhere", temp.file("b.log"));
+    CHECK_THROWS_AS(temp.create_file("b.log"), RuntimeFailure);  // a link: not followed
+    CHECK_FALSE(fs::exists(dir / "elsewhere"));
+    CHECK_THROWS_AS(temp.file("../x"), std::invalid_argument);
+  }
+  CHECK_FALSE(fs::exists(path));
+}
+
+TEST_CASE("SUMO's log and tripinfo: private directories, planted symlinks untouched, nothing left",
+          "[traffic]") {
+  TempDir dir("sumo_temp_files");
+  const std::string tmp = dir / "tmp";
+  fs::create_directories(tmp);
+  const std::string target = dir / "precious.txt";
+  std::ofstream(target) << "keep me\n";
+  // The names rlrun used before: predictable from the pid and a counter.
+  const std::string pid = std::to_string(getpid());
+  for (int n = 0; n < 64; ++n) {
+    fs::create_symlink(target, tmp + "/rlrun" + pid + "_" + std::to_string(n) + ".log");
+    fs::create_symlink(target, tmp + "/rlrun" + pid + "_" + std::to_string(n) + ".tripinfo.xml");
+  }
+  const std::set<std::string> planted = entries(tmp);
+  ScopedTmpdir tmpdir(tmp);
+  pid_t sumo = -1;
+  {
+    TrafficSignal::Config config;
+    config.num_seconds = 60;
+    TrafficSignal env(config);
+    std::vector<float> obs(10);
+    for (int episode = 0; episode < 2; ++episode) {
+      env.reset(episode + 1, obs);
+      sumo = env.sumo_pid();
+      // While SUMO runs: two new entries (the env's tripinfo directory, the process's log
+      // directory), both directories only their owner may enter.
+      std::vector<std::string> made;
+      for (const std::string& name : entries(tmp))
+        if (!planted.count(name)) made.push_back(name);
+      CHECK(made.size() == 2);
+      for (const std::string& name : made) {
+        struct stat st {};
+        REQUIRE(lstat((tmp + "/" + name).c_str(), &st) == 0);
+        CHECK(S_ISDIR(st.st_mode));
+        CHECK((st.st_mode & 0777) == 0700);
+      }
+      const float action = 0.0f;
+      StepResult step;
+      for (int i = 0; i < 100 && !step.terminated && !step.truncated; ++i) step = env.step({&action, 1}, obs);
+      REQUIRE((step.terminated || step.truncated));
+      // The episode's metrics came from the tripinfo file in the private directory.
+      CHECK(env.info().get(env.info().find("throughput")) > 0);
+    }
+  }
+  CHECK_FALSE(process_exists(sumo));
+  CHECK(read_text(target) == "keep me\n");
+  CHECK(entries(tmp) == planted);
+}
+
+TEST_CASE("SUMO failing at start-up: its own error quoted, no files left, no process", "[traffic]") {
+  TempDir dir("sumo_startup_failure");
+  const std::string tmp = dir / "tmp";
+  fs::create_directories(tmp);
+  const std::string config = dir / "broken.sumocfg";
+  std::ofstream(config) << "<configuration><input><net-file value=\"missing.net.xml\"/></input>"
+                           "</configuration>\n";
+  ScopedTmpdir tmpdir(tmp);
+
+  SumoLaunch launch;
+  launch.config = config;
+  try {
+    SumoProcess process(launch);
+    FAIL("SUMO started on a configuration without its network");
+  } catch (const RuntimeFailure& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.find("SUMO exited before accepting the TraCI connection") != std::string::npos);
+    CHECK(message.find("missing.net.xml") != std::string::npos);  // SUMO's own words
+  }
+  CHECK(entries(tmp).empty());
+
+  // The same through the env: the error names SUMO's complaint; the env's own directory goes
+  // with the env.
+  {
+    TrafficSignal::Config env_config;
+    env_config.scenario = config;
+    TrafficSignal env(env_config);
+    std::vector<float> obs(10);
+    CHECK_THROWS_WITH(env.reset(1, obs), Catch::Contains("missing.net.xml"));
+    CHECK(entries(tmp).size() == 1);  // the tripinfo directory, until the env goes
+  }
+  CHECK(entries(tmp).empty());
+
+  // A sumo binary that is not there: nothing made either.
+  launch.binary = dir / "no-such-sumo";
+  CHECK_THROWS_AS(SumoProcess(launch), RuntimeFailure);
+  CHECK(entries(tmp).empty());
+}
