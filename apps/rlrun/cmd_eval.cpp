@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
@@ -122,8 +123,8 @@ Action add_eval(CLI::App& app) {
   sub->add_option("--env", options->env_id, "env id for --policy")->needs(policy_option);
   sub->add_option("--config", options->config, "experiment file whose env --policy runs in")
       ->needs(policy_option);
-  sub->add_option("--episodes", options->episodes, "number of episodes")->check(CLI::PositiveNumber);
-  sub->add_option("--seed", options->seed, "seed of the first episode's reset");
+  sub->add_option("--episodes", options->episodes, "number of episodes")->transform(integer_in(1));
+  sub->add_option("--seed", options->seed, "seed of the first episode's reset")->check(seed_value());
   auto deterministic = std::make_shared<bool>(false);
   CLI::Option* det = sub->add_flag("--deterministic", *deterministic,
                                    "use the deterministic policy (default)");
@@ -136,7 +137,7 @@ Action add_eval(CLI::App& app) {
       ->check(CLI::IsMember({"fixed-time", "scripted"}));
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of the fixed-time baseline")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1));
   sub->add_option("--record", options->record,
                   "also record the episodes to this mp4 (same episodes and numbers; needs ffmpeg)");
   return [options, deterministic]() {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "rlrun/core/errors.hpp"
@@ -150,8 +151,9 @@ Action add_sweep(CLI::App& app) {
       "run", "train a manifest's runs: finished ones are skipped, interrupted ones resumed");
   run->add_option("manifest", options->manifest, "manifest.yaml written by `rlrun sweep`")->required();
   run->add_option("-j,--jobs", options->jobs, "runs at once (each with --threads 1)")
-      ->check(CLI::PositiveNumber);
-  run->add_option("--index", options->index, "train only run I (what a Slurm array task does)");
+      ->transform(integer_in(1));
+  run->add_option("--index", options->index, "train only run I (what a Slurm array task does)")
+      ->transform(integer_in(0));
   CLI::App* slurm = sub->add_subcommand("slurm", "write an sbatch --array script for a manifest");
   slurm->add_option("manifest", options->manifest, "manifest.yaml")->required();
   CLI::App* status = sub->add_subcommand("status", "print each run's state");

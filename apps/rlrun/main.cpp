@@ -2,6 +2,7 @@
 // Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure.
 #include <iostream>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
@@ -15,7 +16,8 @@ int main(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads,
                  "cores per run, 1 or 2 (default: RLRUN_THREADS, else 2 when two CPUs are "
-                 "available; use 1 when several runs share the cores). Results are identical.");
+                 "available; use 1 when several runs share the cores). Results are identical.")
+      ->transform(rlrun::cli::integer_in(1, 2));
   app.fallthrough();
   rlrun::cli::Action train = rlrun::cli::add_train(app);
   rlrun::cli::Action eval = rlrun::cli::add_eval(app);

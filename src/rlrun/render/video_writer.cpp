@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/render/video_limits.hpp"
 #include "rlrun/render/yuv420.hpp"
 
 extern char** environ;
@@ -89,11 +90,11 @@ std::string VideoWriter::find_ffmpeg() {
 
 VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOptions& options)
     : path_(std::move(path)), width_(width), height_(height) {
-  if (width <= 0 || height <= 0 || width % 2 != 0 || height % 2 != 0)
-    throw std::invalid_argument("video size " + std::to_string(width) + "x" +
-                                std::to_string(height) +
-                                ": H.264 in yuv420p needs a positive, even width and height");
-  if (!(options.fps > 0)) throw std::invalid_argument("video fps must be > 0");
+  if (const std::string problem = check_video_size(width, height); !problem.empty())
+    throw std::invalid_argument(problem);
+  if (!(options.fps > 0 && options.fps <= kMaxVideoFps))
+    throw std::invalid_argument("video fps must be > 0 and <= " +
+                                std::to_string(static_cast<int>(kMaxVideoFps)));
   const std::string ffmpeg = find_ffmpeg();
   ignore_sigpipe();
 

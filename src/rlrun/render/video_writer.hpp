@@ -29,8 +29,9 @@ struct VideoOptions {
 
 class VideoWriter {
  public:
-  // Starts ffmpeg. Throws std::invalid_argument for odd or non-positive sizes (yuv420p needs
-  // even ones) or fps <= 0, RuntimeFailure when ffmpeg cannot be found or started.
+  // Starts ffmpeg. Throws std::invalid_argument for a size check_video_size refuses (odd, or
+  // beyond render/video_limits.hpp's bound) or fps outside (0, kMaxVideoFps], RuntimeFailure
+  // when ffmpeg cannot be found or started.
   VideoWriter(std::string path, int width, int height, const VideoOptions& options = {});
   // Without close(): stops ffmpeg and removes the temporary file.
   ~VideoWriter();
