@@ -6,12 +6,14 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "cli_values.hpp"
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
+#include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -49,8 +51,7 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // e.g. results/
-  std::ofstream csv(path, std::ios::trunc);
-  if (!csv) throw RuntimeFailure("cannot write " + path);
+  std::ostringstream csv;  // written at the end, every write checked (a full disk: exit 1)
   const bool with_policy = runs.size() > 1;
   const EvalResult& first = runs.front().second;
   csv << (with_policy ? "policy," : "") << "episode,return,length"
@@ -77,6 +78,10 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
     for (size_t k = 0; k < r.metric_keys.size(); ++k) csv << ',' << mean[3 + k] / n;
     csv << '\n';
   }
+  // Written in place, not renamed over: --csv may name /dev/stdout or a pipe.
+  CheckedFile file(path, CheckedFile::Mode::kTruncate);
+  file << csv.str();
+  file.close();
 }
 
 // `eval --policy P --env ID | --config CFG`: a policy that needs no model file, e.g. the grasp

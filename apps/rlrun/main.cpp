@@ -1,5 +1,6 @@
 // rlrun: train, evaluate and inspect RL agents from YAML experiment files.
 // Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure.
+#include <csignal>
 #include <iostream>
 
 #include "cli_values.hpp"
@@ -8,6 +9,9 @@
 #include "rlrun/core/fork_join.hpp"
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) must end in the write error EFBIG, which names the file
+  // (core/checked_file.hpp), not in SIGXFSZ killing rlrun with a core dump.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rlrun " RLRUN_VERSION
                ": Stable-Baselines3-style reinforcement learning from YAML experiment files"};
   app.require_subcommand(1);
