@@ -135,6 +135,30 @@ TEST_CASE("sweep: slurm values sbatch would misread are refused at the sweep fil
         std::string::npos);
 }
 
+TEST_CASE("sweep: negative seeds are refused at their line, in a sweep file and a manifest",
+          "[sweep]") {
+  TempDir dir("sweep_seed_range");
+  std::ofstream(dir / "sweep.yaml") << "name: seeds\nbase: " << base_config()
+                                    << "\nout_dir: " << dir / "out" << "\nseeds: [1, -1]\n";
+  const auto r = run_rlrun("sweep " + dir / "sweep.yaml");
+  INFO(r.output);
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("sweep.yaml:4:12") != std::string::npos);
+  CHECK(r.output.find("seeds are integers from 0 to 2^63 - 1, got -1") != std::string::npos);
+
+  std::ofstream(dir / "sweep.yaml") << "name: seeds\nbase: " << base_config()
+                                    << "\nout_dir: " << dir / "out" << "\nseeds: [1]\n";
+  REQUIRE(run_rlrun("sweep " + dir / "sweep.yaml").exit_code == 0);
+  const std::string manifest = dir / "out/manifest.yaml";
+  YAML::Node node = YAML::LoadFile(manifest);
+  node["runs"][0]["seed"] = -1;
+  std::ofstream(manifest) << YAML::Dump(node) << "\n";
+  const auto status = run_rlrun("sweep status " + manifest);
+  INFO(status.output);
+  CHECK(status.exit_code == 2);
+  CHECK(status.output.find("seeds are integers from 0 to 2^63 - 1") != std::string::npos);
+}
+
 TEST_CASE("sweep slurm: a manifest carrying a newline in a slurm value is refused", "[sweep]") {
   TempDir dir("sweep_sbatch_manifest");
   std::ofstream(dir / "sweep.yaml") << "name: edited\nbase: " << base_config()

@@ -94,6 +94,10 @@ Sweep expand_sweep(const std::string& sweep_file, const Registry& registry) {
   check_slurm_options(root.child("slurm"), file.slurm);
   if (file.base.empty()) root.fail("base: missing (the experiment file every run starts from)");
   if (file.seeds.empty()) root.child("seeds").fail("needs at least one seed");
+  for (size_t i = 0; i < file.seeds.size(); ++i)  // run.seed's range (a uint64 read as int64)
+    if (file.seeds[i] < 0)
+      root.child("seeds").at(i).fail("seeds are integers from 0 to 2^63 - 1, got " +
+                                      std::to_string(file.seeds[i]));
   if (file.grid.defined() && file.list.defined())
     root.child("list").fail("a sweep has a grid or a list of configurations, not both");
   const fs::path here = fs::path(sweep_file).parent_path();
@@ -220,7 +224,9 @@ Sweep read_manifest(const std::string& manifest) {
     SweepRun run;
     run.index = static_cast<int>(r.child("index").as_int());
     run.id = r.child("id").as_string();
-    run.seed = static_cast<uint64_t>(r.child("seed").as_int());
+    const int64_t seed = r.child("seed").as_int();
+    if (seed < 0) r.child("seed").fail("seeds are integers from 0 to 2^63 - 1");
+    run.seed = static_cast<uint64_t>(seed);
     run.label = run.id.substr(0, run.id.rfind('/'));
     run.config = (dir / r.child("config").as_string()).lexically_normal().string();
     run.run_dir = (dir / r.child("run_dir").as_string()).lexically_normal().string();
