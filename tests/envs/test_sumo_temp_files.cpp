@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -53,6 +54,10 @@ std::set<std::string> entries(const std::string& dir) {
 
 bool process_exists(pid_t pid) { return pid > 0 && kill(pid, 0) == 0; }
 
+bool contains_text(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
 }  // namespace
 
 TEST_CASE("PrivateTempDir: mode 0700, O_EXCL files, removed with its contents", "[traffic]") {
@@ -77,6 +82,62 @@ TEST_CASE("PrivateTempDir: mode 0700, O_EXCL files, removed with its contents", 
     CHECK_THROWS_AS(temp.file("../x"), std::invalid_argument);
   }
   CHECK_FALSE(fs::exists(path));
+}
+
+TEST_CASE("PrivateTempDir: removes this user's directories of ended processes, nothing else",
+          "[traffic]") {
+  TempDir dir("private_temp_stale");
+  ScopedTmpdir tmpdir(dir.str());
+  const pid_t dead = fork();  // a pid that has ended
+  if (dead == 0) _exit(0);
+  waitpid(dead, nullptr, 0);
+  const std::string prefix = "rlrun-stale-test-";
+  const std::string stale = dir / (prefix + std::to_string(dead) + "-Ab12Cd");
+  const std::string alive = dir / (prefix + std::to_string(getppid()) + "-Ab12Cd");
+  const std::string link = dir / (prefix + std::to_string(dead) + "-Zz99Zz");
+  const std::string other = dir / ("rlrun-other-" + std::to_string(dead) + "-Ab12Cd");
+  for (const std::string& d : {stale, alive, other}) {
+    fs::create_directories(d);
+    std::ofstream(d + "/x.log") << "x\n";
+  }
+  fs::create_directories(dir / "target");
+  std::ofstream(dir / "target/keep.txt") << "keep\n";
+  fs::create_symlink(dir / "target", link);
+  {
+    PrivateTempDir no_sweep(prefix);  // the default: leftovers stay (e.g. logs kept for the user)
+    CHECK(fs::exists(stale));
+  }
+  PrivateTempDir temp(prefix, PrivateTempDir::RemoveStale::kYes);
+  CHECK_FALSE(fs::exists(stale));
+  CHECK(fs::exists(alive + "/x.log"));
+  CHECK(fs::exists(other + "/x.log"));
+  CHECK(fs::is_symlink(link));
+  CHECK(read_text(dir / "target/keep.txt") == "keep\n");
+  CHECK(fs::path(temp.path()).filename().string().rfind(prefix + std::to_string(getpid()) + "-", 0) == 0);
+}
+
+TEST_CASE("rlrun killed with SIGKILL: the next rlrun removes its SUMO directories", "[traffic][cli]") {
+  TempDir dir("sumo_killed_leftovers");
+  const std::string tmp = dir / "tmp";
+  fs::create_directories(tmp);
+  const std::string env = "TMPDIR='" + tmp + "' ";
+  // Training on the traffic task, killed once its SUMO runs: no destructor removes its
+  // directories (SUMO itself goes with it, PR_SET_PDEATHSIG).
+  const auto killed = run_command(
+      env + RLRUN_BINARY + " train " RLRUN_SOURCE_DIR "/configs/cartpole_ppo.yaml --set "
+      "env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]' --set env.n_envs=1 --timesteps "
+      "100000000 --out '" + dir / "runs" + "' > /dev/null 2>&1 & pid=$!; "
+      "for i in $(seq 200); do ls '" + tmp + "' | grep -q rlrun-sumo- && break; sleep 0.05; done; "
+      "sleep 0.5; kill -9 $pid; wait $pid; ls '" + tmp + "'");
+  INFO(killed.output);
+  CHECK(contains_text(killed.output, "rlrun-sumo-"));
+  CHECK(contains_text(killed.output, "rlrun-tripinfo-"));
+  // The next rlrun that starts SUMO sweeps them away, and leaves nothing of its own.
+  const auto next = run_command(env + RLRUN_BINARY +
+                                " check-env TrafficSignal-v0 --set num_seconds=60 --episodes 1");
+  INFO(next.output);
+  CHECK(next.exit_code == 0);
+  CHECK(entries(tmp).empty());
 }
 
 TEST_CASE("SUMO's log and tripinfo: private directories, planted symlinks untouched, nothing left",

@@ -8,14 +8,21 @@
 // Why not a fixed name in /tmp: a name others can predict (e.g. rlrun<pid>_<n>.log) can be
 // planted beforehand as a symlink, and opening it with O_CREAT|O_TRUNC then truncates
 // whatever the link points at.
+//
+// A process killed with SIGKILL runs no destructor, so its directories stay. The name holds
+// the creator's pid (<prefix><pid>-XXXXXX) so that a later process can recognise them: with
+// RemoveStale::kYes the first directory made with a prefix in a process first removes this
+// user's directories of that prefix whose process has ended.
 #include <string>
 
 namespace rlrun {
 
 class PrivateTempDir {
  public:
-  // Creates <tmp>/<prefix>XXXXXX. Throws RuntimeFailure naming the directory and the reason.
-  explicit PrivateTempDir(const std::string& prefix);
+  enum class RemoveStale { kNo, kYes };
+  // Creates <tmp>/<prefix><pid>-XXXXXX. Throws RuntimeFailure naming the directory and the
+  // reason.
+  explicit PrivateTempDir(const std::string& prefix, RemoveStale stale = RemoveStale::kNo);
   // Removes the directory and its contents (unless keep() was called); never throws.
   ~PrivateTempDir();
   PrivateTempDir(const PrivateTempDir&) = delete;

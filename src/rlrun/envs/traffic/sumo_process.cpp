@@ -68,7 +68,8 @@ std::string find_executable(const std::string& binary) {
   return "";
 }
 
-SumoProcess::SumoProcess(const Options& options) : dir_("rlrun-sumo-"), label_(next_label()) {
+SumoProcess::SumoProcess(const Options& options)
+    : dir_("rlrun-sumo-", PrivateTempDir::RemoveStale::kYes), label_(next_label()) {
   // A socket whose SUMO has gone must fail with an error (reported with SUMO's output), not
   // kill rlrun with SIGPIPE.
   struct sigaction current;

@@ -60,7 +60,8 @@ TrafficSignal::TrafficSignal(const Config& config)
   // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours in
   // a private directory (SUMO opens the file with O_TRUNC, following links: no shared /tmp).
   if (config_.tripinfo_output.empty()) {
-    tripinfo_dir_ = std::make_unique<PrivateTempDir>("rlrun-tripinfo-");
+    tripinfo_dir_ =
+        std::make_unique<PrivateTempDir>("rlrun-tripinfo-", PrivateTempDir::RemoveStale::kYes);
     tripinfo_path_ = tripinfo_dir_->file("tripinfo.xml");
   } else {
     tripinfo_path_ = config_.tripinfo_output;
