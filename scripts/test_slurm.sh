@@ -90,29 +90,36 @@ done
 [[ "$state" == idle* ]] || { echo "test_slurm: the node did not come up ($state)"; tail -20 "$work"/*.log; exit 1; }
 echo "test_slurm: one-node cluster up ($(nproc) CPUs, ${memory} MB)"
 
-# A small sweep: CartPole PPO, 2 learning rates x 2 seeds, 20 000 steps each.
+# A small sweep: CartPole PPO, 2 learning rates x 2 seeds, 20 000 steps each. Its directory's
+# name holds a blank, quotes, \$(...), '#' and '%' (issue 15): sbatch and bash must both read the
+# generated script's paths as one argument each, and nothing in them may run.
+out="$work/sweep dir 'q' \$(touch pwned) #x %j"
 cat >"$work/sweep.yaml" <<YAML
 name: rlrun_slurm_test
 base: $root/configs/cartpole_ppo.yaml
-out_dir: $work/sweep
+out_dir: "$out"
 seeds: [1, 2]
 grid: {algo.learning_rate: [lin_0.001, lin_0.0003]}
 set: {run.total_timesteps: 20000}
 slurm: {time: "00:05:00", cpus_per_task: 1, mem: 500M}
 YAML
 build/rlrun sweep "$work/sweep.yaml"
-build/rlrun sweep slurm "$work/sweep/manifest.yaml"
+build/rlrun sweep slurm "$out/manifest.yaml"
 start=$(date +%s)
-sbatch --wait "$work/sweep/sweep.sbatch"
+(cd "$work" && sbatch --wait "$out/sweep.sbatch")
 echo "test_slurm: the array job ended after $(( $(date +%s) - start )) s"
-build/rlrun sweep status "$work/sweep/manifest.yaml"
-finished=$(build/rlrun sweep status "$work/sweep/manifest.yaml" | grep -c " finished ")
-logs=$(ls "$work/sweep/slurm/"*.out | wc -l)
+build/rlrun sweep status "$out/manifest.yaml"
+finished=$(build/rlrun sweep status "$out/manifest.yaml" | grep -c " finished ")
+logs=$(ls "$out/slurm/"*.out | wc -l)
 echo "test_slurm: $finished of 4 runs finished, $logs task logs"
 if [[ $finished -ne 4 || $logs -ne 4 ]]; then
-  for f in "$work/sweep/slurm/"*.out; do echo "== $f"; tail -5 "$f"; done
+  for f in "$out/slurm/"*.out; do echo "== $f"; tail -5 "$f"; done
+  exit 1
+fi
+if [[ -e "$work/pwned" || -e "$root/pwned" ]]; then
+  echo "test_slurm: the \$(touch pwned) in the sweep's directory name ran" >&2
   exit 1
 fi
 # A local re-run of the same manifest trains nothing more.
-build/rlrun sweep run "$work/sweep/manifest.yaml" | tail -1 | grep -q "4 of 4 runs finished"
+build/rlrun sweep run "$out/manifest.yaml" | tail -1 | grep -q "4 of 4 runs finished"
 echo "test_slurm: passed"

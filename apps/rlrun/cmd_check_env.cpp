@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/config_fields.hpp"
@@ -153,11 +154,12 @@ Action add_check_env(CLI::App& app, Registry& registry) {
                   "with an id: an env parameter, e.g. --set step_size=0.1; with a file: any "
                   "config value, e.g. --set env.kwargs.step_size=0.1 (repeatable)")
       ->allow_extra_args(false);
-  sub->add_option("--seed", options->seed, "seed of the checks and the random episodes");
+  sub->add_option("--seed", options->seed, "seed of the checks and the random episodes")
+      ->check(seed_value());
   sub->add_option("--steps", options->steps, "random steps per determinism rollout")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1));
   sub->add_option("--episodes", options->episodes, "random-policy episodes for the baseline")
-      ->check(CLI::NonNegativeNumber);
+      ->transform(integer_in(0));
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);
     CheckTarget t = is_config_file(options->target)

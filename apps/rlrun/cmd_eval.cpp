@@ -7,11 +7,14 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
+#include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -50,8 +53,7 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // e.g. results/
-  std::ofstream csv(path, std::ios::trunc);
-  if (!csv) throw RuntimeFailure("cannot write " + path);
+  std::ostringstream csv;  // written at the end, every write checked (a full disk: exit 1)
   const bool with_policy = runs.size() > 1;
   const EvalResult& first = runs.front().second;
   csv << (with_policy ? "policy," : "") << "episode,return,length"
@@ -78,6 +80,10 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
     for (size_t k = 0; k < r.metric_keys.size(); ++k) csv << ',' << mean[3 + k] / n;
     csv << '\n';
   }
+  // Written in place, not renamed over: --csv may name /dev/stdout or a pipe.
+  CheckedFile file(path, CheckedFile::Mode::kTruncate);
+  file << csv.str();
+  file.close();
 }
 
 // The command line's settings for a named policy (--green-time for the traffic baseline).
@@ -144,8 +150,8 @@ Action add_eval(CLI::App& app, Registry& registry) {
   sub->add_option("--env", options->env_id, "env id for --policy")->needs(policy_option);
   sub->add_option("--config", options->config, "experiment file whose env --policy runs in")
       ->needs(policy_option);
-  sub->add_option("--episodes", options->episodes, "number of episodes")->check(CLI::PositiveNumber);
-  sub->add_option("--seed", options->seed, "seed of the first episode's reset");
+  sub->add_option("--episodes", options->episodes, "number of episodes")->transform(integer_in(1));
+  sub->add_option("--seed", options->seed, "seed of the first episode's reset")->check(seed_value());
   auto deterministic = std::make_shared<bool>(false);
   CLI::Option* det = sub->add_flag("--deterministic", *deterministic,
                                    "use the deterministic policy (default)");
@@ -162,7 +168,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
                   "grasp task's controller)");
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of the fixed-time baseline")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1));
   sub->add_option("--record", options->record,
                   "also record the episodes to this mp4 (same episodes and numbers; needs ffmpeg)");
   return [options, deterministic, &registry]() {

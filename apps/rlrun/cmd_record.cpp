@@ -9,11 +9,13 @@
 #include <memory>
 #include <regex>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/render/video_limits.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/model_file.hpp"
@@ -38,15 +40,18 @@ struct Options {
   bool no_overlay = false;
 };
 
-// "600x400" -> width, height.
-void parse_size(const std::string& text, RecordOptions& record) {
+// "600x400" -> width, height, bounded up front (render/video_limits.hpp): a size ffmpeg would
+// refuse must not first cost the memory of its frames.
+void parse_size(const std::string& text, RecordOptions& record, bool video) {
   static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
   std::smatch m;
   if (!std::regex_match(text, m, pattern))
     throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 600x400");
   record.width = std::stoi(m[1]);
   record.height = std::stoi(m[2]);
-  if (record.width < 2 || record.height < 2) throw UsageError("--size " + text + ": too small");
+  const std::string problem = video ? check_video_size(record.width, record.height)
+                                    : check_frame_size(record.width, record.height);
+  if (!problem.empty()) throw UsageError("--size " + text + ": " + problem);
 }
 
 
@@ -82,7 +87,7 @@ int run(const Options& o, Registry& registry) {
   record.seed = o.seed;
   record.fps = o.fps;
   record.overlay = !o.no_overlay;
-  if (!o.size.empty()) parse_size(o.size, record);
+  if (!o.size.empty()) parse_size(o.size, record, !o.output.empty());
   install_interrupt_handlers();
   record.keep_going = [] { return !interrupt_requested(); };
 
@@ -157,20 +162,21 @@ Action add_record(CLI::App& app, Registry& registry) {
                   "(fixed-time: traffic task; scripted: grasp task)");
   sub->add_option("--green-time", options->green_time,
                   "green seconds per approach of --policy fixed-time")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1));
   sub->add_option("--from-obs", options->from_obs,
                   "observation log to draw: a .npy file or a directory of .npy chunks (obs_log)");
   sub->add_option("--output,-o", options->output, "mp4 file to write (H.264, yuv420p)");
   sub->add_option("--frames", options->frames,
                   "also (or instead) write PNG frames into this directory");
   sub->add_option("--episodes", options->episodes, "number of episodes")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1));
   sub->add_option("--fps", options->fps,
                   "frames per second (default: the env's, e.g. 50 for CartPole)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number(kMaxVideoFps));
   sub->add_option("--size", options->size,
                   "frame size WIDTHxHEIGHT (default: the env's, e.g. 600x400)");
-  sub->add_option("--seed", options->seed, "seed of the first episode's reset (default 0)");
+  sub->add_option("--seed", options->seed, "seed of the first episode's reset (default 0)")
+      ->check(seed_value());
   auto deterministic = std::make_shared<bool>(false);
   CLI::Option* det =
       sub->add_flag("--deterministic", *deterministic, "use the deterministic policy (default)");

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "plugin_option.hpp"
@@ -18,6 +19,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/sbatch_script.hpp"
 #include "rlrun/runtime/sweep.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/runtime/resume_point.hpp"
@@ -166,8 +168,9 @@ Action add_sweep(CLI::App& app, Registry& registry) {
       "run", "train a manifest's runs: finished ones are skipped, interrupted ones resumed");
   run->add_option("manifest", options->manifest, "manifest.yaml written by `rlrun sweep`")->required();
   run->add_option("-j,--jobs", options->jobs, "runs at once (each with --threads 1)")
-      ->check(CLI::PositiveNumber);
-  run->add_option("--index", options->index, "train only run I (what a Slurm array task does)");
+      ->transform(integer_in(1));
+  run->add_option("--index", options->index, "train only run I (what a Slurm array task does)")
+      ->transform(integer_in(0));
   run->add_option("--set", options->overrides,
                   "override a value in every run's config (a manifest is untrusted: this is how "
                   "you vouch for a program or scenario file it names; docs/security.md)")
@@ -194,7 +197,7 @@ Action add_sweep(CLI::App& app, Registry& registry) {
       const std::string script = (dir / "sweep.sbatch").string();
       write_text_atomic(script, slurm_script(sweep, own_binary()));
       std::printf("wrote %s (%zu array tasks); submit it with: sbatch %s\n", script.c_str(),
-                  sweep.runs.size(), script.c_str());
+                  sweep.runs.size(), shell_quote(script).c_str());
       return 0;
     }
     if (status->parsed()) {
@@ -211,8 +214,9 @@ Action add_sweep(CLI::App& app, Registry& registry) {
     std::printf("sweep %s: %zu runs -> %s\n", sweep.name.c_str(), sweep.runs.size(),
                 sweep.manifest.c_str());
     for (const SweepRun& r : sweep.runs) std::printf("  %3d  %s\n", r.index, r.id.c_str());
+    const std::string manifest = shell_quote(sweep.manifest);  // the commands as one would type them
     std::printf("train them: rlrun sweep run %s -j 2\n  or on Slurm: rlrun sweep slurm %s\n",
-                sweep.manifest.c_str(), sweep.manifest.c_str());
+                manifest.c_str(), manifest.c_str());
     return 0;
   };
 }

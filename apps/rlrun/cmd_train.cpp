@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "plugin_option.hpp"
@@ -100,16 +101,17 @@ Action add_train(CLI::App& app, Registry& registry) {
   sub->add_option("--set", options->overrides,
                   "override a config value, e.g. --set algo.learning_rate=3e-4 (repeatable)")
       ->allow_extra_args(false);
-  sub->add_option("--seed", options->seed, "set run.seed (overrides the files)");
+  sub->add_option("--seed", options->seed, "set run.seed (overrides the files)")
+      ->check(seed_value());
   sub->add_option("--timesteps", options->timesteps, "set run.total_timesteps")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1, std::numeric_limits<int64_t>::max()));
   sub->add_option("--out", options->out, "set run.out_dir (root of the run directories)");
   sub->add_option("--init-from", options->init_from,
                   "start from a trained model's weights (run.init_from): fine-tune it on this "
                   "experiment's env and wrappers");
   sub->add_option("-j,--jobs", options->jobs,
                   "train up to N experiment files at once, as processes with --threads 1 each")
-      ->check(CLI::PositiveNumber);
+      ->transform(integer_in(1));
   sub->add_option("--resume", options->resume,
                   "continue an interrupted run exactly: its run directory (newest checkpoint) or "
                   "a checkpoints/step_<N>.zip file");

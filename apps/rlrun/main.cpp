@@ -1,10 +1,12 @@
 // rlrun: train, evaluate and inspect RL agents from YAML experiment files.
 // Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure.
 #include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <new>
 #include <string>
 
+#include "cli_values.hpp"
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
@@ -26,6 +28,9 @@ void print_error(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) must end in the write error EFBIG, which names the file
+  // (core/checked_file.hpp), not in SIGXFSZ killing rlrun with a core dump.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rlrun " RLRUN_VERSION
                ": Stable-Baselines3-style reinforcement learning from YAML experiment files"};
   app.require_subcommand(1);
@@ -34,7 +39,8 @@ int main(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads,
                  "cores per run, 1 or 2 (default: RLRUN_THREADS, else 2 when two CPUs are "
-                 "available; use 1 when several runs share the cores). Results are identical.");
+                 "available; use 1 when several runs share the cores). Results are identical.")
+      ->transform(rlrun::cli::integer_in(1, 2));
   app.fallthrough();
   // The registry is built here and passed down; --plugin adds to it (runtime/builtins.hpp).
   rlrun::Registry registry = rlrun::make_builtin_registry();

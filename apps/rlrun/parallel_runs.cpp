@@ -16,6 +16,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/private_temp_dir.hpp"
 
 namespace rlrun::cli {
 
@@ -48,7 +49,8 @@ std::string summary_line(const std::string& path) {
   return found;
 }
 
-pid_t start_child(const std::vector<std::string>& child_args, const std::string& log_path) {
+// `log_fd`: the child's console log, opened close-on-exec by the caller.
+pid_t start_child(const std::vector<std::string>& child_args, int log_fd) {
   std::vector<std::string> args{"/proc/self/exe"};
   args.insert(args.end(), child_args.begin(), child_args.end());
   // argv is built before fork(): this process may have a ForkJoin worker thread, and the child
@@ -60,12 +62,8 @@ pid_t start_child(const std::vector<std::string>& child_args, const std::string&
   if (pid < 0) throw RuntimeFailure("cannot start a training process (fork failed)");
   if (pid == 0) {
     setpgid(0, 0);  // Ctrl-C at the terminal goes to the parent only; it forwards one SIGINT
-    const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-      close(fd);
-    }
+    dup2(log_fd, STDOUT_FILENO);  // the copies are not close-on-exec; log_fd itself is
+    dup2(log_fd, STDERR_FILENO);
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
     execv(argv[0], argv.data());
@@ -90,13 +88,12 @@ int train_in_parallel(const std::vector<std::string>& configs,
 }
 
 int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::string& what) {
-  namespace fs = std::filesystem;
-  const fs::path log_dir =
-      fs::temp_directory_path() / ("rlrun-train-" + std::to_string(getpid()));
-  fs::create_directories(log_dir);
+  // A private directory (mkdtemp, 0700; core/private_temp_dir.hpp): a name in /tmp others can
+  // predict could hold their symlinks.
+  PrivateTempDir log_dir("rlrun-train-");
   install_interrupt_handlers();
   std::cout << "training " << configs.size() << " " << what << ", " << jobs
-            << " at a time (console output of each in " << log_dir.string() << "/)" << std::endl;
+            << " at a time (console output of each in " << log_dir.path() << "/)" << std::endl;
 
   std::map<pid_t, Child> running;
   size_t next = 0, finished = 0;
@@ -110,8 +107,17 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
       ++forwarded;
     }
     while (!interrupted && running.size() < static_cast<size_t>(jobs) && next < configs.size()) {
-      Child child{next, (log_dir / (std::to_string(next) + ".log")).string()};
-      const pid_t pid = start_child(configs[next].args, child.log_path);
+      const std::string log_name = std::to_string(next) + ".log";
+      Child child{next, log_dir.file(log_name)};
+      const int log_fd = log_dir.create_file(log_name);
+      pid_t pid = -1;
+      try {
+        pid = start_child(configs[next].args, log_fd);
+      } catch (...) {
+        close(log_fd);
+        throw;
+      }
+      close(log_fd);
       running[pid] = child;
       ++next;
     }
@@ -140,10 +146,11 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
   }
   if (next < configs.size())
     std::cout << configs.size() - next << " " << what << " were not started" << std::endl;
-  if (failures > 0) return 1;  // keep the logs of the failed runs
-  std::error_code ec;
-  fs::remove_all(log_dir, ec);  // each run's output is also in its run directory's log.txt
-  return interrupted ? 130 : 0;
+  if (failures > 0) {
+    log_dir.keep();  // the logs of the failed runs, named above
+    return 1;
+  }
+  return interrupted ? 130 : 0;  // the logs go: each run's output is also in its log.txt
 }
 
 }  // namespace rlrun::cli

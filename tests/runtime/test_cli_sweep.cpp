@@ -86,8 +86,8 @@ TEST_CASE("sweep: expansion, stable ids, errors at the sweep file's line", "[swe
   CHECK(script.find("#SBATCH --time=00:05:00") != std::string::npos);
   CHECK(script.find("#SBATCH --mem=1G") != std::string::npos);
   CHECK(script.find("#SBATCH --qos=short") != std::string::npos);
-  CHECK(script.find("--threads 2 sweep run " + dir / "out/manifest.yaml" +
-                    " --index \"$SLURM_ARRAY_TASK_ID\"") != std::string::npos);
+  CHECK(script.find("--threads 2 sweep run '" + dir / "out/manifest.yaml" +
+                    "' --index \"$SLURM_ARRAY_TASK_ID\"") != std::string::npos);
 }
 
 // The issue's bar: 2 configurations x 3 seeds with -j 2, interrupted, re-run: exactly 6

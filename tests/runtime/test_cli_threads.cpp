@@ -50,7 +50,7 @@ TEST_CASE("cli: one or two threads train bit-identical models", "[cli]") {
 TEST_CASE("cli: a thread count other than 1 or 2 is a usage error", "[cli]") {
   const auto flag = run_rlrun("list --threads 3");
   CHECK(flag.exit_code == 2);
-  CHECK(flag.output.find("--threads must be 1 or 2") != std::string::npos);
+  CHECK(flag.output.find("--threads: must be 1 or 2") != std::string::npos);
   const auto env = run_command("RLRUN_THREADS=many " + std::string(RLRUN_BINARY) + " list");
   CHECK(env.exit_code == 2);
   CHECK(env.output.find("RLRUN_THREADS must be 1 or 2") != std::string::npos);

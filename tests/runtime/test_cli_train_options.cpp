@@ -68,6 +68,8 @@ TEST_CASE("train -j 2: several experiments as processes, failures reported", "[c
   std::smatch logs;
   REQUIRE(std::regex_search(r.output, logs, std::regex("console output of each in (\\S+)/\\)")));
   CHECK(fs::exists(logs[1].str() + "/1.log"));
+  // A private directory (mkdtemp): only its owner may enter it or plant files in it.
+  CHECK((fs::status(logs[1].str()).permissions() & fs::perms::all) == fs::perms::owner_all);
   fs::remove_all(logs[1].str());
 }
 

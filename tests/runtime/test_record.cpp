@@ -1,6 +1,7 @@
 // End-to-end tests of `rlrun record`, `rlrun eval --record` and the training video callback,
 // run as a user would, with every video checked by ffprobe.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -121,6 +122,17 @@ std::string train_briefly(const TempDir& dir, const std::string& env_id) {
   std::smatch m;
   REQUIRE(std::regex_search(r.output, m, std::regex("model saved to (\\S+model\\.zip)")));
   return m[1];
+}
+
+// `record --env CartPole-v1 --policy random --output <dir>/out/v.mp4` with RLRUN_FFMPEG set to
+// a stand-in script (<dir>/fake_ffmpeg).
+CommandResult record_with_fake_ffmpeg(const TempDir& dir, const std::string& script) {
+  const std::string fake = dir / "fake_ffmpeg";
+  write_file(fake, script);
+  fs::permissions(fake, fs::perms::owner_all);
+  fs::create_directories(dir / "out");
+  return run_command("env RLRUN_FFMPEG=" + fake + " " + std::string(RLRUN_BINARY) +
+                     " record --env CartPole-v1 --policy random --output " + (dir / "out/v.mp4"));
 }
 
 }  // namespace
@@ -274,17 +286,61 @@ TEST_CASE("record without ffmpeg: exit 1, names the package, writes nothing", "[
 TEST_CASE("record with a failing ffmpeg: exit 1 with its error output, no partial file",
           "[record][cli]") {
   TempDir dir("record_bad_ffmpeg");
-  const std::string fake = dir / "fake_ffmpeg";
-  write_file(fake, "#!/bin/sh\ncat > /dev/null\necho 'x264 [error]: malloc failed' >&2\nexit 1\n");
-  fs::permissions(fake, fs::perms::owner_all);
-  fs::create_directories(dir / "out");
-  const auto r =
-      run_command("env RLRUN_FFMPEG=" + fake + " " + std::string(RLRUN_BINARY) +
-                  " record --env CartPole-v1 --policy random --output " + (dir / "out/v.mp4"));
+  const auto r = record_with_fake_ffmpeg(
+      dir, "#!/bin/sh\ncat > /dev/null\necho 'x264 [error]: malloc failed' >&2\nexit 1\n");
   INFO(r.output);
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.output, Catch::Contains("malloc failed"));
   CHECK(fs::is_empty(dir / "out"));
+}
+
+// Issue 15, item 13: the output is a plain path whatever it looks like to ffmpeg (which reads
+// "proto:..." as a protocol), and no temporary .part file outlives a failure.
+TEST_CASE("record --output file:x.mp4 / pipe:1: files of those names, nothing else",
+          "[record][cli]") {
+  TempDir dir("record_protocol_names");
+  const std::string cd = "cd '" + dir.str() + "' && " + RLRUN_BINARY;
+  for (const std::string name : {"file:x.mp4", "pipe:1", "file:sub/y.mp4"}) {
+    const auto r = run_command(cd + " record --env CartPole-v1 --policy random --output " + name);
+    INFO(name << "\n" << r.output);
+    CHECK(r.exit_code == 0);
+    CHECK(r.output.size() < 2000);  // no video on stdout
+    CHECK(probe(dir / name).codec == "h264");
+  }
+  std::vector<std::string> names;
+  for (const auto& e : fs::recursive_directory_iterator(dir.str()))
+    names.push_back(fs::relative(e.path(), dir.str()).string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"file:sub", "file:sub/y.mp4", "file:x.mp4", "pipe:1"});
+}
+
+TEST_CASE("record: ffmpeg failing after writing part of the video leaves no file",
+          "[record][cli]") {
+  TempDir dir("record_partial");
+  // A stand-in ffmpeg that writes half a video to its output, then fails.
+  const auto r = record_with_fake_ffmpeg(
+      dir,
+      "#!/bin/sh\nfor last; do :; done\nprintf '%s\\n' \"$last\" > \"$(dirname \"$0\")/output_arg\"\n"
+      "cat > /dev/null\necho partial > \"${last#file:}\"\necho 'encoder died' >&2\nexit 1\n");
+  INFO(r.output);
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("encoder died"));
+  CHECK(fs::is_empty(dir / "out"));
+  // ffmpeg was given the temporary file as an absolute file: URL, beside the output.
+  const std::string arg = read_text(dir / "output_arg");
+  CHECK(arg.rfind("file:" + dir / "out/.v.mp4.", 0) == 0);
+  CHECK(arg.find(".part\n") != std::string::npos);
+
+  // The rename into place fails (a directory holds the name): no .part left either.
+  fs::create_directories(dir / "out/taken.mp4");
+  const auto taken = run_rlrun("record --env CartPole-v1 --policy random --output " +
+                               (dir / "out/taken.mp4"));
+  INFO(taken.output);
+  CHECK(taken.exit_code == 1);
+  CHECK_THAT(taken.output, Catch::Contains("cannot rename"));
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir / "out")) entries += e.exists();
+  CHECK(entries == 1);
 }
 
 TEST_CASE("record: bad command lines exit 2", "[record][cli]") {

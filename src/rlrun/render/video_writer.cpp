@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/temp_beside.hpp"
+#include "rlrun/render/video_limits.hpp"
 #include "rlrun/render/yuv420.hpp"
 
 extern char** environ;
@@ -47,18 +49,11 @@ std::string fps_text(double fps) {
   return buffer;
 }
 
-std::string temp_name_for(const std::string& path) {
-  static int counter = 0;
-  const std::filesystem::path p(path);
-  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "." + std::string temporaries.
-  std::string name = ".";
-  name += p.filename().string();
-  name += ".rlrun-";
-  name += std::to_string(::getpid());
-  name += '-';
-  name += std::to_string(counter++);
-  name += ".part";
-  return (p.parent_path() / name).string();
+// ffmpeg reads an output name with a "proto:" prefix as a protocol (file:, pipe:, tcp:, ...),
+// so a user's `--output file:x.mp4` or `pipe:1` would not name a file. Its file protocol with an
+// absolute path names exactly one file, whatever the characters in it.
+std::string ffmpeg_file_url(const std::string& path) {
+  return "file:" + std::filesystem::absolute(path).string();
 }
 
 }  // namespace
@@ -89,11 +84,11 @@ std::string VideoWriter::find_ffmpeg() {
 
 VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOptions& options)
     : path_(std::move(path)), width_(width), height_(height) {
-  if (width <= 0 || height <= 0 || width % 2 != 0 || height % 2 != 0)
-    throw std::invalid_argument("video size " + std::to_string(width) + "x" +
-                                std::to_string(height) +
-                                ": H.264 in yuv420p needs a positive, even width and height");
-  if (!(options.fps > 0)) throw std::invalid_argument("video fps must be > 0");
+  if (const std::string problem = check_video_size(width, height); !problem.empty())
+    throw std::invalid_argument(problem);
+  if (!(options.fps > 0 && options.fps <= kMaxVideoFps))
+    throw std::invalid_argument("video fps must be > 0 and <= " +
+                                std::to_string(static_cast<int>(kMaxVideoFps)));
   const std::string ffmpeg = find_ffmpeg();
   ignore_sigpipe();
 
@@ -101,7 +96,6 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   if (ec) throw RuntimeFailure("cannot create directory " + parent.string() + ": " + ec.message());
-  temp_path_ = temp_name_for(path_);
   yuv_.resize(static_cast<size_t>(width) * height * 3 / 2);
 
   std::string stderr_template =
@@ -109,11 +103,20 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
   stderr_fd_ = ::mkostemp(stderr_template.data(), O_CLOEXEC);
   if (stderr_fd_ < 0) throw RuntimeFailure("cannot create a temporary file: " + errno_text());
   ::unlink(stderr_template.c_str());  // readable through the fd, gone from the disk
+  try {
+    const TempBeside temp = create_temp_beside(path_, ".part");  // ffmpeg writes it (-y)
+    ::close(temp.fd);
+    temp_path_ = temp.path;
+  } catch (...) {
+    ::close(stderr_fd_);
+    throw;
+  }
 
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
-    ::close(stderr_fd_);
-    throw RuntimeFailure("cannot create a pipe to ffmpeg: " + errno_text());
+    const std::string reason = errno_text();
+    abort();  // removes the temporary file
+    throw RuntimeFailure("cannot create a pipe to ffmpeg: " + reason);
   }
   const int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
 
@@ -157,7 +160,7 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
                                    "-f",
                                    "mp4",
                                    "-y",
-                                   temp_path_};
+                                   ffmpeg_file_url(temp_path_)};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -178,9 +181,8 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
   if (devnull >= 0) ::close(devnull);
   if (rc != 0) {
     ::close(fds[1]);
-    ::close(stderr_fd_);
-    stderr_fd_ = -1;
     pid_ = -1;
+    abort();  // removes the temporary file
     throw RuntimeFailure("cannot start " + ffmpeg + ": " + std::strerror(rc));
   }
   pipe_fd_ = fds[1];

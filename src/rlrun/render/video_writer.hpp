@@ -4,9 +4,11 @@
 // up front (+faststart), so the file plays in browsers. Nothing is linked against libav*: one
 // external program, a clear error when it is missing, and its own error output when it fails.
 //
-// The video is written to a hidden temporary name beside the output and renamed into place
-// only when ffmpeg has finished successfully: a failure or an interruption never leaves a
-// partial file behind. ffmpeg runs in its own process group, so Ctrl-C in a terminal reaches
+// The video is written to a hidden temporary file beside the output (made with mkstemps: a
+// fresh name, O_EXCL) and renamed into place only when ffmpeg has finished successfully: a
+// failure or an interruption never leaves a partial file behind. The output is always a plain
+// path (`file:x.mp4` is a file of that name): ffmpeg is given "file:<absolute path>", never a
+// name it could read as another protocol, and is started with an argv (no shell). ffmpeg runs in its own process group, so Ctrl-C in a terminal reaches
 // rlrun (which can still finish the video) and not the encoder.
 #include <sys/types.h>
 
@@ -29,8 +31,9 @@ struct VideoOptions {
 
 class VideoWriter {
  public:
-  // Starts ffmpeg. Throws std::invalid_argument for odd or non-positive sizes (yuv420p needs
-  // even ones) or fps <= 0, RuntimeFailure when ffmpeg cannot be found or started.
+  // Starts ffmpeg. Throws std::invalid_argument for a size check_video_size refuses (odd, or
+  // beyond render/video_limits.hpp's bound) or fps outside (0, kMaxVideoFps], RuntimeFailure
+  // when ffmpeg cannot be found or started.
   VideoWriter(std::string path, int width, int height, const VideoOptions& options = {});
   // Without close(): stops ffmpeg and removes the temporary file.
   ~VideoWriter();

@@ -20,8 +20,7 @@ EvalCallback::EvalCallback(TrainingContext& context)
       next_(context.experiment.eval.freq) {
   set_statistics_training(*env_, false);
   const std::string path = context.run_dir + "/evaluations.csv";
-  csv_.open(path, context.resuming ? std::ios::app : std::ios::trunc);
-  if (!csv_) throw RuntimeFailure("cannot write " + path);
+  csv_ = CheckedFile(path, context.resuming ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
   if (!context.resuming) csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
   csv_.flush();
 }
@@ -64,9 +63,12 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
   std::snprintf(line, sizeof line, "%lld,%.6g,%.6g,%.6g,", static_cast<long long>(num_timesteps),
                 r.mean_return(), r.std_return(), r.mean_length());
   csv_ << line;
-  if (!std::isnan(success)) csv_ << success;
+  if (!std::isnan(success)) {
+    std::snprintf(line, sizeof line, "%g", success);  // as std::ostream writes a double
+    csv_ << line;
+  }
   csv_ << '\n';
-  csv_.flush();
+  csv_.flush();  // a full disk stops the run: RuntimeFailure naming the file and errno
   if (context_.logger) {
     context_.logger->record("eval/mean_reward", r.mean_return());
     context_.logger->record("eval/mean_ep_length", r.mean_length());

@@ -17,6 +17,7 @@
 #include <limits>
 #include <string>
 
+#include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/runtime/callback.hpp"
 
@@ -70,7 +71,7 @@ class EvalCallback : public Callback {
   // StopTrainingOnNoModelImprovement state.
   double last_best_ = -std::numeric_limits<double>::infinity();
   int no_improvement_evals_ = 0;
-  std::ofstream csv_;
+  CheckedFile csv_;  // evaluations.csv, every row flushed and checked (core/checked_file.hpp)
 };
 
 }  // namespace rlrun

@@ -134,13 +134,12 @@ void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems
     });
   const ConfigNode video = root.child("video");
   if (problems.attempt([&] { exp.video = read_config<VideoConfig>(video); })) {
-    for (const char* side : {"width", "height"})
-      if (video.child(side).defined() && video.child(side).as_int() % 2 != 0)
-        problems.attempt([&] {
-          video.child(side).fail("must be 0 (the env's size) or an even number (H.264)");
-        });
     if ((exp.video.width == 0) != (exp.video.height == 0))
       problems.attempt([&] { video.fail("set both width and height, or neither (the env's own size)"); });
+    else if (exp.video.width != 0)
+      if (const std::string problem = check_video_size(exp.video.width, exp.video.height);
+          !problem.empty())
+        problems.attempt([&] { video.child("width").fail(problem); });
   }
 }
 

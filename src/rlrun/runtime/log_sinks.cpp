@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/run_directory.hpp"
 
 namespace rlrun {
 
@@ -35,8 +36,7 @@ CsvSink::CsvSink(std::string path, bool append) : path_(std::move(path)) {
     std::string header;
     if (in && std::getline(in, header)) keys_ = split_csv_line(header);
   }
-  file_.open(path_, append ? std::ios::app : std::ios::trunc);
-  if (!file_) throw RuntimeFailure("cannot write " + path_);
+  file_ = CheckedFile(path_, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
 }
 
 void CsvSink::rewrite_with_header() {
@@ -48,15 +48,16 @@ void CsvSink::rewrite_with_header() {
     std::getline(in, line);  // old header
     while (std::getline(in, line)) lines.push_back(line);
   }
-  std::ofstream out(path_, std::ios::trunc);
-  for (size_t i = 0; i < keys_.size(); ++i) out << (i ? "," : "") << keys_[i];
-  out << '\n';
+  // Atomically: a full disk leaves the old file, not a truncated one.
+  std::string text;
+  for (size_t i = 0; i < keys_.size(); ++i) text += (i ? "," : "") + keys_[i];
+  text += '\n';
   for (const auto& line : lines) {
     const size_t cells = split_csv_line(line).size();
-    out << line << std::string(keys_.size() - std::min(cells, keys_.size()), ',') << '\n';
+    text += line + std::string(keys_.size() - std::min(cells, keys_.size()), ',') + '\n';
   }
-  out.close();
-  file_.open(path_, std::ios::app);
+  write_text_atomic(path_, text);
+  file_ = CheckedFile(path_, CheckedFile::Mode::kAppend);
 }
 
 void CsvSink::write(const LogRow& row, int64_t /*step*/) {
@@ -74,7 +75,7 @@ void CsvSink::write(const LogRow& row, int64_t /*step*/) {
     if (it != row.end()) file_ << csv_value(it->second);
   }
   file_ << '\n';
-  file_.flush();
+  file_.flush();  // throws RuntimeFailure naming the file and errno (ENOSPC) on a full disk
 }
 
 void CsvSink::flush() { file_.flush(); }

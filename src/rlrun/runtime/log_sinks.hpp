@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/logger.hpp"
 
 namespace rlrun {
@@ -30,7 +31,7 @@ class CsvSink : public LogSink {
   void rewrite_with_header();
   std::string path_;
   std::vector<std::string> keys_;
-  std::ofstream file_;
+  CheckedFile file_;  // every row flushed and checked (core/checked_file.hpp)
 };
 
 // SB3-style table on a stream (stdout, log.txt), at most one every `min_interval_s` seconds (plus the last one

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/run_directory.hpp"
 
 namespace rlrun {
 
@@ -82,15 +82,9 @@ void ObsLogCallback::save_chunk(int64_t num_timesteps) {
   const std::vector<uint8_t> bytes = encode_npy(t);
   char name[64];
   std::snprintf(name, sizeof name, "/obs_%010lld.npy", static_cast<long long>(num_timesteps));
-  const std::string path = dir_ + name, temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw RuntimeFailure("cannot write " + temp);
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) throw RuntimeFailure("cannot rename " + temp + " to " + path + ": " + ec.message());
+  // Atomic and checked (a full disk is an error naming the file, not a short chunk).
+  write_text_atomic(dir_ + name,
+                    std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   rows_.clear();  // keeps its capacity
 }
 

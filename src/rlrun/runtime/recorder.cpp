@@ -8,6 +8,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
+#include "rlrun/render/video_limits.hpp"
 #include "rlrun/render/video_writer.hpp"
 #include "rlrun/runtime/observation_log.hpp"
 #include "rlrun/wrappers/monitor.hpp"
@@ -34,11 +35,13 @@ class FrameOutput {
     result.width = options.width > 0 ? options.width : spec.width;
     result.height = options.height > 0 ? options.height : spec.height;
     result.fps = options.fps.value_or(spec.fps);
-    if (!(result.fps > 0)) throw UsageError("fps must be > 0");
-    if (!options.video_path.empty() && (result.width % 2 != 0 || result.height % 2 != 0))
-      throw UsageError("video size " + std::to_string(result.width) + "x" +
-                       std::to_string(result.height) +
-                       ": H.264 (yuv420p) needs an even width and height");
+    if (!(result.fps > 0 && result.fps <= kMaxVideoFps))
+      throw UsageError("fps must be > 0 and <= " + std::to_string(static_cast<int>(kMaxVideoFps)));
+    // Checked before a frame is allocated or ffmpeg started (render/video_limits.hpp).
+    const std::string size_problem = options.video_path.empty()
+                                         ? check_frame_size(result.width, result.height)
+                                         : check_video_size(result.width, result.height);
+    if (!size_problem.empty()) throw UsageError(size_problem);
     try {
       frame_ = std::make_unique<Frame>(result.width, result.height);
     } catch (const std::invalid_argument& e) {

@@ -3,13 +3,16 @@
 // overwritten: the new run gets `seed<N>_2`, `seed<N>_3`, ... (as rl-zoo numbers its runs).
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace rlrun {
 
 // Creates and returns a fresh run directory. Throws RuntimeFailure if it cannot.
 std::string create_run_directory(const std::string& out_dir, const std::string& name, uint64_t seed);
 
-// Writes a text file atomically (temp file + rename).
-void write_text_atomic(const std::string& path, const std::string& text);
+// Writes a text file atomically: a fresh temporary beside it (O_EXCL), every write checked,
+// fsync, rename. Throws RuntimeFailure naming the file and errno (e.g. ENOSPC); the target then
+// keeps its previous contents and no temporary is left.
+void write_text_atomic(const std::string& path, std::string_view text);
 
 }  // namespace rlrun

@@ -1,29 +1,25 @@
 #include "rlrun/runtime/run_log.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <iostream>
-
-#include "rlrun/core/errors.hpp"
 
 namespace rlrun {
 
-RunLog::RunLog(std::string path) : path_(std::move(path)), file_(path_, std::ios::app) {
-  if (!file_) throw RuntimeFailure("cannot write " + path_ + ": " + std::strerror(errno));
-}
+RunLog::RunLog(const std::string& path) : file_(path, CheckedFile::Mode::kAppend) {}
 
 void RunLog::line(const std::string& text) {
   std::cout << text << std::endl;
-  file_ << text << std::endl;
-  check();
+  check();  // tables written before this line stay before it
+  file_ << text << '\n';
+  file_.flush();
 }
 
 void RunLog::check() {
+  const std::string pending = tables_.str();
+  if (!pending.empty()) {
+    file_ << pending;
+    tables_.str("");
+  }
   file_.flush();
-  if (!file_)
-    throw RuntimeFailure("cannot write " + path_ + ": " +
-                         (errno ? std::strerror(errno) : "write failed") +
-                         " (is the disk full?)");
 }
 
 }  // namespace rlrun

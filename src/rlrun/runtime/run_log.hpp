@@ -1,26 +1,29 @@
 #pragma once
-// A run's messages: each line on stdout and appended to `<run_dir>/log.txt`. A failed write
-// (a full disk) is an error at once, naming the file and the reason, not a log that silently
-// stops.
-#include <fstream>
+// A run's messages: each line on stdout and appended to `<run_dir>/log.txt`, with the console
+// table of every progress row (ConsoleTableSink writes into table()). Every write to the file
+// is checked (core/checked_file.hpp): a full disk is an error at once, naming the file and the
+// reason, not a log that silently stops.
+#include <sstream>
 #include <string>
+
+#include "rlrun/core/checked_file.hpp"
 
 namespace rlrun {
 
 class RunLog {
  public:
   // Throws RuntimeFailure when the file cannot be opened.
-  explicit RunLog(std::string path);
+  explicit RunLog(const std::string& path);
   // Prints and appends one line; throws RuntimeFailure when the file cannot be written.
   void line(const std::string& text);
-  // The file itself (the console table of each progress row goes there too).
-  std::ofstream& file() { return file_; }
-  // Flushes and throws RuntimeFailure if any write to the file has failed.
+  // Where the console tables for log.txt go; check() writes them out.
+  std::ostream& table() { return tables_; }
+  // Writes everything pending; throws RuntimeFailure if the file cannot be written.
   void check();
 
  private:
-  std::string path_;
-  std::ofstream file_;
+  CheckedFile file_;
+  std::ostringstream tables_;
 };
 
 }  // namespace rlrun

@@ -11,6 +11,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/sbatch_script.hpp"
 #include "rlrun/runtime/trainer.hpp"
 
 namespace rlrun {
@@ -55,6 +56,13 @@ std::string yaml_text(const YAML::Node& node) {
   return out.c_str();
 }
 
+// `text` as a YAML double-quoted scalar, read back as exactly `text`.
+std::string yaml_quoted(const std::string& text) {
+  YAML::Emitter out;
+  out << YAML::DoubleQuoted << text;
+  return out.c_str();
+}
+
 // File-name-safe: letters, digits and . _ + - stay, anything else becomes '-'.
 std::string safe(const std::string& text) {
   std::string out;
@@ -83,8 +91,13 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
   const ConfigNode root = ConfigNode::load_file(sweep_file);
   SweepFile file;
   decode(root, file);
+  check_slurm_options(root.child("slurm"), file.slurm);
   if (file.base.empty()) root.fail("base: missing (the experiment file every run starts from)");
   if (file.seeds.empty()) root.child("seeds").fail("needs at least one seed");
+  for (size_t i = 0; i < file.seeds.size(); ++i)  // run.seed's range (a uint64 read as int64)
+    if (file.seeds[i] < 0)
+      root.child("seeds").at(i).fail("seeds are integers from 0 to 2^63 - 1, got " +
+                                      std::to_string(file.seeds[i]));
   if (file.grid.defined() && file.list.defined())
     root.child("list").fail("a sweep has a grid or a list of configurations, not both");
   const fs::path here = fs::path(sweep_file).parent_path();
@@ -174,8 +187,9 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
       for (const Override& o : common) overrides.push_back(o.key + "=" + o.value);
       for (const Override& o : combo) overrides.push_back(o.key + "=" + o.value);
       overrides.push_back("run.seed=" + std::to_string(seed));
-      overrides.push_back("run.out_dir=" + (out_dir / "runs").string());
-      overrides.push_back("run.name=" + label);
+      // Quoted: a path may hold text YAML would read otherwise (" #" starts a comment).
+      overrides.push_back("run.out_dir=" + yaml_quoted((out_dir / "runs").string()));
+      overrides.push_back("run.name=" + yaml_quoted(label));
       const Experiment experiment = load_experiment(base, overrides, registry);
       run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
       write_text_atomic(run.config, "# run " + run.id + " of sweep " + sweep.source +
@@ -226,6 +240,8 @@ Sweep read_manifest(const std::string& manifest) {
   sweep.source = root.child("sweep").as_string();
   sweep.name = root.child("name").as_string();
   decode(root.child("slurm"), sweep.slurm);
+  // A manifest is not trusted (DESIGN.md §6b): its slurm options become #SBATCH lines.
+  check_slurm_options(root.child("slurm"), sweep.slurm);
   const ConfigNode runs = root.child("runs");
   if (!runs.is_sequence()) root.fail("runs: expected the list of runs");
   for (size_t i = 0; i < runs.size(); ++i) {
@@ -233,7 +249,9 @@ Sweep read_manifest(const std::string& manifest) {
     SweepRun run;
     run.index = static_cast<int>(r.child("index").as_int());
     run.id = r.child("id").as_string();
-    run.seed = static_cast<uint64_t>(r.child("seed").as_int());
+    const int64_t seed = r.child("seed").as_int();
+    if (seed < 0) r.child("seed").fail("seeds are integers from 0 to 2^63 - 1");
+    run.seed = static_cast<uint64_t>(seed);
     run.label = run.id.substr(0, run.id.rfind('/'));
     // A manifest may come from anyone: its paths must stay inside its own directory, since
     // `sweep run` writes (and for a run restarted from scratch, deletes) the run directory.
@@ -270,27 +288,6 @@ const char* to_string(RunState state) {
     case RunState::kPartial: return "partial";
   }
   return "?";
-}
-
-std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary) {
-  const fs::path dir = fs::path(sweep.manifest).parent_path();
-  const SlurmOptions& s = sweep.slurm;
-  std::string text = "#!/bin/bash\n# Written by `rlrun sweep slurm " + sweep.manifest +
-                     "`: task i trains run i of the manifest\n# (a finished run is skipped, an "
-                     "interrupted one resumed). Submit with: sbatch " +
-                     (dir / "sweep.sbatch").string() + "\n";
-  text += "#SBATCH --job-name=" + safe(sweep.name) + "\n";
-  text += "#SBATCH --array=0-" + std::to_string(sweep.runs.size() - 1) + "\n";
-  text += "#SBATCH --output=" + (dir / "slurm" / "%A_%a.out").string() + "\n";
-  text += "#SBATCH --cpus-per-task=" + std::to_string(s.cpus_per_task) + "\n";
-  if (!s.time.empty()) text += "#SBATCH --time=" + s.time + "\n";
-  if (!s.mem.empty()) text += "#SBATCH --mem=" + s.mem + "\n";
-  if (!s.partition.empty()) text += "#SBATCH --partition=" + s.partition + "\n";
-  for (const std::string& line : s.extra) text += "#SBATCH " + line + "\n";
-  const int threads = s.cpus_per_task >= 2 ? 2 : 1;
-  text += "exec " + rlrun_binary + " --threads " + std::to_string(threads) + " sweep run " +
-          sweep.manifest + " --index \"$SLURM_ARRAY_TASK_ID\"\n";
-  return text;
 }
 
 }  // namespace rlrun

@@ -42,7 +42,7 @@ struct SlurmOptions {
     v("time", time, "sbatch --time per run");
     v("cpus_per_task", cpus_per_task, "sbatch --cpus-per-task; also rlrun --threads (1 or 2)");
     v("mem", mem, "sbatch --mem (empty: the cluster's default)");
-    v("extra", extra, "further sbatch options, one per #SBATCH line");
+    v("extra", extra, "further sbatch options, one per #SBATCH line (--option=value)");
   }
 };
 
@@ -82,8 +82,6 @@ RunState run_state(const SweepRun& run);
 bool run_config_matches(const SweepRun& run);
 const char* to_string(RunState state);
 
-// The sbatch script for the manifest: an array job whose task i runs
-// `<rlrun> --threads <cpus> sweep run <manifest> --index i`, logs in <out_dir>/slurm/.
-std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary);
+// The sbatch script of a manifest: runtime/sbatch_script.hpp.
 
 }  // namespace rlrun

@@ -190,7 +190,7 @@ void TrainingRun::build_logging() {
   logger_.add_sink(std::move(csv_sink));
   logger_.add_sink(std::make_unique<ConsoleTableSink>(std::cout, experiment_.run.console_interval,
                                                       [this] { bar_->clear(); }));
-  logger_.add_sink(std::make_unique<ConsoleTableSink>(log_->file(), 0.0));
+  logger_.add_sink(std::make_unique<ConsoleTableSink>(log_->table(), 0.0));
   context_.emplace(TrainingContext{experiment_, registry_, outcome_.run_dir, *algorithm_, *env_,
                                    &logger_,
                                    [this](const std::string& message) {
@@ -230,7 +230,8 @@ void TrainingRun::restore() {
   message += last_checkpoint_.empty()
                  ? " No checkpoint was written (set checkpoint.freq to keep one)."
                  : " The last good checkpoint is " + last_checkpoint_ + ".";
-  log_->file() << "error: " << message << std::endl;  // main prints it on stderr
+  log_->table() << "error: " << message << "\n";  // main prints it on stderr
+  log_->check();
   throw RuntimeFailure(message);
 }
 

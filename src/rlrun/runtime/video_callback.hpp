@@ -10,13 +10,13 @@
 #include <cstdint>
 
 #include "rlrun/core/config_checks.hpp"
+#include "rlrun/render/video_limits.hpp"
 #include "rlrun/runtime/callback.hpp"
 
 namespace rlrun {
 
-// The largest video side: H.264 level 6.2 allows 8192 pixels, but a frame of 4096 x 4096
-// already takes 48 MiB in RGB; no env draws more detail than that.
-inline constexpr int kMaxVideoSide = 4096;
+// The largest video side and rate: render/video_limits.hpp says why.
+inline constexpr int kMaxVideoSide = kMaxFrameSide;
 
 // The `section:` of the experiment file: an mp4 of evaluation episodes every `freq` steps.
 struct VideoConfig {
@@ -33,7 +33,7 @@ struct VideoConfig {
     v("n_episodes", n_episodes, "evaluation episodes per video", in_range(1, 10000));
     v("deterministic", deterministic, "use the deterministic policy");
     v("fps", fps, "frames per second (null = the env's, e.g. 50 for CartPole)",
-      in_range(0, 1000).open_low());
+      in_range(0, kMaxVideoFps).open_low());
     v("width", width, "frame width in pixels (0 = the env's, e.g. 600)",
       in_range(0, kMaxVideoSide));
     v("height", height, "frame height in pixels (0 = the env's, e.g. 400)",

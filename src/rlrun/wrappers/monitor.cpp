@@ -28,21 +28,17 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
     columns.push_back(keyword);
   }
   if (path.empty()) return;
-  file_ = std::fopen(path.c_str(), append ? "a" : "w");
-  if (!file_) throw RuntimeFailure("cannot write monitor file " + path);
+  file_ = CheckedFile(path, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
   if (append) return;
   char t_start_text[64];
   std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);
-  std::fprintf(file_, "#{\"t_start\": %s, \"env_id\": \"%s\"}\nr,l,t", t_start_text,
-               inner_->id().c_str());
-  for (const auto& column : columns) std::fprintf(file_, ",%s", column.c_str());
-  std::fprintf(file_, "\n");
-  std::fflush(file_);
+  file_ << "#{\"t_start\": " << t_start_text << ", \"env_id\": \"" << inner_->id() << "\"}\nr,l,t";
+  for (const auto& column : columns) file_ << ',' << column;
+  file_ << '\n';
+  file_.flush();
 }
 
-Monitor::~Monitor() {
-  if (file_) std::fclose(file_);
-}
+Monitor::~Monitor() = default;
 
 void Monitor::write_own_state(StateWriter& out) const {
   StateWriter own = out.sub("monitor");
@@ -129,21 +125,22 @@ void Monitor::account(double reward, bool episode_ended) {
     info_.set(episode_r_, r);
     info_.set(episode_l_, static_cast<double>(episode_length_));
     info_.set(episode_t_, t);
-    if (file_) {
-      std::fprintf(file_, "%s,%lld,%s", python_float_repr(r).c_str(),
-                   static_cast<long long>(episode_length_), python_float_repr(t).c_str());
+    if (file_.is_open()) {
+      char length[24];
+      std::snprintf(length, sizeof length, ",%lld,", static_cast<long long>(episode_length_));
+      file_ << python_float_repr(r) << length << python_float_repr(t);
       const auto& values = inner_->info().values();
       for (int index : keyword_inner_index_) {
         const double v = values[index];
         if (std::isnan(v))
-          std::fprintf(file_, ",");
+          file_ << ',';
         else if (v == 0.0 || v == 1.0)
-          std::fprintf(file_, ",%s", v == 1.0 ? "True" : "False");
+          file_ << (v == 1.0 ? ",True" : ",False");
         else
-          std::fprintf(file_, ",%s", python_float_repr(v).c_str());
+          file_ << ',' << python_float_repr(v);
       }
-      std::fprintf(file_, "\n");
-      std::fflush(file_);
+      file_ << '\n';
+      file_.flush();  // a full disk stops the run here: RuntimeFailure naming the file and errno
     }
   }
 }

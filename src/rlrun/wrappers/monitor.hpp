@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/float_format.hpp"
 #include "rlrun/env/wrapper.hpp"
 
@@ -50,7 +51,7 @@ class Monitor : public Wrapper {
   // Counts one step of `reward`; writes the episode's row when it ended.
   void account(double reward, bool episode_ended);
   void copy_inner_info();
-  std::FILE* file_ = nullptr;
+  CheckedFile file_;  // every row flushed and checked (core/checked_file.hpp)
   double t_start_;
   std::chrono::steady_clock::time_point clock_start_;
   Info info_;

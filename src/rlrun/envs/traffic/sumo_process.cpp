@@ -21,6 +21,7 @@
 #include <libsumo/libtraci.h>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/private_temp_dir.hpp"
 
 namespace rlrun {
 
@@ -67,7 +68,8 @@ std::string find_executable(const std::string& binary) {
   return "";
 }
 
-SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
+SumoProcess::SumoProcess(const Options& options)
+    : dir_("rlrun-sumo-", PrivateTempDir::RemoveStale::kYes), label_(next_label()) {
   // A socket whose SUMO has gone must fail with an error (reported with SUMO's output), not
   // kill rlrun with SIGPIPE.
   struct sigaction current;
@@ -79,7 +81,6 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
                          "' was not found; install the Debian package 'sumo' (apt install sumo)");
   if (!std::filesystem::exists(options.config))
     throw RuntimeFailure("SUMO scenario " + options.config + " does not exist");
-  log_path_ = (std::filesystem::temp_directory_path() / (label_ + ".log")).string();
   const int port = free_port();
   std::vector<std::string> args{binary, "--remote-port", std::to_string(port)};
   for (std::string& a : sumo_arguments(options)) args.push_back(std::move(a));
@@ -89,24 +90,27 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  const char* log_path = log_path_.c_str();
+  // SUMO's output goes to a fresh file in this process's private directory (O_EXCL, no
+  // symlink followed), opened here so the child only has to dup2 it.
+  log_path_ = dir_.file("sumo.log");
+  const int log_fd = dir_.create_file("sumo.log");
   const pid_t parent = getpid();
   pid_ = fork();
-  if (pid_ < 0) throw RuntimeFailure("cannot start SUMO (fork failed)");
+  if (pid_ < 0) {
+    close(log_fd);
+    throw RuntimeFailure("cannot start SUMO (fork failed)");
+  }
   if (pid_ == 0) {
     // SUMO dies with rlrun, whatever kills rlrun.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(1);
     setpgid(0, 0);  // Ctrl-C at the terminal is rlrun's to handle, not SUMO's
-    const int fd = open(log_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-      close(fd);
-    }
+    dup2(log_fd, STDOUT_FILENO);  // the copies are not close-on-exec; log_fd itself is
+    dup2(log_fd, STDERR_FILENO);
     execv(argv[0], argv.data());
     _exit(127);
   }
+  close(log_fd);
   // SUMO listens after loading the network (milliseconds); poll instead of libtraci's
   // one-second retry sleep.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -123,18 +127,15 @@ SumoProcess::SumoProcess(const Options& options) : label_(next_label()) {
       }
       if (std::chrono::steady_clock::now() > deadline) {
         stop();
-        throw RuntimeFailure("SUMO did not accept the TraCI connection within 30 s");
+        throw RuntimeFailure("SUMO did not accept the TraCI connection within 30 s; its output:\n" +
+                             output_tail());
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
   }
 }
 
-SumoProcess::~SumoProcess() {
-  stop();
-  std::error_code ec;
-  std::filesystem::remove(log_path_, ec);
-}
+SumoProcess::~SumoProcess() { stop(); }  // then dir_ goes, with the log
 
 void SumoProcess::activate() const { libtraci::Simulation::switchConnection(label_); }
 

@@ -2,8 +2,11 @@
 // One SUMO simulation owned by one env, driven over TraCI with SUMO's own C++ client
 // (libtracicpp, Debian package `sumo`). The process is started here, not by libtraci's
 // Simulation::start, so that rlrun knows its pid and output: `sumo -c CFG --remote-port P
-// --seed S --no-step-log ...` on a free port, stdout/stderr into a log file, connected under a
-// label of its own (libtraci keeps one connection per label: several envs, several SUMOs).
+// --seed S --no-step-log ...` on a free port (argv, no shell), stdout/stderr into a log file,
+// connected under a label of its own (libtraci keeps one connection per label: several envs,
+// several SUMOs). The log lives in a private temporary directory (core/private_temp_dir.hpp)
+// that goes with the object, also when the constructor fails: the error quotes the log's last
+// lines first.
 //
 // No SUMO outlives rlrun: the destructor closes the connection and reaps the process (killing
 // it after a grace period), and the child asks the kernel for SIGKILL when rlrun dies
@@ -14,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/private_temp_dir.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
 
 namespace rlrun {
@@ -42,7 +46,7 @@ class SumoProcess {
   std::string output_tail(int lines = 10) const;
 
  private:
-
+  PrivateTempDir dir_;  // first: made before anything can fail, removed after the process ends
   std::string label_;
   std::string log_path_;
   pid_t pid_ = -1;

@@ -57,14 +57,15 @@ TrafficSignal::TrafficSignal(const Config& config)
   if (config_.gui && config_.backend == "libsumo")
     throw std::invalid_argument("TrafficSignal-v0: gui: true needs backend: traci (sumo-gui is a "
                                 "program of its own)");
-  // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours.
-  static std::atomic<int> instances{0};
-  tripinfo_path_ = !config_.tripinfo_output.value.empty()
-                       ? config_.tripinfo_output.value
-                       : (std::filesystem::temp_directory_path() /
-                          ("rlrun" + std::to_string(getpid()) + "_" +
-                           std::to_string(instances++) + ".tripinfo.xml"))
-                             .string();
+  // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours in
+  // a private directory (SUMO opens the file with O_TRUNC, following links: no shared /tmp).
+  if (config_.tripinfo_output.value.empty()) {
+    tripinfo_dir_ =
+        std::make_unique<PrivateTempDir>("rlrun-tripinfo-", PrivateTempDir::RemoveStale::kYes);
+    tripinfo_path_ = tripinfo_dir_->file("tripinfo.xml");
+  } else {
+    tripinfo_path_ = config_.tripinfo_output.value;
+  }
   key_waiting_ = info_.add_key("avg_waiting_time");
   key_travel_ = info_.add_key("avg_travel_time");
   key_queue_ = info_.add_key("total_queue_length");

@@ -39,6 +39,7 @@
 #include "rlrun/info.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
 #include "rlrun/envs/traffic/traffic_scenario.hpp"
+#include "rlrun/core/private_temp_dir.hpp"
 
 namespace rlrun {
 
@@ -168,7 +169,8 @@ class TrafficSignal : public Env {
   // SUMO's tripinfo at the episode's end: vehicles arrived, their mean waiting and travel time.
   int throughput_ = 0;
   double avg_waiting_ = 0, avg_travel_ = 0;
-  std::string tripinfo_path_;     // config.tripinfo_output, else a temporary file
+  std::string tripinfo_path_;     // config.tripinfo_output, else a file in tripinfo_dir_
+  std::unique_ptr<PrivateTempDir> tripinfo_dir_;  // private; goes with the env
   double last_waiting_sum_ = 0;  // diff-waiting-time
   int key_waiting_, key_travel_, key_queue_, key_throughput_, key_time_;
   bool has_state_ = false;

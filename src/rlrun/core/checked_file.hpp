@@ -1,0 +1,55 @@
+#pragma once
+// A file written with every write checked, for the files a run appends to as it goes
+// (progress.csv, the monitor files, evaluations.csv). std::ofstream and stdio remember a failed
+// write only in a flag nobody reads, so a full disk went unnoticed until the next model file;
+// here text is collected in memory and flush() hands it to write(2) at once, turning a short or
+// failed write into a RuntimeFailure that names the file and the error ("cannot write
+// runs/x/progress.csv: No space left on device (ENOSPC)"). The training then stops (exit 1),
+// its last checkpoint untouched.
+#include <string>
+#include <string_view>
+
+namespace rlrun {
+
+// strerror text and the errno's name: "No space left on device (ENOSPC)".
+std::string describe_errno(int error);
+
+class CheckedFile {
+ public:
+  enum class Mode { kTruncate, kAppend };
+
+  CheckedFile() = default;
+  // Opens (creating it, mode 0666 less the umask). Throws RuntimeFailure with the reason.
+  CheckedFile(std::string path, Mode mode);
+  // Writes what is still buffered (errors ignored: a destructor cannot report them) and closes.
+  ~CheckedFile();
+  CheckedFile(CheckedFile&& other) noexcept;
+  CheckedFile& operator=(CheckedFile&& other) noexcept;
+  CheckedFile(const CheckedFile&) = delete;
+  CheckedFile& operator=(const CheckedFile&) = delete;
+
+  bool is_open() const { return fd_ >= 0; }
+  const std::string& path() const { return path_; }
+
+  // Buffers text; nothing reaches the file before flush().
+  CheckedFile& operator<<(std::string_view text) {
+    buffer_.append(text);
+    return *this;
+  }
+  CheckedFile& operator<<(char c) {
+    buffer_.push_back(c);
+    return *this;
+  }
+  // Writes the buffer (all of it, or throws RuntimeFailure naming the file and errno).
+  void flush();
+  // flush(), then close(2), also checked (NFS reports some write errors only there).
+  void close();
+
+ private:
+  void release() noexcept;
+  std::string path_;
+  int fd_ = -1;
+  std::string buffer_;
+};
+
+}  // namespace rlrun

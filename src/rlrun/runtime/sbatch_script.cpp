@@ -1,0 +1,180 @@
+#include "rlrun/runtime/sbatch_script.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+
+#include "rlrun/core/errors.hpp"
+
+namespace rlrun {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool is_control(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u < 0x20 || u == 0x7f;
+}
+
+// The value as it may be shown in a one-line message: control characters as \n, \r, \xNN.
+std::string printable(const std::string& value) {
+  std::string out;
+  for (char c : value) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (is_control(c)) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return "'" + out + "'";
+}
+
+// A path as one argument of a `#SBATCH` line, for sbatch's tokenizer (see the header): inside
+// double quotes, with \ and " escaped by a backslash; % doubled because sbatch expands %A, %a,
+// %j ... in --output names and writes %% as one % (sbatch(1), "filename pattern").
+std::string sbatch_quoted_path(const std::string& path) {
+  std::string out = "\"";
+  for (char c : path) {
+    if (c == '\\' || c == '"') out += '\\';
+    if (c == '%') out += '%';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string shell_quote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'')
+      out += "'\\''";  // close the quote, an escaped quote, open again
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+std::string script_path_problem(const std::string& path) {
+  for (char c : path)
+    if (is_control(c))
+      return "the path " + printable(path) +
+             " contains a control character (a newline?), which no line of an sbatch script "
+             "can hold safely; use a directory without it";
+  return "";
+}
+
+std::string slurm_value_problem(const std::string& key, const std::string& value) {
+  // What sbatch accepts for each option (sbatch(1)), narrowed to characters that mean the same
+  // on a `#SBATCH` line as on a command line: no blanks, quotes, backslashes, '#' or control
+  // characters, which sbatch's tokenizer would split, unquote or cut.
+  static const std::regex time(R"(([0-9]+-)?[0-9]+(:[0-9]+){0,2}|[Uu][Nn][Ll][Ii][Mm][Ii][Tt][Ee][Dd]|[Ii][Nn][Ff][Ii][Nn][Ii][Tt][Ee])");
+  static const std::regex mem(R"([0-9]+[KMGTkmgt]?)");
+  static const std::regex partition(R"([A-Za-z0-9_.,-]+)");
+  static const std::regex extra(R"(--[A-Za-z][A-Za-z0-9-]*(=[^\s'"\\#]+)?)");
+  bool control = false;
+  for (char c : value) control = control || is_control(c);
+  const std::string why =
+      control ? " (it holds a control character: a newline would end the #SBATCH line and start "
+                "a command)"
+              : "";
+  if (key == "time") {
+    if (value.empty() || (!control && std::regex_match(value, time))) return "";
+    return "time " + printable(value) +
+           " is not a Slurm time limit" + why +
+           "; write MM, HH:MM:SS or D-HH:MM:SS, e.g. \"01:30:00\" or \"2-00:00:00\"";
+  }
+  if (key == "mem") {
+    if (value.empty() || (!control && std::regex_match(value, mem))) return "";
+    return "mem " + printable(value) + " is not a Slurm memory size" + why +
+           "; write a number with an optional unit K, M, G or T, e.g. 4G or 500M";
+  }
+  if (key == "partition") {
+    if (value.empty() || (!control && std::regex_match(value, partition))) return "";
+    return "partition " + printable(value) + " is not a Slurm partition name" + why +
+           "; use letters, digits, '_', '.', '-' (a list separated by ',')";
+  }
+  if (key == "extra") {
+    if (!control && std::regex_match(value, extra)) return "";
+    return "extra " + printable(value) + " is not one sbatch option" + why +
+           "; write --option or --option=value without blanks, quotes, '\\' or '#', e.g. "
+           "\"--qos=short\" (each item becomes one #SBATCH line)";
+  }
+  if (key == "cpus_per_task") {
+    static const std::regex count(R"([1-9][0-9]{0,5})");
+    if (std::regex_match(value, count)) return "";
+    return "cpus_per_task " + printable(value) + " must be an integer >= 1";
+  }
+  return "unknown slurm option " + key;
+}
+
+void check_slurm_options(const ConfigNode& slurm, const SlurmOptions& options) {
+  const auto check = [&](const std::string& key, const std::string& value, const ConfigNode& at) {
+    const std::string problem = slurm_value_problem(key, value);
+    if (!problem.empty()) at.fail(problem);
+  };
+  check("time", options.time, slurm.child("time"));
+  check("mem", options.mem, slurm.child("mem"));
+  check("partition", options.partition, slurm.child("partition"));
+  check("cpus_per_task", std::to_string(options.cpus_per_task), slurm.child("cpus_per_task"));
+  const ConfigNode extra = slurm.child("extra");
+  for (size_t i = 0; i < options.extra.size(); ++i)
+    check("extra", options.extra[i], i < extra.size() ? extra.at(i) : extra);
+}
+
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary) {
+  for (const std::string& path : {sweep.manifest, rlrun_binary}) {
+    const std::string problem = script_path_problem(path);
+    if (!problem.empty()) throw UsageError("cannot write the sbatch script: " + problem);
+  }
+  const SlurmOptions& s = sweep.slurm;
+  // The options were checked where they were read (expand_sweep, read_manifest); checked again
+  // here because this is where they become script text.
+  const auto option = [](const std::string& key, const std::string& value) {
+    const std::string problem = slurm_value_problem(key, value);
+    if (!problem.empty()) throw UsageError("cannot write the sbatch script: " + problem);
+  };
+  option("time", s.time);
+  option("mem", s.mem);
+  option("partition", s.partition);
+  option("cpus_per_task", std::to_string(s.cpus_per_task));
+  for (const std::string& line : s.extra) option("extra", line);
+
+  const fs::path dir = fs::path(sweep.manifest).parent_path();
+  const std::string script = (dir / "sweep.sbatch").string();
+  // The job name is the sweep's name reduced to [A-Za-z0-9._+-].
+  std::string job_name;
+  for (char c : sweep.name)
+    job_name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
+                        c == '-'
+                    ? c
+                    : '-';
+  std::string text = "#!/bin/bash\n# Written by: rlrun sweep slurm " + shell_quote(sweep.manifest) +
+                     "\n# Task i trains run i of the manifest (a finished run is skipped, an "
+                     "interrupted one resumed).\n# Submit with: sbatch " +
+                     shell_quote(script) + "\n";
+  text += "#SBATCH --job-name=" + (job_name.empty() ? std::string("sweep") : job_name) + "\n";
+  text += "#SBATCH --array=0-" + std::to_string(sweep.runs.size() - 1) + "\n";
+  text += "#SBATCH --output=" + sbatch_quoted_path((dir / "slurm").string() + "/") + "%A_%a.out\n";
+  text += "#SBATCH --cpus-per-task=" + std::to_string(s.cpus_per_task) + "\n";
+  if (!s.time.empty()) text += "#SBATCH --time=" + s.time + "\n";
+  if (!s.mem.empty()) text += "#SBATCH --mem=" + s.mem + "\n";
+  if (!s.partition.empty()) text += "#SBATCH --partition=" + s.partition + "\n";
+  for (const std::string& line : s.extra) text += "#SBATCH " + line + "\n";
+  const int threads = s.cpus_per_task >= 2 ? 2 : 1;
+  text += "exec " + shell_quote(rlrun_binary) + " --threads " + std::to_string(threads) +
+          " sweep run " + shell_quote(sweep.manifest) + " --index \"$SLURM_ARRAY_TASK_ID\"\n";
+  return text;
+}
+
+}  // namespace rlrun

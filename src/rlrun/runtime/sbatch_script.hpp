@@ -1,0 +1,40 @@
+#pragma once
+// The sbatch script of a sweep (`rlrun sweep slurm`), written so that no value in it can become
+// a command (DESIGN.md §6b: generated scripts quote every value).
+//
+// Two languages read the script. bash runs its body: every value there (the rlrun binary, the
+// manifest) is a POSIX single-quoted word. sbatch reads the `#SBATCH` lines before bash runs,
+// with a tokenizer of its own (Slurm's src/sbatch/opt.c, _get_argument: whitespace splits,
+// '...' and "..." group, backslash escapes one character, an unquoted '#' starts a comment) and
+// a line ends at the newline whatever the quoting. So a `#SBATCH` value cannot be quoted the
+// way bash words are: the sweep's own options (time, mem, partition, extra) are checked
+// against what Slurm accepts for them instead, and only the --output path, which rlrun makes
+// from out_dir, is quoted for sbatch's tokenizer. No control character (newline, carriage
+// return, ...) may appear anywhere in the script's values.
+#include <string>
+
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/runtime/sweep.hpp"
+
+namespace rlrun {
+
+// `text` as one POSIX shell word: 'text', each ' written as '\''. Safe for any bytes but NUL.
+std::string shell_quote(const std::string& text);
+
+// "" when `path` may appear in the script, else why not (a control character).
+std::string script_path_problem(const std::string& path);
+
+// "" when the value of slurm option `key` (time, mem, partition, extra, cpus_per_task) is one
+// sbatch reads as meant from a `#SBATCH` line, else the problem and an example.
+std::string slurm_value_problem(const std::string& key, const std::string& value);
+
+// Checks every option of `options`, read from `slurm` (the sweep file's or the manifest's
+// `slurm:` map): a bad value is a ConfigError at its file:line:col.
+void check_slurm_options(const ConfigNode& slurm, const SlurmOptions& options);
+
+// The sbatch script for the manifest: an array job whose task i runs
+// `<rlrun> --threads <1|2> sweep run <manifest> --index i`, logs in <out_dir>/slurm/. Throws
+// UsageError when a path or an option cannot be written safely.
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary);
+
+}  // namespace rlrun
