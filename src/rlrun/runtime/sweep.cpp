@@ -85,12 +85,8 @@ std::vector<Override> map_overrides(const ConfigNode& map) {
   return out;
 }
 
-}  // namespace
-
-Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
-  const ConfigNode root = ConfigNode::load_file(sweep_file);
-  SweepFile file;
-  decode(root, file);
+// The sweep file's own checks: a base, seeds in run.seed's range, a grid or a list.
+void check_sweep_file(const ConfigNode& root, const SweepFile& file) {
   check_slurm_options(root.child("slurm"), file.slurm);
   if (file.base.empty()) root.fail("base: missing (the experiment file every run starts from)");
   if (file.seeds.empty()) root.child("seeds").fail("needs at least one seed");
@@ -100,54 +96,55 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
                                       std::to_string(file.seeds[i]));
   if (file.grid.defined() && file.list.defined())
     root.child("list").fail("a sweep has a grid or a list of configurations, not both");
-  const fs::path here = fs::path(sweep_file).parent_path();
-  const std::string base = fs::path(file.base).is_absolute() ? file.base : (here / file.base).string();
-  if (!fs::exists(base)) root.child("base").fail(base + " does not exist");
-  const std::string name = file.name.empty() ? fs::path(sweep_file).stem().string() : file.name;
-  const fs::path out_dir =
-      fs::absolute(file.out_dir.empty() ? fs::path("runs/sweeps") / name : fs::path(file.out_dir))
-          .lexically_normal();
+}
 
-  // The configurations: the grid's cartesian product (keys in file order), or the list.
-  std::vector<std::vector<Override>> combos{{}};
-  if (file.grid.defined()) {
-    // The number of runs is known before anything is expanded: 8 axes of 10 values are 10^8
-    // runs, which no sweep means; refuse it instead of building them.
-    double runs = static_cast<double>(file.seeds.size());
-    for (const Override& axis : map_overrides(file.grid))
-      runs *= static_cast<double>(std::max<std::size_t>(axis.node.size(), 1));
-    if (runs > kMaxSweepRuns)
-      file.grid.fail("the grid gives " + std::to_string(static_cast<long long>(runs)) +
-                     " runs (values per key multiplied, times the seeds); a sweep has at most " +
-                     std::to_string(kMaxSweepRuns));
-    for (const Override& axis : map_overrides(file.grid)) {
-      if (!axis.node.is_sequence() || axis.node.size() == 0)
-        axis.node.fail("expected a non-empty list of values, e.g. [3.0e-4, 1.0e-3]");
-      std::vector<std::vector<Override>> next;
-      for (const auto& combo : combos)
-        for (size_t i = 0; i < axis.node.size(); ++i) {
-          auto extended = combo;
-          extended.push_back({axis.key, yaml_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
-          next.push_back(extended);
-        }
-      combos = next;
-    }
-  } else if (file.list.defined()) {
-    if (!file.list.is_sequence() || file.list.size() == 0)
-      file.list.fail("expected a non-empty list of {key: value} maps");
-    if (static_cast<double>(file.list.size()) * static_cast<double>(file.seeds.size()) > kMaxSweepRuns)
-      file.list.fail("the list times the seeds gives more than " + std::to_string(kMaxSweepRuns) +
-                     " runs");
-    combos.clear();
-    for (size_t i = 0; i < file.list.size(); ++i) combos.push_back(map_overrides(file.list.at(i)));
+using Combination = std::vector<Override>;
+
+// The grid's cartesian product (keys in file order). The number of runs is known before
+// anything is expanded: 8 axes of 10 values are 10^8 runs, which no sweep means; it is refused
+// instead of built.
+std::vector<Combination> grid_combinations(const SweepFile& file) {
+  double runs = static_cast<double>(file.seeds.size());
+  for (const Override& axis : map_overrides(file.grid))
+    runs *= static_cast<double>(std::max<std::size_t>(axis.node.size(), 1));
+  if (runs > kMaxSweepRuns)
+    file.grid.fail("the grid gives " + std::to_string(static_cast<long long>(runs)) +
+                   " runs (values per key multiplied, times the seeds); a sweep has at most " +
+                   std::to_string(kMaxSweepRuns));
+  std::vector<Combination> combos{{}};
+  for (const Override& axis : map_overrides(file.grid)) {
+    if (!axis.node.is_sequence() || axis.node.size() == 0)
+      axis.node.fail("expected a non-empty list of values, e.g. [3.0e-4, 1.0e-3]");
+    std::vector<Combination> next;
+    for (const auto& combo : combos)
+      for (size_t i = 0; i < axis.node.size(); ++i) {
+        auto extended = combo;
+        extended.push_back({axis.key, yaml_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
+        next.push_back(extended);
+      }
+    combos = next;
   }
-  const std::vector<Override> common = file.set.defined() ? map_overrides(file.set) : std::vector<Override>{};
+  return combos;
+}
 
-  // Every key must exist in the base experiment: checked one by one, so the error points at
-  // the sweep file's line rather than at a generated `--set`.
-  std::vector<std::string> short_names;
-  for (const auto& combo : combos)
-    for (const Override& o : combo) short_names.push_back(last_component(o.key));
+// The configurations: the grid's product, the list's entries, or the base alone.
+std::vector<Combination> combinations(const SweepFile& file) {
+  if (file.grid.defined()) return grid_combinations(file);
+  if (!file.list.defined()) return {{}};
+  if (!file.list.is_sequence() || file.list.size() == 0)
+    file.list.fail("expected a non-empty list of {key: value} maps");
+  if (static_cast<double>(file.list.size()) * static_cast<double>(file.seeds.size()) > kMaxSweepRuns)
+    file.list.fail("the list times the seeds gives more than " + std::to_string(kMaxSweepRuns) +
+                   " runs");
+  std::vector<Combination> combos;
+  for (size_t i = 0; i < file.list.size(); ++i) combos.push_back(map_overrides(file.list.at(i)));
+  return combos;
+}
+
+// Every key must exist in the base experiment: checked one by one, so the error points at the
+// sweep file's line rather than at a generated `--set`.
+void check_overrides(const std::string& base, const Combination& common,
+                     const std::vector<Combination>& combos, Registry& registry) {
   const auto check = [&](const Override& o) {
     try {
       load_experiment(base, {o.key + "=" + o.value}, registry);
@@ -158,16 +155,17 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
   for (const Override& o : common) check(o);
   for (const auto& combo : combos)
     for (const Override& o : combo) check(o);
+}
 
-  Sweep sweep;
-  sweep.name = name;
-  sweep.source = fs::absolute(sweep_file).lexically_normal().string();
-  sweep.manifest = (out_dir / "manifest.yaml").string();
-  sweep.slurm = file.slurm;
-  fs::create_directories(out_dir / "configs");
-  std::map<std::string, int> label_uses;
+// A label names each overridden key by its last component unless another key shares it
+// ("learning_rate=0.001"; "base" without overrides); a repeated list entry gets _2, _3, ...
+std::vector<std::string> labels(const std::vector<Combination>& combos) {
+  std::vector<std::string> short_names;
+  for (const auto& combo : combos)
+    for (const Override& o : combo) short_names.push_back(last_component(o.key));
+  std::vector<std::string> out;
+  std::map<std::string, int> uses;
   for (const auto& combo : combos) {
-    // A label names each overridden key by its last component unless two keys share it.
     std::string label;
     for (const Override& o : combo) {
       const std::string short_name = last_component(o.key);
@@ -176,29 +174,35 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
       label += (label.empty() ? "" : "_") + safe(unique ? short_name : o.key) + "=" + safe(o.value);
     }
     if (label.empty()) label = "base";
-    if (label_uses[label]++ > 0) label += "_" + std::to_string(label_uses[label]);  // a repeated list entry
-    for (int64_t seed : file.seeds) {
-      SweepRun run;
-      run.index = static_cast<int>(sweep.runs.size());
-      run.label = label;
-      run.seed = static_cast<uint64_t>(seed);
-      run.id = label + "/seed" + std::to_string(seed);
-      std::vector<std::string> overrides;
-      for (const Override& o : common) overrides.push_back(o.key + "=" + o.value);
-      for (const Override& o : combo) overrides.push_back(o.key + "=" + o.value);
-      overrides.push_back("run.seed=" + std::to_string(seed));
-      // Quoted: a path may hold text YAML would read otherwise (" #" starts a comment).
-      overrides.push_back("run.out_dir=" + yaml_quoted((out_dir / "runs").string()));
-      overrides.push_back("run.name=" + yaml_quoted(label));
-      const Experiment experiment = load_experiment(base, overrides, registry);
-      run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
-      write_text_atomic(run.config, "# run " + run.id + " of sweep " + sweep.source +
-                                        " (written by rlrun sweep)\n" + dump_yaml(experiment.resolved));
-      run.run_dir = (out_dir / "runs" / label / ("seed" + std::to_string(seed))).string();
-      sweep.runs.push_back(run);
-    }
+    if (uses[label]++ > 0) label += "_" + std::to_string(uses[label]);
+    out.push_back(label);
   }
+  return out;
+}
 
+// One run: its resolved config written to <out_dir>/configs/, its directory under runs/.
+SweepRun expand_run(const Sweep& sweep, const fs::path& out_dir, const std::string& base,
+                    const std::string& label, const std::vector<std::string>& overrides,
+                    int64_t seed, Registry& registry) {
+  SweepRun run;
+  run.index = static_cast<int>(sweep.runs.size());
+  run.label = label;
+  run.seed = static_cast<uint64_t>(seed);
+  run.id = label + "/seed" + std::to_string(seed);
+  std::vector<std::string> all = overrides;
+  all.push_back("run.seed=" + std::to_string(seed));
+  // Quoted: a path may hold text YAML would read otherwise (" #" starts a comment).
+  all.push_back("run.out_dir=" + yaml_quoted((out_dir / "runs").string()));
+  all.push_back("run.name=" + yaml_quoted(label));
+  const Experiment experiment = load_experiment(base, all, registry);
+  run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
+  write_text_atomic(run.config, "# run " + run.id + " of sweep " + sweep.source +
+                                    " (written by rlrun sweep)\n" + dump_yaml(experiment.resolved));
+  run.run_dir = (out_dir / "runs" / label / ("seed" + std::to_string(seed))).string();
+  return run;
+}
+
+void write_manifest(const Sweep& sweep, const fs::path& out_dir) {
   YAML::Emitter out;
   out << YAML::BeginMap << YAML::Key << "sweep" << YAML::Value << sweep.source << YAML::Key << "name"
       << YAML::Value << sweep.name << YAML::Key << "slurm" << YAML::Value << encode(sweep.slurm)
@@ -214,6 +218,41 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
   write_text_atomic(sweep.manifest, "# rlrun sweep manifest: `rlrun sweep run " + sweep.manifest +
                                         "` trains the runs (paths relative to this file)\n" +
                                         out.c_str() + "\n");
+}
+
+}  // namespace
+
+Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
+  const ConfigNode root = ConfigNode::load_file(sweep_file);
+  SweepFile file;
+  decode(root, file);
+  check_sweep_file(root, file);
+  const fs::path here = fs::path(sweep_file).parent_path();
+  const std::string base = fs::path(file.base).is_absolute() ? file.base : (here / file.base).string();
+  if (!fs::exists(base)) root.child("base").fail(base + " does not exist");
+  const std::vector<Combination> combos = combinations(file);
+  const Combination common = file.set.defined() ? map_overrides(file.set) : Combination{};
+  check_overrides(base, common, combos, registry);
+
+  Sweep sweep;
+  sweep.name = file.name.empty() ? fs::path(sweep_file).stem().string() : file.name;
+  const fs::path out_dir =
+      fs::absolute(file.out_dir.empty() ? fs::path("runs/sweeps") / sweep.name : fs::path(file.out_dir))
+          .lexically_normal();
+  sweep.source = fs::absolute(sweep_file).lexically_normal().string();
+  sweep.manifest = (out_dir / "manifest.yaml").string();
+  sweep.slurm = file.slurm;
+  fs::create_directories(out_dir / "configs");
+  const std::vector<std::string> run_labels = labels(combos);
+  for (size_t c = 0; c < combos.size(); ++c) {
+    std::vector<std::string> overrides;
+    for (const Override& o : common) overrides.push_back(o.key + "=" + o.value);
+    for (const Override& o : combos[c]) overrides.push_back(o.key + "=" + o.value);
+    for (int64_t seed : file.seeds)
+      sweep.runs.push_back(
+          expand_run(sweep, out_dir, base, run_labels[c], overrides, seed, registry));
+  }
+  write_manifest(sweep, out_dir);
   return sweep;
 }
 
