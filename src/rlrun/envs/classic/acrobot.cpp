@@ -1,5 +1,7 @@
 #include "rlrun/envs/classic/acrobot.hpp"
 
+#include "rlrun/envs/classic/classic_render.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -74,15 +76,33 @@ double wrap(double x, double m, double big_m) {
 // acrobot.py bound: min(max(x, m), M).
 double bound(double x, double m, double big_m) { return std::min(std::max(x, m), big_m); }
 
+// np_random.uniform(-0.1, 0.1, size=(4,)).astype(np.float32): the start state is float32.
+bool initial_state(Rng& rng, std::span<double> state) {
+  for (double& s : state) s = static_cast<float>(rng.uniform(-kResetBound, kResetBound));
+  return true;
+}
+
+void observation(std::span<const double> state, std::span<float> obs) {
+  obs[0] = static_cast<float>(std::cos(state[0]));
+  obs[1] = static_cast<float>(std::sin(state[0]));
+  obs[2] = static_cast<float>(std::cos(state[1]));
+  obs[3] = static_cast<float>(std::sin(state[1]));
+  obs[4] = static_cast<float>(state[2]);
+  obs[5] = static_cast<float>(state[3]);
+}
+
 }  // namespace
 
-Acrobot::Acrobot(const Config& config)
-    : ClassicControlEnv(Space::box({-1.0f, -1.0f, -1.0f, -1.0f, static_cast<float>(-kMaxVel1),
+// acrobot.py: SCREEN_DIM 500, render_fps 15; the picture is in acrobot_render.cpp.
+const ClassicSpec kAcrobot{"Acrobot-v1",  {500, 500, 15}, 4,            true,
+                           initial_state, observation,    draw_acrobot, acrobot_state_from_observation};
+
+Acrobot::Acrobot(const Config&)
+    : ClassicControlEnv(kAcrobot, Space::box({-1.0f, -1.0f, -1.0f, -1.0f, static_cast<float>(-kMaxVel1),
                                     static_cast<float>(-kMaxVel2)},
                                    {1.0f, 1.0f, 1.0f, 1.0f, static_cast<float>(kMaxVel1),
                                     static_cast<float>(kMaxVel2)}),
-                        Space::discrete(3)),
-      config_(config) {}
+                        Space::discrete(3)) {}
 
 StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
   require_reset();
@@ -103,28 +123,6 @@ StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
   return {terminated ? 0.0 : -1.0, terminated, false};
 }
 
-void Acrobot::sample_initial_state() {
-  // np_random.uniform(-0.1, 0.1, size=(4,)).astype(np.float32): the start state is float32.
-  for (double& s : state_) s = static_cast<float>(rng().uniform(-kResetBound, kResetBound));
-  state_is_float32_ = true;
-}
 
-void Acrobot::get_state(std::span<double> state) const {
-  for (size_t i = 0; i < state_.size(); ++i) state[i] = state_[i];
-}
-
-void Acrobot::load_state(std::span<const double> state) {
-  for (size_t i = 0; i < state_.size(); ++i)
-    state_[i] = state_is_float32_ ? static_cast<float>(state[i]) : state[i];
-}
-
-void Acrobot::write_observation(std::span<float> obs) const {
-  obs[0] = static_cast<float>(std::cos(state_[0]));
-  obs[1] = static_cast<float>(std::sin(state_[0]));
-  obs[2] = static_cast<float>(std::cos(state_[1]));
-  obs[3] = static_cast<float>(std::sin(state_[1]));
-  obs[4] = static_cast<float>(state_[2]);
-  obs[5] = static_cast<float>(state_[3]);
-}
 
 }  // namespace rlrun

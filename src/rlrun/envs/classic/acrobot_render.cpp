@@ -4,12 +4,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "rlrun/envs/classic/acrobot.hpp"
+#include "rlrun/envs/classic/classic_render.hpp"
 #include "rlrun/frame.hpp"
 
 namespace rlrun {
 
-void Acrobot::draw_state(std::span<const double> state, bool /*current*/, Frame& frame) const {
+void draw_acrobot(std::span<const double> state, double /*last_action*/, Frame& frame) {
   constexpr double kDim = 500;
   constexpr double kLink1 = 1.0, kLink2 = 1.0;
   constexpr double kBound = kLink1 + kLink2 + 0.2;  // 2.2
@@ -41,7 +41,7 @@ void Acrobot::draw_state(std::span<const double> state, bool /*current*/, Frame&
   frame.end_scene();
 }
 
-void Acrobot::state_from_observation(std::span<const float> obs, std::span<double> state) const {
+void acrobot_state_from_observation(std::span<const float> obs, std::span<double> state) {
   // [cos th1, sin th1, cos th2, sin th2, dth1, dth2]
   state[0] = std::atan2(static_cast<double>(obs[1]), static_cast<double>(obs[0]));
   state[1] = std::atan2(static_cast<double>(obs[3]), static_cast<double>(obs[2]));

@@ -1,5 +1,7 @@
 #include "rlrun/envs/classic/cartpole.hpp"
 
+#include "rlrun/envs/classic/classic_render.hpp"
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -29,10 +31,26 @@ Space make_observation_space() {
   return Space::box({-x, -kInf, -theta, -kInf}, {x, kInf, theta, kInf});
 }
 
+// np_random.uniform(low=-0.05, high=0.05, size=(4,))
+bool initial_state(Rng& rng, std::span<double> state) {
+  for (double& s : state) s = rng.uniform(-kResetBound, kResetBound);
+  return false;
+}
+
+// The observation is the state, in float32.
+void observation(std::span<const double> state, std::span<float> obs) {
+  for (size_t i = 0; i < 4; ++i) obs[i] = static_cast<float>(state[i]);
+}
+
 }  // namespace
 
+// cartpole.py: screen 600x400, render_fps 50; the picture is in cartpole_render.cpp.
+const ClassicSpec kCartPole{"CartPole-v1", {600, 400, 50}, 4,           false,
+                            initial_state, observation,    draw_cartpole, cartpole_state_from_observation};
+
 CartPole::CartPole(const Config& config)
-    : ClassicControlEnv(make_observation_space(), Space::discrete(2)), config_(config) {}
+    : ClassicControlEnv(kCartPole, make_observation_space(), Space::discrete(2)),
+      config_(config) {}
 
 StepResult CartPole::step(std::span<const float> action, std::span<float> obs) {
   require_reset();
@@ -76,22 +94,6 @@ StepResult CartPole::step(std::span<const float> action, std::span<float> obs) {
   return {reward, terminated, false};
 }
 
-void CartPole::sample_initial_state() {
-  // np_random.uniform(low=-0.05, high=0.05, size=(4,))
-  for (double& s : state_) s = rng().uniform(-kResetBound, kResetBound);
-  steps_beyond_terminated_ = -1;
-}
 
-void CartPole::get_state(std::span<double> state) const {
-  for (size_t i = 0; i < state_.size(); ++i) state[i] = state_[i];
-}
-
-void CartPole::load_state(std::span<const double> state) {
-  for (size_t i = 0; i < state_.size(); ++i) state_[i] = state[i];
-}
-
-void CartPole::write_observation(std::span<float> obs) const {
-  for (size_t i = 0; i < state_.size(); ++i) obs[i] = static_cast<float>(state_[i]);
-}
 
 }  // namespace rlrun

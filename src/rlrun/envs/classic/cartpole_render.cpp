@@ -1,11 +1,11 @@
 // CartPole-v1's picture: gymnasium/envs/classic_control/cartpole.py render(), same geometry
 // and colours (600x400 scene, y up, flipped at the end like pygame.transform.flip).
-#include "rlrun/envs/classic/cartpole.hpp"
+#include "rlrun/envs/classic/classic_render.hpp"
 #include "rlrun/frame.hpp"
 
 namespace rlrun {
 
-void CartPole::draw_state(std::span<const double> state, bool /*current*/, Frame& frame) const {
+void draw_cartpole(std::span<const double> state, double /*last_action*/, Frame& frame) {
   constexpr double kWidth = 600, kHeight = 400;
   constexpr double kXThreshold = 2.4, kHalfPoleLength = 0.5;
   constexpr double kScale = kWidth / (kXThreshold * 2);  // world_width = x_threshold * 2
@@ -45,7 +45,7 @@ void CartPole::draw_state(std::span<const double> state, bool /*current*/, Frame
   frame.end_scene();
 }
 
-void CartPole::state_from_observation(std::span<const float> obs, std::span<double> state) const {
+void cartpole_state_from_observation(std::span<const float> obs, std::span<double> state) {
   for (size_t i = 0; i < 4; ++i) state[i] = obs[i];  // the observation is the state
 }
 

@@ -1,5 +1,6 @@
 // ClassicControlEnv's rendering entry points; each env's picture is in <env>_render.cpp.
 #include <array>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -7,17 +8,11 @@
 
 namespace rlrun {
 
-namespace {
-constexpr int kMaxStateDim = 8;
-}  // namespace
-
 bool ClassicControlEnv::render(Frame& frame) const {
   // Gymnasium's render() draws nothing before the first reset (state is None).
   if (!has_state_) throw std::logic_error(id() + ": call reset() before render()");
-  std::array<double, kMaxStateDim> state{};
-  const std::span<double> s(state.data(), static_cast<size_t>(state_dim()));
-  get_state(s);
-  draw_state(s, true, frame);
+  spec_.draw(std::span<const double>(state_.data(), static_cast<size_t>(state_dim())),
+             last_action_, frame);
   return true;
 }
 
@@ -28,8 +23,8 @@ bool ClassicControlEnv::render_observation(std::span<const float> obs, Frame& fr
                                 std::to_string(obs.size()));
   std::array<double, kMaxStateDim> state{};
   const std::span<double> s(state.data(), static_cast<size_t>(state_dim()));
-  state_from_observation(obs, s);
-  draw_state(s, false, frame);
+  spec_.state_from_observation(obs, s);
+  spec_.draw(s, std::numeric_limits<double>::quiet_NaN(), frame);
   return true;
 }
 

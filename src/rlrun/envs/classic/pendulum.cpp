@@ -1,5 +1,7 @@
 #include "rlrun/envs/classic/pendulum.hpp"
 
+#include "rlrun/envs/classic/classic_render.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -27,10 +29,28 @@ double angle_normalize(double x) {
   return r - std::numbers::pi;
 }
 
+// theta ~ U(-pi, pi), theta_dot ~ U(-1, 1) (DEFAULT_X, DEFAULT_Y).
+bool initial_state(Rng& rng, std::span<double> state) {
+  state[0] = rng.uniform(-kResetTheta, kResetTheta);
+  state[1] = rng.uniform(-kResetThetaDot, kResetThetaDot);
+  return false;
+}
+
+// cos(theta), sin(theta), theta_dot in float32.
+void observation(std::span<const double> state, std::span<float> obs) {
+  obs[0] = static_cast<float>(std::cos(state[0]));
+  obs[1] = static_cast<float>(std::sin(state[0]));
+  obs[2] = static_cast<float>(state[1]);
+}
+
 }  // namespace
 
+// pendulum.py: screen_dim 500, render_fps 30; the picture is in pendulum_render.cpp.
+const ClassicSpec kPendulum{"Pendulum-v1", {500, 500, 30}, 2,           false,
+                            initial_state, observation,    draw_pendulum, pendulum_state_from_observation};
+
 Pendulum::Pendulum(const Config& config)
-    : ClassicControlEnv(Space::box({-1.0f, -1.0f, static_cast<float>(-kMaxSpeed)},
+    : ClassicControlEnv(kPendulum, Space::box({-1.0f, -1.0f, static_cast<float>(-kMaxSpeed)},
                                    {1.0f, 1.0f, static_cast<float>(kMaxSpeed)}),
                         Space::box(-kMaxTorque, kMaxTorque, {1})),
       config_(config) {}
@@ -44,42 +64,24 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   // does with a float32 action) does not.
   const double u = std::clamp(action[0], -kMaxTorque, kMaxTorque);
   const double g = config_.g;
+  double& theta = state_[0];
+  double& theta_dot = state_[1];
 
-  const double th_norm = angle_normalize(theta_);
-  const double costs = th_norm * th_norm + 0.1 * (theta_dot_ * theta_dot_) + 0.001 * (u * u);
+  const double th_norm = angle_normalize(theta);
+  const double costs = th_norm * th_norm + 0.1 * (theta_dot * theta_dot) + 0.001 * (u * u);
 
   double new_theta_dot =
-      theta_dot_ +
-      (3 * g / (2 * kLength) * std::sin(theta_) + 3.0 / (kMass * kLength * kLength) * u) * kDt;
+      theta_dot +
+      (3 * g / (2 * kLength) * std::sin(theta) + 3.0 / (kMass * kLength * kLength) * u) * kDt;
   new_theta_dot = std::clamp(new_theta_dot, -kMaxSpeed, kMaxSpeed);
-  theta_ = theta_ + new_theta_dot * kDt;
-  theta_dot_ = new_theta_dot;
-  last_u_ = u;  // for rendering only
+  theta = theta + new_theta_dot * kDt;
+  theta_dot = new_theta_dot;
+  last_action_ = u;  // for the picture only
 
   write_observation(obs);
   return {-costs, false, false};
 }
 
-void Pendulum::sample_initial_state() {
-  theta_ = rng().uniform(-kResetTheta, kResetTheta);
-  theta_dot_ = rng().uniform(-kResetThetaDot, kResetThetaDot);
-  last_u_ = std::numeric_limits<double>::quiet_NaN();
-}
 
-void Pendulum::get_state(std::span<double> state) const {
-  state[0] = theta_;
-  state[1] = theta_dot_;
-}
-
-void Pendulum::load_state(std::span<const double> state) {
-  theta_ = state[0];
-  theta_dot_ = state[1];
-}
-
-void Pendulum::write_observation(std::span<float> obs) const {
-  obs[0] = static_cast<float>(std::cos(theta_));
-  obs[1] = static_cast<float>(std::sin(theta_));
-  obs[2] = static_cast<float>(theta_dot_);
-}
 
 }  // namespace rlrun

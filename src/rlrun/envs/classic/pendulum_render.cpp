@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "rlrun/envs/classic/pendulum.hpp"
+#include "rlrun/envs/classic/classic_render.hpp"
 #include "rlrun/frame.hpp"
 
 namespace rlrun {
@@ -51,7 +51,7 @@ void draw_torque_arrow(Frame& frame, double size, bool ccw) {
 
 }  // namespace
 
-void Pendulum::draw_state(std::span<const double> state, bool current, Frame& frame) const {
+void draw_pendulum(std::span<const double> state, double last_action, Frame& frame) {
   const double theta = state[0];
   frame.begin_scene(kDim, kDim, {255, 255, 255});
   const double rod_length = 1 * kScale;
@@ -68,14 +68,14 @@ void Pendulum::draw_state(std::span<const double> state, bool current, Frame& fr
   const Point end = rotate({rod_length, 0}, angle) + centre;
   frame.circle({std::trunc(end.x), std::trunc(end.y)}, end_radius, kRodColor);
   // The action of the last step (pendulum.py draws none before the first step).
-  if (current && !std::isnan(last_u_) && last_u_ != 0.0)
-    draw_torque_arrow(frame, kScale * std::abs(last_u_) / 2, last_u_ > 0);
+  if (!std::isnan(last_action) && last_action != 0.0)
+    draw_torque_arrow(frame, kScale * std::abs(last_action) / 2, last_action > 0);
   // The axle: int(0.05 * scale) = 5.
   frame.circle(centre, static_cast<int>(0.05 * kScale), {0, 0, 0});
   frame.end_scene();
 }
 
-void Pendulum::state_from_observation(std::span<const float> obs, std::span<double> state) const {
+void pendulum_state_from_observation(std::span<const float> obs, std::span<double> state) {
   state[0] = std::atan2(static_cast<double>(obs[1]), static_cast<double>(obs[0]));
   state[1] = obs[2];
 }
