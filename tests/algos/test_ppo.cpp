@@ -91,6 +91,38 @@ TEST_CASE("PPO loss gradient through the policy matches finite differences (Box)
   check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}));
 }
 
+TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiDiscrete)",
+          "[algos][ppo][gradcheck]") {
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::multi_discrete({3, 2, 4}));
+}
+
+TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiBinary)",
+          "[algos][ppo][gradcheck]") {
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::multi_binary(4));
+}
+
+TEST_CASE("the policy's action_net has SB3's size for each action space", "[algos][ppo]") {
+  Rng rng(1);
+  const ActorCriticPolicyConfig cfg;
+  const Space obs = Space::box(-1.0f, 1.0f, {2});
+  const auto check = [&](const Space& act, int outputs, int action_dim, bool log_std) {
+    ActorCriticPolicy policy(obs, act, cfg, rng);
+    INFO(act.describe());
+    CHECK(policy.actor().out_dim() == outputs);
+    CHECK(policy.action_dim() == action_dim);
+    TensorMap tensors;
+    policy.save(tensors);
+    CHECK(tensors.at("action_net.weight").shape == std::vector<int64_t>{outputs, 64});
+    CHECK(tensors.count("log_std") == (log_std ? 1u : 0u));
+  };
+  check(Space::discrete(5), 5, 1, false);
+  check(Space::multi_discrete({3, 2, 4}), 9, 3, false);
+  check(Space::multi_binary(6), 6, 6, false);
+  check(Space::box(-1.0f, 1.0f, {2}), 2, 2, true);
+  CHECK_THROWS_AS(ActorCriticPolicy(obs, Space::dict({{"a", Space::discrete(2)}}), cfg, rng),
+                  std::invalid_argument);
+}
+
 TEST_CASE("PPO loss terms on a hand-made batch", "[algos][ppo]") {
   Eigen::RowVectorXf v(2), lp(2), h(2), olp(2), ov(2), adv(2), ret(2), gv(2), gl(2), ge(2);
   v << 1, 2;
