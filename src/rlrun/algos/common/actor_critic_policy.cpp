@@ -59,11 +59,12 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
                    "false (torch's default init) is not supported yet; SB3's default is true"});
   check_net_arch(out, "policy.net_arch", policy.net_arch);
   const int obs_dim = setup.observation_space.flat_dim();
-  if (!setup.observation_space.is_box())
-    out.push_back({"id", "observation space " + setup.observation_space.describe() +
-                             " is not supported yet (Box only; OneHotObservation turns Discrete "
-                             "observations into a Box)"});
-  const int features = obs_dim;
+  int features = obs_dim;
+  try {
+    features = ObservationEncoder(setup.observation_space).features_dim();
+  } catch (const std::invalid_argument& e) {
+    out.push_back({"id", e.what()});
+  }
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
   check_network_memory(out, "policy.net_arch", features, policy.net_arch, head, 2,
                        static_cast<double>(batch));
@@ -93,10 +94,8 @@ int action_net_size(const Space& action_space) {
 }
 
 ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,
-                                     const ActorCriticPolicyConfig& config, Rng& init_rng) {
-  if (!observation_space.is_box())
-    throw std::invalid_argument("ActorCriticPolicy: observation space " +
-                                observation_space.describe() + " is not supported yet (Box only)");
+                                     const ActorCriticPolicyConfig& config, Rng& init_rng)
+    : encoder_(observation_space) {
   // SB3 make_proba_distribution: the distribution follows the action space's class.
   switch (action_space.kind()) {
     case SpaceKind::kDiscrete:
@@ -123,7 +122,8 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
                                   " is not supported (SB3 has no distribution for Dict actions)");
   }
   const Activation act = parse_activation(config.activation_fn);
-  const int obs_dim = observation_space.flat_dim();
+  // SB3 MlpPolicy / MultiInputPolicy: the towers start from the features extractor's output.
+  const int obs_dim = encoder_.features_dim();
   actor_ = Mlp(obs_dim, config.net_arch, action_net_size(action_space), act);
   critic_ = Mlp(obs_dim, config.net_arch, 1, act);
   if (config.ortho_init) {
@@ -145,7 +145,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
   actions.resize(action_dim_, n);
   values.resize(n);
   log_probs.resize(n);
-  const Eigen::Ref<const Eigen::MatrixXf> features = obs;
+  const Eigen::Ref<const Eigen::MatrixXf> features = encoder_(obs);
   const Eigen::MatrixXf& head = actor_.forward(features);
   switch (head_) {
     case Head::kCategorical:
@@ -173,7 +173,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                        Eigen::RowVectorXf& values) {
-  values = critic_.forward(obs);
+  values = critic_.forward(encoder_(obs));
 }
 
 void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
@@ -187,7 +187,7 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
   actions_ = actions;
   // Actor and critic are independent: the critic runs on the second core (bit-identical
   // results either way).
-  const Eigen::Ref<const Eigen::MatrixXf> features = obs;
+  const Eigen::Ref<const Eigen::MatrixXf> features = encoder_(obs);
   auto actor_part = [&] {
     const Eigen::MatrixXf& head = actor_.forward(features);
     switch (head_) {

@@ -14,6 +14,7 @@
 #include "rlrun/rng.hpp"
 #include "rlrun/space.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/env/observation_encoder.hpp"
 #include "rlrun/nn/bernoulli.hpp"
 #include "rlrun/nn/categorical.hpp"
 #include "rlrun/nn/diag_gaussian.hpp"
@@ -56,7 +57,8 @@ class ActorCriticPolicy {
   // The distribution over actions, from the action space's kind.
   enum class Head { kCategorical, kMultiCategorical, kBernoulli, kDiagGaussian };
 
-  // Throws std::invalid_argument for unsupported spaces (Box observations; Dict actions).
+  // Observations of any space (ObservationEncoder: one-hots for Discrete values, Dict keys
+  // concatenated); actions of any space but Dict (std::invalid_argument).
   ActorCriticPolicy(const Space& observation_space, const Space& action_space,
                     const ActorCriticPolicyConfig& config, Rng& init_rng);
 
@@ -66,6 +68,7 @@ class ActorCriticPolicy {
   // Floats per action (the rollout buffer's rows): 1 for Discrete, one per entry otherwise.
   int action_dim() const { return action_dim_; }
 
+  // `obs` are the env's observations (input_dim x n) everywhere below; the policy encodes them.
   // Rollout step: actions (act_dim x n, as sampled: unclipped), values and log-probs.
   void act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng, bool deterministic,
            Eigen::MatrixXf& actions, Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs);
@@ -90,6 +93,7 @@ class ActorCriticPolicy {
   void save(TensorMap& tensors) const;
   void load(const TensorMap& tensors);
 
+  const ObservationEncoder& encoder() const { return encoder_; }
   const Mlp& actor() const { return actor_; }
   const Mlp& critic() const { return critic_; }
 
@@ -97,6 +101,7 @@ class ActorCriticPolicy {
   static void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
                        const std::function<void()>& critic_part);
 
+  ObservationEncoder encoder_;
   Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;
   Eigen::VectorXf low_, high_;
