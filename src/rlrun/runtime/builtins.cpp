@@ -15,6 +15,9 @@
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
+#include "rlrun/envs/probe/dict_reach.hpp"
+#include "rlrun/envs/probe/identity_env.hpp"
+#include "rlrun/envs/probe/simple_multi_obs.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
@@ -70,6 +73,30 @@ Registry make_builtins() {
       0));
   r.add(make_env_entry<GripperLiftEasy>(
       "GripperLiftEasy-v0", "GripperLift-v0 starting just above the cube (close and lift)", 0));
+
+  // --- envs/probe/: one env per Gymnasium space kind (issue 16), SB3's test envs
+  // (stable_baselines3/common/envs/identity_env.py, multi_input_envs.py) and a Dict reach task.
+  r.add(make_env_entry<IdentityDiscrete>(
+      "IdentityEnv-v0", "probe: act the observed value; Discrete(4) obs = action space",
+      IdentityEnv::kMaxEpisodeSteps));
+  r.add(make_env_entry<IdentityBox>(
+      "IdentityEnvBox-v0", "probe: act the observed value within eps; Box(-1, 1, (1,)) obs = action",
+      IdentityEnv::kMaxEpisodeSteps));
+  r.add(make_env_entry<IdentityMultiDiscrete>(
+      "IdentityEnvMultiDiscrete-v0",
+      "probe: act the observed values; MultiDiscrete([4 4]) obs = action space",
+      IdentityEnv::kMaxEpisodeSteps));
+  r.add(make_env_entry<IdentityMultiBinary>(
+      "IdentityEnvMultiBinary-v0", "probe: act the observed bits; MultiBinary(4) obs = action space",
+      IdentityEnv::kMaxEpisodeSteps));
+  r.add(make_env_entry<DictReach>(
+      "DictReach-v0", "probe: move a point to a goal; Dict obs {goal, position}, Box(2) action",
+      DictReach::kMaxEpisodeSteps));
+  r.add(make_env_entry<SimpleMultiObs>(
+      "SimpleMultiObsEnv-v0",
+      "probe: 4x4 ring grid, Dict obs {moves: MultiBinary, row: Discrete, vec: Box}; Discrete(4)",
+      SimpleMultiObs::kMaxEpisodeSteps));
+  // --- end of envs/probe/
 
   // Wrappers usable in `env.wrappers`, applied in order after the Monitor.
   r.add(make_wrapper_entry<DiscreteAsBox>(
