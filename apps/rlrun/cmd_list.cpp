@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/space_text.hpp"
 #include "rlrun/runtime/builtins.hpp"
 
 namespace rlrun::cli {
@@ -37,13 +38,29 @@ void print_params(const std::string& id, const std::vector<FieldDoc>& rows) {
 }
 
 template <class Entries>
-bool print_params_if_found(const Entries& entries, const std::string& id) {
-  for (const auto& e : entries) {
-    if (e.id != id) continue;
-    print_params(e.id, e.params());
-    return true;
+const auto* find_entry(const Entries& entries, const std::string& id) {
+  for (const auto& e : entries)
+    if (e.id == id) return &e;
+  return static_cast<const typename Entries::value_type*>(nullptr);
+}
+
+// An env's spaces, from one built with its default parameters.
+void print_spaces(const EnvEntry& entry) {
+  EnvPtr env;
+  try {
+    env = entry.make(entry.parse(ConfigNode()));
+  } catch (const std::exception& e) {
+    std::printf("  (spaces unknown: the env cannot be built with its defaults: %s)\n", e.what());
+    return;
   }
-  return false;
+  std::printf("%s", labeled_space("observation_space", env->observation_space(), 17).c_str());
+  std::printf("%s", labeled_space("action_space", env->action_space(), 17).c_str());
+}
+
+void print_action_spaces(const AlgorithmEntry& entry) {
+  std::string names;
+  for (SpaceKind k : entry.action_spaces) names += (names.empty() ? "" : ", ") + std::string(space_kind_name(k));
+  std::printf("  action spaces      %s\n", names.c_str());
 }
 
 }  // namespace
@@ -64,9 +81,20 @@ Action add_list(CLI::App& app) {
       std::printf("\n`rlrun list ID` shows a component's parameters and defaults.\n");
       return 0;
     }
-    if (print_params_if_found(r.envs(), *id) || print_params_if_found(r.wrappers(), *id) ||
-        print_params_if_found(r.algorithms(), *id))
+    if (const EnvEntry* env = find_entry(r.envs(), *id)) {
+      print_params(env->id, env->params());
+      print_spaces(*env);
       return 0;
+    }
+    if (const WrapperEntry* wrapper = find_entry(r.wrappers(), *id)) {
+      print_params(wrapper->id, wrapper->params());
+      return 0;
+    }
+    if (const AlgorithmEntry* algo = find_entry(r.algorithms(), *id)) {
+      print_params(algo->id, algo->params());
+      print_action_spaces(*algo);
+      return 0;
+    }
     std::vector<std::string> ids;
     for (const auto& e : r.envs()) ids.push_back(e.id);
     for (const auto& e : r.wrappers()) ids.push_back(e.id);
