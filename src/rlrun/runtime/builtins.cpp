@@ -57,7 +57,7 @@ Registry make_builtins() {
       Grasp2D::kMaxEpisodeSteps));
   // No TimeLimit: GridWorld truncates itself after max_steps, with its timeout penalty.
   r.add(make_env_entry<GridWorld>(
-      "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (use OneHotObservation)",
+      "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (OneHotObservation for DQN/SAC/TD3/DDPG)",
       0));
 
   // Traffic-signal control on the real SUMO (issue 7); episodes end by num_seconds.
