@@ -85,6 +85,11 @@ TEST_CASE("observation encoder: a Dict is each key encoded, in sorted key order,
     encoder.encode(many, copy);
     REQUIRE(features.cols() == batch);
     CHECK(features == copy);
+    // Into the top rows of a (features; action) critic input.
+    Eigen::MatrixXf critic_input = Eigen::MatrixXf::Constant(11 + 2, batch, 7.0f);
+    encoder.encode_into(many, critic_input.topRows(11));
+    CHECK(critic_input.topRows(11) == copy);
+    CHECK((critic_input.bottomRows(2).array() == 7.0f).all());
     CHECK(features(2, 0) == (batch > 1 ? 1.0f : 0.0f));
     CHECK(features(0, batch - 1) == 1.0f);
   }

@@ -105,11 +105,18 @@ void ObservationEncoder::decode_sample(std::span<const float> features, std::spa
 
 void ObservationEncoder::encode(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                 Eigen::MatrixXf& out) const {
-  if (obs.rows() != input_dim_)
-    throw std::invalid_argument("ObservationEncoder: observations have " +
-                                std::to_string(obs.rows()) + " floats, expected " +
-                                std::to_string(input_dim_));
   out.resize(features_dim_, obs.cols());
+  encode_into(obs, out);
+}
+
+void ObservationEncoder::encode_into(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                                     Eigen::Ref<Eigen::MatrixXf> out) const {
+  if (obs.rows() != input_dim_ || out.rows() != features_dim_ || out.cols() != obs.cols())
+    throw std::invalid_argument("ObservationEncoder: " + std::to_string(obs.rows()) + " x " +
+                                std::to_string(obs.cols()) + " observations into " +
+                                std::to_string(out.rows()) + " x " + std::to_string(out.cols()) +
+                                ", expected " + std::to_string(input_dim_) + " rows into " +
+                                std::to_string(features_dim_));
   for (Eigen::Index j = 0; j < obs.cols(); ++j)
     encode_sample({obs.col(j).data(), static_cast<size_t>(input_dim_)},
                   {out.col(j).data(), static_cast<size_t>(features_dim_)});
@@ -118,14 +125,8 @@ void ObservationEncoder::encode(const Eigen::Ref<const Eigen::MatrixXf>& obs,
 Eigen::Ref<const Eigen::MatrixXf> ObservationEncoder::operator()(
     const Eigen::Ref<const Eigen::MatrixXf>& obs) {
   if (identity_) return obs;
-  if (obs.rows() != input_dim_)
-    throw std::invalid_argument("ObservationEncoder: observations have " +
-                                std::to_string(obs.rows()) + " floats, expected " +
-                                std::to_string(input_dim_));
   if (workspace_.cols() < obs.cols()) workspace_.resize(features_dim_, obs.cols());
-  for (Eigen::Index j = 0; j < obs.cols(); ++j)
-    encode_sample({obs.col(j).data(), static_cast<size_t>(input_dim_)},
-                  {workspace_.col(j).data(), static_cast<size_t>(features_dim_)});
+  encode_into(obs, workspace_.leftCols(obs.cols()));
   return workspace_.leftCols(obs.cols());
 }
 

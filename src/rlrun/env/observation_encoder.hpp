@@ -49,6 +49,9 @@ class ObservationEncoder {
   // Column by column; `out` is resized to features_dim x obs.cols() (no allocation when the
   // size is unchanged). Thread-safe (const).
   void encode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& out) const;
+  // The same into a block of the right size (features_dim x obs.cols()), e.g. the top rows of
+  // a critic's (features; action) input. Copies even when identity(). Thread-safe (const).
+  void encode_into(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::Ref<Eigen::MatrixXf> out) const;
 
   // The network input for a batch of observations (input_dim x batch): `obs` itself when
   // identity(), else the encoding in a workspace that grows to the largest batch seen and is
