@@ -19,6 +19,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/env/env_checker.hpp"
+#include "rlrun/env/space_text.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/experiment.hpp"
@@ -169,8 +170,8 @@ Action add_check_env(CLI::App& app, Registry& registry) {
     std::string keys;
     for (const auto& k : env.info().keys()) keys += (keys.empty() ? "" : ", ") + k;
     std::printf("%s: %s\n", env.id().c_str(), t.description.c_str());
-    std::printf("  observation_space  %s\n", env.observation_space().describe().c_str());
-    std::printf("  action_space       %s\n", env.action_space().describe().c_str());
+    std::printf("%s", labeled_space("observation_space", env.observation_space(), 17).c_str());
+    std::printf("%s", labeled_space("action_space", env.action_space(), 17).c_str());
     std::printf("  time limit         %s\n",
                 t.time_limit > 0 ? (std::to_string(t.time_limit) + " steps (TimeLimit)").c_str()
                                  : "none (the env ends its own episodes)");

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/space_text.hpp"
 #include "rlrun/runtime/builtins.hpp"
 
 namespace rlrun::cli {
@@ -26,14 +27,13 @@ void print_table(const char* title, const Entries& entries) {
 
 // An env's spaces (as built with default parameters), time limit and policies.
 void print_env_details(const EnvEntry& entry) {
+  std::printf("%s: %s\n", entry.id.c_str(), entry.description.c_str());
   try {
     const EnvPtr env = entry.make(entry.parse(ConfigNode()));
-    std::printf("%s: %s\n  observation_space  %s\n  action_space       %s\n", entry.id.c_str(),
-                entry.description.c_str(), env->observation_space().describe().c_str(),
-                env->action_space().describe().c_str());
+    std::printf("%s", labeled_space("observation_space", env->observation_space(), 17).c_str());
+    std::printf("%s", labeled_space("action_space", env->action_space(), 17).c_str());
   } catch (const std::exception& e) {
-    std::printf("%s: %s\n  (cannot be built with default parameters: %s)\n", entry.id.c_str(),
-                entry.description.c_str(), e.what());
+    std::printf("  (spaces unknown: the env cannot be built with its defaults: %s)\n", e.what());
   }
   std::printf("  time limit         %s\n",
               entry.max_episode_steps > 0 ? std::to_string(entry.max_episode_steps).c_str()
@@ -41,6 +41,13 @@ void print_env_details(const EnvEntry& entry) {
   std::printf("  policies           random (uniform actions)\n");
   for (const PolicyEntry& policy : entry.policies)
     std::printf("                     %s (%s)\n", policy.name.c_str(), policy.description.c_str());
+}
+
+void print_action_spaces(const AlgorithmEntry& entry) {
+  std::string names;
+  for (SpaceKind k : entry.action_spaces)
+    names += (names.empty() ? "" : ", ") + std::string(space_kind_name(k));
+  std::printf("  action spaces      %s\n", names.c_str());
 }
 
 void print_params(const std::string& id, const std::vector<FieldDoc>& rows) {
@@ -61,8 +68,10 @@ template <class Entries>
 bool print_params_if_found(const Entries& entries, const std::string& id) {
   for (const auto& e : entries) {
     if (e.id != id) continue;
-    if constexpr (std::is_same_v<std::decay_t<decltype(e)>, EnvEntry>) print_env_details(e);
+    using Entry = std::decay_t<decltype(e)>;
+    if constexpr (std::is_same_v<Entry, EnvEntry>) print_env_details(e);
     print_params(e.id, e.params());
+    if constexpr (std::is_same_v<Entry, AlgorithmEntry>) print_action_spaces(e);
     return true;
   }
   return false;

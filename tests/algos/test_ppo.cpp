@@ -35,6 +35,8 @@ void check_policy_gradient(const Space& obs_space, const Space& act_space, float
   const int n = 16, obs_dim = obs_space.flat_dim();
   Batch b;
   b.obs = Eigen::MatrixXf::Random(obs_dim, n);
+  if (!obs_space.is_box())
+    for (int j = 0; j < n; ++j) obs_space.sample(rng, {b.obs.col(j).data(), size_t(obs_dim)});
   Eigen::RowVectorXf v, lp, h;
   Eigen::MatrixXf acts;
   Eigen::RowVectorXf values, log_probs;
@@ -89,6 +91,80 @@ TEST_CASE("PPO loss gradient through the policy matches finite differences (Disc
 TEST_CASE("PPO loss gradient through the policy matches finite differences (Box)",
           "[algos][ppo][gradcheck]") {
   check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}));
+}
+
+TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiDiscrete)",
+          "[algos][ppo][gradcheck]") {
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::multi_discrete({3, 2, 4}));
+}
+
+TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiBinary)",
+          "[algos][ppo][gradcheck]") {
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::multi_binary(4));
+}
+
+TEST_CASE("PPO loss gradient through the policy matches finite differences (Dict obs)",
+          "[algos][ppo][gradcheck]") {
+  check_policy_gradient(Space::dict({{"pos", Space::box(-1.0f, 1.0f, {2})},
+                                     {"cell", Space::discrete(3)},
+                                     {"bits", Space::multi_binary(2)}}),
+                        Space::discrete(3));
+}
+
+TEST_CASE("the policy sees a Dict observation as SB3's CombinedExtractor output", "[algos][ppo]") {
+  // Keys sorted: cell (Discrete 3 -> one-hot), grid (MultiDiscrete [2 2] -> two one-hots),
+  // pos (Box 2). A policy on the Dict and one on the equivalent Box of 9 features start from
+  // the same weights (same rng) and must give the same outputs.
+  const Space dict = Space::dict({{"pos", Space::box(-1.0f, 1.0f, {2})},
+                                  {"cell", Space::discrete(3)},
+                                  {"grid", Space::multi_discrete({2, 2})}});
+  const Space box = Space::box(-1.0f, 1.0f, {9});
+  const ActorCriticPolicyConfig cfg;
+  Rng rng_a(5), rng_b(5);
+  ActorCriticPolicy on_dict(dict, Space::multi_binary(3), cfg, rng_a);
+  ActorCriticPolicy on_box(box, Space::multi_binary(3), cfg, rng_b);
+  CHECK(on_dict.encoder().features_dim() == 9);
+  CHECK(on_dict.actor().in_dim() == 9);
+  Eigen::MatrixXf raw(5, 2), encoded(9, 2);
+  raw.col(0) << 2, 1, 0, 0.25f, -0.5f;
+  encoded.col(0) << 0, 0, 1, 0, 1, 1, 0, 0.25f, -0.5f;
+  raw.col(1) << 0, 0, 1, -1, 1;
+  encoded.col(1) << 1, 0, 0, 1, 0, 0, 1, -1, 1;
+  Eigen::MatrixXf a_dict, a_box;
+  Eigen::RowVectorXf v_dict, v_box, lp_dict, lp_box;
+  on_dict.act(raw, rng_a, true, a_dict, v_dict, lp_dict);
+  on_box.act(encoded, rng_b, true, a_box, v_box, lp_box);
+  CHECK(a_dict == a_box);
+  CHECK(v_dict == v_box);
+  CHECK(lp_dict == lp_box);
+  // Same parameter names as SB3's MultiInputPolicy (its Flatten extractors have none).
+  TensorMap tensors;
+  on_dict.save(tensors);
+  CHECK(tensors.count("mlp_extractor.policy_net.0.weight") == 1);
+  CHECK(tensors.at("mlp_extractor.policy_net.0.weight").shape == std::vector<int64_t>{64, 9});
+  CHECK(tensors.size() == 12);
+}
+
+TEST_CASE("the policy's action_net has SB3's size for each action space", "[algos][ppo]") {
+  Rng rng(1);
+  const ActorCriticPolicyConfig cfg;
+  const Space obs = Space::box(-1.0f, 1.0f, {2});
+  const auto check = [&](const Space& act, int outputs, int action_dim, bool log_std) {
+    ActorCriticPolicy policy(obs, act, cfg, rng);
+    INFO(act.describe());
+    CHECK(policy.actor().out_dim() == outputs);
+    CHECK(policy.action_dim() == action_dim);
+    TensorMap tensors;
+    policy.save(tensors);
+    CHECK(tensors.at("action_net.weight").shape == std::vector<int64_t>{outputs, 64});
+    CHECK(tensors.count("log_std") == (log_std ? 1u : 0u));
+  };
+  check(Space::discrete(5), 5, 1, false);
+  check(Space::multi_discrete({3, 2, 4}), 9, 3, false);
+  check(Space::multi_binary(6), 6, 6, false);
+  check(Space::box(-1.0f, 1.0f, {2}), 2, 2, true);
+  CHECK_THROWS_AS(ActorCriticPolicy(obs, Space::dict({{"a", Space::discrete(2)}}), cfg, rng),
+                  std::invalid_argument);
 }
 
 TEST_CASE("PPO loss terms on a hand-made batch", "[algos][ppo]") {

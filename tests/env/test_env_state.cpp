@@ -47,9 +47,11 @@ Trace run(VecEnv& env, Rng& action_rng, int steps) {
 
 }  // namespace
 
-TEST_CASE("A saved VecEnv of classic envs resumes bit-identically", "[env][resume]") {
+TEST_CASE("A saved VecEnv of classic and probe envs resumes bit-identically", "[env][resume]") {
   for (const char* id : {"CartPole-v1", "Pendulum-v1", "MountainCar-v0",
-                         "MountainCarContinuous-v0", "Acrobot-v1"}) {
+                         "MountainCarContinuous-v0", "Acrobot-v1", "IdentityEnv-v0",
+                         "IdentityEnvBox-v0", "IdentityEnvMultiDiscrete-v0",
+                         "IdentityEnvMultiBinary-v0", "DictReach-v0", "SimpleMultiObsEnv-v0"}) {
     INFO(id);
     VecEnv original = make_classic(id, 3);
     REQUIRE(original.can_save_state());

@@ -12,14 +12,9 @@ namespace rlrun {
 namespace {
 
 using test::flat;
+using test::log_softmax;
 using test::numeric_gradient;
 using test::require_grad_close;
-
-// Reference log-softmax of one column in double.
-Eigen::VectorXd log_softmax(const Eigen::VectorXd& z) {
-  const double max = z.maxCoeff();
-  return z.array() - max - std::log((z.array() - max).exp().sum());
-}
 
 TEST_CASE("Categorical log_prob, entropy and their gradients", "[nn]") {
   Rng rng(7);

@@ -41,6 +41,12 @@ inline void require_grad_close(const Eigen::VectorXd& analytic, const Eigen::Vec
   }
 }
 
+// Reference log-softmax of one column in double (torch's Categorical normalisation).
+inline Eigen::VectorXd log_softmax(const Eigen::VectorXd& z) {
+  const double max = z.maxCoeff();
+  return z.array() - max - std::log((z.array() - max).exp().sum());
+}
+
 template <typename Derived>
 Eigen::VectorXd flat(const Eigen::DenseBase<Derived>& m) {
   Eigen::MatrixXd d = m.derived().template cast<double>();

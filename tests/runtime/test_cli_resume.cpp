@@ -150,7 +150,21 @@ const ResumeCase kSac{"pendulum_sac.yaml",
                       1,
                       false};
 
+// A Dict observation (MultiBinary, Discrete and Box keys) with its Box key normalised.
+const ResumeCase kDictPpo{"simplemultiobs_ppo.yaml",
+                          "simplemultiobs_ppo",
+                          " --set checkpoint.freq=8192 --set eval.n_episodes=3"
+                          " --set 'env.wrappers=[{id: NormalizeObservation}]'",
+                          "step_8192.zip",
+                          8,
+                          true};
+
 }  // namespace
+
+TEST_CASE("resume: PPO on a Dict observation killed after a checkpoint ends as the uninterrupted run",
+          "[cli][resume][spaces]") {
+  check_resume_equals_uninterrupted(kDictPpo, "KILL");
+}
 
 TEST_CASE("resume: PPO interrupted by SIGINT ends as the uninterrupted run", "[cli][resume]") {
   check_resume_equals_uninterrupted(kPpo, "INT");

@@ -139,7 +139,7 @@ TEST_CASE("NormalizeObservation: clipping, frozen statistics and their round tri
                                            std::vector<std::vector<float>>{{0.0f}},
                                            std::vector<std::vector<float>>{{0.0f}},
                                            std::vector<double>{0.0}, 1),
-                                       NormalizeObservation::Config{-1.0, 1e-8}),
+                                       NormalizeObservation::Config{-1.0, 1e-8, {}}),
                   std::invalid_argument);
 }
 

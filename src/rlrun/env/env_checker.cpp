@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
-#include <sstream>
 
+#include "rlrun/env/space_text.hpp"
 #include "rlrun/rng.hpp"
 
 namespace rlrun {
@@ -12,14 +12,6 @@ namespace rlrun {
 namespace {
 
 using Obs = std::vector<float>;
-
-std::string format(std::span<const float> x) {
-  std::ostringstream out;
-  out << "[";
-  for (size_t i = 0; i < x.size(); ++i) out << (i ? ", " : "") << x[i];
-  out << "]";
-  return out.str();
-}
 
 // Bitwise equality, so that NaN == NaN and -0 != +0 (Gymnasium's data_equivalence(exact=True)).
 bool identical(std::span<const float> a, std::span<const float> b) {
@@ -66,12 +58,26 @@ class Checker {
     const Space& act_space = env_.action_space();
     if (obs_space.flat_dim() <= 0) problem("observation_space has no elements");
     if (act_space.flat_dim() <= 0) problem("action_space has no elements");
-    for (const Space* s : {&obs_space, &act_space})
-      if (s->is_box())
-        for (size_t i = 0; i < s->low().size(); ++i)
-          if (!(s->low()[i] <= s->high()[i]))
-            problem("space " + s->describe() + " has low > high at index " + std::to_string(i));
+    for (const Space* s : {&obs_space, &act_space}) {
+      std::vector<const Space*> parts{s};
+      for (const Space& key : s->subspaces()) parts.push_back(&key);  // a Dict's keys
+      for (const Space* part : parts)
+        if (part->is_box())
+          for (size_t i = 0; i < part->low().size(); ++i)
+            if (!(part->low()[i] <= part->high()[i]))
+              problem("space " + part->describe() + " has low > high at index " + std::to_string(i));
+    }
     return problems_.empty();
+  }
+
+  // The observation as text, a Dict key by key.
+  std::string format(std::span<const float> x) const {
+    return format_value(env_.observation_space(), x);
+  }
+  // " (key 'row' is 7, not in Discrete(4))": which part of an observation is outside.
+  std::string why_outside(std::span<const float> x) const {
+    const std::string why = outside_reason(env_.observation_space(), x);
+    return why.empty() ? "" : " (" + why + ")";
   }
 
   Obs reset(std::optional<uint64_t> seed, const char* what) {
@@ -80,7 +86,7 @@ class Checker {
     env_.reset(seed, obs);
     if (!env_.observation_space().contains(obs))
       problem(std::string("the observation returned by ") + what + " " + format(obs) +
-              " is not inside " + env_.observation_space().describe());
+              " is not inside " + env_.observation_space().describe() + why_outside(obs));
     return obs;
   }
 
@@ -130,7 +136,7 @@ class Checker {
       r.info = env_.info().values();
       if (!obs_space.contains(r.obs))
         problem("the observation returned by step() " + format(r.obs) + " is not inside " +
-                obs_space.describe() + " (step " + std::to_string(t) + ")");
+                obs_space.describe() + why_outside(r.obs) + " (step " + std::to_string(t) + ")");
       if (!std::isfinite(r.reward))
         problem("step() returned a non-finite reward " + std::to_string(r.reward) + " (step " +
                 std::to_string(t) + ")");

@@ -29,6 +29,7 @@ Registry make_builtins() {
   // Every env folder's register.cpp (src/rlrun/envs/*/register.cpp), collected by CMake.
   for (EnvEntry& entry : builtin_env_entries()) r.add(std::move(entry));
 
+
   // Wrappers usable in `env.wrappers`, applied in order after the Monitor.
   r.add(make_wrapper_entry<DiscreteAsBox>(
       "DiscreteAsBox", "Box(-1, 1, (n,)) scores -> argmax action of a Discrete(n) env (SAC/TD3 on CartPole)"));
@@ -53,8 +54,8 @@ Registry make_builtins() {
   r.add(make_wrapper_entry<OneHotObservation>(
       "OneHotObservation", "Discrete/MultiDiscrete/MultiBinary observations as SB3's one-hot Box"));
 
-  r.add(make_algorithm_entry<PPO>("PPO", "Proximal Policy Optimization (SB3 semantics); Discrete/Box actions"));
-  r.add(make_algorithm_entry<A2C>("A2C", "Advantage Actor-Critic (SB3 semantics, RMSprop); Discrete/Box actions"));
+  r.add(make_algorithm_entry<PPO>("PPO", "Proximal Policy Optimization (SB3 semantics); Box/Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<A2C>("A2C", "Advantage Actor-Critic (SB3 semantics, RMSprop); Box/Discrete/MultiDiscrete/MultiBinary actions"));
   r.add(make_algorithm_entry<SAC>("SAC", "Soft Actor-Critic (SB3 semantics, learned entropy coefficient); Box actions"));
   r.add(make_algorithm_entry<DQN>("DQN", "Deep Q-Network (SB3 semantics, epsilon-greedy, Huber loss); Discrete actions"));
   r.add(make_algorithm_entry<TD3>("TD3", "Twin Delayed DDPG (SB3 semantics, clipped double-Q, delayed actor); Box actions"));

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/space_text.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
 #include "rlrun/render/video_limits.hpp"
@@ -166,7 +167,7 @@ RecordResult record_observations(const Env& env, const std::vector<std::string>&
     const ObservationChunk chunk = read_observation_chunk(file);
     if (chunk.obs_dim != obs_dim)
       throw UsageError(file + ": rows have " + std::to_string(chunk.obs_dim) + " values but " +
-                       env.id() + " observations have " + std::to_string(obs_dim) +
+                       env.id() + " observations are " + flat_layout(env.observation_space()) +
                        " (is this log from another env?)");
     const std::string name = std::filesystem::path(file).filename().string();
     for (int64_t row = 0; row < chunk.rows && !result.interrupted; ++row) {

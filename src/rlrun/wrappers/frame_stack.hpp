@@ -7,6 +7,9 @@
 // `frame_stack`) or copies of the first observation (`padding: reset`, Gymnasium's default).
 // The final observation of an episode holds that episode's frames; the next reset starts a
 // fresh stack.
+// A Dict observation is stacked key by key, as SB3's StackedObservations does for Dict spaces:
+// every key must be a Box, and each becomes the stack of its own last n_stack values (the
+// Dict's flat layout: key after key in sorted order, each key's frames oldest first).
 #include <string>
 #include <vector>
 
@@ -28,8 +31,8 @@ class FrameStack : public Wrapper {
         "frames before the first one after reset: zero (SB3 VecFrameStack) or reset (copies, Gymnasium)");
     }
   };
-  // Throws std::invalid_argument for a non-Box observation space, n_stack < 1 or an unknown
-  // padding.
+  // Throws std::invalid_argument for an observation space that is not a Box or a Dict of
+  // Boxes, n_stack < 1 or an unknown padding.
   FrameStack(EnvPtr inner, const Config& config);
   explicit FrameStack(EnvPtr inner) : FrameStack(std::move(inner), Config()) {}
 
@@ -45,13 +48,20 @@ class FrameStack : public Wrapper {
 
  private:
   void push(std::span<float> obs);
+  // A Box (a Dict key, or the whole observation): `dim` floats at `in` in the inner
+  // observation, stacked as n_stack * dim floats at `out` in ours.
+  struct Part {
+    int in = 0, out = 0, dim = 0;
+  };
+  static Space stacked(const Space& box, int n_stack);
 
   Space space_;
+  std::vector<Part> parts_;
   int n_stack_;
   bool pad_with_reset_;
   int frame_dim_;
   std::vector<float> frame_;  // the inner observation
-  std::vector<float> stack_;  // n_stack * frame_dim, oldest first
+  std::vector<float> stack_;  // n_stack * frame_dim: each part's frames, oldest first
 };
 
 }  // namespace rlrun

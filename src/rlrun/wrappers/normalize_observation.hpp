@@ -15,8 +15,14 @@
 // before (VecNormalize: after) the reset observation was added. With n_envs = 1 the
 // statistics and all other observations are bit-identical to SB3's.
 // The observation space becomes Box(-clip_obs, clip_obs) of the same shape.
+// A Dict observation is normalised key by key as VecNormalize does with `norm_obs_keys`: the
+// listed keys (default: every Box key; SB3's default, all keys, fails on a non-Box key) each
+// become Box(-clip_obs, clip_obs), the others pass unchanged. One RunningMeanStd holds the
+// normalised keys' floats in sorted key order; it equals SB3's one-per-key statistics, which are
+// updated with the same observations and so share one count.
 // A threaded VecEnv must not step two copies sharing statistics at the same time.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "rlrun/core/config_checks.hpp"
@@ -31,14 +37,18 @@ class NormalizeObservation : public Wrapper, public ModelStatistics {
   struct Config {
     double clip_obs = 10.0;  // SB3 VecNormalize clip_obs
     double epsilon = 1e-8;   // SB3 VecNormalize epsilon
+    std::vector<std::string> norm_obs_keys;  // Dict keys normalised; [] = every Box key
     template <class V>
     void visit(V& v) {
       v("clip_obs", clip_obs, "normalised observations are clipped to [-clip_obs, clip_obs]",
         positive());
       v("epsilon", epsilon, "added to the variance before the square root", positive());
+      v("norm_obs_keys", norm_obs_keys,
+        "Dict observations: the Box keys to normalise ([] = every Box key; SB3 norm_obs_keys)");
     }
   };
-  // Throws std::invalid_argument for a non-Box observation space or clip_obs <= 0.
+  // Throws std::invalid_argument for an observation space that is not a Box or a Dict with a
+  // Box key, a norm_obs_keys entry that is not a Box key of the Dict, or clip_obs <= 0.
   NormalizeObservation(EnvPtr inner, const Config& config);
   explicit NormalizeObservation(EnvPtr inner) : NormalizeObservation(std::move(inner), Config()) {}
 
@@ -66,8 +76,13 @@ class NormalizeObservation : public Wrapper, public ModelStatistics {
 
  private:
   void normalize(std::span<float> obs) const;
+  // The floats the statistics see: the observation itself, or its normalised keys' floats.
+  std::span<const float> selected(std::span<const float> obs);
 
   Config config_;
+  bool whole_ = true;          // every float is normalised (a Box observation)
+  std::vector<int> indices_;   // else: the normalised floats' positions
+  std::vector<float> picked_;  // their values, for the statistics
   Space space_;
   std::shared_ptr<RunningMeanStd> rms_;
   bool training_ = true;

@@ -1,12 +1,15 @@
 #pragma once
-// Turns a Discrete / MultiDiscrete / MultiBinary observation into the Box the algorithms
-// take, exactly as SB3 feeds such observations to its networks
-// (stable_baselines3/common/preprocessing.py preprocess_obs): Discrete(n) becomes a one-hot
-// vector of n floats, MultiDiscrete(nvec) the concatenated one-hots of its entries,
-// MultiBinary(n) its n bits as floats. The result is Box(0, 1, (total,)). Used as
-// `wrappers: [{id: OneHotObservation}]`, e.g. for GridWorld-v0.
+// Turns a Discrete / MultiDiscrete / MultiBinary observation into a Box, exactly as SB3 feeds
+// such observations to its networks (stable_baselines3/common/preprocessing.py preprocess_obs;
+// env/observation_encoder.hpp does the encoding): Discrete(n) becomes a one-hot vector of n
+// floats, MultiDiscrete(nvec) the concatenated one-hots of its entries, MultiBinary(n) its n
+// bits as floats. The result is Box(0, 1, (total,)). PPO and A2C encode such observations
+// themselves; the wrapper is for the algorithms that take Box observations only, for wrappers
+// that need a Box (FrameStack, NormalizeObservation), and for configs written before.
+// Used as `wrappers: [{id: OneHotObservation}]`, e.g. for GridWorld-v0.
 #include <vector>
 
+#include "rlrun/env/observation_encoder.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
@@ -17,7 +20,7 @@ class OneHotObservation : public Wrapper {
     template <class V>
     void visit(V&) {}
   };
-  // Throws std::invalid_argument when the inner observation space is a Box.
+  // Throws std::invalid_argument when the inner observation space is a Box or a Dict.
   OneHotObservation(EnvPtr inner, const Config& config);
   explicit OneHotObservation(EnvPtr inner) : OneHotObservation(std::move(inner), Config()) {}
 
@@ -31,8 +34,7 @@ class OneHotObservation : public Wrapper {
   void encode(std::span<float> obs) const;
 
   Space space_;
-  std::vector<int64_t> sizes_;   // one-hot width of each inner entry (1 for MultiBinary bits)
-  std::vector<int64_t> starts_;  // value of each entry's first slot (Discrete's start)
+  ObservationEncoder encoder_;
   std::vector<float> inner_obs_;
 };
 

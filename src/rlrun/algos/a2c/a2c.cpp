@@ -92,7 +92,7 @@ void A2C::train(double progress_remaining, Logger* logger) {
   logger->record("train/policy_loss", policy_loss);
   logger->record("train/value_loss", value_loss);
   logger->record("train/learning_rate", lr);
-  if (!policy_.discrete()) logger->record("train/std", policy_.mean_std());
+  if (policy_.gaussian()) logger->record("train/std", policy_.mean_std());
 }
 
 void A2C::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {

@@ -48,7 +48,9 @@ class A2C : public Algorithm {
       v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");
     }
   };
-  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete, SpaceKind::kBox};
+  // SB3's support table (docs/guide/algos.rst): every action space but Dict.
+  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kBox, SpaceKind::kDiscrete,
+                                                SpaceKind::kMultiDiscrete, SpaceKind::kMultiBinary};
 
   // Problems of `config` with these spaces (registry: checked before anything trains).
   static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);

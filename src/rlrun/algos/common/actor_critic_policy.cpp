@@ -9,6 +9,27 @@
 
 namespace rlrun {
 
+namespace {
+// The rollout side of a distribution: the mode or a sample, and its log-probability.
+template <class Distribution, class Actions>
+void draw(Distribution& dist, Rng& rng, bool deterministic, Actions& actions,
+          Eigen::RowVectorXf& log_probs) {
+  if (deterministic)
+    dist.mode(actions);
+  else
+    dist.sample(rng, actions);
+  dist.log_prob(actions, log_probs);
+}
+
+// The training side (SB3 evaluate_actions): log-probability of the taken actions, entropy.
+template <class Distribution, class Actions>
+void score(Distribution& dist, const Actions& actions, Eigen::RowVectorXf& log_prob,
+           Eigen::RowVectorXf& entropy) {
+  dist.log_prob(actions, log_prob);
+  dist.entropy(entropy);
+}
+}  // namespace
+
 void save_mlp(const Mlp& mlp, const std::string& tower, const std::string& head, TensorMap& out) {
   const int last = mlp.num_layers() - 1;
   for (int l = 0; l <= last; ++l) {
@@ -33,18 +54,19 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
   if (rollout_size > std::numeric_limits<int>::max())
     out.push_back({"n_steps", "n_steps * n_envs = " + std::to_string(rollout_size) +
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
-  if (!setup.observation_space.is_box())
-    out.push_back({"id", "observation space " + setup.observation_space.describe() +
-                             " is not supported yet (Box only; OneHotObservation turns Discrete "
-                             "observations into a Box)"});
   if (!policy.ortho_init)
     out.push_back({"policy.ortho_init",
                    "false (torch's default init) is not supported yet; SB3's default is true"});
   check_net_arch(out, "policy.net_arch", policy.net_arch);
   const int obs_dim = setup.observation_space.flat_dim();
-  const int head = setup.action_space.is_discrete() ? static_cast<int>(setup.action_space.n())
-                                                    : setup.action_space.flat_dim();
-  check_network_memory(out, "policy.net_arch", obs_dim, policy.net_arch, head, 2,
+  int features = obs_dim;
+  try {
+    features = ObservationEncoder(setup.observation_space).features_dim();
+  } catch (const std::invalid_argument& e) {
+    out.push_back({"id", e.what()});
+  }
+  const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
+  check_network_memory(out, "policy.net_arch", features, policy.net_arch, head, 2,
                        static_cast<double>(batch));
   // The rollout: observations, actions and six per-step numbers (reward, value, log-prob,
   // advantage, return, episode start) in float32.
@@ -55,27 +77,54 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
   return out;
 }
 
+int action_net_size(const Space& action_space) {
+  switch (action_space.kind()) {
+    case SpaceKind::kDiscrete:
+    case SpaceKind::kMultiBinary: return static_cast<int>(action_space.n());
+    case SpaceKind::kMultiDiscrete: {
+      int64_t total = 0;
+      for (int64_t n : action_space.nvec()) total += n;
+      return static_cast<int>(total);
+    }
+    case SpaceKind::kBox: return action_space.flat_dim();
+    case SpaceKind::kDict: break;
+  }
+  throw std::invalid_argument("action space " + action_space.describe() +
+                              " is not supported (SB3 has no distribution for Dict actions)");
+}
+
 ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,
-                                     const ActorCriticPolicyConfig& config, Rng& init_rng) {
-  if (!observation_space.is_box())
-    throw std::invalid_argument("ActorCriticPolicy: observation space " +
-                                observation_space.describe() + " is not supported yet (Box only)");
-  if (action_space.is_discrete()) {
-    discrete_ = true;
-    action_dim_ = 1;
-  } else if (action_space.is_box()) {
-    discrete_ = false;
-    action_dim_ = action_space.flat_dim();
-    low_ = Eigen::Map<const Eigen::VectorXf>(action_space.low().data(), action_dim_);
-    high_ = Eigen::Map<const Eigen::VectorXf>(action_space.high().data(), action_dim_);
-  } else {
-    throw std::invalid_argument("ActorCriticPolicy: action space " + action_space.describe() +
-                                " is not supported yet (Discrete or Box)");
+                                     const ActorCriticPolicyConfig& config, Rng& init_rng)
+    : encoder_(observation_space) {
+  // SB3 make_proba_distribution: the distribution follows the action space's class.
+  switch (action_space.kind()) {
+    case SpaceKind::kDiscrete:
+      head_ = Head::kCategorical;
+      action_dim_ = 1;
+      break;
+    case SpaceKind::kMultiDiscrete:
+      head_ = Head::kMultiCategorical;
+      action_dim_ = action_space.flat_dim();
+      multi_categorical_ = MultiCategorical(action_space.nvec());
+      break;
+    case SpaceKind::kMultiBinary:
+      head_ = Head::kBernoulli;
+      action_dim_ = action_space.flat_dim();
+      break;
+    case SpaceKind::kBox:
+      head_ = Head::kDiagGaussian;
+      action_dim_ = action_space.flat_dim();
+      low_ = Eigen::Map<const Eigen::VectorXf>(action_space.low().data(), action_dim_);
+      high_ = Eigen::Map<const Eigen::VectorXf>(action_space.high().data(), action_dim_);
+      break;
+    case SpaceKind::kDict:
+      throw std::invalid_argument("ActorCriticPolicy: action space " + action_space.describe() +
+                                  " is not supported (SB3 has no distribution for Dict actions)");
   }
   const Activation act = parse_activation(config.activation_fn);
-  const int obs_dim = observation_space.flat_dim();
-  const int head_dim = discrete_ ? static_cast<int>(action_space.n()) : action_dim_;
-  actor_ = Mlp(obs_dim, config.net_arch, head_dim, act);
+  // SB3 MlpPolicy / MultiInputPolicy: the towers start from the features extractor's output.
+  const int obs_dim = encoder_.features_dim();
+  actor_ = Mlp(obs_dim, config.net_arch, action_net_size(action_space), act);
   critic_ = Mlp(obs_dim, config.net_arch, 1, act);
   if (config.ortho_init) {
     // SB3 policies.py: module_gains = {mlp_extractor: sqrt(2), action_net: 0.01, value_net: 1}.
@@ -84,7 +133,7 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
   } else {
     throw std::invalid_argument("ortho_init: false is not supported (torch's default init)");
   }
-  log_std_ = Eigen::VectorXf::Constant(discrete_ ? 0 : action_dim_,
+  log_std_ = Eigen::VectorXf::Constant(gaussian() ? action_dim_ : 0,
                                        static_cast<float>(config.log_std_init));
   log_std_grad_ = Eigen::VectorXf::Zero(log_std_.size());
 }
@@ -96,31 +145,35 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
   actions.resize(action_dim_, n);
   values.resize(n);
   log_probs.resize(n);
-  const Eigen::MatrixXf& head = actor_.forward(obs);
-  if (discrete_) {
-    categorical_.set_logits(head);
-    // A 1 x n row of a column-major matrix has a stride; go through a contiguous row.
-    action_row_.resize(n);
-    if (deterministic)
-      categorical_.mode(action_row_);
-    else
-      categorical_.sample(rng, action_row_);
-    categorical_.log_prob(action_row_, log_probs);
-    actions.row(0) = action_row_;
-  } else {
-    gaussian_.set(head, log_std_);
-    if (deterministic)
-      gaussian_.mode(actions);
-    else
-      gaussian_.sample(rng, actions);
-    gaussian_.log_prob(actions, log_probs);
+  const Eigen::Ref<const Eigen::MatrixXf> features = encoder_(obs);
+  const Eigen::MatrixXf& head = actor_.forward(features);
+  switch (head_) {
+    case Head::kCategorical:
+      categorical_.set_logits(head);
+      // A 1 x n row of a column-major matrix has a stride; go through a contiguous row.
+      action_row_.resize(n);
+      draw(categorical_, rng, deterministic, action_row_, log_probs);
+      actions.row(0) = action_row_;
+      break;
+    case Head::kMultiCategorical:
+      multi_categorical_.set_logits(head);
+      draw(multi_categorical_, rng, deterministic, actions, log_probs);
+      break;
+    case Head::kBernoulli:
+      bernoulli_.set_logits(head);
+      draw(bernoulli_, rng, deterministic, actions, log_probs);
+      break;
+    case Head::kDiagGaussian:
+      gaussian_.set(head, log_std_);
+      draw(gaussian_, rng, deterministic, actions, log_probs);
+      break;
   }
-  values = critic_.forward(obs);
+  values = critic_.forward(features);
 }
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                        Eigen::RowVectorXf& values) {
-  values = critic_.forward(obs);
+  values = critic_.forward(encoder_(obs));
 }
 
 void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
@@ -134,20 +187,30 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
   actions_ = actions;
   // Actor and critic are independent: the critic runs on the second core (bit-identical
   // results either way).
+  const Eigen::Ref<const Eigen::MatrixXf> features = encoder_(obs);
   auto actor_part = [&] {
-    const Eigen::MatrixXf& head = actor_.forward(obs);
-    if (discrete_) {
-      categorical_.set_logits(head);
-      action_row_ = actions.row(0);
-      categorical_.log_prob(action_row_, log_prob);
-      categorical_.entropy(entropy);
-    } else {
-      gaussian_.set(head, log_std_);
-      gaussian_.log_prob(actions, log_prob);
-      gaussian_.entropy(entropy);
+    const Eigen::MatrixXf& head = actor_.forward(features);
+    switch (head_) {
+      case Head::kCategorical:
+        categorical_.set_logits(head);
+        action_row_ = actions.row(0);
+        score(categorical_, action_row_, log_prob, entropy);
+        break;
+      case Head::kMultiCategorical:
+        multi_categorical_.set_logits(head);
+        score(multi_categorical_, actions, log_prob, entropy);
+        break;
+      case Head::kBernoulli:
+        bernoulli_.set_logits(head);
+        score(bernoulli_, actions, log_prob, entropy);
+        break;
+      case Head::kDiagGaussian:
+        gaussian_.set(head, log_std_);
+        score(gaussian_, actions, log_prob, entropy);
+        break;
     }
   };
-  auto critic_part = [&] { values = critic_.forward(obs); };
+  auto critic_part = [&] { values = critic_.forward(features); };
   run_pair(n, actor_part, critic_part);
 }
 
@@ -155,11 +218,20 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
                                  const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
                                  const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy) {
   auto actor_part = [&] {
-    if (discrete_) {
-      categorical_.backward(action_row_, grad_log_prob, grad_entropy, grad_head_);
-    } else {
-      gaussian_.backward(actions_, grad_log_prob, grad_entropy, grad_head_, grad_log_std_batch_);
-      log_std_grad_ += grad_log_std_batch_;
+    switch (head_) {
+      case Head::kCategorical:
+        categorical_.backward(action_row_, grad_log_prob, grad_entropy, grad_head_);
+        break;
+      case Head::kMultiCategorical:
+        multi_categorical_.backward(actions_, grad_log_prob, grad_entropy, grad_head_);
+        break;
+      case Head::kBernoulli:
+        bernoulli_.backward(actions_, grad_log_prob, grad_entropy, grad_head_);
+        break;
+      case Head::kDiagGaussian:
+        gaussian_.backward(actions_, grad_log_prob, grad_entropy, grad_head_, grad_log_std_batch_);
+        log_std_grad_ += grad_log_std_batch_;
+        break;
     }
     actor_.backward(grad_head_);
   };
@@ -186,25 +258,25 @@ void ActorCriticPolicy::zero_grad() {
 
 std::vector<ParamBlock> ActorCriticPolicy::param_blocks() {
   std::vector<ParamBlock> blocks{actor_.block(), critic_.block()};
-  if (!discrete_) blocks.push_back({log_std_.data(), log_std_grad_.data(), log_std_.size()});
+  if (gaussian()) blocks.push_back({log_std_.data(), log_std_grad_.data(), log_std_.size()});
   return blocks;
 }
 
 double ActorCriticPolicy::mean_std() const {
-  if (discrete_) return std::nan("");
+  if (!gaussian()) return std::nan("");
   return log_std_.array().exp().mean();
 }
 
 void ActorCriticPolicy::save(TensorMap& tensors) const {
   save_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   save_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
-  if (!discrete_) tensors["log_std"] = to_tensor(log_std_);
+  if (gaussian()) tensors["log_std"] = to_tensor(log_std_);
 }
 
 void ActorCriticPolicy::load(const TensorMap& tensors) {
   load_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   load_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
-  if (!discrete_) from_tensor(tensors, "log_std", log_std_);
+  if (gaussian()) from_tensor(tensors, "log_std", log_std_);
 }
 
 }  // namespace rlrun

@@ -1,9 +1,10 @@
 #pragma once
 // SB3's ActorCriticPolicy for MlpPolicy (stable_baselines3/common/policies.py), used by PPO and
 // A2C: separate actor and critic towers (net_arch [64, 64] each by default since SB3 1.8),
-// orthogonal init with gains sqrt(2) (towers), 0.01 (action_net) and 1 (value_net), a
-// Categorical head for Discrete actions and a diagonal Gaussian with a state-independent
-// `log_std` parameter for Box actions.
+// orthogonal init with gains sqrt(2) (towers), 0.01 (action_net) and 1 (value_net), and the
+// action distribution SB3's make_proba_distribution (common/distributions.py) picks: Categorical
+// for Discrete, MultiCategorical for MultiDiscrete, Bernoulli for MultiBinary, and a diagonal
+// Gaussian with a state-independent `log_std` parameter for Box actions.
 #include <Eigen/Core>
 #include <functional>
 #include <string>
@@ -13,9 +14,12 @@
 #include "rlrun/rng.hpp"
 #include "rlrun/space.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/env/observation_encoder.hpp"
+#include "rlrun/nn/bernoulli.hpp"
 #include "rlrun/nn/categorical.hpp"
 #include "rlrun/nn/diag_gaussian.hpp"
 #include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/multi_categorical.hpp"
 #include "rlrun/nn/param_block.hpp"
 
 namespace rlrun {
@@ -25,6 +29,11 @@ struct ActorCriticPolicyConfig;
 // rollout of `rollout_size` (n_steps * n_envs) steps, minibatches of `batch`.
 ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t rollout_size,
                                   int64_t batch, const AlgorithmSetup& setup);
+
+// Outputs of SB3's action_net for an action space (proba_distribution_net): n for Discrete(n)
+// and MultiBinary(n), sum(nvec) for MultiDiscrete, the dimension for Box. Throws
+// std::invalid_argument for a Dict.
+int action_net_size(const Space& action_space);
 
 struct ActorCriticPolicyConfig {
   std::vector<int> net_arch = {64, 64};  // hidden sizes of both the actor and the critic tower
@@ -45,14 +54,21 @@ struct ActorCriticPolicyConfig {
 
 class ActorCriticPolicy {
  public:
-  // Throws std::invalid_argument for unsupported spaces (Box observations; Discrete or Box
-  // actions).
+  // The distribution over actions, from the action space's kind.
+  enum class Head { kCategorical, kMultiCategorical, kBernoulli, kDiagGaussian };
+
+  // Observations of any space (ObservationEncoder: one-hots for Discrete values, Dict keys
+  // concatenated); actions of any space but Dict (std::invalid_argument).
   ActorCriticPolicy(const Space& observation_space, const Space& action_space,
                     const ActorCriticPolicyConfig& config, Rng& init_rng);
 
-  bool discrete() const { return discrete_; }
+  Head head() const { return head_; }
+  // Box actions: a Gaussian with the learned log_std (SB3 logs train/std).
+  bool gaussian() const { return head_ == Head::kDiagGaussian; }
+  // Floats per action (the rollout buffer's rows): 1 for Discrete, one per entry otherwise.
   int action_dim() const { return action_dim_; }
 
+  // `obs` are the env's observations (input_dim x n) everywhere below; the policy encodes them.
   // Rollout step: actions (act_dim x n, as sampled: unclipped), values and log-probs.
   void act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng, bool deterministic,
            Eigen::MatrixXf& actions, Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs);
@@ -70,13 +86,14 @@ class ActorCriticPolicy {
 
   void zero_grad();
   std::vector<ParamBlock> param_blocks();
-  // exp(log_std).mean(), SB3's train/std; NaN for Discrete.
+  // exp(log_std).mean(), SB3's train/std; NaN without a Gaussian head.
   double mean_std() const;
 
   // SB3 state_dict names: mlp_extractor.policy_net.0.weight, action_net.weight, log_std, ...
   void save(TensorMap& tensors) const;
   void load(const TensorMap& tensors);
 
+  const ObservationEncoder& encoder() const { return encoder_; }
   const Mlp& actor() const { return actor_; }
   const Mlp& critic() const { return critic_; }
 
@@ -84,12 +101,15 @@ class ActorCriticPolicy {
   static void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
                        const std::function<void()>& critic_part);
 
-  bool discrete_ = false;
+  ObservationEncoder encoder_;
+  Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;
   Eigen::VectorXf low_, high_;
   Mlp actor_, critic_;
   Eigen::VectorXf log_std_, log_std_grad_;
   Categorical categorical_;
+  MultiCategorical multi_categorical_;
+  Bernoulli bernoulli_;
   DiagGaussian gaussian_;
   // Workspaces for backward.
   Eigen::MatrixXf actions_, grad_head_, gaussian_sample_;

@@ -146,7 +146,7 @@ void PPO::train(double progress_remaining, Logger* logger) {
   logger->record("train/loss", last_loss);
   logger->record("train/explained_variance",
                  explained_variance(rollout.values.reshaped(), rollout.returns.reshaped()));
-  if (!policy_.discrete()) logger->record("train/std", policy_.mean_std());
+  if (policy_.gaussian()) logger->record("train/std", policy_.mean_std());
   logger->record("train/n_updates", static_cast<double>(n_updates_));
   logger->record("train/clip_range", clip_range);
   if (clip_range_vf) logger->record("train/clip_range_vf", *clip_range_vf);

@@ -56,8 +56,9 @@ class PPO : public Algorithm {
     }
   };
 
-  // Action spaces PPO handles (SB3 also has MultiDiscrete/MultiBinary: not yet here).
-  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete, SpaceKind::kBox};
+  // SB3's support table (docs/guide/algos.rst): every action space but Dict.
+  static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kBox, SpaceKind::kDiscrete,
+                                                SpaceKind::kMultiDiscrete, SpaceKind::kMultiBinary};
 
   // Problems of `config` with these spaces (registry: checked before anything trains).
   static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);

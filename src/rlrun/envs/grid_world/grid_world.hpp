@@ -5,9 +5,9 @@
 // The env itself truncates after `max_steps` steps, because the tutorial's timeout carries a
 // penalty that a TimeLimit wrapper could not add.
 //
-//   observation  MultiDiscrete([size, size]): row, column (one float each). The algorithms
-//                take Box observations: use the OneHotObservation wrapper, which encodes it
-//                as SB3's preprocess_obs does (concatenated one-hots).
+//   observation  MultiDiscrete([size, size]): row, column (one float each). PPO and A2C encode
+//                it as SB3's preprocess_obs does (concatenated one-hots); for the algorithms
+//                that take Box observations the OneHotObservation wrapper does the same.
 //   action       Discrete(4): 0 up (row - 1), 1 right (column + 1), 2 down (row + 1),
 //                3 left (column - 1)
 //   reward       move_reward per move, wall_reward for a move into the wall, plus

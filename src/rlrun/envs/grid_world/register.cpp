@@ -7,7 +7,8 @@ namespace rlrun::envs {
 void register_grid_world(EnvEntries& out) {
   // No TimeLimit: GridWorld truncates itself after max_steps, with its timeout penalty.
   out.push_back(make_env_entry<GridWorld>(
-      "GridWorld-v0", "walk a 5x5 grid to the far corner; MultiDiscrete obs (use OneHotObservation)",
+      "GridWorld-v0",
+      "walk a 5x5 grid to the far corner; MultiDiscrete obs (OneHotObservation for DQN/SAC/TD3/DDPG)",
       0));
 }
 
