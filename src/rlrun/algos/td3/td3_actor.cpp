@@ -21,12 +21,12 @@ void Td3Actor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions) {
 
 void Td3Actor::save(const std::string& prefix, TensorMap& tensors) const {
   const std::string tower = prefix + ".mu";
-  save_mlp(net_, tower, tower + "." + std::to_string(2 * (net_.num_layers() - 1)), tensors);
+  save_mlp(net(), tower, tower + "." + std::to_string(2 * (net().num_layers() - 1)), tensors);
 }
 
 void Td3Actor::load(const std::string& prefix, const TensorMap& tensors) {
   const std::string tower = prefix + ".mu";
-  load_mlp(net_, tower, tower + "." + std::to_string(2 * (net_.num_layers() - 1)), tensors);
+  load_mlp(net(), tower, tower + "." + std::to_string(2 * (net().num_layers() - 1)), tensors);
 }
 
 }  // namespace rlrun
