@@ -1,8 +1,9 @@
 #pragma once
 // Runs two independent pieces of work at once: one on the calling thread, one on a persistent
 // worker thread (this machine kind has 2 cores). Used where an algorithm's work splits into
-// independent halves — PPO/A2C's actor and critic, SAC/TD3's twin critics — whose results do
-// not depend on the order, so runs stay bit-identical with or without the worker.
+// independent halves — PPO/A2C's actor and critic, the two halves of an off-policy minibatch
+// (nn/batch_split.hpp) — whose results do not depend on the order, so runs stay bit-identical
+// with or without the worker.
 // The worker spins briefly for the next job (a PPO minibatch is ~100 µs; a futex wake-up
 // costs ~10 µs), then sleeps on std::atomic::wait. When the calling thread finishes its part
 // before the worker has started the other one (the worker is descheduled on a busy machine, or
