@@ -138,8 +138,7 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
       id_(std::move(id)),
       config_(config),
       buffer_action_dim_(buffer_action_dim),
-      replay_rng_(setup.seed ^ replay.stream),
-      replay_key_(replay.key) {
+      replay_rng_(setup.seed ^ replay.stream) {
   const auto require = [this](bool ok, const std::string& message) {
     if (!ok) throw std::invalid_argument(id_ + ": " + message);
   };
@@ -151,6 +150,9 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
   require(config.gamma >= 0.0 && config.gamma <= 1.0, "gamma must be in [0, 1]");
   require(config.gradient_steps >= -1,
           "gradient_steps must be >= 0, or -1 (as many as env steps)");
+  checkpoint("num_timesteps", num_timesteps_);
+  checkpoint("n_updates", n_updates_);
+  checkpoint(replay.key, replay_rng_);
 }
 
 OffPolicyState& OffPolicyAlgorithm::state() {
@@ -183,22 +185,16 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
 }
 
 void OffPolicyAlgorithm::save_training_state(StateWriter& out) const {
-  out.put_int("num_timesteps", num_timesteps_);
-  out.put_int("n_updates", n_updates_);
-  out.put_rng(replay_key_, replay_rng_);
+  for (const auto& write : write_items_) write(out);
   out.put_bool("has_off_policy", state_.has_value());
   if (state_) state_->write_state(out.sub("off_policy"));
-  write_state(out);
 }
 
 void OffPolicyAlgorithm::load_training_state(const StateReader& in) {
-  num_timesteps_ = in.get_int("num_timesteps");
-  n_updates_ = in.get_int("n_updates");
-  in.get_rng(replay_key_, replay_rng_);
+  for (const auto& read : read_items_) read(in);
   // DQN's checkpoints before the flag always held the state.
   if (!in.has("has_off_policy") || in.get_bool("has_off_policy"))
     state().read_state(in.sub("off_policy"));
-  read_state(in);
 }
 
 }  // namespace rlrun

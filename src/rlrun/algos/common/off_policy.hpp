@@ -11,11 +11,14 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
+#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_fields.hpp"
 
 namespace rlrun {
@@ -102,9 +105,9 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
 
 // SB3 OffPolicyAlgorithm: the replay buffer (allocated on first use: learn or resume, never for
 // a model that is only evaluated) and the stream that samples it, learn() (off_policy_learn
-// with the algorithm's hooks below), the gradient-step counter, and the training state every
-// off-policy algorithm checkpoints (num_timesteps, n_updates, the replay stream and buffer,
-// then the algorithm's own keys).
+// with the algorithm's hooks below), the gradient-step counter, and the training state for an
+// exact resume: num_timesteps, n_updates, the replay stream and buffer, and whatever the
+// algorithm registers with checkpoint() (each item written and read back under one key).
 class OffPolicyAlgorithm : public Algorithm {
  public:
   // Optimizers point into the networks: no copies or moves.
@@ -142,9 +145,11 @@ class OffPolicyAlgorithm : public Algorithm {
   virtual void on_step(Logger* /*logger*/) {}
   // After each finished episode of env `env` (SB3 collect_rollouts: action_noise.reset).
   virtual void on_episode_end(int /*env*/) {}
-  // Exact resume: what the algorithm adds to the shared state (its RNG streams, optimizers...).
-  virtual void write_state(StateWriter& out) const = 0;
-  virtual void read_state(const StateReader& in) = 0;
+  // Adds `item` to the training state under `key`: an Rng, an int64_t or double counter, an
+  // Adam, or a component with write_state(StateWriter) and read_state(const StateReader&). It
+  // must stay where it is (a member built in the constructor).
+  template <class T>
+  void checkpoint(const std::string& key, T& item);
 
   // replay_buffer.sample(batch_size) with the replay stream, into a reused batch.
   const ReplayBatch& sample_batch();
@@ -161,9 +166,31 @@ class OffPolicyAlgorithm : public Algorithm {
   OffPolicyConfig config_;
   int buffer_action_dim_;
   Rng replay_rng_;
-  std::string replay_key_;
   std::optional<OffPolicyState> state_;
   ReplayBatch batch_;
+  // checkpoint()'s items: how each is written and read back.
+  std::vector<std::function<void(StateWriter&)>> write_items_;
+  std::vector<std::function<void(const StateReader&)>> read_items_;
 };
+
+template <class T>
+void OffPolicyAlgorithm::checkpoint(const std::string& key, T& item) {
+  if constexpr (std::is_same_v<T, Rng>) {
+    write_items_.push_back([key, &item](StateWriter& out) { out.put_rng(key, item); });
+    read_items_.push_back([key, &item](const StateReader& in) { in.get_rng(key, item); });
+  } else if constexpr (std::is_same_v<T, int64_t>) {
+    write_items_.push_back([key, &item](StateWriter& out) { out.put_int(key, item); });
+    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_int(key); });
+  } else if constexpr (std::is_same_v<T, double>) {
+    write_items_.push_back([key, &item](StateWriter& out) { out.put_double(key, item); });
+    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_double(key); });
+  } else if constexpr (std::is_same_v<T, Adam>) {
+    write_items_.push_back([key, &item](StateWriter& out) { write_adam(out.sub(key), item); });
+    read_items_.push_back([key, &item](const StateReader& in) { read_adam(in.sub(key), item); });
+  } else {
+    write_items_.push_back([key, &item](StateWriter& out) { item.write_state(out.sub(key)); });
+    read_items_.push_back([key, &item](const StateReader& in) { item.read_state(in.sub(key)); });
+  }
+}
 
 }  // namespace rlrun

@@ -76,8 +76,18 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
       act_net_(q_net_.net()),
       optimizer_(q_net_.net().block()),
       exploration_schedule_{config.exploration_initial_eps, config.exploration_final_eps,
-                            config.exploration_fraction} {}
+                            config.exploration_fraction} {
+  // Resume: counters, exploration rate, the action stream and the optimizer's two parts (the
+  // networks, target included, are in the model tensors).
+  checkpoint("n_calls", n_calls_);
+  checkpoint("exploration_rate", exploration_rate_);
+  checkpoint("action_rng", action_rng_);
+  checkpoint("optimizer/adam0", optimizer_.part(0));
+  checkpoint("optimizer/adam1", optimizer_.part(1));
+}
 
+// SB3 dqn/dqn.py DQN.train, one pass of its loop over gradient steps (CleanRL's dqn.py has the
+// same steps with an MSE loss and no gradient clipping).
 double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
@@ -190,23 +200,6 @@ void DQN::load(const TensorMap& tensors) {
   if (tensors.count("exploration_rate"))
     exploration_rate_ = scalar_from<double>(tensors, "exploration_rate");
   act_net_stale_ = true;
-}
-
-void DQN::write_state(StateWriter& out) const {
-  out.put_int("n_calls", n_calls_);
-  out.put_double("exploration_rate", exploration_rate_);
-  out.put_rng("action_rng", action_rng_);
-  // The optimizer's two parts (one per core), as `adam0` and `adam1`.
-  for (int k = 0; k < 2; ++k)
-    write_adam(out.sub("optimizer").sub("adam" + std::to_string(k)), optimizer_.part(k));
-}
-
-void DQN::read_state(const StateReader& in) {
-  n_calls_ = in.get_int("n_calls");
-  exploration_rate_ = in.get_double("exploration_rate");
-  in.get_rng("action_rng", action_rng_);
-  for (int k = 0; k < 2; ++k)
-    read_adam(in.sub("optimizer").sub("adam" + std::to_string(k)), optimizer_.part(k));
 }
 
 }  // namespace rlrun

@@ -114,10 +114,6 @@ class DQN : public OffPolicyAlgorithm {
   void train(int gradient_steps, Logger* logger) override;
   // SB3 DQN._on_step: the target update and the exploration schedule.
   void on_step(Logger* logger) override;
-  // Resume: counters, exploration rate, the action stream and the Adam moments (the networks,
-  // target included, are in the model tensors; the replay buffer is OffPolicyAlgorithm's).
-  void write_state(StateWriter& out) const override;
-  void read_state(const StateReader& in) override;
   void random_actions(Eigen::Index n, Eigen::MatrixXf& actions);
 
   Config config_;

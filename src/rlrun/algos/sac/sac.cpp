@@ -57,8 +57,19 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
   grad_min_q_.resize(critic_.n_critics());
+  // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
+  // included, are in the model tensors).
+  checkpoint("train_rng", train_rng_);
+  checkpoint("predict_rng", predict_rng_);
+  checkpoint("acting", acting_);
+  checkpoint("actor_optimizer", actor_optimizer_);
+  for (int i = 0; i < critic_.n_critics(); ++i)
+    checkpoint("critic_optimizer" + std::to_string(i), critic_optimizers_[i]);
+  checkpoint("ent_coef", ent_coef_);
 }
 
+// SB3 sac/sac.py SAC.train, one pass of its loop over gradient steps; CleanRL's
+// sac_continuous_action.py has the same update.
 SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
@@ -80,8 +91,7 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   critic_target_.forward(b.next_obs, next_actions_);
   target_q_.resize(1, n);
   for (Eigen::Index j = 0; j < n; ++j) {
-    float next_q = critic_target_.min(j);
-    next_q -= alpha * next_log_prob_(j);
+    const float next_q = critic_target_.min(j) - alpha * next_log_prob_(j);
     target_q_(0, j) = b.rewards(j) + (1.0f - b.dones(j)) * gamma * next_q;
   }
 
@@ -192,25 +202,6 @@ void SAC::load(const TensorMap& tensors) {
   critic_.load("critic", tensors);
   critic_target_.load("critic_target", tensors);
   ent_coef_.load(tensors);
-  acting_actor_.invalidate();
-}
-
-void SAC::write_state(StateWriter& out) const {
-  out.put_rng("train_rng", train_rng_);
-  out.put_rng("predict_rng", predict_rng_);
-  acting_.write_state(out.sub("acting"));
-  write_adam(out.sub("actor_optimizer"), actor_optimizer_);
-  write_adams(out, "critic_optimizer", critic_optimizers_);
-  ent_coef_.write_state(out.sub("ent_coef"));
-}
-
-void SAC::read_state(const StateReader& in) {
-  in.get_rng("train_rng", train_rng_);
-  in.get_rng("predict_rng", predict_rng_);
-  acting_.read_state(in.sub("acting"));
-  read_adam(in.sub("actor_optimizer"), actor_optimizer_);
-  read_adams(in, "critic_optimizer", critic_optimizers_);
-  ent_coef_.read_state(in.sub("ent_coef"));
   acting_actor_.invalidate();
 }
 

@@ -120,10 +120,6 @@ class SAC : public OffPolicyAlgorithm {
   // `gradient_steps` updates from the replay buffer (SB3 SAC.train), logging the means.
   void train(int gradient_steps, Logger* logger) override;
   void on_episode_end(int env) override { acting_.on_episode_end(env); }
-  // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
-  // included, are in the model tensors; the replay buffer is OffPolicyAlgorithm's).
-  void write_state(StateWriter& out) const override;
-  void read_state(const StateReader& in) override;
 
   Config config_;
   int obs_dim_ = 0;

@@ -62,8 +62,17 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
   actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
+  // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
+  // included, are in the model tensors).
+  checkpoint("smoothing_rng", smoothing_rng_);
+  checkpoint("acting", acting_);
+  checkpoint("actor_optimizer", actor_optimizer_);
+  for (int i = 0; i < critic_.n_critics(); ++i)
+    checkpoint("critic_optimizer" + std::to_string(i), critic_optimizers_[i]);
 }
 
+// SB3 td3/td3.py TD3.train, one pass of its loop over gradient steps; CleanRL's
+// td3_continuous_action.py has the same update (policy_frequency is policy_delay).
 Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
@@ -90,12 +99,8 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
       (actor_target_.forward(b.next_obs) + smoothing_noise_).cwiseMax(-1.0f).cwiseMin(1.0f);
   critic_target_.forward(b.next_obs, next_actions_);
   target_q_.resize(1, n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    float next_q = critic_target_.q(0).output()(0, j);
-    for (int i = 1; i < critic_.n_critics(); ++i)
-      next_q = std::min(next_q, critic_target_.q(i).output()(0, j));
-    target_q_(0, j) = b.rewards(j) + ((1.0f - b.dones(j)) * gamma) * next_q;
-  }
+  for (Eigen::Index j = 0; j < n; ++j)
+    target_q_(0, j) = b.rewards(j) + ((1.0f - b.dones(j)) * gamma) * critic_target_.min(j);
 
   // critic_loss = sum_i F.mse_loss(critic_i(obs, actions), target_q); one Adam step.
   critic_.forward(b.obs, b.actions);
@@ -176,21 +181,6 @@ void TD3::load(const TensorMap& tensors) {
   actor_target_.load("actor_target", tensors);
   critic_.load("critic", tensors);
   critic_target_.load("critic_target", tensors);
-  acting_actor_.invalidate();
-}
-
-void TD3::write_state(StateWriter& out) const {
-  out.put_rng("smoothing_rng", smoothing_rng_);
-  acting_.write_state(out.sub("acting"));
-  write_adam(out.sub("actor_optimizer"), actor_optimizer_);
-  write_adams(out, "critic_optimizer", critic_optimizers_);
-}
-
-void TD3::read_state(const StateReader& in) {
-  in.get_rng("smoothing_rng", smoothing_rng_);
-  acting_.read_state(in.sub("acting"));
-  read_adam(in.sub("actor_optimizer"), actor_optimizer_);
-  read_adams(in, "critic_optimizer", critic_optimizers_);
   acting_actor_.invalidate();
 }
 
