@@ -123,7 +123,7 @@ TEST_CASE("TD3 target smoothing noise is clipped, and zero without a clip", "[al
 }
 
 TEST_CASE("TD3 critic target matches an independent double-precision computation", "[algos][td3]") {
-  for (const int n : {8, 40}) {  // 40: the batch is split over two lanes
+  for (const int n : {8, 40}) {  // 40: the batch is split over two cores
     for (const double noise_std : {0.0, 0.3}) {
       INFO("batch " << n << ", target_policy_noise " << noise_std);
       TD3::Config cfg = small_config();
