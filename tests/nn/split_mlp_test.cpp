@@ -28,7 +28,7 @@ struct Passes {
 // forward, backward (twice: gradients add up) and backward_input through a SplitMlp.
 Passes split_passes(const Mlp& net, ForkJoin& fork_join, const Eigen::MatrixXf& x,
                     const Eigen::MatrixXf& grad_out) {
-  SplitMlp split(net, fork_join);
+  SplitMlp split(net, &fork_join);
   Passes p;
   p.output = split.forward(x);
   CHECK(split.output() == p.output);
@@ -38,6 +38,13 @@ Passes split_passes(const Mlp& net, ForkJoin& fork_join, const Eigen::MatrixXf& 
   p.grads = split.grads();
   split.backward_input(grad_out, p.grad_input, 2);
   CHECK(split.grads() == p.grads);  // input gradient only
+  // zero_grad_and_backward is zero_grad, then backward.
+  SplitMlp other(net, &fork_join);
+  other.forward(x);
+  other.zero_grad();
+  other.backward(grad_out);
+  split.zero_grad_and_backward(grad_out);
+  CHECK(split.grads() == other.grads());
   return p;
 }
 
@@ -146,7 +153,7 @@ TEST_CASE("SplitAdam is one Adam over the whole vector; its norm is the gradient
   Eigen::VectorXf p_split = random_matrix(size, 1, rng), g_split(size);
   Eigen::VectorXf p_one = p_split, g_one(size);
   ForkJoin parallel(true);
-  SplitAdam split({p_split.data(), g_split.data(), size}, {}, parallel);
+  SplitAdam split({p_split.data(), g_split.data(), size}, {}, &parallel);
   Adam one({{p_one.data(), g_one.data(), size}});
   for (int step = 0; step < 5; ++step) {
     g_split = random_matrix(size, 1, rng);

@@ -37,10 +37,11 @@ inline Part param_part(Eigen::Index n, int part) {
   return part == 0 ? Part{0, split} : Part{split, n - split};
 }
 
-// Runs fn(0) here and, when parts is 2, fn(1) on fork_join's worker; returns when both are
-// done. fn(k) must write only what part k owns.
+// Runs fn(0) here and, when parts is 2, fn(1) on the worker of `fork_join` (null: the process's
+// ForkJoin::shared(), made on this first use); returns when both are done. fn(k) must write
+// only what part k owns.
 template <class F>
-void run_parts(ForkJoin& fork_join, int parts, F&& fn) {
+void run_parts(ForkJoin* fork_join, int parts, F&& fn) {
   if (parts == 1) {
     fn(0);
     return;
@@ -53,7 +54,7 @@ void run_parts(ForkJoin& fork_join, int parts, F&& fn) {
     void operator()() const { (*fn)(part); }
   };
   const Call first{&fn, 0}, second{&fn, 1};
-  fork_join.run([&first] { first(); }, [&second] { second(); });
+  (fork_join ? *fork_join : ForkJoin::shared()).run([&first] { first(); }, [&second] { second(); });
 }
 
 }  // namespace rlrun

@@ -16,9 +16,9 @@ namespace rlrun {
 class SplitAdam {
  public:
   SplitAdam() = default;
-  // `block` must outlive the optimizer and stay where it is (see ParamBlock).
-  explicit SplitAdam(ParamBlock block, AdamConfig config = {},
-                     ForkJoin& fork_join = ForkJoin::shared());
+  // `block` must outlive the optimizer and stay where it is (see ParamBlock). `fork_join` runs
+  // part 1 (null: ForkJoin::shared(), on first use).
+  explicit SplitAdam(ParamBlock block, AdamConfig config = {}, ForkJoin* fork_join = nullptr);
 
   // The L2 norm of the whole gradient: each part's sum of squares (in double, over float chunks),
   // part 0's plus part 1's.

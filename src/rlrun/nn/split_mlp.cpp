@@ -9,10 +9,10 @@
 namespace rlrun {
 
 SplitMlp::SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
-                   ForkJoin& fork_join)
-    : net_(in_dim, std::move(hidden), out_dim, act), fork_join_(&fork_join) {}
+                   ForkJoin* fork_join)
+    : net_(in_dim, std::move(hidden), out_dim, act), fork_join_(fork_join) {}
 
-SplitMlp::SplitMlp(Mlp net, ForkJoin& fork_join) : net_(std::move(net)), fork_join_(&fork_join) {}
+SplitMlp::SplitMlp(Mlp net, ForkJoin* fork_join) : net_(std::move(net)), fork_join_(fork_join) {}
 
 SplitMlp& SplitMlp::operator=(const SplitMlp& other) {
   if (this == &other) return *this;
@@ -38,7 +38,7 @@ const Eigen::MatrixXf& SplitMlp::forward(const Eigen::Ref<const Eigen::MatrixXf>
   Mlp& replica = this->replica();
   const float* p = net_.params_.data();
   output_.resize(net_.out_dim(), n);
-  run_parts(*fork_join_, 2, [&](int k) {
+  run_parts(fork_join_, 2, [&](int k) {
     const Part cols = column_part(n, k);
     Mlp& half = k == 0 ? net_ : replica;
     output_.middleCols(cols.begin, cols.count) =
@@ -48,21 +48,31 @@ const Eigen::MatrixXf& SplitMlp::forward(const Eigen::Ref<const Eigen::MatrixXf>
 }
 
 void SplitMlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
+  backward_halves(grad_output, false);
+}
+
+void SplitMlp::zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
+  backward_halves(grad_output, true);
+}
+
+void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                               bool zero_first) {
   if (parts_ == 1) {
+    if (zero_first) net_.zero_grad();
     net_.backward(grad_output);
     return;
   }
   const Eigen::Index n = grad_output.cols();
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
-  run_parts(*fork_join_, 2, [&](int k) {
+  run_parts(fork_join_, 2, [&](int k) {
     const Part cols = column_part(n, k);
-    if (k == 1) replica.zero_grad();
     Mlp& half = k == 0 ? net_ : replica;
+    if (k == 1 || zero_first) half.zero_grad();  // the replica holds the second half's alone
     half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, nullptr, 0);
   });
   // grads += the second half's gradient, each core adding its part of the parameter vector.
-  run_parts(*fork_join_, 2, [&](int k) {
+  run_parts(fork_join_, 2, [&](int k) {
     const Part params = param_part(net_.num_params(), k);
     net_.grads_.segment(params.begin, params.count) +=
         replica.grads_.segment(params.begin, params.count);
@@ -83,7 +93,7 @@ void SplitMlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_outp
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
   grad_input.resize(net_.in_dim() - first_input_row, n);
-  run_parts(*fork_join_, 2, [&](int k) {
+  run_parts(fork_join_, 2, [&](int k) {
     const Part cols = column_part(n, k);
     Mlp& half = k == 0 ? net_ : replica;
     half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), false,

@@ -23,9 +23,10 @@ class SplitMlp {
  public:
   SplitMlp() = default;
   // Parameters start at zero (see Mlp). Throws std::invalid_argument for non-positive sizes.
+  // `fork_join` runs the second halves (null: ForkJoin::shared(), on the first split pass).
   SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
-           ForkJoin& fork_join = ForkJoin::shared());
-  explicit SplitMlp(Mlp net, ForkJoin& fork_join = ForkJoin::shared());
+           ForkJoin* fork_join = nullptr);
+  explicit SplitMlp(Mlp net, ForkJoin* fork_join = nullptr);
   // Copies the network; the copy makes its own replica when a pass first needs one (acting
   // copies, whose batches are small, never do).
   SplitMlp(const SplitMlp& other) : net_(other.net_), fork_join_(other.fork_join_) {}
@@ -46,6 +47,9 @@ class SplitMlp {
   // Mlp::backward of the last forward (dL/doutput, out_dim x n): ADDS the whole batch's
   // parameter gradient to grads().
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
+  // torch's optimizer.zero_grad(); loss.backward(): grads() becomes the whole batch's gradient
+  // (the same bits as zero_grad() then backward(), the zeroing done on both cores).
+  void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
   // Mlp::backward_input of the last forward: rows [first_input_row, in_dim) of dL/dx, for the
   // whole batch, into grad_input; grads() is left unchanged.
   void backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
@@ -54,6 +58,7 @@ class SplitMlp {
  private:
   // The second half's network, made on first use.
   Mlp& replica();
+  void backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first);
 
   Mlp net_;
   std::optional<Mlp> replica_;

@@ -119,8 +119,7 @@ double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   }
 
   // optimizer.zero_grad(); loss.backward()
-  q_net_.zero_grad();
-  q_net_.backward(grad_q_);
+  q_net_.zero_grad_and_backward(grad_q_);
   // th.nn.utils.clip_grad_norm_(q_net.parameters(), max_grad_norm): the gradient times
   // max_grad_norm / (norm + 1e-6) when that is below 1 (a NaN norm propagates, as torch's
   // default does); then optimizer.step().

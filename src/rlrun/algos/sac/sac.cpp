@@ -115,8 +115,7 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
     grad_q_ = critic_.q(i).output() - target_q_;
     stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * (0.5f * inv_n);
     grad_q_ *= inv_n;  // d critic_loss / d Q_i = (Q_i - target_q) / n
-    critic_.q(i).zero_grad();
-    critic_.q(i).backward(grad_q_);
+    critic_.q(i).zero_grad_and_backward(grad_q_);
   }
   for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
 
@@ -135,7 +134,6 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
     critic_.action_gradient(i, grad_min_q_[i], i == 0 ? grad_actions_ : grad_critic_actions_);
     if (i > 0) grad_actions_ += grad_critic_actions_;
   }
-  actor_.net().zero_grad();
   actor_.backward(grad_actions_, grad_log_prob_);
   actor_optimizer_.step(lr);
   acting_actor_.invalidate();

@@ -50,7 +50,7 @@ void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
   // No gradient where the raw log_std was clamped (torch's clamp backward).
   SquashedGaussian::clamp_log_std_backward(net_.output().bottomRows(action_dim_),
                                            grad_head_.bottomRows(action_dim_));
-  net_.backward(grad_head_);
+  net_.zero_grad_and_backward(grad_head_);
 }
 
 void SacActor::save(const std::string& prefix, TensorMap& tensors) const {

@@ -46,7 +46,7 @@ class SacActor {
 
   // Backward of a loss L(actions, log_prob) of the last sample, given dL/da (action_dim x batch)
   // and dL/dlog_prob: pathwise through the squashed Gaussian and the log_std clamp into the
-  // network. ADDS to net().grads() (call net().zero_grad() first, like optimizer.zero_grad()).
+  // network: net().grads() becomes the loss's gradient (optimizer.zero_grad(); loss.backward()).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob);
 

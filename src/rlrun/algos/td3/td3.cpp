@@ -108,8 +108,7 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
     grad_q_ = critic_.q(i).output() - target_q_;
     stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * inv_n;
     grad_q_ *= 2.0f * inv_n;  // d critic_loss / d Q_i = 2 (Q_i - target_q) / n
-    critic_.q(i).zero_grad();
-    critic_.q(i).backward(grad_q_);
+    critic_.q(i).zero_grad_and_backward(grad_q_);
   }
   for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
 
@@ -122,7 +121,6 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
   stats.actor_updated = true;
   grad_q_.setConstant(1, n, -inv_n);
   critic_.action_gradient(0, grad_q_, grad_actions_);
-  actor_.net().zero_grad();
   actor_.backward(grad_actions_);
   actor_optimizer_.step(lr);
   acting_actor_.invalidate();

@@ -31,7 +31,7 @@ class Td3Actor {
   const Eigen::MatrixXf& actions() const { return actions_; }
 
   // Backpropagates dL/d(actions) of the last forward through the tanh into the network:
-  // ADDS to net().grads() (call net().zero_grad() first, like optimizer.zero_grad()).
+  // net().grads() becomes the loss's gradient (optimizer.zero_grad(); loss.backward()).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions);
 
   // SB3 state_dict names: <prefix>.mu.<2l>.weight/bias for layer l (actor.mu.0.weight, ...,
