@@ -35,21 +35,9 @@ AlgorithmSetup discrete_setup(int obs_dim, int n_actions, int n_envs = 1, uint64
                         seed};
 }
 
-// An Mlp's forward in double from a parameter vector laid out like Mlp::params().
+// One sample through test::mlp_forward.
 Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
-  Eigen::VectorXd h = x;
-  Eigen::Index offset = 0;
-  for (int l = 0; l < net.num_layers(); ++l) {
-    const int in = net.layer_in(l), out = net.layer_out(l);
-    const Eigen::Map<const Eigen::MatrixXd> w(p.data() + offset, out, in);
-    offset += static_cast<Eigen::Index>(in) * out;
-    const Eigen::Map<const Eigen::VectorXd> b(p.data() + offset, out);
-    offset += out;
-    Eigen::VectorXd z = w * h + b;
-    if (l + 1 < net.num_layers()) z = z.cwiseMax(0.0);  // ReLU, the DQN default
-    h = z;
-  }
-  return h;
+  return test::mlp_forward(net, p, x).col(0);
 }
 
 ReplayBatch random_batch(Rng& rng, int obs_dim, int n_actions, int n) {

@@ -24,6 +24,7 @@
 
 using namespace rlrun;
 using test::numeric_gradient;
+using test::params_of;
 using test::require_grad_close;
 
 namespace {
@@ -32,27 +33,10 @@ constexpr double kHalfLog2Pi = 0.91893853320467274;
 
 // ---- double re-implementations (independent of the float code under test) --------------
 
-// An Mlp's forward in double from its parameter vector `p` (same layout as Mlp::params()).
+// One sample through test::mlp_forward.
 Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
-  Eigen::VectorXd h = x;
-  Eigen::Index offset = 0;
-  for (int l = 0; l < net.num_layers(); ++l) {
-    const int in = net.layer_in(l), out = net.layer_out(l);
-    const Eigen::Map<const Eigen::MatrixXd> w(p.data() + offset, out, in);
-    offset += static_cast<Eigen::Index>(in) * out;
-    const Eigen::Map<const Eigen::VectorXd> b(p.data() + offset, out);
-    offset += out;
-    Eigen::VectorXd z = w * h + b;
-    if (l + 1 < net.num_layers()) {
-      for (Eigen::Index k = 0; k < z.size(); ++k)
-        z(k) = net.activation() == Activation::kReLU ? std::max(z(k), 0.0) : std::tanh(z(k));
-    }
-    h = z;
-  }
-  return h;
+  return test::mlp_forward(net, p, x).col(0);
 }
-
-Eigen::VectorXd params_of(const Mlp& net) { return net.params().cast<double>(); }
 
 // SB3's Actor.action_log_prob for one observation with fixed noise: (action, log_prob).
 std::pair<Eigen::VectorXd, double> actor_sample(const Mlp& net, const Eigen::VectorXd& p, int a_dim,

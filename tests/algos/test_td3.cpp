@@ -61,26 +61,6 @@ ReplayBatch random_batch(int n, uint64_t seed) {
   return b;
 }
 
-// An Mlp forward pass in double from a flat parameter vector with Mlp's layout (per layer the
-// out x in weight column-major, then the bias), ReLU hidden layers, linear output.
-Eigen::MatrixXd forward_double(const Mlp& shape, const Eigen::VectorXd& params,
-                               const Eigen::MatrixXd& x) {
-  Eigen::MatrixXd h = x;
-  Eigen::Index offset = 0;
-  for (int l = 0; l < shape.num_layers(); ++l) {
-    const int in = shape.layer_in(l), out = shape.layer_out(l);
-    const Eigen::Map<const Eigen::MatrixXd> w(params.data() + offset, out, in);
-    offset += static_cast<Eigen::Index>(in) * out;
-    const Eigen::Map<const Eigen::VectorXd> b(params.data() + offset, out);
-    offset += out;
-    h = (w * h).colwise() + b;
-    if (l + 1 < shape.num_layers()) h = h.cwiseMax(0.0);
-  }
-  return h;
-}
-
-Eigen::VectorXd params_of(const Mlp& net) { return net.params().cast<double>(); }
-
 Eigen::MatrixXd stack(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& act) {
   Eigen::MatrixXd x(obs.rows() + act.rows(), obs.cols());
   x << obs, act;
@@ -144,13 +124,13 @@ TEST_CASE("TD3 critic target matches an independent double-precision computation
       const Eigen::MatrixXd s2 = b.next_obs.cast<double>();
       const Mlp& mu = td3.actor_target().net();
       const Eigen::MatrixXd next_a =
-          (forward_double(mu, params_of(mu), s2).array().tanh().matrix() + noise)
+          (test::mlp_forward(mu, test::params_of(mu), s2).array().tanh().matrix() + noise)
               .cwiseMax(-1.0)
               .cwiseMin(1.0);
       Eigen::RowVectorXd min_q = Eigen::RowVectorXd::Constant(n, 1e300);
       for (int i = 0; i < 2; ++i) {
         const Mlp& target = td3.critic_target().q(i).net();
-        min_q = min_q.cwiseMin(forward_double(target, params_of(target), stack(s2, next_a)));
+        min_q = min_q.cwiseMin(test::mlp_forward(target, test::params_of(target), stack(s2, next_a)));
       }
       const Eigen::RowVectorXd y = b.rewards.cast<double>().array() +
                                    (1.0 - b.dones.cast<double>().array()) * 0.9 * min_q.array();
@@ -179,11 +159,11 @@ TEST_CASE("TD3 critic loss gradient matches finite differences", "[algos][td3][g
       // Loss = sum_i mse(Q_i, y) with y fixed: only critic i's own term depends on its
       // parameters.
       auto mse = [&](const Eigen::VectorXd& p) {
-        return (forward_double(q.net(), p, x) - y).squaredNorm() / n;
+        return (test::mlp_forward(q.net(), p, x) - y).squaredNorm() / n;
       };
-      expected_loss += mse(params_of(q.net()));
+      expected_loss += mse(test::params_of(q.net()));
       test::require_grad_close(q.grads().cast<double>(),
-                               test::numeric_gradient(mse, params_of(q.net())));
+                               test::numeric_gradient(mse, test::params_of(q.net())));
     }
     CHECK(stats.critic_loss == Approx(expected_loss).epsilon(1e-5));
   }
@@ -204,12 +184,12 @@ TEST_CASE("TD3 actor loss gradient runs through critic 1 into the actor only",
     const Eigen::MatrixXd s = b.obs.cast<double>();
     const Mlp& q1 = td3.critic().q(0).net();
     auto actor_loss = [&](const Eigen::VectorXd& p) {
-      const Eigen::MatrixXd a = forward_double(td3.actor().net(), p, s).array().tanh().matrix();
-      return -forward_double(q1, params_of(q1), stack(s, a)).mean();
+      const Eigen::MatrixXd a = test::mlp_forward(td3.actor().net(), p, s).array().tanh().matrix();
+      return -test::mlp_forward(q1, test::params_of(q1), stack(s, a)).mean();
     };
-    CHECK(stats.actor_loss == Approx(actor_loss(params_of(td3.actor().net()))).epsilon(1e-5));
+    CHECK(stats.actor_loss == Approx(actor_loss(test::params_of(td3.actor().net()))).epsilon(1e-5));
     test::require_grad_close(td3.actor().net().grads().cast<double>(),
-                             test::numeric_gradient(actor_loss, params_of(td3.actor().net())));
+                             test::numeric_gradient(actor_loss, test::params_of(td3.actor().net())));
     // The actor loss adds nothing to the critics' gradients (SB3's critic optimizer zeroes
     // what its backward leaves there).
     critics_only.train_on_batch(b, 0.0f);
