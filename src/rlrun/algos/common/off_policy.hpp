@@ -135,7 +135,7 @@ class OffPolicyAlgorithm : public Algorithm {
     uint64_t stream;
     std::string key;
   };
-  // Throws std::invalid_argument, naming `id`, for a bad batch_size, buffer_size, tau or gamma.
+  // Throws std::invalid_argument, naming `id`, for a shared hyperparameter out of its range.
   OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config, const AlgorithmSetup& setup,
                      int buffer_action_dim, const ReplayStream& replay);
 
