@@ -1,8 +1,9 @@
-// DQN (src/rlrun/algos/dqn/): the TD target and Huber loss on hand-made numbers, a
-// finite-difference check of the loss gradient through the Q-network (against a double
-// re-implementation), the epsilon schedule, the target-update period with several envs,
-// timeout bootstrapping, model tensors, and short runs through the registry. The learning
-// bars are hidden ([.slow]); the update micro-benchmark too ([.bench]).
+// DQN (src/rlrun/algos/dqn/): the TD target, Huber loss and gradient through linear networks
+// on hand-made numbers, a finite-difference check of the loss gradient through the Q-network
+// (against a double re-implementation), gradient clipping, the epsilon schedule, the
+// target-update period with several envs, timeout bootstrapping, model tensors, and short runs
+// through the registry. The learning bars are hidden ([.slow]); the update micro-benchmark too
+// ([.bench]).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -13,9 +14,8 @@
 #include "fakes/constant_env.hpp"
 #include "nn/grad_check.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
-#include "rlrun/algos/dqn/dqn_loss.hpp"
 #include "rlrun/algos/dqn/exploration_schedule.hpp"
-#include "rlrun/algos/dqn/q_updater.hpp"
+#include "rlrun/core/fork_join.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -35,21 +35,9 @@ AlgorithmSetup discrete_setup(int obs_dim, int n_actions, int n_envs = 1, uint64
                         seed};
 }
 
-// An Mlp's forward in double from a parameter vector laid out like Mlp::params().
+// One sample through test::mlp_forward.
 Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
-  Eigen::VectorXd h = x;
-  Eigen::Index offset = 0;
-  for (int l = 0; l < net.num_layers(); ++l) {
-    const int in = net.layer_in(l), out = net.layer_out(l);
-    const Eigen::Map<const Eigen::MatrixXd> w(p.data() + offset, out, in);
-    offset += static_cast<Eigen::Index>(in) * out;
-    const Eigen::Map<const Eigen::VectorXd> b(p.data() + offset, out);
-    offset += out;
-    Eigen::VectorXd z = w * h + b;
-    if (l + 1 < net.num_layers()) z = z.cwiseMax(0.0);  // ReLU, the DQN default
-    h = z;
-  }
-  return h;
+  return test::mlp_forward(net, p, x).col(0);
 }
 
 ReplayBatch random_batch(Rng& rng, int obs_dim, int n_actions, int n) {
@@ -82,49 +70,11 @@ VecEnv constant_vec_env(int n_envs, bool truncate, int episode_length) {
 
 // ---- (1) target and loss on hand-made numbers ---------------------------------------------
 
-TEST_CASE("DQN TD target: r + (1 - done) gamma max_a' Q_target(s', a')", "[algos][dqn]") {
-  Eigen::MatrixXf next_q(2, 3);
-  next_q << 1, 5, -4,  //
-      3, -2, -1;
-  Eigen::RowVectorXf rewards(3), dones(3), targets(3);
-  rewards << 1, 2, 0.5;
-  dones << 0, 1, 0;
-  dqn_td_targets(next_q, rewards, dones, 0.9f, targets);
-  REQUIRE(targets.size() == 3);
-  CHECK(targets(0) == Approx(1 + 0.9 * 3));
-  CHECK(targets(1) == Approx(2));  // terminal: no bootstrap
-  CHECK(targets(2) == Approx(0.5 + 0.9 * -1));
-}
-
-TEST_CASE("DQN Huber loss and its gradient on a hand-made batch", "[algos][dqn]") {
-  // Three samples: |diff| = 0.5 (quadratic part), 2 (linear, negative), 1.5 (linear, positive).
-  Eigen::MatrixXf q(3, 3);
-  q << 1, 7, 7,   //
-      7, 7, 4.5,  //
-      7, -1, 7;
-  Eigen::MatrixXf actions(1, 3);
-  actions << 0, 2, 1;
-  Eigen::RowVectorXf targets(3);
-  targets << 0.5, 1, 3;
-  Eigen::MatrixXf grad(3, 3);
-  const double loss = dqn_huber_loss(q, actions, targets, grad);
-  CHECK(loss == Approx((0.5 * 0.25 + (2 - 0.5) + (1.5 - 0.5)) / 3));
-  Eigen::MatrixXf expected = Eigen::MatrixXf::Zero(3, 3);
-  expected(0, 0) = 0.5f / 3;
-  expected(2, 1) = -1.0f / 3;
-  expected(1, 2) = 1.0f / 3;
-  CHECK(grad.isApprox(expected));
-  // As one part of a batch of 6 split across threads: everything halves.
-  CHECK(dqn_huber_loss(q, actions, targets, grad, 6) == Approx(loss / 2));
-  CHECK(grad.isApprox(expected / 2));
-  actions(0, 1) = 3;
-  CHECK_THROWS_AS(dqn_huber_loss(q, actions, targets, grad), std::out_of_range);
-}
-
 TEST_CASE("DQN loss and gradient through linear Q-networks with set weights", "[algos][dqn]") {
   DQN::Config cfg;
   cfg.off_policy.gamma = 0.5;
   cfg.policy.net_arch = {};  // Q(s) = W s + b, so every number below follows by hand
+  cfg.max_grad_norm = 1e9;   // no clipping
   DQN dqn(cfg, discrete_setup(2, 2));
   dqn.q_net().weight(0) << 1, 0,  //
       0, 2;
@@ -146,7 +96,8 @@ TEST_CASE("DQN loss and gradient through linear Q-networks with set weights", "[
   b.rewards << 1, -1;
   b.dones.resize(2);
   b.dones << 0, 1;
-  const double loss = dqn.loss_and_grad(b);
+  // Learning rate 0: the step leaves the weights as set and the gradient in grads().
+  const double loss = dqn.train_on_batch(b, 0.0f);
   // Sample 0: target 1 + 0.5 max(1, 2) = 2; Q(s, 1) = 1.5; diff -0.5 -> loss 0.125, dq -0.5.
   // Sample 1: terminal, target -1; Q(s, 0) = 3; diff 4 -> loss 3.5, dq 1 (clamped).
   CHECK(dqn.td_targets()(0) == Approx(2));
@@ -167,7 +118,7 @@ TEST_CASE("DQN loss and gradient through linear Q-networks with set weights", "[
 
 TEST_CASE("DQN loss gradient w.r.t. every q_net parameter matches finite differences",
           "[algos][dqn][gradcheck]") {
-  // 20 samples run in one lane, 41 in two (QUpdater::kMinSplitBatch).
+  // 20 samples run on one core, 41 on two (nn/batch_split.hpp).
   const int n = GENERATE(20, 41);
   INFO("batch " << n);
   DQN::Config cfg;
@@ -175,6 +126,7 @@ TEST_CASE("DQN loss gradient w.r.t. every q_net parameter matches finite differe
   // tile, so that the vectorised paths of the 256-wide zoo networks are the ones checked.
   cfg.policy.net_arch = {40, 24};
   cfg.off_policy.gamma = 0.9;
+  cfg.max_grad_norm = 1e9;
   const int obs_dim = 3, n_actions = 3;
   DQN dqn(cfg, discrete_setup(obs_dim, n_actions, 1, 5));
   // A target network unlike the online one, and targets spread so that some TD errors fall in
@@ -183,7 +135,7 @@ TEST_CASE("DQN loss gradient w.r.t. every q_net parameter matches finite differe
   for (Eigen::Index i = 0; i < dqn.q_net_target().num_params(); ++i)
     dqn.q_net_target().params()(i) += static_cast<float>(rng.uniform(-0.5, 0.5));
   const ReplayBatch b = random_batch(rng, obs_dim, n_actions, n);
-  const double loss = dqn.loss_and_grad(b);
+  const double loss = dqn.train_on_batch(b, 0.0f);
   const Eigen::VectorXd analytic = dqn.q_net().grads().cast<double>();
 
   // Targets re-derived in double from the target network's parameters.
@@ -227,13 +179,14 @@ TEST_CASE(
   // weights and biases are sampled (a full check would take minutes in double).
   DQN::Config cfg;
   cfg.policy.net_arch = {256, 256};
+  cfg.max_grad_norm = 1e9;
   const int obs_dim = 6, n_actions = 3, n = 128;
   DQN dqn(cfg, discrete_setup(obs_dim, n_actions, 1, 17));
   Rng rng(5);
   for (Eigen::Index i = 0; i < dqn.q_net_target().num_params(); ++i)
     dqn.q_net_target().params()(i) += static_cast<float>(rng.uniform(-0.05, 0.05));
   const ReplayBatch b = random_batch(rng, obs_dim, n_actions, n);
-  dqn.loss_and_grad(b);
+  dqn.train_on_batch(b, 0.0f);
   const Eigen::VectorXd analytic = dqn.q_net().grads().cast<double>();
   const Eigen::VectorXd targets = dqn.td_targets().transpose().cast<double>();
   const Mlp& net = dqn.q_net();
@@ -271,51 +224,26 @@ TEST_CASE(
   require_grad_close(a, numeric, 2e-3);
 }
 
-TEST_CASE(
-    "DQN two-lane updates: same bits with and without the second core, same gradient "
-    "as one pass over the batch",
-    "[algos][dqn]") {
-  Rng init(9);
-  const Mlp q0 = make_q_network(5, 4, QNetworkConfig{{64, 48}, "relu"}, init);
-  Mlp target0 = q0;
-  target0.params().array() += 0.01f;
+TEST_CASE("DQN clips the gradient to max_grad_norm before its Adam step", "[algos][dqn]") {
+  DQN::Config cfg;
+  cfg.policy.net_arch = {64, 48};
+  cfg.max_grad_norm = 0.1;  // below the gradient norms of these batches
+  DQN clipped(cfg, discrete_setup(5, 4, 1, 9));
+  cfg.max_grad_norm = 1e9;
+  DQN unclipped(cfg, discrete_setup(5, 4, 1, 9));
   Rng rng(21);
-  std::vector<ReplayBatch> batches;
-  for (int i = 0; i < 20; ++i)
-    batches.push_back(random_batch(rng, 5, 4, 37));  // odd: unequal halves
-
-  // The gradient of the split batch against one plain pass of the whole batch.
-  {
-    Mlp q = q0, target = target0, q_ref = q0, target_ref = target0;
-    ForkJoin serial(false);
-    QUpdater updater(q, target, serial);
-    updater.loss_and_grad(batches[0], 0.99f);
-    Eigen::RowVectorXf y(37);
-    Eigen::MatrixXf grad_q(4, 37);
-    dqn_td_targets(target_ref.forward(batches[0].next_obs), batches[0].rewards, batches[0].dones,
-                   0.99f, y);
-    dqn_huber_loss(q_ref.forward(batches[0].obs), batches[0].actions, y, grad_q);
-    q_ref.backward(grad_q);
-    CHECK(updater.td_targets() == y);
-    CHECK((q.grads() - q_ref.grads()).cwiseAbs().maxCoeff() <=
-          1e-6f * q_ref.grads().cwiseAbs().maxCoeff());
-  }
-
-  // 20 clipped Adam steps (max_grad_norm 0.1 is below these norms), lane 1 on a worker thread
-  // or after lane 0 on this one.
-  const auto train = [&](bool worker) {
-    Mlp q = q0, target = target0;
-    ForkJoin fork_join(worker);
-    QUpdater updater(q, target, fork_join);
-    for (const ReplayBatch& b : batches) {
-      updater.step(b, 0.99f, 0.1f, 1e-3f);
-      CHECK(updater.last_grad_norm() > 0.1f);
-    }
-    return Eigen::VectorXf(q.params());
-  };
-  const Eigen::VectorXf serial = train(false);
-  CHECK(serial != q0.params());
-  CHECK(train(true) == serial);
+  const ReplayBatch b = random_batch(rng, 5, 4, 37);  // odd: unequal halves
+  clipped.train_on_batch(b, 0.0f);
+  unclipped.train_on_batch(b, 0.0f);
+  const float norm = unclipped.q_net().grads().norm();
+  CHECK(clipped.last_grad_norm() == Approx(norm).epsilon(1e-5));
+  CHECK(norm > 0.1f);
+  CHECK(clipped.q_net().grads().norm() == Approx(0.1).epsilon(1e-4));
+  CHECK(clipped.q_net().grads().isApprox(unclipped.q_net().grads() * (0.1f / (norm + 1e-6f))));
+  // And the step moves the weights.
+  const Eigen::VectorXf before = clipped.q_net().params();
+  clipped.train_on_batch(b, 1e-3f);
+  CHECK(clipped.q_net().params() != before);
 }
 
 // ---- (3) exploration schedule ---------------------------------------------------------------
@@ -440,7 +368,7 @@ void check_timeout_targets(bool truncate) {
   Rng rng(1);
   ReplayBatch batch;
   dqn.replay_buffer().sample(200, rng, batch);
-  dqn.loss_and_grad(batch);
+  dqn.train_on_batch(batch, 0.0f);
   // Every next observation is the constant 0.5, so the bootstrapped target is one number.
   const Eigen::VectorXf next_q = dqn.q_net_target().forward(Eigen::MatrixXf::Constant(1, 1, 0.5f));
   const float bootstrapped = 1.0f + 0.9f * next_q.maxCoeff();
@@ -589,34 +517,31 @@ TEST_CASE(
 TEST_CASE("DQN update micro-benchmark (rl-zoo CartPole sizes)", "[.bench][dqn_bench]") {
   // anchors.md counting: 2 in out FLOP per layer and sample forward, twice that backward; a
   // gradient step is target forward + online forward + backward = 4 forwards.
-  for (bool worker : {false, true}) {
-    Rng init(1);
-    Mlp q = make_q_network(4, 2, QNetworkConfig{{256, 256}, "relu"}, init);
-    Mlp target = q;
-    ForkJoin fork_join(worker);
-    QUpdater updater(q, target, fork_join);
-    Rng rng(1);
-    const ReplayBatch b = random_batch(rng, 4, 2, 64);
-    for (int i = 0; i < 200; ++i) updater.step(b, 0.99f, 10.0f, 1e-6f);
-    const int iters = 2000;
-    double best = 1e30;
-    for (int rep = 0; rep < 3; ++rep) {
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int i = 0; i < iters; ++i) updater.step(b, 0.99f, 10.0f, 1e-6f);
-      best = std::min(
-          best,
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / iters);
-    }
-    double fwd = 0.0;
-    for (int l = 0; l < q.num_layers(); ++l) fwd += 2.0 * q.layer_in(l) * q.layer_out(l) * 64;
-    const double flops = 4.0 * fwd;
-    std::printf(
-        "DQN gradient step (4-256-256-2, batch 64, %s): %.1f us, %.1f MFLOP, "
-        "%.1f GFLOP/s; 24.5k steps: %.1f s\n",
-        worker ? "two cores" : "one core", best * 1e6, flops * 1e-6, flops / best * 1e-9,
-        best * 24.5e3);
-    CHECK(q.params().allFinite());
+  DQN::Config cfg;
+  cfg.policy.net_arch = {256, 256};
+  cfg.off_policy.batch_size = 64;
+  DQN dqn(cfg, discrete_setup(4, 2, 1, 1));
+  Rng rng(1);
+  const ReplayBatch b = random_batch(rng, 4, 2, 64);
+  for (int i = 0; i < 200; ++i) dqn.train_on_batch(b, 1e-6f);
+  const int iters = 2000;
+  double best = 1e30;
+  for (int rep = 0; rep < 3; ++rep) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < iters; ++i) dqn.train_on_batch(b, 1e-6f);
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / iters);
   }
+  const Mlp& q = dqn.q_net();
+  double fwd = 0.0;
+  for (int l = 0; l < q.num_layers(); ++l) fwd += 2.0 * q.layer_in(l) * q.layer_out(l) * 64;
+  const double flops = 4.0 * fwd;
+  std::printf(
+      "DQN gradient step (4-256-256-2, batch 64, %d threads): %.1f us, %.1f MFLOP, "
+      "%.1f GFLOP/s; 24.5k steps: %.1f s\n",
+      ForkJoin::shared().enabled() ? 2 : 1, best * 1e6, flops * 1e-6, flops / best * 1e-9,
+      best * 24.5e3);
+  CHECK(q.params().allFinite());
 }
 
 namespace {

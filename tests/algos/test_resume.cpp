@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "rlrun/algos/a2c/a2c.hpp"
+#include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -115,4 +116,26 @@ TEST_CASE("A2C resumed from a safe point ends with the uninterrupted run's weigh
   VecEnv env2 = make_envs("CartPole-v1", 4, 3);
   A2C resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 4, 5});
   CHECK(resume(resumed, env2, total, snapshot) == expected);
+}
+
+TEST_CASE("DDPG resumed from a safe point ends with the uninterrupted run's weights",
+          "[algos][resume][ddpg]") {
+  // DDPG forwards its training state to the TD3 it is built on.
+  DDPG::Config cfg;
+  cfg.off_policy.learning_starts = 100;
+  cfg.off_policy.batch_size = 32;
+  cfg.policy.net_arch = {16, 16};
+  cfg.action_noise.noise_type = "ornstein-uhlenbeck";
+  const int64_t total = 600;
+  Snapshot snapshot;
+  int64_t saved_at = 0;
+  VecEnv env1 = make_envs("Pendulum-v1", 1, 3);
+  DDPG uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 1, 3});
+  const Eigen::VectorXf expected =
+      train_and_snapshot(uninterrupted, env1, total, 300, snapshot, saved_at);
+  REQUIRE(saved_at == 300);
+  VecEnv env2 = make_envs("Pendulum-v1", 1, 3);
+  DDPG resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 1, 8});
+  CHECK(resume(resumed, env2, total, snapshot) == expected);
+  CHECK(resumed.num_timesteps() == total);
 }

@@ -1,5 +1,6 @@
-// TD3 and DDPG (SB3 td3/td3.py, ddpg/ddpg.py): the critic target, the critic and actor
-// gradients against finite differences of independent double-precision forward passes,
+// TD3 and DDPG (SB3 td3/td3.py, ddpg/ddpg.py): the critic target and its smoothing noise, the
+// critic and actor gradients of a train step against finite differences of independent
+// double-precision forward passes,
 // policy_delay, DDPG's settings, registry smoke runs and (hidden, [.slow]) rl-zoo learning bars.
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -13,7 +14,6 @@
 #include "nn/grad_check.hpp"
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/td3/td3.hpp"
-#include "rlrun/algos/td3/td3_target.hpp"
 #include "rlrun/core/fork_join.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -61,26 +61,6 @@ ReplayBatch random_batch(int n, uint64_t seed) {
   return b;
 }
 
-// An Mlp forward pass in double from a flat parameter vector with Mlp's layout (per layer the
-// out x in weight column-major, then the bias), ReLU hidden layers, linear output.
-Eigen::MatrixXd forward_double(const Mlp& shape, const Eigen::VectorXd& params,
-                               const Eigen::MatrixXd& x) {
-  Eigen::MatrixXd h = x;
-  Eigen::Index offset = 0;
-  for (int l = 0; l < shape.num_layers(); ++l) {
-    const int in = shape.layer_in(l), out = shape.layer_out(l);
-    const Eigen::Map<const Eigen::MatrixXd> w(params.data() + offset, out, in);
-    offset += static_cast<Eigen::Index>(in) * out;
-    const Eigen::Map<const Eigen::VectorXd> b(params.data() + offset, out);
-    offset += out;
-    h = (w * h).colwise() + b;
-    if (l + 1 < shape.num_layers()) h = h.cwiseMax(0.0);
-  }
-  return h;
-}
-
-Eigen::VectorXd params_of(const Mlp& net) { return net.params().cast<double>(); }
-
 Eigen::MatrixXd stack(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& act) {
   Eigen::MatrixXd x(obs.rows() + act.rows(), obs.cols());
   x << obs, act;
@@ -94,50 +74,36 @@ void perturb_targets(TD3& td3) {
     for (Eigen::Index k = 0; k < p.size(); ++k) p(k) += static_cast<float>(rng.uniform(-0.2, 0.2));
   };
   jitter(td3.actor_target().net().params());
-  for (ContinuousCritic& c : td3.critics()) jitter(c.target().params());
+  for (int i = 0; i < td3.critic_target().n_critics(); ++i)
+    jitter(td3.critic_target().q(i).params());
 }
 
 }  // namespace
 
-TEST_CASE("td3_target takes the minimum critic and does not bootstrap terminals", "[algos][td3]") {
-  Eigen::MatrixXf q1(1, 3), q2(1, 3), y(1, 3);
-  q1 << 1.0f, 5.0f, -2.0f;
-  q2 << 3.0f, 4.0f, -1.0f;
-  Eigen::RowVectorXf r(3), d(3);
-  r << 1.0f, 0.5f, -1.0f;
-  d << 0.0f, 1.0f, 0.0f;
-  td3_target({&q1, &q2}, r, d, 0.9f, y);
-  CHECK(y(0, 0) == Approx(1.0 + 0.9 * 1.0));
-  CHECK(y(0, 1) == Approx(0.5));
-  CHECK(y(0, 2) == Approx(-1.0 + 0.9 * -2.0));
-  td3_target({&q2}, r, d, 0.9f, y);
-  CHECK(y(0, 0) == Approx(1.0 + 0.9 * 3.0));
-}
-
-TEST_CASE("target smoothing noise is clipped and zero when disabled", "[algos][td3]") {
-  Rng rng(1);
-  Eigen::MatrixXf noise(2, 500);
-  sample_target_smoothing_noise(rng, 10.0f, 0.5f, noise);
-  CHECK(noise.cwiseAbs().maxCoeff() == 0.5f);
-  CHECK(noise.minCoeff() == -0.5f);
-  sample_target_smoothing_noise(rng, 0.2f, 0.5f, noise);
-  const double std = std::sqrt(noise.squaredNorm() / noise.size());
-  CHECK(std == Approx(0.2).epsilon(0.1));  // N(0, 0.2) barely touched by a 2.5-sigma clip
-  const Rng::State before = rng.state();
-  sample_target_smoothing_noise(rng, 0.1f, 0.0f, noise);  // SB3 DDPG's setting
-  CHECK(noise.isZero(0.0f));
-  CHECK(rng.state().s == before.s);
-  Eigen::MatrixXf a(1, 3), n(1, 3), next;
-  a << 0.9f, -0.2f, -0.8f;
-  n << 0.5f, 0.1f, -0.5f;
-  smoothed_target_actions(a, n, next);
-  CHECK(next(0, 0) == 1.0f);
-  CHECK(next(0, 1) == Approx(-0.1f));
-  CHECK(next(0, 2) == -1.0f);
+TEST_CASE("TD3 target smoothing noise is clipped, and zero without a clip", "[algos][td3]") {
+  TD3::Config cfg = small_config();
+  cfg.off_policy.batch_size = 250;
+  cfg.target_policy_noise = 10.0;
+  cfg.target_noise_clip = 0.5;
+  TD3 wide(cfg, small_setup());
+  wide.train_on_batch(random_batch(250, 1), 0.0f);
+  CHECK(wide.last_smoothing_noise().cwiseAbs().maxCoeff() == 0.5f);
+  CHECK(wide.last_smoothing_noise().minCoeff() == -0.5f);
+  cfg.target_policy_noise = 0.2;
+  TD3 narrow(cfg, small_setup());
+  narrow.train_on_batch(random_batch(250, 2), 0.0f);
+  const Eigen::MatrixXf& noise = narrow.last_smoothing_noise();
+  // N(0, 0.2) barely touched by a 2.5-sigma clip.
+  CHECK(std::sqrt(noise.squaredNorm() / noise.size()) == Approx(0.2).epsilon(0.1));
+  cfg.target_policy_noise = 0.1;  // SB3 DDPG's setting
+  cfg.target_noise_clip = 0.0;
+  TD3 ddpg_like(cfg, small_setup());
+  ddpg_like.train_on_batch(random_batch(250, 3), 0.0f);
+  CHECK(ddpg_like.last_smoothing_noise().isZero(0.0f));
 }
 
 TEST_CASE("TD3 critic target matches an independent double-precision computation", "[algos][td3]") {
-  for (const int n : {8, 40}) {  // 40: the batch is split over two lanes
+  for (const int n : {8, 40}) {  // 40: the batch is split over two cores
     for (const double noise_std : {0.0, 0.3}) {
       INFO("batch " << n << ", target_policy_noise " << noise_std);
       TD3::Config cfg = small_config();
@@ -146,7 +112,7 @@ TEST_CASE("TD3 critic target matches an independent double-precision computation
       TD3 td3(cfg, small_setup());
       perturb_targets(td3);
       const ReplayBatch b = random_batch(n, 3);
-      td3.critic_loss_and_gradients(b);
+      td3.train_on_batch(b, 0.0f);
 
       const Eigen::MatrixXd noise = td3.last_smoothing_noise().cast<double>();
       if (noise_std == 0.0) {
@@ -158,13 +124,14 @@ TEST_CASE("TD3 critic target matches an independent double-precision computation
       const Eigen::MatrixXd s2 = b.next_obs.cast<double>();
       const Mlp& mu = td3.actor_target().net();
       const Eigen::MatrixXd next_a =
-          (forward_double(mu, params_of(mu), s2).array().tanh().matrix() + noise)
+          (test::mlp_forward(mu, test::params_of(mu), s2).array().tanh().matrix() + noise)
               .cwiseMax(-1.0)
               .cwiseMin(1.0);
       Eigen::RowVectorXd min_q = Eigen::RowVectorXd::Constant(n, 1e300);
-      for (const ContinuousCritic& c : td3.critics())
-        min_q =
-            min_q.cwiseMin(forward_double(c.target(), params_of(c.target()), stack(s2, next_a)));
+      for (int i = 0; i < 2; ++i) {
+        const Mlp& target = td3.critic_target().q(i).net();
+        min_q = min_q.cwiseMin(test::mlp_forward(target, test::params_of(target), stack(s2, next_a)));
+      }
       const Eigen::RowVectorXd y = b.rewards.cast<double>().array() +
                                    (1.0 - b.dones.cast<double>().array()) * 0.9 * min_q.array();
       REQUIRE(td3.last_critic_target().cols() == n);
@@ -180,22 +147,25 @@ TEST_CASE("TD3 critic loss gradient matches finite differences", "[algos][td3][g
     TD3 td3(small_config(), small_setup());
     perturb_targets(td3);
     const ReplayBatch b = random_batch(n, 4);
-    const double loss = td3.critic_loss_and_gradients(b);
+    // Learning rate 0: the parameters stay where they were, the gradients in grads().
+    const Td3StepStats stats = td3.train_on_batch(b, 0.0f);
+    CHECK_FALSE(stats.actor_updated);
     const Eigen::RowVectorXd y = td3.last_critic_target().cast<double>();
     const Eigen::MatrixXd x = stack(b.obs.cast<double>(), b.actions.cast<double>());
 
     double expected_loss = 0.0;
-    for (ContinuousCritic& c : td3.critics()) {
+    for (int i = 0; i < 2; ++i) {
+      const SplitMlp& q = td3.critic().q(i);
       // Loss = sum_i mse(Q_i, y) with y fixed: only critic i's own term depends on its
       // parameters.
       auto mse = [&](const Eigen::VectorXd& p) {
-        return (forward_double(c.q(), p, x) - y).squaredNorm() / n;
+        return (test::mlp_forward(q.net(), p, x) - y).squaredNorm() / n;
       };
-      expected_loss += mse(params_of(c.q()));
-      test::require_grad_close(c.q().grads().cast<double>(),
-                               test::numeric_gradient(mse, params_of(c.q())));
+      expected_loss += mse(test::params_of(q.net()));
+      test::require_grad_close(q.grads().cast<double>(),
+                               test::numeric_gradient(mse, test::params_of(q.net())));
     }
-    CHECK(loss == Approx(expected_loss).epsilon(1e-5));
+    CHECK(stats.critic_loss == Approx(expected_loss).epsilon(1e-5));
   }
 }
 
@@ -203,21 +173,28 @@ TEST_CASE("TD3 actor loss gradient runs through critic 1 into the actor only",
           "[algos][td3][gradcheck]") {
   for (const int n : {8, 40}) {
     INFO("batch " << n);
-    TD3 td3(small_config(), small_setup());
+    TD3::Config cfg = small_config();
+    cfg.policy_delay = 1;
+    TD3 td3(cfg, small_setup());
+    cfg.policy_delay = 2;
+    TD3 critics_only(cfg, small_setup());
     const ReplayBatch b = random_batch(n, 5);
-    const Eigen::VectorXd critic2_grads_before = td3.critics()[1].q().grads().cast<double>();
-    const double loss = td3.actor_loss_and_gradient(b);
+    const Td3StepStats stats = td3.train_on_batch(b, 0.0f);
+    REQUIRE(stats.actor_updated);
     const Eigen::MatrixXd s = b.obs.cast<double>();
-    const Mlp& q1 = td3.critics()[0].q();
+    const Mlp& q1 = td3.critic().q(0).net();
     auto actor_loss = [&](const Eigen::VectorXd& p) {
-      const Eigen::MatrixXd a = forward_double(td3.actor().net(), p, s).array().tanh().matrix();
-      return -forward_double(q1, params_of(q1), stack(s, a)).mean();
+      const Eigen::MatrixXd a = test::mlp_forward(td3.actor().net(), p, s).array().tanh().matrix();
+      return -test::mlp_forward(q1, test::params_of(q1), stack(s, a)).mean();
     };
-    CHECK(loss == Approx(actor_loss(params_of(td3.actor().net()))).epsilon(1e-5));
+    CHECK(stats.actor_loss == Approx(actor_loss(test::params_of(td3.actor().net()))).epsilon(1e-5));
     test::require_grad_close(td3.actor().net().grads().cast<double>(),
-                             test::numeric_gradient(actor_loss, params_of(td3.actor().net())));
-    // Critic 2 is not part of the actor loss (q1_forward).
-    CHECK(td3.critics()[1].q().grads().cast<double>() == critic2_grads_before);
+                             test::numeric_gradient(actor_loss, test::params_of(td3.actor().net())));
+    // The actor loss adds nothing to the critics' gradients (SB3's critic optimizer zeroes
+    // what its backward leaves there).
+    critics_only.train_on_batch(b, 0.0f);
+    for (int i = 0; i < 2; ++i)
+      CHECK(td3.critic().q(i).grads() == critics_only.critic().q(i).grads());
   }
 }
 
@@ -231,22 +208,23 @@ TEST_CASE("TD3 updates the actor and the targets only every policy_delay-th step
     const Eigen::VectorXf actor = td3.actor().net().params();
     const Eigen::VectorXf actor_target = td3.actor_target().net().params();
     std::vector<Eigen::VectorXf> q, q_target;
-    for (ContinuousCritic& c : td3.critics()) {
-      q.push_back(c.q().params());
-      q_target.push_back(c.target().params());
+    for (int i = 0; i < 2; ++i) {
+      q.push_back(td3.critic().q(i).params());
+      q_target.push_back(td3.critic_target().q(i).params());
     }
     const Td3StepStats stats = td3.train_on_batch(b, 1e-3f);
     CHECK(td3.n_updates() == step);
     const bool delayed = step % 2 == 0;
     CHECK(stats.actor_updated == delayed);
-    for (size_t i = 0; i < q.size(); ++i) {
-      const ContinuousCritic& c = td3.critics()[i];
-      CHECK(c.q().params() != q[i]);  // the critics learn every step
+    for (int i = 0; i < 2; ++i) {
+      const Eigen::VectorXf& online = td3.critic().q(i).params();
+      const Eigen::VectorXf& target = td3.critic_target().q(i).params();
+      CHECK(online != q[i]);  // the critics learn every step
       if (delayed) {
-        const Eigen::VectorXf expected = (1.0f - tau) * q_target[i] + tau * c.q().params();
-        CHECK((c.target().params() - expected).cwiseAbs().maxCoeff() < 1e-6f);
+        const Eigen::VectorXf expected = (1.0f - tau) * q_target[i] + tau * online;
+        CHECK((target - expected).cwiseAbs().maxCoeff() < 1e-6f);
       } else {
-        CHECK(c.target().params() == q_target[i]);
+        CHECK(target == q_target[i]);
       }
     }
     if (delayed) {
@@ -304,7 +282,7 @@ TEST_CASE("DDPG is TD3 with one critic, no smoothing and no delay", "[algos][td3
   DDPG ddpg(cfg, small_setup());
   TD3 twin(DDPG::to_td3(cfg), small_setup());
   CHECK(ddpg.id() == "DDPG");
-  REQUIRE(ddpg.td3().critics().size() == 1);
+  REQUIRE(ddpg.td3().critic().n_critics() == 1);
   const ReplayBatch b = random_batch(8, 8);
   for (int step = 1; step <= 3; ++step) {
     const Eigen::VectorXf actor = ddpg.td3().actor().net().params();

@@ -1,4 +1,6 @@
+#include <atomic>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstdlib>
 #include <string>
 #include <stdexcept>
@@ -20,7 +22,22 @@ TEST_CASE("ForkJoin runs both parts, on two threads when enabled, and rethrows",
     CHECK(a == 2000);
     CHECK(b == 2000);
     CHECK(here_id == std::this_thread::get_id());
-    if (pool.enabled()) CHECK(there_id != here_id);
+    if (pool.enabled()) {
+      // The worker runs `there` when it starts it before `here` ends (otherwise the calling
+      // thread runs it after `here`, as it did for most of the short jobs above).
+      std::atomic<bool> started{false};
+      pool.run(
+          [&] {
+            const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+            while (!started.load() && std::chrono::steady_clock::now() < give_up)
+              std::this_thread::yield();
+          },
+          [&] {
+            started = true;
+            there_id = std::this_thread::get_id();
+          });
+      CHECK(there_id != here_id);
+    }
     CHECK_THROWS_AS(pool.run([] {}, [] { throw std::runtime_error("there"); }), std::runtime_error);
     CHECK_THROWS_AS(pool.run([] { throw std::logic_error("here"); }, [] {}), std::logic_error);
     // Still usable after an exception.

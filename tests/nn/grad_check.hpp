@@ -9,7 +9,35 @@
 
 #include <catch2/catch.hpp>
 
+#include "rlrun/nn/mlp.hpp"
+
 namespace rlrun::test {
+
+// An Mlp's forward pass in double from a parameter vector in Mlp::params()'s layout (per layer
+// the out x in weight column-major, then the bias), x in_dim x batch: the independent
+// re-implementation that the gradient checks differentiate.
+inline Eigen::MatrixXd mlp_forward(const Mlp& net, const Eigen::VectorXd& params,
+                                   const Eigen::MatrixXd& x) {
+  Eigen::MatrixXd a = x;
+  Eigen::Index offset = 0;
+  for (int l = 0; l < net.num_layers(); ++l) {
+    const int in = net.layer_in(l), out = net.layer_out(l);
+    const Eigen::Map<const Eigen::MatrixXd> w(params.data() + offset, out, in);
+    offset += static_cast<Eigen::Index>(in) * out;
+    const Eigen::Map<const Eigen::VectorXd> b(params.data() + offset, out);
+    offset += out;
+    a = (w * a).colwise() + b;
+    if (l + 1 < net.num_layers()) {
+      if (net.activation() == Activation::kTanh)
+        a = a.array().tanh().matrix();
+      else
+        a = a.cwiseMax(0.0);
+    }
+  }
+  return a;
+}
+
+inline Eigen::VectorXd params_of(const Mlp& net) { return net.params().cast<double>(); }
 
 // Central differences of f at x (double), one coordinate at a time.
 inline Eigen::VectorXd numeric_gradient(const std::function<double(const Eigen::VectorXd&)>& f,

@@ -118,7 +118,7 @@ TEST_CASE("Mlp forward+backward micro-benchmark", "[.bench][nn_bench]") {
   bench(4, {64, 64}, 2, Activation::kTanh, 8);
   bench(17, {256, 256}, 6, Activation::kReLU, 256);
   bench(4, {64, 64}, 2, Activation::kReLU, 256);
-  // Off-policy critics at rl-zoo Pendulum sizes on one lane's half of a batch of 256 (SAC
+  // Off-policy critics at rl-zoo Pendulum sizes on one core's half of a batch of 256 (SAC
   // 256x256, TD3/DDPG 400x300: widths that are not a multiple of the packet).
   bench(4, {256, 256}, 1, Activation::kReLU, 128);
   bench(4, {400, 300}, 1, Activation::kReLU, 128);

@@ -24,31 +24,6 @@ Eigen::MatrixXf random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng, do
   return m;
 }
 
-// The same network in double: params laid out as Mlp documents (per layer W col-major, then b).
-Eigen::MatrixXd reference_forward(const Mlp& net, const Eigen::VectorXd& params,
-                                  const Eigen::MatrixXd& x) {
-  Eigen::MatrixXd a = x;
-  Eigen::Index offset = 0;
-  for (int l = 0; l < net.num_layers(); ++l) {
-    const int in = net.layer_in(l);
-    const int out = net.layer_out(l);
-    const Eigen::Map<const Eigen::MatrixXd> w(params.data() + offset, out, in);
-    offset += static_cast<Eigen::Index>(in) * out;
-    const Eigen::Map<const Eigen::VectorXd> b(params.data() + offset, out);
-    offset += out;
-    Eigen::MatrixXd z = (w * a).colwise() + b;
-    if (l + 1 < net.num_layers()) {
-      if (net.activation() == Activation::kTanh) {
-        z = z.array().tanh().matrix();
-      } else {
-        z = z.cwiseMax(0.0);
-      }
-    }
-    a = z;
-  }
-  return a;
-}
-
 struct Case {
   int in;
   std::vector<int> hidden;
@@ -72,7 +47,7 @@ void check_mlp_gradients(const Case& c, uint64_t seed) {
   const Eigen::VectorXd params = net.params().cast<double>();
   const Eigen::MatrixXd xd = x.cast<double>();
   const Eigen::MatrixXd wd = weights.cast<double>();
-  const Eigen::MatrixXd y_ref = reference_forward(net, params, xd);
+  const Eigen::MatrixXd y_ref = test::mlp_forward(net, params, xd);
   CHECK((y.cast<double>() - y_ref).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + y_ref.cwiseAbs().maxCoeff()));
 
   net.zero_grad();
@@ -82,11 +57,11 @@ void check_mlp_gradients(const Case& c, uint64_t seed) {
   REQUIRE(grad_x.cols() == c.batch);
 
   const auto loss_of_params = [&](const Eigen::VectorXd& p) {
-    return (reference_forward(net, p, xd).array() * wd.array()).sum();
+    return (test::mlp_forward(net, p, xd).array() * wd.array()).sum();
   };
   const auto loss_of_input = [&](const Eigen::VectorXd& xv) {
     const Eigen::Map<const Eigen::MatrixXd> xm(xv.data(), c.in, c.batch);
-    return (reference_forward(net, params, xm).array() * wd.array()).sum();
+    return (test::mlp_forward(net, params, xm).array() * wd.array()).sum();
   };
   {
     INFO("parameter gradient");

@@ -21,7 +21,7 @@ std::string write_config(const TempDir& dir, const std::string& algo, const std:
 
 TEST_CASE("cli: one or two threads train bit-identical models", "[cli]") {
   TempDir dir("threads");
-  // PPO (actor and critic on two cores) and TD3/DQN (minibatch split over two lanes).
+  // PPO (actor and critic on two cores) and DQN/TD3/SAC (minibatch split over two cores).
   for (const auto& [algo, env] : {std::pair{"PPO", "CartPole-v1"}, {"DQN", "CartPole-v1"},
                                   {"TD3", "Pendulum-v1"}, {"SAC", "Pendulum-v1"}}) {
     INFO(algo);

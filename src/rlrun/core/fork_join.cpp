@@ -110,6 +110,8 @@ void ForkJoin::worker_loop() {
       state = state_.load(std::memory_order_acquire);
     }
     if (state == kStop) return;
+    // Take the job unless the calling thread took it back meanwhile (then wait again).
+    if (!state_.compare_exchange_strong(state, kRunning, std::memory_order_acq_rel)) continue;
     try {
       (*job_)();
     } catch (...) {
@@ -136,8 +138,18 @@ void ForkJoin::run(const std::function<void()>& here, const std::function<void()
   } catch (...) {
     here_error = std::current_exception();
   }
-  wait_for(state_, kDone);
-  state_.store(kIdle, std::memory_order_release);
+  int posted = kWork;
+  if (state_.compare_exchange_strong(posted, kIdle, std::memory_order_acq_rel)) {
+    // The worker has not started `there`: run it here rather than wait for it to be scheduled.
+    try {
+      there();
+    } catch (...) {
+      error_ = std::current_exception();
+    }
+  } else {
+    wait_for(state_, kDone);
+    state_.store(kIdle, std::memory_order_release);
+  }
   if (error_) std::rethrow_exception(error_);
   if (here_error) std::rethrow_exception(here_error);
 }

@@ -1,10 +1,13 @@
 #pragma once
 // Runs two independent pieces of work at once: one on the calling thread, one on a persistent
 // worker thread (this machine kind has 2 cores). Used where an algorithm's work splits into
-// independent halves — PPO/A2C's actor and critic, SAC/TD3's twin critics — whose results do
-// not depend on the order, so runs stay bit-identical with or without the worker.
+// independent halves — PPO/A2C's actor and critic, the two halves of an off-policy minibatch
+// (nn/batch_split.hpp) — whose results do not depend on the order, so runs stay bit-identical
+// with or without the worker.
 // The worker spins briefly for the next job (a PPO minibatch is ~100 µs; a futex wake-up
-// costs ~10 µs), then sleeps on std::atomic::wait.
+// costs ~10 µs), then sleeps on std::atomic::wait. When the calling thread finishes its part
+// before the worker has started the other one (the worker is descheduled on a busy machine, or
+// still waking up), it runs that part itself: a hand-off never waits for a scheduler tick.
 #include <atomic>
 #include <exception>
 #include <functional>
@@ -20,8 +23,10 @@ class ForkJoin {
   ForkJoin(const ForkJoin&) = delete;
   ForkJoin& operator=(const ForkJoin&) = delete;
 
-  // Runs `here` on this thread and `there` on the worker; returns when both are done.
-  // An exception from either is rethrown here (the worker's first).
+  // Runs `here` on this thread and `there` on the worker, or on this thread after `here` when
+  // the worker has not started it by then; returns when both are done. The two must not
+  // depend on which thread runs them. An exception from either is rethrown here (`there`'s
+  // first).
   void run(const std::function<void()>& here, const std::function<void()>& there);
 
   bool enabled() const { return worker_.joinable(); }
@@ -40,7 +45,8 @@ class ForkJoin {
   static int default_threads();
 
  private:
-  enum State : int { kIdle, kWork, kDone, kStop };
+  // kWork: a job is posted; kRunning: the worker took it; kIdle: none (or taken back).
+  enum State : int { kIdle, kWork, kRunning, kDone, kStop };
   void worker_loop();
   // Spins, then sleeps, until `state` holds `value`.
   static void wait_for(std::atomic<int>& state, int value);

@@ -89,6 +89,11 @@ void Mlp::init_torch_default(Rng& rng) {
 }
 
 const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) {
+  return forward_with(params_.data(), x);
+}
+
+const Eigen::MatrixXf& Mlp::forward_with(const float* p,
+                                         const Eigen::Ref<const Eigen::MatrixXf>& x) {
   if (x.rows() != in_dim()) {
     throw std::invalid_argument("Mlp::forward: input has " + std::to_string(x.rows()) +
                                 " rows, network expects " + std::to_string(in_dim()));
@@ -106,13 +111,13 @@ const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) 
     if (l + 1 < layers) {
       epilogue = act_ == Activation::kTanh ? dense::Epilogue::kBiasTanh : dense::Epilogue::kBiasReLU;
     }
-    const dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = bias(l).data()};
+    const float* w = p + w_offset_[l];
+    const dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = p + b_offset_[l]};
     if (out >= dense::packet_size()) {
-      dense::gemm_rows(out, batch, in, weight(l).data(), out, acts_[l].data(), 1, in, epilogue,
-                       args);
+      dense::gemm_rows(out, batch, in, w, out, acts_[l].data(), 1, in, epilogue, args);
     } else {
       // Few output units (a value or small action head): dot products over the input features.
-      dense::transpose(out, in, weight(l).data(), out, wt_[l].data(), in);
+      dense::transpose(out, in, w, out, wt_[l].data(), in);
       dense::gemm_dot(out, batch, in, wt_[l].data(), in, acts_[l].data(), in, epilogue, args);
     }
   }
@@ -121,7 +126,8 @@ const Eigen::MatrixXf& Mlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) 
 
 void Mlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                    Eigen::MatrixXf* grad_input) {
-  backward_pass(grad_output, true, grad_input, 0);
+  if (grad_input != nullptr) grad_input->resize(in_dim(), acts_[0].cols());
+  backward_pass(params_.data(), grad_output, true, grad_input ? grad_input->data() : nullptr, 0);
 }
 
 void Mlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
@@ -131,11 +137,12 @@ void Mlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                                 std::to_string(first_input_row) + " is not below in_dim " +
                                 std::to_string(in_dim()));
   }
-  backward_pass(grad_output, false, &grad_input, first_input_row);
+  grad_input.resize(in_dim() - first_input_row, acts_[0].cols());
+  backward_pass(params_.data(), grad_output, false, grad_input.data(), first_input_row);
 }
 
-void Mlp::backward_pass(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool param_grads,
-                        Eigen::MatrixXf* grad_input, int first_input_row) {
+void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                        bool param_grads, float* grad_input, int first_input_row) {
   const int layers = num_layers();
   const Eigen::Index batch = acts_[0].cols();
   if (grad_output.rows() != out_dim() || grad_output.cols() != batch) {
@@ -185,8 +192,7 @@ void Mlp::backward_pass(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bo
       args.ld_act = in;
     } else if (grad_input != nullptr) {
       first = first_input_row;
-      grad_input->resize(in - first, batch);
-      args.c = grad_input->data();
+      args.c = grad_input;
     } else {
       continue;
     }
@@ -195,13 +201,13 @@ void Mlp::backward_pass(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bo
     // Large batches: transpose W once (in x out, cheap next to the product) and vectorise over
     // the rows of the result. Small batches (environment stepping) or narrow inputs: dot
     // products against W's columns, which needs no transpose.
+    const float* w = p + w_offset_[l];
     if (rows >= lanes && batch >= kMinBatchForTranspose) {
-      dense::transpose(out, in, weight(l).data(), out, wt_[l].data(), in);
+      dense::transpose(out, in, w, out, wt_[l].data(), in);
       dense::gemm_rows(rows, batch, out, wt_[l].data() + first, in, delta, 1, ld_delta, epilogue,
                        args);
     } else {
-      dense::gemm_dot(rows, batch, out, weight(l).data() + first * out, out, delta, ld_delta,
-                      epilogue, args);
+      dense::gemm_dot(rows, batch, out, w + first * out, out, delta, ld_delta, epilogue, args);
     }
   }
 }

@@ -17,7 +17,8 @@
 // unchanged.
 // One forward, then its backward: forward overwrites the cached activations, so run the
 // backward of one batch before the next forward through the same Mlp (SAC's target networks are
-// separate Mlp copies anyway). Not thread-safe: each thread needs its own Mlp.
+// separate Mlp copies anyway). Not thread-safe: each thread needs its own Mlp (SplitMlp runs
+// half of a batch through a replica that reads this Mlp's parameters in place).
 #include <Eigen/Core>
 #include <vector>
 
@@ -94,10 +95,15 @@ class Mlp {
                       Eigen::MatrixXf& grad_input, int first_input_row = 0);
 
  private:
+  friend class SplitMlp;
+  // The passes with the parameters at `p` (num_params() floats in this Mlp's layout): its own,
+  // or, for a SplitMlp's replica, the primary network's.
+  const Eigen::MatrixXf& forward_with(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& x);
   // The layers' backward pass: parameter gradients when param_grads, dL/dx rows
-  // [first_input_row, in_dim) into grad_input when it is given.
-  void backward_pass(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool param_grads,
-                     Eigen::MatrixXf* grad_input, int first_input_row);
+  // [first_input_row, in_dim) into grad_input when it is given ((in_dim - first_input_row) x
+  // batch, column-major, leading dimension its row count; e.g. columns of a larger matrix).
+  void backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                     bool param_grads, float* grad_input, int first_input_row);
 
   std::vector<int> hidden_;
   std::vector<int> dims_;  // in, hidden..., out

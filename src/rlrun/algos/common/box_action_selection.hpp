@@ -68,4 +68,26 @@ class BoxActionSelection {
   Eigen::MatrixXf noise_sample_;
 };
 
+// The acting copy of SAC's or TD3's actor: a separate network, so that acting on a few
+// observations never resizes the training network's buffers. It takes the trained weights when
+// they changed (invalidate() after each optimizer step or load).
+template <class Actor>
+class ActingCopy {
+ public:
+  explicit ActingCopy(const Actor& trained) : trained_(&trained), copy_(trained) {}
+  void invalidate() { stale_ = true; }
+  Actor& get() {
+    if (stale_) {
+      copy_.net().params() = trained_->net().params();  // same size: a copy, no allocation
+      stale_ = false;
+    }
+    return copy_;
+  }
+
+ private:
+  const Actor* trained_;
+  Actor copy_;
+  bool stale_ = true;
+};
+
 }  // namespace rlrun

@@ -1,62 +1,70 @@
 #include "rlrun/algos/common/continuous_critic.hpp"
 
+#include <stdexcept>
+
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/polyak.hpp"
 
 namespace rlrun {
 
-ContinuousCritic::ContinuousCritic(int input_dim, const std::vector<int>& net_arch,
-                                   Activation activation)
-    : q_(input_dim, net_arch, 1, activation), target_(q_) {}
+ContinuousCritic::ContinuousCritic(int obs_dim, int action_dim, const std::vector<int>& net_arch,
+                                   Activation activation, int n_critics)
+    : obs_dim_(obs_dim) {
+  if (n_critics < 1) throw std::invalid_argument("ContinuousCritic: n_critics must be >= 1");
+  for (int i = 0; i < n_critics; ++i)
+    q_.emplace_back(obs_dim + action_dim, net_arch, 1, activation);
+}
 
 void ContinuousCritic::init(Rng& rng) {
-  q_.init_torch_default(rng);
-  target_.params() = q_.params();
+  for (SplitMlp& q : q_) q.net().init_torch_default(rng);
 }
 
-void ContinuousCritic::compute_target_values(
-    const Eigen::Ref<const Eigen::MatrixXf>& obs_action) {
-  target_values_ = target_.forward(obs_action);
+void ContinuousCritic::forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                               const Eigen::Ref<const Eigen::MatrixXf>& actions) {
+  obs_action_.resize(obs.rows() + actions.rows(), obs.cols());
+  obs_action_ << obs, actions;  // th.cat([obs, actions], dim=1)
+  for (SplitMlp& q : q_) q.forward(obs_action_);
 }
 
-double ContinuousCritic::loss_and_gradient(const Eigen::Ref<const Eigen::MatrixXf>& obs_action,
-                                           const Eigen::Ref<const Eigen::MatrixXf>& y,
-                                           float scale) {
-  const Eigen::MatrixXf& q = q_.forward(obs_action);
-  grad_values_ = q - y;
-  const double loss = static_cast<double>(grad_values_.squaredNorm()) * scale;
-  // d/dQ_j of scale * sum_j (Q_j - y_j)^2 = 2 scale (Q_j - y_j).
-  grad_values_ *= 2.0f * scale;
-  q_.zero_grad();
-  q_.backward(grad_values_);
-  return loss;
+int ContinuousCritic::argmin(Eigen::Index j) const {
+  int arg = 0;
+  for (int i = 1; i < n_critics(); ++i)
+    if (q_[i].output()(0, j) < q_[arg].output()(0, j)) arg = i;
+  return arg;
 }
 
-void ContinuousCritic::compute_values(const Eigen::Ref<const Eigen::MatrixXf>& obs_action) {
-  values_ = q_.forward(obs_action);
+const Eigen::MatrixXf& ContinuousCritic::q1_forward(
+    const Eigen::Ref<const Eigen::MatrixXf>& obs,
+    const Eigen::Ref<const Eigen::MatrixXf>& actions) {
+  obs_action_.resize(obs.rows() + actions.rows(), obs.cols());
+  obs_action_ << obs, actions;
+  return q_.front().forward(obs_action_);
 }
 
-void ContinuousCritic::compute_action_gradient(const Eigen::Ref<const Eigen::MatrixXf>& grad_q,
-                                               int action_dim) {
-  q_.backward_input(grad_q, action_gradient_, q_.in_dim() - action_dim);
+void ContinuousCritic::action_gradient(int i, const Eigen::Ref<const Eigen::MatrixXf>& grad_q,
+                                       Eigen::MatrixXf& grad_actions) {
+  q_[i].backward_input(grad_q, grad_actions, obs_dim_);
 }
 
-void ContinuousCritic::soft_update(float tau) {
-  polyak_update(q_.params(), target_.params(), tau);
+void ContinuousCritic::save(const std::string& prefix, TensorMap& tensors) const {
+  for (int i = 0; i < n_critics(); ++i) {
+    const Mlp& net = q_[i].net();
+    const std::string name = prefix + ".qf" + std::to_string(i);
+    save_mlp(net, name, name + "." + std::to_string(2 * (net.num_layers() - 1)), tensors);
+  }
 }
 
-void ContinuousCritic::save(const std::string& online_prefix, const std::string& target_prefix,
-                            TensorMap& tensors) const {
-  const std::string head = std::to_string(2 * (q_.num_layers() - 1));
-  save_mlp(q_, online_prefix, online_prefix + "." + head, tensors);
-  save_mlp(target_, target_prefix, target_prefix + "." + head, tensors);
+void ContinuousCritic::load(const std::string& prefix, const TensorMap& tensors) {
+  for (int i = 0; i < n_critics(); ++i) {
+    Mlp& net = q_[i].net();
+    const std::string name = prefix + ".qf" + std::to_string(i);
+    load_mlp(net, name, name + "." + std::to_string(2 * (net.num_layers() - 1)), tensors);
+  }
 }
 
-void ContinuousCritic::load(const std::string& online_prefix, const std::string& target_prefix,
-                            const TensorMap& tensors) {
-  const std::string head = std::to_string(2 * (q_.num_layers() - 1));
-  load_mlp(q_, online_prefix, online_prefix + "." + head, tensors);
-  load_mlp(target_, target_prefix, target_prefix + "." + head, tensors);
+void polyak_update(const ContinuousCritic& critic, ContinuousCritic& target, float tau) {
+  for (int i = 0; i < critic.n_critics(); ++i)
+    polyak_update(critic.q(i).params(), target.q(i).params(), tau);
 }
 
 }  // namespace rlrun

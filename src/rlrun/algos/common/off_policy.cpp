@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 #include "rlrun/env/vec_env.hpp"
 
@@ -114,9 +116,85 @@ void OffPolicyState::read_state(const StateReader& in) {
   restored = true;
 }
 
-void write_off_policy_state(StateWriter out, const std::optional<OffPolicyState>& state) {
-  out.put_bool("has_off_policy", state.has_value());
-  if (state) state->write_state(out.sub("off_policy"));
+void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
+                            const OffPolicyConfig& config, const std::vector<int>& net_arch,
+                            int n_critics, int actor_outputs, int actor_copies) {
+  check_box_actor_spaces(out, setup);
+  check_gradient_steps(out, config.gradient_steps);
+  check_net_arch(out, "policy.net_arch", net_arch);
+  const int obs = setup.observation_space.flat_dim(), act = setup.action_space.flat_dim();
+  check_network_memory(out, "policy.net_arch", obs, net_arch, actor_outputs, actor_copies,
+                       config.batch_size);
+  // Each critic, its target and the second core's activations of both.
+  check_network_memory(out, "policy.net_arch", obs + act, net_arch, 1, 4 * n_critics,
+                       config.batch_size);
+  check_replay_memory(out, config.buffer_size, setup);
+}
+
+OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config,
+                                       const AlgorithmSetup& setup, int buffer_action_dim,
+                                       const ReplayStream& replay)
+    : setup_(setup),
+      id_(std::move(id)),
+      config_(config),
+      buffer_action_dim_(buffer_action_dim),
+      replay_rng_(setup.seed ^ replay.stream) {
+  const auto require = [this](bool ok, const std::string& message) {
+    if (!ok) throw std::invalid_argument(id_ + ": " + message);
+  };
+  require(setup.n_envs >= 1, "n_envs must be >= 1");
+  require(config.batch_size >= 1, "batch_size must be >= 1");
+  require(config.buffer_size >= 1, "buffer_size must be >= 1");
+  require(config.learning_starts >= 0, "learning_starts must be >= 0");
+  require(config.tau >= 0.0 && config.tau <= 1.0, "tau must be in [0, 1]");
+  require(config.gamma >= 0.0 && config.gamma <= 1.0, "gamma must be in [0, 1]");
+  require(config.gradient_steps >= -1,
+          "gradient_steps must be >= 0, or -1 (as many as env steps)");
+  checkpoint("num_timesteps", num_timesteps_);
+  checkpoint("n_updates", n_updates_);
+  checkpoint(replay.key, replay_rng_);
+}
+
+OffPolicyState& OffPolicyAlgorithm::state() {
+  if (!state_)
+    state_.emplace(config_, setup_.n_envs, setup_.observation_space.flat_dim(),
+                   buffer_action_dim_);
+  return *state_;
+}
+
+const ReplayBatch& OffPolicyAlgorithm::sample_batch() {
+  state_->buffer.sample(config_.batch_size, replay_rng_, batch_);
+  return batch_;
+}
+
+void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
+  if (env.num_envs() != setup_.n_envs)
+    throw std::invalid_argument(id_ + ": env has " + std::to_string(env.num_envs()) +
+                                " copies, the algorithm was built for " +
+                                std::to_string(setup_.n_envs));
+  Logger* logger = hooks.logger;
+  OffPolicyCallbacks callbacks;
+  callbacks.select_actions = [this](const Eigen::MatrixXf& obs, bool warmup,
+                                    Eigen::MatrixXf& env_actions, Eigen::MatrixXf& buffer_actions) {
+    select_actions(obs, warmup, env_actions, buffer_actions);
+  };
+  callbacks.on_step = [this, logger] { on_step(logger); };
+  callbacks.on_episode_end = [this](int e) { on_episode_end(e); };
+  callbacks.train = [this](int gradient_steps, Logger* log) { train(gradient_steps, log); };
+  off_policy_learn(env, total_timesteps, hooks, config_, state(), callbacks, num_timesteps_);
+}
+
+void OffPolicyAlgorithm::save_training_state(StateWriter& out) const {
+  for (const auto& write : write_items_) write(out);
+  out.put_bool("has_off_policy", state_.has_value());
+  if (state_) state_->write_state(out.sub("off_policy"));
+}
+
+void OffPolicyAlgorithm::load_training_state(const StateReader& in) {
+  for (const auto& read : read_items_) read(in);
+  // DQN's checkpoints before the flag always held the state.
+  if (!in.has("has_off_policy") || in.get_bool("has_off_policy"))
+    state().read_state(in.sub("off_policy"));
 }
 
 }  // namespace rlrun

@@ -1,18 +1,24 @@
 #pragma once
 // What DQN, SAC, TD3 and DDPG share (SB3 common/off_policy_algorithm.py): their common
-// hyperparameters and the learning loop — collect `train_freq` steps (or episodes) into the
+// hyperparameters, the learning loop — collect `train_freq` steps (or episodes) into the
 // replay buffer, then run `gradient_steps` updates once num_timesteps > learning_starts; random
 // actions from the action space before learning_starts; logs dumped every `log_interval`
-// finished episodes (SB3's default for off-policy algorithms is 4).
+// finished episodes (SB3's default for off-policy algorithms is 4) — and OffPolicyAlgorithm,
+// the base class that holds the replay buffer, runs that loop and checkpoints what they share.
+// Each algorithm keeps its whole update (train) in its own file.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
+#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_fields.hpp"
 
 namespace rlrun {
@@ -84,18 +90,107 @@ struct OffPolicyState {
   void read_state(const StateReader& in);
 };
 
-// For algorithms that allocate the state on first use (SAC, TD3): `off_policy/...` when it
-// exists; reading creates it with `make` only if the checkpoint has one.
-void write_off_policy_state(StateWriter out, const std::optional<OffPolicyState>& state);
-template <class Make>
-void read_off_policy_state(const StateReader& in, Make&& make) {
-  if (in.get_bool("has_off_policy")) make().read_state(in.sub("off_policy"));
-}
-
 // SB3 OffPolicyAlgorithm.learn + collect_rollouts. `num_timesteps` is the algorithm's counter.
 // Uses hooks.log_interval as episodes between dumps (0 = SB3's off-policy default, 4).
 void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
                       const OffPolicyConfig& config, OffPolicyState& state,
                       const OffPolicyCallbacks& callbacks, int64_t& num_timesteps);
+
+// SAC's and TD3's checks: Box spaces, gradient_steps, net_arch, the memory of the actor
+// (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the second core's
+// activations) and of n_critics critics with their targets, and the replay buffer's.
+void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
+                            const OffPolicyConfig& config, const std::vector<int>& net_arch,
+                            int n_critics, int actor_outputs, int actor_copies);
+
+// SB3 OffPolicyAlgorithm: the replay buffer (allocated on first use: learn or resume, never for
+// a model that is only evaluated) and the stream that samples it, learn() (off_policy_learn
+// with the algorithm's hooks below), the gradient-step counter, and the training state for an
+// exact resume: num_timesteps, n_updates, the replay stream and buffer, and whatever the
+// algorithm registers with checkpoint() (each item written and read back under one key).
+class OffPolicyAlgorithm : public Algorithm {
+ public:
+  // Optimizers point into the networks: no copies or moves.
+  OffPolicyAlgorithm(const OffPolicyAlgorithm&) = delete;
+  OffPolicyAlgorithm& operator=(const OffPolicyAlgorithm&) = delete;
+
+  std::string id() const override { return id_; }
+  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) final;
+  void save_training_state(StateWriter& out) const final;
+  void load_training_state(const StateReader& in) final;
+
+  // SB3 _sample_action: actions for obs (obs_dim x n_envs), `env_actions` for the env and
+  // `buffer_actions` as the replay buffer stores them; `warmup` (before learning_starts) asks
+  // for uniform samples of the action space.
+  virtual void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                              Eigen::MatrixXf& buffer_actions) = 0;
+
+  int64_t n_updates() const { return n_updates_; }
+  // Throws std::bad_optional_access before the first learn() or resume.
+  const ReplayBuffer& replay_buffer() const { return state_.value().buffer; }
+
+ protected:
+  // The replay buffer's sampling stream: seed ^ stream, checkpointed under `key`.
+  struct ReplayStream {
+    uint64_t stream;
+    std::string key;
+  };
+  // Throws std::invalid_argument, naming `id`, for a shared hyperparameter out of its range.
+  OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config, const AlgorithmSetup& setup,
+                     int buffer_action_dim, const ReplayStream& replay);
+
+  // SB3 train(gradient_steps, batch_size): `gradient_steps` updates, the means logged.
+  virtual void train(int gradient_steps, Logger* logger) = 0;
+  // SB3 _on_step, after every VecEnv step (DQN: target update and exploration schedule).
+  virtual void on_step(Logger* /*logger*/) {}
+  // After each finished episode of env `env` (SB3 collect_rollouts: action_noise.reset).
+  virtual void on_episode_end(int /*env*/) {}
+  // Adds `item` to the training state under `key`: an Rng, an int64_t or double counter, an
+  // Adam, or a component with write_state(StateWriter) and read_state(const StateReader&). It
+  // must stay where it is (a member built in the constructor).
+  template <class T>
+  void checkpoint(const std::string& key, T& item);
+
+  // replay_buffer.sample(batch_size) with the replay stream, into a reused batch.
+  const ReplayBatch& sample_batch();
+  // Training progress, 1 at the start and 0 at the end (SB3 _current_progress_remaining).
+  double progress_remaining() const { return state_ ? state_->progress_remaining : 1.0; }
+
+  const AlgorithmSetup setup_;
+  int64_t n_updates_ = 0;
+
+ private:
+  OffPolicyState& state();
+
+  std::string id_;
+  OffPolicyConfig config_;
+  int buffer_action_dim_;
+  Rng replay_rng_;
+  std::optional<OffPolicyState> state_;
+  ReplayBatch batch_;
+  // checkpoint()'s items: how each is written and read back.
+  std::vector<std::function<void(StateWriter&)>> write_items_;
+  std::vector<std::function<void(const StateReader&)>> read_items_;
+};
+
+template <class T>
+void OffPolicyAlgorithm::checkpoint(const std::string& key, T& item) {
+  if constexpr (std::is_same_v<T, Rng>) {
+    write_items_.push_back([key, &item](StateWriter& out) { out.put_rng(key, item); });
+    read_items_.push_back([key, &item](const StateReader& in) { in.get_rng(key, item); });
+  } else if constexpr (std::is_same_v<T, int64_t>) {
+    write_items_.push_back([key, &item](StateWriter& out) { out.put_int(key, item); });
+    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_int(key); });
+  } else if constexpr (std::is_same_v<T, double>) {
+    write_items_.push_back([key, &item](StateWriter& out) { out.put_double(key, item); });
+    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_double(key); });
+  } else if constexpr (std::is_same_v<T, Adam>) {
+    write_items_.push_back([key, &item](StateWriter& out) { write_adam(out.sub(key), item); });
+    read_items_.push_back([key, &item](const StateReader& in) { read_adam(in.sub(key), item); });
+  } else {
+    write_items_.push_back([key, &item](StateWriter& out) { item.write_state(out.sub(key)); });
+    read_items_.push_back([key, &item](const StateReader& in) { item.read_state(in.sub(key)); });
+  }
+}
 
 }  // namespace rlrun

@@ -47,6 +47,11 @@ class DDPG : public Algorithm {
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override { td3_.save(tensors); }
   void load(const TensorMap& tensors) override { td3_.load(tensors); }
+  void save_training_state(StateWriter& out) const override { td3_.save_training_state(out); }
+  void load_training_state(const StateReader& in) override {
+    td3_.load_training_state(in);
+    num_timesteps_ = td3_.num_timesteps();
+  }
 
   TD3& td3() { return td3_; }
   const TD3& td3() const { return td3_; }

@@ -5,20 +5,21 @@
 // 1-step TD targets from the target network's max, Huber (smooth L1) loss, gradient-norm
 // clipping, Adam with torch's defaults, and the target refreshed every
 // target_update_interval env steps (counted per VecEnv step, divided by n_envs, as SB3).
-// Collection, replay and the train_freq / gradient_steps cadence are the shared
-// off_policy_learn loop.
+// Collection, replay and the train_freq / gradient_steps cadence are OffPolicyAlgorithm's.
+//
+// One gradient step (train_on_batch, dqn.cpp) reads top to bottom like DQN.train's loop body.
+// The Q-networks are SplitMlps and the optimizer a SplitAdam, so a training minibatch runs on
+// both cores when ForkJoin's worker is on (RLRUN_THREADS=2), with the same bits as on one.
 #include <cstdint>
 #include <string>
 
-#include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
-#include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/algos/dqn/exploration_schedule.hpp"
 #include "rlrun/algos/dqn/q_network.hpp"
-#include "rlrun/algos/dqn/q_updater.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/split_adam.hpp"
+#include "rlrun/nn/split_mlp.hpp"
 
 namespace rlrun {
 
@@ -35,7 +36,7 @@ inline OffPolicyConfig dqn_off_policy_defaults() {
   return c;
 }
 
-class DQN : public Algorithm {
+class DQN : public OffPolicyAlgorithm {
  public:
   struct Config {
     Schedule learning_rate = Schedule::constant(1e-4);
@@ -66,18 +67,13 @@ class DQN : public Algorithm {
   // SB3 DQN: supported_action_spaces=(spaces.Discrete,).
   static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kDiscrete};
 
-  // Throws std::invalid_argument for a non-Box observation space, a non-Discrete action space
-  // or an out-of-range hyperparameter.
   // Problems of `config` with these spaces (registry: checked before anything trains).
   static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
 
+  // Throws std::invalid_argument for a non-Box observation space, a non-Discrete action space
+  // or an out-of-range hyperparameter.
   DQN(const Config& config, const AlgorithmSetup& setup);
-  // The updater points into the networks' storage: no copies or moves.
-  DQN(const DQN&) = delete;
-  DQN& operator=(const DQN&) = delete;
 
-  std::string id() const override { return "DQN"; }
-  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
   // SB3 DQN.predict: greedy (deterministic) or epsilon-greedy with the current exploration
   // rate, one coin for the whole batch as SB3 draws it.
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
@@ -87,61 +83,57 @@ class DQN : public Algorithm {
   // (SB3 saves it with the model; optional on load).
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
-  // Resume: counters, exploration rate, RNG streams, Adam moments and the replay buffer
-  // (the networks, target included, are in the model tensors).
-  void save_training_state(StateWriter& out) const override;
-  void load_training_state(const StateReader& in) override;
 
-  // One gradient evaluation of SB3's loss on `batch`: targets from q_net_target, smooth L1 of
-  // Q(s, a); q_net's gradients are zeroed and then hold d(loss)/d(params). Returns the loss.
-  double loss_and_grad(const ReplayBatch& batch);
-  // The TD targets of the last loss_and_grad.
-  const Eigen::RowVectorXf& td_targets() const { return updater_.td_targets(); }
+  // OffPolicyAlgorithm._sample_action: uniform actions before learning_starts, else predict()
+  // with deterministic=False.
+  void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                      Eigen::MatrixXf& buffer_actions) override;
 
-  // Writable access (tests, tools) may change the weights: the acting copy and the updater's
-  // replicas are refreshed before their next use.
+  // One iteration of DQN.train's loop on `batch` with learning rate lr; returns the loss.
+  // Public for tests and benchmarks: the (clipped) gradient stays in q_net().grads().
+  double train_on_batch(const ReplayBatch& batch, float lr);
+  // The TD targets of the last train_on_batch.
+  const Eigen::RowVectorXf& td_targets() const { return targets_; }
+  // The total gradient norm before clipping of the last train_on_batch.
+  float last_grad_norm() const { return last_grad_norm_; }
+
+  // Writable access (tests, tools) may change the weights: the acting copy is refreshed
+  // before its next use.
   Mlp& q_net() {
     act_net_stale_ = true;
-    updater_.invalidate_q_net();
-    return q_net_;
+    return q_net_.net();
   }
-  const Mlp& q_net() const { return q_net_; }
-  Mlp& q_net_target() {
-    updater_.invalidate_target();
-    return q_net_target_;
-  }
-  const Mlp& q_net_target() const { return q_net_target_; }
-  const ReplayBuffer& replay_buffer() const { return state_.buffer; }
+  const Mlp& q_net() const { return q_net_.net(); }
+  Mlp& q_net_target() { return q_net_target_.net(); }
+  const Mlp& q_net_target() const { return q_net_target_.net(); }
   double exploration_rate() const { return exploration_rate_; }
   int64_t n_calls() const { return n_calls_; }
-  int64_t n_updates() const { return n_updates_; }
 
  private:
-  void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
-                      Eigen::MatrixXf& buffer_actions);
-  void on_step(Logger* logger);
-  void train(int gradient_steps, Logger* logger);
+  // `gradient_steps` updates from the replay buffer (SB3 DQN.train), logging the mean loss.
+  void train(int gradient_steps, Logger* logger) override;
+  // SB3 DQN._on_step: the target update and the exploration schedule.
+  void on_step(Logger* logger) override;
   void random_actions(Eigen::Index n, Eigen::MatrixXf& actions);
 
   Config config_;
-  AlgorithmSetup setup_;
   float action_start_ = 0.0f;  // Discrete(n, start): env action = start + Q-network index
-  Rng init_rng_, action_rng_, replay_rng_;
-  Mlp q_net_, q_net_target_;
+  Rng action_rng_;
+  SplitMlp q_net_, q_net_target_;
   // A copy of q_net_ for acting (batch n_envs or the evaluator's), so that q_net_'s buffers
   // keep the training batch size and nothing reallocates; refreshed after each train().
   Mlp act_net_;
   bool act_net_stale_ = false;
-  // Loss, backward, clipping and Adam (SB3 2.x DQNPolicy: Adam over q_net's parameters only,
-  // torch defaults, eps 1e-8), in two lanes that use the second core with RLRUN_THREADS=2.
-  QUpdater updater_;
+  // SB3 2.x DQNPolicy: Adam over q_net's parameters only, torch defaults (eps 1e-8).
+  SplitAdam optimizer_;
   LinearDecay exploration_schedule_;
-  OffPolicyState state_;
   double exploration_rate_ = 0.0;  // SB3 starts at 0 and sets it in the first _on_step
   int64_t n_calls_ = 0;
-  int64_t n_updates_ = 0;
 
-  ReplayBatch batch_;  // sized in the constructor
+  // Training workspaces.
+  Eigen::RowVectorXf targets_;  // 1 x batch
+  Eigen::MatrixXf grad_q_;      // n_actions x batch
+  float last_grad_norm_ = 0.0f;
   // Logger keys built once (a std::string per record would allocate every step).
   const std::string key_exploration_rate_ = "rollout/exploration_rate";
   const std::string key_learning_rate_ = "train/learning_rate";

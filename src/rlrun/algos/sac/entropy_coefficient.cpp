@@ -71,17 +71,6 @@ float EntropyCoefficient::value() const {
   return learned_ ? std::exp(log_ent_coef_.value(0)) : fixed_;
 }
 
-double EntropyCoefficient::update(const Eigen::Ref<const Eigen::RowVectorXf>& log_prob, float lr) {
-  if (!learned_) throw std::logic_error("EntropyCoefficient::update on a fixed coefficient");
-  // loss = -log_alpha * mean(log_prob + target); d loss / d log_alpha = -mean(log_prob + target).
-  const double mean_shifted =
-      static_cast<double>(log_prob.mean()) + static_cast<double>(target_entropy_);
-  const double loss = -static_cast<double>(log_ent_coef_.value(0)) * mean_shifted;
-  log_ent_coef_.grad(0) = static_cast<float>(-mean_shifted);
-  adam_.step(lr);
-  return loss;
-}
-
 void EntropyCoefficient::save(TensorMap& tensors) const {
   if (learned_)
     tensors["log_ent_coef"] = to_tensor(log_ent_coef_.value);

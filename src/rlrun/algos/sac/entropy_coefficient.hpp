@@ -1,10 +1,9 @@
 #pragma once
-// SAC's entropy coefficient alpha (SB3 sac/sac.py _setup_model and train; Haarnoja et al.
-// 2018b, "Soft Actor-Critic Algorithms and Applications", arXiv:1812.05905, section 5):
-// either a fixed number, or learned ("auto", "auto_<initial>") by Adam on log(alpha) with
-//   ent_coef_loss = -mean(log_alpha * (log_prob + target_entropy))   (log_prob detached)
-// SB3 optimises log(alpha) rather than alpha (softlearning issue #37) and starts it at
-// log(initial) (1.0 unless "auto_<initial>" says otherwise).
+// SAC's entropy coefficient alpha (SB3 sac/sac.py _setup_model; Haarnoja et al. 2018b, "Soft
+// Actor-Critic Algorithms and Applications", arXiv:1812.05905, section 5): either a fixed
+// number, or learned ("auto", "auto_<initial>") by Adam on log(alpha). SB3 optimises log(alpha)
+// rather than alpha (softlearning issue #37) and starts it at log(initial) (1.0 unless
+// "auto_<initial>" says otherwise). Its loss and step are in SAC::train_on_batch.
 #include <Eigen/Core>
 #include <string>
 
@@ -41,9 +40,9 @@ class EntropyCoefficient {
   float value() const;
   float log_value() const { return log_ent_coef_.value(0); }
 
-  // One Adam step on log_alpha from this batch's log-probabilities (1 x batch); returns the
-  // ent_coef_loss before the step. Must only be called when learned().
-  double update(const Eigen::Ref<const Eigen::RowVectorXf>& log_prob, float lr);
+  // SB3's log_ent_coef (learned() only) and its optimizer (Adam with torch's defaults).
+  ParamVector& log_ent_coef() { return log_ent_coef_; }
+  Adam& optimizer() { return adam_; }
 
   // SB3 saves the learned value as the pytorch variable `log_ent_coef`, a fixed one as
   // `ent_coef_tensor`.

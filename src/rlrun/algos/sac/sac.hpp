@@ -7,22 +7,18 @@
 // coefficient that is fixed or learned towards target_entropy. Actions live in [-1, 1] inside
 // the algorithm (replay buffer, critics, noise) and are rescaled to the Box bounds for the env.
 //
-// One gradient step (train_on_batch) reads top to bottom like SAC.train. A training-sized
-// minibatch is split over two SacLane replicas (algos/common/batch_lanes.hpp) that run on both
-// cores when ForkJoin's worker is on (RLRUN_THREADS=2), one after the other otherwise. The
-// split depends on the batch size only, so a run is bit-identical either way.
-#include <optional>
+// One gradient step (train_on_batch, sac.cpp) reads top to bottom like SAC.train's loop body.
+// Its networks are SplitMlps, so a training minibatch runs on both cores when ForkJoin's worker
+// is on (RLRUN_THREADS=2), with the same bits as on one.
 #include <string>
 #include <vector>
 
-#include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
+#include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/sac/entropy_coefficient.hpp"
 #include "rlrun/algos/sac/sac_actor.hpp"
-#include "rlrun/algos/sac/sac_lane.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
 
@@ -51,7 +47,7 @@ struct SacStepStats {
   double critic_loss = 0.0;  // 0.5 * sum over critics of mse
 };
 
-class SAC : public Algorithm {
+class SAC : public OffPolicyAlgorithm {
  public:
   struct Config {
     Schedule learning_rate = Schedule::constant(3e-4);
@@ -80,45 +76,40 @@ class SAC : public Algorithm {
 
   static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kBox};
 
-  // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
-  // actions).
   // Problems of `config` with these spaces (registry: checked before anything trains).
   static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
 
+  // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
+  // actions).
   SAC(const Config& config, const AlgorithmSetup& setup);
-  SAC(const SAC&) = delete;
-  SAC& operator=(const SAC&) = delete;
 
-  std::string id() const override { return "SAC"; }
-  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
   // tanh(mu) (deterministic) or a sample, rescaled to the Box bounds.
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
+  // SB3 SACPolicy.state_dict(): actor.*, critic.qf<i>.*, critic_target.qf<i>.*, and
+  // log_ent_coef (learned) or ent_coef_tensor (fixed).
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
-  // Resume: counters, RNG streams, exploration noise, every Adam's moments and the replay
-  // buffer (the networks, targets included, are in the model tensors).
-  void save_training_state(StateWriter& out) const override;
-  void load_training_state(const StateReader& in) override;
-
-  // One gradient step of SAC.train on `batch` (actions in [-1, 1]) with learning rate lr;
-  // update_target applies the Polyak update afterwards. Public for tests and benchmarks.
-  SacStepStats train_on_batch(const ReplayBatch& batch, float lr, bool update_target);
 
   // SB3 OffPolicyAlgorithm._sample_action: warmup = uniform samples of the action space,
   // otherwise a stochastic actor sample; exploration noise added and clipped to [-1, 1].
   // buffer_actions in [-1, 1], env_actions in [low, high].
   void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
-                      Eigen::MatrixXf& buffer_actions);
+                      Eigen::MatrixXf& buffer_actions) override;
+
+  // One gradient step of SAC.train on `batch` (actions in [-1, 1]) with learning rate lr;
+  // update_target applies the Polyak update afterwards. Public for tests and benchmarks: the
+  // gradients stay in the networks' grads() after the step.
+  SacStepStats train_on_batch(const ReplayBatch& batch, float lr, bool update_target);
 
   const Config& config() const { return config_; }
-  // The trained networks (the primary lane's).
-  const SacActor& actor() const { return lanes_.front().actor(); }
-  SacActor& actor() { return lanes_.front().actor(); }
-  const std::vector<ContinuousCritic>& critics() const { return lanes_.front().critics(); }
-  std::vector<ContinuousCritic>& critics() { return lanes_.front().critics(); }
+  const SacActor& actor() const { return actor_; }
+  SacActor& actor() { return actor_; }
+  const ContinuousCritic& critic() const { return critic_; }
+  ContinuousCritic& critic() { return critic_; }
+  const ContinuousCritic& critic_target() const { return critic_target_; }
+  ContinuousCritic& critic_target() { return critic_target_; }
   const EntropyCoefficient& ent_coef() const { return ent_coef_; }
-  int64_t n_updates() const { return n_updates_; }
   // From the last train_on_batch: the soft Bellman target y (1 x batch) and the standard
   // normal noise used for the next actions and for the policy's actions (action_dim x batch).
   const Eigen::MatrixXf& last_critic_target() const { return target_q_; }
@@ -127,36 +118,29 @@ class SAC : public Algorithm {
 
  private:
   // `gradient_steps` updates from the replay buffer (SB3 SAC.train), logging the means.
-  void train(int gradient_steps, Logger* logger);
-  void resize_workspaces(Eigen::Index batch);
-  // The acting copy of the actor (a separate Mlp so that batch-1 acting never resizes the
-  // training network's buffers) gets the trained weights when they changed.
-  void sync_acting_actor();
+  void train(int gradient_steps, Logger* logger) override;
+  void on_episode_end(int env) override { acting_.on_episode_end(env); }
 
   Config config_;
-  AlgorithmSetup setup_;
   int obs_dim_ = 0;
   int action_dim_ = 0;
-  Rng init_rng_, sample_rng_, train_rng_, predict_rng_;
-  std::vector<SacLane> lanes_;  // [0] holds the trained parameters; [1] a replica
+  Rng train_rng_, predict_rng_;
+  SacActor actor_;
+  ContinuousCritic critic_, critic_target_;
   Adam actor_optimizer_;
-  std::vector<Adam> critic_optimizers_;  // one per critic, on lanes_[0]'s parameters
+  // SB3 steps all critics with one Adam over their concatenated parameters; Adam is
+  // element-wise with one step count, so one Adam per critic is the same update.
+  std::vector<Adam> critic_optimizers_;
   EntropyCoefficient ent_coef_;
-  SacActor acting_actor_;
+  ActingCopy<SacActor> acting_actor_{actor_};
   BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
-  bool acting_stale_ = true;
-  std::optional<OffPolicyState> state_;  // replay buffer etc., created by off_policy_state()
-  // The replay buffer is allocated on first use (learn or resume), not for a model that is
-  // only evaluated.
-  OffPolicyState& off_policy_state();
-  int64_t n_updates_ = 0;
 
   // Training workspaces (one gradient step allocates nothing while the batch size is
-  // unchanged): whole-batch noise, log pi(a_pi|s) and y, the lanes' loss parts.
-  ReplayBatch batch_;
-  Eigen::MatrixXf policy_noise_, next_noise_, target_q_;
-  Eigen::RowVectorXf log_prob_;
-  double lane_losses_[2] = {0.0, 0.0};
+  // unchanged).
+  Eigen::MatrixXf policy_noise_, next_noise_, next_actions_, actions_pi_, target_q_;
+  Eigen::MatrixXf grad_q_, grad_critic_actions_, grad_actions_;
+  std::vector<Eigen::MatrixXf> grad_min_q_;  // d actor_loss / d Q_i, per critic
+  Eigen::RowVectorXf next_log_prob_, log_prob_, grad_log_prob_;
   // Acting workspaces.
   Eigen::MatrixXf scaled_actions_;
   Eigen::RowVectorXf acting_log_prob_;

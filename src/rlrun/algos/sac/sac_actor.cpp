@@ -17,25 +17,27 @@ void SacActor::forward_heads(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
 }
 
 void SacActor::sample(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
-                      Eigen::Ref<Eigen::MatrixXf> actions,
-                      Eigen::Ref<Eigen::RowVectorXf> log_prob) {
+                      Eigen::MatrixXf& actions, Eigen::RowVectorXf& log_prob) {
   forward_heads(obs);
+  actions.resize(action_dim_, obs.cols());
+  log_prob.resize(obs.cols());
   dist_.sample(rng, actions);
   dist_.log_prob(log_prob);
 }
 
 void SacActor::sample_from_noise(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                  const Eigen::Ref<const Eigen::MatrixXf>& noise,
-                                 Eigen::Ref<Eigen::MatrixXf> actions,
-                                 Eigen::Ref<Eigen::RowVectorXf> log_prob) {
+                                 Eigen::MatrixXf& actions, Eigen::RowVectorXf& log_prob) {
   forward_heads(obs);
+  actions.resize(action_dim_, obs.cols());
+  log_prob.resize(obs.cols());
   dist_.sample_from_noise(noise, actions);
   dist_.log_prob(log_prob);
 }
 
-void SacActor::mode(const Eigen::Ref<const Eigen::MatrixXf>& obs,
-                    Eigen::Ref<Eigen::MatrixXf> actions) {
+void SacActor::mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& actions) {
   forward_heads(obs);
+  actions.resize(action_dim_, obs.cols());
   dist_.mode(actions);
 }
 
@@ -48,35 +50,37 @@ void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
   // No gradient where the raw log_std was clamped (torch's clamp backward).
   SquashedGaussian::clamp_log_std_backward(net_.output().bottomRows(action_dim_),
                                            grad_head_.bottomRows(action_dim_));
-  net_.backward(grad_head_);
+  net_.zero_grad_and_backward(grad_head_);
 }
 
 void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
-  const int last = net_.num_layers() - 1;
+  const Mlp& m = net();
+  const int last = m.num_layers() - 1;
   for (int l = 0; l < last; ++l) {
     const std::string name = prefix + ".latent_pi." + std::to_string(2 * l);
-    tensors[name + ".weight"] = to_tensor(Eigen::MatrixXf(net_.weight(l)));
-    tensors[name + ".bias"] = to_tensor(Eigen::VectorXf(net_.bias(l)));
+    tensors[name + ".weight"] = to_tensor(Eigen::MatrixXf(m.weight(l)));
+    tensors[name + ".bias"] = to_tensor(Eigen::VectorXf(m.bias(l)));
   }
   tensors[prefix + ".mu.weight"] =
-      to_tensor(Eigen::MatrixXf(net_.weight(last).topRows(action_dim_)));
-  tensors[prefix + ".mu.bias"] = to_tensor(Eigen::VectorXf(net_.bias(last).head(action_dim_)));
+      to_tensor(Eigen::MatrixXf(m.weight(last).topRows(action_dim_)));
+  tensors[prefix + ".mu.bias"] = to_tensor(Eigen::VectorXf(m.bias(last).head(action_dim_)));
   tensors[prefix + ".log_std.weight"] =
-      to_tensor(Eigen::MatrixXf(net_.weight(last).bottomRows(action_dim_)));
-  tensors[prefix + ".log_std.bias"] = to_tensor(Eigen::VectorXf(net_.bias(last).tail(action_dim_)));
+      to_tensor(Eigen::MatrixXf(m.weight(last).bottomRows(action_dim_)));
+  tensors[prefix + ".log_std.bias"] = to_tensor(Eigen::VectorXf(m.bias(last).tail(action_dim_)));
 }
 
 void SacActor::load(const std::string& prefix, const TensorMap& tensors) {
-  const int last = net_.num_layers() - 1;
+  Mlp& m = net();
+  const int last = m.num_layers() - 1;
   for (int l = 0; l < last; ++l) {
     const std::string name = prefix + ".latent_pi." + std::to_string(2 * l);
-    from_tensor(tensors, name + ".weight", net_.weight(l));
-    from_tensor(tensors, name + ".bias", net_.bias(l));
+    from_tensor(tensors, name + ".weight", m.weight(l));
+    from_tensor(tensors, name + ".bias", m.bias(l));
   }
-  from_tensor(tensors, prefix + ".mu.weight", net_.weight(last).topRows(action_dim_));
-  from_tensor(tensors, prefix + ".mu.bias", net_.bias(last).head(action_dim_));
-  from_tensor(tensors, prefix + ".log_std.weight", net_.weight(last).bottomRows(action_dim_));
-  from_tensor(tensors, prefix + ".log_std.bias", net_.bias(last).tail(action_dim_));
+  from_tensor(tensors, prefix + ".mu.weight", m.weight(last).topRows(action_dim_));
+  from_tensor(tensors, prefix + ".mu.bias", m.bias(last).head(action_dim_));
+  from_tensor(tensors, prefix + ".log_std.weight", m.weight(last).bottomRows(action_dim_));
+  from_tensor(tensors, prefix + ".log_std.bias", m.bias(last).tail(action_dim_));
 }
 
 }  // namespace rlrun

@@ -9,14 +9,15 @@
 // last hidden width), so they are stored as ONE linear output layer of 2 * action_dim units on
 // top of the hidden layers: rows [0, A) are mu, rows [A, 2A) the raw log_std. That is exactly an
 // Mlp (its last layer is linear), and one product instead of two thin ones. save() splits the
-// layer back into SB3's actor.mu / actor.log_std tensors.
+// layer back into SB3's actor.mu / actor.log_std tensors. The network is a SplitMlp: a training
+// minibatch runs on both cores.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "rlrun/rng.hpp"
 #include "rlrun/core/tensor.hpp"
-#include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/split_mlp.hpp"
 #include "rlrun/nn/squashed_gaussian.hpp"
 
 namespace rlrun {
@@ -26,26 +27,26 @@ class SacActor {
   SacActor() = default;
   SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation);
 
-  int obs_dim() const { return net_.in_dim(); }
+  int obs_dim() const { return net_.net().in_dim(); }
   int action_dim() const { return action_dim_; }
-  Mlp& net() { return net_; }
-  const Mlp& net() const { return net_; }
+  // The network's parameters and gradients.
+  Mlp& net() { return net_.net(); }
+  const Mlp& net() const { return net_.net(); }
 
   // SB3 action_log_prob: a reparameterised sample and its log-probability (tanh-corrected),
-  // actions action_dim x batch in (-1, 1). Keeps the forward pass for backward().
-  void sample(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
-              Eigen::Ref<Eigen::MatrixXf> actions, Eigen::Ref<Eigen::RowVectorXf> log_prob);
-  // The same with given standard-normal noise (action_dim x batch): tests and replays.
+  // actions resized to action_dim x batch, in (-1, 1). Keeps the forward pass for backward().
+  void sample(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng, Eigen::MatrixXf& actions,
+              Eigen::RowVectorXf& log_prob);
+  // The same with given standard-normal noise (action_dim x batch): updates and tests.
   void sample_from_noise(const Eigen::Ref<const Eigen::MatrixXf>& obs,
-                         const Eigen::Ref<const Eigen::MatrixXf>& noise,
-                         Eigen::Ref<Eigen::MatrixXf> actions,
-                         Eigen::Ref<Eigen::RowVectorXf> log_prob);
+                         const Eigen::Ref<const Eigen::MatrixXf>& noise, Eigen::MatrixXf& actions,
+                         Eigen::RowVectorXf& log_prob);
   // SB3 deterministic=True: tanh(mu).
-  void mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::Ref<Eigen::MatrixXf> actions);
+  void mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& actions);
 
   // Backward of a loss L(actions, log_prob) of the last sample, given dL/da (action_dim x batch)
   // and dL/dlog_prob: pathwise through the squashed Gaussian and the log_std clamp into the
-  // network. ADDS to net().grads() (call net().zero_grad() first, like optimizer.zero_grad()).
+  // network: net().grads() becomes the loss's gradient (optimizer.zero_grad(); loss.backward()).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob);
 
@@ -59,7 +60,7 @@ class SacActor {
   void forward_heads(const Eigen::Ref<const Eigen::MatrixXf>& obs);
 
   int action_dim_ = 0;
-  Mlp net_;  // obs -> net_arch -> [mu; raw log_std]
+  SplitMlp net_;  // obs -> net_arch -> [mu; raw log_std]
   SquashedGaussian dist_;
   // Workspaces, reused while the batch size stays the same.
   Eigen::MatrixXf log_std_, grad_mean_, grad_log_std_, grad_head_;

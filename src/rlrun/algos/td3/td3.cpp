@@ -1,15 +1,13 @@
 #include "rlrun/algos/td3/td3.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "rlrun/algos/common/batch_lanes.hpp"
 #include "rlrun/algos/common/polyak.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/algos/common/training_state.hpp"
-#include "rlrun/algos/td3/td3_target.hpp"
-#include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
 
@@ -24,154 +22,123 @@ const std::string kKeyCriticLoss = "train/critic_loss";
 const std::string kKeyLearningRate = "train/learning_rate";
 
 const TD3::Config& checked(const TD3::Config& c, const std::string& id) {
-  const OffPolicyConfig& o = c.off_policy;
-  if (o.batch_size < 1) throw std::invalid_argument(id + ": batch_size must be >= 1");
-  if (o.buffer_size < 1) throw std::invalid_argument(id + ": buffer_size must be >= 1");
-  if (!(o.tau >= 0.0 && o.tau <= 1.0)) throw std::invalid_argument(id + ": tau must be in [0, 1]");
   if (c.policy_delay < 1) throw std::invalid_argument(id + ": policy_delay must be >= 1");
   if (!(c.target_policy_noise >= 0.0) || !(c.target_noise_clip >= 0.0))
     throw std::invalid_argument(id + ": target_policy_noise and target_noise_clip must be >= 0");
-  if (c.policy.n_critics < 1) throw std::invalid_argument(id + ": policy.n_critics must be >= 1");
   return c;
 }
-
 }  // namespace
 
 ConfigProblems TD3::check(const Config& config, const AlgorithmSetup& setup) {
   ConfigProblems out;
-  check_box_actor_spaces(out, setup);
-  check_gradient_steps(out, config.off_policy.gradient_steps);
-  check_net_arch(out, "policy.net_arch", config.policy.net_arch);
-  const int obs = setup.observation_space.flat_dim(), act = setup.action_space.flat_dim();
-  // Actor and its target, critics and their targets, each replicated per core.
-  check_network_memory(out, "policy.net_arch", obs, config.policy.net_arch, act, 4,
-                       config.off_policy.batch_size);
-  check_network_memory(out, "policy.net_arch", obs + act, config.policy.net_arch, 1,
-                       4 * config.policy.n_critics, config.off_policy.batch_size);
-  check_replay_memory(out, config.off_policy.buffer_size, setup);
+  // The actor, its target, its acting copy and the second core's activations.
+  check_box_actor_critic(out, setup, config.off_policy, config.policy.net_arch,
+                         config.policy.n_critics, setup.action_space.flat_dim(), 4);
   return out;
 }
 
 TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
-    : id_(std::move(id)),
-      config_(checked(config, id_)),
-      setup_(setup),
+    : OffPolicyAlgorithm(id, config.off_policy, setup,
+                         BoxActionSelection::checked_action_dim(setup, id),
+                         {kSampleStream, "sample_rng"}),
+      config_(checked(config, id)),
       obs_dim_(setup.observation_space.flat_dim()),
-      action_dim_(BoxActionSelection::checked_action_dim(setup, id_)),
-      init_rng_(setup.seed),
-      sample_rng_(setup.seed ^ kSampleStream),
+      action_dim_(setup.action_space.flat_dim()),
       smoothing_rng_(setup.seed ^ kSmoothingStream),
-      acting_actor_(obs_dim_, action_dim_, config.policy.net_arch,
-                    parse_activation(config.policy.activation_fn)),
+      actor_(obs_dim_, action_dim_, config.policy.net_arch,
+             parse_activation(config.policy.activation_fn)),
+      actor_target_(actor_),
+      critic_(obs_dim_, action_dim_, config.policy.net_arch,
+              parse_activation(config.policy.activation_fn), config.policy.n_critics),
+      critic_target_(critic_),
       acting_(setup, config.action_noise) {
-  const Activation act = parse_activation(config_.policy.activation_fn);
-  lanes_.reserve(2);
-  for (int lane = 0; lane < 2; ++lane)
-    lanes_.emplace_back(obs_dim_, action_dim_, config_.policy.net_arch, act,
-                        config_.policy.n_critics);
-  // SB3 TD3Policy._build: actor (target a copy), then the critics (targets copies); torch's
-  // default Linear init; Adam with torch's defaults (eps 1e-8) for the actor and the critics.
-  // SB3 steps all critics with one Adam over their concatenated parameters: Adam is
-  // element-wise with one step count, so one Adam per critic is the same update.
-  Td3Lane& primary = lanes_.front();
-  primary.init(init_rng_);
-  acting_actor_.net().params() = primary.actor().net().params();
-  actor_optimizer_ = Adam({primary.actor().net().block()});
-  for (ContinuousCritic& c : primary.critics())
-    critic_optimizers_.emplace_back(std::vector<ParamBlock>{c.q().block()});
-  smoothing_noise_.resize(action_dim_, config_.off_policy.batch_size);
-  target_q_.resize(1, config_.off_policy.batch_size);
+  // SB3 TD3Policy._build: the actor (its target a copy), then the critics (targets copies);
+  // torch's default Linear init; Adam with torch's defaults (eps 1e-8) for actor and critics.
+  Rng init_rng(setup.seed);
+  actor_.net().init_torch_default(init_rng);
+  actor_target_ = actor_;
+  critic_.init(init_rng);
+  critic_target_ = critic_;
+  actor_optimizer_ = Adam({actor_.net().block()});
+  for (int i = 0; i < critic_.n_critics(); ++i)
+    critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
+  // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
+  // included, are in the model tensors).
+  checkpoint("smoothing_rng", smoothing_rng_);
+  checkpoint("acting", acting_);
+  checkpoint("actor_optimizer", actor_optimizer_);
+  for (int i = 0; i < critic_.n_critics(); ++i)
+    checkpoint("critic_optimizer" + std::to_string(i), critic_optimizers_[i]);
 }
 
-void TD3::sync_acting_actor() {
-  if (!acting_stale_) return;
-  acting_actor_.net().params() = actor().net().params();
-  acting_stale_ = false;
-}
-
-void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
-                         Eigen::MatrixXf& buffer_actions) {
-  // SB3 predicts (actor, unscaled to the bounds) and scales back to [-1, 1]; the actor's tanh
-  // output is that scaled action already.
-  acting_.select(
-      obs, warmup,
-      [&](Rng&, Eigen::MatrixXf& actions) {
-        sync_acting_actor();
-        actions = acting_actor_.forward(obs);
-      },
-      env_actions, buffer_actions);
-}
-
-void TD3::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,
-                  Eigen::MatrixXf& actions) {
-  sync_acting_actor();
-  acting_.to_env_actions(acting_actor_.forward(obs), actions);
-}
-
-double TD3::critic_loss_and_gradients(const ReplayBatch& batch) {
-  const Eigen::Index n = batch.obs.cols();
-  if (smoothing_noise_.cols() != n) {
-    smoothing_noise_.resize(action_dim_, n);
-    target_q_.resize(1, n);
-  }
-  // Drawn for the whole batch before the split, so the stream does not depend on it.
-  sample_target_smoothing_noise(smoothing_rng_, static_cast<float>(config_.target_policy_noise),
-                                static_cast<float>(config_.target_noise_clip), smoothing_noise_);
+// SB3 td3/td3.py TD3.train, one pass of its loop over gradient steps; CleanRL's
+// td3_continuous_action.py has the same update (policy_frequency is policy_delay).
+Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
+  const Eigen::Index n = b.obs.cols();
+  const float inv_n = 1.0f / static_cast<float>(n);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
-  const float inv_batch = 1.0f / static_cast<float>(n);
-  const int lanes = run_batch_lanes(n, [&](int lane, Eigen::Index begin, Eigen::Index count) {
-    if (lane > 0) lanes_[lane].pull_critic_pass_params(lanes_[0]);
-    lane_losses_[lane] = lanes_[lane].critic_pass(batch, begin, count, smoothing_noise_, gamma,
-                                                  inv_batch, target_q_);
-  });
-  std::vector<ContinuousCritic>& critics = lanes_[0].critics();
-  for (int lane = 1; lane < lanes; ++lane)
-    for (size_t i = 0; i < critics.size(); ++i)
-      critics[i].q().grads() += lanes_[lane].critics()[i].q().grads();
-  return lanes == 2 ? lane_losses_[0] + lane_losses_[1] : lane_losses_[0];
-}
-
-double TD3::actor_loss_and_gradient(const ReplayBatch& batch) {
-  const Eigen::Index n = batch.obs.cols();
-  const float inv_batch = 1.0f / static_cast<float>(n);
-  const int lanes = run_batch_lanes(n, [&](int lane, Eigen::Index begin, Eigen::Index count) {
-    if (lane > 0) lanes_[lane].pull_actor_pass_params(lanes_[0]);
-    lane_losses_[lane] = lanes_[lane].actor_pass(batch, begin, count, inv_batch);
-  });
-  for (int lane = 1; lane < lanes; ++lane)
-    lanes_[0].actor().net().grads() += lanes_[lane].actor().net().grads();
-  return lanes == 2 ? lane_losses_[0] + lane_losses_[1] : lane_losses_[0];
-}
-
-Td3StepStats TD3::train_on_batch(const ReplayBatch& batch, float lr) {
   ++n_updates_;
   Td3StepStats stats;
-  // Critics: y from the target networks, sum of the critics' mse, one optimizer step.
-  stats.critic_loss = critic_loss_and_gradients(batch);
+
+  // with th.no_grad():
+  //   noise = N(0, target_policy_noise).clamp(-target_noise_clip, target_noise_clip)
+  //   next_actions = (actor_target(next_obs) + noise).clamp(-1, 1)
+  //   next_q = min_i critic_target_i(next_obs, next_actions)
+  //   target_q = rewards + (1 - dones) * gamma * next_q
+  const auto noise_std = static_cast<float>(config_.target_policy_noise);
+  const auto noise_clip = static_cast<float>(config_.target_noise_clip);
+  smoothing_noise_.resize(action_dim_, n);
+  if (noise_std == 0.0f || noise_clip == 0.0f) {
+    smoothing_noise_.setZero();  // DDPG's clip 0 zeroes whatever was drawn: draw nothing
+  } else {
+    for (Eigen::Index k = 0; k < smoothing_noise_.size(); ++k)
+      smoothing_noise_(k) = std::clamp(noise_std * static_cast<float>(smoothing_rng_.normal()),
+                                       -noise_clip, noise_clip);
+  }
+  next_actions_ =
+      (actor_target_.forward(b.next_obs) + smoothing_noise_).cwiseMax(-1.0f).cwiseMin(1.0f);
+  critic_target_.forward(b.next_obs, next_actions_);
+  target_q_.resize(1, n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    target_q_(0, j) = b.rewards(j) + ((1.0f - b.dones(j)) * gamma) * critic_target_.min(j);
+
+  // critic_loss = sum_i F.mse_loss(critic_i(obs, actions), target_q); one Adam step.
+  critic_.forward(b.obs, b.actions);
+  for (int i = 0; i < critic_.n_critics(); ++i) {
+    grad_q_ = critic_.q(i).output() - target_q_;
+    stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * inv_n;
+    grad_q_ *= 2.0f * inv_n;  // d critic_loss / d Q_i = 2 (Q_i - target_q) / n
+    critic_.q(i).zero_grad_and_backward(grad_q_);
+  }
   for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
 
-  // Delayed policy update: the actor through critic 1, then every target by Polyak averaging.
-  if (n_updates_ % config_.policy_delay == 0) {
-    stats.actor_loss = actor_loss_and_gradient(batch);
-    stats.actor_updated = true;
-    actor_optimizer_.step(lr);
-    acting_stale_ = true;
-    const auto tau = static_cast<float>(config_.off_policy.tau);
-    for (ContinuousCritic& c : critics()) c.soft_update(tau);
-    polyak_update(actor().net().params(), actor_target().net().params(), tau);
-  }
+  // Delayed policy updates: `if self._n_updates % self.policy_delay == 0`.
+  if (n_updates_ % config_.policy_delay != 0) return stats;
+  // actor_loss = -critic.q1_forward(obs, actor(obs)).mean(), through critic 1 into the actor;
+  // one Adam step.
+  const Eigen::MatrixXf& q1 = critic_.q1_forward(b.obs, actor_.forward(b.obs));
+  stats.actor_loss = -static_cast<double>(q1.sum()) * inv_n;
+  stats.actor_updated = true;
+  grad_q_.setConstant(1, n, -inv_n);
+  critic_.action_gradient(0, grad_q_, grad_actions_);
+  actor_.backward(grad_actions_);
+  actor_optimizer_.step(lr);
+  acting_actor_.invalidate();
+
+  // polyak_update(critic.parameters(), critic_target.parameters(), tau), the same for the actor.
+  const auto tau = static_cast<float>(config_.off_policy.tau);
+  polyak_update(critic_, critic_target_, tau);
+  polyak_update(actor_.net().params(), actor_target_.net().params(), tau);
   return stats;
 }
 
 void TD3::train(int gradient_steps, Logger* logger) {
-  OffPolicyState& state = *state_;
   // SB3 _update_learning_rate: one scheduled lr for the actor and critic optimizers.
-  const auto lr = static_cast<float>(config_.learning_rate(state.progress_remaining));
+  const auto lr = static_cast<float>(config_.learning_rate(progress_remaining()));
   double critic_loss_sum = 0.0, actor_loss_sum = 0.0;
   int actor_updates = 0;
   for (int step = 0; step < gradient_steps; ++step) {
-    state.buffer.sample(config_.off_policy.batch_size, sample_rng_, batch_);
-    const Td3StepStats s = train_on_batch(batch_, lr);
+    const Td3StepStats s = train_on_batch(sample_batch(), lr);
     critic_loss_sum += s.critic_loss;
     if (s.actor_updated) {
       actor_loss_sum += s.actor_loss;
@@ -185,71 +152,34 @@ void TD3::train(int gradient_steps, Logger* logger) {
   logger->record(kKeyCriticLoss, critic_loss_sum / gradient_steps);
 }
 
-void TD3::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
-  if (env.num_envs() != setup_.n_envs)
-    throw std::invalid_argument(id_ + ": env has " + std::to_string(env.num_envs()) +
-                                " copies, the algorithm was built for " +
-                                std::to_string(setup_.n_envs));
-  OffPolicyState& state = off_policy_state();
-  OffPolicyCallbacks callbacks;
-  callbacks.select_actions = [this](const Eigen::MatrixXf& obs, bool warmup,
-                                    Eigen::MatrixXf& env_actions, Eigen::MatrixXf& buffer_actions) {
-    select_actions(obs, warmup, env_actions, buffer_actions);
-  };
-  // SB3 collect_rollouts: action_noise.reset(indices=[idx]) for each finished episode.
-  callbacks.on_episode_end = [this](int e) { acting_.on_episode_end(e); };
-  callbacks.train = [this](int gradient_steps, Logger* logger) { train(gradient_steps, logger); };
-  off_policy_learn(env, total_timesteps, hooks, config_.off_policy, state, callbacks,
-                   num_timesteps_);
+void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                         Eigen::MatrixXf& buffer_actions) {
+  // SB3 predicts (actor, unscaled to the bounds) and scales back to [-1, 1]; the actor's tanh
+  // output is that scaled action already.
+  acting_.select(
+      obs, warmup,
+      [&](Rng&, Eigen::MatrixXf& actions) { actions = acting_actor_.get().forward(obs); },
+      env_actions, buffer_actions);
+}
+
+void TD3::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,
+                  Eigen::MatrixXf& actions) {
+  acting_.to_env_actions(acting_actor_.get().forward(obs), actions);
 }
 
 void TD3::save(TensorMap& tensors) const {
-  // SB3 TD3Policy.state_dict(): actor.mu.*, actor_target.mu.*, critic.qf<i>.*,
-  // critic_target.qf<i>.*
-  actor().save("actor", tensors);
-  actor_target().save("actor_target", tensors);
-  for (size_t i = 0; i < critics().size(); ++i) {
-    const std::string q = "qf" + std::to_string(i);
-    critics()[i].save("critic." + q, "critic_target." + q, tensors);
-  }
+  actor_.save("actor", tensors);
+  actor_target_.save("actor_target", tensors);
+  critic_.save("critic", tensors);
+  critic_target_.save("critic_target", tensors);
 }
 
 void TD3::load(const TensorMap& tensors) {
-  actor().load("actor", tensors);
-  actor_target().load("actor_target", tensors);
-  for (size_t i = 0; i < critics().size(); ++i) {
-    const std::string q = "qf" + std::to_string(i);
-    critics()[i].load("critic." + q, "critic_target." + q, tensors);
-  }
-  acting_stale_ = true;
-}
-
-OffPolicyState& TD3::off_policy_state() {
-  if (!state_) state_.emplace(config_.off_policy, setup_.n_envs, obs_dim_, action_dim_);
-  return *state_;
-}
-
-void TD3::save_training_state(StateWriter& out) const {
-  out.put_int("num_timesteps", num_timesteps_);
-  out.put_int("n_updates", n_updates_);
-  out.put_rng("sample_rng", sample_rng_);
-  out.put_rng("smoothing_rng", smoothing_rng_);
-  acting_.write_state(out.sub("acting"));
-  write_adam(out.sub("actor_optimizer"), actor_optimizer_);
-  write_adams(out, "critic_optimizer", critic_optimizers_);
-  write_off_policy_state(out, state_);
-}
-
-void TD3::load_training_state(const StateReader& in) {
-  num_timesteps_ = in.get_int("num_timesteps");
-  n_updates_ = in.get_int("n_updates");
-  in.get_rng("sample_rng", sample_rng_);
-  in.get_rng("smoothing_rng", smoothing_rng_);
-  acting_.read_state(in.sub("acting"));
-  read_adam(in.sub("actor_optimizer"), actor_optimizer_);
-  read_adams(in, "critic_optimizer", critic_optimizers_);
-  read_off_policy_state(in, [this]() -> OffPolicyState& { return off_policy_state(); });
-  acting_stale_ = true;
+  actor_.load("actor", tensors);
+  actor_target_.load("actor_target", tensors);
+  critic_.load("critic", tensors);
+  critic_target_.load("critic_target", tensors);
+  acting_actor_.invalidate();
 }
 
 }  // namespace rlrun

@@ -8,20 +8,17 @@
 // bounds for the env. DDPG (ddpg/ddpg.hpp) is this class with policy_delay 1, no smoothing and
 // one critic, as SB3's DDPG is a TD3 subclass with those settings.
 //
-// One gradient step (train_on_batch) reads top to bottom like TD3.train's loop body. A
-// training-sized minibatch is split over two Td3Lane replicas (algos/common/batch_lanes.hpp)
-// that run on both cores when ForkJoin's worker is on (RLRUN_THREADS=2), one after the other
-// otherwise. The split depends on the batch size only, so a run is bit-identical either way.
-#include <optional>
+// One gradient step (train_on_batch, td3.cpp) reads top to bottom like TD3.train's loop body.
+// Its networks are SplitMlps, so a training minibatch runs on both cores when ForkJoin's worker
+// is on (RLRUN_THREADS=2), with the same bits as on one.
 #include <string>
 #include <vector>
 
-#include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/action_noise.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
+#include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
-#include "rlrun/algos/td3/td3_lane.hpp"
+#include "rlrun/algos/td3/td3_actor.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
 
@@ -49,7 +46,7 @@ struct Td3StepStats {
   bool actor_updated = false;
 };
 
-class TD3 : public Algorithm {
+class TD3 : public OffPolicyAlgorithm {
  public:
   struct Config {
     Schedule learning_rate = Schedule::constant(1e-3);
@@ -79,91 +76,67 @@ class TD3 : public Algorithm {
 
   static constexpr SpaceKind kActionSpaces[] = {SpaceKind::kBox};
 
-  // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
-  // actions). `id` names the algorithm in logs and model files (DDPG reuses this class).
   // Problems of `config` with these spaces (registry: checked before anything trains).
   static ConfigProblems check(const Config& config, const AlgorithmSetup& setup);
 
+  // Throws std::invalid_argument for bad settings or spaces (Box observations; bounded Box
+  // actions). `id` names the algorithm in logs and model files (DDPG reuses this class).
   TD3(const Config& config, const AlgorithmSetup& setup, std::string id = "TD3");
-  TD3(const TD3&) = delete;
-  TD3& operator=(const TD3&) = delete;
 
-  std::string id() const override { return id_; }
-  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
   // actor(obs) rescaled to the Box bounds; deterministic or not alike (SB3 TD3Policy._predict).
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
+  // SB3 TD3Policy.state_dict(): actor.mu.*, actor_target.mu.*, critic.qf<i>.*,
+  // critic_target.qf<i>.*
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
-  // Resume: counters, RNG streams, exploration noise, every Adam's moments and the replay
-  // buffer (the networks, targets included, are in the model tensors).
-  void save_training_state(StateWriter& out) const override;
-  void load_training_state(const StateReader& in) override;
 
   // SB3 OffPolicyAlgorithm._sample_action: warmup = uniform samples of the action space,
   // otherwise actor(obs); exploration noise added and clipped to [-1, 1] in both cases.
   // buffer_actions in [-1, 1], env_actions in [low, high].
   void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
-                      Eigen::MatrixXf& buffer_actions);
+                      Eigen::MatrixXf& buffer_actions) override;
 
   // One iteration of TD3.train's loop on `batch` (actions in [-1, 1]) with learning rate lr:
   // n_updates += 1, critic update, and on every policy_delay-th update the actor update and
-  // the Polyak updates. Public for tests and benchmarks.
+  // the Polyak updates. Public for tests and benchmarks: the gradients stay in the networks'
+  // grads() after the step.
   Td3StepStats train_on_batch(const ReplayBatch& batch, float lr);
 
-  // The two halves of train_on_batch without the optimizer steps, public so that tests can
-  // check each one. critic_loss_and_gradients draws the smoothing noise, computes the target y
-  // (-> last_critic_target()) and returns sum_i mse(Q_i(s, a), y), leaving each critic's
-  // gradient in critics()[i].q().grads().
-  double critic_loss_and_gradients(const ReplayBatch& batch);
-  // -mean(Q_1(s, actor(s))), its gradient left in actor().net().grads(). Only dQ_1/da is
-  // propagated through critic 1: torch's actor_loss.backward() also fills critic 1's .grad, but
-  // its next update zeroes that first, so it never reaches the critic optimizer.
-  double actor_loss_and_gradient(const ReplayBatch& batch);
-
   const Config& config() const { return config_; }
-  // The trained networks (the primary lane's).
-  Td3Actor& actor() { return lanes_.front().actor(); }
-  const Td3Actor& actor() const { return lanes_.front().actor(); }
-  Td3Actor& actor_target() { return lanes_.front().actor_target(); }
-  const Td3Actor& actor_target() const { return lanes_.front().actor_target(); }
-  std::vector<ContinuousCritic>& critics() { return lanes_.front().critics(); }
-  const std::vector<ContinuousCritic>& critics() const { return lanes_.front().critics(); }
-  int64_t n_updates() const { return n_updates_; }
-  // From the last critic_loss_and_gradients: y (1 x batch) and the clipped smoothing noise
+  Td3Actor& actor() { return actor_; }
+  const Td3Actor& actor() const { return actor_; }
+  Td3Actor& actor_target() { return actor_target_; }
+  const Td3Actor& actor_target() const { return actor_target_; }
+  ContinuousCritic& critic() { return critic_; }
+  const ContinuousCritic& critic() const { return critic_; }
+  ContinuousCritic& critic_target() { return critic_target_; }
+  const ContinuousCritic& critic_target() const { return critic_target_; }
+  // From the last train_on_batch: y (1 x batch) and the clipped smoothing noise
   // (action_dim x batch).
   const Eigen::MatrixXf& last_critic_target() const { return target_q_; }
   const Eigen::MatrixXf& last_smoothing_noise() const { return smoothing_noise_; }
 
  private:
   // `gradient_steps` updates from the replay buffer (SB3 TD3.train), logging the means.
-  void train(int gradient_steps, Logger* logger);
-  // The acting copy of the actor (a separate Mlp, so acting on n_envs observations never
-  // resizes the training network's batch buffers) takes the trained weights when they changed.
-  void sync_acting_actor();
+  void train(int gradient_steps, Logger* logger) override;
+  void on_episode_end(int env) override { acting_.on_episode_end(env); }
 
-  std::string id_;
   Config config_;
-  AlgorithmSetup setup_;
   int obs_dim_ = 0;
   int action_dim_ = 0;
-  Rng init_rng_, sample_rng_, smoothing_rng_;
-  std::vector<Td3Lane> lanes_;  // [0] holds the trained parameters; [1] a replica
+  Rng smoothing_rng_;
+  Td3Actor actor_, actor_target_;
+  ContinuousCritic critic_, critic_target_;
   Adam actor_optimizer_;
-  std::vector<Adam> critic_optimizers_;  // one per critic, on lanes_[0]'s parameters
-  Td3Actor acting_actor_;
+  // SB3 steps all critics with one Adam over their concatenated parameters; Adam is
+  // element-wise with one step count, so one Adam per critic is the same update.
+  std::vector<Adam> critic_optimizers_;
+  ActingCopy<Td3Actor> acting_actor_{actor_};
   BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
-  bool acting_stale_ = true;
-  std::optional<OffPolicyState> state_;  // replay buffer etc., created by off_policy_state()
-  // The replay buffer is allocated on first use (learn or resume), not for a model that is
-  // only evaluated.
-  OffPolicyState& off_policy_state();
-  int64_t n_updates_ = 0;
 
   // Training workspaces (a gradient step allocates nothing while the batch size is unchanged).
-  ReplayBatch batch_;
-  Eigen::MatrixXf smoothing_noise_, target_q_;
-  double lane_losses_[2] = {0.0, 0.0};
+  Eigen::MatrixXf smoothing_noise_, next_actions_, target_q_, grad_q_, grad_actions_;
 };
 
 }  // namespace rlrun

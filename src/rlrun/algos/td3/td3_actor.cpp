@@ -16,17 +16,17 @@ const Eigen::MatrixXf& Td3Actor::forward(const Eigen::Ref<const Eigen::MatrixXf>
 void Td3Actor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions) {
   // d tanh(z) / dz = 1 - tanh(z)^2, read off the stored output.
   grad_pre_tanh_ = (grad_actions.array() * (1.0f - actions_.array().square())).matrix();
-  net_.backward(grad_pre_tanh_);
+  net_.zero_grad_and_backward(grad_pre_tanh_);
 }
 
 void Td3Actor::save(const std::string& prefix, TensorMap& tensors) const {
   const std::string tower = prefix + ".mu";
-  save_mlp(net_, tower, tower + "." + std::to_string(2 * (net_.num_layers() - 1)), tensors);
+  save_mlp(net(), tower, tower + "." + std::to_string(2 * (net().num_layers() - 1)), tensors);
 }
 
 void Td3Actor::load(const std::string& prefix, const TensorMap& tensors) {
   const std::string tower = prefix + ".mu";
-  load_mlp(net_, tower, tower + "." + std::to_string(2 * (net_.num_layers() - 1)), tensors);
+  load_mlp(net(), tower, tower + "." + std::to_string(2 * (net().num_layers() - 1)), tensors);
 }
 
 }  // namespace rlrun

@@ -1,0 +1,104 @@
+#include "rlrun/nn/split_mlp.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rlrun/nn/batch_split.hpp"
+
+namespace rlrun {
+
+SplitMlp::SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
+                   ForkJoin* fork_join)
+    : net_(in_dim, std::move(hidden), out_dim, act), fork_join_(fork_join) {}
+
+SplitMlp::SplitMlp(Mlp net, ForkJoin* fork_join) : net_(std::move(net)), fork_join_(fork_join) {}
+
+SplitMlp& SplitMlp::operator=(const SplitMlp& other) {
+  if (this == &other) return *this;
+  net_ = other.net_;
+  fork_join_ = other.fork_join_;
+  replica_.reset();
+  parts_ = 1;
+  return *this;
+}
+
+Mlp& SplitMlp::replica() {
+  if (!replica_) {
+    replica_.emplace(net_.in_dim(), net_.hidden(), net_.out_dim(), net_.activation());
+    replica_->params_.resize(0);  // it reads net_'s
+  }
+  return *replica_;
+}
+
+const Eigen::MatrixXf& SplitMlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) {
+  const Eigen::Index n = x.cols();
+  parts_ = column_parts(n);
+  if (parts_ == 1) return net_.forward(x);
+  Mlp& replica = this->replica();
+  const float* p = net_.params_.data();
+  output_.resize(net_.out_dim(), n);
+  run_parts(fork_join_, 2, [&](int k) {
+    const Part cols = column_part(n, k);
+    Mlp& half = k == 0 ? net_ : replica;
+    output_.middleCols(cols.begin, cols.count) =
+        half.forward_with(p, x.middleCols(cols.begin, cols.count));
+  });
+  return output_;
+}
+
+void SplitMlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
+  backward_halves(grad_output, false);
+}
+
+void SplitMlp::zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
+  backward_halves(grad_output, true);
+}
+
+void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                               bool zero_first) {
+  if (parts_ == 1) {
+    if (zero_first) net_.zero_grad();
+    net_.backward(grad_output);
+    return;
+  }
+  const Eigen::Index n = grad_output.cols();
+  Mlp& replica = *replica_;
+  const float* p = net_.params_.data();
+  run_parts(fork_join_, 2, [&](int k) {
+    const Part cols = column_part(n, k);
+    Mlp& half = k == 0 ? net_ : replica;
+    if (k == 1 || zero_first) half.zero_grad();  // the replica holds the second half's alone
+    half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, nullptr, 0);
+  });
+  // grads += the second half's gradient, each core adding its part of the parameter vector.
+  run_parts(fork_join_, 2, [&](int k) {
+    const Part params = param_part(net_.num_params(), k);
+    net_.grads_.segment(params.begin, params.count) +=
+        replica.grads_.segment(params.begin, params.count);
+  });
+}
+
+void SplitMlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                              Eigen::MatrixXf& grad_input, int first_input_row) {
+  if (parts_ == 1) {
+    net_.backward_input(grad_output, grad_input, first_input_row);
+    return;
+  }
+  if (first_input_row < 0 || first_input_row >= net_.in_dim())
+    throw std::invalid_argument("SplitMlp::backward_input: first_input_row " +
+                                std::to_string(first_input_row) + " is not below in_dim " +
+                                std::to_string(net_.in_dim()));
+  const Eigen::Index n = grad_output.cols();
+  Mlp& replica = *replica_;
+  const float* p = net_.params_.data();
+  grad_input.resize(net_.in_dim() - first_input_row, n);
+  run_parts(fork_join_, 2, [&](int k) {
+    const Part cols = column_part(n, k);
+    Mlp& half = k == 0 ? net_ : replica;
+    half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), false,
+                       grad_input.data() + cols.begin * grad_input.rows(), first_input_row);
+  });
+}
+
+}  // namespace rlrun

@@ -1,0 +1,70 @@
+#pragma once
+// An Mlp whose passes over a training minibatch use both cores: data parallelism over the
+// batch's columns (batch_split.hpp). The first half of the columns runs through the network
+// itself on the calling thread, the second through a replica on ForkJoin's worker. The replica
+// reads the network's parameters in place (it has none of its own) and keeps its own
+// activations and gradient; backward adds the second half's gradient to the network's once both
+// halves are done, so grads() ends as (grads + first half's) + second half's, the same bits with
+// one thread or two. Callers (SAC, TD3, DQN) pass whole minibatches and never see the halves.
+//
+// Like Mlp: a backward belongs to the last forward through the same SplitMlp; not thread-safe
+// otherwise. Between passes the parameters may change freely (optimizer steps, Polyak updates,
+// loading): the replica has no copy to refresh.
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "rlrun/core/fork_join.hpp"
+#include "rlrun/nn/mlp.hpp"
+
+namespace rlrun {
+
+class SplitMlp {
+ public:
+  SplitMlp() = default;
+  // Parameters start at zero (see Mlp). Throws std::invalid_argument for non-positive sizes.
+  // `fork_join` runs the second halves (null: ForkJoin::shared(), on the first split pass).
+  SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
+           ForkJoin* fork_join = nullptr);
+  explicit SplitMlp(Mlp net, ForkJoin* fork_join = nullptr);
+  // Copies the network; the copy makes its own replica when a pass first needs one (acting
+  // copies, whose batches are small, never do).
+  SplitMlp(const SplitMlp& other) : net_(other.net_), fork_join_(other.fork_join_) {}
+  SplitMlp& operator=(const SplitMlp& other);
+
+  // The network: parameters, gradients, shape, and unsplit passes.
+  Mlp& net() { return net_; }
+  const Mlp& net() const { return net_; }
+  Eigen::VectorXf& params() { return net_.params(); }
+  const Eigen::VectorXf& params() const { return net_.params(); }
+  Eigen::VectorXf& grads() { return net_.grads(); }
+  const Eigen::VectorXf& grads() const { return net_.grads(); }
+  void zero_grad() { net_.zero_grad(); }
+
+  // Mlp::forward of a whole batch x (in_dim x n): out_dim x n, valid until the next forward.
+  const Eigen::MatrixXf& forward(const Eigen::Ref<const Eigen::MatrixXf>& x);
+  const Eigen::MatrixXf& output() const { return parts_ == 1 ? net_.output() : output_; }
+  // Mlp::backward of the last forward (dL/doutput, out_dim x n): ADDS the whole batch's
+  // parameter gradient to grads().
+  void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
+  // torch's optimizer.zero_grad(); loss.backward(): grads() becomes the whole batch's gradient
+  // (the same bits as zero_grad() then backward(), the zeroing done on both cores).
+  void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
+  // Mlp::backward_input of the last forward: rows [first_input_row, in_dim) of dL/dx, for the
+  // whole batch, into grad_input; grads() is left unchanged.
+  void backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                      Eigen::MatrixXf& grad_input, int first_input_row = 0);
+
+ private:
+  // The second half's network, made on first use.
+  Mlp& replica();
+  void backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first);
+
+  Mlp net_;
+  std::optional<Mlp> replica_;
+  ForkJoin* fork_join_ = nullptr;
+  int parts_ = 1;           // of the last forward
+  Eigen::MatrixXf output_;  // the last split forward's output, both halves
+};
+
+}  // namespace rlrun

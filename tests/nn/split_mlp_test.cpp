@@ -1,0 +1,171 @@
+// The two-core split of a training step (nn/batch_split.hpp, split_mlp.*, split_adam.*): a
+// SplitMlp's passes over a minibatch are exactly those of two plain Mlps on its halves with the
+// second half's gradient added last, close to one pass over the whole batch, and the same bits
+// with the second core on or off; a SplitAdam is one Adam over the whole vector.
+#include "rlrun/nn/split_mlp.hpp"
+
+#include <catch2/catch.hpp>
+#include <vector>
+
+#include "rlrun/nn/batch_split.hpp"
+#include "rlrun/nn/split_adam.hpp"
+#include "rlrun/rng.hpp"
+
+namespace rlrun {
+namespace {
+
+Eigen::MatrixXf random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
+  Eigen::MatrixXf m(rows, cols);
+  for (Eigen::Index k = 0; k < m.size(); ++k) m(k) = static_cast<float>(rng.normal());
+  return m;
+}
+
+struct Passes {
+  Eigen::MatrixXf output, grad_input;
+  Eigen::VectorXf grads;
+};
+
+// forward, backward (twice: gradients add up) and backward_input through a SplitMlp.
+Passes split_passes(const Mlp& net, ForkJoin& fork_join, const Eigen::MatrixXf& x,
+                    const Eigen::MatrixXf& grad_out) {
+  SplitMlp split(net, &fork_join);
+  Passes p;
+  p.output = split.forward(x);
+  CHECK(split.output() == p.output);
+  split.zero_grad();
+  split.backward(grad_out);
+  split.backward(grad_out);
+  p.grads = split.grads();
+  split.backward_input(grad_out, p.grad_input, 2);
+  CHECK(split.grads() == p.grads);  // input gradient only
+  // zero_grad_and_backward is zero_grad, then backward.
+  SplitMlp other(net, &fork_join);
+  other.forward(x);
+  other.zero_grad();
+  other.backward(grad_out);
+  split.zero_grad_and_backward(grad_out);
+  CHECK(split.grads() == other.grads());
+  return p;
+}
+
+// The same passes through plain Mlps: the whole batch in one, or its halves in two, where each
+// backward adds the second half's gradient (computed from zero) to the first's.
+Passes halves_passes(const Mlp& net, const Eigen::MatrixXf& x, const Eigen::MatrixXf& grad_out,
+                     bool halves) {
+  const Eigen::Index n = x.cols();
+  const int parts = halves ? column_parts(n) : 1;
+  const auto cols = [&](int k) { return parts == 1 ? Part{0, n} : column_part(n, k); };
+  Passes p;
+  p.output.resize(net.out_dim(), n);
+  p.grad_input.resize(net.in_dim() - 2, n);
+  Mlp first = net, second = net;
+  for (int k = 0; k < parts; ++k) {
+    Mlp& m = k == 0 ? first : second;
+    p.output.middleCols(cols(k).begin, cols(k).count) =
+        m.forward(x.middleCols(cols(k).begin, cols(k).count));
+  }
+  first.zero_grad();
+  for (int pass = 0; pass < 2; ++pass) {
+    first.backward(grad_out.middleCols(cols(0).begin, cols(0).count));
+    if (parts == 2) {
+      second.zero_grad();
+      second.backward(grad_out.middleCols(cols(1).begin, cols(1).count));
+      first.grads() += second.grads();
+    }
+  }
+  p.grads = first.grads();
+  for (int k = 0; k < parts; ++k) {
+    Eigen::MatrixXf gi;
+    (k == 0 ? first : second)
+        .backward_input(grad_out.middleCols(cols(k).begin, cols(k).count), gi, 2);
+    p.grad_input.middleCols(cols(k).begin, cols(k).count) = gi;
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Minibatch columns split in halves from 32 on; parameters on a cache line",
+          "[nn][split]") {
+  CHECK(column_parts(31) == 1);
+  CHECK(column_part(31, 0).count == 31);
+  CHECK(column_parts(32) == 2);
+  CHECK(column_part(37, 0).count == 18);
+  CHECK(column_part(37, 1).begin == 18);
+  CHECK(column_part(37, 1).count == 19);
+  CHECK(param_part(1000, 0).count == 496);
+  CHECK(param_part(1000, 1).begin == 496);
+  CHECK(param_part(1000, 1).count == 504);
+  CHECK(param_part(10, 0).count == 0);
+}
+
+TEST_CASE(
+    "SplitMlp passes equal two plain Mlps on the halves, with or without the second core, and "
+    "are close to one pass over the whole batch",
+    "[nn][split]") {
+  const int n = GENERATE(5, 37, 64);
+  INFO("batch " << n);
+  Rng rng(3);
+  Mlp net(6, {24, 20}, 3, Activation::kReLU);
+  net.init_torch_default(rng);
+  const Eigen::MatrixXf x = random_matrix(6, n, rng);
+  const Eigen::MatrixXf grad_out = random_matrix(3, n, rng);
+
+  ForkJoin serial(false), parallel(true);
+  const Passes one = split_passes(net, serial, x, grad_out);
+  const Passes two = split_passes(net, parallel, x, grad_out);
+  CHECK(one.output == two.output);
+  CHECK(one.grads == two.grads);
+  CHECK(one.grad_input == two.grad_input);
+
+  const Passes halves = halves_passes(net, x, grad_out, true);
+  CHECK(one.output == halves.output);
+  CHECK(one.grads == halves.grads);
+  CHECK(one.grad_input == halves.grad_input);
+
+  const Passes whole = halves_passes(net, x, grad_out, false);
+  CHECK(one.output == whole.output);  // column by column, the same products
+  CHECK(one.grad_input == whole.grad_input);
+  CHECK((one.grads - whole.grads).cwiseAbs().maxCoeff() <=
+        1e-5f * whole.grads.cwiseAbs().maxCoeff());
+}
+
+TEST_CASE("SplitMlp reads its parameters in place: no copy to refresh after a change",
+          "[nn][split]") {
+  Rng rng(4);
+  SplitMlp split(5, {16}, 2, Activation::kTanh);
+  split.net().init_torch_default(rng);
+  const Eigen::MatrixXf x = random_matrix(5, 40, rng);
+  split.forward(x);
+  split.params() *= 0.5f;  // e.g. an optimizer step
+  Mlp plain = split.net();
+  CHECK(split.forward(x) == halves_passes(plain, x, Eigen::MatrixXf::Zero(2, 40), true).output);
+  // Copies (acting networks) are independent networks with the same parameters.
+  SplitMlp copy = split;
+  copy.params().setZero();
+  CHECK(split.params() == plain.params());
+}
+
+TEST_CASE("SplitAdam is one Adam over the whole vector; its norm is the gradient's",
+          "[nn][split]") {
+  Rng rng(5);
+  const int size = 1000;  // parts of 496 and 504
+  Eigen::VectorXf p_split = random_matrix(size, 1, rng), g_split(size);
+  Eigen::VectorXf p_one = p_split, g_one(size);
+  ForkJoin parallel(true);
+  SplitAdam split({p_split.data(), g_split.data(), size}, {}, &parallel);
+  Adam one({{p_one.data(), g_one.data(), size}});
+  for (int step = 0; step < 5; ++step) {
+    g_split = random_matrix(size, 1, rng);
+    g_one = g_split;
+    CHECK(split.grad_norm() == Approx(g_one.cast<double>().norm()).epsilon(1e-6));
+    split.step(1e-3f, 0.5f);
+    g_one *= 0.5f;
+    one.step(1e-3f);
+    CHECK(p_split == p_one);
+  }
+  CHECK(split.part(0).steps() == 5);
+  CHECK(split.part(1).exp_avg()[0].size() == 504);
+}
+
+}  // namespace rlrun
