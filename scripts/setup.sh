@@ -15,6 +15,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev                  # logging
   catch2                                    # tests (v2.13)
   libzip-dev zip unzip                      # model files are zips
+  zlib1g-dev                                # tests write hostile zips (tests/core/crafted_zip.hpp)
   libbullet-dev                             # 3D grasp task
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
   libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video

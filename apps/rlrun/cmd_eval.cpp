@@ -144,11 +144,12 @@ Action add_eval(CLI::App& app) {
     const Registry& registry = builtin_registry();
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
     if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
-    const ModelFile model = read_model(options->model);
-    const Experiment experiment = experiment_from_model(model, registry);
-    EnvPtr env = make_model_env(model, experiment, registry);  // normalisation stats frozen
-    auto algorithm = algorithm_from_model(model, experiment, registry, env->observation_space(),
-                                          env->action_space());
+    // Normalisation statistics frozen; tensors read within the config's budget.
+    LoadedModel loaded = load_model(options->model, registry);
+    const ModelFile& model = loaded.file;
+    const Experiment& experiment = loaded.experiment;
+    EnvPtr& env = loaded.env;
+    std::unique_ptr<Algorithm>& algorithm = loaded.algorithm;
     EvalResult r;
     if (options->record.empty()) {
       r = evaluate_policy(*algorithm, *env, options->episodes, !options->stochastic, options->seed);

@@ -22,6 +22,7 @@
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/init_from.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
+#include "rlrun/runtime/model_budget.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/non_finite_check.hpp"
 #include "rlrun/runtime/progress_bar.hpp"
@@ -153,7 +154,7 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
   const bool resuming = !resume_checkpoint.empty();
   std::optional<ModelFile> checkpoint;
   if (resuming) {
-    checkpoint = read_model(resume_checkpoint);
+    checkpoint = read_checkpoint(resume_checkpoint, experiment, registry);  // model_budget.hpp
     if (checkpoint->training_state.empty())
       throw UsageError("cannot resume from " + resume_checkpoint +
                        ": it holds no training state (a model file, not a checkpoint)");
