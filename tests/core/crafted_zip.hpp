@@ -144,8 +144,14 @@ inline void write_crafted_zip(const std::string& path, const std::vector<Crafted
     } else {
       source = zip_source_buffer(zip, m.data.data(), m.data.size(), 0);
     }
-    const zip_int64_t index = zip_file_add(zip, m.name.c_str(), source, ZIP_FL_ENC_GUESS);
-    if (index < 0) throw std::runtime_error("cannot add " + m.name + ": " + zip_strerror(zip));
+    const zip_int64_t index =
+        source ? zip_file_add(zip, m.name.c_str(), source, ZIP_FL_ENC_GUESS) : -1;
+    if (index < 0) {
+      const std::string why = zip_strerror(zip);
+      if (source) zip_source_free(source);
+      zip_discard(zip);
+      throw std::runtime_error("cannot add " + m.name + ": " + why);
+    }
     if (!m.raw)
       zip_set_file_compression(zip, static_cast<zip_uint64_t>(index),
                                m.deflate ? ZIP_CM_DEFLATE : ZIP_CM_STORE, 0);

@@ -239,6 +239,19 @@ TEST_CASE("untrusted model: train --resume refuses hostile checkpoints", "[cli][
   refused(npy_member(state, "{'descr': '<f4', 'fortran_order': False, 'shape': (1e9,), }", 0),
           {"not a supported .npy array (malformed shape)"});
   refused(CraftedMember{"training/../../x.npy", {1}}, {"has a '..' component"});
+  // A log mark naming a file outside the run directory (resume would delete it: 0 lines).
+  const std::string victim = tiny.dir / "victim.txt";
+  std::ofstream(victim) << "keep me\n";
+  const std::string escape = "../../../victim.txt";
+  std::vector<CraftedMember> marks = members_of(original);
+  for (CraftedMember& m : marks) {
+    if (m.name == "training/files/0/name.npy")
+      m.data = encode_npy(vector_tensor(std::vector<int64_t>(escape.begin(), escape.end())));
+    if (m.name == "training/files/0/lines.npy") m.data = encode_npy(vector_tensor(std::vector<int64_t>{0}));
+  }
+  write_crafted_zip(checkpoint, marks);
+  check_refused(rlrun_measured(resume), {"names a log file outside the run directory"});
+  CHECK(fs::exists(victim));
   // The real checkpoint still resumes.
   fs::copy_file(original, checkpoint, fs::copy_options::overwrite_existing);
   const auto r = run_rlrun(resume);

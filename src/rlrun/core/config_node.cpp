@@ -151,7 +151,12 @@ ConfigNode ConfigNode::at(std::size_t index) const {
 std::vector<std::string> ConfigNode::keys() const {
   std::vector<std::string> out;
   if (!is_map()) return out;
-  for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+  // YAML allows a list or map as a key ({[a]: 1}); as<std::string>() would throw yaml-cpp's
+  // BadConversion past every handler (found by fuzz/fuzz_config.cpp).
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar() && !kv.first.IsNull()) fail("a key must be a name, not a list or map");
+    out.push_back(kv.first.Scalar());
+  }
   return out;
 }
 

@@ -55,6 +55,12 @@ void restore_log_marks(const StateReader& in, const std::string& run_dir) {
   for (int64_t i = 0; i < count; ++i) {
     const StateReader file = in.sub(std::to_string(i));
     const std::string name = file.get_string("name");
+    // The name comes from the checkpoint (untrusted, DESIGN.md §6b) and the file is removed
+    // or rewritten: only a plain file name of the run directory, as write_log_marks records.
+    if (name.empty() || name == "." || name == ".." ||
+        name.find_first_of(std::string("/\\\0", 3)) != std::string::npos)
+      throw RuntimeFailure("cannot resume: the checkpoint names a log file outside the run "
+                           "directory; it was not written by rlrun");
     const auto kept = static_cast<size_t>(file.get_int("lines"));
     const std::string path = run_dir + "/" + name;
     if (kept == 0) {
