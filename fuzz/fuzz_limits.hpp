@@ -2,10 +2,11 @@
 // What the fuzz targets leave out of an experiment config, and why:
 //  * a `plugins:` section: it dlopen()s the libraries it names — loading code, not parsing, and
 //    a fuzzer must not load arbitrary system libraries into itself;
-//  * numbers above kFuzzMaxNumber in the env and algo sections: they size networks, buffers and
-//    env copies. A config may legitimately ask for a 10^6-transition buffer or 4096-wide layers;
-//    building those is slow, not wrong, and would only make the fuzzer report its own memory
-//    and time limits.
+//  * numbers between kFuzzMaxNumber and kFuzzHugeNumber in the env and algo sections: they size
+//    networks, buffers and env copies. A config may legitimately ask for a 10^6-transition
+//    buffer or 4096-wide layers; building those is slow, not wrong, and would only make the
+//    fuzzer report its own memory and time limits. Larger numbers (beyond any integer setting:
+//    range checks, float overflow) and all others are fuzzed.
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -17,6 +18,7 @@
 namespace rlrun::fuzz {
 
 inline constexpr double kFuzzMaxNumber = 1024;
+inline constexpr double kFuzzHugeNumber = 1e16;
 
 inline bool small_numbers(const YAML::Node& node, int depth = 0) {
   if (!node.IsDefined() || node.IsNull()) return true;
@@ -25,7 +27,8 @@ inline bool small_numbers(const YAML::Node& node, int depth = 0) {
     const std::string& text = node.Scalar();
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
-    return end == text.c_str() || !(std::fabs(value) > kFuzzMaxNumber);
+    return end == text.c_str() || !(std::fabs(value) > kFuzzMaxNumber) ||
+           !(std::fabs(value) < kFuzzHugeNumber);
   }
   for (const auto& item : node) {
     if (node.IsMap() ? !small_numbers(item.first, depth + 1) || !small_numbers(item.second, depth + 1)

@@ -6,7 +6,9 @@
 // the fully resolved config, and `rlrun list --params` documentation.
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <algorithm>
 #include <sstream>
@@ -23,9 +25,20 @@ namespace rlrun {
 // --- decoding one value -------------------------------------------------------------------
 inline void decode(const ConfigNode& n, std::string& out) { out = n.as_string(); }
 inline void decode(const ConfigNode& n, double& out) { out = n.as_double(); }
-inline void decode(const ConfigNode& n, float& out) { out = static_cast<float>(n.as_double()); }
+inline void decode(const ConfigNode& n, float& out) {
+  const double v = n.as_double();
+  // A finite double beyond float's range has no float value (converting it is undefined).
+  if (std::isfinite(v) && std::fabs(v) > std::numeric_limits<float>::max())
+    n.fail("number out of range (a float32 setting)");
+  out = static_cast<float>(v);
+}
 inline void decode(const ConfigNode& n, bool& out) { out = n.as_bool(); }
-inline void decode(const ConfigNode& n, int& out) { out = static_cast<int>(n.as_int()); }
+inline void decode(const ConfigNode& n, int& out) {
+  const int64_t v = n.as_int();
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    n.fail("integer out of range (at most " + std::to_string(std::numeric_limits<int>::max()) + ")");
+  out = static_cast<int>(v);
+}
 inline void decode(const ConfigNode& n, int64_t& out) { out = n.as_int(); }
 inline void decode(const ConfigNode& n, uint64_t& out) {
   const int64_t v = n.as_int();

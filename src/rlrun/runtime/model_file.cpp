@@ -112,7 +112,9 @@ EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
   return env;
 }
 
-LoadedModel load_model(const std::string& path, const Registry& registry) {
+namespace {
+
+LoadedModel load_model_unguarded(const std::string& path, const Registry& registry) {
   LoadedModel loaded;
   loaded.file = read_model_header(path);
   const ModelFile& model = loaded.file;
@@ -127,6 +129,19 @@ LoadedModel load_model(const std::string& path, const Registry& registry) {
   load_weights(model, *loaded.algorithm);
   load_frozen_statistics(model, *loaded.env);
   return loaded;
+}
+
+}  // namespace
+
+LoadedModel load_model(const std::string& path, const Registry& registry) {
+  // The config in the file sizes the env and networks built before any tensor is read: a
+  // size beyond this machine's memory is the file's problem, said as such.
+  try {
+    return load_model_unguarded(path, registry);
+  } catch (const std::bad_alloc&) {
+    throw RuntimeFailure(path + ": its config.yaml describes an env or networks larger than this "
+                                "machine's memory (std::bad_alloc while building them)");
+  }
 }
 
 }  // namespace rlrun
