@@ -9,11 +9,11 @@
 #include <cstdlib>
 #include <string>
 
+#include "fuzz_limits.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
-#include "fuzz_limits.hpp"
 
 using namespace rlrun;
 
@@ -36,8 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     parse_experiment(ConfigNode::load_string(resolved, "resolved.yaml"), registry);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "a resolved config does not parse again: %s\n--- resolved:\n%s\n", e.what(),
-                 resolved.c_str());
+    std::fprintf(stderr, "a resolved config does not parse again: %s\n--- resolved:\n%s\n",
+                 e.what(), resolved.c_str());
     std::abort();
   }
   return 0;

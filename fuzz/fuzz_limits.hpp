@@ -20,9 +20,11 @@ namespace rlrun::fuzz {
 inline constexpr double kFuzzMaxNumber = 1024;
 inline constexpr double kFuzzHugeNumber = 1e16;
 
-inline bool small_numbers(const YAML::Node& node, int depth = 0) {
+// `budget` counts the nodes visited: aliases can make a small document a huge tree, which this
+// walk must not expand (such configs are fuzzed by the parse, just not size-checked here).
+inline bool small_numbers(const YAML::Node& node, int& budget, int depth = 0) {
   if (!node.IsDefined() || node.IsNull()) return true;
-  if (depth > 64) return false;
+  if (depth > 64 || --budget < 0) return false;
   if (node.IsScalar()) {
     const std::string& text = node.Scalar();
     char* end = nullptr;
@@ -31,8 +33,9 @@ inline bool small_numbers(const YAML::Node& node, int depth = 0) {
            !(std::fabs(value) < kFuzzHugeNumber);
   }
   for (const auto& item : node) {
-    if (node.IsMap() ? !small_numbers(item.first, depth + 1) || !small_numbers(item.second, depth + 1)
-                     : !small_numbers(item, depth + 1))
+    if (node.IsMap() ? !small_numbers(item.first, budget, depth + 1) ||
+                           !small_numbers(item.second, budget, depth + 1)
+                     : !small_numbers(item, budget, depth + 1))
       return false;
   }
   return true;
@@ -42,7 +45,9 @@ inline bool small_numbers(const YAML::Node& node, int depth = 0) {
 inline bool fuzzable_config(const ConfigNode& root) {
   if (!root.is_map()) return true;
   if (root.child("plugins").defined()) return false;
-  return small_numbers(root.child("env").yaml()) && small_numbers(root.child("algo").yaml());
+  int budget = 10000;
+  return small_numbers(root.child("env").yaml(), budget) &&
+         small_numbers(root.child("algo").yaml(), budget);
 }
 
 }  // namespace rlrun::fuzz

@@ -90,7 +90,8 @@ bool members_from(const uint8_t* data, size_t size, std::vector<CraftedMember>& 
     if (flags & 2) {
       m.raw = true;
       m.data = rlrun::testing::raw_deflate(payload);
-      m.declared_size = static_cast<uint64_t>(std::max<int64_t>(0, static_cast<int64_t>(length) + lie));
+      m.declared_size =
+          static_cast<uint64_t>(std::max<int64_t>(0, static_cast<int64_t>(length) + lie));
       m.crc = static_cast<uint32_t>(crc32(0, payload.data(), static_cast<uInt>(payload.size())));
     } else {
       m.data = payload;

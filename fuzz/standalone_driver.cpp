@@ -7,16 +7,16 @@
 // the same here; others are ignored. An input that crashes, trips a sanitizer or runs longer
 // than -timeout seconds is saved as ./crash-standalone (or timeout-standalone) for replay
 // with `fuzz_<target> crash-standalone` or a libFuzzer build.
-#include <csignal>
-#include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -107,8 +107,8 @@ std::vector<Bytes> read_dictionary(const std::string& path) {
 
 void mutate(Bytes& data, const std::vector<Bytes>& corpus, const std::vector<Bytes>& dictionary,
             size_t max_len, Rng& rng) {
-  static const uint8_t kInteresting[] = {0, 1, 0x7f, 0x80, 0xff, '0', '9', '-', ' ', '\n',
-                                         ':', ',', '[', ']', '{', '}', '(', ')', '\'', '"'};
+  static const uint8_t kInteresting[] = {0,   1,   0x7f, 0x80, 0xff, '0', '9', '-', ' ',  '\n',
+                                         ':', ',', '[',  ']',  '{',  '}', '(', ')', '\'', '"'};
   const int steps = 1 + static_cast<int>(rng.below(4));
   for (int s = 0; s < steps; ++s) {
     const size_t at = rng.below(data.size() + 1);
@@ -125,22 +125,26 @@ void mutate(Bytes& data, const std::vector<Bytes>& corpus, const std::vector<Byt
         break;
       case 3: {  // insert random bytes
         const size_t n = 1 + rng.below(8);
-        for (size_t i = 0; i < n; ++i) data.insert(data.begin() + static_cast<long>(at), static_cast<uint8_t>(rng.next()));
+        for (size_t i = 0; i < n; ++i)
+          data.insert(data.begin() + static_cast<long>(at), static_cast<uint8_t>(rng.next()));
         break;
       }
       case 4: {  // erase a range
         if (data.empty()) break;
         const size_t from = rng.below(data.size());
         const size_t n = 1 + rng.below(std::min<size_t>(data.size() - from, 16));
-        data.erase(data.begin() + static_cast<long>(from), data.begin() + static_cast<long>(from + n));
+        data.erase(data.begin() + static_cast<long>(from),
+                   data.begin() + static_cast<long>(from + n));
         break;
       }
       case 5: {  // copy a range of the input elsewhere
         if (data.empty()) break;
         const size_t from = rng.below(data.size());
         const size_t n = 1 + rng.below(std::min<size_t>(data.size() - from, 32));
-        const Bytes piece(data.begin() + static_cast<long>(from), data.begin() + static_cast<long>(from + n));
-        data.insert(data.begin() + static_cast<long>(std::min(at, data.size())), piece.begin(), piece.end());
+        const Bytes piece(data.begin() + static_cast<long>(from),
+                          data.begin() + static_cast<long>(from + n));
+        data.insert(data.begin() + static_cast<long>(std::min(at, data.size())), piece.begin(),
+                    piece.end());
         break;
       }
       case 6: {  // splice: the head of this input, the tail of another
@@ -223,8 +227,9 @@ int main(int argc, char** argv) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("standalone fuzz driver: %zu corpus inputs + %ld mutations (seed %llu) in %.1f s, "
-              "no crash\n",
-              corpus.size(), runs, static_cast<unsigned long long>(seed), seconds);
+  std::printf(
+      "standalone fuzz driver: %zu corpus inputs + %ld mutations (seed %llu) in %.1f s, "
+      "no crash\n",
+      corpus.size(), runs, static_cast<unsigned long long>(seed), seconds);
   return 0;
 }

@@ -5,6 +5,8 @@
 #   scripts/fuzz.sh                   # every target, 1 000 000 executions each
 #   scripts/fuzz.sh 50000 fuzz_model  # some targets, fewer executions
 #   FUZZ_JOBS=2 scripts/fuzz.sh       # libFuzzer -fork=2: two processes per target
+#   FUZZ_TIMEOUT=10 scripts/fuzz.sh   # on a busy machine: libFuzzer's timeout is wall time;
+#                                     # then replay with -timeout=1 (see the end of this file)
 # New inputs go to build-fuzz/corpus/<target> (the committed seeds in fuzz/corpus/ stay as
 # they are); a crash, sanitizer report, hang (> 1 s) or allocation over 2 GiB stops the target
 # and writes the input to build-fuzz/artifacts/. Replay one with build-fuzz/fuzz/<target> FILE.
@@ -34,7 +36,7 @@ for target in "${TARGETS[@]}"; do
   start=$(date +%s)
   set +e
   # shellcheck disable=SC2086
-  build-fuzz/fuzz/"$target" -runs="$RUNS" -timeout=1 -rss_limit_mb=2048 -max_len=65536 \
+  build-fuzz/fuzz/"$target" -runs="$RUNS" -timeout="${FUZZ_TIMEOUT:-1}" -rss_limit_mb=2048 -max_len=65536 \
     -dict="fuzz/corpus/${DICT[$target]}" -print_final_stats=1 \
     -artifact_prefix="build-fuzz/artifacts/$target-" ${FUZZ_JOBS:+-fork=$FUZZ_JOBS} \
     "build-fuzz/corpus/$target" ${SEEDS[$target]} >"build-fuzz/$target.log" 2>&1
@@ -43,4 +45,7 @@ for target in "${TARGETS[@]}"; do
   grep -E "^#[0-9]+ *(INITED|DONE)|stat::|ERROR|SUMMARY|Test unit written|==[0-9]+==" "build-fuzz/$target.log" | head -40 || true
   echo "fuzz: $target exit $status after $(( $(date +%s) - start )) s (log: build-fuzz/$target.log)"
   [[ $status -eq 0 ]] || exit "$status"
+  # Every input the run kept, once more, with the 1 s limit: no input may take that long.
+  build-fuzz/fuzz/"$target" -runs=0 -timeout=1 -rss_limit_mb=2048 -print_final_stats=1 \
+    "build-fuzz/corpus/$target" ${SEEDS[$target]} 2>&1 | grep -E "slowest_unit_time_sec|ERROR" || true
 done

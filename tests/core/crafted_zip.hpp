@@ -19,9 +19,9 @@ struct CraftedMember {
   std::string name;
   std::vector<uint8_t> data;  // stored as-is (store/deflate), or the raw deflate stream
   bool deflate = true;
-  bool raw = false;           // `data` is a raw deflate stream; the sizes below are written
-  uint64_t declared_size = 0; // raw only: the uncompressed size the zip claims
-  uint32_t crc = 0;           // raw only
+  bool raw = false;            // `data` is a raw deflate stream; the sizes below are written
+  uint64_t declared_size = 0;  // raw only: the uncompressed size the zip claims
+  uint32_t crc = 0;            // raw only
 };
 
 inline std::vector<uint8_t> bytes_of(const std::string& text) {

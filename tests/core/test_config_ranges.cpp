@@ -28,7 +28,8 @@ TEST_CASE("config: integers beyond int are refused", "[core][config]") {
   CHECK(parse_error(base + "env: {id: CartPole-v1}\nalgo: {id: PPO, n_steps: -4294967296}\n")
             .find("integer out of range") != std::string::npos);
   // Values that fit are fine, infinities included where a setting allows them.
-  CHECK(parse_error(base + "env: {id: CartPole-v1, n_envs: 2}\nalgo: {id: PPO, gamma: 0.5}\n").empty());
+  CHECK(parse_error(base + "env: {id: CartPole-v1, n_envs: 2}\nalgo: {id: PPO, gamma: 0.5}\n")
+            .empty());
   // A list or map used as a key (YAML allows it) is a config error, not an escaped exception.
   CHECK(parse_error("run: {[a]: 1}\n").find("a key must be a name") != std::string::npos);
 }

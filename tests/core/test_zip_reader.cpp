@@ -84,7 +84,8 @@ TEST_CASE("zip reader: a member name twice is refused", "[core][zip]") {
   CHECK(open_error(path).find("member 'a.npy' appears twice") != std::string::npos);
 }
 
-TEST_CASE("zip reader: declared sizes are claims, checked before and while reading", "[core][zip]") {
+TEST_CASE("zip reader: declared sizes are claims, checked before and while reading",
+          "[core][zip]") {
   TempDir dir("zip_sizes");
   const std::string path = dir / "m.zip";
   // 4 GiB declared, 16 bytes inside: refused from the declaration, nothing allocated.

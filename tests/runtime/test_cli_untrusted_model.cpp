@@ -111,11 +111,13 @@ const std::string kWeight = "action_net.weight.npy";  // (2, 8) float32 in the t
 
 }  // namespace
 
-TEST_CASE("untrusted model: eval refuses huge declared members before allocating", "[cli][untrusted]") {
+TEST_CASE("untrusted model: eval refuses huge declared members before allocating",
+          "[cli][untrusted]") {
   TinyRun tiny("untrusted_sizes");
   const std::string& src = tiny.model();
   // The issue's case: a 6 KB file whose tensor declares 4 GiB.
-  const std::string liar = variant(src, tiny.dir / "liar.zip", declaring(kWeight, kFourGiB, {1, 2, 3}));
+  const std::string liar =
+      variant(src, tiny.dir / "liar.zip", declaring(kWeight, kFourGiB, {1, 2, 3}));
   CHECK(fs::file_size(liar) < 8000);
   check_refused(rlrun_measured("eval --model " + liar + " --episodes 1"),
                 {liar + ": its tensors declare ", "bytes a model of its configuration holds"});
@@ -135,8 +137,8 @@ TEST_CASE("untrusted model: eval refuses huge declared members before allocating
                 {lying_bomb + ": member '" + kWeight + "' holds more data than its declared " +
                  std::to_string(real.size()) + " bytes"});
   // meta.json and config.yaml are capped at 1 MiB.
-  const std::string big_meta = variant(src, tiny.dir / "big_meta.zip",
-                                       declaring("meta.json", 2 << 20, {'{', '}'}));
+  const std::string big_meta =
+      variant(src, tiny.dir / "big_meta.zip", declaring("meta.json", 2 << 20, {'{', '}'}));
   check_refused(rlrun_measured("eval --model " + big_meta),
                 {"member 'meta.json' declares 2097152 bytes, more than the 1048576 allowed"});
 }
@@ -169,7 +171,8 @@ TEST_CASE("untrusted model: corrupt data, bad names and bad npy headers name the
   corrupt.raw = true;
   corrupt.declared_size = 192;
   eval_refuses("corrupt.zip", corrupt, {"member '" + kWeight + "' is corrupt ("});
-  eval_refuses("dotdot.zip", CraftedMember{"../evil.npy", {1}}, {"'../evil.npy' has a '..' component"});
+  eval_refuses("dotdot.zip", CraftedMember{"../evil.npy", {1}},
+               {"'../evil.npy' has a '..' component"});
   eval_refuses("absolute.zip", CraftedMember{"/tmp/evil.npy", {1}}, {"has an absolute path"});
   const std::string f4 = "{'descr': '<f4', 'fortran_order': False, 'shape': ";
   eval_refuses("shape_text.zip", npy_member(kWeight, f4 + "('a', 8), }", 64),
@@ -183,32 +186,37 @@ TEST_CASE("untrusted model: corrupt data, bad names and bad npy headers name the
                {"its header is longer than the member"});
   eval_refuses("truncated.zip", npy_member(kWeight, f4 + "(2, 8), }", 48),
                {"its shape needs 64 bytes of data, the zip declares 48"});
-  eval_refuses("dtype.zip", npy_member(kWeight, "{'descr': '<i4', 'fortran_order': False, 'shape': (2, 8), }", 64),
-               {"unsupported dtype '<i4'"});
+  eval_refuses(
+      "dtype.zip",
+      npy_member(kWeight, "{'descr': '<i4', 'fortran_order': False, 'shape': (2, 8), }", 64),
+      {"unsupported dtype '<i4'"});
   // A well-formed tensor of another shape is the algorithm's refusal (it names the tensor).
-  const std::string other = variant(src, tiny.dir / "other_shape.zip",
-                                    npy_member(kWeight, f4 + "(3, 8), }", 96));
+  const std::string other =
+      variant(src, tiny.dir / "other_shape.zip", npy_member(kWeight, f4 + "(3, 8), }", 96));
   check_refused(rlrun_measured("eval --model " + other), {other + ": ", "action_net.weight"});
 }
 
 TEST_CASE("untrusted model: train --init-from refuses hostile files", "[cli][untrusted]") {
   TinyRun tiny("untrusted_init_from");
   const std::string& src = tiny.model();
-  const std::string train = "train " + tiny.dir / "tiny.yaml" + " --set run.out_dir=" +
-                            tiny.dir / "again" + " --init-from ";
+  const std::string train = "train " + tiny.dir / "tiny.yaml" +
+                            " --set run.out_dir=" + tiny.dir / "again" + " --init-from ";
   const std::string liar = variant(src, tiny.dir / "liar.zip", declaring(kWeight, kFourGiB, {1}));
   check_refused(rlrun_measured(train + liar), {liar + ": its tensors declare "});
-  const std::string bomb = variant(src, tiny.dir / "bomb.zip", zero_bomb(kWeight, {}, kFourGiB, kFourGiB));
+  const std::string bomb =
+      variant(src, tiny.dir / "bomb.zip", zero_bomb(kWeight, {}, kFourGiB, kFourGiB));
   check_refused(rlrun_measured(train + bomb), {bomb + ": its tensors declare "});
   CraftedMember corrupt{kWeight, std::vector<uint8_t>(40, 0xff)};
   corrupt.raw = true;
   corrupt.declared_size = 192;
   const std::string broken = variant(src, tiny.dir / "corrupt.zip", corrupt);
-  check_refused(rlrun_measured(train + broken), {broken + ": member '" + kWeight + "' is corrupt ("});
+  check_refused(rlrun_measured(train + broken),
+                {broken + ": member '" + kWeight + "' is corrupt ("});
   const std::string shape = variant(
       src, tiny.dir / "shape.zip",
       npy_member(kWeight, "{'descr': '<f4', 'fortran_order': False, 'shape': (2, x), }", 64));
-  check_refused(rlrun_measured(train + shape), {shape + ": member '" + kWeight + "': not a supported"});
+  check_refused(rlrun_measured(train + shape),
+                {shape + ": member '" + kWeight + "': not a supported"});
   // No run directory is left behind by a refused start.
   CHECK(!fs::exists(tiny.dir / "again/tiny/seed1"));
   // The unmodified model still initialises a run.
@@ -247,7 +255,8 @@ TEST_CASE("untrusted model: train --resume refuses hostile checkpoints", "[cli][
   for (CraftedMember& m : marks) {
     if (m.name == "training/files/0/name.npy")
       m.data = encode_npy(vector_tensor(std::vector<int64_t>(escape.begin(), escape.end())));
-    if (m.name == "training/files/0/lines.npy") m.data = encode_npy(vector_tensor(std::vector<int64_t>{0}));
+    if (m.name == "training/files/0/lines.npy")
+      m.data = encode_npy(vector_tensor(std::vector<int64_t>{0}));
   }
   write_crafted_zip(checkpoint, marks);
   check_refused(rlrun_measured(resume), {"names a log file outside the run directory"});

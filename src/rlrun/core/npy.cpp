@@ -130,13 +130,15 @@ class HeaderDict {
       if (peek() != ')') fail("malformed shape");
     }
     ++pos_;
-    if (dims.size() == 1 && !trailing_comma) fail("malformed shape (one dimension is written (n,))");
+    if (dims.size() == 1 && !trailing_comma)
+      fail("malformed shape (one dimension is written (n,))");
     return dims;
   }
   // A non-negative decimal integer below 2^63, without std::stoll (which throws
   // std::invalid_argument / std::out_of_range with the message "stoll").
   int64_t dimension() {
-    if (peek() < '0' || peek() > '9') fail("a dimension of the shape is not a non-negative integer");
+    if (peek() < '0' || peek() > '9')
+      fail("a dimension of the shape is not a non-negative integer");
     uint64_t value = 0;
     while (peek() >= '0' && peek() <= '9') {
       const uint64_t digit = static_cast<uint64_t>(peek() - '0');
@@ -207,7 +209,8 @@ NpyHeader parse_npy_header(const uint8_t* bytes, std::size_t size, const std::st
 Tensor decode_npy(const std::vector<uint8_t>& bytes, const std::string& what) {
   const NpyHeader h = parse_npy_header(bytes.data(), bytes.size(), what);
   if (bytes.size() - h.header_bytes != h.data_bytes)
-    throw std::runtime_error(what + ": not a supported .npy array (data size does not match shape)");
+    throw std::runtime_error(what +
+                             ": not a supported .npy array (data size does not match shape)");
   Tensor t;
   t.dtype = h.dtype;
   t.shape = h.shape;

@@ -100,8 +100,8 @@ ZipReader::ZipReader(const std::string& path) : path_(path) {
           (st.valid & ZIP_STAT_ENCRYPTION_METHOD) && st.encryption_method != ZIP_EM_NONE;
       const std::string problem = name_problem(entry.name);
       if (!problem.empty())
-        throw RuntimeFailure(path + ": member '" + printable_name(entry.name) + "' has " +
-                             problem + "; not a model file written by rlrun");
+        throw RuntimeFailure(path + ": member '" + printable_name(entry.name) + "' has " + problem +
+                             "; not a model file written by rlrun");
       if (!seen.insert(entry.name).second)
         throw RuntimeFailure(path + ": member '" + printable_name(entry.name) +
                              "' appears twice; not a model file written by rlrun");
@@ -176,8 +176,7 @@ void ZipMemberReader::expect_end() {
   uint8_t extra = 0;
   const zip_int64_t got = zip_fread(file_, &extra, 1);
   if (got < 0) fail(std::string("is corrupt (") + zip_file_strerror(file_) + ")");
-  if (got > 0)
-    fail("holds more data than its declared " + std::to_string(entry_.size) + " bytes");
+  if (got > 0) fail("holds more data than its declared " + std::to_string(entry_.size) + " bytes");
 }
 
 }  // namespace rlrun

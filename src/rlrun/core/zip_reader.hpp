@@ -27,10 +27,10 @@ inline constexpr std::size_t kMaxZipMembers = 65536;
 inline constexpr std::size_t kMaxZipNameBytes = 512;
 
 struct ZipEntry {
-  uint64_t index = 0;     // libzip's index
+  uint64_t index = 0;  // libzip's index
   std::string name;
-  uint64_t size = 0;      // declared uncompressed size (untrusted)
-  bool directory = false; // a name ending in '/': no data
+  uint64_t size = 0;       // declared uncompressed size (untrusted)
+  bool directory = false;  // a name ending in '/': no data
   int32_t method = 0;      // compression method (ZIP_CM_*)
   bool encrypted = false;
 };

@@ -33,7 +33,8 @@ uint64_t npy_member_bytes(const Tensor& t) {
 uint64_t tensor_map_charge(const TensorMap& tensors, const std::string& prefix) {
   uint64_t total = 0;
   for (const auto& [key, tensor] : tensors)
-    total = add(total, tensor_member_charge(prefix.size() + key.size() + 4, npy_member_bytes(tensor)));
+    total =
+        add(total, tensor_member_charge(prefix.size() + key.size() + 4, npy_member_bytes(tensor)));
   return total;
 }
 

@@ -45,13 +45,13 @@ ModelMeta parse_meta(const std::vector<uint8_t>& bytes, const std::string& path)
     const int64_t version = integer_field(meta, "format_version");
     if (version != kModelFormatVersion) {
       const auto written_by = meta.find("rlrun_version");
-      throw RuntimeFailure(
-          path + ": model format version " + std::to_string(version) + " (written by rlrun " +
-          (written_by != meta.end() && written_by->is_string()
-               ? written_by->get<std::string>().substr(0, 40)
-               : std::string("?")) +
-          ") is not supported by rlrun " RLRUN_VERSION ", which reads version " +
-          std::to_string(kModelFormatVersion));
+      throw RuntimeFailure(path + ": model format version " + std::to_string(version) +
+                           " (written by rlrun " +
+                           (written_by != meta.end() && written_by->is_string()
+                                ? written_by->get<std::string>().substr(0, 40)
+                                : std::string("?")) +
+                           ") is not supported by rlrun " RLRUN_VERSION ", which reads version " +
+                           std::to_string(kModelFormatVersion));
     }
     m.format_version = kModelFormatVersion;
     m.rlrun_version = text_field(meta, "rlrun_version");
@@ -76,7 +76,7 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
   const std::string what = archive.describe(entry);
   ZipMemberReader member(archive, entry);
   if (entry.size < kNpyPreludeBytes)
-    throw RuntimeFailure(what + " is not a supported .npy array (only " +
+    throw RuntimeFailure(what + ": not a supported .npy array (only " +
                          std::to_string(entry.size) + " bytes)");
   std::vector<uint8_t> header(kNpyPreludeBytes);
   NpyHeader h;
@@ -84,8 +84,9 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
     member.read(header.data(), header.size());
     const size_t header_len = npy_header_length(header.data(), header.size(), what);
     if (header_len > member.remaining())
-      throw RuntimeFailure(what + " is not a supported .npy array (its header is longer than "
-                                  "the member)");
+      throw RuntimeFailure(what +
+                           ": not a supported .npy array (its header is longer than "
+                           "the member)");
     header.resize(kNpyPreludeBytes + header_len);  // at most 64 KiB + 10
     member.read(header.data() + kNpyPreludeBytes, header_len);
     h = parse_npy_header(header.data(), header.size(), what);
@@ -95,7 +96,7 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
     throw RuntimeFailure(e.what());
   }
   if (h.data_bytes != member.remaining())
-    throw RuntimeFailure(what + " is not a supported .npy array (its shape needs " +
+    throw RuntimeFailure(what + ": not a supported .npy array (its shape needs " +
                          std::to_string(h.data_bytes) + " bytes of data, the zip declares " +
                          std::to_string(member.remaining()) + ")");
   Tensor t;
