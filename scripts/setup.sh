@@ -15,6 +15,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev                  # logging
   catch2                                    # tests (v2.13)
   libzip-dev zip unzip                      # model files are zips
+  zlib1g-dev                                # tests write hostile zips (tests/core/crafted_zip.hpp)
   libbullet-dev                             # 3D grasp task
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
   libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video
@@ -22,20 +23,7 @@ PACKAGES=(
 )
 
 if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
-  missing=()
-  for p in "${PACKAGES[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  if ((${#missing[@]})); then
-    echo "setup: installing ${missing[*]}"
-    SUDO=""
-    if [[ $(id -u) -ne 0 ]]; then
-      command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
-      SUDO=sudo
-    fi
-    $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-  fi
+  scripts/install_packages.sh "${PACKAGES[@]}"
 fi
 
 # SUMO's tools look for their data here (DESIGN.md §2).

@@ -175,11 +175,12 @@ Action add_eval(CLI::App& app, Registry& registry) {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
     if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
-    const ModelFile model = read_model(options->model);
-    const Experiment experiment = experiment_from_model(model, registry, options->overrides);
-    EnvPtr env = make_model_env(model, experiment, registry);  // normalisation stats frozen
-    auto algorithm = algorithm_from_model(model, experiment, registry, env->observation_space(),
-                                          env->action_space());
+    // Normalisation statistics frozen; tensors read within the config's budget.
+    LoadedModel loaded = load_model(options->model, registry, options->overrides);
+    const ModelFile& model = loaded.file;
+    const Experiment& experiment = loaded.experiment;
+    EnvPtr& env = loaded.env;
+    std::unique_ptr<Algorithm>& algorithm = loaded.algorithm;
     // The baseline runs the same episodes on an env of its own; it is built (and checked to
     // fit the env) before anything is evaluated.
     EnvPtr baseline_env;

@@ -107,12 +107,10 @@ int run(const Options& o, Registry& registry) {
   std::unique_ptr<Algorithm> algorithm;
   std::string algo_id;
   if (!o.model.empty()) {
-    const ModelFile model = read_model(o.model);
-    const Experiment experiment = experiment_from_model(model, registry, o.overrides);
-    env = make_model_env(model, experiment, registry);  // normalisation statistics frozen
-    algorithm = algorithm_from_model(model, experiment, registry, env->observation_space(),
-                                     env->action_space());
-    algo_id = model.meta.algorithm;
+    LoadedModel model = load_model(o.model, registry, o.overrides);  // statistics frozen
+    env = std::move(model.env);
+    algorithm = std::move(model.algorithm);
+    algo_id = model.file.meta.algorithm;
   } else if (!o.config.empty()) {
     const Experiment experiment = load_experiment(o.config, o.overrides, registry);
     env = make_env(experiment.env, registry, "", unix_time_now());

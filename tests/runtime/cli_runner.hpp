@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,6 +24,7 @@ inline std::string read_text(const std::string& path) {
 struct CommandResult {
   int exit_code = -1;
   std::string output;  // stdout and stderr together
+  long peak_rss_kb = -1;  // run_command_measured only: the child's peak resident memory
 };
 
 inline CommandResult run_command(const std::string& command) {
@@ -33,6 +35,35 @@ inline CommandResult run_command(const std::string& command) {
   while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+// Like run_command, and the peak resident set size (VmHWM) of the command, from wait4's
+// rusage (`exec` makes the command itself the child the shell would otherwise wait for).
+inline CommandResult run_command_measured(const std::string& command) {
+  CommandResult result;
+  int fds[2];
+  if (pipe(fds) != 0) return result;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], STDOUT_FILENO);
+    dup2(fds[1], STDERR_FILENO);
+    close(fds[0]);
+    close(fds[1]);
+    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  std::array<char, 4096> buffer;
+  ssize_t n = 0;
+  while ((n = read(fds[0], buffer.data(), buffer.size())) > 0) result.output.append(buffer.data(), n);
+  close(fds[0]);
+  int status = 0;
+  struct rusage usage {};
+  if (wait4(pid, &status, 0, &usage) == pid) {
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.peak_rss_kb = usage.ru_maxrss;
+  }
   return result;
 }
 

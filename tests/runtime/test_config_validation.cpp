@@ -106,6 +106,14 @@ TEST_CASE("validation: duplicate keys and second documents are refused", "[cli][
                                                 "env: {id: CartPole-v1}\nalgo: {id: PPO}\n---\n"
                                                 "algo: {id: A2C}\n"));
   CHECK(has(second, "a second YAML document"));
+  // yaml-cpp loops forever on a stray flow character that starts a document (LoadAll); the
+  // loader stops and names it (a fuzz find: a comment whose line was broken in two).
+  const auto stray = refused(dir, write_config(dir, "stray.yaml",
+                                               "# net_arch [400\n, 300] (a broken comment)\n"
+                                               "env: {id: CartPole-v1}\n"));
+  CHECK(has(stray, "stray.yaml:2:1: invalid YAML: a ',', ']' or '}' outside any [list] or {map}"));
+  CHECK(has(refused(dir, kConfigs + "/cartpole_ppo.yaml --set 'algo.n_steps=, 5'"),
+            "--set algo.n_steps=, 5"));
 }
 
 TEST_CASE("validation: sizes that would take the machine are refused with their key",

@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -30,7 +31,13 @@ namespace rlrun {
 // --- decoding one value -------------------------------------------------------------------
 inline void decode(const ConfigNode& n, std::string& out) { out = n.as_string(); }
 inline void decode(const ConfigNode& n, double& out) { out = n.as_double(); }
-inline void decode(const ConfigNode& n, float& out) { out = static_cast<float>(n.as_double()); }
+inline void decode(const ConfigNode& n, float& out) {
+  const double v = n.as_double();
+  // A finite double beyond float's range has no float value (converting it is undefined).
+  if (std::isfinite(v) && std::fabs(v) > std::numeric_limits<float>::max())
+    n.fail("number out of range (a float32 setting)");
+  out = static_cast<float>(v);
+}
 inline void decode(const ConfigNode& n, bool& out) { out = n.as_bool(); }
 inline void decode(const ConfigNode& n, int& out) {
   const int64_t v = n.as_int();

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/zip_reader.hpp"
 
 namespace rlrun {
 
@@ -42,33 +43,17 @@ void write_zip_atomic(const std::string& path, const ZipMembers& members) {
   if (ec) throw RuntimeFailure("cannot rename " + temp + " to " + path + ": " + ec.message());
 }
 
-ZipMembers read_zip(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw RuntimeFailure(path + ": no such file");
-  int error = 0;
-  zip_t* zip = zip_open(path.c_str(), ZIP_RDONLY, &error);
-  if (!zip) {
-    zip_error_t ze;
-    zip_error_init_with_code(&ze, error);
-    const std::string why = zip_error_strerror(&ze);
-    zip_error_fini(&ze);
-    throw RuntimeFailure(path + ": not a readable model file (" + why + ")");
-  }
+ZipMembers read_zip(const std::string& path, uint64_t max_total_bytes) {
+  const ZipReader archive(path);
+  uint64_t total = 0;
+  for (const ZipEntry& e : archive.entries())
+    if (!e.directory && __builtin_add_overflow(total, e.size, &total)) total = UINT64_MAX;
+  if (total > max_total_bytes)
+    throw RuntimeFailure(path + ": its members declare " + std::to_string(total) +
+                         " bytes, more than the " + std::to_string(max_total_bytes) + " allowed");
   ZipMembers members;
-  const zip_int64_t count = zip_get_num_entries(zip, 0);
-  for (zip_int64_t i = 0; i < count; ++i) {
-    zip_stat_t st;
-    if (zip_stat_index(zip, i, 0, &st) != 0) continue;
-    std::vector<uint8_t> data(st.size);
-    zip_file_t* file = zip_fopen_index(zip, i, 0);
-    if (!file || (st.size > 0 && zip_fread(file, data.data(), st.size) != static_cast<zip_int64_t>(st.size))) {
-      if (file) zip_fclose(file);
-      zip_close(zip);
-      throw RuntimeFailure(path + ": cannot read member " + st.name);
-    }
-    zip_fclose(file);
-    members[st.name] = std::move(data);
-  }
-  zip_close(zip);
+  for (const ZipEntry& e : archive.entries())
+    if (!e.directory) members[e.name] = archive.read(e, e.size);
   return members;
 }
 

@@ -264,8 +264,9 @@ Experiment load_experiment(const std::string& path, const std::vector<std::strin
   const ConfigNode plugins = root.child("plugins");
   if (plugins.defined() && plugins.trusted()) load_plugins_section(plugins, registry);
   const ConfigNode name = root.child("run").child("name");
-  if (!name.defined()) {
-    if (!root.yaml()["run"].IsMap()) root.yaml()["run"] = YAML::Node(YAML::NodeType::Map);
+  const ConfigNode run = root.child("run");
+  if (!name.defined() && (!run.defined() || run.is_map())) {  // else parse_experiment says why
+    if (!run.defined()) root.yaml()["run"] = YAML::Node(YAML::NodeType::Map);
     root.yaml()["run"]["name"] = std::filesystem::path(path).stem().string();
   }
   return parse_experiment(root, registry);
@@ -286,6 +287,17 @@ std::string dump_yaml(const YAML::Node& node) {
   out.SetIndent(2);
   out << node;
   return std::string(out.c_str()) + "\n";
+}
+
+std::unique_ptr<Algorithm> make_algorithm(const Experiment& experiment, const Registry& registry,
+                                          const AlgorithmSetup& setup) {
+  const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
+  if (!entry) throw ConfigError(experiment.algo.where + ": unknown algorithm " + experiment.algo.id);
+  try {
+    return entry->make(experiment.algo.params, setup);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(experiment.algo.where + ": algo: " + e.what());
+  }
 }
 
 }  // namespace rlrun

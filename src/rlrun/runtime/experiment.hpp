@@ -8,6 +8,7 @@
 // Every unknown key or id is a ConfigError with file:line:col and a did-you-mean. `resolved`
 // holds the whole config with every default filled in; it is saved with the run and inside
 // model files, so a model file alone can rebuild its env and policy.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -126,6 +127,12 @@ Experiment load_experiment(const std::string& path, const std::vector<std::strin
 // messages. Throws ConfigError for an unknown id.
 EnvSpec default_env_spec(const std::string& id, const Registry& registry,
                          const std::string& origin);
+
+// The experiment's algorithm, fresh, for envs of `setup`'s spaces (the trainer's, and the probes
+// that size what a checkpoint may hold). Throws ConfigError (file:line:col of the algo section)
+// for a configuration the algorithm refuses.
+std::unique_ptr<Algorithm> make_algorithm(const Experiment& experiment, const Registry& registry,
+                                          const AlgorithmSetup& setup);
 
 // Writes YAML text of a resolved config, in section order run, env, algo, eval, ...
 std::string dump_yaml(const YAML::Node& node);

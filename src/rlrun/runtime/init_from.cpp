@@ -2,12 +2,13 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/model_budget.hpp"
 #include "rlrun/runtime/model_file.hpp"
 
 namespace rlrun {
 
 std::string initialize_from_model(const std::string& path, Algorithm& algorithm, VecEnv& env) {
-  const ModelFile model = read_model(path);
+  ModelFile model = read_model_header(path);
   const std::string refused = "cannot initialise from " + path + ": ";
   if (model.meta.algorithm != algorithm.id())
     throw UsageError(refused + "it holds a " + model.meta.algorithm + " model, this run trains " +
@@ -18,6 +19,9 @@ std::string initialize_from_model(const std::string& path, Algorithm& algorithm,
   if (model.meta.action_space != env.action_space().describe())
     throw UsageError(refused + "it was trained with actions " + model.meta.action_space +
                      ", this run's env takes " + env.action_space().describe());
+  // The run's algorithm must take the file's weights, so its size bounds what is read (the
+  // statistics: env 0's, which every env shares).
+  read_model_tensors(model, ModelParts::kModel, model_tensor_budget(algorithm, env.env(0)));
   try {
     algorithm.load(model.tensors);
   } catch (const std::exception& e) {

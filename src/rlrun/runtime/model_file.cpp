@@ -7,6 +7,7 @@
 #include "rlrun/core/zip_archive.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/model_budget.hpp"
 
 namespace rlrun {
 
@@ -33,48 +34,6 @@ void save_model(const std::string& path, const Algorithm& algorithm, const Exper
   write_zip_atomic(path, members);
 }
 
-ModelFile read_model(const std::string& path) {
-  ZipMembers members = read_zip(path);
-  ModelFile model;
-  model.path = path;
-  const auto meta_it = members.find("meta.json");
-  const auto config_it = members.find("config.yaml");
-  if (meta_it == members.end() || config_it == members.end())
-    throw RuntimeFailure(path + ": not an rlrun model file (no meta.json or config.yaml inside)");
-  try {
-    const auto meta = nlohmann::json::parse(meta_it->second.begin(), meta_it->second.end());
-    model.meta.format_version = meta.at("format_version").get<int>();
-    if (model.meta.format_version != kModelFormatVersion)
-      throw RuntimeFailure(path + ": model format version " +
-                           std::to_string(model.meta.format_version) + " (written by rlrun " +
-                           meta.value("rlrun_version", "?") + ") is not supported by rlrun " +
-                           RLRUN_VERSION + ", which reads version " +
-                           std::to_string(kModelFormatVersion));
-    model.meta.rlrun_version = meta.at("rlrun_version").get<std::string>();
-    model.meta.algorithm = meta.at("algorithm").get<std::string>();
-    model.meta.env_id = meta.at("env_id").get<std::string>();
-    model.meta.observation_space = meta.at("observation_space").get<std::string>();
-    model.meta.action_space = meta.at("action_space").get<std::string>();
-    model.meta.num_timesteps = meta.at("num_timesteps").get<int64_t>();
-  } catch (const nlohmann::json::exception& e) {
-    throw RuntimeFailure(path + ": meta.json is malformed: " + e.what());
-  }
-  model.config_yaml.assign(config_it->second.begin(), config_it->second.end());
-  for (const auto& [name, bytes] : members) {
-    if (name.size() < 4 || name.substr(name.size() - 4) != ".npy") continue;
-    const std::string key = name.substr(0, name.size() - 4);
-    TensorMap& into = key.rfind(kWrapperStatisticsPrefix, 0) == 0 ? model.wrapper_statistics
-                      : key.rfind(kTrainingStatePrefix, 0) == 0  ? model.training_state
-                                                                 : model.tensors;
-    try {
-      into[key] = decode_npy(bytes, path + ":" + name);
-    } catch (const std::runtime_error& e) {
-      throw RuntimeFailure(e.what());
-    }
-  }
-  return model;
-}
-
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
                                  const std::vector<std::string>& overrides) {
   // The model's config is data from anyone (docs/security.md): parsed untrusted, so it can
@@ -89,7 +48,11 @@ Experiment experiment_from_model(const ModelFile& model, const Registry& registr
   return experiment;
 }
 
-std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
+namespace {
+
+// An algorithm of the model's configuration with fresh weights.
+std::unique_ptr<Algorithm> make_model_algorithm(const ModelFile& model,
+                                                const Experiment& experiment,
                                                 const Registry& registry,
                                                 const Space& observation_space,
                                                 const Space& action_space) {
@@ -102,31 +65,84 @@ std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Ex
                          model.meta.action_space + " but the env has " + action_space.describe());
   const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
   if (!entry) throw RuntimeFailure(model.path + ": unknown algorithm " + experiment.algo.id);
-  AlgorithmSetup setup{observation_space, action_space, 1, experiment.run.seed};
-  std::unique_ptr<Algorithm> algorithm;
+  const AlgorithmSetup setup{observation_space, action_space, 1, experiment.run.seed};
   try {
-    algorithm = entry->make(experiment.algo.params, setup);
+    return entry->make(experiment.algo.params, setup);
   } catch (const std::invalid_argument& e) {
-    throw RuntimeFailure(model.path + ": " + e.what());
+    throw RuntimeFailure(model.path + ":config.yaml: " + e.what());
   }
+}
+
+void load_weights(const ModelFile& model, Algorithm& algorithm) {
   try {
-    algorithm->load(model.tensors);
+    algorithm.load(model.tensors);
   } catch (const std::runtime_error& e) {
     throw RuntimeFailure(model.path + ": " + e.what());
   }
+}
+
+// Frozen: SB3's VecNormalize.load + training = False.
+void load_frozen_statistics(const ModelFile& model, Env& env) {
+  try {
+    load_model_statistics(env, model.wrapper_statistics, /*training=*/false);
+  } catch (const StateMismatch& e) {
+    throw RuntimeFailure(model.path +
+                         ": the model's env normalises with statistics the file does not hold: " +
+                         e.what());
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
+                                                const Registry& registry,
+                                                const Space& observation_space,
+                                                const Space& action_space) {
+  std::unique_ptr<Algorithm> algorithm =
+      make_model_algorithm(model, experiment, registry, observation_space, action_space);
+  load_weights(model, *algorithm);
   return algorithm;
 }
 
 EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
                       const Registry& registry, const std::string& monitor_path) {
   EnvPtr env = make_env(experiment.env, registry, monitor_path, unix_time_now());
-  try {
-    load_model_statistics(*env, model.wrapper_statistics, /*training=*/false);
-  } catch (const StateMismatch& e) {
-    throw RuntimeFailure(model.path + ": the model's env normalises with statistics the file does not hold: " +
-                         e.what());
-  }
+  load_frozen_statistics(model, *env);
   return env;
+}
+
+namespace {
+
+LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
+                                 const std::vector<std::string>& overrides) {
+  LoadedModel loaded;
+  loaded.file = read_model_header(path);
+  const ModelFile& model = loaded.file;
+  loaded.experiment = experiment_from_model(model, registry, overrides);
+  // make_model_env's env, before its statistics are read.
+  loaded.env = make_env(loaded.experiment.env, registry, "", unix_time_now());
+  loaded.algorithm = make_model_algorithm(model, loaded.experiment, registry,
+                                          loaded.env->observation_space(),
+                                          loaded.env->action_space());
+  read_model_tensors(loaded.file, ModelParts::kModel,
+                     model_tensor_budget(*loaded.algorithm, *loaded.env));
+  load_weights(model, *loaded.algorithm);
+  load_frozen_statistics(model, *loaded.env);
+  return loaded;
+}
+
+}  // namespace
+
+LoadedModel load_model(const std::string& path, const Registry& registry,
+                       const std::vector<std::string>& overrides) {
+  // The config in the file sizes the env and networks built before any tensor is read: a
+  // size beyond this machine's memory is the file's problem, said as such.
+  try {
+    return load_model_unguarded(path, registry, overrides);
+  } catch (const std::bad_alloc&) {
+    throw RuntimeFailure(path + ": its config.yaml describes an env or networks larger than this "
+                                "machine's memory (std::bad_alloc while building them)");
+  }
 }
 
 }  // namespace rlrun

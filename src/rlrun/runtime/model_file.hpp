@@ -9,12 +9,24 @@
 // `rlrun train --resume` as `training/...` members (core/state_dict.hpp).
 // Loading refuses, with the reason, files of another format version, of another algorithm than
 // the caller expects, or whose spaces do not match the env they are used with.
+//
+// Model files are untrusted (DESIGN.md §6b, docs/security.md): reading one never allocates
+// by what the file declares. It happens in two phases —
+//  1. read_model_header(): the member list (core/zip_reader.hpp checks), meta.json and
+//     config.yaml, each at most kMaxModelTextBytes; no tensor is read;
+//  2. read_model_tensors(): the `.npy` members the caller needs, only after their declared
+//     sizes together fit a byte budget the CALLER derives from the configuration it built from
+//     phase 1 (runtime/model_budget.hpp): what a model of that configuration holds, plus slack.
+// Members other than meta.json, config.yaml and `*.npy` are skipped unread.
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/env.hpp"
 #include "rlrun/runtime/experiment.hpp"
 
 namespace rlrun {
@@ -39,7 +51,25 @@ struct ModelFile {
   TensorMap tensors;              // the algorithm's
   TensorMap wrapper_statistics;   // `wrappers/...` members (see env_statistics.hpp)
   TensorMap training_state;       // `training/...` members (checkpoints only)
+  bool holds_training_state = false;  // phase 1: the file has `training/...` members
 };
+
+// meta.json and config.yaml: rlrun writes a few KiB.
+inline constexpr uint64_t kMaxModelTextBytes = uint64_t{1} << 20;
+// What each tensor member costs against a budget beyond its bytes (npy header included in
+// `member_bytes`): its name and the bookkeeping of a Tensor in a TensorMap.
+inline constexpr uint64_t kTensorOverheadBytes = 256;
+inline uint64_t tensor_member_charge(uint64_t name_bytes, uint64_t member_bytes) {
+  uint64_t sum = 0;
+  if (__builtin_add_overflow(name_bytes, member_bytes, &sum) ||
+      __builtin_add_overflow(sum, kTensorOverheadBytes, &sum))
+    return UINT64_MAX;
+  return sum;
+}
+
+// Which tensors read_model_tensors reads: kModel = the algorithm's and `wrappers/...` (eval,
+// record, init-from); kCheckpoint = also `training/...` (resume).
+enum class ModelParts { kModel, kCheckpoint };
 
 // Writes atomically (temp file + rename). `env_tensors` are stored beside the algorithm's
 // (save_model_statistics() of the training env: normalisation statistics).
@@ -47,8 +77,16 @@ void save_model(const std::string& path, const Algorithm& algorithm, const Exper
                 const Space& observation_space, const Space& action_space,
                 const TensorMap& env_tensors = {});
 
-// Throws RuntimeFailure naming the file and the reason.
-ModelFile read_model(const std::string& path);
+// Phase 1 (see the top of this file). Throws RuntimeFailure naming the file and the reason.
+ModelFile read_model_header(const std::string& path);
+// Phase 2: fills model.tensors, wrapper_statistics (and training_state for kCheckpoint).
+// Refuses, before reading any tensor, a file whose selected `.npy` members charge more than
+// `budget_bytes` together (tensor_member_charge); then each member's npy header must be valid
+// and match its declared size, and its data must decompress to exactly that size.
+void read_model_tensors(ModelFile& model, ModelParts parts, uint64_t budget_bytes);
+// Both phases with a fixed budget, for files rlrun just wrote (tests, tools). The commands
+// read untrusted files with load_model() / read_checkpoint() (model_budget.hpp) instead.
+ModelFile read_model(const std::string& path, uint64_t budget_bytes = uint64_t{1} << 30);
 
 // Rebuilds the experiment stored in a model file (env, algorithm config), and an algorithm
 // with the stored weights, checking the spaces against `observation_space`/`action_space`.
@@ -66,5 +104,19 @@ std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Ex
 // lacks statistics its config's wrappers need.
 EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
                       const Registry& registry, const std::string& monitor_path = "");
+
+// What `rlrun eval --model` and `rlrun record --model` need from an untrusted model file:
+// phase 1, the experiment and env (statistics frozen) and algorithm built from its config, then
+// phase 2 with the budget of model_tensor_budget(), and the weights loaded. Throws
+// RuntimeFailure (exit 1) naming the file for anything wrong in it.
+struct LoadedModel {
+  ModelFile file;
+  Experiment experiment;
+  EnvPtr env;
+  std::unique_ptr<Algorithm> algorithm;
+};
+// `overrides` as for experiment_from_model.
+LoadedModel load_model(const std::string& path, const Registry& registry,
+                       const std::vector<std::string>& overrides = {});
 
 }  // namespace rlrun

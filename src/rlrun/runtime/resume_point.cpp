@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <regex>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/checkpoint_callback.hpp"
+#include "rlrun/runtime/model_budget.hpp"
 
 namespace rlrun {
 
@@ -61,17 +63,23 @@ std::string unfit(const std::string& path, const ModelFile& checkpoint,
 }  // namespace
 
 ResumePoint open_resume_point(const std::vector<std::string>& candidates,
-                              const Experiment& experiment) {
+                              const Experiment& experiment, const Registry& registry) {
   ResumePoint point;
+  std::optional<uint64_t> budget;  // checkpoint_tensor_budget builds envs: once
   for (const std::string& path : candidates) {
     std::string problem;
     try {
-      point.checkpoint = read_model(path);
-      if (point.checkpoint.training_state.empty())
+      point.checkpoint = read_model_header(path);
+      if (!point.checkpoint.holds_training_state)
         throw UsageError("cannot resume from " + path +
                          ": it holds no training state (a model file, or a checkpoint of an env "
                          "that cannot save its state)");
       problem = unfit(path, point.checkpoint, experiment);
+      if (problem.empty()) {
+        // Tensors only within what the run's own algorithm and envs hold (model_budget.hpp).
+        if (!budget) budget = checkpoint_tensor_budget(experiment, registry);
+        read_model_tensors(point.checkpoint, ModelParts::kCheckpoint, *budget);
+      }
     } catch (const RuntimeFailure& e) {
       problem = e.what();
     }

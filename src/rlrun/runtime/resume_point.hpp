@@ -27,8 +27,9 @@ struct ResumePoint {
 
 // Opens the first candidate that is readable and fits `experiment`. Throws RuntimeFailure
 // (UsageError for a model file that is not a checkpoint) naming each one tried.
+// Tensors are read within checkpoint_tensor_budget (runtime/model_budget.hpp).
 ResumePoint open_resume_point(const std::vector<std::string>& candidates,
-                              const Experiment& experiment);
+                              const Experiment& experiment, const Registry& registry);
 
 // Removes what a killed process leaves behind in a run directory it owns: the temporary files
 // of atomic writes (`*.tmp`, `*.tmp.XXXXXX`) in the run directory and in checkpoints/. Call

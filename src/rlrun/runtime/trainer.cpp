@@ -121,7 +121,7 @@ void TrainingRun::open_run_directory(const std::vector<std::string>& resume_from
     outcome_.run_dir = run_dir_of_checkpoint(resume_from.front());
     lock_.emplace(outcome_.run_dir);
     remove_stale_temporaries(outcome_.run_dir);
-    resume_ = open_resume_point(resume_from, experiment_);
+    resume_ = open_resume_point(resume_from, experiment_, registry_);
     // The files go back to where the checkpoint left them (rows written after it would
     // otherwise appear twice).
     restore_log_marks(training_state_reader(resume_->checkpoint, kFileMarks), outcome_.run_dir,
@@ -164,13 +164,7 @@ void TrainingRun::build() {
   if (!resuming_) env_->seed(experiment_.run.seed);
   const AlgorithmSetup setup{env_->observation_space(), env_->action_space(), env_->num_envs(),
                              experiment_.run.seed};
-  const AlgorithmEntry* entry = registry_.find_algorithm(experiment_.algo.id);
-  if (!entry) throw ConfigError(experiment_.algo.where + ": unknown algorithm " + experiment_.algo.id);
-  try {
-    algorithm_ = entry->make(experiment_.algo.params, setup);
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(experiment_.algo.where + ": algo: " + e.what());
-  }
+  algorithm_ = make_algorithm(experiment_, registry_, setup);
   if (!resuming_ && !experiment_.run.init_from.empty())
     log_->line(initialize_from_model(experiment_.run.init_from, *algorithm_, *env_));
   // Envs that cannot snapshot themselves (plugins, external simulators) get model-only
