@@ -121,23 +121,78 @@ int evaluate_without_model(const Options& o, Registry& registry) {
   return 0;
 }
 
+// `rlrun eval`'s options.
+struct EvalOptions {
+  bool deterministic = false;  // --deterministic: the default, stated
+  std::string model;
+  int episodes = 10;
+  uint64_t seed = 0;
+  bool stochastic = false;
+  std::string csv;
+  std::string record;  // mp4 of the evaluation episodes
+  std::vector<std::string> plugins;
+  std::string baseline;  // fixed-time (traffic task) or scripted (grasp task)
+  std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
+  std::string policy, env_id, config;  // a policy without a model, in an env or config's env
+  std::vector<std::string> overrides;   // --set: the user's values over the model's config
+};
+
+// The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
+EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
+  Env& env = *loaded.env;
+  Algorithm& algorithm = *loaded.algorithm;
+  const bool deterministic = !o.stochastic;
+  if (o.record.empty())
+    return evaluate_policy(algorithm, env, o.episodes, deterministic, o.seed);
+  RecordOptions record;
+  record.video_path = o.record;
+  record.episodes = o.episodes;
+  record.seed = o.seed;
+  record.policy_label =
+      loaded.file.meta.algorithm + (o.stochastic ? " stochastic" : " deterministic");
+  const RecordResult recorded = record_episodes(
+      env,
+      [&](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
+        algorithm.predict(obs, deterministic, action);
+      },
+      record);
+  std::printf("recorded %lld frames at %dx%d -> %s\n", static_cast<long long>(recorded.frames),
+              recorded.width, recorded.height, o.record.c_str());
+  return recorded.episodes;
+}
+
+int evaluate_model(const EvalOptions& o, Registry& registry) {
+  // Normalisation statistics frozen; tensors read within the config's budget.
+  const LoadedModel loaded = load_model(o.model, registry, o.overrides);
+  const ModelFile& model = loaded.file;
+  const Experiment& experiment = loaded.experiment;
+  // The baseline runs the same episodes on an env of its own; it is built (and checked to
+  // fit the env) before anything is evaluated.
+  EnvPtr baseline_env;
+  std::optional<NamedPolicy> baseline_policy;
+  if (!o.baseline.empty()) {
+    baseline_env = make_model_env(model, experiment, registry);
+    baseline_policy = named_policy(o.baseline, *baseline_env, registry, policy_options(o));
+  }
+  const EvalResult r = run_model_episodes(o, loaded);
+  std::vector<std::pair<std::string, EvalResult>> runs{{model.meta.algorithm, r}};
+  print_summary(model.meta.algorithm, o.stochastic ? " (stochastic)" : " (deterministic)",
+                experiment.env.id, o.episodes, r);
+  if (baseline_policy) {
+    const EvalResult baseline =
+        evaluate_policy(baseline_policy->act, *baseline_env, o.episodes, o.seed);
+    print_summary(o.baseline, settings_text(policy_options(o)), experiment.env.id, o.episodes,
+                  baseline);
+    runs.emplace_back(o.baseline, baseline);
+  }
+  if (!o.csv.empty()) write_csv(o.csv, runs);
+  return 0;
+}
+
 }  // namespace
 
 Action add_eval(CLI::App& app, Registry& registry) {
-  struct Options {
-    std::string model;
-    int episodes = 10;
-    uint64_t seed = 0;
-    bool stochastic = false;
-    std::string csv;
-    std::string record;  // mp4 of the evaluation episodes
-    std::vector<std::string> plugins;
-    std::string baseline;  // fixed-time (traffic task) or scripted (grasp task)
-    std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
-    std::string policy, env_id, config;  // a policy without a model, in an env or config's env
-    std::vector<std::string> overrides;   // --set: the user's values over the model's config
-  };
-  auto options = std::make_shared<Options>();
+  auto options = std::make_shared<EvalOptions>();
   CLI::App* sub = app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
   CLI::Option* model_option =
       sub->add_option("--model", options->model, "model.zip written by rlrun train");
@@ -152,8 +207,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
       ->needs(policy_option);
   sub->add_option("--episodes", options->episodes, "number of episodes")->transform(integer_in(1));
   sub->add_option("--seed", options->seed, "seed of the first episode's reset")->check(seed_value());
-  auto deterministic = std::make_shared<bool>(false);
-  CLI::Option* det = sub->add_flag("--deterministic", *deterministic,
+  CLI::Option* det = sub->add_flag("--deterministic", options->deterministic,
                                    "use the deterministic policy (default)");
   sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")->excludes(det);
   sub->add_option("--csv", options->csv, "also write one row per episode (episode,return,length)");
@@ -171,58 +225,11 @@ Action add_eval(CLI::App& app, Registry& registry) {
       ->transform(integer_in(1));
   sub->add_option("--record", options->record,
                   "also record the episodes to this mp4 (same episodes and numbers; needs ffmpeg)");
-  return [options, deterministic, &registry]() {
+  return [options, &registry]() {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
     if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
-    // Normalisation statistics frozen; tensors read within the config's budget.
-    LoadedModel loaded = load_model(options->model, registry, options->overrides);
-    const ModelFile& model = loaded.file;
-    const Experiment& experiment = loaded.experiment;
-    EnvPtr& env = loaded.env;
-    std::unique_ptr<Algorithm>& algorithm = loaded.algorithm;
-    // The baseline runs the same episodes on an env of its own; it is built (and checked to
-    // fit the env) before anything is evaluated.
-    EnvPtr baseline_env;
-    std::optional<NamedPolicy> baseline_policy;
-    if (!options->baseline.empty()) {
-      baseline_env = make_model_env(model, experiment, registry);
-      baseline_policy =
-          named_policy(options->baseline, *baseline_env, registry, policy_options(*options));
-    }
-    EvalResult r;
-    if (options->record.empty()) {
-      r = evaluate_policy(*algorithm, *env, options->episodes, !options->stochastic, options->seed);
-    } else {
-      // record_episodes runs exactly evaluate_policy's episodes, drawing every frame.
-      RecordOptions record;
-      record.video_path = options->record;
-      record.episodes = options->episodes;
-      record.seed = options->seed;
-      record.policy_label = model.meta.algorithm + (options->stochastic ? " stochastic" : " deterministic");
-      const bool deterministic = !options->stochastic;
-      const RecordResult recorded = record_episodes(
-          *env,
-          [&](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
-            algorithm->predict(obs, deterministic, action);
-          },
-          record);
-      r = recorded.episodes;
-      std::printf("recorded %lld frames at %dx%d -> %s\n", static_cast<long long>(recorded.frames),
-                  recorded.width, recorded.height, options->record.c_str());
-    }
-    std::vector<std::pair<std::string, EvalResult>> runs{{model.meta.algorithm, r}};
-    print_summary(model.meta.algorithm, options->stochastic ? " (stochastic)" : " (deterministic)",
-                  experiment.env.id, options->episodes, r);
-    if (baseline_policy) {  // the same episodes, on an env of its own
-      const EvalResult baseline =
-          evaluate_policy(baseline_policy->act, *baseline_env, options->episodes, options->seed);
-      print_summary(options->baseline, settings_text(policy_options(*options)),
-                    experiment.env.id, options->episodes, baseline);
-      runs.emplace_back(options->baseline, baseline);
-    }
-    if (!options->csv.empty()) write_csv(options->csv, runs);
-    return 0;
+    return evaluate_model(*options, registry);
   };
 }
 
