@@ -449,8 +449,17 @@ TEST_CASE("DQN rejects unsupported spaces and bad settings with a message", "[al
   CHECK_THROWS_AS(
       DQN(ok, AlgorithmSetup{Space::box(-1.0f, 1.0f, {3}), Space::box(-1.0f, 1.0f, {1}), 1, 0}),
       std::invalid_argument);
-  CHECK_THROWS_AS(DQN(ok, AlgorithmSetup{Space::discrete(3), Space::discrete(2), 1, 0}),
-                  std::invalid_argument);
+  {
+    // Discrete observations reach the Q-network one-hot (SB3 preprocess_obs): 5 inputs.
+    DQN discrete_obs(ok, AlgorithmSetup{Space::discrete(5), Space::discrete(2), 1, 0});
+    TensorMap tensors;
+    discrete_obs.save(tensors);
+    CHECK(tensors.at("q_net.0.weight").shape == std::vector<int64_t>{64, 5});
+    Eigen::MatrixXf obs(1, 2), actions;
+    obs << 4.0f, 0.0f;
+    discrete_obs.predict(obs, true, actions);
+    CHECK(actions.cols() == 2);
+  }
   const auto rejects = [](auto change) {
     DQN::Config c;
     change(c);

@@ -59,12 +59,7 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
                    "false (torch's default init) is not supported yet; SB3's default is true"});
   check_net_arch(out, "policy.net_arch", policy.net_arch);
   const int obs_dim = setup.observation_space.flat_dim();
-  int features = obs_dim;
-  try {
-    features = ObservationEncoder(setup.observation_space).features_dim();
-  } catch (const std::invalid_argument& e) {
-    out.push_back({"id", e.what()});
-  }
+  const int features = network_input_dim(out, setup.observation_space);
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
   check_network_memory(out, "policy.net_arch", features, policy.net_arch, head, 2,
                        static_cast<double>(batch));

@@ -12,9 +12,6 @@
 namespace rlrun {
 
 int BoxActionSelection::checked_action_dim(const AlgorithmSetup& setup, const std::string& id) {
-  if (!setup.observation_space.is_box())
-    throw std::invalid_argument(id + ": observation space " + setup.observation_space.describe() +
-                                " is not supported (Box only)");
   const Space& a = setup.action_space;
   if (!a.is_box())
     throw std::invalid_argument(

@@ -1,5 +1,9 @@
 #include "rlrun/algos/common/config_checks.hpp"
 
+#include <stdexcept>
+
+#include "rlrun/env/observation_encoder.hpp"
+
 #include <cmath>
 
 #include "rlrun/core/resource_limits.hpp"
@@ -53,9 +57,6 @@ void check_gradient_steps(ConfigProblems& out, int gradient_steps) {
 }
 
 void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup) {
-  if (!setup.observation_space.is_box())
-    out.push_back({"id", "observation space " + setup.observation_space.describe() +
-                             " is not supported (Box only)"});
   const Space& a = setup.action_space;
   if (!a.is_box()) return;  // make_env has named the wrapper that fixes it
   for (size_t i = 0; i < a.low().size(); ++i)
@@ -65,6 +66,15 @@ void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup) {
                                "add a ClipAction or RescaleAction wrapper)"});
       return;
     }
+}
+
+int network_input_dim(ConfigProblems& out, const Space& observation_space) {
+  try {
+    return ObservationEncoder(observation_space).features_dim();
+  } catch (const std::invalid_argument& e) {
+    out.push_back({"id", e.what()});
+    return observation_space.flat_dim();
+  }
 }
 
 }  // namespace rlrun

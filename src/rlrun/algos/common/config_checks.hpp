@@ -36,7 +36,13 @@ void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const Algorit
 // SB3's gradient_steps: >= 1, or -1 (as many as env steps collected).
 void check_gradient_steps(ConfigProblems& out, int gradient_steps);
 
-// Box observations and a finite, non-empty Box action space (actors that end in tanh).
+// A Box action space with finite bounds low < high (actors that end in tanh). Observations may
+// be any space: the networks see them through an ObservationEncoder.
 void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup);
+
+// What a network sees of one observation (ObservationEncoder::features_dim: one-hots for
+// Discrete values, Dict keys concatenated); when the space has too many features, the problem
+// is added under `id` and the flat size returned so that later checks can still run.
+int network_input_dim(ConfigProblems& out, const Space& observation_space);
 
 }  // namespace rlrun

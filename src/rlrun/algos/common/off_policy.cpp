@@ -122,7 +122,8 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
   check_box_actor_spaces(out, setup);
   check_gradient_steps(out, config.gradient_steps);
   check_net_arch(out, "policy.net_arch", net_arch);
-  const int obs = setup.observation_space.flat_dim(), act = setup.action_space.flat_dim();
+  const int obs = network_input_dim(out, setup.observation_space);
+  const int act = setup.action_space.flat_dim();
   check_network_memory(out, "policy.net_arch", obs, net_arch, actor_outputs, actor_copies,
                        config.batch_size);
   // Each critic, its target and the second core's activations of both.
@@ -138,7 +139,10 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
       id_(std::move(id)),
       config_(config),
       buffer_action_dim_(buffer_action_dim),
-      replay_rng_(setup.seed ^ replay.stream) {
+      replay_rng_(setup.seed ^ replay.stream),
+      batch_obs_(setup.observation_space),
+      batch_next_obs_(setup.observation_space),
+      acting_obs_(setup.observation_space) {
   const auto require = [this](bool ok, const std::string& message) {
     if (!ok) throw std::invalid_argument(id_ + ": " + message);
   };

@@ -20,6 +20,7 @@
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_fields.hpp"
+#include "rlrun/env/observation_encoder.hpp"
 
 namespace rlrun {
 
@@ -96,7 +97,7 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
                       const OffPolicyConfig& config, OffPolicyState& state,
                       const OffPolicyCallbacks& callbacks, int64_t& num_timesteps);
 
-// SAC's and TD3's checks: Box spaces, gradient_steps, net_arch, the memory of the actor
+// SAC's and TD3's checks: a bounded Box action space, gradient_steps, net_arch, the memory of the actor
 // (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the second core's
 // activations) and of n_critics critics with their targets, and the replay buffer's.
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
@@ -153,6 +154,20 @@ class OffPolicyAlgorithm : public Algorithm {
 
   // replay_buffer.sample(batch_size) with the replay stream, into a reused batch.
   const ReplayBatch& sample_batch();
+  // What the networks see of observations: SB3's preprocess_obs and CombinedExtractor for
+  // vector keys (env/observation_encoder.hpp). The replay buffer keeps the observations as the
+  // env gave them (as SB3's does); each batch and each acting call goes through one of these.
+  // For Box, MultiBinary and Dict-of-those observations they hand back the caller's matrix
+  // itself (no copy). Each result is valid until the next call of the same encoder.
+  int features_dim() const { return acting_obs_.features_dim(); }
+  Eigen::Ref<const Eigen::MatrixXf> batch_obs(const ReplayBatch& b) { return batch_obs_(b.obs); }
+  Eigen::Ref<const Eigen::MatrixXf> batch_next_obs(const ReplayBatch& b) {
+    return batch_next_obs_(b.next_obs);
+  }
+  Eigen::Ref<const Eigen::MatrixXf> acting_features(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
+    return acting_obs_(obs);
+  }
+
   // Training progress, 1 at the start and 0 at the end (SB3 _current_progress_remaining).
   double progress_remaining() const { return state_ ? state_->progress_remaining : 1.0; }
 
@@ -168,6 +183,7 @@ class OffPolicyAlgorithm : public Algorithm {
   Rng replay_rng_;
   std::optional<OffPolicyState> state_;
   ReplayBatch batch_;
+  ObservationEncoder batch_obs_, batch_next_obs_, acting_obs_;
   // checkpoint()'s items: how each is written and read back.
   std::vector<std::function<void(StateWriter&)>> write_items_;
   std::vector<std::function<void(const StateReader&)>> read_items_;

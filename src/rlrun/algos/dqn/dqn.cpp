@@ -22,9 +22,6 @@ void require(bool ok, const std::string& message) {
 // Validates before the networks are built from the config (OffPolicyAlgorithm checks the
 // shared hyperparameters).
 const DQN::Config& checked(const DQN::Config& c, const AlgorithmSetup& setup) {
-  require(setup.observation_space.is_box(),
-          "observation space " + setup.observation_space.describe() +
-              " is not supported (Box only; SB3 would one-hot Discrete observations)");
   require(setup.action_space.is_discrete(),
           "action space " + setup.action_space.describe() + " is not supported (Discrete only)");
   require(c.off_policy.tau > 0.0, "tau must be in (0, 1]");
@@ -42,10 +39,6 @@ const DQN::Config& checked(const DQN::Config& c, const AlgorithmSetup& setup) {
 
 ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
   ConfigProblems out;
-  if (!setup.observation_space.is_box())
-    out.push_back({"id", "observation space " + setup.observation_space.describe() +
-                             " is not supported (Box only; OneHotObservation turns Discrete "
-                             "observations into a Box)"});
   check_gradient_steps(out, config.off_policy.gradient_steps);
   if (config.off_policy.tau == 0.0)
     out.push_back({"tau", "must be > 0 (0 would never update the target network)"});
@@ -53,7 +46,7 @@ ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
   const int actions =
       setup.action_space.is_discrete() ? static_cast<int>(setup.action_space.n()) : 1;
   // The Q-network, its target and the second core's activations of both.
-  check_network_memory(out, "policy.net_arch", setup.observation_space.flat_dim(),
+  check_network_memory(out, "policy.net_arch", network_input_dim(out, setup.observation_space),
                        config.policy.net_arch, actions, 4, config.off_policy.batch_size);
   check_replay_memory(out, config.off_policy.buffer_size, setup);
   return out;
@@ -69,7 +62,7 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
       // from q_net's state_dict.
       q_net_([&] {
         Rng init_rng(setup.seed);
-        return make_q_network(setup.observation_space.flat_dim(),
+        return make_q_network(features_dim(),
                               static_cast<int>(setup.action_space.n()), config.policy, init_rng);
       }()),
       q_net_target_(q_net_),
@@ -96,7 +89,7 @@ double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   // with th.no_grad():
   //   next_q_values = q_net_target(next_obs).max(dim=1)
   //   target_q_values = rewards + (1 - dones) * gamma * next_q_values
-  const Eigen::MatrixXf& next_q = q_net_target_.forward(b.next_obs);
+  const Eigen::MatrixXf& next_q = q_net_target_.forward(batch_next_obs(b));
   targets_.resize(n);
   for (Eigen::Index j = 0; j < n; ++j)
     targets_(j) = b.rewards(j) + (1.0f - b.dones(j)) * gamma * next_q.col(j).maxCoeff();
@@ -104,7 +97,7 @@ double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   // current_q_values = th.gather(q_net(obs), dim=1, index=actions)
   // loss = F.smooth_l1_loss(current_q_values, target_q_values): 0.5 d^2 where |d| < 1, else
   // |d| - 0.5, averaged; its gradient is d clamped to [-1, 1], over n, at the taken actions.
-  const Eigen::MatrixXf& q = q_net_.forward(b.obs);
+  const Eigen::MatrixXf& q = q_net_.forward(batch_obs(b));
   grad_q_.setZero(q.rows(), n);
   double loss = 0.0;
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -172,7 +165,7 @@ void DQN::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool determinist
     act_net_.params() = q_net_.params();  // same size: a copy, no allocation
     act_net_stale_ = false;
   }
-  greedy_actions(act_net_.forward(obs), action_start_, actions);
+  greedy_actions(act_net_.forward(acting_features(obs)), action_start_, actions);
 }
 
 void DQN::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,

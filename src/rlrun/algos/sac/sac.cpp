@@ -34,13 +34,13 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
                          BoxActionSelection::checked_action_dim(setup, "SAC"),
                          {kSampleStream, "sample_rng"}),
       config_(config),
-      obs_dim_(setup.observation_space.flat_dim()),
+      features_dim_(features_dim()),
       action_dim_(setup.action_space.flat_dim()),
       train_rng_(setup.seed ^ kTrainStream),
       predict_rng_(setup.seed ^ kPredictStream),
-      actor_(obs_dim_, action_dim_, config.policy.net_arch,
+      actor_(features_dim_, action_dim_, config.policy.net_arch,
              parse_activation(config.policy.activation_fn)),
-      critic_(obs_dim_, action_dim_, config.policy.net_arch,
+      critic_(features_dim_, action_dim_, config.policy.net_arch,
               parse_activation(config.policy.activation_fn), config.policy.n_critics),
       critic_target_(critic_),
       ent_coef_(config.ent_coef, config.target_entropy, action_dim_),
@@ -87,8 +87,9 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   //   next_actions, next_log_prob = actor.action_log_prob(next_obs)
   //   next_q = min_i critic_target_i(next_obs, next_actions) - ent_coef * next_log_prob
   //   target_q = rewards + (1 - dones) * gamma * next_q
-  actor_.sample_from_noise(b.next_obs, next_noise_, next_actions_, next_log_prob_);
-  critic_target_.forward(b.next_obs, next_actions_);
+  const Eigen::Ref<const Eigen::MatrixXf> next_obs = batch_next_obs(b);
+  actor_.sample_from_noise(next_obs, next_noise_, next_actions_, next_log_prob_);
+  critic_target_.forward(next_obs, next_actions_);
   target_q_.resize(1, n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const float next_q = critic_target_.min(j) - alpha * next_log_prob_(j);
@@ -98,7 +99,8 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   // actions_pi, log_prob = actor.action_log_prob(obs). SB3 samples these first; here s' went
   // first because the actor keeps only its last forward pass for the backward below (the
   // noise was drawn in SB3's order, so the numbers are the same).
-  actor_.sample_from_noise(b.obs, policy_noise_, actions_pi_, log_prob_);
+  const Eigen::Ref<const Eigen::MatrixXf> obs = batch_obs(b);
+  actor_.sample_from_noise(obs, policy_noise_, actions_pi_, log_prob_);
 
   // ent_coef_loss = -(log_ent_coef * (log_prob + target_entropy).detach()).mean(); one Adam
   // step on log_ent_coef, whose gradient is -mean(log_prob + target_entropy).
@@ -110,7 +112,7 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   }
 
   // critic_loss = 0.5 * sum_i F.mse_loss(critic_i(obs, actions), target_q); one Adam step.
-  critic_.forward(b.obs, b.actions);
+  critic_.forward(obs, b.actions);
   for (int i = 0; i < critic_.n_critics(); ++i) {
     grad_q_ = critic_.q(i).output() - target_q_;
     stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * (0.5f * inv_n);
@@ -121,7 +123,7 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
 
   // actor_loss = (ent_coef * log_prob - min_i critic_i(obs, actions_pi)).mean(), through the
   // critics as just stepped and pathwise through the squashed Gaussian; one Adam step.
-  critic_.forward(b.obs, actions_pi_);
+  critic_.forward(obs, actions_pi_);
   for (Eigen::MatrixXf& g : grad_min_q_) g.setZero(1, n);
   grad_log_prob_.setConstant(n, alpha * inv_n);
   double actor_loss = 0.0;
@@ -174,7 +176,7 @@ void SAC::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
       obs, warmup,
       [&](Rng& rng, Eigen::MatrixXf& actions) {
         // A stochastic sample of the policy (SB3 predict with deterministic=False).
-        acting_actor_.get().sample(obs, rng, actions, acting_log_prob_);
+        acting_actor_.get().sample(acting_features(obs), rng, actions, acting_log_prob_);
       },
       env_actions, buffer_actions);
 }
@@ -182,9 +184,10 @@ void SAC::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
 void SAC::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                   Eigen::MatrixXf& actions) {
   if (deterministic)
-    acting_actor_.get().mode(obs, scaled_actions_);
+    acting_actor_.get().mode(acting_features(obs), scaled_actions_);
   else
-    acting_actor_.get().sample(obs, predict_rng_, scaled_actions_, acting_log_prob_);
+    acting_actor_.get().sample(acting_features(obs), predict_rng_, scaled_actions_,
+                                acting_log_prob_);
   acting_.to_env_actions(scaled_actions_, actions);
 }
 

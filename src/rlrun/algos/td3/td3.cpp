@@ -42,13 +42,13 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
                          BoxActionSelection::checked_action_dim(setup, id),
                          {kSampleStream, "sample_rng"}),
       config_(checked(config, id)),
-      obs_dim_(setup.observation_space.flat_dim()),
+      features_dim_(features_dim()),
       action_dim_(setup.action_space.flat_dim()),
       smoothing_rng_(setup.seed ^ kSmoothingStream),
-      actor_(obs_dim_, action_dim_, config.policy.net_arch,
+      actor_(features_dim_, action_dim_, config.policy.net_arch,
              parse_activation(config.policy.activation_fn)),
       actor_target_(actor_),
-      critic_(obs_dim_, action_dim_, config.policy.net_arch,
+      critic_(features_dim_, action_dim_, config.policy.net_arch,
               parse_activation(config.policy.activation_fn), config.policy.n_critics),
       critic_target_(critic_),
       acting_(setup, config.action_noise) {
@@ -95,15 +95,17 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
       smoothing_noise_(k) = std::clamp(noise_std * static_cast<float>(smoothing_rng_.normal()),
                                        -noise_clip, noise_clip);
   }
+  const Eigen::Ref<const Eigen::MatrixXf> next_obs = batch_next_obs(b);
   next_actions_ =
-      (actor_target_.forward(b.next_obs) + smoothing_noise_).cwiseMax(-1.0f).cwiseMin(1.0f);
-  critic_target_.forward(b.next_obs, next_actions_);
+      (actor_target_.forward(next_obs) + smoothing_noise_).cwiseMax(-1.0f).cwiseMin(1.0f);
+  critic_target_.forward(next_obs, next_actions_);
   target_q_.resize(1, n);
   for (Eigen::Index j = 0; j < n; ++j)
     target_q_(0, j) = b.rewards(j) + ((1.0f - b.dones(j)) * gamma) * critic_target_.min(j);
 
   // critic_loss = sum_i F.mse_loss(critic_i(obs, actions), target_q); one Adam step.
-  critic_.forward(b.obs, b.actions);
+  const Eigen::Ref<const Eigen::MatrixXf> obs = batch_obs(b);
+  critic_.forward(obs, b.actions);
   for (int i = 0; i < critic_.n_critics(); ++i) {
     grad_q_ = critic_.q(i).output() - target_q_;
     stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * inv_n;
@@ -116,7 +118,7 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
   if (n_updates_ % config_.policy_delay != 0) return stats;
   // actor_loss = -critic.q1_forward(obs, actor(obs)).mean(), through critic 1 into the actor;
   // one Adam step.
-  const Eigen::MatrixXf& q1 = critic_.q1_forward(b.obs, actor_.forward(b.obs));
+  const Eigen::MatrixXf& q1 = critic_.q1_forward(obs, actor_.forward(obs));
   stats.actor_loss = -static_cast<double>(q1.sum()) * inv_n;
   stats.actor_updated = true;
   grad_q_.setConstant(1, n, -inv_n);
@@ -158,13 +160,15 @@ void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
   // output is that scaled action already.
   acting_.select(
       obs, warmup,
-      [&](Rng&, Eigen::MatrixXf& actions) { actions = acting_actor_.get().forward(obs); },
+      [&](Rng&, Eigen::MatrixXf& actions) {
+        actions = acting_actor_.get().forward(acting_features(obs));
+      },
       env_actions, buffer_actions);
 }
 
 void TD3::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,
                   Eigen::MatrixXf& actions) {
-  acting_.to_env_actions(acting_actor_.get().forward(obs), actions);
+  acting_.to_env_actions(acting_actor_.get().forward(acting_features(obs)), actions);
 }
 
 void TD3::save(TensorMap& tensors) const {
