@@ -24,6 +24,15 @@ double number_after(const std::string& output, const std::string& key) {
   return std::stod(m[1]);
 }
 
+// numpy.load of a model file as an SB3 user would do it: "<name> <dtype> <shape>" per tensor.
+std::string model_tensors(const std::string& model_zip) {
+  const auto r = run_command("/usr/bin/python3 " + kSource + "/tests/data/numpy_load_model.py " +
+                             model_zip);
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  return r.output;
+}
+
 // Trains `algo` on `env` (a YAML flow map of the env section) and evaluates the model file;
 // returns eval's output.
 std::string train_and_eval(TempDir& dir, const std::string& name, const std::string& env,
@@ -75,10 +84,9 @@ TEST_CASE("spaces: MultiDiscrete observations and actions, PPO and A2C", "[cli][
   CHECK(number_after(train_and_eval(dir, "ppo", env, kPpo, 20000), "mean_reward") == 20.0);
   CHECK(number_after(train_and_eval(dir, "a2c", env, kA2c, 20000), "mean_reward") == 20.0);
   // SB3's MultiCategorical head: sum(nvec) = 8 logits.
-  const auto model = run_command("/usr/bin/python3 " + kSource + "/tests/data/numpy_load_model.py " +
-                                 (dir / "ppo/seed1/model.zip"));
-  INFO(model.output);
-  CHECK(model.output.find("action_net.weight float32 (8, 64)") != std::string::npos);
+  const std::string tensors = model_tensors(dir / "ppo/seed1/model.zip");
+  INFO(tensors);
+  CHECK(tensors.find("action_net.weight float32 (8, 64)") != std::string::npos);
 }
 
 TEST_CASE("spaces: MultiBinary observations and actions, PPO and A2C", "[cli][spaces]") {
@@ -104,11 +112,10 @@ TEST_CASE("spaces: a Dict of MultiBinary, Discrete and Box keys (SimpleMultiObsE
   CHECK(number_after(eval.output, "mean_ep_length") == 6.0);
   // The model file names the Dict space (meta.json, Space::describe()) and SB3's tensor names:
   // MultiInputPolicy's Flatten extractors have no parameters; the towers take 4 + 4 + 5 inputs.
-  const auto model = run_command("/usr/bin/python3 " + kSource +
-                                 "/tests/data/numpy_load_model.py " + run + "/model.zip");
-  INFO(model.output);
-  CHECK(model.output.find("mlp_extractor.policy_net.0.weight float32 (64, 13)") != std::string::npos);
-  CHECK(model.output.find("features_extractor") == std::string::npos);
+  const std::string tensors = model_tensors(run + "/model.zip");
+  INFO(tensors);
+  CHECK(tensors.find("mlp_extractor.policy_net.0.weight float32 (64, 13)") != std::string::npos);
+  CHECK(tensors.find("features_extractor") == std::string::npos);
   // The observation log holds the flat Dict observations; record --from-obs draws them (one
   // chunk: 800 steps of 8 envs, 100 rows of env 0).
   const std::string chunk = run + "/obs_log/obs_0000000800.npy";
@@ -211,12 +218,11 @@ TEST_CASE("spaces: off-policy algorithms take Dict observations (SAC learns Dict
   CHECK(number_after(eval.output, "success_rate") == 1.0);
   // SB3's names for a MultiInputPolicy SAC: the Flatten extractors have no parameters; the
   // actor and each critic take goal (2) + position (2) [+ action (2)] inputs.
-  const auto model = run_command("/usr/bin/python3 " + kSource +
-                                 "/tests/data/numpy_load_model.py " + run + "/model.zip");
-  INFO(model.output);
-  CHECK(model.output.find("actor.latent_pi.0.weight float32 (64, 4)") != std::string::npos);
-  CHECK(model.output.find("critic.qf0.0.weight float32 (64, 6)") != std::string::npos);
-  CHECK(model.output.find("features_extractor") == std::string::npos);
+  const std::string tensors = model_tensors(run + "/model.zip");
+  INFO(tensors);
+  CHECK(tensors.find("actor.latent_pi.0.weight float32 (64, 4)") != std::string::npos);
+  CHECK(tensors.find("critic.qf0.0.weight float32 (64, 6)") != std::string::npos);
+  CHECK(tensors.find("features_extractor") == std::string::npos);
 }
 
 TEST_CASE("spaces: DQN on a Dict of MultiBinary, Discrete and Box keys; TD3 and DDPG on Dict",
@@ -232,10 +238,9 @@ TEST_CASE("spaces: DQN on a Dict of MultiBinary, Discrete and Box keys; TD3 and 
       10000, 5);
   CHECK(number_after(out, "mean_reward") == 0.5);
   CHECK(number_after(out, "mean_ep_length") == 6.0);
-  const auto model = run_command("/usr/bin/python3 " + kSource +
-                                 "/tests/data/numpy_load_model.py " + dir / "dqn/seed1/model.zip");
-  INFO(model.output);
-  CHECK(model.output.find("q_net.0.weight float32 (64, 13)") != std::string::npos);
+  const std::string tensors = model_tensors(dir / "dqn/seed1/model.zip");
+  INFO(tensors);
+  CHECK(tensors.find("q_net.0.weight float32 (64, 13)") != std::string::npos);
   // TD3 and DDPG train and evaluate on DictReach (a few hundred steps: the plumbing).
   for (const std::string algo : {"TD3", "DDPG"}) {
     const std::string name = algo == "TD3" ? "td3" : "ddpg";
