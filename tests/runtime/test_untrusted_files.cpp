@@ -202,3 +202,29 @@ TEST_CASE("untrusted: stale temporaries are removed, a damaged newest checkpoint
   CHECK(r.output.find("step 4611686018427387904, outside the run's 0..768") != std::string::npos);
   CHECK(r.output.find("trained 4611686018427387904") == std::string::npos);
 }
+
+TEST_CASE("untrusted: rlrun report reads a run's config.yaml within the config bounds",
+          "[cli][security]") {
+  TempDir dir("untrusted_report");
+  const std::string run = dir / "run";
+  fs::create_directories(run);
+  // An alias bomb: 9 levels of 10 references is 10^9 nodes once expanded (dump_yaml of it,
+  // as report groups runs by their config, would never finish).
+  std::string bomb = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i <= 9; ++i) {
+    const std::string prev = "*a" + std::to_string(i - 1);
+    bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) bomb += prev + (k < 9 ? ", " : "]\n");
+  }
+  write_file(run + "/config.yaml", "run: {name: x, seed: 1}\n" + bomb);
+  const auto r = run_command_measured("timeout 60 " + std::string(RLRUN_BINARY) + " report " + run);
+  INFO(r.output);
+  CHECK(r.exit_code == 1);
+  CHECK(r.output.find(run + "/config.yaml") != std::string::npos);
+  CHECK(r.peak_rss_kb < 300 * 1024);
+  // A stray flow character (yaml-cpp's endless document loop) and a bad seed: refused too.
+  write_file(run + "/config.yaml", "run: {name: x, seed: [1]}\n");
+  CHECK(run_rlrun("report " + run).exit_code == 1);
+  write_file(run + "/config.yaml", "# broken\n, 300]\n");
+  CHECK(run_rlrun("report " + run).exit_code == 1);
+}

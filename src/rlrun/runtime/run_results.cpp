@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 
+#include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/runtime/experiment.hpp"
@@ -87,45 +88,50 @@ std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths) {
   return dirs;
 }
 
-RunResult read_run(const std::string& dir) {
-  RunResult r;
-  r.dir = dir;
+namespace {
+
+// The run's config.yaml: a run directory may come from anyone (docs/security.md), so it is read
+// with the same bounds as any untrusted config text (size, alias expansion, one document).
+// Fills seed and name; returns the resolved config without seed and out_dir (the group key).
+std::string read_run_config(const std::string& dir, RunResult& r) {
   const fs::path config = fs::path(dir) / "config.yaml";
   if (!fs::exists(config)) throw RuntimeFailure(dir + " has no config.yaml: not a run directory");
-  YAML::Node node = YAML::LoadFile(config.string());
-  if (node["run"]) {
-    if (node["run"]["seed"]) r.seed = node["run"]["seed"].as<uint64_t>();
-    if (node["run"]["name"]) r.name = node["run"]["name"].as<std::string>();
-    node["run"].remove("seed");
-    node["run"].remove("out_dir");
+  try {
+    const ConfigNode root = ConfigNode::load_file(config.string(), ConfigTrust::kUntrusted);
+    const ConfigNode run = root.child("run");
+    if (run.child("seed").defined()) r.seed = static_cast<uint64_t>(run.child("seed").as_int());
+    if (run.child("name").defined()) r.name = run.child("name").as_string();
+    YAML::Node node = YAML::Clone(root.yaml());
+    if (node["run"].IsMap()) {
+      node["run"].remove("seed");
+      node["run"].remove("out_dir");
+    }
+    return dump_yaml(node);
+  } catch (const ConfigError& e) {
+    throw RuntimeFailure(std::string(e.what()) + " (not a run directory written by rlrun?)");
   }
-  r.config_key = dump_yaml(node);
-  r.progress = read_columns(fs::path(dir) / "progress.csv");
-  // Wall time: the sessions' "trained|interrupted after N steps in S s" lines of log.txt added up
-  // (a resumed run has several), else progress.csv's whole seconds.
+}
+
+// The sessions' "trained|interrupted after N steps in S s" lines of log.txt added up (a resumed
+// run has several); NaN when there is none.
+double logged_wall_seconds(const std::string& dir) {
   std::ifstream log(fs::path(dir) / "log.txt");
   bool logged = false;
+  double seconds = 0;
   for (std::string line; std::getline(log, line);) {
     const size_t in = line.find(" steps in ");
     if (in == std::string::npos || (line.find("trained ") == std::string::npos &&
                                     line.find("interrupted after ") == std::string::npos))
       continue;
-    r.wall_seconds += number(line.substr(in + 10, line.find(' ', in + 10) - in - 10));
+    seconds += number(line.substr(in + 10, line.find(' ', in + 10) - in - 10));
     logged = true;
   }
-  if (!logged && r.progress.count("time/time_elapsed"))
-    r.wall_seconds = last_finite(r.progress["time/time_elapsed"]);
-  if (r.progress.count("time/total_timesteps")) r.timesteps = last_finite(r.progress["time/total_timesteps"]);
+  return logged ? seconds : kNaN;
+}
 
-  const auto evaluations = read_columns(fs::path(dir) / "evaluations.csv");
-  if (evaluations.count("mean_reward") && !evaluations.at("mean_reward").empty()) {
-    r.final_return = evaluations.at("mean_reward").back();
-    r.return_source = "eval";
-    if (evaluations.count("success_rate") && std::isfinite(evaluations.at("success_rate").back()))
-      r.success_rate = evaluations.at("success_rate").back();
-    return r;
-  }
-  // Else the last 100 training episodes over all monitor files, in the order they ended.
+// The mean of the last 100 training episodes over all monitor files, in the order they ended
+// (and their success rate when the monitor has is_success); source "none" without episodes.
+void monitor_return(const std::string& dir, RunResult& r) {
   std::vector<std::pair<double, double>> episodes;  // (t, r)
   std::vector<std::pair<double, double>> successes;
   for (const auto& entry : fs::directory_iterator(dir)) {
@@ -141,7 +147,7 @@ RunResult read_run(const std::string& dir) {
   if (episodes.empty()) {  // e.g. stopped before its first episode ended: curves only
     r.final_return = kNaN;
     r.return_source = "none";
-    return r;
+    return;
   }
   const auto mean_of_last = [](std::vector<std::pair<double, double>> v) {
     std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -153,6 +159,30 @@ RunResult read_run(const std::string& dir) {
   r.final_return = mean_of_last(episodes);
   r.return_source = "monitor";
   if (!successes.empty()) r.success_rate = mean_of_last(successes);
+}
+
+}  // namespace
+
+RunResult read_run(const std::string& dir) {
+  RunResult r;
+  r.dir = dir;
+  r.config_key = read_run_config(dir, r);
+  r.progress = read_columns(fs::path(dir) / "progress.csv");
+  // Wall time from log.txt, else progress.csv's whole seconds.
+  r.wall_seconds = logged_wall_seconds(dir);
+  if (std::isnan(r.wall_seconds))
+    r.wall_seconds = r.progress.count("time/time_elapsed") ? last_finite(r.progress["time/time_elapsed"]) : 0.0;
+  if (r.progress.count("time/total_timesteps")) r.timesteps = last_finite(r.progress["time/total_timesteps"]);
+  // The last evaluation when the run evaluated, else the last 100 training episodes.
+  const auto evaluations = read_columns(fs::path(dir) / "evaluations.csv");
+  if (evaluations.count("mean_reward") && !evaluations.at("mean_reward").empty()) {
+    r.final_return = evaluations.at("mean_reward").back();
+    r.return_source = "eval";
+    if (evaluations.count("success_rate") && std::isfinite(evaluations.at("success_rate").back()))
+      r.success_rate = evaluations.at("success_rate").back();
+    return r;
+  }
+  monitor_return(dir, r);
   return r;
 }
 
