@@ -177,6 +177,12 @@ TEST_CASE("sweep run --index: a run another process holds is left to it", "[swee
   CHECK(changed.output.find("was trained with other settings") != std::string::npos);
   CHECK(run_rlrun("sweep status " + manifest).output.find("(settings changed since it ran)") !=
         std::string::npos);
+  // A run directory's config.yaml is untrusted text: damaged (a stray ']' that made yaml-cpp
+  // loop forever) it is a mismatch, refused the same way, at once.
+  std::ofstream(dir / "out/runs/learning_rate=lin_0.001/seed1/config.yaml") << "# x\n, 300]\n";
+  const auto damaged = run_rlrun("sweep run " + manifest + " --index 0");
+  CHECK(damaged.exit_code == 2);
+  CHECK(damaged.output.find("was trained with other settings") != std::string::npos);
   fs::remove_all(dir / "out/runs/learning_rate=lin_0.001/seed1");
   CHECK(run_rlrun("sweep run " + manifest + " --index 0").exit_code == 0);
 }

@@ -315,8 +315,16 @@ RunState run_state(const SweepRun& run) {
 bool run_config_matches(const SweepRun& run) {
   const fs::path trained = fs::path(run.run_dir) / "config.yaml";
   if (!fs::exists(trained)) return true;
-  // Both are dump_yaml() of a resolved experiment; compare them parsed (comments aside).
-  return dump_yaml(YAML::LoadFile(trained.string())) == dump_yaml(YAML::LoadFile(run.config));
+  // Both are dump_yaml() of a resolved experiment; compare them parsed (comments aside). Both
+  // are untrusted (a run directory, a manifest's config): read within the config bounds, and a
+  // file that cannot be read does not match.
+  try {
+    const ConfigNode a = ConfigNode::load_file(trained.string(), ConfigTrust::kUntrusted);
+    const ConfigNode b = ConfigNode::load_file(run.config, ConfigTrust::kUntrusted);
+    return dump_yaml(a.yaml()) == dump_yaml(b.yaml());
+  } catch (const ConfigError&) {
+    return false;
+  }
 }
 
 const char* to_string(RunState state) {
