@@ -25,7 +25,11 @@ NamedPolicy named_policy(const std::string& name, Env& env, const Registry& regi
       if (policy.name == name) {
         std::string label = name;
         for (const auto& [key, value] : options.settings)
-          if (key == "green_time") label += " " + std::to_string(static_cast<int>(value)) + " s";
+          if (key == "green_time") {  // appended in pieces: GCC 12 -Wrestrict false positive
+            label += ' ';
+            label += std::to_string(static_cast<int>(value));
+            label += " s";
+          }
         return {policy.make(env, options), label};
       }
       offered += ", " + policy.name;

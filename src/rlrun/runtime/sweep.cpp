@@ -171,7 +171,11 @@ std::vector<std::string> labels(const std::vector<Combination>& combos) {
       const std::string short_name = last_component(o.key);
       const bool unique = std::count(short_names.begin(), short_names.end(), short_name) <=
                           static_cast<long>(combos.size());
-      label += (label.empty() ? "" : "_") + safe(unique ? short_name : o.key) + "=" + safe(o.value);
+      // Appended piece by piece: `("" or "_") + ...` trips GCC 12's -Wrestrict false positive.
+      if (!label.empty()) label += '_';
+      label += safe(unique ? short_name : o.key);
+      label += '=';
+      label += safe(o.value);
     }
     if (label.empty()) label = "base";
     if (uses[label]++ > 0) label += "_" + std::to_string(uses[label]);
