@@ -89,4 +89,25 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// "Billion laughs" YAML text (about 1 KB): a0 lists ten values, each of a1..a9 ten references
+// to the level below, so the document expands to 10^10 values. Built by appending only (GCC 12
+// warns -Wrestrict, falsely, about `"literal" + std::to_string(...)` chains).
+inline std::string yaml_alias_bomb() {
+  std::string text = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i <= 9; ++i) {
+    const std::string level = std::to_string(i), below = std::to_string(i - 1);
+    text += 'a';
+    text += level;
+    text += ": &a";
+    text += level;
+    text += " [";
+    for (int k = 0; k < 10; ++k) {
+      text += "*a";
+      text += below;
+      text += k < 9 ? ", " : "]\n";
+    }
+  }
+  return text;
+}
+
 }  // namespace rlrun::testing

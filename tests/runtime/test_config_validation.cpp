@@ -135,14 +135,7 @@ TEST_CASE("validation: sizes that would take the machine are refused with their 
   big += "0]\n";
   CHECK(has(refused(dir, write_config(dir, "big.yaml", big)), "big.yaml: larger than 1 MiB"));
   // Aliases that expand to billions of values.
-  std::string laughs = "env: {id: CartPole-v1}\nalgo: {id: PPO}\na0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
-  for (int i = 1; i < 10; ++i)
-    laughs += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" + std::to_string(i - 1) +
-              ", *a" + std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" +
-              std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" +
-              std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" +
-              std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" +
-              std::to_string(i - 1) + "]\n";
+  const std::string laughs = "env: {id: CartPole-v1}\nalgo: {id: PPO}\n" + yaml_alias_bomb();
   CHECK(has(refused(dir, write_config(dir, "laughs.yaml", laughs)), "more than 100000 YAML values"));
 }
 

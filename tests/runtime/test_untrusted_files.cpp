@@ -208,14 +208,8 @@ TEST_CASE("untrusted: rlrun report reads a run's config.yaml within the config b
   TempDir dir("untrusted_report");
   const std::string run = dir / "run";
   fs::create_directories(run);
-  // An alias bomb: 9 levels of 10 references is 10^9 nodes once expanded (dump_yaml of it,
-  // as report groups runs by their config, would never finish).
-  std::string bomb = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
-  for (int i = 1; i <= 9; ++i) {
-    const std::string prev = "*a" + std::to_string(i - 1);
-    bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
-    for (int k = 0; k < 10; ++k) bomb += prev + (k < 9 ? ", " : "]\n");
-  }
+  // An alias bomb (dump_yaml of it, as report groups runs by their config, would never end).
+  const std::string bomb = yaml_alias_bomb();
   write_file(run + "/config.yaml", "run: {name: x, seed: 1}\n" + bomb);
   const auto r = run_command_measured("timeout 60 " + std::string(RLRUN_BINARY) + " report " + run);
   INFO(r.output);
