@@ -63,13 +63,11 @@ std::unique_ptr<Algorithm> make_model_algorithm(const ModelFile& model,
   if (action_space.describe() != model.meta.action_space)
     throw RuntimeFailure(model.path + ": the model was trained on actions " +
                          model.meta.action_space + " but the env has " + action_space.describe());
-  const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
-  if (!entry) throw RuntimeFailure(model.path + ": unknown algorithm " + experiment.algo.id);
   const AlgorithmSetup setup{observation_space, action_space, 1, experiment.run.seed};
   try {
-    return entry->make(experiment.algo.params, setup);
-  } catch (const std::invalid_argument& e) {
-    throw RuntimeFailure(model.path + ":config.yaml: " + e.what());
+    return make_algorithm(experiment, registry, setup);
+  } catch (const ConfigError& e) {
+    throw RuntimeFailure(e.what());  // the file's config, not the user's: exit 1
   }
 }
 

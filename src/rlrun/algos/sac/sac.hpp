@@ -122,7 +122,6 @@ class SAC : public OffPolicyAlgorithm {
   void on_episode_end(int env) override { acting_.on_episode_end(env); }
 
   Config config_;
-  int features_dim_ = 0;  // network input per observation (ObservationEncoder)
   int action_dim_ = 0;
   Rng train_rng_, predict_rng_;
   SacActor actor_;

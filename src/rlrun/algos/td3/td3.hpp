@@ -123,7 +123,6 @@ class TD3 : public OffPolicyAlgorithm {
   void on_episode_end(int env) override { acting_.on_episode_end(env); }
 
   Config config_;
-  int features_dim_ = 0;  // network input per observation (ObservationEncoder)
   int action_dim_ = 0;
   Rng smoothing_rng_;
   Td3Actor actor_, actor_target_;
