@@ -56,7 +56,7 @@ bool is_config_file(const std::string& arg) {
 
 // An id: the registered env with `--set` kwargs and its TimeLimit, as gymnasium.make builds it.
 CheckTarget target_from_id(const std::string& id, const std::vector<std::string>& overrides,
-                           const Registry& registry) {
+                           const Registry& registry, const EnvContext& context) {
   // Path "" so that errors name the key as typed after --set.
   ConfigNode kwargs = ConfigNode::from_yaml(YAML::Node(YAML::NodeType::Map), "command line");
   for (const auto& o : overrides) kwargs.apply_override(o);
@@ -67,7 +67,7 @@ CheckTarget target_from_id(const std::string& id, const std::vector<std::string>
   const AnyConfig config = entry.parse(kwargs);
   t.params = flow(config.resolved());
   try {
-    t.env = entry.make(config);
+    t.env = entry.build(config, context);
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     throw UsageError(what.rfind(id, 0) == 0 ? what : id + ": " + what);
@@ -88,7 +88,7 @@ CheckTarget target_from_config(const std::string& path, const std::vector<std::s
   t.description = entry.description;
   t.params = flow(exp.resolved["env"]["kwargs"]);
   t.time_limit = exp.env.section.max_episode_steps.value_or(entry.max_episode_steps);
-  t.env = entry.make(exp.env.kwargs);
+  t.env = entry.build(exp.env.kwargs, EnvContext{exp.env.section.python.value});
   if (t.time_limit > 0) t.env = std::make_unique<TimeLimit>(std::move(t.env), t.time_limit);
   for (const WrapperSpec& w : exp.env.wrappers)
     t.env = registry.find_wrapper(w.id)->make(std::move(t.env), w.params);
@@ -144,6 +144,7 @@ Action add_check_env(CLI::App& app, Registry& registry) {
     uint64_t seed = 0;
     int steps = 1000;
     int episodes = 20;
+    std::string python;
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -155,6 +156,9 @@ Action add_check_env(CLI::App& app, Registry& registry) {
                   "with an id: an env parameter, e.g. --set step_size=0.1; with a file: any "
                   "config value, e.g. --set env.kwargs.step_size=0.1 (repeatable)")
       ->allow_extra_args(false);
+  sub->add_option("--python", options->python,
+                  "interpreter of a python:/gymnasium: id (default: python3 on PATH; for a "
+                  "file: its env.python)");
   sub->add_option("--seed", options->seed, "seed of the checks and the random episodes")
       ->check(seed_value());
   sub->add_option("--steps", options->steps, "random steps per determinism rollout")
@@ -165,7 +169,10 @@ Action add_check_env(CLI::App& app, Registry& registry) {
     load_plugin_options(options->plugins, registry);
     CheckTarget t = is_config_file(options->target)
                         ? target_from_config(options->target, options->overrides, registry)
-                        : target_from_id(options->target, options->overrides, registry);
+                        : target_from_id(options->target, options->overrides, registry,
+                                         options->python.empty()
+                                             ? EnvContext{}
+                                             : EnvContext{options->python});
     Env& env = *t.env;
     std::string keys;
     for (const auto& k : env.info().keys()) keys += (keys.empty() ? "" : ", ") + k;

@@ -112,7 +112,7 @@ int evaluate_without_model(const Options& o, Registry& registry) {
   if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
   EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
                                            registry, "", unix_time_now())
-                                : env_by_id(o.env_id, registry);
+                                : env_by_id(o.env_id, registry, o.overrides);
   const EvalResult r =
       evaluate_policy(named_policy(o.policy, *env, registry, policy_options(o)).act, *env,
                       o.episodes, o.seed);

@@ -78,7 +78,6 @@ int run(const Options& o, Registry& registry) {
         "--env ID --policy P, or --from-obs PATH --env ID");
   if (o.output.empty() && o.frames.empty())
     throw UsageError("record needs --output video.mp4 and/or --frames DIR");
-  if (!o.overrides.empty() && o.config.empty()) throw UsageError("--set only applies to --config");
 
   RecordOptions record;
   record.video_path = o.output;
@@ -93,7 +92,7 @@ int run(const Options& o, Registry& registry) {
 
   if (!o.from_obs.empty()) {
     if (o.env_id.empty()) throw UsageError("--from-obs needs --env ID (the env that logged them)");
-    EnvPtr env = env_by_id(o.env_id, registry);
+    EnvPtr env = env_by_id(o.env_id, registry, o.overrides);
     const RecordResult r = record_observations(*env, observation_log_files(o.from_obs), record);
     print_summary(r, "recorded observation log " + o.from_obs + " of " + o.env_id, o);
     return r.interrupted ? 130 : 0;
@@ -115,7 +114,7 @@ int run(const Options& o, Registry& registry) {
     const Experiment experiment = load_experiment(o.config, o.overrides, registry);
     env = make_env(experiment.env, registry, "", unix_time_now());
   } else {
-    env = env_by_id(o.env_id, registry);
+    env = env_by_id(o.env_id, registry, o.overrides);
   }
 
   PolicyFn act;

@@ -1,5 +1,6 @@
 #include "rlrun/env/env_checker.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -20,9 +21,15 @@ bool identical(std::span<const float> a, std::span<const float> b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 
+// Keys are only ever added (an env may declare one when it first reports it, as Python envs
+// do): values of the keys both records know must be bit-identical, the others absent.
 bool identical_values(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  const size_t common = std::min(a.size(), b.size());
+  if (common > 0 && std::memcmp(a.data(), b.data(), common * sizeof(double)) != 0) return false;
+  const std::vector<double>& longer = a.size() > b.size() ? a : b;
+  for (size_t i = common; i < longer.size(); ++i)
+    if (!std::isnan(longer[i])) return false;
+  return true;
 }
 
 class Checker {

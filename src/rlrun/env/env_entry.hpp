@@ -26,6 +26,12 @@ struct PolicyEntry {
   std::function<PolicyFn(Env& env, const PolicyOptions& options)> make;
 };
 
+// What the experiment (not the env's kwargs) decides about how an env is built: the
+// `env.python` interpreter of Python envs.
+struct EnvContext {
+  std::string python = "python3";
+};
+
 struct EnvEntry {
   std::string id;
   std::string description;
@@ -35,6 +41,23 @@ struct EnvEntry {
   std::function<std::vector<FieldDoc>()> params;
   std::vector<PolicyEntry> policies;
   std::string plugin;  // the library that registered it ("" for built-in envs)
+
+  // Set instead of `make` by envs that need the EnvContext (Python envs).
+  std::function<EnvPtr(const AnyConfig& kwargs, const EnvContext& context)> make_in_context;
+  // A family of ids: `id` is a prefix ("python:") and expand(full id) gives the entry of one
+  // member ("python:my_pkg.my_mod:MyEnv"), or throws std::invalid_argument saying why the id
+  // is malformed. Registry::find_env expands on first use.
+  std::function<EnvEntry(const std::string& id)> expand;
+  // The id names code that building the env runs (a Python class): an id from a file rlrun
+  // does not trust is refused unless `--set env.id=...` vouches for it (docs/security.md).
+  bool runs_named_code = false;
+  // Each step waits on another process (a Python worker): a VecEnv of these steps its copies
+  // on threads so that the processes run in parallel.
+  bool steps_in_other_process = false;
+
+  EnvPtr build(const AnyConfig& kwargs, const EnvContext& context) const {
+    return make_in_context ? make_in_context(kwargs, context) : make(kwargs);
+  }
 };
 
 using EnvEntries = std::vector<EnvEntry>;

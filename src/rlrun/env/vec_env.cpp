@@ -10,7 +10,7 @@
 
 namespace rlrun {
 
-VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
+VecEnv::VecEnv(std::vector<EnvPtr> envs, int step_threads) : envs_(std::move(envs)) {
   if (envs_.empty()) throw std::invalid_argument("VecEnv: needs at least one env");
   for (size_t i = 0; i < envs_.size(); ++i) {
     if (!envs_[i]) throw std::invalid_argument("VecEnv: env " + std::to_string(i) + " is null");
@@ -45,6 +45,28 @@ VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
   agent_results_.resize(most_agents);
   infos_.resize(envs_.size());
   for (int c = 0; c < num_copies(); ++c) copy_info(c);
+  for (EnvPtr& env : envs_) split_.push_back(asynchronous_steps(*env));
+  if (most_agents > 1 || std::find(split_.begin(), split_.end(), nullptr) != split_.end())
+    split_.clear();
+  const int threads = std::min(step_threads, num_copies());
+  if (threads > 1 && most_agents == 1 && split_.empty())
+    threads_ = std::make_unique<ParallelSlices>(threads);
+}
+
+VecEnv::VecEnv(VecEnv&&) noexcept = default;
+VecEnv& VecEnv::operator=(VecEnv&&) noexcept = default;
+VecEnv::~VecEnv() = default;
+
+template <class Fn>
+void VecEnv::for_each_copy(const Fn& fn) {
+  if (!threads_) {
+    for (int c = 0; c < num_copies(); ++c) fn(c);
+    return;
+  }
+  const int slices = threads_->slices();
+  threads_->run([&](int s) {
+    for (int c = s; c < num_copies(); c += slices) fn(c);
+  });
 }
 
 void VecEnv::seed(uint64_t seed) {
@@ -52,13 +74,7 @@ void VecEnv::seed(uint64_t seed) {
 }
 
 const Eigen::MatrixXf& VecEnv::reset() {
-  for (int c = 0; c < num_copies(); ++c) {
-    // A copy's agents' columns are contiguous: one agent-major span for all of them.
-    const int agents = envs_[c]->num_agents();
-    envs_[c]->reset(seeds_[c], std::span<float>(obs_.col(first_slot_[c]).data(),
-                                                static_cast<size_t>(obs_dim_) * agents));
-    copy_info(c);
-  }
+  for_each_copy([this](int c) { reset_copy(c); });
   std::fill(terminated_.begin(), terminated_.end(), 0);
   std::fill(truncated_.begin(), truncated_.end(), 0);
   rewards_.setZero();
@@ -68,31 +84,52 @@ const Eigen::MatrixXf& VecEnv::reset() {
   return obs_;
 }
 
+void VecEnv::reset_copy(int c) {
+  // A copy's agents' columns are contiguous: one agent-major span for all of them.
+  const int agents = envs_[c]->num_agents();
+  envs_[c]->reset(seeds_[c], std::span<float>(obs_.col(first_slot_[c]).data(),
+                                              static_cast<size_t>(obs_dim_) * agents));
+  copy_info(c);
+}
+
 void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
   if (actions.rows() != act_dim_ || actions.cols() != num_envs())
     throw std::invalid_argument("VecEnv::step: actions must be " + std::to_string(act_dim_) +
                                 " x " + std::to_string(num_envs()) + ", got " +
                                 std::to_string(actions.rows()) + " x " +
                                 std::to_string(actions.cols()));
-  for (int c = 0; c < num_copies(); ++c) {
-    if (envs_[c]->num_agents() > 1) {
-      step_agents(c, actions);
-      continue;
-    }
-    const int i = first_slot_[c];
-    const std::span<float> obs(obs_.col(i).data(), obs_dim_);
-    const StepResult r =
-        envs_[c]->step(std::span<const float>(actions.col(i).data(), act_dim_), obs);
-    rewards_[i] = r.reward;
-    terminated_[i] = r.terminated;
-    truncated_[i] = r.truncated;
-    copy_info(c);
-    if (r.terminated || r.truncated) {
-      final_obs_.col(i) = obs_.col(i);
-      envs_[c]->reset(std::nullopt, obs);
-    } else {
-      final_obs_.col(i).setConstant(std::numeric_limits<float>::quiet_NaN());
-    }
+  if (!split_.empty()) {
+    for (int c = 0; c < num_copies(); ++c)
+      split_[c]->start_step(std::span<const float>(actions.col(c).data(), act_dim_));
+    for (int c = 0; c < num_copies(); ++c)
+      finish_copy(c, split_[c]->finish_step(std::span<float>(obs_.col(c).data(), obs_dim_)));
+    return;
+  }
+  for_each_copy([&](int c) { step_copy(c, actions); });
+}
+
+void VecEnv::step_copy(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {
+  if (envs_[c]->num_agents() > 1) {
+    step_agents(c, actions);
+    return;
+  }
+  const int i = first_slot_[c];
+  finish_copy(c, envs_[c]->step(std::span<const float>(actions.col(i).data(), act_dim_),
+                                std::span<float>(obs_.col(i).data(), obs_dim_)));
+}
+
+void VecEnv::finish_copy(int c, const StepResult& r) {
+  const int i = first_slot_[c];
+  const std::span<float> obs(obs_.col(i).data(), obs_dim_);
+  rewards_[i] = r.reward;
+  terminated_[i] = r.terminated;
+  truncated_[i] = r.truncated;
+  copy_info(c);
+  if (r.terminated || r.truncated) {
+    final_obs_.col(i) = obs_.col(i);
+    envs_[c]->reset(std::nullopt, obs);
+  } else {
+    final_obs_.col(i).setConstant(std::numeric_limits<float>::quiet_NaN());
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/wrappers/monitor.hpp"
@@ -26,12 +27,19 @@ const EnvEntry& env_entry(const EnvSpec& spec, const Registry& registry) {
   return *entry;
 }
 
-}  // namespace
-
-EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
-                double t_start, bool tap_observations, bool append_monitor) {
+// The registered env alone (a Python env's worker starts here and answers while the caller
+// goes on: make_vec_env starts every copy before it wraps any).
+EnvPtr make_registered_env(const EnvSpec& spec, const Registry& registry) {
   const EnvEntry& entry = env_entry(spec, registry);
-  EnvPtr env = entry.make(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs);
+  return entry.build(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs,
+                     EnvContext{spec.section.python.value});
+}
+
+// TimeLimit, Monitor, the user's wrappers and the action adapter around a registered env.
+EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const Registry& registry,
+                const std::string& monitor_path, double t_start, bool tap_observations,
+                bool append_monitor) {
+  const EnvEntry& entry = env_entry(spec, registry);
   const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
   env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start,
@@ -47,6 +55,14 @@ EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string
     env = wrapper->make(std::move(env), w.params);
   }
   return adapt_action_space(std::move(env), spec, registry);
+}
+
+}  // namespace
+
+EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
+                double t_start, bool tap_observations, bool append_monitor) {
+  return wrap_env(make_registered_env(spec, registry), spec, registry, monitor_path, t_start,
+                  tap_observations, append_monitor);
 }
 
 EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& registry) {
@@ -75,11 +91,18 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                     const std::string& monitor_dir, int tap_env, bool append_monitor) {
   std::vector<EnvPtr> envs;
   const double t_start = unix_time_now();
+  for (int i = 0; i < n_envs; ++i) envs.push_back(make_registered_env(spec, registry));
   for (int i = 0; i < n_envs; ++i) {
     const std::string path = monitor_dir.empty() ? "" : monitor_dir + "/" + monitor_file_name(i);
-    envs.push_back(make_env(spec, registry, path, t_start, i == tap_env, append_monitor));
+    envs[i] = wrap_env(std::move(envs[i]), spec, registry, path, t_start, i == tap_env,
+                       append_monitor);
   }
-  return VecEnv(std::move(envs));
+  // Envs whose steps wait on other processes step on threads, so those processes run in
+  // parallel (SB3's SubprocVecEnv); one thread per core is enough to keep every core busy.
+  const int threads = env_entry(spec, registry).steps_in_other_process
+                          ? std::min(n_envs, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())))
+                          : 1;
+  return VecEnv(std::move(envs), threads);
 }
 
 std::string monitor_file_name(int i) { return std::to_string(i) + ".monitor.csv"; }

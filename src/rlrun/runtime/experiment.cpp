@@ -98,6 +98,10 @@ void parse_env(const ConfigNode& env, const Registry& registry, Experiment& exp,
                            "not trust (docs/security.md). If you trust it, pass --plugin " +
                            exp.plugins.front());
     const EnvEntry& found = registry.env(exp.env.id, env.child("id"));
+    if (found.runs_named_code && !env.child("id").trusted())
+      env.child("id").fail("env '" + exp.env.id + "' runs Python code named in " + env.origin() +
+                           ", a file rlrun does not trust (docs/security.md). If you trust that "
+                           "code, pass --set env.id=" + exp.env.id);
     exp.env.kwargs = found.parse(env.child("kwargs"));
   });
   const ConfigNode wrappers = env.child("wrappers");
@@ -273,13 +277,29 @@ Experiment load_experiment(const std::string& path, const std::vector<std::strin
 }
 
 EnvSpec default_env_spec(const std::string& id, const Registry& registry,
-                         const std::string& origin) {
-  EnvSpec spec;
-  spec.id = id;
-  spec.where = origin;
-  const ConfigNode id_node = ConfigNode::from_yaml(YAML::Node(id), origin, "env.id");
-  spec.kwargs = registry.env(id, id_node).parse(ConfigNode());
-  return spec;
+                         const std::string& origin, const std::vector<std::string>& overrides) {
+  if (overrides.empty()) {
+    EnvSpec spec;
+    spec.id = id;
+    spec.where = origin;
+    const ConfigNode id_node = ConfigNode::from_yaml(YAML::Node(id), origin, "env.id");
+    spec.kwargs = registry.env(id, id_node).parse(ConfigNode());
+    return spec;
+  }
+  // `--env ID --set env.python=... --set env.kwargs.x=...`: the env section those make.
+  YAML::Node root(YAML::NodeType::Map);
+  root["env"]["id"] = id;
+  ConfigNode node = ConfigNode::from_yaml(root, origin);
+  for (const std::string& o : overrides) {
+    if (o.rfind("env.", 0) != 0)
+      throw ConfigError(origin + ": --set " + o + ": with --env ID only env.* settings apply");
+    node.apply_override(o);
+  }
+  Experiment exp;
+  Problems problems;
+  parse_env(node.child("env"), registry, exp, problems);
+  problems.throw_if_any();
+  return exp.env;
 }
 
 std::string dump_yaml(const YAML::Node& node) {

@@ -16,6 +16,7 @@
 #include "rlrun/core/any_config.hpp"
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_node.hpp"
+#include "rlrun/core/trusted_values.hpp"
 #include "rlrun/runtime/checkpoint_callback.hpp"
 #include "rlrun/runtime/eval_callback.hpp"
 #include "rlrun/runtime/obs_log_callback.hpp"
@@ -60,6 +61,7 @@ struct EnvSectionConfig {
   int n_envs = 1;                          // parallel env copies (SB3 n_envs)
   std::optional<int> max_episode_steps;    // override the registered time limit
   bool auto_wrap = false;                  // add the action-space wrapper the algorithm needs
+  ProgramPath python{"python3"};           // interpreter of python:/gymnasium: envs
   template <class V>
   void visit(V& v) {
     v("n_envs", n_envs, "number of env copies stepped together", in_range(1, kMaxEnvs));
@@ -68,6 +70,9 @@ struct EnvSectionConfig {
       at_least(1));
     v("auto_wrap", auto_wrap,
       "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm needs it");
+    v("python", python,
+      "Python interpreter for python:/gymnasium: envs (a name on PATH or a path, e.g. a "
+      "virtualenv's bin/python)");
   }
 };
 
@@ -123,10 +128,12 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry);
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
                            Registry& registry, ConfigTrust trust = ConfigTrust::kUser);
 
-// The spec of env `id` with its default parameters (env_by_id, tests). `origin` names it in
-// messages. Throws ConfigError for an unknown id.
+// The spec of env `id` with its default parameters (env_by_id, tests), or with `env.*`
+// overrides from the command line (`--set env.python=...`). `origin` names it in messages.
+// Throws ConfigError for an unknown id or a bad override.
 EnvSpec default_env_spec(const std::string& id, const Registry& registry,
-                         const std::string& origin);
+                         const std::string& origin,
+                         const std::vector<std::string>& overrides = {});
 
 // The experiment's algorithm, fresh, for envs of `setup`'s spaces (the trainer's, and the probes
 // that size what a checkpoint may hold). Throws ConfigError (file:line:col of the algo section)

@@ -94,7 +94,9 @@ class FrameOutput {
 RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptions& options) {
   if (options.episodes < 1) throw UsageError("episodes must be >= 1");
   RecordResult result;
-  FrameOutput output(env, options, result);
+  // Made after the first reset: an env may know its frame size only once it has a state to
+  // draw (a Python env's render() before reset may return None).
+  std::unique_ptr<FrameOutput> output;
   const int obs_dim = env.observation_space().flat_dim();
   Eigen::MatrixXf obs(obs_dim, 1);
   Eigen::MatrixXf action;
@@ -122,16 +124,17 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
                                     "return " + format("%.2f", episode_return)};
   };
   auto draw = [&]() {
-    if (!env.render(output.frame())) throw UsageError(env.id() + " cannot render frames");
+    if (!env.render(output->frame())) throw UsageError(env.id() + " cannot render frames");
   };
 
   for (int episode = 0; episode < options.episodes && !result.interrupted; ++episode) {
     env.reset(episode == 0 ? options.seed : std::nullopt,
               {obs.data(), static_cast<size_t>(obs_dim)});
+    if (!output) output = std::make_unique<FrameOutput>(env, options, result);
     double episode_return = 0;
     int64_t length = 0;
     draw();
-    output.emit(overlay(episode, 0, 0.0));
+    output->emit(overlay(episode, 0, 0.0));
     while (true) {
       if (options.keep_going && !options.keep_going()) {
         result.interrupted = true;
@@ -143,7 +146,7 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
       episode_return += step.reward;
       ++length;
       draw();
-      output.emit(overlay(episode, length, shown_return(episode_return)));
+      output->emit(overlay(episode, length, shown_return(episode_return)));
       if (step.terminated || step.truncated) {
         const Info& info = env.info();
         EvalResult& r = result.episodes;
@@ -154,7 +157,7 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
       }
     }
   }
-  output.finish();
+  if (output) output->finish();
   return result;
 }
 

@@ -4,6 +4,7 @@
 // algorithms), adds the plugins the command line names, and passes it down; `rlrun list`
 // prints it.
 // Lookups of unknown ids fail with the YAML position and the closest registered id.
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -49,7 +50,11 @@ class Registry {
   void add(AlgorithmEntry entry) { algorithms_.push_back(std::move(entry)); }
 
   // `id_node` is the YAML node holding the id, for the error position.
+  // Ids of a family (EnvEntry::expand, e.g. python:module:Class) are expanded on first use.
   const EnvEntry& env(const std::string& id, const ConfigNode& id_node) const {
+    std::string why;
+    if (const EnvEntry* e = find_env(id, &why)) return *e;
+    if (!why.empty()) id_node.fail(why);
     return find(envs_, id, id_node, "environment");
   }
   const WrapperEntry& wrapper(const std::string& id, const ConfigNode& id_node) const {
@@ -58,7 +63,24 @@ class Registry {
   const AlgorithmEntry& algorithm(const std::string& id, const ConfigNode& id_node) const {
     return find(algorithms_, id, id_node, "algorithm");
   }
-  const EnvEntry* find_env(const std::string& id) const { return find_or_null(envs_, id); }
+  // nullptr for an unknown id; `why` (if given) says what is wrong with a malformed family id.
+  const EnvEntry* find_env(const std::string& id, std::string* why = nullptr) const {
+    if (const EnvEntry* e = find_or_null(envs_, id); e && !e->expand) return e;
+    if (const EnvEntry* e = find_or_null(expanded_, id)) return e;
+    for (const EnvEntry& family : envs_) {
+      if (!family.expand || id.size() < family.id.size() || id.compare(0, family.id.size(), family.id) != 0)
+        continue;
+      try {
+        expanded_.push_back(family.expand(id));
+      } catch (const std::invalid_argument& e) {
+        if (why) *why = e.what();
+        return nullptr;
+      }
+      expanded_.back().id = id;
+      return &expanded_.back();
+    }
+    return nullptr;
+  }
   const WrapperEntry* find_wrapper(const std::string& id) const {
     return find_or_null(wrappers_, id);
   }
@@ -71,8 +93,9 @@ class Registry {
   const std::vector<AlgorithmEntry>& algorithms() const { return algorithms_; }
 
  private:
-  template <class Entry>
-  static const Entry* find_or_null(const std::vector<Entry>& entries, const std::string& id) {
+  template <class Entries>
+  static const typename Entries::value_type* find_or_null(const Entries& entries,
+                                                          const std::string& id) {
     for (const auto& e : entries)
       if (e.id == id) return &e;
     return nullptr;
@@ -88,6 +111,9 @@ class Registry {
   }
 
   std::vector<EnvEntry> envs_;
+  // Family members built by find_env (a deque: entries keep their address). Lookups happen
+  // while an experiment is read, on one thread.
+  mutable std::deque<EnvEntry> expanded_;
   std::vector<WrapperEntry> wrappers_;
   std::vector<AlgorithmEntry> algorithms_;
 };

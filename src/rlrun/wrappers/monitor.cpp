@@ -67,6 +67,11 @@ void Monitor::read_own_state(const StateReader& in) {
 }
 
 void Monitor::copy_inner_info() {
+  // Keys an env declares after it was built (a Python env learns its info keys from the
+  // dicts it returns) are forwarded from then on.
+  const auto& keys = inner_->info().keys();
+  for (size_t i = inner_to_own_.size(); i < keys.size(); ++i)
+    inner_to_own_.push_back(info_.add_key(keys[i]));
   const auto& values = inner_->info().values();
   for (size_t i = 0; i < inner_to_own_.size(); ++i) info_.set(inner_to_own_[i], values[i]);
   info_.set(episode_r_, Info::kAbsent);
@@ -85,6 +90,19 @@ void Monitor::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 StepResult Monitor::step(std::span<const float> action, std::span<float> obs) {
   require_not_ended();
   const StepResult result = inner_->step(action, obs);
+  account(result.reward, result.terminated || result.truncated);
+  return result;
+}
+
+bool Monitor::steps_asynchronously() const { return asynchronous_steps(*inner_) != nullptr; }
+
+void Monitor::start_step(std::span<const float> action) {
+  require_not_ended();
+  asynchronous_steps(*inner_)->start_step(action);
+}
+
+StepResult Monitor::finish_step(std::span<float> obs) {
+  const StepResult result = asynchronous_steps(*inner_)->finish_step(obs);
   account(result.reward, result.terminated || result.truncated);
   return result;
 }

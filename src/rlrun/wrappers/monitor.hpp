@@ -15,11 +15,12 @@
 
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/float_format.hpp"
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
 
-class Monitor : public Wrapper {
+class Monitor : public Wrapper, public SplitStep {
  public:
   // `path` empty: no file, statistics only. `t_start` is Unix time in seconds. `append`
   // continues an existing file of a resumed run (no new header).
@@ -31,6 +32,10 @@ class Monitor : public Wrapper {
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // The two halves of step() (env/split_step.hpp), forwarded to the inner env.
+  bool steps_asynchronously() const override;
+  void start_step(std::span<const float> action) override;
+  StepResult finish_step(std::span<float> obs) override;
   void step_agents(std::span<const float> actions, std::span<float> obs,
                    std::span<StepResult> results) override;
   const Info& info() const override { return info_; }

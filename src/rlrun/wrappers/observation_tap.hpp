@@ -6,17 +6,30 @@
 #include <algorithm>
 #include <vector>
 
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
 
-class ObservationTap : public Wrapper {
+class ObservationTap : public Wrapper, public SplitStep {
  public:
   explicit ObservationTap(EnvPtr inner)
       : Wrapper(std::move(inner)), last_(inner_->observation_space().flat_dim(), 0.0f) {}
 
   StepResult step(std::span<const float> action, std::span<float> obs) override {
     const StepResult result = inner_->step(action, obs);
+    std::copy(obs.begin(), obs.end(), last_.begin());
+    return result;
+  }
+
+  bool steps_asynchronously() const override {
+    return asynchronous_steps(*inner_) != nullptr;
+  }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(action);
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    const StepResult result = asynchronous_steps(*inner_)->finish_step(obs);
     std::copy(obs.begin(), obs.end(), last_.begin());
     return result;
   }

@@ -29,10 +29,7 @@ void TimeLimit::step_agents(std::span<const float> actions, std::span<float> obs
 }
 
 StepResult TimeLimit::step(std::span<const float> action, std::span<float> obs) {
-  StepResult result = inner_->step(action, obs);
-  ++elapsed_steps_;
-  if (elapsed_steps_ >= max_episode_steps_) result.truncated = true;
-  return result;
+  return count_step(inner_->step(action, obs));
 }
 
 }  // namespace rlrun

@@ -5,11 +5,12 @@
 #include <optional>
 #include <span>
 
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
 
-class TimeLimit : public Wrapper {
+class TimeLimit : public Wrapper, public SplitStep {
  public:
   // Throws std::invalid_argument unless max_episode_steps > 0 (Gymnasium asserts it).
   TimeLimit(EnvPtr inner, int max_episode_steps);
@@ -18,6 +19,17 @@ class TimeLimit : public Wrapper {
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   void step_agents(std::span<const float> actions, std::span<float> obs,
                    std::span<StepResult> results) override;
+
+  // The two halves of step() (env/split_step.hpp), forwarded to the inner env.
+  bool steps_asynchronously() const override {
+    return asynchronous_steps(*inner_) != nullptr;
+  }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(action);
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    return count_step(asynchronous_steps(*inner_)->finish_step(obs));
+  }
 
   int max_episode_steps() const { return max_episode_steps_; }
   // Steps taken since the last reset().
@@ -32,6 +44,12 @@ class TimeLimit : public Wrapper {
   }
 
  private:
+  StepResult count_step(StepResult result) {
+    ++elapsed_steps_;
+    if (elapsed_steps_ >= max_episode_steps_) result.truncated = true;
+    return result;
+  }
+
   int max_episode_steps_;
   int elapsed_steps_ = 0;
 };

@@ -58,16 +58,6 @@ bool process_alive(pid_t pid) {
 
 }  // namespace
 
-std::string find_executable(const std::string& binary) {
-  const auto executable = [](const std::string& path) { return access(path.c_str(), X_OK) == 0; };
-  if (binary.find('/') != std::string::npos) return executable(binary) ? binary : "";
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  for (std::string dir; std::getline(dirs, dir, ':');)
-    if (!dir.empty() && executable(dir + "/" + binary)) return dir + "/" + binary;
-  return "";
-}
-
 SumoProcess::SumoProcess(const Options& options)
     : dir_("rlrun-sumo-", PrivateTempDir::RemoveStale::kYes), label_(next_label()) {
   // A socket whose SUMO has gone must fail with an error (reported with SUMO's output), not

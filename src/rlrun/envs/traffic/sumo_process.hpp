@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/find_executable.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
 
@@ -52,8 +53,5 @@ class SumoProcess {
   pid_t pid_ = -1;
   bool connected_ = false;
 };
-
-// Where `binary` would be run from ("" when neither a path to an executable nor on PATH).
-std::string find_executable(const std::string& binary);
 
 }  // namespace rlrun

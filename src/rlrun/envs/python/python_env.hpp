@@ -1,0 +1,77 @@
+#pragma once
+// A Gymnasium env written in Python, as an rlrun Env: `env: {id: "python:my_pkg.my_mod:MyEnv",
+// kwargs: {...}}` builds MyEnv(**kwargs), `gymnasium:CartPole-v1` gymnasium.make(...), in a
+// worker process of its own (python_worker.hpp, worker.py). rlrun's TimeLimit, Monitor and
+// wrappers stack on it like on any env; each copy of a VecEnv has its own worker, and the VecEnv
+// steps the copies on threads so the workers run in parallel (EnvEntry::steps_in_other_process).
+//
+// The worker is started in the constructor and answers the handshake while the caller goes on
+// (make_vec_env starts all copies before it needs their spaces). Everything the env does wrong
+// (an exception, a crash, an observation that does not fit its space, NaN) ends the run with a
+// RuntimeFailure that names the env, the worker's pid, the step and episode, and carries the
+// Python traceback. A Python env cannot snapshot itself, so checkpoints hold the model only.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rlrun/env.hpp"
+#include "rlrun/env/split_step.hpp"
+#include "rlrun/envs/python/python_worker.hpp"
+
+namespace rlrun {
+
+class PythonEnv : public Env, public SplitStep {
+ public:
+  // `target` is the env id ("python:module:Attr" or "gymnasium:ID"), `kwargs_json` a JSON
+  // object, `python` the interpreter (a name on PATH or a path).
+  PythonEnv(std::string target, std::string kwargs_json, const std::string& python);
+  ~PythonEnv() override;
+
+  const Space& observation_space() const override;
+  const Space& action_space() const override;
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // step() in two halves (env/split_step.hpp): send the action; read the reply.
+  bool steps_asynchronously() const override { return true; }
+  void start_step(std::span<const float> action) override;
+  StepResult finish_step(std::span<float> obs) override;
+  const Info& info() const override { return info_; }
+  std::string id() const override { return target_; }
+
+  RenderSpec render_spec() const override;
+  bool render(Frame& frame) const override;
+
+  // The time limit the env's own registration holds (gymnasium.make's spec), if any.
+  std::optional<int> registered_time_limit() const;
+
+ private:
+  struct Handshake;
+  // Waits for the worker's handshake once (every public method calls it first).
+  void ready() const;
+  [[noreturn]] void fail(const std::string& what) const;
+  [[noreturn]] void worker_gone(const char* during) const;
+  void send_request() const;
+  // Reads a reply; on 'E' throws with the worker's text. Returns the body.
+  const std::vector<std::byte>& receive(const char* during) const;
+  StepResult read_step_reply(std::span<float> obs, const char* during);
+  // Fetches a frame into frame_rgb_ (height x width x 3); false when the env gives none.
+  bool fetch_frame() const;
+
+  std::string target_;
+  mutable std::unique_ptr<PythonWorker> worker_;
+  mutable std::unique_ptr<Handshake> handshake_;
+  mutable std::vector<std::byte> request_;
+  mutable std::vector<std::byte> reply_;
+  mutable std::vector<uint8_t> frame_rgb_;
+  mutable int frame_width_ = 0, frame_height_ = 0;
+  Info info_;
+  std::vector<int> info_index_;  // the worker's key index -> info_'s
+  int is_success_ = -1;
+  int64_t episode_ = 0;  // for messages: episode and step where something went wrong
+  int64_t step_ = 0;
+  bool was_reset_ = false;
+};
+
+}  // namespace rlrun

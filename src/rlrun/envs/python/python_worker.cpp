@@ -1,0 +1,173 @@
+#include "rlrun/envs/python/python_worker.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <chrono>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/find_executable.hpp"
+#include "rlrun/envs/python/python_protocol.hpp"
+
+namespace rlrun {
+
+namespace {
+
+constexpr int kWorkerFd = 3;  // worker.py reads sys.argv[1]; rlrun always passes 3
+
+}  // namespace
+
+PythonWorker::PythonWorker(const std::string& python, const std::string& script) {
+  python_ = find_executable(python);
+  if (python_.empty())
+    throw RuntimeFailure("cannot run the Python interpreter '" + python +
+                         "': not an executable" +
+                         (python.find('/') == std::string::npos ? " on PATH" : "") +
+                         ". Install python3 and numpy (Debian: apt install python3 "
+                         "python3-numpy) or set env.python to your virtualenv's python");
+  // A worker that has gone must give an error (with how it ended), not kill rlrun by SIGPIPE.
+  struct sigaction current;
+  if (sigaction(SIGPIPE, nullptr, &current) == 0 && current.sa_handler == SIG_DFL)
+    std::signal(SIGPIPE, SIG_IGN);
+  int fds[2];
+  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+    throw RuntimeFailure(std::string("cannot create a socket for a Python worker: ") +
+                         std::strerror(errno));
+  const int null_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
+  // Everything the child needs is made before fork(): another thread of rlrun may hold the
+  // allocator's lock, so the child only makes system calls until exec.
+  std::vector<std::string> args = {python_, "-c", script, std::to_string(kWorkerFd)};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t parent = getpid();
+  pid_ = fork();
+  if (pid_ < 0) {
+    const int error = errno;
+    close(fds[0]);
+    close(fds[1]);
+    if (null_fd >= 0) close(null_fd);
+    throw RuntimeFailure(std::string("cannot start a Python worker (fork): ") +
+                         std::strerror(error));
+  }
+  if (pid_ == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);      // dies with rlrun, whatever kills rlrun
+    if (getppid() != parent) _exit(1);     // rlrun died before the line above
+    signal(SIGINT, SIG_IGN);               // kept across exec; Python keeps an ignored SIGINT
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (null_fd >= 0) dup2(null_fd, STDIN_FILENO);
+    if (fds[1] == kWorkerFd)
+      fcntl(kWorkerFd, F_SETFD, 0);        // keep it across exec
+    else
+      dup2(fds[1], kWorkerFd);             // the copy is not close-on-exec
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(fds[1]);
+  if (null_fd >= 0) close(null_fd);
+  fd_ = fds[0];
+}
+
+PythonWorker::~PythonWorker() { stop(); }
+
+bool PythonWorker::write(std::span<const std::byte> data) {
+  size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = send(fd_, data.data() + done, data.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+// Buffered: a reply usually arrives in one piece, so one recv serves its header and body.
+bool PythonWorker::read(std::span<std::byte> data) {
+  size_t done = 0;
+  while (done < data.size()) {
+    if (buffer_start_ == buffer_end_) {
+      const size_t wanted = data.size() - done;
+      if (wanted >= buffer_.size()) {  // large (a frame): straight into place
+        const ssize_t n = recv(fd_, data.data() + done, wanted, 0);
+        if (n < 0 && errno == EINTR) continue;  // a Ctrl-C: the trainer acts after the step
+        if (n <= 0) return false;
+        done += static_cast<size_t>(n);
+        continue;
+      }
+      const ssize_t n = recv(fd_, buffer_.data(), buffer_.size(), 0);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return false;
+      buffer_start_ = 0;
+      buffer_end_ = static_cast<size_t>(n);
+    }
+    const size_t n = std::min(data.size() - done, buffer_end_ - buffer_start_);
+    std::memcpy(data.data() + done, buffer_.data() + buffer_start_, n);
+    buffer_start_ += n;
+    done += n;
+  }
+  return true;
+}
+
+bool PythonWorker::wait_for_exit(double seconds) {
+  if (reaped_) return true;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (true) {
+    const pid_t r = waitpid(pid_, &status_, WNOHANG);
+    if (r == pid_ || (r < 0 && errno == ECHILD)) {
+      reaped_ = true;
+      return true;
+    }
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+std::string PythonWorker::how_it_ended() {
+  if (pid_ <= 0) return "was not started";
+  if (!wait_for_exit(3.0)) {
+    kill(pid_, SIGKILL);
+    wait_for_exit(10.0);
+    return "closed its socket but kept running (killed)";
+  }
+  if (WIFSIGNALED(status_)) {
+    const int sig = WTERMSIG(status_);
+    return "was killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+  }
+  if (WIFEXITED(status_)) return "exited with status " + std::to_string(WEXITSTATUS(status_));
+  return "ended";
+}
+
+void PythonWorker::stop() {
+  if (pid_ <= 0 || reaped_) {
+    if (fd_ >= 0) close(fd_);
+    fd_ = -1;
+    return;
+  }
+  if (fd_ >= 0 && request_bytes_ > 0) {
+    // Best effort: the worker closes its env (env.close()) and returns.
+    std::vector<std::byte> request(request_bytes_, std::byte{0});
+    request[0] = static_cast<std::byte>(python_protocol::kClose);
+    (void)send(fd_, request.data(), request.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  }
+  if (fd_ >= 0) shutdown(fd_, SHUT_WR);
+  if (!wait_for_exit(2.0)) {
+    kill(pid_, SIGKILL);
+    wait_for_exit(10.0);
+  }
+  if (fd_ >= 0) close(fd_);
+  fd_ = -1;
+}
+
+}  // namespace rlrun

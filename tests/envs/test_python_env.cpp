@@ -1,0 +1,153 @@
+// Python envs inside rlrun (src/rlrun/envs/python/), through the real binary and the real
+// interpreter (Debian's python3 + numpy), on the envs of tests/python_envs/rlrun_test_envs:
+// a CartPole port, a continuous task, a Dict-observation task and envs that go wrong.
+#include <catch2/catch.hpp>
+
+#include <sstream>
+#include <vector>
+
+#include "envs/python_env_runner.hpp"
+
+using namespace rlrun::testing;
+
+namespace {
+
+const std::string kCartPolePort = "python:rlrun_test_envs.cartpole:CartPolePort";
+const std::string kReach = "python:rlrun_test_envs.continuous:Reach1D";
+const std::string kDictGoal = "python:rlrun_test_envs.continuous:DictGoal";
+const std::string kPpoZoo =
+    "id: PPO, n_steps: 32, batch_size: 256, n_epochs: 20, gamma: 0.98, gae_lambda: 0.8, "
+    "learning_rate: lin_0.001, clip_range: lin_0.2, ent_coef: 0.0";
+
+// The r and l columns of a monitor file (its header names the env, so it is skipped).
+std::vector<std::string> episodes(const std::string& monitor_csv) {
+  std::stringstream in(read_text(monitor_csv));
+  std::vector<std::string> rows;
+  std::string line;
+  std::getline(in, line);  // #{"t_start": ..., "env_id": ...}
+  std::getline(in, line);  // r,l,t,...
+  while (std::getline(in, line)) {
+    const auto first = line.find(',');
+    const auto second = line.find(',', first + 1);
+    rows.push_back(line.substr(0, second));
+  }
+  return rows;
+}
+
+double mean_reward(const std::string& output) {
+  const auto at = output.find("mean_reward = ");
+  return at == std::string::npos ? -1e9 : std::stod(output.substr(at + 14));
+}
+
+}  // namespace
+
+TEST_CASE("check-env passes the Python test envs, with python3 from PATH", "[python]") {
+  for (const std::string& id : {kCartPolePort, kReach, kDictGoal}) {
+    // The default interpreter is `python3` on PATH: put Debian's first.
+    const auto r = run_command("cd " + kSourceDir + " && PATH=/usr/bin:$PATH PYTHONPATH=" +
+                               kSourceDir + "/tests/python_envs " + RLRUN_BINARY +
+                               " check-env " + id);
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+  }
+}
+
+TEST_CASE("Python envs train deterministically: same seed, same episodes", "[python]") {
+  // Four workers stepping in parallel, twice with seed 1: every env's episodes are the same
+  // (env i is seeded 1 + i; the workers' timing does not matter). Seed 2 differs.
+  TempDir dir("python_same_run");
+  std::vector<std::vector<std::string>> runs;
+  for (const char* name : {"a", "b", "c"}) {
+    const std::string seed = name[0] == 'c' ? "2" : "1";
+    const auto r = run_rlrun_python(
+        "train " + python_experiment(dir.str(), name, kCartPolePort, kPpoZoo, 4096, 4,
+                                     ", max_episode_steps: 500") +
+        " --seed " + seed);
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    std::vector<std::string> all;
+    for (int i = 0; i < 4; ++i) {
+      const auto e = episodes(dir / ("runs/" + std::string(name) + "/seed" + seed + "/" +
+                                     std::to_string(i) + ".monitor.csv"));
+      CHECK(e.size() > 10);
+      all.insert(all.end(), e.begin(), e.end());
+    }
+    runs.push_back(all);
+  }
+  CHECK(runs[0] == runs[1]);
+  CHECK(runs[0] != runs[2]);
+}
+
+TEST_CASE("PPO learns the Python CartPole port to >= 475 with the zoo's settings",
+          "[python][python_learning]") {
+  TempDir dir("python_ppo");
+  const std::string config = python_experiment(dir.str(), "cartpole_port", kCartPolePort,
+                                               kPpoZoo, 100000, 8, ", max_episode_steps: 500");
+  const auto train = run_rlrun_python("train " + config);
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  // A model file is untrusted: its Python env id runs code, so rlrun asks for it on the
+  // command line before building the env.
+  const std::string model = dir / "runs/cartpole_port/seed1/model.zip";
+  const auto refused = run_rlrun_python("eval --model " + model + " --episodes 2");
+  INFO(refused.output);
+  CHECK(refused.exit_code != 0);
+  CHECK(refused.output.find("--set env.id=" + kCartPolePort) != std::string::npos);
+  const auto eval = run_rlrun_python("eval --model " + model + " --episodes 10 --seed 1000 --set env.id=" +
+                                     kCartPolePort + " --set env.python=" + kPython);
+  INFO(eval.output);
+  REQUIRE(eval.exit_code == 0);
+  CHECK(mean_reward(eval.output) >= 475);
+}
+
+TEST_CASE("SAC learns a continuous Python task", "[python][python_learning]") {
+  TempDir dir("python_sac");
+  const std::string config = python_experiment(
+      dir.str(), "reach", kReach,
+      "id: SAC, learning_starts: 200, batch_size: 64, policy: {net_arch: [64, 64]}", 4000);
+  const auto train = run_rlrun_python("train " + config);
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const std::string model = dir / "runs/reach/seed1/model.zip";
+  const auto eval = run_rlrun_python("eval --model " + model + " --episodes 20 --seed 7 --set env.id=" +
+                                     kReach + " --set env.python=" + kPython);
+  const auto random = run_rlrun_python("eval --env " + kReach +
+                                       " --policy random --episodes 20 --seed 7 --set env.python=" + kPython);
+  INFO(eval.output << random.output);
+  REQUIRE(eval.exit_code == 0);
+  REQUIRE(random.exit_code == 0);
+  // A random policy: about -14; a policy that walks to the target: about -3.
+  CHECK(mean_reward(eval.output) > -6.0);
+  CHECK(mean_reward(random.output) < -9.0);
+}
+
+TEST_CASE("A Dict-observation Python env trains and its is_success reaches monitor.csv",
+          "[python]") {
+  TempDir dir("python_dict");
+  const std::string config =
+      python_experiment(dir.str(), "dict_goal", kDictGoal, "id: PPO, n_steps: 64", 1024, 2);
+  const auto r = run_rlrun_python("train " + config);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const std::string monitor = read_text(dir / "runs/dict_goal/seed1/0.monitor.csv");
+  CHECK(monitor.find("r,l,t,is_success") != std::string::npos);
+  CHECK(monitor.find(",True") != std::string::npos);
+  const std::string resolved = read_text(dir / "runs/dict_goal/seed1/config.yaml");
+  CHECK(resolved.find("python: " + kPython) != std::string::npos);
+}
+
+TEST_CASE("rlrun record films a Python env through its render()", "[python]") {
+  TempDir dir("python_record");
+  const std::string video = dir / "port.mp4";
+  const auto r = run_rlrun_python("record --env " + kCartPolePort +
+                                  " --policy random --episodes 1 --seed 3 --set env.python=" +
+                                  kPython + " --output " + video);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const auto probe = run_command(
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " + video);
+  INFO(probe.output);
+  // The env's own 300x200 frames, one per step plus the first.
+  CHECK(probe.output.find("h264,300,200,") != std::string::npos);
+}
