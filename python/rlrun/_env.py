@@ -97,7 +97,8 @@ class RlrunEnv(_EnvBase):
                                -1 if max_episode_steps is None else int(max_episode_steps))
         self.observation_space = _spaces.from_description(self._core.observation_space)
         self.action_space = _spaces.from_description(self._core.action_space)
-        self._obs_dim = _spaces.flat_dim(self.observation_space)
+        self._box_obs = type(self.observation_space).__name__ == "Box"
+        self._dict_action = type(self.action_space).__name__ == "Dict"
         can_render = self._core.can_render
         self.metadata = {
             "render_modes": ["rgb_array"] if can_render else [],
@@ -122,16 +123,16 @@ class RlrunEnv(_EnvBase):
         super().reset(seed=seed)
         if seed is not None and (not isinstance(seed, (int, np.integer)) or seed < 0):
             raise ValueError(f"seed must be a non-negative int, got {seed!r}")
-        obs = np.empty(self._obs_dim, dtype=np.float32)
-        self._core.reset(None if seed is None else int(seed), obs)
-        return _spaces.from_flat(self.observation_space, obs), self._core.info()
+        obs, info = self._core.reset(None if seed is None else int(seed))
+        return (obs if self._box_obs else _spaces.from_flat(self.observation_space, obs)), info
 
     def step(self, action):
-        flat = _spaces.to_flat(self.action_space, action)
-        obs = np.empty(self._obs_dim, dtype=np.float32)
-        reward, terminated, truncated = self._core.step(flat, obs)
-        return (_spaces.from_flat(self.observation_space, obs), float(reward), bool(terminated),
-                bool(truncated), self._core.info())
+        if self._dict_action:
+            action = _spaces.to_flat(self.action_space, action)
+        obs, reward, terminated, truncated, info = self._core.step(action)
+        if not self._box_obs:
+            obs = _spaces.from_flat(self.observation_space, obs)
+        return obs, reward, terminated, truncated, info
 
     def render(self):
         """An (H, W, 3) uint8 RGB frame of the current state (render_mode "rgb_array")."""

@@ -6,7 +6,8 @@ VecEnv habit): when env i's episode ends, ``obs[i]`` is already the next episode
 observation and ``infos["final_obs"][i]`` the observation that ended it
 (``infos["_final_obs"]`` the mask). Numeric info values come as arrays with ``_key`` masks,
 as Gymnasium's ``VectorEnv._add_info`` builds them; ``infos["final_info"]`` holds the ending
-step's info of each finished env. Per step, one C++ call and a handful of numpy arrays.
+step's info values (arrays and masks again). Per step: one C++ call and a handful of numpy
+arrays, no per-env Python objects.
 """
 
 from __future__ import annotations
@@ -104,15 +105,17 @@ class RlrunVectorEnv(_VectorBase):
         obs, rewards, terminated, truncated, final_obs, values = self._core.step(flat)
         infos = self._infos(values)
         if final_obs is not None:
+            # As Gymnasium's SAME_STEP SyncVectorEnv fills them through VectorEnv._add_info:
+            # arrays over all envs (zeros where no episode ended) with `_` masks, a Dict's keys
+            # each with its mask.
             done = terminated | truncated
-            finals = np.full(self.num_envs, None, dtype=object)
-            final_infos = np.full(self.num_envs, None, dtype=object)
-            for i in np.flatnonzero(done):
-                finals[i] = _spaces.from_flat(self.single_observation_space, final_obs[i].copy())
-                final_infos[i] = {k: float(values[i, j]) for j, k in enumerate(self._keys)
-                                  if not np.isnan(values[i, j])}
+            rows = np.where(done[:, None], final_obs, np.float32(0))
+            finals = _spaces.batch_from_flat(self.single_observation_space, rows)
+            if isinstance(finals, dict):
+                finals = {**finals, **{"_" + k: done for k in list(finals)}}
             infos["final_obs"], infos["_final_obs"] = finals, done
-            infos["final_info"], infos["_final_info"] = final_infos, done.copy()
+            infos["final_info"] = self._infos(np.where(done[:, None], values, np.nan))
+            infos["_final_info"] = done
         return (_spaces.batch_from_flat(self.single_observation_space, obs), rewards, terminated,
                 truncated, infos)
 

@@ -51,32 +51,63 @@ class PyEnv {
     return *env_;
   }
 
-  void reset(std::optional<uint64_t> seed, py::array_t<float> obs) {
-    std::span<float> out = float_span(obs, obs_dim_, "reset: obs");
-    Env& e = env();
-    py::gil_scoped_release release;
-    e.reset(seed, out);
+  // A new array for one observation: shaped like a Box space, flat otherwise (the Python side
+  // shapes those).
+  py::array_t<float> new_obs() {
+    const Space& space = env().observation_space();
+    if (space.is_box())
+      return py::array_t<float>(
+          std::vector<py::ssize_t>(space.shape().begin(), space.shape().end()));
+    return py::array_t<float>(static_cast<py::ssize_t>(obs_dim_));
   }
 
-  py::tuple step(py::array_t<float, py::array::c_style | py::array::forcecast> action,
-                 py::array_t<float> obs) {
-    std::span<float> out = float_span(obs, obs_dim_, "step: obs");
+  // (obs, info)
+  py::tuple reset(std::optional<uint64_t> seed) {
     Env& e = env();
-    if (static_cast<size_t>(action.size()) != act_dim_)
-      throw py::value_error("step: " + id_ + " takes actions of " + std::to_string(act_dim_) +
-                            " values, got " + std::to_string(action.size()));
-    const std::span<const float> a(action.data(), act_dim_);
+    py::array_t<float> obs = new_obs();
+    float* out = obs.mutable_data();
+    {
+      py::gil_scoped_release release;
+      e.reset(seed, {out, obs_dim_});
+    }
+    return py::make_tuple(obs, info_dict(e.info()));
+  }
+
+  // (obs, reward, terminated, truncated, info). `action`: a Python int or float for a one-value
+  // action (read without numpy: the common Discrete case), else anything numpy converts to
+  // act_dim float32 values.
+  py::tuple step(py::handle action) {
+    Env& e = env();
+    action_.resize(act_dim_);
+    if (act_dim_ == 1 && (PyLong_CheckExact(action.ptr()) || PyFloat_CheckExact(action.ptr()))) {
+      const double value = PyFloat_AsDouble(action.ptr());
+      if (PyErr_Occurred()) throw py::error_already_set();
+      action_[0] = static_cast<float>(value);
+    } else {
+      auto array = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(action);
+      if (!array) {
+        PyErr_Clear();
+        throw py::type_error("step: " + id_ + ": an action is a number or an array, got " +
+                             std::string(py::str(py::type::handle_of(action))));
+      }
+      if (static_cast<size_t>(array.size()) != act_dim_)
+        throw py::value_error("step: " + id_ + " takes actions of " + std::to_string(act_dim_) +
+                              " values, got " + std::to_string(array.size()));
+      std::copy(array.data(), array.data() + act_dim_, action_.begin());
+    }
     // Gymnasium's envs assert that a discrete action is in their space (cartpole.py:
     // `assert self.action_space.contains(action)`); a Box action is the env's to clip.
     const Space& space = e.action_space();
-    if (!space.is_box() && !space.contains(a))
+    if (!space.is_box() && !space.contains(action_))
       throw py::value_error("step: " + id_ + ": action not in " + space.describe());
+    py::array_t<float> obs = new_obs();
+    float* out = obs.mutable_data();
     StepResult r;
     {
       py::gil_scoped_release release;
-      r = e.step(a, out);
+      r = e.step(action_, {out, obs_dim_});
     }
-    return py::make_tuple(r.reward, r.terminated, r.truncated);
+    return py::make_tuple(obs, r.reward, r.terminated, r.truncated, info_dict(e.info()));
   }
 
   // Gymnasium's render_mode="rgb_array": an (H, W, 3) uint8 array, None if the env cannot draw.
@@ -102,6 +133,7 @@ class PyEnv {
   size_t obs_dim_, act_dim_;
   std::unique_ptr<Frame> frame_;
   std::vector<uint8_t> rgb_;
+  std::vector<float> action_;
 };
 
 }  // namespace
@@ -110,8 +142,8 @@ void bind_env(py::module_& m) {
   py::class_<PyEnv>(m, "Env")
       .def(py::init<const std::string&, const std::string&, int>(), py::arg("id"),
            py::arg("kwargs_yaml") = "{}", py::arg("max_episode_steps") = -1)
-      .def("reset", &PyEnv::reset, py::arg("seed"), py::arg("obs"))
-      .def("step", &PyEnv::step, py::arg("action"), py::arg("obs"))
+      .def("reset", &PyEnv::reset, py::arg("seed"))
+      .def("step", &PyEnv::step, py::arg("action"))
       .def("info", [](PyEnv& self) { return info_dict(self.env().info()); })
       .def("render", &PyEnv::render)
       .def("close", &PyEnv::close)

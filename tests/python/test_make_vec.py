@@ -65,19 +65,32 @@ class MakeVec(unittest.TestCase):
                     o, _ = env.reset()  # same-step auto-reset: obs is the next episode's first
                 elif "_final_obs" in infos:
                     self.assertFalse(infos["_final_obs"][i])
-                    self.assertIsNone(infos["final_obs"][i])
                 np.testing.assert_array_equal(obs[i], o)
+                if "final_obs" in infos:  # Gymnasium's layout: one array over all envs
+                    self.assertEqual(infos["final_obs"].shape, (n, 4))
+                    self.assertEqual(infos["final_obs"].dtype, np.float32)
         self.assertGreater(ended, 3)
 
     def test_info_arrays_with_masks(self):
-        envs = rlrun.make_vec("DictReach-v0", 2)
+        envs = rlrun.make_vec("DictReach-v0", 2, max_episode_steps=2)
         envs.reset(seed=0)
-        _, _, _, _, infos = envs.step(envs.action_space.sample())
-        for key, value in infos.items():
-            if key.startswith("_") or key in ("final_obs", "final_info"):
-                continue
-            self.assertEqual(value.shape, (2,))
-            self.assertEqual(infos["_" + key].dtype, np.bool_)
+        seen_final = False
+        for _ in range(4):
+            _, _, terms, truncs, infos = envs.step(envs.action_space.sample())
+            for key, value in infos.items():
+                if key.startswith("_") or key in ("final_obs", "final_info"):
+                    continue
+                self.assertEqual(value.shape, (2,))
+                self.assertEqual(infos["_" + key].dtype, np.bool_)
+            if "final_obs" in infos:
+                seen_final = True
+                done = terms | truncs
+                np.testing.assert_array_equal(infos["_final_obs"], done)
+                for key, space in envs.single_observation_space.spaces.items():
+                    self.assertEqual(infos["final_obs"][key].shape, (2,) + space.shape)
+                    np.testing.assert_array_equal(infos["final_obs"]["_" + key], done)
+                self.assertIsInstance(infos["final_info"], dict)
+        self.assertTrue(seen_final)
 
     def test_time_limit_truncates_and_kwargs(self):
         envs = rlrun.make_vec("Pendulum-v1", 2, max_episode_steps=3)
