@@ -224,6 +224,27 @@ class SameTrajectoriesAsTheCppEnvs(TempDirMixin, unittest.TestCase):
     def test_dict_observations(self):
         self.replay("DictReach-v0")
 
+    def test_traffic_signal_on_sumo(self):
+        # Ten simulated minutes of the SUMO task (SUMO seeded from the reset seed).
+        config = os.path.join(self.tmp, "traffic.yaml")
+        with open(config, "w") as f:
+            f.write("env: {id: TrafficSignal-v0, kwargs: {num_seconds: 600}}\nalgo: {id: DQN}\n")
+        path = os.path.join(self.tmp, "traffic.csv")
+        run_rlrun("eval", "--policy", "random", "--config", config, "--episodes", 1, "--seed", 3,
+                  "--trajectory", path)
+        rows = read_trajectory(path)
+        self.assertEqual(len(rows), 120)  # 600 s in steps of delta_time 5 s
+        env = rlrun.make("TrafficSignal-v0", num_seconds=600)
+        check_env(self, env, steps=5)
+        obs, _ = env.reset(seed=3)
+        for row in rows:
+            np.testing.assert_array_equal(obs, row["obs"], err_msg=f"step {row['step']}")
+            obs, reward, terminated, truncated, info = env.step(int(row["action"][0]))
+            self.assertEqual(reward, row["reward"])
+        self.assertTrue(terminated or truncated)
+        self.assertIn("total_queue_length", info)  # the env's metrics, as numbers
+        env.close()
+
 
 if __name__ == "__main__":
     unittest.main()
