@@ -10,6 +10,7 @@ else), with real ``gymnasium.spaces``.
 from __future__ import annotations
 
 import json
+import types
 from typing import Any
 
 import numpy as np
@@ -150,7 +151,11 @@ def _make_spec(env_id: str, limit: int, kwargs: dict):
     """Gymnasium's EnvSpec (gymnasium/envs/registration.py) when Gymnasium is there: its
     entry point is rlrun.make, so ``env.spec.make()`` builds the same env again."""
     if not _spaces.HAVE_GYMNASIUM:
-        return None
+        # The same fields, and make(), without Gymnasium.
+        return types.SimpleNamespace(
+            id=env_id, entry_point="rlrun:make", max_episode_steps=limit or None,
+            kwargs={"id": env_id, **kwargs},
+            make=lambda **more: make(**{"id": env_id, **kwargs, **more}))
     from gymnasium.envs.registration import EnvSpec
 
     return EnvSpec(

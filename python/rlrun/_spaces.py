@@ -91,7 +91,11 @@ class Box(Space):
         )
 
     def __repr__(self):
-        return f"Box({self.low.min()}, {self.high.max()}, {self.shape}, {self.dtype})"
+        # As gymnasium's Box: scalar bounds when every element shares them.
+        def bound(b):
+            return str(b.flat[0]) if b.size and np.all(b == b.flat[0]) else str(b)
+
+        return f"Box({bound(self.low)}, {bound(self.high)}, {self.shape}, {self.dtype})"
 
     def __eq__(self, other):
         return (

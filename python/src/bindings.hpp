@@ -6,7 +6,6 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include <span>
 #include <string>
 
 #include "rlrun/env.hpp"
@@ -24,9 +23,6 @@ Registry& module_registry();
 // "start"}, {"kind": "MultiDiscrete", "nvec"}, {"kind": "MultiBinary", "n"}, {"kind": "Dict",
 // "keys": [...], "spaces": [...]}.
 py::dict space_dict(const Space& space);
-
-// A 1-d float32 view of a C-contiguous array of exactly `size` values (ValueError otherwise).
-std::span<float> float_span(py::array_t<float>& array, size_t size, const char* what);
 
 // rlrun.make's env: the registered env `id` built from `kwargs_yaml` (a YAML/JSON mapping,
 // parsed strictly by the env's Config; ConfigError naming `origin`), under a TimeLimit of

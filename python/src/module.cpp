@@ -49,13 +49,6 @@ py::dict space_dict(const Space& space) {
   return d;
 }
 
-std::span<float> float_span(py::array_t<float>& array, size_t size, const char* what) {
-  if (!(array.flags() & py::array::c_style) || static_cast<size_t>(array.size()) != size)
-    throw py::value_error(std::string(what) + ": expected " + std::to_string(size) +
-                          " contiguous float32 values, got " + std::to_string(array.size()));
-  return {array.mutable_data(), size};
-}
-
 }  // namespace rlrun::python
 
 PYBIND11_MODULE(_core, m) {

@@ -155,8 +155,10 @@ class MakeCheck(unittest.TestCase):
         short = rlrun.make("Pendulum-v1", max_episode_steps=5)
         short.reset(seed=0)
         self.assertEqual([short.step([0.0])[3] for _ in range(5)], [False] * 4 + [True])
-        if short.spec is not None:
-            self.assertEqual(short.spec.max_episode_steps, 5)
+        self.assertEqual(short.spec.id, "Pendulum-v1")
+        self.assertEqual(short.spec.max_episode_steps, 5)
+        again = short.spec.make()
+        self.assertEqual(again.observation_space, short.observation_space)
 
     def test_kwargs_parsed_strictly(self):
         with self.assertRaises(rlrun.ConfigError) as caught:
