@@ -27,6 +27,9 @@ MODELS = {
             "algo: {id: TD3, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
     "ddpg": ("env: {id: Pendulum-v1}\n"
              "algo: {id: DDPG, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
+    "dqn_onehot": ("env: {id: GridWorld-v0, wrappers: [{id: OneHotObservation}]}\n"
+                   "algo: {id: DQN, learning_starts: 50, batch_size: 16, buffer_size: 1000,"
+                   " policy: {net_arch: [16]}}\n", 200),
     "ppo_dict": ("env: {id: DictReach-v0, n_envs: 2}\n"
                  "algo: {id: PPO, n_steps: 32, batch_size: 64, n_epochs: 1,"
                  " policy: {net_arch: [16]}}\n", 128),
@@ -77,6 +80,16 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
     def test_dqn(self):
         self.check_exact("dqn", "DQN")
+
+    def test_multidiscrete_observations_one_hot_encoded(self):
+        # GridWorld's MultiDiscrete positions go in; the model's OneHotObservation encodes them.
+        model, rows = self.check_exact("dqn_onehot", "DQN")
+        self.assertEqual(type(model.observation_space).__name__, "MultiDiscrete")
+        self.assertEqual(model.policy_observation_space.shape, (10,))
+        obs = rlrun._spaces.from_flat(model.observation_space, rows[0]["obs"])
+        self.assertEqual(obs.dtype, np.int64)
+        batch, _ = model.predict(np.stack([obs, obs]), deterministic=True)
+        self.assertEqual(batch.shape, (2,))
 
     def test_sac_box_actions_rescaled(self):
         # SAC acts in [-0.5, 0.5] (RescaleAction over Pendulum's [-2, 2]); predict returns

@@ -56,6 +56,30 @@ class Train(TempDirMixin, unittest.TestCase):
             rlrun.train(CONFIG, lr=0.1)
 
 
+    def test_training_releases_the_gil(self):
+        # Another Python thread keeps running while rlrun trains.
+        import threading
+
+        counter, stop = [0], threading.Event()
+
+        def count():
+            while not stop.is_set():
+                counter[0] += 1
+
+        thread = threading.Thread(target=count)
+        thread.start()
+        start, t0 = counter[0], time.perf_counter()
+        time.sleep(0.1)
+        free_rate = (counter[0] - start) / (time.perf_counter() - t0)  # the thread alone
+        start, t0 = counter[0], time.perf_counter()
+        rlrun.train(CONFIG, out=os.path.join(self.tmp, "gil"), timesteps=50000,
+                    **{"run.console_interval": 10**9})
+        during, seconds = counter[0] - start, time.perf_counter() - t0
+        stop.set()
+        thread.join()
+        # Holding the GIL, the thread would count only in the Python around the C++ call.
+        self.assertGreater(during, 0.25 * free_rate * seconds)
+
     def test_ctrl_c_stops_training_cleanly(self):
         # A long training in a child interpreter; SIGINT stops it at the next safe point with
         # a checkpoint, rlrun.train raises KeyboardInterrupt, Python's handler is back.
