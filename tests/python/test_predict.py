@@ -157,6 +157,29 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
 
 class UntrustedModelFiles(TempDirMixin, unittest.TestCase):
+    def test_a_zip_bomb_is_refused_before_reading(self):
+        # A tiny model whose weight member inflates to 64 MiB of zeros: refused by the byte
+        # budget its configuration justifies (runtime/model_budget.hpp), as eval refuses it.
+        import zipfile
+
+        source = train_model(self.tmp, "tiny", "run: {name: tiny, seed: 1, total_timesteps: 64}\n"
+                             "env: {id: CartPole-v1}\n"
+                             "algo: {id: PPO, n_steps: 64, batch_size: 64, n_epochs: 1}\n")
+        bomb = os.path.join(self.tmp, "bomb.zip")
+        with zipfile.ZipFile(source) as src, zipfile.ZipFile(bomb, "w", zipfile.ZIP_DEFLATED) as out:
+            for name in src.namelist():
+                data = src.read(name)
+                if name == "action_net.weight.npy":
+                    data = data[:128] + bytes(64 << 20)
+                out.writestr(name, data)
+        self.assertLess(os.path.getsize(bomb), 1 << 20)
+        with self.assertRaises(rlrun.RuntimeFailure) as caught:
+            rlrun.load(bomb)
+        self.assertIn(bomb + ": its tensors declare ", str(caught.exception))
+        code, output = run_rlrun("eval", "--model", bomb, check=False)
+        self.assertEqual(code, 1)
+        self.assertIn(str(caught.exception), output)
+
     def test_errors_are_exceptions_with_the_cli_message(self):
         missing = os.path.join(self.tmp, "missing.zip")
         with self.assertRaises(rlrun.RuntimeFailure) as caught:
