@@ -17,6 +17,16 @@ from ._train import train
 from ._vector import RlrunVectorEnv, make_vec
 
 
+def load_plugin(path) -> str:
+    """Loads an env plugin library built against include/rlrun/ (as ``rlrun --plugin``): its
+    envs become available to make, make_vec, train and load. Returns the resolved path."""
+    import os
+
+    from ._core import load_plugin as _load
+
+    return _load(os.fspath(path))
+
+
 def list_envs():
     """The registered env ids, as ``rlrun list`` shows them."""
     from ._core import list_envs as _list
@@ -35,6 +45,7 @@ __all__ = [
     "__version__",
     "list_envs",
     "load",
+    "load_plugin",
     "make",
     "make_vec",
     "train",

@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/plugin_loader.hpp"
 
 namespace rlrun::python {
 
@@ -69,6 +70,11 @@ PYBIND11_MODULE(_core, m) {
         return out;
       },
       "The registered envs as (id, description, max_episode_steps) tuples, as `rlrun list`.");
+  m.def(
+      "load_plugin",
+      [](const std::string& path) { return rlrun::load_plugin(path, module_registry()); },
+      py::arg("path"),
+      "Loads an env plugin library (as --plugin); returns its resolved path.");
   bind_env(m);
   bind_vec_env(m);
   bind_model(m);

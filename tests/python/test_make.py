@@ -170,6 +170,10 @@ class MakeCheck(unittest.TestCase):
         with self.assertRaises(ValueError):
             rlrun.make("Pendulum-v1", g="heavy")
 
+    def test_load_plugin_errors(self):
+        with self.assertRaisesRegex(rlrun.UsageError, "plugin 'nope/x.so' not found"):
+            rlrun.load_plugin("nope/x.so")
+
     def test_render_rgb_array(self):
         env = rlrun.make("CartPole-v1", render_mode="rgb_array")
         self.assertIn("rgb_array", env.metadata["render_modes"])
