@@ -73,8 +73,7 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "load_plugin",
       [](const std::string& path) { return rlrun::load_plugin(path, module_registry()); },
-      py::arg("path"),
-      "Loads an env plugin library (as --plugin); returns its resolved path.");
+      py::arg("path"), "Loads an env plugin library (as --plugin); returns its resolved path.");
   bind_env(m);
   bind_vec_env(m);
   bind_model(m);
