@@ -33,3 +33,23 @@ export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --parallel "$(nproc)"
 echo "setup: built build/rlrun"
+
+# The Python package (docs/python.md): build/python/rlrun is a ready package; a .pth file in
+# Debian python3's site directory (the user's own when not root) puts build/python on its path,
+# so `python3 -c "import rlrun"` works from anywhere. RLRUN_SITE_DIR picks another directory.
+# The wheel for virtualenvs goes to build/python/dist/.
+PYTHON=/usr/bin/python3
+if [[ -x $PYTHON && -d build/python/rlrun ]]; then
+  if [[ -n "${RLRUN_SITE_DIR:-}" ]]; then
+    site=$RLRUN_SITE_DIR
+  elif [[ $(id -u) -eq 0 ]]; then
+    site=$($PYTHON -c 'import site; print(site.getsitepackages()[0])')
+  else
+    site=$($PYTHON -c 'import site; print(site.getusersitepackages())')
+  fi
+  mkdir -p "$site"
+  echo "$(pwd)/build/python" > "$site/rlrun.pth"
+  echo "setup: $site/rlrun.pth -> $(pwd)/build/python (import rlrun)"
+  cmake --build build --target rlrun_wheel >/dev/null
+  echo "setup: wheel in build/python/dist/ (VENV/bin/pip install --no-index build/python/dist/rlrun-*.whl)"
+fi

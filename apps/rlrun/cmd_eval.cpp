@@ -1,5 +1,6 @@
 // rlrun eval --model FILE [--episodes N] [--seed S] [--deterministic|--stochastic] [--csv FILE]
 //            [--record video.mp4] [--baseline fixed-time [--green-time S] | --baseline scripted]
+//            [--trajectory steps.csv]
 // rlrun eval --env ID | --config CFG  --policy scripted|fixed-time|random  [--episodes N] ...
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/recorder.hpp"
+#include "rlrun/runtime/trajectory_tap.hpp"
 
 namespace rlrun::cli {
 
@@ -113,11 +115,13 @@ int evaluate_without_model(const Options& o, Registry& registry) {
   EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
                                            registry, "", unix_time_now())
                                 : env_by_id(o.env_id, registry, o.overrides);
+  const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*env);
   const EvalResult r =
       evaluate_policy(named_policy(o.policy, *env, registry, policy_options(o)).act, *env,
                       o.episodes, o.seed);
   print_summary(o.policy, "", env->id(), o.episodes, r);
   if (!o.csv.empty()) write_csv(o.csv, {{o.policy, r}});
+  if (tap) write_trajectory(*tap, o.trajectory);
   return 0;
 }
 
@@ -135,6 +139,7 @@ struct EvalOptions {
   std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   std::vector<std::string> overrides;   // --set: the user's values over the model's config
+  std::string trajectory;  // every step's env observation and action (runtime/trajectory_tap.hpp)
 };
 
 // The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
@@ -165,6 +170,7 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
   // Normalisation statistics frozen; tensors read within the config's budget.
   const LoadedModel loaded = load_model(o.model, registry, o.overrides);
   const ModelFile& model = loaded.file;
+  const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*loaded.env);
   const Experiment& experiment = loaded.experiment;
   // The baseline runs the same episodes on an env of its own; it is built (and checked to
   // fit the env) before anything is evaluated.
@@ -186,6 +192,7 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
     runs.emplace_back(o.baseline, baseline);
   }
   if (!o.csv.empty()) write_csv(o.csv, runs);
+  if (tap) write_trajectory(*tap, o.trajectory);
   return 0;
 }
 
@@ -225,6 +232,10 @@ Action add_eval(CLI::App& app, Registry& registry) {
       ->transform(integer_in(1));
   sub->add_option("--record", options->record,
                   "also record the episodes to this mp4 (same episodes and numbers; needs ffmpeg)");
+  sub->add_option("--trajectory", options->trajectory,
+                  "also write every step's env observation and action (as the env itself sees "
+                  "them, below the model's wrappers) to this CSV, floats with 9 significant "
+                  "digits (exact float32)");
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);

@@ -57,4 +57,10 @@ std::string python_float_repr(double value) {
   return out;
 }
 
+std::string float32_text(float value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", static_cast<double>(value));
+  return buffer;
+}
+
 }  // namespace rlrun

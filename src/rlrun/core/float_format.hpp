@@ -8,4 +8,9 @@ namespace rlrun {
 
 std::string python_float_repr(double value);
 
+// A float32 with 9 significant digits ("%.9g"): enough for every float32 to read back
+// exactly (FLT_DECIMAL_DIG), so a file of observations and actions can be compared bit for
+// bit with what another program computes (`rlrun eval --trajectory`).
+std::string float32_text(float value);
+
 }  // namespace rlrun

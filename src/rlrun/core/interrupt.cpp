@@ -31,5 +31,6 @@ void install_interrupt_handlers() {
 
 bool interrupt_requested() { return g_interrupts.load() > 0; }
 int interrupt_count() { return g_interrupts.load(); }
+void clear_interrupts() { g_interrupts.store(0); }
 
 }  // namespace rlrun

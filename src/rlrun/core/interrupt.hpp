@@ -11,5 +11,8 @@ void install_interrupt_handlers();
 bool interrupt_requested();
 // How many arrived (2 or more: stop now).
 int interrupt_count();
+// Forgets the interrupts counted so far: a process that runs one command after another (the
+// Python package's rlrun.train, python/) starts each with none.
+void clear_interrupts();
 
 }  // namespace rlrun

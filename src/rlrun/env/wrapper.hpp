@@ -53,6 +53,14 @@ class Wrapper : public Env {
   }
 
   Env& inner() { return *inner_; }
+  // Puts `inner` in place of the inner env and returns the old one. For runtime code that
+  // slips a layer under a built stack (runtime/trajectory_tap.hpp records what the env itself
+  // sees; runtime/model_policy.hpp feeds the stack observations from elsewhere): the new
+  // inner env must have the old one's spaces, since wrappers size their buffers from them.
+  EnvPtr exchange_inner(EnvPtr inner) {
+    std::swap(inner_, inner);
+    return inner;
+  }
 
  protected:
   // Wrappers that keep state between steps (counters, running statistics) save it here.

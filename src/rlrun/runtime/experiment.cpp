@@ -258,9 +258,10 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
   return exp;
 }
 
-Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                           Registry& registry, ConfigTrust trust) {
-  ConfigNode root = ConfigNode::load_file(path, trust);
+namespace {
+
+Experiment load_experiment_root(ConfigNode root, const std::string& default_name,
+                                const std::vector<std::string>& overrides, Registry& registry) {
   if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
   for (const auto& o : overrides) root.apply_override(o);
   // The user's own file may name plugin libraries: they are loaded before any env id is looked
@@ -271,9 +272,24 @@ Experiment load_experiment(const std::string& path, const std::vector<std::strin
   const ConfigNode run = root.child("run");
   if (!name.defined() && (!run.defined() || run.is_map())) {  // else parse_experiment says why
     if (!run.defined()) root.yaml()["run"] = YAML::Node(YAML::NodeType::Map);
-    root.yaml()["run"]["name"] = std::filesystem::path(path).stem().string();
+    root.yaml()["run"]["name"] = default_name;
   }
   return parse_experiment(root, registry);
+}
+
+}  // namespace
+
+Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
+                           Registry& registry, ConfigTrust trust) {
+  return load_experiment_root(ConfigNode::load_file(path, trust),
+                              std::filesystem::path(path).stem().string(), overrides, registry);
+}
+
+Experiment load_experiment_text(const std::string& text, const std::string& origin,
+                                const std::string& default_name,
+                                const std::vector<std::string>& overrides, Registry& registry) {
+  return load_experiment_root(ConfigNode::load_string(text, origin), default_name, overrides,
+                              registry);
 }
 
 EnvSpec default_env_spec(const std::string& id, const Registry& registry,

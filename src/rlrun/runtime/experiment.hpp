@@ -127,6 +127,12 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry);
 // `registry`, parses. The run name defaults to the file stem.
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides,
                            Registry& registry, ConfigTrust trust = ConfigTrust::kUser);
+// The same for an experiment the user gives as YAML text (the Python package's
+// rlrun.train(dict), python/): `origin` names it in messages ("<origin>:line:col"), and the run
+// name defaults to `default_name`.
+Experiment load_experiment_text(const std::string& text, const std::string& origin,
+                                const std::string& default_name,
+                                const std::vector<std::string>& overrides, Registry& registry);
 
 // The spec of env `id` with its default parameters (env_by_id, tests), or with `env.*`
 // overrides from the command line (`--set env.python=...`). `origin` names it in messages.

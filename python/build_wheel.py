@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Packs the built package directory (build/python/rlrun: the .py files and the _core
+extension) into a wheel, so that a virtualenv gets rlrun with one command and no network:
+
+    VENV/bin/pip install --no-index build/python/dist/rlrun-<version>-cp311-cp311-linux_x86_64.whl
+
+The wheel format is PEP 427 (a zip with <name>-<version>.dist-info/{METADATA, WHEEL, RECORD};
+RECORD lists every file with its urlsafe-base64 sha256 and size). The wheel is for this
+interpreter's ABI and this machine: the extension links Debian's shared libraries (SUMO,
+Bullet, yaml-cpp, libzip, Cairo) and finds the scenario data of the checkout it was built
+from (docs/python.md).
+
+    build_wheel.py --package build/python/rlrun --version 0.1.0 --out build/python/dist
+"""
+
+import argparse
+import base64
+import hashlib
+import os
+import sys
+import sysconfig
+import zipfile
+
+
+def wheel_tag() -> str:
+    impl = f"cp{sys.version_info.major}{sys.version_info.minor}"
+    platform = sysconfig.get_platform().replace("-", "_").replace(".", "_")
+    return f"{impl}-{impl}-{platform}"
+
+
+def record_line(name: str, data: bytes) -> str:
+    digest = base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode()
+    return f"{name},sha256={digest},{len(data)}"
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--package", required=True, help="the built package directory (…/rlrun)")
+    parser.add_argument("--version", required=True)
+    parser.add_argument("--out", required=True, help="directory for the .whl")
+    args = parser.parse_args()
+
+    files = []
+    for root, dirs, names in os.walk(args.package):
+        dirs[:] = sorted(d for d in dirs if d != "__pycache__")
+        for name in sorted(names):
+            if name.endswith((".py", ".so")):
+                path = os.path.join(root, name)
+                files.append((os.path.join("rlrun", os.path.relpath(path, args.package)), path))
+    if not any(arc.endswith(".so") for arc, _ in files):
+        print(f"build_wheel: no extension module in {args.package}: build the rlrun_python target first",
+              file=sys.stderr)
+        return 1
+
+    tag = wheel_tag()
+    dist_info = f"rlrun-{args.version}.dist-info"
+    metadata = "\n".join([
+        "Metadata-Version: 2.1",
+        "Name: rlrun",
+        f"Version: {args.version}",
+        "Summary: rlrun's trained models, fast envs and training from Python",
+        f"Requires-Python: =={sys.version_info.major}.{sys.version_info.minor}.*",
+        "Requires-Dist: numpy",
+        "",
+        "See docs/python.md in the rlrun repository.",
+        "",
+    ])
+    wheel = "\n".join([
+        "Wheel-Version: 1.0",
+        "Generator: rlrun python/build_wheel.py",
+        "Root-Is-Purelib: false",
+        f"Tag: {tag}",
+        "",
+    ])
+
+    os.makedirs(args.out, exist_ok=True)
+    target = os.path.join(args.out, f"rlrun-{args.version}-{tag}.whl")
+    temp = target + ".tmp"
+    records = []
+    with zipfile.ZipFile(temp, "w", compression=zipfile.ZIP_DEFLATED) as whl:
+        def add(name: str, data: bytes, mode: int = 0o644):
+            info = zipfile.ZipInfo(name, date_time=(2020, 1, 1, 0, 0, 0))
+            info.external_attr = (0o100000 | mode) << 16
+            info.compress_type = zipfile.ZIP_DEFLATED
+            whl.writestr(info, data)
+            records.append(record_line(name, data))
+
+        for arcname, path in files:
+            with open(path, "rb") as f:
+                add(arcname, f.read(), 0o755 if path.endswith(".so") else 0o644)
+        add(f"{dist_info}/METADATA", metadata.encode())
+        add(f"{dist_info}/WHEEL", wheel.encode())
+        add(f"{dist_info}/top_level.txt", b"rlrun\n")
+        record = "\n".join(records + [f"{dist_info}/RECORD,,"]) + "\n"
+        info = zipfile.ZipInfo(f"{dist_info}/RECORD", date_time=(2020, 1, 1, 0, 0, 0))
+        info.external_attr = (0o100644) << 16
+        whl.writestr(info, record, compress_type=zipfile.ZIP_DEFLATED)
+    os.replace(temp, target)
+    print(f"build_wheel: {target}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

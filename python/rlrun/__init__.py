@@ -1,0 +1,52 @@
+"""rlrun from Python (docs/python.md): trained models, rlrun's envs, and training.
+
+    model = rlrun.load("runs/cartpole_ppo/seed1/model.zip")
+    action, _ = model.predict(obs, deterministic=True)
+
+    env = rlrun.make("CartPole-v1")              # a gymnasium.Env when Gymnasium is installed
+    envs = rlrun.make_vec("CartPole-v1", 64)     # stepped together in C++
+    run_dir = rlrun.train("configs/cartpole_ppo.yaml", seed=3)
+"""
+
+from ._core import ConfigError, RuntimeFailure, UsageError
+from ._core import __version__
+from ._env import RlrunEnv, make
+from ._model import Model, load
+from ._spaces import HAVE_GYMNASIUM
+from ._train import train
+from ._vector import RlrunVectorEnv, make_vec
+
+
+def load_plugin(path) -> str:
+    """Loads an env plugin library built against include/rlrun/ (as ``rlrun --plugin``): its
+    envs become available to make, make_vec, train and load. Returns the resolved path."""
+    import os
+
+    from ._core import load_plugin as _load
+
+    return _load(os.fspath(path))
+
+
+def list_envs():
+    """The registered env ids, as ``rlrun list`` shows them."""
+    from ._core import list_envs as _list
+
+    return [env_id for env_id, _, _ in _list()]
+
+
+__all__ = [
+    "ConfigError",
+    "HAVE_GYMNASIUM",
+    "Model",
+    "RlrunEnv",
+    "RlrunVectorEnv",
+    "RuntimeFailure",
+    "UsageError",
+    "__version__",
+    "list_envs",
+    "load",
+    "load_plugin",
+    "make",
+    "make_vec",
+    "train",
+]

@@ -1,0 +1,179 @@
+"""rlrun.make: rlrun's registered envs as Gymnasium-API envs (gymnasium/core.py semantics).
+
+The env is stepped in C++ (rlrun._core.Env); this class only shapes values: observations as
+numpy arrays shaped like the space (float32 Box, np.int64 Discrete, dict for Dict), info as a
+dict of the env's numeric values, render() as an (H, W, 3) uint8 frame. When Gymnasium is
+importable the class is a ``gymnasium.Env`` subclass (SB3's ``_patch_env`` accepts nothing
+else), with real ``gymnasium.spaces``.
+"""
+
+from __future__ import annotations
+
+import json
+import types
+from typing import Any
+
+import numpy as np
+
+from . import _core
+from . import _spaces
+
+if _spaces.HAVE_GYMNASIUM:
+    import gymnasium as _gym
+
+    _EnvBase = _gym.Env
+else:
+
+    class _EnvBase:  # the parts of gymnasium.Env that rlrun's env relies on
+        metadata: dict[str, Any] = {"render_modes": []}
+        render_mode = None
+        spec = None
+        _np_random = None
+        _np_random_seed = None
+
+        def reset(self, *, seed=None, options=None):
+            if seed is not None:
+                self._np_random = np.random.default_rng(seed)
+                self._np_random_seed = seed
+
+        @property
+        def unwrapped(self):
+            return self
+
+        @property
+        def np_random(self) -> np.random.Generator:
+            if self._np_random is None:
+                self._np_random = np.random.default_rng()
+            return self._np_random
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *args):
+            self.close()
+            return False
+
+
+def kwargs_text(kwargs: dict) -> str:
+    """An env's kwargs as the YAML mapping its Config parses (JSON is YAML)."""
+    try:
+        return json.dumps(kwargs, indent=1, sort_keys=True, default=_json_default)
+    except TypeError as e:
+        raise TypeError(f"env kwargs must be plain values (numbers, strings, lists, dicts): {e}") from None
+
+
+def _json_default(value):
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"{value!r} ({type(value).__name__})")
+
+
+def split_make_kwargs(kwargs: dict):
+    """gymnasium.make's own keywords (max_episode_steps, render_mode) apart from the env's."""
+    kwargs = dict(kwargs)
+    limit = kwargs.pop("max_episode_steps", None)
+    render_mode = kwargs.pop("render_mode", None)
+    for key in ("disable_env_checker", "autoreset", "apply_api_compatibility"):
+        kwargs.pop(key, None)
+    if limit is not None and (not isinstance(limit, (int, np.integer)) or limit < 0):
+        raise ValueError(f"max_episode_steps must be a non-negative int, got {limit!r}")
+    return kwargs, (-1 if limit is None else int(limit)), render_mode
+
+
+def registered_limit(env_id: str) -> int:
+    for id_, _, limit in _core.list_envs():
+        if id_ == env_id:
+            return limit
+    return 0
+
+
+class RlrunEnv(_EnvBase):
+    """One of rlrun's envs. Build it with ``rlrun.make(id, **kwargs)``."""
+
+    def __init__(self, id: str, render_mode: str | None = None, max_episode_steps: int | None = None,
+                 **kwargs):
+        self._core = _core.Env(id, kwargs_text(kwargs),
+                               -1 if max_episode_steps is None else int(max_episode_steps))
+        self.observation_space = _spaces.from_description(self._core.observation_space)
+        self.action_space = _spaces.from_description(self._core.action_space)
+        self._box_obs = type(self.observation_space).__name__ == "Box"
+        self._dict_action = type(self.action_space).__name__ == "Dict"
+        can_render = self._core.can_render
+        self.metadata = {
+            "render_modes": ["rgb_array"] if can_render else [],
+            "render_fps": self._core.render_fps,
+        }
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"{id}: render_mode {render_mode!r} is not supported (use 'rgb_array' or None)")
+        if render_mode == "rgb_array" and not can_render:
+            raise ValueError(f"{id} cannot render")
+        self.render_mode = render_mode
+        limit = registered_limit(id) if max_episode_steps is None else int(max_episode_steps)
+        self.max_episode_steps = limit or None
+        self.spec = _make_spec(id, limit, kwargs)
+        self._kwargs = dict(kwargs)
+
+    @property
+    def id(self) -> str:
+        return self._core.id
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        # gymnasium.Env.reset seeds self.np_random (Gymnasium's checker asserts it).
+        super().reset(seed=seed)
+        if seed is not None and (not isinstance(seed, (int, np.integer)) or seed < 0):
+            raise ValueError(f"seed must be a non-negative int, got {seed!r}")
+        obs, info = self._core.reset(None if seed is None else int(seed))
+        return (obs if self._box_obs else _spaces.from_flat(self.observation_space, obs)), info
+
+    def step(self, action):
+        if self._dict_action:
+            action = _spaces.to_flat(self.action_space, action)
+        obs, reward, terminated, truncated, info = self._core.step(action)
+        if not self._box_obs:
+            obs = _spaces.from_flat(self.observation_space, obs)
+        return obs, reward, terminated, truncated, info
+
+    def render(self):
+        """An (H, W, 3) uint8 RGB frame of the current state (render_mode "rgb_array")."""
+        return self._core.render()
+
+    def close(self):
+        if not self._core.closed:
+            self._core.close()
+
+    def __repr__(self):
+        return f"<RlrunEnv<{self._core.id}>>"
+
+
+def _make_spec(env_id: str, limit: int, kwargs: dict):
+    """Gymnasium's EnvSpec (gymnasium/envs/registration.py) when Gymnasium is there: its
+    entry point is rlrun.make, so ``env.spec.make()`` builds the same env again."""
+    if not _spaces.HAVE_GYMNASIUM:
+        # The same fields, and make(), without Gymnasium.
+        return types.SimpleNamespace(
+            id=env_id, entry_point="rlrun:make", max_episode_steps=limit or None,
+            kwargs={"id": env_id, **kwargs},
+            make=lambda **more: make(**{"id": env_id, **kwargs, **more}))
+    from gymnasium.envs.registration import EnvSpec
+
+    return EnvSpec(
+        id=env_id,
+        entry_point="rlrun:make",
+        max_episode_steps=limit or None,
+        kwargs={"id": env_id, **kwargs},
+    )
+
+
+def make(id: str, **kwargs) -> RlrunEnv:
+    """rlrun's env `id` (any id ``rlrun list`` shows) as a Gymnasium env.
+
+    ``kwargs`` are the env's own parameters (``env.kwargs`` in an experiment file, checked
+    strictly: an unknown or mistyped one raises rlrun.ConfigError), plus gymnasium.make's
+    ``max_episode_steps`` (overrides the registered time limit; 0 = none) and
+    ``render_mode`` (None or "rgb_array").
+    """
+    env_kwargs, limit, render_mode = split_make_kwargs(kwargs)
+    return RlrunEnv(id, render_mode=render_mode,
+                    max_episode_steps=None if limit < 0 else limit, **env_kwargs)

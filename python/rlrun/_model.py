@@ -1,0 +1,171 @@
+"""rlrun.load: a trained model file for prediction from Python.
+
+``predict`` has SB3's signature and batching rules (stable_baselines3/common/policies.py
+``BasePolicy.predict``, common/utils.py ``is_vectorized_observation``): one observation gives
+one action without the batch axis (a 0-d int64 array for Discrete), a batch of n gives n
+actions; Dict observations are dicts of arrays. Unlike SB3, where a VecNormalize wrapper is
+the caller's business, the observation is the env's own and the model applies everything
+``rlrun eval`` applies between the env and the policy — the normalisation statistics stored
+in the model, one-hot encoding, action rescaling and clipping — so the action can be passed
+straight to ``rlrun.make(model.env_id).step`` (runtime/model_policy.hpp).
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from . import _core
+from . import _spaces
+
+
+def _is_vectorized(observation, space) -> bool:
+    kind = type(space).__name__
+    if kind == "Box":
+        if observation.shape == space.shape:
+            return False
+        if observation.shape[1:] == space.shape:
+            return True
+        raise ValueError(
+            f"Error: Unexpected observation shape {observation.shape} for Box environment, "
+            f"please use {space.shape} or (n_env, {', '.join(map(str, space.shape))}) for the "
+            "observation shape."
+        )
+    if kind == "Discrete":
+        if observation.shape == ():
+            return False
+        if len(observation.shape) == 1:
+            return True
+        raise ValueError(
+            f"Error: Unexpected observation shape {observation.shape} for Discrete environment, "
+            "please use () or (n_env,) for the observation shape."
+        )
+    if kind == "MultiDiscrete":
+        n = len(space.nvec)
+        if observation.shape == (n,):
+            return False
+        if len(observation.shape) == 2 and observation.shape[1] == n:
+            return True
+        raise ValueError(
+            f"Error: Unexpected observation shape {observation.shape} for MultiDiscrete "
+            f"environment, please use ({n},) or (n_env, {n}) for the observation shape."
+        )
+    if kind == "MultiBinary":
+        if observation.shape == space.shape:
+            return False
+        if len(observation.shape) == len(space.shape) + 1 and observation.shape[1:] == space.shape:
+            return True
+        raise ValueError(
+            f"Error: Unexpected observation shape {observation.shape} for MultiBinary "
+            f"environment, please use {space.shape} or (n_env, {space.n}) for the observation shape."
+        )
+    raise ValueError(f"Error: Cannot determine if the observation is vectorized with the space type {space}.")
+
+
+def _is_vectorized_dict(observation: dict, space) -> bool:
+    subspaces = space.spaces
+    missing = [k for k in subspaces if k not in observation]
+    if missing:
+        raise ValueError(f"Error: the observation lacks the key(s) {missing} of {space}")
+    if all(np.shape(observation[k]) == s.shape for k, s in subspaces.items()):
+        return False
+    if all(np.shape(observation[k])[1:] == s.shape for k, s in subspaces.items()):
+        return True
+    problems = []
+    for key, s in subspaces.items():
+        try:
+            _is_vectorized(np.asarray(observation[key]), s)
+        except ValueError as e:
+            problems.append(f"key '{key}' observation: {e}")
+    raise ValueError(
+        "There seems to be a mix of vectorized and non-vectorized observations. "
+        "Unexpected observation shape for Dict environment: " + "; ".join(problems)
+    )
+
+
+class Model:
+    """A model file loaded for prediction. Build it with ``rlrun.load(path)``."""
+
+    def __init__(self, path: str | os.PathLike, overrides=None):
+        self.path = os.fspath(path)
+        self._core = _core.Model(self.path, list(overrides or []))
+        self.observation_space = _spaces.from_description(self._core.observation_space)
+        self.action_space = _spaces.from_description(self._core.action_space)
+        self._obs_dim = _spaces.flat_dim(self.observation_space)
+        kind = type(self.action_space).__name__
+        # SB3's action dtypes: int64 from Categorical/MultiCategorical, float32 otherwise
+        # (a Bernoulli's MultiBinary actions too).
+        self._action_dtype = np.int64 if kind in ("Discrete", "MultiDiscrete") else np.float32
+
+    @property
+    def algorithm(self) -> str:
+        """"PPO", "A2C", "DQN", "SAC", "TD3" or "DDPG"."""
+        return self._core.algorithm
+
+    @property
+    def env_id(self) -> str:
+        return self._core.env_id
+
+    @property
+    def num_timesteps(self) -> int:
+        return self._core.num_timesteps
+
+    @property
+    def rlrun_version(self) -> str:
+        return self._core.rlrun_version
+
+    @property
+    def config(self) -> str:
+        """The model's resolved experiment (YAML text)."""
+        return self._core.config_yaml
+
+    @property
+    def policy_observation_space(self):
+        """What the policy sees on top of the model's wrappers (e.g. one-hot, stacked)."""
+        return _spaces.from_description(self._core.policy_observation_space)
+
+    def predict(self, observation, state=None, episode_start=None, deterministic: bool = False):
+        """SB3's ``predict``: returns ``(action, state)``; rlrun's policies are not recurrent,
+        so ``state`` comes back unchanged (None)."""
+        if isinstance(observation, tuple) and len(observation) == 2 and isinstance(observation[1], dict):
+            raise ValueError(
+                "You have passed a tuple to the predict() function instead of a Numpy array or a "
+                "Dict. You are probably mixing Gym API with SB3 VecEnv API: `obs, info = "
+                "env.reset()` (Gym) vs `obs = vec_env.reset()` (SB3 VecEnv)."
+            )
+        space = self.observation_space
+        if type(space).__name__ == "Dict":
+            if not isinstance(observation, dict):
+                raise ValueError(f"Error: the model takes Dict observations {space}, got {type(observation).__name__}")
+            vectorized = _is_vectorized_dict(observation, space)
+            if vectorized:
+                n = len(np.asarray(observation[next(iter(space.spaces))]))
+                flat = _spaces.batch_to_flat(space, observation, n, "observation")
+            else:
+                flat = _spaces.to_flat(space, observation, "observation").reshape(1, -1)
+        else:
+            obs = np.asarray(observation)
+            vectorized = _is_vectorized(obs, space)
+            flat = np.ascontiguousarray(obs, dtype=np.float32).reshape(-1, self._obs_dim)
+        flat_actions = self._core.predict(flat, bool(deterministic))
+        actions = flat_actions.reshape((-1, *self.action_space.shape))
+        if self._action_dtype is not np.float32:
+            actions = actions.astype(self._action_dtype)
+        if not vectorized:
+            actions = actions.squeeze(axis=0)
+        return actions, state
+
+    def __repr__(self):
+        return f"<rlrun.Model {self.algorithm} on {self.env_id}, {self.num_timesteps} steps: {self.path}>"
+
+
+def load(path: str | os.PathLike, overrides=None) -> Model:
+    """Loads a model file written by ``rlrun train`` (model.zip, best_model.zip, a checkpoint).
+
+    Model files are untrusted input (docs/security.md): the file is read in two phases within
+    a budget its own configuration justifies, and can name no program or plugin. Problems
+    raise rlrun.RuntimeFailure with ``rlrun eval``'s message. ``overrides`` are ``--set``
+    assignments ("key=value") over the model's config, as ``rlrun eval --set``.
+    """
+    return Model(path, overrides)

@@ -1,0 +1,161 @@
+// rlrun._core.Env: one of rlrun's registered envs, stepped from Python (rlrun.make,
+// python/rlrun/_env.py wraps it in a gymnasium.Env).
+#include <pybind11/stl.h>
+
+#include <optional>
+
+#include "bindings.hpp"
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/frame.hpp"
+#include "rlrun/wrappers/time_limit.hpp"
+
+namespace rlrun::python {
+
+EnvPtr make_registered_env(const std::string& id, const std::string& kwargs_yaml,
+                           int max_episode_steps) {
+  const Registry& registry = module_registry();
+  const std::string origin = "rlrun.make('" + id + "')";
+  // An unknown id: ConfigError with the closest registered id, as in an experiment file.
+  const EnvEntry& entry = registry.env(id, ConfigNode::from_yaml(YAML::Node(id), origin, "id"));
+  const ConfigNode kwargs = ConfigNode::load_string(kwargs_yaml, origin + " kwargs");
+  EnvPtr env = entry.make(entry.parse(kwargs));
+  const int limit = max_episode_steps < 0 ? entry.max_episode_steps : max_episode_steps;
+  if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
+  return env;
+}
+
+py::dict info_dict(const Info& info) {
+  py::dict d;
+  for (size_t i = 0; i < info.keys().size(); ++i)
+    if (info.has(static_cast<int>(i))) d[py::str(info.keys()[i])] = info.get(static_cast<int>(i));
+  return d;
+}
+
+namespace {
+
+class PyEnv {
+ public:
+  PyEnv(const std::string& id, const std::string& kwargs_yaml, int max_episode_steps)
+      : env_(make_registered_env(id, kwargs_yaml, max_episode_steps)),
+        id_(id),
+        obs_dim_(static_cast<size_t>(env_->observation_space().flat_dim())),
+        act_dim_(static_cast<size_t>(env_->action_space().flat_dim())) {
+    if (env_->num_agents() > 1)
+      throw py::value_error(id + " has " + std::to_string(env_->num_agents()) +
+                            " agents: rlrun.make builds single-agent envs (set the env's kwargs "
+                            "for one agent, or use make_vec)");
+  }
+
+  Env& env() {
+    if (!env_) throw py::value_error("rlrun.make('" + id_ + "'): the env is closed");
+    return *env_;
+  }
+
+  // A new array for one observation: shaped like a Box space, flat otherwise (the Python side
+  // shapes those).
+  py::array_t<float> new_obs() {
+    const Space& space = env().observation_space();
+    if (space.is_box())
+      return py::array_t<float>(
+          std::vector<py::ssize_t>(space.shape().begin(), space.shape().end()));
+    return py::array_t<float>(static_cast<py::ssize_t>(obs_dim_));
+  }
+
+  // (obs, info)
+  py::tuple reset(std::optional<uint64_t> seed) {
+    Env& e = env();
+    py::array_t<float> obs = new_obs();
+    float* out = obs.mutable_data();
+    {
+      py::gil_scoped_release release;
+      e.reset(seed, {out, obs_dim_});
+    }
+    return py::make_tuple(obs, info_dict(e.info()));
+  }
+
+  // (obs, reward, terminated, truncated, info). `action`: a Python int or float for a one-value
+  // action (read without numpy: the common Discrete case), else anything numpy converts to
+  // act_dim float32 values.
+  py::tuple step(py::handle action) {
+    Env& e = env();
+    action_.resize(act_dim_);
+    if (act_dim_ == 1 && (PyLong_CheckExact(action.ptr()) || PyFloat_CheckExact(action.ptr()))) {
+      const double value = PyFloat_AsDouble(action.ptr());
+      if (PyErr_Occurred()) throw py::error_already_set();
+      action_[0] = static_cast<float>(value);
+    } else {
+      auto array = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(action);
+      if (!array) {
+        PyErr_Clear();
+        throw py::type_error("step: " + id_ + ": an action is a number or an array, got " +
+                             std::string(py::str(py::type::handle_of(action))));
+      }
+      if (static_cast<size_t>(array.size()) != act_dim_)
+        throw py::value_error("step: " + id_ + " takes actions of " + std::to_string(act_dim_) +
+                              " values, got " + std::to_string(array.size()));
+      std::copy(array.data(), array.data() + act_dim_, action_.begin());
+    }
+    // Gymnasium's envs assert that a discrete action is in their space (cartpole.py:
+    // `assert self.action_space.contains(action)`); a Box action is the env's to clip.
+    const Space& space = e.action_space();
+    if (!space.is_box() && !space.contains(action_))
+      throw py::value_error("step: " + id_ + ": action not in " + space.describe());
+    py::array_t<float> obs = new_obs();
+    float* out = obs.mutable_data();
+    StepResult r;
+    {
+      py::gil_scoped_release release;
+      r = e.step(action_, {out, obs_dim_});
+    }
+    return py::make_tuple(obs, r.reward, r.terminated, r.truncated, info_dict(e.info()));
+  }
+
+  // Gymnasium's render_mode="rgb_array": an (H, W, 3) uint8 array, None if the env cannot draw.
+  py::object render() {
+    Env& e = env();
+    const RenderSpec spec = e.render_spec();
+    if (spec.width <= 0) return py::none();
+    if (!frame_) frame_ = std::make_unique<Frame>(spec.width, spec.height);
+    if (!e.render(*frame_)) return py::none();
+    frame_->to_rgb(rgb_);
+    py::array_t<uint8_t> out({spec.height, spec.width, 3});
+    std::copy(rgb_.begin(), rgb_.end(), out.mutable_data());
+    return out;
+  }
+
+  void close() {
+    frame_.reset();
+    env_.reset();
+  }
+
+  EnvPtr env_;
+  std::string id_;
+  size_t obs_dim_, act_dim_;
+  std::unique_ptr<Frame> frame_;
+  std::vector<uint8_t> rgb_;
+  std::vector<float> action_;
+};
+
+}  // namespace
+
+void bind_env(py::module_& m) {
+  py::class_<PyEnv>(m, "Env")
+      .def(py::init<const std::string&, const std::string&, int>(), py::arg("id"),
+           py::arg("kwargs_yaml") = "{}", py::arg("max_episode_steps") = -1)
+      .def("reset", &PyEnv::reset, py::arg("seed"))
+      .def("step", &PyEnv::step, py::arg("action"))
+      .def("info", [](PyEnv& self) { return info_dict(self.env().info()); })
+      .def("render", &PyEnv::render)
+      .def("close", &PyEnv::close)
+      .def_property_readonly("closed", [](const PyEnv& self) { return !self.env_; })
+      .def_property_readonly("observation_space",
+                             [](PyEnv& self) { return space_dict(self.env().observation_space()); })
+      .def_property_readonly("action_space",
+                             [](PyEnv& self) { return space_dict(self.env().action_space()); })
+      .def_property_readonly("render_fps", [](PyEnv& self) { return self.env().render_spec().fps; })
+      .def_property_readonly("can_render",
+                             [](PyEnv& self) { return self.env().render_spec().width > 0; })
+      .def_property_readonly("id", [](const PyEnv& self) { return self.id_; });
+}
+
+}  // namespace rlrun::python

@@ -1,0 +1,67 @@
+// rlrun._core.Model: a model file loaded for prediction (runtime/model_policy.hpp: the env's
+// own observations in, the env's own actions out, through the model's wrappers as `rlrun eval`
+// steps them). python/rlrun/_model.py adds SB3's predict() signature and batching rules.
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "rlrun/runtime/model_policy.hpp"
+
+namespace rlrun::python {
+
+namespace {
+
+py::array_t<float> predict(ModelPolicy& model,
+                           py::array_t<float, py::array::c_style | py::array::forcecast> obs,
+                           bool deterministic) {
+  // obs: (batch, obs_dim) C order = the bytes of an obs_dim x batch column-major matrix.
+  const int obs_dim = model.observation_space().flat_dim();
+  if (obs.ndim() != 2 || obs.shape(1) != obs_dim)
+    throw py::value_error("predict: expected observations of shape (batch, " +
+                          std::to_string(obs_dim) + ")");
+  const Eigen::Index batch = obs.shape(0);
+  const Eigen::Map<const Eigen::MatrixXf> in(obs.data(), obs_dim, batch);
+  Eigen::MatrixXf actions;
+  {
+    py::gil_scoped_release release;
+    model.predict(in, deterministic, actions);
+  }
+  py::array_t<float> out(
+      {static_cast<py::ssize_t>(batch), static_cast<py::ssize_t>(actions.rows())});
+  std::copy(actions.data(), actions.data() + actions.size(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+
+void bind_model(py::module_& m) {
+  py::class_<ModelPolicy>(m, "Model")
+      .def(py::init([](const std::string& path, const std::vector<std::string>& overrides) {
+             return std::make_unique<ModelPolicy>(path, module_registry(), overrides);
+           }),
+           py::arg("path"), py::arg("overrides") = std::vector<std::string>{})
+      .def("predict", &predict, py::arg("obs"), py::arg("deterministic"))
+      .def_property_readonly("algorithm",
+                             [](const ModelPolicy& self) { return self.meta().algorithm; })
+      .def_property_readonly("env_id", [](const ModelPolicy& self) { return self.meta().env_id; })
+      .def_property_readonly("num_timesteps",
+                             [](const ModelPolicy& self) { return self.meta().num_timesteps; })
+      .def_property_readonly("rlrun_version",
+                             [](const ModelPolicy& self) { return self.meta().rlrun_version; })
+      .def_property_readonly("num_agents", &ModelPolicy::num_agents)
+      .def_property_readonly(
+          "observation_space",
+          [](const ModelPolicy& self) { return space_dict(self.observation_space()); })
+      .def_property_readonly(
+          "action_space", [](const ModelPolicy& self) { return space_dict(self.action_space()); })
+      .def_property_readonly(
+          "policy_observation_space",
+          [](const ModelPolicy& self) { return space_dict(self.policy_observation_space()); })
+      .def_property_readonly(
+          "policy_action_space",
+          [](const ModelPolicy& self) { return space_dict(self.policy_action_space()); })
+      .def_property_readonly("config_yaml", [](const ModelPolicy& self) {
+        return dump_yaml(self.experiment().resolved);
+      });
+}
+
+}  // namespace rlrun::python

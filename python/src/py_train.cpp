@@ -1,0 +1,77 @@
+// rlrun._core.train_file / train_text: `rlrun train` in-process (runtime/trainer.hpp), for
+// rlrun.train (python/rlrun/_train.py). Training runs without the GIL; while it runs,
+// rlrun's own SIGINT/SIGTERM handlers (core/interrupt.hpp) replace Python's, so Ctrl-C stops
+// it as on the command line: at the next safe point, with a checkpoint; Python's handlers come
+// back afterwards and rlrun.train raises KeyboardInterrupt.
+#include <pybind11/stl.h>
+
+#include <csignal>
+
+#include "bindings.hpp"
+#include "rlrun/core/interrupt.hpp"
+#include "rlrun/runtime/trainer.hpp"
+
+namespace rlrun::python {
+
+namespace {
+
+// Python's handlers for SIGINT and SIGTERM, put back when training ends however it ends.
+class ScopedTrainingSignals {
+ public:
+  ScopedTrainingSignals() {
+    sigaction(SIGINT, nullptr, &old_int_);
+    sigaction(SIGTERM, nullptr, &old_term_);
+    clear_interrupts();
+    install_interrupt_handlers();
+  }
+  ~ScopedTrainingSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  ScopedTrainingSignals(const ScopedTrainingSignals&) = delete;
+  ScopedTrainingSignals& operator=(const ScopedTrainingSignals&) = delete;
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+py::dict run(const Experiment& experiment) {
+  TrainOutcome outcome;
+  {
+    ScopedTrainingSignals signals;
+    py::gil_scoped_release release;
+    outcome = train_experiment(experiment, module_registry());
+  }
+  py::dict d;
+  d["run_dir"] = outcome.run_dir;
+  d["model_path"] = outcome.model_path;
+  d["timesteps"] = outcome.timesteps;
+  d["wall_seconds"] = outcome.wall_seconds;
+  d["interrupted"] = outcome.interrupted;
+  d["checkpoint_path"] = outcome.checkpoint_path;
+  d["stop_reason"] = outcome.stop_reason;
+  return d;
+}
+
+}  // namespace
+
+void bind_train(py::module_& m) {
+  m.def(
+      "train_file",
+      [](const std::string& path, const std::vector<std::string>& overrides) {
+        return run(load_experiment(path, overrides, module_registry()));
+      },
+      py::arg("path"), py::arg("overrides"),
+      "Trains the experiment file with `--set` overrides; returns the outcome as a dict.");
+  m.def(
+      "train_text",
+      [](const std::string& text, const std::string& origin, const std::string& default_name,
+         const std::vector<std::string>& overrides) {
+        return run(load_experiment_text(text, origin, default_name, overrides, module_registry()));
+      },
+      py::arg("text"), py::arg("origin"), py::arg("default_name"), py::arg("overrides"),
+      "Trains an experiment given as YAML text; returns the outcome as a dict.");
+}
+
+}  // namespace rlrun::python
