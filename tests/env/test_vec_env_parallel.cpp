@@ -1,0 +1,131 @@
+// VecEnv's two ways of stepping envs that wait on other processes (vec_env.hpp): on threads
+// (ParallelSlices) and in two halves (SplitStep, start every copy's step before finishing
+// any). Both must give exactly what stepping one copy after another gives.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "fakes/counter_env.hpp"
+#include "rlrun/core/parallel_slices.hpp"
+#include "rlrun/env/vec_env.hpp"
+#include "rlrun/envs/classic/cartpole.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/wrappers/monitor.hpp"
+#include "rlrun/wrappers/time_limit.hpp"
+
+using namespace rlrun;
+using rlrun::testing::CounterEnv;
+
+namespace {
+
+// A CounterEnv stepped in halves: start_step keeps the action, finish_step steps. It counts
+// how many steps are started and not yet finished across all copies, so a test can see that
+// the VecEnv started every copy before it finished any.
+class SplitCounter : public CounterEnv, public SplitStep {
+ public:
+  SplitCounter(int length, std::atomic<int>& in_flight, int& most_in_flight)
+      : CounterEnv(length), in_flight_(in_flight), most_(most_in_flight) {}
+  bool steps_asynchronously() const override { return true; }
+  void start_step(std::span<const float> action) override {
+    action_.assign(action.begin(), action.end());
+    most_ = std::max(most_, ++in_flight_);
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    --in_flight_;
+    return step(action_, obs);
+  }
+
+ private:
+  std::vector<float> action_;
+  std::atomic<int>& in_flight_;
+  int& most_;
+};
+
+struct Trace {
+  std::vector<float> obs, final_obs;
+  std::vector<double> rewards;
+  std::vector<int> dones;
+};
+
+Trace run(VecEnv& env, int steps, uint64_t seed) {
+  Trace t;
+  env.seed(seed);
+  env.reset();
+  Rng rng(7);
+  Eigen::MatrixXf actions(env.action_space().flat_dim(), env.num_envs());
+  for (int s = 0; s < steps; ++s) {
+    for (int c = 0; c < env.num_envs(); ++c)
+      env.action_space().sample(rng, {actions.col(c).data(), static_cast<size_t>(actions.rows())});
+    env.step(actions);
+    for (int c = 0; c < env.num_envs(); ++c) {
+      t.rewards.push_back(env.rewards()[c]);
+      t.dones.push_back(env.done(c));
+      for (int k = 0; k < env.obs().rows(); ++k) {
+        t.obs.push_back(env.obs()(k, c));
+        if (env.done(c)) t.final_obs.push_back(env.final_obs()(k, c));
+      }
+    }
+  }
+  return t;
+}
+
+std::vector<EnvPtr> cartpoles(int n) {
+  std::vector<EnvPtr> envs;
+  for (int i = 0; i < n; ++i)
+    envs.push_back(std::make_unique<Monitor>(
+        std::make_unique<TimeLimit>(std::make_unique<CartPole>(), 50), "", 0.0,
+        std::vector<std::string>{"is_success"}, false));
+  return envs;
+}
+
+}  // namespace
+
+TEST_CASE("ParallelSlices runs every slice once per job and rethrows", "[vec_env]") {
+  ParallelSlices slices(3);
+  std::vector<int> seen(3, 0);
+  for (int job = 0; job < 100; ++job) slices.run([&](int s) { ++seen[s]; });
+  CHECK(seen == std::vector<int>{100, 100, 100});
+  CHECK_THROWS_WITH(slices.run([](int s) {
+                      if (s == 2) throw std::runtime_error("slice 2 failed");
+                    }),
+                    "slice 2 failed");
+  slices.run([&](int s) { ++seen[s]; });  // still usable after an exception
+  CHECK(seen[1] == 101);
+}
+
+TEST_CASE("VecEnv on threads steps exactly as on one thread", "[vec_env]") {
+  VecEnv one(cartpoles(5), 1), three(cartpoles(5), 3);
+  const Trace a = run(one, 300, 11), b = run(three, 300, 11);
+  CHECK(a.obs == b.obs);
+  CHECK(a.final_obs == b.final_obs);
+  CHECK(a.rewards == b.rewards);
+  CHECK(a.dones == b.dones);
+  CHECK(a.final_obs.size() > 4 * 20);  // episodes ended and were reset along the way
+}
+
+TEST_CASE("VecEnv starts every copy's step before finishing any (SplitStep)", "[vec_env]") {
+  std::atomic<int> in_flight{0};
+  int most = 0;
+  std::vector<EnvPtr> split, plain;
+  for (int i = 0; i < 4; ++i) {
+    // TimeLimit and Monitor forward the halves, so the stack stays asynchronous.
+    split.push_back(std::make_unique<Monitor>(
+        std::make_unique<TimeLimit>(std::make_unique<SplitCounter>(7, in_flight, most), 5), "",
+        0.0, std::vector<std::string>{"is_success"}, false));
+    plain.push_back(std::make_unique<Monitor>(
+        std::make_unique<TimeLimit>(std::make_unique<CounterEnv>(7), 5), "", 0.0,
+        std::vector<std::string>{"is_success"}, false));
+  }
+  VecEnv a(std::move(split)), b(std::move(plain));
+  const Trace ta = run(a, 40, 3), tb = run(b, 40, 3);
+  CHECK(most == 4);
+  CHECK(in_flight == 0);
+  CHECK(ta.obs == tb.obs);
+  CHECK(ta.final_obs == tb.final_obs);
+  CHECK(ta.rewards == tb.rewards);
+  CHECK(ta.dones == tb.dones);
+  for (int c = 0; c < 4; ++c) CHECK(a.info(c).keys() == b.info(c).keys());
+}
