@@ -9,53 +9,40 @@ Markdown table (scripts/bench.sh adds it to docs/benchmarks.md).
 """
 
 import argparse
-import math
+import os
 import random
+import sys
 import time
 
 import numpy as np
 
 import rlrun
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+                                "python_envs"))
+from rlrun_test_envs.cartpole import CartPolePort  # noqa: E402
+
 
 class PyCartPole:
-    """Gymnasium's CartPole-v1 (classic_control/cartpole.py) in plain Python, with its
-    TimeLimit of 500 steps and auto-reset, as a Python env loop steps it."""
-
-    gravity, masscart, masspole, length, force_mag, tau = 9.8, 1.0, 0.1, 0.5, 10.0, 0.02
-    total_mass = masspole + masscart
-    polemass_length = masspole * length
-    theta_threshold = 12 * 2 * math.pi / 360
-    x_threshold = 2.4
+    """The tests' pure-Python port of Gymnasium's CartPole-v1 physics
+    (tests/python_envs/rlrun_test_envs/cartpole.py), with its TimeLimit of 500 steps and
+    auto-reset, as a Python env loop steps it."""
 
     def __init__(self, seed):
-        self.rng = np.random.default_rng(seed)
-        self.reset()
+        self.env = CartPolePort()
+        self.reset(seed)
 
-    def reset(self):
-        self.state = self.rng.uniform(-0.05, 0.05, size=4).tolist()
+    def reset(self, seed=None):
         self.steps = 0
-        return np.array(self.state, dtype=np.float32)
+        return self.env.reset(seed=seed)[0]
 
     def step(self, action):
-        x, x_dot, theta, theta_dot = self.state
-        force = self.force_mag if action == 1 else -self.force_mag
-        costheta, sintheta = math.cos(theta), math.sin(theta)
-        temp = (force + self.polemass_length * theta_dot**2 * sintheta) / self.total_mass
-        thetaacc = (self.gravity * sintheta - costheta * temp) / (
-            self.length * (4.0 / 3.0 - self.masspole * costheta**2 / self.total_mass))
-        xacc = temp - self.polemass_length * thetaacc * costheta / self.total_mass
-        x, x_dot = x + self.tau * x_dot, x_dot + self.tau * xacc
-        theta, theta_dot = theta + self.tau * theta_dot, theta_dot + self.tau * thetaacc
-        self.state = [x, x_dot, theta, theta_dot]
+        obs, reward, terminated, _, info = self.env.step(action)
         self.steps += 1
-        terminated = (x < -self.x_threshold or x > self.x_threshold
-                      or theta < -self.theta_threshold or theta > self.theta_threshold)
         truncated = self.steps >= 500
-        obs = np.array(self.state, dtype=np.float32)
         if terminated or truncated:
             obs = self.reset()
-        return obs, 1.0, terminated, truncated, {}
+        return obs, reward, terminated, truncated, info
 
 
 def rate(step_once, calls, envs_per_call):
