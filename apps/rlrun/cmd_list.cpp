@@ -28,6 +28,14 @@ void print_table(const char* title, const Entries& entries) {
 // An env's spaces (as built with default parameters), time limit and policies.
 void print_env_details(const EnvEntry& entry) {
   std::printf("%s: %s\n", entry.id.c_str(), entry.description.c_str());
+  if (entry.expand) {
+    std::printf(
+        "  a family of ids: the spaces are the env's own (`rlrun check-env %s...` builds one "
+        "and shows them);\n  env.kwargs go to its constructor as keyword arguments, env.python "
+        "picks the interpreter (docs/python.md)\n",
+        entry.id.c_str());
+    return;
+  }
   try {
     const EnvPtr env = entry.make(entry.parse(ConfigNode()));
     std::printf("%s", labeled_space("observation_space", env->observation_space(), 17).c_str());
@@ -69,7 +77,10 @@ bool print_params_if_found(const Entries& entries, const std::string& id) {
   for (const auto& e : entries) {
     if (e.id != id) continue;
     using Entry = std::decay_t<decltype(e)>;
-    if constexpr (std::is_same_v<Entry, EnvEntry>) print_env_details(e);
+    if constexpr (std::is_same_v<Entry, EnvEntry>) {
+      print_env_details(e);
+      if (e.expand) return true;
+    }
     print_params(e.id, e.params());
     if constexpr (std::is_same_v<Entry, AlgorithmEntry>) print_action_spaces(e);
     return true;

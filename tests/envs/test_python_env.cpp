@@ -151,3 +151,24 @@ TEST_CASE("rlrun record films a Python env through its render()", "[python]") {
   // The env's own 300x200 frames, one per step plus the first.
   CHECK(probe.output.find("h264,300,200,") != std::string::npos);
 }
+
+TEST_CASE("the documented Python env example trains and evaluates as docs/python.md says",
+          "[python]") {
+  TempDir dir("python_example");
+  const std::string example = kSourceDir + "/examples/python_env";
+  // As the docs run it: from the example's directory, python3 from PATH (Debian's first).
+  const auto train = run_command("cd " + example + " && PATH=/usr/bin:$PATH " + RLRUN_BINARY +
+                                 " train walk_to_target_ppo.yaml --timesteps 2048 --set eval.freq=0 --out " +
+                                 dir.str());
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const auto eval = run_command("cd " + example + " && PATH=/usr/bin:$PATH " + RLRUN_BINARY +
+                                " eval --model " + dir.str() +
+                                "/walk_to_target_ppo/seed1/model.zip --episodes 5 --set "
+                                "env.id=python:walk_to_target:WalkToTarget");
+  INFO(eval.output);
+  CHECK(eval.exit_code == 0);
+  CHECK(eval.output.find("success_rate = ") != std::string::npos);
+  CHECK(read_text(dir / "walk_to_target_ppo/seed1/0.monitor.csv").find("r,l,t,is_success") !=
+        std::string::npos);
+}
