@@ -172,3 +172,47 @@ TEST_CASE("the documented Python env example trains and evaluates as docs/python
   CHECK(read_text(dir / "walk_to_target_ppo/seed1/0.monitor.csv").find("r,l,t,is_success") !=
         std::string::npos);
 }
+
+TEST_CASE("env.python: a virtualenv's interpreter runs the env", "[python]") {
+  TempDir dir("python_venv");
+  // A virtualenv of Debian's python3 that sees its numpy (--system-site-packages), as a user
+  // with their own environment has; rlrun is told to use it, not python3 on PATH.
+  const auto venv = run_command("/usr/bin/python3 -m venv --without-pip --system-site-packages " +
+                                dir.str() + "/venv");
+  INFO(venv.output);
+  REQUIRE(venv.exit_code == 0);
+  const auto r = run_rlrun_python("check-env python:rlrun_test_envs.continuous:Reach1D --episodes 2 --python " +
+                                  dir.str() + "/venv/bin/python");
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  const auto wrong = run_rlrun_python("check-env python:rlrun_test_envs.continuous:Reach1D --python " +
+                                      dir.str() + "/venv/bin/no-python");
+  CHECK(wrong.exit_code != 0);
+  CHECK(wrong.output.find("cannot run the Python interpreter") != std::string::npos);
+}
+
+TEST_CASE("rlrun's wrappers stack on a Python env, deterministically", "[python]") {
+  // NormalizeObservation (statistics shared by the 4 copies) splits steps like TimeLimit and
+  // Monitor (env/split_step.hpp); FrameStack does not, so its workers step one at a time.
+  // Either way: the same seed gives the same episodes.
+  TempDir dir("python_wrappers");
+  for (const std::string wrapper : {"NormalizeObservation", "FrameStack, n_stack: 2"}) {
+    std::string monitors[2];
+    for (int run = 0; run < 2; ++run) {
+      const std::string name = "wrapped" + std::to_string(run) + wrapper.substr(0, 5);
+      const auto r = run_rlrun_python(
+          "train " + python_experiment(dir.str(), name, kCartPolePort, "id: PPO, n_steps: 64",
+                                       2048, 4,
+                                       ", max_episode_steps: 500, wrappers: [{id: " + wrapper + "}]"));
+      INFO(r.output);
+      REQUIRE(r.exit_code == 0);
+      for (int i = 0; i < 4; ++i)
+        for (const auto& e : episodes(dir / ("runs/" + name + "/seed1/" + std::to_string(i) +
+                                             ".monitor.csv")))
+          monitors[run] += e + "\n";
+    }
+    INFO(wrapper);
+    CHECK(monitors[0].size() > 100);
+    CHECK(monitors[0] == monitors[1]);
+  }
+}

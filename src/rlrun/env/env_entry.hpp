@@ -51,9 +51,6 @@ struct EnvEntry {
   // The id names code that building the env runs (a Python class): an id from a file rlrun
   // does not trust is refused unless `--set env.id=...` vouches for it (docs/security.md).
   bool runs_named_code = false;
-  // Each step waits on another process (a Python worker): a VecEnv of these steps its copies
-  // on threads so that the processes run in parallel.
-  bool steps_in_other_process = false;
 
   EnvPtr build(const AnyConfig& kwargs, const EnvContext& context) const {
     return make_in_context ? make_in_context(kwargs, context) : make(kwargs);

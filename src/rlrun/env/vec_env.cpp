@@ -10,7 +10,7 @@
 
 namespace rlrun {
 
-VecEnv::VecEnv(std::vector<EnvPtr> envs, int step_threads) : envs_(std::move(envs)) {
+VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
   if (envs_.empty()) throw std::invalid_argument("VecEnv: needs at least one env");
   for (size_t i = 0; i < envs_.size(); ++i) {
     if (!envs_[i]) throw std::invalid_argument("VecEnv: env " + std::to_string(i) + " is null");
@@ -48,33 +48,18 @@ VecEnv::VecEnv(std::vector<EnvPtr> envs, int step_threads) : envs_(std::move(env
   for (EnvPtr& env : envs_) split_.push_back(asynchronous_steps(*env));
   if (most_agents > 1 || std::find(split_.begin(), split_.end(), nullptr) != split_.end())
     split_.clear();
-  const int threads = std::min(step_threads, num_copies());
-  if (threads > 1 && most_agents == 1 && split_.empty())
-    threads_ = std::make_unique<ParallelSlices>(threads);
 }
 
 VecEnv::VecEnv(VecEnv&&) noexcept = default;
 VecEnv& VecEnv::operator=(VecEnv&&) noexcept = default;
 VecEnv::~VecEnv() = default;
 
-template <class Fn>
-void VecEnv::for_each_copy(const Fn& fn) {
-  if (!threads_) {
-    for (int c = 0; c < num_copies(); ++c) fn(c);
-    return;
-  }
-  const int slices = threads_->slices();
-  threads_->run([&](int s) {
-    for (int c = s; c < num_copies(); c += slices) fn(c);
-  });
-}
-
 void VecEnv::seed(uint64_t seed) {
   for (int c = 0; c < num_copies(); ++c) seeds_[c] = seed + static_cast<uint64_t>(c);
 }
 
 const Eigen::MatrixXf& VecEnv::reset() {
-  for_each_copy([this](int c) { reset_copy(c); });
+  for (int c = 0; c < num_copies(); ++c) reset_copy(c);
   std::fill(terminated_.begin(), terminated_.end(), 0);
   std::fill(truncated_.begin(), truncated_.end(), 0);
   rewards_.setZero();
@@ -105,7 +90,7 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
       finish_copy(c, split_[c]->finish_step(std::span<float>(obs_.col(c).data(), obs_dim_)));
     return;
   }
-  for_each_copy([&](int c) { step_copy(c, actions); });
+  for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
 }
 
 void VecEnv::step_copy(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {

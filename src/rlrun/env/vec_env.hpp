@@ -22,7 +22,6 @@
 #include <optional>
 #include <vector>
 
-#include "rlrun/core/parallel_slices.hpp"
 #include "rlrun/env/split_step.hpp"
 #include "rlrun/space.hpp"
 #include "rlrun/env.hpp"
@@ -33,13 +32,12 @@ namespace rlrun {
 class VecEnv {
  public:
   // Throws std::invalid_argument if `envs` is empty, holds a null env, or the envs disagree
-  // on their observation or action space. `step_threads` > 1 steps and resets the copies on
-  // that many threads (copy c on thread c % step_threads): for envs whose steps wait on other
-  // processes (Python workers, EnvEntry::steps_in_other_process). Results do not depend on
-  // it: each copy writes only its own columns. Multi-agent envs always step on one thread.
-  // Better still, when every copy's stack steps asynchronously (env/split_step.hpp), step()
-  // starts every copy's step before it finishes any, on the calling thread.
-  explicit VecEnv(std::vector<EnvPtr> envs, int step_threads = 1);
+  // on their observation or action space. When every copy's stack steps asynchronously (envs
+  // in other processes, env/split_step.hpp), step() starts every copy's step before it
+  // finishes any, so those processes run in parallel; the halves are finished in copy order,
+  // so wrappers that share statistics across copies (NormalizeObservation) see the same
+  // sequence as with whole steps. (Not threads: those would make that order vary.)
+  explicit VecEnv(std::vector<EnvPtr> envs);
   VecEnv(VecEnv&&) noexcept;
   VecEnv& operator=(VecEnv&&) noexcept;
   ~VecEnv();
@@ -88,9 +86,6 @@ class VecEnv {
   // After copy c's step returned r: rewards, flags, info, and the auto-reset.
   void finish_copy(int c, const StepResult& r);
   void step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions);
-  // Calls fn(c) for every copy, on the step threads when there are several.
-  template <class Fn>
-  void for_each_copy(const Fn& fn);
 
   std::vector<EnvPtr> envs_;
   std::vector<int> first_slot_;  // env copy c's first column
@@ -106,7 +101,6 @@ class VecEnv {
   std::vector<uint8_t> terminated_;
   std::vector<uint8_t> truncated_;
   std::vector<Info> infos_;
-  std::unique_ptr<ParallelSlices> threads_;  // null: one thread
   // Every copy steps asynchronously (env/split_step.hpp): start all steps, then finish them.
   std::vector<SplitStep*> split_;
 };

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <thread>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/wrappers/monitor.hpp"
@@ -97,12 +96,7 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
     envs[i] = wrap_env(std::move(envs[i]), spec, registry, path, t_start, i == tap_env,
                        append_monitor);
   }
-  // Envs whose steps wait on other processes step on threads, so those processes run in
-  // parallel (SB3's SubprocVecEnv); one thread per core is enough to keep every core busy.
-  const int threads = env_entry(spec, registry).steps_in_other_process
-                          ? std::min(n_envs, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())))
-                          : 1;
-  return VecEnv(std::move(envs), threads);
+  return VecEnv(std::move(envs));
 }
 
 std::string monitor_file_name(int i) { return std::to_string(i) + ".monitor.csv"; }

@@ -68,7 +68,10 @@ void NormalizeObservation::reset(std::optional<uint64_t> seed, std::span<float> 
 }
 
 StepResult NormalizeObservation::step(std::span<const float> action, std::span<float> obs) {
-  const StepResult result = inner_->step(action, obs);
+  return after_step(inner_->step(action, obs), obs);
+}
+
+StepResult NormalizeObservation::after_step(StepResult result, std::span<float> obs) {
   std::copy(obs.begin(), obs.end(), original_.begin());
   if (training_ && !result.terminated && !result.truncated) rms_->update(selected(obs));
   normalize(obs);

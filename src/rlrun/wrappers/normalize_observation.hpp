@@ -26,13 +26,14 @@
 #include <vector>
 
 #include "rlrun/core/config_checks.hpp"
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 #include "rlrun/wrappers/model_statistics.hpp"
 #include "rlrun/wrappers/running_mean_std.hpp"
 
 namespace rlrun {
 
-class NormalizeObservation : public Wrapper, public ModelStatistics {
+class NormalizeObservation : public Wrapper, public ModelStatistics, public SplitStep {
  public:
   struct Config {
     double clip_obs = 10.0;  // SB3 VecNormalize clip_obs
@@ -55,6 +56,14 @@ class NormalizeObservation : public Wrapper, public ModelStatistics {
   const Space& observation_space() const override { return space_; }
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // The two halves of step() (env/split_step.hpp): forwarded, then this wrapper's work.
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(action);
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    return after_step(asynchronous_steps(*inner_)->finish_step(obs), obs);
+  }
 
   std::string statistics_name() const override { return "NormalizeObservation"; }
   void save_statistics(StateWriter& out) const override { rms_->write(out); }
@@ -75,6 +84,8 @@ class NormalizeObservation : public Wrapper, public ModelStatistics {
   void read_own_state(const StateReader& in) override { rms_->read(in.sub("normalize_observation")); }
 
  private:
+  // What step() does after the inner env stepped.
+  StepResult after_step(StepResult result, std::span<float> obs);
   void normalize(std::span<float> obs) const;
   // The floats the statistics see: the observation itself, or its normalised keys' floats.
   std::span<const float> selected(std::span<const float> obs);

@@ -20,7 +20,10 @@ void NormalizeReward::reset(std::optional<uint64_t> seed, std::span<float> obs) 
 }
 
 StepResult NormalizeReward::step(std::span<const float> action, std::span<float> obs) {
-  StepResult result = inner_->step(action, obs);
+  return after_step(inner_->step(action, obs), obs);
+}
+
+StepResult NormalizeReward::after_step(StepResult result, std::span<float> /*obs*/) {
   if (training_) {  // VecNormalize._update_reward
     return_ = return_ * config_.gamma + result.reward;
     rms_->update(return_);

@@ -15,13 +15,14 @@
 #include <memory>
 
 #include "rlrun/core/config_checks.hpp"
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 #include "rlrun/wrappers/model_statistics.hpp"
 #include "rlrun/wrappers/running_mean_std.hpp"
 
 namespace rlrun {
 
-class NormalizeReward : public Wrapper, public ModelStatistics {
+class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep {
  public:
   struct Config {
     double gamma = 0.99;        // SB3 VecNormalize gamma (discount of the return whose std is used)
@@ -42,6 +43,14 @@ class NormalizeReward : public Wrapper, public ModelStatistics {
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // The two halves of step() (env/split_step.hpp): forwarded, then this wrapper's work.
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(action);
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    return after_step(asynchronous_steps(*inner_)->finish_step(obs), obs);
+  }
 
   std::string statistics_name() const override { return "NormalizeReward"; }
   void save_statistics(StateWriter& out) const override { rms_->write(out); }
@@ -58,6 +67,8 @@ class NormalizeReward : public Wrapper, public ModelStatistics {
   void read_own_state(const StateReader& in) override;
 
  private:
+  // What step() does after the inner env stepped.
+  StepResult after_step(StepResult result, std::span<float> obs);
   Config config_;
   std::shared_ptr<RunningMeanStd> rms_;
   double return_ = 0.0;

@@ -3,7 +3,8 @@
 // kwargs: {...}}` builds MyEnv(**kwargs), `gymnasium:CartPole-v1` gymnasium.make(...), in a
 // worker process of its own (python_worker.hpp, worker.py). rlrun's TimeLimit, Monitor and
 // wrappers stack on it like on any env; each copy of a VecEnv has its own worker, and the VecEnv
-// steps the copies on threads so the workers run in parallel (EnvEntry::steps_in_other_process).
+// sends every copy its action before it waits for any reply (env/split_step.hpp), so the
+// workers run in parallel.
 //
 // The worker is started in the constructor and answers the handshake while the caller goes on
 // (make_vec_env starts all copies before it needs their spaces). Everything the env does wrong

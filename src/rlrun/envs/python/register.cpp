@@ -18,7 +18,6 @@ EnvEntry python_entry(const std::string& id, std::string description) {
   entry.id = id;
   entry.description = std::move(description);
   entry.runs_named_code = true;
-  entry.steps_in_other_process = true;
   entry.parse = [](const ConfigNode& kwargs) {
     if (kwargs.defined() && !kwargs.is_map())
       kwargs.fail("the kwargs of a Python env are a map of its constructor's keyword arguments");
