@@ -34,11 +34,14 @@ class SplitCounter : public CounterEnv, public SplitStep {
   }
   StepResult finish_step(std::span<float> obs) override {
     --in_flight_;
+    if (++finished_ == fail_at_) throw std::runtime_error("worker failed");
     return step(action_, obs);
   }
+  int fail_at_ = -1;  // finish_step number that throws (-1: none)
 
  private:
   std::vector<float> action_;
+  int finished_ = 0;
   std::atomic<int>& in_flight_;
   int& most_;
 };
@@ -105,4 +108,21 @@ TEST_CASE("VecEnv starts every copy's step before finishing any (SplitStep)", "[
   CHECK(ta.rewards == tb.rewards);
   CHECK(ta.dones == tb.dones);
   for (int c = 0; c < 4; ++c) CHECK(a.info(c).keys() == b.info(c).keys());
+}
+
+TEST_CASE("VecEnv finishes every started step when one copy fails", "[vec_env]") {
+  // Otherwise a worker's unread reply would answer the copy's next request.
+  std::atomic<int> in_flight{0};
+  int most = 0;
+  std::vector<EnvPtr> envs;
+  for (int i = 0; i < 4; ++i) envs.push_back(std::make_unique<SplitCounter>(100, in_flight, most));
+  static_cast<SplitCounter&>(*envs[1]).fail_at_ = 3;
+  VecEnv vec(std::move(envs));
+  vec.seed(0);
+  vec.reset();
+  const Eigen::MatrixXf actions = Eigen::MatrixXf::Zero(1, 4);
+  vec.step(actions);
+  vec.step(actions);
+  CHECK_THROWS_WITH(vec.step(actions), "worker failed");
+  CHECK(in_flight == 0);
 }

@@ -2,6 +2,7 @@
 #include "rlrun/core/state_dict.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -84,10 +85,26 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
                                 std::to_string(actions.rows()) + " x " +
                                 std::to_string(actions.cols()));
   if (!split_.empty()) {
-    for (int c = 0; c < num_copies(); ++c)
-      split_[c]->start_step(std::span<const float>(actions.col(c).data(), act_dim_));
-    for (int c = 0; c < num_copies(); ++c)
-      finish_copy(c, split_[c]->finish_step(std::span<float>(obs_.col(c).data(), obs_dim_)));
+    // Every started step is finished, also when one copy fails: a copy left with a reply
+    // unread would read it as the answer to its next request. The first error is rethrown.
+    std::exception_ptr error;
+    int started = 0;
+    try {
+      for (; started < num_copies(); ++started)
+        split_[started]->start_step(
+            std::span<const float>(actions.col(started).data(), act_dim_));
+    } catch (...) {
+      error = std::current_exception();
+    }
+    for (int c = 0; c < started; ++c) {
+      try {
+        const StepResult r = split_[c]->finish_step(std::span<float>(obs_.col(c).data(), obs_dim_));
+        if (!error) finish_copy(c, r);
+      } catch (...) {
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
     return;
   }
   for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
