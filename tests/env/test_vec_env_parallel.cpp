@@ -12,7 +12,10 @@
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/wrappers/monitor.hpp"
+#include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
+#include "rlrun/wrappers/rescale_action.hpp"
+#include "rlrun/wrappers/transform_reward.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
 using namespace rlrun;
@@ -125,4 +128,33 @@ TEST_CASE("VecEnv finishes every started step when one copy fails", "[vec_env]")
   vec.step(actions);
   CHECK_THROWS_WITH(vec.step(actions), "worker failed");
   CHECK(in_flight == 0);
+}
+
+TEST_CASE("The action and reward wrappers forward split steps too", "[vec_env]") {
+  // ClipAction -> RescaleAction -> TransformReward on a split env: still asynchronous, and the
+  // same rewards and observations as whole steps.
+  std::atomic<int> in_flight{0};
+  int most = 0;
+  auto stack = [](EnvPtr env) -> EnvPtr {
+    TransformReward::Config reward;
+    reward.scale = 0.5;
+    env = std::make_unique<TransformReward>(std::move(env), reward);
+    RescaleAction::Config rescale;
+    rescale.min_action = {{-2.0}};
+    rescale.max_action = {{2.0}};
+    env = std::make_unique<RescaleAction>(std::move(env), rescale);
+    return std::make_unique<ClipAction>(std::move(env));
+  };
+  std::vector<EnvPtr> split, plain;
+  for (int i = 0; i < 3; ++i) {
+    split.push_back(stack(std::make_unique<SplitCounter>(6, in_flight, most)));
+    plain.push_back(stack(std::make_unique<CounterEnv>(6)));
+  }
+  REQUIRE(asynchronous_steps(*split[0]) != nullptr);
+  VecEnv a(std::move(split)), b(std::move(plain));
+  const Trace ta = run(a, 30, 5), tb = run(b, 30, 5);
+  CHECK(most == 3);
+  CHECK(ta.rewards == tb.rewards);
+  CHECK(ta.obs == tb.obs);
+  CHECK(ta.dones == tb.dones);
 }

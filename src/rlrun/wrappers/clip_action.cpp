@@ -17,10 +17,14 @@ ClipAction::ClipAction(EnvPtr inner, const Config& /*config*/) : Wrapper(std::mo
 }
 
 StepResult ClipAction::step(std::span<const float> action, std::span<float> obs) {
+  return inner_->step(clip(action), obs);
+}
+
+std::span<const float> ClipAction::clip(std::span<const float> action) {
   const Space& inner_space = inner_->action_space();
   for (size_t i = 0; i < clipped_.size(); ++i)
     clipped_[i] = std::clamp(action[i], inner_space.low()[i], inner_space.high()[i]);
-  return inner_->step(clipped_, obs);
+  return clipped_;
 }
 
 }  // namespace rlrun

@@ -6,11 +6,12 @@
 // RescaleAction with them instead.
 #include <vector>
 
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
 
-class ClipAction : public Wrapper {
+class ClipAction : public Wrapper, public SplitStep {
  public:
   struct Config {
     template <class V>
@@ -22,8 +23,17 @@ class ClipAction : public Wrapper {
 
   const Space& action_space() const override { return space_; }
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // The two halves of step() (env/split_step.hpp): the clipped action is handed on.
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(clip(action));
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    return asynchronous_steps(*inner_)->finish_step(obs);
+  }
 
  private:
+  std::span<const float> clip(std::span<const float> action);
   Space space_;
   std::vector<float> clipped_;
 };

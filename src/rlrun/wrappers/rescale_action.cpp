@@ -46,11 +46,15 @@ RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : Wrapper(std::
 }
 
 StepResult RescaleAction::step(std::span<const float> action, std::span<float> obs) {
+  return inner_->step(rescale(action), obs);
+}
+
+std::span<const float> RescaleAction::rescale(std::span<const float> action) {
   const Space& inner_space = inner_->action_space();
   for (size_t i = 0; i < inner_action_.size(); ++i)
     inner_action_[i] = std::clamp(gradient_[i] * action[i] + intercept_[i], inner_space.low()[i],
                                   inner_space.high()[i]);
-  return inner_->step(inner_action_, obs);
+  return inner_action_;
 }
 
 }  // namespace rlrun

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rlrun/core/config_fields.hpp"
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
@@ -28,7 +29,7 @@ inline YAML::Node encode(const ActionBound& b) {
   return b.values.size() == 1 ? encode(b.values[0]) : encode(b.values);
 }
 
-class RescaleAction : public Wrapper {
+class RescaleAction : public Wrapper, public SplitStep {
  public:
   struct Config {
     ActionBound min_action{{-1.0}};  // one value, or one per action dimension
@@ -46,8 +47,17 @@ class RescaleAction : public Wrapper {
 
   const Space& action_space() const override { return space_; }
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // The two halves of step() (env/split_step.hpp): the rescaled action is handed on.
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(rescale(action));
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    return asynchronous_steps(*inner_)->finish_step(obs);
+  }
 
  private:
+  std::span<const float> rescale(std::span<const float> action);
   Space space_;
   std::vector<float> gradient_, intercept_;  // Gymnasium's: inner = gradient * action + intercept
   std::vector<float> inner_action_;

@@ -12,7 +12,10 @@ TransformReward::TransformReward(EnvPtr inner, const Config& config)
 }
 
 StepResult TransformReward::step(std::span<const float> action, std::span<float> obs) {
-  StepResult result = inner_->step(action, obs);
+  return transform(inner_->step(action, obs));
+}
+
+StepResult TransformReward::transform(StepResult result) const {
   double r = config_.scale * result.reward + config_.offset;
   if (config_.clip_min) r = std::max(r, *config_.clip_min);
   if (config_.clip_max) r = std::min(r, *config_.clip_max);

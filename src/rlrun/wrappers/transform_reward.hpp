@@ -6,11 +6,12 @@
 // episode returns stay the env's own.
 #include <optional>
 
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env/wrapper.hpp"
 
 namespace rlrun {
 
-class TransformReward : public Wrapper {
+class TransformReward : public Wrapper, public SplitStep {
  public:
   struct Config {
     double scale = 1.0;               // multiplies the reward first
@@ -30,8 +31,17 @@ class TransformReward : public Wrapper {
   explicit TransformReward(EnvPtr inner) : TransformReward(std::move(inner), Config()) {}
 
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // The two halves of step() (env/split_step.hpp): forwarded, then the reward transformed.
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step(std::span<const float> action) override {
+    asynchronous_steps(*inner_)->start_step(action);
+  }
+  StepResult finish_step(std::span<float> obs) override {
+    return transform(asynchronous_steps(*inner_)->finish_step(obs));
+  }
 
  private:
+  StepResult transform(StepResult result) const;
   Config config_;
 };
 
