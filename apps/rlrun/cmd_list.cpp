@@ -37,7 +37,7 @@ void print_env_details(const EnvEntry& entry) {
     return;
   }
   try {
-    const EnvPtr env = entry.make(entry.parse(ConfigNode()));
+    const EnvPtr env = entry.build(entry.parse(ConfigNode()), EnvContext{});
     std::printf("%s", labeled_space("observation_space", env->observation_space(), 17).c_str());
     std::printf("%s", labeled_space("action_space", env->action_space(), 17).c_str());
   } catch (const std::exception& e) {

@@ -8,6 +8,14 @@
     run_dir = rlrun.train("configs/cartpole_ppo.yaml", seed=3)
 """
 
+import os as _os
+import sys as _sys
+
+# Python envs (env.id: python:...) that rlrun builds from here run in this interpreter (and so
+# this virtualenv) unless a config names another in env.python (src/rlrun/envs/python/).
+if _sys.executable:
+    _os.environ.setdefault("RLRUN_PYTHON", _sys.executable)
+
 from ._core import ConfigError, RuntimeFailure, UsageError
 from ._core import __version__
 from ._env import RlrunEnv, make

@@ -18,7 +18,7 @@ EnvPtr make_registered_env(const std::string& id, const std::string& kwargs_yaml
   // An unknown id: ConfigError with the closest registered id, as in an experiment file.
   const EnvEntry& entry = registry.env(id, ConfigNode::from_yaml(YAML::Node(id), origin, "id"));
   const ConfigNode kwargs = ConfigNode::load_string(kwargs_yaml, origin + " kwargs");
-  EnvPtr env = entry.make(entry.parse(kwargs));
+  EnvPtr env = entry.build(entry.parse(kwargs), EnvContext{});  // python: envs: $RLRUN_PYTHON
   const int limit = max_episode_steps < 0 ? entry.max_episode_steps : max_episode_steps;
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
   return env;

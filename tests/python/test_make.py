@@ -5,6 +5,7 @@ C++ envs for the same seed (`rlrun eval --policy random --trajectory`)."""
 
 import inspect
 import os
+import sys
 import unittest
 
 import numpy as np
@@ -254,3 +255,34 @@ class SameTrajectoriesAsTheCppEnvs(TempDirMixin, unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class PythonEnvsThroughRlrun(unittest.TestCase):
+    """rlrun.make of a python: id: the env runs in a worker process of this very interpreter
+    (import rlrun sets RLRUN_PYTHON to sys.executable), behind rlrun's Gymnasium API."""
+
+    @classmethod
+    def setUpClass(cls):
+        here = os.path.dirname(os.path.abspath(__file__))
+        sys.path.insert(0, os.path.join(here, "..", "python_envs"))
+        os.environ["PYTHONPATH"] = os.path.join(here, "..", "python_envs") + os.pathsep + \
+            os.environ.get("PYTHONPATH", "")
+
+    def test_python_env_passes_the_checker_and_matches_the_class(self):
+        from rlrun_test_envs.cartpole import CartPolePort
+        env = rlrun.make("python:rlrun_test_envs.cartpole:CartPolePort")
+        check_env(self, env)
+        # The same seed and actions give what the class itself gives, step for step.
+        direct = CartPolePort()
+        obs, _ = env.reset(seed=5)
+        expected, _ = direct.reset(seed=5)
+        np.testing.assert_array_equal(obs, expected)
+        for t in range(30):
+            obs, reward, terminated, truncated, _ = env.step(t % 2)
+            expected, r2, te2, _, _ = direct.step(t % 2)
+            np.testing.assert_array_equal(obs, expected)
+            self.assertEqual((reward, terminated), (r2, te2))
+            if terminated:
+                break
+        env.close()
+        self.assertEqual(os.environ["RLRUN_PYTHON"], sys.executable)

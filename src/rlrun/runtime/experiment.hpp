@@ -72,7 +72,7 @@ struct EnvSectionConfig {
       "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm needs it");
     v("python", python,
       "Python interpreter for python:/gymnasium: envs (a name on PATH or a path, e.g. a "
-      "virtualenv's bin/python)");
+      "virtualenv's bin/python); the default python3 gives way to $RLRUN_PYTHON when set");
   }
 };
 

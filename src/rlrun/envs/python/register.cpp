@@ -2,6 +2,7 @@
 //   python:<module>:<Attr>   Attr(**env.kwargs), Attr a class or function of the module
 //   gymnasium:<ID>           gymnasium.make(ID, **env.kwargs), with Gymnasium's own TimeLimit
 // env.kwargs is passed through as JSON (kwargs_json.hpp); env.python picks the interpreter.
+#include <cstdlib>
 #include <memory>
 #include <regex>
 
@@ -12,6 +13,14 @@
 namespace rlrun::envs {
 
 namespace {
+
+// env.python, where its default ("python3") gives way to RLRUN_PYTHON when that is set: the
+// `rlrun` Python package sets it to its own interpreter (sys.executable), so training from
+// Python runs Python envs in the same interpreter, virtualenv and all.
+std::string interpreter(const std::string& configured) {
+  const char* preferred = std::getenv("RLRUN_PYTHON");
+  return configured == "python3" && preferred && *preferred ? preferred : configured;
+}
 
 EnvEntry python_entry(const std::string& id, std::string description) {
   EnvEntry entry;
@@ -30,7 +39,8 @@ EnvEntry python_entry(const std::string& id, std::string description) {
     return AnyConfig::of_yaml(copy, copy);
   };
   entry.make_in_context = [id](const AnyConfig& kwargs, const EnvContext& context) -> EnvPtr {
-    return std::make_unique<PythonEnv>(id, kwargs_json(kwargs.get<YAML::Node>()), context.python);
+    return std::make_unique<PythonEnv>(id, kwargs_json(kwargs.get<YAML::Node>()),
+                                       interpreter(context.python));
   };
   entry.params = [] { return std::vector<FieldDoc>{}; };
   return entry;
