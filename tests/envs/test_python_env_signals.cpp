@@ -58,10 +58,11 @@ std::vector<pid_t> python_children(pid_t parent) {
 
 // Starts `rlrun train` on 4 Python envs, in a process group of its own (as a shell's job),
 // and waits until its 4 workers run. Returns rlrun's pid and the workers'.
-pid_t start_training(const std::string& dir, std::vector<pid_t>& workers) {
-  const std::string config =
-      python_experiment(dir, "long", "python:rlrun_test_envs.cartpole:CartPolePort",
-                        "id: PPO, n_steps: 64", 10000000, 4, ", max_episode_steps: 500");
+pid_t start_training(const std::string& dir, std::vector<pid_t>& workers,
+                     const std::string& env_id = "python:rlrun_test_envs.cartpole:CartPolePort",
+                     const char* started = "total_timesteps") {
+  const std::string config = python_experiment(dir, "long", env_id, "id: PPO, n_steps: 64",
+                                               10000000, 4, ", max_episode_steps: 500");
   const std::string log = dir + "/log.txt";
   const pid_t pid = fork();
   if (pid == 0) {
@@ -77,7 +78,7 @@ pid_t start_training(const std::string& dir, std::vector<pid_t>& workers) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (std::chrono::steady_clock::now() < until) {
     workers = python_children(pid);
-    if (workers.size() >= 4 && read_text(log).find("total_timesteps") != std::string::npos)
+    if (workers.size() >= 4 && read_text(log).find(started) != std::string::npos)
       break;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
@@ -133,4 +134,21 @@ TEST_CASE("kill -9 of rlrun takes its Python workers down", "[python]") {
   int status = 0;
   waitpid(rlrun, &status, 0);
   CHECK(all_gone(workers, 5));
+}
+
+TEST_CASE("A second Ctrl-C stops rlrun while a Python env hangs in step()", "[python]") {
+  TempDir dir("python_hang");
+  std::vector<pid_t> workers;
+  const pid_t rlrun =
+      start_training(dir.str(), workers, "python:rlrun_test_envs.broken:HangsInStep", "training PPO");
+  REQUIRE(workers.size() == 4);
+  std::this_thread::sleep_for(std::chrono::seconds(2));  // every worker is stuck at step 5
+  kill(-rlrun, SIGINT);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  kill(-rlrun, SIGINT);
+  const int status = wait_exit(rlrun, 30);
+  INFO(read_text(dir / "log.txt"));
+  REQUIRE(status != -1);  // it stopped (wait_exit kills it after 30 s and returns -1)
+  CHECK(read_text(dir / "log.txt").find("second Ctrl-C") != std::string::npos);
+  CHECK(all_gone(workers, 10));
 }

@@ -81,3 +81,10 @@ class NotAnEnv:
 class FailsInInit:
     def __init__(self, size=3):
         raise RuntimeError(f"cannot open the simulator config for size {size}")
+
+
+class HangsInStep(_Base):
+    def go_wrong(self):
+        import time
+        while True:
+            time.sleep(1)

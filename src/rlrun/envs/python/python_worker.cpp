@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +18,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/find_executable.hpp"
+#include "rlrun/core/interrupt.hpp"
 #include "rlrun/envs/python/python_protocol.hpp"
 
 namespace rlrun {
@@ -24,6 +26,7 @@ namespace rlrun {
 namespace {
 
 constexpr int kWorkerFd = 3;  // worker.py reads sys.argv[1]; rlrun always passes 3
+constexpr double kPollSeconds = 0.25;
 
 }  // namespace
 
@@ -78,6 +81,19 @@ PythonWorker::PythonWorker(const std::string& python, const std::string& script)
   close(fds[1]);
   if (null_fd >= 0) close(null_fd);
   fd_ = fds[0];
+  // recv wakes up every kPollSeconds when the worker is silent, so that a second Ctrl-C stops
+  // rlrun even while an env hangs (rlrun's SIGINT handler restarts system calls).
+  timeval timeout{};
+  timeout.tv_usec = static_cast<suseconds_t>(kPollSeconds * 1e6);
+  setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+}
+
+bool PythonWorker::waited_out(ssize_t n) const {
+  if (n >= 0 || (errno != EAGAIN && errno != EWOULDBLOCK)) return false;
+  if (interrupt_count() >= 2)
+    throw RuntimeFailure("stopped (a second Ctrl-C) while waiting for the Python worker (pid " +
+                         std::to_string(pid_) + ")");
+  return true;
 }
 
 PythonWorker::~PythonWorker() { stop(); }
@@ -101,13 +117,14 @@ bool PythonWorker::read(std::span<std::byte> data) {
       const size_t wanted = data.size() - done;
       if (wanted >= buffer_.size()) {  // large (a frame): straight into place
         const ssize_t n = recv(fd_, data.data() + done, wanted, 0);
-        if (n < 0 && errno == EINTR) continue;  // a Ctrl-C: the trainer acts after the step
+        if ((n < 0 && errno == EINTR) || waited_out(n)) continue;
         if (n <= 0) return false;
         done += static_cast<size_t>(n);
         continue;
       }
       const ssize_t n = recv(fd_, buffer_.data(), buffer_.size(), 0);
-      if (n < 0 && errno == EINTR) continue;
+      // A first Ctrl-C: the trainer acts after the step; a second one: waited_out throws.
+      if ((n < 0 && errno == EINTR) || waited_out(n)) continue;
       if (n <= 0) return false;
       buffer_start_ = 0;
       buffer_end_ = static_cast<size_t>(n);

@@ -8,7 +8,8 @@
 // process, killing it after a grace period; the child asks the kernel for SIGKILL when rlrun
 // dies (prctl PR_SET_PDEATHSIG: `kill -9` of rlrun, a crash); and it ignores SIGINT, so a
 // Ctrl-C, which the terminal sends to the whole process group, stops rlrun (which saves its
-// checkpoint and then closes its workers) rather than killing envs under it.
+// checkpoint and then closes its workers) rather than killing envs under it. A second Ctrl-C
+// stops rlrun even while an env hangs in step().
 #include <sys/types.h>
 
 #include <cstddef>
@@ -55,6 +56,9 @@ class PythonWorker {
   std::vector<std::byte> buffer_ = std::vector<std::byte>(size_t{1} << 16);  // read()'s
   size_t buffer_start_ = 0, buffer_end_ = 0;  // 0: before the handshake (no close request then)
   bool wait_for_exit(double seconds);
+  // After a recv: true when it only timed out (the worker is still busy; try again), after
+  // throwing RuntimeFailure if the user has pressed Ctrl-C twice meanwhile.
+  bool waited_out(ssize_t n) const;
 };
 
 }  // namespace rlrun
