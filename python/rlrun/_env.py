@@ -18,40 +18,46 @@ import numpy as np
 from . import _core
 from . import _spaces
 
+class _GymnasiumLike:
+    """Without gymnasium: what gymnasium.Env and gymnasium.vector.VectorEnv both give the
+    classes rlrun builds on them (unwrapped, a lazily made np_random, a context manager)."""
+
+    _np_random = None
+
+    @property
+    def unwrapped(self):
+        return self
+
+    @property
+    def np_random(self) -> np.random.Generator:
+        if self._np_random is None:
+            self._np_random = np.random.default_rng()
+        return self._np_random
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *args):
+        self.close()
+        return False
+
+
 if _spaces.HAVE_GYMNASIUM:
     import gymnasium as _gym
 
     _EnvBase = _gym.Env
 else:
 
-    class _EnvBase:  # the parts of gymnasium.Env that rlrun's env relies on
+    class _EnvBase(_GymnasiumLike):  # the parts of gymnasium.Env that rlrun's env relies on
         metadata: dict[str, Any] = {"render_modes": []}
         render_mode = None
         spec = None
-        _np_random = None
         _np_random_seed = None
 
         def reset(self, *, seed=None, options=None):
             if seed is not None:
                 self._np_random = np.random.default_rng(seed)
                 self._np_random_seed = seed
-
-        @property
-        def unwrapped(self):
-            return self
-
-        @property
-        def np_random(self) -> np.random.Generator:
-            if self._np_random is None:
-                self._np_random = np.random.default_rng()
-            return self._np_random
-
-        def __enter__(self):
-            return self
-
-        def __exit__(self, *args):
-            self.close()
-            return False
 
 
 def kwargs_text(kwargs: dict) -> str:

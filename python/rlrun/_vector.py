@@ -16,7 +16,7 @@ import numpy as np
 
 from . import _core
 from . import _spaces
-from ._env import kwargs_text, registered_limit, split_make_kwargs
+from ._env import _GymnasiumLike, kwargs_text, registered_limit, split_make_kwargs
 
 if _spaces.HAVE_GYMNASIUM:
     import gymnasium as _gym
@@ -30,29 +30,11 @@ if _spaces.HAVE_GYMNASIUM:
         _SAME_STEP = "SameStep"
 else:
 
-    class _VectorBase:
+    class _VectorBase(_GymnasiumLike):  # the parts of gymnasium's VectorEnv rlrun relies on
         metadata: dict = {}
         spec = None
         render_mode = None
         closed = False
-        _np_random = None
-
-        @property
-        def unwrapped(self):
-            return self
-
-        @property
-        def np_random(self):
-            if self._np_random is None:
-                self._np_random = np.random.default_rng()
-            return self._np_random
-
-        def __enter__(self):
-            return self
-
-        def __exit__(self, *args):
-            self.close()
-            return False
 
     _SAME_STEP = "SameStep"
 
