@@ -101,6 +101,8 @@ if [[ -d build/python/rlrun ]]; then
 fi
 # Python envs in training: PPO zoo CartPole on a pure-Python CartPole port vs SB3 (issue 17).
 python_train_table=$(scripts/bench_python_train.sh | grep '^|' || true)
+# TensorBoard event files: their cost in a PPO CartPole run (issue 18: < 2 %).
+tensorboard_table=$(scripts/bench_tensorboard.sh | grep '^|' || true)
 machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, threads=$threads, $(date -u +%Y-%m-%d)"
 echo "$table"
 echo
@@ -109,9 +111,10 @@ echo
 [[ -n "$gripper_table" ]] && echo "$gripper_table" && echo
 [[ -n "$python_table" ]] && echo "$python_table" && echo
 [[ -n "$python_train_table" ]] && echo "$python_train_table" && echo
+[[ -n "$tensorboard_table" ]] && echo "$tensorboard_table" && echo
 echo "machine: $machine"
 if ((update_docs)); then
-  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}${python_table:+Env steps from Python (scripts/bench_python_env.py):$'\n\n'$python_table$'\n\n'}${python_train_table:+PPO zoo CartPole on a Python env (scripts/bench_python_train.sh):$'\n\n'$python_train_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
+  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}${python_table:+Env steps from Python (scripts/bench_python_env.py):$'\n\n'$python_table$'\n\n'}${python_train_table:+PPO zoo CartPole on a Python env (scripts/bench_python_train.sh):$'\n\n'$python_train_table$'\n\n'}${tensorboard_table:+TensorBoard event files (scripts/bench_tensorboard.sh):$'\n\n'$tensorboard_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
   BLOCK="$block" python3 - <<'PY'
 import os, re
 path = "docs/benchmarks.md"

@@ -20,6 +20,7 @@ PACKAGES=(
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
   libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video
   python3-numpy python3-pandas              # tests: read our files with the tools SB3 users use
+  python3-protobuf                          # tests: decode TensorBoard event files independently
   python3-dev pybind11-dev python3-venv     # the `rlrun` Python package; Python envs (docs/python.md)
 )
 

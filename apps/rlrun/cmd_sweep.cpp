@@ -80,6 +80,8 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
     throw UsageError(name + ": " + run.run_dir + " was trained with other settings than " +
                      run.config + " (the sweep file changed after the run started); delete "
                      "that directory to train the run again, or give the sweep another out_dir");
+  std::vector<std::string> vouched = overrides;
+  for (const std::string& o : sweep_vouched_overrides(sweep, run)) vouched.push_back(o);
   install_interrupt_handlers();
   TrainOutcome outcome;
   switch (state) {
@@ -90,7 +92,7 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
       const std::vector<std::string> checkpoints = resume_candidates(run.run_dir);
       std::printf("sweep: %s resuming from %s\n", name.c_str(), checkpoints.front().c_str());
       std::fflush(stdout);
-      const Experiment experiment = load_experiment(run.run_dir + "/config.yaml", overrides,
+      const Experiment experiment = load_experiment(run.run_dir + "/config.yaml", vouched,
                                                     registry, ConfigTrust::kUntrusted);
       outcome = train_experiment(experiment, registry, checkpoints);
       break;
@@ -103,7 +105,7 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
     case RunState::kNew: {
       std::fflush(stdout);
       const Experiment experiment =
-          load_experiment(run.config, overrides, registry, ConfigTrust::kUntrusted);
+          load_experiment(run.config, vouched, registry, ConfigTrust::kUntrusted);
       const fs::path target = fs::absolute(fs::path(experiment.run.out_dir) / experiment.run.name /
                                            ("seed" + std::to_string(experiment.run.seed)))
                                   .lexically_normal();

@@ -1,6 +1,6 @@
 // rlrun train CONFIG... [--set key=value]... [--seed N] [--timesteps N] [--out DIR]
-//                       [--init-from MODEL] [-j N]
-// rlrun train --resume RUN_DIR|CHECKPOINT [--timesteps N]
+//                       [--init-from MODEL] [--tensorboard-log DIR] [-j N]
+// rlrun train --resume RUN_DIR|CHECKPOINT [--timesteps N] [--tensorboard-log DIR]
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -27,6 +27,7 @@ struct TrainOptions {
   std::optional<int64_t> timesteps;
   std::string out;
   std::string init_from;
+  std::string tensorboard_log;
   std::vector<std::string> plugins;
   std::string resume;
   int jobs = 1;
@@ -43,6 +44,7 @@ std::vector<std::string> all_overrides(const TrainOptions& o) {
   if (o.timesteps) overrides.push_back("run.total_timesteps=" + std::to_string(*o.timesteps));
   if (!o.out.empty()) overrides.push_back("run.out_dir=" + o.out);
   if (!o.init_from.empty()) overrides.push_back("run.init_from=" + o.init_from);
+  if (!o.tensorboard_log.empty()) overrides.push_back("run.tensorboard_log=" + o.tensorboard_log);
   return overrides;
 }
 
@@ -109,6 +111,9 @@ Action add_train(CLI::App& app, Registry& registry) {
   sub->add_option("--init-from", options->init_from,
                   "start from a trained model's weights (run.init_from): fine-tune it on this "
                   "experiment's env and wrappers");
+  sub->add_option("--tensorboard-log", options->tensorboard_log,
+                  "write TensorBoard event files under DIR (run.tensorboard_log; with --resume: "
+                  "the run's own DIR, to continue its TensorBoard run)");
   sub->add_option("-j,--jobs", options->jobs,
                   "train up to N experiment files at once, as processes with --threads 1 each")
       ->transform(integer_in(1));

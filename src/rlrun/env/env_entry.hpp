@@ -40,6 +40,12 @@ struct EnvEntry {
   std::function<EnvPtr(const AnyConfig& kwargs)> make;
   std::function<std::vector<FieldDoc>()> params;
   std::vector<PolicyEntry> policies;
+  // The info keys that measure how well an episode went, read at its last step (the traffic
+  // task's avg_waiting_time, the grasp task's lift): by default Monitor writes them as
+  // monitor.csv columns (SB3's info_keywords) and training logs their means over the last 100
+  // episodes as rollout/<key> (`env.info_keywords` chooses others). is_success is always one
+  // when the env declares it.
+  std::vector<std::string> metrics;
   std::string plugin;  // the library that registered it ("" for built-in envs)
 
   // Set instead of `make` by envs that need the EnvContext (Python envs).

@@ -41,8 +41,9 @@ EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const Registry& registry,
   const EnvEntry& entry = env_entry(spec, registry);
   const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
-  env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start,
-                                  std::vector<std::string>{"is_success"}, append_monitor);
+  std::vector<std::string> keywords = episode_info_keywords(spec, registry, *env);
+  env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start, std::move(keywords),
+                                  append_monitor);
   // Several agents: TimeLimit and Monitor know how to step them; other wrappers not yet.
   if (env->num_agents() > 1 && (tap_observations || !spec.wrappers.empty()))
     fail_at_env(spec, spec.id + " has " + std::to_string(env->num_agents()) +
@@ -97,6 +98,16 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                        append_monitor);
   }
   return VecEnv(std::move(envs));
+}
+
+std::vector<std::string> episode_info_keywords(const EnvSpec& spec, const Registry& registry,
+                                               const Env& env) {
+  if (spec.section.info_keywords) return *spec.section.info_keywords;
+  std::vector<std::string> keywords;
+  if (env.info().find("is_success") >= 0) keywords.push_back("is_success");
+  for (const std::string& key : env_entry(spec, registry).metrics)
+    if (std::find(keywords.begin(), keywords.end(), key) == keywords.end()) keywords.push_back(key);
+  return keywords;
 }
 
 std::string monitor_file_name(int i) { return std::to_string(i) + ".monitor.csv"; }

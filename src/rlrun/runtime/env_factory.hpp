@@ -24,6 +24,12 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                     const std::string& monitor_dir, int tap_env = -1, bool append_monitor = false);
 
+// The info keys Monitor reads at each episode's end (monitor.csv columns, `episode.<key>` info,
+// rollout/<key> and eval/<key> means): env.info_keywords when set, else is_success when `env`
+// declares it and the env's registered metrics (EnvEntry::metrics).
+std::vector<std::string> episode_info_keywords(const EnvSpec& spec, const Registry& registry,
+                                               const Env& env);
+
 // `<i>.monitor.csv`: the monitor file of training env i, relative to the run directory.
 std::string monitor_file_name(int i);
 

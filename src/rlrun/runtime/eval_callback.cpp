@@ -2,6 +2,7 @@
 
 #include "rlrun/runtime/experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -19,11 +20,36 @@ EvalCallback::EvalCallback(TrainingContext& context)
       env_(make_env(context.experiment.env, context.registry, "", unix_time_now())),
       next_(context.experiment.eval.freq) {
   set_statistics_training(*env_, false);
+  for (const std::string& key : episode_info_keywords(context.experiment.env, context.registry, *env_))
+    if (key != "is_success") metric_keys_.push_back(key);
   const std::string path = context.run_dir + "/evaluations.csv";
   csv_ = CheckedFile(path, context.resuming ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
-  if (!context.resuming) csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
+  if (!context.resuming) {
+    csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate";
+    for (const std::string& key : metric_keys_) csv_ << ',' << key;
+    csv_ << '\n';
+  }
   csv_.flush();
 }
+
+namespace {
+
+// The mean of metric `key` over the episodes that reported it (NaN when none did).
+double mean_metric(const EvalResult& r, const std::string& key) {
+  const auto it = std::find(r.metric_keys.begin(), r.metric_keys.end(), key);
+  if (it == r.metric_keys.end()) return std::nan("");
+  const size_t k = static_cast<size_t>(it - r.metric_keys.begin());
+  double sum = 0;
+  int n = 0;
+  for (const auto& episode : r.metrics)
+    if (!std::isnan(episode[k])) {
+      sum += episode[k];
+      ++n;
+    }
+  return n ? sum / n : std::nan("");
+}
+
+}  // namespace
 
 void EvalCallback::write_state(StateWriter& out) const {
   out.put_int("next", next_);
@@ -67,12 +93,23 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
     std::snprintf(line, sizeof line, "%g", success);  // as std::ostream writes a double
     csv_ << line;
   }
+  std::vector<double> metric_means;
+  for (const std::string& key : metric_keys_) {
+    metric_means.push_back(mean_metric(r, key));
+    csv_ << ',';
+    if (!std::isnan(metric_means.back())) {
+      std::snprintf(line, sizeof line, "%.6g", metric_means.back());
+      csv_ << line;
+    }
+  }
   csv_ << '\n';
   csv_.flush();  // a full disk stops the run: RuntimeFailure naming the file and errno
   if (context_.logger) {
     context_.logger->record("eval/mean_reward", r.mean_return());
     context_.logger->record("eval/mean_ep_length", r.mean_length());
     if (!std::isnan(success)) context_.logger->record("eval/success_rate", success);
+    for (size_t k = 0; k < metric_keys_.size(); ++k)
+      if (!std::isnan(metric_means[k])) context_.logger->record("eval/" + metric_keys_[k], metric_means[k]);
   }
 
   std::string message = "eval at " + std::to_string(num_timesteps) + " steps: return " +

@@ -5,9 +5,11 @@
 //     runs `n_episodes` on a separate env (seeded run.seed + n_envs + k for the k-th
 //     evaluation) whose normalisation statistics are copied from training env 0 and frozen
 //     (SB3 sync_envs_normalization);
-//   * appends `timesteps,mean_reward,std_reward,mean_ep_length,success_rate` to
-//     evaluations.csv (success_rate empty unless the env reports `is_success`), records
-//     eval/mean_reward, eval/mean_ep_length (and eval/success_rate) for progress.csv;
+//   * appends `timesteps,mean_reward,std_reward,mean_ep_length,success_rate,<metrics>` to
+//     evaluations.csv (success_rate empty unless the env reports `is_success`; <metrics> the
+//     env's info keywords, runtime/env_factory.hpp, each the mean over the episodes), records
+//     eval/mean_reward, eval/mean_ep_length (and eval/success_rate, eval/<metric>) for
+//     progress.csv;
 //   * saves best_model.zip on a new best mean reward;
 //   * reward_threshold: stops once the best mean reward >= it (StopTrainingOnRewardThreshold);
 //   * max_no_improvement_evals / min_evals: stops when, after more than min_evals evaluations,
@@ -71,6 +73,7 @@ class EvalCallback : public Callback {
   // StopTrainingOnNoModelImprovement state.
   double last_best_ = -std::numeric_limits<double>::infinity();
   int no_improvement_evals_ = 0;
+  std::vector<std::string> metric_keys_;  // the env's metrics: evaluations.csv columns, eval/<key>
   CheckedFile csv_;  // evaluations.csv, every row flushed and checked (core/checked_file.hpp)
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The experiment file (DESIGN.md §4), parsed strictly and resolved:
-//   run:  {name, seed, total_timesteps, out_dir, log_interval}
+//   run:  {name, seed, total_timesteps, out_dir, log_interval, tensorboard_log, ...}
 //   env:  {id, n_envs, max_episode_steps, kwargs: {...}, wrappers: [{id: ..., ...}]}
 //   algo: {id, <hyperparameters>, policy: {...}}
 //   eval, checkpoint, obs_log, video: the callbacks' sections (each Config is in its
@@ -35,6 +35,8 @@ struct RunConfig {
                                     // episodes (off-policy); null = SB3's default (1 / 4)
   double console_interval = 2.0;    // min seconds between console tables
   std::string init_from;            // model file whose weights start the run (empty: none)
+  OutputPath tensorboard_log;       // SB3's tensorboard_log: DIR for TensorBoard event files
+  std::optional<std::string> tb_log_name;  // SB3's tb_log_name; null = the run name
 
   template <class V>
   void visit(V& v) {
@@ -50,6 +52,12 @@ struct RunConfig {
       in_range(0, 1e9));
     v("init_from", init_from,
       "model file whose weights (and normalisation statistics) start this run; empty = none");
+    v("tensorboard_log", tensorboard_log,
+      "directory for TensorBoard event files (SB3's tensorboard_log): each run writes "
+      "DIR/<tb_log_name>_<N>/; empty = none");
+    v("tb_log_name", tb_log_name,
+      "name of this run's TensorBoard runs under tensorboard_log (null = the run name)",
+      RelativeName{});
   }
 };
 
@@ -62,6 +70,8 @@ struct EnvSectionConfig {
   std::optional<int> max_episode_steps;    // override the registered time limit
   bool auto_wrap = false;                  // add the action-space wrapper the algorithm needs
   ProgramPath python{"python3"};           // interpreter of python:/gymnasium: envs
+  // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
+  std::optional<std::vector<std::string>> info_keywords;
   template <class V>
   void visit(V& v) {
     v("n_envs", n_envs, "number of env copies stepped together", in_range(1, kMaxEnvs));
@@ -73,6 +83,9 @@ struct EnvSectionConfig {
     v("python", python,
       "Python interpreter for python:/gymnasium: envs (a name on PATH or a path, e.g. a "
       "virtualenv's bin/python); the default python3 gives way to $RLRUN_PYTHON when set");
+    v("info_keywords", info_keywords,
+      "info keys read at each episode's end: monitor.csv columns, rollout/<key> and eval/<key> "
+      "means (SB3's Monitor info_keywords); null = the env's metrics and is_success, [] = none");
   }
 };
 

@@ -184,6 +184,13 @@ std::vector<std::string> labels(const std::vector<Combination>& combos) {
   return out;
 }
 
+// True when the base experiment or the sweep's overrides name run.tensorboard_log.
+bool sets_tensorboard_log(const std::string& base, const std::vector<std::string>& overrides) {
+  for (const std::string& o : overrides)
+    if (o.rfind("run.tensorboard_log=", 0) == 0) return true;
+  return ConfigNode::load_file(base).child("run").child("tensorboard_log").defined();
+}
+
 // One run: its resolved config written to <out_dir>/configs/, its directory under runs/.
 SweepRun expand_run(const Sweep& sweep, const fs::path& out_dir, const std::string& base,
                     const std::string& label, const std::vector<std::string>& overrides,
@@ -198,6 +205,11 @@ SweepRun expand_run(const Sweep& sweep, const fs::path& out_dir, const std::stri
   // Quoted: a path may hold text YAML would read otherwise (" #" starts a comment).
   all.push_back("run.out_dir=" + yaml_quoted((out_dir / "runs").string()));
   all.push_back("run.name=" + yaml_quoted(label));
+  // TensorBoard: every run of the sweep under one log directory (the sweep's own unless the
+  // experiment names one), each run named by its id, so TensorBoard compares them side by side.
+  if (!sets_tensorboard_log(base, overrides))
+    all.push_back("run.tensorboard_log=" + yaml_quoted(sweep_tensorboard_dir(out_dir.string())));
+  all.push_back("run.tb_log_name=" + yaml_quoted(label + "_seed" + std::to_string(seed)));
   const Experiment experiment = load_experiment(base, all, registry);
   run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
   write_text_atomic(run.config, "# run " + run.id + " of sweep " + sweep.source +
@@ -314,6 +326,25 @@ RunState run_state(const SweepRun& run) {
     for (const auto& entry : fs::directory_iterator(checkpoints))
       if (entry.path().extension() == ".zip") return RunState::kResumable;
   return RunState::kPartial;
+}
+
+std::string sweep_tensorboard_dir(const std::string& sweep_out_dir) {
+  return (fs::path(sweep_out_dir) / "tensorboard").string();
+}
+
+std::vector<std::string> sweep_vouched_overrides(const Sweep& sweep, const SweepRun& run) {
+  // The manifest's directory is the sweep's out_dir; a run's config naming the sweep's own
+  // TensorBoard directory writes inside the sweep, as its run directories do.
+  const std::string own = sweep_tensorboard_dir(fs::path(sweep.manifest).parent_path().string());
+  try {
+    const ConfigNode config = ConfigNode::load_file(run.config, ConfigTrust::kUntrusted);
+    const ConfigNode named = config.child("run").child("tensorboard_log");
+    if (named.defined() && named.as_string() == own)
+      return {"run.tensorboard_log=" + yaml_quoted(own)};
+  } catch (const ConfigError&) {
+    // An unreadable config is reported when the run loads it.
+  }
+  return {};
 }
 
 bool run_config_matches(const SweepRun& run) {

@@ -10,6 +10,8 @@
 //   set: {run.total_timesteps: 20000}     # for every run
 //   slurm: {partition: debug, time: "00:30:00", cpus_per_task: 1, mem: 1G, extra: []}
 //
+// Every run writes TensorBoard event files to <out_dir>/tensorboard/<label>_seed<N>_1/ (or
+// under the experiment's own run.tensorboard_log), so `tensorboard --logdir` compares them.
 // A run's label names its overrides ("learning_rate=0.001"; "base" without any), its id adds
 // the seed ("learning_rate=0.001/seed2"), its directory is <out_dir>/runs/<label>/seed<N>:
 // the same sweep file always gives the same ids and directories.
@@ -68,6 +70,12 @@ struct Sweep {
 // run.name set so the run trains into its directory) and <out_dir>/manifest.yaml. Throws
 // ConfigError naming the sweep file's line and column for a bad key or value.
 Sweep expand_sweep(const std::string& sweep_file, Registry& registry);
+
+// Where a sweep's runs write TensorBoard event files unless its experiment names a directory.
+std::string sweep_tensorboard_dir(const std::string& sweep_out_dir);
+// The `--set` values `sweep run` adds for `run` so that its untrusted config may write where
+// the sweep itself writes (its own TensorBoard directory inside the sweep's directory).
+std::vector<std::string> sweep_vouched_overrides(const Sweep& sweep, const SweepRun& run);
 
 // Reads a manifest written by expand_sweep (paths in it are relative to its directory).
 Sweep read_manifest(const std::string& manifest);

@@ -27,6 +27,7 @@
 #include "rlrun/runtime/run_log.hpp"
 #include "rlrun/runtime/run_log_marks.hpp"
 #include "rlrun/runtime/resume_point.hpp"
+#include "rlrun/runtime/tensorboard/tensorboard_log.hpp"
 #include "rlrun/runtime/training_state_io.hpp"
 
 namespace rlrun {
@@ -85,6 +86,7 @@ class TrainingRun {
   void announce();
   void build();
   void build_logging();
+  void build_tensorboard_log();
   void restore();
   TrainingHooks hooks();
   bool at_safe_point(int64_t num_timesteps);
@@ -107,6 +109,7 @@ class TrainingRun {
   std::optional<ProgressBar> bar_;
   Logger logger_;
   CsvSink* progress_csv_ = nullptr;
+  TensorBoardLog* tensorboard_ = nullptr;  // owned by logger_; null without run.tensorboard_log
   std::optional<TrainingContext> context_;
   std::vector<std::unique_ptr<Callback>> callbacks_;
   std::string last_checkpoint_;
@@ -185,6 +188,7 @@ void TrainingRun::build_logging() {
   logger_.add_sink(std::make_unique<ConsoleTableSink>(std::cout, experiment_.run.console_interval,
                                                       [this] { bar_->clear(); }));
   logger_.add_sink(std::make_unique<ConsoleTableSink>(log_->table(), 0.0));
+  if (!experiment_.run.tensorboard_log.value.empty()) build_tensorboard_log();
   context_.emplace(TrainingContext{experiment_, registry_, outcome_.run_dir, *algorithm_, *env_,
                                    &logger_,
                                    [this](const std::string& message) {
@@ -196,6 +200,25 @@ void TrainingRun::build_logging() {
                                    resuming_});
   callbacks_ = make_callbacks(*context_);
   last_checkpoint_ = resuming_ ? resume_->path : "";
+}
+
+// A new run starts a TensorBoard run; a resumed one continues the one its checkpoint names.
+void TrainingRun::build_tensorboard_log() {
+  const RunConfig& run = experiment_.run;
+  const std::string& dir = run.tensorboard_log.value;
+  const std::string name = run.tb_log_name.value_or(run.name);
+  const bool continues = resuming_ && resume_->checkpoint.training_state.count(
+                                          std::string(kTrainingStatePrefix) + kTensorBoardState +
+                                          "/run") != 0;
+  auto log = std::make_unique<TensorBoardLog>(
+      continues ? TensorBoardLog::resume(dir, name,
+                                         training_state_reader(resume_->checkpoint, kTensorBoardState),
+                                         [this](const std::string& line) { log_->line(line); })
+                : TensorBoardLog::start(dir, name, experiment_.resolved));
+  tensorboard_ = log.get();
+  logger_.add_sink(std::move(log));
+  log_->line("TensorBoard: " + tensorboard_->run_dir() + " (view with: tensorboard --logdir " +
+             dir + ")");
 }
 
 // The checkpoint's algorithm, env, callback and logger state, checked against this run.
@@ -258,6 +281,7 @@ void TrainingRun::save_checkpoint(const std::string& path) {
     env_->write_state(env);
     write_callback_states(state.part(kCallbackState), callbacks_);
     write_pending_log(state.part(kLoggerState), logger_.pending());
+    if (tensorboard_) tensorboard_->write_state(state.part(kTensorBoardState));
     progress_csv_->flush();
     log_->check();
     write_log_marks(state.part(kFileMarks), outcome_.run_dir, appended_files(experiment_));
@@ -317,6 +341,7 @@ void TrainingRun::finish() {
   }
   bar_->finish();
   logger_.flush();
+  if (tensorboard_) tensorboard_->finish(outcome_.timesteps, !outcome_.interrupted);
   outcome_.model_path = outcome_.run_dir + "/model.zip";
   save_model(outcome_.model_path);
   if (!outcome_.stop_reason.empty()) log_->line("stopped early: " + outcome_.stop_reason);

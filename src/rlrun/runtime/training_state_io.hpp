@@ -17,6 +17,7 @@ inline constexpr const char* kEnvState = "env";
 inline constexpr const char* kCallbackState = "callbacks";
 inline constexpr const char* kLoggerState = "logger";
 inline constexpr const char* kFileMarks = "files";
+inline constexpr const char* kTensorBoardState = "tensorboard";
 
 // Writes the parts under `training/` into a checkpoint's tensors.
 class TrainingStateWriter {

@@ -20,12 +20,13 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
   episode_r_ = info_.add_key("episode.r");
   episode_l_ = info_.add_key("episode.l");
   episode_t_ = info_.add_key("episode.t");
-  std::vector<std::string> columns;
-  for (const auto& keyword : info_keywords) {
-    const int index = inner_info.find(keyword);
-    if (index < 0) continue;
-    keyword_inner_index_.push_back(index);
-    columns.push_back(keyword);
+  // SB3's Monitor copies each info keyword into info["episode"]; here `episode.<key>`. A key
+  // the env has not declared yet (a Python env declares keys as its dicts show them) is
+  // looked up again whenever new keys appear.
+  keywords_ = std::move(info_keywords);
+  for (const auto& keyword : keywords_) {
+    keyword_inner_index_.push_back(inner_info.find(keyword));
+    keyword_own_index_.push_back(info_.add_key("episode." + keyword));
   }
   if (path.empty()) return;
   file_ = CheckedFile(path, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
@@ -33,7 +34,7 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
   char t_start_text[64];
   std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);
   file_ << "#{\"t_start\": " << t_start_text << ", \"env_id\": \"" << inner_->id() << "\"}\nr,l,t";
-  for (const auto& column : columns) file_ << ',' << column;
+  for (const auto& column : keywords_) file_ << ',' << column;
   file_ << '\n';
   file_.flush();
 }
@@ -70,13 +71,18 @@ void Monitor::copy_inner_info() {
   // Keys an env declares after it was built (a Python env learns its info keys from the
   // dicts it returns) are forwarded from then on.
   const auto& keys = inner_->info().keys();
-  for (size_t i = inner_to_own_.size(); i < keys.size(); ++i)
-    inner_to_own_.push_back(info_.add_key(keys[i]));
+  if (inner_to_own_.size() < keys.size()) {
+    for (size_t i = inner_to_own_.size(); i < keys.size(); ++i)
+      inner_to_own_.push_back(info_.add_key(keys[i]));
+    for (size_t k = 0; k < keywords_.size(); ++k)
+      if (keyword_inner_index_[k] < 0) keyword_inner_index_[k] = inner_->info().find(keywords_[k]);
+  }
   const auto& values = inner_->info().values();
   for (size_t i = 0; i < inner_to_own_.size(); ++i) info_.set(inner_to_own_[i], values[i]);
   info_.set(episode_r_, Info::kAbsent);
   info_.set(episode_l_, Info::kAbsent);
   info_.set(episode_t_, Info::kAbsent);
+  for (int index : keyword_own_index_) info_.set(index, Info::kAbsent);
 }
 
 void Monitor::reset(std::optional<uint64_t> seed, std::span<float> obs) {
@@ -143,16 +149,22 @@ void Monitor::account(double reward, bool episode_ended) {
     info_.set(episode_r_, r);
     info_.set(episode_l_, static_cast<double>(episode_length_));
     info_.set(episode_t_, t);
+    const auto& values = inner_->info().values();
+    for (size_t k = 0; k < keywords_.size(); ++k)
+      if (keyword_inner_index_[k] >= 0)
+        info_.set(keyword_own_index_[k], values[keyword_inner_index_[k]]);
     if (file_.is_open()) {
       char length[24];
       std::snprintf(length, sizeof length, ",%lld,", static_cast<long long>(episode_length_));
       file_ << python_float_repr(r) << length << python_float_repr(t);
-      const auto& values = inner_->info().values();
-      for (int index : keyword_inner_index_) {
-        const double v = values[index];
+      for (size_t k = 0; k < keywords_.size(); ++k) {
+        const int index = keyword_inner_index_[k];
+        const double v = index >= 0 ? values[index] : Info::kAbsent;
+        // Flags (is_success, is_failure) as Python writes a bool; every other key a number.
+        const bool flag = keywords_[k].rfind("is_", 0) == 0 && (v == 0.0 || v == 1.0);
         if (std::isnan(v))
           file_ << ',';
-        else if (v == 0.0 || v == 1.0)
+        else if (flag)
           file_ << (v == 1.0 ? ",True" : ",False");
         else
           file_ << ',' << python_float_repr(v);

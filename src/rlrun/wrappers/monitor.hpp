@@ -6,8 +6,10 @@
 //     r,l,t
 //     21.0,21,0.000153
 // and reports a finished episode through info keys `episode.r`, `episode.l`, `episode.t` (SB3's
-// info["episode"]), which the algorithms read for rollout/ep_rew_mean. Info keys the env
-// declares among `info_keywords` (default: is_success when present) become extra columns.
+// info["episode"]), which the algorithms read for rollout/ep_rew_mean. Each of `info_keywords`
+// (SB3's Monitor argument; runtime/env_factory.hpp picks them) becomes a column after r,l,t
+// and an info key `episode.<key>` with its value at the episode's last step, which training
+// averages into rollout/<key> (algos/common/episode_stats.hpp).
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -25,7 +27,7 @@ class Monitor : public Wrapper, public SplitStep {
   // `path` empty: no file, statistics only. `t_start` is Unix time in seconds. `append`
   // continues an existing file of a resumed run (no new header).
   Monitor(EnvPtr inner, const std::string& path, double t_start,
-          std::vector<std::string> info_keywords = {"is_success"}, bool append = false);
+          std::vector<std::string> info_keywords = {}, bool append = false);
   ~Monitor() override;
   Monitor(const Monitor&) = delete;
   Monitor& operator=(const Monitor&) = delete;
@@ -61,7 +63,9 @@ class Monitor : public Wrapper, public SplitStep {
   std::chrono::steady_clock::time_point clock_start_;
   Info info_;
   std::vector<int> inner_to_own_;        // inner info index -> own index
-  std::vector<int> keyword_inner_index_; // info_keywords present in the inner env
+  std::vector<std::string> keywords_;     // info_keywords: monitor.csv columns after r,l,t
+  std::vector<int> keyword_inner_index_;  // their inner info index (-1: not declared yet)
+  std::vector<int> keyword_own_index_;    // their `episode.<key>` index in info_
   int episode_r_ = -1, episode_l_ = -1, episode_t_ = -1;
   double episode_return_ = 0.0;
   int64_t episode_length_ = 0;

@@ -17,10 +17,12 @@ void register_gripper(EnvEntries& out) {
       "3D parallel-jaw gripper (Bullet): reach a cube, grasp it, lift it 5 cm; Box(4) dx dy dz grip",
       0);
   lift.policies.push_back(scripted);
-  out.push_back(std::move(lift));
+  lift.metrics = {"is_success", "lift"};
   EnvEntry easy = make_env_entry<GripperLiftEasy>(
       "GripperLiftEasy-v0", "GripperLift-v0 starting just above the cube (close and lift)", 0);
   easy.policies.push_back(scripted);
+  easy.metrics = lift.metrics;
+  out.push_back(std::move(lift));
   out.push_back(std::move(easy));
 }
 

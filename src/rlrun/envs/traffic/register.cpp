@@ -22,6 +22,7 @@ void register_traffic(EnvEntries& out) {
            throw UsageError("--green-time must be a whole number of seconds in [1, 86400]");
          return fixed_time_actions(env, static_cast<int>(green));
        }});
+  entry.metrics = {"avg_waiting_time", "avg_travel_time", "throughput", "total_queue_length"};
   out.push_back(std::move(entry));
 }
 
