@@ -102,7 +102,7 @@ fi
 # Python envs in training: PPO zoo CartPole on a pure-Python CartPole port vs SB3 (issue 17).
 python_train_table=$(scripts/bench_python_train.sh | grep '^|' || true)
 # TensorBoard event files: their cost in a PPO CartPole run (issue 18: < 2 %).
-tensorboard_table=$(scripts/bench_tensorboard.sh | grep '^|' || true)
+tensorboard_table=$(scripts/bench_tensorboard.sh | grep -E '^(\||$)' || true)
 machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, threads=$threads, $(date -u +%Y-%m-%d)"
 echo "$table"
 echo

@@ -2,7 +2,9 @@
 # What writing TensorBoard event files costs (issue 18: < 2 % of a PPO CartPole run): PPO with
 # rl-zoo's CartPole-v1 settings (1e5 steps, 8 envs, 391 progress rows), whole `rlrun train`
 # processes without and with --tensorboard-log, A B A B, PAIRS pairs; prints a markdown table
-# with the median wall times, the median of the per-pair ratios and the event file's size.
+# with the median wall times, the median of the per-pair ratios and the event file's size;
+# then the cost of one row measured inside the process (tests/runtime/test_tensorboard_log.cpp)
+# and what the run's rows cost at that rate, which whole-process timing noise cannot resolve.
 #   scripts/bench_tensorboard.sh              (after scripts/setup.sh)
 #   PAIRS=9 scripts/bench_tensorboard.sh
 set -euo pipefail
@@ -41,3 +43,8 @@ echo "| PPO zoo CartPole 1e5 | without TensorBoard (median s) | with --tensorboa
 echo "|---|---|---|---|---|"
 printf '| %s progress rows | %.2f | %.2f | %.3f (%+.1f %%) | %s bytes |\n' "$rows" "$plain_s" "$tb_s" "$ratio" \
   "$(awk -v r="$ratio" 'BEGIN {print (r - 1) * 100}')" "$(stat -c %s "$file")"
+per_row=$(build/tests/rlrun_tests "[tensorboard_bench]" | grep '^|' | sed -E 's/.*\| ([0-9.]+) us \|/\1/')
+echo
+echo "| in-process cost | per row | $rows rows | share of the run without TensorBoard |"
+echo "|---|---|---|---|"
+awk -v us="$per_row" -v n="$rows" -v s="$plain_s" 'BEGIN {printf "| TensorBoardLog::write | %.1f us | %.2f ms | %.3f %% |\n", us, us * n / 1000, us * n / 1e4 / s}'

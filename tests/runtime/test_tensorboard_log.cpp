@@ -2,6 +2,8 @@
 // state (the file cut back to its mark) and refusal of crafted state.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -109,4 +111,27 @@ TEST_CASE("tensorboard log: resume cuts the event file back to the checkpoint", 
     CHECK(note.find("is gone") != std::string::npos);
     CHECK(entries(dir / "run_1").size() == 1);
   }
+}
+
+// What one progress row costs in TensorBoard: encoding and writing an Event of the keys of a
+// PPO CartPole row (14 scalars), through the sink as training calls it. Measured, not asserted
+// (DESIGN.md §8): `build/tests/rlrun_tests "[tensorboard_bench]"`, run by
+// scripts/bench_tensorboard.sh.
+TEST_CASE("bench: TensorBoard cost per progress row", "[.bench][tensorboard_bench]") {
+  TempDir dir("tb_bench");
+  TensorBoardLog log = TensorBoardLog::start(dir.str(), "bench", YAML::Load("a: 1"));
+  LogRow row;
+  for (const char* key : {"rollout/ep_len_mean", "rollout/ep_rew_mean", "time/fps",
+                          "time/iterations", "time/time_elapsed", "time/total_timesteps",
+                          "train/approx_kl", "train/clip_fraction", "train/clip_range",
+                          "train/entropy_loss", "train/explained_variance", "train/learning_rate",
+                          "train/loss", "train/n_updates", "train/policy_gradient_loss",
+                          "train/value_loss"})
+    row[key] = 0.123456789;
+  constexpr int kRows = 20000;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kRows; ++i) log.write(row, 256 * (i + 1));
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("| TensorBoard event per progress row (16 keys, 14 written) | %.1f us |\n",
+              s / kRows * 1e6);
 }
