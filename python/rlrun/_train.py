@@ -6,7 +6,8 @@ Overrides map to ``rlrun train --set`` assignments by one rule:
   algo.learning_rate=0.0003``;
 * the CLI's shorthand options keep their meaning: ``seed`` -> ``run.seed``, ``timesteps`` (or
   ``total_timesteps``) -> ``run.total_timesteps``, ``out`` (or ``out_dir``) -> ``run.out_dir``,
-  ``name`` -> ``run.name``, ``init_from`` -> ``run.init_from``;
+  ``name`` -> ``run.name``, ``init_from`` -> ``run.init_from``, and SB3's ``tensorboard_log``
+  / ``tb_log_name`` -> ``run.tensorboard_log`` / ``run.tb_log_name``;
 * any other key is a TypeError.
 
 Values are written as YAML, as a value typed after ``--set key=`` would be: numbers and
@@ -29,6 +30,8 @@ _SHORTHANDS = {
     "out_dir": "run.out_dir",
     "name": "run.name",
     "init_from": "run.init_from",
+    "tensorboard_log": "run.tensorboard_log",
+    "tb_log_name": "run.tb_log_name",
 }
 
 

@@ -34,6 +34,16 @@ class Train(TempDirMixin, unittest.TestCase):
         with open(os.path.join(run_dir, "config.yaml")) as f:
             self.assertIn("learning_rate: 0.001", f.read())
 
+    def test_tensorboard_log_as_in_sb3(self):
+        # SB3: PPO(..., tensorboard_log="tb").learn(..., tb_log_name="PPO") -> tb/PPO_1/.
+        tb = os.path.join(self.tmp, "tb")
+        rlrun.train(CONFIG, out=os.path.join(self.tmp, "runs"), tensorboard_log=tb, tb_log_name="PPO")
+        rlrun.train(CONFIG, out=os.path.join(self.tmp, "runs"), tensorboard_log=tb, tb_log_name="PPO")
+        self.assertEqual(sorted(os.listdir(tb)), ["PPO_1", "PPO_2"])
+        files = os.listdir(os.path.join(tb, "PPO_2"))
+        self.assertEqual(len(files), 1)
+        self.assertTrue(files[0].startswith("events.out.tfevents."))
+
     def test_file_config_and_bad_keys(self):
         path = os.path.join(self.tmp, "typo.yaml")
         with open(path, "w") as f:
