@@ -60,6 +60,7 @@ TEST_CASE("tensorboard: a PPO run's event file matches progress.csv, eval and hp
   CHECK(checked.output.find("\"algo\": \"PPO\"") != std::string::npos);
   CHECK(checked.output.find("final/ep_rew_mean") != std::string::npos);
   CHECK(checked.output.find("final/eval_mean_reward") != std::string::npos);
+  CHECK(checked.output.find("\"images\": [\"images/learning_curve\"]") != std::string::npos);
   CHECK(first_line(dir / "runs/cartpole_ppo/seed1/progress.csv").find("eval/mean_reward") !=
         std::string::npos);
 

@@ -101,8 +101,13 @@ def build_classes():
             nested=[message("PluginData", [(1, "plugin_name", F.TYPE_STRING, OPT, None),
                                            (2, "content", F.TYPE_BYTES, OPT, None)])]),
         message("Summary", [(1, "value", F.TYPE_MESSAGE, REP, ".tb.Summary.Value")], nested=[
+            message("Image", [(1, "height", F.TYPE_INT32, OPT, None),
+                              (2, "width", F.TYPE_INT32, OPT, None),
+                              (3, "colorspace", F.TYPE_INT32, OPT, None),
+                              (4, "encoded_image_string", F.TYPE_BYTES, OPT, None)]),
             message("Value", [(1, "tag", F.TYPE_STRING, OPT, None),
                               (2, "simple_value", F.TYPE_FLOAT, OPT, None),
+                              (4, "image", F.TYPE_MESSAGE, OPT, ".tb.Summary.Image"),
                               (8, "tensor", F.TYPE_MESSAGE, OPT, ".tb.TensorProto"),
                               (9, "metadata", F.TYPE_MESSAGE, OPT, ".tb.SummaryMetadata")])]),
         message("Event", [(1, "wall_time", F.TYPE_DOUBLE, OPT, None),
@@ -146,8 +151,9 @@ def events(run_dir):
 
 
 def read(run_dir):
-    """scalars {tag: [(step, value)]}, hparams {name: value}, session end status or None."""
-    scalars, hparams, end = {}, {}, None
+    """scalars {tag: [(step, value)]}, hparams {name: value}, session end status or None,
+    images {tag: (width, height, png bytes)}."""
+    scalars, hparams, end, images = {}, {}, None, {}
     for event in events(run_dir):
         for value in event.summary.value:
             plugin = value.metadata.plugin_data
@@ -158,13 +164,16 @@ def read(run_dir):
                         hparams[key] = getattr(v, v.WhichOneof("kind"))
                 if data.HasField("session_end_info"):
                     end = data.session_end_info.status
+            elif value.HasField("image"):
+                images[value.tag] = (value.image.width, value.image.height,
+                                     value.image.encoded_image_string)
             else:
                 scalars.setdefault(value.tag, []).append((event.step, value.simple_value))
-    return scalars, hparams, end
+    return scalars, hparams, end, images
 
 
 def check(run_dir, progress, finished):
-    scalars, hparams, end = read(run_dir)
+    scalars, hparams, end, images = read(run_dir)
     with open(progress, newline="") as f:
         rows = list(csv.DictReader(f))
     if not rows:
@@ -194,9 +203,12 @@ def check(run_dir, progress, finished):
             raise ValueError(f"session end status {end}, expected 1 (STATUS_SUCCESS)")
         if "final/ep_rew_mean" not in scalars:
             raise ValueError("no final/ep_rew_mean scalar")
+        width, height, png = images.get("images/learning_curve", (0, 0, b""))
+        if not png.startswith(b"\x89PNG\r\n\x1a\n") or struct.unpack(">II", png[16:24]) != (width, height):
+            raise ValueError("no learning-curve PNG of the size its Image message states")
     print(json.dumps({"rows": len(rows), "tags": len(keys), "hparams": len(hparams),
                       "algo": hparams.get("algo.id"), "last_step": steps[-1],
-                      "session_end": end,
+                      "session_end": end, "images": sorted(images),
                       "final": {t: scalars[t][-1][1] for t in scalars if t.startswith("final/")}}))
 
 

@@ -27,6 +27,7 @@
 #include "rlrun/runtime/run_log.hpp"
 #include "rlrun/runtime/run_log_marks.hpp"
 #include "rlrun/runtime/resume_point.hpp"
+#include "rlrun/runtime/tensorboard/learning_curve_image.hpp"
 #include "rlrun/runtime/tensorboard/tensorboard_log.hpp"
 #include "rlrun/runtime/training_state_io.hpp"
 
@@ -341,7 +342,15 @@ void TrainingRun::finish() {
   }
   bar_->finish();
   logger_.flush();
-  if (tensorboard_) tensorboard_->finish(outcome_.timesteps, !outcome_.interrupted);
+  if (tensorboard_ && !outcome_.interrupted) {
+    std::string curve;
+    try {  // a picture is no reason to fail a run that has trained
+      curve = learning_curve_png(outcome_.run_dir, experiment_.algo.id + " on " + experiment_.env.id);
+    } catch (const std::exception& e) {
+      log_->line(std::string("note: no learning-curve image for TensorBoard: ") + e.what());
+    }
+    tensorboard_->finish(outcome_.timesteps, true, curve);
+  }
   outcome_.model_path = outcome_.run_dir + "/model.zip";
   save_model(outcome_.model_path);
   if (!outcome_.stop_reason.empty()) log_->line("stopped early: " + outcome_.stop_reason);

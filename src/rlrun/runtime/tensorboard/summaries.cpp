@@ -91,6 +91,17 @@ ProtoWriter scalars_event(double wall_time, int64_t step, const LogRow& row) {
   return event(wall_time, step, summary);
 }
 
+ProtoWriter image_event(double wall_time, int64_t step, const std::string& tag,
+                        const std::string& png, int width, int height) {
+  ProtoWriter image;
+  image.int64(1, height).int64(2, width).int64(3, 3).bytes(4, png);
+  ProtoWriter value;
+  value.bytes(kTag, tag).message(4, image);  // Summary.Value.image = 4
+  ProtoWriter summary;
+  summary.message(kSummaryValue, value);
+  return event(wall_time, step, summary);
+}
+
 std::vector<HParam> hparams_of_config(const YAML::Node& config) {
   std::vector<HParam> out;
   flatten(config, "", out);

@@ -35,6 +35,11 @@ struct HParam {
 // text ("[64, 64]"); nulls and nested lists are left out.
 std::vector<HParam> hparams_of_config(const YAML::Node& config);
 
+// A PNG image (Summary.Image {height = 1, width = 2, colorspace = 3, encoded_image_string = 4};
+// colorspace 3 = RGB), for TensorBoard's Images tab.
+ProtoWriter image_event(double wall_time, int64_t step, const std::string& tag,
+                        const std::string& png, int width, int height);
+
 ProtoWriter session_start_event(double wall_time, const std::vector<HParam>& hparams);
 // `success`: the run trained to its end (STATUS_SUCCESS); else STATUS_FAILURE.
 ProtoWriter session_end_event(double wall_time, int64_t step, bool success);

@@ -8,6 +8,7 @@
 
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/tensorboard/learning_curve_image.hpp"
 #include "rlrun/runtime/tensorboard/summaries.hpp"
 
 namespace rlrun {
@@ -117,8 +118,12 @@ void TensorBoardLog::write(const LogRow& row, int64_t step) {
   if (!shown.empty()) file_.write(scalars_event(wall_time_now(), step, shown));
 }
 
-void TensorBoardLog::finish(int64_t step, bool finished) {
+void TensorBoardLog::finish(int64_t step, bool finished, const std::string& learning_curve_png) {
   if (!finished) return;
+  const auto [width, height] = png_size(learning_curve_png);
+  if (width > 0)
+    file_.write(image_event(wall_time_now(), step, "images/learning_curve", learning_curve_png,
+                            width, height));
   LogRow final_returns;
   if (!std::isnan(last_ep_rew_mean_)) final_returns["final/ep_rew_mean"] = last_ep_rew_mean_;
   if (!std::isnan(last_eval_mean_reward_))

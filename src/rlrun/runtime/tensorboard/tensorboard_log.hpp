@@ -7,6 +7,7 @@
 //   * every progress.csv row as scalars at step = num_timesteps, with SB3's tags; the keys SB3
 //     logs with exclude="tensorboard" (time/iterations, time/time_elapsed,
 //     time/total_timesteps, time/episodes, train/n_updates) are left out as SB3 leaves them out;
+//   * at the end, the learning curve as an image (images/learning_curve);
 //   * the HParams plugin's session start (the resolved config) and, when the run ends, its end
 //     with the final returns as scalars final/ep_rew_mean and final/eval_mean_reward, so
 //     TensorBoard's HParams tab lists runs with their settings and results.
@@ -44,7 +45,9 @@ class TensorBoardLog : public LogSink {
   void write(const LogRow& row, int64_t step) override;
   // The run ended: final returns and the HParams session end (`finished`: it trained to its
   // end; an interrupted run that will be resumed writes nothing here).
-  void finish(int64_t step, bool finished);
+  // `learning_curve_png` (may be empty): the run's learning curve, shown under
+  // images/learning_curve.
+  void finish(int64_t step, bool finished, const std::string& learning_curve_png = "");
 
   void write_state(StateWriter out) const;
 
