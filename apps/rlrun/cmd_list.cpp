@@ -25,7 +25,7 @@ void print_table(const char* title, const Entries& entries) {
     std::printf("  %-*s  %s\n", static_cast<int>(width), e.id.c_str(), e.description.c_str());
 }
 
-// An env's spaces (as built with default parameters), time limit and policies.
+// An env's spaces (as built with default parameters), time limit, metrics and policies.
 void print_env_details(const EnvEntry& entry) {
   std::printf("%s: %s\n", entry.id.c_str(), entry.description.c_str());
   if (entry.expand) {
@@ -46,6 +46,12 @@ void print_env_details(const EnvEntry& entry) {
   std::printf("  time limit         %s\n",
               entry.max_episode_steps > 0 ? std::to_string(entry.max_episode_steps).c_str()
                                           : "none (the env ends its own episodes)");
+  if (!entry.metrics.empty()) {
+    std::string metrics;
+    for (const std::string& m : entry.metrics) metrics += (metrics.empty() ? "" : ", ") + m;
+    std::printf("  metrics            %s (monitor.csv columns, rollout/<key>, eval/<key>)\n",
+                metrics.c_str());
+  }
   std::printf("  policies           random (uniform actions)\n");
   for (const PolicyEntry& policy : entry.policies)
     std::printf("                     %s (%s)\n", policy.name.c_str(), policy.description.c_str());
