@@ -19,6 +19,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/builtins.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
@@ -34,8 +35,9 @@ namespace {
 // scripts and users grep for, then the success rate and the env's own metrics.
 void print_summary(const std::string& what, const std::string& how, const std::string& env_id,
                    int episodes, const EvalResult& r) {
-  std::printf("%s on %s, %d episodes%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
-              what.c_str(), env_id.c_str(), episodes, how.c_str(), r.mean_return(),
+  std::printf("%s on %s, %s%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
+              what.c_str(), env_id.c_str(), count_of(episodes, "episode").c_str(), how.c_str(),
+              r.mean_return(),
               r.std_return(), r.mean_length());
   if (!r.successes.empty()) {
     double s = 0;
@@ -161,7 +163,7 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
         algorithm.predict(obs, deterministic, action);
       },
       record);
-  std::printf("recorded %lld frames at %dx%d -> %s\n", static_cast<long long>(recorded.frames),
+  std::printf("recorded %s at %dx%d -> %s\n", count_of(recorded.frames, "frame").c_str(),
               recorded.width, recorded.height, o.record.c_str());
   return recorded.episodes;
 }

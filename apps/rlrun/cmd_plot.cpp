@@ -7,6 +7,7 @@
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/render/learning_curves.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/run_results.hpp"
 
 namespace rlrun::cli {
@@ -51,8 +52,10 @@ Action add_plot(CLI::App& app) {
     }
     const std::string title = options->title.empty() ? options->metric + " over training" : options->title;
     plot_learning_curves(groups, options->metric, title, options->output);
-    std::printf("plotted %zu configuration%s (%zu runs) -> %s\n", groups.size(),
-                groups.size() == 1 ? "" : "s", runs.size(), options->output.c_str());
+    std::printf("plotted %s (%s) -> %s\n",
+                count_of(static_cast<int64_t>(groups.size()), "configuration").c_str(),
+                count_of(static_cast<int64_t>(runs.size()), "run").c_str(),
+                options->output.c_str());
     return 0;
   };
 }

@@ -199,3 +199,16 @@ TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
   // The interrupted model is a valid model file.
   CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code == 0);
 }
+
+TEST_CASE("cli: counts say 1 episode, 1 env", "[cli]") {
+  const auto eval = run_rlrun("eval --env CartPole-v1 --policy random --episodes 1");
+  INFO(eval.output);
+  CHECK(eval.exit_code == 0);
+  CHECK(eval.output.find("random on CartPole-v1, 1 episode: mean_reward") != std::string::npos);
+  TempDir dir("cli_plurals");
+  const auto train = run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --set env.n_envs=1 " +
+                               "--set algo.n_steps=64 --set algo.batch_size=64 --timesteps 64 --out " + dir.str());
+  INFO(train.output);
+  CHECK(train.exit_code == 0);
+  CHECK(train.output.find("for 64 steps (seed 1, 1 env) ->") != std::string::npos);
+}

@@ -13,6 +13,7 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/callback.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -142,9 +143,9 @@ void TrainingRun::announce() {
   const RunConfig& run = experiment_.run;
   if (!resuming_) {
     log_->line("rlrun " RLRUN_VERSION ": training " + experiment_.algo.id + " on " +
-               experiment_.env.id + " for " + std::to_string(run.total_timesteps) +
-               " steps (seed " + std::to_string(run.seed) + ", " +
-               std::to_string(experiment_.env.section.n_envs) + " envs) -> " + outcome_.run_dir);
+               experiment_.env.id + " for " + count_of(run.total_timesteps, "step") +
+               " (seed " + std::to_string(run.seed) + ", " +
+               count_of(experiment_.env.section.n_envs, "env") + ") -> " + outcome_.run_dir);
     return;
   }
   for (const std::string& skipped : resume_->skipped)
