@@ -117,9 +117,8 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
       break;
     }
   }
-  std::printf("sweep: %s %s %lld steps in %.1f s\n", name.c_str(),
-              outcome.interrupted ? "interrupted after" : "trained",
-              static_cast<long long>(outcome.timesteps), outcome.wall_seconds);
+  std::printf("sweep: %s %s\n", name.c_str(),
+              format_session_summary(session_summary(outcome)).c_str());
   return outcome.interrupted ? 130 : 0;
 }
 

@@ -252,6 +252,44 @@ TEST_CASE("report: statistics over seeds on hand-made run directories", "[report
   CHECK(run_rlrun("report " + dir / "nothing_here").exit_code == 2);
 }
 
+TEST_CASE("report: the run's true step count and training time, not progress.csv's last row",
+          "[report]") {
+  TempDir dir("report_steps");
+  // DQN logs a progress.csv row every 4 episodes: a 5000-step run's last row may say 2880. The
+  // `finished` marker has the count; log.txt has a session of 4000 steps and a resumed one.
+  make_run(dir / "dqn/seed1", "dqn", 1, 0.001, {}, 0, 0, 2880);
+  std::ofstream(dir / "dqn/seed1/finished") << "timesteps 5000\n";
+  std::ofstream(dir / "dqn/seed1/log.txt")
+      << "rlrun: training DQN on TrafficSignal-v0 for 5000 steps\n"
+      << "trained 4000 steps in 10.00 s (400 steps/s); model saved to m\n"
+      << "rlrun: resuming DQN on TrafficSignal-v0 from c (step 4000 of 5000)\n"
+      << "trained 1000 steps (4000 -> 5000) in 2.50 s (400 steps/s); model saved to m\n";
+  auto r = run_rlrun("report " + dir / "dqn");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("| 5000 | 12.5 | 400 | none |") != std::string::npos);
+
+  // A real DQN run: the count from `finished`, then (without it: interrupted, or training) from
+  // model.zip's meta.json.
+  const auto train = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
+                               "/configs/cartpole_dqn.yaml --timesteps 1000 --out " + dir / "real");
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const std::string run = dir / "real/cartpole_dqn/seed1";
+  const std::string finished = read_text(run + "/finished");  // "timesteps N"
+  REQUIRE(finished.rfind("timesteps ", 0) == 0);
+  const int steps = std::stoi(finished.substr(10));
+  REQUIRE(steps >= 1000);
+  REQUIRE(column(run + "/progress.csv", "time/total_timesteps").back() < steps);
+  const std::string cell = "| " + std::to_string(steps) + " | ";
+  r = run_rlrun("report " + run);
+  CHECK(r.output.find(cell) != std::string::npos);
+  fs::remove(run + "/finished");
+  r = run_rlrun("report " + run);
+  INFO(r.output);
+  CHECK(r.output.find(cell) != std::string::npos);
+}
+
 TEST_CASE("plot: PNG and SVG learning curves; a wrong metric is named", "[plot]") {
   TempDir dir("plot");
   for (int s = 1; s <= 3; ++s) make_run(dir / "a/seed" + std::to_string(s), "a", s, 0.001, {}, 0, 1, 1000);
