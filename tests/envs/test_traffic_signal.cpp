@@ -405,12 +405,15 @@ TEST_CASE("eval --baseline fixed-time: both policies on the same episodes, metri
   std::ifstream in(dir / "eval.csv");
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
-  REQUIRE(lines.size() == 7);  // header, 2 + mean per policy
+  // One tidy table: a row per episode of each policy, no summary rows (the means are printed).
+  REQUIRE(lines.size() == 5);
   CHECK(lines[0] ==
         "policy,episode,return,length,avg_waiting_time,avg_travel_time,total_queue_length,"
         "throughput,sim_time");
-  CHECK(lines[3].rfind("DQN,mean,", 0) == 0);
-  CHECK(lines[6].rfind("fixed-time,mean,", 0) == 0);
+  CHECK(lines[1].rfind("DQN,0,", 0) == 0);
+  CHECK(lines[2].rfind("DQN,1,", 0) == 0);
+  CHECK(lines[3].rfind("fixed-time,0,", 0) == 0);
+  CHECK(lines[4].rfind("fixed-time,1,", 0) == 0);
   // The baseline is the traffic task's: other models are refused.
   const auto other = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
                                "/configs/cartpole_ppo.yaml --timesteps 256 --out " + dir / "cp");
@@ -452,14 +455,25 @@ TEST_CASE("traffic_dqn beats fixed-time on average waiting time", "[.slow][traff
                            " --episodes 5 --baseline fixed-time --csv " + dir / "eval.csv");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
+  // Mean avg_waiting_time (column 4) per policy over the episode rows.
   std::ifstream in(dir / "eval.csv");
-  double dqn = -1, fixed = -1;
+  std::string header;
+  std::getline(in, header);
+  REQUIRE(header.rfind("policy,episode,return,length,avg_waiting_time,", 0) == 0);
+  double sums[2] = {0, 0};
+  int counts[2] = {0, 0};
   for (std::string line; std::getline(in, line);) {
     std::vector<std::string> cells;
     std::stringstream row(line);
     for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    if (cells.size() > 4 && cells[1] == "mean") (cells[0] == "DQN" ? dqn : fixed) = std::stod(cells[4]);
+    REQUIRE(cells.size() > 4);
+    const int k = cells[0] == "DQN" ? 0 : 1;
+    sums[k] += std::stod(cells[4]);
+    ++counts[k];
   }
+  REQUIRE(counts[0] == 5);
+  REQUIRE(counts[1] == 5);
+  const double dqn = sums[0] / counts[0], fixed = sums[1] / counts[1];
   INFO("avg waiting: DQN " << dqn << " s, fixed-time " << fixed << " s");
   REQUIRE(dqn > 0);
   REQUIRE(fixed > 0);

@@ -108,6 +108,9 @@ TEST_CASE("cli: train writes the run directory, eval needs only the model file",
   CHECK(e.output.find("mean_reward = ") != std::string::npos);
   const std::string rows = read_text(csv);
   CHECK(std::count(rows.begin(), rows.end(), '\n') == 5);
+  // One tidy table (docs: eval --csv): a policy column always, one row per episode.
+  CHECK(rows.rfind("policy,episode,return,length\nPPO,0,", 0) == 0);
+  CHECK(rows.find("mean") == std::string::npos);
   CHECK(run_rlrun("eval --model " + run + "/model.zip --stochastic --episodes 2").exit_code == 0);
   // Same seed, deterministic policy: same result.
   CHECK(run_rlrun("eval --model " + run + "/model.zip --episodes 2 --seed 9").output ==
