@@ -203,6 +203,34 @@ TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
   CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code == 0);
 }
 
+TEST_CASE("cli: a mistyped command is named with the command meant", "[cli]") {
+  auto r = run_rlrun("trian configs/cartpole_ppo.yaml");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output == "error: unknown command 'trian'; did you mean 'train'?\n");
+  r = run_rlrun("--threads 1 evl --model x.zip");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("unknown command 'evl'; did you mean 'eval'?") != std::string::npos);
+  r = run_rlrun("frobnicate");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("unknown command 'frobnicate'; the commands are train, eval, list") !=
+        std::string::npos);
+  r = run_rlrun("");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("a command is required: train, eval") != std::string::npos);
+  r = run_rlrun("sweep rnu manifest.yaml");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("rlrun sweep: unknown command 'rnu'; did you mean 'run'?") != std::string::npos);
+  // Unexpected arguments in the order they were typed (CLI11 2.1 reverses them).
+  r = run_rlrun("sweep s.yaml --colour always");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("rlrun sweep: unexpected arguments: --colour always") != std::string::npos);
+  r = run_rlrun("sweep status manifest.yaml --frob");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("rlrun sweep status: unexpected argument '--frob'") != std::string::npos);
+  CHECK(run_rlrun("--version").exit_code == 0);
+  CHECK(run_rlrun("train --help").exit_code == 0);
+}
+
 TEST_CASE("cli: counts say 1 episode, 1 env", "[cli]") {
   const auto eval = run_rlrun("eval --env CartPole-v1 --policy random --episodes 1");
   INFO(eval.output);
