@@ -138,6 +138,46 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   CHECK(fs::last_write_time(dir / "out/runs/learning_rate=3.0e-4/seed3/model.zip") == model_time);
 }
 
+TEST_CASE("sweep --out and --set: the sweep's out_dir and a value for every run, as train takes them",
+          "[sweep]") {
+  TempDir dir("sweep_options");
+  const std::string sweep = write_sweep(dir, 8192);
+  auto r = run_rlrun("sweep " + sweep + " --out " + dir / "elsewhere" +
+                     " --set run.total_timesteps=2048 --set algo.n_epochs=4");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("sweep test_sweep: 6 runs -> " + dir / "elsewhere/manifest.yaml") !=
+        std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out"));
+  const std::string config = read_text(dir / "elsewhere/configs/learning_rate=3.0e-4_seed2.yaml");
+  CHECK(config.find("total_timesteps: 2048") != std::string::npos);  // over the file's set:
+  CHECK(config.find("n_epochs: 4") != std::string::npos);
+  CHECK(config.find("learning_rate: 0.0003") != std::string::npos);  // the grid's own
+  // A key the grid varies, a key the base lacks, options of other sweep commands: refused.
+  r = run_rlrun("sweep " + sweep + " --set algo.learning_rate=0.1");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("the sweep varies algo.learning_rate") != std::string::npos);
+  r = run_rlrun("sweep " + sweep + " --set algo.n_epoch=4");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("--set algo.n_epoch=4 does not fit") != std::string::npos);
+  const std::string manifest = dir / "elsewhere/manifest.yaml";
+  r = run_rlrun("sweep run " + manifest + " --out " + dir / "x");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("sweep run takes no --out") != std::string::npos);
+  r = run_rlrun("sweep status " + manifest + " --set a=1");
+  CHECK(r.exit_code == 2);
+  r = run_rlrun("sweep status " + manifest + " stray");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("unexpected argument 'stray'") != std::string::npos);
+  // `sweep slurm --set` passes the values on to each array task's `sweep run`.
+  r = run_rlrun("sweep slurm " + manifest + " --set 'env.kwargs.sumo_binary=/opt/my sumo'");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(read_text(dir / "elsewhere/sweep.sbatch").find(
+            "--index \"$SLURM_ARRAY_TASK_ID\" '--set' 'env.kwargs.sumo_binary=/opt/my sumo'\n") !=
+        std::string::npos);
+}
+
 TEST_CASE("sweep: the shipped example sweep expands into 6 runs", "[sweep]") {
   TempDir dir("sweep_example");
   std::ifstream in(std::string(RLRUN_SOURCE_DIR) + "/configs/sweeps/cartpole_ppo_lr.yaml");

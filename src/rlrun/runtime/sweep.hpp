@@ -63,11 +63,19 @@ struct Sweep {
   std::vector<SweepRun> runs;
 };
 
+// What the command line adds to a sweep file (`rlrun sweep SWEEP.yaml --out DIR --set k=v`).
+struct SweepOptions {
+  std::string out_dir;             // instead of the file's out_dir
+  std::vector<std::string> set;    // "key=value" for every run, after the file's `set:`
+};
+
 // Reads a sweep file, checks every override against the base experiment, writes
 // <out_dir>/configs/<label>_seed<N>.yaml (each a complete experiment file, run.out_dir and
 // run.name set so the run trains into its directory) and <out_dir>/manifest.yaml. Throws
-// ConfigError naming the sweep file's line and column for a bad key or value.
-Sweep expand_sweep(const std::string& sweep_file, Registry& registry);
+// ConfigError naming the sweep file's line and column for a bad key or value, or the --set
+// value that does not fit; a --set of a key the grid or list varies is a UsageError.
+Sweep expand_sweep(const std::string& sweep_file, Registry& registry,
+                   const SweepOptions& options = {});
 
 // Reads a manifest written by expand_sweep (paths in it are relative to its directory).
 Sweep read_manifest(const std::string& manifest);
