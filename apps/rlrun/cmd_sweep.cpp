@@ -163,7 +163,7 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
     std::vector<std::string> args{"--threads", threads, "sweep", "run", sweep.manifest,
                                   "--index", std::to_string(run.index)};
     args.insert(args.end(), passed_on.begin(), passed_on.end());
-    children.push_back({run.id, args});
+    children.push_back({run.id, args, run_console_log(sweep, run)});
   }
   std::printf("sweep %s: %s: %d finished before (skipped), %d to resume, %d to start "
               "(%d again, having left no checkpoint)\n",
@@ -172,7 +172,10 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
               before[RunState::kResumable], before[RunState::kNew] + before[RunState::kPartial],
               before[RunState::kPartial]);
   int code = 0;
-  if (!children.empty()) code = run_in_parallel(children, std::max(jobs, 1), "runs");
+  const std::string logs = "console output of each in " +
+                           (fs::path(sweep.manifest).parent_path() / "logs").string() +
+                           "/<run id>.txt";
+  if (!children.empty()) code = run_in_parallel(children, std::max(jobs, 1), "run", logs);
   int finished = 0;
   for (const SweepRun& run : sweep.runs) finished += run_state(run) == RunState::kFinished;
   std::printf("sweep %s: %d of %s finished\n", sweep.name.c_str(), finished,

@@ -113,6 +113,10 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   CHECK(resumable >= 1);        // stopped mid-run with a checkpoint
   CHECK(finished_early < 6);    // the interruption came before the end
 
+  // Each run's console output stays in the sweep's logs/, named by the first line.
+  CHECK(first_out.find("console output of each in " + dir / "out/logs" + "/<run id>.txt") !=
+        std::string::npos);
+
   const auto second = run_rlrun("sweep run " + manifest + " -j 2");
   INFO(second.output);
   CHECK(second.exit_code == 0);
@@ -129,6 +133,13 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
       for (size_t i = 1; i < steps.size(); ++i) CHECK(steps[i] > steps[i - 1]);  // no restart
       const std::string log = read_text(run + "/log.txt");
       if (log.find("resuming") != std::string::npos) ++resumed;
+      // Its console output, kept: each `sweep run` session appended under a header line.
+      const std::string console = read_text(dir / "out/logs" + "/" + label + "/seed" +
+                                            std::to_string(seed) + ".txt");
+      CHECK(console.find("=== ") == 0);
+      CHECK(console.find("sweep: run ") != std::string::npos);
+      if (log.find("resuming") != std::string::npos)
+        CHECK(console.find("resuming from ") != std::string::npos);
     }
   CHECK(resumed == resumable);
   // A third run trains nothing.

@@ -361,6 +361,14 @@ bool run_config_matches(const SweepRun& run) {
   }
 }
 
+std::string run_console_log(const Sweep& sweep, const SweepRun& run) {
+  const fs::path out_dir = fs::path(sweep.manifest).parent_path();
+  const fs::path below = fs::path(run.run_dir).lexically_relative(out_dir / "runs");
+  const bool inside = !below.empty() && *below.begin() != ".." && below != ".";
+  return (out_dir / "logs" / (inside ? below : fs::path("run" + std::to_string(run.index))))
+             .string() + ".txt";
+}
+
 const char* to_string(RunState state) {
   switch (state) {
     case RunState::kNew: return "new";
