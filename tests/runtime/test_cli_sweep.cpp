@@ -358,6 +358,18 @@ TEST_CASE("plot: PNG and SVG learning curves; a wrong metric is named", "[plot]"
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.output.find("did you mean 'rollout/ep_rew_mean'") != std::string::npos);
   CHECK(run_rlrun("plot " + dir.str() + " --output " + dir / "x.jpg").exit_code == 2);
+
+  // A run that has logged nothing yet: said so, not "has no such column; it has " + nothing.
+  make_run(dir / "fresh/seed1", "fresh", 1, 0.3, {}, 0, 1, 100);
+  std::ofstream(dir / "fresh/seed1/progress.csv", std::ios::trunc).close();
+  const auto fresh = run_rlrun("plot " + dir / "fresh/seed1" + " --output " + dir / "f.png");
+  CHECK(fresh.exit_code == 1);
+  CHECK(fresh.output.find(dir / "fresh/seed1" + "/progress.csv has no rows yet") != std::string::npos);
+  const auto rest = run_rlrun("plot " + dir.str() + " --output " + dir / "rest.png");
+  INFO(rest.output);
+  CHECK(rest.exit_code == 0);
+  CHECK(rest.output.find("note: left out " + dir / "fresh/seed1") != std::string::npos);
+  CHECK(rest.output.find("plotted 2 configurations (4 runs)") != std::string::npos);
 }
 
 TEST_CASE("scripts/sweep.sh: seeds x learning rates in plain shell", "[sweep]") {
