@@ -443,6 +443,46 @@ TEST_CASE("record --policy fixed-time: an mp4 of the intersection from above", "
   CHECK(refused.exit_code == 2);
 }
 
+namespace {
+
+// A PNG's pixels as rgb24 bytes (ffmpeg decodes it).
+std::vector<unsigned char> png_pixels(const std::string& png, const std::string& raw) {
+  const auto r = run_command("ffmpeg -v error -y -i " + png + " -f rawvideo -pix_fmt rgb24 " + raw);
+  REQUIRE(r.exit_code == 0);
+  const std::string bytes = read_text(raw);
+  return {bytes.begin(), bytes.end()};
+}
+
+}  // namespace
+
+TEST_CASE("record: the overlay covers only grass, never a road", "[traffic][cli]") {
+  // The same episode filmed with and without the overlay: every pixel the overlay changed must
+  // be grass in the picture without it (the box once covered the top of the north arm).
+  TempDir dir("traffic_overlay");
+  for (const char* variant : {"with", "without"}) {
+    const auto r = run_rlrun("record --config " + std::string(RLRUN_SOURCE_DIR) +
+                             "/configs/traffic_dqn.yaml --set env.kwargs.num_seconds=50" +
+                             " --policy fixed-time --frames " + dir / variant +
+                             (std::string(variant) == "without" ? " --no-overlay" : ""));
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+  }
+  const auto with = png_pixels(dir / "with/frame_000005.png", dir / "with.rgb");
+  const auto without = png_pixels(dir / "without/frame_000005.png", dir / "without.rgb");
+  REQUIRE(with.size() == 600 * 600 * 3);
+  REQUIRE(without.size() == with.size());
+  int changed = 0, road = 0;
+  for (size_t i = 0; i < with.size(); i += 3) {
+    if (with[i] == without[i] && with[i + 1] == without[i + 1] && with[i + 2] == without[i + 2])
+      continue;
+    ++changed;
+    const bool grass = without[i] == 96 && without[i + 1] == 140 && without[i + 2] == 80;
+    road += !grass;
+  }
+  CHECK(changed > 1000);  // the overlay is there
+  CHECK(road == 0);
+}
+
 // The issue's bar: configs/traffic_dqn.yaml as shipped (5e4 decisions, ~50 s) beats the fixed
 // 30 s cycle on average waiting time over 5 evaluation hours. Hidden: a minute of training.
 TEST_CASE("traffic_dqn beats fixed-time on average waiting time", "[.slow][traffic_learning]") {
