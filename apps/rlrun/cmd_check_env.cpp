@@ -17,6 +17,7 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/env/space_text.hpp"
@@ -180,14 +181,15 @@ Action add_check_env(CLI::App& app, Registry& registry) {
     std::printf("%s", labeled_space("observation_space", env.observation_space(), 17).c_str());
     std::printf("%s", labeled_space("action_space", env.action_space(), 17).c_str());
     std::printf("  time limit         %s\n",
-                t.time_limit > 0 ? (std::to_string(t.time_limit) + " steps (TimeLimit)").c_str()
+                t.time_limit > 0 ? (count_of(t.time_limit, "step") + " (TimeLimit)").c_str()
                                  : "none (the env ends its own episodes)");
     std::printf("  info keys          %s\n", keys.empty() ? "(none)" : keys.c_str());
     std::printf("  parameters         %s\n", t.params.c_str());
 
     const std::vector<std::string> problems = check_env(env, options->seed, options->steps);
     if (!problems.empty()) {
-      std::printf("check_env: %zu problem(s)\n", problems.size());
+      std::printf("check_env: %s\n",
+                  count_of(static_cast<int64_t>(problems.size()), "problem").c_str());
       for (const auto& p : problems) std::printf("  - %s\n", p.c_str());
       return kExitRuntime;
     }
@@ -197,8 +199,9 @@ Action add_check_env(CLI::App& app, Registry& registry) {
         static_cast<unsigned long long>(options->seed), options->steps);
     if (options->episodes > 0) {
       const RandomBaseline b = play_random(env, options->episodes, options->seed);
-      std::printf("random policy, %d episodes: return %.2f +/- %.2f, length %.1f",
-                  options->episodes, b.mean_return, b.std_return, b.mean_length);
+      std::printf("random policy, %s: return %.2f +/- %.2f, length %.1f",
+                  count_of(options->episodes, "episode").c_str(), b.mean_return, b.std_return,
+                  b.mean_length);
       if (b.with_success > 0)
         std::printf(", success rate %.2f", static_cast<double>(b.successes) / b.with_success);
       std::printf("\n");

@@ -2,6 +2,8 @@
 //            [--record video.mp4] [--baseline fixed-time [--green-time S] | --baseline scripted]
 //            [--trajectory steps.csv]
 // rlrun eval --env ID | --config CFG  --policy scripted|fixed-time|random  [--episodes N] ...
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -34,8 +37,9 @@ namespace {
 // scripts and users grep for, then the success rate and the env's own metrics.
 void print_summary(const std::string& what, const std::string& how, const std::string& env_id,
                    int episodes, const EvalResult& r) {
-  std::printf("%s on %s, %d episodes%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
-              what.c_str(), env_id.c_str(), episodes, how.c_str(), r.mean_return(),
+  std::printf("%s on %s, %s%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
+              what.c_str(), env_id.c_str(), count_of(episodes, "episode").c_str(), how.c_str(),
+              r.mean_return(),
               r.std_return(), r.mean_length());
   if (!r.successes.empty()) {
     double s = 0;
@@ -50,37 +54,33 @@ void print_summary(const std::string& what, const std::string& how, const std::s
   }
 }
 
-// One row per episode (and one `mean` row per policy when there is a baseline).
+// The --csv layout, one tidy table for every use (pandas reads each column with one type):
+//   policy,episode,return,length[,is_success][,<the env's metric columns>]
+// one row per episode of each policy (the model's algorithm, e.g. "PPO", then the baseline's
+// name), episodes numbered from 0; no summary rows (print_summary shows the means).
+// is_success appears when the env reports it, the metrics when the env has any (the traffic
+// task's avg_waiting_time, ...); every policy of one file ran on the same env, so they share
+// the columns.
 void write_csv(const std::string& path, const std::vector<std::pair<std::string, EvalResult>>& runs) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // e.g. results/
   std::ostringstream csv;  // written at the end, every write checked (a full disk: exit 1)
-  const bool with_policy = runs.size() > 1;
   const EvalResult& first = runs.front().second;
-  csv << (with_policy ? "policy," : "") << "episode,return,length"
-      << (first.successes.empty() ? "" : ",is_success");
+  const bool with_success = std::any_of(runs.begin(), runs.end(), [](const auto& run) {
+    return !run.second.successes.empty();
+  });
+  csv << "policy,episode,return,length" << (with_success ? ",is_success" : "");
   for (const auto& key : first.metric_keys) csv << ',' << key;
   csv << '\n';
   for (const auto& [policy, r] : runs) {
-    std::vector<double> mean(3 + r.metric_keys.size(), 0.0);
     for (size_t i = 0; i < r.returns.size(); ++i) {
-      if (with_policy) csv << policy << ',';
-      csv << i << ',' << r.returns[i] << ',' << r.lengths[i];
-      if (!r.successes.empty()) csv << ',' << (i < r.successes.size() ? r.successes[i] : 0.0);
-      for (double v : r.metrics[i]) csv << ',' << v;
+      csv << policy << ',' << i << ',' << r.returns[i] << ',' << r.lengths[i];
+      if (with_success) csv << ',' << (i < r.successes.size() ? r.successes[i] : 0.0);
+      for (size_t k = 0; k < first.metric_keys.size(); ++k)
+        csv << ',' << (i < r.metrics.size() && k < r.metrics[i].size() ? r.metrics[i][k] : NAN);
       csv << '\n';
-      mean[0] += r.returns[i];
-      mean[1] += static_cast<double>(r.lengths[i]);
-      mean[2] += i < r.successes.size() ? r.successes[i] : 0.0;
-      for (size_t k = 0; k < r.metrics[i].size(); ++k) mean[3 + k] += r.metrics[i][k];
     }
-    if (!with_policy) continue;
-    const double n = static_cast<double>(std::max<size_t>(r.returns.size(), 1));
-    csv << policy << ",mean," << mean[0] / n << ',' << mean[1] / n;
-    if (!r.successes.empty()) csv << ',' << mean[2] / n;
-    for (size_t k = 0; k < r.metric_keys.size(); ++k) csv << ',' << mean[3 + k] / n;
-    csv << '\n';
   }
   // Written in place, not renamed over: --csv may name /dev/stdout or a pipe.
   CheckedFile file(path, CheckedFile::Mode::kTruncate);
@@ -161,7 +161,7 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
         algorithm.predict(obs, deterministic, action);
       },
       record);
-  std::printf("recorded %lld frames at %dx%d -> %s\n", static_cast<long long>(recorded.frames),
+  std::printf("recorded %s at %dx%d -> %s\n", count_of(recorded.frames, "frame").c_str(),
               recorded.width, recorded.height, o.record.c_str());
   return recorded.episodes;
 }
@@ -217,7 +217,10 @@ Action add_eval(CLI::App& app, Registry& registry) {
   CLI::Option* det = sub->add_flag("--deterministic", options->deterministic,
                                    "use the deterministic policy (default)");
   sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")->excludes(det);
-  sub->add_option("--csv", options->csv, "also write one row per episode (episode,return,length)");
+  sub->add_option("--csv", options->csv,
+                  "also write one row per episode of each policy: policy,episode,return,length, "
+                  "then is_success and the env's metrics where it has them (the means are "
+                  "printed, not written)");
   add_plugin_option(sub, options->plugins);
   sub->add_option("--set", options->overrides,
                   "override a value of the model's config or --config (a model file is "

@@ -15,6 +15,7 @@
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/render/video_limits.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -58,12 +59,12 @@ void parse_size(const std::string& text, RecordOptions& record, bool video) {
 void print_summary(const RecordResult& r, const std::string& what, const Options& o) {
   std::string targets = o.output;
   if (!o.frames.empty()) targets += (targets.empty() ? "" : " and ") + o.frames + "/";
-  std::printf("%s: %lld frames at %dx%d, %g fps -> %s\n", what.c_str(),
-              static_cast<long long>(r.frames), r.width, r.height, r.fps, targets.c_str());
+  std::printf("%s: %s at %dx%d, %g fps -> %s\n", what.c_str(),
+              count_of(r.frames, "frame").c_str(), r.width, r.height, r.fps, targets.c_str());
   if (!r.episodes.returns.empty())
-    std::printf("mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f over %zu episodes\n",
+    std::printf("mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f over %s\n",
                 r.episodes.mean_return(), r.episodes.std_return(), r.episodes.mean_length(),
-                r.episodes.returns.size());
+                count_of(static_cast<int64_t>(r.episodes.returns.size()), "episode").c_str());
   if (r.interrupted) std::printf("interrupted: the video holds the frames recorded so far\n");
 }
 
@@ -134,7 +135,8 @@ int run(const Options& o, Registry& registry) {
   }
   const RecordResult r = record_episodes(*env, act, record);
   print_summary(r,
-                "recorded " + std::to_string(r.episodes.returns.size()) + " episodes of " +
+                "recorded " +
+                    count_of(static_cast<int64_t>(r.episodes.returns.size()), "episode") + " of " +
                     env->id() + " (" + record.policy_label + ")",
                 o);
   return r.interrupted ? 130 : 0;

@@ -1,7 +1,17 @@
-// rlrun sweep SWEEP.yaml                       expand into <out_dir>/manifest.yaml + configs/
-// rlrun sweep run MANIFEST [-j N] [--index I]   train the runs (skip finished, resume interrupted)
-// rlrun sweep slurm MANIFEST                    write <out_dir>/sweep.sbatch (an array job)
-// rlrun sweep status MANIFEST                   each run's state
+// rlrun sweep SWEEP.yaml [--out DIR] [--set key=value]...
+//                                  expand into <out_dir>/manifest.yaml + configs/
+// rlrun sweep run MANIFEST [-j N] [--index I] [--set key=value]... [--plugin LIB]
+//                                  train the runs (skip finished, resume interrupted); with
+//                                  several runs, each one's console output in <out_dir>/logs/
+// rlrun sweep slurm MANIFEST [--set key=value]... [--plugin LIB]
+//                                  write <out_dir>/sweep.sbatch (an array job of `sweep run`)
+// rlrun sweep status MANIFEST      each run's state
+//
+// --set means what it means for `train`: one value for every run. Given when the sweep is
+// expanded it goes into the runs' configs (like the sweep file's `set:`); given to `sweep run`
+// (or `sweep slurm`, which passes it on) it also vouches for values the untrusted manifest's
+// configs carry (docs/security.md). --out belongs to expanding: a manifest's runs train where it
+// says.
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -14,8 +24,10 @@
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "plugin_option.hpp"
+#include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/run_directory.hpp"
@@ -119,10 +131,26 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
       break;
     }
   }
-  std::printf("sweep: %s %s %lld steps in %.1f s\n", name.c_str(),
-              outcome.interrupted ? "interrupted after" : "trained",
-              static_cast<long long>(outcome.timesteps), outcome.wall_seconds);
+  std::printf("sweep: %s %s\n", name.c_str(),
+              format_session_summary(session_summary(outcome)).c_str());
   return outcome.interrupted ? 130 : 0;
+}
+
+struct SweepCliOptions {
+  std::string sweep_file, manifest;
+  int jobs = 1;
+  int index = -1;
+  std::vector<std::string> overrides, plugins;  // `sweep run`'s and `sweep slurm`'s
+  std::string out;                              // expanding a sweep file only
+  std::vector<std::string> expand_overrides;    // expanding a sweep file only
+};
+
+// `sweep run`'s --set and --plugin as arguments for the `sweep run --index I` it starts per run.
+std::vector<std::string> passed_on(const SweepCliOptions& o) {
+  std::vector<std::string> args;
+  for (const std::string& v : o.overrides) args.insert(args.end(), {"--set", v});
+  for (const std::string& p : o.plugins) args.insert(args.end(), {"--plugin", p});
+  return args;
 }
 
 int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed_on) {
@@ -137,18 +165,23 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
     std::vector<std::string> args{"--threads", threads, "sweep", "run", sweep.manifest,
                                   "--index", std::to_string(run.index)};
     args.insert(args.end(), passed_on.begin(), passed_on.end());
-    children.push_back({run.id, args});
+    children.push_back({run.id, args, run_console_log(sweep, run)});
   }
-  std::printf("sweep %s: %zu runs: %d finished before (skipped), %d to resume, %d to start "
+  std::printf("sweep %s: %s: %d finished before (skipped), %d to resume, %d to start "
               "(%d again, having left no checkpoint)\n",
-              sweep.name.c_str(), sweep.runs.size(), before[RunState::kFinished],
+              sweep.name.c_str(), count_of(static_cast<int64_t>(sweep.runs.size()), "run").c_str(),
+              before[RunState::kFinished],
               before[RunState::kResumable], before[RunState::kNew] + before[RunState::kPartial],
               before[RunState::kPartial]);
   int code = 0;
-  if (!children.empty()) code = run_in_parallel(children, std::max(jobs, 1), "runs");
+  const std::string logs = "console output of each in " +
+                           (fs::path(sweep.manifest).parent_path() / "logs").string() +
+                           "/<run id>.txt";
+  if (!children.empty()) code = run_in_parallel(children, std::max(jobs, 1), "run", logs);
   int finished = 0;
   for (const SweepRun& run : sweep.runs) finished += run_state(run) == RunState::kFinished;
-  std::printf("sweep %s: %d of %zu runs finished\n", sweep.name.c_str(), finished, sweep.runs.size());
+  std::printf("sweep %s: %d of %s finished\n", sweep.name.c_str(), finished,
+              count_of(static_cast<int64_t>(sweep.runs.size()), "run").c_str());
   if (code == 0 && finished < static_cast<int>(sweep.runs.size())) code = 1;  // e.g. left to others
   return code;
 }
@@ -156,16 +189,25 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
 }  // namespace
 
 Action add_sweep(CLI::App& app, Registry& registry) {
-  struct Options {
-    std::string sweep_file, manifest;
-    int jobs = 1;
-    int index = -1;
-    std::vector<std::string> overrides, plugins;
-  };
-  auto options = std::make_shared<Options>();
+  auto options = std::make_shared<SweepCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "sweep", "expand a sweep file (base config x overrides x seeds) into a manifest of runs");
   sub->add_option("sweep_file", options->sweep_file, "the sweep file (see docs/sweeps.md)");
+  CLI::Option* out_option = sub->add_option(
+      "--out", options->out, "the sweep's out_dir (manifest.yaml, configs/, runs/, logs/)");
+  CLI::Option* expand_set_option =
+      sub->add_option("--set", options->expand_overrides,
+                      "override a config value in every run, like the sweep file's set: (and "
+                      "over it), e.g. --set run.total_timesteps=20000 (repeatable)")
+          ->allow_extra_args(false);
+  const auto add_run_options = [&options](CLI::App* command, const std::string& what) {
+    command->add_option("--set", options->overrides,
+                        "override a value in every run's config " + what +
+                            " (a manifest is untrusted: this is how you vouch for a program or "
+                            "scenario file it names; docs/security.md; repeatable)")
+        ->allow_extra_args(false);
+    add_plugin_option(command, options->plugins);
+  };
   CLI::App* run = sub->add_subcommand(
       "run", "train a manifest's runs: finished ones are skipped, interrupted ones resumed");
   run->add_option("manifest", options->manifest, "manifest.yaml written by `rlrun sweep`")->required();
@@ -173,33 +215,47 @@ Action add_sweep(CLI::App& app, Registry& registry) {
       ->transform(integer_in(1));
   run->add_option("--index", options->index, "train only run I (what a Slurm array task does)")
       ->transform(integer_in(0));
-  run->add_option("--set", options->overrides,
-                  "override a value in every run's config (a manifest is untrusted: this is how "
-                  "you vouch for a program or scenario file it names; docs/security.md)")
-      ->allow_extra_args(false);
-  add_plugin_option(run, options->plugins);
+  add_run_options(run, "as it trains");
   CLI::App* slurm = sub->add_subcommand("slurm", "write an sbatch --array script for a manifest");
   slurm->add_option("manifest", options->manifest, "manifest.yaml")->required();
+  add_run_options(slurm, "(passed on to each array task's `sweep run`)");
   CLI::App* status = sub->add_subcommand("status", "print each run's state");
   status->add_option("manifest", options->manifest, "manifest.yaml")->required();
-  return [options, run, slurm, status, &registry]() {
+  return [options, run, slurm, status, out_option, expand_set_option, &registry]() {
+    // CLI11 lets a subcommand's unknown option fall through to `sweep`'s own: refuse those that
+    // belong to expanding a sweep file rather than take them silently.
+    if (run->parsed() || slurm->parsed() || status->parsed()) {
+      const std::string command = run->parsed() ? "run" : slurm->parsed() ? "slurm" : "status";
+      if (!options->sweep_file.empty())  // a word before the subcommand, or a stray one after it
+        throw UsageError("rlrun sweep " + command + ": unexpected argument '" +
+                         options->sweep_file + "' (rlrun sweep " + command +
+                         " --help lists its options)");
+      if (out_option->count() > 0)
+        throw UsageError("sweep " + command + " takes no --out: a manifest's runs train where it "
+                         "says; expand the sweep file again with --out (rlrun sweep SWEEP.yaml "
+                         "--out DIR) for another place");
+      if (expand_set_option->count() > 0)
+        throw UsageError(command == "status"
+                             ? std::string("sweep status takes no --set")
+                             : "--set before `" + command + "` is for expanding a sweep file; "
+                               "give it after the manifest: rlrun sweep " + command +
+                               " MANIFEST --set key=value");
+    }
     if (run->parsed()) {
       load_plugin_options(options->plugins, registry);
       const Sweep sweep = read_manifest(options->manifest);
       if (options->index >= 0) return run_one(sweep, options->index, options->overrides, registry);
-      std::vector<std::string> passed_on;
-      for (const std::string& o : options->overrides) passed_on.insert(passed_on.end(), {"--set", o});
-      for (const std::string& p : options->plugins) passed_on.insert(passed_on.end(), {"--plugin", p});
-      return run_all(sweep, options->jobs, passed_on);
+      return run_all(sweep, options->jobs, passed_on(*options));
     }
     if (slurm->parsed()) {
       const Sweep sweep = read_manifest(options->manifest);
       const fs::path dir = fs::path(sweep.manifest).parent_path();
       fs::create_directories(dir / "slurm");
       const std::string script = (dir / "sweep.sbatch").string();
-      write_text_atomic(script, slurm_script(sweep, own_binary()));
-      std::printf("wrote %s (%zu array tasks); submit it with: sbatch %s\n", script.c_str(),
-                  sweep.runs.size(), shell_quote(script).c_str());
+      write_text_atomic(script, slurm_script(sweep, own_binary(), passed_on(*options)));
+      std::printf("wrote %s (%s); submit it with: sbatch %s\n", script.c_str(),
+                  count_of(static_cast<int64_t>(sweep.runs.size()), "array task").c_str(),
+                  shell_quote(script).c_str());
       return 0;
     }
     if (status->parsed()) {
@@ -212,8 +268,17 @@ Action add_sweep(CLI::App& app, Registry& registry) {
     if (options->sweep_file.empty())
       throw UsageError("sweep needs a sweep file (rlrun sweep configs/sweeps/x.yaml) or one of "
                        "run, slurm, status with a manifest");
-    const Sweep sweep = expand_sweep(options->sweep_file, registry);
-    std::printf("sweep %s: %zu runs -> %s\n", sweep.name.c_str(), sweep.runs.size(),
+    std::error_code ec;
+    if (!fs::exists(options->sweep_file, ec)) {  // `rlrun sweep rnu m.yaml`: a mistyped command
+      const std::string meant = closest_name(options->sweep_file, {"run", "slurm", "status"});
+      if (!meant.empty())
+        throw UsageError("'" + options->sweep_file + "' is neither a sweep file nor a sweep "
+                         "command; did you mean 'rlrun sweep " + meant + "'?");
+    }
+    const Sweep sweep =
+        expand_sweep(options->sweep_file, registry, {options->out, options->expand_overrides});
+    std::printf("sweep %s: %s -> %s\n", sweep.name.c_str(),
+                count_of(static_cast<int64_t>(sweep.runs.size()), "run").c_str(),
                 sweep.manifest.c_str());
     for (const SweepRun& r : sweep.runs) std::printf("  %3d  %s\n", r.index, r.id.c_str());
     const std::string manifest = shell_quote(sweep.manifest);  // the commands as one would type them

@@ -8,6 +8,7 @@
 
 #include "cli_values.hpp"
 #include "commands.hpp"
+#include "parse_errors.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -55,6 +56,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (const auto message = rlrun::cli::describe_parse_error(app, e, argc, argv)) {
+      print_error(*message);
+      return rlrun::kExitUsage;
+    }
     const int code = app.exit(e);
     return code == 0 ? rlrun::kExitOk : rlrun::kExitUsage;
   }

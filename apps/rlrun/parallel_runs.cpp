@@ -4,18 +4,24 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
 
 namespace rlrun::cli {
@@ -74,26 +80,60 @@ pid_t start_child(const std::vector<std::string>& child_args, int log_fd) {
   return pid;
 }
 
+// A child's own console log (ChildRun::log_path), opened close-on-exec for appending: a resumed
+// run's output follows its earlier sessions', after a line saying when and what started.
+int open_child_log(const ChildRun& run) {
+  const std::filesystem::path path(run.log_path);
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd < 0)
+    throw RuntimeFailure("cannot open " + run.log_path + " for the console output of " +
+                         run.label + ": " + std::strerror(errno));
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char when[64];
+  std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S", &local);
+  std::string header = std::string("=== ") + when + ": rlrun";
+  for (const std::string& arg : run.args) header += " " + arg;
+  header += " ===\n";
+  if (write(fd, header.data(), header.size()) != static_cast<ssize_t>(header.size())) {
+    const std::string reason = std::strerror(errno);
+    close(fd);
+    throw RuntimeFailure("cannot write " + run.log_path + ": " + reason);
+  }
+  return fd;
+}
+
 }  // namespace
 
 int train_in_parallel(const std::vector<std::string>& configs,
                       const std::vector<std::string>& child_options, int jobs) {
   std::vector<ChildRun> runs;
   for (const std::string& config : configs) {
-    ChildRun run{config, {"--threads", "1", "train", config}};
+    ChildRun run{config, {"--threads", "1", "train", config}, ""};
     run.args.insert(run.args.end(), child_options.begin(), child_options.end());
     runs.push_back(run);
   }
-  return run_in_parallel(runs, jobs, "experiments");
+  return run_in_parallel(runs, jobs, "experiment");
 }
 
-int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::string& what) {
-  // A private directory (mkdtemp, 0700; core/private_temp_dir.hpp): a name in /tmp others can
-  // predict could hold their symlinks.
-  PrivateTempDir log_dir("rlrun-train-");
+int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::string& noun,
+                    const std::string& logs) {
+  // A private directory (mkdtemp, 0700; core/private_temp_dir.hpp) for the children without a
+  // log of their own: a name in /tmp others can predict could hold their symlinks.
+  std::optional<PrivateTempDir> log_dir;
+  if (logs.empty() || std::any_of(configs.begin(), configs.end(),
+                                  [](const ChildRun& run) { return run.log_path.empty(); }))
+    log_dir.emplace("rlrun-train-");
   install_interrupt_handlers();
-  std::cout << "training " << configs.size() << " " << what << ", " << jobs
-            << " at a time (console output of each in " << log_dir.path() << "/)" << std::endl;
+  const std::string where =
+      !logs.empty() ? logs
+                    : "console output of each in " + log_dir->path() +
+                          "/ while it runs, kept if one fails; each run's log.txt keeps it too";
+  std::cout << "training " << count_of(static_cast<int64_t>(configs.size()), noun) << ", " << jobs
+            << " at a time (" << where << ")" << std::endl;
 
   std::map<pid_t, Child> running;
   size_t next = 0, finished = 0;
@@ -107,12 +147,14 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
       ++forwarded;
     }
     while (!interrupted && running.size() < static_cast<size_t>(jobs) && next < configs.size()) {
+      const ChildRun& run = configs[next];
       const std::string log_name = std::to_string(next) + ".log";
-      Child child{next, log_dir.file(log_name)};
-      const int log_fd = log_dir.create_file(log_name);
+      Child child{next, run.log_path.empty() ? log_dir->file(log_name) : run.log_path};
+      const int log_fd =
+          run.log_path.empty() ? log_dir->create_file(log_name) : open_child_log(run);
       pid_t pid = -1;
       try {
-        pid = start_child(configs[next].args, log_fd);
+        pid = start_child(run.args, log_fd);
       } catch (...) {
         close(log_fd);
         throw;
@@ -136,7 +178,10 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
     if (code == 0) {
       std::cout << summary_line(child.log_path) << std::endl;
     } else if (code == 130) {
-      std::cout << "interrupted\n" << tail_lines(child.log_path, 2) << std::flush;
+      // A temporary log goes at the end: name only one that stays.
+      const bool kept = !configs[child.index].log_path.empty();
+      std::cout << "interrupted" << (kept ? " (output in " + child.log_path + ")" : std::string())
+                << "\n" << tail_lines(child.log_path, 2) << std::flush;
     } else {
       ++failures;
       std::cout << "FAILED (exit " << code << "), end of its output (" << child.log_path
@@ -145,12 +190,13 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
     }
   }
   if (next < configs.size())
-    std::cout << configs.size() - next << " " << what << " were not started" << std::endl;
+    std::cout << "not started: " << count_of(static_cast<int64_t>(configs.size() - next), noun)
+              << std::endl;
   if (failures > 0) {
-    log_dir.keep();  // the logs of the failed runs, named above
+    if (log_dir) log_dir->keep();  // the logs of the failed runs, named above
     return 1;
   }
-  return interrupted ? 130 : 0;  // the logs go: each run's output is also in its log.txt
+  return interrupted ? 130 : 0;  // temporary logs go: each run's output is also in its log.txt
 }
 
 }  // namespace rlrun::cli

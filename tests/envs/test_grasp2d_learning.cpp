@@ -15,16 +15,20 @@ using namespace rlrun::testing;
 
 namespace {
 
-// Mean of the last CSV column (is_success) of `rlrun eval --csv`.
+// Mean of the is_success column of `rlrun eval --csv` (policy,episode,return,length,
+// is_success, then the env's metrics).
 double success_rate(const std::string& csv_path) {
   std::ifstream in(csv_path);
   std::string line;
   std::getline(in, line);
-  REQUIRE(line.substr(line.rfind(',') + 1) == "is_success");
+  REQUIRE(line.rfind("policy,episode,return,length,is_success", 0) == 0);
   int n = 0;
   double sum = 0;
   while (std::getline(in, line)) {
-    sum += std::stod(line.substr(line.rfind(',') + 1));
+    std::stringstream row(line);
+    std::string cell;
+    for (int column = 0; column <= 4; ++column) std::getline(row, cell, ',');
+    sum += std::stod(cell);
     ++n;
   }
   REQUIRE(n == 100);

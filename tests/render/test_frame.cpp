@@ -100,3 +100,20 @@ TEST_CASE("Text overlay darkens the top-left corner and leaves the rest", "[rend
     for (int x = 0; x < 120 && !light; ++x) light = frame.pixel(x, y).r > 200;
   CHECK(light);
 }
+
+TEST_CASE("Text overlay keeps to the left 40 % of the frame, splitting wide lines", "[render]") {
+  // A recorded traffic video's lines: the box once reached past the middle, over the road.
+  Frame frame(600, 600);
+  frame.fill(kWhite);
+  rlrun::draw_text_overlay(frame, {"TrafficSignal-v0  DQN deterministic", "episode 10/10  step 1000",
+                                   "return -1234.00"});
+  for (int y = 0; y < 600; ++y)
+    for (int x = 240; x < 600; ++x) REQUIRE(frame.pixel(x, y) == kWhite);
+  CHECK(frame.pixel(2, 2).r < 200);
+  // Short lines are left as they were: one line of text, one line of box.
+  Frame small(600, 400);
+  small.fill(kWhite);
+  rlrun::draw_text_overlay(small, {"CartPole-v1  PPO"});
+  CHECK(small.pixel(2, 2).r < 200);
+  CHECK(small.pixel(2, 40) == kWhite);
+}

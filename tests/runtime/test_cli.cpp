@@ -108,6 +108,9 @@ TEST_CASE("cli: train writes the run directory, eval needs only the model file",
   CHECK(e.output.find("mean_reward = ") != std::string::npos);
   const std::string rows = read_text(csv);
   CHECK(std::count(rows.begin(), rows.end(), '\n') == 5);
+  // One tidy table (docs: eval --csv): a policy column always, one row per episode.
+  CHECK(rows.rfind("policy,episode,return,length\nPPO,0,", 0) == 0);
+  CHECK(rows.find("mean") == std::string::npos);
   CHECK(run_rlrun("eval --model " + run + "/model.zip --stochastic --episodes 2").exit_code == 0);
   // Same seed, deterministic policy: same result.
   CHECK(run_rlrun("eval --model " + run + "/model.zip --episodes 2 --seed 9").output ==
@@ -198,4 +201,45 @@ TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
   CHECK(read_text(dir / "out.txt").find("interrupted") != std::string::npos);
   // The interrupted model is a valid model file.
   CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code == 0);
+}
+
+TEST_CASE("cli: a mistyped command is named with the command meant", "[cli]") {
+  auto r = run_rlrun("trian configs/cartpole_ppo.yaml");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output == "error: unknown command 'trian'; did you mean 'train'?\n");
+  r = run_rlrun("--threads 1 evl --model x.zip");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("unknown command 'evl'; did you mean 'eval'?") != std::string::npos);
+  r = run_rlrun("frobnicate");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("unknown command 'frobnicate'; the commands are train, eval, list") !=
+        std::string::npos);
+  r = run_rlrun("");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("a command is required: train, eval") != std::string::npos);
+  r = run_rlrun("sweep rnu manifest.yaml");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("rlrun sweep: unknown command 'rnu'; did you mean 'run'?") != std::string::npos);
+  // Unexpected arguments in the order they were typed (CLI11 2.1 reverses them).
+  r = run_rlrun("sweep s.yaml --colour always");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("rlrun sweep: unexpected arguments: --colour always") != std::string::npos);
+  r = run_rlrun("sweep status manifest.yaml --frob");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("rlrun sweep status: unexpected argument '--frob'") != std::string::npos);
+  CHECK(run_rlrun("--version").exit_code == 0);
+  CHECK(run_rlrun("train --help").exit_code == 0);
+}
+
+TEST_CASE("cli: counts say 1 episode, 1 env", "[cli]") {
+  const auto eval = run_rlrun("eval --env CartPole-v1 --policy random --episodes 1");
+  INFO(eval.output);
+  CHECK(eval.exit_code == 0);
+  CHECK(eval.output.find("random on CartPole-v1, 1 episode: mean_reward") != std::string::npos);
+  TempDir dir("cli_plurals");
+  const auto train = run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --set env.n_envs=1 " +
+                               "--set algo.n_steps=64 --set algo.batch_size=64 --timesteps 64 --out " + dir.str());
+  INFO(train.output);
+  CHECK(train.exit_code == 0);
+  CHECK(train.output.find("for 64 steps (seed 1, 1 env) ->") != std::string::npos);
 }

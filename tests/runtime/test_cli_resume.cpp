@@ -4,6 +4,7 @@
 // must end with the uninterrupted run's weights (bit for bit), progress.csv rows (time/ columns
 // aside), monitor episodes and evaluations.csv. Also: divergence stops and --resume refusals.
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -11,6 +12,7 @@
 
 #include "rlrun/core/zip_archive.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
+#include "rlrun/runtime/session_summary.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;
@@ -208,9 +210,21 @@ TEST_CASE("resume: --timesteps extends a finished run from its last checkpoint",
                               " --set run.total_timesteps=8192");
   INFO(more.output);
   REQUIRE(more.exit_code == 0);
-  CHECK(more.output.find("trained 8192 steps") != std::string::npos);
+  // This session's steps and rate, and where the run's count went from and to (issue 18).
+  CHECK(more.output.find("trained 4096 steps (4096 -> 8192) in ") != std::string::npos);
   CHECK(read_text(dir / "cartpole_ppo/seed1/config.yaml").find("total_timesteps: 8192") !=
         std::string::npos);
+  // `report`: the run's 8192 steps over both sessions' training time.
+  double wall = 0;
+  int sessions = 0;
+  for (const std::string& line : lines_of(read_text(dir / "cartpole_ppo/seed1/log.txt")))
+    if (const auto session = parse_session_summary(line)) wall += session->wall_seconds, ++sessions;
+  CHECK(sessions == 2);
+  char expected[96];
+  std::snprintf(expected, sizeof expected, "| 8192 | %.1f | %.0f |", wall, 8192 / wall);
+  const auto report = run_rlrun("report " + dir / "cartpole_ppo/seed1");
+  INFO(report.output);
+  CHECK(report.output.find(expected) != std::string::npos);
 }
 
 TEST_CASE("resume: refusals name the reason", "[cli][resume]") {

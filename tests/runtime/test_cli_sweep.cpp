@@ -113,6 +113,10 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   CHECK(resumable >= 1);        // stopped mid-run with a checkpoint
   CHECK(finished_early < 6);    // the interruption came before the end
 
+  // Each run's console output stays in the sweep's logs/, named by the first line.
+  CHECK(first_out.find("console output of each in " + dir / "out/logs" + "/<run id>.txt") !=
+        std::string::npos);
+
   const auto second = run_rlrun("sweep run " + manifest + " -j 2");
   INFO(second.output);
   CHECK(second.exit_code == 0);
@@ -129,6 +133,13 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
       for (size_t i = 1; i < steps.size(); ++i) CHECK(steps[i] > steps[i - 1]);  // no restart
       const std::string log = read_text(run + "/log.txt");
       if (log.find("resuming") != std::string::npos) ++resumed;
+      // Its console output, kept: each `sweep run` session appended under a header line.
+      const std::string console = read_text(dir / "out/logs" + "/" + label + "/seed" +
+                                            std::to_string(seed) + ".txt");
+      CHECK(console.find("=== ") == 0);
+      CHECK(console.find("sweep: run ") != std::string::npos);
+      if (log.find("resuming") != std::string::npos)
+        CHECK(console.find("resuming from ") != std::string::npos);
     }
   CHECK(resumed == resumable);
   // A third run trains nothing.
@@ -136,6 +147,46 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   const auto third = run_rlrun("sweep run " + manifest + " -j 2");
   CHECK(third.output.find("6 finished before (skipped), 0 to resume, 0 to start") != std::string::npos);
   CHECK(fs::last_write_time(dir / "out/runs/learning_rate=3.0e-4/seed3/model.zip") == model_time);
+}
+
+TEST_CASE("sweep --out and --set: the sweep's out_dir and a value for every run, as train takes them",
+          "[sweep]") {
+  TempDir dir("sweep_options");
+  const std::string sweep = write_sweep(dir, 8192);
+  auto r = run_rlrun("sweep " + sweep + " --out " + dir / "elsewhere" +
+                     " --set run.total_timesteps=2048 --set algo.n_epochs=4");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("sweep test_sweep: 6 runs -> " + dir / "elsewhere/manifest.yaml") !=
+        std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out"));
+  const std::string config = read_text(dir / "elsewhere/configs/learning_rate=3.0e-4_seed2.yaml");
+  CHECK(config.find("total_timesteps: 2048") != std::string::npos);  // over the file's set:
+  CHECK(config.find("n_epochs: 4") != std::string::npos);
+  CHECK(config.find("learning_rate: 0.0003") != std::string::npos);  // the grid's own
+  // A key the grid varies, a key the base lacks, options of other sweep commands: refused.
+  r = run_rlrun("sweep " + sweep + " --set algo.learning_rate=0.1");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("the sweep varies algo.learning_rate") != std::string::npos);
+  r = run_rlrun("sweep " + sweep + " --set algo.n_epoch=4");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("--set algo.n_epoch=4 does not fit") != std::string::npos);
+  const std::string manifest = dir / "elsewhere/manifest.yaml";
+  r = run_rlrun("sweep run " + manifest + " --out " + dir / "x");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("sweep run takes no --out") != std::string::npos);
+  r = run_rlrun("sweep status " + manifest + " --set a=1");
+  CHECK(r.exit_code == 2);
+  r = run_rlrun("sweep status " + manifest + " stray");
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find("unexpected argument 'stray'") != std::string::npos);
+  // `sweep slurm --set` passes the values on to each array task's `sweep run`.
+  r = run_rlrun("sweep slurm " + manifest + " --set 'env.kwargs.sumo_binary=/opt/my sumo'");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(read_text(dir / "elsewhere/sweep.sbatch").find(
+            "--index \"$SLURM_ARRAY_TASK_ID\" '--set' 'env.kwargs.sumo_binary=/opt/my sumo'\n") !=
+        std::string::npos);
 }
 
 TEST_CASE("sweep: the shipped example sweep expands into 6 runs", "[sweep]") {
@@ -252,6 +303,44 @@ TEST_CASE("report: statistics over seeds on hand-made run directories", "[report
   CHECK(run_rlrun("report " + dir / "nothing_here").exit_code == 2);
 }
 
+TEST_CASE("report: the run's true step count and training time, not progress.csv's last row",
+          "[report]") {
+  TempDir dir("report_steps");
+  // DQN logs a progress.csv row every 4 episodes: a 5000-step run's last row may say 2880. The
+  // `finished` marker has the count; log.txt has a session of 4000 steps and a resumed one.
+  make_run(dir / "dqn/seed1", "dqn", 1, 0.001, {}, 0, 0, 2880);
+  std::ofstream(dir / "dqn/seed1/finished") << "timesteps 5000\n";
+  std::ofstream(dir / "dqn/seed1/log.txt")
+      << "rlrun: training DQN on TrafficSignal-v0 for 5000 steps\n"
+      << "trained 4000 steps in 10.00 s (400 steps/s); model saved to m\n"
+      << "rlrun: resuming DQN on TrafficSignal-v0 from c (step 4000 of 5000)\n"
+      << "trained 1000 steps (4000 -> 5000) in 2.50 s (400 steps/s); model saved to m\n";
+  auto r = run_rlrun("report " + dir / "dqn");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("| 5000 | 12.5 | 400 | none |") != std::string::npos);
+
+  // A real DQN run: the count from `finished`, then (without it: interrupted, or training) from
+  // model.zip's meta.json.
+  const auto train = run_rlrun("train " + std::string(RLRUN_SOURCE_DIR) +
+                               "/configs/cartpole_dqn.yaml --timesteps 1000 --out " + dir / "real");
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const std::string run = dir / "real/cartpole_dqn/seed1";
+  const std::string finished = read_text(run + "/finished");  // "timesteps N"
+  REQUIRE(finished.rfind("timesteps ", 0) == 0);
+  const int steps = std::stoi(finished.substr(10));
+  REQUIRE(steps >= 1000);
+  REQUIRE(column(run + "/progress.csv", "time/total_timesteps").back() < steps);
+  const std::string cell = "| " + std::to_string(steps) + " | ";
+  r = run_rlrun("report " + run);
+  CHECK(r.output.find(cell) != std::string::npos);
+  fs::remove(run + "/finished");
+  r = run_rlrun("report " + run);
+  INFO(r.output);
+  CHECK(r.output.find(cell) != std::string::npos);
+}
+
 TEST_CASE("plot: PNG and SVG learning curves; a wrong metric is named", "[plot]") {
   TempDir dir("plot");
   for (int s = 1; s <= 3; ++s) make_run(dir / "a/seed" + std::to_string(s), "a", s, 0.001, {}, 0, 1, 1000);
@@ -269,6 +358,18 @@ TEST_CASE("plot: PNG and SVG learning curves; a wrong metric is named", "[plot]"
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.output.find("did you mean 'rollout/ep_rew_mean'") != std::string::npos);
   CHECK(run_rlrun("plot " + dir.str() + " --output " + dir / "x.jpg").exit_code == 2);
+
+  // A run that has logged nothing yet: said so, not "has no such column; it has " + nothing.
+  make_run(dir / "fresh/seed1", "fresh", 1, 0.3, {}, 0, 1, 100);
+  std::ofstream(dir / "fresh/seed1/progress.csv", std::ios::trunc).close();
+  const auto fresh = run_rlrun("plot " + dir / "fresh/seed1" + " --output " + dir / "f.png");
+  CHECK(fresh.exit_code == 1);
+  CHECK(fresh.output.find(dir / "fresh/seed1" + "/progress.csv has no rows yet") != std::string::npos);
+  const auto rest = run_rlrun("plot " + dir.str() + " --output " + dir / "rest.png");
+  INFO(rest.output);
+  CHECK(rest.exit_code == 0);
+  CHECK(rest.output.find("note: left out " + dir / "fresh/seed1") != std::string::npos);
+  CHECK(rest.output.find("plotted 2 configurations (4 runs)") != std::string::npos);
 }
 
 TEST_CASE("scripts/sweep.sh: seeds x learning rates in plain shell", "[sweep]") {

@@ -66,7 +66,7 @@ TEST_CASE("train -j 2: several experiments as processes, failures reported", "[c
   CHECK(fs::exists(dir / "runs2/cartpole_a2c/seed1/model.zip"));
   // A failed sweep keeps its children's console logs for the user; the test removes them.
   std::smatch logs;
-  REQUIRE(std::regex_search(r.output, logs, std::regex("console output of each in (\\S+)/\\)")));
+  REQUIRE(std::regex_search(r.output, logs, std::regex("console output of each in (\\S+)/ while it runs")));
   CHECK(fs::exists(logs[1].str() + "/1.log"));
   // A private directory (mkdtemp): only its owner may enter it or plant files in it.
   CHECK((fs::status(logs[1].str()).permissions() & fs::perms::all) == fs::perms::owner_all);
@@ -90,7 +90,7 @@ TEST_CASE("train -j 2: Ctrl-C reaches every run, each writes a checkpoint", "[cl
     CHECK(fs::exists(run_dir + "/model.zip"));
     CHECK(contains(out, "resume with: rlrun train --resume " + run_dir));
   }
-  CHECK(contains(out, "1 experiments were not started"));
+  CHECK(contains(out, "not started: 1 experiment\n"));
 }
 
 TEST_CASE("train --init-from: starts from the model's weights", "[cli][train_options]") {

@@ -92,6 +92,7 @@ TEST_CASE("cli: eval --trajectory writes the env's own observations and actions"
   std::ifstream episodes(dir / "episodes.csv");
   std::string line;
   std::getline(episodes, line);
+  REQUIRE(line == "policy,episode,return,length");  // CartPole: no is_success, no metrics
   while (std::getline(episodes, line)) total += std::stoll(line.substr(line.rfind(',') + 1));
   CHECK(static_cast<int64_t>(rows.size()) == total);
   CHECK(rows.back().episode == 2);

@@ -66,14 +66,15 @@ std::vector<int64_t> eval_lengths(const std::string& model, int episodes, int se
   REQUIRE(r.exit_code == 0);
   std::ifstream in(csv);
   std::string line;
-  std::getline(in, line);  // header
+  std::getline(in, line);
+  REQUIRE(line.rfind("policy,episode,return,length", 0) == 0);  // eval --csv's fixed columns
   std::vector<int64_t> lengths;
   while (std::getline(in, line)) {
     std::vector<std::string> cells;
     std::stringstream s(line);
     std::string cell;
     while (std::getline(s, cell, ',')) cells.push_back(cell);
-    lengths.push_back(std::stoll(cells.at(2)));
+    lengths.push_back(std::stoll(cells.at(3)));
   }
   return lengths;
 }

@@ -1,4 +1,5 @@
 #include "rlrun/core/resource_limits.hpp"
+#include "rlrun/core/plural.hpp"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -44,8 +45,8 @@ void check_open_files(int n_envs, const ConfigNode& node) {
     limit.rlim_cur = needed;
     if (setrlimit(RLIMIT_NOFILE, &limit) == 0) return;
   }
-  node.fail(std::to_string(n_envs) + " envs need up to " + std::to_string(needed) +
-            " open files (a monitor file each, plus a simulator's socket), but this process may "
+  node.fail("with " + count_of(n_envs, "env") + ", rlrun needs up to " + std::to_string(needed) +
+            " open files (a monitor file per env, plus a simulator's socket), but this process may "
             "open " + std::to_string(limit.rlim_max) +
             " (`ulimit -n`): use fewer envs or raise the limit");
 }

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -165,7 +166,7 @@ void ZipMemberReader::read(uint8_t* out, std::size_t n) {
     if (got < 0) fail(std::string("is corrupt (") + zip_file_strerror(file_) + ")");
     if (got == 0)
       fail("ends after " + std::to_string(position_ + done) + " of its declared " +
-           std::to_string(entry_.size) + " bytes");
+           count_of(static_cast<int64_t>(entry_.size), "byte"));
     done += static_cast<size_t>(got);
   }
   position_ += done;
@@ -176,7 +177,9 @@ void ZipMemberReader::expect_end() {
   uint8_t extra = 0;
   const zip_int64_t got = zip_fread(file_, &extra, 1);
   if (got < 0) fail(std::string("is corrupt (") + zip_file_strerror(file_) + ")");
-  if (got > 0) fail("holds more data than its declared " + std::to_string(entry_.size) + " bytes");
+  if (got > 0)
+    fail("holds more data than its declared " +
+         count_of(static_cast<int64_t>(entry_.size), "byte"));
 }
 
 }  // namespace rlrun

@@ -1,4 +1,5 @@
 #include "rlrun/env/space_text.hpp"
+#include "rlrun/core/plural.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -35,7 +36,8 @@ std::string floats_range(int begin, int size) {
 std::string entry_outside(const Space& space, std::span<const float> x) {
   if (space.contains(x)) return "";
   if (static_cast<int>(x.size()) != space.flat_dim())
-    return "has " + std::to_string(x.size()) + " values, not " + std::to_string(space.flat_dim());
+    return "has " + count_of(static_cast<int64_t>(x.size()), "value") + ", not " +
+           std::to_string(space.flat_dim());
   if (x.size() == 1) return "is " + format_number(x[0]) + ", not in " + space.describe();
   for (size_t i = 0; i < x.size(); ++i) {
     bool inside = true;

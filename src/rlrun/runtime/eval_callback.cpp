@@ -11,6 +11,7 @@
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/evaluator.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -112,7 +113,7 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
       if (!std::isnan(metric_means[k])) context_.logger->record("eval/" + metric_keys_[k], metric_means[k]);
   }
 
-  std::string message = "eval at " + std::to_string(num_timesteps) + " steps: return " +
+  std::string message = "eval at " + count_of(num_timesteps, "step") + ": return " +
                         format_log_value(r.mean_return()) + " +/- " +
                         format_log_value(r.std_return()) + ", length " +
                         format_log_value(r.mean_length());
@@ -145,8 +146,9 @@ bool EvalCallback::check_stop_rules() {
     }
     last_best_ = best_;
     if (stop) {
-      stop_reason_ = "no new best model in the last " + std::to_string(no_improvement_evals_) +
-                     " evaluations (eval.max_no_improvement_evals " +
+      stop_reason_ = "no new best model in the last " +
+                     count_of(no_improvement_evals_, "evaluation") +
+                     " (eval.max_no_improvement_evals " +
                      std::to_string(*config_.max_no_improvement_evals) + ")";
       return false;
     }

@@ -4,6 +4,7 @@
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/model_budget.hpp"
 #include "rlrun/runtime/model_file.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -28,8 +29,7 @@ std::string initialize_from_model(const std::string& path, Algorithm& algorithm,
     throw UsageError(refused + e.what() + " (other network sizes in algo.policy?)");
   }
   std::string line = "initialised from " + path + " (" + model.meta.algorithm + ", " +
-                     model.meta.env_id + ", " + std::to_string(model.meta.num_timesteps) +
-                     " steps)";
+                     model.meta.env_id + ", " + count_of(model.meta.num_timesteps, "step") + ")";
   const bool run_normalises = !model_statistics(env.env(0)).empty();
   if (run_normalises && !model.wrapper_statistics.empty()) {
     try {

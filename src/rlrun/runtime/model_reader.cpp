@@ -6,6 +6,7 @@
 #include "rlrun/core/zip_reader.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/model_file.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -77,7 +78,7 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
   ZipMemberReader member(archive, entry);
   if (entry.size < kNpyPreludeBytes)
     throw RuntimeFailure(what + ": not a supported .npy array (only " +
-                         std::to_string(entry.size) + " bytes)");
+                         count_of(static_cast<int64_t>(entry.size), "byte") + ")");
   std::vector<uint8_t> header(kNpyPreludeBytes);
   NpyHeader h;
   try {
@@ -97,7 +98,8 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
   }
   if (h.data_bytes != member.remaining())
     throw RuntimeFailure(what + ": not a supported .npy array (its shape needs " +
-                         std::to_string(h.data_bytes) + " bytes of data, the zip declares " +
+                         count_of(static_cast<int64_t>(h.data_bytes), "byte") +
+                         " of data, the zip declares " +
                          std::to_string(member.remaining()) + ")");
   Tensor t;
   t.dtype = h.dtype;

@@ -13,6 +13,7 @@
 #include "rlrun/render/video_writer.hpp"
 #include "rlrun/runtime/observation_log.hpp"
 #include "rlrun/wrappers/monitor.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -169,7 +170,7 @@ RecordResult record_observations(const Env& env, const std::vector<std::string>&
   for (const std::string& file : npy_files) {
     const ObservationChunk chunk = read_observation_chunk(file);
     if (chunk.obs_dim != obs_dim)
-      throw UsageError(file + ": rows have " + std::to_string(chunk.obs_dim) + " values but " +
+      throw UsageError(file + ": rows have " + count_of(chunk.obs_dim, "value") + " but " +
                        env.id() + " observations are " + flat_layout(env.observation_space()) +
                        " (is this log from another env?)");
     const std::string name = std::filesystem::path(file).filename().string();

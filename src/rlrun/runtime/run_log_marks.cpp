@@ -10,6 +10,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -70,7 +71,7 @@ void restore_log_marks(const StateReader& in, const std::string& run_dir,
     const int64_t lines_recorded = file.get_int("lines");
     if (lines_recorded < 0)
       throw RuntimeFailure("cannot resume: the checkpoint records " +
-                           std::to_string(lines_recorded) + " lines of " + name);
+                           count_of(lines_recorded, "line") + " of " + name);
     const auto kept = static_cast<size_t>(lines_recorded);
     const std::string path = run_dir + "/" + name;
     if (kept == 0) {

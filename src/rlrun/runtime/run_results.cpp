@@ -14,6 +14,9 @@
 #include "rlrun/rng.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
+#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/session_summary.hpp"
+#include "rlrun/runtime/trainer.hpp"
 
 namespace rlrun {
 
@@ -112,21 +115,44 @@ std::string read_run_config(const std::string& dir, RunResult& r) {
   }
 }
 
-// The sessions' "trained|interrupted after N steps in S s" lines of log.txt added up (a resumed
-// run has several); NaN when there is none.
+// The sessions' summary lines of log.txt added up (a resumed run has several; one per
+// `train` or `train --resume`, runtime/session_summary.hpp); NaN when there is none.
 double logged_wall_seconds(const std::string& dir) {
   std::ifstream log(fs::path(dir) / "log.txt");
   bool logged = false;
   double seconds = 0;
   for (std::string line; std::getline(log, line);) {
-    const size_t in = line.find(" steps in ");
-    if (in == std::string::npos || (line.find("trained ") == std::string::npos &&
-                                    line.find("interrupted after ") == std::string::npos))
-      continue;
-    seconds += number(line.substr(in + 10, line.find(' ', in + 10) - in - 10));
+    const std::optional<SessionSummary> session = parse_session_summary(line);
+    if (!session) continue;
+    seconds += session->wall_seconds;
     logged = true;
   }
   return logged ? seconds : kNaN;
+}
+
+// The run's step count. progress.csv's last row is not it: DQN/SAC/TD3/DDPG log a row every
+// log_interval episodes, so a 5000-step run may have logged last at step 2880. The `finished`
+// marker (written last, "timesteps N") is the count of a finished run; otherwise model.zip's
+// meta.json (written at the end of every session, also an interrupted one), unless progress.csv
+// got further (a run training now, after a resume).
+double true_timesteps(const std::string& dir, double progress_timesteps) {
+  std::ifstream marker(fs::path(dir) / kFinishedMarker);
+  std::string word;
+  long long steps = 0;
+  if (marker >> word >> steps && word == "timesteps" && steps >= 0)
+    return static_cast<double>(steps);
+  double best = std::isfinite(progress_timesteps) ? progress_timesteps : 0.0;
+  const fs::path model = fs::path(dir) / "model.zip";
+  std::error_code ec;
+  if (fs::is_regular_file(model, ec)) {
+    try {  // meta.json only, within its bound (model files are untrusted: model_file.hpp)
+      const ModelFile header = read_model_header(model.string());
+      best = std::max(best, static_cast<double>(header.meta.num_timesteps));
+    } catch (const std::exception&) {
+      // A damaged model.zip: progress.csv's count stands.
+    }
+  }
+  return best;
 }
 
 // The mean of the last 100 training episodes over all monitor files, in the order they ended
@@ -172,7 +198,9 @@ RunResult read_run(const std::string& dir) {
   r.wall_seconds = logged_wall_seconds(dir);
   if (std::isnan(r.wall_seconds))
     r.wall_seconds = r.progress.count("time/time_elapsed") ? last_finite(r.progress["time/time_elapsed"]) : 0.0;
-  if (r.progress.count("time/total_timesteps")) r.timesteps = last_finite(r.progress["time/total_timesteps"]);
+  const auto logged = r.progress.find("time/total_timesteps");
+  r.timesteps =
+      true_timesteps(dir, logged != r.progress.end() ? last_finite(logged->second) : kNaN);
   // The last evaluation when the run evaluated, else the last 100 training episodes.
   const auto evaluations = read_columns(fs::path(dir) / "evaluations.csv");
   if (evaluations.count("mean_reward") && !evaluations.at("mean_reward").empty()) {

@@ -24,7 +24,8 @@ struct RunResult {
                               // episodes) or "none" (no episode ended: final_return is NaN)
   std::optional<double> success_rate;
   double wall_seconds = 0;  // log.txt's training sessions added up (else progress.csv's)
-  double timesteps = 0;     // progress.csv's last time/total_timesteps
+  double timesteps = 0;     // the `finished` marker's count, else model.zip's (or progress.csv's
+                            // last time/total_timesteps when that is further)
   // progress.csv as columns (every column, NaN where a row left it empty).
   std::map<std::string, std::vector<double>> progress;
 };

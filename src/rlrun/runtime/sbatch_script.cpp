@@ -132,11 +132,17 @@ void check_slurm_options(const ConfigNode& slurm, const SlurmOptions& options) {
     check("extra", options.extra[i], i < extra.size() ? extra.at(i) : extra);
 }
 
-std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary) {
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
+                         const std::vector<std::string>& run_args) {
   for (const std::string& path : {sweep.manifest, rlrun_binary}) {
     const std::string problem = script_path_problem(path);
     if (!problem.empty()) throw UsageError("cannot write the sbatch script: " + problem);
   }
+  for (const std::string& arg : run_args)
+    if (!script_path_problem(arg).empty())
+      throw UsageError("cannot write the sbatch script: the argument " + printable(arg) +
+                       " contains a control character (a newline?), which no line of an "
+                       "sbatch script can hold safely");
   const SlurmOptions& s = sweep.slurm;
   // The options were checked where they were read (expand_sweep, read_manifest); checked again
   // here because this is where they become script text.
@@ -173,7 +179,12 @@ std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary) {
   for (const std::string& line : s.extra) text += "#SBATCH " + line + "\n";
   const int threads = s.cpus_per_task >= 2 ? 2 : 1;
   text += "exec " + shell_quote(rlrun_binary) + " --threads " + std::to_string(threads) +
-          " sweep run " + shell_quote(sweep.manifest) + " --index \"$SLURM_ARRAY_TASK_ID\"\n";
+          " sweep run " + shell_quote(sweep.manifest) + " --index \"$SLURM_ARRAY_TASK_ID\"";
+  for (const std::string& arg : run_args) {  // appended piece by piece: GCC 12's -Wrestrict
+    text += ' ';
+    text += shell_quote(arg);
+  }
+  text += "\n";
   return text;
 }
 

@@ -12,6 +12,7 @@
 // from out_dir, is quoted for sbatch's tokenizer. No control character (newline, carriage
 // return, ...) may appear anywhere in the script's values.
 #include <string>
+#include <vector>
 
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/runtime/sweep.hpp"
@@ -33,8 +34,11 @@ std::string slurm_value_problem(const std::string& key, const std::string& value
 void check_slurm_options(const ConfigNode& slurm, const SlurmOptions& options);
 
 // The sbatch script for the manifest: an array job whose task i runs
-// `<rlrun> --threads <1|2> sweep run <manifest> --index i`, logs in <out_dir>/slurm/. Throws
-// UsageError when a path or an option cannot be written safely.
-std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary);
+// `<rlrun> --threads <1|2> sweep run <manifest> --index i <run_args...>`, logs in
+// <out_dir>/slurm/. `run_args` are `sweep slurm`'s --set and --plugin as `sweep run` takes
+// them, each a quoted word. Throws UsageError when a path, an argument or an option cannot be
+// written safely.
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
+                         const std::vector<std::string>& run_args = {});
 
 }  // namespace rlrun

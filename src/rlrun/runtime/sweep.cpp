@@ -236,9 +236,36 @@ void write_manifest(const Sweep& sweep, const fs::path& out_dir) {
                                         out.c_str() + "\n");
 }
 
+// The command line's --set values, each checked against the base experiment (the command
+// line is trusted, like the sweep file) and refused when the grid or list varies its key: one
+// value for every run would silently undo the sweep.
+Combination command_line_overrides(const std::string& base, const std::vector<std::string>& set,
+                                   const std::vector<Combination>& combos, Registry& registry) {
+  Combination out;
+  for (const std::string& assignment : set) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw UsageError("--set " + assignment +
+                       ": expected key=value, e.g. --set run.total_timesteps=20000");
+    const std::string key = assignment.substr(0, eq);
+    for (const auto& combo : combos)
+      for (const Override& o : combo)
+        if (o.key == key)
+          throw UsageError("--set " + assignment + ": the sweep varies " + key +
+                           " (grid or list); --set gives every run the same value");
+    try {
+      load_experiment(base, {assignment}, registry);
+    } catch (const ConfigError& e) {
+      throw ConfigError("--set " + assignment + " does not fit " + base + ": " + e.what());
+    }
+    out.push_back({key, assignment.substr(eq + 1), ConfigNode(), ConfigNode()});
+  }
+  return out;
+}
+
 }  // namespace
 
-Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
+Sweep expand_sweep(const std::string& sweep_file, Registry& registry, const SweepOptions& options) {
   const ConfigNode root = ConfigNode::load_file(sweep_file);
   SweepFile file;
   decode(root, file);
@@ -247,13 +274,16 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry) {
   const std::string base = fs::path(file.base).is_absolute() ? file.base : (here / file.base).string();
   if (!fs::exists(base)) root.child("base").fail(base + " does not exist");
   const std::vector<Combination> combos = combinations(file);
-  const Combination common = file.set.defined() ? map_overrides(file.set) : Combination{};
+  Combination common = file.set.defined() ? map_overrides(file.set) : Combination{};
   check_overrides(base, common, combos, registry);
+  for (Override& o : command_line_overrides(base, options.set, combos, registry))
+    common.push_back(std::move(o));  // after the file's set: the command line wins
 
   Sweep sweep;
   sweep.name = file.name.empty() ? fs::path(sweep_file).stem().string() : file.name;
+  const std::string chosen_out = !options.out_dir.empty() ? options.out_dir : file.out_dir;
   const fs::path out_dir =
-      fs::absolute(file.out_dir.empty() ? fs::path("runs/sweeps") / sweep.name : fs::path(file.out_dir))
+      fs::absolute(chosen_out.empty() ? fs::path("runs/sweeps") / sweep.name : fs::path(chosen_out))
           .lexically_normal();
   sweep.source = fs::absolute(sweep_file).lexically_normal().string();
   sweep.manifest = (out_dir / "manifest.yaml").string();
@@ -360,6 +390,14 @@ bool run_config_matches(const SweepRun& run) {
   } catch (const ConfigError&) {
     return false;
   }
+}
+
+std::string run_console_log(const Sweep& sweep, const SweepRun& run) {
+  const fs::path out_dir = fs::path(sweep.manifest).parent_path();
+  const fs::path below = fs::path(run.run_dir).lexically_relative(out_dir / "runs");
+  const bool inside = !below.empty() && *below.begin() != ".." && below != ".";
+  return (out_dir / "logs" / (inside ? below : fs::path("run" + std::to_string(run.index))))
+             .string() + ".txt";
 }
 
 const char* to_string(RunState state) {

@@ -65,11 +65,19 @@ struct Sweep {
   std::vector<SweepRun> runs;
 };
 
+// What the command line adds to a sweep file (`rlrun sweep SWEEP.yaml --out DIR --set k=v`).
+struct SweepOptions {
+  std::string out_dir;             // instead of the file's out_dir
+  std::vector<std::string> set;    // "key=value" for every run, after the file's `set:`
+};
+
 // Reads a sweep file, checks every override against the base experiment, writes
 // <out_dir>/configs/<label>_seed<N>.yaml (each a complete experiment file, run.out_dir and
 // run.name set so the run trains into its directory) and <out_dir>/manifest.yaml. Throws
-// ConfigError naming the sweep file's line and column for a bad key or value.
-Sweep expand_sweep(const std::string& sweep_file, Registry& registry);
+// ConfigError naming the sweep file's line and column for a bad key or value, or the --set
+// value that does not fit; a --set of a key the grid or list varies is a UsageError.
+Sweep expand_sweep(const std::string& sweep_file, Registry& registry,
+                   const SweepOptions& options = {});
 
 // Where a sweep's runs write TensorBoard event files unless its experiment names a directory.
 std::string sweep_tensorboard_dir(const std::string& sweep_out_dir);
@@ -89,6 +97,10 @@ RunState run_state(const SweepRun& run);
 // skip or resume such a run (it would keep the old settings silently).
 bool run_config_matches(const SweepRun& run);
 const char* to_string(RunState state);
+
+// Where `sweep run -j` keeps a run's console output: <out_dir>/logs/<label>/seed<N>.txt (the
+// run directory's path below runs/; logs/run<index>.txt for a manifest that puts it elsewhere).
+std::string run_console_log(const Sweep& sweep, const SweepRun& run);
 
 // The sbatch script of a manifest: runtime/sbatch_script.hpp.
 

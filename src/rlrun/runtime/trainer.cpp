@@ -13,6 +13,7 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/plural.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/callback.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -146,9 +147,9 @@ void TrainingRun::announce() {
   const RunConfig& run = experiment_.run;
   if (!resuming_) {
     log_->line("rlrun " RLRUN_VERSION ": training " + experiment_.algo.id + " on " +
-               experiment_.env.id + " for " + std::to_string(run.total_timesteps) +
-               " steps (seed " + std::to_string(run.seed) + ", " +
-               std::to_string(experiment_.env.section.n_envs) + " envs) -> " + outcome_.run_dir);
+               experiment_.env.id + " for " + count_of(run.total_timesteps, "step") +
+               " (seed " + std::to_string(run.seed) + ", " +
+               count_of(experiment_.env.section.n_envs, "env") + ") -> " + outcome_.run_dir);
     return;
   }
   for (const std::string& skipped : resume_->skipped)
@@ -325,6 +326,7 @@ TrainingHooks TrainingRun::hooks() {
 
 TrainOutcome TrainingRun::run() {
   TrainingHooks training_hooks = hooks();
+  outcome_.start_timesteps = algorithm_->num_timesteps();  // a resumed run's checkpoint step
   const auto start = std::chrono::steady_clock::now();
   algorithm_->learn(*env_, experiment_.run.total_timesteps, training_hooks);
   outcome_.wall_seconds =
@@ -354,13 +356,8 @@ void TrainingRun::finish() {
   outcome_.model_path = outcome_.run_dir + "/model.zip";
   save_model(outcome_.model_path);
   if (!outcome_.stop_reason.empty()) log_->line("stopped early: " + outcome_.stop_reason);
-  char summary[256];
-  std::snprintf(summary, sizeof summary, "%s %lld steps in %.2f s (%.0f steps/s); model saved to %s",
-                outcome_.interrupted ? "interrupted after" : "trained",
-                static_cast<long long>(outcome_.timesteps), outcome_.wall_seconds,
-                static_cast<double>(outcome_.timesteps) / std::max(outcome_.wall_seconds, 1e-9),
-                outcome_.model_path.c_str());
-  log_->line(summary);
+  log_->line(format_session_summary(session_summary(outcome_)) + "; model saved to " +
+             outcome_.model_path);
   if (!outcome_.interrupted) {  // the last file written: `rlrun sweep run` skips such runs
     write_text_atomic(outcome_.run_dir + "/" + kFinishedMarker,
                       "timesteps " + std::to_string(outcome_.timesteps) + "\n");

@@ -11,6 +11,7 @@
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/recorder.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -52,8 +53,8 @@ bool VideoCallback::on_step(int64_t num_timesteps) {
       },
       options);
   if (context_.message)
-    context_.message("video at " + std::to_string(num_timesteps) + " steps: " + options.video_path +
-                     " (" + std::to_string(r.frames) + " frames, return " +
+    context_.message("video at " + count_of(num_timesteps, "step") + ": " + options.video_path +
+                     " (" + count_of(r.frames, "frame") + ", return " +
                      format_log_value(r.episodes.mean_return()) + ")");
   return true;
 }

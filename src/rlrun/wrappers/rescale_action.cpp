@@ -1,4 +1,5 @@
 #include "rlrun/wrappers/rescale_action.hpp"
+#include "rlrun/core/plural.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +14,8 @@ std::vector<float> broadcast(const std::vector<double>& values, int dims, const 
   if (values.size() == 1) return std::vector<float>(dims, static_cast<float>(values[0]));
   if (static_cast<int>(values.size()) != dims)
     throw std::invalid_argument(std::string("RescaleAction: ") + name + " has " +
-                                std::to_string(values.size()) + " values, the action space " +
-                                std::to_string(dims) + " dimensions");
+                                count_of(static_cast<int64_t>(values.size()), "value") +
+                                ", the action space " + count_of(dims, "dimension"));
   return std::vector<float>(values.begin(), values.end());
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "rlrun/envs/classic/classic_control_env.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -19,7 +20,7 @@ bool ClassicControlEnv::render(Frame& frame) const {
 bool ClassicControlEnv::render_observation(std::span<const float> obs, Frame& frame) const {
   if (static_cast<int>(obs.size()) != observation_space_.flat_dim())
     throw std::invalid_argument(id() + ": an observation has " +
-                                std::to_string(observation_space_.flat_dim()) + " values, got " +
+                                count_of(observation_space_.flat_dim(), "value") + ", got " +
                                 std::to_string(obs.size()));
   std::array<double, kMaxStateDim> state{};
   const std::span<double> s(state.data(), static_cast<size_t>(state_dim()));

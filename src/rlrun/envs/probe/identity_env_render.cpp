@@ -9,6 +9,7 @@
 
 #include "rlrun/envs/probe/identity_env.hpp"
 #include "rlrun/frame.hpp"
+#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -81,7 +82,7 @@ bool IdentityEnv::render(Frame& frame) const {
 bool IdentityEnv::render_observation(std::span<const float> obs, Frame& frame) const {
   if (!observation_space_.contains(obs))
     throw std::invalid_argument(id_ + ": an observation must be " +
-                                std::to_string(observation_space_.flat_dim()) + " values in " +
+                                count_of(observation_space_.flat_dim(), "value") + " in " +
                                 observation_space_.describe() + "; this one is not");
   draw(obs, {}, frame);
   return true;
