@@ -101,8 +101,7 @@ class StateReader {
     const Tensor& t = find(name, dtype_of<T>());
     if (t.shape.size() != 1 || (expected_size >= 0 && t.shape[0] != expected_size))
       throw StateMismatch("checkpoint state '" + prefix_ + name + "' has " +
-                          std::to_string(t.numel()) + (t.numel() == 1 ? " value" : " values") +
-                          ", expected " +
+                          std::to_string(t.numel()) + " values, expected " +
                           std::to_string(expected_size));
     std::vector<T> values(static_cast<size_t>(t.shape[0]));
     if (!values.empty()) std::memcpy(values.data(), t.bytes.data(), values.size() * sizeof(T));
