@@ -1,8 +1,9 @@
 // rlrun sweep SWEEP.yaml [--out DIR] [--set key=value]...
 //                                  expand into <out_dir>/manifest.yaml + configs/
 // rlrun sweep run MANIFEST [-j N] [--index I] [--set key=value]... [--plugin LIB]
-//                                  train the runs (skip finished, resume interrupted); with
-//                                  several runs, each one's console output in <out_dir>/logs/
+//                                  train the runs (skip finished, resume interrupted), each
+//                                  in a child process whose console output is kept in
+//                                  <out_dir>/logs/ (with --index: run I here, output as usual)
 // rlrun sweep slurm MANIFEST [--set key=value]... [--plugin LIB]
 //                                  write <out_dir>/sweep.sbatch (an array job of `sweep run`)
 // rlrun sweep status MANIFEST      each run's state

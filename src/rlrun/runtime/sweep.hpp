@@ -98,8 +98,9 @@ RunState run_state(const SweepRun& run);
 bool run_config_matches(const SweepRun& run);
 const char* to_string(RunState state);
 
-// Where `sweep run -j` keeps a run's console output: <out_dir>/logs/<label>/seed<N>.txt (the
-// run directory's path below runs/; logs/run<index>.txt for a manifest that puts it elsewhere).
+// Where `sweep run` (without --index) keeps a run's console output:
+// <out_dir>/logs/<label>/seed<N>.txt (the run directory's path below runs/; logs/run<index>.txt
+// for a manifest that puts it elsewhere).
 std::string run_console_log(const Sweep& sweep, const SweepRun& run);
 
 // The sbatch script of a manifest: runtime/sbatch_script.hpp.
