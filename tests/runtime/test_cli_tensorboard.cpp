@@ -46,7 +46,7 @@ TEST_CASE("tensorboard: a PPO run's event file matches progress.csv, eval and hp
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
   const auto r = run_rlrun("--threads 1 train " + config + " --timesteps 12000 --out " + dir / "runs" +
                            " --set eval.freq=4000 --set eval.n_episodes=3 --tensorboard-log " +
-                           dir / "tb");
+                           dir / "tb" + " --set run.tensorboard_images=true");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   CHECK(r.output.find("TensorBoard: " + dir / "tb/cartpole_ppo_1") != std::string::npos);

@@ -203,7 +203,8 @@ def check(run_dir, progress, finished):
             raise ValueError(f"session end status {end}, expected 1 (STATUS_SUCCESS)")
         if "final/ep_rew_mean" not in scalars:
             raise ValueError("no final/ep_rew_mean scalar")
-        width, height, png = images.get("images/learning_curve", (0, 0, b""))
+    if "images/learning_curve" in images:
+        width, height, png = images["images/learning_curve"]
         if not png.startswith(b"\x89PNG\r\n\x1a\n") or struct.unpack(">II", png[16:24]) != (width, height):
             raise ValueError("no learning-curve PNG of the size its Image message states")
     print(json.dumps({"rows": len(rows), "tags": len(keys), "hparams": len(hparams),

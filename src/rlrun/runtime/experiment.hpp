@@ -37,6 +37,7 @@ struct RunConfig {
   std::string init_from;            // model file whose weights start the run (empty: none)
   OutputPath tensorboard_log;       // SB3's tensorboard_log: DIR for TensorBoard event files
   std::optional<std::string> tb_log_name;  // SB3's tb_log_name; null = the run name
+  bool tensorboard_images = false;  // the learning curve as a TensorBoard image at the end
 
   template <class V>
   void visit(V& v) {
@@ -58,6 +59,9 @@ struct RunConfig {
     v("tb_log_name", tb_log_name,
       "name of this run's TensorBoard runs under tensorboard_log (null = the run name)",
       RelativeName{});
+    v("tensorboard_images", tensorboard_images,
+      "with tensorboard_log: add the learning curve as an image when the run finishes (off by "
+      "default: drawing it costs about 60 ms, 7 % of a 1-second CartPole run)");
   }
 };
 

@@ -346,10 +346,13 @@ void TrainingRun::finish() {
   logger_.flush();
   if (tensorboard_ && !outcome_.interrupted) {
     std::string curve;
-    try {  // a picture is no reason to fail a run that has trained
-      curve = learning_curve_png(outcome_.run_dir, experiment_.algo.id + " on " + experiment_.env.id);
-    } catch (const std::exception& e) {
-      log_->line(std::string("note: no learning-curve image for TensorBoard: ") + e.what());
+    if (experiment_.run.tensorboard_images) {
+      try {  // a picture is no reason to fail a run that has trained
+        curve = learning_curve_png(outcome_.run_dir,
+                                   experiment_.algo.id + " on " + experiment_.env.id);
+      } catch (const std::exception& e) {
+        log_->line(std::string("note: no learning-curve image for TensorBoard: ") + e.what());
+      }
     }
     tensorboard_->finish(outcome_.timesteps, true, curve);
   }
