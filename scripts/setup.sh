@@ -17,6 +17,7 @@ PACKAGES=(
   libzip-dev zip unzip                      # model files are zips
   zlib1g-dev                                # tests write hostile zips (tests/core/crafted_zip.hpp)
   libbullet-dev                             # 3D grasp task
+  libbox2d-dev                              # LunarLander, BipedalWalker (Gymnasium's Box2D tasks)
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
   libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video
   python3-numpy python3-pandas              # tests: read our files with the tools SB3 users use
