@@ -25,12 +25,17 @@ double loss_of(ActorCriticPolicy& policy, const Batch& b, float clip, std::optio
       .loss;
 }
 
+ActorCriticPolicyConfig small_policy() {
+  ActorCriticPolicyConfig cfg;
+  cfg.net_arch = {{8, 8}, {8, 8}};
+  return cfg;
+}
+
 // Finite-difference check of d(PPO loss)/d(every parameter) through the whole policy.
-void check_policy_gradient(const Space& obs_space, const Space& act_space, float clip = 0.2f,
+void check_policy_gradient(const Space& obs_space, const Space& act_space,
+                           const ActorCriticPolicyConfig& cfg = small_policy(), float clip = 0.2f,
                            std::optional<float> clip_vf = 0.1f, float ent_coef = 0.05f) {
   Rng rng(3);
-  ActorCriticPolicyConfig cfg;
-  cfg.net_arch = {8, 8};
   ActorCriticPolicy policy(obs_space, act_space, cfg, rng);
   const int n = 16, obs_dim = obs_space.flat_dim();
   Batch b;
@@ -91,6 +96,21 @@ TEST_CASE("PPO loss gradient through the policy matches finite differences (Disc
 TEST_CASE("PPO loss gradient through the policy matches finite differences (Box)",
           "[algos][ppo][gradcheck]") {
   check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}));
+}
+
+TEST_CASE("PPO loss gradient matches finite differences with separate pi/vf sizes, ELU, torch init",
+          "[algos][ppo][gradcheck]") {
+  // net_arch {pi: [8], vf: [7, 6]}, nn.ELU, ortho_init false: the towers differ in depth and
+  // width, and torch's default init gives non-zero biases.
+  ActorCriticPolicyConfig cfg;
+  cfg.net_arch = {{8}, {7, 6}};
+  cfg.activation_fn = Activation::kELU;
+  cfg.ortho_init = false;
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}), cfg);
+  // A linear policy head (pi: []), LeakyReLU in the value tower.
+  cfg.net_arch = {{}, {24}};
+  cfg.activation_fn = Activation::kLeakyReLU;
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {6}), Space::discrete(3), cfg);
 }
 
 TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiDiscrete)",

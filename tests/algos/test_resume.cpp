@@ -124,7 +124,7 @@ TEST_CASE("DDPG resumed from a safe point ends with the uninterrupted run's weig
   DDPG::Config cfg;
   cfg.off_policy.learning_starts = 100;
   cfg.off_policy.batch_size = 32;
-  cfg.policy.net_arch = {16, 16};
+  cfg.policy.net_arch = {{16, 16}, {16, 16}};
   cfg.action_noise.noise_type = "ornstein-uhlenbeck";
   const int64_t total = 600;
   Snapshot snapshot;

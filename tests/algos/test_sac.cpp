@@ -72,7 +72,7 @@ Eigen::MatrixXf random_matrix(Rng& rng, int rows, int cols, double scale = 1.0) 
 
 SAC::Config small_config() {
   SAC::Config c;
-  c.policy.net_arch = {8, 8};
+  c.policy.net_arch = {{8, 8}, {8, 8}};
   c.off_policy.batch_size = 6;
   c.off_policy.buffer_size = 1000;
   c.off_policy.gamma = 0.9;

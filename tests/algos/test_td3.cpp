@@ -36,7 +36,7 @@ AlgorithmSetup small_setup(uint64_t seed = 7) {
 
 TD3::Config small_config() {
   TD3::Config c;
-  c.policy.net_arch = {6, 5};
+  c.policy.net_arch = {{6, 5}, {6, 5}};
   c.off_policy.batch_size = 8;
   c.off_policy.gamma = 0.9;
   c.off_policy.tau = 0.1;
@@ -255,8 +255,9 @@ TEST_CASE("TD3 and DDPG defaults are SB3's", "[algos][td3]") {
   CHECK(t.target_policy_noise == 0.2);
   CHECK(t.target_noise_clip == 0.5);
   CHECK(t.policy.n_critics == 2);
-  CHECK(t.policy.net_arch == std::vector<int>{400, 300});
-  CHECK(t.policy.activation_fn == "relu");
+  CHECK(t.policy.net_arch.pi == std::vector<int>{400, 300});
+  CHECK(t.policy.net_arch.qf == std::vector<int>{400, 300});
+  CHECK(t.policy.activation_fn == Activation::kReLU);
 
   const DDPG::Config d;
   const TD3::Config dt = DDPG::to_td3(d);
@@ -268,7 +269,8 @@ TEST_CASE("TD3 and DDPG defaults are SB3's", "[algos][td3]") {
   CHECK(dt.off_policy.gamma == 0.99);
   CHECK(dt.off_policy.train_freq.frequency == 1);
   CHECK(dt.off_policy.gradient_steps == 1);
-  CHECK(dt.policy.net_arch == std::vector<int>{400, 300});
+  CHECK(dt.policy.net_arch.pi == std::vector<int>{400, 300});
+  CHECK(dt.policy.net_arch.qf == std::vector<int>{400, 300});
   CHECK(dt.policy_delay == 1);
   CHECK(dt.target_noise_clip == 0.0);
   CHECK(dt.policy.n_critics == 1);
@@ -276,7 +278,7 @@ TEST_CASE("TD3 and DDPG defaults are SB3's", "[algos][td3]") {
 
 TEST_CASE("DDPG is TD3 with one critic, no smoothing and no delay", "[algos][td3][ddpg]") {
   DDPG::Config cfg;
-  cfg.policy.net_arch = {6, 5};
+  cfg.policy.net_arch = {{6, 5}, {6, 5}};
   cfg.off_policy.batch_size = 8;
   cfg.off_policy.tau = 0.1;
   DDPG ddpg(cfg, small_setup());

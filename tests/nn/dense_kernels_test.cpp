@@ -32,16 +32,30 @@ Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixX
     case Epilogue::kBias: return s.colwise() + bias;
     case Epilogue::kBiasTanh: return (s.colwise() + bias).array().tanh().matrix();
     case Epilogue::kBiasReLU: return (s.colwise() + bias).cwiseMax(0.0);
+    case Epilogue::kBiasELU: {  // torch.nn.ELU(alpha=1)
+      const Eigen::MatrixXd v = s.colwise() + bias;
+      return v.unaryExpr([](double x) { return x > 0.0 ? x : std::expm1(x); });
+    }
+    case Epilogue::kBiasLeakyReLU: {  // torch.nn.LeakyReLU(negative_slope=0.01)
+      const Eigen::MatrixXd v = s.colwise() + bias;
+      return v.unaryExpr([](double x) { return x > 0.0 ? x : 0.01 * x; });
+    }
     case Epilogue::kTanhGrad: return s.cwiseProduct((1.0 - act.array().square()).matrix());
     case Epilogue::kReLUGrad:
       return (act.array() > 0.0).select(s, Eigen::MatrixXd::Zero(s.rows(), s.cols()));
+    case Epilogue::kELUGrad:  // d/dv expm1(v) = exp(v) = a + 1 below 0
+      return (act.array() > 0.0).select(s, s.cwiseProduct((act.array() + 1.0).matrix()));
+    case Epilogue::kLeakyReLUGrad: return (act.array() > 0.0).select(s, 0.01 * s);
   }
   return s;
 }
 
-const Epilogue kAll[] = {Epilogue::kStore,    Epilogue::kAdd,      Epilogue::kAddTransposed,
-                         Epilogue::kBias,     Epilogue::kBiasTanh, Epilogue::kBiasReLU,
-                         Epilogue::kTanhGrad, Epilogue::kReLUGrad};
+const Epilogue kAll[] = {Epilogue::kStore,         Epilogue::kAdd,
+                         Epilogue::kAddTransposed, Epilogue::kBias,
+                         Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
+                         Epilogue::kBiasELU,       Epilogue::kBiasLeakyReLU,
+                         Epilogue::kTanhGrad,      Epilogue::kReLUGrad,
+                         Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
 
 // Runs one kernel product through every epilogue and compares with apply(). product(args, e)
 // must compute the m x n product s_ref into args.c.
@@ -50,7 +64,9 @@ void check_epilogues(Eigen::Index m, Eigen::Index n, const Eigen::MatrixXd& s_re
                      Product&& product) {
   const Eigen::VectorXf bias = random_matrix(m, 1, rng);
   Eigen::MatrixXf act = random_matrix(m, n, rng).array().tanh().matrix();
-  act(0, 0) = 0.0f;  // relu' at exactly 0 is 0
+  // Stored outputs in (-1, 1): valid for tanh, elu (> -1) and either relu. At exactly 0 the
+  // derivative is the one of the negative side (torch: relu' 0, leaky_relu' 0.01, elu' 1).
+  act(0, 0) = 0.0f;
   for (Epilogue e : kAll) {
     const bool transposed = e == Epilogue::kAddTransposed;
     Eigen::MatrixXf c = random_matrix(transposed ? n : m, transposed ? m : n, rng);

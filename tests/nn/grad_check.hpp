@@ -28,10 +28,16 @@ inline Eigen::MatrixXd mlp_forward(const Mlp& net, const Eigen::VectorXd& params
     offset += out;
     a = (w * a).colwise() + b;
     if (l + 1 < net.num_layers()) {
-      if (net.activation() == Activation::kTanh)
-        a = a.array().tanh().matrix();
-      else
-        a = a.cwiseMax(0.0);
+      switch (net.activation()) {
+        case Activation::kTanh: a = a.array().tanh().matrix(); break;
+        case Activation::kReLU: a = a.cwiseMax(0.0); break;
+        case Activation::kELU:  // torch.nn.ELU(alpha=1)
+          a = a.unaryExpr([](double v) { return v > 0.0 ? v : std::expm1(v); });
+          break;
+        case Activation::kLeakyReLU:  // torch.nn.LeakyReLU(negative_slope=0.01)
+          a = a.unaryExpr([](double v) { return v > 0.0 ? v : 0.01 * v; });
+          break;
+      }
     }
   }
   return a;

@@ -122,6 +122,10 @@ TEST_CASE("Mlp forward+backward micro-benchmark", "[.bench][nn_bench]") {
   // 256x256, TD3/DDPG 400x300: widths that are not a multiple of the packet).
   bench(4, {256, 256}, 1, Activation::kReLU, 128);
   bench(4, {400, 300}, 1, Activation::kReLU, 128);
+  // The other activations at the same sizes (ELU's expm1 costs more than tanh's rational).
+  bench(4, {64, 64}, 2, Activation::kELU, 256);
+  bench(4, {64, 64}, 2, Activation::kLeakyReLU, 256);
+  bench(4, {256, 256}, 1, Activation::kLeakyReLU, 128);
 }
 
 }  // namespace

@@ -85,6 +85,13 @@ TEST_CASE("Mlp gradients match finite differences", "[nn]") {
       {20, {40, 17}, 9, Activation::kReLU, 37}, {9, {8}, 12, Activation::kTanh, 11},
       // Widths off the packet size: the overlapping last packet in every product.
       {13, {300, 13}, 3, Activation::kReLU, 9},
+      // ELU and LeakyReLU through the same tile shapes: packet and scalar rows, both paths of
+      // the input gradient (batch 1 and 2 use dot products).
+      {3, {5, 7}, 2, Activation::kELU, 4},       {3, {5, 7}, 2, Activation::kLeakyReLU, 4},
+      {20, {40, 17}, 9, Activation::kELU, 37},   {20, {40, 17}, 9, Activation::kLeakyReLU, 37},
+      {13, {300, 13}, 3, Activation::kELU, 9},   {13, {300, 13}, 3, Activation::kLeakyReLU, 9},
+      {4, {64, 64}, 2, Activation::kELU, 1},     {5, {16, 24}, 3, Activation::kLeakyReLU, 2},
+      {7, {9, 3, 11}, 5, Activation::kELU, 13},  {1, {3}, 1, Activation::kLeakyReLU, 1},
   };
   uint64_t seed = 11;
   for (const Case& c : cases) {
@@ -278,9 +285,19 @@ TEST_CASE("Mlp init_torch_default draws U(-1/sqrt(fan_in), 1/sqrt(fan_in))", "[n
 TEST_CASE("parse_activation and activation_name", "[nn]") {
   CHECK(parse_activation("tanh") == Activation::kTanh);
   CHECK(parse_activation("relu") == Activation::kReLU);
+  CHECK(parse_activation("elu") == Activation::kELU);
+  CHECK(parse_activation("leaky_relu") == Activation::kLeakyReLU);
+  // rl-zoo's policy_kwargs spell the torch class.
+  CHECK(parse_activation("nn.Tanh") == Activation::kTanh);
+  CHECK(parse_activation("nn.ReLU") == Activation::kReLU);
+  CHECK(parse_activation("nn.ELU") == Activation::kELU);
+  CHECK(parse_activation("nn.LeakyReLU") == Activation::kLeakyReLU);
   CHECK(activation_name(Activation::kTanh) == "tanh");
   CHECK(activation_name(Activation::kReLU) == "relu");
+  CHECK(activation_name(Activation::kELU) == "elu");
+  CHECK(activation_name(Activation::kLeakyReLU) == "leaky_relu");
   CHECK_THROWS_AS(parse_activation("Tanh"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_activation("nn.relu"), std::invalid_argument);
   CHECK_THROWS_AS(parse_activation("sigmoid"), std::invalid_argument);
 }
 

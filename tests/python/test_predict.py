@@ -33,6 +33,16 @@ MODELS = {
     "ppo_dict": ("env: {id: DictReach-v0, n_envs: 2}\n"
                  "algo: {id: PPO, n_steps: 32, batch_size: 64, n_epochs: 1,"
                  " policy: {net_arch: [16]}}\n", 128),
+    # rl-zoo's policy_kwargs forms: separate pi/vf (pi/qf) sizes, torch activation classes,
+    # ortho_init False.
+    "ppo_arch": ("env: {id: Pendulum-v1, n_envs: 2}\n"
+                 "algo: {id: PPO, n_steps: 32, batch_size: 64, n_epochs: 1,"
+                 " policy: {net_arch: {pi: [32], vf: [64, 64]}, activation_fn: nn.ELU,"
+                 " ortho_init: false}}\n", 128),
+    "sac_arch": ("env: {id: Pendulum-v1}\n"
+                 "algo: {id: SAC, learning_starts: 50, batch_size: 16,"
+                 " policy: {net_arch: {pi: [64], qf: [400, 300]},"
+                 " activation_fn: nn.LeakyReLU}}\n", 100),
 }
 
 
@@ -104,6 +114,10 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
         action, _ = model.predict(rows[0]["obs"], deterministic=True)
         self.assertEqual(action.shape, (1,))
         self.assertEqual(action.dtype, np.float32)
+
+    def test_network_options(self):
+        self.check_exact("ppo_arch", "PPO")
+        self.check_exact("sac_arch", "SAC")
 
     def test_td3(self):
         self.check_exact("td3", "TD3")

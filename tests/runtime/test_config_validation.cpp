@@ -45,13 +45,17 @@ TEST_CASE("validation: a later file's error stops everything before the first fi
   TempDir dir("validate_late");
   const std::string bad =
       write_config(dir, "acrobot_bad.yaml",
-                   "env: {id: Acrobot-v1}\nalgo:\n  id: DQN\n  policy: {activation_fn: nn.ReLU}\n");
+                   "env: {id: Acrobot-v1}\nalgo:\n  id: DQN\n  policy: {activation_fn: nn.Relu}\n");
   const auto r = refused(dir, kConfigs + "/cartpole_ppo.yaml " + bad);
-  CHECK(has(r, "acrobot_bad.yaml:4:27: algo.policy.activation_fn: unknown value 'nn.ReLU'"));
+  CHECK(has(r, "acrobot_bad.yaml:4:27: algo.policy.activation_fn: unknown activation 'nn.Relu' "
+               "(did you mean 'nn.ReLU'?)"));
   CHECK_FALSE(has(r, "training"));
-  const auto ortho = refused(dir, kConfigs + "/cartpole_ppo.yaml --set algo.policy.ortho_init=false");
-  CHECK(has(ortho, "algo.policy.ortho_init: false"));
-  CHECK_FALSE(has(ortho, "training"));
+  // A critic key of the off-policy algorithms in a PPO entry: SB3 would ignore it silently.
+  const auto qf = refused(
+      dir, kConfigs + "/cartpole_ppo.yaml --set 'algo.policy.net_arch={pi: [8], qf: [8]}'");
+  CHECK(has(qf, "algo.policy.net_arch.qf: unknown key 'qf'"));
+  CHECK(has(qf, "valid keys: pi, vf"));
+  CHECK_FALSE(has(qf, "training"));
 }
 
 TEST_CASE("validation: a file with three problems reports all three", "[cli][config]") {

@@ -1,31 +1,54 @@
 #pragma once
 // Hidden-layer activations of an Mlp. SB3's policy_kwargs.activation_fn is a torch class
-// (nn.Tanh for PPO/A2C's MlpPolicy, nn.ReLU for SAC/TD3/DQN); rl-zoo YAML spells it "tanh" /
-// "relu", which is what the experiment file uses.
+// (nn.Tanh for PPO/A2C's MlpPolicy, nn.ReLU for SAC/TD3/DQN); rl-zoo's hyperparameter files
+// write the class (`activation_fn=nn.ReLU`), rl-zoo-style YAML often the lower-case name. Both
+// are accepted; the lower-case name is the canonical one written into resolved configs. Each
+// activation has torch's default constructor arguments, which SB3 uses (it calls
+// activation_fn() with no argument): nn.ELU(alpha=1.0), nn.LeakyReLU(negative_slope=0.01).
+#include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 namespace rlrun {
 
-enum class Activation { kTanh, kReLU };
+enum class Activation { kTanh, kReLU, kELU, kLeakyReLU };
 
-// "tanh" or "relu" (exact, lower case). Throws std::invalid_argument naming the valid values.
-inline Activation parse_activation(std::string_view name) {
-  if (name == "tanh") return Activation::kTanh;
-  if (name == "relu") return Activation::kReLU;
-  throw std::invalid_argument("unknown activation '" + std::string(name) +
-                              "' (valid: tanh, relu)");
+// torch.nn.LeakyReLU's default negative_slope.
+inline constexpr float kLeakyReLUSlope = 0.01f;
+
+struct ActivationSpelling {
+  Activation act;
+  std::string_view name;        // canonical: "leaky_relu"
+  std::string_view torch_name;  // "nn.LeakyReLU"
+};
+inline constexpr std::array<ActivationSpelling, 4> kActivationSpellings = {{
+    {Activation::kTanh, "tanh", "nn.Tanh"},
+    {Activation::kReLU, "relu", "nn.ReLU"},
+    {Activation::kELU, "elu", "nn.ELU"},
+    {Activation::kLeakyReLU, "leaky_relu", "nn.LeakyReLU"},
+}};
+
+// The activation a name or torch spelling means (exact case), or nothing.
+inline std::optional<Activation> find_activation(std::string_view name) {
+  for (const auto &s : kActivationSpellings)
+    if (name == s.name || name == s.torch_name) return s.act;
+  return std::nullopt;
 }
 
 inline std::string_view activation_name(Activation act) {
-  switch (act) {
-    case Activation::kTanh:
-      return "tanh";
-    case Activation::kReLU:
-      return "relu";
-  }
+  for (const auto &s : kActivationSpellings)
+    if (s.act == act) return s.name;
   return "unknown";
+}
+
+// Throws std::invalid_argument naming the valid values.
+inline Activation parse_activation(std::string_view name) {
+  if (const auto act = find_activation(name)) return *act;
+  throw std::invalid_argument("unknown activation '" + std::string(name) +
+                              "' (valid: tanh, relu, elu, leaky_relu, or torch's nn.Tanh, "
+                              "nn.ReLU, nn.ELU, nn.LeakyReLU)");
 }
 
 }  // namespace rlrun

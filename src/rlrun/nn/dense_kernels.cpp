@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rlrun/nn/activation.hpp"
+
 namespace rlrun::dense {
 
 namespace {
@@ -9,10 +11,6 @@ namespace {
 namespace ei = Eigen::internal;
 using Packet = ei::packet_traits<float>::type;
 constexpr int kLanes = ei::packet_traits<float>::size;
-
-// tanh of one float through the packet routine, so every element of a layer gets the same
-// rounding whichever path (packet or scalar tail, any batch size) computed it.
-inline float scalar_tanh(float x) { return ei::pfirst(ei::ptanh(ei::pset1<Packet>(x))); }
 
 // Epilogues: packet(acc, i, j) handles rows i..i+kLanes-1 of column j; scalar(acc, i, j) one
 // element; tail(acc, i, j, skip) is the last, overlapping packet of a column whose height is
@@ -56,36 +54,51 @@ struct AddTransposedEpi {
   void scalar(float s, Index i, Index j) const { c[j + i * ldc] += s; }
 };
 
-enum class Act { kNone, kTanh, kReLU };
+enum class Act { kNone, kTanh, kReLU, kELU, kLeakyReLU };
+
+// The activations on a packet. ELU: expm1 for v <= 0 (torch's elu kernel, alpha 1; exp(v) - 1
+// loses the digits of small v). LeakyReLU: max(v, slope v) is v for v > 0 and slope v below,
+// since 0 < slope < 1.
+template <Act kAct>
+inline Packet activate(Packet v) {
+  if constexpr (kAct == Act::kTanh) return ei::ptanh(v);
+  if constexpr (kAct == Act::kReLU) return ei::pmax(v, ei::pzero(v));
+  if constexpr (kAct == Act::kELU)
+    return ei::pselect(ei::pcmp_lt(ei::pzero(v), v), v, ei::pexpm1(v));
+  if constexpr (kAct == Act::kLeakyReLU)
+    return ei::pmax(v, ei::pmul(v, ei::pset1<Packet>(kLeakyReLUSlope)));
+  return v;
+}
 
 template <Act kAct>
 struct BiasEpi {
   float* c;
   Index ldc;
   const float* bias;
-  static Packet activate(Packet v) {
-    if constexpr (kAct == Act::kTanh) return ei::ptanh(v);
-    if constexpr (kAct == Act::kReLU) return ei::pmax(v, ei::pzero(v));
-    return v;
-  }
   void packet(Packet s, Index i, Index j) const {
-    ei::pstoreu(c + i + j * ldc, activate(ei::padd(s, ei::ploadu<Packet>(bias + i))));
+    ei::pstoreu(c + i + j * ldc, activate<kAct>(ei::padd(s, ei::ploadu<Packet>(bias + i))));
   }
   void tail(Packet s, Index i, Index j, int /*skip*/) const { packet(s, i, j); }
   void scalar(float s, Index i, Index j) const {
     const float v = s + bias[i];
-    if constexpr (kAct == Act::kTanh) {
-      c[i + j * ldc] = scalar_tanh(v);
+    if constexpr (kAct == Act::kTanh || kAct == Act::kELU) {
+      // Through the packet routine, so every element of a layer gets the same rounding
+      // whichever path (packet or scalar tail, any batch size) computed it.
+      c[i + j * ldc] = ei::pfirst(activate<kAct>(ei::pset1<Packet>(v)));
     } else if constexpr (kAct == Act::kReLU) {
       c[i + j * ldc] = v > 0.0f ? v : 0.0f;
+    } else if constexpr (kAct == Act::kLeakyReLU) {
+      c[i + j * ldc] = std::max(v, v * kLeakyReLUSlope);
     } else {
       c[i + j * ldc] = v;
     }
   }
 };
 
-// Backward through the activation, read off the stored output a: tanh' = 1 - a^2 and
-// relu' = [a > 0] (torch's threshold_backward also gives 0 at exactly 0).
+// Backward through the activation, read off the stored output a: tanh' = 1 - a^2,
+// relu' = [a > 0] (torch's threshold_backward also gives 0 at exactly 0), elu' = 1 for a > 0
+// and exp(v) = a + 1 below, leaky_relu' = 1 for a > 0 and the slope below (torch's
+// leaky_relu_backward: self > 0 ? grad : grad * slope; a > 0 exactly when v > 0).
 template <Act kAct>
 struct ActGradEpi {
   float* c;
@@ -97,8 +110,14 @@ struct ActGradEpi {
     Packet g;
     if constexpr (kAct == Act::kTanh) {
       g = ei::pmul(s, ei::psub(ei::pset1<Packet>(1.0f), ei::pmul(a, a)));
-    } else {
+    } else if constexpr (kAct == Act::kReLU) {
       g = ei::pand(s, ei::pcmp_lt(ei::pzero(a), a));
+    } else if constexpr (kAct == Act::kELU) {
+      g = ei::pselect(ei::pcmp_lt(ei::pzero(a), a), s,
+                      ei::pmul(s, ei::padd(a, ei::pset1<Packet>(1.0f))));
+    } else {
+      g = ei::pselect(ei::pcmp_lt(ei::pzero(a), a), s,
+                      ei::pmul(s, ei::pset1<Packet>(kLeakyReLUSlope)));
     }
     ei::pstoreu(c + i + j * ldc, g);
   }
@@ -108,8 +127,12 @@ struct ActGradEpi {
     const float a = act[i + j * ld_act];
     if constexpr (kAct == Act::kTanh) {
       c[i + j * ldc] = s * (1.0f - a * a);
-    } else {
+    } else if constexpr (kAct == Act::kReLU) {
       c[i + j * ldc] = a > 0.0f ? s : 0.0f;
+    } else if constexpr (kAct == Act::kELU) {
+      c[i + j * ldc] = a > 0.0f ? s : s * (a + 1.0f);
+    } else {
+      c[i + j * ldc] = a > 0.0f ? s : s * kLeakyReLUSlope;
     }
   }
 };
@@ -303,8 +326,13 @@ void dispatch(Epilogue epilogue, const EpilogueArgs& g, Run&& run) {
     case Epilogue::kBias: return run(BiasEpi<Act::kNone>{g.c, g.ldc, g.bias});
     case Epilogue::kBiasTanh: return run(BiasEpi<Act::kTanh>{g.c, g.ldc, g.bias});
     case Epilogue::kBiasReLU: return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
+    case Epilogue::kBiasELU: return run(BiasEpi<Act::kELU>{g.c, g.ldc, g.bias});
+    case Epilogue::kBiasLeakyReLU: return run(BiasEpi<Act::kLeakyReLU>{g.c, g.ldc, g.bias});
     case Epilogue::kTanhGrad: return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
     case Epilogue::kReLUGrad: return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
+    case Epilogue::kELUGrad: return run(ActGradEpi<Act::kELU>{g.c, g.ldc, g.act, g.ld_act});
+    case Epilogue::kLeakyReLUGrad:
+      return run(ActGradEpi<Act::kLeakyReLU>{g.c, g.ldc, g.act, g.ld_act});
   }
 }
 

@@ -14,6 +14,29 @@ namespace {
 // Below this batch size the backward input gradient uses dot products instead of transposing W
 // (measured crossover on a 64-64 layer: between 2 and 4 columns).
 constexpr Eigen::Index kMinBatchForTranspose = 3;
+
+// The fused epilogue of a hidden layer's forward product: bias + activation.
+dense::Epilogue forward_epilogue(Activation act) {
+  switch (act) {
+    case Activation::kTanh: return dense::Epilogue::kBiasTanh;
+    case Activation::kReLU: return dense::Epilogue::kBiasReLU;
+    case Activation::kELU: return dense::Epilogue::kBiasELU;
+    case Activation::kLeakyReLU: return dense::Epilogue::kBiasLeakyReLU;
+  }
+  throw std::logic_error("Mlp: unknown activation");
+}
+
+// The fused epilogue of the product that carries dL/d(layer output) back through a hidden
+// layer's activation (its derivative read off the stored output).
+dense::Epilogue backward_epilogue(Activation act) {
+  switch (act) {
+    case Activation::kTanh: return dense::Epilogue::kTanhGrad;
+    case Activation::kReLU: return dense::Epilogue::kReLUGrad;
+    case Activation::kELU: return dense::Epilogue::kELUGrad;
+    case Activation::kLeakyReLU: return dense::Epilogue::kLeakyReLUGrad;
+  }
+  throw std::logic_error("Mlp: unknown activation");
+}
 }  // namespace
 
 Mlp::Mlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act)
@@ -107,10 +130,8 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
     const Eigen::Index out = dims_[l + 1];
     Eigen::MatrixXf& z = acts_[l + 1];
     z.resize(out, batch);
-    dense::Epilogue epilogue = dense::Epilogue::kBias;
-    if (l + 1 < layers) {
-      epilogue = act_ == Activation::kTanh ? dense::Epilogue::kBiasTanh : dense::Epilogue::kBiasReLU;
-    }
+    const dense::Epilogue epilogue =
+        l + 1 < layers ? forward_epilogue(act_) : dense::Epilogue::kBias;
     const float* w = p + w_offset_[l];
     const dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = p + b_offset_[l]};
     if (out >= dense::packet_size()) {
@@ -178,16 +199,15 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
     }
 
     // dL/d(input) = W^T delta, times act'(input) when the input is a hidden activation:
-    // tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation. For the network's
-    // input only rows [first, in) are wanted: the columns [first, in) of W.
+    // e.g. tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation (dense_kernels.hpp).
+    // For the network's input only rows [first, in) are wanted: the columns [first, in) of W.
     Eigen::Index first = 0;
     dense::EpilogueArgs args;
     dense::Epilogue epilogue = dense::Epilogue::kStore;
     if (l > 0) {
       deltas_[l - 1].resize(in, batch);
       args.c = deltas_[l - 1].data();
-      epilogue =
-          act_ == Activation::kTanh ? dense::Epilogue::kTanhGrad : dense::Epilogue::kReLUGrad;
+      epilogue = backward_epilogue(act_);
       args.act = input;
       args.ld_act = in;
     } else if (grad_input != nullptr) {

@@ -54,14 +54,13 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
   if (rollout_size > std::numeric_limits<int>::max())
     out.push_back({"n_steps", "n_steps * n_envs = " + std::to_string(rollout_size) +
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
-  if (!policy.ortho_init)
-    out.push_back({"policy.ortho_init",
-                   "false (torch's default init) is not supported yet; SB3's default is true"});
-  check_net_arch(out, "policy.net_arch", policy.net_arch);
+  check_net_arch(out, "policy.net_arch", policy.net_arch.pi, policy.net_arch.vf);
   const int obs_dim = setup.observation_space.flat_dim();
   const int features = network_input_dim(out, setup.observation_space);
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
-  check_network_memory(out, "policy.net_arch", features, policy.net_arch, head, 2,
+  check_network_memory(out, "policy.net_arch", features, policy.net_arch.pi, head, 1,
+                       static_cast<double>(batch));
+  check_network_memory(out, "policy.net_arch", features, policy.net_arch.vf, 1, 1,
                        static_cast<double>(batch));
   // The rollout: observations, actions and six per-step numbers (reward, value, log-prob,
   // advantage, return, episode start) in float32.
@@ -116,17 +115,21 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
       throw std::invalid_argument("ActorCriticPolicy: action space " + action_space.describe() +
                                   " is not supported (SB3 has no distribution for Dict actions)");
   }
-  const Activation act = parse_activation(config.activation_fn);
-  // SB3 MlpPolicy / MultiInputPolicy: the towers start from the features extractor's output.
+  const Activation act = config.activation_fn;
+  // SB3 MlpPolicy / MultiInputPolicy: the towers start from the features extractor's output;
+  // MlpExtractor's policy_net (net_arch.pi) + action_net, value_net (net_arch.vf) + value head.
   const int obs_dim = encoder_.features_dim();
-  actor_ = Mlp(obs_dim, config.net_arch, action_net_size(action_space), act);
-  critic_ = Mlp(obs_dim, config.net_arch, 1, act);
+  actor_ = Mlp(obs_dim, config.net_arch.pi, action_net_size(action_space), act);
+  critic_ = Mlp(obs_dim, config.net_arch.vf, 1, act);
   if (config.ortho_init) {
     // SB3 policies.py: module_gains = {mlp_extractor: sqrt(2), action_net: 0.01, value_net: 1}.
     actor_.init_orthogonal(init_rng, std::sqrt(2.0f), 0.01f);
     critic_.init_orthogonal(init_rng, std::sqrt(2.0f), 1.0f);
   } else {
-    throw std::invalid_argument("ortho_init: false is not supported (torch's default init)");
+    // SB3 ActorCriticPolicy._build skips init_weights: every Linear (towers, action_net,
+    // value_net) keeps torch's default init; log_std is still log_std_init (below).
+    actor_.init_torch_default(init_rng);
+    critic_.init_torch_default(init_rng);
   }
   log_std_ = Eigen::VectorXf::Constant(gaussian() ? action_dim_ : 0,
                                        static_cast<float>(config.log_std_init));

@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
+#include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/space.hpp"
 #include "rlrun/core/tensor.hpp"
@@ -36,17 +38,18 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
 int action_net_size(const Space& action_space);
 
 struct ActorCriticPolicyConfig {
-  std::vector<int> net_arch = {64, 64};  // hidden sizes of both the actor and the critic tower
-  std::string activation_fn = "tanh";   // tanh or relu (SB3 default nn.Tanh)
-  bool ortho_init = true;               // orthogonal init with SB3's gains
+  NetArchPiVf net_arch = {{64, 64}, {64, 64}};  // actor (pi) and critic (vf) hidden sizes
+  Activation activation_fn = Activation::kTanh;  // SB3 default nn.Tanh
+  bool ortho_init = true;  // orthogonal init with SB3's gains; false: torch's default init
   double log_std_init = 0.0;            // initial log std of Gaussian actions
 
   template <class V>
   void visit(V& v) {
-    v("net_arch", net_arch, "hidden layer sizes of the actor and of the critic", layer_width());
-    v("activation_fn", activation_fn, "activation between hidden layers: tanh or relu",
-      activation_names());
-    v("ortho_init", ortho_init, "orthogonal init (gains sqrt(2), 0.01 actor head, 1 critic head)");
+    v("net_arch", net_arch, kNetArchPiVfDoc, layer_width());
+    v("activation_fn", activation_fn, kActivationFnDoc);
+    v("ortho_init", ortho_init,
+      "orthogonal init (gains sqrt(2), 0.01 actor head, 1 critic head); false: torch's default "
+      "Linear init");
     v("log_std_init", log_std_init, "initial log standard deviation for Box actions",
       in_range(-20, 20));
   }

@@ -16,7 +16,11 @@ void check_net_arch(ConfigProblems& out, const std::string& key, const std::vect
                             std::to_string(kMaxLayers)});
 }
 
-OneOf activation_names() { return OneOf{{"tanh", "relu"}}; }
+void check_net_arch(ConfigProblems& out, const std::string& key, const std::vector<int>& actor,
+                    const std::vector<int>& critic) {
+  check_net_arch(out, key, actor);
+  if (critic != actor) check_net_arch(out, key, critic);
+}
 
 double mlp_parameter_count(int in, const std::vector<int>& hidden, int out) {
   double count = 0;

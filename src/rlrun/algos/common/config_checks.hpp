@@ -16,9 +16,9 @@ inline constexpr int kMaxLayers = 64;
 // Per-layer bounds of a `net_arch` list (the field constraint) and its length.
 inline Bounds layer_width() { return in_range(1, kMaxLayerWidth); }
 void check_net_arch(ConfigProblems& out, const std::string& key, const std::vector<int>& net_arch);
-
-// An activation name rlrun implements (nn/activation.hpp).
-OneOf activation_names();
+// The same for a net_arch with an actor and a critic list (net_arch.hpp): each list once.
+void check_net_arch(ConfigProblems& out, const std::string& key, const std::vector<int>& actor,
+                    const std::vector<int>& critic);
 
 // Parameters of an MLP in -> hidden... -> out (weights and biases).
 double mlp_parameter_count(int in, const std::vector<int>& hidden, int out);

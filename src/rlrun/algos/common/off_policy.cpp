@@ -117,17 +117,17 @@ void OffPolicyState::read_state(const StateReader& in) {
 }
 
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
-                            const OffPolicyConfig& config, const std::vector<int>& net_arch,
+                            const OffPolicyConfig& config, const NetArchPiQf& net_arch,
                             int n_critics, int actor_outputs, int actor_copies) {
   check_box_actor_spaces(out, setup);
   check_gradient_steps(out, config.gradient_steps);
-  check_net_arch(out, "policy.net_arch", net_arch);
+  check_net_arch(out, "policy.net_arch", net_arch.pi, net_arch.qf);
   const int obs = network_input_dim(out, setup.observation_space);
   const int act = setup.action_space.flat_dim();
-  check_network_memory(out, "policy.net_arch", obs, net_arch, actor_outputs, actor_copies,
+  check_network_memory(out, "policy.net_arch", obs, net_arch.pi, actor_outputs, actor_copies,
                        config.batch_size);
   // Each critic, its target and the second core's activations of both.
-  check_network_memory(out, "policy.net_arch", obs + act, net_arch, 1, 4 * n_critics,
+  check_network_memory(out, "policy.net_arch", obs + act, net_arch.qf, 1, 4 * n_critics,
                        config.batch_size);
   check_replay_memory(out, config.buffer_size, setup);
 }

@@ -17,6 +17,7 @@
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
+#include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_fields.hpp"
@@ -101,7 +102,7 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
 // (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the second core's
 // activations) and of n_critics critics with their targets, and the replay buffer's.
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
-                            const OffPolicyConfig& config, const std::vector<int>& net_arch,
+                            const OffPolicyConfig& config, const NetArchPiQf& net_arch,
                             int n_critics, int actor_outputs, int actor_copies);
 
 // SB3 OffPolicyAlgorithm: the replay buffer (allocated on first use: learn or resume, never for

@@ -6,7 +6,7 @@
 namespace rlrun {
 
 Mlp make_q_network(int obs_dim, int n_actions, const QNetworkConfig& config, Rng& init_rng) {
-  Mlp net(obs_dim, config.net_arch, n_actions, parse_activation(config.activation_fn));
+  Mlp net(obs_dim, config.net_arch, n_actions, config.activation_fn);
   net.init_torch_default(init_rng);
   return net;
 }

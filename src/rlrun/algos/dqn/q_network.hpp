@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/core/tensor.hpp"
@@ -15,19 +16,18 @@
 namespace rlrun {
 
 struct QNetworkConfig {
-  std::vector<int> net_arch = {64, 64};  // hidden layer sizes
-  std::string activation_fn = "relu";    // relu or tanh (SB3 QNetwork default nn.ReLU)
+  std::vector<int> net_arch = {64, 64};          // hidden layer sizes
+  Activation activation_fn = Activation::kReLU;  // SB3 QNetwork default nn.ReLU
 
   template <class V>
   void visit(V& v) {
     v("net_arch", net_arch, "hidden layer sizes of the Q-network", layer_width());
-    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh",
-      activation_names());
+    v("activation_fn", activation_fn, kActivationFnDoc);
   }
 };
 
 // obs_dim -> net_arch -> n_actions with torch's default Linear init from rng. Throws
-// std::invalid_argument for a bad size or activation name.
+// std::invalid_argument for a bad size.
 Mlp make_q_network(int obs_dim, int n_actions, const QNetworkConfig& config, Rng& init_rng);
 
 // Column-wise argmax of q (n_actions x batch) into actions (1 x batch) as floats, offset by

@@ -37,10 +37,9 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
       action_dim_(setup.action_space.flat_dim()),
       train_rng_(setup.seed ^ kTrainStream),
       predict_rng_(setup.seed ^ kPredictStream),
-      actor_(features_dim(), action_dim_, config.policy.net_arch,
-             parse_activation(config.policy.activation_fn)),
-      critic_(features_dim(), action_dim_, config.policy.net_arch,
-              parse_activation(config.policy.activation_fn), config.policy.n_critics),
+      actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn),
+      critic_(features_dim(), action_dim_, config.policy.net_arch.qf, config.policy.activation_fn,
+              config.policy.n_critics),
       critic_target_(critic_),
       ent_coef_(config.ent_coef, config.target_entropy, action_dim_),
       acting_(setup, config.action_noise) {

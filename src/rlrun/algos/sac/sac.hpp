@@ -14,8 +14,10 @@
 #include <vector>
 
 #include "rlrun/algos/common/action_noise.hpp"
+#include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
+#include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/sac/entropy_coefficient.hpp"
 #include "rlrun/algos/sac/sac_actor.hpp"
@@ -26,15 +28,14 @@ namespace rlrun {
 
 // SB3 SACPolicy / MlpPolicy keyword arguments (policy_kwargs in rl-zoo).
 struct SacPolicyConfig {
-  std::vector<int> net_arch = {256, 256};  // hidden sizes of the actor and of each critic
-  std::string activation_fn = "relu";      // relu or tanh (SB3 default nn.ReLU)
+  NetArchPiQf net_arch = {{256, 256}, {256, 256}};  // actor (pi), each critic (qf)
+  Activation activation_fn = Activation::kReLU;          // SB3 default nn.ReLU
   int n_critics = 2;                       // number of Q-networks (clipped double-Q: 2)
 
   template <class V>
   void visit(V& v) {
-    v("net_arch", net_arch, "hidden layer sizes of the actor and of each critic", layer_width());
-    v("activation_fn", activation_fn, "activation between hidden layers: relu or tanh",
-      activation_names());
+    v("net_arch", net_arch, kNetArchPiQfDoc, layer_width());
+    v("activation_fn", activation_fn, kActivationFnDoc);
     v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
   }
 };
