@@ -32,11 +32,15 @@ ActorCriticPolicyConfig small_policy() {
 }
 
 // Finite-difference check of d(PPO loss)/d(every parameter) through the whole policy.
+// With use_sde the Box head is gSDE's (log_std a latent x action matrix, or latent x 1;
+// cfg.full_std says which).
 void check_policy_gradient(const Space& obs_space, const Space& act_space,
                            const ActorCriticPolicyConfig& cfg = small_policy(), float clip = 0.2f,
-                           std::optional<float> clip_vf = 0.1f, float ent_coef = 0.05f) {
+                           std::optional<float> clip_vf = 0.1f, float ent_coef = 0.05f,
+                           bool use_sde = false) {
   Rng rng(3);
-  ActorCriticPolicy policy(obs_space, act_space, cfg, rng);
+  ActorCriticPolicy policy(obs_space, act_space, cfg, rng, use_sde);
+  if (use_sde) policy.reset_noise(rng, 16);  // one matrix per sample: th.bmm
   const int n = 16, obs_dim = obs_space.flat_dim();
   Batch b;
   b.obs = Eigen::MatrixXf::Random(obs_dim, n);
@@ -67,8 +71,20 @@ void check_policy_gradient(const Space& obs_space, const Space& act_space,
   loss_of(policy, b, clip, clip_vf, ent_coef, gv, gl, ge);
   policy.backward(gv, gl, ge);
   int checked = 0;
+  // gSDE in PPO detaches the latent features in the variance (SB3: learn_features=False), so a
+  // finite difference of an actor hidden-layer weight, which moves the latent, measures a path
+  // autograd does not take: those are checked through the Gaussian head; the action_net, the
+  // critic and the log_std matrix are checked here.
+  const Mlp& actor = policy.actor();
+  const int head = actor.num_layers() - 1;
+  const Eigen::Index hidden_params =
+      actor.num_params() - static_cast<Eigen::Index>(actor.layer_out(head)) *
+                               (actor.layer_in(head) + 1);
+  bool actor_block = true;
   for (ParamBlock block : policy.param_blocks()) {
-    for (Eigen::Index i = 0; i < block.size; i += 7) {
+    const Eigen::Index first = actor_block && use_sde ? hidden_params : 0;
+    actor_block = false;
+    for (Eigen::Index i = first; i < block.size; i += 7) {
       const float saved = block.value[i];
       const float eps = 1e-3f;
       block.value[i] = saved + eps;
@@ -111,6 +127,17 @@ TEST_CASE("PPO loss gradient matches finite differences with separate pi/vf size
   cfg.net_arch = {{}, {24}};
   cfg.activation_fn = Activation::kLeakyReLU;
   check_policy_gradient(Space::box(-1.0f, 1.0f, {6}), Space::discrete(3), cfg);
+}
+
+TEST_CASE("PPO loss gradient through the policy matches finite differences (Box, gSDE)",
+          "[algos][ppo][gradcheck][gsde]") {
+  const bool full_std = GENERATE(true, false);
+  INFO("full_std " << full_std);
+  ActorCriticPolicyConfig cfg = small_policy();
+  cfg.full_std = full_std;
+  cfg.log_std_init = -0.5;
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}), cfg, 0.2f,
+                        0.1f, 0.05f, true);
 }
 
 TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiDiscrete)",

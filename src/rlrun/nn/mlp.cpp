@@ -146,9 +146,15 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
 }
 
 void Mlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                   Eigen::MatrixXf* grad_input) {
+                   Eigen::MatrixXf* grad_input, const Eigen::MatrixXf* grad_last_hidden) {
   if (grad_input != nullptr) grad_input->resize(in_dim(), acts_[0].cols());
-  backward_pass(params_.data(), grad_output, true, grad_input ? grad_input->data() : nullptr, 0);
+  if (grad_last_hidden != nullptr &&
+      (grad_last_hidden->rows() != last_hidden().rows() ||
+       grad_last_hidden->cols() != last_hidden().cols()))
+    throw std::invalid_argument("Mlp::backward: grad_last_hidden does not match last_hidden()");
+  backward_pass(params_.data(), grad_output, true, grad_input ? grad_input->data() : nullptr, 0,
+                grad_last_hidden ? grad_last_hidden->data() : nullptr,
+                grad_last_hidden ? grad_last_hidden->rows() : 0);
 }
 
 void Mlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
@@ -163,7 +169,8 @@ void Mlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
 }
 
 void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                        bool param_grads, float* grad_input, int first_input_row) {
+                        bool param_grads, float* grad_input, int first_input_row,
+                        const float* grad_hidden, Eigen::Index ld_grad_hidden) {
   const int layers = num_layers();
   const Eigen::Index batch = acts_[0].cols();
   if (grad_output.rows() != out_dim() || grad_output.cols() != batch) {
@@ -229,6 +236,25 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
     } else {
       dense::gemm_dot(rows, batch, out, w + first * out, out, delta, ld_delta, epilogue, args);
     }
+    if (grad_hidden != nullptr && l + 1 == layers && l > 0)
+      add_hidden_gradient(grad_hidden, ld_grad_hidden, input, in, batch, deltas_[l - 1]);
+  }
+}
+
+void Mlp::add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const float* act,
+                              Eigen::Index rows, Eigen::Index batch, Eigen::MatrixXf& delta) const {
+  // delta = (W^T delta_next) * act'(z) already; (W^T delta_next + g) * act'(z) adds g * act'(z),
+  // with act' read off the activation as the backward epilogues do.
+  const Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>> g(grad, rows, batch,
+                                                                     Eigen::OuterStride<>(ld_grad));
+  const Eigen::Map<const Eigen::MatrixXf> a(act, rows, batch);
+  switch (act_) {
+    case Activation::kTanh:
+      delta.array() += g.array() * (1.0f - a.array().square());
+      break;
+    case Activation::kReLU:
+      delta.array() += (a.array() > 0.0f).select(g.array(), 0.0f);
+      break;
   }
 }
 

@@ -79,13 +79,20 @@ class Mlp {
   const Eigen::MatrixXf& forward(const Eigen::Ref<const Eigen::MatrixXf>& x);
   // The output of the last forward.
   const Eigen::MatrixXf& output() const { return acts_.back(); }
+  // The input of the output layer in the last forward: the last hidden layer's activations
+  // (SB3's latent_pi, what gSDE's noise reads), or the network's input without hidden layers.
+  const Eigen::MatrixXf& last_hidden() const { return acts_[acts_.size() - 2]; }
 
   // Backpropagates dL/doutput (out_dim x batch of the last forward; any outer stride) and ADDS
   // the parameter gradients to grads() (so several losses through the same network sum, as in
   // torch before optimizer.zero_grad()). If grad_input is given it is resized to in_dim x batch
   // and receives dL/dx (e.g. dQ/da for SAC's actor loss through the critic).
+  // grad_last_hidden, if given, is a further dL/d(last_hidden()) (hidden x batch) from a loss
+  // that reads the latent features directly (gSDE with learn_features); it is ignored without
+  // hidden layers (the input has no parameters).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                Eigen::MatrixXf* grad_input = nullptr);
+                Eigen::MatrixXf* grad_input = nullptr,
+                const Eigen::MatrixXf* grad_last_hidden = nullptr);
   // Backpropagates dL/doutput of the last forward to the input only: grad_input is resized to
   // (in_dim - first_input_row) x batch and receives rows [first_input_row, in_dim) of dL/dx;
   // grads() is left unchanged. This is about half of backward()'s work: what an actor loss
@@ -102,8 +109,14 @@ class Mlp {
   // The layers' backward pass: parameter gradients when param_grads, dL/dx rows
   // [first_input_row, in_dim) into grad_input when it is given ((in_dim - first_input_row) x
   // batch, column-major, leading dimension its row count; e.g. columns of a larger matrix).
+  // grad_hidden (optional): dL/d(last_hidden()) added before the last hidden layer's
+  // activation derivative, column-major with leading dimension ld_grad_hidden.
   void backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                     bool param_grads, float* grad_input, int first_input_row);
+                     bool param_grads, float* grad_input, int first_input_row,
+                     const float* grad_hidden = nullptr, Eigen::Index ld_grad_hidden = 0);
+  // delta (the last hidden layer's dL/dz) += grad * act'(act), act the layer's activations.
+  void add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const float* act,
+                           Eigen::Index rows, Eigen::Index batch, Eigen::MatrixXf& delta) const;
 
   std::vector<int> hidden_;
   std::vector<int> dims_;  // in, hidden..., out

@@ -51,17 +51,30 @@ void SplitMlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
   backward_halves(grad_output, false);
 }
 
-void SplitMlp::zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
-  backward_halves(grad_output, true);
+void SplitMlp::zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                                      const Eigen::MatrixXf* grad_last_hidden) {
+  backward_halves(grad_output, true, grad_last_hidden);
+}
+
+const Eigen::MatrixXf& SplitMlp::last_hidden() {
+  if (parts_ == 1) return net_.last_hidden();
+  const Mlp& replica = *replica_;
+  const Eigen::Index first = net_.last_hidden().cols();
+  last_hidden_.resize(net_.last_hidden().rows(), first + replica.last_hidden().cols());
+  last_hidden_.leftCols(first) = net_.last_hidden();
+  last_hidden_.rightCols(replica.last_hidden().cols()) = replica.last_hidden();
+  return last_hidden_;
 }
 
 void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                               bool zero_first) {
+                               bool zero_first, const Eigen::MatrixXf* grad_last_hidden) {
   if (parts_ == 1) {
     if (zero_first) net_.zero_grad();
-    net_.backward(grad_output);
+    net_.backward(grad_output, nullptr, grad_last_hidden);
     return;
   }
+  if (grad_last_hidden != nullptr && grad_last_hidden->cols() != grad_output.cols())
+    throw std::invalid_argument("SplitMlp::backward: grad_last_hidden has the wrong batch");
   const Eigen::Index n = grad_output.cols();
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
@@ -69,7 +82,11 @@ void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_out
     const Part cols = column_part(n, k);
     Mlp& half = k == 0 ? net_ : replica;
     if (k == 1 || zero_first) half.zero_grad();  // the replica holds the second half's alone
-    half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, nullptr, 0);
+    const float* grad_hidden =
+        grad_last_hidden ? grad_last_hidden->data() + cols.begin * grad_last_hidden->rows()
+                         : nullptr;
+    half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, nullptr, 0,
+                       grad_hidden, grad_last_hidden ? grad_last_hidden->rows() : 0);
   });
   // grads += the second half's gradient, each core adding its part of the parameter vector.
   run_parts(fork_join_, 2, [&](int k) {

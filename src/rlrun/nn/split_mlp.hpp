@@ -44,12 +44,17 @@ class SplitMlp {
   // Mlp::forward of a whole batch x (in_dim x n): out_dim x n, valid until the next forward.
   const Eigen::MatrixXf& forward(const Eigen::Ref<const Eigen::MatrixXf>& x);
   const Eigen::MatrixXf& output() const { return parts_ == 1 ? net_.output() : output_; }
+  // Mlp::last_hidden of the whole last forward (the halves gathered into one matrix on a split
+  // pass; only callers that need the latent features pay for the copy).
+  const Eigen::MatrixXf& last_hidden();
   // Mlp::backward of the last forward (dL/doutput, out_dim x n): ADDS the whole batch's
   // parameter gradient to grads().
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
   // torch's optimizer.zero_grad(); loss.backward(): grads() becomes the whole batch's gradient
   // (the same bits as zero_grad() then backward(), the zeroing done on both cores).
-  void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
+  // grad_last_hidden (optional): a further dL/d(last_hidden()), as in Mlp::backward.
+  void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
+                              const Eigen::MatrixXf* grad_last_hidden = nullptr);
   // Mlp::backward_input of the last forward: rows [first_input_row, in_dim) of dL/dx, for the
   // whole batch, into grad_input; grads() is left unchanged.
   void backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
@@ -58,13 +63,15 @@ class SplitMlp {
  private:
   // The second half's network, made on first use.
   Mlp& replica();
-  void backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first);
+  void backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
+                       const Eigen::MatrixXf* grad_last_hidden = nullptr);
 
   Mlp net_;
   std::optional<Mlp> replica_;
   ForkJoin* fork_join_ = nullptr;
   int parts_ = 1;           // of the last forward
   Eigen::MatrixXf output_;  // the last split forward's output, both halves
+  Eigen::MatrixXf last_hidden_;  // last_hidden() of a split forward, both halves
 };
 
 }  // namespace rlrun

@@ -14,7 +14,9 @@ namespace rlrun {
 
 ConfigProblems A2C::check(const Config& config, const AlgorithmSetup& setup) {
   const int64_t rollout = static_cast<int64_t>(config.n_steps) * setup.n_envs;
-  return check_actor_critic(config.policy, rollout, rollout, setup);
+  ConfigProblems out = check_actor_critic(config.policy, rollout, rollout, setup);
+  check_use_sde(out, config.use_sde, setup);
+  return out;
 }
 
 A2C::A2C(const Config& config, const AlgorithmSetup& setup)
@@ -22,8 +24,9 @@ A2C::A2C(const Config& config, const AlgorithmSetup& setup)
       setup_(setup),
       init_rng_(setup.seed),
       action_rng_(setup.seed ^ kActionStream),
-      policy_(setup.observation_space, setup.action_space, config.policy, init_rng_),
-      collector_(setup, config.n_steps, policy_.action_dim()) {
+      policy_(setup.observation_space, setup.action_space, config.policy, init_rng_,
+              config.use_sde),
+      collector_(setup, config.n_steps, policy_.action_dim(), config.sde_sample_freq) {
   if (config_.use_rms_prop) {
     // SB3 A2C: RMSprop(alpha=0.99, eps=rms_prop_eps, weight_decay=0).
     RmsPropConfig rms;
@@ -112,6 +115,7 @@ void A2C::save_training_state(StateWriter& out) const {
   if (rmsprop_) write_rmsprop(out.sub("optimizer"), *rmsprop_);
   if (adam_) write_adam(out.sub("optimizer"), *adam_);
   collector_.write_state(out.sub("collector"));
+  if (policy_.use_sde()) write_sde(out.sub("sde"), policy_.sde());
 }
 
 void A2C::load_training_state(const StateReader& in) {
@@ -121,6 +125,7 @@ void A2C::load_training_state(const StateReader& in) {
   if (rmsprop_) read_rmsprop(in.sub("optimizer"), *rmsprop_);
   if (adam_) read_adam(in.sub("optimizer"), *adam_);
   collector_.read_state(in.sub("collector"));
+  if (policy_.use_sde()) read_sde(in.sub("sde"), policy_.sde());
 }
 
 }  // namespace rlrun

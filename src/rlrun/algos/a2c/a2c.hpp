@@ -27,6 +27,8 @@ class A2C : public Algorithm {
     double vf_coef = 0.5;
     double max_grad_norm = 0.5;
     double rms_prop_eps = 1e-5;
+    bool use_sde = false;
+    int sde_sample_freq = -1;
     bool use_rms_prop = true;
     bool normalize_advantage = false;
     ActorCriticPolicyConfig policy;
@@ -44,6 +46,9 @@ class A2C : public Algorithm {
       v("max_grad_norm", max_grad_norm, "global gradient-norm clipping", positive());
       v("rms_prop_eps", rms_prop_eps, "RMSprop epsilon", positive());
       v("use_rms_prop", use_rms_prop, "RMSprop (true, SB3 default) or Adam");
+      v("use_sde", use_sde, "generalized State-Dependent Exploration (gSDE) for Box actions");
+      v("sde_sample_freq", sde_sample_freq,
+        "gSDE: new noise matrix every N steps (-1: only at the start of each rollout)");
       v("normalize_advantage", normalize_advantage, "normalise advantages over the rollout");
       v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");
     }

@@ -88,8 +88,12 @@ int action_net_size(const Space& action_space) {
 }
 
 ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,
-                                     const ActorCriticPolicyConfig& config, Rng& init_rng)
+                                     const ActorCriticPolicyConfig& config, Rng& init_rng,
+                                     bool use_sde)
     : encoder_(observation_space) {
+  if (use_sde && !action_space.is_box())
+    throw std::invalid_argument("use_sde: gSDE needs a Box action space, not " +
+                                action_space.describe());
   // SB3 make_proba_distribution: the distribution follows the action space's class.
   switch (action_space.kind()) {
     case SpaceKind::kDiscrete:
@@ -131,9 +135,24 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
     actor_.init_torch_default(init_rng);
     critic_.init_torch_default(init_rng);
   }
-  log_std_ = Eigen::VectorXf::Constant(gaussian() ? action_dim_ : 0,
+  if (use_sde) {
+    // SB3 _build: proba_distribution_net(latent_dim=latent_dim_pi, latent_sde_dim=latent_dim_pi).
+    head_ = Head::kStateDependentNoise;
+    StateDependentNoiseOptions options;
+    options.full_std = config.full_std;
+    options.use_expln = config.use_expln;
+    sde_ = StateDependentNoise(actor_.layer_in(actor_.num_layers() - 1), action_dim_,
+                               static_cast<float>(config.log_std_init), options);
+    sde_.sample_weights(init_rng, 1);
+  }
+  log_std_ = Eigen::VectorXf::Constant(head_ == Head::kDiagGaussian ? action_dim_ : 0,
                                        static_cast<float>(config.log_std_init));
   log_std_grad_ = Eigen::VectorXf::Zero(log_std_.size());
+}
+
+void ActorCriticPolicy::reset_noise(Rng& rng, int n_envs) {
+  if (!use_sde()) throw std::logic_error("reset_noise() is only available when using gSDE");
+  sde_.sample_weights(rng, n_envs);
 }
 
 void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
@@ -164,6 +183,15 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
     case Head::kDiagGaussian:
       gaussian_.set(head, log_std_);
       draw(gaussian_, rng, deterministic, actions, log_probs);
+      break;
+    case Head::kStateDependentNoise:
+      // The noise comes from the exploration matrices (reset_noise), not from rng.
+      sde_.set(head, actor_.last_hidden());
+      if (deterministic)
+        sde_.mode(actions);
+      else
+        sde_.sample(actions);
+      sde_.log_prob(actions, log_probs);
       break;
   }
   values = critic_.forward(features);
@@ -206,6 +234,10 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
         gaussian_.set(head, log_std_);
         score(gaussian_, actions, log_prob, entropy);
         break;
+      case Head::kStateDependentNoise:
+        sde_.set(head, actor_.last_hidden());
+        score(sde_, actions, log_prob, entropy);
+        break;
     }
   };
   auto critic_part = [&] { values = critic_.forward(features); };
@@ -230,6 +262,10 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
         gaussian_.backward(actions_, grad_log_prob, grad_entropy, grad_head_, grad_log_std_batch_);
         log_std_grad_ += grad_log_std_batch_;
         break;
+      case Head::kStateDependentNoise:
+        // Adds to the log_std matrix's gradient; the latent is detached (learn_features false).
+        sde_.backward_scored(actions_, grad_log_prob, grad_entropy, grad_head_);
+        break;
     }
     actor_.backward(grad_head_);
   };
@@ -252,29 +288,36 @@ void ActorCriticPolicy::zero_grad() {
   actor_.zero_grad();
   critic_.zero_grad();
   log_std_grad_.setZero();
+  if (use_sde()) sde_.zero_grad();
 }
 
 std::vector<ParamBlock> ActorCriticPolicy::param_blocks() {
   std::vector<ParamBlock> blocks{actor_.block(), critic_.block()};
-  if (gaussian()) blocks.push_back({log_std_.data(), log_std_grad_.data(), log_std_.size()});
+  if (head_ == Head::kDiagGaussian)
+    blocks.push_back({log_std_.data(), log_std_grad_.data(), log_std_.size()});
+  if (use_sde()) blocks.push_back(sde_.block());
   return blocks;
 }
 
 double ActorCriticPolicy::mean_std() const {
   if (!gaussian()) return std::nan("");
+  // SB3 ppo.py / a2c.py: th.exp(self.policy.log_std).mean(), whatever get_std would say.
+  if (use_sde()) return sde_.log_std().array().exp().mean();
   return log_std_.array().exp().mean();
 }
 
 void ActorCriticPolicy::save(TensorMap& tensors) const {
   save_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   save_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
-  if (gaussian()) tensors["log_std"] = to_tensor(log_std_);
+  if (head_ == Head::kDiagGaussian) tensors["log_std"] = to_tensor(log_std_);
+  if (use_sde()) tensors["log_std"] = to_tensor(sde_.log_std());
 }
 
 void ActorCriticPolicy::load(const TensorMap& tensors) {
   load_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   load_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
-  if (gaussian()) from_tensor(tensors, "log_std", log_std_);
+  if (head_ == Head::kDiagGaussian) from_tensor(tensors, "log_std", log_std_);
+  if (use_sde()) from_tensor(tensors, "log_std", sde_.log_std());
 }
 
 }  // namespace rlrun

@@ -4,7 +4,9 @@
 // orthogonal init with gains sqrt(2) (towers), 0.01 (action_net) and 1 (value_net), and the
 // action distribution SB3's make_proba_distribution (common/distributions.py) picks: Categorical
 // for Discrete, MultiCategorical for MultiDiscrete, Bernoulli for MultiBinary, and a diagonal
-// Gaussian with a state-independent `log_std` parameter for Box actions.
+// Gaussian with a state-independent `log_std` parameter for Box actions — or, with use_sde,
+// gSDE's StateDependentNoiseDistribution on the actor's latent features (learn_features false:
+// the latent is detached, as SB3's ActorCriticPolicy sets it).
 #include <Eigen/Core>
 #include <functional>
 #include <string>
@@ -23,6 +25,7 @@
 #include "rlrun/nn/mlp.hpp"
 #include "rlrun/nn/multi_categorical.hpp"
 #include "rlrun/nn/param_block.hpp"
+#include "rlrun/nn/state_dependent_noise.hpp"
 
 namespace rlrun {
 
@@ -42,6 +45,8 @@ struct ActorCriticPolicyConfig {
   Activation activation_fn = Activation::kTanh;  // SB3 default nn.Tanh
   bool ortho_init = true;  // orthogonal init with SB3's gains; false: torch's default init
   double log_std_init = 0.0;            // initial log std of Gaussian actions
+  bool full_std = true;                 // gSDE: a std per (latent feature, action)
+  bool use_expln = false;               // gSDE: expln instead of exp for the std
 
   template <class V>
   void visit(V& v) {
@@ -52,22 +57,41 @@ struct ActorCriticPolicyConfig {
       "Linear init");
     v("log_std_init", log_std_init, "initial log standard deviation for Box actions",
       in_range(-20, 20));
+    v("full_std", full_std,
+      "gSDE (use_sde): log_std per latent feature and action (true) or per feature (false)");
+    v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
   }
 };
 
 class ActorCriticPolicy {
  public:
   // The distribution over actions, from the action space's kind.
-  enum class Head { kCategorical, kMultiCategorical, kBernoulli, kDiagGaussian };
+  enum class Head {
+    kCategorical,
+    kMultiCategorical,
+    kBernoulli,
+    kDiagGaussian,
+    kStateDependentNoise
+  };
 
   // Observations of any space (ObservationEncoder: one-hots for Discrete values, Dict keys
-  // concatenated); actions of any space but Dict (std::invalid_argument).
+  // concatenated); actions of any space but Dict (std::invalid_argument). use_sde (Box actions
+  // only, else std::invalid_argument) picks gSDE; its first exploration matrix is drawn from
+  // init_rng after the weights, as SB3's proba_distribution_net samples one.
   ActorCriticPolicy(const Space& observation_space, const Space& action_space,
-                    const ActorCriticPolicyConfig& config, Rng& init_rng);
+                    const ActorCriticPolicyConfig& config, Rng& init_rng, bool use_sde = false);
 
   Head head() const { return head_; }
   // Box actions: a Gaussian with the learned log_std (SB3 logs train/std).
-  bool gaussian() const { return head_ == Head::kDiagGaussian; }
+  bool gaussian() const {
+    return head_ == Head::kDiagGaussian || head_ == Head::kStateDependentNoise;
+  }
+  bool use_sde() const { return head_ == Head::kStateDependentNoise; }
+  // SB3 reset_noise(n_envs): new exploration matrices (gSDE only; std::logic_error otherwise).
+  void reset_noise(Rng& rng, int n_envs);
+  // The gSDE distribution (its log_std and exploration matrices); empty without use_sde.
+  const StateDependentNoise& sde() const { return sde_; }
+  StateDependentNoise& sde() { return sde_; }
   // Floats per action (the rollout buffer's rows): 1 for Discrete, one per entry otherwise.
   int action_dim() const { return action_dim_; }
 
@@ -89,10 +113,12 @@ class ActorCriticPolicy {
 
   void zero_grad();
   std::vector<ParamBlock> param_blocks();
-  // exp(log_std).mean(), SB3's train/std; NaN without a Gaussian head.
+  // exp(log_std).mean(), SB3's train/std (over the log_std matrix with gSDE); NaN without a
+  // Gaussian head.
   double mean_std() const;
 
   // SB3 state_dict names: mlp_extractor.policy_net.0.weight, action_net.weight, log_std, ...
+  // (gSDE's log_std is latent_dim x action_dim, or latent_dim x 1 without full_std).
   void save(TensorMap& tensors) const;
   void load(const TensorMap& tensors);
 
@@ -114,6 +140,7 @@ class ActorCriticPolicy {
   MultiCategorical multi_categorical_;
   Bernoulli bernoulli_;
   DiagGaussian gaussian_;
+  StateDependentNoise sde_;
   // Workspaces for backward.
   Eigen::MatrixXf actions_, grad_head_, gaussian_sample_;
   Eigen::VectorXf grad_log_std_batch_;

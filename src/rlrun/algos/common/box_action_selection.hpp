@@ -78,7 +78,12 @@ class ActingCopy {
   void invalidate() { stale_ = true; }
   Actor& get() {
     if (stale_) {
-      copy_.net().params() = trained_->net().params();  // same size: a copy, no allocation
+      // Same sizes: copies, no allocation. An actor with more parameters than its network
+      // (SAC's gSDE log_std) says how to copy them.
+      if constexpr (requires(Actor& to, const Actor& from) { to.copy_parameters_from(from); })
+        copy_.copy_parameters_from(*trained_);
+      else
+        copy_.net().params() = trained_->net().params();
       stale_ = false;
     }
     return copy_;

@@ -72,6 +72,12 @@ void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup) {
     }
 }
 
+void check_use_sde(ConfigProblems& out, bool use_sde, const AlgorithmSetup& setup) {
+  if (use_sde && !setup.action_space.is_box())
+    out.push_back({"use_sde", "gSDE can only be used with continuous (Box) actions, not " +
+                                  setup.action_space.describe()});
+}
+
 int network_input_dim(ConfigProblems& out, const Space& observation_space) {
   try {
     return ObservationEncoder(observation_space).features_dim();

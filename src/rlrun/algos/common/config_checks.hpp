@@ -40,6 +40,10 @@ void check_gradient_steps(ConfigProblems& out, int gradient_steps);
 // be any space: the networks see them through an ObservationEncoder.
 void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup);
 
+// SB3 BaseAlgorithm: "generalized State-Dependent Exploration (gSDE) can only be used with
+// continuous actions": a problem at `use_sde` unless the actions are a Box.
+void check_use_sde(ConfigProblems& out, bool use_sde, const AlgorithmSetup& setup);
+
 // What a network sees of one observation (ObservationEncoder::features_dim: one-hots for
 // Discrete values, Dict keys concatenated); when the space has too many features, the problem
 // is added under `id` and the flat size returned so that later checks can still run.

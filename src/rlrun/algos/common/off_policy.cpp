@@ -58,6 +58,7 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
     log.record("time/fps", std::floor(static_cast<double>(num_timesteps - start_timesteps) / elapsed));
     log.record("time/time_elapsed", std::floor(elapsed));
     log.record("time/total_timesteps", static_cast<double>(num_timesteps));
+    if (callbacks.record_rollout_logs) callbacks.record_rollout_logs(log);
     log.dump(num_timesteps);
     if (hooks.on_log) hooks.on_log(num_timesteps);
   };
@@ -68,6 +69,7 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
     bool continue_training = true;
     while (config.train_freq.episodes ? collected_episodes < config.train_freq.frequency
                                       : collected_steps < config.train_freq.frequency) {
+      if (callbacks.before_collect_step) callbacks.before_collect_step(collected_steps);
       const bool warmup = num_timesteps < config.learning_starts;
       callbacks.select_actions(last_obs, warmup, env_actions, buffer_actions);
       env.step(env_actions);
@@ -184,6 +186,8 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
   };
   callbacks.on_step = [this, logger] { on_step(logger); };
   callbacks.on_episode_end = [this](int e) { on_episode_end(e); };
+  callbacks.before_collect_step = [this](int64_t steps) { before_collect_step(steps); };
+  callbacks.record_rollout_logs = [this](Logger& log) { record_rollout_logs(log); };
   callbacks.train = [this](int gradient_steps, Logger* log) { train(gradient_steps, log); };
   off_policy_learn(env, total_timesteps, hooks, config_, state(), callbacks, num_timesteps_);
 }

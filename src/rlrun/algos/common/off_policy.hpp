@@ -66,12 +66,17 @@ struct OffPolicyCallbacks {
   std::function<void(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
                      Eigen::MatrixXf& buffer_actions)>
       select_actions;
+  // Before each env step of a collection, with the steps collected so far in it (0 at its
+  // start): SAC's gSDE reset_noise points. Optional.
+  std::function<void(int64_t collected_steps)> before_collect_step;
   // After every env step (SB3 _on_step: DQN's target update and exploration schedule).
   std::function<void()> on_step;
   // Called for each env whose episode just ended (e.g. noise reset).
   std::function<void(int env)> on_episode_end;
   // `gradient_steps` updates from the replay buffer; records train/ values on the logger.
   std::function<void(int gradient_steps, Logger* logger)> train;
+  // Extra values for the rollout log (SB3 _dump_logs: train/std with gSDE). Optional.
+  std::function<void(Logger& logger)> record_rollout_logs;
 };
 
 // Off-policy state that persists across learn() calls (and into checkpoints).
@@ -147,6 +152,10 @@ class OffPolicyAlgorithm : public Algorithm {
   virtual void on_step(Logger* /*logger*/) {}
   // After each finished episode of env `env` (SB3 collect_rollouts: action_noise.reset).
   virtual void on_episode_end(int /*env*/) {}
+  // Before each env step of collect_rollouts, `collected_steps` into it (SAC's gSDE resets).
+  virtual void before_collect_step(int64_t /*collected_steps*/) {}
+  // What _dump_logs adds for this algorithm (SAC with gSDE: train/std).
+  virtual void record_rollout_logs(Logger& /*logger*/) {}
   // Adds `item` to the training state under `key`: an Rng, an int64_t or double counter, an
   // Adam, or a component with write_state(StateWriter) and read_state(const StateReader&). It
   // must stay where it is (a member built in the constructor).

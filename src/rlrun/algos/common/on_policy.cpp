@@ -23,13 +23,15 @@ void clip_to_box(const Space& space, Eigen::MatrixXf& actions) {
       actions(i, j) = std::clamp(actions(i, j), space.low()[i], space.high()[i]);
 }
 
-OnPolicyCollector::OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim)
+OnPolicyCollector::OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim,
+                                     int sde_sample_freq)
     : action_space_(setup.action_space),
       buffer_(n_steps, setup.n_envs, setup.observation_space.flat_dim(), act_dim),
       last_obs_(setup.observation_space.flat_dim(), setup.n_envs),
       env_actions_(setup.action_space.flat_dim(), setup.n_envs),
       final_obs_(setup.observation_space.flat_dim(), 1),
       last_episode_starts_(Eigen::RowVectorXf::Ones(setup.n_envs)) {
+  sde_sample_freq_ = sde_sample_freq;
   if (n_steps < 1) throw std::invalid_argument("n_steps must be >= 1");
 }
 
@@ -66,7 +68,11 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
                                 float gae_lambda, TrainingHooks& hooks, int64_t& num_timesteps) {
   const int n_envs = env.num_envs();
   const int n_steps = static_cast<int>(buffer_.rewards.rows());
+  // SB3 collect_rollouts: "Sample new weights for the state dependent exploration".
+  if (policy.use_sde()) policy.reset_noise(rng, n_envs);
   for (int step = 0; step < n_steps; ++step) {
+    if (policy.use_sde() && sde_sample_freq_ > 0 && step % sde_sample_freq_ == 0)
+      policy.reset_noise(rng, n_envs);
     policy.act(last_obs_, rng, false, step_actions_, step_values_, step_log_probs_);
     env_actions_ = step_actions_;
     clip_to_box(action_space_, env_actions_);

@@ -25,10 +25,14 @@ struct RolloutBuffer {
 // The rollout side of an on-policy algorithm; persists across learn() calls.
 class OnPolicyCollector {
  public:
-  OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim);
+  // sde_sample_freq: with a gSDE policy, new exploration matrices every that many steps of a
+  // rollout (<= 0: only at the start of each rollout), SB3's sde_sample_freq.
+  OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim,
+                    int sde_sample_freq = -1);
 
   // SB3 collect_rollouts + compute_returns_and_advantage. Returns false when a callback
-  // stopped training. `num_timesteps` counts all envs' steps.
+  // stopped training. `num_timesteps` counts all envs' steps. A gSDE policy draws its
+  // exploration matrices (reset_noise) from rng.
   bool collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng, float gamma, float gae_lambda,
                TrainingHooks& hooks, int64_t& num_timesteps);
   // Called by learn() at its start: reset the envs, every env starts an episode — unless a
@@ -51,6 +55,7 @@ class OnPolicyCollector {
   EpisodeStats episode_stats_;
   bool restored_ = false;
   int64_t iterations_ = 0;
+  int sde_sample_freq_ = -1;
   Eigen::MatrixXf last_obs_, step_actions_, env_actions_, final_obs_;
   Eigen::RowVectorXf last_episode_starts_, step_values_, step_log_probs_, terminal_value_;
 };

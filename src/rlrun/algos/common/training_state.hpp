@@ -10,6 +10,7 @@
 #include "rlrun/nn/adam.hpp"
 #include "rlrun/nn/mlp.hpp"
 #include "rlrun/nn/rmsprop.hpp"
+#include "rlrun/nn/state_dependent_noise.hpp"
 
 namespace rlrun {
 
@@ -47,6 +48,30 @@ inline void read_rmsprop(const StateReader& in, RmsProp& rmsprop) {
   rmsprop.set_steps(in.get_int("step"));
   for (size_t i = 0; i < rmsprop.square_avg().size(); ++i)
     get_matrix(in, "square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
+}
+
+// gSDE's exploration matrices and the draws behind them (log_std travels with the model).
+inline void write_sde(StateWriter out, const StateDependentNoise& sde) {
+  out.put_int("num_exploration_matrices", sde.num_exploration_matrices());
+  put_matrix(out, "eps_mat", sde.eps_mat());
+  put_matrix(out, "eps_matrices", sde.eps_matrices());
+  put_matrix(out, "exploration_mat", sde.exploration_mat());
+  put_matrix(out, "exploration_matrices", sde.exploration_matrices());
+}
+
+inline void read_sde(const StateReader& in, StateDependentNoise& sde) {
+  const int64_t n = in.get_int("num_exploration_matrices");
+  // A batch is one matrix per env: bounded like the env count a checkpoint may claim.
+  if (n < 1 || n > (int64_t{1} << 20))
+    throw StateMismatch("checkpoint state '" + in.prefix() +
+                        "num_exploration_matrices' is out of range");
+  Eigen::MatrixXf eps_mat(sde.latent_dim(), sde.action_dim()), mat = eps_mat;
+  Eigen::MatrixXf eps_matrices(sde.latent_dim(), n * sde.action_dim()), matrices = eps_matrices;
+  get_matrix(in, "eps_mat", eps_mat);
+  get_matrix(in, "eps_matrices", eps_matrices);
+  get_matrix(in, "exploration_mat", mat);
+  get_matrix(in, "exploration_matrices", matrices);
+  sde.restore_weights(eps_mat, eps_matrices, mat, matrices);
 }
 
 // The flat parameter vector (target networks and other state the model file does not hold).

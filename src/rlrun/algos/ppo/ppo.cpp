@@ -27,6 +27,7 @@ ConfigProblems PPO::check(const Config& config, const AlgorithmSetup& setup) {
   // SB3 ppo.py asserts buffer_size > 1: advantages are normalised over a minibatch.
   if (config.normalize_advantage && rollout < 2)
     out.push_back({"n_steps", "n_steps * n_envs must be > 1 to normalise advantages"});
+  check_use_sde(out, config.use_sde, setup);
   return out;
 }
 
@@ -36,8 +37,9 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
       init_rng_(setup.seed),
       action_rng_(setup.seed ^ kActionStream),
       shuffle_rng_(setup.seed ^ kShuffleStream),
-      policy_(setup.observation_space, setup.action_space, config.policy, init_rng_),
-      collector_(setup, config.n_steps, policy_.action_dim()) {
+      policy_(setup.observation_space, setup.action_space, config.policy, init_rng_,
+              config.use_sde),
+      collector_(setup, config.n_steps, policy_.action_dim(), config.sde_sample_freq) {
   if (config_.n_steps < 1) throw std::invalid_argument("PPO: n_steps must be >= 1");
   if (config_.batch_size < 2)
     throw std::invalid_argument("PPO: batch_size must be > 1 (advantage normalisation)");
@@ -173,6 +175,7 @@ void PPO::save_training_state(StateWriter& out) const {
   write_adam(out.sub("optimizer"), optimizer_);
   out.put_rng("shuffle_rng", shuffle_rng_);
   collector_.write_state(out.sub("collector"));
+  if (policy_.use_sde()) write_sde(out.sub("sde"), policy_.sde());
 }
 
 void PPO::load_training_state(const StateReader& in) {
@@ -182,6 +185,7 @@ void PPO::load_training_state(const StateReader& in) {
   read_adam(in.sub("optimizer"), optimizer_);
   in.get_rng("shuffle_rng", shuffle_rng_);
   collector_.read_state(in.sub("collector"));
+  if (policy_.use_sde()) read_sde(in.sub("sde"), policy_.sde());
 }
 
 }  // namespace rlrun

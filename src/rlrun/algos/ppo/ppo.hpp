@@ -30,6 +30,8 @@ class PPO : public Algorithm {
     double ent_coef = 0.0;
     double vf_coef = 0.5;
     double max_grad_norm = 0.5;
+    bool use_sde = false;
+    int sde_sample_freq = -1;
     std::optional<double> target_kl;
     ActorCriticPolicyConfig policy;
 
@@ -50,6 +52,9 @@ class PPO : public Algorithm {
       v("ent_coef", ent_coef, "entropy bonus coefficient", non_negative());
       v("vf_coef", vf_coef, "value loss coefficient", non_negative());
       v("max_grad_norm", max_grad_norm, "global gradient-norm clipping", positive());
+      v("use_sde", use_sde, "generalized State-Dependent Exploration (gSDE) for Box actions");
+      v("sde_sample_freq", sde_sample_freq,
+        "gSDE: new noise matrix every N steps (-1: only at the start of each rollout)");
       v("target_kl", target_kl,
         "stop an update's epochs when approx KL > 1.5 * target_kl (null = off)", positive());
       v("policy", policy, "network: net_arch, activation_fn, ortho_init, log_std_init");

@@ -19,6 +19,16 @@ void fill_normal(Rng& rng, Eigen::Index rows, Eigen::Index cols, Eigen::MatrixXf
   m.resize(rows, cols);
   for (Eigen::Index k = 0; k < m.size(); ++k) m.data()[k] = static_cast<float>(rng.normal());
 }
+
+SacActorSde actor_sde(const SAC::Config& config) {
+  SacActorSde sde;
+  sde.use_sde = config.use_sde;
+  sde.log_std_init = static_cast<float>(config.policy.log_std_init);
+  sde.full_std = config.policy.full_std;
+  sde.use_expln = config.policy.use_expln;
+  sde.clip_mean = static_cast<float>(config.policy.clip_mean);
+  return sde;
+}
 }  // namespace
 
 ConfigProblems SAC::check(const Config& config, const AlgorithmSetup& setup) {
@@ -37,7 +47,8 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
       action_dim_(setup.action_space.flat_dim()),
       train_rng_(setup.seed ^ kTrainStream),
       predict_rng_(setup.seed ^ kPredictStream),
-      actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn),
+      actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn,
+             actor_sde(config)),
       critic_(features_dim(), action_dim_, config.policy.net_arch.qf, config.policy.activation_fn,
               config.policy.n_critics),
       critic_target_(critic_),
@@ -49,9 +60,17 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
   // Linear init for all; Adam with torch's eps 1e-8 everywhere.
   Rng init_rng(setup.seed);
   actor_.net().init_torch_default(init_rng);
+  if (config.use_sde) {
+    // proba_distribution_net samples an exploration matrix; the acting copy gets one too.
+    actor_.reset_noise(init_rng, 1);
+    acting_actor_.get().reset_noise(init_rng, 1);
+  }
   critic_.init(init_rng);
   critic_target_ = critic_;
-  actor_optimizer_ = Adam({actor_.net().block()});
+  if (config.use_sde)
+    actor_optimizer_ = Adam({actor_.net().block(), actor_.sde().block()});
+  else
+    actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
   grad_min_q_.resize(critic_.n_critics());
@@ -64,6 +83,25 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
   for (int i = 0; i < critic_.n_critics(); ++i)
     checkpoint("critic_optimizer" + std::to_string(i), critic_optimizers_[i]);
   checkpoint("ent_coef", ent_coef_);
+  if (config.use_sde) {
+    checkpoint("actor_noise", actor_);
+    checkpoint("acting_actor_noise", acting_actor_.get());
+  }
+}
+
+void SAC::before_collect_step(int64_t collected_steps) {
+  if (!config_.use_sde) return;
+  // SB3 collect_rollouts: reset_noise(n_envs) when it starts, then, with sde_sample_freq > 0,
+  // whenever num_collected_steps % sde_sample_freq == 0 (so twice at the start), from the
+  // current log_std (get() refreshes the acting copy).
+  SacActor& acting = acting_actor_.get();
+  if (collected_steps == 0) acting.reset_noise(acting_.action_rng(), setup_.n_envs);
+  if (config_.sde_sample_freq > 0 && collected_steps % config_.sde_sample_freq == 0)
+    acting.reset_noise(acting_.action_rng(), setup_.n_envs);
+}
+
+void SAC::record_rollout_logs(Logger& logger) {
+  if (config_.use_sde) logger.record("train/std", actor_.mean_std());
 }
 
 // SB3 sac/sac.py SAC.train, one pass of its loop over gradient steps; CleanRL's
@@ -73,9 +111,15 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   const float inv_n = 1.0f / static_cast<float>(n);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
   SacStepStats stats;
-  // The reparameterisation noise in SB3's order: for the actions at s, then at s'.
-  fill_normal(train_rng_, action_dim_, n, policy_noise_);
-  fill_normal(train_rng_, action_dim_, n, next_noise_);
+  if (config_.use_sde) {
+    // "We need to sample because `log_std` may have changed between two gradient steps":
+    // reset_noise() with batch size 1, so the whole minibatch shares one exploration matrix.
+    actor_.reset_noise(train_rng_, 1);
+  } else {
+    // The reparameterisation noise in SB3's order: for the actions at s, then at s'.
+    fill_normal(train_rng_, action_dim_, n, policy_noise_);
+    fill_normal(train_rng_, action_dim_, n, next_noise_);
+  }
   // ent_coef = exp(log_ent_coef.detach()) (or the fixed value): this step uses it as it was
   // before its own update.
   const float alpha = ent_coef_.value();
@@ -86,7 +130,10 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   //   next_q = min_i critic_target_i(next_obs, next_actions) - ent_coef * next_log_prob
   //   target_q = rewards + (1 - dones) * gamma * next_q
   const Eigen::Ref<const Eigen::MatrixXf> next_obs = batch_next_obs(b);
-  actor_.sample_from_noise(next_obs, next_noise_, next_actions_, next_log_prob_);
+  if (config_.use_sde)
+    actor_.sample(next_obs, train_rng_, next_actions_, next_log_prob_);
+  else
+    actor_.sample_from_noise(next_obs, next_noise_, next_actions_, next_log_prob_);
   critic_target_.forward(next_obs, next_actions_);
   target_q_.resize(1, n);
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -98,7 +145,10 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
   // first because the actor keeps only its last forward pass for the backward below (the
   // noise was drawn in SB3's order, so the numbers are the same).
   const Eigen::Ref<const Eigen::MatrixXf> obs = batch_obs(b);
-  actor_.sample_from_noise(obs, policy_noise_, actions_pi_, log_prob_);
+  if (config_.use_sde)
+    actor_.sample(obs, train_rng_, actions_pi_, log_prob_);
+  else
+    actor_.sample_from_noise(obs, policy_noise_, actions_pi_, log_prob_);
 
   // ent_coef_loss = -(log_ent_coef * (log_prob + target_entropy).detach()).mean(); one Adam
   // step on log_ent_coef, whose gradient is -mean(log_prob + target_entropy).
@@ -170,8 +220,9 @@ void SAC::train(int gradient_steps, Logger* logger) {
 
 void SAC::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
                          Eigen::MatrixXf& buffer_actions) {
+  // SB3 _sample_action: uniform samples before learning_starts unless gSDE acts at warmup.
   acting_.select(
-      obs, warmup,
+      obs, warmup && !(config_.use_sde && config_.use_sde_at_warmup),
       [&](Rng& rng, Eigen::MatrixXf& actions) {
         // A stochastic sample of the policy (SB3 predict with deterministic=False).
         acting_actor_.get().sample(acting_features(obs), rng, actions, acting_log_prob_);

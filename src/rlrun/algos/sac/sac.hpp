@@ -31,12 +31,23 @@ struct SacPolicyConfig {
   NetArchPiQf net_arch = {{256, 256}, {256, 256}};  // actor (pi), each critic (qf)
   Activation activation_fn = Activation::kReLU;          // SB3 default nn.ReLU
   int n_critics = 2;                       // number of Q-networks (clipped double-Q: 2)
+  double log_std_init = -3.0;              // gSDE: initial log std (SB3's SAC Actor default)
+  bool full_std = true;                    // gSDE: a std per (latent feature, action)
+  bool use_expln = false;                  // gSDE: expln instead of exp for the std
+  double clip_mean = 2.0;                  // gSDE: Hardtanh bound on the mean (0 = none)
 
   template <class V>
   void visit(V& v) {
     v("net_arch", net_arch, kNetArchPiQfDoc, layer_width());
     v("activation_fn", activation_fn, kActivationFnDoc);
     v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
+    v("log_std_init", log_std_init, "gSDE (use_sde): initial log standard deviation",
+      in_range(-20, 20));
+    v("full_std", full_std,
+      "gSDE (use_sde): log_std per latent feature and action (true) or per feature (false)");
+    v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
+    v("clip_mean", clip_mean, "gSDE (use_sde): clip the mean to [-clip_mean, clip_mean] (0: off)",
+      in_range(0, 1e6));
   }
 };
 
@@ -56,6 +67,9 @@ class SAC : public OffPolicyAlgorithm {
     std::string ent_coef = "auto";
     int target_update_interval = 1;
     std::string target_entropy = "auto";
+    bool use_sde = false;
+    int sde_sample_freq = -1;
+    bool use_sde_at_warmup = false;
     SacPolicyConfig policy;
     ActionNoiseConfig action_noise;  // none by default
 
@@ -71,7 +85,12 @@ class SAC : public OffPolicyAlgorithm {
         "soft-update the target critics every N gradient steps of a train() call", at_least(1));
       v("target_entropy", target_entropy,
         "entropy target when ent_coef is learned: auto (-dim A) or a number", TargetEntropySpec{});
-      v("policy", policy, "networks: net_arch, activation_fn, n_critics");
+      v("use_sde", use_sde, "generalized State-Dependent Exploration (gSDE) instead of white noise");
+      v("sde_sample_freq", sde_sample_freq,
+        "gSDE: new noise matrix every N steps (-1: only at the start of each collection)");
+      v("use_sde_at_warmup", use_sde_at_warmup,
+        "gSDE: act with the policy's noise before learning_starts instead of uniform samples");
+      v("policy", policy, "networks: net_arch, activation_fn, n_critics, gSDE options");
     }
   };
 
@@ -116,11 +135,17 @@ class SAC : public OffPolicyAlgorithm {
   const Eigen::MatrixXf& last_critic_target() const { return target_q_; }
   const Eigen::MatrixXf& last_next_noise() const { return next_noise_; }
   const Eigen::MatrixXf& last_policy_noise() const { return policy_noise_; }
+  // gSDE: the acting actor's exploration matrices (what collection and predict() use).
+  const StateDependentNoise& acting_noise() { return acting_actor_.get().sde(); }
 
  private:
   // `gradient_steps` updates from the replay buffer (SB3 SAC.train), logging the means.
   void train(int gradient_steps, Logger* logger) override;
   void on_episode_end(int env) override { acting_.on_episode_end(env); }
+  // gSDE: SB3 collect_rollouts' reset_noise(n_envs) at the start and every sde_sample_freq steps.
+  void before_collect_step(int64_t collected_steps) override;
+  // gSDE: train/std = actor.get_std().mean().
+  void record_rollout_logs(Logger& logger) override;
 
   Config config_;
   int action_dim_ = 0;

@@ -2,14 +2,59 @@
 
 #include <stdexcept>
 
+#include "rlrun/algos/common/training_state.hpp"
+
 namespace rlrun {
 
 SacActor::SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                   Activation activation)
-    : action_dim_(action_dim), net_(obs_dim, net_arch, 2 * action_dim, activation) {}
+                   Activation activation, const SacActorSde& sde)
+    : action_dim_(action_dim),
+      net_(obs_dim, net_arch, sde.use_sde ? action_dim : 2 * action_dim, activation),
+      sde_options_(sde) {
+  if (sde.use_sde) {
+    // SB3 Actor: StateDependentNoiseDistribution(action_dim, full_std, use_expln,
+    // learn_features=True, squash_output=True), proba_distribution_net on latent_pi's width.
+    StateDependentNoiseOptions options;
+    options.full_std = sde.full_std;
+    options.use_expln = sde.use_expln;
+    options.squash_output = true;
+    options.learn_features = true;
+    const Mlp& m = net_.net();
+    sde_ = StateDependentNoise(m.layer_in(m.num_layers() - 1), action_dim, sde.log_std_init,
+                               options);
+  }
+}
+
+void SacActor::copy_parameters_from(const SacActor& other) {
+  net().params() = other.net().params();
+  if (use_sde()) sde_.log_std() = other.sde_.log_std();
+}
+
+void SacActor::reset_noise(Rng& rng, int batch_size) {
+  if (!use_sde()) throw std::logic_error("reset_noise() is only available when using gSDE");
+  sde_.sample_weights(rng, batch_size);
+}
+
+void SacActor::write_state(StateWriter out) const {
+  if (use_sde()) write_sde(out, sde_);
+}
+
+void SacActor::read_state(const StateReader& in) {
+  if (use_sde()) read_sde(in, sde_);
+}
 
 void SacActor::forward_heads(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
   const Eigen::MatrixXf& out = net_.forward(obs);
+  if (use_sde()) {
+    // SB3 Actor: mu = Hardtanh(-clip_mean, clip_mean)(Linear(latent_pi)); latent_sde = latent_pi.
+    const float c = sde_options_.clip_mean;
+    if (c > 0.0f)
+      mu_ = out.cwiseMax(-c).cwiseMin(c);
+    else
+      mu_ = out;
+    sde_.set(mu_, net_.last_hidden());
+    return;
+  }
   log_std_.resize(action_dim_, out.cols());
   // SB3 Actor.get_action_dist_params: th.clamp(log_std, LOG_STD_MIN, LOG_STD_MAX).
   SquashedGaussian::clamp_log_std(out.bottomRows(action_dim_), log_std_);
@@ -21,6 +66,12 @@ void SacActor::sample(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
   forward_heads(obs);
   actions.resize(action_dim_, obs.cols());
   log_prob.resize(obs.cols());
+  if (use_sde()) {
+    // log_prob_from_params: the squashed sample, then log_prob of that action.
+    sde_.sample(actions);
+    sde_.log_prob(actions, log_prob);
+    return;
+  }
   dist_.sample(rng, actions);
   dist_.log_prob(log_prob);
 }
@@ -28,6 +79,8 @@ void SacActor::sample(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
 void SacActor::sample_from_noise(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                  const Eigen::Ref<const Eigen::MatrixXf>& noise,
                                  Eigen::MatrixXf& actions, Eigen::RowVectorXf& log_prob) {
+  if (use_sde())
+    throw std::logic_error("SacActor::sample_from_noise: gSDE draws from its exploration matrix");
   forward_heads(obs);
   actions.resize(action_dim_, obs.cols());
   log_prob.resize(obs.cols());
@@ -38,11 +91,26 @@ void SacActor::sample_from_noise(const Eigen::Ref<const Eigen::MatrixXf>& obs,
 void SacActor::mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& actions) {
   forward_heads(obs);
   actions.resize(action_dim_, obs.cols());
-  dist_.mode(actions);
+  if (use_sde())
+    sde_.mode(actions);
+  else
+    dist_.mode(actions);
 }
 
 void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
                         const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob) {
+  if (use_sde()) {
+    sde_.zero_grad();
+    sde_.backward_sampled(grad_actions, grad_log_prob, grad_mean_, &grad_latent_);
+    // nn.Hardtanh's backward: no gradient where the raw mu was at or beyond +-clip_mean.
+    const float c = sde_options_.clip_mean;
+    if (c > 0.0f) {
+      const auto raw = net_.output().array();
+      grad_mean_ = (raw > -c && raw < c).select(grad_mean_.array(), 0.0f).matrix();
+    }
+    net_.zero_grad_and_backward(grad_mean_, &grad_latent_);
+    return;
+  }
   dist_.backward(grad_actions, grad_log_prob, grad_mean_, grad_log_std_);
   grad_head_.resize(2 * action_dim_, grad_mean_.cols());
   grad_head_.topRows(action_dim_) = grad_mean_;
@@ -53,6 +121,11 @@ void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
   net_.zero_grad_and_backward(grad_head_);
 }
 
+std::string SacActor::mu_name(const std::string& prefix) const {
+  // With clip_mean, SB3's mu is nn.Sequential(nn.Linear, nn.Hardtanh): the Linear is `mu.0`.
+  return prefix + (use_sde() && sde_options_.clip_mean > 0.0f ? ".mu.0" : ".mu");
+}
+
 void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
   const Mlp& m = net();
   const int last = m.num_layers() - 1;
@@ -61,9 +134,13 @@ void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
     tensors[name + ".weight"] = to_tensor(Eigen::MatrixXf(m.weight(l)));
     tensors[name + ".bias"] = to_tensor(Eigen::VectorXf(m.bias(l)));
   }
-  tensors[prefix + ".mu.weight"] =
-      to_tensor(Eigen::MatrixXf(m.weight(last).topRows(action_dim_)));
-  tensors[prefix + ".mu.bias"] = to_tensor(Eigen::VectorXf(m.bias(last).head(action_dim_)));
+  const std::string mu = mu_name(prefix);
+  tensors[mu + ".weight"] = to_tensor(Eigen::MatrixXf(m.weight(last).topRows(action_dim_)));
+  tensors[mu + ".bias"] = to_tensor(Eigen::VectorXf(m.bias(last).head(action_dim_)));
+  if (use_sde()) {
+    tensors[prefix + ".log_std"] = to_tensor(sde_.log_std());
+    return;
+  }
   tensors[prefix + ".log_std.weight"] =
       to_tensor(Eigen::MatrixXf(m.weight(last).bottomRows(action_dim_)));
   tensors[prefix + ".log_std.bias"] = to_tensor(Eigen::VectorXf(m.bias(last).tail(action_dim_)));
@@ -77,8 +154,13 @@ void SacActor::load(const std::string& prefix, const TensorMap& tensors) {
     from_tensor(tensors, name + ".weight", m.weight(l));
     from_tensor(tensors, name + ".bias", m.bias(l));
   }
-  from_tensor(tensors, prefix + ".mu.weight", m.weight(last).topRows(action_dim_));
-  from_tensor(tensors, prefix + ".mu.bias", m.bias(last).head(action_dim_));
+  const std::string mu = mu_name(prefix);
+  from_tensor(tensors, mu + ".weight", m.weight(last).topRows(action_dim_));
+  from_tensor(tensors, mu + ".bias", m.bias(last).head(action_dim_));
+  if (use_sde()) {
+    from_tensor(tensors, prefix + ".log_std", sde_.log_std());
+    return;
+  }
   from_tensor(tensors, prefix + ".log_std.weight", m.weight(last).bottomRows(action_dim_));
   from_tensor(tensors, prefix + ".log_std.bias", m.bias(last).tail(action_dim_));
 }

@@ -11,59 +11,100 @@
 // Mlp (its last layer is linear), and one product instead of two thin ones. save() splits the
 // layer back into SB3's actor.mu / actor.log_std tensors. The network is a SplitMlp: a training
 // minibatch runs on both cores.
+//
+// With gSDE (SB3 Actor with use_sde) the network ends in mu alone, clipped by
+// nn.Hardtanh(-clip_mean, clip_mean) when clip_mean > 0, and log_std is the state-independent
+// matrix of a StateDependentNoise on latent_pi (learn_features and squash_output true): the
+// exploration noise is a function of the latent features, drawn anew by reset_noise.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
-#include "rlrun/rng.hpp"
+#include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/split_mlp.hpp"
 #include "rlrun/nn/squashed_gaussian.hpp"
+#include "rlrun/nn/state_dependent_noise.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
+
+// SB3 Actor's gSDE keyword arguments.
+struct SacActorSde {
+  bool use_sde = false;
+  float log_std_init = -3.0f;  // SB3's SAC Actor default
+  bool full_std = true;
+  bool use_expln = false;
+  float clip_mean = 2.0f;  // Hardtanh bound on mu; <= 0: no clipping
+};
 
 class SacActor {
  public:
   SacActor() = default;
-  SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation);
+  SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation,
+           const SacActorSde& sde = {});
 
   int obs_dim() const { return net_.net().in_dim(); }
   int action_dim() const { return action_dim_; }
-  // The network's parameters and gradients.
+  // The network's parameters and gradients (with gSDE log_std is in sde(), not here).
   Mlp& net() { return net_.net(); }
   const Mlp& net() const { return net_.net(); }
+  // The acting copy's refresh: the network's parameters and gSDE's log_std (same shapes, no
+  // allocation); the copy keeps its own exploration matrices.
+  void copy_parameters_from(const SacActor& other);
+
+  bool use_sde() const { return sde_options_.use_sde; }
+  const StateDependentNoise& sde() const { return sde_; }
+  StateDependentNoise& sde() { return sde_; }
+  // SB3 Actor.reset_noise(batch_size): new exploration matrices (gSDE only).
+  void reset_noise(Rng& rng, int batch_size);
+  // SB3 Actor.get_std().mean() (train/std); gSDE only.
+  double mean_std() const { return sde_.mean_std(); }
+  // gSDE's exploration matrices for a checkpoint (nothing without gSDE).
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
 
   // SB3 action_log_prob: a reparameterised sample and its log-probability (tanh-corrected),
   // actions resized to action_dim x batch, in (-1, 1). Keeps the forward pass for backward().
+  // With gSDE the noise comes from the exploration matrices and rng is not used.
   void sample(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng, Eigen::MatrixXf& actions,
               Eigen::RowVectorXf& log_prob);
-  // The same with given standard-normal noise (action_dim x batch): updates and tests.
+  // The same with given standard-normal noise (action_dim x batch): updates and tests. Not
+  // with gSDE (std::logic_error).
   void sample_from_noise(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                          const Eigen::Ref<const Eigen::MatrixXf>& noise, Eigen::MatrixXf& actions,
                          Eigen::RowVectorXf& log_prob);
-  // SB3 deterministic=True: tanh(mu).
+  // SB3 deterministic=True: tanh(mu) (mu clipped first with gSDE).
   void mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& actions);
 
   // Backward of a loss L(actions, log_prob) of the last sample, given dL/da (action_dim x batch)
   // and dL/dlog_prob: pathwise through the squashed Gaussian and the log_std clamp into the
   // network: net().grads() becomes the loss's gradient (optimizer.zero_grad(); loss.backward()).
+  // With gSDE, sde().log_std_grad() too, and the gradient also reaches latent_pi through the
+  // noise and the variance (learn_features).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob);
 
   // SB3 state_dict names under `prefix` ("actor"): <prefix>.latent_pi.<2i>.weight/bias,
-  // <prefix>.mu.weight/bias, <prefix>.log_std.weight/bias.
+  // <prefix>.mu.weight/bias, <prefix>.log_std.weight/bias. With gSDE: <prefix>.mu.0.weight/bias
+  // (mu is nn.Sequential(Linear, Hardtanh)) or <prefix>.mu.weight/bias without clip_mean, and
+  // the <prefix>.log_std matrix.
   void save(const std::string& prefix, TensorMap& tensors) const;
   void load(const std::string& prefix, const TensorMap& tensors);
 
  private:
-  // Runs the network and hands mu and the clamped log_std to the distribution.
+  // Runs the network and hands mu and the clamped log_std (or, with gSDE, the clipped mu and
+  // the latent features) to the distribution.
   void forward_heads(const Eigen::Ref<const Eigen::MatrixXf>& obs);
+  std::string mu_name(const std::string& prefix) const;
 
   int action_dim_ = 0;
-  SplitMlp net_;  // obs -> net_arch -> [mu; raw log_std]
+  SplitMlp net_;  // obs -> net_arch -> [mu; raw log_std], or mu alone with gSDE
   SquashedGaussian dist_;
+  SacActorSde sde_options_;
+  StateDependentNoise sde_;
   // Workspaces, reused while the batch size stays the same.
-  Eigen::MatrixXf log_std_, grad_mean_, grad_log_std_, grad_head_;
+  Eigen::MatrixXf log_std_, grad_mean_, grad_log_std_, grad_head_, mu_, grad_latent_;
 };
 
 }  // namespace rlrun
