@@ -25,7 +25,7 @@ enum class Epilogue {
   kBias,            // c(i, j) = s + bias(i)
   kBiasTanh,        // c(i, j) = tanh(s + bias(i))
   kBiasReLU,        // c(i, j) = max(s + bias(i), 0)
-  kBiasELU,         // c(i, j) = v > 0 ? v : expm1(v), v = s + bias(i)   (nn.ELU, alpha 1)
+  kBiasELU,         // c(i, j) = v > 0 ? v : exp(v) - 1, v = s + bias(i)   (nn.ELU, alpha 1)
   kBiasLeakyReLU,   // c(i, j) = max(v, 0.01 v), v = s + bias(i)   (nn.LeakyReLU, slope 0.01)
   kTanhGrad,        // c(i, j) = s * (1 - act(i, j)^2)   (act = the layer's tanh output)
   kReLUGrad,        // c(i, j) = act(i, j) > 0 ? s : 0   (act = the layer's relu output)
