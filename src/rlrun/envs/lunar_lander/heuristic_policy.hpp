@@ -16,13 +16,12 @@ namespace rlrun {
 
 // The action for observation `s`: Discrete (action[0] in {0, 1, 2, 3}) or, with
 // `continuous`, the two throttles clipped to [-1, 1].
-std::array<float, 2> lunar_lander_heuristic(std::span<const float> s,
-                                            bool continuous);
+std::array<float, 2> lunar_lander_heuristic(std::span<const float> s, bool continuous);
 
 // As a policy on `env` (one observation per column). Throws UsageError unless
 // the innermost env is a LunarLander; discrete or continuous follows that env's
 // config.
-std::function<void(const Eigen::MatrixXf &obs, Eigen::MatrixXf &action)>
-lunar_lander_heuristic_actions(Env &env);
+std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf& action)>
+lunar_lander_heuristic_actions(Env& env);
 
-} // namespace rlrun
+}  // namespace rlrun

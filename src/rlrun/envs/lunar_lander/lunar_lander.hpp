@@ -40,53 +40,46 @@ namespace rlrun {
 // gymnasium.make("LunarLander-v3", **kwargs) keyword arguments
 // (LunarLander.__init__).
 struct LunarLanderConfig {
-  bool continuous = false; // Box(-1, 1, (2,)) throttles instead of Discrete(4)
-  double gravity = -10.0;  // must lie in (-12, 0)
-  bool enable_wind =
-      false; // wind force and turbulence torque while no leg touches
-  double wind_power = 15.0;      // max wind force (recommended 0..20)
-  double turbulence_power = 1.5; // max turbulence torque (recommended 0..2)
+  bool continuous = false;        // Box(-1, 1, (2,)) throttles instead of Discrete(4)
+  double gravity = -10.0;         // must lie in (-12, 0)
+  bool enable_wind = false;       // wind force and turbulence torque while no leg touches
+  double wind_power = 15.0;       // max wind force (recommended 0..20)
+  double turbulence_power = 1.5;  // max turbulence torque (recommended 0..2)
 
-  template <class V> void visit(V &v) {
+  template <class V>
+  void visit(V& v) {
     v("continuous", continuous,
       "continuous throttles Box(-1, 1, (2,)) [main, lateral] instead of "
       "Discrete(4)");
-    v("gravity", gravity,
-      "gravitational acceleration (m/s^2), strictly between -12 and 0");
+    v("gravity", gravity, "gravitational acceleration (m/s^2), strictly between -12 and 0");
     v("enable_wind", enable_wind,
       "apply wind (force) and turbulence (torque) while neither leg touches "
       "the ground");
-    v("wind_power", wind_power,
-      "maximum wind force; Gymnasium recommends 0 to 20");
+    v("wind_power", wind_power, "maximum wind force; Gymnasium recommends 0 to 20");
     v("turbulence_power", turbulence_power,
       "maximum turbulence torque; Gymnasium recommends 0 to 2");
   }
 };
 
 class LunarLander : public Env {
-public:
+ public:
   using Config = LunarLanderConfig;
   // gymnasium/envs/__init__.py registers LunarLander-v3 with
   // max_episode_steps=1000.
   static constexpr int kMaxEpisodeSteps = 1000;
   static constexpr int kObsSize = 8;
-  static constexpr int kChunks = 11; // terrain chunks (CHUNKS in reset())
-  enum Action : int {
-    kNoop = 0,
-    kLeftEngine = 1,
-    kMainEngine = 2,
-    kRightEngine = 3
-  };
+  static constexpr int kChunks = 11;  // terrain chunks (CHUNKS in reset())
+  enum Action : int { kNoop = 0, kLeftEngine = 1, kMainEngine = 2, kRightEngine = 3 };
 
   // Throws std::invalid_argument unless -12 < gravity < 0 (Gymnasium's assert).
-  explicit LunarLander(const Config &config = {});
+  explicit LunarLander(const Config& config = {});
   ~LunarLander() override;
-  LunarLander(const LunarLander &) = delete;
-  LunarLander &operator=(const LunarLander &) = delete;
+  LunarLander(const LunarLander&) = delete;
+  LunarLander& operator=(const LunarLander&) = delete;
 
-  const Space &observation_space() const override { return observation_space_; }
-  const Space &action_space() const override { return action_space_; }
-  const Info &info() const override { return info_; }
+  const Space& observation_space() const override { return observation_space_; }
+  const Space& action_space() const override { return action_space_; }
+  const Info& info() const override { return info_; }
   std::string id() const override {
     return config_.continuous ? "LunarLanderContinuous-v3" : "LunarLander-v3";
   }
@@ -100,23 +93,21 @@ public:
 
   // viewport 600x400, metadata render_fps = FPS = 50.
   RenderSpec render_spec() const override { return {600, 400, 50.0}; }
-  bool render(Frame &frame) const override;
+  bool render(Frame& frame) const override;
 
-  const Config &config() const { return config_; }
+  const Config& config() const { return config_; }
 
   // State for tests, baselines and rendering.
   bool leg_contact(int leg) const { return ground_contact_[leg]; }
   bool game_over() const { return game_over_; }
   bool lander_awake() const;
-  double main_power() const {
-    return m_power_;
-  } // engine throttles of the last step (0 = off)
+  double main_power() const { return m_power_; }  // engine throttles of the last step (0 = off)
   double side_power() const { return s_power_; }
   int wind_index() const { return wind_idx_; }
   int torque_index() const { return torque_idx_; }
   // Terrain (world units): chunk x positions, smoothed heights, helipad.
-  const std::array<double, kChunks> &terrain_x() const { return chunk_x_; }
-  const std::array<double, kChunks> &terrain_y() const { return smooth_y_; }
+  const std::array<double, kChunks>& terrain_x() const { return chunk_x_; }
+  const std::array<double, kChunks>& terrain_y() const { return smooth_y_; }
   double helipad_x1() const { return helipad_x1_; }
   double helipad_x2() const { return helipad_x2_; }
   double helipad_y() const { return helipad_y_; }
@@ -129,7 +120,7 @@ public:
   struct Physics;
   friend struct Physics;
 
-private:
+ private:
   void apply_wind();
   void fire_engines(std::span<const float> action);
   // Gymnasium's `state` list after a world step, in double (the observation is
@@ -141,7 +132,7 @@ private:
   Space action_space_;
   Info info_;
   EnvSeeding seeding_;
-  std::unique_ptr<Physics> physics_; // null before the first reset
+  std::unique_ptr<Physics> physics_;  // null before the first reset
   bool game_over_ = false;
   std::array<bool, 2> ground_contact_{false, false};
   std::optional<double> prev_shaping_;
@@ -151,4 +142,4 @@ private:
   double helipad_x1_ = 0, helipad_x2_ = 0, helipad_y_ = 0;
 };
 
-} // namespace rlrun
+}  // namespace rlrun

@@ -15,17 +15,16 @@ namespace {
 // LunarLanderContinuous-v3: LunarLander-v3 whose `continuous` defaults to true
 // (a user's kwargs still override it, as with gymnasium.make's kwargs over the
 // registered ones).
-EnvEntry continuous_alias(const EnvEntry &discrete) {
+EnvEntry continuous_alias(const EnvEntry& discrete) {
   EnvEntry entry = discrete;
   entry.id = "LunarLanderContinuous-v3";
-  entry.description =
-      "LunarLander-v3 with continuous: true; Box(2) main and lateral throttles";
+  entry.description = "LunarLander-v3 with continuous: true; Box(2) main and lateral throttles";
   auto defaults = [] {
     LunarLander::Config config;
     config.continuous = true;
     return config;
   };
-  entry.parse = [defaults](const ConfigNode &kwargs) {
+  entry.parse = [defaults](const ConfigNode& kwargs) {
     LunarLander::Config config = defaults();
     ConfigReader reader(kwargs, {});
     config.visit(reader);
@@ -41,23 +40,19 @@ EnvEntry continuous_alias(const EnvEntry &discrete) {
   return entry;
 }
 
-} // namespace
+}  // namespace
 
-void register_lunar_lander(EnvEntries &out) {
-  EnvEntry lander =
-      make_env_entry<LunarLander>("LunarLander-v3",
-                                  "land a Box2D lander on the pad (Gymnasium); "
-                                  "Discrete(4): noop left main right",
-                                  LunarLander::kMaxEpisodeSteps);
+void register_lunar_lander(EnvEntries& out) {
+  EnvEntry lander = make_env_entry<LunarLander>("LunarLander-v3",
+                                                "land a Box2D lander on the pad (Gymnasium); "
+                                                "Discrete(4): noop left main right",
+                                                LunarLander::kMaxEpisodeSteps);
   lander.policies.push_back(
-      {"heuristic",
-       "Gymnasium's heuristic(env, s) controller (lands: returns > 200)",
-       [](Env &env, const PolicyOptions &) {
-         return lunar_lander_heuristic_actions(env);
-       }});
+      {"heuristic", "Gymnasium's heuristic(env, s) controller (lands: returns > 200)",
+       [](Env& env, const PolicyOptions&) { return lunar_lander_heuristic_actions(env); }});
   EnvEntry continuous = continuous_alias(lander);
   out.push_back(std::move(lander));
   out.push_back(std::move(continuous));
 }
 
-} // namespace rlrun::envs
+}  // namespace rlrun::envs
