@@ -90,7 +90,7 @@ TEST_CASE("PPO draws gSDE matrices at each rollout's start and every sde_sample_
 TEST_CASE("SAC draws gSDE matrices per collection, every sde_sample_freq steps, and per update",
           "[algos][gsde]") {
   SAC::Config cfg;
-  cfg.policy.net_arch = {8, 8};
+  cfg.policy.net_arch = {{8, 8}, {8, 8}};
   cfg.off_policy.learning_starts = 0;
   cfg.off_policy.batch_size = 8;
   cfg.off_policy.train_freq.frequency = 6;
@@ -126,7 +126,7 @@ TEST_CASE("SAC with gSDE acts with its policy at warmup only with use_sde_at_war
           "[algos][gsde]") {
   const Space actions = Space::box(-2.0f, 2.0f, {1});
   SAC::Config cfg;
-  cfg.policy.net_arch = {8};
+  cfg.policy.net_arch = {{8}, {8}};
   cfg.use_sde = true;
   cfg.policy.log_std_init = -20.0;  // std ~ 0: a policy action is tanh(clipped mu)
   Eigen::MatrixXf obs(3, 1), env_actions, buffer_actions, mode;
@@ -205,7 +205,7 @@ TEST_CASE(
   INFO("batch " << n);
   const int obs_dim = 3, act_dim = 2;
   SAC::Config cfg;
-  cfg.policy.net_arch = {6, 5};
+  cfg.policy.net_arch = {{6, 5}, {6, 5}};
   cfg.off_policy.batch_size = n;
   cfg.ent_coef = "0.3";
   cfg.use_sde = true;
@@ -285,7 +285,7 @@ TEST_CASE("gSDE models use SB3's tensor names and shapes and load back", "[algos
   for (const double clip_mean : {2.0, 0.0}) {
     INFO("clip_mean " << clip_mean);
     SAC::Config cfg;
-    cfg.policy.net_arch = {16, 16};
+    cfg.policy.net_arch = {{16, 16}, {16, 16}};
     cfg.use_sde = true;
     cfg.policy.clip_mean = clip_mean;
     SAC a(cfg, AlgorithmSetup{obs, act, 1, 1});

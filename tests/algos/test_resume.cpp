@@ -188,7 +188,7 @@ TEST_CASE("SAC with gSDE resumes from a safe point to the uninterrupted run's we
   cfg.off_policy.batch_size = 32;
   cfg.off_policy.train_freq.frequency = 8;
   cfg.off_policy.gradient_steps = 4;
-  cfg.policy.net_arch = {16, 16};
+  cfg.policy.net_arch = {{16, 16}, {16, 16}};
   cfg.use_sde = true;
   cfg.sde_sample_freq = 3;
   const int64_t total = 400;
