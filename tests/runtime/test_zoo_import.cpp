@@ -82,14 +82,15 @@ std::string default_env(const std::string& algo) {
 
 bool off_policy(const std::string& algo) { return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "dqn"; }
 
-// Imports `env` from `file` and trains it briefly: 3000 steps (at least one rollout), with
-// learning_starts lowered to 1000 so that off-policy entries take gradient steps, and a
-// replay buffer of at most 100000 transitions. Returns "" or the error.
+// Imports `env` from `file` and checks the experiment; with `train`, trains it briefly: 2000
+// steps (at least one rollout), with learning_starts lowered to 1000 so that off-policy
+// entries take gradient steps, and a replay buffer of at most 100000 transitions. Returns ""
+// or the error.
 std::string import_and_train(const std::string& file, const std::string& algo, const std::string& env,
-                             const std::string& out_dir) {
+                             const std::string& out_dir, bool train) {
   try {
     Registry registry = make_builtin_registry();
-    std::vector<std::string> overrides{"run.total_timesteps=3000", "run.out_dir=" + out_dir,
+    std::vector<std::string> overrides{"run.total_timesteps=2000", "run.out_dir=" + out_dir,
                                        "eval.freq=0", "run.console_interval=1000"};
     // The entry as imported, to read the values the overrides bound.
     const ZooImport imported = translate_zoo_entry(read_zoo_entry(file, env, ""), registry);
@@ -101,6 +102,7 @@ std::string import_and_train(const std::string& file, const std::string& algo, c
         overrides.push_back("algo.buffer_size=100000");
     }
     const Experiment experiment = load_zoo_experiment(file, env, "", overrides, registry);
+    if (!train) return "";
     const TrainOutcome outcome = train_experiment(experiment, registry);
     if (!std::filesystem::exists(outcome.run_dir + "/model.zip")) return "no model.zip";
     return "";
@@ -168,9 +170,9 @@ TEST_CASE("Python literals: the zoo's subset is read, anything else refused",
   CHECK_THAT(refused(std::string(100, '[')), Catch::Contains("nested too deeply"));
 }
 
-TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs imports and trains",
-          "[zoo][zoo_entries][slow]") {
-  TempDir dir("zoo_entries");
+// Every entry of every version, imported and checked (train = false) or also trained.
+void check_every_entry(bool train) {
+  TempDir dir(train ? "zoo_entries_train" : "zoo_entries");
   std::set<std::string> seen;
   for (const std::string& version : kVersions) {
     for (const std::string& algo : kAlgos) {
@@ -181,7 +183,7 @@ TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs imports a
         const std::string key = relative + ":" + name;
         seen.insert(key);
         INFO(key);
-        const std::string error = import_and_train(file, algo, env, dir.str());
+        const std::string error = import_and_train(file, algo, env, dir.str(), train);
         if (kAwaitingMerge.count(key)) {
           CHECK_FALSE(error.empty());  // works now? remove it from kAwaitingMerge
           continue;
@@ -194,6 +196,16 @@ TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs imports a
     INFO(key);
     CHECK(seen.count(key) == 1);
   }
+}
+
+TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs imports", "[zoo]") {
+  check_every_entry(false);
+}
+
+// About 15 minutes on 2 cores with every entry (PPO's rollouts of up to 65536 steps).
+TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs trains 2000 steps",
+          "[.zoo_entries][slow]") {
+  check_every_entry(true);
 }
 
 TEST_CASE("zoo import: the translation of a zoo entry", "[zoo]") {
@@ -343,4 +355,19 @@ TEST_CASE("rlrun zoo import writes a file rlrun train accepts; train --zoo train
   const auto no_env = rlrun::testing::run_rlrun("train --zoo " + kZooData + "/ppo.yml");
   CHECK(no_env.exit_code == 2);
   CHECK_THAT(no_env.output, Catch::Contains("--zoo needs --env"));
+}
+
+TEST_CASE("configs/zoo: the importer's files are experiments rlrun reads", "[zoo][configs]") {
+  const std::string dir = std::string(RLRUN_SOURCE_DIR) + "/configs/zoo";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    INFO(entry.path().string());
+    ++files;
+    CHECK_THAT(rlrun::testing::read_text(entry.path().string()),
+               Catch::StartsWith("# Imported by `rlrun zoo import`"));
+    Registry registry = make_builtin_registry();
+    CHECK_NOTHROW(load_experiment(entry.path().string(), {}, registry));
+  }
+  CHECK(files >= 14);
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <functional>
 #include <map>
@@ -235,6 +237,21 @@ YAML::Node clean(const YAML::Node& node) {
   return YAML::Node(node.Scalar());
 }
 
+// Counts the zoo writes as floats (`n_timesteps: !!float 1e6`), written as integers.
+void write_counts_as_integers(YAML::Node experiment) {
+  const std::pair<const char*, const char*> counts[] = {
+      {"run", "total_timesteps"}, {"algo", "buffer_size"}, {"algo", "learning_starts"}};
+  for (const auto& [section, key] : counts) {
+    YAML::Node node = experiment[section][key];
+    if (!node || !node.IsScalar()) continue;
+    char* end = nullptr;
+    const std::string text = node.Scalar();
+    const double value = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() + text.size() && std::floor(value) == value && std::fabs(value) < 9e15)
+      experiment[section][key] = static_cast<int64_t>(value);
+  }
+}
+
 std::string today() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm utc{};
@@ -272,6 +289,7 @@ std::string experiment_text(const ZooImport& imported) {
   YAML::Node ordered(YAML::NodeType::Map);
   for (const char* section : {"run", "env", "algo", "eval", "checkpoint"})
     if (imported.experiment[section]) ordered[section] = clean(imported.experiment[section]);
+  write_counts_as_integers(ordered);
   YAML::Emitter out;
   out.SetIndent(2);
   out << ordered;
