@@ -202,7 +202,9 @@ TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs imports",
   check_every_entry(false);
 }
 
-// About 15 minutes on 2 cores with every entry (PPO's rollouts of up to 65536 steps).
+// About 30 minutes on 2 cores shared with other builds (2026-11-26), the 56 entries that train
+// on this branch; PPO collects whole rollouts (up to 65536 steps) and SAC/TD3 take a gradient
+// step per env step after learning_starts.
 TEST_CASE("zoo import: every entry of the zoo's files for rlrun's envs trains 2000 steps",
           "[.zoo_entries][slow]") {
   check_every_entry(true);
