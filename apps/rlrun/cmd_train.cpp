@@ -1,6 +1,7 @@
 // rlrun train CONFIG... [--set key=value]... [--seed N] [--timesteps N] [--out DIR]
 //                       [--init-from MODEL] [--tensorboard-log DIR] [-j N]
 // rlrun train --resume RUN_DIR|CHECKPOINT [--timesteps N] [--tensorboard-log DIR]
+// rlrun train --zoo HYPERPARAMS.yml --env ENV_ID [--algo ALGO] [--set ...] (docs/zoo.md)
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/runtime/resume_point.hpp"
 #include "rlrun/runtime/trainer.hpp"
+#include "rlrun/runtime/zoo/zoo_import.hpp"
 
 namespace rlrun::cli {
 
@@ -31,6 +33,9 @@ struct TrainOptions {
   std::vector<std::string> plugins;
   std::string resume;
   int jobs = 1;
+  std::string zoo;
+  std::string zoo_env;
+  std::string zoo_algo;
 };
 
 // 130 (128 + SIGINT, as shells report it) for an interrupted run; the trainer has printed
@@ -92,6 +97,16 @@ int resume(const TrainOptions& o, Registry& registry) {
   return exit_code(train_experiment(experiment, registry, candidates));
 }
 
+int train_zoo(const TrainOptions& o, Registry& registry) {
+  if (!o.configs.empty() || o.jobs != 1)
+    throw UsageError("--zoo trains one zoo entry; it takes no experiment files or -j");
+  if (o.zoo_env.empty()) throw UsageError("--zoo needs --env ENV_ID (the entry to train)");
+  const Experiment experiment =
+      zoo::load_zoo_experiment(o.zoo, o.zoo_env, o.zoo_algo, all_overrides(o), registry);
+  install_interrupt_handlers();
+  return exit_code(train_experiment(experiment, registry));
+}
+
 }  // namespace
 
 Action add_train(CLI::App& app, Registry& registry) {
@@ -120,10 +135,20 @@ Action add_train(CLI::App& app, Registry& registry) {
   sub->add_option("--resume", options->resume,
                   "continue an interrupted run exactly: its run directory (newest checkpoint) or "
                   "a checkpoints/step_<N>.zip file");
+  sub->add_option("--zoo", options->zoo,
+                  "train an rl-baselines3-zoo hyperparameter entry directly (hyperparams/<algo>.yml "
+                  "with --env; `rlrun zoo import` writes the same experiment as a file)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--env", options->zoo_env, "with --zoo: the env whose entry to train");
+  sub->add_option("--algo", options->zoo_algo,
+                  "with --zoo: the algorithm, when the file name does not say");
   add_plugin_option(sub, options->plugins);
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);
     if (!options->resume.empty()) return resume(*options, registry);
+    if (!options->zoo.empty()) return train_zoo(*options, registry);
+    if (!options->zoo_env.empty() || !options->zoo_algo.empty())
+      throw UsageError("--env and --algo go with --zoo HYPERPARAMS.yml");
     if (options->configs.empty())
       throw UsageError("train needs experiment files (rlrun train configs/x.yaml) or --resume RUN_DIR");
     const std::vector<std::string> overrides = all_overrides(*options);

@@ -20,5 +20,6 @@ Action add_record(CLI::App& app, Registry& registry);
 Action add_sweep(CLI::App& app, Registry& registry);
 Action add_report(CLI::App& app);
 Action add_plot(CLI::App& app);
+Action add_zoo(CLI::App& app, Registry& registry);
 
 }  // namespace rlrun::cli

@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   rlrun::cli::Action sweep = rlrun::cli::add_sweep(app, registry);
   rlrun::cli::Action report = rlrun::cli::add_report(app);
   rlrun::cli::Action plot = rlrun::cli::add_plot(app);
+  rlrun::cli::Action zoo = rlrun::cli::add_zoo(app, registry);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) return sweep();
     if (app.got_subcommand("report")) return report();
     if (app.got_subcommand("plot")) return plot();
+    if (app.got_subcommand("zoo")) return zoo();
   } catch (const rlrun::ConfigError& e) {
     print_error(e.what());
     return rlrun::kExitUsage;

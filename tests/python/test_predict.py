@@ -15,6 +15,10 @@ MODELS = {
     "ppo_norm": ("env: {id: CartPole-v1, n_envs: 2, wrappers: [{id: NormalizeObservation}]}\n"
                  "algo: {id: PPO, n_steps: 64, batch_size: 64, n_epochs: 1,"
                  " policy: {net_arch: [16]}}\n", 256),
+    # env.normalize (SB3's VecNormalize as rl-zoo's `normalize: true`): obs and reward halves.
+    "ppo_vecnorm": ("env: {id: Acrobot-v1, n_envs: 4, normalize: true}\n"
+                    "algo: {id: PPO, n_steps: 32, batch_size: 64, n_epochs: 1,"
+                    " policy: {net_arch: [16]}}\n", 256),
     "a2c": ("env: {id: Acrobot-v1}\n"
             "algo: {id: A2C, n_steps: 8, policy: {net_arch: [16]}}\n", 160),
     "dqn": ("env: {id: MountainCar-v0}\n"
@@ -84,6 +88,12 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
         action, _ = model.predict(rows[0]["obs"], deterministic=True)
         self.assertEqual(action.shape, ())
         self.assertEqual(action.dtype, np.int64)
+
+    def test_ppo_with_env_normalize(self):
+        # The model file's statistics normalise raw observations in predict(), as in eval.
+        model, rows = self.check_exact("ppo_vecnorm", "PPO")
+        self.assertIn("normalize", model.config)
+        self.assertEqual(model.observation_space.shape, (6,))
 
     def test_a2c(self):
         self.check_exact("a2c", "A2C")

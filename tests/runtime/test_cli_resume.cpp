@@ -266,3 +266,18 @@ TEST_CASE("divergence: a non-finite loss stops training, naming the step and the
   CHECK(r.output.find("No checkpoint was written") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "cartpole_ppo/seed1/model.zip"));
 }
+
+TEST_CASE("resume: PPO with env.normalize (batched VecNormalize) resumes exactly",
+          "[cli][resume][vec_normalize]") {
+  // The statistics, each env's discounted return and the normalised observations of the
+  // interrupted step all come back from the checkpoint.
+  const ResumeCase normalized{"cartpole_ppo.yaml",
+                              "cartpole_ppo",
+                              " --set run.total_timesteps=20000 --set checkpoint.freq=8192"
+                              " --set eval.freq=10000 --set eval.n_episodes=3"
+                              " --set env.normalize=true",
+                              "step_8192.zip",
+                              8,
+                              true};
+  check_resume_equals_uninterrupted(normalized, "KILL");
+}

@@ -67,7 +67,20 @@ const Eigen::MatrixXf& VecEnv::reset() {
   // SB3 _reset_seeds: a seed applies to one reset only.
   seeds_.assign(seeds_.size(), std::nullopt);
   final_obs_.setConstant(std::numeric_limits<float>::quiet_NaN());
+  if (hook_) hook_->after_reset(obs_);
   return obs_;
+}
+
+void VecEnv::set_step_hook(std::unique_ptr<VecStepHook> hook) {
+  if (hook && num_envs() != num_copies())
+    throw std::invalid_argument("VecEnv: a step hook needs single-agent envs");
+  hook_ = std::move(hook);
+  done_.assign(static_cast<size_t>(num_envs()), 0);
+}
+
+void VecEnv::run_step_hook() {
+  for (size_t i = 0; i < done_.size(); ++i) done_[i] = terminated_[i] || truncated_[i];
+  hook_->after_step(obs_, final_obs_, rewards_, done_);
 }
 
 void VecEnv::reset_copy(int c) {
@@ -105,9 +118,10 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
       }
     }
     if (error) std::rethrow_exception(error);
-    return;
+  } else {
+    for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
   }
-  for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
+  if (hook_) run_step_hook();
 }
 
 void VecEnv::step_copy(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {

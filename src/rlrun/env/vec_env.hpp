@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "rlrun/env/split_step.hpp"
@@ -28,6 +29,20 @@
 #include "rlrun/info.hpp"
 
 namespace rlrun {
+
+// Work on the whole batch after every copy has stepped or reset: what an SB3 VecEnvWrapper's
+// step_wait() / reset() does on top of the per-env stacks. VecNormalize is one
+// (wrappers/vec_normalize.hpp). Must not allocate.
+class VecStepHook {
+ public:
+  virtual ~VecStepHook() = default;
+  // After reset(): `obs` holds every env's first observation.
+  virtual void after_reset(Eigen::MatrixXf& obs) = 0;
+  // After step() and its auto-resets: `obs` as the algorithm will see it, `final_obs` the
+  // finished episodes' last observations (columns where `done`), `rewards` the step's rewards.
+  virtual void after_step(Eigen::MatrixXf& obs, Eigen::MatrixXf& final_obs,
+                          Eigen::VectorXd& rewards, std::span<const uint8_t> done) = 0;
+};
 
 class VecEnv {
  public:
@@ -75,6 +90,10 @@ class VecEnv {
   void write_state(StateWriter& out) const;
   void read_state(const StateReader& in);
 
+  // Runs `hook` after every reset() and step() from now on (single-agent copies only).
+  void set_step_hook(std::unique_ptr<VecStepHook> hook);
+  VecStepHook* step_hook() const { return hook_.get(); }
+
   // Env copy c (0 <= c < num_copies()).
   Env& env(int c) { return *envs_[c]; }
   const Env& env(int c) const { return *envs_[c]; }
@@ -86,6 +105,7 @@ class VecEnv {
   // After copy c's step returned r: rewards, flags, info, and the auto-reset.
   void finish_copy(int c, const StepResult& r);
   void step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions);
+  void run_step_hook();
 
   std::vector<EnvPtr> envs_;
   std::vector<int> first_slot_;  // env copy c's first column
@@ -103,6 +123,8 @@ class VecEnv {
   std::vector<Info> infos_;
   // Every copy steps asynchronously (env/split_step.hpp): start all steps, then finish them.
   std::vector<SplitStep*> split_;
+  std::unique_ptr<VecStepHook> hook_;
+  std::vector<uint8_t> done_;  // terminated || truncated, for the hook
 };
 
 }  // namespace rlrun

@@ -16,6 +16,7 @@
 #include "rlrun/wrappers/normalize_reward.hpp"
 #include "rlrun/wrappers/rescale_action.hpp"
 #include "rlrun/wrappers/reward_shaping.hpp"
+#include "rlrun/wrappers/time_feature.hpp"
 #include "rlrun/wrappers/transform_reward.hpp"
 #include "rlrun/wrappers/discrete_as_box.hpp"
 #include "rlrun/wrappers/one_hot_observation.hpp"
@@ -51,6 +52,8 @@ Registry make_builtins() {
       "TransformReward", "reward' = clip(scale * reward + offset, clip_min, clip_max)"));
   r.add(make_wrapper_entry<RewardShaping>(
       "RewardShaping", "adds YAML-configured terms to the reward (obs_above_for, obs_abs, action_sq, ...)"));
+  r.add(make_wrapper_entry<TimeFeature>(
+      "TimeFeature", "appends the remaining episode time 1 - t/max_steps to the observation (sb3_contrib TimeFeatureWrapper)"));
   r.add(make_wrapper_entry<OneHotObservation>(
       "OneHotObservation", "Discrete/MultiDiscrete/MultiBinary observations as SB3's one-hot Box"));
 

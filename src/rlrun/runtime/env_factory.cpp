@@ -7,6 +7,7 @@
 #include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
+#include "rlrun/wrappers/vec_normalize.hpp"
 
 namespace rlrun {
 
@@ -45,16 +46,24 @@ EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const Registry& registry,
   env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start, std::move(keywords),
                                   append_monitor);
   // Several agents: TimeLimit and Monitor know how to step them; other wrappers not yet.
-  if (env->num_agents() > 1 && (tap_observations || !spec.wrappers.empty()))
+  if (env->num_agents() > 1 &&
+      (tap_observations || !spec.wrappers.empty() || spec.section.normalize.enabled))
     fail_at_env(spec, spec.id + " has " + std::to_string(env->num_agents()) +
-                          " agents; env.wrappers and obs_log do not support multi-agent envs yet");
+                          " agents; env.wrappers, env.normalize and obs_log do not support "
+                          "multi-agent envs yet");
   if (tap_observations) env = std::make_unique<ObservationTap>(std::move(env));
   for (const WrapperSpec& w : spec.wrappers) {
     const WrapperEntry* wrapper = registry.find_wrapper(w.id);
     if (!wrapper) fail_at_env(spec, "unknown wrapper '" + w.id + "'");
     env = wrapper->make(std::move(env), w.params);
   }
-  return adapt_action_space(std::move(env), spec, registry);
+  env = adapt_action_space(std::move(env), spec, registry);
+  // Outermost, where SB3's VecNormalize wraps the VecEnv.
+  try {
+    return add_normalization(std::move(env), spec.section.normalize, spec.normalize_gamma());
+  } catch (const std::invalid_argument& e) {
+    fail_at_env(spec, std::string("env.normalize: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -97,7 +106,9 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
     envs[i] = wrap_env(std::move(envs[i]), spec, registry, path, t_start, i == tap_env,
                        append_monitor);
   }
-  return VecEnv(std::move(envs));
+  VecEnv vec(std::move(envs));
+  install_batch_normalization(vec, spec.section.normalize);
+  return vec;
 }
 
 std::vector<std::string> episode_info_keywords(const EnvSpec& spec, const Registry& registry,

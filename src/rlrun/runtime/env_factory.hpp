@@ -1,7 +1,8 @@
 #pragma once
 // Builds the env stack for an experiment, in the order SB3's make_vec_env and gymnasium.make
 // use: registered env -> TimeLimit (registered limit or override) -> Monitor (true episode
-// returns, `<rank>.monitor.csv`) -> the user's wrappers in YAML order.
+// returns, `<rank>.monitor.csv`) -> the user's wrappers in YAML order -> env.normalize (SB3's
+// VecNormalize, outermost; batched over the copies of a VecEnv: wrappers/vec_normalize.hpp).
 #include <string>
 
 #include "rlrun/env/vec_env.hpp"

@@ -243,6 +243,8 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
     exp.env.accepted_action_spaces = entry.action_spaces;
     exp.env.algorithm_id = exp.algo.id;
     exp.algo.params = entry.parse(algo);
+    const YAML::Node gamma = exp.algo.params.resolved()["gamma"];
+    if (gamma.IsDefined() && gamma.IsScalar()) exp.env.algorithm_gamma = gamma.as<double>();
   });
   parse_callbacks(root, exp, problems);
   if (problems.empty()) check_against_env(root, registry, exp, problems);

@@ -22,6 +22,7 @@
 #include "rlrun/runtime/obs_log_callback.hpp"
 #include "rlrun/runtime/registry.hpp"
 #include "rlrun/runtime/video_callback.hpp"
+#include "rlrun/wrappers/vec_normalize.hpp"
 
 namespace rlrun {
 
@@ -76,6 +77,7 @@ struct EnvSectionConfig {
   ProgramPath python{"python3"};           // interpreter of python:/gymnasium: envs
   // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
   std::optional<std::vector<std::string>> info_keywords;
+  NormalizeSetting normalize;              // SB3 VecNormalize (wrappers/vec_normalize.hpp)
   template <class V>
   void visit(V& v) {
     v("n_envs", n_envs, "number of env copies stepped together", in_range(1, kMaxEnvs));
@@ -90,6 +92,9 @@ struct EnvSectionConfig {
     v("info_keywords", info_keywords,
       "info keys read at each episode's end: monitor.csv columns, rollout/<key> and eval/<key> "
       "means (SB3's Monitor info_keywords); null = the env's metrics and is_success, [] = none");
+    v("normalize", normalize,
+      "SB3 VecNormalize on the training envs (rl-zoo's normalize): true, or {norm_obs, "
+      "norm_reward, clip_obs, clip_reward, gamma (null = the algorithm's), epsilon}");
   }
 };
 
@@ -112,6 +117,11 @@ struct EnvSpec {
   // auto_wrap) at the end of the env stack. Empty: no check.
   std::vector<SpaceKind> accepted_action_spaces;
   std::string algorithm_id;
+  // The algorithm's gamma, for env.normalize's `gamma: null` (unset: VecNormalize's 0.99).
+  std::optional<double> algorithm_gamma;
+  double normalize_gamma() const {
+    return section.normalize.gamma.value_or(algorithm_gamma.value_or(0.99));
+  }
 };
 
 struct AlgoSpec {

@@ -52,6 +52,11 @@ NormalizeObservation::NormalizeObservation(EnvPtr inner, const Config& config)
   rms_ = std::make_shared<RunningMeanStd>(whole_ ? inner_space.flat_dim()
                                                  : static_cast<int>(indices_.size()));
   original_.resize(inner_space.flat_dim());
+  batch_scratch_.resize(2 * static_cast<size_t>(rms_->dim()));
+}
+
+void NormalizeObservation::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
+  if (training_) rms_->update_batch(obs, indices_, batch_scratch_);
 }
 
 std::span<const float> NormalizeObservation::selected(std::span<const float> obs) {
@@ -63,6 +68,7 @@ std::span<const float> NormalizeObservation::selected(std::span<const float> obs
 void NormalizeObservation::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   inner_->reset(seed, obs);
   std::copy(obs.begin(), obs.end(), original_.begin());
+  if (batched_) return;
   if (training_) rms_->update(selected(obs));  // VecNormalize.reset updates obs_rms
   normalize(obs);
 }
@@ -73,6 +79,7 @@ StepResult NormalizeObservation::step(std::span<const float> action, std::span<f
 
 StepResult NormalizeObservation::after_step(StepResult result, std::span<float> obs) {
   std::copy(obs.begin(), obs.end(), original_.begin());
+  if (batched_) return result;
   if (training_ && !result.terminated && !result.truncated) rms_->update(selected(obs));
   normalize(obs);
   return result;

@@ -21,6 +21,11 @@
 // normalised keys' floats in sorted key order; it equals SB3's one-per-key statistics, which are
 // updated with the same observations and so share one count.
 // A threaded VecEnv must not step two copies sharing statistics at the same time.
+//
+// `env.normalize` (wrappers/vec_normalize.hpp) removes that difference: its copies are in
+// batched mode, where reset() and step() only keep the original observation, and the VecEnv's
+// step hook updates the statistics with the whole batch and then normalises every column, as
+// VecNormalize.step_wait does.
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,6 +78,14 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
   void share_statistics_with(ModelStatistics& first) override;
 
   const RunningMeanStd& statistics() const { return *rms_; }
+  // Batched mode (wrappers/vec_normalize.hpp): reset() and step() pass observations through;
+  // update_batch() and normalize() do the work for the whole VecEnv.
+  void set_batched(bool batched) { batched_ = batched; }
+  // While training: SB3's obs_rms.update(obs) with one observation per column of `obs`
+  // (observations of this wrapper's inner space).
+  void update_batch(const Eigen::Ref<const Eigen::MatrixXf>& obs);
+  // Normalises one observation in place with the current statistics.
+  void normalize(std::span<float> obs) const;
   // The observation of the last reset()/step() before normalisation (SB3 get_original_obs).
   std::span<const float> original_obs() const { return original_; }
 
@@ -86,7 +99,6 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
  private:
   // What step() does after the inner env stepped.
   StepResult after_step(StepResult result, std::span<float> obs);
-  void normalize(std::span<float> obs) const;
   // The floats the statistics see: the observation itself, or its normalised keys' floats.
   std::span<const float> selected(std::span<const float> obs);
 
@@ -97,6 +109,8 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
   Space space_;
   std::shared_ptr<RunningMeanStd> rms_;
   bool training_ = true;
+  bool batched_ = false;
+  std::vector<float> batch_scratch_;  // update_batch()'s float32 moments
   std::vector<float> original_;
 };
 

@@ -16,7 +16,7 @@ NormalizeReward::NormalizeReward(EnvPtr inner, const Config& config)
 
 void NormalizeReward::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   inner_->reset(seed, obs);
-  return_ = 0.0;  // VecNormalize.reset: self.returns = np.zeros(num_envs)
+  if (!batched_) return_ = 0.0;  // VecNormalize.reset: self.returns = np.zeros(num_envs)
 }
 
 StepResult NormalizeReward::step(std::span<const float> action, std::span<float> obs) {
@@ -24,14 +24,26 @@ StepResult NormalizeReward::step(std::span<const float> action, std::span<float>
 }
 
 StepResult NormalizeReward::after_step(StepResult result, std::span<float> /*obs*/) {
-  if (training_) {  // VecNormalize._update_reward
-    return_ = return_ * config_.gamma + result.reward;
-    rms_->update(return_);
-  }
-  result.reward = std::clamp(result.reward / std::sqrt(rms_->var()[0] + config_.epsilon),
-                             -config_.clip_reward, config_.clip_reward);
+  if (batched_) return result;
+  if (training_) rms_->update(add_to_return(result.reward));  // VecNormalize._update_reward
+  result.reward = scale(result.reward);
   if (result.terminated || result.truncated) return_ = 0.0;  // self.returns[dones] = 0
   return result;
+}
+
+double NormalizeReward::add_to_return(double reward) {
+  if (training_) return_ = return_ * config_.gamma + reward;
+  return return_;
+}
+
+void NormalizeReward::update_batch(std::span<const double> returns, std::span<double> scratch) {
+  if (training_) rms_->update_batch(returns, scratch);
+}
+
+double NormalizeReward::scale(double reward) const {
+  if (!training_ && unscaled_when_frozen_) return reward;
+  return std::clamp(reward / std::sqrt(rms_->var()[0] + config_.epsilon), -config_.clip_reward,
+                    config_.clip_reward);
 }
 
 void NormalizeReward::share_statistics_with(ModelStatistics& first) {

@@ -62,6 +62,19 @@ class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep
   const RunningMeanStd& statistics() const { return *rms_; }
   double discounted_return() const { return return_; }
 
+  // Batched mode (wrappers/vec_normalize.hpp): reset() and step() pass rewards through and
+  // leave the return alone; the VecEnv's hook calls the functions below.
+  void set_batched(bool batched) { batched_ = batched; }
+  // Frozen (training false): rewards pass unchanged instead of being scaled.
+  void set_unscaled_when_frozen(bool unscaled) { unscaled_when_frozen_ = unscaled; }
+  // While training: ret = ret * gamma + reward. Returns ret.
+  double add_to_return(double reward);
+  // While training: ret_rms.update(returns) with the batch of every copy's return.
+  void update_batch(std::span<const double> returns, std::span<double> scratch);
+  // clip(reward / sqrt(ret_rms.var + epsilon)) (unchanged when frozen and so configured).
+  double scale(double reward) const;
+  void end_episode() { return_ = 0.0; }
+
  protected:
   void write_own_state(StateWriter& out) const override;
   void read_own_state(const StateReader& in) override;
@@ -73,6 +86,8 @@ class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep
   std::shared_ptr<RunningMeanStd> rms_;
   double return_ = 0.0;
   bool training_ = true;
+  bool batched_ = false;
+  bool unscaled_when_frozen_ = false;
 };
 
 }  // namespace rlrun

@@ -40,6 +40,85 @@ void RunningMeanStd::update_from_moments(const Eigen::VectorXd& batch_mean,
   count_ = tot_count;
 }
 
+namespace {
+
+// update_from_moments for one coordinate, with SB3's operations in SB3's order; `m_b` is
+// batch_var * batch_count, whose precision is the batch's (float32 for observations).
+void merge_moments(double& mean, double& var, double count, double batch_mean, double m_b,
+                   double batch_count) {
+  const double delta = batch_mean - mean;
+  const double tot_count = count + batch_count;
+  const double m_2 = var * count + m_b + delta * delta * count * batch_count / tot_count;
+  mean = mean + delta * batch_count / tot_count;
+  var = m_2 / tot_count;
+}
+
+}  // namespace
+
+void RunningMeanStd::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& samples,
+                                  std::span<const int> rows, std::span<float> scratch) {
+  const Eigen::Index n = samples.cols();
+  const float n_float = static_cast<float>(n);
+  std::span<float> sum = scratch.first(static_cast<size_t>(dim()));
+  std::span<float> square_sum = scratch.subspan(static_cast<size_t>(dim()), static_cast<size_t>(dim()));
+  auto row = [&](int k) { return rows.empty() ? k : rows[static_cast<size_t>(k)]; };
+  // numpy reduces axis 0 of an (n, dim) float32 array sample by sample, in float32.
+  for (int k = 0; k < dim(); ++k) {
+    float s = samples(row(k), 0);
+    for (Eigen::Index j = 1; j < n; ++j) s += samples(row(k), j);
+    sum[static_cast<size_t>(k)] = s / n_float;  // np.mean: float32 sum / n
+  }
+  for (int k = 0; k < dim(); ++k) {
+    const float mean = sum[static_cast<size_t>(k)];
+    float d = samples(row(k), 0) - mean;
+    float s = d * d;
+    for (Eigen::Index j = 1; j < n; ++j) {
+      d = samples(row(k), j) - mean;
+      s += d * d;
+    }
+    square_sum[static_cast<size_t>(k)] = s / n_float;  // np.var (ddof 0)
+  }
+  const double tot_count = count_ + static_cast<double>(n);
+  // np.var of float32 is float32, and so is its product with the integer count.
+  for (int k = 0; k < dim(); ++k)
+    merge_moments(mean_[k], var_[k], count_, sum[static_cast<size_t>(k)],
+                  square_sum[static_cast<size_t>(k)] * n_float, static_cast<double>(n));
+  count_ = tot_count;
+}
+
+// numpy's pairwise_sum (numpy/core/src/umath/loops_utils.h.src) of a contiguous float64 vector,
+// which np.mean and np.var use: up to 8 values left to right, up to 128 in eight interleaved
+// partial sums, beyond that halves summed recursively.
+double pairwise_sum(std::span<const double> a) {
+  const size_t n = a.size();
+  if (n < 8) {
+    double res = 0.0;
+    for (double v : a) res += v;
+    return res;
+  }
+  if (n <= 128) {
+    double r[8];
+    for (size_t j = 0; j < 8; ++j) r[j] = a[j];
+    size_t i = 8;
+    for (; i < n - (n % 8); i += 8)
+      for (size_t j = 0; j < 8; ++j) r[j] += a[i + j];
+    double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+    for (; i < n; ++i) res += a[i];
+    return res;
+  }
+  size_t half = n / 2;
+  half -= half % 8;
+  return pairwise_sum(a.first(half)) + pairwise_sum(a.subspan(half));
+}
+
+void RunningMeanStd::update_batch(std::span<const double> values, std::span<double> scratch) {
+  const double n = static_cast<double>(values.size());
+  const double mean = pairwise_sum(values) / n;  // np.mean
+  for (size_t i = 0; i < values.size(); ++i) scratch[i] = (values[i] - mean) * (values[i] - mean);
+  merge_moments(mean_[0], var_[0], count_, mean, pairwise_sum(scratch.first(values.size())) / n * n, n);
+  count_ += n;
+}
+
 void RunningMeanStd::write(StateWriter& out) const {
   put_matrix(out, "mean", mean_);
   put_matrix(out, "var", var_);

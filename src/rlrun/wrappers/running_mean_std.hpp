@@ -11,6 +11,9 @@
 
 namespace rlrun {
 
+// numpy's pairwise summation of a contiguous float64 vector (np.sum / np.mean / np.var).
+double pairwise_sum(std::span<const double> a);
+
 class RunningMeanStd {
  public:
   static constexpr double kInitialCount = 1e-4;
@@ -23,6 +26,15 @@ class RunningMeanStd {
   // SB3 update_from_moments: merges a batch of `batch_count` samples with the given moments.
   void update_from_moments(const Eigen::VectorXd& batch_mean, const Eigen::VectorXd& batch_var,
                            double batch_count);
+  // SB3 update(arr) for a batch of float32 samples, one per column of `samples` (only the rows
+  // listed in `rows`, when not empty): numpy's float32 np.mean / np.var over axis 0 (summed
+  // sample by sample, divided in float32), then update_from_moments. `scratch` holds 2 * dim()
+  // floats; nothing is allocated.
+  void update_batch(const Eigen::Ref<const Eigen::MatrixXf>& samples, std::span<const int> rows,
+                    std::span<float> scratch);
+  // The same for a batch of float64 values (dim 1), SB3's ret_rms.update(returns): numpy's
+  // pairwise sums. `scratch` holds values.size() doubles.
+  void update_batch(std::span<const double> values, std::span<double> scratch);
 
   int dim() const { return static_cast<int>(mean_.size()); }
   const Eigen::VectorXd& mean() const { return mean_; }
