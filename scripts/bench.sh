@@ -95,6 +95,8 @@ fi
 gripper_table=$(build/tests/rlrun_tests "[gripper_bench]" | grep '^|' || true)
 # Box2D: LunarLander-v3 env steps/s on one core, random actions (tests/envs/test_lunar_lander.cpp).
 lander_table=$(build/tests/rlrun_tests "[lunar_lander_bench]" | grep '^|' || true)
+# Box2D: BipedalWalker-v3 / Hardcore env steps/s on one core (tests/envs/test_bipedal_walker.cpp).
+walker_table=$(build/tests/rlrun_tests "[walker_bench]" | grep '^|' || true)
 # Python: env steps/s of rlrun.make_vec("CartPole-v1", 64) from Python against a pure-Python
 # CartPole loop (and Gymnasium's, when importable) (scripts/bench_python_env.py; issue 17).
 python_table=""
@@ -112,12 +114,13 @@ echo
 [[ -n "$traffic_table" ]] && echo "$traffic_table" && echo
 [[ -n "$gripper_table" ]] && echo "$gripper_table" && echo
 [[ -n "$lander_table" ]] && echo "$lander_table" && echo
+[[ -n "$walker_table" ]] && echo "$walker_table" && echo
 [[ -n "$python_table" ]] && echo "$python_table" && echo
 [[ -n "$python_train_table" ]] && echo "$python_train_table" && echo
 [[ -n "$tensorboard_table" ]] && echo "$tensorboard_table" && echo
 echo "machine: $machine"
 if ((update_docs)); then
-  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}${lander_table:+LunarLander-v3 (Box2D):$'\n\n'$lander_table$'\n\n'}${python_table:+Env steps from Python (scripts/bench_python_env.py):$'\n\n'$python_table$'\n\n'}${python_train_table:+PPO zoo CartPole on a Python env (scripts/bench_python_train.sh):$'\n\n'$python_train_table$'\n\n'}${tensorboard_table:+TensorBoard event files (scripts/bench_tensorboard.sh):$'\n\n'$tensorboard_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
+  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}${lander_table:+LunarLander-v3 (Box2D):$'\n\n'$lander_table$'\n\n'}${walker_table:+BipedalWalker (Box2D):$'\n\n'$walker_table$'\n\n'}${python_table:+Env steps from Python (scripts/bench_python_env.py):$'\n\n'$python_table$'\n\n'}${python_train_table:+PPO zoo CartPole on a Python env (scripts/bench_python_train.sh):$'\n\n'$python_train_table$'\n\n'}${tensorboard_table:+TensorBoard event files (scripts/bench_tensorboard.sh):$'\n\n'$tensorboard_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
   BLOCK="$block" python3 - <<'PY'
 import os, re
 path = "docs/benchmarks.md"
