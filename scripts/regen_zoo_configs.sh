@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates configs/zoo/ with `rlrun zoo import` from a checkout of rl-baselines3-zoo:
-# the classic-control entries of its six algorithm files (docs/zoo.md).
+# the entries of its six algorithm files for the classic-control and Box2D tasks (docs/zoo.md).
 #   scripts/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]
 # An entry the file does not have (e.g. DQN on Pendulum) is skipped; an entry that needs what
 # this rlrun build lacks is reported and skipped, and the script exits 1 at the end.
@@ -14,7 +14,8 @@ failed=0
 cd "$zoo"  # the written files name hyperparams/<algo>.yml, not this machine's path
 for algo in ppo a2c dqn sac td3 ddpg; do
   file=hyperparams/$algo.yml
-  for env in CartPole-v1 Pendulum-v1 MountainCar-v0 MountainCarContinuous-v0 Acrobot-v1; do
+  for env in CartPole-v1 Pendulum-v1 MountainCar-v0 MountainCarContinuous-v0 Acrobot-v1 \
+             LunarLander-v3 LunarLanderContinuous-v3 BipedalWalker-v3 BipedalWalkerHardcore-v3; do
     # Only the env's own entry: `default` entries are not tuned for it.
     grep -q "^$env:" "$file" || continue
     name=$(echo "${env%-v*}" | tr '[:upper:]' '[:lower:]')_$algo

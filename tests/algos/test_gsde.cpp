@@ -163,7 +163,15 @@ ActorOut gsde_actor(const Mlp& net, const Eigen::VectorXd& p, const Eigen::Matri
     const Eigen::Map<const Eigen::VectorXd> b(p.data() + offset, o);
     offset += o;
     if (l + 1 < net.num_layers()) {
-      a = (w * a + b).array().max(0.0).matrix();  // relu, SAC's default
+      a = w * a + b;
+      for (Eigen::Index k = 0; k < a.size(); ++k) {
+        switch (net.activation()) {
+          case Activation::kReLU: a(k) = std::max(a(k), 0.0); break;
+          case Activation::kTanh: a(k) = std::tanh(a(k)); break;
+          case Activation::kELU: a(k) = a(k) > 0.0 ? a(k) : std::expm1(a(k)); break;
+          case Activation::kLeakyReLU: a(k) = a(k) > 0.0 ? a(k) : kLeakyReLUSlope * a(k); break;
+        }
+      }
     } else {
       out = w * a + b;
     }
@@ -202,10 +210,14 @@ TEST_CASE(
     "variance and the latent features, none through a clipped mean",
     "[algos][gsde][gradcheck]") {
   const int n = GENERATE(8, 40);  // 40: split over both cores (SplitMlp)
-  INFO("batch " << n);
+  // The latent's gradient passes each activation's derivative (Mlp::add_hidden_gradient).
+  const Activation activation = GENERATE(Activation::kReLU, Activation::kTanh, Activation::kELU,
+                                         Activation::kLeakyReLU);
+  INFO("batch " << n << ", " << activation_name(activation));
   const int obs_dim = 3, act_dim = 2;
   SAC::Config cfg;
   cfg.policy.net_arch = {{6, 5}, {6, 5}};
+  cfg.policy.activation_fn = activation;
   cfg.off_policy.batch_size = n;
   cfg.ent_coef = "0.3";
   cfg.use_sde = true;

@@ -25,56 +25,6 @@ const std::string kZooData = std::string(RLRUN_SOURCE_DIR) + "/tests/data/zoo";
 const std::vector<std::string> kAlgos{"ppo", "a2c", "dqn", "sac", "td3", "ddpg"};
 const std::vector<std::string> kVersions{"", "2023-04", "2021-02", "2020-12"};
 
-// Entries that need what other branches of issue 19 bring (gSDE: h/gsde; net_arch dicts,
-// activations, ortho_init false: h/policy; LunarLander: h/lander; BipedalWalker: h/walker).
-// They must fail here, so that this list is emptied when those are merged (the test then says
-// which entry works now).
-const std::set<std::string> kAwaitingMerge{
-    "ppo.yml:Pendulum-v1", "ppo.yml:MountainCarContinuous-v0", "ppo.yml:LunarLander-v3",
-    "ppo.yml:LunarLanderContinuous-v3", "ppo.yml:BipedalWalker-v3",
-    "ppo.yml:BipedalWalkerHardcore-v3", "a2c.yml:Pendulum-v1", "a2c.yml:MountainCarContinuous-v0",
-    "a2c.yml:LunarLander-v3", "a2c.yml:LunarLanderContinuous-v3", "a2c.yml:BipedalWalker-v3",
-    "a2c.yml:BipedalWalkerHardcore-v3", "dqn.yml:LunarLander-v3", "sac.yml:MountainCarContinuous-v0",
-    "sac.yml:LunarLanderContinuous-v3", "sac.yml:BipedalWalker-v3",
-    "sac.yml:BipedalWalkerHardcore-v3", "td3.yml:LunarLanderContinuous-v3",
-    "td3.yml:BipedalWalker-v3", "td3.yml:BipedalWalkerHardcore-v3",
-    "ddpg.yml:LunarLanderContinuous-v3", "ddpg.yml:BipedalWalker-v3",
-    "ddpg.yml:BipedalWalkerHardcore-v3",
-    "2023-04/ppo.yml:Pendulum-v1", "2023-04/ppo.yml:MountainCarContinuous-v0",
-    "2023-04/ppo.yml:LunarLander-v2", "2023-04/ppo.yml:LunarLanderContinuous-v2",
-    "2023-04/ppo.yml:BipedalWalker-v3", "2023-04/ppo.yml:BipedalWalkerHardcore-v3",
-    "2023-04/a2c.yml:Pendulum-v1", "2023-04/a2c.yml:MountainCarContinuous-v0",
-    "2023-04/a2c.yml:LunarLander-v2", "2023-04/a2c.yml:LunarLanderContinuous-v2",
-    "2023-04/a2c.yml:BipedalWalker-v3", "2023-04/a2c.yml:BipedalWalkerHardcore-v3",
-    "2023-04/dqn.yml:LunarLander-v2", "2023-04/sac.yml:MountainCarContinuous-v0",
-    "2023-04/sac.yml:LunarLanderContinuous-v2", "2023-04/sac.yml:BipedalWalker-v3",
-    "2023-04/sac.yml:BipedalWalkerHardcore-v3", "2023-04/td3.yml:LunarLanderContinuous-v2",
-    "2023-04/td3.yml:BipedalWalker-v3", "2023-04/td3.yml:BipedalWalkerHardcore-v3",
-    "2023-04/ddpg.yml:LunarLanderContinuous-v2", "2023-04/ddpg.yml:BipedalWalker-v3",
-    "2023-04/ddpg.yml:BipedalWalkerHardcore-v3",
-    "2021-02/ppo.yml:MountainCarContinuous-v0", "2021-02/ppo.yml:LunarLander-v2",
-    "2021-02/ppo.yml:LunarLanderContinuous-v2", "2021-02/ppo.yml:BipedalWalker-v3",
-    "2021-02/ppo.yml:BipedalWalkerHardcore-v3", "2021-02/a2c.yml:MountainCarContinuous-v0",
-    "2021-02/a2c.yml:LunarLander-v2", "2021-02/a2c.yml:LunarLanderContinuous-v2",
-    "2021-02/a2c.yml:BipedalWalker-v3", "2021-02/a2c.yml:BipedalWalkerHardcore-v3",
-    "2021-02/dqn.yml:LunarLander-v2", "2021-02/sac.yml:MountainCarContinuous-v0",
-    "2021-02/sac.yml:LunarLanderContinuous-v2", "2021-02/sac.yml:BipedalWalker-v3",
-    "2021-02/sac.yml:BipedalWalkerHardcore-v3", "2021-02/td3.yml:LunarLanderContinuous-v2",
-    "2021-02/td3.yml:BipedalWalker-v3", "2021-02/td3.yml:BipedalWalkerHardcore-v3",
-    "2021-02/ddpg.yml:LunarLanderContinuous-v2", "2021-02/ddpg.yml:BipedalWalker-v3",
-    "2021-02/ddpg.yml:BipedalWalkerHardcore-v3",
-    "2020-12/ppo.yml:MountainCarContinuous-v0", "2020-12/ppo.yml:LunarLander-v2",
-    "2020-12/ppo.yml:LunarLanderContinuous-v2", "2020-12/ppo.yml:BipedalWalker-v3",
-    "2020-12/ppo.yml:BipedalWalkerHardcore-v3", "2020-12/a2c.yml:MountainCarContinuous-v0",
-    "2020-12/a2c.yml:LunarLander-v2", "2020-12/a2c.yml:LunarLanderContinuous-v2",
-    "2020-12/a2c.yml:BipedalWalker-v3", "2020-12/a2c.yml:BipedalWalkerHardcore-v3",
-    "2020-12/dqn.yml:LunarLander-v2", "2020-12/sac.yml:MountainCarContinuous-v0",
-    "2020-12/sac.yml:LunarLanderContinuous-v2", "2020-12/sac.yml:BipedalWalker-v3",
-    "2020-12/sac.yml:BipedalWalkerHardcore-v3", "2020-12/td3.yml:LunarLanderContinuous-v2",
-    "2020-12/td3.yml:BipedalWalker-v3", "2020-12/td3.yml:BipedalWalkerHardcore-v3",
-    "2020-12/ddpg.yml:LunarLanderContinuous-v2", "2020-12/ddpg.yml:BipedalWalker-v3",
-    "2020-12/ddpg.yml:BipedalWalkerHardcore-v3"};
-
 // The env a `default` entry is tried on: one without an entry of its own.
 std::string default_env(const std::string& algo) {
   return algo == "sac" || algo == "td3" || algo == "ddpg" ? "IdentityEnvBox-v0" : "IdentityEnv-v0";
@@ -173,7 +123,6 @@ TEST_CASE("Python literals: the zoo's subset is read, anything else refused",
 // Every entry of every version, imported and checked (train = false) or also trained.
 void check_every_entry(bool train) {
   TempDir dir(train ? "zoo_entries_train" : "zoo_entries");
-  std::set<std::string> seen;
   for (const std::string& version : kVersions) {
     for (const std::string& algo : kAlgos) {
       const std::string relative = (version.empty() ? "" : version + "/") + algo + ".yml";
@@ -181,20 +130,11 @@ void check_every_entry(bool train) {
       for (const std::string& name : entry_names(file)) {
         const std::string env = name == "default" ? default_env(algo) : name;
         const std::string key = relative + ":" + name;
-        seen.insert(key);
         INFO(key);
         const std::string error = import_and_train(file, algo, env, dir.str(), train);
-        if (kAwaitingMerge.count(key)) {
-          CHECK_FALSE(error.empty());  // works now? remove it from kAwaitingMerge
-          continue;
-        }
         CHECK(error == "");
       }
     }
-  }
-  for (const std::string& key : kAwaitingMerge) {
-    INFO(key);
-    CHECK(seen.count(key) == 1);
   }
 }
 

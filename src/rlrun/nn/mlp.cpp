@@ -255,6 +255,12 @@ void Mlp::add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const flo
     case Activation::kReLU:
       delta.array() += (a.array() > 0.0f).select(g.array(), 0.0f);
       break;
+    case Activation::kELU:  // d/dz (exp(z) - 1) = exp(z) = a + 1 below zero
+      delta.array() += (a.array() > 0.0f).select(g.array(), g.array() * (a.array() + 1.0f));
+      break;
+    case Activation::kLeakyReLU:
+      delta.array() += (a.array() > 0.0f).select(g.array(), g.array() * kLeakyReLUSlope);
+      break;
   }
 }
 
