@@ -3,47 +3,11 @@
 
 namespace rlrun {
 
-RunningMeanStd::RunningMeanStd(int dim)
-    : mean_(Eigen::VectorXd::Zero(dim)), var_(Eigen::VectorXd::Ones(dim)) {}
-
-void RunningMeanStd::update(std::span<const float> x) {
-  // One sample: batch_mean = x, batch_var = 0, batch_count = 1, with SB3's operations in SB3's
-  // order (bit-identical to numpy). Written out so that it does not allocate (once per step).
-  const double tot_count = count_ + 1.0;
-  for (int i = 0; i < dim(); ++i) {
-    const double delta = static_cast<double>(x[i]) - mean_[i];
-    const double m_a = var_[i] * count_;
-    const double m_2 = m_a + delta * delta * count_ * 1.0 / tot_count;
-    mean_[i] = mean_[i] + delta * 1.0 / tot_count;
-    var_[i] = m_2 / tot_count;
-  }
-  count_ = tot_count;
-}
-
-void RunningMeanStd::update(double x) {
-  const double tot_count = count_ + 1.0;
-  const double delta = x - mean_[0];
-  const double m_2 = var_[0] * count_ + delta * delta * count_ * 1.0 / tot_count;
-  mean_[0] = mean_[0] + delta * 1.0 / tot_count;
-  var_[0] = m_2 / tot_count;
-  count_ = tot_count;
-}
-
-void RunningMeanStd::update_from_moments(const Eigen::VectorXd& batch_mean,
-                                         const Eigen::VectorXd& batch_var, double batch_count) {
-  const Eigen::VectorXd delta = batch_mean - mean_;
-  const double tot_count = count_ + batch_count;
-  const Eigen::VectorXd m_2 = var_ * count_ + batch_var * batch_count +
-                              delta.array().square().matrix() * count_ * batch_count / tot_count;
-  mean_ += delta * batch_count / tot_count;
-  var_ = m_2 / tot_count;
-  count_ = tot_count;
-}
-
 namespace {
 
-// update_from_moments for one coordinate, with SB3's operations in SB3's order; `m_b` is
-// batch_var * batch_count, whose precision is the batch's (float32 for observations).
+// SB3 RunningMeanStd.update_from_moments for one coordinate, with SB3's operations in SB3's
+// order (bit-identical to numpy); `m_b` is batch_var * batch_count, whose precision is the
+// batch's (float32 for a batch of observations, 0 for a single sample).
 void merge_moments(double& mean, double& var, double count, double batch_mean, double m_b,
                    double batch_count) {
   const double delta = batch_mean - mean;
@@ -54,6 +18,30 @@ void merge_moments(double& mean, double& var, double count, double batch_mean, d
 }
 
 }  // namespace
+
+RunningMeanStd::RunningMeanStd(int dim)
+    : mean_(Eigen::VectorXd::Zero(dim)), var_(Eigen::VectorXd::Ones(dim)) {}
+
+void RunningMeanStd::update(std::span<const float> x) {
+  // One sample: batch_mean = x, batch_var = 0, batch_count = 1. Per coordinate, so that it does
+  // not allocate (once per step).
+  for (int i = 0; i < dim(); ++i)
+    merge_moments(mean_[i], var_[i], count_, static_cast<double>(x[i]), 0.0, 1.0);
+  count_ += 1.0;
+}
+
+void RunningMeanStd::update(double x) {
+  merge_moments(mean_[0], var_[0], count_, x, 0.0, 1.0);
+  count_ += 1.0;
+}
+
+void RunningMeanStd::update_from_moments(const Eigen::VectorXd& batch_mean,
+                                         const Eigen::VectorXd& batch_var, double batch_count) {
+  for (int i = 0; i < dim(); ++i)
+    merge_moments(mean_[i], var_[i], count_, batch_mean[i], batch_var[i] * batch_count,
+                  batch_count);
+  count_ += batch_count;
+}
 
 void RunningMeanStd::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& samples,
                                   std::span<const int> rows, std::span<float> scratch) {
@@ -78,12 +66,11 @@ void RunningMeanStd::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& sampl
     }
     square_sum[static_cast<size_t>(k)] = s / n_float;  // np.var (ddof 0)
   }
-  const double tot_count = count_ + static_cast<double>(n);
   // np.var of float32 is float32, and so is its product with the integer count.
   for (int k = 0; k < dim(); ++k)
     merge_moments(mean_[k], var_[k], count_, sum[static_cast<size_t>(k)],
                   square_sum[static_cast<size_t>(k)] * n_float, static_cast<double>(n));
-  count_ = tot_count;
+  count_ += static_cast<double>(n);
 }
 
 // numpy's pairwise_sum (numpy/core/src/umath/loops_utils.h.src) of a contiguous float64 vector,

@@ -3,15 +3,12 @@
 #include <algorithm>
 #include <utility>
 
+#include "rlrun/nn/activation.hpp"
 #include "rlrun/runtime/zoo/zoo_values.hpp"
 
 namespace rlrun::zoo {
 
 namespace {
-
-// torch.nn activation classes -> rlrun's activation names (docs/zoo.md).
-const std::vector<std::pair<std::string, std::string>> kActivations{
-    {"Tanh", "tanh"}, {"ReLU", "relu"}, {"ELU", "elu"}, {"LeakyReLU", "leaky_relu"}};
 
 bool listed(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -103,9 +100,13 @@ class PolicyTranslation {
 
   YAML::Node activation(const PyValue& v) const {
     if (v.kind == PyValue::Kind::kName) {
-      for (const char* prefix : {"nn.", "th.nn.", "torch.nn."})
-        for (const auto& [torch_name, name] : kActivations)
-          if (v.text == prefix + torch_name) return YAML::Node(name);
+      // th.nn.X and torch.nn.X are nn.X; nn/activation.hpp knows the nn.X spellings.
+      std::string_view name = v.text;
+      for (std::string_view module : {"th.", "torch."})
+        if (name.starts_with(module)) name.remove_prefix(module.size());
+      if (name.starts_with("nn."))
+        if (const auto act = find_activation(name))
+          return YAML::Node(std::string(activation_name(*act)));
     }
     fail("policy_kwargs activation_fn " + v.describe() +
          ": rlrun reads nn.Tanh, nn.ReLU, nn.ELU and nn.LeakyReLU (also th.nn.X, torch.nn.X)");
