@@ -4,6 +4,10 @@
 # std of the return of its trained agent, deterministic, v2 landers).
 #   scripts/bench_zoo.sh [CONFIG...]        (default: the classic-control and LunarLander entries)
 #   SEEDS="1 2 3" JOBS=2 EPISODES=20 scripts/bench_zoo.sh ...
+#   MODEL=best EVAL_FREQ=2000 scripts/bench_zoo.sh ...
+# MODEL=best scores best_model.zip, the model the eval callback kept (rl-zoo's
+# `enjoy.py --load-best`), where the run wrote one; EVAL_FREQ sets eval.freq (the imported files
+# keep the zoo's 25 000 steps, which a 2e4-step entry never reaches).
 # JOBS=2 (default) runs two trainings at once with --threads 1 each. Prints a Markdown table:
 # each seed's mean return over EPISODES deterministic episodes (seeds 1000..), how many seeds are
 # within the zoo's reported std of its mean (or above it), and the median wall time.
@@ -18,6 +22,8 @@ fi
 seeds=${SEEDS:-"1 2 3"}
 jobs=${JOBS:-2}
 episodes=${EPISODES:-20}
+model_kind=${MODEL:-final}
+eval_freq=${EVAL_FREQ:-}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
@@ -53,20 +59,24 @@ run_one() {
   name=$(basename "$config" .yaml)
   start=$(date +%s.%N)
   build/rlrun --threads 1 train "$config" --seed "$seed" --set run.out_dir="$out/runs" \
-    --set run.name="$name" --set run.console_interval=1e9 >"$out/$name.$seed.log" 2>&1
+    --set run.name="$name" --set run.console_interval=1e9 ${eval_freq:+--set eval.freq=$eval_freq} \
+    >"$out/$name.$seed.log" 2>&1
   end=$(date +%s.%N)
   model="$out/runs/$name/seed$seed/model.zip"
+  if [[ $model_kind == best && -f "$out/runs/$name/seed$seed/best_model.zip" ]]; then
+    model="$out/runs/$name/seed$seed/best_model.zip"
+  fi
   eval_line=$(build/rlrun eval --model "$model" --episodes "$episodes" --seed 1000 | grep "mean_reward =")
   echo "$(echo "$end - $start" | bc) $(sed -E 's/.*mean_reward = ([-0-9.]+) .*/\1/' <<<"$eval_line")" \
     >"$out/$name.$seed"
 }
 export -f run_one
-export out episodes
+export out episodes model_kind eval_freq
 
 for config in "${configs[@]}"; do for seed in $seeds; do echo "$config $seed"; done; done |
   xargs -P "$jobs" -n 2 bash -c 'run_one "$0" "$1"'
 
-echo "| entry | steps | zoo score | return per seed ($episodes ep) | seeds within zoo std | wall s (median, 1 thread) |"
+echo "| entry | steps | zoo score | return per seed ($episodes ep, $model_kind model) | seeds within zoo std | wall s (median, 1 thread) |"
 echo "|---|---|---|---|---|---|"
 for config in "${configs[@]}"; do
   name=$(basename "$config" .yaml)

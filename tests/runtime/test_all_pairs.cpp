@@ -17,8 +17,8 @@ using namespace rlrun;
 namespace {
 
 bool has_param(const AlgorithmEntry& entry, const std::string& key) {
-  for (const auto& row : entry.params())
-    if (row.key == key) return true;
+  for (const auto& row : entry.params())  // a section's rows are "policy.net_arch", ...
+    if (row.key == key || row.key.starts_with(key + ".")) return true;
   return false;
 }
 

@@ -44,6 +44,9 @@ TEST_CASE("cli: list shows the registry", "[cli]") {
   const auto p = run_rlrun("list PPO");
   CHECK(p.exit_code == 0);
   CHECK(p.output.find("clip_range") != std::string::npos);
+  // The policy section's options are rows of their own, each with its default and doc.
+  CHECK(p.output.find("policy.net_arch       [64, 64]") != std::string::npos);
+  CHECK(p.output.find("policy.ortho_init     true") != std::string::npos);
   CHECK(run_rlrun("list PPOO").exit_code == 2);
 }
 

@@ -247,10 +247,22 @@ struct FieldDoc {
   std::string key, default_value, doc;
   std::string constraint;  // e.g. "in [0, 1]"; empty: none
 };
+// A nested section (a struct with its own visit, such as algo.policy) gives one row per field,
+// keyed "policy.net_arch", so its defaults and docs read like the others'.
 class ConfigDocumenter {
  public:
   template <class T>
   void operator()(const char* key, T& field, const char* doc) {
+    if constexpr (requires(ConfigDocumenter& d) { field.visit(d); }) {
+      ConfigDocumenter nested;
+      field.visit(nested);
+      for (FieldDoc row : nested.rows()) {
+        row.key = std::string(key) + "." + row.key;
+        rows_.push_back(std::move(row));
+      }
+      (void)doc;
+      return;
+    }
     YAML::Emitter out;
     out.SetMapFormat(YAML::Flow);
     out.SetSeqFormat(YAML::Flow);
@@ -259,8 +271,9 @@ class ConfigDocumenter {
   }
   template <class T, class C>
   void operator()(const char* key, T& field, const char* doc, const C& check) {
+    const size_t before = rows_.size();
     (*this)(key, field, doc);
-    rows_.back().constraint = describe_check(check);
+    if (rows_.size() == before + 1) rows_.back().constraint = describe_check(check);
   }
   const std::vector<FieldDoc>& rows() const { return rows_; }
 

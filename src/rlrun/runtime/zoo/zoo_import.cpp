@@ -47,23 +47,23 @@ class Problems {
   std::string lines_;
 };
 
+// The algorithm's top-level keys: a nested section's rows ("policy.net_arch") count as "policy".
 std::vector<std::string> keys_of(const std::vector<FieldDoc>& rows) {
   std::vector<std::string> keys;
-  for (const FieldDoc& row : rows) keys.push_back(row.key);
+  for (const FieldDoc& row : rows) {
+    const std::string key = row.key.substr(0, row.key.find('.'));
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
   return keys;
 }
 
-// The keys of the algorithm's `policy` map (its documented default, a flow map).
+// The keys of the algorithm's `policy` section (its rows "policy.<key>").
 std::vector<std::string> policy_keys(const std::vector<FieldDoc>& rows) {
-  for (const FieldDoc& row : rows) {
-    if (row.key != "policy") continue;
-    std::vector<std::string> keys;
-    const YAML::Node map = YAML::Load(row.default_value);
-    if (map.IsMap())
-      for (const auto& kv : map) keys.push_back(kv.first.Scalar());
-    return keys;
-  }
-  return {};
+  const std::string prefix = "policy.";
+  std::vector<std::string> keys;
+  for (const FieldDoc& row : rows)
+    if (row.key.starts_with(prefix)) keys.push_back(row.key.substr(prefix.size()));
+  return keys;
 }
 
 std::string lower(std::string s) {
