@@ -23,6 +23,7 @@ PACKAGES=(
   python3-numpy python3-pandas              # tests: read our files with the tools SB3 users use
   python3-protobuf                          # tests: decode TensorBoard event files independently
   python3-dev pybind11-dev python3-venv     # the `rlrun` Python package; Python envs (docs/python.md)
+  python3-onnx                              # tests: the ONNX checker validates exported graphs
 )
 
 if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
@@ -31,6 +32,21 @@ fi
 
 # SUMO's tools look for their data here (DESIGN.md §2).
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
+
+# Tests run exported policies in a real ONNX Runtime: the npm package onnxruntime-node (its CPU
+# build ships inside the package; --ignore-scripts skips its optional CUDA download), installed
+# into build/onnxruntime. Node.js and npm come from Debian when the machine has none.
+ONNXRUNTIME_NODE_VERSION=1.20.1
+if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
+  command -v npm >/dev/null || scripts/install_packages.sh nodejs npm
+  if [[ ! -f build/onnxruntime/node_modules/onnxruntime-node/package.json ]] ||
+     ! grep -q "\"version\": \"$ONNXRUNTIME_NODE_VERSION\"" build/onnxruntime/node_modules/onnxruntime-node/package.json; then
+    mkdir -p build/onnxruntime
+    npm install --prefix build/onnxruntime --ignore-scripts --no-audit --no-fund --silent \
+      "onnxruntime-node@$ONNXRUNTIME_NODE_VERSION" >/dev/null
+    echo "setup: onnxruntime-node $ONNXRUNTIME_NODE_VERSION in build/onnxruntime (tests)"
+  fi
+fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --parallel "$(nproc)"

@@ -21,5 +21,6 @@ Action add_sweep(CLI::App& app, Registry& registry);
 Action add_report(CLI::App& app);
 Action add_plot(CLI::App& app);
 Action add_zoo(CLI::App& app, Registry& registry);
+Action add_export(CLI::App& app, Registry& registry);
 
 }  // namespace rlrun::cli

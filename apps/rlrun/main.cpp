@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
   rlrun::cli::Action report = rlrun::cli::add_report(app);
   rlrun::cli::Action plot = rlrun::cli::add_plot(app);
   rlrun::cli::Action zoo = rlrun::cli::add_zoo(app, registry);
+  rlrun::cli::Action export_policy = rlrun::cli::add_export(app, registry);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -75,6 +76,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("report")) return report();
     if (app.got_subcommand("plot")) return plot();
     if (app.got_subcommand("zoo")) return zoo();
+    if (app.got_subcommand("export")) return export_policy();
   } catch (const rlrun::ConfigError& e) {
     print_error(e.what());
     return rlrun::kExitUsage;

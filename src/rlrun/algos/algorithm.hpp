@@ -17,6 +17,8 @@
 namespace rlrun {
 
 class VecEnv;
+class PolicyGraph;
+class PolicyGraph;
 
 struct AlgorithmSetup {
   Space observation_space;
@@ -69,6 +71,13 @@ class Algorithm {
   virtual void load_training_state(const StateReader& /*in*/) {
     throw std::logic_error(id() + " cannot restore a training state yet");
   }
+
+  // Deploying (rlrun export; deploy/policy_graph.hpp): appends to `graph` the deterministic
+  // predict() as nodes, from `obs` (the flat observations predict() takes) to the actions it
+  // returns, and sets graph.set_action(). With `with_value` also graph.set_value(): the critic's
+  // V(s) (PPO, A2C), the Q-values of every action (DQN), or the first critic's Q(s, a) of the
+  // action taken (SAC, TD3, DDPG). Throws ExportError when the algorithm cannot be exported.
+  virtual void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const;
 
   int64_t num_timesteps() const { return num_timesteps_; }
 

@@ -1,5 +1,7 @@
 #include "rlrun/env/observation_encoder.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -89,6 +91,19 @@ void ObservationEncoder::encode_sample(std::span<const float> obs, std::span<flo
     std::fill_n(dst, p.width, 0.0f);
     dst[static_cast<int64_t>(slot)] = 1.0f;
   }
+}
+
+std::string ObservationEncoder::export_to(PolicyGraph& graph, const std::string& obs) const {
+  if (identity_) return obs;
+  std::vector<std::string> parts;
+  for (const Piece& p : pieces_) {
+    if (!p.one_hot) {
+      parts.push_back(graph.slice(obs, p.in, p.width));
+      continue;
+    }
+    parts.push_back(graph.one_hot(graph.slice(obs, p.in, 1), static_cast<float>(p.start), p.width));
+  }
+  return graph.concat(parts);
 }
 
 void ObservationEncoder::decode_sample(std::span<const float> features, std::span<float> obs) const {

@@ -27,6 +27,8 @@
 
 namespace rlrun {
 
+class PolicyGraph;
+
 class ObservationEncoder {
  public:
   ObservationEncoder() = default;
@@ -57,6 +59,10 @@ class ObservationEncoder {
   // identity(), else the encoding in a workspace that grows to the largest batch seen and is
   // then reused (no allocation). Valid until the next call; one encoder per thread.
   Eigen::Ref<const Eigen::MatrixXf> operator()(const Eigen::Ref<const Eigen::MatrixXf>& obs);
+
+  // Deploying (deploy/policy_graph.hpp): the encoding as graph nodes from `obs` (input_dim
+  // wide) to the network input (features_dim wide); `obs` itself when identity().
+  std::string export_to(PolicyGraph& graph, const std::string& obs) const;
 
  private:
   // A run of floats copied as they are, or one categorical value turned into a one-hot.

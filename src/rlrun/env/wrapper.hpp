@@ -2,11 +2,14 @@
 // Base wrapper (gymnasium.Wrapper): owns the inner env and forwards everything; subclasses
 // override only what they change.
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "rlrun/env.hpp"
 
 namespace rlrun {
+
+class PolicyGraph;
 
 class Wrapper : public Env {
  public:
@@ -53,6 +56,17 @@ class Wrapper : public Env {
   }
 
   Env& inner() { return *inner_; }
+  const Env& inner() const { return *inner_; }
+
+  // Deploying a policy (rlrun export; deploy/policy_graph.hpp): what this wrapper does to an
+  // observation on its way up (inner -> agent) and to an action on its way down (agent ->
+  // inner), as graph nodes; each returns the name of its result. Wrappers that touch neither
+  // (rewards, episode ends, bookkeeping) say so with exports_unchanged(); the others override
+  // the two, and a wrapper that does neither refuses with ExportError (it keeps state between
+  // steps, as FrameStack, or has not said how).
+  virtual bool exports_unchanged() const { return false; }
+  virtual std::string export_observation(PolicyGraph& graph, const std::string& obs) const;
+  virtual std::string export_action(PolicyGraph& graph, const std::string& action) const;
   // Puts `inner` in place of the inner env and returns the old one. For runtime code that
   // slips a layer under a built stack (runtime/trajectory_tap.hpp records what the env itself
   // sees; runtime/model_policy.hpp feeds the stack observations from elsewhere): the new

@@ -12,6 +12,8 @@ namespace rlrun {
 
 class PluginEnv : public Wrapper {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   // Throws std::invalid_argument when the plugin returned no env or an empty space.
   PluginEnv(EnvPtr env, std::string id);
   std::string id() const override { return id_; }

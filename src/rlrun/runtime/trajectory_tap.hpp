@@ -21,6 +21,8 @@ namespace rlrun {
 
 class TrajectoryTap : public Wrapper {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   explicit TrajectoryTap(EnvPtr env);
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;

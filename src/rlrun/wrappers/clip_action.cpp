@@ -1,5 +1,9 @@
 #include "rlrun/wrappers/clip_action.hpp"
 
+#include <Eigen/Core>
+
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -14,6 +18,13 @@ ClipAction::ClipAction(EnvPtr inner, const Config& /*config*/) : Wrapper(std::mo
   const float inf = std::numeric_limits<float>::infinity();
   space_ = Space::box(-inf, inf, inner_space.shape());
   clipped_.resize(inner_space.flat_dim());
+}
+
+std::string ClipAction::export_action(PolicyGraph& graph, const std::string& action) const {
+  const Space& inner_space = inner_->action_space();
+  const int n = inner_space.flat_dim();
+  return graph.clamp(action, Eigen::Map<const Eigen::VectorXf>(inner_space.low().data(), n),
+                     Eigen::Map<const Eigen::VectorXf>(inner_space.high().data(), n));
 }
 
 StepResult ClipAction::step(std::span<const float> action, std::span<float> obs) {

@@ -32,6 +32,11 @@ class ClipAction : public Wrapper, public SplitStep {
     return asynchronous_steps(*inner_)->finish_step(obs);
   }
 
+  std::string export_observation(PolicyGraph& /*graph*/, const std::string& obs) const override {
+    return obs;
+  }
+  std::string export_action(PolicyGraph& graph, const std::string& action) const override;
+
  private:
   std::span<const float> clip(std::span<const float> action);
   Space space_;

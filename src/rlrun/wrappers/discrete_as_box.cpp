@@ -1,5 +1,7 @@
 #include "rlrun/wrappers/discrete_as_box.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <stdexcept>
 
 namespace rlrun {
@@ -10,6 +12,14 @@ DiscreteAsBox::DiscreteAsBox(EnvPtr inner, const Config&) : Wrapper(std::move(in
     throw std::invalid_argument("DiscreteAsBox needs a Discrete action space, " + inner_->id() +
                                 " has " + inner_space.describe());
   space_ = Space::box(-1.0f, 1.0f, {static_cast<int>(inner_space.n())});
+}
+
+std::string DiscreteAsBox::export_action(PolicyGraph& graph, const std::string& action) const {
+  const std::string index = graph.argmax(action);
+  const float start = static_cast<float>(inner_->action_space().start());
+  if (start == 0.0f) return index;
+  return graph.affine(index, Eigen::VectorXf::Zero(1), Eigen::VectorXf::Ones(1),
+                      Eigen::VectorXf::Constant(1, start));
 }
 
 StepResult DiscreteAsBox::step(std::span<const float> action, std::span<float> obs) {

@@ -17,6 +17,10 @@ class DiscreteAsBox : public Wrapper {
   explicit DiscreteAsBox(EnvPtr inner) : DiscreteAsBox(std::move(inner), Config()) {}
   const Space& action_space() const override { return space_; }
   StepResult step(std::span<const float> action, std::span<float> obs) override;
+  std::string export_observation(PolicyGraph& /*graph*/, const std::string& obs) const override {
+    return obs;
+  }
+  std::string export_action(PolicyGraph& graph, const std::string& action) const override;
 
  private:
   Space space_;

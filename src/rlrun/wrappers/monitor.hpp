@@ -24,6 +24,8 @@ namespace rlrun {
 
 class Monitor : public Wrapper, public SplitStep {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   // `path` empty: no file, statistics only. `t_start` is Unix time in seconds. `append`
   // continues an existing file of a resumed run (no new header).
   Monitor(EnvPtr inner, const std::string& path, double t_start,

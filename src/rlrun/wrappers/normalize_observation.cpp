@@ -1,5 +1,9 @@
 #include "rlrun/wrappers/normalize_observation.hpp"
 
+#include <limits>
+
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -93,6 +97,27 @@ void NormalizeObservation::normalize(std::span<float> obs) const {
     const double z = (static_cast<double>(x) - mean[k]) / std::sqrt(var[k] + config_.epsilon);
     x = static_cast<float>(std::clamp(z, -config_.clip_obs, config_.clip_obs));
   }
+}
+
+std::string NormalizeObservation::export_observation(PolicyGraph& graph,
+                                                     const std::string& obs) const {
+  // normalize(): clip((x - mean) / sqrt(var + epsilon), +-clip_obs) on the normalised floats;
+  // the others pass (shift 0, scale 1, unbounded).
+  const int n = inner_->observation_space().flat_dim();
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  Eigen::VectorXf shift = Eigen::VectorXf::Zero(n), scale = Eigen::VectorXf::Ones(n);
+  Eigen::VectorXf low = Eigen::VectorXf::Constant(n, -kInf), high = Eigen::VectorXf::Constant(n, kInf);
+  const Eigen::VectorXd& mean = rms_->mean();
+  const Eigen::VectorXd& var = rms_->var();
+  const float clip = static_cast<float>(config_.clip_obs);
+  for (Eigen::Index k = 0; k < mean.size(); ++k) {
+    const Eigen::Index i = whole_ ? k : indices_[static_cast<size_t>(k)];
+    shift(i) = static_cast<float>(-mean[k]);
+    scale(i) = static_cast<float>(1.0 / std::sqrt(var[k] + config_.epsilon));
+    low(i) = -clip;
+    high(i) = clip;
+  }
+  return graph.clamp(graph.affine(obs, shift, scale, Eigen::VectorXf::Zero(n)), low, high);
 }
 
 void NormalizeObservation::share_statistics_with(ModelStatistics& first) {

@@ -86,6 +86,11 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
   void update_batch(const Eigen::Ref<const Eigen::MatrixXf>& obs);
   // Normalises one observation in place with the current statistics.
   void normalize(std::span<float> obs) const;
+  // Deploying: normalize() with the frozen statistics, as graph nodes.
+  std::string export_observation(PolicyGraph& graph, const std::string& obs) const override;
+  std::string export_action(PolicyGraph& /*graph*/, const std::string& action) const override {
+    return action;
+  }
   // The observation of the last reset()/step() before normalisation (SB3 get_original_obs).
   std::span<const float> original_obs() const { return original_; }
 

@@ -24,6 +24,8 @@ namespace rlrun {
 
 class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   struct Config {
     double gamma = 0.99;        // SB3 VecNormalize gamma (discount of the return whose std is used)
     double clip_reward = 10.0;  // SB3 VecNormalize clip_reward

@@ -13,6 +13,8 @@ namespace rlrun {
 
 class ObservationTap : public Wrapper, public SplitStep {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   explicit ObservationTap(EnvPtr inner)
       : Wrapper(std::move(inner)), last_(inner_->observation_space().flat_dim(), 0.0f) {}
 

@@ -29,6 +29,12 @@ class OneHotObservation : public Wrapper {
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   // Decodes the one-hot observation back to the inner env's and lets it draw that.
   bool render_observation(std::span<const float> obs, Frame& frame) const override;
+  std::string export_observation(PolicyGraph& graph, const std::string& obs) const override {
+    return encoder_.export_to(graph, obs);
+  }
+  std::string export_action(PolicyGraph& /*graph*/, const std::string& action) const override {
+    return action;
+  }
 
  private:
   void encode(std::span<float> obs) const;

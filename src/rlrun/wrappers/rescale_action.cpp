@@ -1,4 +1,8 @@
 #include "rlrun/wrappers/rescale_action.hpp"
+
+#include <Eigen/Core>
+
+#include "rlrun/deploy/policy_graph.hpp"
 #include "rlrun/core/plural.hpp"
 
 #include <algorithm>
@@ -48,6 +52,14 @@ RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : Wrapper(std::
 
 StepResult RescaleAction::step(std::span<const float> action, std::span<float> obs) {
   return inner_->step(rescale(action), obs);
+}
+
+std::string RescaleAction::export_action(PolicyGraph& graph, const std::string& action) const {
+  const Space& inner_space = inner_->action_space();
+  const int n = inner_space.flat_dim();
+  const Eigen::Map<const Eigen::VectorXf> gradient(gradient_.data(), n), intercept(intercept_.data(), n),
+      low(inner_space.low().data(), n), high(inner_space.high().data(), n);
+  return graph.clamp(graph.affine(action, Eigen::VectorXf::Zero(n), gradient, intercept), low, high);
 }
 
 std::span<const float> RescaleAction::rescale(std::span<const float> action) {

@@ -56,6 +56,11 @@ class RescaleAction : public Wrapper, public SplitStep {
     return asynchronous_steps(*inner_)->finish_step(obs);
   }
 
+  std::string export_observation(PolicyGraph& /*graph*/, const std::string& obs) const override {
+    return obs;
+  }
+  std::string export_action(PolicyGraph& graph, const std::string& action) const override;
+
  private:
   std::span<const float> rescale(std::span<const float> action);
   Space space_;

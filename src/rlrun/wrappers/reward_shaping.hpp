@@ -16,6 +16,8 @@ namespace rlrun {
 
 class RewardShaping : public Wrapper {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   struct Config {
     std::vector<ShapingTerm> terms;  // added to the reward in order
     template <class V>

@@ -12,6 +12,8 @@ namespace rlrun {
 
 class TimeLimit : public Wrapper, public SplitStep {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   // Throws std::invalid_argument unless max_episode_steps > 0 (Gymnasium asserts it).
   TimeLimit(EnvPtr inner, int max_episode_steps);
 

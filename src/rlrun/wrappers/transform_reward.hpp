@@ -13,6 +13,8 @@ namespace rlrun {
 
 class TransformReward : public Wrapper, public SplitStep {
  public:
+  // Observations and actions pass unchanged (rlrun export).
+  bool exports_unchanged() const override { return true; }
   struct Config {
     double scale = 1.0;               // multiplies the reward first
     double offset = 0.0;              // then is added

@@ -1,5 +1,7 @@
 #include "rlrun/algos/a2c/a2c.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -41,6 +43,12 @@ A2C::A2C(const Config& config, const AlgorithmSetup& setup)
   const int size = config_.n_steps * setup.n_envs;
   for (Eigen::RowVectorXf* v : {&advantages_, &returns_, &grad_values_, &grad_log_prob_, &grad_entropy_})
     v->resize(size);
+}
+
+// predict(deterministic): the policy's mode, clipped to a Box.
+void A2C::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
+  policy_.export_to(graph, obs, setup_.action_space, with_value);
+  graph.set_action(export_clip_to_box(graph, setup_.action_space, graph.action()));
 }
 
 void A2C::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,

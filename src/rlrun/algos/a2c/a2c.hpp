@@ -64,6 +64,7 @@ class A2C : public Algorithm {
 
   std::string id() const override { return "A2C"; }
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override { policy_.save(tensors); }

@@ -1,5 +1,7 @@
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -195,6 +197,35 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
       break;
   }
   values = critic_.forward(features);
+}
+
+void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
+                                  const Space& action_space, bool with_value) const {
+  const std::string features = encoder_.export_to(graph, obs);
+  const std::string head = graph.mlp(features, actor_);
+  switch (head_) {
+    case Head::kCategorical:
+      graph.set_action(graph.argmax(head));
+      break;
+    case Head::kMultiCategorical: {
+      std::vector<std::string> parts;
+      int begin = 0;
+      for (int64_t n : action_space.nvec()) {
+        parts.push_back(graph.argmax(graph.slice(head, begin, static_cast<int>(n))));
+        begin += static_cast<int>(n);
+      }
+      graph.set_action(graph.concat(parts));
+      break;
+    }
+    case Head::kBernoulli:
+      graph.set_action(graph.positive(head));
+      break;
+    case Head::kDiagGaussian:
+    case Head::kStateDependentNoise:
+      graph.set_action(head);
+      break;
+  }
+  if (with_value) graph.set_value(graph.mlp(features, critic_));
 }
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,

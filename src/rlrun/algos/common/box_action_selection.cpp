@@ -1,5 +1,7 @@
 #include "rlrun/algos/common/box_action_selection.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -52,6 +54,16 @@ void BoxActionSelection::to_env_actions(const Eigen::MatrixXf& scaled,
   for (Eigen::Index j = 0; j < env_actions.cols(); ++j)
     for (Eigen::Index i = 0; i < env_actions.rows(); ++i)
       env_actions(i, j) = std::clamp(env_actions(i, j), space_.low()[i], space_.high()[i]);
+}
+
+std::string BoxActionSelection::export_env_actions(PolicyGraph& graph,
+                                                   const std::string& scaled) const {
+  // low + 0.5 (a + 1) (high - low) = (a + 1) * (0.5 (high - low)) + low: the same float
+  // (a product with 0.5 is exact).
+  const int n = space_.flat_dim();
+  const Eigen::Map<const Eigen::VectorXf> low(space_.low().data(), n), high(space_.high().data(), n);
+  const Eigen::VectorXf half_range = 0.5f * (high - low);
+  return graph.clamp(graph.affine(scaled, Eigen::VectorXf::Ones(n), half_range, low), low, high);
 }
 
 void BoxActionSelection::write_state(StateWriter out) const {

@@ -16,6 +16,8 @@
 
 namespace rlrun {
 
+class PolicyGraph;
+
 class BoxActionSelection {
  public:
   // Throws std::invalid_argument, naming the algorithm `id`, unless the observations are a Box
@@ -44,6 +46,8 @@ class BoxActionSelection {
   // SB3 unscale_action: [-1, 1] -> [low, high], clamped so that rounding at +-1 never leaves
   // the Box (predict() uses it too).
   void to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const;
+  // The same as graph nodes (deploy/policy_graph.hpp): an affine map and a clamp.
+  std::string export_env_actions(PolicyGraph& graph, const std::string& scaled) const;
 
   // SB3 collect_rollouts: action_noise.reset(indices=[env]) when an episode ends.
   void on_episode_end(int env) { noise_.reset(env); }

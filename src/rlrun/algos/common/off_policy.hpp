@@ -170,6 +170,7 @@ class OffPolicyAlgorithm : public Algorithm {
   // For Box, MultiBinary and Dict-of-those observations they hand back the caller's matrix
   // itself (no copy). Each result is valid until the next call of the same encoder.
   int features_dim() const { return acting_obs_.features_dim(); }
+  const ObservationEncoder& acting_encoder() const { return acting_obs_; }
   Eigen::Ref<const Eigen::MatrixXf> batch_obs(const ReplayBatch& b) { return batch_obs_(b.obs); }
   Eigen::Ref<const Eigen::MatrixXf> batch_next_obs(const ReplayBatch& b) {
     return batch_next_obs_(b.next_obs);

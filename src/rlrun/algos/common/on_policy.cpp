@@ -1,5 +1,7 @@
 #include "rlrun/algos/common/on_policy.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +23,13 @@ void clip_to_box(const Space& space, Eigen::MatrixXf& actions) {
   for (Eigen::Index j = 0; j < actions.cols(); ++j)
     for (Eigen::Index i = 0; i < actions.rows(); ++i)
       actions(i, j) = std::clamp(actions(i, j), space.low()[i], space.high()[i]);
+}
+
+std::string export_clip_to_box(PolicyGraph& graph, const Space& space, const std::string& actions) {
+  if (!space.is_box()) return actions;
+  const Eigen::Map<const Eigen::VectorXf> low(space.low().data(), space.flat_dim());
+  const Eigen::Map<const Eigen::VectorXf> high(space.high().data(), space.flat_dim());
+  return graph.clamp(actions, low, high);
 }
 
 OnPolicyCollector::OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim,

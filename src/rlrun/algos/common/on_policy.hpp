@@ -12,6 +12,8 @@
 
 namespace rlrun {
 
+class PolicyGraph;
+
 // n_steps x n_envs transitions; sample k = step * n_envs + env in the column-major matrices,
 // which is also the flat index of the row-major StepEnvMatrix arrays.
 struct RolloutBuffer {
@@ -63,6 +65,8 @@ class OnPolicyCollector {
 // SB3 Box handling in on-policy rollouts: actions are clipped to the bounds before env.step
 // (the buffer keeps the unclipped sample, whose log-prob was computed).
 void clip_to_box(const Space& space, Eigen::MatrixXf& actions);
+// The same as graph nodes (deploy/policy_graph.hpp); `actions` unchanged for other spaces.
+std::string export_clip_to_box(PolicyGraph& graph, const Space& space, const std::string& actions);
 
 // SB3 OnPolicyAlgorithm.learn: until total_timesteps: collect, update progress, dump logs every
 // log_interval iterations (before train, as SB3), train.

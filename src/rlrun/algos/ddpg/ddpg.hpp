@@ -45,6 +45,9 @@ class DDPG : public Algorithm {
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override {
+    td3_.export_policy(graph, obs, with_value);
+  }
   void save(TensorMap& tensors) const override { td3_.save(tensors); }
   void load(const TensorMap& tensors) override { td3_.load(tensors); }
   void save_training_state(StateWriter& out) const override { td3_.save_training_state(out); }

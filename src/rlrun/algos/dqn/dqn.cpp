@@ -1,5 +1,7 @@
 #include "rlrun/algos/dqn/dqn.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -151,6 +153,17 @@ void DQN::random_actions(Eigen::Index n, Eigen::MatrixXf& actions) {
   if (actions.rows() != 1 || actions.cols() != n) actions.resize(1, n);
   for (Eigen::Index e = 0; e < n; ++e)
     setup_.action_space.sample(action_rng_, std::span<float>(&actions(0, e), 1));
+}
+
+// predict(deterministic): the greedy action, start + argmax Q; the value is every Q-value.
+void DQN::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
+  const std::string q = graph.mlp(acting_encoder().export_to(graph, obs), q_net_.net());
+  std::string action = graph.argmax(q);
+  if (action_start_ != 0.0f)
+    action = graph.affine(action, Eigen::VectorXf::Zero(1), Eigen::VectorXf::Ones(1),
+                          Eigen::VectorXf::Constant(1, action_start_));
+  graph.set_action(action);
+  if (with_value) graph.set_value(q);
 }
 
 void DQN::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,

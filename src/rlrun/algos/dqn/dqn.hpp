@@ -76,6 +76,7 @@ class DQN : public OffPolicyAlgorithm {
 
   // SB3 DQN.predict: greedy (deterministic) or epsilon-greedy with the current exploration
   // rate, one coin for the whole batch as SB3 draws it.
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
   // Tensors `q_net.<i>.weight/bias`, `q_net_target.<i>.weight/bias` (SB3's policy state_dict

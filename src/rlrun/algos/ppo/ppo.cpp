@@ -1,5 +1,7 @@
 #include "rlrun/algos/ppo/ppo.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -58,6 +60,12 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
   for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_, &values_pred_,
                                 &grad_values_, &grad_log_prob_, &grad_entropy_})
     v->resize(batch);
+}
+
+// predict(deterministic): the policy's mode, clipped to a Box.
+void PPO::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
+  policy_.export_to(graph, obs, setup_.action_space, with_value);
+  graph.set_action(export_clip_to_box(graph, setup_.action_space, graph.action()));
 }
 
 void PPO::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,

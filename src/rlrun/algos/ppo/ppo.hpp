@@ -72,6 +72,7 @@ class PPO : public Algorithm {
 
   std::string id() const override { return "PPO"; }
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
   void save(TensorMap& tensors) const override;

@@ -1,5 +1,7 @@
 #include "rlrun/algos/sac/sac.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -228,6 +230,15 @@ void SAC::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
         acting_actor_.get().sample(acting_features(obs), rng, actions, acting_log_prob_);
       },
       env_actions, buffer_actions);
+}
+
+// predict(deterministic): the squashed mean unscaled to the Box; the value is the first
+// critic's Q(s, a) of that action.
+void SAC::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
+  const std::string features = acting_encoder().export_to(graph, obs);
+  const std::string scaled = actor_.export_mode(graph, features);
+  graph.set_action(acting_.export_env_actions(graph, scaled));
+  if (with_value) graph.set_value(graph.mlp(graph.concat({features, scaled}), critic_.q(0).net()));
 }
 
 void SAC::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,

@@ -104,6 +104,7 @@ class SAC : public OffPolicyAlgorithm {
   SAC(const Config& config, const AlgorithmSetup& setup);
 
   // tanh(mu) (deterministic) or a sample, rescaled to the Box bounds.
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
   // SB3 SACPolicy.state_dict(): actor.*, critic.qf<i>.*, critic_target.qf<i>.*, and

@@ -1,5 +1,7 @@
 #include "rlrun/algos/sac/sac_actor.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <stdexcept>
 
 #include "rlrun/algos/common/training_state.hpp"
@@ -95,6 +97,19 @@ void SacActor::mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixX
     sde_.mode(actions);
   else
     dist_.mode(actions);
+}
+
+std::string SacActor::export_mode(PolicyGraph& graph, const std::string& features) const {
+  std::string mean = graph.mlp(features, net_.net());
+  if (use_sde()) {
+    const float c = sde_options_.clip_mean;
+    if (c > 0.0f)
+      mean = graph.clamp(mean, Eigen::VectorXf::Constant(action_dim_, -c),
+                         Eigen::VectorXf::Constant(action_dim_, c));
+  } else {
+    mean = graph.slice(mean, 0, action_dim_);  // the log_std rows do not matter for the mode
+  }
+  return graph.activation(mean, Activation::kTanh);
 }
 
 void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,

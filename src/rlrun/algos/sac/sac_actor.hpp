@@ -29,6 +29,8 @@
 
 namespace rlrun {
 
+class PolicyGraph;
+
 // SB3 Actor's gSDE keyword arguments.
 struct SacActorSde {
   bool use_sde = false;
@@ -54,6 +56,10 @@ class SacActor {
   void copy_parameters_from(const SacActor& other);
 
   bool use_sde() const { return sde_options_.use_sde; }
+  // Deploying (deploy/policy_graph.hpp): mode() as graph nodes, from the network input
+  // `features` to the action in [-1, 1]: tanh of the mean (gSDE: of the mean clipped to
+  // +-clip_mean).
+  std::string export_mode(PolicyGraph& graph, const std::string& features) const;
   const StateDependentNoise& sde() const { return sde_; }
   StateDependentNoise& sde() { return sde_; }
   // SB3 Actor.reset_noise(batch_size): new exploration matrices (gSDE only).

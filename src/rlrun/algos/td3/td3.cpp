@@ -1,5 +1,7 @@
 #include "rlrun/algos/td3/td3.hpp"
 
+#include "rlrun/deploy/policy_graph.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -162,6 +164,14 @@ void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
         actions = acting_actor_.get().forward(acting_features(obs));
       },
       env_actions, buffer_actions);
+}
+
+// predict(): tanh(mu(obs)) unscaled to the Box; the value is the first critic's Q(s, a).
+void TD3::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
+  const std::string features = acting_encoder().export_to(graph, obs);
+  const std::string scaled = graph.activation(graph.mlp(features, actor_.net()), Activation::kTanh);
+  graph.set_action(acting_.export_env_actions(graph, scaled));
+  if (with_value) graph.set_value(graph.mlp(graph.concat({features, scaled}), critic_.q(0).net()));
 }
 
 void TD3::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,

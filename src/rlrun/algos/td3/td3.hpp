@@ -85,6 +85,7 @@ class TD3 : public OffPolicyAlgorithm {
   TD3(const Config& config, const AlgorithmSetup& setup, std::string id = "TD3");
 
   // actor(obs) rescaled to the Box bounds; deterministic or not alike (SB3 TD3Policy._predict).
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
   // SB3 TD3Policy.state_dict(): actor.mu.*, actor_target.mu.*, critic.qf<i>.*,

@@ -1,0 +1,101 @@
+// rlrun export --model FILE --format onnx --output policy.onnx [--with-value]
+// rlrun export --model FILE --format c --output DIR        (DIR/policy.c, DIR/policy.h)
+// The model's deterministic policy as a file that runs without rlrun (deploy/): the env's
+// observation in, the env's action out, as `rlrun eval` acts (docs/deploy.md).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "commands.hpp"
+#include "plugin_option.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/deploy/c_writer.hpp"
+#include "rlrun/deploy/model_graph.hpp"
+#include "rlrun/deploy/onnx_writer.hpp"
+#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/run_directory.hpp"
+
+namespace rlrun::cli {
+
+namespace {
+
+struct ExportOptions {
+  std::string model;
+  std::string format = "onnx";
+  std::string output;
+  bool with_value = false;
+  std::vector<std::string> plugins;
+};
+
+// The output's directory must exist: exporting never creates directories (a typo in a path
+// should not leave a tree behind).
+void check_output_directory(const std::string& output) {
+  const std::filesystem::path parent = std::filesystem::path(output).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
+    throw RuntimeFailure("cannot write " + output + ": the directory " + parent.string() +
+                         " does not exist");
+}
+
+}  // namespace
+
+Action add_export(CLI::App& app, Registry& registry) {
+  auto o = std::make_shared<ExportOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "export", "write a trained model's deterministic policy as an ONNX file (docs/deploy.md)");
+  sub->add_option("--model", o->model, "the model file (model.zip, best_model.zip, a checkpoint)")
+      ->required();
+  sub->add_option("--format", o->format,
+                  "onnx (one file) or c (a directory with policy.c and policy.h, C99)")
+      ->check(CLI::IsMember({"onnx", "c"}));
+  sub->add_option("-o,--output", o->output,
+                  "the file to write (onnx: e.g. policy.onnx) or the directory (c; created if "
+                  "its parent exists)")
+      ->required();
+  sub->add_flag("--with-value", o->with_value,
+                "add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
+                "critic's Q(s, action) for SAC/TD3/DDPG");
+  add_plugin_option(sub, o->plugins);
+  return [o, &registry]() {
+    load_plugin_options(o->plugins, registry);
+    check_output_directory(o->output);
+    const LoadedModel model = load_model(o->model, registry);
+    PolicyGraph graph;
+    try {
+      graph = build_model_graph(model, o->with_value);
+    } catch (const ExportError& e) {
+      throw RuntimeFailure("cannot export " + o->model + ": " + e.what());
+    }
+    if (o->format == "c") {
+      std::error_code ec;
+      std::filesystem::create_directory(o->output, ec);
+      if (!std::filesystem::is_directory(o->output, ec))
+        throw RuntimeFailure("cannot write " + o->output + ": not a directory");
+      const CSource c = c_policy_source(graph);
+      write_text_atomic((std::filesystem::path(o->output) / "policy.h").string(), c.header);
+      write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
+      int obs_dim = 0;
+      for (const GraphInput& in : graph.inputs()) obs_dim += in.width;
+      std::printf("exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
+                  "action[%d])\n",
+                  o->model.c_str(), model.file.meta.algorithm.c_str(),
+                  model.file.meta.env_id.c_str(), o->output.c_str(), obs_dim,
+                  graph.width(graph.action()));
+      return 0;
+    } else {
+      write_text_atomic(o->output, onnx_model_bytes(graph));
+    }
+    std::string inputs;
+    for (const GraphInput& in : graph.inputs())
+      inputs += (inputs.empty() ? "" : ", ") + in.name + " [batch, " + std::to_string(in.width) + "]";
+    std::printf("exported %s (%s on %s) to %s: inputs %s; outputs action [batch, %d]%s\n",
+                o->model.c_str(), model.file.meta.algorithm.c_str(), model.file.meta.env_id.c_str(),
+                o->output.c_str(), inputs.c_str(), graph.width(graph.action()),
+                graph.value().empty()
+                    ? ""
+                    : (", value [batch, " + std::to_string(graph.width(graph.value())) + "]").c_str());
+    return 0;
+  };
+}
+
+}  // namespace rlrun::cli

@@ -1,0 +1,229 @@
+#include "rlrun/deploy/onnx_writer.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "rlrun/core/protobuf_writer.hpp"
+
+namespace rlrun {
+
+namespace {
+
+// Field numbers and enum values of onnx/onnx.proto.
+namespace model_proto {
+constexpr int kIrVersion = 1, kProducerName = 2, kProducerVersion = 3, kDocString = 6,
+              kGraph = 7, kOpsetImport = 8, kMetadataProps = 14;
+}
+namespace graph_proto {
+constexpr int kNode = 1, kName = 2, kInitializer = 5, kInput = 11, kOutput = 12;
+}
+namespace node_proto {
+constexpr int kInput = 1, kOutput = 2, kName = 3, kOpType = 4, kAttribute = 5;
+}
+namespace attribute_proto {
+constexpr int kName = 1, kF = 2, kI = 3, kType = 20;
+constexpr int kTypeFloat = 1, kTypeInt = 2;
+}
+namespace tensor_proto {
+constexpr int kDims = 1, kDataType = 2, kName = 8, kRawData = 9;
+constexpr int kFloat = 1, kInt64 = 7;
+}
+
+class OnnxGraphWriter {
+ public:
+  explicit OnnxGraphWriter(const PolicyGraph& graph) : graph_(graph) {}
+
+  std::string model() {
+    ProtoWriter g;
+    g.bytes(graph_proto::kName, "rlrun_policy");
+    for (const GraphInput& in : graph_.inputs()) g.message(graph_proto::kInput, value_info(in.name, in.width));
+    for (const GraphNode& n : graph_.nodes()) emit(n);
+    output("action", graph_.action());
+    if (!graph_.value().empty()) output("value", graph_.value());
+    for (const ProtoWriter& node : nodes_) g.message(graph_proto::kNode, node);
+    for (const ProtoWriter& init : initializers_) g.message(graph_proto::kInitializer, init);
+    for (const ProtoWriter& out : outputs_) g.message(graph_proto::kOutput, out);
+
+    ProtoWriter m;
+    m.int64(model_proto::kIrVersion, kOnnxIrVersion);
+    m.bytes(model_proto::kProducerName, "rlrun");
+    const auto version = graph_.metadata.find("rlrun_version");
+    if (version != graph_.metadata.end()) m.bytes(model_proto::kProducerVersion, version->second);
+    m.bytes(model_proto::kDocString,
+            "deterministic policy exported by `rlrun export`: observation -> action");
+    m.message(model_proto::kGraph, g);
+    ProtoWriter opset;
+    opset.bytes(1, "");  // the default domain (ai.onnx)
+    opset.int64(2, kOnnxOpset);
+    m.message(model_proto::kOpsetImport, opset);
+    for (const auto& [key, value] : graph_.metadata) {
+      ProtoWriter entry;
+      entry.bytes(1, key).bytes(2, value);
+      m.message(model_proto::kMetadataProps, entry);
+    }
+    return m.str();
+  }
+
+ private:
+  // ValueInfoProto of a float tensor [batch, width].
+  static ProtoWriter value_info(const std::string& name, int width) {
+    ProtoWriter batch, columns, shape, tensor, type, info;
+    batch.bytes(2, "batch");  // dim_param
+    columns.int64(1, width);  // dim_value
+    shape.message(1, batch).message(1, columns);
+    tensor.int64(1, tensor_proto::kFloat).message(2, shape);  // elem_type, shape
+    type.message(1, tensor);                                   // tensor_type
+    info.bytes(1, name).message(2, type);
+    return info;
+  }
+
+  // Names of the ONNX-only tensors; the "rlrun/" prefix keeps them apart from the graph's own.
+  std::string fresh(const std::string& base) { return "rlrun/" + base + "_" + std::to_string(counter_++); }
+
+  // A constant tensor (initializer); returns its name.
+  std::string constant(const std::string& base, const std::vector<int64_t>& dims,
+                       const float* data, size_t count) {
+    const std::string name = fresh(base);
+    ProtoWriter t;
+    for (int64_t d : dims) t.int64(tensor_proto::kDims, d);
+    t.int64(tensor_proto::kDataType, tensor_proto::kFloat);
+    t.bytes(tensor_proto::kName, name);
+    // raw_data: little-endian float32, which this (x86-64 / ARM64) machine's memory already is.
+    t.bytes(tensor_proto::kRawData, std::string_view(reinterpret_cast<const char*>(data), count * sizeof(float)));
+    initializers_.push_back(std::move(t));
+    return name;
+  }
+  std::string constant(const std::string& base, const Eigen::VectorXf& v) {
+    return constant(base, {v.size()}, v.data(), static_cast<size_t>(v.size()));
+  }
+  std::string int64_constant(const std::string& base, int64_t value) {
+    const std::string name = fresh(base);
+    ProtoWriter t;
+    t.int64(tensor_proto::kDims, 1);
+    t.int64(tensor_proto::kDataType, tensor_proto::kInt64);
+    t.bytes(tensor_proto::kName, name);
+    t.bytes(tensor_proto::kRawData, std::string_view(reinterpret_cast<const char*>(&value), sizeof value));
+    initializers_.push_back(std::move(t));
+    return name;
+  }
+
+  struct Attribute {
+    std::string name;
+    bool is_float = false;
+    float f = 0;
+    int64_t i = 0;
+  };
+  static Attribute int_attr(const std::string& name, int64_t i) { return {name, false, 0, i}; }
+  static Attribute float_attr(const std::string& name, float f) { return {name, true, f, 0}; }
+
+  // One NodeProto; returns its output's name (`output`, or a fresh one).
+  std::string node(const std::string& op, const std::vector<std::string>& inputs,
+                   std::string output = "", const std::vector<Attribute>& attributes = {}) {
+    if (output.empty()) output = fresh(op);
+    ProtoWriter n;
+    for (const std::string& in : inputs) n.bytes(node_proto::kInput, in);
+    n.bytes(node_proto::kOutput, output);
+    n.bytes(node_proto::kName, output);
+    n.bytes(node_proto::kOpType, op);
+    for (const Attribute& a : attributes) {
+      ProtoWriter attr;
+      attr.bytes(attribute_proto::kName, a.name);
+      if (a.is_float)
+        attr.float32(attribute_proto::kF, a.f).int64(attribute_proto::kType, attribute_proto::kTypeFloat);
+      else
+        attr.int64(attribute_proto::kI, a.i).int64(attribute_proto::kType, attribute_proto::kTypeInt);
+      n.message(node_proto::kAttribute, attr);
+    }
+    nodes_.push_back(std::move(n));
+    return output;
+  }
+
+  static bool all(const Eigen::VectorXf& v, float value) { return (v.array() == value).all(); }
+
+  void emit(const GraphNode& n) {
+    const std::string& x = n.inputs.front();
+    const std::string& out = n.output;
+    switch (n.op) {
+      case GraphOp::kConcat:
+        node("Concat", n.inputs, out, {int_attr("axis", 1)});
+        return;
+      case GraphOp::kSlice:
+        node("Slice", {x, int64_constant("starts", n.begin), int64_constant("ends", n.begin + n.width),
+                       int64_constant("axes", 1)}, out);
+        return;
+      case GraphOp::kDense: {
+        // torch's Linear layout, [out, in] row-major: the Eigen (column-major) transpose.
+        const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w = n.weight;
+        const std::string weight = constant(out + "_weight", {w.rows(), w.cols()}, w.data(),
+                                            static_cast<size_t>(w.size()));
+        node("Gemm", {x, weight, constant(out + "_bias", n.b)}, out, {int_attr("transB", 1)});
+        return;
+      }
+      case GraphOp::kActivation:
+        switch (n.activation) {
+          case Activation::kTanh: node("Tanh", {x}, out); return;
+          case Activation::kReLU: node("Relu", {x}, out); return;
+          case Activation::kELU: node("Elu", {x}, out, {float_attr("alpha", 1.0f)}); return;
+          case Activation::kLeakyReLU:
+            node("LeakyRelu", {x}, out, {float_attr("alpha", kLeakyReLUSlope)});
+            return;
+        }
+        return;
+      case GraphOp::kAffine: {
+        std::string y = x;
+        if (!all(n.c, 0.0f)) y = node("Add", {y, constant("shift", n.c)});
+        if (!all(n.a, 1.0f)) y = node("Mul", {y, constant("scale", n.a)});
+        if (!all(n.b, 0.0f)) y = node("Add", {y, constant("offset", n.b)});
+        node("Identity", {y}, out);
+        return;
+      }
+      case GraphOp::kClamp: {
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        std::string y = x;
+        if (!all(n.a, -kInf)) y = node("Max", {y, constant("low", n.a)});
+        if (!all(n.b, kInf)) y = node("Min", {y, constant("high", n.b)});
+        node("Identity", {y}, out);
+        return;
+      }
+      case GraphOp::kOneHot: {
+        Eigen::VectorXf slots(n.width);
+        for (int k = 0; k < n.width; ++k) slots(k) = static_cast<float>(k);
+        const Eigen::VectorXf start = Eigen::VectorXf::Constant(1, n.start);
+        const std::string slot = node("Sub", {node("Round", {x}), constant("start", start)});
+        node("Cast", {node("Equal", {slot, constant("slots", slots)})}, out,
+             {int_attr("to", tensor_proto::kFloat)});
+        return;
+      }
+      case GraphOp::kArgMax:
+        node("Cast", {node("ArgMax", {x}, "", {int_attr("axis", 1), int_attr("keepdims", 1)})}, out,
+             {int_attr("to", tensor_proto::kFloat)});
+        return;
+      case GraphOp::kPositive: {
+        const float zero = 0.0f;
+        node("Cast", {node("Greater", {x, constant("zero", {}, &zero, 1)})}, out,
+             {int_attr("to", tensor_proto::kFloat)});
+        return;
+      }
+    }
+  }
+
+  void output(const std::string& name, const std::string& tensor) {
+    node("Identity", {tensor}, name);
+    outputs_.push_back(value_info(name, graph_.width(tensor)));
+  }
+
+  const PolicyGraph& graph_;
+  std::vector<ProtoWriter> nodes_, initializers_, outputs_;
+  int counter_ = 0;
+};
+
+}  // namespace
+
+std::string onnx_model_bytes(const PolicyGraph& graph) {
+  if (graph.action().empty()) throw ExportError("the policy graph has no action output");
+  return OnnxGraphWriter(graph).model();
+}
+
+}  // namespace rlrun

@@ -1,0 +1,24 @@
+#pragma once
+// A PolicyGraph as an ONNX model (onnx/onnx.proto, IR version 7, default-domain opset 13),
+// written with rlrun's own protobuf encoder (core/protobuf_writer.hpp): float32 inputs
+// [batch, width] with a symbolic batch dimension, outputs "action" [batch, action floats] and,
+// when the graph has one, "value"; the graph's metadata as the model's metadata_props.
+//
+// Each graph node becomes standard operators: Dense -> Gemm (transB), activations -> Tanh /
+// Relu / Elu / LeakyRelu (torch's alpha 1 and 0.01), Affine -> Add, Mul, Add, Clamp -> Max,
+// Min (per-column bounds, which Clip cannot take), OneHot -> Round, Sub, Equal, Cast,
+// ArgMax -> ArgMax (first maximum), Cast, Positive -> Greater, Cast, Slice and Concat as
+// themselves. Discrete actions come out as floats holding the index, as rlrun's own.
+#include <string>
+
+#include "rlrun/deploy/policy_graph.hpp"
+
+namespace rlrun {
+
+inline constexpr int kOnnxIrVersion = 7;
+inline constexpr int kOnnxOpset = 13;
+
+// The serialised ModelProto.
+std::string onnx_model_bytes(const PolicyGraph& graph);
+
+}  // namespace rlrun

@@ -1,0 +1,229 @@
+#include "rlrun/deploy/policy_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rlrun/nn/mlp.hpp"
+
+namespace rlrun {
+
+void PolicyGraph::add_input(const std::string& name, int width) {
+  if (width < 1) throw std::invalid_argument("graph input '" + name + "' has no columns");
+  if (widths_.count(name)) throw std::invalid_argument("graph input '" + name + "' twice");
+  inputs_.push_back({name, width});
+  widths_[name] = width;
+}
+
+int PolicyGraph::width(const std::string& name) const {
+  const auto it = widths_.find(name);
+  if (it == widths_.end()) throw std::out_of_range("graph has no tensor '" + name + "'");
+  return it->second;
+}
+
+std::string PolicyGraph::add(GraphNode node, const char* prefix) {
+  for (const std::string& in : node.inputs) width(in);  // every input exists
+  node.output = std::string(prefix) + "_" + std::to_string(nodes_.size());
+  widths_[node.output] = node.width;
+  nodes_.push_back(std::move(node));
+  return nodes_.back().output;
+}
+
+std::string PolicyGraph::concat(const std::vector<std::string>& inputs) {
+  if (inputs.size() == 1) return inputs.front();
+  GraphNode n;
+  n.op = GraphOp::kConcat;
+  n.inputs = inputs;
+  for (const std::string& in : inputs) n.width += width(in);
+  return add(std::move(n), "concat");
+}
+
+std::string PolicyGraph::slice(const std::string& input, int begin, int w) {
+  if (begin < 0 || w < 1 || begin + w > width(input))
+    throw std::invalid_argument("slice outside '" + input + "'");
+  if (begin == 0 && w == width(input)) return input;
+  GraphNode n;
+  n.op = GraphOp::kSlice;
+  n.inputs = {input};
+  n.begin = begin;
+  n.width = w;
+  return add(std::move(n), "slice");
+}
+
+std::string PolicyGraph::dense(const std::string& input, const Eigen::MatrixXf& weight,
+                               const Eigen::VectorXf& bias) {
+  if (weight.cols() != width(input) || bias.size() != weight.rows())
+    throw std::invalid_argument("dense layer does not fit '" + input + "'");
+  GraphNode n;
+  n.op = GraphOp::kDense;
+  n.inputs = {input};
+  n.weight = weight;
+  n.b = bias;
+  n.width = static_cast<int>(weight.rows());
+  return add(std::move(n), "dense");
+}
+
+std::string PolicyGraph::activation(const std::string& input, Activation act) {
+  GraphNode n;
+  n.op = GraphOp::kActivation;
+  n.inputs = {input};
+  n.activation = act;
+  n.width = width(input);
+  return add(std::move(n), std::string(activation_name(act)).c_str());
+}
+
+std::string PolicyGraph::affine(const std::string& input, const Eigen::VectorXf& pre_shift,
+                                const Eigen::VectorXf& scale, const Eigen::VectorXf& post_shift) {
+  if (pre_shift.size() != width(input) || scale.size() != width(input) ||
+      post_shift.size() != width(input))
+    throw std::invalid_argument("affine map does not fit '" + input + "'");
+  GraphNode n;
+  n.op = GraphOp::kAffine;
+  n.inputs = {input};
+  n.c = pre_shift;
+  n.a = scale;
+  n.b = post_shift;
+  n.width = width(input);
+  return add(std::move(n), "affine");
+}
+
+std::string PolicyGraph::clamp(const std::string& input, const Eigen::VectorXf& low,
+                               const Eigen::VectorXf& high) {
+  if (low.size() != width(input) || high.size() != width(input))
+    throw std::invalid_argument("clamp bounds do not fit '" + input + "'");
+  // Unbounded on both sides in every column: nothing to do.
+  if ((low.array() == -std::numeric_limits<float>::infinity()).all() &&
+      (high.array() == std::numeric_limits<float>::infinity()).all())
+    return input;
+  GraphNode n;
+  n.op = GraphOp::kClamp;
+  n.inputs = {input};
+  n.a = low;
+  n.b = high;
+  n.width = width(input);
+  return add(std::move(n), "clamp");
+}
+
+std::string PolicyGraph::one_hot(const std::string& input, float start, int depth) {
+  if (width(input) != 1 || depth < 1) throw std::invalid_argument("one-hot of '" + input + "'");
+  GraphNode n;
+  n.op = GraphOp::kOneHot;
+  n.inputs = {input};
+  n.start = start;
+  n.width = depth;
+  return add(std::move(n), "one_hot");
+}
+
+std::string PolicyGraph::argmax(const std::string& input) {
+  GraphNode n;
+  n.op = GraphOp::kArgMax;
+  n.inputs = {input};
+  n.width = 1;
+  return add(std::move(n), "argmax");
+}
+
+std::string PolicyGraph::positive(const std::string& input) {
+  GraphNode n;
+  n.op = GraphOp::kPositive;
+  n.inputs = {input};
+  n.width = width(input);
+  return add(std::move(n), "positive");
+}
+
+std::string PolicyGraph::mlp(const std::string& input, const Mlp& net) {
+  std::string x = input;
+  for (int layer = 0; layer < net.num_layers(); ++layer) {
+    x = dense(x, net.weight(layer), net.bias(layer));
+    if (layer + 1 < net.num_layers()) x = activation(x, net.activation());
+  }
+  return x;
+}
+
+namespace {
+
+float activate(Activation act, float v) {
+  switch (act) {
+    case Activation::kTanh: return std::tanh(v);
+    case Activation::kReLU: return v > 0.0f ? v : 0.0f;
+    case Activation::kELU: return v > 0.0f ? v : std::exp(v) - 1.0f;
+    case Activation::kLeakyReLU: return v > 0.0f ? v : kLeakyReLUSlope * v;
+  }
+  return v;
+}
+
+}  // namespace
+
+void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, GraphBlock y) {
+  const ConstGraphBlock& x = inputs.front();
+  const Eigen::Index batch = y.cols();
+  switch (n.op) {
+    case GraphOp::kConcat: {
+      Eigen::Index row = 0;
+      for (const ConstGraphBlock& part : inputs) {
+        y.middleRows(row, part.rows()) = part;
+        row += part.rows();
+      }
+      return;
+    }
+    case GraphOp::kSlice: y = x.middleRows(n.begin, n.width); return;
+    case GraphOp::kDense:
+      y.noalias() = n.weight * x;
+      y.colwise() += n.b;
+      return;
+    case GraphOp::kActivation:
+      y = x.unaryExpr([&](float v) { return activate(n.activation, v); });
+      return;
+    case GraphOp::kAffine:
+      for (Eigen::Index j = 0; j < batch; ++j)
+        for (int k = 0; k < n.width; ++k) y(k, j) = (x(k, j) + n.c(k)) * n.a(k) + n.b(k);
+      return;
+    case GraphOp::kClamp:
+      for (Eigen::Index j = 0; j < batch; ++j)
+        for (int k = 0; k < n.width; ++k) y(k, j) = std::min(std::max(x(k, j), n.a(k)), n.b(k));
+      return;
+    case GraphOp::kOneHot:
+      for (Eigen::Index j = 0; j < batch; ++j)
+        for (int k = 0; k < n.width; ++k)
+          y(k, j) = std::nearbyint(x(0, j)) - n.start == static_cast<float>(k) ? 1.0f : 0.0f;
+      return;
+    case GraphOp::kArgMax:
+      for (Eigen::Index j = 0; j < batch; ++j) {
+        Eigen::Index best = 0;
+        for (Eigen::Index k = 1; k < x.rows(); ++k)
+          if (x(k, j) > x(best, j)) best = k;
+        y(0, j) = static_cast<float>(best);
+      }
+      return;
+    case GraphOp::kPositive: y = (x.array() > 0.0f).cast<float>(); return;
+  }
+}
+
+std::map<std::string, Eigen::MatrixXf> evaluate_graph(const PolicyGraph& graph,
+                                                      const std::vector<Eigen::MatrixXf>& inputs) {
+  if (inputs.size() != graph.inputs().size())
+    throw std::invalid_argument("evaluate_graph: " + std::to_string(graph.inputs().size()) +
+                                " inputs expected");
+  std::map<std::string, Eigen::MatrixXf> values;
+  const Eigen::Index batch = inputs.empty() ? 0 : inputs.front().cols();
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    if (inputs[i].rows() != graph.inputs()[i].width || inputs[i].cols() != batch)
+      throw std::invalid_argument("evaluate_graph: input '" + graph.inputs()[i].name +
+                                  "' must be " + std::to_string(graph.inputs()[i].width) +
+                                  " x batch");
+    values[graph.inputs()[i].name] = inputs[i];
+  }
+  std::vector<ConstGraphBlock> in;
+  for (const GraphNode& n : graph.nodes()) {
+    in.clear();
+    for (const std::string& name : n.inputs) {
+      const Eigen::MatrixXf& m = values.at(name);
+      in.emplace_back(m.data(), m.rows(), m.cols(), Eigen::OuterStride<>(m.rows()));
+    }
+    Eigen::MatrixXf y(n.width, batch);
+    run_node(n, in, GraphBlock(y.data(), y.rows(), y.cols(), Eigen::OuterStride<>(y.rows())));
+    values[n.output] = std::move(y);
+  }
+  return values;
+}
+
+}  // namespace rlrun

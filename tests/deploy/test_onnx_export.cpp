@@ -1,0 +1,356 @@
+// `rlrun export --format onnx` and `--format c` (deploy/): the exported file, run by a real ONNX Runtime (the
+// npm package onnxruntime-node, installed by scripts/setup.sh) and checked by Debian's
+// python3-onnx checker, acts as `rlrun eval` does: on the observations of real evaluation
+// episodes (`rlrun eval --trajectory`), discrete actions equal and continuous ones within 1e-5,
+// for every algorithm, Dict / Discrete / MultiBinary observations, MultiDiscrete and
+// MultiBinary actions, normalised observations and action wrappers; the C export, compiled with
+// cc -std=c99 -Wall -Werror, likewise. The graph evaluator
+// (evaluate_graph, the reference for the other exports) is checked against the same actions.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "rlrun/deploy/model_graph.hpp"
+#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/policy.hpp"
+#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/model_file.hpp"
+#include "runtime/cli_runner.hpp"
+
+using namespace rlrun;
+using namespace rlrun::testing;
+
+namespace {
+
+struct Trajectory {
+  int obs_dim = 0, act_dim = 0;
+  Eigen::MatrixXf obs, actions;  // a column per step
+};
+
+// The first `limit` steps of an `rlrun eval --trajectory` file.
+Trajectory read_trajectory(const std::string& path, int limit) {
+  std::ifstream in(path);
+  std::string line;
+  REQUIRE(std::getline(in, line));
+  std::vector<std::string> header;
+  std::stringstream hs(line);
+  for (std::string cell; std::getline(hs, cell, ',');) header.push_back(cell);
+  Trajectory t;
+  for (const std::string& h : header) {
+    t.obs_dim += h.rfind("obs_", 0) == 0;
+    t.act_dim += h.rfind("action_", 0) == 0;
+  }
+  std::vector<std::vector<float>> rows;
+  while (static_cast<int>(rows.size()) < limit && std::getline(in, line)) {
+    std::vector<float> row;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) row.push_back(std::strtof(cell.c_str(), nullptr));
+    REQUIRE(row.size() == header.size());
+    rows.push_back(std::move(row));
+  }
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  t.obs.resize(t.obs_dim, n);
+  t.actions.resize(t.act_dim, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (int i = 0; i < t.obs_dim; ++i) t.obs(i, j) = rows[j][2 + i];
+    for (int i = 0; i < t.act_dim; ++i) t.actions(i, j) = rows[j][2 + t.obs_dim + i];
+  }
+  return t;
+}
+
+// The graph's inputs from flat observations (Dict keys are consecutive runs of the flat order).
+std::vector<Eigen::MatrixXf> split_inputs(const PolicyGraph& graph, const Eigen::MatrixXf& obs) {
+  std::vector<Eigen::MatrixXf> inputs;
+  Eigen::Index row = 0;
+  for (const GraphInput& in : graph.inputs()) {
+    inputs.push_back(obs.middleRows(row, in.width));
+    row += in.width;
+  }
+  REQUIRE(row == obs.rows());
+  return inputs;
+}
+
+// Runs the ONNX file with onnxruntime-node; returns the parsed output JSON.
+nlohmann::json run_onnxruntime(const std::string& model, const PolicyGraph& graph,
+                               const Eigen::MatrixXf& obs, const TempDir& dir) {
+  nlohmann::json request;
+  request["batch"] = obs.cols();
+  const std::vector<Eigen::MatrixXf> inputs = split_inputs(graph, obs);
+  for (size_t k = 0; k < inputs.size(); ++k) {
+    // Row-major [batch, width]: rlrun's column-major width x batch, read in memory order.
+    const Eigen::MatrixXf& m = inputs[k];
+    request["inputs"][graph.inputs()[k].name] = std::vector<float>(m.data(), m.data() + m.size());
+  }
+  const std::string in_path = dir / "ort_in.json", out_path = dir / "ort_out.json";
+  std::ofstream(in_path) << request.dump();
+  const char* modules = std::getenv("RLRUN_ONNXRUNTIME_NODE_MODULES");
+  const std::string node_path = modules ? modules : RLRUN_TEST_NODE_MODULES;
+  const std::string command = "NODE_PATH='" + node_path + "' node '" RLRUN_SOURCE_DIR
+                              "/tests/deploy/onnx_run.js' '" + model + "' '" + in_path + "' '" +
+                              out_path + "' 2>&1";
+  const CommandResult r = run_command(command);
+  INFO("onnxruntime-node (scripts/setup.sh installs it into " << node_path << "): " << r.output);
+  REQUIRE(r.exit_code == 0);
+  std::ifstream out(out_path);
+  return nlohmann::json::parse(out);
+}
+
+// Discrete actions equal; continuous within 1e-5 (relative to the action's size beyond 1).
+void check_actions(const Eigen::MatrixXf& got, const Eigen::MatrixXf& expected, bool discrete) {
+  REQUIRE(got.rows() == expected.rows());
+  REQUIRE(got.cols() == expected.cols());
+  for (Eigen::Index j = 0; j < got.cols(); ++j)
+    for (Eigen::Index i = 0; i < got.rows(); ++i) {
+      INFO("step " << j << " action " << i);
+      if (discrete)
+        REQUIRE(got(i, j) == expected(i, j));
+      else
+        REQUIRE(std::abs(got(i, j) - expected(i, j)) <= 1e-5f * std::max(1.0f, std::abs(expected(i, j))));
+    }
+}
+
+// Exports the model as C99, compiles it with a small driver (tests/deploy/c_policy_main.c) under
+// -std=c99 -Wall -Wextra -Werror -pedantic and runs it on `obs`; returns its actions.
+Eigen::MatrixXf run_c_export(const std::string& model, const Eigen::MatrixXf& obs, int action_dim,
+                             const TempDir& dir) {
+  const std::string c_dir = dir / "c_policy";
+  const auto x = run_rlrun("export --model " + model + " --format c --output " + c_dir);
+  INFO(x.output);
+  REQUIRE(x.exit_code == 0);
+  const std::string binary = dir / "c_policy_run";
+  const CommandResult cc = run_command(
+      "cc -std=c99 -O2 -Wall -Wextra -Werror -pedantic -I'" + c_dir + "' '" RLRUN_SOURCE_DIR
+      "/tests/deploy/c_policy_main.c' '" + c_dir + "/policy.c' -lm -o '" + binary + "' 2>&1");
+  INFO(cc.output);
+  REQUIRE(cc.exit_code == 0);
+  const std::string in_path = dir / "obs.f32", out_path = dir / "actions.f32";
+  std::ofstream(in_path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(obs.data()), static_cast<std::streamsize>(obs.size() * sizeof(float)));
+  const CommandResult run = run_command("'" + binary + "' '" + in_path + "' '" + out_path + "' 2>&1");
+  INFO(run.output);
+  REQUIRE(run.exit_code == 0);
+  Eigen::MatrixXf actions(action_dim, obs.cols());
+  std::ifstream out(out_path, std::ios::binary);
+  out.read(reinterpret_cast<char*>(actions.data()), static_cast<std::streamsize>(actions.size() * sizeof(float)));
+  REQUIRE(out.gcount() == static_cast<std::streamsize>(actions.size() * sizeof(float)));
+  return actions;
+}
+
+Eigen::MatrixXf from_json(const nlohmann::json& tensor, Eigen::Index batch) {
+  const std::vector<float> data = tensor["data"].get<std::vector<float>>();
+  REQUIRE(tensor["dims"][0].get<Eigen::Index>() == batch);
+  const Eigen::Index width = tensor["dims"][1].get<Eigen::Index>();
+  REQUIRE(static_cast<Eigen::Index>(data.size()) == width * batch);
+  return Eigen::Map<const Eigen::MatrixXf>(data.data(), width, batch);
+}
+
+struct Case {
+  const char* name;
+  int timesteps;
+  const char* config;  // the experiment's env and algo sections
+  int episodes;        // evaluation episodes to record (enough for 1000 steps; those are used)
+  bool discrete;
+};
+
+void check_case(const Case& c) {
+  INFO(c.name);
+  TempDir dir(std::string("onnx_") + c.name);
+  const std::string config = dir / "exp.yaml";
+  std::ofstream(config) << "run: {name: m, seed: 3, total_timesteps: " << c.timesteps
+                        << ", out_dir: " << dir.str() << "/runs}\n"
+                        << c.config;
+  const auto t = run_rlrun("train " + config + " --set run.console_interval=1e9");
+  INFO(t.output);
+  REQUIRE(t.exit_code == 0);
+  const std::string model = dir / "runs/m/seed3/model.zip";
+  const std::string trajectory = dir / "steps.csv";
+  const auto e = run_rlrun("eval --model " + model + " --episodes " + std::to_string(c.episodes) +
+                           " --seed 11 --trajectory " + trajectory);
+  INFO(e.output);
+  REQUIRE(e.exit_code == 0);
+  const Trajectory steps = read_trajectory(trajectory, 1000);
+  REQUIRE(steps.obs.cols() == 1000);
+
+  const std::string onnx = dir / "policy.onnx";
+  const auto x = run_rlrun("export --model " + model + " --format onnx --output " + onnx + " --with-value");
+  INFO(x.output);
+  REQUIRE(x.exit_code == 0);
+
+  // The graph evaluator: the same actions.
+  const LoadedModel loaded = load_model(model, builtin_registry());
+  const PolicyGraph graph = build_model_graph(loaded, /*with_value=*/true);
+  const auto values = evaluate_graph(graph, split_inputs(graph, steps.obs));
+  check_actions(values.at(graph.action()), steps.actions, c.discrete);
+
+  // ONNX Runtime: the same actions, and the value output as the evaluator computes it.
+  const nlohmann::json ort = run_onnxruntime(onnx, graph, steps.obs, dir);
+  check_actions(from_json(ort["action"], steps.obs.cols()), steps.actions, c.discrete);
+  REQUIRE(ort.contains("value"));
+  const Eigen::MatrixXf value = from_json(ort["value"], steps.obs.cols());
+  const Eigen::MatrixXf& expected_value = values.at(graph.value());
+  REQUIRE(value.rows() == expected_value.rows());
+  CHECK(((value - expected_value).array().abs() <=
+         1e-4f * expected_value.array().abs().max(1.0f)).all());
+
+  // rlrun::Policy (the embeddable library), one observation at a time and as one batch.
+  const Policy policy = Policy::load(model);
+  REQUIRE(policy.observation_size() == static_cast<size_t>(steps.obs_dim));
+  REQUIRE(policy.action_size() == static_cast<size_t>(steps.act_dim));
+  Eigen::MatrixXf single(steps.act_dim, steps.obs.cols()), batch(steps.act_dim, steps.obs.cols());
+  for (Eigen::Index j = 0; j < steps.obs.cols(); ++j)
+    policy.act({steps.obs.col(j).data(), policy.observation_size()},
+               {single.col(j).data(), policy.action_size()});
+  check_actions(single, steps.actions, c.discrete);
+  policy.act_batch({steps.obs.data(), static_cast<size_t>(steps.obs.size())},
+                   {batch.data(), static_cast<size_t>(batch.size())}, static_cast<size_t>(steps.obs.cols()));
+  check_actions(batch, steps.actions, c.discrete);
+
+  // The C export, compiled and run: the same actions.
+  check_actions(run_c_export(model, steps.obs, steps.act_dim, dir), steps.actions, c.discrete);
+
+  // Debian's onnx checker, with shape inference, accepts the graph.
+  const CommandResult check = run_command(
+      "/usr/bin/python3 -c \"import onnx; m = onnx.load('" + onnx +
+      "'); onnx.checker.check_model(m, full_check=True); "
+      "print(m.opset_import[0].version, {p.key: p.value for p in m.metadata_props}['env_id'])\" 2>&1");
+  INFO(check.output);
+  REQUIRE(check.exit_code == 0);
+  CHECK(check.output.find("13 ") == 0);
+}
+
+}  // namespace
+
+TEST_CASE("export onnx: Discrete, MultiDiscrete and MultiBinary actions (PPO, A2C, DQN)",
+          "[deploy][onnx]") {
+  check_case({"ppo_cartpole", 2048,
+              "env: {id: CartPole-v1}\n"
+              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2, policy: {net_arch: [32, 32]}}\n",
+              100, true});
+  check_case({"dqn_cartpole", 2000,
+              "env: {id: CartPole-v1}\n"
+              "algo: {id: DQN, learning_starts: 500, policy: {net_arch: [32, 32]}}\n",
+              200, true});
+  check_case({"a2c_multidiscrete", 2000,
+              "env: {id: IdentityEnvMultiDiscrete-v0}\n"
+              "algo: {id: A2C, policy: {net_arch: [16], activation_fn: relu}}\n",
+              100, true});
+  check_case({"ppo_multibinary", 2048,
+              "env: {id: IdentityEnvMultiBinary-v0}\n"
+              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2}\n",
+              100, true});
+}
+
+TEST_CASE("export onnx: Dict, Discrete and MultiBinary observations (one-hot encodings)",
+          "[deploy][onnx]") {
+  check_case({"ppo_dict", 2048,
+              "env: {id: SimpleMultiObsEnv-v0}\n"
+              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2}\n",
+              600, true});
+  check_case({"dqn_onehot_wrapper", 2000,
+              "env: {id: GridWorld-v0, wrappers: [{id: OneHotObservation}]}\n"
+              "algo: {id: DQN, learning_starts: 500, policy: {net_arch: [32]}}\n",
+              300, true});
+  check_case({"ppo_dictreach", 2048,
+              "env: {id: DictReach-v0}\n"
+              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2}\n",
+              200, false});
+}
+
+TEST_CASE("export onnx: Box actions, normalised observations and action wrappers (A2C, PPO, SAC)",
+          "[deploy][onnx]") {
+  check_case({"a2c_pendulum_normalize_gsde", 2000,
+              "env: {id: Pendulum-v1, normalize: true}\n"
+              "algo: {id: A2C, use_sde: true, policy: {log_std_init: -2, ortho_init: false}}\n",
+              5, false});
+  check_case({"ppo_pendulum_clip_action", 2048,
+              "env: {id: Pendulum-v1, wrappers: [{id: ClipAction}]}\n"
+              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2,\n"
+              "       policy: {net_arch: {pi: [16], vf: [32]}, activation_fn: leaky_relu}}\n",
+              5, false});
+  check_case({"sac_pendulum_wrappers", 300,
+              "env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},\n"
+              "  {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
+              "algo: {id: SAC, learning_starts: 100, batch_size: 32, policy: {net_arch: [16, 16]}}\n",
+              5, false});
+  check_case({"sac_gsde", 300,
+              "env: {id: MountainCarContinuous-v0}\n"
+              "algo: {id: SAC, learning_starts: 100, batch_size: 32, use_sde: true,\n"
+              "       policy: {net_arch: [16, 16], clip_mean: 0.5}}\n",
+              2, false});
+}
+
+TEST_CASE("export onnx: TD3 and DDPG (deterministic tanh actors, Q(s, a) as the value)",
+          "[deploy][onnx]") {
+  check_case({"td3_elu", 300,
+              "env: {id: Pendulum-v1}\n"
+              "algo: {id: TD3, learning_starts: 100, batch_size: 32,\n"
+              "       policy: {net_arch: [16, 16], activation_fn: elu}}\n",
+              5, false});
+  check_case({"ddpg_lunar", 300,
+              "env: {id: LunarLanderContinuous-v3}\n"
+              "algo: {id: DDPG, learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32]}}\n",
+              30, false});
+}
+
+TEST_CASE("rlrun::Policy: wrong sizes and bad files are exceptions; act is thread-safe",
+          "[deploy][onnx]") {
+  TempDir dir("policy_library");
+  const std::string config = dir / "exp.yaml";
+  std::ofstream(config) << "run: {name: m, seed: 1, total_timesteps: 300, out_dir: " << dir.str()
+                        << "/runs}\nenv: {id: Pendulum-v1}\n"
+                           "algo: {id: SAC, learning_starts: 100, batch_size: 32, policy: {net_arch: [16]}}\n";
+  REQUIRE(run_rlrun("train " + config).exit_code == 0);
+  const Policy policy = Policy::load(dir / "runs/m/seed1/model.zip");
+  CHECK(policy.env_id() == "Pendulum-v1");
+  CHECK(policy.algorithm() == "SAC");
+  std::vector<float> obs = {1.0f, 0.0f, 0.5f}, action(1), wrong(2);
+  CHECK_THROWS_AS(policy.act({obs.data(), 2}, action), std::invalid_argument);
+  CHECK_THROWS_AS(policy.act(obs, wrong), std::invalid_argument);
+  CHECK_THROWS_AS(policy.act_batch(obs, action, 2), std::invalid_argument);
+  CHECK_THROWS_AS(Policy::load(dir / "missing.zip"), std::runtime_error);
+  std::ofstream(dir / "junk.zip") << "not a zip";
+  CHECK_THROWS_AS(Policy::load(dir / "junk.zip"), std::runtime_error);
+
+  // Two threads acting at once with one Policy get what one thread gets.
+  std::vector<float> many(3 * 500), expected(500), got_a(500), got_b(500);
+  for (size_t k = 0; k < many.size(); ++k) many[k] = std::sin(static_cast<float>(k));
+  for (size_t j = 0; j < 500; ++j) policy.act({&many[3 * j], 3}, {&expected[j], 1});
+  auto worker = [&](std::vector<float>& out) {
+    for (int round = 0; round < 20; ++round)
+      for (size_t j = 0; j < 500; ++j) policy.act({&many[3 * j], 3}, {&out[j], 1});
+  };
+  std::thread a(worker, std::ref(got_a)), b(worker, std::ref(got_b));
+  a.join();
+  b.join();
+  CHECK(got_a == expected);
+  CHECK(got_b == expected);
+}
+
+TEST_CASE("export: refusals are clear errors", "[deploy][onnx]") {
+  TempDir dir("onnx_refusals");
+  const std::string config = dir / "exp.yaml";
+  std::ofstream(config) << "run: {name: m, seed: 1, total_timesteps: 512, out_dir: " << dir.str()
+                        << "/runs}\nenv: {id: CartPole-v1, wrappers: [{id: FrameStack, n_stack: 2}]}\n"
+                           "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 1}\n";
+  REQUIRE(run_rlrun("train " + config).exit_code == 0);
+  const std::string model = dir / "runs/m/seed1/model.zip";
+  // A stateful wrapper: named, and nothing written.
+  const auto stacked = run_rlrun("export --model " + model + " --output " + (dir / "p.onnx"));
+  CHECK(stacked.exit_code == 1);
+  CHECK(stacked.output.find("FrameStack") != std::string::npos);
+  CHECK_FALSE(std::ifstream(dir / "p.onnx").good());
+  // An output in a directory that does not exist.
+  const auto missing = run_rlrun("export --model " + model + " --output " + (dir / "no/such/p.onnx"));
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.output.find("does not exist") != std::string::npos);
+  // Not a model file.
+  std::ofstream(dir / "junk.zip") << "not a zip";
+  const auto junk = run_rlrun("export --model " + (dir / "junk.zip") + " --output " + (dir / "j.onnx"));
+  CHECK(junk.exit_code == 1);
+  CHECK_FALSE(std::ifstream(dir / "j.onnx").good());
+}
