@@ -59,6 +59,9 @@ run "$rlrun" --threads 1 train "$data/configs/cartpole_ppo.yaml" --timesteps 200
 [[ -f $work/runs/cartpole_ppo/seed1/model.zip ]] || fail "train wrote no model.zip"
 run "$rlrun" eval --model "$work/runs/cartpole_ppo/seed1/model.zip" --episodes 2
 expect_in_log "mean_reward"
+if grep -rqaF "$source_dir" "$work/runs"; then
+  fail "the run directory names the checkout: $(grep -rlaF "$source_dir" "$work/runs" | head -3)"
+fi
 
 # The grasp task reads scenarios/grasp/lift.yaml (the default) or a shipped scenario named
 # relative to the data directory.
