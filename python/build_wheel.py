@@ -7,8 +7,8 @@ extension) into a wheel, so that a virtualenv gets rlrun with one command and no
 The wheel format is PEP 427 (a zip with <name>-<version>.dist-info/{METADATA, WHEEL, RECORD};
 RECORD lists every file with its urlsafe-base64 sha256 and size). The wheel is for this
 interpreter's ABI and this machine: the extension links Debian's shared libraries (SUMO,
-Bullet, yaml-cpp, libzip, Cairo) and finds the scenario data of the checkout it was built
-from (docs/python.md).
+Bullet, yaml-cpp, libzip, Cairo); it carries rlrun's shipped data (configs, scenarios, SUMO
+networks) in rlrun/share/rlrun (docs/python.md).
 
     build_wheel.py --package build/python/rlrun --version 0.1.0 --out build/python/dist
 """
@@ -41,10 +41,13 @@ def main() -> int:
     args = parser.parse_args()
 
     files = []
-    for root, dirs, names in os.walk(args.package):
+    # share/: the shipped data (links to the checkout's configs/, scenarios/, sumo_data/), copied
+    # into the wheel so that an installed rlrun finds it beside its extension module.
+    for root, dirs, names in os.walk(args.package, followlinks=True):
         dirs[:] = sorted(d for d in dirs if d != "__pycache__")
+        data = os.path.relpath(root, args.package).split(os.sep)[0] == "share"
         for name in sorted(names):
-            if name.endswith((".py", ".so")):
+            if data or name.endswith((".py", ".so")):
                 path = os.path.join(root, name)
                 files.append((os.path.join("rlrun", os.path.relpath(path, args.package)), path))
     if not any(arc.endswith(".so") for arc, _ in files):

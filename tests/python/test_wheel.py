@@ -27,13 +27,18 @@ class WheelInVirtualenv(TempDirMixin, unittest.TestCase):
             names = whl.namelist()
             self.assertIn("rlrun/__init__.py", names)
             self.assertTrue(any(n.startswith("rlrun/_core.") and n.endswith(".so") for n in names))
+            # The shipped data travels in the wheel: the extension finds it beside itself.
+            for data in ("configs/cartpole_ppo.yaml", "scenarios/grasp/lift.yaml",
+                         "sumo_data/single_intersection/single.sumocfg"):
+                self.assertIn("rlrun/share/rlrun/" + data, names)
             record = whl.read(f"rlrun-{rlrun.__version__}.dist-info/RECORD").decode()
             self.assertIn("rlrun/__init__.py,sha256=", record)
 
         venv = os.path.join(self.tmp, "venv")
         # --system-site-packages: the venv sees Debian's numpy (and gymnasium, if installed).
         subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", venv], check=True)
-        env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+        env = {k: v for k, v in os.environ.items()
+               if k not in ("PYTHONPATH", "PYTHONHOME", "RLRUN_DATA_DIR")}
         install = subprocess.run([os.path.join(venv, "bin", "pip"), "install", "--no-index", wheels[0]],
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
         self.assertEqual(install.returncode, 0, install.stdout)
@@ -44,12 +49,15 @@ class WheelInVirtualenv(TempDirMixin, unittest.TestCase):
             "obs, _ = env.reset(seed=0)\n"
             "obs, r, te, tr, _ = env.step(1)\n"
             "print('ok', obs.shape, r)\n"
+            "grasp = rlrun.make('GripperLift-v0')  # reads rlrun/share/rlrun/scenarios/grasp/lift.yaml\n"
+            "print('grasp', grasp.reset(seed=0)[0].shape)\n"
         )
         run = subprocess.run([os.path.join(venv, "bin", "python"), "-c", script], cwd=self.tmp,
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                              env=dict(env, VENV=venv))
         self.assertEqual(run.returncode, 0, run.stdout)
         self.assertIn("ok (4,) 1.0", run.stdout)
+        self.assertIn("grasp (26,)", run.stdout)
 
 
 if __name__ == "__main__":

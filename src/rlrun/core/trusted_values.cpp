@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <vector>
+
+#include "rlrun/core/shipped_data.hpp"
 
 namespace rlrun {
 
 namespace fs = std::filesystem;
-
-std::string shipped_data_dir() { return RLRUN_DATA_DIR; }
 
 namespace {
 
@@ -19,17 +20,38 @@ namespace {
          n.path() + "=" + value + " (or another value) on the command line");
 }
 
+// The directories untrusted text may name files in: the shipped data directory and each
+// directory directly in it, all canonical. The second matters where the data directory holds
+// links (a build tree's build/share/rlrun/scenarios -> <source>/scenarios): a file reached
+// through one canonicalises to the link's target, outside the data directory's own path.
+std::vector<fs::path> shipped_roots() {
+  std::error_code ec;
+  const auto found = find_shipped_data_dir();
+  if (!found) return {};
+  const fs::path data = fs::canonical(*found, ec);
+  if (ec) return {};
+  std::vector<fs::path> roots{data};
+  for (const fs::directory_entry& entry : fs::directory_iterator(data, ec))
+    if (entry.is_directory(ec)) roots.push_back(fs::canonical(entry.path(), ec));
+  return roots;
+}
+
+bool inside(const fs::path& dir, const fs::path& file) {
+  return std::mismatch(dir.begin(), dir.end(), file.begin(), file.end()).first == dir.end();
+}
+
 // The canonical path of `path` when it names an existing file inside the shipped data
 // directory (a relative path counts from there, not from the working directory), else "".
 std::string shipped_file(const std::string& path) {
+  const std::vector<fs::path> roots = shipped_roots();
+  if (roots.empty()) return "";
   std::error_code ec;
-  const fs::path data = fs::weakly_canonical(shipped_data_dir(), ec);
-  if (ec) return "";
-  const fs::path file = fs::weakly_canonical(fs::path(path).is_absolute() ? fs::path(path)
-                                                                           : data / path, ec);
+  const fs::path file = fs::canonical(fs::path(path).is_absolute() ? fs::path(path)
+                                                                   : roots.front() / path, ec);
   if (ec || !fs::is_regular_file(file, ec)) return "";
-  const auto [d, f] = std::mismatch(data.begin(), data.end(), file.begin(), file.end());
-  return d == data.end() ? file.string() : "";
+  for (const fs::path& root : roots)
+    if (!root.empty() && inside(root, file)) return file.string();
+  return "";
 }
 
 }  // namespace

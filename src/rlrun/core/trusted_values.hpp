@@ -10,6 +10,7 @@
 #include <string>
 
 #include "rlrun/core/config_node.hpp"
+#include "rlrun/core/shipped_data.hpp"
 
 namespace rlrun {
 
@@ -29,9 +30,6 @@ struct SimulatorInput {
   std::string value;
   bool operator==(const SimulatorInput&) const = default;
 };
-
-// Where rlrun's shipped scenarios and networks live (scenarios/, sumo_data/).
-std::string shipped_data_dir();
 
 // Each decode keeps `out` (the default) unless the node is trusted or the value is allowed.
 void decode(const ConfigNode& n, ProgramPath& out);

@@ -4,20 +4,18 @@
 
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/shipped_data.hpp"
 
 namespace rlrun {
 
 namespace fs = std::filesystem;
 
 std::string shipped_grasp_scenario(const std::string& name) {
-  return std::string(RLRUN_DATA_DIR) + "/scenarios/grasp/" + name + ".yaml";
+  return (fs::path(shipped_data_dir()) / "scenarios" / "grasp" / (name + ".yaml")).string();
 }
 
 GraspScenario load_grasp_scenario(const std::string& path) {
-  std::string file = path;
-  if (!fs::exists(file) && fs::path(path).is_relative() &&
-      fs::exists(fs::path(RLRUN_DATA_DIR) / path))
-    file = (fs::path(RLRUN_DATA_DIR) / path).string();
+  const std::string file = find_data_file(path);
   if (!fs::exists(file)) throw RuntimeFailure("grasp scenario " + path + " does not exist");
   const ConfigNode root = ConfigNode::load_file(file);
   if (!root.is_map()) root.fail("a grasp scenario is a map (see scenarios/grasp/lift.yaml)");

@@ -46,12 +46,13 @@ struct GraspScenario {
   }
 };
 
-// The shipped scenarios: <source dir>/scenarios/grasp/<name>.yaml.
+// The shipped scenarios: scenarios/grasp/<name>.yaml in shipped_data_dir().
 std::string shipped_grasp_scenario(const std::string& name);
 
 // Reads and checks a scenario (ranges of two numbers, low <= high, sizes and masses > 0, a
 // cube small enough for the open gripper). A relative path that does not exist from the
-// working directory is looked for under the source tree. Throws ConfigError / RuntimeFailure.
+// working directory is looked for in rlrun's shipped data (find_data_file). Throws
+// ConfigError / RuntimeFailure.
 GraspScenario load_grasp_scenario(const std::string& path);
 
 }  // namespace rlrun

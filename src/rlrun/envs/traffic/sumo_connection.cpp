@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/shipped_data.hpp"
 
 namespace rlrun {
 
@@ -27,18 +28,21 @@ namespace {
 
 using StartFunction = SumoConnection* (*)(const std::vector<std::string>*, std::string*);
 
-// librlrun_libsumo.so: RLRUN_LIBSUMO_MODULE if set, else beside the running program (the
-// build tree), else in <prefix>/lib of an install, else in the build tree rlrun was built in.
+// librlrun_libsumo.so: RLRUN_LIBSUMO_MODULE if set, else found relative to the binary holding
+// this code (core/shipped_data.hpp; no build path is compiled in): beside it (build/rlrun), in
+// <prefix>/lib of an install (P/bin/rlrun), or one or two levels up in a build tree
+// (build/tests/rlrun_tests, build/python/rlrun/_core*.so). The last candidate names the module
+// in the error when none exists.
 std::string libsumo_module_path() {
   if (const char* path = std::getenv("RLRUN_LIBSUMO_MODULE"); path && *path) return path;
   constexpr const char* kName = "librlrun_libsumo.so";
+  const std::filesystem::path dir = running_binary_dir();
+  const std::filesystem::path places[] = {dir, dir.parent_path() / RLRUN_INSTALL_LIBDIR,
+                                          dir.parent_path(), dir.parent_path().parent_path()};
   std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    for (const auto& dir : {exe.parent_path(), exe.parent_path().parent_path() / RLRUN_INSTALL_LIBDIR})
-      if (std::filesystem::exists(dir / kName)) return (dir / kName).string();
-  }
-  return std::string(RLRUN_MODULE_DIR) + "/" + kName;
+  for (const auto& place : places)
+    if (std::filesystem::exists(place / kName, ec)) return (place / kName).string();
+  return (places[1] / kName).string();
 }
 
 StartFunction libsumo_entry() {

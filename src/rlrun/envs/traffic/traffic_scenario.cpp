@@ -4,21 +4,21 @@
 
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/shipped_data.hpp"
 
 namespace rlrun {
 
 namespace fs = std::filesystem;
 
 std::string default_traffic_scenario() {
-  return std::string(RLRUN_DATA_DIR) + "/scenarios/single_intersection.yaml";
+  return (fs::path(shipped_data_dir()) / "scenarios" / "single_intersection.yaml").string();
 }
 
 namespace {
 
 std::string existing(const std::string& path) {
-  if (fs::exists(path)) return path;
-  const fs::path in_source = fs::path(RLRUN_DATA_DIR) / path;
-  if (fs::path(path).is_relative() && fs::exists(in_source)) return in_source.string();
+  const std::string file = find_data_file(path);
+  if (fs::exists(file)) return file;
   throw RuntimeFailure("traffic scenario " + path + " does not exist (a scenarios/*.yaml file "
                        "or a SUMO .sumocfg)");
 }

@@ -29,11 +29,11 @@ struct TrafficScenario {
   std::string sumocfg_path;  // resolved
 };
 
-// The shipped default: <source dir>/scenarios/single_intersection.yaml.
+// The shipped default: scenarios/single_intersection.yaml in shipped_data_dir().
 std::string default_traffic_scenario();
 
 // `path` is a scenario .yaml or a bare .sumocfg (scale 1). A relative path that does not exist
-// from the working directory is also looked for under the source tree (scenarios/...), so
+// from the working directory is also looked for in rlrun's shipped data (find_data_file), so
 // `scenario: scenarios/single_intersection_rush.yaml` works from anywhere. Throws ConfigError
 // for a bad file, RuntimeFailure for a missing one.
 TrafficScenario load_traffic_scenario(const std::string& path);
