@@ -10,7 +10,7 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/deploy/c_writer.hpp"
-#include "rlrun/deploy/model_graph.hpp"
+#include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/run_directory.hpp"

@@ -12,11 +12,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <sstream>
 #include <thread>
 
-#include "rlrun/deploy/model_graph.hpp"
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/core/zip_archive.hpp"
+#include "rlrun/runtime/model_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 #include "rlrun/policy.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/model_file.hpp"
@@ -353,4 +355,20 @@ TEST_CASE("export: refusals are clear errors", "[deploy][onnx]") {
   const auto junk = run_rlrun("export --model " + (dir / "junk.zip") + " --output " + (dir / "j.onnx"));
   CHECK(junk.exit_code == 1);
   CHECK_FALSE(std::ifstream(dir / "j.onnx").good());
+  // A model of a format version this rlrun does not know: export and the library refuse.
+  const std::string meta = R"({"format_version": 99, "rlrun_version": "9.0.0", "algorithm": "PPO",
+    "env_id": "CartPole-v1", "observation_space": "", "action_space": "", "num_timesteps": 0})";
+  write_zip_atomic(dir / "future.zip", {{"meta.json", std::vector<uint8_t>(meta.begin(), meta.end())},
+                                        {"config.yaml", {}}});
+  const auto future = run_rlrun("export --model " + (dir / "future.zip") + " --format c --output " +
+                                (dir / "future_c"));
+  CHECK(future.exit_code == 1);
+  CHECK(future.output.find("format version 99") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir / "future_c/policy.c"));
+  try {
+    (void)Policy::load(dir / "future.zip");
+    FAIL("a model of format version 99 loaded");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()).find("format version 99") != std::string::npos);
+  }
 }

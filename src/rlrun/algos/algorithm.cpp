@@ -1,6 +1,6 @@
 #include "rlrun/algos/algorithm.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
 

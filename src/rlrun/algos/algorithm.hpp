@@ -72,7 +72,7 @@ class Algorithm {
     throw std::logic_error(id() + " cannot restore a training state yet");
   }
 
-  // Deploying (rlrun export; deploy/policy_graph.hpp): appends to `graph` the deterministic
+  // Deploying (rlrun export; nn/policy_graph.hpp): appends to `graph` the deterministic
   // predict() as nodes, from `obs` (the flat observations predict() takes) to the actions it
   // returns, and sets graph.set_action(). With `with_value` also graph.set_value(): the critic's
   // V(s) (PPO, A2C), the Q-values of every action (DQN), or the first critic's Q(s, a) of the

@@ -9,7 +9,7 @@
 // expf(x) - 1, the one-hot rounds half away from zero (observation values are integers).
 #include <string>
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
 

@@ -1,5 +1,6 @@
 #include "rlrun/deploy/onnx_writer.hpp"
 
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -90,7 +91,8 @@ class OnnxGraphWriter {
     for (int64_t d : dims) t.int64(tensor_proto::kDims, d);
     t.int64(tensor_proto::kDataType, tensor_proto::kFloat);
     t.bytes(tensor_proto::kName, name);
-    // raw_data: little-endian float32, which this (x86-64 / ARM64) machine's memory already is.
+    // raw_data: little-endian float32, which this machine's memory already is.
+    static_assert(std::endian::native == std::endian::little, "raw_data is little-endian");
     t.bytes(tensor_proto::kRawData, std::string_view(reinterpret_cast<const char*>(data), count * sizeof(float)));
     initializers_.push_back(std::move(t));
     return name;
@@ -223,6 +225,10 @@ class OnnxGraphWriter {
 
 std::string onnx_model_bytes(const PolicyGraph& graph) {
   if (graph.action().empty()) throw ExportError("the policy graph has no action output");
+  for (const GraphInput& in : graph.inputs())
+    if (in.name == "action" || in.name == "value")
+      throw ExportError("a Dict observation key named '" + in.name +
+                        "' would clash with the ONNX output of that name");
   return OnnxGraphWriter(graph).model();
 }
 

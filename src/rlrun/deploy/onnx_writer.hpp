@@ -11,7 +11,7 @@
 // themselves. Discrete actions come out as floats holding the index, as rlrun's own.
 #include <string>
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
 

@@ -60,7 +60,7 @@ class ObservationEncoder {
   // then reused (no allocation). Valid until the next call; one encoder per thread.
   Eigen::Ref<const Eigen::MatrixXf> operator()(const Eigen::Ref<const Eigen::MatrixXf>& obs);
 
-  // Deploying (deploy/policy_graph.hpp): the encoding as graph nodes from `obs` (input_dim
+  // Deploying (nn/policy_graph.hpp): the encoding as graph nodes from `obs` (input_dim
   // wide) to the network input (features_dim wide); `obs` itself when identity().
   std::string export_to(PolicyGraph& graph, const std::string& obs) const;
 

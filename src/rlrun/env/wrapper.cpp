@@ -6,7 +6,7 @@
 #include <memory>
 #include <typeinfo>
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
 

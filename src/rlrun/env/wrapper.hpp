@@ -58,7 +58,7 @@ class Wrapper : public Env {
   Env& inner() { return *inner_; }
   const Env& inner() const { return *inner_; }
 
-  // Deploying a policy (rlrun export; deploy/policy_graph.hpp): what this wrapper does to an
+  // Deploying a policy (rlrun export; nn/policy_graph.hpp): what this wrapper does to an
   // observation on its way up (inner -> agent) and to an action on its way down (agent ->
   // inner), as graph nodes; each returns the name of its result. Wrappers that touch neither
   // (rewards, episode ends, bookkeeping) say so with exports_unchanged(); the others override

@@ -2,7 +2,7 @@
 
 #include <Eigen/Core>
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
 #include <limits>

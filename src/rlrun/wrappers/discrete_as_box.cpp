@@ -1,6 +1,6 @@
 #include "rlrun/wrappers/discrete_as_box.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <stdexcept>
 

@@ -1,6 +1,6 @@
 #include "rlrun/algos/a2c/a2c.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <cmath>
 #include <stdexcept>

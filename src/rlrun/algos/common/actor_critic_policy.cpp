@@ -1,6 +1,6 @@
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <cmath>
 #include <limits>

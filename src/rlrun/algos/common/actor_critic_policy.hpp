@@ -122,7 +122,7 @@ class ActorCriticPolicy {
   void save(TensorMap& tensors) const;
   void load(const TensorMap& tensors);
 
-  // Deploying (deploy/policy_graph.hpp): the deterministic act() from `obs` as graph nodes
+  // Deploying (nn/policy_graph.hpp): the deterministic act() from `obs` as graph nodes
   // (encoding, actor, the distribution's mode: argmax per categorical part, x > 0 for
   // Bernoulli, the mean for Gaussians and gSDE) and, with `with_value`, the critic's V(s).
   // `action_space` is the one the policy was built for. Sets the graph's action and value.

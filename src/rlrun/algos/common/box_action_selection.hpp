@@ -46,7 +46,7 @@ class BoxActionSelection {
   // SB3 unscale_action: [-1, 1] -> [low, high], clamped so that rounding at +-1 never leaves
   // the Box (predict() uses it too).
   void to_env_actions(const Eigen::MatrixXf& scaled, Eigen::MatrixXf& env_actions) const;
-  // The same as graph nodes (deploy/policy_graph.hpp): an affine map and a clamp.
+  // The same as graph nodes (nn/policy_graph.hpp): an affine map and a clamp.
   std::string export_env_actions(PolicyGraph& graph, const std::string& scaled) const;
 
   // SB3 collect_rollouts: action_noise.reset(indices=[env]) when an episode ends.

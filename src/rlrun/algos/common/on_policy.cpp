@@ -1,6 +1,6 @@
 #include "rlrun/algos/common/on_policy.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
 #include <chrono>

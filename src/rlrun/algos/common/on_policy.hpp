@@ -65,7 +65,7 @@ class OnPolicyCollector {
 // SB3 Box handling in on-policy rollouts: actions are clipped to the bounds before env.step
 // (the buffer keeps the unclipped sample, whose log-prob was computed).
 void clip_to_box(const Space& space, Eigen::MatrixXf& actions);
-// The same as graph nodes (deploy/policy_graph.hpp); `actions` unchanged for other spaces.
+// The same as graph nodes (nn/policy_graph.hpp); `actions` unchanged for other spaces.
 std::string export_clip_to_box(PolicyGraph& graph, const Space& space, const std::string& actions);
 
 // SB3 OnPolicyAlgorithm.learn: until total_timesteps: collect, update progress, dump logs every

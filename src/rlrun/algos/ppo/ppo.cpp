@@ -1,6 +1,6 @@
 #include "rlrun/algos/ppo/ppo.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
 #include <cmath>

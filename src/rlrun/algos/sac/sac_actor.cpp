@@ -1,6 +1,6 @@
 #include "rlrun/algos/sac/sac_actor.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <stdexcept>
 

@@ -56,7 +56,7 @@ class SacActor {
   void copy_parameters_from(const SacActor& other);
 
   bool use_sde() const { return sde_options_.use_sde; }
-  // Deploying (deploy/policy_graph.hpp): mode() as graph nodes, from the network input
+  // Deploying (nn/policy_graph.hpp): mode() as graph nodes, from the network input
   // `features` to the action in [-1, 1]: tanh of the mean (gSDE: of the mean clipped to
   // +-clip_mean).
   std::string export_mode(PolicyGraph& graph, const std::string& features) const;

@@ -1,6 +1,6 @@
 #include "rlrun/algos/td3/td3.hpp"
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -61,7 +61,10 @@ class Parser {
     if (c == '\'' || c == '"') return string();
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') return number();
     if (name_start(c)) return named(depth);
-    fail("'" + std::string(1, c) + "' is not part of a literal rlrun reads");
+    // (built with append, not "'" + std::string: GCC 12 warns -Wrestrict on that spelling)
+    std::string message = "'";
+    message.append(1, c).append("' is not part of a literal rlrun reads");
+    fail(message);
   }
 
   PyValue sequence(int depth, char close) {

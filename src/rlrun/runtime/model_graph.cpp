@@ -1,4 +1,4 @@
-#include "rlrun/deploy/model_graph.hpp"
+#include "rlrun/runtime/model_graph.hpp"
 
 #include <vector>
 

@@ -1,12 +1,12 @@
 #pragma once
-// The policy of a loaded model file as a PolicyGraph (deploy/policy_graph.hpp): the env's own
+// The policy of a loaded model file as a PolicyGraph (nn/policy_graph.hpp): the env's own
 // observation in, the env's own action out, exactly the steps `rlrun eval --deterministic`
 // takes between them: the observation wrappers of the model's env (normalisation with the
 // frozen statistics, one-hot encodings), the algorithm's encoding, networks and mode, then the
 // action wrappers (RescaleAction, ClipAction, DiscreteAsBox) down to the env.
 #include <string>
 
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 #include "rlrun/runtime/model_file.hpp"
 
 namespace rlrun {

@@ -1,4 +1,4 @@
-// rlrun::Policy (include/rlrun/policy.hpp): the model's PolicyGraph (deploy/model_graph.hpp),
+// rlrun::Policy (include/rlrun/policy.hpp): the model's PolicyGraph (runtime/model_graph.hpp),
 // compiled once into a list of steps over one scratch buffer per thread, so that act() is a
 // few matrix-vector products and loops with no allocation and no shared mutable state.
 #include "rlrun/policy.hpp"
@@ -9,8 +9,8 @@
 #include <map>
 #include <vector>
 
-#include "rlrun/deploy/model_graph.hpp"
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/runtime/model_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/model_file.hpp"
 

@@ -1,4 +1,4 @@
-#include "rlrun/deploy/policy_graph.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
 #include <cmath>
