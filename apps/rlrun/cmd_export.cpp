@@ -42,7 +42,7 @@ void check_output_directory(const std::string& output) {
 Action add_export(CLI::App& app, Registry& registry) {
   auto o = std::make_shared<ExportOptions>();
   CLI::App* sub = app.add_subcommand(
-      "export", "write a trained model's deterministic policy as an ONNX file (docs/deploy.md)");
+      "export", "write a trained model's deterministic policy as an ONNX file or C99 source (docs/deploy.md)");
   sub->add_option("--model", o->model, "the model file (model.zip, best_model.zip, a checkpoint)")
       ->required();
   sub->add_option("--format", o->format,
@@ -53,7 +53,7 @@ Action add_export(CLI::App& app, Registry& registry) {
                   "its parent exists)")
       ->required();
   sub->add_flag("--with-value", o->with_value,
-                "add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
+                "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
                 "critic's Q(s, action) for SAC/TD3/DDPG");
   add_plugin_option(sub, o->plugins);
   return [o, &registry]() {
