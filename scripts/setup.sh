@@ -18,6 +18,7 @@ PACKAGES=(
   zlib1g-dev                                # tests write hostile zips (tests/core/crafted_zip.hpp)
   libbullet-dev                             # 3D grasp task
   libbox2d-dev                              # LunarLander, BipedalWalker (Gymnasium's Box2D tasks)
+  libpugixml-dev                            # SUMO network files read before SUMO runs (traffic_network)
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
   libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video
   python3-numpy python3-pandas              # tests: read our files with the tools SB3 users use
