@@ -3,12 +3,16 @@
 // hand-made programs and on a grid that SUMO's own netgenerate builds.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include <libsumo/libtraci.h>
+
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/sumo_connection.hpp"
 #include "rlrun/envs/traffic_network/signal_programs.hpp"
 #include "runtime/cli_runner.hpp"
 
@@ -108,6 +112,51 @@ TEST_CASE("signal programs: a netgenerate grid's lights, lanes and phases", "[tr
       for (size_t j = 0; j < control.green_states.size(); ++j)
         if (i != j) CHECK(control.yellow_states[i][j].find('y') != std::string::npos);
   }
+}
+
+TEST_CASE("signal programs: the reader agrees with a running SUMO (TraCI) on lights, lanes and phases",
+          "[traffic_network]") {
+  TempDir dir("signal_traci");
+  const std::string net = dir / "grid.net.xml";
+  REQUIRE(run_command("netgenerate --grid --grid.number 3 --grid.length 150 --default.lanenumber 2 "
+                      "--tls.guess true -o '" + net + "' 2>&1")
+              .exit_code == 0);
+  std::ofstream(dir / "grid.sumocfg") << "<configuration><input><net-file value=\"grid.net.xml\"/>"
+                                         "</input></configuration>\n";
+  const std::vector<TrafficLightProgram> lights = read_signal_programs(net);
+  REQUIRE_FALSE(lights.empty());
+
+  SumoLaunch launch;
+  launch.config = dir / "grid.sumocfg";
+  launch.end_time = 10;
+  const std::unique_ptr<SumoConnection> sumo = start_traci_connection(launch);
+  // One connection: it is libtraci's current one.
+  std::vector<std::string> ids = libtraci::TrafficLight::getIDList();
+  std::vector<std::string> read_ids;
+  for (const TrafficLightProgram& light : lights) read_ids.push_back(light.id);
+  std::sort(ids.begin(), ids.end());
+  std::sort(read_ids.begin(), read_ids.end());
+  CHECK(read_ids == ids);
+  for (const TrafficLightProgram& light : lights) {
+    INFO(light.id);
+    // sumo-rl: list(dict.fromkeys(getControlledLanes(id))).
+    std::vector<std::string> lanes;
+    for (const std::string& lane : libtraci::TrafficLight::getControlledLanes(light.id))
+      if (std::find(lanes.begin(), lanes.end(), lane) == lanes.end()) lanes.push_back(lane);
+    CHECK(light.incoming_lanes == lanes);
+    std::set<std::string> out;
+    for (const auto& link : libtraci::TrafficLight::getControlledLinks(light.id))
+      if (!link.empty()) out.insert(link.front().toLane);
+    CHECK(std::set<std::string>(light.outgoing_lanes.begin(), light.outgoing_lanes.end()) == out);
+    const auto logics = libtraci::TrafficLight::getAllProgramLogics(light.id);
+    REQUIRE_FALSE(logics.empty());
+    REQUIRE(logics.front().phases.size() == light.phases.size());
+    for (size_t k = 0; k < light.phases.size(); ++k) {
+      CHECK(logics.front().phases[k]->state == light.phases[k].state);
+      CHECK(logics.front().phases[k]->duration == light.phases[k].duration);
+    }
+  }
+  sumo->finish();
 }
 
 TEST_CASE("signal programs: bad networks and ts_ids are clear errors", "[traffic_network]") {
