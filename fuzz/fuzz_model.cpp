@@ -13,7 +13,7 @@
 //         declared size is off by the signed byte that follows the data length (a lie).
 // Each zip then goes through: read_zip + decode_npy of every .npy member; load_model (the
 // eval path: config -> env + algorithm -> budgeted tensors -> weights, statistics) and one
-// predict(); read_checkpoint with the file's own config as the run's, then the trainer's
+// predict(), the exports (runtime/model_graph.hpp, deploy/); read_checkpoint with the file's own config as the run's, then the trainer's
 // load / load_training_state / VecEnv::read_state on fresh objects.
 #include <unistd.h>
 
@@ -28,6 +28,9 @@
 #include "../tests/core/crafted_zip.hpp"
 #include "fuzz_limits.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/deploy/c_writer.hpp"
+#include "rlrun/deploy/onnx_writer.hpp"
+#include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/zip_archive.hpp"
@@ -133,6 +136,20 @@ void resume_like(const std::string& path, const Experiment& experiment, const Re
   }
 }
 
+// `rlrun export` and rlrun::Policy: the policy graph of the loaded model, both writers, and
+// the graph run once. Refusing (ExportError: a wrapper or env that cannot be exported) is fine.
+void export_like_the_cli(const LoadedModel& loaded) {
+  try {
+    const PolicyGraph graph = build_model_graph(loaded, /*with_value=*/true);
+    (void)onnx_model_bytes(graph);
+    (void)c_policy_source(graph);
+    std::vector<Eigen::MatrixXf> inputs;
+    for (const GraphInput& in : graph.inputs()) inputs.push_back(Eigen::MatrixXf::Zero(in.width, 1));
+    (void)evaluate_graph(graph, inputs);
+  } catch (const ExportError&) {
+  }
+}
+
 void load_like_the_cli(const std::string& path) {
   const Registry& registry = builtin_registry();
   try {
@@ -143,6 +160,7 @@ void load_like_the_cli(const std::string& path) {
         Eigen::MatrixXf::Zero(loaded.env->observation_space().flat_dim(), 1);
     Eigen::MatrixXf actions;
     loaded.algorithm->predict(obs, true, actions);
+    export_like_the_cli(loaded);
     resume_like(path, loaded.experiment, registry);
   } catch (const RuntimeFailure&) {
   } catch (const ConfigError&) {

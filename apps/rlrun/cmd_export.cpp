@@ -74,12 +74,10 @@ Action add_export(CLI::App& app, Registry& registry) {
       const CSource c = c_policy_source(graph);
       write_text_atomic((std::filesystem::path(o->output) / "policy.h").string(), c.header);
       write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
-      int obs_dim = 0;
-      for (const GraphInput& in : graph.inputs()) obs_dim += in.width;
       std::printf("exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
                   "action[%d])\n",
                   o->model.c_str(), model.file.meta.algorithm.c_str(),
-                  model.file.meta.env_id.c_str(), o->output.c_str(), obs_dim,
+                  model.file.meta.env_id.c_str(), o->output.c_str(), graph.observation_width(),
                   graph.width(graph.action()));
       return 0;
     } else {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <sstream>
 
@@ -33,8 +32,7 @@ class CWriter {
   explicit CWriter(const PolicyGraph& graph) : graph_(graph) {}
 
   CSource write() {
-    int obs_dim = 0;
-    for (const GraphInput& in : graph_.inputs()) obs_dim += in.width;
+    const int obs_dim = graph_.observation_width();
     const int action_dim = graph_.width(graph_.action());
 
     std::ostringstream h;

@@ -1,8 +1,6 @@
 #include "rlrun/deploy/onnx_writer.hpp"
 
 #include <bit>
-#include <cmath>
-#include <cstring>
 #include <limits>
 #include <vector>
 

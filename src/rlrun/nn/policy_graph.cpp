@@ -12,6 +12,7 @@ void PolicyGraph::add_input(const std::string& name, int width) {
   if (width < 1) throw std::invalid_argument("graph input '" + name + "' has no columns");
   if (widths_.count(name)) throw std::invalid_argument("graph input '" + name + "' twice");
   inputs_.push_back({name, width});
+  observation_width_ += width;
   widths_[name] = width;
 }
 

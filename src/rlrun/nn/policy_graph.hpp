@@ -67,6 +67,8 @@ class PolicyGraph {
   // The observation's inputs: one per Dict key (in the space's order), else one named "obs".
   void add_input(const std::string& name, int width);
   const std::vector<GraphInput>& inputs() const { return inputs_; }
+  // Floats of one whole observation: the inputs' widths together (a Dict's keys in order).
+  int observation_width() const { return observation_width_; }
   const std::vector<GraphNode>& nodes() const { return nodes_; }
   // Width of a named tensor (an input or a node's output); throws std::out_of_range.
   int width(const std::string& name) const;
@@ -101,6 +103,7 @@ class PolicyGraph {
  private:
   std::string add(GraphNode node, const char* prefix);
   std::vector<GraphInput> inputs_;
+  int observation_width_ = 0;
   std::vector<GraphNode> nodes_;
   std::map<std::string, int> widths_;
   std::string action_, value_;

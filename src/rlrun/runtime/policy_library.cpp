@@ -32,26 +32,24 @@ struct Policy::Impl {
   std::string env_id, algorithm;
   int observation_size = 0, action_size = 0;
   PolicyGraph graph;
-  std::map<std::string, Slot> slots;
   std::vector<std::vector<Slot>> node_inputs;  // per node, resolved once
   std::vector<Slot> node_outputs;
   int scratch_rows = 0;  // floats per observation in the scratch buffer
   Slot action;
 
   void compile() {
+    std::map<std::string, Slot> slots;  // tensor name -> where it lives
     for (const GraphInput& in : graph.inputs()) {
       slots[in.name] = {true, observation_size, in.width};
       observation_size += in.width;
     }
-    for (const GraphNode& n : graph.nodes()) {
-      slots[n.output] = {false, scratch_rows, n.width};
-      scratch_rows += n.width;
-    }
-    for (const GraphNode& n : graph.nodes()) {
+    for (const GraphNode& n : graph.nodes()) {  // in order: a node reads only earlier tensors
       std::vector<Slot> inputs;
       for (const std::string& in : n.inputs) inputs.push_back(slots.at(in));
       node_inputs.push_back(std::move(inputs));
-      node_outputs.push_back(slots.at(n.output));
+      slots[n.output] = {false, scratch_rows, n.width};
+      node_outputs.push_back(slots[n.output]);
+      scratch_rows += n.width;
     }
     action = slots.at(graph.action());
     action_size = action.width;
