@@ -21,6 +21,7 @@
 #include "rlrun/rng.hpp"
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/env/space_text.hpp"
+#include "rlrun/env/step_all_agents.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/experiment.hpp"
@@ -104,8 +105,12 @@ struct RandomBaseline {
 
 RandomBaseline play_random(Env& env, int episodes, uint64_t seed) {
   Rng rng(seed + 12345);
-  std::vector<float> obs(env.observation_space().flat_dim());
-  std::vector<float> action(env.action_space().flat_dim());
+  // A multi-agent env: every agent acts at random; the return sums all agents' rewards.
+  const int agents = env.num_agents();
+  const size_t act_dim = static_cast<size_t>(env.action_space().flat_dim());
+  std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) * agents);
+  std::vector<float> action(act_dim * agents);
+  std::vector<StepResult> results;
   std::vector<double> returns;
   double total_length = 0;
   RandomBaseline b;
@@ -114,8 +119,9 @@ RandomBaseline play_random(Env& env, int episodes, uint64_t seed) {
     env.reset(e == 0 ? std::optional<uint64_t>(seed) : std::nullopt, obs);
     double ret = 0;
     for (int64_t t = 1;; ++t) {
-      env.action_space().sample(rng, action);
-      const StepResult r = env.step(action, obs);
+      for (int a = 0; a < agents; ++a)
+        env.action_space().sample(rng, std::span<float>(action.data() + a * act_dim, act_dim));
+      const StepResult r = step_all_agents(env, action, obs, results);
       ret += r.reward;
       if (r.terminated || r.truncated || t >= 100000) {
         total_length += static_cast<double>(t);
@@ -180,6 +186,9 @@ Action add_check_env(CLI::App& app, Registry& registry) {
     std::printf("%s: %s\n", env.id().c_str(), t.description.c_str());
     std::printf("%s", labeled_space("observation_space", env.observation_space(), 17).c_str());
     std::printf("%s", labeled_space("action_space", env.action_space(), 17).c_str());
+    if (env.num_agents() > 1)
+      std::printf("  agents             %d (the spaces are each agent's; one shared policy)\n",
+                  env.num_agents());
     std::printf("  time limit         %s\n",
                 t.time_limit > 0 ? (count_of(t.time_limit, "step") + " (TimeLimit)").c_str()
                                  : "none (the env ends its own episodes)");

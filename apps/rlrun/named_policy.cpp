@@ -12,9 +12,11 @@ NamedPolicy named_policy(const std::string& name, Env& env, const Registry& regi
   if (name == "random") {
     auto rng = std::make_shared<Rng>(options.seed ^ 0x5eedull);
     const Space space = env.action_space();
-    return {[rng, space](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
-              action.resize(space.flat_dim(), 1);
-              space.sample(*rng, {action.data(), static_cast<size_t>(action.size())});
+    return {[rng, space](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
+              // One column per observation column (per agent of a multi-agent env).
+              action.resize(space.flat_dim(), obs.cols());
+              for (Eigen::Index c = 0; c < action.cols(); ++c)
+                space.sample(*rng, {action.col(c).data(), static_cast<size_t>(action.rows())});
             },
             "random policy"};
   }

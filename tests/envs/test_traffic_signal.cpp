@@ -161,14 +161,15 @@ TEST_CASE("read_tripinfo: means over the trips; clear errors", "[traffic]") {
   TempDir dir("traffic_tripinfo_reader");
   std::ofstream(dir / "t.xml")
       << "<tripinfos>\n  <tripinfo id=\"a\" depart=\"1.00\" duration=\"10.00\" routeLength=\"5\""
-         " waitingTime=\"4.00\" waitingCount=\"1\"/>\n  <tripinfo id=\"b\" duration=\"20.00\""
-         " waitingTime=\"0.00\"/>\n</tripinfos>\n";
+         " waitingTime=\"4.00\" waitingCount=\"1\" timeLoss=\"6.00\"/>\n  <tripinfo id=\"b\""
+         " duration=\"20.00\" waitingTime=\"0.00\" timeLoss=\"1.00\"/>\n</tripinfos>\n";
   const TripinfoSummary s = rlrun::read_tripinfo(dir / "t.xml");
   CHECK(s.trips == 2);
   CHECK(s.mean_duration == 15.0);
   CHECK(s.mean_waiting == 2.0);
+  CHECK(s.mean_time_loss == 3.5);
   std::ofstream(dir / "bad.xml") << "<tripinfos><tripinfo id=\"a\" duration=\"3\"/></tripinfos>";
-  CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "bad.xml"), Catch::Contains("without duration and waitingTime"));
+  CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "bad.xml"), Catch::Contains("without duration, waitingTime and timeLoss"));
   CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "none.xml"), Catch::Contains("is missing"));
 }
 

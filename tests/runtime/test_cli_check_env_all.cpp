@@ -13,9 +13,9 @@ TEST_CASE("check-env passes every registered env", "[cli][env_checker]") {
   int checked = 0;
   for (const EnvEntry& entry : builtin_registry().envs()) {
     if (entry.expand) continue;  // id families (python:, gymnasium:): tests/envs/test_python_env*
-    // The SUMO env simulates an hour per episode by default: shorter episodes keep this quick.
-    const std::string shorter =
-        entry.id == "TrafficSignal-v0" ? " --set num_seconds=300 --episodes 3 --steps 200" : "";
+    // The SUMO envs simulate an hour per episode by default: shorter episodes keep this quick.
+    const bool sumo = entry.id == "TrafficSignal-v0" || entry.id == "TrafficNetwork-v0";
+    const std::string shorter = sumo ? " --set num_seconds=300 --episodes 3 --steps 200" : "";
     const auto r = run_rlrun("check-env " + entry.id + shorter);
     INFO(entry.id << "\n" << r.output);
     CHECK(r.exit_code == 0);

@@ -90,13 +90,26 @@ class Checker {
     return why.empty() ? "" : " (" + why + ")";
   }
 
+  // Several agents (include/rlrun/env.hpp): observations and actions hold every agent's,
+  // agent-major; each agent's part must be inside the space.
+  int agents() const { return std::max(1, env_.num_agents()); }
+  size_t obs_size() const { return static_cast<size_t>(env_.observation_space().flat_dim()) * agents(); }
+  void check_inside(const Obs& obs, const std::string& what) {
+    const size_t dim = static_cast<size_t>(env_.observation_space().flat_dim());
+    for (int a = 0; a < agents(); ++a) {
+      const std::span<const float> part(obs.data() + a * dim, dim);
+      if (!env_.observation_space().contains(part))
+        problem("the observation returned by " + what + " " + format(part) + " is not inside " +
+                env_.observation_space().describe() + why_outside(part) +
+                (agents() > 1 ? " (agent " + std::to_string(a) + ")" : std::string()));
+    }
+  }
+
   Obs reset(std::optional<uint64_t> seed, const char* what) {
-    Obs obs(env_.observation_space().flat_dim());
+    Obs obs(obs_size());
     phase_ = what;
     env_.reset(seed, obs);
-    if (!env_.observation_space().contains(obs))
-      problem(std::string("the observation returned by ") + what + " " + format(obs) +
-              " is not inside " + env_.observation_space().describe() + why_outside(obs));
+    check_inside(obs, what);
     return obs;
   }
 
@@ -130,23 +143,35 @@ class Checker {
     const Space& act_space = env_.action_space();
     const Space& obs_space = env_.observation_space();
     Rng action_rng(seed_);
-    std::vector<float> action(act_space.flat_dim());
+    const size_t act_dim = static_cast<size_t>(act_space.flat_dim());
+    std::vector<float> action(act_dim * agents());
+    std::vector<StepResult> results(static_cast<size_t>(agents()));
     std::vector<Record> records;
     records.reserve(steps_ + 1);
     Record first{reset(seed_, "reset(seed)"), 0.0, false, false, env_.info().values()};
     records.push_back(std::move(first));
     for (int t = 0; t < steps_; ++t) {
-      act_space.sample(action_rng, action);
-      Record r{Obs(obs_space.flat_dim()), 0.0, false, false, {}};
+      for (int a = 0; a < agents(); ++a)
+        act_space.sample(action_rng, std::span<float>(action.data() + a * act_dim, act_dim));
+      Record r{Obs(obs_size()), 0.0, false, false, {}};
       phase_ = "step() " + std::to_string(t);
-      const StepResult result = env_.step(action, r.obs);
-      r.reward = result.reward;
+      if (agents() == 1) {
+        results[0] = env_.step(action, r.obs);
+      } else {
+        env_.step_agents(action, r.obs, results);
+      }
+      const StepResult result = results[0];
+      r.reward = 0;
+      for (const StepResult& each : results) {
+        r.reward += each.reward;
+        if (each.terminated != result.terminated || each.truncated != result.truncated)
+          problem("the agents did not end their episode together (step " + std::to_string(t) +
+                  "): rlrun's multi-agent envs end all agents at once");
+      }
       r.terminated = result.terminated;
       r.truncated = result.truncated;
       r.info = env_.info().values();
-      if (!obs_space.contains(r.obs))
-        problem("the observation returned by step() " + format(r.obs) + " is not inside " +
-                obs_space.describe() + why_outside(r.obs) + " (step " + std::to_string(t) + ")");
+      check_inside(r.obs, "step() " + std::to_string(t));
       if (!std::isfinite(r.reward))
         problem("step() returned a non-finite reward " + std::to_string(r.reward) + " (step " +
                 std::to_string(t) + ")");

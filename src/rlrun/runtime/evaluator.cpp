@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "rlrun/env/step_all_agents.hpp"
+
 namespace rlrun {
 
 namespace {
@@ -40,8 +42,13 @@ EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
                            std::optional<uint64_t> seed) {
   EvalResult result;
   const int obs_dim = env.observation_space().flat_dim();
-  Eigen::MatrixXf obs(obs_dim, 1);
+  // Several agents (include/rlrun/env.hpp): one column each, stepped together; the episode's
+  // return is the sum of all agents' rewards, as Monitor counts it.
+  const int agents = env.num_agents();
+  const size_t obs_size = static_cast<size_t>(obs_dim) * agents;
+  Eigen::MatrixXf obs(obs_dim, agents);
   Eigen::MatrixXf actions;
+  std::vector<StepResult> steps;
   const int r_key = env.info().find("episode.r");
   const int l_key = env.info().find("episode.l");
   const int success_key = env.info().find("is_success");
@@ -55,16 +62,17 @@ EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
     metric_indices.push_back(index);
   }
   for (int episode = 0; episode < n_episodes; ++episode) {
-    env.reset(episode == 0 ? seed : std::nullopt, {obs.data(), static_cast<size_t>(obs_dim)});
+    env.reset(episode == 0 ? seed : std::nullopt, {obs.data(), obs_size});
     double episode_return = 0;
     int64_t length = 0;
     while (true) {
       policy(obs, actions);
-      const StepResult step = env.step({actions.data(), static_cast<size_t>(actions.size())},
-                                       {obs.data(), static_cast<size_t>(obs_dim)});
+      const StepResult step = step_all_agents(
+          env, {actions.data(), static_cast<size_t>(actions.size())}, {obs.data(), obs_size}, steps);
       episode_return += step.reward;
+      const bool done = step.terminated || step.truncated;
       ++length;
-      if (step.terminated || step.truncated) {
+      if (done) {
         const Info& info = env.info();
         result.returns.push_back(info.has(r_key) ? info.get(r_key) : episode_return);
         result.lengths.push_back(info.has(l_key) ? static_cast<int64_t>(info.get(l_key)) : length);

@@ -12,7 +12,8 @@
 
 namespace rlrun {
 
-// Maps one observation (obs_dim x 1) to the env's action; a trained model's predict() or a
+// Maps the observations (obs_dim x agents: one column, or one per agent of a multi-agent env)
+// to the actions (act_dim x agents); a trained model's predict() or a
 // baseline such as the traffic task's fixed-time cycle.
 using ActionFn = std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf& action)>;
 

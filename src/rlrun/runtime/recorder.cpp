@@ -7,6 +7,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/space_text.hpp"
+#include "rlrun/env/step_all_agents.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/render/overlay.hpp"
 #include "rlrun/render/video_limits.hpp"
@@ -99,8 +100,11 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
   // draw (a Python env's render() before reset may return None).
   std::unique_ptr<FrameOutput> output;
   const int obs_dim = env.observation_space().flat_dim();
-  Eigen::MatrixXf obs(obs_dim, 1);
+  // Several agents: one column each, all stepped together (env/step_all_agents.hpp).
+  const size_t obs_size = static_cast<size_t>(obs_dim) * env.num_agents();
+  Eigen::MatrixXf obs(obs_dim, env.num_agents());
   Eigen::MatrixXf action;
+  std::vector<StepResult> agent_steps;
   // The same bookkeeping as evaluate_policy: returns and lengths from the Monitor when there
   // is one (the env's true reward), else from the rewards seen here.
   const int r_key = env.info().find("episode.r");
@@ -129,8 +133,7 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
   };
 
   for (int episode = 0; episode < options.episodes && !result.interrupted; ++episode) {
-    env.reset(episode == 0 ? options.seed : std::nullopt,
-              {obs.data(), static_cast<size_t>(obs_dim)});
+    env.reset(episode == 0 ? options.seed : std::nullopt, {obs.data(), obs_size});
     if (!output) output = std::make_unique<FrameOutput>(env, options, result);
     double episode_return = 0;
     int64_t length = 0;
@@ -142,8 +145,9 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
         break;
       }
       policy(obs, action);
-      const StepResult step = env.step({action.data(), static_cast<size_t>(action.size())},
-                                       {obs.data(), static_cast<size_t>(obs_dim)});
+      const StepResult step =
+          step_all_agents(env, {action.data(), static_cast<size_t>(action.size())},
+                          {obs.data(), obs_size}, agent_steps);
       episode_return += step.reward;
       ++length;
       draw();

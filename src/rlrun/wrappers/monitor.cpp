@@ -1,5 +1,6 @@
 #include "rlrun/wrappers/monitor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -35,6 +36,9 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
   std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);
   file_ << "#{\"t_start\": " << t_start_text << ", \"env_id\": \"" << inner_->id() << "\"}\nr,l,t";
   for (const auto& column : keywords_) file_ << ',' << column;
+  // Several agents: each one's own return too (r_0, r_1, ...; rlrun's addition, after SB3's
+  // columns so that load_results still reads the file).
+  for (int a = 0; a < agent_columns(); ++a) file_ << ",r_" << std::to_string(a);
   file_ << '\n';
   file_.flush();
 }
@@ -44,6 +48,11 @@ Monitor::~Monitor() = default;
 void Monitor::write_own_state(StateWriter& out) const {
   StateWriter own = out.sub("monitor");
   own.put_double("episode_return", episode_return_);
+  if (agent_columns() > 0) {
+    std::vector<double> returns = agent_returns_;
+    returns.resize(static_cast<size_t>(agent_columns()), 0.0);
+    own.put_vector("agent_returns", returns);
+  }
   own.put_int("episode_length", episode_length_);
   own.put_int("total_episodes", total_episodes_);
   own.put_int("total_steps", total_steps_);
@@ -54,6 +63,8 @@ void Monitor::write_own_state(StateWriter& out) const {
 void Monitor::read_own_state(const StateReader& in) {
   const StateReader own = in.sub("monitor");
   episode_return_ = own.get_double("episode_return");
+  if (agent_columns() > 0 && own.has("agent_returns"))
+    agent_returns_ = own.get_span<double>("agent_returns", agent_columns());
   episode_length_ = own.get_int("episode_length");
   total_episodes_ = static_cast<int>(own.get_int("total_episodes"));
   total_steps_ = own.get_int("total_steps");
@@ -89,6 +100,7 @@ void Monitor::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   inner_->reset(seed, obs);
   copy_inner_info();
   episode_return_ = 0.0;
+  std::fill(agent_returns_.begin(), agent_returns_.end(), 0.0);
   episode_length_ = 0;
   needs_reset_ = false;
 }
@@ -121,9 +133,11 @@ void Monitor::step_agents(std::span<const float> actions, std::span<float> obs,
   inner_->step_agents(actions, obs, results);
   double reward = 0.0;
   bool ended = true;
-  for (const StepResult& r : results) {
-    reward += r.reward;
-    ended = ended && (r.terminated || r.truncated);
+  agent_returns_.resize(results.size(), 0.0);
+  for (size_t a = 0; a < results.size(); ++a) {
+    reward += results[a].reward;
+    agent_returns_[a] += results[a].reward;
+    ended = ended && (results[a].terminated || results[a].truncated);
   }
   account(reward, ended);
 }
@@ -169,6 +183,8 @@ void Monitor::account(double reward, bool episode_ended) {
         else
           file_ << ',' << python_float_repr(v);
       }
+      for (int a = 0; a < agent_columns(); ++a)
+        file_ << ',' << python_float_repr(round6(a < static_cast<int>(agent_returns_.size()) ? agent_returns_[a] : 0.0));
       file_ << '\n';
       file_.flush();  // a full disk stops the run here: RuntimeFailure naming the file and errno
     }

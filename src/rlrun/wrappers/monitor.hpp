@@ -9,7 +9,8 @@
 // info["episode"]), which the algorithms read for rollout/ep_rew_mean. Each of `info_keywords`
 // (SB3's Monitor argument; runtime/env_factory.hpp picks them) becomes a column after r,l,t
 // and an info key `episode.<key>` with its value at the episode's last step, which training
-// averages into rollout/<key> (algos/common/episode_stats.hpp).
+// averages into rollout/<key> (algos/common/episode_stats.hpp). A multi-agent env's row ends
+// with each agent's own return (r_0, r_1, ...); `r` is their sum.
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -60,6 +61,7 @@ class Monitor : public Wrapper, public SplitStep {
   // Counts one step of `reward`; writes the episode's row when it ended.
   void account(double reward, bool episode_ended);
   void copy_inner_info();
+  int agent_columns() const { return num_agents() > 1 ? num_agents() : 0; }
   CheckedFile file_;  // every row flushed and checked (core/checked_file.hpp)
   double t_start_;
   std::chrono::steady_clock::time_point clock_start_;
@@ -70,6 +72,7 @@ class Monitor : public Wrapper, public SplitStep {
   std::vector<int> keyword_own_index_;    // their `episode.<key>` index in info_
   int episode_r_ = -1, episode_l_ = -1, episode_t_ = -1;
   double episode_return_ = 0.0;
+  std::vector<double> agent_returns_;  // several agents: each one's return this episode
   int64_t episode_length_ = 0;
   int total_episodes_ = 0;
   int64_t total_steps_ = 0;

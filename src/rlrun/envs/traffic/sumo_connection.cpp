@@ -13,13 +13,13 @@
 namespace rlrun {
 
 std::vector<std::string> sumo_arguments(const SumoLaunch& launch) {
-  std::vector<std::string> args{"-c", launch.config,
-                                "--seed", std::to_string(launch.seed % 2147483647ULL),
+  std::vector<std::string> args = launch.inputs;
+  if (args.empty()) args = {"-c", launch.config, "--end", std::to_string(launch.end_time)};
+  args.insert(args.end(), {"--seed", std::to_string(launch.seed % 2147483647ULL),
                                 "--scale", std::to_string(launch.scale),
-                                "--end", std::to_string(launch.end_time),
                                 "--no-step-log", "true",
                                 "--no-warnings", "true",
-                                "--duration-log.disable", "true"};
+                                "--duration-log.disable", "true"});
   args.insert(args.end(), launch.extra_args.begin(), launch.extra_args.end());
   return args;
 }
@@ -45,14 +45,14 @@ std::string libsumo_module_path() {
   return (places[1] / kName).string();
 }
 
-StartFunction libsumo_entry() {
+void* libsumo_module() {
   static std::mutex mutex;
-  static StartFunction entry = nullptr;
+  static void* handle = nullptr;
   std::lock_guard lock(mutex);
-  if (entry) return entry;
+  if (handle) return handle;
   const std::string path = libsumo_module_path();
   // Loaded once and never unloaded: SUMO's globals live as long as rlrun.
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
     const char* error = dlerror();
     throw RuntimeFailure(std::string("backend: libsumo needs ") + path + ", which did not load (" +
@@ -60,23 +60,30 @@ StartFunction libsumo_entry() {
                          "); it is built with rlrun and needs SUMO's libsumocpp (Debian package "
                          "'sumo'). backend: traci needs only the sumo program");
   }
-  entry = reinterpret_cast<StartFunction>(dlsym(handle, "rlrun_start_libsumo_connection"));
-  if (!entry) throw RuntimeFailure(path + " has no rlrun_start_libsumo_connection: not rlrun's libsumo module");
-  return entry;
+  return handle;
 }
 
 }  // namespace
+
+void* libsumo_module_symbol(const char* name) {
+  void* symbol = dlsym(libsumo_module(), name);
+  if (!symbol)
+    throw RuntimeFailure(libsumo_module_path() + " has no " + name + ": not rlrun's libsumo module");
+  return symbol;
+}
 
 std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const SumoLaunch& launch) {
   if (backend == "traci") return start_traci_connection(launch);
   if (backend != "libsumo")
     throw RuntimeFailure("unknown SUMO backend '" + backend + "' (traci or libsumo)");
-  if (!std::filesystem::exists(launch.config))
+  if (launch.inputs.empty() && !std::filesystem::exists(launch.config))
     throw RuntimeFailure("SUMO scenario " + launch.config + " does not exist");
   std::vector<std::string> command{"sumo"};
   for (std::string& a : sumo_arguments(launch)) command.push_back(std::move(a));
   std::string error;
-  SumoConnection* connection = libsumo_entry()(&command, &error);
+  const auto entry =
+      reinterpret_cast<StartFunction>(libsumo_module_symbol("rlrun_start_libsumo_connection"));
+  SumoConnection* connection = entry(&command, &error);
   if (!connection) throw RuntimeFailure(error);
   return std::unique_ptr<SumoConnection>(connection);
 }

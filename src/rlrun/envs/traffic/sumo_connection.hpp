@@ -33,6 +33,9 @@ struct SumoLaunch {
   double scale = 1.0;           // demand multiplier (SUMO --scale)
   double end_time = 3600.0;     // simulated seconds (SUMO --end)
   std::vector<std::string> extra_args;  // e.g. --tripinfo-output FILE
+  // Instead of `-c config --end end_time`: SUMO's input arguments as given (TrafficNetwork-v0's
+  // `-n NET -r ROUTES --begin B --end E`, traffic_network/network_scenario.hpp).
+  std::vector<std::string> inputs;
 };
 
 // SUMO's command line for a launch, without the program and without --remote-port.
@@ -108,6 +111,10 @@ class SumoConnection {
 // package when `sumo` (or libsumocpp) is missing, when SUMO refuses the scenario, or when a
 // second libsumo simulation is asked for in this process.
 std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const SumoLaunch& launch);
+
+// A function of the libsumo module (librlrun_libsumo.so), which is loaded on the first call.
+// Throws RuntimeFailure saying what to install when it does not load.
+void* libsumo_module_symbol(const char* name);
 
 // The two backends (traci_connection.cpp; libsumo_connection.cpp via the module).
 std::unique_ptr<SumoConnection> start_traci_connection(const SumoLaunch& launch);

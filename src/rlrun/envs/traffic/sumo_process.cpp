@@ -69,7 +69,7 @@ SumoProcess::SumoProcess(const Options& options)
   if (binary.empty())
     throw RuntimeFailure("cannot run SUMO: '" + options.binary +
                          "' was not found; install the Debian package 'sumo' (apt install sumo)");
-  if (!std::filesystem::exists(options.config))
+  if (options.inputs.empty() && !std::filesystem::exists(options.config))
     throw RuntimeFailure("SUMO scenario " + options.config + " does not exist");
   const int port = free_port();
   std::vector<std::string> args{binary, "--remote-port", std::to_string(port)};

@@ -29,22 +29,25 @@ TripinfoSummary read_tripinfo(const std::string& path) {
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   TripinfoSummary summary;
-  double duration_sum = 0, waiting_sum = 0;
+  double duration_sum = 0, waiting_sum = 0, loss_sum = 0;
   for (size_t at = text.find("<tripinfo "); at != std::string::npos;
        at = text.find("<tripinfo ", at + 1)) {
     const size_t end = text.find('>', at);
-    double duration = 0, waiting = 0;
+    double duration = 0, waiting = 0, loss = 0;
     if (end == std::string::npos || !attribute(text, at, end, "duration", duration) ||
-        !attribute(text, at, end, "waitingTime", waiting))
+        !attribute(text, at, end, "waitingTime", waiting) ||
+        !attribute(text, at, end, "timeLoss", loss))
       throw RuntimeFailure("SUMO's tripinfo output " + path +
-                           " has a <tripinfo> element without duration and waitingTime");
+                           " has a <tripinfo> element without duration, waitingTime and timeLoss");
     ++summary.trips;
     duration_sum += duration;
     waiting_sum += waiting;
+    loss_sum += loss;
   }
   if (summary.trips > 0) {
     summary.mean_duration = duration_sum / summary.trips;
     summary.mean_waiting = waiting_sum / summary.trips;
+    summary.mean_time_loss = loss_sum / summary.trips;
   }
   return summary;
 }

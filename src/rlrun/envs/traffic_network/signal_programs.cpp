@@ -63,6 +63,7 @@ std::vector<TrafficLightProgram> read_signal_programs(const std::string& net_fil
       light.num_links = std::max(light.num_links, link + 1);
       add_unique(light.incoming_lanes, lanes.first);
       add_unique(light.outgoing_lanes, lanes.second);
+      light.links.push_back({link, lanes.first, lanes.second});
     }
     for (const SignalPhase& phase : light.phases)
       if (static_cast<int>(phase.state.size()) < light.num_links)

@@ -25,6 +25,11 @@ struct SignalPhase {
   std::string state;    // one character per controlled link: r y g G s u o O
 };
 
+struct SignalLink {
+  int index = 0;        // position in the phase states
+  std::string from, to;  // incoming and outgoing lane
+};
+
 struct TrafficLightProgram {
   std::string id;
   std::string program_id;
@@ -32,6 +37,7 @@ struct TrafficLightProgram {
   std::vector<std::string> incoming_lanes;   // controlled lanes, link-index order, unique
   std::vector<std::string> outgoing_lanes;   // lanes they lead to, link-index order, unique
   int num_links = 0;                         // controlled link indices (state length)
+  std::vector<SignalLink> links;             // by link index
 };
 
 // Every light of a network file (tlLogic elements joined with the connections they control),

@@ -6,12 +6,11 @@
 // SUMO holds its simulation in globals (MSNet::getInstance()), so a process runs one at a
 // time; a second env asking for one gets an error that says so, rather than two envs quietly
 // stepping the same simulation. sumo-rl documents the same limit for LIBSUMO_AS_TRACI.
-#include <atomic>
-
 #include <libsumo/libsumo.h>
 
 #include "rlrun/envs/traffic/sumo_client.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
+#include "rlrun/envs/traffic/libsumo_module/simulation_slot.hpp"
 
 namespace rlrun {
 
@@ -25,7 +24,7 @@ struct LibsumoApi {
   using TrafficLight = libsumo::TrafficLight;
 };
 
-std::atomic<bool> simulation_running{false};
+using libsumo_module::simulation_running;
 
 class LibsumoConnection : public sumo_client::ClientConnection<LibsumoApi> {
  public:
@@ -62,17 +61,14 @@ class LibsumoConnection : public sumo_client::ClientConnection<LibsumoApi> {
 
 extern "C" rlrun::SumoConnection* rlrun_start_libsumo_connection(
     const std::vector<std::string>* command, std::string* error) {
-  if (rlrun::simulation_running.exchange(true)) {
-    *error =
-        "backend: libsumo runs SUMO inside rlrun, and SUMO allows one simulation per process: "
-        "use n_envs: 1 with libsumo (one env, one rlrun process), or backend: traci for "
-        "several envs";
+  if (rlrun::libsumo_module::simulation_running.exchange(true)) {
+    *error = rlrun::libsumo_module::kOneSimulation;
     return nullptr;
   }
   try {
     return new rlrun::LibsumoConnection(*command);
   } catch (const std::exception& e) {
-    rlrun::simulation_running = false;
+    rlrun::libsumo_module::simulation_running = false;
     *error = std::string("SUMO (libsumo) did not start: ") + e.what();
     return nullptr;
   }

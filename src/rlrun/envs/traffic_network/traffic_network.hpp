@@ -1,0 +1,198 @@
+#pragma once
+// TrafficNetwork-v0: any SUMO scenario (network_scenario.hpp), every traffic light an agent
+// (light_agent.hpp has the per-light rules, sumo-rl's), one env with num_agents() agents that
+// share a policy (include/rlrun/env.hpp: each agent is a column of the batch, as SuperSuit's
+// pettingzoo_env_to_vec_env gives SB3, RESCO's IDQN / IPPO with parameter sharing).
+//
+//   agents       the lights with a green phase in their program (`ts_ids` picks some, in
+//                that order); the others keep their own program.
+//   spaces       Discrete(most greens of any agent); Box(phases + 1 + 2 * most incoming lanes
+//                [+ agents with agent_id: true]) in [0, 1], padded with zeros.
+//   step         `delta_time` simulated seconds for all agents at once (one TraCI round trip,
+//                plus one per light that switches).
+//   episode      the scenario's [begin, end] (or begin + num_seconds); all agents truncated
+//                together; every reset restarts SUMO seeded (the reset's seed, else the env's
+//                stream).
+//   reward_scope local: each agent its own reward; neighbourhood: plus neighbour_weight times
+//                its neighbours' (lights that traffic reaches from it, or it from them,
+//                without passing another light; MA2C's spatially discounted reward, Chu et al.
+//                2019, with one hop).
+//   info         sim_time, total_queue_length (halting on the agents' incoming lanes now);
+//                at the last step the episode metrics from SUMO's tripinfo output (vehicles
+//                that arrived): mean_delay (mean timeLoss, RESCO's delay), avg_waiting_time,
+//                avg_travel_time (duration), throughput; and mean_queue (halting vehicles per
+//                agent on its incoming lanes, averaged over the decisions).
+//   control      set_control(): the agents (default), the lights' own programs (the
+//                fixed-time baseline: SUMO runs exactly as a plain `sumo` would) or SUMO's
+//                actuated control on the agents' lights (the actuated baseline).
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "rlrun/core/config_checks.hpp"
+#include "rlrun/core/private_temp_dir.hpp"
+#include "rlrun/core/trusted_values.hpp"
+#include "rlrun/env.hpp"
+#include "rlrun/env_seeding.hpp"
+#include "rlrun/envs/traffic_network/light_agent.hpp"
+#include "rlrun/envs/traffic_network/network_connection.hpp"
+#include "rlrun/envs/traffic_network/network_geometry.hpp"
+#include "rlrun/envs/traffic_network/network_scenario.hpp"
+#include "rlrun/info.hpp"
+#include "rlrun/space.hpp"
+
+namespace rlrun {
+
+class TrafficNetwork : public Env {
+ public:
+  struct Config {
+    SimulatorInput scenario;  // scenarios/*.yaml or a .sumocfg
+    std::string backend = "traci";
+    ProgramPath sumo_binary{"sumo"};
+    double scale = 1.0;
+    std::vector<std::string> ts_ids;
+    int delta_time = 5;
+    int yellow_time = 2;
+    int min_green = 5;
+    int max_green = 50;
+    int num_seconds = 0;  // 0: the scenario's end
+    std::string reward_fn = "diff-waiting-time";
+    std::string reward_scope = "local";
+    double neighbour_weight = 1.0;
+    bool agent_id = false;
+    OutputPath tripinfo_output;
+    std::string render_focus;   // a light or junction id: render zooms to it
+    double render_radius = 120;
+
+    template <class V>
+    void visit(V& v) {
+      v("scenario", scenario,
+        "scenario file (scenarios/*.yaml with net_file, route_files, begin, end) or a SUMO "
+        ".sumocfg; default scenarios/grid4x4.yaml");
+      v("backend", backend,
+        "traci (a sumo process over a socket) or libsumo (SUMO inside rlrun: faster, one env "
+        "per process)",
+        OneOf{{"traci", "libsumo"}});
+      v("sumo_binary", sumo_binary, "the sumo program to run (Debian package 'sumo')");
+      v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)",
+        in_range(0.0, 1000.0).open_low());
+      v("ts_ids", ts_ids, "the traffic lights that are agents (default: every light)");
+      v("delta_time", delta_time, "simulated seconds per decision", in_range(1, 86400));
+      v("yellow_time", yellow_time, "seconds of yellow on every switch", in_range(0, 86400));
+      v("min_green", min_green, "a green lasts at least this long (seconds)", in_range(0, 86400));
+      v("max_green", max_green,
+        "a green this long is switched to the program's next green (0: never)",
+        in_range(0, 86400));
+      v("num_seconds", num_seconds, "episode length in simulated seconds (0: to the scenario's end)",
+        in_range(0, 365 * 86400));
+      v("reward_fn", reward_fn, "diff-waiting-time | queue | pressure | average-speed",
+        OneOf{{"diff-waiting-time", "queue", "pressure", "average-speed"}});
+      v("reward_scope", reward_scope,
+        "local (each light its own reward) or neighbourhood (plus neighbour_weight x its "
+        "neighbours')",
+        OneOf{{"local", "neighbourhood"}});
+      v("neighbour_weight", neighbour_weight, "weight of the neighbours' rewards",
+        in_range(0.0, 1.0));
+      v("agent_id", agent_id, "append a one-hot agent index to each observation");
+      v("tripinfo_output", tripinfo_output, "also write SUMO's tripinfo XML to this file");
+      v("render_focus", render_focus,
+        "a traffic light or junction id: video shows its surroundings (default: the whole map)");
+      v("render_radius", render_radius, "metres around render_focus that the video shows",
+        in_range(10.0, 1e6));
+    }
+  };
+
+  enum class Control { kAgents, kOwnPrograms, kActuated };
+
+  TrafficNetwork() : TrafficNetwork(Config{}) {}
+  // Reads the scenario and the network; throws ConfigError / RuntimeFailure for bad input
+  // before any SUMO runs.
+  explicit TrafficNetwork(const Config& config);
+  ~TrafficNetwork() override;
+
+  const Space& observation_space() const override { return observation_space_; }
+  const Space& action_space() const override { return action_space_; }
+  const Info& info() const override { return info_; }
+  std::string id() const override { return "TrafficNetwork-v0"; }
+  int num_agents() const override { return static_cast<int>(agents_.size()); }
+
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+  void step_agents(std::span<const float> actions, std::span<float> obs,
+                   std::span<StepResult> results) override;
+
+  RenderSpec render_spec() const override { return {800, 800, 10.0}; }
+  bool render(Frame& frame) const override;
+
+  // Takes effect at the next reset().
+  void set_control(Control control) { control_ = control; }
+  Control control() const { return control_; }
+  // RESCO's max-pressure choice of every agent now (agent-major, as step_agents takes them).
+  void max_pressure_actions(std::span<float> actions) const;
+
+  const Config& config() const { return config_; }
+  const traffic::NetworkScenario& scenario() const { return scenario_; }
+  const std::vector<traffic::LightAgent>& agents() const { return agents_; }
+  const std::vector<std::vector<int>>& neighbours() const { return neighbours_; }
+  double sim_time() const { return reading_.time; }
+  pid_t sumo_pid() const { return sumo_ ? sumo_->pid() : -1; }
+
+ private:
+  void check_sizes(size_t obs_size, size_t actions_size) const;
+  void build_agents(const std::vector<traffic::TrafficLightProgram>& lights);
+  void find_neighbours(const std::vector<traffic::TrafficLightProgram>& lights);
+  void start_simulation(uint64_t seed);
+  std::string actuated_programs_file() const;
+  void advance(int seconds);
+  void attribute_waiting();
+  void write_observations(std::span<float> obs) const;
+  void finish_episode();
+  void update_info();
+  [[noreturn]] void sumo_failed(const std::exception& e) const;
+
+  Config config_;
+  traffic::LightTiming timing_;
+  traffic::RewardFunction reward_;
+  bool neighbourhood_ = false;
+  traffic::NetworkScenario scenario_;
+  traffic::NetworkGeometry geometry_;
+  std::vector<traffic::LightAgent> agents_;
+  std::vector<std::vector<int>> neighbours_;  // per agent
+  std::vector<std::string> lanes_;            // subscribed: every agent's in and out lanes
+  std::unordered_map<std::string, int> incoming_slot_;  // controlled incoming lane -> slot
+  int phase_width_ = 1, lane_width_ = 0, obs_width_ = 0;
+  double end_time_ = 0;
+  Space observation_space_, action_space_;
+  Info info_;
+  EnvSeeding seeding_;
+  Control control_ = Control::kAgents;
+  Control running_control_ = Control::kAgents;
+
+  std::unique_ptr<traffic::NetworkConnection> sumo_;
+  // The last advance's news. render() may subscribe to the vehicles (it is const, like
+  // Gymnasium's render(); the simulation is not changed by it).
+  mutable traffic::NetworkReading reading_;
+  mutable bool vehicles_subscribed_ = false;
+  // diff-waiting-time (sumo-rl's get_accumulated_waiting_time_per_lane): per vehicle, its lane
+  // at the last decision, the waiting time attributed to earlier lanes, and to this one.
+  struct WaitingRecord {
+    std::string lane;
+    double earlier = 0, on_lane = 0;
+  };
+  std::unordered_map<std::string, WaitingRecord> waiting_;
+  std::vector<double> lane_waiting_, lane_speed_;
+  std::vector<int> lane_speed_count_;
+  std::vector<double> local_rewards_;
+
+  bool has_state_ = false, finished_ = false;
+  double queue_sum_ = 0;
+  long decisions_ = 0;
+  std::string tripinfo_path_;
+  std::unique_ptr<PrivateTempDir> work_dir_;  // tripinfo and actuated programs; goes with the env
+  int key_time_, key_queue_, key_delay_, key_waiting_, key_travel_, key_throughput_, key_mean_queue_;
+};
+
+}  // namespace rlrun

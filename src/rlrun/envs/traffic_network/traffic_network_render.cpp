@@ -1,0 +1,87 @@
+// TrafficNetwork-v0's picture: the network from above (all of it, or `render_radius` metres
+// around `render_focus`), drawn as TrafficSignal-v0 draws its junction — grey lanes, each
+// agent's stop lines green or red by its current green, vehicles as 5 m x 1.8 m boxes, blue
+// when moving and red when waiting (below 0.1 m/s, SUMO's threshold).
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic_network/traffic_network.hpp"
+#include "rlrun/frame.hpp"
+
+namespace rlrun {
+
+using namespace traffic;
+
+bool TrafficNetwork::render(Frame& frame) const {
+  if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before render()");
+  auto [x0, y0, x1, y1] = geometry_.bounds;
+  if (!config_.render_focus.empty()) {
+    const auto at = geometry_.junctions.find(config_.render_focus);
+    if (at == geometry_.junctions.end())
+      throw UsageError("render_focus: '" + config_.render_focus + "' is not a junction of " +
+                       scenario_.files.net);
+    x0 = at->second[0] - config_.render_radius, x1 = at->second[0] + config_.render_radius;
+    y0 = at->second[1] - config_.render_radius, y1 = at->second[1] + config_.render_radius;
+  }
+  constexpr double kMargin = 8.0;
+  x0 -= kMargin, y0 -= kMargin, x1 += kMargin, y1 += kMargin;
+  const double size = std::max(x1 - x0, y1 - y0);
+  const auto at = [&](double x, double y) { return Point{x - x0, y - y0}; };
+  const auto visible = [&](double x, double y) { return x >= x0 && x <= x1 && y >= y0 && y <= y1; };
+  frame.begin_scene(size, size, {96, 140, 80});  // grass
+
+  for (const LaneGeometry& lane : geometry_.lanes)
+    for (size_t i = 1; i < lane.shape.size(); ++i)
+      frame.line(at(lane.shape[i - 1][0], lane.shape[i - 1][1]),
+                 at(lane.shape[i][0], lane.shape[i][1]), {70, 70, 70}, lane.width);
+  // Stop lines: an incoming lane is green when any of its links is green in the agent's
+  // current green (a yellow begins and ends within one decision).
+  for (const LightAgent& agent : agents_) {
+    const std::string& state = agent.green_state();
+    for (size_t k = 0; k < agent.in_slots().size(); ++k) {
+      const LaneGeometry& lane = geometry_.lane(lanes_[agent.in_slots()[k]]);
+      if (lane.shape.size() < 2) continue;
+      bool green = false;
+      for (const SignalLink& link : agent.links())
+        if (link.from == lane.id && static_cast<size_t>(link.index) < state.size())
+          green = green || state[link.index] == 'G' || state[link.index] == 'g';
+      const auto& end = lane.shape.back();
+      const auto& before = lane.shape[lane.shape.size() - 2];
+      const double dx = end[0] - before[0], dy = end[1] - before[1];
+      const double length = std::max(std::hypot(dx, dy), 1e-9);
+      const double nx = -dy / length * lane.width / 2, ny = dx / length * lane.width / 2;
+      frame.line(at(end[0] - nx, end[1] - ny), at(end[0] + nx, end[1] + ny),
+                 green ? Rgb{30, 200, 60} : Rgb{220, 30, 30}, 2.0);
+    }
+  }
+
+  // The vehicles come with a subscription made on the first render when training did not need
+  // them: unwatched training with the queue or pressure reward does not pay for them.
+  if (!vehicles_subscribed_ && !finished_) {
+    try {
+      sumo_->subscribe_vehicles(geometry_.junctions.begin()->first, reading_);
+    } catch (const std::exception& e) {
+      sumo_failed(e);
+    }
+    vehicles_subscribed_ = true;
+  }
+  constexpr double kLength = 5.0, kHalfWidth = 0.9;
+  for (const VehicleReading& vehicle : reading_.vehicles) {
+    if (!visible(vehicle.x, vehicle.y)) continue;
+    const double heading = vehicle.angle * M_PI / 180.0;
+    const double fx = std::sin(heading), fy = std::cos(heading);  // forward
+    const double sx = fy, sy = -fx;                              // to the right
+    const double x = vehicle.x, y = vehicle.y;
+    const Point box[] = {at(x + sx * kHalfWidth, y + sy * kHalfWidth),
+                         at(x - sx * kHalfWidth, y - sy * kHalfWidth),
+                         at(x - sx * kHalfWidth - fx * kLength, y - sy * kHalfWidth - fy * kLength),
+                         at(x + sx * kHalfWidth - fx * kLength, y + sy * kHalfWidth - fy * kLength)};
+    frame.polygon(box, vehicle.speed < 0.1 ? Rgb{210, 40, 40} : Rgb{60, 110, 220});
+  }
+  frame.end_scene();
+  return true;
+}
+
+}  // namespace rlrun
