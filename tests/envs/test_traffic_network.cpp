@@ -237,7 +237,7 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsum
     CHECK(info_of(env, "sim_time") == 600.0);
     CHECK(info_of(env, "throughput") > 100);
     // The agents' own control: switching every decision where allowed.
-    run_episode(env, 3, [](TrafficNetwork& e, const std::vector<float>&, std::vector<float>& a, int t) {
+    run_episode(env, 3, [](TrafficNetwork&, const std::vector<float>&, std::vector<float>& a, int t) {
       for (size_t i = 0; i < a.size(); ++i) a[i] = static_cast<float>((t / 4 + i) % 4);
     });
     delay["cycling"] = info_of(env, "mean_delay");
@@ -255,12 +255,20 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsum
   CHECK(std::set<double>{delay["max-pressure"], delay["actuated"], delay["fixed-time"], delay["cycling"]}.size() == 4);
   CHECK(delay["max-pressure"] < delay["fixed-time"]);
 
+  // SUMO inside a worker process (own_process, the default) and inside rlrun itself.
   config.backend = "libsumo";
-  TrafficNetwork in_process(config);
-  libsumo_info = run_episode(in_process, 3, kMaxPressure, &first_libsumo);
-  CHECK(in_process.sumo_pid() == -1);
-  CHECK(first_libsumo == first_traci);
-  CHECK(libsumo_info == traci_info);
+  for (const bool own_process : {true, false}) {
+    INFO("libsumo, own_process " << own_process);
+    config.own_process = own_process;
+    TrafficNetwork libsumo(config);
+    libsumo_info = run_episode(libsumo, 3, kMaxPressure, &first_libsumo);
+    CHECK(first_libsumo == first_traci);
+    CHECK(libsumo_info == traci_info);
+  }
+  config.backend = "traci";
+  config.own_process = false;  // libtraci in rlrun's process
+  TrafficNetwork direct(config);
+  CHECK(run_episode(direct, 3, kMaxPressure) == traci_info);
 }
 
 TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, lights of 1 to 6 greens",
@@ -412,6 +420,16 @@ TEST_CASE("TrafficNetwork: a SUMO that dies is an error with its output, and non
   const pid_t next = env.sumo_pid();
   CHECK(next != pid);
   CHECK(process_exists(next));
+
+  // libsumo: SUMO is the worker process itself; killed, it is an error saying how it ended.
+  config.backend = "libsumo";
+  TrafficNetwork in_worker(config);
+  in_worker.reset(1, obs);
+  const pid_t worker = in_worker.sumo_pid();
+  REQUIRE(process_exists(worker));
+  kill(worker, SIGKILL);
+  CHECK_THROWS_WITH(in_worker.step_agents(actions, obs, results),
+                    Catch::Contains("SUMO stopped") && Catch::Contains("killed by signal 9"));
 }
 
 TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare baselines",
@@ -447,10 +465,20 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
   INFO(video.output);
   CHECK(video.exit_code == 0);
   CHECK(std::filesystem::file_size(dir / "v.mp4") > 1000);
-  // libsumo with two envs is refused with the reason (one simulation per process).
+  // libsumo, two envs and an eval env at once: each SUMO in a worker process of its own
+  // (sumo-rl's LIBSUMO_AS_TRACI allows one simulation in all).
+  const auto libsumo = run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
+                                 " --set env.kwargs.backend=libsumo --set env.n_envs=2"
+                                 " --set eval.freq=4096 --set eval.n_episodes=1 --timesteps 4000 --out " +
+                                 dir / "libsumo");
+  INFO(libsumo.output);
+  CHECK(libsumo.exit_code == 0);
+  CHECK(read_text(dir / "libsumo/traffic_network_ppo/seed1/evaluations.csv").find("mean_delay") !=
+        std::string::npos);
+  // In rlrun's own process, libsumo allows one simulation, and says so.
   const auto two = run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
-                             " --set env.kwargs.backend=libsumo --set env.n_envs=2 --timesteps 300 --out " +
-                             dir / "two");
+                             " --set env.kwargs.backend=libsumo --set env.kwargs.own_process=false"
+                             " --set env.n_envs=2 --timesteps 300 --out " + dir / "two");
   CHECK(two.exit_code != 0);
   CHECK(two.output.find("one simulation per process") != std::string::npos);
 }

@@ -10,6 +10,7 @@
 // A side interface (found by dynamic_cast) rather than part of rlrun::Env, so the plugin
 // binary interface is unchanged; an env stack with any other wrapper in it steps whole.
 #include <span>
+#include <stdexcept>
 
 #include "rlrun/env.hpp"
 
@@ -24,12 +25,24 @@ class SplitStep {
   // Exactly one finish_step() follows each start_step(), with nothing else called between.
   virtual void start_step(std::span<const float> action) = 0;
   virtual StepResult finish_step(std::span<float> obs) = 0;
+
+  // Several agents (Env::step_agents in two halves: a TrafficNetwork's SUMO worker runs while
+  // the other copies start). A stack splits its agents' steps only when every layer says so.
+  virtual bool splits_agents() const { return false; }
+  virtual void start_step_agents(std::span<const float> /*actions*/) {
+    throw std::logic_error("this env does not step its agents in two halves");
+  }
+  virtual void finish_step_agents(std::span<float> /*obs*/, std::span<StepResult> /*results*/) {
+    throw std::logic_error("this env does not step its agents in two halves");
+  }
 };
 
-// The env's SplitStep when it steps asynchronously, else nullptr.
+// The env's SplitStep when it steps asynchronously, else nullptr. For a multi-agent env, only
+// when it also splits its agents' steps.
 inline SplitStep* asynchronous_steps(Env& env) {
   auto* split = dynamic_cast<SplitStep*>(&env);
-  return split && split->steps_asynchronously() ? split : nullptr;
+  if (!split || !split->steps_asynchronously()) return nullptr;
+  return env.num_agents() == 1 || split->splits_agents() ? split : nullptr;
 }
 
 }  // namespace rlrun

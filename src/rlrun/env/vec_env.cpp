@@ -47,8 +47,7 @@ VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
   infos_.resize(envs_.size());
   for (int c = 0; c < num_copies(); ++c) copy_info(c);
   for (EnvPtr& env : envs_) split_.push_back(asynchronous_steps(*env));
-  if (most_agents > 1 || std::find(split_.begin(), split_.end(), nullptr) != split_.end())
-    split_.clear();
+  if (std::find(split_.begin(), split_.end(), nullptr) != split_.end()) split_.clear();
 }
 
 VecEnv::VecEnv(VecEnv&&) noexcept = default;
@@ -103,16 +102,29 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
     std::exception_ptr error;
     int started = 0;
     try {
-      for (; started < num_copies(); ++started)
-        split_[started]->start_step(
-            std::span<const float>(actions.col(started).data(), act_dim_));
+      for (; started < num_copies(); ++started) {
+        const int first = first_slot_[started], agents = envs_[started]->num_agents();
+        if (agents > 1)
+          split_[started]->start_step_agents(std::span<const float>(
+              actions.col(first).data(), static_cast<size_t>(act_dim_) * agents));
+        else
+          split_[started]->start_step(std::span<const float>(actions.col(first).data(), act_dim_));
+      }
     } catch (...) {
       error = std::current_exception();
     }
     for (int c = 0; c < started; ++c) {
       try {
-        const StepResult r = split_[c]->finish_step(std::span<float>(obs_.col(c).data(), obs_dim_));
-        if (!error) finish_copy(c, r);
+        const int first = first_slot_[c], agents = envs_[c]->num_agents();
+        if (agents > 1) {
+          split_[c]->finish_step_agents(
+              std::span<float>(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents),
+              std::span<StepResult>(agent_results_.data(), static_cast<size_t>(agents)));
+          if (!error) finish_agents(c);
+        } else {
+          const StepResult r = split_[c]->finish_step(std::span<float>(obs_.col(first).data(), obs_dim_));
+          if (!error) finish_copy(c, r);
+        }
       } catch (...) {
         if (!error) error = std::current_exception();
       }
@@ -159,6 +171,16 @@ void VecEnv::step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions
   envs_[c]->step_agents(std::span<const float>(actions.col(first).data(),
                                                static_cast<size_t>(act_dim_) * agents),
                         obs, results);
+  finish_agents(c);
+}
+
+// After copy c's agents stepped (their results in agent_results_): rewards, flags, info, and
+// the reset when their episode ended.
+void VecEnv::finish_agents(int c) {
+  const int first = first_slot_[c];
+  const int agents = envs_[c]->num_agents();
+  const std::span<float> obs(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents);
+  const std::span<StepResult> results(agent_results_.data(), static_cast<size_t>(agents));
   int ended = 0;
   for (int a = 0; a < agents; ++a) {
     rewards_[first + a] = results[a].reward;

@@ -105,6 +105,7 @@ class VecEnv {
   // After copy c's step returned r: rewards, flags, info, and the auto-reset.
   void finish_copy(int c, const StepResult& r);
   void step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions);
+  void finish_agents(int c);
   void run_step_hook();
 
   std::vector<EnvPtr> envs_;

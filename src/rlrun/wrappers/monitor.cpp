@@ -131,6 +131,20 @@ void Monitor::step_agents(std::span<const float> actions, std::span<float> obs,
                           std::span<StepResult> results) {
   require_not_ended();
   inner_->step_agents(actions, obs, results);
+  account_agents(results);
+}
+
+void Monitor::start_step_agents(std::span<const float> actions) {
+  require_not_ended();
+  asynchronous_steps(*inner_)->start_step_agents(actions);
+}
+
+void Monitor::finish_step_agents(std::span<float> obs, std::span<StepResult> results) {
+  asynchronous_steps(*inner_)->finish_step_agents(obs, results);
+  account_agents(results);
+}
+
+void Monitor::account_agents(std::span<const StepResult> results) {
   double reward = 0.0;
   bool ended = true;
   agent_returns_.resize(results.size(), 0.0);

@@ -43,6 +43,9 @@ class Monitor : public Wrapper, public SplitStep {
   StepResult finish_step(std::span<float> obs) override;
   void step_agents(std::span<const float> actions, std::span<float> obs,
                    std::span<StepResult> results) override;
+  bool splits_agents() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step_agents(std::span<const float> actions) override;
+  void finish_step_agents(std::span<float> obs, std::span<StepResult> results) override;
   const Info& info() const override { return info_; }
 
   int total_episodes() const { return total_episodes_; }
@@ -60,6 +63,8 @@ class Monitor : public Wrapper, public SplitStep {
   void require_not_ended() const;
   // Counts one step of `reward`; writes the episode's row when it ended.
   void account(double reward, bool episode_ended);
+  // The same for a step of every agent.
+  void account_agents(std::span<const StepResult> results);
   void copy_inner_info();
   int agent_columns() const { return num_agents() > 1 ? num_agents() : 0; }
   CheckedFile file_;  // every row flushed and checked (core/checked_file.hpp)

@@ -19,13 +19,10 @@ void TimeLimit::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   inner_->reset(seed, obs);
 }
 
-// Every agent is truncated at the limit (Gymnasium's TimeLimit truncates the whole env).
 void TimeLimit::step_agents(std::span<const float> actions, std::span<float> obs,
                             std::span<StepResult> results) {
   inner_->step_agents(actions, obs, results);
-  ++elapsed_steps_;
-  if (elapsed_steps_ >= max_episode_steps_)
-    for (StepResult& r : results) r.truncated = true;
+  count_agents(results);
 }
 
 StepResult TimeLimit::step(std::span<const float> action, std::span<float> obs) {

@@ -32,6 +32,14 @@ class TimeLimit : public Wrapper, public SplitStep {
   StepResult finish_step(std::span<float> obs) override {
     return count_step(asynchronous_steps(*inner_)->finish_step(obs));
   }
+  bool splits_agents() const override { return asynchronous_steps(*inner_) != nullptr; }
+  void start_step_agents(std::span<const float> actions) override {
+    asynchronous_steps(*inner_)->start_step_agents(actions);
+  }
+  void finish_step_agents(std::span<float> obs, std::span<StepResult> results) override {
+    asynchronous_steps(*inner_)->finish_step_agents(obs, results);
+    count_agents(results);
+  }
 
   int max_episode_steps() const { return max_episode_steps_; }
   // Steps taken since the last reset().
@@ -50,6 +58,13 @@ class TimeLimit : public Wrapper, public SplitStep {
     ++elapsed_steps_;
     if (elapsed_steps_ >= max_episode_steps_) result.truncated = true;
     return result;
+  }
+
+  // Every agent is truncated at the limit (Gymnasium's TimeLimit truncates the whole env).
+  void count_agents(std::span<StepResult> results) {
+    ++elapsed_steps_;
+    if (elapsed_steps_ >= max_episode_steps_)
+      for (StepResult& r : results) r.truncated = true;
   }
 
   int max_episode_steps_;

@@ -28,21 +28,29 @@ namespace {
 
 using StartFunction = SumoConnection* (*)(const std::vector<std::string>*, std::string*);
 
-// librlrun_libsumo.so: RLRUN_LIBSUMO_MODULE if set, else found relative to the binary holding
-// this code (core/shipped_data.hpp; no build path is compiled in): beside it (build/rlrun), in
+}  // namespace
+
+// A file built and installed beside rlrun (the libsumo module, the SUMO worker program):
+// `override` (an environment variable) if set, else found relative to the binary holding this
+// code (core/shipped_data.hpp; no build path is compiled in): beside it (build/rlrun), in
 // <prefix>/lib of an install (P/bin/rlrun), or one or two levels up in a build tree
-// (build/tests/rlrun_tests, build/python/rlrun/_core*.so). The last candidate names the module
+// (build/tests/rlrun_tests, build/python/rlrun/_core*.so). The last candidate names the file
 // in the error when none exists.
-std::string libsumo_module_path() {
-  if (const char* path = std::getenv("RLRUN_LIBSUMO_MODULE"); path && *path) return path;
-  constexpr const char* kName = "librlrun_libsumo.so";
+std::string rlrun_helper_path(const char* name, const char* override) {
+  if (const char* path = std::getenv(override); path && *path) return path;
   const std::filesystem::path dir = running_binary_dir();
   const std::filesystem::path places[] = {dir, dir.parent_path() / RLRUN_INSTALL_LIBDIR,
                                           dir.parent_path(), dir.parent_path().parent_path()};
   std::error_code ec;
   for (const auto& place : places)
-    if (std::filesystem::exists(place / kName, ec)) return (place / kName).string();
-  return (places[1] / kName).string();
+    if (std::filesystem::exists(place / name, ec)) return (place / name).string();
+  return (places[1] / name).string();
+}
+
+namespace {
+
+std::string libsumo_module_path() {
+  return rlrun_helper_path("librlrun_libsumo.so", "RLRUN_LIBSUMO_MODULE");
 }
 
 void* libsumo_module() {

@@ -1,6 +1,7 @@
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -202,7 +203,10 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   // look for the schema under SUMO_HOME, or on the web). sumo-rl's waiting-time memory.
   launch.extra_args = {"--tripinfo-output", tripinfo_path_, "--xml-validation", "never",
                        "--xml-validation.routes", "never", "--waiting-time-memory", "1000"};
-  sumo_ = start_network_sumo(config_.backend, launch);
+  if (config_.own_process)
+    sumo_ = std::make_unique<NetworkWorker>(config_.backend, launch);
+  else
+    sumo_ = start_network_sumo(config_.backend, launch);
   try {
     sumo_->subscribe_lanes(lanes_);
     vehicles_subscribed_ = false;
@@ -221,7 +225,20 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
 }
 
 void TrafficNetwork::advance(int seconds) {
-  sumo_->advance(reading_.time + seconds, reading_);
+  start_advance(seconds);
+  finish_advance(seconds);
+}
+
+void TrafficNetwork::start_advance(int seconds) {
+  if (auto* worker = dynamic_cast<NetworkWorker*>(sumo_.get()))
+    worker->start_advance(reading_.time + seconds);
+}
+
+void TrafficNetwork::finish_advance(int seconds) {
+  if (auto* worker = dynamic_cast<NetworkWorker*>(sumo_.get()))
+    worker->finish_advance(reading_);
+  else
+    sumo_->advance(reading_.time + seconds, reading_);
   for (LightAgent& agent : agents_) agent.advanced(seconds);
 }
 
@@ -286,39 +303,64 @@ void TrafficNetwork::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 }
 
 StepResult TrafficNetwork::step(std::span<const float> action, std::span<float> obs) {
-  if (num_agents() != 1)
-    throw std::logic_error("TrafficNetwork-v0 has " + std::to_string(num_agents()) +
-                           " agents: step them with step_agents()");
-  StepResult result;
-  step_agents(action, obs, std::span<StepResult>(&result, 1));
-  return result;
+  start_step(action);
+  return finish_step(obs);
 }
 
 void TrafficNetwork::step_agents(std::span<const float> actions, std::span<float> obs,
                                  std::span<StepResult> results) {
-  check_sizes(obs.size(), actions.size());
-  if (actions.size() != agents_.size() || results.size() != agents_.size())
-    throw std::invalid_argument("TrafficNetwork-v0: step_agents needs one action and one result "
-                                "per agent (" + std::to_string(agents_.size()) + ")");
+  start_step_agents(actions);
+  finish_step_agents(obs, results);
+}
+
+void TrafficNetwork::start_step(std::span<const float> action) {
+  if (num_agents() != 1)
+    throw std::logic_error("TrafficNetwork-v0 has " + std::to_string(num_agents()) +
+                           " agents: step them with step_agents()");
+  start_step_agents(action);
+}
+
+StepResult TrafficNetwork::finish_step(std::span<float> obs) {
+  StepResult result;
+  finish_step_agents(obs, std::span<StepResult>(&result, 1));
+  return result;
+}
+
+void TrafficNetwork::start_step_agents(std::span<const float> actions) {
+  if (actions.size() != agents_.size())
+    throw std::invalid_argument("TrafficNetwork-v0: step_agents needs one action per agent (" +
+                                std::to_string(agents_.size()) + "), got " +
+                                std::to_string(actions.size()));
   if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before step()");
   if (finished_) throw std::logic_error("TrafficNetwork-v0: the episode ended; call reset()");
-  const int seconds = static_cast<int>(std::min<double>(config_.delta_time, end_time_ - reading_.time));
+  for (size_t a = 0; a < agents_.size(); ++a) {
+    const float x = actions[a];
+    if (!(x >= 0 && x < static_cast<float>(action_space_.n())) || x != std::floor(x))
+      throw std::invalid_argument("TrafficNetwork-v0: agent " + std::to_string(a) + " (" +
+                                  agents_[a].id() + ") got action " + std::to_string(x) +
+                                  ", not in " + action_space_.describe());
+  }
+  pending_seconds_ = std::max(1, static_cast<int>(std::min<double>(config_.delta_time,
+                                                                   end_time_ - reading_.time)));
   try {
-    if (running_control_ == Control::kAgents) {
+    if (running_control_ == Control::kAgents)
       for (size_t a = 0; a < agents_.size(); ++a) {
-        const float x = actions[a];
-        if (!(x >= 0 && x < static_cast<float>(action_space_.n())) || x != static_cast<float>(static_cast<int>(x)))
-          throw std::invalid_argument("TrafficNetwork-v0: agent " + std::to_string(a) + " (" +
-                                      agents_[a].id() + ") got action " + std::to_string(x) +
-                                      ", not in " + action_space_.describe());
-        const LightCommand command = agents_[a].decide(static_cast<int>(x), timing_);
+        const LightCommand command = agents_[a].decide(static_cast<int>(actions[a]), timing_);
         if (command.change)
           sumo_->switch_light(agents_[a].id(), command.yellow, config_.yellow_time, command.green);
       }
-    }
-    advance(std::max(seconds, 1));
-  } catch (const std::invalid_argument&) {
-    throw;
+    start_advance(pending_seconds_);
+  } catch (const std::exception& e) {
+    sumo_failed(e);
+  }
+}
+
+void TrafficNetwork::finish_step_agents(std::span<float> obs, std::span<StepResult> results) {
+  check_sizes(obs.size(), results.size());
+  if (results.size() != agents_.size())
+    throw std::invalid_argument("TrafficNetwork-v0: step_agents needs one result per agent");
+  try {
+    finish_advance(pending_seconds_);
   } catch (const std::exception& e) {
     sumo_failed(e);
   }

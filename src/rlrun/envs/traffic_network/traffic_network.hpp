@@ -36,21 +36,24 @@
 #include "rlrun/core/private_temp_dir.hpp"
 #include "rlrun/core/trusted_values.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/env_seeding.hpp"
 #include "rlrun/envs/traffic_network/light_agent.hpp"
 #include "rlrun/envs/traffic_network/network_connection.hpp"
 #include "rlrun/envs/traffic_network/network_geometry.hpp"
 #include "rlrun/envs/traffic_network/network_scenario.hpp"
+#include "rlrun/envs/traffic_network/network_worker.hpp"
 #include "rlrun/info.hpp"
 #include "rlrun/space.hpp"
 
 namespace rlrun {
 
-class TrafficNetwork : public Env {
+class TrafficNetwork : public Env, public SplitStep {
  public:
   struct Config {
     SimulatorInput scenario;  // scenarios/*.yaml or a .sumocfg
     std::string backend = "traci";
+    bool own_process = true;
     ProgramPath sumo_binary{"sumo"};
     double scale = 1.0;
     std::vector<std::string> ts_ids;
@@ -76,6 +79,10 @@ class TrafficNetwork : public Env {
         "traci (a sumo process over a socket) or libsumo (SUMO inside rlrun: faster, one env "
         "per process)",
         OneOf{{"traci", "libsumo"}});
+      v("own_process", own_process,
+        "drive SUMO from a worker process of its own (rlrun-sumo-worker): several envs step "
+        "their SUMOs in parallel, and libsumo runs one simulation per env; false: in rlrun "
+        "itself (libsumo: one simulation per rlrun process)");
       v("sumo_binary", sumo_binary, "the sumo program to run (Debian package 'sumo')");
       v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)",
         in_range(0.0, 1000.0).open_low());
@@ -123,6 +130,14 @@ class TrafficNetwork : public Env {
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   void step_agents(std::span<const float> actions, std::span<float> obs,
                    std::span<StepResult> results) override;
+  // The two halves (env/split_step.hpp) when SUMO runs in a worker: the decisions go out and
+  // SUMO runs while other envs start theirs.
+  bool steps_asynchronously() const override { return config_.own_process; }
+  bool splits_agents() const override { return config_.own_process; }
+  void start_step(std::span<const float> action) override;
+  StepResult finish_step(std::span<float> obs) override;
+  void start_step_agents(std::span<const float> actions) override;
+  void finish_step_agents(std::span<float> obs, std::span<StepResult> results) override;
 
   RenderSpec render_spec() const override { return {800, 800, 10.0}; }
   bool render(Frame& frame) const override;
@@ -147,6 +162,8 @@ class TrafficNetwork : public Env {
   void start_simulation(uint64_t seed);
   std::string actuated_programs_file() const;
   void advance(int seconds);
+  void start_advance(int seconds);
+  void finish_advance(int seconds);
   void attribute_waiting();
   void write_observations(std::span<float> obs) const;
   void finish_episode();
@@ -165,6 +182,7 @@ class TrafficNetwork : public Env {
   std::unordered_map<std::string, int> incoming_slot_;  // controlled incoming lane -> slot
   int phase_width_ = 1, lane_width_ = 0, obs_width_ = 0;
   double end_time_ = 0;
+  int pending_seconds_ = 0;  // the advance started by start_step_agents
   Space observation_space_, action_space_;
   Info info_;
   EnvSeeding seeding_;

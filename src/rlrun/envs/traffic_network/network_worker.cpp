@@ -1,0 +1,187 @@
+#include "rlrun/envs/traffic_network/network_worker.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic_network/worker_protocol.hpp"
+
+namespace rlrun::traffic {
+
+namespace {
+
+constexpr int kWorkerFd = 3;
+
+std::string worker_path() {
+  return rlrun_helper_path("rlrun-sumo-worker", "RLRUN_SUMO_WORKER");
+}
+
+}  // namespace
+
+NetworkWorker::NetworkWorker(const std::string& backend, const SumoLaunch& launch) {
+  const std::string path = worker_path();
+  if (access(path.c_str(), X_OK) != 0)
+    throw RuntimeFailure("TrafficNetwork-v0 needs " + path +
+                         " (rlrun's SUMO worker, built and installed with rlrun); it is missing "
+                         "or not executable");
+  // A worker that has gone must give an error, not kill rlrun by SIGPIPE.
+  struct sigaction current;
+  if (sigaction(SIGPIPE, nullptr, &current) == 0 && current.sa_handler == SIG_DFL)
+    std::signal(SIGPIPE, SIG_IGN);
+  int fds[2];
+  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+    throw RuntimeFailure(std::string("cannot create a socket for the SUMO worker: ") + std::strerror(errno));
+  // Everything the child needs is made before fork(): another thread of rlrun may hold the
+  // allocator's lock, so the child only makes system calls until exec.
+  std::string program = path, fd_text = std::to_string(kWorkerFd);
+  char* argv[] = {program.data(), fd_text.data(), nullptr};
+  const int null_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
+  const pid_t parent = getpid();
+  worker_ = fork();
+  if (worker_ < 0) {
+    const int error = errno;
+    close(fds[0]);
+    close(fds[1]);
+    if (null_fd >= 0) close(null_fd);
+    throw RuntimeFailure(std::string("cannot start the SUMO worker (fork): ") + std::strerror(error));
+  }
+  if (worker_ == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with rlrun, whatever kills rlrun
+    if (getppid() != parent) _exit(1);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (null_fd >= 0) dup2(null_fd, STDIN_FILENO);
+    if (fds[1] == kWorkerFd)
+      fcntl(kWorkerFd, F_SETFD, 0);
+    else
+      dup2(fds[1], kWorkerFd);  // the copy is not close-on-exec
+    execv(argv[0], argv);
+    _exit(127);
+  }
+  close(fds[1]);
+  if (null_fd >= 0) close(null_fd);
+  fd_ = fds[0];
+  wire::Writer start(wire::kStart);
+  start.str(backend).str(launch.binary).strings(launch.inputs).str(std::to_string(launch.seed))
+      .f64(launch.scale).strings(launch.extra_args);
+  send(start.framed());
+  wire::Reader reply(answer());
+  sumo_pid_ = reply.i32();
+}
+
+NetworkWorker::~NetworkWorker() { stop(); }
+
+void NetworkWorker::stop() {
+  if (fd_ >= 0) close(fd_);  // the worker reads the end, ends SUMO and exits
+  fd_ = -1;
+  if (worker_ <= 0) return;
+  for (int i = 0; i < 200; ++i) {  // 2 s for SUMO to close its files
+    if (waitpid(worker_, nullptr, WNOHANG) == worker_) {
+      worker_ = -1;
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  kill(worker_, SIGKILL);
+  waitpid(worker_, nullptr, 0);
+  worker_ = -1;
+}
+
+void NetworkWorker::send(const std::vector<char>& framed) {
+  if (fd_ < 0 || !wire::send_message(fd_, framed))
+    throw RuntimeFailure("the SUMO worker (pid " + std::to_string(worker_) + ") has gone");
+}
+
+wire::Reader NetworkWorker::answer() {
+  std::vector<char> body;
+  if (fd_ < 0 || !wire::receive_message(fd_, body)) {
+    int status = 0;
+    std::string how = "ended";
+    // The socket closes while the worker exits: give the kernel a moment to report how.
+    for (int i = 0; i < 100 && worker_ > 0; ++i) {
+      if (waitpid(worker_, &status, WNOHANG) == worker_) {
+        how = WIFSIGNALED(status) ? "was killed by signal " + std::to_string(WTERMSIG(status))
+                                  : "exited with status " + std::to_string(WEXITSTATUS(status));
+        if (WIFEXITED(status) && WEXITSTATUS(status) == 127) how += " (it could not be started)";
+        const pid_t gone = worker_;
+        worker_ = -1;
+        throw RuntimeFailure("the SUMO worker (pid " + std::to_string(gone) + ") " + how);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    throw RuntimeFailure("the SUMO worker (pid " + std::to_string(worker_) + ") " + how);
+  }
+  wire::Reader reader(std::move(body));
+  if (reader.u8() == wire::kOk) return reader;
+  // kError: the message, then SUMO's last output.
+  const std::string message = reader.str();
+  const size_t line = message.find('\n');
+  tail_ = line == std::string::npos ? std::string() : message.substr(line + 1);
+  throw RuntimeFailure(line == std::string::npos ? message : message.substr(0, line));
+}
+
+void NetworkWorker::subscribe_lanes(const std::vector<std::string>& lanes) {
+  wire::Writer w(wire::kSubscribeLanes);
+  send(w.strings(lanes).framed());
+}
+
+void NetworkWorker::subscribe_vehicles(const std::string& junction, NetworkReading& out) {
+  wire::Writer w(wire::kSubscribeVehicles);
+  send(w.str(junction).framed());
+  wire::Reader reply = answer();
+  wire::read_reading(reply, out);
+}
+
+void NetworkWorker::start_advance(double time) {
+  wire::Writer w(wire::kAdvance);
+  send(w.f64(time).framed());
+}
+
+void NetworkWorker::finish_advance(NetworkReading& out) {
+  wire::Reader reply = answer();
+  wire::read_reading(reply, out);
+}
+
+void NetworkWorker::advance(double time, NetworkReading& out) {
+  start_advance(time);
+  finish_advance(out);
+}
+
+void NetworkWorker::set_light_state(const std::string& tls, const std::string& state) {
+  wire::Writer w(wire::kSetLightState);
+  send(w.str(tls).str(state).framed());
+}
+
+void NetworkWorker::switch_light(const std::string& tls, const std::string& yellow,
+                                 int yellow_seconds, const std::string& green) {
+  wire::Writer w(wire::kSwitchLight);
+  send(w.str(tls).str(yellow).i32(yellow_seconds).str(green).framed());
+}
+
+void NetworkWorker::use_program(const std::string& tls, const std::string& program_id) {
+  wire::Writer w(wire::kUseProgram);
+  send(w.str(tls).str(program_id).framed());
+}
+
+void NetworkWorker::finish() {
+  if (finished_) return;
+  wire::Writer w(wire::kFinish);
+  send(w.framed());
+  answer();
+  finished_ = true;
+  stop();
+}
+
+}  // namespace rlrun::traffic
