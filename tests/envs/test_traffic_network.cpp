@@ -325,6 +325,10 @@ TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, ligh
     config.scenario.value = scenario;
     TrafficNetwork env(config);
     CHECK(env.num_agents() == 4);
+    // randomTrips' routes name an XML schema: SUMO must load them without SUMO_HOME.
+    REQUIRE(read_text(routes).find("xsi:noNamespaceSchemaLocation") != std::string::npos);
+    const std::string sumo_home = std::getenv("SUMO_HOME") ? std::getenv("SUMO_HOME") : "";
+    unsetenv("SUMO_HOME");
     int most_greens = 0, most_lanes = 0;
     for (const LightAgent& agent : env.agents()) {
       green_counts.insert(agent.num_greens());
@@ -341,6 +345,7 @@ TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, ligh
     CHECK(info_of(env, "throughput") > 50);
     run_episode(env, 1, kMaxPressure);
     CHECK(info_of(env, "throughput") > 50);
+    if (!sumo_home.empty()) setenv("SUMO_HOME", sumo_home.c_str(), 1);
   }
   for (int greens : {1, 2, 3, 6}) {
     INFO(greens << " green phases");
@@ -373,6 +378,11 @@ TEST_CASE("TrafficNetwork: bad scenarios are clear errors before SUMO runs", "[t
   CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [bad.rou.xml]\n"),
              Catch::Contains("bad.rou.xml:3") && Catch::Contains("'nowhere'") &&
                  Catch::Contains("does not fit the network"));
+  // Edges that exist but do not connect (A0B0 ends at B0; A1B1 starts at A1).
+  write(dir / "gap.rou.xml",
+        "<routes>\n  <route id=\"r\" edges=\"A0B0 A1B1\"/>\n</routes>\n");
+  CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [gap.rou.xml]\n"),
+             Catch::Contains("gap.rou.xml:2") && Catch::Contains("'A0B0' does not lead to 'A1B1'"));
   write(dir / "trip.rou.xml", "<routes>\n<trip id=\"t\" depart=\"0\" from=\"A0B0\" to=\"B0A9\"/>\n</routes>\n");
   CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [trip.rou.xml]\n"),
              Catch::Contains("trip.rou.xml:2") && Catch::Contains("'B0A9'"));
@@ -465,6 +475,12 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
   INFO(video.output);
   CHECK(video.exit_code == 0);
   CHECK(std::filesystem::file_size(dir / "v.mp4") > 1000);
+  // DQN: one replay buffer and one Q-network for all lights (RESCO's IDQN with sharing).
+  const auto dqn = run_rlrun("train " + kSource + "/configs/traffic_network_dqn.yaml" + shorter +
+                             " --set algo.learning_starts=500 --timesteps 2000 --out " + dir / "dqn");
+  INFO(dqn.output);
+  CHECK(dqn.exit_code == 0);
+  CHECK(std::filesystem::exists(dir / "dqn/traffic_network_dqn/seed1/model.zip"));
   // libsumo, two envs and an eval env at once: each SUMO in a worker process of its own
   // (sumo-rl's LIBSUMO_AS_TRACI allows one simulation in all).
   const auto libsumo = run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +

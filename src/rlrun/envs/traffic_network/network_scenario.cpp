@@ -156,7 +156,8 @@ std::vector<std::string> scenario_arguments(const NetworkScenario& s) {
 }
 
 void check_routes_fit(const std::vector<std::string>& route_files,
-                      const std::vector<std::string>& edges) {
+                      const std::vector<std::string>& edges,
+                      const std::map<std::string, std::vector<std::string>>& successors) {
   const std::set<std::string> known(edges.begin(), edges.end());
   for (const std::string& file : route_files) {
     std::ifstream in(file, std::ios::binary);
@@ -171,7 +172,8 @@ void check_routes_fit(const std::vector<std::string>& route_files,
     // Depth-first over every element: routes may sit inside <vehicle>/<flow> or at the top.
     struct Walker : pugi::xml_tree_walker {
       const std::set<std::string>* known;
-      std::string unknown, where;
+      const std::map<std::string, std::vector<std::string>>* successors;
+      std::string unknown, where, gap;
       ptrdiff_t offset = 0;
       bool check(const pugi::xml_node& node, const char* attribute, bool list) {
         const pugi::xml_attribute a = node.attribute(attribute);
@@ -189,14 +191,33 @@ void check_routes_fit(const std::vector<std::string>& route_files,
       }
       bool for_each(pugi::xml_node& node) override {
         const std::string name = node.name();
-        if (name == "route") return check(node, "edges", true);
+        if (name == "route") {
+          if (!check(node, "edges", true)) return false;
+          // Consecutive edges must be connected in the net.
+          const std::vector<std::string> ids = split_list(node.attribute("edges").as_string());
+          for (size_t i = 1; i < ids.size(); ++i) {
+            const auto next = successors->find(ids[i - 1]);
+            if (next == successors->end() ||
+                std::find(next->second.begin(), next->second.end(), ids[i]) == next->second.end()) {
+              gap = "edge '" + ids[i - 1] + "' does not lead to '" + ids[i] + "'";
+              offset = node.offset_debug();
+              return false;
+            }
+          }
+          return true;
+        }
         if (name == "trip" || name == "flow" || name == "vehicle")
           return check(node, "from", false) && check(node, "to", false) && check(node, "via", true);
         return true;
       }
     } walker;
     walker.known = &known;
+    walker.successors = &successors;
     doc.traverse(walker);
+    if (!walker.gap.empty())
+      throw ConfigError(file + ":" + std::to_string(line_of(text, walker.offset)) +
+                        ": a <route> whose " + walker.gap +
+                        " in the network: the route file does not fit the network");
     if (!walker.unknown.empty())
       throw ConfigError(file + ":" + std::to_string(line_of(text, walker.offset)) + ": " +
                         walker.where + " names edge '" + walker.unknown +

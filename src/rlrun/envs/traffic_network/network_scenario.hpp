@@ -17,6 +17,7 @@
 // Everything that can be checked before SUMO runs is checked here, with a clear error: missing
 // files, begin >= end, route files whose routes name edges the network does not have (SUMO
 // would otherwise stop mid-episode or drop the vehicles with only a warning).
+#include <map>
 #include <string>
 #include <vector>
 
@@ -65,10 +66,12 @@ NetworkScenario load_network_scenario(const std::string& path);
 // `--end` (the episode's), without seed, scale or outputs.
 std::vector<std::string> scenario_arguments(const NetworkScenario& scenario);
 
-// Every edge id that the route files' <route edges>, <trip>/<flow> from/to/via and
-// <vehicle>/<flow> route references name must be an edge of the network (`edges`). Throws
-// ConfigError naming the route file, its line and the first unknown edge.
+// Every edge id that the route files' <route edges>, <trip>/<flow>/<vehicle> from/to/via name
+// must be an edge of the network (`edges`), and each edge of a <route> must lead to the next
+// (`successors`: the net's connections). Throws ConfigError naming the route file, its line
+// and the first edge that does not fit.
 void check_routes_fit(const std::vector<std::string>& route_files,
-                      const std::vector<std::string>& edges);
+                      const std::vector<std::string>& edges,
+                      const std::map<std::string, std::vector<std::string>>& successors);
 
 }  // namespace rlrun::traffic

@@ -50,7 +50,7 @@ TrafficNetwork::TrafficNetwork(const Config& config)
 
   // Everything from the files, before SUMO runs.
   geometry_ = read_network_geometry(scenario_.files.net);
-  check_routes_fit(scenario_.files.routes, geometry_.edges);
+  check_routes_fit(scenario_.files.routes, geometry_.edges, geometry_.edge_successors);
   const std::vector<TrafficLightProgram> all = read_signal_programs(scenario_.files.net);
   std::vector<TrafficLightProgram> lights = select_lights(all, config_.ts_ids, scenario_.files.net);
   if (config_.ts_ids.empty()) {
