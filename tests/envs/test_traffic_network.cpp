@@ -222,6 +222,39 @@ TEST_CASE("TrafficNetwork: fixed-time control equals a plain sumo run on every s
   }
 }
 
+TEST_CASE("TrafficNetwork: a .sumocfg scenario: its files and times, fixed-time equal to sumo -c",
+          "[traffic_network]") {
+  TempDir dir("traffic_network_sumocfg");
+  const std::string grid = kSource + "/sumo_data/grid4x4/";
+  const std::string cfg = write(dir / "grid.sumocfg",
+                                "<configuration>\n  <input>\n    <net-file value=\"" + grid +
+                                "grid4x4.net.xml\"/>\n    <route-files value=\"" + grid +
+                                "grid4x4.rou.xml\"/>\n  </input>\n  <time>\n    <begin value=\"0\"/>\n"
+                                "    <end value=\"900\"/>\n  </time>\n  <processing>\n"
+                                "    <time-to-teleport value=\"120\"/>\n  </processing>\n</configuration>\n");
+  TrafficNetwork::Config config;
+  config.scenario.value = cfg;
+  TrafficNetwork env(config);
+  CHECK(env.scenario().begin == 0);
+  CHECK(env.scenario().end == 900);
+  CHECK(env.scenario().files.net == grid + "grid4x4.net.xml");
+  env.set_control(TrafficNetwork::Control::kOwnPrograms);
+  run_episode(env, 7, kNothing);
+  const CommandResult sumo = run_command("sumo -c '" + cfg + "' --seed 7 --no-step-log --tripinfo-output '" +
+                                         dir / "plain.xml" + "'");
+  INFO(sumo.output);
+  REQUIRE(sumo.exit_code == 0);
+  const Trips t = read_trips(dir / "plain.xml");
+  CHECK(info_of(env, "throughput") == t.count);
+  CHECK(info_of(env, "mean_delay") == Approx(t.time_loss).epsilon(1e-12));
+  CHECK(info_of(env, "sim_time") == 900.0);
+  // Actuated control keeps the configuration's other settings and adds its programs.
+  env.set_control(TrafficNetwork::Control::kActuated);
+  run_episode(env, 7, kNothing);
+  CHECK(info_of(env, "mean_delay") != Approx(t.time_loss));
+  CHECK(info_of(env, "throughput") > 500);
+}
+
 TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsumo equals traci",
           "[traffic_network]") {
   TrafficNetwork::Config config;

@@ -137,19 +137,23 @@ NetworkScenario load_network_scenario(const std::string& path) {
   return s;
 }
 
-std::vector<std::string> scenario_arguments(const NetworkScenario& s) {
+std::vector<std::string> scenario_arguments(const NetworkScenario& s,
+                                            const std::vector<std::string>& more_additionals) {
   std::vector<std::string> args;
   const auto join = [](const std::vector<std::string>& files) {
     std::string out;
     for (const std::string& f : files) out.append(out.empty() ? "" : ",").append(f);
     return out;
   };
+  std::vector<std::string> additionals = s.files.additionals;
+  additionals.insert(additionals.end(), more_additionals.begin(), more_additionals.end());
   if (!s.files.sumocfg.empty()) {
     args = {"-c", s.files.sumocfg};
+    if (!more_additionals.empty()) args.insert(args.end(), {"-a", join(additionals)});
   } else {
     args = {"-n", s.files.net};
     if (!s.files.routes.empty()) args.insert(args.end(), {"-r", join(s.files.routes)});
-    if (!s.files.additionals.empty()) args.insert(args.end(), {"-a", join(s.files.additionals)});
+    if (!additionals.empty()) args.insert(args.end(), {"-a", join(additionals)});
   }
   args.insert(args.end(), {"--begin", number_text(s.begin), "--end", number_text(s.end)});
   return args;

@@ -63,8 +63,11 @@ struct NetworkScenario {
 NetworkScenario load_network_scenario(const std::string& path);
 
 // SUMO's input arguments for the scenario: `-c CFG` or `-n NET -r R1,R2 -a A1`, then `--begin`,
-// `--end` (the episode's), without seed, scale or outputs.
-std::vector<std::string> scenario_arguments(const NetworkScenario& scenario);
+// `--end` (the episode's), without seed, scale or outputs. `more_additionals` are loaded after
+// the scenario's own (with a sumocfg: `-a` naming its files and these, the rest of the
+// configuration kept).
+std::vector<std::string> scenario_arguments(const NetworkScenario& scenario,
+                                            const std::vector<std::string>& more_additionals = {});
 
 // Every edge id that the route files' <route edges>, <trip>/<flow>/<vehicle> from/to/via name
 // must be an edge of the network (`edges`), and each edge of a <route> must lead to the next

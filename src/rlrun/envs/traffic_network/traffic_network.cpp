@@ -189,14 +189,11 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   running_control_ = control_;
   NetworkScenario scenario = scenario_;
   scenario.end = end_time_;
-  if (running_control_ == Control::kActuated) {
-    // Extra programs: as additional files of the scenario, so that a sumocfg's own stay.
-    scenario.files.additionals.push_back(actuated_programs_file());
-    if (!scenario.files.sumocfg.empty()) scenario.files.sumocfg.clear();
-  }
+  std::vector<std::string> more_additionals;
+  if (running_control_ == Control::kActuated) more_additionals.push_back(actuated_programs_file());
   SumoLaunch launch;
   launch.binary = config_.sumo_binary.value;
-  launch.inputs = scenario_arguments(scenario);
+  launch.inputs = scenario_arguments(scenario, more_additionals);
   launch.seed = seed;
   launch.scale = config_.scale * scenario_.scale;
   // No SUMO_HOME needed: a file naming an XML schema is not validated against it (SUMO would
