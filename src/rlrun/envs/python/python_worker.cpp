@@ -1,8 +1,6 @@
 #include "rlrun/envs/python/python_worker.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <sys/wait.h>
@@ -19,6 +17,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/find_executable.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/worker_spawn.hpp"
 #include "rlrun/envs/python/python_protocol.hpp"
 
 namespace rlrun {
@@ -38,49 +37,11 @@ PythonWorker::PythonWorker(const std::string& python, const std::string& script)
                          (python.find('/') == std::string::npos ? " on PATH" : "") +
                          ". Install python3 and numpy (Debian: apt install python3 "
                          "python3-numpy) or set env.python to your virtualenv's python");
-  // A worker that has gone must give an error (with how it ended), not kill rlrun by SIGPIPE.
-  struct sigaction current;
-  if (sigaction(SIGPIPE, nullptr, &current) == 0 && current.sa_handler == SIG_DFL)
-    std::signal(SIGPIPE, SIG_IGN);
-  int fds[2];
-  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
-    throw RuntimeFailure(std::string("cannot create a socket for a Python worker: ") +
-                         std::strerror(errno));
-  const int null_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
-  // Everything the child needs is made before fork(): another thread of rlrun may hold the
-  // allocator's lock, so the child only makes system calls until exec.
-  std::vector<std::string> args = {python_, "-c", script, std::to_string(kWorkerFd)};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t parent = getpid();
-  pid_ = fork();
-  if (pid_ < 0) {
-    const int error = errno;
-    close(fds[0]);
-    close(fds[1]);
-    if (null_fd >= 0) close(null_fd);
-    throw RuntimeFailure(std::string("cannot start a Python worker (fork): ") +
-                         std::strerror(error));
-  }
-  if (pid_ == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGKILL);      // dies with rlrun, whatever kills rlrun
-    if (getppid() != parent) _exit(1);     // rlrun died before the line above
-    signal(SIGINT, SIG_IGN);               // kept across exec; Python keeps an ignored SIGINT
-    sigset_t none;
-    sigemptyset(&none);
-    sigprocmask(SIG_SETMASK, &none, nullptr);
-    if (null_fd >= 0) dup2(null_fd, STDIN_FILENO);
-    if (fds[1] == kWorkerFd)
-      fcntl(kWorkerFd, F_SETFD, 0);        // keep it across exec
-    else
-      dup2(fds[1], kWorkerFd);             // the copy is not close-on-exec
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  close(fds[1]);
-  if (null_fd >= 0) close(null_fd);
-  fd_ = fds[0];
+  const SpawnedWorker worker =
+      spawn_worker({python_, "-c", script, std::to_string(kWorkerFd)}, kWorkerFd,
+                   "a Python worker");
+  pid_ = worker.pid;
+  fd_ = worker.fd;
   // recv wakes up every kPollSeconds when the worker is silent, so that a second Ctrl-C stops
   // rlrun even while an env hangs (rlrun's SIGINT handler restarts system calls).
   timeval timeout{};

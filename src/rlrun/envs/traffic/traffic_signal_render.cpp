@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rlrun/envs/traffic/traffic_signal.hpp"
+#include "rlrun/envs/traffic/vehicle_picture.hpp"
 #include "rlrun/frame.hpp"
 
 namespace rlrun {
@@ -51,9 +52,7 @@ bool TrafficSignal::render(Frame& frame) const {
     frame.line(at(end[0] - nx, end[1] - ny), at(end[0] + nx, end[1] + ny), light, 3.0);
   }
 
-  // Vehicles: SUMO gives the front bumper's centre and the heading in degrees clockwise from
-  // north.
-  constexpr double kLength = 5.0, kHalfWidth = 0.9;
+  // Vehicles (vehicle_picture.hpp).
   // The vehicles come with a subscription made on the first render: unwatched training does
   // not pay for them (a third of the speed).
   if (!vehicles_subscribed_ && !finished_) {
@@ -64,17 +63,8 @@ bool TrafficSignal::render(Frame& frame) const {
     }
     vehicles_subscribed_ = true;
   }
-  for (const SumoVehicle& vehicle : state_.vehicles) {
-    const double heading = vehicle.angle * M_PI / 180.0;
-    const double fx = std::sin(heading), fy = std::cos(heading);  // forward
-    const double sx = fy, sy = -fx;                              // to the right
-    const double x = vehicle.x, y = vehicle.y;
-    const Point box[] = {at(x + sx * kHalfWidth, y + sy * kHalfWidth),
-                         at(x - sx * kHalfWidth, y - sy * kHalfWidth),
-                         at(x - sx * kHalfWidth - fx * kLength, y - sy * kHalfWidth - fy * kLength),
-                         at(x + sx * kHalfWidth - fx * kLength, y + sy * kHalfWidth - fy * kLength)};
-    frame.polygon(box, vehicle.speed < 0.1 ? Rgb{210, 40, 40} : Rgb{60, 110, 220});
-  }
+  for (const SumoVehicle& vehicle : state_.vehicles)
+    draw_vehicle(frame, at, vehicle.x, vehicle.y, vehicle.angle, vehicle.speed);
   frame.end_scene();
   return true;
 }

@@ -1,12 +1,11 @@
 #include "rlrun/envs/traffic_network/network_geometry.hpp"
 
-#include <pugixml.hpp>
-
 #include <algorithm>
 #include <limits>
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic_network/net_file.hpp"
 
 namespace rlrun::traffic {
 
@@ -35,12 +34,7 @@ const LaneGeometry& NetworkGeometry::lane(const std::string& id) const {
 
 NetworkGeometry read_network_geometry(const std::string& net_file) {
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_file(net_file.c_str());
-  if (!parsed)
-    throw ConfigError(net_file + ": not a readable SUMO network (" + parsed.description() +
-                      " at byte " + std::to_string(parsed.offset) + ")");
-  const pugi::xml_node net = doc.child("net");
-  if (!net) throw ConfigError(net_file + ": not a SUMO network (no <net> element)");
+  const pugi::xml_node net = load_net_file(net_file, doc);
   NetworkGeometry g;
   double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
   for (const pugi::xml_node edge : net.children("edge")) {

@@ -1,8 +1,6 @@
 #include "rlrun/envs/traffic_network/network_worker.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +13,7 @@
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/worker_spawn.hpp"
 #include "rlrun/envs/traffic_network/worker_protocol.hpp"
 
 namespace rlrun::traffic {
@@ -35,44 +34,10 @@ NetworkWorker::NetworkWorker(const std::string& backend, const SumoLaunch& launc
     throw RuntimeFailure("TrafficNetwork-v0 needs " + path +
                          " (rlrun's SUMO worker, built and installed with rlrun); it is missing "
                          "or not executable");
-  // A worker that has gone must give an error, not kill rlrun by SIGPIPE.
-  struct sigaction current;
-  if (sigaction(SIGPIPE, nullptr, &current) == 0 && current.sa_handler == SIG_DFL)
-    std::signal(SIGPIPE, SIG_IGN);
-  int fds[2];
-  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
-    throw RuntimeFailure(std::string("cannot create a socket for the SUMO worker: ") + std::strerror(errno));
-  // Everything the child needs is made before fork(): another thread of rlrun may hold the
-  // allocator's lock, so the child only makes system calls until exec.
-  std::string program = path, fd_text = std::to_string(kWorkerFd);
-  char* argv[] = {program.data(), fd_text.data(), nullptr};
-  const int null_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
-  const pid_t parent = getpid();
-  worker_ = fork();
-  if (worker_ < 0) {
-    const int error = errno;
-    close(fds[0]);
-    close(fds[1]);
-    if (null_fd >= 0) close(null_fd);
-    throw RuntimeFailure(std::string("cannot start the SUMO worker (fork): ") + std::strerror(error));
-  }
-  if (worker_ == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with rlrun, whatever kills rlrun
-    if (getppid() != parent) _exit(1);
-    sigset_t none;
-    sigemptyset(&none);
-    sigprocmask(SIG_SETMASK, &none, nullptr);
-    if (null_fd >= 0) dup2(null_fd, STDIN_FILENO);
-    if (fds[1] == kWorkerFd)
-      fcntl(kWorkerFd, F_SETFD, 0);
-    else
-      dup2(fds[1], kWorkerFd);  // the copy is not close-on-exec
-    execv(argv[0], argv);
-    _exit(127);
-  }
-  close(fds[1]);
-  if (null_fd >= 0) close(null_fd);
-  fd_ = fds[0];
+  const SpawnedWorker worker = spawn_worker({path, std::to_string(kWorkerFd)}, kWorkerFd,
+                                            "the SUMO worker");
+  worker_ = worker.pid;
+  fd_ = worker.fd;
   wire::Writer start(wire::kStart);
   start.str(backend).str(launch.binary).strings(launch.inputs).str(std::to_string(launch.seed))
       .f64(launch.scale).strings(launch.extra_args);

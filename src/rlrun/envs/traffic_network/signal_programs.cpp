@@ -1,12 +1,11 @@
 #include "rlrun/envs/traffic_network/signal_programs.hpp"
 
-#include <pugixml.hpp>
-
 #include <algorithm>
 #include <map>
 
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic_network/net_file.hpp"
 
 namespace rlrun::traffic {
 
@@ -26,12 +25,7 @@ bool is_green(const std::string& state) {
 
 std::vector<TrafficLightProgram> read_signal_programs(const std::string& net_file) {
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_file(net_file.c_str());
-  if (!parsed)
-    throw ConfigError(net_file + ": not a readable SUMO network (" + parsed.description() +
-                      " at byte " + std::to_string(parsed.offset) + ")");
-  const pugi::xml_node net = doc.child("net");
-  if (!net) throw ConfigError(net_file + ": not a SUMO network (no <net> element)");
+  const pugi::xml_node net = load_net_file(net_file, doc);
 
   std::vector<TrafficLightProgram> lights;
   std::map<std::string, size_t> index;  // light id -> position in `lights`

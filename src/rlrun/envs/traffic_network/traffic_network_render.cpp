@@ -1,12 +1,12 @@
 // TrafficNetwork-v0's picture: the network from above (all of it, or `render_radius` metres
 // around `render_focus`), drawn as TrafficSignal-v0 draws its junction — grey lanes, each
-// agent's stop lines green or red by its current green, vehicles as 5 m x 1.8 m boxes, blue
-// when moving and red when waiting (below 0.1 m/s, SUMO's threshold).
+// agent's stop lines green or red by its current green, the vehicles (vehicle_picture.hpp).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/vehicle_picture.hpp"
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
 #include "rlrun/frame.hpp"
 
@@ -67,19 +67,9 @@ bool TrafficNetwork::render(Frame& frame) const {
     }
     vehicles_subscribed_ = true;
   }
-  constexpr double kLength = 5.0, kHalfWidth = 0.9;
-  for (const VehicleReading& vehicle : reading_.vehicles) {
-    if (!visible(vehicle.x, vehicle.y)) continue;
-    const double heading = vehicle.angle * M_PI / 180.0;
-    const double fx = std::sin(heading), fy = std::cos(heading);  // forward
-    const double sx = fy, sy = -fx;                              // to the right
-    const double x = vehicle.x, y = vehicle.y;
-    const Point box[] = {at(x + sx * kHalfWidth, y + sy * kHalfWidth),
-                         at(x - sx * kHalfWidth, y - sy * kHalfWidth),
-                         at(x - sx * kHalfWidth - fx * kLength, y - sy * kHalfWidth - fy * kLength),
-                         at(x + sx * kHalfWidth - fx * kLength, y + sy * kHalfWidth - fy * kLength)};
-    frame.polygon(box, vehicle.speed < 0.1 ? Rgb{210, 40, 40} : Rgb{60, 110, 220});
-  }
+  for (const VehicleReading& vehicle : reading_.vehicles)
+    if (visible(vehicle.x, vehicle.y))
+      draw_vehicle(frame, at, vehicle.x, vehicle.y, vehicle.angle, vehicle.speed);
   frame.end_scene();
   return true;
 }

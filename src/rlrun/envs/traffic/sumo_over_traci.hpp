@@ -1,0 +1,38 @@
+#pragma once
+// backend: traci, for both envs' clients: TrafficSignal-v0's (sumo_client.hpp) and
+// TrafficNetwork-v0's (traffic_network/network_client.hpp) run on libtraci's classes, talking
+// to a `sumo` process of their own (SumoProcess: pid known, output kept, no orphan). libtraci
+// keeps a current connection, so each call first makes this one current.
+#include <libsumo/libtraci.h>
+
+#include <string>
+
+#include "rlrun/envs/traffic/sumo_process.hpp"
+
+namespace rlrun {
+
+struct TraciApi {
+  using Simulation = libtraci::Simulation;
+  using Lane = libtraci::Lane;
+  using Edge = libtraci::Edge;
+  using Junction = libtraci::Junction;
+  using TrafficLight = libtraci::TrafficLight;
+};
+
+// `Client`: a connection class written against TraciApi's classes, with a virtual activate().
+template <class Client>
+class SumoOverTraci : public Client {
+ public:
+  explicit SumoOverTraci(const SumoLaunch& launch) : process_(launch) {}
+  void finish() override { process_.stop(); }
+  std::string output_tail() const override { return process_.output_tail(); }
+  pid_t pid() const override { return process_.pid(); }
+
+ protected:
+  void activate() override { process_.activate(); }
+
+ private:
+  SumoProcess process_;
+};
+
+}  // namespace rlrun
