@@ -264,6 +264,7 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsum
   std::vector<double> traci_info, libsumo_info;
   {
     TrafficNetwork env(config);
+    env.watch_outgoing_lanes();  // max-pressure looks at the outgoing lanes too
     traci_info = run_episode(env, 3, kMaxPressure, &first_traci);
     CHECK(process_exists(env.sumo_pid()) == false);  // SUMO closed at the episode's end
     delay["max-pressure"] = info_of(env, "mean_delay");
@@ -294,6 +295,7 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsum
     INFO("libsumo, own_process " << own_process);
     config.own_process = own_process;
     TrafficNetwork libsumo(config);
+    libsumo.watch_outgoing_lanes();
     libsumo_info = run_episode(libsumo, 3, kMaxPressure, &first_libsumo);
     CHECK(first_libsumo == first_traci);
     CHECK(libsumo_info == traci_info);
@@ -301,6 +303,7 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsum
   config.backend = "traci";
   config.own_process = false;  // libtraci in rlrun's process
   TrafficNetwork direct(config);
+  direct.watch_outgoing_lanes();
   CHECK(run_episode(direct, 3, kMaxPressure) == traci_info);
 }
 
@@ -357,6 +360,7 @@ TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, ligh
     TrafficNetwork::Config config;
     config.scenario.value = scenario;
     TrafficNetwork env(config);
+    env.watch_outgoing_lanes();
     CHECK(env.num_agents() == 4);
     // randomTrips' routes name an XML schema: SUMO must load them without SUMO_HOME.
     REQUIRE(read_text(routes).find("xsi:noNamespaceSchemaLocation") != std::string::npos);

@@ -17,6 +17,9 @@ struct TraciApi {
   using Edge = libtraci::Edge;
   using Junction = libtraci::Junction;
   using TrafficLight = libtraci::TrafficLight;
+  using Vehicle = libtraci::Vehicle;
+  // Every read is a round trip to SUMO: subscriptions bring them all with the step's answer.
+  static constexpr bool kReadsDirectly = false;
 };
 
 // `Client`: a connection class written against TraciApi's classes, with a virtual activate().

@@ -1,7 +1,10 @@
 #pragma once
 // The TraCI calls TrafficNetwork-v0 makes (network_connection.hpp), written once for SUMO's two
 // C++ clients: instantiated with libtraci's classes (network_traci.cpp) and libsumo's (the
-// libsumo module), as envs/traffic/sumo_client.hpp does for TrafficSignal-v0.
+// libsumo module), as envs/traffic/sumo_client.hpp does for TrafficSignal-v0. Over a socket the
+// lanes and vehicles come as subscriptions with each step's answer; in-process
+// (Api::kReadsDirectly) they are read after the step, which is cheaper than the subscriptions
+// SUMO would evaluate at every simulated second.
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +26,7 @@ class NetworkClient : public NetworkConnection {
   void subscribe_lanes(const std::vector<std::string>& lanes) override {
     activate();
     lanes_ = lanes;
+    if constexpr (Api::kReadsDirectly) return;
     for (const std::string& lane : lanes)
       Api::Lane::subscribe(lane, {libsumo::LAST_STEP_VEHICLE_NUMBER,
                                   libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER,
@@ -32,6 +36,7 @@ class NetworkClient : public NetworkConnection {
   void subscribe_vehicles(const std::string& junction, NetworkReading& out) override {
     activate();
     junction_ = junction;
+    if constexpr (Api::kReadsDirectly) return read_vehicles(out);
     Api::Junction::subscribeContext(junction, libsumo::CMD_GET_VEHICLE_VARIABLE, kWholeNetwork,
                                     {libsumo::VAR_LANE_ID, libsumo::VAR_SPEED,
                                      libsumo::VAR_ALLOWED_SPEED,
@@ -44,8 +49,17 @@ class NetworkClient : public NetworkConnection {
     activate();
     Api::Simulation::step(time);
     out.time = time;
-    const libsumo::SubscriptionResults results = Api::Lane::getAllSubscriptionResults();
     out.lanes.resize(lanes_.size());
+    if constexpr (Api::kReadsDirectly) {
+      for (size_t i = 0; i < lanes_.size(); ++i) {
+        out.lanes[i].vehicles = Api::Lane::getLastStepVehicleNumber(lanes_[i]);
+        out.lanes[i].halting = Api::Lane::getLastStepHaltingNumber(lanes_[i]);
+        out.lanes[i].vehicle_length = Api::Lane::getLastStepLength(lanes_[i]);
+      }
+      if (!junction_.empty()) read_vehicles(out);
+      return;
+    }
+    const libsumo::SubscriptionResults results = Api::Lane::getAllSubscriptionResults();
     for (size_t i = 0; i < lanes_.size(); ++i) {
       const libsumo::TraCIResults& r = results.at(lanes_[i]);
       out.lanes[i].vehicles =
@@ -86,6 +100,21 @@ class NetworkClient : public NetworkConnection {
  private:
   void read_vehicles(NetworkReading& out) {
     out.vehicles.clear();
+    if constexpr (Api::kReadsDirectly) {
+      for (const std::string& id : Api::Vehicle::getIDList()) {
+        VehicleReading& v = out.vehicles.emplace_back();
+        v.id = id;
+        v.lane = Api::Vehicle::getLaneID(id);
+        v.speed = Api::Vehicle::getSpeed(id);
+        v.allowed_speed = Api::Vehicle::getAllowedSpeed(id);
+        v.accumulated_waiting = Api::Vehicle::getAccumulatedWaitingTime(id);
+        v.angle = Api::Vehicle::getAngle(id);
+        const libsumo::TraCIPosition p = Api::Vehicle::getPosition(id, false);
+        v.x = p.x;
+        v.y = p.y;
+      }
+      return;
+    }
     for (const auto& [id, values] : Api::Junction::getContextSubscriptionResults(junction_)) {
       VehicleReading& v = out.vehicles.emplace_back();
       v.id = id;

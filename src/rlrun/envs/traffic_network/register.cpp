@@ -50,6 +50,7 @@ void register_traffic_network(EnvEntries& out) {
        [](Env& env, const PolicyOptions&) -> PolicyFn {
          TrafficNetwork* network = &network_of(env, "max-pressure");
          network->set_control(TrafficNetwork::Control::kAgents);
+         network->watch_outgoing_lanes();
          return [network](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
            action.resize(1, obs.cols());
            network->max_pressure_actions({action.data(), static_cast<size_t>(action.size())});

@@ -102,12 +102,17 @@ void TrafficNetwork::build_agents(const std::vector<TrafficLightProgram>& lights
     if (added) lanes_.push_back(lane);
     return it->second;
   };
+  // Every incoming lane first, then the outgoing lanes that are no light's incoming lane: only
+  // the pressure reward and max-pressure control need those, and SUMO evaluates a
+  // subscription every simulated second, so they are subscribed only then.
+  for (const TrafficLightProgram& light : lights)
+    for (const std::string& lane : light.incoming_lanes) incoming_slot_[lane] = slot_of(lane);
+  incoming_lanes_ = static_cast<int>(lanes_.size());
   for (const TrafficLightProgram& light : lights) {
     std::vector<int> in, out;
     std::vector<double> lengths;
     for (const std::string& lane : light.incoming_lanes) {
       in.push_back(slot_of(lane));
-      incoming_slot_[lane] = in.back();
       lengths.push_back(geometry_.lane(lane).length);
     }
     for (const std::string& lane : light.outgoing_lanes) out.push_back(slot_of(lane));
@@ -205,7 +210,10 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   else
     sumo_ = start_network_sumo(config_.backend, launch);
   try {
-    sumo_->subscribe_lanes(lanes_);
+    outgoing_subscribed_ = reward_ == RewardFunction::kPressure || watch_outgoing_;
+    sumo_->subscribe_lanes(outgoing_subscribed_ ? lanes_
+                                    : std::vector<std::string>(lanes_.begin(),
+                                                               lanes_.begin() + incoming_lanes_));
     vehicles_subscribed_ = false;
     if (running_control_ == Control::kAgents &&
         (reward_ == RewardFunction::kDiffWaitingTime || reward_ == RewardFunction::kAverageSpeed)) {
@@ -236,6 +244,7 @@ void TrafficNetwork::finish_advance(int seconds) {
     worker->finish_advance(reading_);
   else
     sumo_->advance(reading_.time + seconds, reading_);
+  reading_.lanes.resize(lanes_.size());  // lanes not subscribed read as empty
   for (LightAgent& agent : agents_) agent.advanced(seconds);
 }
 
@@ -418,6 +427,9 @@ void TrafficNetwork::write_observations(std::span<float> obs) const {
 
 void TrafficNetwork::max_pressure_actions(std::span<float> actions) const {
   if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before acting");
+  if (!outgoing_subscribed_)
+    throw std::logic_error("TrafficNetwork-v0: max-pressure needs the outgoing lanes: call "
+                           "watch_outgoing_lanes() before the episode starts");
   for (size_t a = 0; a < agents_.size(); ++a)
     actions[a] = static_cast<float>(agents_[a].max_pressure_action(reading_.lanes));
 }

@@ -146,7 +146,9 @@ class TrafficNetwork : public Env, public SplitStep {
   void set_control(Control control) { control_ = control; }
   Control control() const { return control_; }
   // RESCO's max-pressure choice of every agent now (agent-major, as step_agents takes them).
+  // It looks at the outgoing lanes too: watch_outgoing_lanes() before the episode.
   void max_pressure_actions(std::span<float> actions) const;
+  void watch_outgoing_lanes() { watch_outgoing_ = true; }
 
   const Config& config() const { return config_; }
   const traffic::NetworkScenario& scenario() const { return scenario_; }
@@ -178,7 +180,10 @@ class TrafficNetwork : public Env, public SplitStep {
   traffic::NetworkGeometry geometry_;
   std::vector<traffic::LightAgent> agents_;
   std::vector<std::vector<int>> neighbours_;  // per agent
-  std::vector<std::string> lanes_;            // subscribed: every agent's in and out lanes
+  std::vector<std::string> lanes_;            // every agent's incoming, then outgoing lanes
+  int incoming_lanes_ = 0;                    // the first lanes_ that are incoming
+  bool watch_outgoing_ = false;               // subscribe the outgoing lanes too
+  bool outgoing_subscribed_ = false;          // in the running episode
   std::unordered_map<std::string, int> incoming_slot_;  // controlled incoming lane -> slot
   int phase_width_ = 1, lane_width_ = 0, obs_width_ = 0;
   double end_time_ = 0;

@@ -23,6 +23,11 @@ struct LibsumoApi {
   using Edge = libsumo::Edge;
   using Junction = libsumo::Junction;
   using TrafficLight = libsumo::TrafficLight;
+  using Vehicle = libsumo::Vehicle;
+  // Reading a value in-process is a function call: TrafficNetwork-v0 reads its lanes and
+  // vehicles at each decision instead of subscribing (SUMO evaluates subscriptions at every
+  // simulated second, most of which no one reads).
+  static constexpr bool kReadsDirectly = true;
 };
 
 inline std::atomic<bool> simulation_running{false};
