@@ -44,8 +44,10 @@ for file in bin/rlrun include/rlrun/plugin.hpp lib/cmake/rlrun/rlrunConfig.cmake
   [[ -f $prefix/$file ]] || fail "the install has no $file"
 done
 [[ -n $(find "$prefix" -name librlrun_libsumo.so) ]] || fail "the install has no librlrun_libsumo.so"
+worker=$(find "$prefix" -name rlrun-sumo-worker)
+[[ -n $worker ]] || fail "the install has no rlrun-sumo-worker"
 # No path of the checkout or the build tree in any installed binary (data paths, __FILE__).
-for binary in "$rlrun" $(find "$prefix" -name '*.so'); do
+for binary in "$rlrun" "$worker" $(find "$prefix" -name '*.so'); do
   for dir in "$source_dir" "$build"; do
     if grep -qaF "$dir" "$binary"; then
       fail "$binary contains '$dir': $(grep -aoF "$dir" "$binary" | head -3 | tr '\n' ' ')"
@@ -77,6 +79,10 @@ if command -v sumo >/dev/null; then
   run "$rlrun" check-env TrafficSignal-v0 --steps 20 --episodes 1 --set num_seconds=600
   expect_in_log "check_env: passed"
   run "$rlrun" check-env TrafficSignal-v0 --steps 20 --episodes 1 --set num_seconds=600 --set backend=libsumo
+  expect_in_log "check_env: passed"
+  # TrafficNetwork-v0: scenarios/grid4x4.yaml and its SUMO worker (lib/rlrun-sumo-worker),
+  # SUMO inside the worker.
+  run "$rlrun" check-env TrafficNetwork-v0 --steps 20 --episodes 1 --set num_seconds=300 --set backend=libsumo
   expect_in_log "check_env: passed"
 else
   echo "test_install: sumo not installed: traffic env not checked"
