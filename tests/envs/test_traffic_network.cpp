@@ -193,6 +193,36 @@ TEST_CASE("TrafficNetwork: the 4x4 grid is 16 agents with padded spaces and grid
   CHECK(two.observation_space().flat_dim() == 4 + 1 + 2 * 12 + 2);
 }
 
+TEST_CASE("TrafficNetwork: reward_scope neighbourhood adds the neighbours' rewards", "[traffic_network]") {
+  TrafficNetwork::Config config;
+  config.num_seconds = 200;
+  config.reward_fn = "queue";
+  TrafficNetwork local(config);
+  config.reward_scope = "neighbourhood";
+  config.neighbour_weight = 0.5;
+  TrafficNetwork near(config);
+  const size_t n = static_cast<size_t>(local.num_agents());
+  std::vector<float> obs_a(local.observation_space().flat_dim() * n), obs_b(obs_a.size());
+  std::vector<StepResult> ra(n), rb(n);
+  local.reset(4, obs_a);
+  near.reset(4, obs_b);
+  double total = 0;
+  for (int t = 0; t < 30; ++t) {
+    std::vector<float> actions(n);
+    for (size_t a = 0; a < n; ++a) actions[a] = static_cast<float>((t / 3 + a) % 4);
+    local.step_agents(actions, obs_a, ra);
+    near.step_agents(actions, obs_b, rb);
+    REQUIRE(obs_a == obs_b);  // the same simulation
+    for (size_t a = 0; a < n; ++a) {
+      double expected = ra[a].reward;
+      for (int b : local.neighbours()[a]) expected += 0.5 * ra[b].reward;
+      CHECK(rb[a].reward == Approx(expected));
+      total += ra[a].reward;
+    }
+  }
+  CHECK(total < 0);  // queues formed: the comparison was not between zeros
+}
+
 TEST_CASE("TrafficNetwork: fixed-time control equals a plain sumo run on every shipped scenario",
           "[traffic_network]") {
   TempDir dir("traffic_network_fixed");
