@@ -288,6 +288,7 @@ TEST_CASE("TrafficNetwork: a .sumocfg scenario: its files and times, fixed-time 
 TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsumo equals traci",
           "[traffic_network]") {
   TrafficNetwork::Config config;
+  config.backend = "traci";
   config.num_seconds = 600;
   std::map<std::string, double> delay;
   std::vector<float> first_traci, first_libsumo;
@@ -424,6 +425,7 @@ TEST_CASE("TrafficNetwork: bad scenarios are clear errors before SUMO runs", "[t
   TempDir dir("traffic_network_errors");
   const std::string grid = kSource + "/sumo_data/grid4x4/";
   TrafficNetwork::Config config;
+  config.backend = "traci";
   config.sumo_binary.value = "/nonexistent/sumo";  // any error below comes before SUMO is needed
   const auto error_of = [&](const std::string& yaml_text) {
     config.scenario.value = write(dir / "s.yaml", yaml_text);
@@ -482,6 +484,7 @@ TEST_CASE("TrafficNetwork: bad scenarios are clear errors before SUMO runs", "[t
 TEST_CASE("TrafficNetwork: a SUMO that dies is an error with its output, and none is left",
           "[traffic_network]") {
   TrafficNetwork::Config config;
+  config.backend = "traci";
   config.num_seconds = 300;
   TrafficNetwork env(config);
   std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) * env.num_agents());

@@ -38,6 +38,9 @@ TrafficNetwork::TrafficNetwork(const Config& config)
   if (config_.backend != "traci" && config_.backend != "libsumo")
     throw std::invalid_argument("TrafficNetwork-v0: unknown backend '" + config_.backend +
                                 "' (traci or libsumo)");
+  if (config_.gui && config_.backend != "traci")
+    throw std::invalid_argument("TrafficNetwork-v0: gui: true needs backend: traci (sumo-gui is "
+                                "a program of its own)");
   if (config_.reward_scope != "local" && config_.reward_scope != "neighbourhood")
     throw std::invalid_argument("TrafficNetwork-v0: reward_scope is local or neighbourhood");
   if (config_.delta_time <= config_.yellow_time)
@@ -197,7 +200,7 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   std::vector<std::string> more_additionals;
   if (running_control_ == Control::kActuated) more_additionals.push_back(actuated_programs_file());
   SumoLaunch launch;
-  launch.binary = config_.sumo_binary.value;
+  launch.binary = config_.gui ? "sumo-gui" : config_.sumo_binary.value;
   launch.inputs = scenario_arguments(scenario, more_additionals);
   launch.seed = seed;
   launch.scale = config_.scale * scenario_.scale;

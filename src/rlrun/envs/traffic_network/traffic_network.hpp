@@ -52,8 +52,9 @@ class TrafficNetwork : public Env, public SplitStep {
  public:
   struct Config {
     SimulatorInput scenario;  // scenarios/*.yaml or a .sumocfg
-    std::string backend = "traci";
+    std::string backend = "libsumo";
     bool own_process = true;
+    bool gui = false;
     ProgramPath sumo_binary{"sumo"};
     double scale = 1.0;
     std::vector<std::string> ts_ids;
@@ -76,14 +77,15 @@ class TrafficNetwork : public Env, public SplitStep {
         "scenario file (scenarios/*.yaml with net_file, route_files, begin, end) or a SUMO "
         ".sumocfg; default scenarios/grid4x4.yaml");
       v("backend", backend,
-        "traci (a sumo process over a socket) or libsumo (SUMO inside rlrun: faster, one env "
-        "per process)",
-        OneOf{{"traci", "libsumo"}});
+        "libsumo (SUMO inside the env's worker process: fastest) or traci (a sumo process "
+        "driven over a socket; sumo_binary, gui)",
+        OneOf{{"libsumo", "traci"}});
       v("own_process", own_process,
         "drive SUMO from a worker process of its own (rlrun-sumo-worker): several envs step "
         "their SUMOs in parallel, and libsumo runs one simulation per env; false: in rlrun "
         "itself (libsumo: one simulation per rlrun process)");
-      v("sumo_binary", sumo_binary, "the sumo program to run (Debian package 'sumo')");
+      v("sumo_binary", sumo_binary, "the sumo program to run with backend: traci (Debian package 'sumo')");
+      v("gui", gui, "run sumo-gui to watch the simulation (backend: traci)");
       v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)",
         in_range(0.0, 1000.0).open_low());
       v("ts_ids", ts_ids, "the traffic lights that are agents (default: every light)");
