@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Issue 21's speed figures: simulated seconds per second of a whole TrafficNetwork-v0 episode
 # (the 4x4 grid, 16 lights as agents choosing a phase every 5 s, max-pressure choosing) over
-# libsumo and over traci, against plain `sumo` running the same scenario with its own programs;
+# libsumo and over traci, against plain `sumo` running the same scenario with its own programs
+# (and the env with those same programs, "fixed-time": the same traffic as plain sumo, so the
+# difference is the env's own cost);
 # then training decisions per second (PPO, every light's decision counted). Runs alternate
 # (sumo, rlrun libsumo, rlrun traci, ...) and the median of RUNS is printed.
 #
@@ -25,15 +27,16 @@ wall() {  # wall seconds of a command
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR + 1) / 2)]}'; }
 
 declare -A times
-kinds=("sumo" "libsumo" "libsumo, queue reward" "traci" "traci, in rlrun's process")
+kinds=("sumo" "libsumo" "libsumo, queue reward" "libsumo, fixed-time (no agent acts)" "traci" "traci, in rlrun's process")
 for ((i = 0; i < RUNS; ++i)); do
   times[sumo]+="$(wall sumo -n "$net" -r "$routes" -b 0 -e 3600 --seed 1 --no-step-log)"$'\n'
   ev=("$RLRUN" eval --env TrafficNetwork-v0 --policy max-pressure --episodes 1 --seed 1
       --set "env.kwargs.scenario=scenarios/$SCENARIO.yaml")
   times[libsumo]+="$(wall "${ev[@]}" --set env.kwargs.backend=libsumo)"$'\n'
   times["libsumo, queue reward"]+="$(wall "${ev[@]}" --set env.kwargs.backend=libsumo --set env.kwargs.reward_fn=queue)"$'\n'
-  times[traci]+="$(wall "${ev[@]}")"$'\n'
-  times["traci, in rlrun's process"]+="$(wall "${ev[@]}" --set env.kwargs.own_process=false)"$'\n'
+  times["libsumo, fixed-time (no agent acts)"]+="$(wall "${ev[@]/max-pressure/fixed-time}" --set env.kwargs.backend=libsumo)"$'\n'
+  times[traci]+="$(wall "${ev[@]}" --set env.kwargs.backend=traci)"$'\n'
+  times["traci, in rlrun's process"]+="$(wall "${ev[@]}" --set env.kwargs.backend=traci --set env.kwargs.own_process=false)"$'\n'
 done
 sumo_median=$(printf "%s" "${times[sumo]}" | median)
 printf "| %s, 1 simulated hour | wall (median of %d) | simulated s / s | vs plain sumo |\n" "$SCENARIO" "$RUNS"
