@@ -22,25 +22,26 @@ struct ReplayBatch {
 
 class ReplayBuffer {
  public:
+  virtual ~ReplayBuffer() = default;
   ReplayBuffer(int64_t buffer_size, int n_envs, int obs_dim, int act_dim,
                bool handle_timeout_termination = true);
 
   // Stores one VecEnv step taken from `obs` with `buffer_actions`; next observations, rewards
   // and flags are read from `env` (final_obs for envs whose episode ended).
-  void add(const Eigen::Ref<const Eigen::MatrixXf>& obs, const Eigen::Ref<const Eigen::MatrixXf>& buffer_actions,
-           const VecEnv& env);
+  virtual void add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                   const Eigen::Ref<const Eigen::MatrixXf>& buffer_actions, const VecEnv& env);
   // Fills `batch` (resized once per batch size) with `batch_size` uniform samples.
-  void sample(int batch_size, Rng& rng, ReplayBatch& batch) const;
+  virtual void sample(int batch_size, Rng& rng, ReplayBatch& batch) const;
 
   int64_t size() const { return (full_ ? slots_ : pos_) * n_envs_; }
   int64_t capacity() const { return slots_ * n_envs_; }
 
   // Exact resume (checkpoints): the filled transitions and the write position. Reading
   // refuses a buffer of another capacity (StateMismatch).
-  void write_state(StateWriter out) const;
-  void read_state(const StateReader& in);
+  virtual void write_state(StateWriter out) const;
+  virtual void read_state(const StateReader& in);
 
- private:
+ protected:  // HerReplayBuffer (her_replay_buffer.hpp) relabels these
   int64_t slots_;  // per env
   int n_envs_;
   bool handle_timeout_termination_;

@@ -1,0 +1,174 @@
+#include "rlrun/algos/common/her_replay_buffer.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "rlrun/core/state_dict.hpp"
+#include "rlrun/env/vec_env.hpp"
+
+namespace rlrun {
+
+GoalSelection parse_goal_selection(const std::string& name) {
+  if (name == "future") return GoalSelection::kFuture;
+  if (name == "final") return GoalSelection::kFinal;
+  if (name == "episode") return GoalSelection::kEpisode;
+  throw std::invalid_argument("goal_selection_strategy: unknown '" + name +
+                              "' (future, final or episode)");
+}
+
+namespace {
+
+int key_index(const Space& space, const std::string& key) {
+  const auto& keys = space.keys();
+  const auto it = std::find(keys.begin(), keys.end(), key);
+  if (it == keys.end())
+    throw std::invalid_argument("HerReplayBuffer needs a Dict observation with '" + key +
+                                "' (a goal-conditioned env: observation, achieved_goal, "
+                                "desired_goal); this one is " + space.describe());
+  return static_cast<int>(it - keys.begin());
+}
+
+}  // namespace
+
+HerReplayBuffer::HerReplayBuffer(int64_t buffer_size, int n_envs, const Space& observation_space,
+                                 int act_dim, const GoalEnv& rewards_of, int n_sampled_goal,
+                                 GoalSelection selection, bool handle_timeout_termination)
+    : ReplayBuffer(buffer_size, n_envs, observation_space.flat_dim(), act_dim,
+                   handle_timeout_termination),
+      rewards_of_(rewards_of),
+      n_sampled_goal_(n_sampled_goal),
+      selection_(selection),
+      her_ratio_(1.0 - 1.0 / (n_sampled_goal + 1.0)) {
+  if (!observation_space.is_dict())
+    throw std::invalid_argument("HerReplayBuffer needs a Dict observation (observation, "
+                                "achieved_goal, desired_goal); this one is " +
+                                observation_space.describe());
+  if (n_sampled_goal < 0) throw std::invalid_argument("n_sampled_goal must be >= 0");
+  key_index(observation_space, "observation");
+  const int achieved = key_index(observation_space, "achieved_goal");
+  const int desired = key_index(observation_space, "desired_goal");
+  goal_dim_ = observation_space.subspaces()[achieved].flat_dim();
+  if (observation_space.subspaces()[desired].flat_dim() != goal_dim_)
+    throw std::invalid_argument("HerReplayBuffer: achieved_goal and desired_goal differ in size");
+  achieved_offset_ = observation_space.offset(static_cast<size_t>(achieved));
+  desired_offset_ = observation_space.offset(static_cast<size_t>(desired));
+  ep_start_.assign(static_cast<size_t>(capacity()), 0);
+  ep_length_.assign(static_cast<size_t>(capacity()), 0);
+  current_ep_start_.assign(static_cast<size_t>(n_envs_), 0);
+}
+
+void HerReplayBuffer::add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                          const Eigen::Ref<const Eigen::MatrixXf>& buffer_actions,
+                          const VecEnv& env) {
+  // Overwriting the first transition of an old episode: the rest of it can no longer be
+  // sampled either (SB3 sets its length to 0 from here to its end).
+  for (int e = 0; e < n_envs_; ++e) {
+    const size_t k = static_cast<size_t>(pos_ * n_envs_ + e);
+    const int64_t length = ep_length_[k];
+    if (length > 0) {
+      const int64_t end = ep_start_[k] + length;
+      for (int64_t slot = pos_; slot < end + (end < pos_ ? slots_ : 0); ++slot)
+        ep_length_[static_cast<size_t>((slot % slots_) * n_envs_ + e)] = 0;
+    }
+    ep_start_[k] = current_ep_start_[static_cast<size_t>(e)];
+  }
+  ReplayBuffer::add(obs, buffer_actions, env);
+  for (int e = 0; e < n_envs_; ++e)
+    if (env.done(e)) close_episode(e);
+}
+
+void HerReplayBuffer::close_episode(int e) {
+  const int64_t start = current_ep_start_[static_cast<size_t>(e)];
+  int64_t end = pos_;
+  if (end <= start) end += slots_;  // the episode wrapped around the buffer's end
+  for (int64_t slot = start; slot < end; ++slot)
+    ep_length_[static_cast<size_t>((slot % slots_) * n_envs_ + e)] = end - start;
+  current_ep_start_[static_cast<size_t>(e)] = pos_;
+}
+
+int64_t HerReplayBuffer::valid_transitions() const {
+  return std::count_if(ep_length_.begin(), ep_length_.end(), [](int64_t l) { return l > 0; });
+}
+
+void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const {
+  const int64_t filled = size();
+  if (filled == 0 || valid_transitions() == 0)
+    throw std::logic_error(
+        "HerReplayBuffer: no finished episode to sample from yet; choose learning_starts "
+        "greater than the longest episode (SB3 says the same)");
+  if (batch.obs.cols() != batch_size) {
+    batch.obs.resize(obs_.rows(), batch_size);
+    batch.next_obs.resize(obs_.rows(), batch_size);
+    batch.actions.resize(actions_.rows(), batch_size);
+    batch.rewards.resize(batch_size);
+    batch.dones.resize(batch_size);
+  }
+  const int n_virtual = static_cast<int>(her_ratio_ * batch_size);
+  achieved_scratch_.resize(goal_dim_, n_virtual);
+  goal_scratch_.resize(goal_dim_, n_virtual);
+  reward_scratch_.resize(n_virtual);
+  for (int j = 0; j < batch_size; ++j) {
+    // Uniform over the valid transitions (SB3: np.random.choice(valid_indices)): draw among
+    // the filled columns until one belongs to a finished, intact episode.
+    int64_t k = 0;
+    do {
+      k = static_cast<int64_t>(rng.below(static_cast<uint64_t>(filled)));
+    } while (ep_length_[static_cast<size_t>(k)] == 0);
+    batch.obs.col(j) = obs_.col(k);
+    batch.next_obs.col(j) = next_obs_.col(k);
+    batch.actions.col(j) = actions_.col(k);
+    batch.rewards(j) = rewards_(k);
+    batch.dones(j) = dones_(k);
+    if (j >= n_virtual) continue;
+    // A virtual transition: a new desired goal from the same episode (SB3 _sample_goals).
+    const int64_t slot = k / n_envs_, e = k % n_envs_;
+    const int64_t start = ep_start_[static_cast<size_t>(k)], length = ep_length_[static_cast<size_t>(k)];
+    int64_t index = 0;  // within the episode
+    switch (selection_) {
+      case GoalSelection::kFinal:
+        index = length - 1;
+        break;
+      case GoalSelection::kFuture: {
+        const int64_t current = ((slot - start) % slots_ + slots_) % slots_;
+        index = current + static_cast<int64_t>(rng.below(static_cast<uint64_t>(length - current)));
+        break;
+      }
+      case GoalSelection::kEpisode:
+        index = static_cast<int64_t>(rng.below(static_cast<uint64_t>(length)));
+        break;
+    }
+    const int64_t goal_column = ((start + index) % slots_) * n_envs_ + e;
+    const auto new_goal = next_obs_.col(goal_column).segment(achieved_offset_, goal_dim_);
+    batch.obs.col(j).segment(desired_offset_, goal_dim_) = new_goal;
+    batch.next_obs.col(j).segment(desired_offset_, goal_dim_) = new_goal;
+    goal_scratch_.col(j) = new_goal;
+    // r_t = reward(next achieved goal, desired goal): s_{t+1} holds what a_t achieved.
+    achieved_scratch_.col(j) = batch.next_obs.col(j).segment(achieved_offset_, goal_dim_);
+  }
+  if (n_virtual > 0) {
+    rewards_of_.compute_reward(achieved_scratch_, goal_scratch_, reward_scratch_);
+    batch.rewards.head(n_virtual) = reward_scratch_;
+  }
+}
+
+void HerReplayBuffer::write_state(StateWriter out) const {
+  ReplayBuffer::write_state(out);
+  out.put_vector("her/ep_start", ep_start_);
+  out.put_vector("her/ep_length", ep_length_);
+  out.put_vector("her/current_ep_start", current_ep_start_);
+}
+
+void HerReplayBuffer::read_state(const StateReader& in) {
+  ReplayBuffer::read_state(in);
+  ep_start_ = in.get_span<int64_t>("her/ep_start", capacity());
+  ep_length_ = in.get_span<int64_t>("her/ep_length", capacity());
+  current_ep_start_ = in.get_span<int64_t>("her/current_ep_start", n_envs_);
+  // A checkpoint is untrusted: indices must stay inside the buffer.
+  for (size_t k = 0; k < ep_length_.size(); ++k)
+    if (ep_start_[k] < 0 || ep_start_[k] >= slots_ || ep_length_[k] < 0 || ep_length_[k] > slots_)
+      throw StateMismatch("checkpoint HER buffer has an episode outside the buffer");
+  for (int64_t s : current_ep_start_)
+    if (s < 0 || s >= slots_) throw StateMismatch("checkpoint HER buffer has a bad episode start");
+}
+
+}  // namespace rlrun
