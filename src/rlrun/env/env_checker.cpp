@@ -141,7 +141,6 @@ class Checker {
   // seed_, resetting (without a seed) whenever an episode ends.
   std::vector<Record> rollout() {
     const Space& act_space = env_.action_space();
-    const Space& obs_space = env_.observation_space();
     Rng action_rng(seed_);
     const size_t act_dim = static_cast<size_t>(act_space.flat_dim());
     std::vector<float> action(act_dim * agents());
