@@ -47,7 +47,9 @@ def main() -> int:
         dirs[:] = sorted(d for d in dirs if d != "__pycache__")
         data = os.path.relpath(root, args.package).split(os.sep)[0] == "share"
         for name in sorted(names):
-            if data or name.endswith((".py", ".so")):
+            # rlrun-sumo-worker: TrafficNetwork-v0's SUMO worker program, found beside the
+            # extension module (as librlrun_libsumo.so, which it loads).
+            if data or name.endswith((".py", ".so")) or name == "rlrun-sumo-worker":
                 path = os.path.join(root, name)
                 files.append((os.path.join("rlrun", os.path.relpath(path, args.package)), path))
     if not any(arc.endswith(".so") for arc, _ in files):
@@ -90,7 +92,8 @@ def main() -> int:
 
         for arcname, path in files:
             with open(path, "rb") as f:
-                add(arcname, f.read(), 0o755 if path.endswith(".so") else 0o644)
+                executable = path.endswith(".so") or path.endswith("rlrun-sumo-worker")
+                add(arcname, f.read(), 0o755 if executable else 0o644)
         add(f"{dist_info}/METADATA", metadata.encode())
         add(f"{dist_info}/WHEEL", wheel.encode())
         add(f"{dist_info}/top_level.txt", b"rlrun\n")

@@ -31,6 +31,10 @@ class WheelInVirtualenv(TempDirMixin, unittest.TestCase):
             for data in ("configs/cartpole_ppo.yaml", "scenarios/grasp/lift.yaml",
                          "sumo_data/single_intersection/single.sumocfg"):
                 self.assertIn("rlrun/share/rlrun/" + data, names)
+            # TrafficNetwork-v0's SUMO worker and the libsumo module it loads, executable.
+            for helper in ("rlrun/rlrun-sumo-worker", "rlrun/librlrun_libsumo.so"):
+                self.assertIn(helper, names)
+                self.assertTrue((whl.getinfo(helper).external_attr >> 16) & 0o100)
             record = whl.read(f"rlrun-{rlrun.__version__}.dist-info/RECORD").decode()
             self.assertIn("rlrun/__init__.py,sha256=", record)
 
@@ -51,6 +55,9 @@ class WheelInVirtualenv(TempDirMixin, unittest.TestCase):
             "print('ok', obs.shape, r)\n"
             "grasp = rlrun.make('GripperLift-v0')  # reads rlrun/share/rlrun/scenarios/grasp/lift.yaml\n"
             "print('grasp', grasp.reset(seed=0)[0].shape)\n"
+            "# 16 traffic lights over libsumo, two SUMOs in the package's own worker processes\n"
+            "net = rlrun.make_vec('TrafficNetwork-v0', 2, num_seconds=30)\n"
+            "print('network', net.reset(seed=0)[0].shape)\n"
         )
         run = subprocess.run([os.path.join(venv, "bin", "python"), "-c", script], cwd=self.tmp,
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
@@ -58,6 +65,7 @@ class WheelInVirtualenv(TempDirMixin, unittest.TestCase):
         self.assertEqual(run.returncode, 0, run.stdout)
         self.assertIn("ok (4,) 1.0", run.stdout)
         self.assertIn("grasp (26,)", run.stdout)
+        self.assertIn("network (32, 29)", run.stdout)
 
 
 if __name__ == "__main__":
