@@ -67,8 +67,11 @@ void HerReplayBuffer::add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
     const int64_t length = ep_length_[k];
     if (length > 0) {
       const int64_t end = ep_start_[k] + length;
-      for (int64_t slot = pos_; slot < end + (end < pos_ ? slots_ : 0); ++slot)
-        ep_length_[static_cast<size_t>((slot % slots_) * n_envs_ + e)] = 0;
+      for (int64_t slot = pos_; slot < end; ++slot) {
+        int64_t& old_length = ep_length_[static_cast<size_t>((slot % slots_) * n_envs_ + e)];
+        valid_ -= old_length > 0;
+        old_length = 0;
+      }
     }
     ep_start_[k] = current_ep_start_[static_cast<size_t>(e)];
   }
@@ -83,26 +86,17 @@ void HerReplayBuffer::close_episode(int e) {
   if (end <= start) end += slots_;  // the episode wrapped around the buffer's end
   for (int64_t slot = start; slot < end; ++slot)
     ep_length_[static_cast<size_t>((slot % slots_) * n_envs_ + e)] = end - start;
+  valid_ += end - start;  // the episode's slots were not valid before (its own, still open)
   current_ep_start_[static_cast<size_t>(e)] = pos_;
-}
-
-int64_t HerReplayBuffer::valid_transitions() const {
-  return std::count_if(ep_length_.begin(), ep_length_.end(), [](int64_t l) { return l > 0; });
 }
 
 void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const {
   const int64_t filled = size();
-  if (filled == 0 || valid_transitions() == 0)
+  if (filled == 0 || valid_ == 0)
     throw std::logic_error(
         "HerReplayBuffer: no finished episode to sample from yet; choose learning_starts "
         "greater than the longest episode (SB3 says the same)");
-  if (batch.obs.cols() != batch_size) {
-    batch.obs.resize(obs_.rows(), batch_size);
-    batch.next_obs.resize(obs_.rows(), batch_size);
-    batch.actions.resize(actions_.rows(), batch_size);
-    batch.rewards.resize(batch_size);
-    batch.dones.resize(batch_size);
-  }
+  size_batch(batch_size, batch);
   const int n_virtual = static_cast<int>(her_ratio_ * batch_size);
   achieved_scratch_.resize(goal_dim_, n_virtual);
   goal_scratch_.resize(goal_dim_, n_virtual);
@@ -169,6 +163,7 @@ void HerReplayBuffer::read_state(const StateReader& in) {
       throw StateMismatch("checkpoint HER buffer has an episode outside the buffer");
   for (int64_t s : current_ep_start_)
     if (s < 0 || s >= slots_) throw StateMismatch("checkpoint HER buffer has a bad episode start");
+  valid_ = std::count_if(ep_length_.begin(), ep_length_.end(), [](int64_t l) { return l > 0; });
 }
 
 }  // namespace rlrun

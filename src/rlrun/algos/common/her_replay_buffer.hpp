@@ -49,7 +49,7 @@ class HerReplayBuffer : public ReplayBuffer {
 
   double her_ratio() const { return her_ratio_; }
   // Finished transitions that can be sampled.
-  int64_t valid_transitions() const;
+  int64_t valid_transitions() const { return valid_; }
 
   void write_state(StateWriter out) const override;
   void read_state(const StateReader& in) override;
@@ -67,6 +67,7 @@ class HerReplayBuffer : public ReplayBuffer {
   // Per column (slot * n_envs + env), as SB3's (buffer_size, n_envs) arrays.
   std::vector<int64_t> ep_start_, ep_length_;
   std::vector<int64_t> current_ep_start_;  // per env
+  int64_t valid_ = 0;                      // entries of ep_length_ > 0, kept as they change
   // sample() scratch: the virtual transitions' next achieved goals and new goals.
   mutable Eigen::MatrixXf achieved_scratch_, goal_scratch_;
   mutable Eigen::RowVectorXf reward_scratch_;

@@ -41,16 +41,19 @@ void ReplayBuffer::add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
   }
 }
 
+void ReplayBuffer::size_batch(int batch_size, ReplayBatch& batch) const {
+  if (batch.obs.cols() == batch_size) return;
+  batch.obs.resize(obs_.rows(), batch_size);
+  batch.next_obs.resize(obs_.rows(), batch_size);
+  batch.actions.resize(actions_.rows(), batch_size);
+  batch.rewards.resize(batch_size);
+  batch.dones.resize(batch_size);
+}
+
 void ReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const {
   const int64_t upper = full_ ? slots_ : pos_;
   if (upper == 0) throw std::logic_error("ReplayBuffer::sample on an empty buffer");
-  if (batch.obs.cols() != batch_size) {
-    batch.obs.resize(obs_.rows(), batch_size);
-    batch.next_obs.resize(obs_.rows(), batch_size);
-    batch.actions.resize(actions_.rows(), batch_size);
-    batch.rewards.resize(batch_size);
-    batch.dones.resize(batch_size);
-  }
+  size_batch(batch_size, batch);
   for (int j = 0; j < batch_size; ++j) {
     // SB3: batch_inds = randint(0, upper_bound); env_indices = randint(0, n_envs).
     const int64_t slot = static_cast<int64_t>(rng.below(static_cast<uint64_t>(upper)));

@@ -42,6 +42,9 @@ class ReplayBuffer {
   virtual void read_state(const StateReader& in);
 
  protected:  // HerReplayBuffer (her_replay_buffer.hpp) relabels these
+  // Sizes `batch` for `batch_size` samples (a no-op when it already has that size).
+  void size_batch(int batch_size, ReplayBatch& batch) const;
+
   int64_t slots_;  // per env
   int n_envs_;
   bool handle_timeout_termination_;

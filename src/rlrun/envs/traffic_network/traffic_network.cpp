@@ -193,6 +193,7 @@ std::string TrafficNetwork::actuated_programs_file() const {
 }
 
 void TrafficNetwork::start_simulation(uint64_t seed) {
+  worker_ = nullptr;
   sumo_.reset();  // the previous episode's SUMO ends first
   running_control_ = control_;
   NetworkScenario scenario = scenario_;
@@ -208,10 +209,14 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   // look for the schema under SUMO_HOME, or on the web). sumo-rl's waiting-time memory.
   launch.extra_args = {"--tripinfo-output", tripinfo_path_, "--xml-validation", "never",
                        "--xml-validation.routes", "never", "--waiting-time-memory", "1000"};
-  if (config_.own_process)
-    sumo_ = std::make_unique<NetworkWorker>(config_.backend, launch);
-  else
+  worker_ = nullptr;
+  if (config_.own_process) {
+    auto worker = std::make_unique<NetworkWorker>(config_.backend, launch);
+    worker_ = worker.get();
+    sumo_ = std::move(worker);
+  } else {
     sumo_ = start_network_sumo(config_.backend, launch);
+  }
   try {
     outgoing_subscribed_ = reward_ == RewardFunction::kPressure || watch_outgoing_;
     sumo_->subscribe_lanes(outgoing_subscribed_ ? lanes_
@@ -238,13 +243,12 @@ void TrafficNetwork::advance(int seconds) {
 }
 
 void TrafficNetwork::start_advance(int seconds) {
-  if (auto* worker = dynamic_cast<NetworkWorker*>(sumo_.get()))
-    worker->start_advance(reading_.time + seconds);
+  if (worker_) worker_->start_advance(reading_.time + seconds);
 }
 
 void TrafficNetwork::finish_advance(int seconds) {
-  if (auto* worker = dynamic_cast<NetworkWorker*>(sumo_.get()))
-    worker->finish_advance(reading_);
+  if (worker_)
+    worker_->finish_advance(reading_);
   else
     sumo_->advance(reading_.time + seconds, reading_);
   reading_.lanes.resize(lanes_.size());  // lanes not subscribed read as empty

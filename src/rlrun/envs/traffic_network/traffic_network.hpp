@@ -197,6 +197,7 @@ class TrafficNetwork : public Env, public SplitStep {
   Control running_control_ = Control::kAgents;
 
   std::unique_ptr<traffic::NetworkConnection> sumo_;
+  traffic::NetworkWorker* worker_ = nullptr;  // sumo_ when it is a worker (steps in two halves)
   // The last advance's news. render() may subscribe to the vehicles (it is const, like
   // Gymnasium's render(); the simulation is not changed by it).
   mutable traffic::NetworkReading reading_;
