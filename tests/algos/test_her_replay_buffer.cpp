@@ -73,7 +73,7 @@ struct Setup {
       : env(make(lengths, terminate)) {
     goals = dynamic_cast<const LineGoalEnv*>(goal_env_of(env.env(0)));
     buffer = std::make_unique<HerReplayBuffer>(size, env.num_envs(), env.observation_space(), 1,
-                                               *goals, n_sampled_goal, selection);
+                                               goals, n_sampled_goal, selection);
     env.reset();
   }
   static std::vector<EnvPtr> make(const std::vector<int>& lengths, bool terminate) {
@@ -199,18 +199,18 @@ TEST_CASE("HER: n_sampled_goal 0 samples real transitions only; errors; exact st
   CHECK_THROWS_AS(parse_goal_selection("random"), std::invalid_argument);
   CHECK(parse_goal_selection("final") == GoalSelection::kFinal);
   const LineGoalEnv goals(0, 3, false);
-  CHECK_THROWS_WITH(HerReplayBuffer(10, 1, Space::box(0.0f, 1.0f, {3}), 1, goals, 4, GoalSelection::kFuture),
+  CHECK_THROWS_WITH(HerReplayBuffer(10, 1, Space::box(0.0f, 1.0f, {3}), 1, &goals, 4, GoalSelection::kFuture),
                     Catch::Contains("Dict observation"));
   CHECK_THROWS_WITH(HerReplayBuffer(10, 1, Space::dict({{"achieved_goal", Space::box(0.0f, 1.0f, {2})},
                                                         {"observation", Space::box(0.0f, 1.0f, {2})}}),
-                                    1, goals, 4, GoalSelection::kFuture),
+                                    1, &goals, 4, GoalSelection::kFuture),
                     Catch::Contains("desired_goal"));
 
   // Resume: a restored buffer samples exactly what the original samples.
   s.steps(10);
   TensorMap tensors;
   s.buffer->write_state(StateWriter(tensors, "buffer/"));
-  HerReplayBuffer restored(40, 1, s.env.observation_space(), 1, *s.goals, 4, GoalSelection::kFuture);
+  HerReplayBuffer restored(40, 1, s.env.observation_space(), 1, s.goals, 4, GoalSelection::kFuture);
   restored.read_state(StateReader(tensors, "buffer/"));
   Rng a(9), b(9);
   ReplayBatch x, y;

@@ -128,7 +128,7 @@ struct LoopTrace {
 
 LoopTrace run_loop(OffPolicyConfig config, int n_envs, int episode_length, int64_t total) {
   VecEnv env = constant_vec_env(n_envs, /*truncate=*/false, episode_length);
-  OffPolicyState state(config, n_envs, 1, 1);
+  OffPolicyState state(config, n_envs, env.observation_space(), 1);
   LoopTrace trace;
   int64_t num_timesteps = 0;
   OffPolicyCallbacks callbacks;

@@ -199,6 +199,15 @@ TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][re
   check_resume_equals_uninterrupted(td3, "KILL");
 }
 
+TEST_CASE("resume: DQN with HerReplayBuffer resumes exactly (episode bookkeeping in the checkpoint)",
+          "[cli][resume][her]") {
+  const ResumeCase her{"bitflipping_dqn_her.yaml", "bitflipping_dqn_her",
+                       " --set run.total_timesteps=3000 --set checkpoint.freq=1000"
+                       " --set eval.freq=0",
+                       "step_1000.zip", 1, false};
+  check_resume_equals_uninterrupted(her, "KILL");
+}
+
 TEST_CASE("resume: --timesteps extends a finished run from its last checkpoint", "[cli][resume]") {
   TempDir dir("resume_extend");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";

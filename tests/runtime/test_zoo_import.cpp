@@ -320,3 +320,37 @@ TEST_CASE("configs/zoo: the importer's files are experiments rlrun reads", "[zoo
   }
   CHECK(files >= 14);
 }
+
+TEST_CASE("zoo import: a HER entry (replay_buffer_class, replay_buffer_kwargs as a Python dict)",
+          "[zoo][her]") {
+  TempDir dir("zoo_her");
+  Registry registry = make_builtin_registry();
+  // The shape of rl-zoo's her entries (hyperparams/tqc.yml FetchReach-v1), on a goal env rlrun has.
+  const std::string file = write_file(dir, "dqn.yml", R"zoo(BitFlippingEnv-v0:
+  n_timesteps: 3000
+  policy: 'MultiInputPolicy'
+  learning_starts: 100
+  replay_buffer_class: HerReplayBuffer
+  replay_buffer_kwargs: "dict(
+    goal_selection_strategy='final',
+    n_sampled_goal=2,
+  )"
+)zoo");
+  const ZooImport imported =
+      translate_zoo_entry(read_zoo_entry(file, "BitFlippingEnv-v0", ""), registry);
+  const YAML::Node& a = imported.experiment["algo"];
+  CHECK(a["replay_buffer_class"].as<std::string>() == "HerReplayBuffer");
+  CHECK(a["replay_buffer_kwargs"]["goal_selection_strategy"].as<std::string>() == "final");
+  CHECK(a["replay_buffer_kwargs"]["n_sampled_goal"].as<int>() == 2);
+  CHECK(import_and_train(file, "dqn", "BitFlippingEnv-v0", dir / "runs", true) == "");
+  // A kwarg HerReplayBuffer does not have is named with the closest one.
+  TempDir bad_dir("zoo_her_bad");
+  const std::string bad = write_file(bad_dir, "dqn.yml", R"zoo(BitFlippingEnv-v0:
+  n_timesteps: 3000
+  policy: 'MultiInputPolicy'
+  replay_buffer_class: HerReplayBuffer
+  replay_buffer_kwargs: "dict(n_sampled_goals=2)"
+)zoo");
+  CHECK_THAT(import_and_train(bad, "dqn", "BitFlippingEnv-v0", dir / "runs_bad", false),
+             Catch::Contains("n_sampled_goal"));
+}

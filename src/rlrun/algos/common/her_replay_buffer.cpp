@@ -31,7 +31,7 @@ int key_index(const Space& space, const std::string& key) {
 }  // namespace
 
 HerReplayBuffer::HerReplayBuffer(int64_t buffer_size, int n_envs, const Space& observation_space,
-                                 int act_dim, const GoalEnv& rewards_of, int n_sampled_goal,
+                                 int act_dim, const GoalEnv* rewards_of, int n_sampled_goal,
                                  GoalSelection selection, bool handle_timeout_termination)
     : ReplayBuffer(buffer_size, n_envs, observation_space.flat_dim(), act_dim,
                    handle_timeout_termination),
@@ -96,6 +96,7 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
     throw std::logic_error(
         "HerReplayBuffer: no finished episode to sample from yet; choose learning_starts "
         "greater than the longest episode (SB3 says the same)");
+  if (!rewards_of_) throw std::logic_error("HerReplayBuffer: no goal env to recompute rewards with");
   size_batch(batch_size, batch);
   const int n_virtual = static_cast<int>(her_ratio_ * batch_size);
   achieved_scratch_.resize(goal_dim_, n_virtual);
@@ -140,7 +141,7 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
     achieved_scratch_.col(j) = batch.next_obs.col(j).segment(achieved_offset_, goal_dim_);
   }
   if (n_virtual > 0) {
-    rewards_of_.compute_reward(achieved_scratch_, goal_scratch_, reward_scratch_);
+    rewards_of_->compute_reward(achieved_scratch_, goal_scratch_, reward_scratch_);
     batch.rewards.head(n_virtual) = reward_scratch_;
   }
 }

@@ -36,15 +36,19 @@ class HerReplayBuffer : public ReplayBuffer {
  public:
   // `observation_space`: a Dict with achieved_goal, desired_goal (same shape) and observation;
   // `rewards_of`: the env's compute_reward (the first env's, as SB3's env_method(indices=[0])),
-  // alive as long as the buffer. Throws std::invalid_argument otherwise.
+  // alive as long as the buffer says so, or nullptr until set_goal_env (a buffer restored from a
+  // checkpoint before the env exists). Throws std::invalid_argument otherwise.
   HerReplayBuffer(int64_t buffer_size, int n_envs, const Space& observation_space, int act_dim,
-                  const GoalEnv& rewards_of, int n_sampled_goal, GoalSelection selection,
+                  const GoalEnv* rewards_of, int n_sampled_goal, GoalSelection selection,
                   bool handle_timeout_termination = true);
+
+  // The env whose compute_reward relabels (SB3 sets HerReplayBuffer.env in learn / set_env).
+  void set_goal_env(const GoalEnv* rewards_of) { rewards_of_ = rewards_of; }
 
   void add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
            const Eigen::Ref<const Eigen::MatrixXf>& buffer_actions, const VecEnv& env) override;
   // Throws std::logic_error before the first episode has ended (SB3: "Unable to sample before
-  // the end of the first episode").
+  // the end of the first episode") or without a goal env.
   void sample(int batch_size, Rng& rng, ReplayBatch& batch) const override;
 
   double her_ratio() const { return her_ratio_; }
@@ -59,7 +63,7 @@ class HerReplayBuffer : public ReplayBuffer {
   // [current_ep_start, pos).
   void close_episode(int e);
 
-  const GoalEnv& rewards_of_;
+  const GoalEnv* rewards_of_;
   int n_sampled_goal_;
   GoalSelection selection_;
   double her_ratio_;

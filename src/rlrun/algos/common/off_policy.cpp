@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rlrun/core/resource_limits.hpp"
+#include "rlrun/env/goal_env.hpp"
 #include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
@@ -80,7 +82,7 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
         break;
       }
       state.episode_stats.update(env);
-      state.buffer.add(last_obs, buffer_actions, env);
+      state.buffer->add(last_obs, buffer_actions, env);
       last_obs = env.obs();
       state.progress_remaining =
           1.0 - static_cast<double>(num_timesteps) / static_cast<double>(total_timesteps);
@@ -103,19 +105,56 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
   }
 }
 
+OffPolicyState::OffPolicyState(const OffPolicyConfig& config, int n_envs,
+                               const Space& observation_space, int act_dim) {
+  if (config.her()) {
+    const ReplayBufferKwargs& kw = config.replay_buffer_kwargs;
+    auto her_buffer = std::make_unique<HerReplayBuffer>(
+        config.buffer_size, n_envs, observation_space, act_dim, nullptr, kw.n_sampled_goal,
+        parse_goal_selection(kw.goal_selection_strategy), config.handle_timeout_termination);
+    her = her_buffer.get();
+    buffer = std::move(her_buffer);
+  } else {
+    buffer = std::make_unique<ReplayBuffer>(config.buffer_size, n_envs, observation_space.flat_dim(),
+                                            act_dim, config.handle_timeout_termination);
+  }
+}
+
 void OffPolicyState::write_state(StateWriter out) const {
-  buffer.write_state(out.sub("replay_buffer"));
+  buffer->write_state(out.sub("replay_buffer"));
   episode_stats.write_state(out.sub("episode_stats"));
   out.put_int("episode_num", episode_num);
   out.put_double("progress_remaining", progress_remaining);
 }
 
 void OffPolicyState::read_state(const StateReader& in) {
-  buffer.read_state(in.sub("replay_buffer"));
+  buffer->read_state(in.sub("replay_buffer"));
   episode_stats.read_state(in.sub("episode_stats"));
   episode_num = in.get_int("episode_num");
   progress_remaining = in.get_double("progress_remaining");
   restored = true;
+}
+
+void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
+                         const AlgorithmSetup& setup) {
+  check_replay_memory(out, config.buffer_size, setup);
+  if (!config.her()) return;
+  const Space& obs = setup.observation_space;
+  const auto has = [&](const char* key) {
+    return obs.is_dict() &&
+           std::find(obs.keys().begin(), obs.keys().end(), key) != obs.keys().end();
+  };
+  if (!has("observation") || !has("achieved_goal") || !has("desired_goal")) {
+    out.push_back({"replay_buffer_class",
+                   "HerReplayBuffer needs a goal-conditioned env (a Dict observation with "
+                   "observation, achieved_goal and desired_goal, and compute_reward); this one "
+                   "observes " + obs.describe()});
+    return;
+  }
+  // The HER bookkeeping: two int64 per transition.
+  const std::string problem = memory_problem(
+      static_cast<double>(config.buffer_size) * 2.0 * sizeof(int64_t), "HER's episode indices");
+  if (!problem.empty()) out.push_back({"buffer_size", problem});
 }
 
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
@@ -131,7 +170,7 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
   // Each critic, its target and the second core's activations of both.
   check_network_memory(out, "policy.net_arch", obs + act, net_arch.qf, 1, 4 * n_critics,
                        config.batch_size);
-  check_replay_memory(out, config.buffer_size, setup);
+  check_replay_buffer(out, config, setup);
 }
 
 OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config,
@@ -163,13 +202,12 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
 
 OffPolicyState& OffPolicyAlgorithm::state() {
   if (!state_)
-    state_.emplace(config_, setup_.n_envs, setup_.observation_space.flat_dim(),
-                   buffer_action_dim_);
+    state_.emplace(config_, setup_.n_envs, setup_.observation_space, buffer_action_dim_);
   return *state_;
 }
 
 const ReplayBatch& OffPolicyAlgorithm::sample_batch() {
-  state_->buffer.sample(config_.batch_size, replay_rng_, batch_);
+  state_->buffer->sample(config_.batch_size, replay_rng_, batch_);
   return batch_;
 }
 
@@ -178,6 +216,26 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
     throw std::invalid_argument(id_ + ": env has " + std::to_string(env.num_envs()) +
                                 " copies, the algorithm was built for " +
                                 std::to_string(setup_.n_envs));
+  if (HerReplayBuffer* her = state().her) {
+    // SB3 HerReplayBuffer.set_env: rewards of relabelled goals come from the first env's
+    // compute_reward (a restored buffer gets the env here too).
+    const GoalEnv* goals = goal_env_of(env.env(0));
+    if (!goals)
+      throw std::invalid_argument(
+          id_ + ": replay_buffer_class HerReplayBuffer needs a goal-conditioned env with "
+                "compute_reward; " + env.env(0).id() + " has none (rlrun's goal envs: "
+                "BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0)");
+    // SB3 stores VecNormalize's original observations and rewards and normalises batches at
+    // sample time, after relabelling; rlrun's buffer keeps what the VecEnv hands out, so a
+    // normalised achieved goal would become a desired goal in another key's scale and
+    // compute_reward would see normalised positions. Refused until the buffer keeps originals.
+    if (env.step_hook())
+      throw std::invalid_argument(
+          id_ + ": replay_buffer_class HerReplayBuffer with env.normalize is not supported "
+                "(relabelled goals and rewards would mix normalised and raw values); set "
+                "env.normalize: false");
+    her->set_goal_env(goals);
+  }
   Logger* logger = hooks.logger;
   OffPolicyCallbacks callbacks;
   callbacks.select_actions = [this](const Eigen::MatrixXf& obs, bool warmup,

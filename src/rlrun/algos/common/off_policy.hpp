@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -18,6 +19,7 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
+#include "rlrun/algos/common/her_replay_buffer.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_fields.hpp"
@@ -33,6 +35,26 @@ struct TrainFreq {
 void decode(const ConfigNode& node, TrainFreq& out);
 YAML::Node encode(const TrainFreq& value);
 
+// SB3 replay_buffer_kwargs of HerReplayBuffer (stable_baselines3/her/her_replay_buffer.py);
+// ignored by the plain ReplayBuffer.
+struct ReplayBufferKwargs {
+  int n_sampled_goal = 4;                          // virtual transitions per real one
+  std::string goal_selection_strategy = "future";  // future, final or episode
+  bool copy_info_dict = false;  // SB3's option to pass infos to compute_reward; rlrun's don't read them
+
+  template <class V>
+  void visit(V& v) {
+    v("n_sampled_goal", n_sampled_goal,
+      "HER: virtual transitions per real one (her_ratio = 1 - 1 / (n_sampled_goal + 1))",
+      in_range(0, 1000));
+    v("goal_selection_strategy", goal_selection_strategy,
+      "HER: new goals from the episode's future (inclusive), its final state, or anywhere in it",
+      OneOf{{"future", "final", "episode"}});
+    v("copy_info_dict", copy_info_dict,
+      "HER: store infos for compute_reward (SB3 option; rlrun's goal envs do not read infos)");
+  }
+};
+
 struct OffPolicyConfig {
   int64_t buffer_size = 1000000;   // transitions kept (all envs together)
   int64_t learning_starts = 100;   // env steps of random actions before learning
@@ -42,6 +64,11 @@ struct OffPolicyConfig {
   TrainFreq train_freq;            // collect this many steps/episodes between updates
   int gradient_steps = 1;          // updates after each collection; -1 = as many as env steps
   bool handle_timeout_termination = true;  // bootstrap truncated (time-limit) transitions
+  // SB3 replay_buffer_class: ReplayBuffer, or HerReplayBuffer for goal-conditioned envs.
+  std::string replay_buffer_class = "ReplayBuffer";
+  ReplayBufferKwargs replay_buffer_kwargs;
+
+  bool her() const { return replay_buffer_class == "HerReplayBuffer"; }
 
   template <class V>
   void visit(V& v) {
@@ -55,6 +82,11 @@ struct OffPolicyConfig {
     v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)");
     v("handle_timeout_termination", handle_timeout_termination,
       "treat time-limit truncation as not done (bootstrap), as SB3");
+    v("replay_buffer_class", replay_buffer_class,
+      "ReplayBuffer, or HerReplayBuffer (Hindsight Experience Replay) for a goal-conditioned env",
+      OneOf{{"ReplayBuffer", "HerReplayBuffer"}});
+    v("replay_buffer_kwargs", replay_buffer_kwargs,
+      "HerReplayBuffer options: n_sampled_goal, goal_selection_strategy");
   }
 };
 
@@ -81,10 +113,13 @@ struct OffPolicyCallbacks {
 
 // Off-policy state that persists across learn() calls (and into checkpoints).
 struct OffPolicyState {
-  OffPolicyState(const OffPolicyConfig& config, int n_envs, int obs_dim, int act_dim)
-      : buffer(config.buffer_size, n_envs, obs_dim, act_dim, config.handle_timeout_termination) {}
+  // The buffer replay_buffer_class names. Throws std::invalid_argument for HER without a
+  // goal-conditioned Dict observation.
+  OffPolicyState(const OffPolicyConfig& config, int n_envs, const Space& observation_space,
+                 int act_dim);
 
-  ReplayBuffer buffer;
+  std::unique_ptr<ReplayBuffer> buffer;
+  HerReplayBuffer* her = nullptr;  // the same buffer when it relabels goals
   EpisodeStats episode_stats;
   int64_t episode_num = 0;
   double progress_remaining = 1.0;
@@ -102,6 +137,12 @@ struct OffPolicyState {
 void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
                       const OffPolicyConfig& config, OffPolicyState& state,
                       const OffPolicyCallbacks& callbacks, int64_t& num_timesteps);
+
+// What every off-policy algorithm checks of the replay buffer: its memory, and for
+// HerReplayBuffer a goal-conditioned observation (Dict with observation, achieved_goal and
+// desired_goal of one size).
+void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
+                         const AlgorithmSetup& setup);
 
 // SAC's and TD3's checks: a bounded Box action space, gradient_steps, net_arch, the memory of the actor
 // (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the second core's
@@ -134,7 +175,7 @@ class OffPolicyAlgorithm : public Algorithm {
 
   int64_t n_updates() const { return n_updates_; }
   // Throws std::bad_optional_access before the first learn() or resume.
-  const ReplayBuffer& replay_buffer() const { return state_.value().buffer; }
+  const ReplayBuffer& replay_buffer() const { return *state_.value().buffer; }
 
  protected:
   // The replay buffer's sampling stream: seed ^ stream, checkpointed under `key`.

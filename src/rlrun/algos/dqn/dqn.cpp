@@ -50,7 +50,7 @@ ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
   // The Q-network, its target and the second core's activations of both.
   check_network_memory(out, "policy.net_arch", network_input_dim(out, setup.observation_space),
                        config.policy.net_arch, actions, 4, config.off_policy.batch_size);
-  check_replay_memory(out, config.off_policy.buffer_size, setup);
+  check_replay_buffer(out, config.off_policy, setup);
   return out;
 }
 

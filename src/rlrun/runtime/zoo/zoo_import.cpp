@@ -124,6 +124,14 @@ class Translation {
       if (!value.defined()) return;
       const YAML::Node policy = translate_policy_kwargs(value, policy_keys_, entry_.algorithm, notes);
       for (const auto& kv : policy) policy_[kv.first.Scalar()] = kv.second;
+    } else if (key == "replay_buffer_kwargs") {
+      // rl-zoo writes HerReplayBuffer's options as a Python dict string.
+      if (!value.defined()) return;
+      const PyValue kwargs = python_value(value, "replay_buffer_kwargs");
+      if (kwargs.kind != PyValue::Kind::kDict)
+        value.fail("replay_buffer_kwargs must be a dict, found " + kwargs.describe());
+      algo_param(key, value, x);
+      x["algo"][key] = to_yaml(kwargs);
     } else if (key == "normalize") {
       x["env"]["normalize"] = normalize(value);
     } else if (key == "frame_stack") {
