@@ -141,6 +141,15 @@ class RlrunEnv(_EnvBase):
             obs = _spaces.from_flat(self.observation_space, obs)
         return obs, reward, terminated, truncated, info
 
+    def compute_reward(self, achieved_goal, desired_goal, info=None):
+        """GoalEnv.compute_reward (Gymnasium-Robotics' contract) of a goal-conditioned env
+        (BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0): goals of
+        shape (goal_dim,) or (n, goal_dim), rewards of shape () or (n,). ``info`` is not read.
+        SB3's HerReplayBuffer calls it through ``env_method``."""
+        if not self._core.is_goal_env:
+            raise AttributeError(f"{self.id} is not a goal-conditioned env: it has no compute_reward")
+        return self._core.compute_reward(np.asarray(achieved_goal), np.asarray(desired_goal))
+
     def render(self):
         """An (H, W, 3) uint8 RGB frame of the current state (render_mode "rgb_array")."""
         return self._core.render()

@@ -2,10 +2,13 @@
 // python/rlrun/_env.py wraps it in a gymnasium.Env).
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <optional>
+#include <vector>
 
 #include "bindings.hpp"
 #include "rlrun/core/config_node.hpp"
+#include "rlrun/env/goal_env.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
@@ -32,6 +35,10 @@ py::dict info_dict(const Info& info) {
 }
 
 namespace {
+
+class PyEnv;
+py::array_t<float> compute_goal_reward(PyEnv& self, const py::object& achieved,
+                                       const py::object& desired);
 
 class PyEnv {
  public:
@@ -136,6 +143,36 @@ class PyEnv {
   std::vector<float> action_;
 };
 
+// GoalEnv.compute_reward(achieved_goal, desired_goal) as Gymnasium-Robotics' envs take it (what
+// SB3's HerReplayBuffer calls): goals of shape (goal_dim,) or (n, goal_dim); rewards of shape
+// () or (n,).
+py::array_t<float> compute_goal_reward(PyEnv& self, const py::object& achieved,
+                                       const py::object& desired) {
+  const GoalEnv* goals = goal_env_of(self.env());
+  if (!goals) throw py::type_error(self.env().id() + " is not a goal-conditioned env");
+  using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+  const Array a = Array::ensure(achieved), d = Array::ensure(desired);
+  if (!a || !d) throw py::type_error("compute_reward: goals must be numeric arrays");
+  if (a.ndim() != d.ndim() || a.ndim() < 1 || a.ndim() > 2)
+    throw py::value_error("compute_reward: goals must both have shape (goal_dim,) or (n, goal_dim)");
+  for (py::ssize_t i = 0; i < a.ndim(); ++i)
+    if (a.shape(i) != d.shape(i)) throw py::value_error("compute_reward: goal shapes differ");
+  const Eigen::Index n = a.ndim() == 2 ? a.shape(0) : 1;
+  const Eigen::Index dim = a.shape(a.ndim() - 1);
+  // Row-major (n, goal_dim) is column-major (goal_dim, n): one goal per column.
+  const Eigen::Map<const Eigen::MatrixXf> am(a.data(), dim, n), dm(d.data(), dim, n);
+  Eigen::RowVectorXf rewards(n);
+  goals->compute_reward(am, dm, rewards);
+  if (a.ndim() == 1) {
+    py::array_t<float> out(std::vector<py::ssize_t>{});
+    *out.mutable_data() = rewards(0);
+    return out;
+  }
+  py::array_t<float> out(n);
+  std::copy(rewards.data(), rewards.data() + n, out.mutable_data());
+  return out;
+}
+
 }  // namespace
 
 void bind_env(py::module_& m) {
@@ -145,6 +182,9 @@ void bind_env(py::module_& m) {
       .def("reset", &PyEnv::reset, py::arg("seed"))
       .def("step", &PyEnv::step, py::arg("action"))
       .def("info", [](PyEnv& self) { return info_dict(self.env().info()); })
+      .def_property_readonly("is_goal_env",
+                             [](PyEnv& self) { return goal_env_of(self.env()) != nullptr; })
+      .def("compute_reward", &compute_goal_reward, py::arg("achieved_goal"), py::arg("desired_goal"))
       .def("render", &PyEnv::render)
       .def("close", &PyEnv::close)
       .def_property_readonly("closed", [](const PyEnv& self) { return !self.env_; })

@@ -201,6 +201,30 @@ class MakeCheck(unittest.TestCase):
         gymnasium_check_env(env, skip_render_check=False)
 
 
+class GoalEnvs(unittest.TestCase):
+    """Goal-conditioned envs have GoalEnv.compute_reward for single goals and batches (SB3's
+    HerReplayBuffer calls it with (n, goal_dim) arrays), equal to the step reward."""
+
+    def test_compute_reward_matches_the_step_reward(self):
+        env = rlrun.make("BitFlippingEnv-v0", n_bits=4)
+        obs, _ = env.reset(seed=3)
+        achieved, desired = [], []
+        for t in range(4):
+            obs, reward, terminated, truncated, info = env.step(t)
+            self.assertEqual(env.compute_reward(obs["achieved_goal"], obs["desired_goal"], info), reward)
+            achieved.append(obs["achieved_goal"])
+            desired.append(obs["desired_goal"])
+            if terminated or truncated:
+                break
+        batch = env.compute_reward(np.stack(achieved), np.stack(desired), None)
+        self.assertEqual(batch.shape, (len(achieved),))
+        self.assertEqual(env.compute_reward(np.ones(4), np.ones(4), None), 0.0)
+        with self.assertRaises(ValueError):
+            env.compute_reward(np.ones(4), np.ones(3), None)
+        with self.assertRaises(AttributeError):
+            rlrun.make("CartPole-v1").compute_reward(np.zeros(1), np.zeros(1), None)
+
+
 class SameTrajectoriesAsTheCppEnvs(TempDirMixin, unittest.TestCase):
     def replay(self, env_id, episodes=2, seed=9, **kwargs):
         path = os.path.join(self.tmp, env_id + ".csv")
