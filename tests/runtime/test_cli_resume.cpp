@@ -199,6 +199,13 @@ TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][re
   check_resume_equals_uninterrupted(td3, "KILL");
 }
 
+TEST_CASE("resume: SAC with env.normalize resumes exactly (original observations in the buffer)",
+          "[cli][resume][normalize]") {
+  ResumeCase sac = kSac;
+  sac.settings += " --set env.normalize=true";
+  check_resume_equals_uninterrupted(sac, "KILL");
+}
+
 TEST_CASE("resume: DQN with HerReplayBuffer resumes exactly (episode bookkeeping in the checkpoint)",
           "[cli][resume][her]") {
   const ResumeCase her{"bitflipping_dqn_her.yaml", "bitflipping_dqn_her",

@@ -4,10 +4,12 @@
 // same raw transitions (tests/data/vec_normalize_reference.py, /usr/bin/python3).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/core/float_format.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
@@ -99,6 +101,11 @@ TEST_CASE("env.normalize matches SB3 VecNormalize's batch update with several en
     }
     input << "step " << floats(raw.obs()) << '|' << rewards << '|' << dones << '|'
           << floats(raw_final) << '\n';
+    // SB3 get_original_obs / get_original_reward: what the envs gave, as a replay buffer keeps it.
+    CHECK(vec.original_obs() == raw.obs());
+    CHECK(vec.original_rewards() == raw.rewards());
+    for (int c = 0; c < kCopies; ++c)
+      if (raw.done(c)) CHECK(vec.original_final_obs().col(c) == raw.final_obs().col(c));
     std::string got_rewards;
     for (int c = 0; c < kCopies; ++c)
       got_rewards.append(c ? " " : "").append(python_float_repr(vec.rewards()(c)));
@@ -129,6 +136,54 @@ TEST_CASE("env.normalize matches SB3 VecNormalize's batch update with several en
   // Every env finished at least once in 12 steps (lengths 2..6): terminal observations checked.
   CHECK(find_wrapper<NormalizeObservation>(vec.env(3))->statistics().count() ==
         Approx(13 * kCopies + 1e-4).epsilon(1e-12));
+}
+
+TEST_CASE("env.normalize with a replay buffer: originals stored, batches normalised when sampled",
+          "[wrappers][normalize][vec_normalize][off_policy]") {
+  // SB3 off_policy_algorithm._store_transition stores VecNormalize's original observations and
+  // rewards; ReplayBuffer._normalize_obs / _normalize_reward normalise a batch with the
+  // statistics of the time it is sampled.
+  NormalizeSetting setting;
+  setting.enabled = true;
+  std::vector<EnvPtr> envs;
+  for (int c = 0; c < kCopies; ++c) envs.push_back(add_normalization(scripted(c), setting, 0.99));
+  VecEnv vec(std::move(envs));
+  share_model_statistics(vec);
+  install_batch_normalization(vec, setting);
+  ReplayBuffer buffer(1000, kCopies, kDim, 1);
+  Eigen::MatrixXf last_original = vec.reset();
+  last_original = vec.original_obs();
+  std::vector<Eigen::VectorXf> stored;  // every original observation given to the buffer
+  std::vector<float> stored_rewards;
+  const Eigen::MatrixXf actions = Eigen::MatrixXf::Zero(1, kCopies);
+  for (int t = 0; t < 10; ++t) {
+    for (int c = 0; c < kCopies; ++c) stored.push_back(last_original.col(c));
+    vec.step(actions);
+    buffer.add(last_original, actions, vec);
+    for (int c = 0; c < kCopies; ++c) stored_rewards.push_back(static_cast<float>(vec.original_rewards()(c)));
+    last_original = vec.original_obs();
+  }
+  Rng rng(5);
+  ReplayBatch batch;
+  buffer.sample(64, rng, batch);
+  const VecStepHook& hook = *vec.step_hook();
+  Eigen::MatrixXf normalized = batch.obs;
+  Eigen::RowVectorXf scaled = batch.rewards;
+  hook.normalize_obs(normalized);
+  hook.normalize_rewards(scaled);
+  const NormalizeObservation& stats = *find_wrapper<NormalizeObservation>(vec.env(0));
+  for (int j = 0; j < 64; ++j) {
+    // The batch holds stored originals ...
+    bool found = false;
+    for (const Eigen::VectorXf& o : stored) found = found || o == batch.obs.col(j);
+    CHECK(found);
+    CHECK(std::find(stored_rewards.begin(), stored_rewards.end(), batch.rewards(j)) != stored_rewards.end());
+    // ... and normalising it uses the current statistics.
+    Eigen::VectorXf expected = batch.obs.col(j);
+    stats.normalize(std::span<float>(expected.data(), static_cast<size_t>(kDim)));
+    CHECK(normalized.col(j) == expected);
+  }
+  CHECK(scaled != batch.rewards);
 }
 
 TEST_CASE("env.normalize: an evaluation env is frozen and leaves rewards unscaled",

@@ -66,7 +66,12 @@ const Eigen::MatrixXf& VecEnv::reset() {
   // SB3 _reset_seeds: a seed applies to one reset only.
   seeds_.assign(seeds_.size(), std::nullopt);
   final_obs_.setConstant(std::numeric_limits<float>::quiet_NaN());
-  if (hook_) hook_->after_reset(obs_);
+  if (hook_) {
+    original_obs_ = obs_;
+    original_final_obs_ = final_obs_;
+    original_rewards_ = rewards_;
+    hook_->after_reset(obs_);
+  }
   return obs_;
 }
 
@@ -79,6 +84,10 @@ void VecEnv::set_step_hook(std::unique_ptr<VecStepHook> hook) {
 
 void VecEnv::run_step_hook() {
   for (size_t i = 0; i < done_.size(); ++i) done_[i] = terminated_[i] || truncated_[i];
+  // SB3 VecNormalize keeps old_obs / old_reward: the values as the envs gave them.
+  original_obs_ = obs_;
+  original_final_obs_ = final_obs_;
+  original_rewards_ = rewards_;
   hook_->after_step(obs_, final_obs_, rewards_, done_);
 }
 

@@ -42,6 +42,10 @@ class VecStepHook {
   // finished episodes' last observations (columns where `done`), `rewards` the step's rewards.
   virtual void after_step(Eigen::MatrixXf& obs, Eigen::MatrixXf& final_obs,
                           Eigen::VectorXd& rewards, std::span<const uint8_t> done) = 0;
+  // SB3 VecNormalize.normalize_obs / normalize_reward with the current statistics, for values
+  // kept as the envs gave them (an off-policy algorithm's replay batches). Default: unchanged.
+  virtual void normalize_obs(Eigen::Ref<Eigen::MatrixXf> /*obs*/) const {}
+  virtual void normalize_rewards(Eigen::Ref<Eigen::RowVectorXf> /*rewards*/) const {}
 };
 
 class VecEnv {
@@ -79,6 +83,13 @@ class VecEnv {
   bool done(int i) const { return terminated(i) || truncated(i); }
   // Column i is the last observation of env i's finished episode when done(i); NaN otherwise.
   const Eigen::MatrixXf& final_obs() const { return final_obs_; }
+  // SB3 VecNormalize.get_original_obs / get_original_reward: the last step's (or reset's)
+  // values as the envs gave them, before the step hook changed them; obs(), final_obs() and
+  // rewards() themselves without a hook. (After read_state they are not restored: callers
+  // that need them across a resume keep their own.)
+  const Eigen::MatrixXf& original_obs() const { return hook_ ? original_obs_ : obs_; }
+  const Eigen::MatrixXf& original_final_obs() const { return hook_ ? original_final_obs_ : final_obs_; }
+  const Eigen::VectorXd& original_rewards() const { return hook_ ? original_rewards_ : rewards_; }
   // Column i's info of the last step (or of the last reset(), before any step): its env
   // copy's info.
   const Info& info(int i) const { return infos_[slot_env_[i]]; }
@@ -125,6 +136,8 @@ class VecEnv {
   // Every copy steps asynchronously (env/split_step.hpp): start all steps, then finish them.
   std::vector<SplitStep*> split_;
   std::unique_ptr<VecStepHook> hook_;
+  Eigen::MatrixXf original_obs_, original_final_obs_;  // with a hook: before it ran
+  Eigen::VectorXd original_rewards_;
   std::vector<uint8_t> done_;  // terminated || truncated, for the hook
 };
 

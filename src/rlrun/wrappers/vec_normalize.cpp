@@ -88,6 +88,18 @@ class BatchNormalization : public VecStepHook {
     }
   }
 
+  void normalize_obs(Eigen::Ref<Eigen::MatrixXf> obs) const override {
+    if (obs_.empty()) return;
+    for (Eigen::Index j = 0; j < obs.cols(); ++j)
+      obs_[0]->normalize(std::span<float>(obs.col(j).data(), static_cast<size_t>(obs.rows())));
+  }
+
+  void normalize_rewards(Eigen::Ref<Eigen::RowVectorXf> rewards) const override {
+    if (rewards_.empty()) return;
+    for (Eigen::Index j = 0; j < rewards.size(); ++j)
+      rewards(j) = static_cast<float>(rewards_[0]->scale(rewards(j)));
+  }
+
  private:
   void normalize_columns(Eigen::MatrixXf& m, const std::span<const uint8_t>* only) const {
     for (Eigen::Index j = 0; j < m.cols(); ++j) {

@@ -46,6 +46,11 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
   // A restored state continues the envs where the checkpoint left them; the last
   // observations are the VecEnv's (the loop below keeps last_obs == env.obs() at safe points).
   Eigen::MatrixXf last_obs = state.restored ? env.obs() : env.reset();
+  // SB3 _last_original_obs: what the replay buffer stores, VecNormalize's original observations
+  // (the same as last_obs without env.normalize). A checkpoint carries it; one written before
+  // rlrun kept it holds the VecEnv's.
+  if (!state.restored || state.last_original_obs.cols() != n_envs)
+    state.last_original_obs = state.restored ? env.obs() : env.original_obs();
   state.restored = false;
   Eigen::MatrixXf env_actions, buffer_actions;
 
@@ -82,8 +87,9 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
         break;
       }
       state.episode_stats.update(env);
-      state.buffer->add(last_obs, buffer_actions, env);
+      state.buffer->add(state.last_original_obs, buffer_actions, env);
       last_obs = env.obs();
+      state.last_original_obs = env.original_obs();
       state.progress_remaining =
           1.0 - static_cast<double>(num_timesteps) / static_cast<double>(total_timesteps);
       if (callbacks.on_step) callbacks.on_step();
@@ -125,6 +131,7 @@ void OffPolicyState::write_state(StateWriter out) const {
   episode_stats.write_state(out.sub("episode_stats"));
   out.put_int("episode_num", episode_num);
   out.put_double("progress_remaining", progress_remaining);
+  put_matrix(out, "last_original_obs", last_original_obs);
 }
 
 void OffPolicyState::read_state(const StateReader& in) {
@@ -132,6 +139,11 @@ void OffPolicyState::read_state(const StateReader& in) {
   episode_stats.read_state(in.sub("episode_stats"));
   episode_num = in.get_int("episode_num");
   progress_remaining = in.get_double("progress_remaining");
+  last_original_obs.resize(0, 0);
+  if (in.has("last_original_obs")) {
+    last_original_obs.resize(buffer->obs_dim(), buffer->n_envs());
+    get_matrix(in, "last_original_obs", last_original_obs);
+  }
   restored = true;
 }
 
@@ -208,6 +220,13 @@ OffPolicyState& OffPolicyAlgorithm::state() {
 
 const ReplayBatch& OffPolicyAlgorithm::sample_batch() {
   state_->buffer->sample(config_.batch_size, replay_rng_, batch_);
+  // SB3 ReplayBuffer._normalize_obs / _normalize_reward: stored originals are normalised with
+  // VecNormalize's statistics of now (HER's relabelled goals and rewards included).
+  if (step_hook_) {
+    step_hook_->normalize_obs(batch_.obs);
+    step_hook_->normalize_obs(batch_.next_obs);
+    step_hook_->normalize_rewards(batch_.rewards);
+  }
   return batch_;
 }
 
@@ -225,15 +244,6 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
           id_ + ": replay_buffer_class HerReplayBuffer needs a goal-conditioned env with "
                 "compute_reward; " + env.env(0).id() + " has none (rlrun's goal envs: "
                 "BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0)");
-    // SB3 stores VecNormalize's original observations and rewards and normalises batches at
-    // sample time, after relabelling; rlrun's buffer keeps what the VecEnv hands out, so a
-    // normalised achieved goal would become a desired goal in another key's scale and
-    // compute_reward would see normalised positions. Refused until the buffer keeps originals.
-    if (env.step_hook())
-      throw std::invalid_argument(
-          id_ + ": replay_buffer_class HerReplayBuffer with env.normalize is not supported "
-                "(relabelled goals and rewards would mix normalised and raw values); set "
-                "env.normalize: false");
     her->set_goal_env(goals);
   }
   Logger* logger = hooks.logger;
@@ -247,6 +257,12 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
   callbacks.before_collect_step = [this](int64_t steps) { before_collect_step(steps); };
   callbacks.record_rollout_logs = [this](Logger& log) { record_rollout_logs(log); };
   callbacks.train = [this](int gradient_steps, Logger* log) { train(gradient_steps, log); };
+  // Batches are normalised as the env's VecNormalize says while this learn() runs.
+  step_hook_ = env.step_hook();
+  struct Forget {
+    const VecStepHook*& hook;
+    ~Forget() { hook = nullptr; }
+  } forget{step_hook_};
   off_policy_learn(env, total_timesteps, hooks, config_, state(), callbacks, num_timesteps_);
 }
 

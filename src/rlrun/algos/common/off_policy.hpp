@@ -27,6 +27,8 @@
 
 namespace rlrun {
 
+class VecStepHook;
+
 // SB3 TrainFreq: `train_freq: 4` (steps) or `train_freq: [1, episode]`.
 struct TrainFreq {
   int frequency = 1;
@@ -120,6 +122,9 @@ struct OffPolicyState {
 
   std::unique_ptr<ReplayBuffer> buffer;
   HerReplayBuffer* her = nullptr;  // the same buffer when it relabels goals
+  // SB3 _last_original_obs: the observations the next stored transition starts from, as the
+  // envs gave them (before env.normalize); obs_dim x n_envs.
+  Eigen::MatrixXf last_original_obs;
   EpisodeStats episode_stats;
   int64_t episode_num = 0;
   double progress_remaining = 1.0;
@@ -235,6 +240,7 @@ class OffPolicyAlgorithm : public Algorithm {
   Rng replay_rng_;
   std::optional<OffPolicyState> state_;
   ReplayBatch batch_;
+  const VecStepHook* step_hook_ = nullptr;  // the training env's VecNormalize, during learn()
   ObservationEncoder batch_obs_, batch_next_obs_, acting_obs_;
   // checkpoint()'s items: how each is written and read back.
   std::vector<std::function<void(StateWriter&)>> write_items_;

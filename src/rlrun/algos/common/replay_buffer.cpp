@@ -27,10 +27,12 @@ void ReplayBuffer::add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
   for (int e = 0; e < n_envs_; ++e) {
     const int64_t k = pos_ * n_envs_ + e;
     obs_.col(k) = obs.col(e);
-    // SB3 _store_transition: the next observation of a finished episode is its final one.
-    next_obs_.col(k) = env.done(e) ? env.final_obs().col(e) : env.obs().col(e);
+    // SB3 _store_transition: the next observation of a finished episode is its final one;
+    // under VecNormalize the original observations and rewards are stored (batches are
+    // normalised when sampled, with the statistics of that time).
+    next_obs_.col(k) = env.done(e) ? env.original_final_obs().col(e) : env.original_obs().col(e);
     actions_.col(k) = buffer_actions.col(e);
-    rewards_(k) = static_cast<float>(env.rewards()(e));
+    rewards_(k) = static_cast<float>(env.original_rewards()(e));
     const bool done = env.terminated(e) || env.truncated(e);
     const bool timeout = env.truncated(e) && !env.terminated(e);
     dones_(k) = (done && !(handle_timeout_termination_ && timeout)) ? 1.0f : 0.0f;

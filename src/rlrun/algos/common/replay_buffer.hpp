@@ -27,7 +27,9 @@ class ReplayBuffer {
                bool handle_timeout_termination = true);
 
   // Stores one VecEnv step taken from `obs` with `buffer_actions`; next observations, rewards
-  // and flags are read from `env` (final_obs for envs whose episode ended).
+  // and flags are read from `env` (final_obs for envs whose episode ended): the original ones,
+  // before a VecNormalize step hook (SB3 stores VecNormalize's originals), and `obs` must be
+  // the original observations too.
   virtual void add(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                    const Eigen::Ref<const Eigen::MatrixXf>& buffer_actions, const VecEnv& env);
   // Fills `batch` (resized once per batch size) with `batch_size` uniform samples.
@@ -35,6 +37,8 @@ class ReplayBuffer {
 
   int64_t size() const { return (full_ ? slots_ : pos_) * n_envs_; }
   int64_t capacity() const { return slots_ * n_envs_; }
+  int obs_dim() const { return static_cast<int>(obs_.rows()); }
+  int n_envs() const { return n_envs_; }
 
   // Exact resume (checkpoints): the filled transitions and the write position. Reading
   // refuses a buffer of another capacity (StateMismatch).
