@@ -115,7 +115,7 @@ TEST_CASE("Goal tasks: spaces, Dict keys, GoalEnv, observation layout", "[grippe
   }
 }
 
-TEST_CASE("Goal tasks: compute_reward for a batch equals step()'s reward; success iff d < threshold",
+TEST_CASE("Goal tasks: compute_reward for a batch equals step()'s reward and success is d < threshold",
           "[gripper_goal]") {
   for (const char* reward_type : {"sparse", "dense"}) {
     for (GoalTask task : kTasks) {
@@ -197,7 +197,7 @@ TEST_CASE("Goal tasks: the same seed gives the same episode bit for bit", "[grip
   }
 }
 
-TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges; half of PickAndPlace's "
+TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges and half of PickAndPlace's "
           "goals in the air", "[gripper_goal]") {
   constexpr int kResets = 400;
   for (GoalTask task : kTasks) {
@@ -248,7 +248,7 @@ TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges; half of Pic
   CHECK(reach->scenario().goal_x == std::vector<double>{-0.15, 0.15});
 }
 
-TEST_CASE("Goal tasks: a world without the cube; GripperLift's world unchanged", "[gripper_goal]") {
+TEST_CASE("Goal tasks: a world without the cube and GripperLift's world unchanged", "[gripper_goal]") {
   GripperWorld::Layout layout;
   layout.with_cube = false;
   GripperWorld empty(layout);
