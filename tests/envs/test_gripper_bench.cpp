@@ -3,13 +3,16 @@
 // run by scripts/bench.sh.
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "rlrun/rng.hpp"
+#include "rlrun/envs/gripper/gripper_goal_env.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
+#include "rlrun/envs/gripper/scripted_goal_policy.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;
@@ -44,5 +47,35 @@ TEST_CASE("bench: GripperLift-v0 env steps/s and SAC training steps/s", "[.bench
     REQUIRE(std::regex_search(r.output, m, rate));
     std::printf("| SAC training on GripperLift-v0 (grasp_sac.yaml), %d thread%s | %s |\n", threads,
                 threads > 1 ? "s" : "", m[2].str().c_str());
+  }
+}
+
+// The goal tasks (GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0), same requirement:
+// random actions (resets included) and the scripted controllers (episodes end on success, so
+// more resets). CPU time of this process, so other work on the machine does not count.
+TEST_CASE("bench: goal tasks' env steps/s", "[.bench][gripper_bench]") {
+  for (const GoalTask task : {GoalTask::kReach, GoalTask::kPush, GoalTask::kPickAndPlace}) {
+    for (const bool scripted : {false, true}) {
+      GripperGoalEnv env(task, GripperGoalEnv::Config{});
+      std::vector<float> obs(env.observation_space().flat_dim());
+      Rng actions(1);
+      constexpr int kSteps = 20000;
+      const std::clock_t start = std::clock();
+      env.reset(1, obs);
+      for (int i = 0; i < kSteps; ++i) {
+        float a[4];
+        if (scripted) {
+          const auto s = scripted_goal_action(env);
+          std::copy(s.begin(), s.end(), a);
+        } else {
+          env.action_space().sample(actions, a);
+        }
+        const StepResult r = env.step(std::span<const float>(a, env.action_space().flat_dim()), obs);
+        if (r.terminated || r.truncated) env.reset(std::nullopt, obs);
+      }
+      const double s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+      std::printf("| %s, %s, one core (CPU time) | %.0f |\n", env.id().c_str(),
+                  scripted ? "scripted controller" : "random actions", kSteps / s);
+    }
   }
 }

@@ -4,6 +4,7 @@
 #include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace rlrun {
 
@@ -63,9 +64,11 @@ GripperWorld::GripperWorld(const Layout& layout) : layout_(layout) {
   shapes_.push_back(std::move(table_shape));
   bodies_.push_back(std::move(table));
 
-  const double s = layout.cube_size / 2;
-  cube_ = add_box({s, s, s}, layout.cube_mass, layout.cube_position, layout.cube_yaw,
-                  layout.cube_friction, true);
+  if (layout.with_cube) {
+    const double s = layout.cube_size / 2;
+    cube_ = add_box({s, s, s}, layout.cube_mass, layout.cube_position, layout.cube_yaw,
+                    layout.cube_friction, true);
+  }
 
   // The palm, its centre kGraspBelowPalm above the grasp point, on a servo to the world.
   palm_start_ = {layout.grasp_point[0], layout.grasp_point[1],
@@ -151,18 +154,24 @@ double GripperWorld::opening() const {
   return across.dot(palm_x) - 2 * kFingerHalf[0];
 }
 
-Vec3 GripperWorld::cube_position() const { return vec(cube_->getCenterOfMassPosition()); }
+const btRigidBody& GripperWorld::cube() const {
+  if (!cube_) throw std::logic_error("GripperWorld: this world has no cube (Layout::with_cube)");
+  return *cube_;
+}
+
+Vec3 GripperWorld::cube_position() const { return vec(cube().getCenterOfMassPosition()); }
 
 std::array<double, 4> GripperWorld::cube_orientation() const {
-  const btQuaternion q = cube_->getOrientation();
+  const btQuaternion q = cube().getOrientation();
   return {q.x(), q.y(), q.z(), q.w()};
 }
 
-Vec3 GripperWorld::cube_velocity() const { return vec(cube_->getLinearVelocity()); }
-Vec3 GripperWorld::cube_angular_velocity() const { return vec(cube_->getAngularVelocity()); }
+Vec3 GripperWorld::cube_velocity() const { return vec(cube().getLinearVelocity()); }
+Vec3 GripperWorld::cube_angular_velocity() const { return vec(cube().getAngularVelocity()); }
 
 std::array<bool, 2> GripperWorld::finger_contacts() const {
   std::array<bool, 2> touching{false, false};
+  if (!cube_) return touching;
   for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
     const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(i);
     const btCollisionObject* a = manifold->getBody0();
@@ -197,7 +206,7 @@ std::array<GripperWorld::BoxPose, 2> GripperWorld::finger_poses() const {
 
 GripperWorld::BoxPose GripperWorld::cube_pose() const {
   const double s = layout_.cube_size / 2;
-  return pose_of(cube_, {s, s, s});
+  return pose_of(&cube(), {s, s, s});
 }
 
 }  // namespace rlrun

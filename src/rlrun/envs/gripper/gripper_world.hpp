@@ -48,6 +48,9 @@ class GripperWorld {
     double palm_force = 30.0;      // N, per axis (the study's limit)
     double finger_force = 10.0;    // N, per finger (>= 5 N)
     int solver_iterations = 20;
+    // Without the cube (GripperReach-v0): the same table, palm and fingers, nothing to touch.
+    // Worlds with the cube are built exactly as before the option existed.
+    bool with_cube = true;
   };
 
   explicit GripperWorld(const Layout& layout);
@@ -62,11 +65,13 @@ class GripperWorld {
   Vec3 grasp_point() const;
   Vec3 palm_velocity() const;
   double opening() const;  // between the inner faces
+  bool has_cube() const { return cube_ != nullptr; }
+  // The cube's state; these throw std::logic_error in a world built without it.
   Vec3 cube_position() const;
   std::array<double, 4> cube_orientation() const;  // quaternion x, y, z, w
   Vec3 cube_velocity() const;
   Vec3 cube_angular_velocity() const;
-  // Whether each finger (left = -x, right = +x) touches the cube now.
+  // Whether each finger (left = -x, right = +x) touches the cube now (never without one).
   std::array<bool, 2> finger_contacts() const;
   const Layout& layout() const { return layout_; }
 
@@ -84,6 +89,7 @@ class GripperWorld {
   btRigidBody* add_box(const Vec3& half, double mass, const Vec3& centre, double yaw,
                        double friction, bool gravity);
   BoxPose pose_of(const btRigidBody* body, const Vec3& half) const;
+  const btRigidBody& cube() const;
 
   Layout layout_;
   std::unique_ptr<btCollisionConfiguration> collision_configuration_;
