@@ -138,7 +138,7 @@ TEST_CASE("HER: future goals come from the transition onwards, final from the en
   }
 }
 
-TEST_CASE("HER: unfinished and overwritten episodes are not sampled; the buffer wraps", "[algos][her]") {
+TEST_CASE("HER: unfinished and overwritten episodes are not sampled, the buffer wraps", "[algos][her]") {
   // 12 slots, episodes of 5: after 3 episodes + 2 steps the third episode wrapped (slots 10,
   // 11, 0, 1, 2), the first lost its start (slots 3, 4 left: not sampled), the fourth is
   // unfinished.
@@ -163,7 +163,7 @@ TEST_CASE("HER: unfinished and overwritten episodes are not sampled; the buffer 
   CHECK(by_episode[3] > 1200);
 }
 
-TEST_CASE("HER: several envs keep their own episodes; terminations do not bootstrap", "[algos][her]") {
+TEST_CASE("HER: several envs keep their own episodes, terminations do not bootstrap", "[algos][her]") {
   Setup s({3, 5}, 60, GoalSelection::kEpisode, /*terminate=*/true);
   s.steps(15);
   Rng rng(11);
@@ -181,7 +181,7 @@ TEST_CASE("HER: several envs keep their own episodes; terminations do not bootst
   CHECK(markers == std::set<int>{0, 1});
 }
 
-TEST_CASE("HER: n_sampled_goal 0 samples real transitions only; errors; exact state round trip",
+TEST_CASE("HER: n_sampled_goal 0 samples real transitions only, errors, exact state round trip",
           "[algos][her]") {
   {
     Setup s({4}, 40, GoalSelection::kFuture, false, /*n_sampled_goal=*/0);

@@ -299,7 +299,7 @@ TEST_CASE("export onnx: TD3 and DDPG (deterministic tanh actors, Q(s, a) as the 
               30, false});
 }
 
-TEST_CASE("rlrun::Policy: wrong sizes and bad files are exceptions; act is thread-safe",
+TEST_CASE("rlrun::Policy: wrong sizes and bad files are exceptions, act is thread-safe",
           "[deploy][onnx]") {
   TempDir dir("policy_library");
   const std::string config = dir / "exp.yaml";

@@ -216,7 +216,7 @@ TEST_CASE("BipedalWalker: lidar fractions on the flat start pad match the geomet
   }
 }
 
-TEST_CASE("BipedalWalker: the feet land; with the motors off the walker collapses", "[walker]") {
+TEST_CASE("BipedalWalker: the feet land, with the motors off the walker collapses", "[walker]") {
   // Gymnasium's reset builds each leg LEG_H / 2 + LEG_DOWN above its hip anchor; the joint
   // solver pulls them together in the reset's own step, so the feet stand on the pad at once.
   // With every motor off (maxMotorTorque 0) the joints then fold freely within their limits
@@ -272,7 +272,7 @@ TEST_CASE("BipedalWalker: reward = shaping difference - 0.00035 * 80 * sum |a|",
   }
 }
 
-TEST_CASE("BipedalWalker: a fall costs -100 and terminates; contacts reach the observation",
+TEST_CASE("BipedalWalker: a fall costs -100 and terminates, contacts reach the observation",
           "[walker]") {
   // Random flailing brings the hull down (game over) within a few episodes.
   BipedalWalker env;

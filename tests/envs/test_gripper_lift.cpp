@@ -51,7 +51,7 @@ double scripted_success_rate(GripperLift& env, int episodes, uint64_t seed) {
 
 }  // namespace
 
-TEST_CASE("GripperLift: spaces; the same seed gives the same episode bit for bit", "[gripper]") {
+TEST_CASE("GripperLift: spaces, the same seed gives the same episode bit for bit", "[gripper]") {
   GripperLift env;
   CHECK(env.observation_space().describe() == "Box(-inf, inf, (26,), float32)");
   CHECK(env.action_space().describe() == "Box(-1.0, 1.0, (4,), float32)");
@@ -71,7 +71,7 @@ TEST_CASE("GripperLift: the scripted controller lifts the cube in every episode"
   CHECK(scripted_success_rate(easy, 30, 1) == 1.0);
 }
 
-TEST_CASE("GripperLift: a held cube does not slip down; rest is rest", "[gripper]") {
+TEST_CASE("GripperLift: a held cube does not slip down, rest is rest", "[gripper]") {
   GripperLift env;
   std::vector<float> obs(GripperLift::kObsSize);
   env.reset(5, obs);

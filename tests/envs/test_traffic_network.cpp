@@ -285,7 +285,7 @@ TEST_CASE("TrafficNetwork: a .sumocfg scenario: its files and times, fixed-time 
   CHECK(info_of(env, "throughput") > 500);
 }
 
-TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run; libsumo equals traci",
+TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run, libsumo equals traci",
           "[traffic_network]") {
   TrafficNetwork::Config config;
   config.backend = "traci";

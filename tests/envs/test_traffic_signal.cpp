@@ -157,7 +157,7 @@ TEST_CASE("TrafficSignal: metrics equal a plain SUMO run of the same signal plan
   CHECK(waiting == Approx(own.waiting).epsilon(1e-12));
 }
 
-TEST_CASE("read_tripinfo: means over the trips; clear errors", "[traffic]") {
+TEST_CASE("read_tripinfo: means over the trips, clear errors", "[traffic]") {
   TempDir dir("traffic_tripinfo_reader");
   std::ofstream(dir / "t.xml")
       << "<tripinfos>\n  <tripinfo id=\"a\" depart=\"1.00\" duration=\"10.00\" routeLength=\"5\""
@@ -255,7 +255,7 @@ TEST_CASE("TrafficSignal: scenario files", "[traffic]") {
   CHECK_THROWS_WITH(load_traffic_scenario("no/such/scenario.yaml"), Catch::Contains("does not exist"));
 }
 
-TEST_CASE("TrafficSignal: same seed, same episode; reward functions", "[traffic]") {
+TEST_CASE("TrafficSignal: same seed, same episode, reward functions", "[traffic]") {
   TrafficSignal::Config config;
   config.num_seconds = 120;
   for (const char* reward_fn : {"queue", "diff-waiting-time", "average-speed", "pressure"}) {

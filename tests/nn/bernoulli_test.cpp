@@ -80,7 +80,7 @@ TEST_CASE("Bernoulli log_prob, entropy and their gradients", "[nn]") {
   CHECK_THROWS_AS(dist.backward(bad, w_logp, w_ent, grad), std::out_of_range);
 }
 
-TEST_CASE("Bernoulli mode is round(p); samples follow p", "[nn]") {
+TEST_CASE("Bernoulli mode is round(p), samples follow p", "[nn]") {
   Eigen::MatrixXf logits(4, 1);
   logits << 0.8f, -0.3f, 0.0f, 3.0f;  // p = 0.5 rounds to 0, as torch.round
   Bernoulli dist;

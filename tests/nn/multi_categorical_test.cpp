@@ -90,7 +90,7 @@ TEST_CASE("MultiCategorical log_prob, entropy and their gradients", "[nn]") {
   CHECK_THROWS_AS(dist.set_logits(Eigen::MatrixXf::Zero(rows - 1, batch)), std::invalid_argument);
 }
 
-TEST_CASE("MultiCategorical of one entry is that Categorical; mode is the argmax per entry",
+TEST_CASE("MultiCategorical of one entry is that Categorical, mode is the argmax per entry",
           "[nn]") {
   Eigen::MatrixXf logits(5, 3);
   logits << 0.3f, -1.0f, 2.0f,  //

@@ -85,7 +85,7 @@ Passes halves_passes(const Mlp& net, const Eigen::MatrixXf& x, const Eigen::Matr
 
 }  // namespace
 
-TEST_CASE("Minibatch columns split in halves from 32 on; parameters on a cache line",
+TEST_CASE("Minibatch columns split in halves from 32 on, parameters on a cache line",
           "[nn][split]") {
   CHECK(column_parts(31) == 1);
   CHECK(column_part(31, 0).count == 31);
@@ -146,7 +146,7 @@ TEST_CASE("SplitMlp reads its parameters in place: no copy to refresh after a ch
   CHECK(split.params() == plain.params());
 }
 
-TEST_CASE("SplitAdam is one Adam over the whole vector; its norm is the gradient's",
+TEST_CASE("SplitAdam is one Adam over the whole vector, its norm is the gradient's",
           "[nn][split]") {
   Rng rng(5);
   const int size = 1000;  // parts of 496 and 504

@@ -225,7 +225,7 @@ TEST_CASE("spaces: off-policy algorithms take Dict observations (SAC learns Dict
   CHECK(tensors.find("features_extractor") == std::string::npos);
 }
 
-TEST_CASE("spaces: DQN on a Dict of MultiBinary, Discrete and Box keys; TD3 and DDPG on Dict",
+TEST_CASE("spaces: DQN on a Dict of MultiBinary, Discrete and Box keys, TD3 and DDPG on Dict",
           "[cli][spaces]") {
   TempDir dir("spaces_dict_offpolicy");
   // The Discrete key reaches the Q-network one-hot: 4 + 4 + 5 inputs, as PPO's towers.

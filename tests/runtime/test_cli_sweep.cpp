@@ -341,7 +341,7 @@ TEST_CASE("report: the run's true step count and training time, not progress.csv
   CHECK(r.output.find(cell) != std::string::npos);
 }
 
-TEST_CASE("plot: PNG and SVG learning curves; a wrong metric is named", "[plot]") {
+TEST_CASE("plot: PNG and SVG learning curves, a wrong metric is named", "[plot]") {
   TempDir dir("plot");
   for (int s = 1; s <= 3; ++s) make_run(dir / "a/seed" + std::to_string(s), "a", s, 0.001, {}, 0, 1, 1000);
   make_run(dir / "single/seed1", "single", 1, 0.1, {}, 0, 1, 800);

@@ -145,7 +145,7 @@ TEST_CASE("task metrics: a traffic DQN run logs waiting time in monitor.csv and 
   }
 }
 
-TEST_CASE("task metrics: grasp SAC logs rollout/success_rate and rollout/lift; info_keywords",
+TEST_CASE("task metrics: grasp SAC logs rollout/success_rate and rollout/lift, info_keywords",
           "[cli][metrics]") {
   TempDir dir("metrics_grasp");
   const auto r = run_rlrun("--threads 1 train " + std::string(RLRUN_SOURCE_DIR) +

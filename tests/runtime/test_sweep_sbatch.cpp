@@ -188,7 +188,7 @@ TEST_CASE("sweep slurm: a manifest carrying a newline in a slurm value is refuse
   CHECK_FALSE(fs::exists(dir / "pwned"));
 }
 
-TEST_CASE("shell_quote: any text comes back unchanged from bash; paths with newlines refused",
+TEST_CASE("shell_quote: any text comes back unchanged from bash, paths with newlines refused",
           "[sweep]") {
   TempDir dir("shell_quote");
   const std::vector<std::string> texts = {

@@ -270,7 +270,7 @@ MountainCar-v0:
   CHECK_THAT(import_error(unnamed, "CartPole-v1"), Catch::Contains("pass --algo"));
 }
 
-TEST_CASE("rlrun zoo import writes a file rlrun train accepts; train --zoo trains it",
+TEST_CASE("rlrun zoo import writes a file rlrun train accepts, train --zoo trains it",
           "[zoo][cli]") {
   TempDir dir("zoo_cli");
   const std::string out = dir / "cartpole_ppo.yaml";
