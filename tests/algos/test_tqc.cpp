@@ -363,7 +363,7 @@ TEST_CASE(
   require_grad_close(tqc.actor().net().grads().cast<double>(), numeric_gradient(loss_of, p));
 }
 
-TEST_CASE("TQC model tensors use sb3-contrib's names and load back; the exported value",
+TEST_CASE("TQC model tensors use sb3-contrib's names and load back, and the exported value",
           "[algos][tqc]") {
   TQC::Config cfg = small_config();
   TQC a(cfg, box_setup(3, 1, 1));

@@ -286,7 +286,7 @@ TEST_CASE("export onnx: Box actions, normalised observations and action wrappers
               2, false});
 }
 
-TEST_CASE("export onnx: TQC (SAC's squashed actor; the mean of every atom as the value)",
+TEST_CASE("export onnx: TQC (SAC's squashed actor, the mean of every atom as the value)",
           "[deploy][onnx][tqc]") {
   check_case({"tqc_pendulum", 300,
               "env: {id: Pendulum-v1}\n"

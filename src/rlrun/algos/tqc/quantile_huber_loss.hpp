@@ -1,6 +1,6 @@
 #pragma once
 // The quantile-regression Huber loss of QR-DQN (Dabney et al. 2017, arXiv:1710.10044, eq. 9-10)
-// as TQC uses it (Kuznetsov et al. 2020, arXiv:2005.04269, eq. 8; sb3-contrib common/utils.py
+// as TQC uses it (Kuznetsov et al. 2020, arXiv:2005.04269, section 3; sb3-contrib common/utils.py
 // quantile_huber_loss with sum_over_quantiles=False): for one critic's quantile estimates
 // theta_k, k < K, at cumulative probabilities tau_k = (k + 0.5) / K, and target atoms z_t,
 // t < T, of the same sample,

@@ -1,5 +1,5 @@
 #pragma once
-// TQC's control of overestimation (Kuznetsov et al. 2020, arXiv:2005.04269, section 3, eq. 7;
+// TQC's control of overestimation (Kuznetsov et al. 2020, arXiv:2005.04269, section 3;
 // sb3-contrib tqc/tqc.py train): the target critics' quantiles at (s', a') of all networks
 // pooled into one mixture, sorted ascending (th.sort over the flattened n_critics x n_quantiles
 // atoms) and only the lowest n_target = n_critics * (n_quantiles - top_quantiles_to_drop_per_net)
