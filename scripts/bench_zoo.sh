@@ -49,6 +49,8 @@ zoo_score() {
     "ppo BipedalWalker-v3") echo "287.9 2.4" ;; "a2c BipedalWalker-v3") echo "299.8 23.5" ;;
     "sac BipedalWalker-v3") echo "297.7 33.1" ;; "td3 BipedalWalker-v3") echo "306.0 56.9" ;;
     "ddpg BipedalWalker-v3") echo "197.5 141.6" ;;
+    "tqc Pendulum-v1") echo "-151.3 87.9" ;; "tqc MountainCarContinuous-v0") echo "63.6 45.3" ;;
+    "tqc LunarLanderContinuous-v3") echo "278.0 25.5" ;; "tqc BipedalWalker-v3") echo "329.8 45.1" ;;
     *) echo "" ;;
   esac
 }

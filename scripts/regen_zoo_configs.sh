@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates configs/zoo/ with `rlrun zoo import` from a checkout of rl-baselines3-zoo:
-# the entries of its six algorithm files for the classic-control and Box2D tasks (docs/zoo.md).
+# the entries of its algorithm files (SB3's six and sb3-contrib's TQC) for the classic-control
+# and Box2D tasks (docs/zoo.md).
 #   scripts/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]
 # An entry the file does not have (e.g. DQN on Pendulum) is skipped; an entry that needs what
 # this rlrun build lacks is reported and skipped, and the script exits 1 at the end.
@@ -12,7 +13,7 @@ out=$here/configs/zoo
 mkdir -p "$out"
 failed=0
 cd "$zoo"  # the written files name hyperparams/<algo>.yml, not this machine's path
-for algo in ppo a2c dqn sac td3 ddpg; do
+for algo in ppo a2c dqn sac td3 ddpg tqc; do
   file=hyperparams/$algo.yml
   for env in CartPole-v1 Pendulum-v1 MountainCar-v0 MountainCarContinuous-v0 Acrobot-v1 \
              LunarLander-v3 LunarLanderContinuous-v3 BipedalWalker-v3 BipedalWalkerHardcore-v3; do

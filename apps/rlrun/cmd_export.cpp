@@ -54,7 +54,7 @@ Action add_export(CLI::App& app, Registry& registry) {
       ->required();
   sub->add_flag("--with-value", o->with_value,
                 "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
-                "critic's Q(s, action) for SAC/TD3/DDPG");
+                "critic's Q(s, action) for SAC/TD3/DDPG, mean quantile for TQC");
   add_plugin_option(sub, o->plugins);
   return [o, &registry]() {
     load_plugin_options(o->plugins, registry);

@@ -34,7 +34,7 @@ Action add_zoo(CLI::App& app, Registry& registry) {
       ->required();
   import->add_option("-o,--output", options->output, "write the experiment here (default: stdout)");
   import->add_option("--algo", options->algo,
-                     "the algorithm, when the file name does not say (ppo, a2c, dqn, sac, td3, ddpg)");
+                     "the algorithm, when the file name does not say (ppo, a2c, dqn, sac, td3, ddpg, tqc)");
   return [options, &registry]() {
     const zoo::ZooImport imported = zoo::translate_zoo_entry(
         zoo::read_zoo_entry(options->hyperparams, options->env_id, options->algo), registry);

@@ -100,7 +100,7 @@ class Model:
 
     @property
     def algorithm(self) -> str:
-        """"PPO", "A2C", "DQN", "SAC", "TD3" or "DDPG"."""
+        """"PPO", "A2C", "DQN", "SAC", "TD3", "DDPG" or "TQC"."""
         return self._core.algorithm
 
     @property

@@ -8,6 +8,7 @@
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/algos/sac/sac.hpp"
+#include "rlrun/algos/tqc/tqc.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -201,6 +202,34 @@ TEST_CASE("SAC with gSDE resumes from a safe point to the uninterrupted run's we
   REQUIRE(saved_at == 208);
   VecEnv env2 = make_envs("Pendulum-v1", 2, 3);
   SAC resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 9});
+  CHECK(resume(resumed, env2, total, snapshot) == expected);
+  CHECK(resumed.num_timesteps() == total);
+}
+
+TEST_CASE("TQC (plain and gSDE) resumes from a safe point to the uninterrupted run's weights",
+          "[algos][resume][tqc]") {
+  const bool use_sde = GENERATE(false, true);
+  INFO("use_sde " << use_sde);
+  TQC::Config cfg;
+  cfg.off_policy.learning_starts = 64;
+  cfg.off_policy.batch_size = 32;
+  cfg.off_policy.train_freq.frequency = 8;
+  cfg.off_policy.gradient_steps = 4;
+  cfg.policy.net_arch = {{16, 16}, {16, 16}};
+  cfg.policy.n_quantiles = 7;
+  cfg.top_quantiles_to_drop_per_net = 3;
+  cfg.use_sde = use_sde;
+  cfg.sde_sample_freq = 3;
+  const int64_t total = 400;
+  Snapshot snapshot;
+  int64_t saved_at = 0;
+  VecEnv env1 = make_envs("Pendulum-v1", 2, 3);
+  TQC uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 2, 3});
+  const Eigen::VectorXf expected =
+      train_and_snapshot(uninterrupted, env1, total, 200, snapshot, saved_at);
+  REQUIRE(saved_at == 208);
+  VecEnv env2 = make_envs("Pendulum-v1", 2, 3);
+  TQC resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 9});
   CHECK(resume(resumed, env2, total, snapshot) == expected);
   CHECK(resumed.num_timesteps() == total);
 }

@@ -13,7 +13,7 @@
 
 #include "nn/grad_check.hpp"
 #include "rlrun/algos/common/action_scaling.hpp"
-#include "rlrun/algos/sac/entropy_coefficient.hpp"
+#include "rlrun/algos/common/entropy_coefficient.hpp"
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"

@@ -286,6 +286,15 @@ TEST_CASE("export onnx: Box actions, normalised observations and action wrappers
               2, false});
 }
 
+TEST_CASE("export onnx: TQC (SAC's squashed actor, the mean of every atom as the value)",
+          "[deploy][onnx][tqc]") {
+  check_case({"tqc_pendulum", 300,
+              "env: {id: Pendulum-v1}\n"
+              "algo: {id: TQC, learning_starts: 100, batch_size: 32,\n"
+              "       policy: {net_arch: [16, 16], n_quantiles: 5, n_critics: 3}}\n",
+              5, false});
+}
+
 TEST_CASE("export onnx: TD3 and DDPG (deterministic tanh actors, Q(s, a) as the value)",
           "[deploy][onnx]") {
   check_case({"td3_elu", 300,

@@ -215,6 +215,16 @@ TEST_CASE("resume: DQN with HerReplayBuffer resumes exactly (episode bookkeeping
   check_resume_equals_uninterrupted(her, "KILL");
 }
 
+TEST_CASE("resume: a TQC run killed after a checkpoint ends as the uninterrupted run",
+          "[cli][resume][tqc]") {
+  const ResumeCase tqc{"pendulum_tqc.yaml", "pendulum_tqc",
+                       " --set run.total_timesteps=1200 --set algo.learning_starts=200"
+                       " --set algo.batch_size=64 --set 'algo.policy.net_arch=[64, 64]'"
+                       " --set checkpoint.freq=400 --set run.log_interval=1",
+                       "step_400.zip", 1, false};
+  check_resume_equals_uninterrupted(tqc, "KILL");
+}
+
 TEST_CASE("resume: --timesteps extends a finished run from its last checkpoint", "[cli][resume]") {
   TempDir dir("resume_extend");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";

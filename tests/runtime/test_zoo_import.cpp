@@ -25,12 +25,22 @@ const std::string kZooData = std::string(RLRUN_SOURCE_DIR) + "/tests/data/zoo";
 const std::vector<std::string> kAlgos{"ppo", "a2c", "dqn", "sac", "td3", "ddpg"};
 const std::vector<std::string> kVersions{"", "2023-04", "2021-02", "2020-12"};
 
-// The env a `default` entry is tried on: one without an entry of its own.
-std::string default_env(const std::string& algo) {
-  return algo == "sac" || algo == "td3" || algo == "ddpg" ? "IdentityEnvBox-v0" : "IdentityEnv-v0";
+// The files of a zoo version: sb3-contrib's TQC (tqc.yml) is kept for the current one only.
+std::vector<std::string> algos_of(const std::string& version) {
+  std::vector<std::string> algos = kAlgos;
+  if (version.empty()) algos.push_back("tqc");
+  return algos;
 }
 
-bool off_policy(const std::string& algo) { return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "dqn"; }
+// The env a `default` entry is tried on: one without an entry of its own.
+std::string default_env(const std::string& algo) {
+  return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "tqc" ? "IdentityEnvBox-v0"
+                                                                           : "IdentityEnv-v0";
+}
+
+bool off_policy(const std::string& algo) {
+  return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "dqn" || algo == "tqc";
+}
 
 // Imports `env` from `file` and checks the experiment; with `train`, trains it briefly: 2000
 // steps (at least one rollout), with learning_starts lowered to 1000 so that off-policy
@@ -124,7 +134,7 @@ TEST_CASE("Python literals: the zoo's subset is read, anything else refused",
 void check_every_entry(bool train, const std::vector<std::string>& versions = kVersions) {
   TempDir dir(train ? "zoo_entries_train" : "zoo_entries");
   for (const std::string& version : versions) {
-    for (const std::string& algo : kAlgos) {
+    for (const std::string& algo : algos_of(version)) {
       const std::string relative = (version.empty() ? "" : version + "/") + algo + ".yml";
       const std::string file = kZooData + "/" + relative;
       for (const std::string& name : entry_names(file)) {
@@ -226,6 +236,64 @@ default:
   CHECK(read_zoo_entry(lander, "LunarLander-v2", "").env_id == "LunarLander-v3");
   CHECK(read_zoo_entry(file, "Acrobot-v1", "").entry_name == "default");
   CHECK(read_zoo_entry(file, "Acrobot-v1", "ppo").algorithm == "PPO");
+}
+
+TEST_CASE("zoo import: a tqc.yml entry becomes a TQC experiment", "[zoo][tqc]") {
+  TempDir dir("zoo_tqc");
+  Registry registry = make_builtin_registry();
+  const std::string file = write_file(dir, "tqc.yml", R"zoo(# as rl-zoo's hyperparams/tqc.yml
+Pendulum-v1:
+  n_timesteps: 20000
+  policy: 'MlpPolicy'
+  learning_rate: !!float 1e-3
+MountainCarContinuous-v0:
+  n_timesteps: !!float 50000
+  policy: 'MlpPolicy'
+  learning_rate: lin_7.3e-4
+  buffer_size: 50000
+  batch_size: 512
+  ent_coef: 0.1
+  train_freq: 32
+  gradient_steps: 32
+  gamma: 0.9999
+  tau: 0.01
+  learning_starts: 0
+  use_sde: True
+  top_quantiles_to_drop_per_net: 5
+  policy_kwargs: "dict(log_std_init=-3.67, net_arch=[64, 64], n_quantiles=20, n_critics=3)"
+)zoo");
+  // The algorithm from the file name; the zoo's Pendulum entry is configs/pendulum_tqc.yaml.
+  const Experiment p = load_zoo_experiment(file, "Pendulum-v1", "", {}, registry);
+  CHECK(p.algo.id == "TQC");
+  const YAML::Node pendulum = translate_zoo_entry(read_zoo_entry(file, "Pendulum-v1", ""), registry)
+                                  .experiment;
+  CHECK(pendulum["algo"]["id"].as<std::string>() == "TQC");
+  CHECK(pendulum["algo"]["learning_rate"].as<double>() == 1e-3);
+  CHECK(pendulum["run"]["total_timesteps"].as<double>() == 20000);
+
+  const ZooImport imported =
+      translate_zoo_entry(read_zoo_entry(file, "MountainCarContinuous-v0", ""), registry);
+  const YAML::Node a = imported.experiment["algo"];
+  CHECK(a["top_quantiles_to_drop_per_net"].as<int>() == 5);
+  CHECK(a["use_sde"].as<bool>());
+  CHECK(a["ent_coef"].as<std::string>() == "0.1");
+  CHECK(a["policy"]["n_quantiles"].as<int>() == 20);
+  CHECK(a["policy"]["n_critics"].as<int>() == 3);
+  CHECK(a["policy"]["log_std_init"].as<double>() == -3.67);
+  // The translation is an experiment rlrun reads, with every value where TQC keeps it.
+  const Experiment m = load_zoo_experiment(file, "MountainCarContinuous-v0", "", {}, registry);
+  CHECK(m.algo.id == "TQC");
+  const std::string text = experiment_text(imported);
+  CHECK_THAT(text, Catch::Contains("entry 'MountainCarContinuous-v0' (TQC)"));
+  // --algo tqc for a file named otherwise; a policy key TQC does not have is named.
+  const std::string renamed = write_file(dir, "tuned.yml", "Pendulum-v1:\n  n_timesteps: 1000\n"
+                                                           "  policy: 'MlpPolicy'\n");
+  CHECK(read_zoo_entry(renamed, "Pendulum-v1", "tqc").algorithm == "TQC");
+  TempDir bad_dir("zoo_tqc_bad");
+  const std::string bad = write_file(bad_dir, "tqc.yml",
+                                     "Pendulum-v1:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n"
+                                     "  policy_kwargs: \"dict(n_quantile=5)\"\n");
+  CHECK_THAT(import_error(bad, "Pendulum-v1"), Catch::Contains("n_quantiles"));
 }
 
 TEST_CASE("zoo import: what cannot be translated is an error at the zoo file's line",

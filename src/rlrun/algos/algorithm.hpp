@@ -75,8 +75,8 @@ class Algorithm {
   // Deploying (rlrun export; nn/policy_graph.hpp): appends to `graph` the deterministic
   // predict() as nodes, from `obs` (the flat observations predict() takes) to the actions it
   // returns, and sets graph.set_action(). With `with_value` also graph.set_value(): the critic's
-  // V(s) (PPO, A2C), the Q-values of every action (DQN), or the first critic's Q(s, a) of the
-  // action taken (SAC, TD3, DDPG). Throws ExportError when the algorithm cannot be exported.
+  // V(s) (PPO, A2C), the Q-values of every action (DQN), the first critic's Q(s, a) of the
+  // action taken (SAC, TD3, DDPG), or the mean of every critic's quantiles there (TQC). Throws ExportError when the algorithm cannot be exported.
   virtual void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const;
 
   int64_t num_timesteps() const { return num_timesteps_; }

@@ -9,6 +9,7 @@
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
+#include "rlrun/algos/tqc/tqc.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/frame_stack.hpp"
@@ -63,6 +64,7 @@ Registry make_builtins() {
   r.add(make_algorithm_entry<DQN>("DQN", "Deep Q-Network (SB3 semantics, epsilon-greedy, Huber loss); Discrete actions"));
   r.add(make_algorithm_entry<TD3>("TD3", "Twin Delayed DDPG (SB3 semantics, clipped double-Q, delayed actor); Box actions"));
   r.add(make_algorithm_entry<DDPG>("DDPG", "Deep Deterministic Policy Gradient (SB3 semantics: TD3 without its tricks); Box actions"));
+  r.add(make_algorithm_entry<TQC>("TQC", "Truncated Quantile Critics (sb3-contrib semantics: SAC with truncated distributional critics); Box actions"));
   return r;
 }
 

@@ -8,11 +8,12 @@
 namespace rlrun {
 
 ContinuousCritic::ContinuousCritic(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                                   Activation activation, int n_critics)
+                                   Activation activation, int n_critics, int n_outputs)
     : obs_dim_(obs_dim) {
   if (n_critics < 1) throw std::invalid_argument("ContinuousCritic: n_critics must be >= 1");
+  if (n_outputs < 1) throw std::invalid_argument("ContinuousCritic: n_outputs must be >= 1");
   for (int i = 0; i < n_critics; ++i)
-    q_.emplace_back(obs_dim + action_dim, net_arch, 1, activation);
+    q_.emplace_back(obs_dim + action_dim, net_arch, n_outputs, activation);
 }
 
 void ContinuousCritic::init(Rng& rng) {

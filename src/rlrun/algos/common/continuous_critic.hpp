@@ -4,6 +4,10 @@
 // action), saved as <prefix>.qf<i>.*. The algorithms hold two: `critic` and `critic_target`, a
 // copy (load_state_dict) that then only moves by Polyak averaging. Each Q-network is a SplitMlp,
 // so a training minibatch runs on both cores; the losses are the algorithms'.
+//
+// With n_outputs > 1 it is sb3-contrib tqc/policies.py Critic: each network ends in
+// n_quantiles outputs (create_mlp(features_dim + action_dim, n_quantiles, net_arch)), with the
+// same module names qf<i>, so the same class, save names and Polyak update serve TQC.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -17,30 +21,33 @@ namespace rlrun {
 class ContinuousCritic {
  public:
   // Parameters start at zero: call init (or copy another critic). Throws std::invalid_argument
-  // for n_critics < 1 or bad sizes.
+  // for n_critics < 1, n_outputs < 1 or bad sizes. n_outputs: 1 (a Q-value) or TQC's
+  // n_quantiles.
   ContinuousCritic(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                   Activation activation, int n_critics);
+                   Activation activation, int n_critics, int n_outputs = 1);
 
   // torch's default Linear init, Q-network by Q-network (SB3 never calls init_weights for
   // off-policy critics).
   void init(Rng& rng);
 
   int n_critics() const { return static_cast<int>(q_.size()); }
+  int n_outputs() const { return q_.front().net().out_dim(); }
   SplitMlp& q(int i) { return q_[i]; }
   const SplitMlp& q(int i) const { return q_[i]; }
 
-  // SB3 forward(obs, actions): Q_i(obs, actions) of every critic, each q(i).output() (1 x n),
-  // kept for backward (the actions: action_dim x n).
+  // SB3 forward(obs, actions): Q_i(obs, actions) of every critic, each q(i).output()
+  // (n_outputs x n), kept for backward (the actions: action_dim x n).
   void forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                const Eigen::Ref<const Eigen::MatrixXf>& actions);
   // th.min over the critics of sample j's values in the last forward: the first critic with
-  // the smallest (where th.min sends the gradient), and that value.
+  // the smallest (where th.min sends the gradient), and that value. n_outputs == 1 only.
   int argmin(Eigen::Index j) const;
   float min(Eigen::Index j) const { return q_[argmin(j)].output()(0, j); }
   // SB3 q1_forward: the first critic only (TD3's actor loss).
   const Eigen::MatrixXf& q1_forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                     const Eigen::Ref<const Eigen::MatrixXf>& actions);
-  // dL/d(actions) through critic i's last forward for dL/dQ_i = grad_q (1 x n): action_dim x n.
+  // dL/d(actions) through critic i's last forward for dL/dQ_i = grad_q (n_outputs x n):
+  // action_dim x n.
   // Input gradient only: an actor loss's backward also fills the critic's .grad in torch, but
   // the critic optimizer's zero_grad() clears it before its next step, so it is never used.
   void action_gradient(int i, const Eigen::Ref<const Eigen::MatrixXf>& grad_q,

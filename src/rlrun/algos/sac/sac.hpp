@@ -17,10 +17,10 @@
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
+#include "rlrun/algos/common/entropy_coefficient.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
-#include "rlrun/algos/sac/entropy_coefficient.hpp"
-#include "rlrun/algos/sac/sac_actor.hpp"
+#include "rlrun/algos/common/sac_actor.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
 

@@ -14,7 +14,8 @@ namespace {
 
 // rl-zoo's algorithm names (rl_zoo3/utils.py ALGOS) that rlrun implements.
 const std::vector<std::pair<std::string, std::string>> kAlgorithms{
-    {"ppo", "PPO"}, {"a2c", "A2C"}, {"dqn", "DQN"}, {"sac", "SAC"}, {"td3", "TD3"}, {"ddpg", "DDPG"}};
+    {"ppo", "PPO"}, {"a2c", "A2C"}, {"dqn", "DQN"}, {"sac", "SAC"},
+    {"td3", "TD3"}, {"ddpg", "DDPG"}, {"tqc", "TQC"}};
 
 // Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}.
 const std::vector<std::pair<std::string, std::string>> kRenamed{
@@ -44,14 +45,14 @@ ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
     entry.algorithm = algorithm_of_file(path);
     if (entry.algorithm.empty())
       throw ConfigError(path + ": the file name does not name an algorithm (ppo.yml, a2c.yml, "
-                        "dqn.yml, sac.yml, td3.yml, ddpg.yml): pass --algo");
+                        "dqn.yml, sac.yml, td3.yml, ddpg.yml, tqc.yml): pass --algo");
   } else {
     const std::string wanted = lower(entry.algorithm);
     auto it = std::find_if(kAlgorithms.begin(), kAlgorithms.end(),
                            [&](const auto& a) { return a.first == wanted; });
     if (it == kAlgorithms.end())
       throw ConfigError("--algo " + algorithm + ": rlrun imports zoo files of ppo, a2c, dqn, sac, "
-                        "td3 and ddpg");
+                        "td3, ddpg and tqc");
     entry.algorithm = it->second;
   }
   const ConfigNode root = ConfigNode::load_file(path);

@@ -12,7 +12,7 @@ namespace rlrun::zoo {
 
 struct ZooEntry {
   std::string file;        // the hyperparameter file
-  std::string algorithm;   // rlrun's id: PPO, A2C, DQN, SAC, TD3, DDPG
+  std::string algorithm;   // rlrun's id: PPO, A2C, DQN, SAC, TD3, DDPG, TQC
   std::string entry_name;  // the key of the entry used ("default" when it was)
   std::string env_id;      // the rlrun env to train
   ConfigNode node;         // the entry (positions in `file`)

@@ -1,6 +1,7 @@
 #pragma once
 // SAC's actor (SB3 sac/policies.py Actor with SquashedDiagGaussianDistribution; CleanRL
-// sac_continuous_action.py Actor): latent_pi = Linear -> act -> ... (an activation after EVERY
+// sac_continuous_action.py Actor), also TQC's (sb3-contrib tqc/policies.py Actor is the same
+// network, distribution and state_dict names): latent_pi = Linear -> act -> ... (an activation after EVERY
 // hidden layer), then two linear heads mu and log_std, log_std clamped to [-20, 2], actions
 // a = tanh(mu + std * eps) in (-1, 1). Rescaling to the Box bounds happens outside (SB3's
 // unscale_action), so the replay buffer and the critics see actions in [-1, 1].

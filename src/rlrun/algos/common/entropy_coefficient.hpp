@@ -1,9 +1,10 @@
 #pragma once
-// SAC's entropy coefficient alpha (SB3 sac/sac.py _setup_model; Haarnoja et al. 2018b, "Soft
+// SAC's and TQC's entropy coefficient alpha (SB3 sac/sac.py _setup_model; Haarnoja et al. 2018b, "Soft
 // Actor-Critic Algorithms and Applications", arXiv:1812.05905, section 5): either a fixed
 // number, or learned ("auto", "auto_<initial>") by Adam on log(alpha). SB3 optimises log(alpha)
 // rather than alpha (softlearning issue #37) and starts it at log(initial) (1.0 unless
-// "auto_<initial>" says otherwise). Its loss and step are in SAC::train_on_batch.
+// "auto_<initial>" says otherwise; sb3-contrib tqc/tqc.py _setup_model is the same code). Its
+// loss and step are in SAC::train_on_batch and TQC::train_on_batch.
 #include <Eigen/Core>
 #include <string>
 

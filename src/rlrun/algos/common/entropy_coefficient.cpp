@@ -1,4 +1,4 @@
-#include "rlrun/algos/sac/entropy_coefficient.hpp"
+#include "rlrun/algos/common/entropy_coefficient.hpp"
 
 #include "rlrun/algos/common/training_state.hpp"
 

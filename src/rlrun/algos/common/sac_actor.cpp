@@ -1,4 +1,4 @@
-#include "rlrun/algos/sac/sac_actor.hpp"
+#include "rlrun/algos/common/sac_actor.hpp"
 
 #include "rlrun/nn/policy_graph.hpp"
 
