@@ -134,7 +134,7 @@ TEST_CASE(
   CHECK(alpha == Approx(0.5));
 
   const float lr = 1e-3f;
-  const SacStepStats stats = sac.train_on_batch(b, lr, true);
+  const EntropyRegularizedStepStats stats = sac.train_on_batch(b, lr, true);
   CHECK(stats.ent_coef == Approx(alpha));
   const Eigen::MatrixXf& noise = sac.last_next_noise();
   const Eigen::MatrixXf& y = sac.last_critic_target();

@@ -252,7 +252,7 @@ TEST_CASE(
   CHECK(alpha == Approx(0.5));
 
   const float lr = 1e-3f;
-  const TqcStepStats stats = tqc.train_on_batch(b, lr, true);
+  const EntropyRegularizedStepStats stats = tqc.train_on_batch(b, lr, true);
   CHECK(stats.ent_coef == Approx(alpha));
   const Eigen::MatrixXf& y = tqc.last_target_quantiles();
   REQUIRE(y.rows() == n_target);

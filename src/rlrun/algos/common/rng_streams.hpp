@@ -14,5 +14,8 @@ inline constexpr uint64_t kActionStream = 0x5851f42d4c957f2dULL;
 inline constexpr uint64_t kNoiseStream = 0x2545f4914f6cdd1dULL;
 // Replay-buffer sampling (off-policy) and minibatch shuffling (on-policy).
 inline constexpr uint64_t kSampleStream = 0x14057b7ef767814fULL;
+// SAC's and TQC's reparameterisation noise in gradient steps, and their predict() samples.
+inline constexpr uint64_t kTrainStream = 0x9e3779b97f4a7c15ULL;
+inline constexpr uint64_t kPredictStream = 0xda942042e4dd58b5ULL;
 
 }  // namespace rlrun

@@ -11,11 +11,9 @@
 namespace rlrun {
 
 namespace {
-// Weights use the seed itself; rng_streams.hpp has the acting, noise and replay streams. Two
-// more: the actor's reparameterisation noise in updates, and predict() (so evaluation during
-// training never shifts the training streams).
-constexpr uint64_t kTrainStream = 0x9e3779b97f4a7c15ULL;
-constexpr uint64_t kPredictStream = 0xda942042e4dd58b5ULL;
+// Weights use the seed itself; rng_streams.hpp has the acting, noise and replay streams and
+// SAC's two more: the actor's reparameterisation noise in updates (kTrainStream), and predict()
+// (kPredictStream, so evaluation during training never shifts the training streams).
 
 void fill_normal(Rng& rng, Eigen::Index rows, Eigen::Index cols, Eigen::MatrixXf& m) {
   m.resize(rows, cols);
@@ -108,11 +106,11 @@ void SAC::record_rollout_logs(Logger& logger) {
 
 // SB3 sac/sac.py SAC.train, one pass of its loop over gradient steps; CleanRL's
 // sac_continuous_action.py has the same update.
-SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
+EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
-  SacStepStats stats;
+  EntropyRegularizedStepStats stats;
   if (config_.use_sde) {
     // "We need to sample because `log_std` may have changed between two gradient steps":
     // reset_noise() with batch size 1, so the whole minibatch shares one exploration matrix.
@@ -199,25 +197,10 @@ SacStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
 void SAC::train(int gradient_steps, Logger* logger) {
   // SB3 _update_learning_rate: the same scheduled lr for actor, critic and ent_coef optimizers.
   const auto lr = static_cast<float>(config_.learning_rate(progress_remaining()));
-  SacStepStats sum;
-  for (int step = 0; step < gradient_steps; ++step) {
-    // SB3: `if gradient_step % self.target_update_interval == 0`, counted within this call.
-    const SacStepStats s =
-        train_on_batch(sample_batch(), lr, step % config_.target_update_interval == 0);
-    sum.ent_coef += s.ent_coef;
-    sum.ent_coef_loss += s.ent_coef_loss;
-    sum.actor_loss += s.actor_loss;
-    sum.critic_loss += s.critic_loss;
-  }
-  n_updates_ += gradient_steps;
-  if (!logger || gradient_steps == 0) return;
-  const double n = gradient_steps;
-  logger->record("train/n_updates", static_cast<double>(n_updates_));
-  logger->record("train/ent_coef", sum.ent_coef / n);
-  logger->record("train/actor_loss", sum.actor_loss / n);
-  logger->record("train/critic_loss", sum.critic_loss / n);
-  if (ent_coef_.learned()) logger->record("train/ent_coef_loss", sum.ent_coef_loss / n);
-  logger->record("train/learning_rate", lr);
+  train_entropy_regularized(gradient_steps, config_.target_update_interval, lr, ent_coef_.learned(),
+                            n_updates_, logger, [&](bool update_target) {
+                              return train_on_batch(sample_batch(), lr, update_target);
+                            });
 }
 
 void SAC::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,

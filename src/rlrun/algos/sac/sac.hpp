@@ -18,6 +18,7 @@
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/entropy_coefficient.hpp"
+#include "rlrun/algos/common/entropy_regularized_train.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/common/sac_actor.hpp"
@@ -49,14 +50,6 @@ struct SacPolicyConfig {
     v("clip_mean", clip_mean, "gSDE (use_sde): clip the mean to [-clip_mean, clip_mean] (0: off)",
       in_range(0, 1e6));
   }
-};
-
-// The per-step scalars SAC.train records (means over a train() call are logged).
-struct SacStepStats {
-  double ent_coef = 0.0;       // alpha used in this step (before its update)
-  double ent_coef_loss = 0.0;  // 0 when alpha is fixed
-  double actor_loss = 0.0;
-  double critic_loss = 0.0;  // 0.5 * sum over critics of mse
 };
 
 class SAC : public OffPolicyAlgorithm {
@@ -121,7 +114,7 @@ class SAC : public OffPolicyAlgorithm {
   // One gradient step of SAC.train on `batch` (actions in [-1, 1]) with learning rate lr;
   // update_target applies the Polyak update afterwards. Public for tests and benchmarks: the
   // gradients stay in the networks' grads() after the step.
-  SacStepStats train_on_batch(const ReplayBatch& batch, float lr, bool update_target);
+  EntropyRegularizedStepStats train_on_batch(const ReplayBatch& batch, float lr, bool update_target);
 
   const Config& config() const { return config_; }
   const SacActor& actor() const { return actor_; }

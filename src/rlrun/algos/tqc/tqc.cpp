@@ -12,10 +12,8 @@
 namespace rlrun {
 
 namespace {
-// SAC's two extra streams (reparameterisation noise in updates; predict()), so a TQC and a SAC
-// run with one seed start from the same draws.
-constexpr uint64_t kTrainStream = 0x9e3779b97f4a7c15ULL;
-constexpr uint64_t kPredictStream = 0xda942042e4dd58b5ULL;
+// SAC's streams (rng_streams.hpp: kTrainStream, kPredictStream), so a TQC and a SAC run with
+// one seed start from the same draws.
 
 void fill_normal(Rng& rng, Eigen::Index rows, Eigen::Index cols, Eigen::MatrixXf& m) {
   m.resize(rows, cols);
@@ -55,7 +53,7 @@ ConfigProblems TQC::check(const Config& config, const AlgorithmSetup& setup) {
   // Each critic, its target and the second core's activations of both.
   check_network_memory(out, "policy.net_arch", obs + act, arch.qf, config.policy.n_quantiles,
                        4 * config.policy.n_critics, config.off_policy.batch_size);
-  check_replay_memory(out, config.off_policy.buffer_size, setup);
+  check_replay_buffer(out, config.off_policy, setup);
   if (const std::string p = drop_problem(config); !p.empty())
     out.push_back({"top_quantiles_to_drop_per_net", p});
   return out;
@@ -129,13 +127,13 @@ void TQC::record_rollout_logs(Logger& logger) {
 }
 
 // sb3-contrib tqc/tqc.py TQC.train, one pass of its loop over gradient steps.
-TqcStepStats TQC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
+EntropyRegularizedStepStats TQC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
   const int n_critics = critic_.n_critics();
   const int n_quantiles = critic_.n_outputs();
-  TqcStepStats stats;
+  EntropyRegularizedStepStats stats;
   if (config_.use_sde) {
     // "We need to sample because `log_std` may have changed between two gradient steps".
     actor_.reset_noise(train_rng_, 1);
@@ -237,25 +235,10 @@ TqcStepStats TQC::train_on_batch(const ReplayBatch& b, float lr, bool update_tar
 void TQC::train(int gradient_steps, Logger* logger) {
   // SB3 _update_learning_rate: one scheduled lr for the actor, critic and ent_coef optimizers.
   const auto lr = static_cast<float>(config_.learning_rate(progress_remaining()));
-  TqcStepStats sum;
-  for (int step = 0; step < gradient_steps; ++step) {
-    // `if gradient_step % self.target_update_interval == 0`, counted within this call.
-    const TqcStepStats s =
-        train_on_batch(sample_batch(), lr, step % config_.target_update_interval == 0);
-    sum.ent_coef += s.ent_coef;
-    sum.ent_coef_loss += s.ent_coef_loss;
-    sum.actor_loss += s.actor_loss;
-    sum.critic_loss += s.critic_loss;
-  }
-  n_updates_ += gradient_steps;
-  if (!logger || gradient_steps == 0) return;
-  const double n = gradient_steps;
-  logger->record("train/n_updates", static_cast<double>(n_updates_));
-  logger->record("train/ent_coef", sum.ent_coef / n);
-  logger->record("train/actor_loss", sum.actor_loss / n);
-  logger->record("train/critic_loss", sum.critic_loss / n);
-  if (ent_coef_.learned()) logger->record("train/ent_coef_loss", sum.ent_coef_loss / n);
-  logger->record("train/learning_rate", lr);
+  train_entropy_regularized(gradient_steps, config_.target_update_interval, lr, ent_coef_.learned(),
+                            n_updates_, logger, [&](bool update_target) {
+                              return train_on_batch(sample_batch(), lr, update_target);
+                            });
 }
 
 void TQC::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,

@@ -21,6 +21,7 @@
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/entropy_coefficient.hpp"
+#include "rlrun/algos/common/entropy_regularized_train.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/common/sac_actor.hpp"
@@ -57,14 +58,6 @@ struct TqcPolicyConfig {
     v("clip_mean", clip_mean, "gSDE (use_sde): clip the mean to [-clip_mean, clip_mean] (0: off)",
       in_range(0, 1e6));
   }
-};
-
-// The per-step scalars TQC.train records (means over a train() call are logged).
-struct TqcStepStats {
-  double ent_coef = 0.0;       // alpha used in this step (before its update)
-  double ent_coef_loss = 0.0;  // 0 when alpha is fixed
-  double actor_loss = 0.0;
-  double critic_loss = 0.0;  // quantile Huber loss, mean over batch, critics and atom pairs
 };
 
 class TQC : public OffPolicyAlgorithm {
@@ -131,7 +124,7 @@ class TQC : public OffPolicyAlgorithm {
   // One gradient step of TQC.train on `batch` (actions in [-1, 1]) with learning rate lr;
   // update_target applies the Polyak update afterwards. Public for tests and benchmarks: the
   // gradients stay in the networks' grads() after the step.
-  TqcStepStats train_on_batch(const ReplayBatch& batch, float lr, bool update_target);
+  EntropyRegularizedStepStats train_on_batch(const ReplayBatch& batch, float lr, bool update_target);
 
   // n_critics * n_quantiles - top_quantiles_to_drop_per_net * n_critics.
   int n_target_quantiles() const;
