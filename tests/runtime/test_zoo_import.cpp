@@ -43,8 +43,8 @@ bool off_policy(const std::string& algo) {
 }
 
 // Imports `env` from `file` and checks the experiment; with `train`, trains it briefly: 2000
-// steps (at least one rollout), with learning_starts lowered to 1000 so that off-policy
-// entries take gradient steps, and a replay buffer of at most 100000 transitions. Returns ""
+// steps (at least one rollout), with learning_starts lowered to 1500 so that off-policy
+// entries take (500) gradient steps, and a replay buffer of at most 100000 transitions. Returns ""
 // or the error.
 std::string import_and_train(const std::string& file, const std::string& algo, const std::string& env,
                              const std::string& out_dir, bool train) {
@@ -56,8 +56,8 @@ std::string import_and_train(const std::string& file, const std::string& algo, c
     const ZooImport imported = translate_zoo_entry(read_zoo_entry(file, env, ""), registry);
     if (off_policy(algo)) {
       const YAML::Node a = imported.experiment["algo"];
-      if (a["learning_starts"] && a["learning_starts"].as<double>() > 1000)
-        overrides.push_back("algo.learning_starts=1000");
+      if (a["learning_starts"] && a["learning_starts"].as<double>() > 1500)
+        overrides.push_back("algo.learning_starts=1500");
       if (!a["buffer_size"] || a["buffer_size"].as<double>() > 100000)
         overrides.push_back("algo.buffer_size=100000");
     }
