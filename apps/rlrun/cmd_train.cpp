@@ -36,6 +36,7 @@ struct TrainOptions {
   std::string zoo;
   std::string zoo_env;
   std::string zoo_algo;
+  std::string zoo_entry;
 };
 
 // 130 (128 + SIGINT, as shells report it) for an interrupted run; the trainer has printed
@@ -102,7 +103,8 @@ int train_zoo(const TrainOptions& o, Registry& registry) {
     throw UsageError("--zoo trains one zoo entry; it takes no experiment files or -j");
   if (o.zoo_env.empty()) throw UsageError("--zoo needs --env ENV_ID (the entry to train)");
   const Experiment experiment =
-      zoo::load_zoo_experiment(o.zoo, o.zoo_env, o.zoo_algo, all_overrides(o), registry);
+      zoo::load_zoo_experiment(o.zoo, o.zoo_env, o.zoo_algo, all_overrides(o), registry,
+                                o.zoo_entry);
   install_interrupt_handlers();
   return exit_code(train_experiment(experiment, registry));
 }
@@ -142,13 +144,16 @@ Action add_train(CLI::App& app, Registry& registry) {
   sub->add_option("--env", options->zoo_env, "with --zoo: the env whose entry to train");
   sub->add_option("--algo", options->zoo_algo,
                   "with --zoo: the algorithm, when the file name does not say");
+  sub->add_option("--zoo-entry", options->zoo_entry,
+                  "with --zoo: use this entry's settings for --env (e.g. PandaReach-v1 for "
+                  "GripperReach-v0)");
   add_plugin_option(sub, options->plugins);
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);
     if (!options->resume.empty()) return resume(*options, registry);
     if (!options->zoo.empty()) return train_zoo(*options, registry);
-    if (!options->zoo_env.empty() || !options->zoo_algo.empty())
-      throw UsageError("--env and --algo go with --zoo HYPERPARAMS.yml");
+    if (!options->zoo_env.empty() || !options->zoo_algo.empty() || !options->zoo_entry.empty())
+      throw UsageError("--env, --algo and --zoo-entry go with --zoo HYPERPARAMS.yml");
     if (options->configs.empty())
       throw UsageError("train needs experiment files (rlrun train configs/x.yaml) or --resume RUN_DIR");
     const std::vector<std::string> overrides = all_overrides(*options);

@@ -17,6 +17,7 @@ struct ZooOptions {
   std::string env_id;
   std::string output;
   std::string algo;
+  std::string entry;  // another env's entry to use (--entry)
 };
 
 }  // namespace
@@ -35,9 +36,11 @@ Action add_zoo(CLI::App& app, Registry& registry) {
   import->add_option("-o,--output", options->output, "write the experiment here (default: stdout)");
   import->add_option("--algo", options->algo,
                      "the algorithm, when the file name does not say (ppo, a2c, dqn, sac, td3, ddpg, tqc)");
+  import->add_option("--entry", options->entry,
+                     "use this entry's settings for env_id (e.g. PandaReach-v1 for GripperReach-v0)");
   return [options, &registry]() {
     const zoo::ZooImport imported = zoo::translate_zoo_entry(
-        zoo::read_zoo_entry(options->hyperparams, options->env_id, options->algo), registry);
+        zoo::read_zoo_entry(options->hyperparams, options->env_id, options->algo, options->entry), registry);
     // Checked as `rlrun train` would check it, with the zoo file's positions in messages.
     parse_experiment(ConfigNode::from_yaml(imported.experiment, options->hyperparams), registry);
     const std::string text = zoo::experiment_text(imported);

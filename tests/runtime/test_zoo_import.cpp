@@ -422,3 +422,40 @@ TEST_CASE("zoo import: a HER entry (replay_buffer_class, replay_buffer_kwargs as
   CHECK_THAT(import_and_train(bad, "dqn", "BitFlippingEnv-v0", dir / "runs_bad", false),
              Catch::Contains("n_sampled_goal"));
 }
+
+TEST_CASE("zoo import: --entry uses another env's entry (the zoo's PandaReach TQC + HER entry for GripperReach)",
+          "[zoo][her]") {
+  TempDir dir("zoo_entry");
+  Registry registry = make_builtin_registry();
+  // rl-baselines3-zoo hyperparams/tqc.yml, PandaReach-v1, as the zoo writes it.
+  const std::string file = write_file(dir, "tqc.yml", R"zoo(PandaReach-v1:
+  n_timesteps: !!float 20000
+  policy: 'MultiInputPolicy'
+  buffer_size: 1000000
+  ent_coef: 'auto'
+  batch_size: 256
+  gamma: 0.95
+  learning_rate: 0.001
+  learning_starts: 1000
+  normalize: True
+  replay_buffer_class: HerReplayBuffer
+  replay_buffer_kwargs: "dict(
+    goal_selection_strategy='future',
+    n_sampled_goal=4
+  )"
+  policy_kwargs: "dict(net_arch=[64, 64], n_critics=1)"
+)zoo");
+  const ZooEntry entry = read_zoo_entry(file, "GripperReach-v0", "", "PandaReach-v1");
+  CHECK(entry.entry_name == "PandaReach-v1");
+  CHECK(entry.env_id == "GripperReach-v0");
+  const Experiment e = load_zoo_experiment(file, "GripperReach-v0", "",
+                                           {"run.total_timesteps=1500", "eval.freq=0",
+                                            "run.out_dir=" + dir / "runs"},
+                                           registry, "PandaReach-v1");
+  CHECK(e.env.section.normalize.enabled);
+  const TrainOutcome outcome = train_experiment(e, registry);
+  CHECK(std::filesystem::exists(outcome.run_dir + "/model.zip"));
+  // A missing entry is named with the closest one.
+  CHECK_THROWS_WITH(read_zoo_entry(file, "GripperReach-v0", "", "PandaReach-v3"),
+                    Catch::Contains("did you mean 'PandaReach-v1'"));
+}

@@ -37,7 +37,7 @@ std::string algorithm_of_file(const std::string& path) {
 }
 
 ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
-                        const std::string& algorithm) {
+                        const std::string& algorithm, const std::string& entry_name) {
   ZooEntry entry;
   entry.file = path;
   entry.algorithm = algorithm;
@@ -70,6 +70,11 @@ ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
     }
   }
   candidates.push_back("default");
+  if (!entry_name.empty()) {
+    if (!root.has(entry_name))
+      root.fail("no entry " + entry_name + did_you_mean(entry_name, root.keys()));
+    candidates = {entry_name};
+  }
   for (const std::string& name : candidates) {
     if (!root.has(name)) continue;
     entry.entry_name = name;

@@ -21,10 +21,12 @@ struct ZooEntry {
 // The rlrun algorithm of a zoo file name (`ppo.yml` -> PPO), or "" when the name says none.
 std::string algorithm_of_file(const std::string& path);
 
-// Loads `path` and picks the entry for `env_id`. `algorithm` empty: from the file name.
-// Throws ConfigError (file:line:col where there is one) for an unreadable file, an unknown
-// algorithm, or no entry for the env and no `default`.
+// Loads `path` and picks the entry for `env_id`, or the entry named `entry_name` when given
+// (another env's settings for this env: `--entry PandaReach-v1` for GripperReach-v0).
+// `algorithm` empty: from the file name. Throws ConfigError (file:line:col where there is one)
+// for an unreadable file, an unknown algorithm, no entry of that name (did-you-mean), or no
+// entry for the env and no `default`.
 ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
-                        const std::string& algorithm);
+                        const std::string& algorithm, const std::string& entry_name = "");
 
 }  // namespace rlrun::zoo

@@ -277,8 +277,9 @@ ZooImport translate_zoo_entry(const ZooEntry& entry, const Registry& registry) {
 
 Experiment load_zoo_experiment(const std::string& path, const std::string& env_id,
                                const std::string& algorithm,
-                               const std::vector<std::string>& overrides, Registry& registry) {
-  const ZooImport imported = translate_zoo_entry(read_zoo_entry(path, env_id, algorithm), registry);
+                               const std::vector<std::string>& overrides, Registry& registry,
+                               const std::string& entry_name) {
+  const ZooImport imported = translate_zoo_entry(read_zoo_entry(path, env_id, algorithm, entry_name), registry);
   // The zoo file's own nodes keep their positions: a value rlrun refuses is named at its line.
   ConfigNode root = ConfigNode::from_yaml(imported.experiment, path);
   for (const std::string& o : overrides) root.apply_override(o);

@@ -31,7 +31,8 @@ ZooImport translate_zoo_entry(const ZooEntry& entry, const Registry& registry);
 // what `rlrun train --zoo` trains. Throws ConfigError with the zoo file's line and column.
 Experiment load_zoo_experiment(const std::string& path, const std::string& env_id,
                                const std::string& algorithm,
-                               const std::vector<std::string>& overrides, Registry& registry);
+                               const std::vector<std::string>& overrides, Registry& registry,
+                               const std::string& entry_name = "");
 
 // The experiment file text: a header comment (where it came from, rlrun version, date, notes)
 // then the experiment, without the zoo file's YAML tags.
