@@ -163,12 +163,18 @@ void GripperGoalEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
                            std::to_string(kMaxGoalDraws) + " tries");
   }
   steps_ = 0;
+  observe(obs);
+}
+
+float GripperGoalEnv::observe(std::span<float> obs) {
   write_observation(obs);
+  // The reward and success from the goals as observed, exactly as compute_reward sees them.
   const float d = distance(&obs[at_achieved_], &obs[at_desired_]);
   success_ = d < static_cast<float>(config_.distance_threshold);
   info_.clear();
   info_.set(key_success_, success_ ? 1.0 : 0.0);
   info_.set(key_distance_, d);
+  return d;
 }
 
 StepResult GripperGoalEnv::step(std::span<const float> action, std::span<float> obs) {
@@ -190,13 +196,7 @@ StepResult GripperGoalEnv::step(std::span<const float> action, std::span<float> 
   world_->command(target, std::clamp(opening, 0.0, GripperWorld::kMaxOpening));
   world_->step(config_.substeps);
   ++steps_;
-  write_observation(obs);
-  // The reward and success from the goals as observed, exactly as compute_reward sees them.
-  const float d = distance(&obs[at_achieved_], &obs[at_desired_]);
-  success_ = d < static_cast<float>(config_.distance_threshold);
-  info_.clear();
-  info_.set(key_success_, success_ ? 1.0 : 0.0);
-  info_.set(key_distance_, d);
+  const float d = observe(obs);
   StepResult result;
   result.reward = reward_of(d);
   result.terminated = config_.terminate_on_success && success_;

@@ -120,6 +120,8 @@ class GripperGoalEnv : public Env, public GoalEnv {
 
  private:
   void write_observation(std::span<float> obs) const;
+  // Writes the observation, then success and info from its goals; returns their distance.
+  float observe(std::span<float> obs);
   float reward_of(float d) const;
 
   GoalTask task_;
