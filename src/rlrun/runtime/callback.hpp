@@ -7,6 +7,7 @@
 // Frequencies in rlrun count those TOTAL steps (SB3's count calls, i.e. per-env steps).
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,16 @@ namespace rlrun {
 struct Experiment;  // runtime/experiment.hpp
 class Registry;     // runtime/registry.hpp
 
+// One evaluation as evaluations.csv holds it (timesteps, then column -> value; a column left
+// empty in the file is absent here). `rlrun tune` reports these to its pruner.
+struct EvaluationRow {
+  int64_t timesteps = 0;
+  std::map<std::string, double> values;
+};
+// Called after each evaluation; a non-empty result stops training with that reason (a pruned
+// trial).
+using EvaluationListener = std::function<std::string(const EvaluationRow&)>;
+
 // What callbacks may use; owned by the trainer, alive for the whole training.
 struct TrainingContext {
   const Experiment& experiment;
@@ -32,6 +43,7 @@ struct TrainingContext {
   std::function<void(const std::string&)> save_model;   // model file (with wrapper statistics)
   std::function<void(const std::string&)> save_checkpoint;  // what checkpoints/ holds
   bool resuming = false;  // continuing a run: append to its files, do not start them anew
+  EvaluationListener on_evaluation;  // optional: told of every evaluation (EvalCallback)
 };
 
 class Callback {

@@ -124,6 +124,16 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
     message += " (new best, saved best_model.zip)";
   }
   context_.message(message);
+  if (context_.on_evaluation) {
+    EvaluationRow row{num_timesteps, {{"mean_reward", r.mean_return()},
+                                      {"std_reward", r.std_return()},
+                                      {"mean_ep_length", r.mean_length()}}};
+    if (!std::isnan(success)) row.values["success_rate"] = success;
+    for (size_t k = 0; k < metric_keys_.size(); ++k)
+      if (!std::isnan(metric_means[k])) row.values[metric_keys_[k]] = metric_means[k];
+    stop_reason_ = context_.on_evaluation(row);
+    if (!stop_reason_.empty()) return false;
+  }
   return check_stop_rules();
 }
 

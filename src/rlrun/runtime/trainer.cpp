@@ -73,8 +73,9 @@ std::string checkpoint_name(const std::string& run_dir, int64_t num_timesteps) {
 class TrainingRun {
  public:
   TrainingRun(const Experiment& experiment, const Registry& registry,
-              const std::vector<std::string>& resume_from)
-      : experiment_(experiment), registry_(registry), resuming_(!resume_from.empty()) {
+              const std::vector<std::string>& resume_from, EvaluationListener on_evaluation)
+      : experiment_(experiment), registry_(registry), resuming_(!resume_from.empty()),
+        on_evaluation_(std::move(on_evaluation)) {
     open_run_directory(resume_from);
     build();
     if (resuming_) restore();
@@ -116,6 +117,7 @@ class TrainingRun {
   std::vector<std::unique_ptr<Callback>> callbacks_;
   std::string last_checkpoint_;
   bool resumable_ = false;  // the envs can save their state: checkpoints resume exactly
+  EvaluationListener on_evaluation_;
 };
 
 // A new run gets a fresh directory; a resumed one its own, cut back to the checkpoint. Either
@@ -199,7 +201,7 @@ void TrainingRun::build_logging() {
                                    },
                                    [this](const std::string& path) { save_model(path); },
                                    [this](const std::string& path) { save_checkpoint(path); },
-                                   resuming_});
+                                   resuming_, on_evaluation_});
   callbacks_ = make_callbacks(*context_);
   last_checkpoint_ = resuming_ ? resume_->path : "";
 }
@@ -377,8 +379,9 @@ void TrainingRun::finish() {
 }  // namespace
 
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
-                              const std::vector<std::string>& resume_from) {
-  TrainingRun run(experiment, registry, resume_from);
+                              const std::vector<std::string>& resume_from,
+                              EvaluationListener on_evaluation) {
+  TrainingRun run(experiment, registry, resume_from, std::move(on_evaluation));
   return run.run();
 }
 

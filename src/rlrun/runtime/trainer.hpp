@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/runtime/callback.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/session_summary.hpp"
 
@@ -48,7 +49,9 @@ inline SessionSummary session_summary(const TrainOutcome& outcome) {
 // `resume_from` non-empty: continue the run these checkpoints belong to (newest first, as
 // runtime/resume_point.hpp lists them; a damaged one is skipped with a note), with
 // `experiment` loaded from that run's config.yaml.
+// `on_evaluation`: told of every evaluation; may stop training (runtime/callback.hpp).
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
-                              const std::vector<std::string>& resume_from = {});
+                              const std::vector<std::string>& resume_from = {},
+                              EvaluationListener on_evaluation = {});
 
 }  // namespace rlrun

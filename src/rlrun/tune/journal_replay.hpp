@@ -1,0 +1,83 @@
+#pragma once
+// The study state a journal's operations give when replayed in order: Optuna's
+// JournalStorageReplayResult (optuna/storages/_journal/storage.py, Optuna 3.1), with its rules:
+//   * a study name created twice keeps the first (the second writer gets "already exists");
+//   * trial ids count over the whole journal, trial numbers within each study;
+//   * an operation on a finished trial is ignored (and is an error for the worker that wrote it);
+//   * the first RUNNING state written for a WAITING trial wins: the worker whose line came first
+//     owns it (how several workers take enqueued trials without a lock of their own);
+//   * a parameter whose distribution does not fit an earlier trial's is ignored.
+// Operations come from a file anyone may have written: every field is checked; a bad one is a
+// RuntimeFailure naming the operation, never a crash.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rlrun/tune/frozen_trial.hpp"
+
+namespace rlrun::tune {
+
+// Optuna's JournalOperation.
+enum class JournalOperation : int {
+  kCreateStudy = 0,
+  kDeleteStudy = 1,
+  kSetStudyUserAttr = 2,
+  kSetStudySystemAttr = 3,
+  kCreateTrial = 4,
+  kSetTrialParam = 5,
+  kSetTrialStateValues = 6,
+  kSetTrialIntermediateValue = 7,
+  kSetTrialUserAttr = 8,
+  kSetTrialSystemAttr = 9,
+};
+
+struct StudyRecord {
+  int64_t study_id = 0;
+  std::string name;
+  std::vector<StudyDirection> directions;
+  nlohmann::json user_attrs = nlohmann::json::object();
+  nlohmann::json system_attrs = nlohmann::json::object();
+  std::vector<int64_t> trial_ids;  // in number order
+};
+
+// The most trials a replay holds (each is a few hundred bytes to a few KiB).
+inline constexpr size_t kMaxJournalTrials = 1000000;
+
+class JournalReplay {
+ public:
+  explicit JournalReplay(std::string worker_id) : worker_id_(std::move(worker_id)) {}
+
+  // Applies operations read from `origin` (for messages). Throws RuntimeFailure for a damaged
+  // operation, and for a rejected operation this worker wrote (its own mistake).
+  void apply(const std::vector<nlohmann::json>& operations, const std::string& origin);
+
+  const std::string& worker_id() const { return worker_id_; }
+  std::optional<int64_t> find_study(const std::string& name) const;
+  const StudyRecord& study(int64_t study_id) const;
+  const FrozenTrial& trial(int64_t trial_id) const;
+  // The study's trials in number order (copies: samplers get a stable snapshot).
+  std::vector<FrozenTrial> trials(int64_t study_id) const;
+  // The trial this worker created or took last and still holds RUNNING (Optuna's owned trial).
+  std::optional<int64_t> owned_trial() const { return owned_trial_; }
+  std::optional<int64_t> last_created_trial() const { return last_created_trial_; }
+
+ private:
+  void apply_one(const nlohmann::json& op, const std::string& where);
+  bool mine(const nlohmann::json& op) const;
+  bool study_exists(int64_t study_id, const nlohmann::json& op, const std::string& where) const;
+  bool trial_updatable(int64_t trial_id, const nlohmann::json& op, const std::string& where) const;
+
+  std::string worker_id_;
+  std::map<int64_t, StudyRecord> studies_;
+  int64_t next_study_id_ = 0;
+  std::vector<FrozenTrial> trials_;            // index = trial id
+  std::vector<int64_t> trial_study_;           // trial id -> study id
+  std::optional<int64_t> owned_trial_;
+  std::optional<int64_t> last_created_trial_;
+};
+
+}  // namespace rlrun::tune
