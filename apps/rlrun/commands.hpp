@@ -22,5 +22,6 @@ Action add_report(CLI::App& app);
 Action add_plot(CLI::App& app);
 Action add_zoo(CLI::App& app, Registry& registry);
 Action add_export(CLI::App& app, Registry& registry);
+Action add_tune(CLI::App& app, Registry& registry);
 
 }  // namespace rlrun::cli

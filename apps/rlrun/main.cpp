@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   rlrun::cli::Action plot = rlrun::cli::add_plot(app);
   rlrun::cli::Action zoo = rlrun::cli::add_zoo(app, registry);
   rlrun::cli::Action export_policy = rlrun::cli::add_export(app, registry);
+  rlrun::cli::Action tune = rlrun::cli::add_tune(app, registry);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("plot")) return plot();
     if (app.got_subcommand("zoo")) return zoo();
     if (app.got_subcommand("export")) return export_policy();
+    if (app.got_subcommand("tune")) return tune();
   } catch (const rlrun::ConfigError& e) {
     print_error(e.what());
     return rlrun::kExitUsage;

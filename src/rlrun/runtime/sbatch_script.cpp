@@ -132,20 +132,19 @@ void check_slurm_options(const ConfigNode& slurm, const SlurmOptions& options) {
     check("extra", options.extra[i], i < extra.size() ? extra.at(i) : extra);
 }
 
-std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
-                         const std::vector<std::string>& run_args) {
-  for (const std::string& path : {sweep.manifest, rlrun_binary}) {
+std::string slurm_array_script(const SlurmArrayJob& job) {
+  for (const std::string& path : {job.script, job.output_dir}) {
     const std::string problem = script_path_problem(path);
     if (!problem.empty()) throw UsageError("cannot write the sbatch script: " + problem);
   }
-  for (const std::string& arg : run_args)
-    if (!script_path_problem(arg).empty())
+  for (const std::string& arg : job.command)
+    if (arg != kSlurmArrayTaskId && !script_path_problem(arg).empty())
       throw UsageError("cannot write the sbatch script: the argument " + printable(arg) +
                        " contains a control character (a newline?), which no line of an "
                        "sbatch script can hold safely");
-  const SlurmOptions& s = sweep.slurm;
-  // The options were checked where they were read (expand_sweep, read_manifest); checked again
-  // here because this is where they become script text.
+  const SlurmOptions& s = job.options;
+  // The options were checked where they were read (the sweep or study file, the manifest);
+  // checked again here because this is where they become script text.
   const auto option = [](const std::string& key, const std::string& value) {
     const std::string problem = slurm_value_problem(key, value);
     if (!problem.empty()) throw UsageError("cannot write the sbatch script: " + problem);
@@ -155,37 +154,55 @@ std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
   option("partition", s.partition);
   option("cpus_per_task", std::to_string(s.cpus_per_task));
   for (const std::string& line : s.extra) option("extra", line);
+  if (job.tasks < 1) throw UsageError("cannot write the sbatch script: no array task");
 
-  const fs::path dir = fs::path(sweep.manifest).parent_path();
-  const std::string script = (dir / "sweep.sbatch").string();
-  // The job name is the sweep's name reduced to [A-Za-z0-9._+-].
+  // The job name reduced to [A-Za-z0-9._+-].
   std::string job_name;
-  for (char c : sweep.name)
+  for (char c : job.name)
     job_name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
                         c == '-'
                     ? c
                     : '-';
-  std::string text = "#!/bin/bash\n# Written by: rlrun sweep slurm " + shell_quote(sweep.manifest) +
-                     "\n# Task i trains run i of the manifest (a finished run is skipped, an "
-                     "interrupted one resumed).\n# Submit with: sbatch " +
-                     shell_quote(script) + "\n";
-  text += "#SBATCH --job-name=" + (job_name.empty() ? std::string("sweep") : job_name) + "\n";
-  text += "#SBATCH --array=0-" + std::to_string(sweep.runs.size() - 1) + "\n";
-  text += "#SBATCH --output=" + sbatch_quoted_path((dir / "slurm").string() + "/") + "%A_%a.out\n";
+  std::string text = "#!/bin/bash\n";
+  for (const std::string& line : job.comment) {
+    if (!script_path_problem(line).empty()) throw UsageError("cannot write the sbatch script: a control character in its comment");
+    text += "# " + line + "\n";
+  }
+  text += "# Submit with: sbatch " + shell_quote(job.script) + "\n";
+  text += "#SBATCH --job-name=" + (job_name.empty() ? std::string("rlrun") : job_name) + "\n";
+  text += "#SBATCH --array=0-" + std::to_string(job.tasks - 1) + "\n";
+  text += "#SBATCH --output=" + sbatch_quoted_path(job.output_dir + "/") + "%A_%a.out\n";
   text += "#SBATCH --cpus-per-task=" + std::to_string(s.cpus_per_task) + "\n";
   if (!s.time.empty()) text += "#SBATCH --time=" + s.time + "\n";
   if (!s.mem.empty()) text += "#SBATCH --mem=" + s.mem + "\n";
   if (!s.partition.empty()) text += "#SBATCH --partition=" + s.partition + "\n";
   for (const std::string& line : s.extra) text += "#SBATCH " + line + "\n";
-  const int threads = s.cpus_per_task >= 2 ? 2 : 1;
-  text += "exec " + shell_quote(rlrun_binary) + " --threads " + std::to_string(threads) +
-          " sweep run " + shell_quote(sweep.manifest) + " --index \"$SLURM_ARRAY_TASK_ID\"";
-  for (const std::string& arg : run_args) {  // appended piece by piece: GCC 12's -Wrestrict
+  text += "exec";
+  for (const std::string& arg : job.command) {  // appended piece by piece: GCC 12's -Wrestrict
     text += ' ';
-    text += shell_quote(arg);
+    text += arg == kSlurmArrayTaskId ? std::string("\"$SLURM_ARRAY_TASK_ID\"") : shell_quote(arg);
   }
   text += "\n";
   return text;
+}
+
+std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
+                         const std::vector<std::string>& run_args) {
+  const fs::path dir = fs::path(sweep.manifest).parent_path();
+  SlurmArrayJob job;
+  job.name = sweep.name.empty() ? "sweep" : sweep.name;
+  job.script = (dir / "sweep.sbatch").string();
+  job.output_dir = (dir / "slurm").string();
+  job.tasks = static_cast<int>(sweep.runs.size());
+  job.options = sweep.slurm;
+  job.comment = {"Written by: rlrun sweep slurm " + shell_quote(sweep.manifest),
+                 "Task i trains run i of the manifest (a finished run is skipped, an interrupted "
+                 "one resumed)."};
+  const int threads = sweep.slurm.cpus_per_task >= 2 ? 2 : 1;
+  job.command = {rlrun_binary, "--threads", std::to_string(threads), "sweep", "run", sweep.manifest,
+                 "--index", kSlurmArrayTaskId};
+  job.command.insert(job.command.end(), run_args.begin(), run_args.end());
+  return slurm_array_script(job);
 }
 
 }  // namespace rlrun
