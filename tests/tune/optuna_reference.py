@@ -92,3 +92,66 @@ pe30 = _ParzenEstimator({"x": o30}, {"x": FloatDistribution(0.0, 1.0)}, params(F
 show("thirty weights", pe30._weights)
 show("thirty sigmas", pe30._sigmas["x"])
 show("thirty log_pdf", pe30.log_pdf({"x": np.array([0.05, 0.5, 0.95])}))
+
+# One TPE step on a study with pruned trials and a conditional parameter (multivariate=True):
+# the relative space, the split, and the below/above estimators.
+print("tpe step")
+import warnings
+
+from optuna.samplers._tpe.sampler import _get_observation_pairs, _split_observation_pairs
+from optuna.samplers._tpe.sampler import default_gamma
+from optuna.trial import TrialState, create_trial
+
+warnings.simplefilter("ignore")
+optuna.logging.set_verbosity(optuna.logging.WARNING)
+dx = FloatDistribution(-5.0, 5.0)
+dn = IntDistribution(1, 64, log=True)
+dc = CategoricalDistribution(["a", "b", "c"])
+study = optuna.create_study(direction="maximize")
+for i in range(14):
+    x = round(-4.5 + 0.7 * i, 3)
+    n = [1, 2, 4, 8, 16, 32, 64][(3 * i) % 7]
+    params = {"x": x, "n": n}
+    dists = {"x": dx, "n": dn}
+    if i % 3 == 0:
+        params["c"] = ["a", "b", "c"][i % 2 * 2]  # "a" for even i, "c" for odd
+        dists["c"] = dc
+    value = -((x - 1.0) ** 2) - 0.1 * abs(np.log2(n) - 3)
+    print(f"  trial {i}: x={x} n={n} c={params.get('c')} value={value!r}", end="")
+    if i in (4, 9):  # pruned: reports at steps 1..(i//3), the last being the value
+        inter = {s: value - 0.1 * (i // 3 - s) for s in range(1, i // 3 + 1)}
+        t = create_trial(state=TrialState.PRUNED, params=params, distributions=dists,
+                         intermediate_values=inter)
+        print(f" PRUNED {inter}")
+    else:
+        t = create_trial(state=TrialState.COMPLETE, params=params, distributions=dists, value=value)
+        print()
+    study.add_trial(t)
+sampler = optuna.samplers.TPESampler(multivariate=True, seed=0)
+space = sampler.infer_relative_search_space(study, None)
+print("  relative space:", sorted(space))
+values, scores, _ = _get_observation_pairs(study, ["n", "x"], False, False)
+below_idx, above_idx = _split_observation_pairs(scores, default_gamma(len(scores)), None)
+print("  below:", list(below_idx), "above:", list(above_idx))
+cv = {k: np.asarray(v, dtype=float) for k, v in values.items()}
+pe_params = sampler._parzen_estimator_parameters
+below = _ParzenEstimator({k: v[below_idx] for k, v in cv.items()}, space, pe_params)
+above = _ParzenEstimator({k: v[above_idx] for k, v in cv.items()}, space, pe_params)
+for label, pe in (("below", below), ("above", above)):
+    show(f"{label} weights", pe._weights)
+    for name in ("n", "x"):
+        show(f"{label} {name} mus", pe._mus[name])
+        show(f"{label} {name} sigmas", pe._sigmas[name])
+pts = {"n": np.array([1.0, 8.0, 50.0]), "x": np.array([1.0, -4.0, 3.3])}
+show("log l - log g", below.log_pdf(pts) - above.log_pdf(pts))
+# The conditional parameter, sampled independently over the trials that have it.
+values, scores, _ = _get_observation_pairs(study, ["c"], False, False)
+below_idx, above_idx = _split_observation_pairs(scores, default_gamma(len(scores)), None)
+c = np.asarray(values["c"], dtype=float)
+bc, ac = c[below_idx][~np.isnan(c[below_idx])], c[above_idx][~np.isnan(c[above_idx])]
+print("  c below:", list(bc), "c above:", list(ac))
+below = _ParzenEstimator({"c": bc}, {"c": dc}, pe_params)
+above = _ParzenEstimator({"c": ac}, {"c": dc}, pe_params)
+show("c below weights", below._categorical_weights["c"].ravel())
+show("c above weights", above._categorical_weights["c"].ravel())
+show("c log l - log g", below.log_pdf({"c": np.array([0, 1, 2])}) - above.log_pdf({"c": np.array([0, 1, 2])}))

@@ -144,3 +144,81 @@ TEST_CASE("tpe sampler: beats random search on a 2-D quadratic (60 trials, 10 se
   CHECK(median(tpe_best) < 0.25 * median(random_best));
   CHECK(median(uni_best) < 0.25 * median(random_best));
 }
+
+TEST_CASE("tpe sampler: one step's l and g match Optuna's on a study with pruned trials",
+          "[tune]") {
+  // The study of the "tpe step" section of tests/tune/optuna_reference.py (maximised; trials 4
+  // and 9 pruned; c asked in every third trial); the expected numbers are what Optuna 3.1's
+  // _get_observation_pairs, _split_observation_pairs and _ParzenEstimator give on it (Debian's
+  // python3-optuna 3.1.0).
+  const Distribution dx = make_float_distribution("x", -5, 5, false, std::nullopt);
+  const Distribution dn = make_int_distribution("n", 1, 64, true, 1);
+  const Distribution dc = make_categorical_distribution("c", {"a", "b", "c"});
+  const int ns[7] = {1, 2, 4, 8, 16, 32, 64};
+  std::vector<FrozenTrial> trials;
+  for (int i = 0; i < 14; ++i) {
+    FrozenTrial t;
+    t.number = i;
+    const double x = std::round((-4.5 + 0.7 * i) * 1000) / 1000;
+    const double n = ns[(3 * i) % 7];
+    t.params = {{"x", x}, {"n", n}};
+    t.distributions = {{"x", dx}, {"n", dn}};
+    if (i % 3 == 0) {
+      t.params["c"] = i % 2 * 2;
+      t.distributions["c"] = dc;
+    }
+    const double value = -(x - 1) * (x - 1) - 0.1 * std::fabs(std::log2(n) - 3);
+    if (i == 4 || i == 9) {
+      t.state = TrialState::kPruned;
+      for (int s = 1; s <= i / 3; ++s) t.intermediate_values[s] = value - 0.1 * (i / 3 - s);
+    } else {
+      t.state = TrialState::kComplete;
+      t.values = std::vector<double>{value};
+    }
+    trials.push_back(t);
+  }
+  const StudyView study{StudyDirection::kMaximize, trials};
+  TpeSampler tpe;
+  const SearchSpace space = tpe.infer_relative_search_space(study);
+  REQUIRE(space.size() == 2);
+  REQUIRE(space.count("n"));
+  REQUIRE(space.count("x"));
+
+  auto check_all = [](const std::vector<double>& got, const std::vector<double>& expected) {
+    REQUIRE(got.size() == expected.size());
+    for (size_t i = 0; i < got.size(); ++i) CHECK(got[i] == Approx(expected[i]).epsilon(1e-10));
+  };
+  const auto fitted = tpe.fit(study, space);
+  REQUIRE(fitted);
+  // Below: trials 7 and 8 (gamma(14) = 2; the pruned trial 9 ranks after every complete one).
+  check_all(fitted->below.weights(), {1.0 / 3, 1.0 / 3, 1.0 / 3});
+  check_all(fitted->below.dimension("n").mus, {0.0, 2.0794415416798357, 1.7367590216208906});
+  check_all(fitted->below.dimension("n").sigmas,
+            {1.214953101090418, 1.214953101090418, 4.859812404361672});
+  check_all(fitted->below.dimension("x").mus, {0.4, 1.1, 0.0});
+  check_all(fitted->below.dimension("x").sigmas, {2.5, 2.5, 10.0});
+  check_all(fitted->above.weights(), std::vector<double>(13, 1.0 / 13));
+  check_all(fitted->above.dimension("x").mus,
+            {-4.5, -3.8, -3.1, -2.4, -1.7, -1.0, -0.3, 1.8, 2.5, 3.2, 3.9, 4.6, 0.0});
+  std::vector<double> above_n_sigmas(12, 0.6423710495211826);
+  above_n_sigmas.push_back(4.859812404361672);
+  check_all(fitted->above.dimension("n").sigmas, above_n_sigmas);
+  std::vector<double> above_x_sigmas(12, 1.3218021521667294);
+  above_x_sigmas.push_back(10.0);
+  check_all(fitted->above.dimension("x").sigmas, above_x_sigmas);
+  const Observations points = {{"n", {1, 8, 50}}, {"x", {1.0, -4.0, 3.3}}};
+  const auto log_l = fitted->below.log_pdf(points), log_g = fitted->above.log_pdf(points);
+  check_all({log_l[0] - log_g[0], log_l[1] - log_g[1], log_l[2] - log_g[2]},
+            {1.6552698699989328, 1.2796326214978953, 1.190739912797563});
+
+  // The conditional c: no trial of the below set has it (l is the prior alone); g has trials
+  // 0, 3, 6, 9 (pruned), 12.
+  const auto conditional = tpe.fit(study, {{"c", dc}});
+  REQUIRE(conditional);
+  check_all(conditional->below.dimension("c").categorical_weights, {1.0 / 3, 1.0 / 3, 1.0 / 3});
+  CHECK(conditional->above.weights().size() == 6);
+  const Observations choices = {{"c", {0, 1, 2}}};
+  const auto cl = conditional->below.log_pdf(choices), cg = conditional->above.log_pdf(choices);
+  check_all({cl[0] - cg[0], cl[1] - cg[1], cl[2] - cg[2]},
+            {-0.36772478012531706, 0.8109302162163285, -0.10536051565782634});
+}

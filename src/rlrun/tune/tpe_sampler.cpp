@@ -48,11 +48,11 @@ double TpeSampler::sample_independent(const StudyView& study, const std::string&
   return sampled.at(name);
 }
 
-std::map<std::string, double> TpeSampler::sample_tpe(const StudyView& study,
-                                                     const SearchSpace& space) {
+std::optional<TpeEstimators> TpeSampler::fit(const StudyView& study,
+                                             const SearchSpace& space) const {
   const ObservationPairs pairs = get_observation_pairs(study, space);
   const int n = static_cast<int>(pairs.keys.size());
-  if (n < config_.n_startup_trials) return {};
+  if (n < config_.n_startup_trials) return std::nullopt;
 
   // The split is over every counted trial; a trial without the parameter(s) then drops out of
   // its side (Optuna's param_mask), so gamma sees the whole study, l and g only who has them.
@@ -70,12 +70,19 @@ std::map<std::string, double> TpeSampler::sample_tpe(const StudyView& study,
     }
     return observed;
   };
-
   const ParzenEstimatorParameters parameters{
       config_.consider_prior,     config_.prior_weight, config_.consider_magic_clip,
       config_.consider_endpoints, config_.multivariate, config_.weights};
-  const ParzenEstimator below(gather(split.below), space, parameters);
-  const ParzenEstimator above(gather(split.above), space, parameters);
+  return TpeEstimators{ParzenEstimator(gather(split.below), space, parameters),
+                       ParzenEstimator(gather(split.above), space, parameters)};
+}
+
+std::map<std::string, double> TpeSampler::sample_tpe(const StudyView& study,
+                                                     const SearchSpace& space) {
+  const std::optional<TpeEstimators> fitted = fit(study, space);
+  if (!fitted) return {};
+  const ParzenEstimator& below = fitted->below;
+  const ParzenEstimator& above = fitted->above;
   const Observations candidates = below.sample(rng_, config_.n_ei_candidates);
   const std::vector<double> log_l = below.log_pdf(candidates);
   const std::vector<double> log_g = above.log_pdf(candidates);

@@ -20,6 +20,7 @@
 // (bit-identical numbers to numpy's streams are not a goal; the semantics are).
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "rlrun/rng.hpp"
 #include "rlrun/tune/parzen_estimator.hpp"
@@ -43,6 +44,12 @@ struct TpeConfig {
   bool multivariate = true;  // joint sampling of the relative search space (rl-zoo)
 };
 
+// One TPE step's two mixtures: l(x) over the best trials, g(x) over the rest.
+struct TpeEstimators {
+  ParzenEstimator below;
+  ParzenEstimator above;
+};
+
 class TpeSampler final : public Sampler {
  public:
   static constexpr uint64_t kStream = 0xbb67ae8584caa73bULL;
@@ -57,6 +64,10 @@ class TpeSampler final : public Sampler {
                             const Distribution& distribution) override;
 
   const TpeConfig& config() const { return config_; }
+
+  // The estimators a TPE step over `space` fits to `study` (one parameter for an independent
+  // step); nullopt while fewer than n_startup_trials trials are COMPLETE or PRUNED.
+  std::optional<TpeEstimators> fit(const StudyView& study, const SearchSpace& space) const;
 
  private:
   // The TPE step over `space` (one parameter for sample_independent); empty while fewer than
