@@ -1,7 +1,8 @@
 // rlrun's samplers on standard test functions, for scripts/bench_tpe.sh, which runs Optuna's
 // samplers on the same functions (scripts/bench_tpe.py) and compares the two.
 //
-//   rlrun_tpe_bench [--seeds N] [--trials T] [--samplers tpe,random]
+//   rlrun_tpe_bench [--seeds N] [--trials T] [--samplers tpe,random,tpe_univariate]
+//                   [--functions branin,hartmann6,noisy_quad]
 //
 // prints one line per (function, sampler, seed): "function<TAB>sampler<TAB>seed<TAB>best",
 // where best is the true objective value of the best trial found. Functions (minimised):
@@ -11,6 +12,7 @@
 //    *observed* trial's noise-free value is reported (what a user would pick and get).
 // The definitions are the usual ones (Surjanovic & Bingham's Virtual Library of Simulation
 // Experiments); scripts/bench_tpe.py writes them the same way.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +44,9 @@ Distribution uniform(const std::string& name, double low, double high) {
   return make_float_distribution(name, low, high, false, std::nullopt);
 }
 
+// x0, x1, ... (spelt out: GCC 12 warns falsely about "x" + std::to_string(j), -Wrestrict).
+const std::string kNames[6] = {"x0", "x1", "x2", "x3", "x4", "x5"};
+
 Evaluation branin(MiniStudy& study, rlrun::Rng&) {
   static const Distribution d1 = uniform("x1", -5, 10), d2 = uniform("x2", 0, 15);
   const double x1 = study.suggest("x1", d1), x2 = study.suggest("x2", d2);
@@ -64,7 +69,7 @@ Evaluation hartmann6(MiniStudy& study, rlrun::Rng&) {
                                               uniform("x2", 0, 1), uniform("x3", 0, 1),
                                               uniform("x4", 0, 1), uniform("x5", 0, 1)};
   double x[6];
-  for (int j = 0; j < 6; ++j) x[j] = study.suggest("x" + std::to_string(j), d[j]);
+  for (int j = 0; j < 6; ++j) x[j] = study.suggest(kNames[j], d[j]);
   double v = 0;
   for (int i = 0; i < 4; ++i) {
     double inner = 0;
@@ -78,7 +83,7 @@ Evaluation noisy_quad(MiniStudy& study, rlrun::Rng& noise) {
   static const std::vector<Distribution> d = {uniform("x0", -1, 1), uniform("x1", -1, 1),
                                               uniform("x2", -1, 1), uniform("x3", -1, 1)};
   double v = 0;
-  for (int j = 0; j < 4; ++j) v += std::pow(study.suggest("x" + std::to_string(j), d[j]) - 0.3, 2);
+  for (int j = 0; j < 4; ++j) v += std::pow(study.suggest(kNames[j], d[j]) - 0.3, 2);
   return {v + 0.01 * noise.normal(), v};
 }
 
@@ -111,6 +116,7 @@ std::vector<std::string> split(const std::string& text) {
 int main(int argc, char** argv) {
   int seeds = 20, trials = 100;
   std::vector<std::string> samplers = {"tpe", "random"};
+  std::vector<std::string> wanted = {"branin", "hartmann6", "noisy_quad"};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--seeds")
@@ -119,16 +125,19 @@ int main(int argc, char** argv) {
       trials = std::atoi(value.c_str());
     else if (flag == "--samplers")
       samplers = split(value);
+    else if (flag == "--functions")
+      wanted = split(value);
     else {
       std::fprintf(stderr,
                    "usage: rlrun_tpe_bench [--seeds N] [--trials T] [--samplers "
-                   "tpe,random,tpe_univariate]\n");
+                   "tpe,random,tpe_univariate] [--functions branin,hartmann6,noisy_quad]\n");
       return 2;
     }
   }
   const std::vector<std::pair<std::string, Objective>> functions = {
       {"branin", branin}, {"hartmann6", hartmann6}, {"noisy_quad", noisy_quad}};
   for (const auto& [function, objective] : functions) {
+    if (std::find(wanted.begin(), wanted.end(), function) == wanted.end()) continue;
     for (const std::string& name : samplers) {
       const auto start = std::chrono::steady_clock::now();
       for (int seed = 0; seed < seeds; ++seed) {

@@ -282,7 +282,7 @@ std::vector<double> ParzenEstimator::log_pdf(const Observations& samples) const 
         const double a = (dim.low - mu) / sigma, b = (dim.high - mu) / sigma;
         if (!dim.q) {
           // truncnorm.logpdf without -log(sigma), as Optuna 3.1 (truncnorm.hpp).
-          component[s][k] += truncnorm::logpdf(x, a, b, mu, sigma);
+          component[s][k] += truncnorm::logpdf(x, a, b, mu, sigma, dim.log_mass[k]);
         } else {
           // The kernel's mass over the value's grid cell, relative to its mass in range.
           const double upper = std::min(x + 0.5 * *dim.q, dim.high);

@@ -81,10 +81,14 @@ double ppf(double q, double a, double b) {
 }
 
 double logpdf(double x, double a, double b, double loc, double scale) {
+  return logpdf(x, a, b, loc, scale, log_gauss_mass(a, b));
+}
+
+double logpdf(double x, double a, double b, double loc, double scale, double log_mass) {
   if (a == b) return std::numeric_limits<double>::quiet_NaN();
   const double z = (x - loc) / scale;
   if (z < a || z > b) return -kInf;
-  return -0.5 * z * z - kLogSqrt2Pi - log_gauss_mass(a, b);
+  return -0.5 * z * z - kLogSqrt2Pi - log_mass;
 }
 
 double sample(Rng& rng, double a, double b, double loc, double scale) {

@@ -27,6 +27,9 @@ double ppf(double q, double a, double b);
 // fixed that in 3.5 (PR #5110); rlrun matches 3.1, the version it reads and writes studies for,
 // and its TPE ranks candidates by these numbers. -inf outside [a, b], NaN when a == b.
 double logpdf(double x, double a, double b, double loc, double scale);
+// The same with log_gauss_mass(a, b) already known (a mixture evaluates each kernel at many
+// points: the mass is the costly part).
+double logpdf(double x, double a, double b, double loc, double scale, double log_mass);
 // One draw of that distribution: ppf of a uniform draw (rvs).
 double sample(Rng& rng, double a, double b, double loc, double scale);
 
