@@ -18,6 +18,19 @@ namespace rlrun::tune {
 
 using SearchSpace = std::map<std::string, Distribution>;
 
+// The seed of one random stream of one trial: a hash of (study seed, stream, trial number), so
+// that trial n's draws are the same whichever worker runs it, and neighbouring seeds or trial
+// numbers give unrelated streams (SplitMix64's finaliser, as rlrun::Rng seeds itself).
+inline uint64_t trial_seed(uint64_t seed, int trial_number, uint64_t stream) {
+  auto mix = [](uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  return mix(mix(seed ^ stream) + static_cast<uint64_t>(static_cast<int64_t>(trial_number)));
+}
+
 class Sampler {
  public:
   virtual ~Sampler() = default;
