@@ -51,6 +51,7 @@ struct TuneOptions {
   std::optional<int> n_trials;
   std::vector<std::string> set, plugins;
   bool slurm = false;
+  bool verbose = false;
   int workers = 2;
   // report
   std::string study;
@@ -66,6 +67,7 @@ std::vector<std::string> passed_on(const TuneOptions& o) {
   for (const std::string& v : o.set) args.insert(args.end(), {"--set", v});
   for (const std::string& p : o.plugins) args.insert(args.end(), {"--plugin", p});
   if (o.n_trials) args.insert(args.end(), {"--n-trials", std::to_string(*o.n_trials)});
+  if (o.verbose) args.push_back("--verbose");
   return args;
 }
 
@@ -145,7 +147,7 @@ int run_study(const TuneOptions& o, Registry& registry) {
     }
     code = run_in_parallel(workers, o.jobs, "worker", logs.string() + "/worker_<i>.txt");
   } else {
-    const tune::WorkerSummary summary = tune::run_worker(study, registry);
+    const tune::WorkerSummary summary = tune::run_worker(study, registry, o.verbose);
     std::printf("this worker: %d complete, %d pruned, %d failed%s\n", summary.complete,
                 summary.pruned, summary.failed,
                 summary.interrupted ? "; interrupted (the running trial was re-queued: run the "
@@ -256,6 +258,7 @@ Action add_tune(CLI::App& app, Registry& registry) {
   sub->add_option("--set", o->set, "override a value of every trial's experiment (repeatable)")
       ->allow_extra_args(false);
   add_plugin_option(sub, o->plugins);
+  sub->add_flag("--verbose", o->verbose, "show each trial's training output (its log.txt has it)");
   sub->add_flag("--slurm", o->slurm, "write an sbatch array script of --workers workers instead");
   sub->add_option("--workers", o->workers, "with --slurm: array tasks (workers)")
       ->transform(integer_in(1, 10000));

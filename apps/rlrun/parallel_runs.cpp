@@ -50,7 +50,7 @@ std::string summary_line(const std::string& path) {
   std::string found;
   for (std::string line; std::getline(in, line);)
     if (line.rfind("trained ", 0) == 0 || line.rfind("interrupted after ", 0) == 0 ||
-        line.rfind("sweep: ", 0) == 0)
+        line.rfind("sweep: ", 0) == 0 || line.rfind("this worker: ", 0) == 0)
       found = line;
   return found;
 }

@@ -92,7 +92,7 @@ void normalise_distributions(json& dump) {
 
 TEST_CASE("journal: a study rlrun writes loads in Optuna with identical trials", "[tune]") {
   TempDir dir("journal_write");
-  const std::string path = dir.path() + "/study.journal";
+  const std::string path = dir.str() + "/study.journal";
   JournalStorage storage(path);
   const int64_t study = storage.create_or_load_study("demo", StudyDirection::kMaximize);
   storage.set_study_user_attr(study, "rlrun:space", "three parameters");
@@ -137,7 +137,7 @@ TEST_CASE("journal: a study rlrun writes loads in Optuna with identical trials",
 
 TEST_CASE("journal: a study Optuna writes replays in rlrun to identical trials", "[tune]") {
   TempDir dir("journal_read");
-  const std::string path = dir.path() + "/study.journal";
+  const std::string path = dir.str() + "/study.journal";
   const auto r = run_command(optuna_script() + " optimize " + path + " opt 12");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -162,7 +162,7 @@ TEST_CASE("journal: a study Optuna writes replays in rlrun to identical trials",
 
 TEST_CASE("journal: writers in several processes lose no line", "[tune]") {
   TempDir dir("journal_processes");
-  const std::string path = dir.path() + "/study.journal";
+  const std::string path = dir.str() + "/study.journal";
   {
     JournalStorage storage(path);
     storage.create_or_load_study("race", StudyDirection::kMinimize);
@@ -208,7 +208,7 @@ TEST_CASE("journal: writers in several processes lose no line", "[tune]") {
 
 TEST_CASE("journal: a waiting trial is owned by the first worker that claims it", "[tune]") {
   TempDir dir("journal_claim");
-  const std::string path = dir.path() + "/study.journal";
+  const std::string path = dir.str() + "/study.journal";
   JournalStorage a(path), b(path);
   const int64_t study = a.create_or_load_study("claim", StudyDirection::kMinimize);
   const int64_t waiting = a.enqueue_trial(study, {{"x", 1.0}});
@@ -223,7 +223,7 @@ TEST_CASE("journal: a waiting trial is owned by the first worker that claims it"
 
 TEST_CASE("journal: a lock left by a killed process is broken after the grace period", "[tune]") {
   TempDir dir("journal_stale_lock");
-  const std::string path = dir.path() + "/study.journal";
+  const std::string path = dir.str() + "/study.journal";
   JournalStorage storage(path);
   const std::string lock = path + ".lock";
   REQUIRE(symlink(path.c_str(), lock.c_str()) == 0);
@@ -240,7 +240,7 @@ TEST_CASE("journal: a lock left by a killed process is broken after the grace pe
 
 TEST_CASE("journal: a damaged file is refused with its name, never a crash", "[tune]") {
   TempDir dir("journal_damaged");
-  const std::string path = dir.path() + "/study.journal";
+  const std::string path = dir.str() + "/study.journal";
   const auto write = [&](const std::string& text) { std::ofstream(path, std::ios::trunc) << text; };
   const auto message = [&]() -> std::string {
     try {

@@ -1,6 +1,10 @@
 #include "rlrun/tune/tune_worker.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -31,6 +35,39 @@ int counted_trials(const std::vector<FrozenTrial>& trials) {
 }
 
 namespace {
+
+// The console while a trial trains: each seed's training output (its tables and evaluation lines,
+// all of which its log.txt keeps) goes to /dev/null unless the worker is verbose, so that a
+// worker prints one line per trial event. std::cout itself stays on the terminal.
+class QuietTraining {
+ public:
+  explicit QuietTraining(bool quiet) {
+    if (!quiet) return;
+    std::cout.flush();
+    std::fflush(stdout);
+    saved_ = ::dup(STDOUT_FILENO);
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ < 0 || null < 0 || ::dup2(null, STDOUT_FILENO) < 0) {
+      if (null >= 0) ::close(null);
+      restore();
+      return;
+    }
+    ::close(null);
+  }
+  ~QuietTraining() { restore(); }
+  QuietTraining(const QuietTraining&) = delete;
+  QuietTraining& operator=(const QuietTraining&) = delete;
+
+ private:
+  void restore() {
+    if (saved_ < 0) return;
+    std::fflush(stdout);
+    ::dup2(saved_, STDOUT_FILENO);
+    ::close(saved_);
+    saved_ = -1;
+  }
+  int saved_ = -1;
+};
 
 // A trial's parameters as Optuna shows them ({name: external value}).
 json external_params(const FrozenTrial& t) {
@@ -95,8 +132,9 @@ struct TrialResult {
 class TrialRunner {
  public:
   TrialRunner(const StudyConfig& study, Registry& registry, JournalStorage& storage,
-              int64_t study_id, Pruner& pruner)
-      : study_(study), registry_(registry), storage_(storage), study_id_(study_id), pruner_(pruner) {}
+              int64_t study_id, Pruner& pruner, bool verbose)
+      : study_(study), registry_(registry), storage_(storage), study_id_(study_id), pruner_(pruner),
+        verbose_(verbose) {}
 
   TrialResult run(Trial& trial) {
     TrialResult result;
@@ -143,6 +181,7 @@ class TrialRunner {
       };
       TrainOutcome outcome;
       try {
+        QuietTraining quiet(!verbose_);
         outcome = train_experiment(experiment, registry_, {}, on_evaluation);
       } catch (const ConfigError& e) {
         return fail(std::string("the sampled configuration is not valid: ") + e.what());
@@ -210,11 +249,12 @@ class TrialRunner {
   JournalStorage& storage_;
   int64_t study_id_;
   Pruner& pruner_;
+  bool verbose_;
 };
 
 }  // namespace
 
-WorkerSummary run_worker(const StudyConfig& study, Registry& registry) {
+WorkerSummary run_worker(const StudyConfig& study, Registry& registry, bool verbose) {
   install_interrupt_handlers();
   fs::create_directories(fs::path(study.storage).parent_path());
   JournalStorage storage(study.storage);
@@ -231,7 +271,7 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry) {
   Heartbeat heartbeat(study.storage, storage.worker_id());
   std::unique_ptr<Sampler> sampler = make_sampler(study.sampler);
   std::unique_ptr<Pruner> pruner = make_pruner(study.pruner, study.n_evaluations / 3);
-  TrialRunner runner(study, registry, storage, study_id, *pruner);
+  TrialRunner runner(study, registry, storage, study_id, *pruner, verbose);
   WorkerSummary summary;
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
@@ -245,6 +285,7 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry) {
     if (trial_id < 0) break;
     TrialResult result;
     int number = storage.state().trial(trial_id).number;
+    const auto trial_start = std::chrono::steady_clock::now();
     try {
       Trial trial(storage, study_id, trial_id, *sampler, direction, *study.sampler.seed);
       number = trial.number();
@@ -269,9 +310,15 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry) {
     } else {
       storage.set_trial_state(trial_id, result.state, result.value);
       ++(result.state == TrialState::kPruned ? summary.pruned : summary.complete);
-      std::cout << "rlrun tune: trial " << number << " "
-                << (result.state == TrialState::kPruned ? "pruned" : "finished") << " with value "
-                << (result.value ? std::to_string(*result.value) : "-") << std::endl;
+      const FrozenTrial& done = storage.state().trial(trial_id);
+      char line[160];
+      std::snprintf(line, sizeof line, "rlrun tune: trial %d %s: %s = %.6g (%.1f s)", number,
+                    result.state == TrialState::kPruned
+                        ? ("pruned at step " + std::to_string(done.last_step().value_or(0))).c_str()
+                        : "complete",
+                    study.objective.metric.c_str(), result.value.value_or(std::nan("")),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - trial_start).count());
+      std::cout << line << std::endl;
     }
   }
   return summary;

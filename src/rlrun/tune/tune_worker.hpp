@@ -36,7 +36,8 @@ struct WorkerSummary {
   bool interrupted = false;
 };
 
-WorkerSummary run_worker(const StudyConfig& study, Registry& registry);
+// `verbose`: show each seed's training output (else only the trial lines; log.txt has it all).
+WorkerSummary run_worker(const StudyConfig& study, Registry& registry, bool verbose = false);
 
 // The trials that count towards n_trials: all but the FAIL ones marked rlrun:requeued.
 int counted_trials(const std::vector<FrozenTrial>& trials);
