@@ -2,10 +2,13 @@
 // Learning-curve plots for `rlrun plot` (Cairo; PNG or SVG by the file's extension): one line
 // per configuration — the mean over its seeds, each seed's curve interpolated linearly onto a
 // common grid of timesteps where all seeds have data — with a shaded band from the lowest to the
-// highest seed; "nice" axis ticks (1-2-5 steps), axis labels, a legend and a title.
+// highest seed, in the chart frame of render/plot_frame.hpp (ticks, axis titles, title) with a
+// legend.
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "rlrun/render/plot_frame.hpp"  // nice_ticks, which used to live here
 
 namespace rlrun {
 
@@ -18,8 +21,5 @@ struct CurveGroup {
 // or no group has two finite points.
 void plot_learning_curves(const std::vector<CurveGroup>& groups, const std::string& y_label,
                           const std::string& title, const std::string& output);
-
-// Tick positions covering [low, high] with about `target` steps of 1, 2 or 5 x 10^k.
-std::vector<double> nice_ticks(double low, double high, int target = 6);
 
 }  // namespace rlrun
