@@ -173,7 +173,7 @@ TEST_CASE("EvalCallback: a failed evaluations.csv row stops with the file and er
       registry.find_algorithm(experiment.algo.id)->make(experiment.algo.params, setup);
   const auto ignore = [](const std::string&) {};
   TrainingContext context{experiment, registry, dir.str(), *algorithm, env, nullptr,
-                          ignore,     ignore,   ignore,    false};
+                          ignore,     ignore,   ignore,    false, {}};
   EvalCallback callback(context);
   const std::string path = dir / "evaluations.csv";
   FileSizeLimit limit(fs::file_size(path) + 10);  // the header fits, a row does not

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -27,15 +28,15 @@ json optuna_dump(const std::string& journal, const std::string& name) {
 
 // A small study on CartPole PPO: four parameters (one conditional), 4096 steps per seed.
 std::string write_study(const TempDir& dir, const std::string& extra, int n_trials = 6,
-                        int64_t n_timesteps = 4096) {
+                        int64_t n_timesteps = 4096, int seeds = 2, int evaluations = 4) {
   const std::string path = dir / "study.yaml";
   std::ofstream(path) << "name: small\n"
                          "base: " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml\n"
                          "out_dir: " << dir.str() << "/out\n"
                          "n_trials: " << n_trials << "\n"
-                         "seeds_per_trial: 2\n"
+                         "seeds_per_trial: " << seeds << "\n"
                          "n_timesteps: " << n_timesteps << "\n"
-                         "n_evaluations: 4\n"
+                         "n_evaluations: " << evaluations << "\n"
                          "eval_episodes: 2\n"
                          "sampler: {type: tpe, seed: 3, n_startup_trials: 3}\n"
                          "pruner: {type: median, n_startup_trials: 2}\n"
@@ -59,9 +60,9 @@ int count_state(const json& dump, const std::string& state) {
 std::string tune_then_signal(const std::string& study, const std::string& journal, int reports,
                              const std::string& signal, const std::string& log) {
   const std::string cmd = std::string(RLRUN_BINARY) + " --threads 1 tune " + study + " > " + log +
-                          " 2>&1 & pid=$!; while [ \"$(grep -c '\"op_code\": 7' " + journal +
-                          " 2>/dev/null || true)\" -lt " + std::to_string(reports) +
-                          " ] && kill -0 $pid 2>/dev/null; do sleep 0.02; done; kill -" + signal +
+                          " 2>&1 & pid=$!; while n=$(grep -c '\"op_code\": 7' " + journal +
+                          " 2>/dev/null); [ \"${n:-0}\" -lt " + std::to_string(reports) +
+                          " ] && kill -0 $pid 2>/dev/null; do sleep 0.01; done; kill -" + signal +
                           " $pid; wait $pid; echo exit=$?";
   return run_command(cmd).output;
 }
@@ -114,7 +115,8 @@ TEST_CASE("tune: two workers run a study Optuna reads, the report and the best c
 
 TEST_CASE("tune: kill -9 of a worker mid-trial, then the study resumes with every trial intact", "[cli][tune]") {
   TempDir dir("tune_kill");
-  const std::string study = write_study(dir, "", 4, 30000);
+  // Trials long enough to be killed in the middle: one seed of 200 000 steps, 40 evaluations.
+  const std::string study = write_study(dir, "", 3, 200000, 1, 40);
   const std::string journal = dir / "out/study.journal";
   const std::string status = tune_then_signal(study, journal, 3, "KILL", dir / "kill.log");
   INFO(status << read_text(dir / "kill.log"));
@@ -126,7 +128,7 @@ TEST_CASE("tune: kill -9 of a worker mid-trial, then the study resumes with ever
   REQUIRE(resumed.exit_code == 0);
   CHECK_THAT(resumed.output, Catch::Contains("worker is gone; re-queued"));
   const json after = optuna_dump(journal, "small");
-  // The killed trial is FAIL (re-queued), its parameters ran again as a new trial; four trials
+  // The killed trial is FAIL (re-queued), its parameters ran again as a new trial; three trials
   // count, every trial finished before the kill is unchanged.
   int requeued = 0, retried = 0;
   for (const auto& t : after["trials"]) {
@@ -135,8 +137,8 @@ TEST_CASE("tune: kill -9 of a worker mid-trial, then the study resumes with ever
   }
   CHECK(requeued == 1);
   CHECK(retried == 1);
-  CHECK(after["trials"].size() == 5);
-  CHECK(count_state(after, "COMPLETE") + count_state(after, "PRUNED") == 4);
+  CHECK(after["trials"].size() == 4);
+  CHECK(count_state(after, "COMPLETE") + count_state(after, "PRUNED") == 3);
   for (size_t i = 0; i < before["trials"].size(); ++i)
     if (before["trials"][i]["state"] != "RUNNING") CHECK(after["trials"][i] == before["trials"][i]);
   for (const auto& t : after["trials"])
@@ -149,7 +151,7 @@ TEST_CASE("tune: kill -9 of a worker mid-trial, then the study resumes with ever
 
 TEST_CASE("tune: Ctrl-C re-queues the running trial, the same command goes on", "[cli][tune]") {
   TempDir dir("tune_int");
-  const std::string study = write_study(dir, "", 3, 30000);
+  const std::string study = write_study(dir, "", 2, 200000, 1, 40);
   const std::string journal = dir / "out/study.journal";
   const std::string status = tune_then_signal(study, journal, 2, "INT", dir / "int.log");
   INFO(status << read_text(dir / "int.log"));
@@ -162,7 +164,7 @@ TEST_CASE("tune: Ctrl-C re-queues the running trial, the same command goes on", 
   INFO(resumed.output);
   REQUIRE(resumed.exit_code == 0);
   const json after = optuna_dump(journal, "small");
-  CHECK(count_state(after, "COMPLETE") + count_state(after, "PRUNED") == 3);
+  CHECK(count_state(after, "COMPLETE") + count_state(after, "PRUNED") == 2);
   CHECK(count_state(after, "WAITING") == 0);
 }
 
