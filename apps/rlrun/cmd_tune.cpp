@@ -116,10 +116,14 @@ int run_study(const TuneOptions& o, Registry& registry) {
     job.comment = {"Written by: rlrun tune " + shell_quote(study.source) + " --slurm",
                    "Each array task is one worker of study " + study.name + " (" + study.storage +
                        "); together they run " + std::to_string(study.n_trials) + " trials."};
-    job.command = {own_binary(), "--threads", study.slurm.cpus_per_task >= 2 ? "2" : "1", "tune",
-                   study.source};
-    const auto args = passed_on(o);
-    job.command.insert(job.command.end(), args.begin(), args.end());
+    job.command = shell_quote(own_binary()) + " --threads " +
+                  (study.slurm.cpus_per_task >= 2 ? "2" : "1") + " tune " + shell_quote(study.source);
+    for (const std::string& arg : passed_on(o)) {
+      if (!script_path_problem(arg).empty())
+        throw UsageError("cannot write the sbatch script: a control character in " + arg);
+      job.command += ' ';
+      job.command += shell_quote(arg);
+    }
     fs::create_directories(job.output_dir);
     write_text_atomic(job.script, slurm_array_script(job));
     std::printf("wrote %s (%s); submit it with: sbatch %s\n", job.script.c_str(),

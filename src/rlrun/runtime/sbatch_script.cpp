@@ -137,11 +137,10 @@ std::string slurm_array_script(const SlurmArrayJob& job) {
     const std::string problem = script_path_problem(path);
     if (!problem.empty()) throw UsageError("cannot write the sbatch script: " + problem);
   }
-  for (const std::string& arg : job.command)
-    if (arg != kSlurmArrayTaskId && !script_path_problem(arg).empty())
-      throw UsageError("cannot write the sbatch script: the argument " + printable(arg) +
-                       " contains a control character (a newline?), which no line of an "
-                       "sbatch script can hold safely");
+  if (!script_path_problem(job.command).empty())
+    throw UsageError("cannot write the sbatch script: the command " + printable(job.command) +
+                     " contains a control character (a newline?), which no line of an sbatch "
+                     "script can hold safely");
   const SlurmOptions& s = job.options;
   // The options were checked where they were read (the sweep or study file, the manifest);
   // checked again here because this is where they become script text.
@@ -177,12 +176,7 @@ std::string slurm_array_script(const SlurmArrayJob& job) {
   if (!s.mem.empty()) text += "#SBATCH --mem=" + s.mem + "\n";
   if (!s.partition.empty()) text += "#SBATCH --partition=" + s.partition + "\n";
   for (const std::string& line : s.extra) text += "#SBATCH " + line + "\n";
-  text += "exec";
-  for (const std::string& arg : job.command) {  // appended piece by piece: GCC 12's -Wrestrict
-    text += ' ';
-    text += arg == kSlurmArrayTaskId ? std::string("\"$SLURM_ARRAY_TASK_ID\"") : shell_quote(arg);
-  }
-  text += "\n";
+  text += "exec " + job.command + "\n";
   return text;
 }
 
@@ -199,9 +193,17 @@ std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
                  "Task i trains run i of the manifest (a finished run is skipped, an interrupted "
                  "one resumed)."};
   const int threads = sweep.slurm.cpus_per_task >= 2 ? 2 : 1;
-  job.command = {rlrun_binary, "--threads", std::to_string(threads), "sweep", "run", sweep.manifest,
-                 "--index", kSlurmArrayTaskId};
-  job.command.insert(job.command.end(), run_args.begin(), run_args.end());
+  for (const std::string& arg : run_args)
+    if (!script_path_problem(arg).empty())
+      throw UsageError("cannot write the sbatch script: the argument " + printable(arg) +
+                       " contains a control character (a newline?), which no line of an "
+                       "sbatch script can hold safely");
+  job.command = shell_quote(rlrun_binary) + " --threads " + std::to_string(threads) +
+                " sweep run " + shell_quote(sweep.manifest) + " --index \"$SLURM_ARRAY_TASK_ID\"";
+  for (const std::string& arg : run_args) {  // appended piece by piece: GCC 12's -Wrestrict
+    job.command += ' ';
+    job.command += shell_quote(arg);
+  }
   return slurm_array_script(job);
 }
 

@@ -33,9 +33,8 @@ std::string slurm_value_problem(const std::string& key, const std::string& value
 // `slurm:` map): a bad value is a ConfigError at its file:line:col.
 void check_slurm_options(const ConfigNode& slurm, const SlurmOptions& options);
 
-// An sbatch array job: task i runs `command` (each word shell-quoted; the word
-// kSlurmArrayTaskId becomes "$SLURM_ARRAY_TASK_ID"), output in output_dir/%A_%a.out.
-inline constexpr const char* kSlurmArrayTaskId = "\x01SLURM_ARRAY_TASK_ID";
+// An sbatch array job: every task runs `command` ("$SLURM_ARRAY_TASK_ID" tells it which it
+// is), output in output_dir/%A_%a.out.
 struct SlurmArrayJob {
   std::string name;                  // the job name (reduced to [A-Za-z0-9._+-])
   std::string script;                // where the script will be (named in its comment)
@@ -43,7 +42,7 @@ struct SlurmArrayJob {
   int tasks = 1;                     // --array=0-(tasks-1)
   SlurmOptions options;
   std::vector<std::string> comment;  // lines after #!/bin/bash
-  std::vector<std::string> command;  // rlrun binary and arguments
+  std::string command;               // the shell command line, every value shell_quote()d
 };
 std::string slurm_array_script(const SlurmArrayJob& job);
 
