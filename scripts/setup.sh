@@ -25,6 +25,8 @@ PACKAGES=(
   python3-protobuf                          # tests: decode TensorBoard event files independently
   python3-dev pybind11-dev python3-venv     # the `rlrun` Python package; Python envs (docs/python.md)
   python3-onnx                              # tests: the ONNX checker validates exported graphs
+  python3-optuna                            # tests: Optuna loads and writes the studies rlrun tune keeps
+  python3-sklearn python3-matplotlib        # tests: Optuna's importance and plot functions on them
 )
 
 if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then

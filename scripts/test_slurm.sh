@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A real Slurm run of a sweep (issue 9): installs Debian's slurm-wlm and munge if missing,
+# A real Slurm run of a sweep (issue 9) and of a 2-worker tuning study (issue 23): installs Debian's slurm-wlm and munge if missing,
 # starts a one-node cluster on localhost (munged, slurmctld, slurmd; no cgroups, no
 # accounting), expands a small CartPole sweep (2 learning rates x 2 seeds), submits the
 # `rlrun sweep slurm` array script with `sbatch --wait`, and checks that every run finished.
@@ -122,4 +122,46 @@ if [[ -e "$work/pwned" || -e "$root/pwned" ]]; then
 fi
 # A local re-run of the same manifest trains nothing more.
 build/rlrun sweep run "$out/manifest.yaml" | tail -1 | grep -q "4 of 4 runs finished"
+echo "test_slurm: sweep passed"
+
+# A 2-worker `rlrun tune` study through sbatch (issue 23): both array tasks share one study
+# journal; together they run n_trials trials, each taken once; Optuna reads the result.
+tune_out="$work/tune dir 'q' #x"
+cat >"$work/study.yaml" <<YAML
+name: rlrun_slurm_tune
+base: $root/configs/cartpole_ppo.yaml
+out_dir: "$tune_out"
+n_trials: 8
+seeds_per_trial: 1
+n_timesteps: 20000
+n_evaluations: 4
+eval_episodes: 2
+sampler: {type: tpe, seed: 1, n_startup_trials: 4}
+pruner: {type: median, n_startup_trials: 2}
+space:
+  algo.learning_rate: {float: [1.0e-4, 3.0e-3], log: true}
+  algo.n_epochs: {int: [1, 20]}
+slurm: {time: "00:10:00", cpus_per_task: 1, mem: 500M}
+YAML
+build/rlrun tune "$work/study.yaml" --slurm --workers 2
+start=$(date +%s)
+(cd "$work" && sbatch --wait "$tune_out/tune.sbatch")
+echo "test_slurm: the tune array job ended after $(( $(date +%s) - start )) s"
+summary=$(/usr/bin/python3 - "$tune_out/study.journal" <<'PY'
+import sys, warnings, optuna
+warnings.filterwarnings("ignore")
+optuna.logging.set_verbosity(optuna.logging.ERROR)
+s = optuna.load_study(study_name="rlrun_slurm_tune",
+                      storage=optuna.storages.JournalStorage(optuna.storages.JournalFileStorage(sys.argv[1])))
+done = [t for t in s.trials if t.state.name in ("COMPLETE", "PRUNED")]
+workers = {t.system_attrs["rlrun:worker"]["id"] for t in s.trials}
+print(len(s.trials), len(done), len(workers))
+PY
+)
+read -r n_all n_done n_workers <<<"$summary"
+echo "test_slurm: study: $n_all trials, $n_done complete or pruned, taken by $n_workers workers"
+if [[ $n_all -ne 8 || $n_done -ne 8 || $n_workers -ne 2 ]]; then
+  for f in "$tune_out/slurm/"*.out; do echo "== $f"; tail -8 "$f"; done
+  exit 1
+fi
 echo "test_slurm: passed"

@@ -1,6 +1,9 @@
 """Optuna's side of the journal interoperability tests (tests/tune/test_journal_storage.cpp).
 
   optuna_study.py dump JOURNAL STUDY        the study as Optuna loads it, as one JSON line
+  optuna_study.py tools JOURNAL STUDY PNG    Optuna's own analysis on the study: parameter
+                                            importances (its default fANOVA) and the
+                                            optimisation history plot (matplotlib), as JSON
   optuna_study.py optimize JOURNAL STUDY N  N trials of a small problem, run by Optuna itself
                                             (TPE, median pruner, reports, a pruned and a
                                             failed trial), so rlrun can continue the study
@@ -76,10 +79,22 @@ def optimize(path, name, n):
     study.optimize(objective, n_trials=n, catch=(RuntimeError,))
 
 
+def tools(path, name, png):
+    import matplotlib
+    matplotlib.use("Agg")
+    study = optuna.load_study(study_name=name, storage=storage(path))
+    importances = optuna.importance.get_param_importances(study)
+    axes = optuna.visualization.matplotlib.plot_optimization_history(study)
+    axes.figure.savefig(png)
+    print(json.dumps({"importances": importances, "best_params": study.best_params}))
+
+
 if __name__ == "__main__":
     command = sys.argv[1]
     if command == "dump":
         dump(sys.argv[2], sys.argv[3])
+    elif command == "tools":
+        tools(sys.argv[2], sys.argv[3], sys.argv[4])
     elif command == "optimize":
         optimize(sys.argv[2], sys.argv[3], int(sys.argv[4]))
     else:

@@ -95,11 +95,22 @@ TEST_CASE("tune: two workers run a study Optuna reads, the report and the best c
     }
   }
   CHECK(workers.size() == 2);  // both workers took trials
+  // Optuna's own analysis works on the study: importances (fANOVA) and the history plot.
+  const auto tools = run_command(optuna_script() + " tools '" + (dir / "out/study.journal") +
+                                 "' small '" + (dir / "optuna_history.png") + "'");
+  INFO(tools.output);
+  REQUIRE(tools.exit_code == 0);
+  const json analysis = json::parse(tools.output);
+  CHECK(analysis["importances"].contains("algo.learning_rate"));
+  CHECK(std::filesystem::file_size(dir / "optuna_history.png") > 1000);
 
   const auto report = run_rlrun("tune report " + study + " --plot " + (dir / "history.png") +
                                 " --best-config " + (dir / "best.yaml"));
   INFO(report.output);
   REQUIRE(report.exit_code == 0);
+  CHECK_THAT(report.output, Catch::Contains("best trial") || Catch::Contains("Best trial"));
+  CHECK_THAT(report.output, Catch::Contains("algo.learning_rate"));
+  CHECK(std::filesystem::file_size(dir / "history.png") > 1000);
   CHECK(std::filesystem::exists(dir / "best.yaml"));
   const std::string best = read_text(dir / "best.yaml");
   CHECK_THAT(best, Catch::Contains("of study small") && Catch::Contains("n_epochs"));
