@@ -3,6 +3,7 @@
 // shipped experiment (a key rlrun does not know would fail every trial).
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <random>
 
 #include "rlrun/core/errors.hpp"
@@ -11,6 +12,7 @@
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/tune/random_sampler.hpp"
 #include "rlrun/tune/search_space.hpp"
+#include "rlrun/tune/study_config.hpp"
 #include "rlrun/tune/zoo_spaces.hpp"
 
 using namespace rlrun;
@@ -186,4 +188,17 @@ TEST_CASE("distributions: Optuna's JSON form and its checks", "[tune]") {
   CHECK_THROWS_AS(distribution_from_json(R"({"name": "Evil", "attributes": {}})", "here"), ConfigError);
   CHECK(single(make_int_distribution("n", 3, 4, false, 2)));
   CHECK_FALSE(contains(make_int_distribution("n", 1, 9, false, 2), 4));
+}
+
+TEST_CASE("study files: every shipped one under configs/tune loads", "[tune]") {
+  Registry registry = make_builtin_registry();
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(config("tune"))) {
+    INFO(entry.path());
+    const StudyConfig study = load_study(entry.path().string(), registry);
+    CHECK(study.n_trials > 0);
+    CHECK_FALSE(study.space->describe().empty());
+    ++n;
+  }
+  CHECK(n >= 1);
 }
