@@ -110,4 +110,10 @@ std::string closest_name(const std::string& name, const std::vector<std::string>
 // " (did you mean 'x'?)" or "" — appended to unknown-name messages.
 std::string did_you_mean(const std::string& name, const std::vector<std::string>& candidates);
 
+// A YAML value as the text of a `--set key=<text>` override: a scalar as written, a list or map
+// in flow style ("[64, 64]", "{pi: [64], vf: [64]}").
+std::string yaml_override_text(const YAML::Node& node);
+// `text` as a YAML double-quoted scalar, read back as exactly `text` (paths, names).
+std::string yaml_double_quoted(const std::string& text);
+
 }  // namespace rlrun

@@ -47,22 +47,6 @@ struct Override {
   ConfigNode map;          // the map holding the key (errors point at the key)
 };
 
-std::string yaml_text(const YAML::Node& node) {
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Emitter out;
-  out.SetMapFormat(YAML::Flow);
-  out.SetSeqFormat(YAML::Flow);
-  out << node;
-  return out.c_str();
-}
-
-// `text` as a YAML double-quoted scalar, read back as exactly `text`.
-std::string yaml_quoted(const std::string& text) {
-  YAML::Emitter out;
-  out << YAML::DoubleQuoted << text;
-  return out.c_str();
-}
-
 // File-name-safe: letters, digits and . _ + - stay, anything else becomes '-'.
 std::string safe(const std::string& text) {
   std::string out;
@@ -80,7 +64,7 @@ std::vector<Override> map_overrides(const ConfigNode& map) {
   std::vector<Override> out;
   for (const std::string& key : map.keys()) {
     const ConfigNode value = map.child(key);
-    out.push_back({key, yaml_text(value.yaml()), value, map});
+    out.push_back({key, yaml_override_text(value.yaml()), value, map});
   }
   return out;
 }
@@ -119,7 +103,7 @@ std::vector<Combination> grid_combinations(const SweepFile& file) {
     for (const auto& combo : combos)
       for (size_t i = 0; i < axis.node.size(); ++i) {
         auto extended = combo;
-        extended.push_back({axis.key, yaml_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
+        extended.push_back({axis.key, yaml_override_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
         next.push_back(extended);
       }
     combos = next;
@@ -203,13 +187,13 @@ SweepRun expand_run(const Sweep& sweep, const fs::path& out_dir, const std::stri
   std::vector<std::string> all = overrides;
   all.push_back("run.seed=" + std::to_string(seed));
   // Quoted: a path may hold text YAML would read otherwise (" #" starts a comment).
-  all.push_back("run.out_dir=" + yaml_quoted((out_dir / "runs").string()));
-  all.push_back("run.name=" + yaml_quoted(label));
+  all.push_back("run.out_dir=" + yaml_double_quoted((out_dir / "runs").string()));
+  all.push_back("run.name=" + yaml_double_quoted(label));
   // TensorBoard: every run of the sweep under one log directory (the sweep's own unless the
   // experiment names one), each run named by its id, so TensorBoard compares them side by side.
   if (!sets_tensorboard_log(base, overrides))
-    all.push_back("run.tensorboard_log=" + yaml_quoted(sweep_tensorboard_dir(out_dir.string())));
-  all.push_back("run.tb_log_name=" + yaml_quoted(label + "_seed" + std::to_string(seed)));
+    all.push_back("run.tensorboard_log=" + yaml_double_quoted(sweep_tensorboard_dir(out_dir.string())));
+  all.push_back("run.tb_log_name=" + yaml_double_quoted(label + "_seed" + std::to_string(seed)));
   const Experiment experiment = load_experiment(base, all, registry);
   run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
   write_text_atomic(run.config, "# run " + run.id + " of sweep " + sweep.source +
@@ -370,7 +354,7 @@ std::vector<std::string> sweep_vouched_overrides(const Sweep& sweep, const Sweep
     const ConfigNode config = ConfigNode::load_file(run.config, ConfigTrust::kUntrusted);
     const ConfigNode named = config.child("run").child("tensorboard_log");
     if (named.defined() && named.as_string() == own)
-      return {"run.tensorboard_log=" + yaml_quoted(own)};
+      return {"run.tensorboard_log=" + yaml_double_quoted(own)};
   } catch (const ConfigError&) {
     // An unreadable config is reported when the run loads it.
   }

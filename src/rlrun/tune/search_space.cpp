@@ -34,14 +34,6 @@ nlohmann::json scalar_json(const YAML::Node& node) {
   return text;
 }
 
-std::string flow_yaml(const YAML::Node& node) {
-  YAML::Emitter out;
-  out.SetMapFormat(YAML::Flow);
-  out.SetSeqFormat(YAML::Flow);
-  out << node;
-  return out.c_str();
-}
-
 // Optuna's equality of choices: True == 1 == 1.0.
 bool same_value(const nlohmann::json& a, const nlohmann::json& b) {
   if (a.is_number() && b.is_number()) return a.get<double>() == b.get<double>();
@@ -138,7 +130,7 @@ Parameter parse_parameter(const std::string& key, const ConfigNode& spec,
         if (c.IsScalar() || c.IsNull()) {
           values.push_back(c.IsNull() ? nlohmann::json(nullptr) : scalar_json(c));
         } else {
-          values.push_back(flow_yaml(c));
+          values.push_back(yaml_override_text(c));
           p.yaml_choices = true;
         }
       }
@@ -187,11 +179,7 @@ Parameter parse_parameter(const std::string& key, const ConfigNode& spec,
 }  // namespace
 
 std::string yaml_text_of(const nlohmann::json& value) {
-  if (value.is_string()) {
-    YAML::Emitter out;
-    out << YAML::DoubleQuoted << value.get<std::string>();
-    return out.c_str();
-  }
+  if (value.is_string()) return yaml_double_quoted(value.get<std::string>());
   if (value.is_null()) return "null";
   if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
   if (value.is_number_float()) {

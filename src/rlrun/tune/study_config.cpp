@@ -62,21 +62,6 @@ struct StudyFile {
   }
 };
 
-std::string yaml_scalar_text(const YAML::Node& node) {
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Emitter out;
-  out.SetMapFormat(YAML::Flow);
-  out.SetSeqFormat(YAML::Flow);
-  out << node;
-  return out.c_str();
-}
-
-std::string quoted(const std::string& text) {
-  YAML::Emitter out;
-  out << YAML::DoubleQuoted << text;
-  return out.c_str();
-}
-
 }  // namespace
 
 std::vector<std::string> StudyConfig::seed_overrides(const std::vector<Override>& params,
@@ -86,8 +71,8 @@ std::vector<std::string> StudyConfig::seed_overrides(const std::vector<Override>
   for (const Override& o : params) out.push_back(o.assignment());
   out.push_back("run.seed=" + std::to_string(base_seed + static_cast<uint64_t>(seed_index)));
   out.push_back("run.total_timesteps=" + std::to_string(n_timesteps));
-  out.push_back("run.out_dir=" + quoted((fs::path(out_dir) / "trials").string()));
-  out.push_back("run.name=" + quoted("trial_" + std::to_string(trial_number)));
+  out.push_back("run.out_dir=" + yaml_double_quoted((fs::path(out_dir) / "trials").string()));
+  out.push_back("run.name=" + yaml_double_quoted("trial_" + std::to_string(trial_number)));
   // rl-zoo's TrialEvalCallback: n_evaluations evaluations over the run, deterministic.
   out.push_back("eval.freq=" + std::to_string(std::max<int64_t>(n_timesteps / n_evaluations, 1)));
   out.push_back("eval.n_episodes=" + std::to_string(eval_episodes));
@@ -100,7 +85,8 @@ std::string StudyConfig::trial_dir(int trial_number) const {
   return (fs::path(out_dir) / "trials" / ("trial_" + std::to_string(trial_number))).string();
 }
 
-StudyConfig load_study(const std::string& path, Registry& registry, const std::vector<std::string>& set) {
+StudyConfig load_study(const std::string& path, Registry& registry, const std::vector<std::string>& set,
+                       const std::string& out_dir) {
   if (!fs::exists(path)) throw UsageError(path + " does not exist");
   const ConfigNode root = ConfigNode::load_file(path);
   StudyFile file;
@@ -116,11 +102,13 @@ StudyConfig load_study(const std::string& path, Registry& registry, const std::v
                    .string();
   if (!fs::exists(study.base)) root.child("base").fail(study.base + " does not exist");
   study.name = file.name.empty() ? fs::path(path).stem().string() : file.name;
-  study.out_dir = fs::absolute(file.out_dir.empty() ? fs::path("runs/tune") / study.name
-                                                    : fs::path(file.out_dir))
+  const std::string chosen_out = out_dir.empty() ? file.out_dir : out_dir;
+  study.out_dir = fs::absolute(chosen_out.empty() ? fs::path("runs/tune") / study.name
+                                                  : fs::path(chosen_out))
                       .lexically_normal()
                       .string();
-  study.storage = file.storage.empty() ? (fs::path(study.out_dir) / "study.journal").string()
+  study.storage = file.storage.empty() || !out_dir.empty()
+                      ? (fs::path(study.out_dir) / "study.journal").string()
                                        : fs::absolute(file.storage).lexically_normal().string();
   study.n_trials = file.n_trials;
   study.seeds_per_trial = file.seeds_per_trial;
@@ -136,7 +124,7 @@ StudyConfig load_study(const std::string& path, Registry& registry, const std::v
   if (file.set.defined()) {
     if (!file.set.is_map()) file.set.fail("expected a map of key: value");
     for (const std::string& key : file.set.keys()) {
-      Override o{key, yaml_scalar_text(file.set.child(key).yaml())};
+      Override o{key, yaml_override_text(file.set.child(key).yaml())};
       try {
         load_experiment(study.base, {o.assignment()}, registry);
       } catch (const ConfigError& e) {

@@ -97,7 +97,8 @@ struct StudyConfig {
 
 // Reads and checks a study file (trusted: the user's own), its base experiment and every
 // fixed override; `set` adds command-line overrides after the file's. ConfigError at the line.
+// `out_dir`: instead of the file's (the command line's --out).
 StudyConfig load_study(const std::string& path, Registry& registry,
-                       const std::vector<std::string>& set = {});
+                       const std::vector<std::string>& set = {}, const std::string& out_dir = "");
 
 }  // namespace rlrun::tune
