@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -261,4 +262,60 @@ TEST_CASE("tune: errors in a study file name the line and suggest the key", "[cl
   CHECK_THAT(r.output, Catch::Contains("cmaes"));
   r = run_rlrun("tune reprot " + study);
   CHECK(r.exit_code == 2);
+}
+
+TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial re-trains", "[cli][tune]") {
+  TempDir dir("tune_progress");
+  std::string text = read_text(write_study(dir, "", 4, 4096, 1, 4));
+  // The file's objective and pruner replaced (later keys would be duplicates).
+  text.replace(text.find("pruner: {type: median, n_startup_trials: 2}"),
+               std::string("pruner: {type: median, n_startup_trials: 2}").size(),
+               "pruner: {type: successive_halving, min_resource: 1, reduction_factor: 2}\n"
+               "objective: {metric: train/value_loss, direction: minimize, reduce: mean}");
+  std::ofstream(dir / "study.yaml") << text;
+  const auto r = run_rlrun("tune " + (dir / "study.yaml"));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const json dump = optuna_dump(dir / "out/study.journal", "small");
+  REQUIRE(dump["trials"].size() == 4);
+  CHECK(dump["direction"] == "MINIMIZE");
+  int pruned = 0;
+  for (const auto& t : dump["trials"]) {
+    pruned += t["state"] == "PRUNED";
+    if (t["state"] != "COMPLETE") continue;
+    // The value is the mean of the seed's progress.csv column train/value_loss.
+    const std::string progress = read_text(dir / ("out/trials/trial_" + std::to_string(t["number"].get<int>()) + "/seed1/progress.csv"));
+    std::istringstream lines(progress);
+    std::string header;
+    std::getline(lines, header);
+    int column = -1, i = 0;
+    for (size_t start = 0, comma; start <= header.size(); start = comma + 1, ++i) {
+      comma = header.find(',', start);
+      if (comma == std::string::npos) comma = header.size();
+      if (header.substr(start, comma - start) == "train/value_loss") column = i;
+    }
+    REQUIRE(column >= 0);
+    double sum = 0;
+    int n = 0;
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream cells(line);
+      std::string cell;
+      for (int k = 0; k <= column && std::getline(cells, cell, ','); ++k) {
+      }
+      if (!cell.empty()) {
+        sum += std::stod(cell);
+        ++n;
+      }
+    }
+    REQUIRE(n > 0);
+    CHECK(t["values"][0].get<double>() == Approx(sum / n).epsilon(1e-4));
+    // Successive halving records the rungs a trial reached.
+    CHECK(t["system_attrs"].contains("completed_rung_0"));
+  }
+  CHECK(pruned < 4);
+  // --trial N re-trains trial 0 into <out_dir>/retrained/.
+  const auto retrain = run_rlrun("tune report " + (dir / "study.yaml") + " --trial 0");
+  INFO(retrain.output);
+  CHECK(retrain.exit_code == 0);
+  CHECK(std::filesystem::exists(dir / "out/retrained/trial_0/seed1/model.zip"));
 }

@@ -158,13 +158,18 @@ class TrialRunner {
         return fail(std::string("the sampled configuration is not valid: ") + e.what());
       }
       std::vector<double> column;  // the objective's column, from this seed's evaluations
+      bool evaluation_metric = false;  // the metric is an evaluations.csv column
       int64_t k = 0;
       bool pruned = false;
       auto on_evaluation = [&](const EvaluationRow& row) -> std::string {
         ++k;
         double value = std::nan("");
-        if (auto it = row.values.find(study_.objective.metric); it != row.values.end()) value = it->second;
-        else value = progress_value(experiment);
+        if (auto it = row.values.find(study_.objective.metric); it != row.values.end()) {
+          value = it->second;
+          evaluation_metric = true;
+        } else {
+          value = progress_value(experiment);  // its latest progress.csv value
+        }
         column.push_back(value);
         if (k > evals_per_seed || !std::isfinite(value)) return "";
         const int64_t step = s * evals_per_seed + k;
@@ -198,7 +203,7 @@ class TrialRunner {
         if (self.last_step()) result.value = self.intermediate_values.at(*self.last_step());
         return result;
       }
-      if (!is_evaluation_metric(column)) column = progress_column(experiment);
+      if (!evaluation_metric) column = progress_column(experiment);
       const double value = reduce(column, study_.objective.reduce, study_.maximize());
       if (!std::isfinite(value))
         return fail("seed " + std::to_string(experiment.run.seed) + " gave no finite " +
@@ -220,10 +225,6 @@ class TrialRunner {
     r.state = TrialState::kFail;
     r.fail_reason = why;
     return r;
-  }
-  // True when the evaluations gave the objective's column (it is an evaluations.csv column).
-  static bool is_evaluation_metric(const std::vector<double>& column) {
-    return std::any_of(column.begin(), column.end(), [](double v) { return !std::isnan(v); });
   }
   std::string run_dir(const Experiment& e) const {
     return (fs::path(e.run.out_dir) / e.run.name / ("seed" + std::to_string(e.run.seed))).string();
