@@ -1,0 +1,57 @@
+// configs/rltools/ (issue 24): RLtools' Pendulum-v1 zoo hyperparameters as rlrun experiments.
+// Each file must load, cite RLtools, stay out of scripts/bench.sh's default set, and keep the
+// values that make the side-by-side benchmark (scripts/bench_rltools.sh) a like-for-like one.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/experiment.hpp"
+#include "runtime/cli_runner.hpp"
+
+using namespace rlrun;
+namespace fs = std::filesystem;
+
+TEST_CASE("configs/rltools: every file loads and cites RLtools", "[configs][rltools]") {
+  const fs::path dir = fs::path(RLRUN_SOURCE_DIR) / "configs" / "rltools";
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    INFO(entry.path().string());
+    ++files;
+    const std::string text = testing::read_text(entry.path().string());
+    CHECK(text.find("github.com/rl-tools/rl-tools") != std::string::npos);
+    CHECK(text.find("\n# bench: skip") != std::string::npos);
+    CHECK(text.find("Not expressible in rlrun") != std::string::npos);
+    Registry registry = make_builtin_registry();
+    CHECK_NOTHROW(load_experiment(entry.path().string(), {}, registry));
+  }
+  CHECK(files == 3);
+}
+
+TEST_CASE("configs/rltools: the budgets and batch sizes of RLtools' zoo", "[configs][rltools]") {
+  const fs::path dir = fs::path(RLRUN_SOURCE_DIR) / "configs" / "rltools";
+  struct Expected {
+    std::string algo;
+    int64_t total_timesteps;  // RLtools' env steps: its loops' STEP_LIMIT tests
+    int n_envs;
+    int batch_size;
+  };
+  const std::map<std::string, Expected> expected = {
+      {"pendulum_sac.yaml", {"SAC", 20000, 1, 100}},
+      {"pendulum_td3.yaml", {"TD3", 20001, 1, 100}},
+      {"pendulum_ppo.yaml", {"PPO", 10010624, 64, 1024}},
+  };
+  for (const auto& [file, want] : expected) {
+    INFO(file);
+    Registry registry = make_builtin_registry();
+    const Experiment e = load_experiment((dir / file).string(), {}, registry);
+    CHECK(e.resolved["algo"]["id"].as<std::string>() == want.algo);
+    CHECK(e.run.total_timesteps == want.total_timesteps);
+    CHECK(e.resolved["env"]["id"].as<std::string>() == "Pendulum-v1");
+    CHECK(e.resolved["env"]["n_envs"].as<int>() == want.n_envs);
+    CHECK(e.resolved["algo"]["batch_size"].as<int>() == want.batch_size);
+  }
+}
