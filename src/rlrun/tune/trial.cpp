@@ -30,7 +30,9 @@ nlohmann::json Trial::suggest(const std::string& name, const Distribution& distr
   }
   double internal = 0;
   if (fixed_params_.contains(name)) {
-    // Optuna's _is_fixed_param: the enqueued value, even outside the range (Optuna warns).
+    // Optuna's _is_fixed_param: the enqueued value. Optuna takes one outside the range with a
+    // warning; rlrun refuses it (the trial fails): the journal may come from anyone, and a value
+    // far outside an int parameter's range has no int value.
     try {
       internal = to_internal(distribution, fixed_params_[name]);
     } catch (const ConfigError& e) {
@@ -38,6 +40,9 @@ nlohmann::json Trial::suggest(const std::string& name, const Distribution& distr
                            "' = " + fixed_params_[name].dump() + " does not fit its distribution: " +
                            e.what());
     }
+    if (!contains(distribution, internal))
+      throw RuntimeFailure("trial " + std::to_string(number_) + ": fixed parameter '" + name +
+                           "' = " + fixed_params_[name].dump() + " is outside its range");
   } else if (single(distribution)) {
     internal = std::visit([](const auto& d) -> double {
       using D = std::decay_t<decltype(d)>;
