@@ -44,12 +44,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string own_binary() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? "rlrun" : exe.string();
-}
-
 // Holds an exclusive lock on <out_dir>/locks/<index>.lock while a run trains, so two `sweep
 // run` processes (a Slurm task and a local re-run, say) never train the same run at once.
 class SweepSlotLock {

@@ -39,12 +39,6 @@ using tune::FrozenTrial;
 using tune::StudyConfig;
 using tune::TrialState;
 
-std::string own_binary() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? "rlrun" : exe.string();
-}
-
 struct TuneOptions {
   std::string study_file;
   int jobs = 1;
@@ -80,16 +74,14 @@ void print_study_summary(const StudyConfig& study) {
   if (!id) return;
   const std::vector<FrozenTrial> trials = storage.state().trials(*id);
   int complete = 0, pruned = 0, failed = 0, other = 0;
-  const FrozenTrial* best = nullptr;
   for (const FrozenTrial& t : trials) {
     if (t.state == TrialState::kComplete) ++complete;
     else if (t.state == TrialState::kPruned) ++pruned;
     else if (t.state == TrialState::kFail) ++failed;
     else ++other;
-    if (t.state == TrialState::kComplete && t.value() &&
-        (!best || (study.maximize() ? *t.value() > *best->value() : *t.value() < *best->value())))
-      best = &t;
   }
+  const FrozenTrial* best = tune::best_trial(
+      trials, study.maximize() ? tune::StudyDirection::kMaximize : tune::StudyDirection::kMinimize);
   std::printf("study %s (%s): %d complete, %d pruned, %d failed, %d running or waiting; %d of "
               "%d trials counted\n",
               study.name.c_str(), study.storage.c_str(), complete, pruned, failed, other,
@@ -178,15 +170,12 @@ int report(const TuneOptions& o, Registry& registry) {
   if (!fs::exists(journal)) throw UsageError(journal + " does not exist (no trial has run yet?)");
   tune::JournalStorage storage(journal);
   if (name.empty()) {
-    // The journal's only study.
-    for (int64_t id = 0; id < 1000000 && name.empty(); ++id) {
-      try {
-        name = storage.state().study(id).name;
-      } catch (const RuntimeFailure&) {
-        break;
-      }
-    }
-    if (name.empty()) throw UsageError(journal + " holds no study");
+    const std::vector<std::string> names = storage.state().study_names();
+    if (names.empty()) throw UsageError(journal + " holds no study");
+    if (names.size() > 1)
+      throw UsageError(journal + " holds " + std::to_string(names.size()) +
+                       " studies: name one with --study-name (" + names.front() + ", ...)");
+    name = names.front();
   }
   const auto id = storage.state().find_study(name);
   if (!id) throw UsageError(journal + " holds no study named '" + name + "'");
@@ -206,15 +195,10 @@ int report(const TuneOptions& o, Registry& registry) {
         if (t.number == *o.trial) chosen = &t;
       if (!chosen) throw UsageError("the study has no trial " + std::to_string(*o.trial));
     } else {
-      for (const FrozenTrial& t : trials)
-        if (t.state == TrialState::kComplete && t.value() &&
-            (!chosen || (direction == tune::StudyDirection::kMaximize ? *t.value() > *chosen->value()
-                                                                       : *t.value() < *chosen->value())))
-          chosen = &t;
+      chosen = tune::best_trial(trials, direction);
       if (!chosen) throw UsageError("the study has no complete trial yet");
     }
-    nlohmann::json params = nlohmann::json::object();
-    for (const auto& [pname, internal] : chosen->params) params[pname] = chosen->param(pname);
+    const nlohmann::json params = chosen->external_params();
     std::vector<std::string> overrides;
     for (const auto& s : study->set) overrides.push_back(s.assignment());
     for (const auto& p : study->space->overrides_for(params)) overrides.push_back(p.assignment());

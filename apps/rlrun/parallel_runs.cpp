@@ -199,4 +199,10 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
   return interrupted ? 130 : 0;  // temporary logs go: each run's output is also in its log.txt
 }
 
+std::string own_binary() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? "rlrun" : exe.string();
+}
+
 }  // namespace rlrun::cli

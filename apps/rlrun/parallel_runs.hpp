@@ -31,6 +31,9 @@ struct ChildRun {
 int run_in_parallel(const std::vector<ChildRun>& runs, int jobs, const std::string& noun,
                     const std::string& logs = "");
 
+// This rlrun binary's path (what child processes and sbatch scripts run).
+std::string own_binary();
+
 // `rlrun train -j N`: each config as `rlrun --threads 1 train <config> <child_options>`.
 int train_in_parallel(const std::vector<std::string>& configs,
                       const std::vector<std::string>& child_options, int jobs);

@@ -50,7 +50,25 @@ struct FrozenTrial {
   nlohmann::json param(const std::string& name) const {
     return to_external(distributions.at(name), params.at(name));
   }
+  // Every parameter's external value ({name: value}, Optuna's trial.params).
+  nlohmann::json external_params() const {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [name, internal] : params) out[name] = to_external(distributions.at(name), internal);
+    return out;
+  }
 };
+
+// Optuna's study.best_trial: the first COMPLETE trial with the best value; null when none.
+inline const FrozenTrial* best_trial(const std::vector<FrozenTrial>& trials, StudyDirection direction) {
+  const FrozenTrial* best = nullptr;
+  for (const FrozenTrial& t : trials) {
+    if (t.state != TrialState::kComplete || !t.value()) continue;
+    if (!best || (direction == StudyDirection::kMaximize ? *t.value() > *best->value()
+                                                         : *t.value() < *best->value()))
+      best = &t;
+  }
+  return best;
+}
 
 // What samplers and pruners see of a study: its direction and every trial in number order.
 struct StudyView {

@@ -271,6 +271,12 @@ std::optional<int64_t> JournalReplay::find_study(const std::string& name) const 
   return std::nullopt;
 }
 
+std::vector<std::string> JournalReplay::study_names() const {
+  std::vector<std::string> out;
+  for (const auto& [id, study] : studies_) out.push_back(study.name);
+  return out;
+}
+
 const StudyRecord& JournalReplay::study(int64_t study_id) const {
   auto it = studies_.find(study_id);
   if (it == studies_.end()) throw RuntimeFailure("study " + std::to_string(study_id) + " does not exist");

@@ -57,6 +57,7 @@ class JournalReplay {
 
   const std::string& worker_id() const { return worker_id_; }
   std::optional<int64_t> find_study(const std::string& name) const;
+  std::vector<std::string> study_names() const;  // in creation order
   const StudyRecord& study(int64_t study_id) const;
   const FrozenTrial& trial(int64_t trial_id) const;
   // The study's trials in number order (copies: samplers get a stable snapshot).

@@ -65,11 +65,6 @@ void Trial::set_user_attr(const std::string& key, const nlohmann::json& value) {
   storage_.set_trial_user_attr(trial_id_, key, value);
 }
 
-nlohmann::json Trial::params() const {
-  nlohmann::json out = nlohmann::json::object();
-  const FrozenTrial& self = storage_.state().trial(trial_id_);
-  for (const auto& [name, internal] : self.params) out[name] = to_external(self.distributions.at(name), internal);
-  return out;
-}
+nlohmann::json Trial::params() const { return storage_.state().trial(trial_id_).external_params(); }
 
 }  // namespace rlrun::tune

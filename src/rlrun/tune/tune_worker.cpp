@@ -69,17 +69,10 @@ class QuietTraining {
   int saved_ = -1;
 };
 
-// A trial's parameters as Optuna shows them ({name: external value}).
-json external_params(const FrozenTrial& t) {
-  json out = json::object();
-  for (const auto& [name, internal] : t.params) out[name] = to_external(t.distributions.at(name), internal);
-  return out;
-}
-
 // Marks a RUNNING trial failed and enqueues its parameters again (its fixed parameters, if it
 // was itself a re-queued one, are kept: the parameters it had not reached yet).
 void requeue(JournalStorage& storage, int64_t study_id, const FrozenTrial& t, const std::string& why) {
-  json fixed = external_params(t);
+  json fixed = t.external_params();
   if (auto f = t.system_attrs.find("fixed_params"); f != t.system_attrs.end() && f->is_object())
     for (auto it = f->begin(); it != f->end(); ++it)
       if (!fixed.contains(it.key())) fixed[it.key()] = it.value();
