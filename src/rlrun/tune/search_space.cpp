@@ -149,8 +149,8 @@ Parameter parse_parameter(const std::string& key, const ConfigNode& spec,
       }
     }
   } catch (const ConfigError& e) {
-    // The distribution's own checks: say where in the study file.
-    if (std::string(e.what()).find(spec.where()) != std::string::npos) throw;
+    // A value's own error already names its position; the distribution's checks do not.
+    if (std::string(e.what()).rfind(spec.origin() + ":", 0) == 0) throw;
     spec.fail(e.what());
   }
   if (spec.has("if")) {
