@@ -11,6 +11,7 @@
 #include "parse_errors.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
+#include "rlrun/nn/dense_kernels.hpp"
 #include "rlrun/runtime/builtins.hpp"
 
 namespace {
@@ -35,7 +36,11 @@ int main(int argc, char** argv) {
   CLI::App app{"rlrun " RLRUN_VERSION
                ": Stable-Baselines3-style reinforcement learning from YAML experiment files"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", RLRUN_VERSION);
+  // The version and which network kernels this CPU runs (nn/dense_kernels.hpp).
+  const std::string version = std::string(RLRUN_VERSION) + " (network kernels: " +
+                              rlrun::dense::kernel_path_name(rlrun::dense::best_kernel_path()) +
+                              "; RLRUN_KERNELS=avx512|avx2|baseline forces one)";
+  app.set_version_flag("--version", version);
   // A global option, accepted before or after the subcommand (fallthrough).
   int threads = 0;
   app.add_option("--threads", threads,
@@ -68,6 +73,11 @@ int main(int argc, char** argv) {
   }
   try {
     rlrun::ForkJoin::configure_shared(threads != 0 ? threads : rlrun::ForkJoin::default_threads());
+    try {
+      rlrun::dense::active_kernels();  // RLRUN_KERNELS is checked once, before any work
+    } catch (const std::runtime_error& e) {
+      throw rlrun::UsageError(e.what());
+    }
     if (app.got_subcommand("train")) return train();
     if (app.got_subcommand("eval")) return eval();
     if (app.got_subcommand("list")) return list();

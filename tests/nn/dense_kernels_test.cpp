@@ -2,6 +2,7 @@
 // every epilogue, at heights and depths that are not multiples of the SIMD packet (TD3's 300,
 // 13, ...): those take the overlapping last packet, which must neither miss rows nor add rows
 // twice, and must give each row the value the full packets give.
+#include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <utility>

@@ -53,8 +53,8 @@ Passes split_passes(const Mlp& net, ForkJoin& fork_join, const Eigen::MatrixXf& 
 Passes halves_passes(const Mlp& net, const Eigen::MatrixXf& x, const Eigen::MatrixXf& grad_out,
                      bool halves) {
   const Eigen::Index n = x.cols();
-  const int parts = halves ? column_parts(n) : 1;
-  const auto cols = [&](int k) { return parts == 1 ? Part{0, n} : column_part(n, k); };
+  const int parts = halves ? column_parts(n, net.multiply_adds_per_column()) : 1;
+  const auto cols = [&](int k) { return column_part(n, parts, k); };
   Passes p;
   p.output.resize(net.out_dim(), n);
   p.grad_input.resize(net.in_dim() - 2, n);
@@ -85,14 +85,19 @@ Passes halves_passes(const Mlp& net, const Eigen::MatrixXf& x, const Eigen::Matr
 
 }  // namespace
 
-TEST_CASE("Minibatch columns split in halves from 32 on, parameters on a cache line",
-          "[nn][split]") {
-  CHECK(column_parts(31) == 1);
-  CHECK(column_part(31, 0).count == 31);
-  CHECK(column_parts(32) == 2);
-  CHECK(column_part(37, 0).count == 18);
-  CHECK(column_part(37, 1).begin == 18);
-  CHECK(column_part(37, 1).count == 19);
+TEST_CASE(
+    "Minibatch columns split in halves from 32 on when the pass is large enough, parameters on a "
+    "cache line",
+    "[nn][split]") {
+  const Eigen::Index big = 100000, small = 4416;  // 256x256 vs RLtools' 64x64 SAC critic
+  CHECK(column_parts(31, big) == 1);
+  CHECK(column_part(31, 1, 0).count == 31);
+  CHECK(column_parts(32, big) == 2);
+  CHECK(column_parts(100, small) == 1);  // 0.44 M multiply-adds: not worth a hand-off
+  CHECK(column_parts(400, small) == 2);
+  CHECK(column_part(37, 2, 0).count == 18);
+  CHECK(column_part(37, 2, 1).begin == 18);
+  CHECK(column_part(37, 2, 1).count == 19);
   CHECK(param_part(1000, 0).count == 496);
   CHECK(param_part(1000, 1).begin == 496);
   CHECK(param_part(1000, 1).count == 504);
@@ -106,8 +111,9 @@ TEST_CASE(
   const int n = GENERATE(5, 37, 64);
   INFO("batch " << n);
   Rng rng(3);
-  Mlp net(6, {24, 20}, 3, Activation::kReLU);
+  Mlp net(6, {256, 256}, 3, Activation::kReLU);  // 67 k multiply-adds a column: 37 columns split
   net.init_torch_default(rng);
+  REQUIRE(column_parts(n, net.multiply_adds_per_column()) == (n >= 32 ? 2 : 1));
   const Eigen::MatrixXf x = random_matrix(6, n, rng);
   const Eigen::MatrixXf grad_out = random_matrix(3, n, rng);
 
@@ -133,9 +139,10 @@ TEST_CASE(
 TEST_CASE("SplitMlp reads its parameters in place: no copy to refresh after a change",
           "[nn][split]") {
   Rng rng(4);
-  SplitMlp split(5, {16}, 2, Activation::kTanh);
+  SplitMlp split(5, {1024, 1024}, 2, Activation::kTanh);  // large enough to split 40 columns
   split.net().init_torch_default(rng);
   const Eigen::MatrixXf x = random_matrix(5, 40, rng);
+  REQUIRE(column_parts(40, split.net().multiply_adds_per_column()) == 2);
   split.forward(x);
   split.params() *= 0.5f;  // e.g. an optimizer step
   Mlp plain = split.net();

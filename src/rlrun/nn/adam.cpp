@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rlrun/nn/dense_kernels.hpp"
+
 namespace rlrun {
 
 Adam::Adam(std::vector<ParamBlock> blocks, AdamConfig cfg) : blocks_(std::move(blocks)), cfg_(cfg) {
@@ -29,19 +31,19 @@ void Adam::step(float lr) {
   const double bias_c2 = 1.0 - std::pow(cfg_.beta2, t);
   const float step_size = static_cast<float>(lr / bias_c1);
   const float inv_bias_c2_sqrt = static_cast<float>(1.0 / std::sqrt(bias_c2));
-  const auto w1 = static_cast<float>(1.0 - cfg_.beta1);  // torch: exp_avg.lerp_(grad, 1 - beta1)
-  const auto beta2 = static_cast<float>(cfg_.beta2);
-  const auto w2 = static_cast<float>(1.0 - cfg_.beta2);
-  const auto eps = static_cast<float>(cfg_.eps);
+  const dense::AdamCoefficients coefficients{
+      .w1 = static_cast<float>(1.0 - cfg_.beta1),  // torch: exp_avg.lerp_(grad, 1 - beta1)
+      .beta2 = static_cast<float>(cfg_.beta2),
+      .w2 = static_cast<float>(1.0 - cfg_.beta2),
+      .step_size = step_size,
+      .inv_bias_c2_sqrt = inv_bias_c2_sqrt,
+      .eps = static_cast<float>(cfg_.eps)};
+  // One fused pass per block on the CPU's widest vectors (dense_kernels.hpp): with Eigen
+  // expressions this ran 4 lanes wide in the portable build.
   for (size_t i = 0; i < blocks_.size(); ++i) {
     const ParamBlock& b = blocks_[i];
-    Eigen::Map<Eigen::ArrayXf> p(b.value, b.size);
-    const Eigen::Map<const Eigen::ArrayXf> g(b.grad, b.size);
-    auto m = exp_avg_[i].array();
-    auto v = exp_avg_sq_[i].array();
-    m += w1 * (g - m);
-    v = beta2 * v + w2 * g.square();
-    p -= step_size * m / (v.sqrt() * inv_bias_c2_sqrt + eps);
+    dense::adam_update(b.size, b.value, b.grad, exp_avg_[i].data(), exp_avg_sq_[i].data(),
+                       coefficients);
   }
 }
 

@@ -5,17 +5,28 @@
 // single-core FMA peak, and Eigen does not vectorise tanh over a broadcast bias expression. These
 // kernels skip packing (the weights fit in L1/L2), use a 2-packet x 6-column register tile (12
 // accumulators, the shape that fits 16 vector registers) and apply bias + activation or the
-// activation derivative while the tile is still in registers. They are written with Eigen's
-// packet primitives, so the same code targets SSE, AVX2, AVX-512 or NEON.
+// activation derivative while the tile is still in registers.
+//
+// One binary, every x86-64 CPU, the same bits (docs/portability.md). The kernels are compiled
+// once per instruction set (dense_kernels_avx512.cpp, _avx2.cpp, _baseline.cpp, all from
+// dense_kernel_set.hpp) and the best one the CPU has is picked at run time; RLRUN_KERNELS=
+// avx512|avx2|baseline forces one. The AVX-512 and AVX2 kernels give bit-identical results
+// (dense_kernel_set.hpp says how), so a seed trains the same model on every node of a cluster;
+// only the baseline path (CPUs without AVX2 + FMA) rounds a * b + c twice.
 //
 // All matrices are column-major float with explicit leading dimensions. The caller (Mlp) picks
-// the kernel: gemm_rows vectorises over the output rows (needs m >= packet size to pay off),
-// gemm_dot over the reduction dimension (for outputs with few rows, e.g. a 1- or 2-unit head).
-#include <Eigen/Core>
+// the kernel from the shapes alone: gemm_rows vectorises over the output rows (for m >=
+// kLogicalLanes), gemm_dot over the reduction dimension (outputs with few rows, e.g. a 1- or
+// 2-unit head).
+#include <cstddef>
 
 namespace rlrun::dense {
 
-using Eigen::Index;
+using Index = std::ptrdiff_t;
+
+// The width the kernels' results are defined by, whatever the registers hold: gemm_dot adds
+// its terms in 16 lanes, and callers choose between kernels by comparing shapes with it.
+inline constexpr int kLogicalLanes = 16;
 
 // What happens to each computed element s = C(i, j) before it is written.
 enum class Epilogue {
@@ -56,7 +67,48 @@ void gemm_dot(Index m, Index n, Index p, const float* x, Index ldx, const float*
 // a weight for every backward pass).
 void transpose(Index rows, Index cols, const float* a, Index lda, float* b, Index ldb);
 
-// Number of floats in one SIMD packet (8 with AVX2).
-int packet_size();
+// out(i) += sum_j D(i, j) for i < m, j < n (D column-major, ldd), j in order: a bias gradient.
+void row_sum_add(Index m, Index n, const float* d, Index ldd, float* out);
+
+// One Adam step over n parameters (nn/adam.cpp computes the coefficients once per step).
+struct AdamCoefficients {
+  float w1;                // 1 - beta1
+  float beta2;
+  float w2;                // 1 - beta2
+  float step_size;         // lr / (1 - beta1^t)
+  float inv_bias_c2_sqrt;  // 1 / sqrt(1 - beta2^t)
+  float eps;
+};
+void adam_update(Index n, float* value, const float* grad, float* exp_avg, float* exp_avg_sq,
+                 const AdamCoefficients& coefficients);
+
+// ---- which kernels run ----------------------------------------------------------------------
+
+enum class KernelPath { kBaseline, kAvx2, kAvx512 };
+
+// The functions above for one instruction set.
+struct KernelTable {
+  KernelPath path;
+  void (*gemm_rows)(Index, Index, Index, const float*, Index, const float*, Index, Index,
+                    Epilogue, const EpilogueArgs&);
+  void (*gemm_dot)(Index, Index, Index, const float*, Index, const float*, Index, Epilogue,
+                   const EpilogueArgs&);
+  void (*transpose)(Index, Index, const float*, Index, float*, Index);
+  void (*row_sum_add)(Index, Index, const float*, Index, float*);
+  void (*adam_update)(Index, float*, const float*, float*, float*, const AdamCoefficients&);
+};
+
+// "avx512", "avx2" or "baseline" ("baseline" is SSE4.2 on x86-64, the portable vector
+// extension elsewhere).
+const char* kernel_path_name(KernelPath path);
+// Whether this binary has the path and this CPU (and OS) can run it.
+bool kernel_path_available(KernelPath path);
+// The fastest path available here (what active_kernels() uses without RLRUN_KERNELS).
+KernelPath best_kernel_path();
+// The kernels of a path; throws std::runtime_error when it is not available.
+const KernelTable& kernels(KernelPath path);
+// The path the functions above use: RLRUN_KERNELS if set (a bad or unavailable value throws
+// std::runtime_error naming it), else the best available. Chosen once per process.
+const KernelTable& active_kernels();
 
 }  // namespace rlrun::dense

@@ -124,7 +124,6 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
   const int layers = num_layers();
   const Eigen::Index batch = x.cols();
   acts_[0] = x;  // kept for the first layer's weight gradient; resizes only on a new batch size
-  if (ones_.size() != batch) ones_.setOnes(batch);
   for (int l = 0; l < layers; ++l) {
     const Eigen::Index in = dims_[l];
     const Eigen::Index out = dims_[l + 1];
@@ -134,7 +133,7 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
         l + 1 < layers ? forward_epilogue(act_) : dense::Epilogue::kBias;
     const float* w = p + w_offset_[l];
     const dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = p + b_offset_[l]};
-    if (out >= dense::packet_size()) {
+    if (out >= dense::kLogicalLanes) {
       dense::gemm_rows(out, batch, in, w, out, acts_[l].data(), 1, in, epilogue, args);
     } else {
       // Few output units (a value or small action head): dot products over the input features.
@@ -179,7 +178,7 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
                                 std::to_string(grad_output.cols()) + ", last forward gave " +
                                 std::to_string(out_dim()) + "x" + std::to_string(batch));
   }
-  const int lanes = dense::packet_size();
+  const int lanes = dense::kLogicalLanes;  // shapes alone pick the kernel (same bits everywhere)
   for (int l = layers - 1; l >= 0; --l) {
     const Eigen::Index in = dims_[l];
     const Eigen::Index out = dims_[l + 1];
@@ -198,11 +197,8 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
                          dense::Epilogue::kAddTransposed,
                          {.c = weight_grad(l).data(), .ldc = out});
       }
-      // db += delta 1 (a row sum as a matrix-vector product, which Eigen vectorises well).
-      bias_grad(l).noalias() +=
-          Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>(
-              delta, out, batch, Eigen::OuterStride<>(ld_delta)) *
-          ones_;
+      // db += delta 1, summed over the batch in order.
+      dense::row_sum_add(out, batch, delta, ld_delta, bias_grad(l).data());
     }
 
     // dL/d(input) = W^T delta, times act'(input) when the input is a hidden activation:

@@ -44,6 +44,12 @@ class Mlp {
   // Input and output width of layer l.
   int layer_in(int layer) const { return dims_[layer]; }
   int layer_out(int layer) const { return dims_[layer + 1]; }
+  // Multiply-adds of one sample's forward pass (sum of in * out over the layers).
+  Eigen::Index multiply_adds_per_column() const {
+    Eigen::Index total = 0;
+    for (size_t l = 0; l + 1 < dims_.size(); ++l) total += Eigen::Index{dims_[l]} * dims_[l + 1];
+    return total;
+  }
   Eigen::Index num_params() const { return params_.size(); }
 
   Eigen::VectorXf& params() { return params_; }
@@ -131,7 +137,6 @@ class Mlp {
   std::vector<Eigen::MatrixXf> deltas_;
   // wt_[l] = weight(l)^T (in x out), refreshed whenever a kernel wants the transposed layout.
   std::vector<Eigen::MatrixXf> wt_;
-  Eigen::VectorXf ones_;  // batch ones, for the bias gradient as a matrix-vector product
 };
 
 }  // namespace rlrun

@@ -33,13 +33,13 @@ Mlp& SplitMlp::replica() {
 
 const Eigen::MatrixXf& SplitMlp::forward(const Eigen::Ref<const Eigen::MatrixXf>& x) {
   const Eigen::Index n = x.cols();
-  parts_ = column_parts(n);
+  parts_ = column_parts(n, net_.multiply_adds_per_column());
   if (parts_ == 1) return net_.forward(x);
   Mlp& replica = this->replica();
   const float* p = net_.params_.data();
   output_.resize(net_.out_dim(), n);
   run_parts(fork_join_, 2, [&](int k) {
-    const Part cols = column_part(n, k);
+    const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     output_.middleCols(cols.begin, cols.count) =
         half.forward_with(p, x.middleCols(cols.begin, cols.count));
@@ -79,7 +79,7 @@ void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_out
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
   run_parts(fork_join_, 2, [&](int k) {
-    const Part cols = column_part(n, k);
+    const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     if (k == 1 || zero_first) half.zero_grad();  // the replica holds the second half's alone
     const float* grad_hidden =
@@ -111,7 +111,7 @@ void SplitMlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_outp
   const float* p = net_.params_.data();
   grad_input.resize(net_.in_dim() - first_input_row, n);
   run_parts(fork_join_, 2, [&](int k) {
-    const Part cols = column_part(n, k);
+    const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), false,
                        grad_input.data() + cols.begin * grad_input.rows(), first_input_row);

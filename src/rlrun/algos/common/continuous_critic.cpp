@@ -24,7 +24,7 @@ void ContinuousCritic::forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                const Eigen::Ref<const Eigen::MatrixXf>& actions) {
   obs_action_.resize(obs.rows() + actions.rows(), obs.cols());
   obs_action_ << obs, actions;  // th.cat([obs, actions], dim=1)
-  for (SplitMlp& q : q_) q.forward(obs_action_);
+  for_each_critic(obs.cols(), [&](int i) { q_[i].forward(obs_action_); });
 }
 
 int ContinuousCritic::argmin(Eigen::Index j) const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/nn/batch_split.hpp"
 #include "rlrun/nn/split_mlp.hpp"
 #include "rlrun/rng.hpp"
 
@@ -34,6 +35,22 @@ class ContinuousCritic {
   int n_outputs() const { return q_.front().net().out_dim(); }
   SplitMlp& q(int i) { return q_[i]; }
   const SplitMlp& q(int i) const { return q_[i]; }
+
+  // Runs fn(i) for every critic i, critics 0, 2, ... on this thread and 1, 3, ... on the other
+  // core (core/fork_join.hpp) when a pass of n columns through one critic does not already
+  // split over both (nn/batch_split.hpp): small critics such as RLtools' 64x64 ones still use
+  // the second core. fn(i) must read and write only critic i's state (its network, optimizer
+  // and buffers). Which critics run together depends on sizes only, so results do not depend
+  // on the thread count.
+  template <class F>
+  void for_each_critic(Eigen::Index n, F&& fn) {
+    const int critics = n_critics();
+    const bool apart =
+        critics > 1 && column_parts(n, q_.front().net().multiply_adds_per_column()) == 1;
+    run_parts(nullptr, apart ? 2 : 1, [&](int part) {
+      for (int i = apart ? part : 0; i < critics; i += apart ? 2 : 1) fn(i);
+    });
+  }
 
   // SB3 forward(obs, actions): Q_i(obs, actions) of every critic, each q(i).output()
   // (n_outputs x n), kept for backward (the actions: action_dim x n).

@@ -74,6 +74,9 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
   grad_min_q_.resize(critic_.n_critics());
+  grad_q_.resize(critic_.n_critics());
+  grad_critic_actions_.resize(critic_.n_critics());
+  critic_losses_.resize(critic_.n_critics());
   // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
   // included, are in the model tensors).
   checkpoint("train_rng", train_rng_);
@@ -160,14 +163,18 @@ EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, 
   }
 
   // critic_loss = 0.5 * sum_i F.mse_loss(critic_i(obs, actions), target_q); one Adam step.
+  // The critics are independent here: each one's loss, backward and Adam step may run on its
+  // own core (ContinuousCritic::for_each_critic); the losses are summed in critic order.
   critic_.forward(obs, b.actions);
-  for (int i = 0; i < critic_.n_critics(); ++i) {
-    grad_q_ = critic_.q(i).output() - target_q_;
-    stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * (0.5f * inv_n);
-    grad_q_ *= inv_n;  // d critic_loss / d Q_i = (Q_i - target_q) / n
-    critic_.q(i).zero_grad_and_backward(grad_q_);
-  }
-  for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
+  critic_.for_each_critic(n, [&](int i) {
+    Eigen::MatrixXf& grad_q = grad_q_[i];
+    grad_q = critic_.q(i).output() - target_q_;
+    critic_losses_[i] = static_cast<double>(grad_q.squaredNorm()) * (0.5f * inv_n);
+    grad_q *= inv_n;  // d critic_loss / d Q_i = (Q_i - target_q) / n
+    critic_.q(i).zero_grad_and_backward(grad_q);
+    critic_optimizers_[i].step(lr);
+  });
+  for (double loss : critic_losses_) stats.critic_loss += loss;
 
   // actor_loss = (ent_coef * log_prob - min_i critic_i(obs, actions_pi)).mean(), through the
   // critics as just stepped and pathwise through the squashed Gaussian; one Adam step.
@@ -180,10 +187,11 @@ EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, 
     actor_loss += static_cast<double>(alpha * log_prob_(j) - critic_.min(j));
   }
   stats.actor_loss = actor_loss * static_cast<double>(inv_n);
-  for (int i = 0; i < critic_.n_critics(); ++i) {
-    critic_.action_gradient(i, grad_min_q_[i], i == 0 ? grad_actions_ : grad_critic_actions_);
-    if (i > 0) grad_actions_ += grad_critic_actions_;
-  }
+  critic_.for_each_critic(n, [&](int i) {
+    critic_.action_gradient(i, grad_min_q_[i], grad_critic_actions_[i]);
+  });
+  grad_actions_ = grad_critic_actions_[0];
+  for (int i = 1; i < critic_.n_critics(); ++i) grad_actions_ += grad_critic_actions_[i];
   actor_.backward(grad_actions_, grad_log_prob_);
   actor_optimizer_.step(lr);
   acting_actor_.invalidate();

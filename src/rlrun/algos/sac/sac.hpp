@@ -157,8 +157,11 @@ class SAC : public OffPolicyAlgorithm {
   // Training workspaces (one gradient step allocates nothing while the batch size is
   // unchanged).
   Eigen::MatrixXf policy_noise_, next_noise_, next_actions_, actions_pi_, target_q_;
-  Eigen::MatrixXf grad_q_, grad_critic_actions_, grad_actions_;
-  std::vector<Eigen::MatrixXf> grad_min_q_;  // d actor_loss / d Q_i, per critic
+  Eigen::MatrixXf grad_actions_;
+  // Per critic (they may run on different cores): d critic_loss / d Q_i, its loss, d actor_loss
+  // / d Q_i and d actor_loss / d actions through critic i.
+  std::vector<Eigen::MatrixXf> grad_q_, grad_min_q_, grad_critic_actions_;
+  std::vector<double> critic_losses_;
   Eigen::RowVectorXf next_log_prob_, log_prob_, grad_log_prob_;
   // Acting workspaces.
   Eigen::MatrixXf scaled_actions_;

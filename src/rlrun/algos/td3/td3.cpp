@@ -62,6 +62,8 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
   actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
+  critic_grad_q_.resize(critic_.n_critics());
+  critic_losses_.resize(critic_.n_critics());
   // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
   // included, are in the model tensors).
   checkpoint("smoothing_rng", smoothing_rng_);
@@ -105,14 +107,18 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
 
   // critic_loss = sum_i F.mse_loss(critic_i(obs, actions), target_q); one Adam step.
   const Eigen::Ref<const Eigen::MatrixXf> obs = batch_obs(b);
+  // Each critic's loss, backward and Adam step may run on its own core
+  // (ContinuousCritic::for_each_critic); the losses are summed in critic order.
   critic_.forward(obs, b.actions);
-  for (int i = 0; i < critic_.n_critics(); ++i) {
-    grad_q_ = critic_.q(i).output() - target_q_;
-    stats.critic_loss += static_cast<double>(grad_q_.squaredNorm()) * inv_n;
-    grad_q_ *= 2.0f * inv_n;  // d critic_loss / d Q_i = 2 (Q_i - target_q) / n
-    critic_.q(i).zero_grad_and_backward(grad_q_);
-  }
-  for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
+  critic_.for_each_critic(n, [&](int i) {
+    Eigen::MatrixXf& grad_q = critic_grad_q_[i];
+    grad_q = critic_.q(i).output() - target_q_;
+    critic_losses_[i] = static_cast<double>(grad_q.squaredNorm()) * inv_n;
+    grad_q *= 2.0f * inv_n;  // d critic_loss / d Q_i = 2 (Q_i - target_q) / n
+    critic_.q(i).zero_grad_and_backward(grad_q);
+    critic_optimizers_[i].step(lr);
+  });
+  for (double loss : critic_losses_) stats.critic_loss += loss;
 
   // Delayed policy updates: `if self._n_updates % self.policy_delay == 0`.
   if (n_updates_ % config_.policy_delay != 0) return stats;

@@ -138,6 +138,9 @@ class TD3 : public OffPolicyAlgorithm {
 
   // Training workspaces (a gradient step allocates nothing while the batch size is unchanged).
   Eigen::MatrixXf smoothing_noise_, next_actions_, target_q_, grad_q_, grad_actions_;
+  // Per critic (they may run on different cores): d critic_loss / d Q_i and its loss.
+  std::vector<Eigen::MatrixXf> critic_grad_q_;
+  std::vector<double> critic_losses_;
 };
 
 }  // namespace rlrun

