@@ -6,6 +6,7 @@
 // ([.bench]).
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -560,7 +561,12 @@ double train_and_evaluate(const std::string& config, uint64_t seed) {
                                  {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed)},
                                  registry);
   const TrainOutcome outcome = train_experiment(e, builtin_registry());
-  const ModelFile model = read_model(outcome.model_path);
+  // A config that evaluates during training is scored by the best model it kept (the zoo's
+  // --load-best; configs/cartpole_dqn.yaml).
+  std::string path = outcome.model_path;
+  const std::string best = outcome.run_dir + "/best_model.zip";
+  if (std::ifstream(best).good()) path = best;
+  const ModelFile model = read_model(path);
   const Experiment stored = experiment_from_model(model, builtin_registry());
   EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
   auto loaded = algorithm_from_model(model, stored, builtin_registry(), env->observation_space(),

@@ -73,6 +73,15 @@ std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n,
     t.adam_update(static_cast<dense::Index>(p.size()), p.data(), g.data(), mom.data(), sq.data(), co);
   }
   out.insert(out.end(), p.begin(), p.end());
+  // Three RMSprop steps, and the gradient norm's sum of squares.
+  std::vector<float> r = a, square_avg(a.size(), 0.0f);
+  for (int step = 0; step < 3; ++step) {
+    const std::vector<float> g = random_values(a.size(), rng);
+    t.rmsprop_update(static_cast<dense::Index>(r.size()), r.data(), g.data(), square_avg.data(),
+                     0.99f, 7e-4f, 1e-5f);
+  }
+  out.insert(out.end(), r.begin(), r.end());
+  out.push_back(static_cast<float>(t.sum_of_squares(static_cast<dense::Index>(r.size()), r.data())));
   return out;
 }
 

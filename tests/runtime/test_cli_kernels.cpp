@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "rlrun/nn/dense_kernels.hpp"
-#include "rlrun/runtime/model_file.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/same_tensors.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -37,14 +37,8 @@ TEST_CASE("cli: the AVX2 and AVX-512 kernels train byte-equal models", "[cli][ke
                                     " train " + config);
     INFO(narrow.output);
     REQUIRE(narrow.exit_code == 0);
-    const ModelFile a = read_model(dir / ("runs/" + std::string(algo) + "/seed5/model.zip"));
-    const ModelFile b = read_model(dir / ("runs/" + std::string(algo) + "/seed5_2/model.zip"));
-    REQUIRE(a.tensors.size() == b.tensors.size());
-    for (const auto& [name, tensor] : a.tensors) {
-      INFO(name);
-      REQUIRE(b.tensors.count(name) == 1);
-      CHECK(tensor.bytes == b.tensors.at(name).bytes);
-    }
+    check_same_tensors(dir / ("runs/" + std::string(algo) + "/seed5/model.zip"),
+                       dir / ("runs/" + std::string(algo) + "/seed5_2/model.zip"));
   }
 }
 

@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
-#include "rlrun/runtime/model_file.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/same_tensors.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -36,14 +36,8 @@ TEST_CASE("cli: one or two threads train bit-identical models", "[cli]") {
     const auto two = run_rlrun("train " + config + " --threads 2");
     INFO(two.output);
     REQUIRE(two.exit_code == 0);
-    const ModelFile a = read_model(dir / ("runs/" + std::string(algo) + "/seed4/model.zip"));
-    const ModelFile b = read_model(dir / ("runs/" + std::string(algo) + "/seed4_2/model.zip"));
-    REQUIRE(a.tensors.size() == b.tensors.size());
-    for (const auto& [name, tensor] : a.tensors) {
-      INFO(name);
-      REQUIRE(b.tensors.count(name) == 1);
-      CHECK(tensor.bytes == b.tensors.at(name).bytes);
-    }
+    check_same_tensors(dir / ("runs/" + std::string(algo) + "/seed4/model.zip"),
+                       dir / ("runs/" + std::string(algo) + "/seed4_2/model.zip"));
   }
 }
 

@@ -3,14 +3,17 @@
 // `record("train/value_loss", v)` during an interval, then `dump(num_timesteps)` writes one
 // row to every sink (progress.csv, the console table, log.txt) and starts a new interval.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rlrun {
 
-using LogRow = std::map<std::string, double>;  // sorted by key, as SB3 prints them
+// Sorted by key, as SB3 prints them; std::less<> looks keys up without making a std::string.
+using LogRow = std::map<std::string, double, std::less<>>;
 
 class LogSink {
  public:
@@ -21,7 +24,15 @@ class LogSink {
 
 class Logger {
  public:
-  void record(const std::string& key, double value) { row_[key] = value; }
+  // A key already recorded in this interval (every gradient step records the same few) costs
+  // a lookup, no allocation.
+  void record(std::string_view key, double value) {
+    if (const auto it = row_.find(key); it != row_.end()) {
+      it->second = value;
+    } else {
+      row_.emplace(std::string(key), value);
+    }
+  }
   void dump(int64_t step) {
     if (row_.empty()) return;
     for (auto& sink : sinks_) sink->write(row_, step);

@@ -2,14 +2,13 @@
 
 #include <cmath>
 
+#include "rlrun/nn/dense_kernels.hpp"
+
 namespace rlrun {
 
 float grad_norm(std::span<const ParamBlock> blocks) {
   double sum_sq = 0.0;
-  for (const ParamBlock& b : blocks) {
-    const Eigen::Map<const Eigen::ArrayXf> g(b.grad, b.size);
-    sum_sq += g.cast<double>().square().sum();
-  }
+  for (const ParamBlock& b : blocks) sum_sq += dense::sum_of_squares(b.size, b.grad);
   return static_cast<float>(std::sqrt(sum_sq));
 }
 

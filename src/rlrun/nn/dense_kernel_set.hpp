@@ -501,9 +501,56 @@ struct KernelSet {
     }
   }
 
+  // One RMSprop step, torch's order (torch/optim/rmsprop.py, centered false, no momentum):
+  // v = alpha v + (1 - alpha) g^2, p -= lr g / (sqrt(v) + eps). No fused multiply-add.
+  static void rmsprop_update(Index n, float* value, const float* grad, float* square_avg,
+                             float alpha, float lr, float eps) {
+    const V a = V::set1(alpha), w = V::set1(1.0f - alpha), rate = V::set1(lr), e = V::set1(eps);
+    auto update = [&](V p, V g, V v, V* p_out, V* v_out) {
+      v = a * v + w * (g * g);
+      *p_out = p - rate * g / (sqrt(v) + e);
+      *v_out = v;
+    };
+    Index i = 0;
+    for (; i + kLanes <= n; i += kLanes) {
+      V p, v;
+      update(V::load(value + i), V::load(grad + i), V::load(square_avg + i), &p, &v);
+      p.store(value + i);
+      v.store(square_avg + i);
+    }
+    if (i < n) {
+      const int left = static_cast<int>(n - i);
+      V p, v;
+      update(V::load_first(value + i, left), V::load_first(grad + i, left),
+             V::load_first(square_avg + i, left), &p, &v);
+      p.store_first(value + i, left);
+      v.store_first(square_avg + i, left);
+    }
+  }
+
+  // Sum of g^2 (a gradient norm for clip_grad_norm_): chunks of 4096 terms summed in float in
+  // the 16 logical lanes (term p in lane p mod 16) and their fixed tree, the chunks added in
+  // double. torch sums in float32 too.
+  static double sum_of_squares(Index n, const float* g) {
+    constexpr Index kChunk = 4096;
+    double total = 0.0;
+    for (Index begin = 0; begin < n; begin += kChunk) {
+      const Index end = min_index(n, begin + kChunk);
+      Lanes16 acc;
+      for (int q = 0; q < kParts; ++q) acc.part[q] = V::zero();
+      for (Index p = begin; p < end; p += kLogicalLanes) {
+        const Lanes16 v = load16(g + p, end - p);
+        for (int q = 0; q < kParts; ++q) acc.part[q] = fma(v.part[q], v.part[q], acc.part[q]);
+      }
+      total += static_cast<double>(reduce16(acc));
+    }
+    return total;
+  }
+
   static const KernelTable& table(KernelPath path) {
-    static const KernelTable kTable{path,       &gemm_rows,  &gemm_dot,
-                                    &transpose, &row_sum_add, &adam_update};
+    static const KernelTable kTable{path,         &gemm_rows,      &gemm_dot,
+                                    &transpose,   &row_sum_add,    &adam_update,
+                                    &rmsprop_update, &sum_of_squares};
     return kTable;
   }
 };

@@ -115,4 +115,11 @@ void adam_update(Index n, float* value, const float* grad, float* exp_avg, float
   active_kernels().adam_update(n, value, grad, exp_avg, exp_avg_sq, coefficients);
 }
 
+void rmsprop_update(Index n, float* value, const float* grad, float* square_avg, float alpha,
+                    float lr, float eps) {
+  active_kernels().rmsprop_update(n, value, grad, square_avg, alpha, lr, eps);
+}
+
+double sum_of_squares(Index n, const float* g) { return active_kernels().sum_of_squares(n, g); }
+
 }  // namespace rlrun::dense

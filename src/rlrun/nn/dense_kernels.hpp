@@ -82,6 +82,12 @@ struct AdamCoefficients {
 void adam_update(Index n, float* value, const float* grad, float* exp_avg, float* exp_avg_sq,
                  const AdamCoefficients& coefficients);
 
+// One RMSprop step over n parameters (nn/rmsprop.cpp).
+void rmsprop_update(Index n, float* value, const float* grad, float* square_avg, float alpha,
+                    float lr, float eps);
+// sum_i g_i^2, the same bits on the AVX2 and AVX-512 paths (clip_grad.cpp, split_adam.cpp).
+double sum_of_squares(Index n, const float* g);
+
 // ---- which kernels run ----------------------------------------------------------------------
 
 enum class KernelPath { kBaseline, kAvx2, kAvx512 };
@@ -96,6 +102,8 @@ struct KernelTable {
   void (*transpose)(Index, Index, const float*, Index, float*, Index);
   void (*row_sum_add)(Index, Index, const float*, Index, float*);
   void (*adam_update)(Index, float*, const float*, float*, float*, const AdamCoefficients&);
+  void (*rmsprop_update)(Index, float*, const float*, float*, float, float, float);
+  double (*sum_of_squares)(Index, const float*);
 };
 
 // "avx512", "avx2" or "baseline" ("baseline" is SSE4.2 on x86-64, the portable vector

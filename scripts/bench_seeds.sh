@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# Robustness of the shipped configs across seeds and CPUs (issue 24): each config trained with
+# seeds 1..N on each network-kernel path (RLRUN_KERNELS, docs/portability.md), its final model
+# scored by `rlrun eval --episodes E --seed 1000`, against the config's bar. One Markdown row
+# per config and path: how many seeds reach the bar, and every seed's score.
+#   scripts/bench_seeds.sh [CONFIG...]          (default: the quick configs listed below)
+#   SEEDS=10 PATHS="avx512 avx2" JOBS=2 EPISODES=20 RLRUN=build/rlrun OUT=table.md
+# A config with an `eval:` section is scored by its best_model.zip (the zoo's --load-best), others
+# by the final model.zip. JOBS trainings run at once, each with --threads 1. PATHS defaults to the paths this CPU has
+# (avx512 and avx2 when it has AVX-512). Since the two paths train byte-equal models
+# (tests/runtime/test_cli_kernels.cpp), the script also compares every seed's model tensors
+# between paths and prints "identical" or which seeds differ.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rlrun=${RLRUN:-build/rlrun}
+seeds=${SEEDS:-10}
+jobs=${JOBS:-2}
+episodes=${EPISODES:-20}
+[[ -x "$rlrun" ]] || { echo "bench_seeds: no rlrun binary at '$rlrun' (set RLRUN)" >&2; exit 2; }
+if [[ -z "${PATHS:-}" ]]; then
+  PATHS=$("$rlrun" --version | grep -q 'kernels: avx512' && echo "avx512 avx2" ||
+          ("$rlrun" --version | grep -q 'kernels: avx2' && echo avx2 || echo baseline))
+fi
+configs=("$@")
+((${#configs[@]})) || configs=(
+  configs/cartpole_ppo.yaml configs/cartpole_a2c.yaml configs/cartpole_dqn.yaml
+  configs/pendulum_ppo.yaml configs/gridworld_dqn.yaml configs/grasp2d_ppo.yaml
+  configs/grasp2d_dqn.yaml configs/dictreach_ppo.yaml configs/simplemultiobs_ppo.yaml
+  configs/bitflipping_dqn_her.yaml configs/rltools/pendulum_sac.yaml
+  configs/rltools/pendulum_td3.yaml configs/rltools/pendulum_ppo.yaml)
+
+# The bar of a config: "<metric> <threshold>" (metric mean_reward or success_rate), from the
+# config's own header where it states one, else Gymnasium's reward threshold or the usual
+# "solved" return (docs/benchmarks.md).
+bar() {
+  case "$(basename "$1" .yaml)" in
+    cartpole_*) echo "mean_reward 475" ;;
+    pendulum_* | rltools*) echo "mean_reward -200" ;;
+    acrobot_*) echo "mean_reward -100" ;;
+    mountaincar_*) echo "mean_reward -110" ;;
+    mountaincarcontinuous_*) echo "mean_reward 90" ;;
+    gridworld_*) echo "mean_reward -8" ;;
+    lunarlander_*) echo "mean_reward 200" ;;
+    grasp2d_* | dictreach_* | simplemultiobs_* | bitflipping_*_her) echo "success_rate 0.95" ;;
+    *) echo "" ;;
+  esac
+}
+name_of() { sed -n 's/^  name: *//p' "$1" | head -1; }
+
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+tasks=$out/tasks
+: >"$tasks"
+for config in "${configs[@]}"; do
+  [[ -f "$config" ]] || { echo "bench_seeds: no config $config" >&2; exit 2; }
+  [[ -n "$(bar "$config")" ]] || { echo "bench_seeds: no bar known for $config" >&2; exit 2; }
+  for path in $PATHS; do
+    for ((seed = 1; seed <= seeds; ++seed)); do echo "$config $path $seed" >>"$tasks"; done
+  done
+done
+
+# One training and its evaluation; writes "score" to $out/<config>.<path>.<seed>.
+run_one() {
+  local config=$1 path=$2 seed=$3 key dir model metric
+  key=$(basename "$config" .yaml).$path.$seed
+  dir=$out/runs/$key
+  RLRUN_KERNELS=$path "$rlrun" --threads 1 train "$config" --seed "$seed" --out "$dir" \
+    >"$out/$key.log" 2>&1 || { echo "failed" >"$out/$key"; return 0; }
+  model=$dir/$(name_of "$config")/seed$seed/model.zip
+  # A config that evaluates during training keeps its best model, and that is the one it is
+  # scored by (the zoo's `enjoy.py --load-best`; the config's header says so).
+  if grep -q '^eval:' "$config" && [[ -f "${model%/*}/best_model.zip" ]]; then
+    model=${model%/*}/best_model.zip
+  fi
+  metric=$(bar "$config" | cut -d' ' -f1)
+  "$rlrun" --threads 1 eval --model "$model" --episodes "$episodes" --seed 1000 2>&1 |
+    sed -n "s/.*$metric = \([-0-9.e+]*\).*/\1/p" | head -1 >"$out/$key"
+  cp "$model" "$out/$key.zip"
+}
+export -f run_one bar name_of
+export out rlrun episodes
+xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _ <"$tasks"
+
+identical_models() {  # the tensors of two model files (config.yaml names the run directory)
+  python3 - "$1" "$2" <<'PY'
+import sys, zipfile
+a, b = zipfile.ZipFile(sys.argv[1]), zipfile.ZipFile(sys.argv[2])
+names = sorted(n for n in a.namelist() if n != "config.yaml")
+same = names == sorted(n for n in b.namelist() if n != "config.yaml") and all(
+    a.read(n) == b.read(n) for n in names)
+sys.exit(0 if same else 1)
+PY
+}
+
+table=$out/table.md
+{
+  echo "| config | kernels | bar | seeds at the bar | score per seed 1..$seeds ($episodes ep) | models vs ${PATHS%% *} |"
+  echo "|---|---|---|---|---|---|"
+  for config in "${configs[@]}"; do
+    base=$(basename "$config" .yaml)
+    read -r metric threshold <<<"$(bar "$config")"
+    first=${PATHS%% *}
+    for path in $PATHS; do
+      scores=() reached=0 differ=()
+      for ((seed = 1; seed <= seeds; ++seed)); do
+        s=$(cat "$out/$base.$path.$seed" 2>/dev/null || echo "-")
+        [[ -z "$s" ]] && s="-"
+        scores+=("$s")
+        if [[ "$s" != "-" && "$s" != failed ]] &&
+           awk -v s="$s" -v t="$threshold" 'BEGIN { exit !(s + 0 >= t + 0) }'; then
+          reached=$((reached + 1))
+        fi
+        if [[ "$path" != "$first" ]] &&
+           ! identical_models "$out/$base.$first.$seed.zip" "$out/$base.$path.$seed.zip" 2>/dev/null; then
+          differ+=("$seed")
+        fi
+      done
+      if [[ "$path" == "$first" ]]; then same="—"
+      elif ((${#differ[@]} == 0)); then same="identical"
+      else same="differ: seeds ${differ[*]}"; fi
+      echo "| ${config#configs/} | $path | $metric >= $threshold | $reached of $seeds | ${scores[*]} | $same |"
+    done
+  done
+} >"$table"
+cat "$table"
+[[ -n "${OUT:-}" ]] && cp "$table" "$OUT"
+exit 0
