@@ -46,6 +46,9 @@ bar() {
   esac
 }
 name_of() { sed -n 's/^  name: *//p' "$1" | head -1; }
+# A file name for a config: its path with / as _ (configs/pendulum_ppo.yaml and
+# configs/rltools/pendulum_ppo.yaml are different configs).
+config_key() { local k=${1%.yaml}; echo "${k//\//_}"; }
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -62,7 +65,7 @@ done
 # One training and its evaluation; writes "score" to $out/<config>.<path>.<seed>.
 run_one() {
   local config=$1 path=$2 seed=$3 key dir model metric
-  key=$(basename "$config" .yaml).$path.$seed
+  key=$(config_key "$config").$path.$seed
   dir=$out/runs/$key
   RLRUN_KERNELS=$path "$rlrun" --threads 1 train "$config" --seed "$seed" --out "$dir" \
     >"$out/$key.log" 2>&1 || { echo "failed" >"$out/$key"; return 0; }
@@ -77,7 +80,7 @@ run_one() {
     sed -n "s/.*$metric = \([-0-9.e+]*\).*/\1/p" | head -1 >"$out/$key"
   cp "$model" "$out/$key.zip"
 }
-export -f run_one bar name_of
+export -f run_one bar name_of config_key
 export out rlrun episodes
 xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _ <"$tasks"
 
@@ -97,7 +100,7 @@ table=$out/table.md
   echo "| config | kernels | bar | seeds at the bar | score per seed 1..$seeds ($episodes ep) | models vs ${PATHS%% *} |"
   echo "|---|---|---|---|---|---|"
   for config in "${configs[@]}"; do
-    base=$(basename "$config" .yaml)
+    base=$(config_key "$config")
     read -r metric threshold <<<"$(bar "$config")"
     first=${PATHS%% *}
     for path in $PATHS; do
