@@ -52,7 +52,7 @@ struct KernelSet {
   // e^x after Cephes' expf (S. Moshier, Cephes Math Library): x = n ln2 + r with |r| <= ln2/2,
   // ln2 split in two parts so n ln2 is exact, e^r by its degree-7 minimax polynomial, then
   // scaled by 2^n in the exponent bits. x is clamped to [-87.3, 88.3], where 2^n stays normal;
-  // e^-87.3 ~ 1e-38 is 0 for every use here (ELU's exp(v) - 1, tanh's 2 / (e^2a + 1)).
+  // e^-87.3 ~ 1e-38 is 0 for its one use here, ELU's exp(v) - 1.
   static V exp(V x) {
     // (The constant first: x86's min/max return their second operand when one is NaN, so a NaN
     // input stays NaN.)
@@ -465,6 +465,25 @@ struct KernelSet {
     }
   }
 
+  // Runs step(i, lanes) over [0, n) a packet at a time: whole packets, then one packet of the
+  // last n % kLanes elements (lanes < kLanes). load_n / store_n read and write such a packet.
+  template <class Step>
+  static void for_each_packet(Index n, Step&& step) {
+    Index i = 0;
+    for (; i + kLanes <= n; i += kLanes) step(i, kLanes);
+    if (i < n) step(i, static_cast<int>(n - i));
+  }
+  static V load_n(const float* p, int lanes) {
+    return lanes == kLanes ? V::load(p) : V::load_first(p, lanes);
+  }
+  static void store_n(V v, float* p, int lanes) {
+    if (lanes == kLanes) {
+      v.store(p);
+    } else {
+      v.store_first(p, lanes);
+    }
+  }
+
   // One Adam step over n parameters, element by element in the order of torch's
   // _single_tensor_adam (torch/optim/adam.py): m += (1 - beta1) (g - m) (its lerp_),
   // v = beta2 v + (1 - beta2) g^2, p -= step_size m / (sqrt(v) / sqrt(bias_c2) + eps). No fused
@@ -474,31 +493,17 @@ struct KernelSet {
     const V w1 = V::set1(c.w1), beta2 = V::set1(c.beta2), w2 = V::set1(c.w2),
             step_size = V::set1(c.step_size), inv_sqrt = V::set1(c.inv_bias_c2_sqrt),
             eps = V::set1(c.eps);
-    auto update = [&](V p, V g, V m, V v, V* p_out, V* m_out, V* v_out) {
+    for_each_packet(n, [&](Index i, int lanes) {
+      const V g = load_n(grad + i, lanes);
+      V m = load_n(exp_avg + i, lanes);
+      V v = load_n(exp_avg_sq + i, lanes);
       m = m + w1 * (g - m);
       v = beta2 * v + w2 * (g * g);
-      *p_out = p - step_size * m / (sqrt(v) * inv_sqrt + eps);
-      *m_out = m;
-      *v_out = v;
-    };
-    Index i = 0;
-    for (; i + kLanes <= n; i += kLanes) {
-      V p, m, v;
-      update(V::load(value + i), V::load(grad + i), V::load(exp_avg + i), V::load(exp_avg_sq + i),
-             &p, &m, &v);
-      p.store(value + i);
-      m.store(exp_avg + i);
-      v.store(exp_avg_sq + i);
-    }
-    if (i < n) {
-      const int left = static_cast<int>(n - i);
-      V p, m, v;
-      update(V::load_first(value + i, left), V::load_first(grad + i, left),
-             V::load_first(exp_avg + i, left), V::load_first(exp_avg_sq + i, left), &p, &m, &v);
-      p.store_first(value + i, left);
-      m.store_first(exp_avg + i, left);
-      v.store_first(exp_avg_sq + i, left);
-    }
+      store_n(load_n(value + i, lanes) - step_size * m / (sqrt(v) * inv_sqrt + eps), value + i,
+              lanes);
+      store_n(m, exp_avg + i, lanes);
+      store_n(v, exp_avg_sq + i, lanes);
+    });
   }
 
   // One RMSprop step, torch's order (torch/optim/rmsprop.py, centered false, no momentum):
@@ -506,26 +511,12 @@ struct KernelSet {
   static void rmsprop_update(Index n, float* value, const float* grad, float* square_avg,
                              float alpha, float lr, float eps) {
     const V a = V::set1(alpha), w = V::set1(1.0f - alpha), rate = V::set1(lr), e = V::set1(eps);
-    auto update = [&](V p, V g, V v, V* p_out, V* v_out) {
-      v = a * v + w * (g * g);
-      *p_out = p - rate * g / (sqrt(v) + e);
-      *v_out = v;
-    };
-    Index i = 0;
-    for (; i + kLanes <= n; i += kLanes) {
-      V p, v;
-      update(V::load(value + i), V::load(grad + i), V::load(square_avg + i), &p, &v);
-      p.store(value + i);
-      v.store(square_avg + i);
-    }
-    if (i < n) {
-      const int left = static_cast<int>(n - i);
-      V p, v;
-      update(V::load_first(value + i, left), V::load_first(grad + i, left),
-             V::load_first(square_avg + i, left), &p, &v);
-      p.store_first(value + i, left);
-      v.store_first(square_avg + i, left);
-    }
+    for_each_packet(n, [&](Index i, int lanes) {
+      const V g = load_n(grad + i, lanes);
+      const V v = a * load_n(square_avg + i, lanes) + w * (g * g);
+      store_n(load_n(value + i, lanes) - rate * g / (sqrt(v) + e), value + i, lanes);
+      store_n(v, square_avg + i, lanes);
+    });
   }
 
   // Sum of g^2 (a gradient norm for clip_grad_norm_): chunks of 4096 terms summed in float in
