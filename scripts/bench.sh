@@ -39,8 +39,11 @@ run_one() {
         --set run.name="$name" --set run.console_interval=1e9)
   summary=$(grep -E "^trained [0-9]+ steps in" <<<"$log" | tail -1)
   model=$(sed -E 's/.*model saved to (.*)$/\1/' <<<"$summary")
-  local eval_line
-  eval_line=$(build/rlrun eval --model "$model" --episodes 10 | grep "mean_reward =")
+  # A config that evaluates during training keeps its best model and is scored by it (the zoo's
+  # `enjoy.py --load-best`; such configs say so in their header), as in scripts/bench_seeds.sh.
+  local scored=$model eval_line
+  [[ -f "$(dirname "$model")/best_model.zip" ]] && scored=$(dirname "$model")/best_model.zip
+  eval_line=$(build/rlrun eval --model "$scored" --episodes 10 | grep "mean_reward =")
   echo "$(awk '{print $2, $5}' <<<"$summary") $(sed -E 's/.*\(([0-9]+) steps\/s\).*/\1/' <<<"$summary") \
 $(sed -E 's/.*mean_reward = ([-0-9.]+) \+\/- ([0-9.]+).*/\1 \2/' <<<"$eval_line")" >"$out/$name.$seed"
   cp "$(dirname "$model")/config.yaml" "$out/$name.config.yaml"
@@ -53,7 +56,7 @@ for config in "${configs[@]}"; do for seed in $seeds; do echo "$config $seed"; d
 
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
-table="| algo | env | timesteps | wall s (median) | env steps/s | eval return per seed (10 ep) | SB3 wall s | speed-up |
+table="| algo | env | timesteps | wall s (median) | env steps/s | eval return per seed (10 ep; the best model where kept) | SB3 wall s | speed-up |
 |---|---|---|---|---|---|---|---|"
 for config in "${configs[@]}"; do
   name=$(basename "$config" .yaml)
