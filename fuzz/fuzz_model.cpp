@@ -27,6 +27,7 @@
 
 #include "../tests/core/crafted_zip.hpp"
 #include "fuzz_limits.hpp"
+#include "private_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/deploy/c_writer.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
@@ -44,26 +45,6 @@ using namespace rlrun;
 using rlrun::testing::CraftedMember;
 
 namespace {
-
-// A private directory for the one file each input becomes, removed at exit. Its name lives in
-// a plain array: std::string statics may already be destroyed when atexit handlers run.
-char g_dir[4096];
-
-const std::string& model_path() {
-  static const std::string* path = [] {
-    const std::string pattern =
-        (std::filesystem::temp_directory_path() / "rlrun_fuzz_model_XXXXXX").string();
-    if (pattern.size() >= sizeof(g_dir)) std::abort();
-    std::copy(pattern.begin(), pattern.end(), g_dir);
-    if (!mkdtemp(g_dir)) std::abort();
-    std::atexit([] {
-      std::error_code ec;
-      std::filesystem::remove_all(g_dir, ec);
-    });
-    return new std::string(std::string(g_dir) + "/model.zip");
-  }();
-  return *path;
-}
 
 // The odd form (see the top of this file); false when the list is malformed.
 bool members_from(const uint8_t* data, size_t size, std::vector<CraftedMember>& members) {
@@ -172,7 +153,7 @@ void load_like_the_cli(const std::string& path) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
-  const std::string& path = model_path();
+  const std::string& path = fuzz::private_file("model", "model.zip");
   if (data[0] % 2 == 0) {
     std::ofstream(path, std::ios::binary | std::ios::trunc)
         .write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));

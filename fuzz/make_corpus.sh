@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Rebuilds the model and npy seed corpora of the fuzz targets (fuzz/corpus/) from tiny runs of
-# the rlrun binary (the config corpus is the shipped configs plus a few hand-written files).
+# Rebuilds the model, npy and journal seed corpora of the fuzz targets (fuzz/corpus/) from tiny
+# runs of the rlrun binary and of Optuna (the config corpus is the shipped configs plus a few
+# hand-written files). The journal seeds need Optuna 3.1 (PYTHON=..., default python3).
 #   fuzz/make_corpus.sh [path/to/rlrun]      (default: build/rlrun)
 # Each model file becomes two seeds (fuzz_model.cpp): "raw_*" (0x00 + the zip) and "list_*"
 # (0x01 + its members, stored). Seeds are kept tiny (4-unit layers, 16-transition buffers) so
@@ -11,8 +12,8 @@ RLRUN=$(realpath "${1:-build/rlrun}")
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 OUT=fuzz/corpus
-rm -f "$OUT"/model/* "$OUT"/npy/*
-mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config"
+rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/*
+mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal"
 
 train() {  # name config-text
   printf '%s\n' "$2" > "$WORK/$1.yaml"
@@ -59,3 +60,63 @@ PY
 ls "$OUT/npy" | awk 'NR % 4 != 1' | sed "s|^|$OUT/npy/|" | xargs rm -f
 ls -l "$OUT"/model | awk '{s += $5} END {print "model seeds:", NR - 1, "files,", s, "bytes"}'
 ls "$OUT"/npy | wc -l | sed 's/^/npy seeds: /'
+
+# The journal corpus (fuzz_journal.cpp): study files as the two writers of the format write
+# them. rlrun: a 3-trial study on CartPole PPO (a parameter of each kind, one conditional, the
+# median pruner). Optuna 3.1 (JournalFileStorage): two studies with every distribution kind,
+# every trial state, intermediate values with NaN and infinities, user attributes and an
+# enqueued trial.
+cat >"$WORK/study.yaml" <<EOF
+name: small
+base: $PWD/configs/cartpole_ppo.yaml
+out_dir: $WORK/tune
+storage: $WORK/rlrun_study.log
+n_trials: 3
+seeds_per_trial: 1
+n_timesteps: 512
+n_evaluations: 2
+eval_episodes: 1
+sampler: {type: tpe, seed: 3, n_startup_trials: 1}
+pruner: {type: median, n_startup_trials: 1}
+space:
+  algo.learning_rate: {float: [1.0e-4, 3.0e-3], log: true}
+  algo.n_epochs: {int: [1, 10]}
+  algo.policy.net_arch: {categorical: [[32], [64, 64]]}
+  algo.clip_range: {float: [0.1, 0.3], step: 0.1, if: {algo.n_epochs: [8, 9, 10]}}
+EOF
+"$RLRUN" tune "$WORK/study.yaml" >/dev/null
+cp "$WORK/rlrun_study.log" "$OUT/journal/rlrun_study"
+"${PYTHON:-python3}" - "$OUT/journal/optuna_studies" <<'PY'
+import sys
+import optuna
+from optuna.storages import JournalFileStorage, JournalStorage
+optuna.logging.set_verbosity(optuna.logging.WARNING)
+storage = JournalStorage(JournalFileStorage(sys.argv[1]))
+study = optuna.create_study(study_name="every_kind", storage=storage, direction="maximize",
+                            sampler=optuna.samplers.RandomSampler(seed=1))
+study.set_user_attr("note", "seed corpus")
+study.enqueue_trial({"lr": 1e-3, "layers": 2})
+def objective(trial):
+    trial.suggest_float("lr", 1e-5, 1e-1, log=True)
+    trial.suggest_float("clip", 0.1, 0.4, step=0.1)
+    trial.suggest_float("plain", -1.0, 1.0)
+    layers = trial.suggest_int("layers", 1, 4)
+    trial.suggest_int("batch", 16, 256, log=True)
+    trial.suggest_int("steps", 8, 64, step=8)
+    trial.suggest_categorical("act", ["tanh", "relu", None, 3, 0.5, True])
+    trial.set_user_attr("layers_seen", [layers, {"nested": "yes"}])
+    for step, value in enumerate([1.0, float("nan"), float("inf"), -float("inf"), 2.5]):
+        trial.report(value, step)
+    if trial.number == 2:
+        raise optuna.TrialPruned()
+    if trial.number == 3:
+        raise RuntimeError("a failed trial")
+    return layers * 10.0 + trial.number
+study.optimize(objective, n_trials=5, catch=(RuntimeError,))
+running = study.ask()
+running.suggest_float("lr", 1e-5, 1e-1, log=True)
+running.report(0.5, 0)
+other = optuna.create_study(study_name="minimize", storage=storage, direction="minimize")
+other.optimize(lambda t: (t.suggest_float("x", -2, 2) - 1) ** 2, n_trials=3)
+PY
+ls "$OUT"/journal | wc -l | sed 's/^/journal seeds: /'

@@ -139,8 +139,52 @@ TEST_CASE("NormalizeObservation: clipping, frozen statistics and their round tri
                                            std::vector<std::vector<float>>{{0.0f}},
                                            std::vector<std::vector<float>>{{0.0f}},
                                            std::vector<double>{0.0}, 1),
-                                       NormalizeObservation::Config{-1.0, 1e-8, {}}),
+                                       NormalizeObservation::Config{-1.0, 1e-8, {}, {}}),
                   std::invalid_argument);
+}
+
+TEST_CASE("NormalizeObservation: freeze_after stops the updates after N observations, also "
+          "after a save and load", "[wrappers][normalize]") {
+  NormalizeObservation::Config frozen_config;
+  frozen_config.freeze_after = 4;
+  NormalizeObservation frozen(scripted(), frozen_config);
+  NormalizeObservation running(scripted());
+  std::vector<float> a(2), b(2), action{0.0f};
+  frozen.reset(std::nullopt, a);
+  running.reset(std::nullopt, b);
+  // Episodes of 3 steps: reset, 2 steps, (the final observation is not counted) reset = 4
+  // observations; the frozen wrapper has the running one's statistics up to there.
+  for (int t = 0; t < 3; ++t) {
+    const StepResult ra = frozen.step(action, a);
+    running.step(action, b);
+    if (ra.terminated || ra.truncated) {
+      frozen.reset(std::nullopt, a);
+      running.reset(std::nullopt, b);
+    }
+  }
+  CHECK(frozen.statistics().count() == running.statistics().count());
+  CHECK(frozen.statistics().mean() == running.statistics().mean());
+  CHECK(frozen.statistics().count() >= 4.0);
+  CHECK(frozen.statistics().count() < 5.0);
+  const Eigen::VectorXd mean_at_freeze = frozen.statistics().mean();
+  for (int t = 0; t < 3; ++t) {
+    frozen.step(action, a);
+    running.step(action, b);
+  }
+  CHECK(frozen.statistics().mean() == mean_at_freeze);
+  CHECK(frozen.statistics().count() < 5.0);
+  CHECK(running.statistics().count() > 5.0);
+  CHECK(frozen.training());  // still training: only the statistics stand still
+
+  // A resumed run (statistics loaded, training) freezes where the original did.
+  TensorMap saved;
+  save_model_statistics(frozen, saved);
+  NormalizeObservation resumed(scripted(), frozen_config);
+  load_model_statistics(resumed, saved, /*training=*/true);
+  resumed.reset(std::nullopt, a);
+  resumed.step(action, a);
+  CHECK(resumed.statistics().mean() == mean_at_freeze);
+  CHECK(resumed.statistics().count() == frozen.statistics().count());
 }
 
 TEST_CASE("Normalize wrappers: the n envs of a VecEnv share one set of statistics",

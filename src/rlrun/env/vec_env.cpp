@@ -31,6 +31,7 @@ VecEnv::VecEnv(std::vector<EnvPtr> envs) : envs_(std::move(envs)) {
     if (agents < 1)
       throw std::invalid_argument("VecEnv: env " + std::to_string(c) + " has no agents");
     first_slot_.push_back(static_cast<int>(slot_env_.size()));
+    agents_.push_back(agents);
     slot_env_.insert(slot_env_.end(), static_cast<size_t>(agents), static_cast<int>(c));
     most_agents = std::max(most_agents, static_cast<size_t>(agents));
   }
@@ -93,7 +94,7 @@ void VecEnv::run_step_hook() {
 
 void VecEnv::reset_copy(int c) {
   // A copy's agents' columns are contiguous: one agent-major span for all of them.
-  const int agents = envs_[c]->num_agents();
+  const int agents = agents_[c];
   envs_[c]->reset(seeds_[c], std::span<float>(obs_.col(first_slot_[c]).data(),
                                               static_cast<size_t>(obs_dim_) * agents));
   copy_info(c);
@@ -112,7 +113,7 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
     int started = 0;
     try {
       for (; started < num_copies(); ++started) {
-        const int first = first_slot_[started], agents = envs_[started]->num_agents();
+        const int first = first_slot_[started], agents = agents_[started];
         if (agents > 1)
           split_[started]->start_step_agents(std::span<const float>(
               actions.col(first).data(), static_cast<size_t>(act_dim_) * agents));
@@ -124,7 +125,7 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
     }
     for (int c = 0; c < started; ++c) {
       try {
-        const int first = first_slot_[c], agents = envs_[c]->num_agents();
+        const int first = first_slot_[c], agents = agents_[c];
         if (agents > 1) {
           split_[c]->finish_step_agents(
               std::span<float>(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents),
@@ -146,7 +147,7 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
 }
 
 void VecEnv::step_copy(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {
-  if (envs_[c]->num_agents() > 1) {
+  if (agents_[c] > 1) {
     step_agents(c, actions);
     return;
   }
@@ -174,7 +175,7 @@ void VecEnv::finish_copy(int c, const StepResult& r) {
 // its own column; the copy resets when its agents' episode ends, which must be all at once.
 void VecEnv::step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {
   const int first = first_slot_[c];
-  const int agents = envs_[c]->num_agents();
+  const int agents = agents_[c];
   const std::span<float> obs(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents);
   const std::span<StepResult> results(agent_results_.data(), static_cast<size_t>(agents));
   envs_[c]->step_agents(std::span<const float>(actions.col(first).data(),
@@ -187,7 +188,7 @@ void VecEnv::step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions
 // the reset when their episode ended.
 void VecEnv::finish_agents(int c) {
   const int first = first_slot_[c];
-  const int agents = envs_[c]->num_agents();
+  const int agents = agents_[c];
   const std::span<float> obs(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents);
   const std::span<StepResult> results(agent_results_.data(), static_cast<size_t>(agents));
   int ended = 0;

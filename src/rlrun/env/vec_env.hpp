@@ -121,6 +121,9 @@ class VecEnv {
 
   std::vector<EnvPtr> envs_;
   std::vector<int> first_slot_;  // env copy c's first column
+  // Env copy c's agents, asked once: num_agents() is fixed for an env's life, and asking it
+  // every step walks the whole wrapper chain (2 % of a PPO Pendulum run).
+  std::vector<int> agents_;
   std::vector<int> slot_env_;    // column -> env copy
   std::vector<StepResult> agent_results_;  // step_agents() scratch, the most agents of a copy
   std::vector<std::optional<uint64_t>> seeds_;

@@ -16,6 +16,22 @@
 namespace rlrun::tune {
 namespace {
 
+// An open file descriptor, closed on every way out of its scope (a damaged line throws from
+// the middle of read(): fuzz/fuzz_journal.cpp found the descriptors it used to leave open).
+class OpenFile {
+ public:
+  explicit OpenFile(int fd) : fd_(fd) {}
+  ~OpenFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  OpenFile(const OpenFile&) = delete;
+  OpenFile& operator=(const OpenFile&) = delete;
+  int fd() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
 std::string errno_text() { return std::strerror(errno); }
 
 // A fresh name beside the lock for its release (Optuna: <file>.lock<uuid4>.rename).
@@ -168,12 +184,12 @@ std::vector<nlohmann::json> JournalFile::read(uint64_t& lines_read) {
     offset_ = 0;
     offset_line_ = 0;
   }
-  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  const OpenFile file(::open(path_.c_str(), O_RDONLY | O_CLOEXEC));
+  const int fd = file.fd();
   if (fd < 0) throw RuntimeFailure("cannot read the study journal " + path_ + ": " + errno_text());
   struct stat st {};
   ::fstat(fd, &st);
   if (static_cast<uint64_t>(st.st_size) > kMaxJournalBytes) {
-    ::close(fd);
     throw RuntimeFailure(path_ + " is larger than " + std::to_string(kMaxJournalBytes >> 30) +
                          " GiB: not a study journal rlrun reads");
   }
@@ -187,7 +203,6 @@ std::vector<nlohmann::json> JournalFile::read(uint64_t& lines_read) {
     const ssize_t n = ::pread(fd, buffer, sizeof buffer, static_cast<off_t>(position + pending.size()));
     if (n < 0) {
       if (errno == EINTR) continue;
-      ::close(fd);
       throw RuntimeFailure("cannot read " + path_ + ": " + errno_text());
     }
     if (n == 0) break;
@@ -209,12 +224,10 @@ std::vector<nlohmann::json> JournalFile::read(uint64_t& lines_read) {
     }
     pending.append(buffer + start, static_cast<size_t>(n) - start);
     if (pending.size() > kMaxJournalLineBytes) {
-      ::close(fd);
       throw RuntimeFailure(path_ + ":" + std::to_string(line_number + 1) + ": a line longer than " +
                            std::to_string(kMaxJournalLineBytes) + " bytes (the journal is damaged)");
     }
   }
-  ::close(fd);
   offset_ = position;
   offset_line_ = line_number;
   lines_read = std::max(lines_read, line_number);
@@ -245,16 +258,10 @@ void JournalFile::append_locked(const std::vector<nlohmann::json>& operations) {
     text += python_json_text(op);
     text += '\n';
   }
-  const int fd = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (fd < 0) throw RuntimeFailure("cannot append to " + path_ + ": " + errno_text());
-  try {
-    write_all(fd, text, path_);
-  } catch (...) {
-    ::close(fd);
-    throw;
-  }
-  ::fsync(fd);
-  ::close(fd);
+  const OpenFile file(::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC));
+  if (file.fd() < 0) throw RuntimeFailure("cannot append to " + path_ + ": " + errno_text());
+  write_all(file.fd(), text, path_);
+  ::fsync(file.fd());
 }
 
 void JournalFile::append(const std::vector<nlohmann::json>& operations) {

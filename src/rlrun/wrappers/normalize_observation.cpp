@@ -60,7 +60,7 @@ NormalizeObservation::NormalizeObservation(EnvPtr inner, const Config& config)
 }
 
 void NormalizeObservation::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
-  if (training_) rms_->update_batch(obs, indices_, batch_scratch_);
+  if (updating()) rms_->update_batch(obs, indices_, batch_scratch_);
 }
 
 std::span<const float> NormalizeObservation::selected(std::span<const float> obs) {
@@ -73,7 +73,7 @@ void NormalizeObservation::reset(std::optional<uint64_t> seed, std::span<float> 
   inner_->reset(seed, obs);
   std::copy(obs.begin(), obs.end(), original_.begin());
   if (batched_) return;
-  if (training_) rms_->update(selected(obs));  // VecNormalize.reset updates obs_rms
+  if (updating()) rms_->update(selected(obs));  // VecNormalize.reset updates obs_rms
   normalize(obs);
 }
 
@@ -84,7 +84,7 @@ StepResult NormalizeObservation::step(std::span<const float> action, std::span<f
 StepResult NormalizeObservation::after_step(StepResult result, std::span<float> obs) {
   std::copy(obs.begin(), obs.end(), original_.begin());
   if (batched_) return result;
-  if (training_ && !result.terminated && !result.truncated) rms_->update(selected(obs));
+  if (updating() && !result.terminated && !result.truncated) rms_->update(selected(obs));
   normalize(obs);
   return result;
 }

@@ -15,6 +15,11 @@
 // before (VecNormalize: after) the reset observation was added. With n_envs = 1 the
 // statistics and all other observations are bit-identical to SB3's.
 // The observation space becomes Box(-clip_obs, clip_obs) of the same shape.
+// `freeze_after: N` stops the updates once the statistics hold N observations (counted over
+// every copy) and keeps them fixed for the rest of training, as setting Gymnasium's NormalizeObservation.update_running_mean = False (or
+// SB3's VecNormalize.training = False) at that point would. RLtools' PPO does this: mean and
+// std from one rollout of the initial policy, then frozen (configs/rltools/pendulum_ppo.yaml).
+// The count is part of the statistics, so a resumed run freezes where the original did.
 // A Dict observation is normalised key by key as VecNormalize does with `norm_obs_keys`: the
 // listed keys (default: every Box key; SB3's default, all keys, fails on a non-Box key) each
 // become Box(-clip_obs, clip_obs), the others pass unchanged. One RunningMeanStd holds the
@@ -26,7 +31,9 @@
 // batched mode, where reset() and step() only keep the original observation, and the VecEnv's
 // step hook updates the statistics with the whole batch and then normalises every column, as
 // VecNormalize.step_wait does.
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +51,7 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
     double clip_obs = 10.0;  // SB3 VecNormalize clip_obs
     double epsilon = 1e-8;   // SB3 VecNormalize epsilon
     std::vector<std::string> norm_obs_keys;  // Dict keys normalised; [] = every Box key
+    std::optional<int64_t> freeze_after;     // observations before the statistics freeze
     template <class V>
     void visit(V& v) {
       v("clip_obs", clip_obs, "normalised observations are clipped to [-clip_obs, clip_obs]",
@@ -51,6 +59,9 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
       v("epsilon", epsilon, "added to the variance before the square root", positive());
       v("norm_obs_keys", norm_obs_keys,
         "Dict observations: the Box keys to normalise ([] = every Box key; SB3 norm_obs_keys)");
+      v("freeze_after", freeze_after,
+        "stop updating the statistics once they hold this many observations (null: never)",
+        at_least(1));
     }
   };
   // Throws std::invalid_argument for an observation space that is not a Box or a Dict with a
@@ -114,6 +125,11 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
   Space space_;
   std::shared_ptr<RunningMeanStd> rms_;
   bool training_ = true;
+  // Whether this observation goes into the statistics: while training, until freeze_after.
+  bool updating() const {
+    return training_ && (!config_.freeze_after ||
+                         rms_->count() < static_cast<double>(*config_.freeze_after));
+  }
   bool batched_ = false;
   std::vector<float> batch_scratch_;  // update_batch()'s float32 moments
   std::vector<float> original_;
