@@ -36,7 +36,6 @@ HerReplayBuffer::HerReplayBuffer(int64_t buffer_size, int n_envs, const Space& o
     : ReplayBuffer(buffer_size, n_envs, observation_space.flat_dim(), act_dim,
                    handle_timeout_termination),
       rewards_of_(rewards_of),
-      n_sampled_goal_(n_sampled_goal),
       selection_(selection),
       her_ratio_(1.0 - 1.0 / (n_sampled_goal + 1.0)) {
   if (!observation_space.is_dict())

@@ -64,7 +64,6 @@ class HerReplayBuffer : public ReplayBuffer {
   void close_episode(int e);
 
   const GoalEnv* rewards_of_;
-  int n_sampled_goal_;
   GoalSelection selection_;
   double her_ratio_;
   int achieved_offset_ = 0, desired_offset_ = 0, goal_dim_ = 0;

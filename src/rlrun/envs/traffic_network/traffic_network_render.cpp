@@ -16,7 +16,10 @@ using namespace traffic;
 
 bool TrafficNetwork::render(Frame& frame) const {
   if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before render()");
-  auto [x0, y0, x1, y1] = geometry_.bounds;
+  // Plain variables, not a structured binding: the lambdas below capture them, which clang
+  // before 16 (scripts/fuzz.sh's clang 14) refuses for bindings.
+  double x0 = geometry_.bounds[0], y0 = geometry_.bounds[1];
+  double x1 = geometry_.bounds[2], y1 = geometry_.bounds[3];
   if (!config_.render_focus.empty()) {
     const auto at = geometry_.junctions.find(config_.render_focus);
     if (at == geometry_.junctions.end())
