@@ -5,6 +5,13 @@
 
 namespace rlrun::zoo {
 
+PyValue::PyValue() = default;
+PyValue::PyValue(const PyValue&) = default;
+PyValue::PyValue(PyValue&&) noexcept = default;
+PyValue& PyValue::operator=(const PyValue&) = default;
+PyValue& PyValue::operator=(PyValue&&) noexcept = default;
+PyValue::~PyValue() = default;
+
 std::string PyValue::describe() const {
   switch (kind) {
     case Kind::kNone: return "None";

@@ -26,6 +26,15 @@ struct PyValue {
   std::vector<std::pair<std::string, PyValue>> entries;  // kDict, in written order
   std::size_t offset = 0;                              // where it starts in the source
 
+  // Defined in the .cpp, where PyValue is complete: `entries` holds pairs with a PyValue,
+  // which clang (before 16) refuses to destroy or copy inside the class's own definition.
+  PyValue();
+  PyValue(const PyValue&);
+  PyValue(PyValue&&) noexcept;
+  PyValue& operator=(const PyValue&);
+  PyValue& operator=(PyValue&&) noexcept;
+  ~PyValue();
+
   const PyValue* find(const std::string& key) const {
     for (const auto& e : entries)
       if (e.first == key) return &e.second;
