@@ -6,19 +6,18 @@
 // sampler (random start-up skipped, so the Parzen estimators see the fuzzed history) and the
 // median and successive-halving pruners on each running trial.
 // Refusing is fine (RuntimeFailure, UsageError, ConfigError: exit 1 or 2 naming the file and
-// line); any other exception, a crash, a sanitizer report, a hang or a file descriptor left
-// open (a long-lived worker would run out of them) is a bug. Every operation
-// that reads back must also survive Python's json.dumps form (what rlrun appends) unchanged.
+// line); any other exception, a crash, a sanitizer report, a hang or a file descriptor left open
+// (a long-lived worker would run out of them) is a bug. Every operation that reads back must
+// also survive Python's json.dumps form (what rlrun appends) unchanged.
 // Left out: the lock (a file-system protocol, not parsing) and plots (Cairo drawing of values
 // the report already formats).
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>

@@ -15,12 +15,10 @@
 // eval path: config -> env + algorithm -> budgeted tensors -> weights, statistics) and one
 // predict(), the exports (runtime/model_graph.hpp, deploy/); read_checkpoint with the file's own config as the run's, then the trainer's
 // load / load_training_state / VecEnv::read_state on fresh objects.
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
