@@ -38,6 +38,16 @@ cleanup() {
 }
 trap cleanup EXIT
 
+# sbatch --wait exits with the array's worst exit code; when a task failed, its log is the only
+# place that says why, so print every task log before failing (CI shows only this output).
+submit_and_wait() {  # <sbatch script> <directory of the task logs>
+  if ! (cd "$work" && sbatch --wait "$1"); then
+    echo "test_slurm: a task of $1 failed" >&2
+    for f in "$2/"*.out; do echo "== $f" >&2; tail -20 "$f" >&2; done
+    exit 1
+  fi
+}
+
 # munge: Slurm's authentication. Its own daemon unless one already answers.
 if ! munge -n 2>/dev/null | unmunge >/dev/null 2>&1; then
   [[ -s /etc/munge/munge.key ]] || $SUDO mungekey --create --force 2>/dev/null || $SUDO /usr/sbin/create-munge-key -f
@@ -106,7 +116,7 @@ YAML
 build/rlrun sweep "$work/sweep.yaml"
 build/rlrun sweep slurm "$out/manifest.yaml"
 start=$(date +%s)
-(cd "$work" && sbatch --wait "$out/sweep.sbatch")
+submit_and_wait "$out/sweep.sbatch" "$out/slurm"
 echo "test_slurm: the array job ended after $(( $(date +%s) - start )) s"
 build/rlrun sweep status "$out/manifest.yaml"
 finished=$(build/rlrun sweep status "$out/manifest.yaml" | grep -c " finished ")
@@ -145,7 +155,7 @@ slurm: {time: "00:10:00", cpus_per_task: 1, mem: 500M}
 YAML
 build/rlrun tune "$work/study.yaml" --slurm --workers 2
 start=$(date +%s)
-(cd "$work" && sbatch --wait "$tune_out/tune.sbatch")
+submit_and_wait "$tune_out/tune.sbatch" "$tune_out/slurm"
 echo "test_slurm: the tune array job ended after $(( $(date +%s) - start )) s"
 summary=$(/usr/bin/python3 - "$tune_out/study.journal" <<'PY'
 import sys, warnings, optuna

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -205,6 +206,52 @@ TEST_CASE("journal: writers in several processes lose no line", "[tune]") {
   CHECK(values.size() == kWriters * kTrials);
   CHECK(optuna_dump(path, "race")["trials"].size() == kWriters * kTrials);
   CHECK_FALSE(std::filesystem::exists(path + ".lock"));
+}
+
+TEST_CASE("journal: workers started together on a fresh journal share one study", "[tune]") {
+  // The array tasks of `rlrun tune --slurm` start at the same moment on a journal that does not
+  // exist yet; each must find or create the one study, none be refused as a duplicate (CI saw
+  // a worker fail so). The children wait on a pipe and are released together, many rounds.
+  TempDir dir("journal_fresh_race");
+  constexpr int kRounds = 20, kWorkers = 4;
+  for (int round = 0; round < kRounds; ++round) {
+    const std::string path = dir.str() + "/study" + std::to_string(round) + ".journal";
+    int gate[2];
+    REQUIRE(pipe(gate) == 0);
+    std::vector<pid_t> children;
+    for (int w = 0; w < kWorkers; ++w) {
+      const pid_t pid = fork();
+      if (pid == 0) {
+        ::close(gate[1]);
+        char byte;
+        while (::read(gate[0], &byte, 1) < 0 && errno == EINTR) {
+        }
+        try {
+          JournalStorage storage(path);
+          storage.create_or_load_study("together", StudyDirection::kMaximize);
+        } catch (...) {
+          _exit(1);
+        }
+        _exit(0);
+      }
+      children.push_back(pid);
+    }
+    ::close(gate[0]);
+    ::close(gate[1]);  // end of file on the pipe releases every child at once
+    int failed = 0;
+    for (pid_t pid : children) {
+      int status = 0;
+      waitpid(pid, &status, 0);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) ++failed;
+    }
+    INFO("round " << round);
+    CHECK(failed == 0);
+    std::ifstream journal(path);
+    int creates = 0;
+    for (std::string line; std::getline(journal, line);)
+      if (json::parse(line)["op_code"] == static_cast<int>(JournalOperation::kCreateStudy)) ++creates;
+    CHECK(creates == 1);
+  }
 }
 
 TEST_CASE("journal: a waiting trial is owned by the first worker that claims it", "[tune]") {

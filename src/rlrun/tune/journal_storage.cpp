@@ -64,11 +64,18 @@ void JournalStorage::write(nlohmann::json op) {
 }
 
 int64_t JournalStorage::create_or_load_study(const std::string& name, StudyDirection direction) {
-  sync();
-  if (!replay_.find_study(name))
-    write({{"op_code", static_cast<int>(JournalOperation::kCreateStudy)},
-           {"study_name", name},
-           {"directions", {static_cast<int>(direction)}}});
+  {
+    // Look and create under the journal's lock: workers started together on a fresh journal (the
+    // array tasks of `rlrun tune --slurm`) would otherwise all see no study, all write a create,
+    // and every one but the first be refused as a duplicate name. Optuna's own writers append
+    // under the same lock, and Optuna's create_study(load_if_exists=True) loads after such a
+    // refusal (optuna/study/study.py), so it agrees with whichever create came first.
+    Transaction transaction(*this);
+    if (!replay_.find_study(name))
+      write({{"op_code", static_cast<int>(JournalOperation::kCreateStudy)},
+             {"study_name", name},
+             {"directions", {static_cast<int>(direction)}}});
+  }
   const auto id = replay_.find_study(name);
   if (!id) throw RuntimeFailure("could not create study '" + name + "' in " + path());
   const auto& directions = replay_.study(*id).directions;
