@@ -47,6 +47,8 @@ RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : Wrapper(std::
     intercept_[i] = gradient_[i] * -lo[i] + low;
   }
   space_ = Space::box(lo, hi, inner_space.shape());
+  inner_low_.assign(inner_space.low().begin(), inner_space.low().end());
+  inner_high_.assign(inner_space.high().begin(), inner_space.high().end());
   inner_action_.resize(dims);
 }
 
@@ -63,10 +65,9 @@ std::string RescaleAction::export_action(PolicyGraph& graph, const std::string& 
 }
 
 std::span<const float> RescaleAction::rescale(std::span<const float> action) {
-  const Space& inner_space = inner_->action_space();
   for (size_t i = 0; i < inner_action_.size(); ++i)
-    inner_action_[i] = std::clamp(gradient_[i] * action[i] + intercept_[i], inner_space.low()[i],
-                                  inner_space.high()[i]);
+    inner_action_[i] =
+        std::clamp(gradient_[i] * action[i] + intercept_[i], inner_low_[i], inner_high_[i]);
   return inner_action_;
 }
 

@@ -65,6 +65,9 @@ class RescaleAction : public Wrapper, public SplitStep {
   std::span<const float> rescale(std::span<const float> action);
   Space space_;
   std::vector<float> gradient_, intercept_;  // Gymnasium's: inner = gradient * action + intercept
+  // The inner env's bounds, copied once: asking for its action space on every step went
+  // through the whole wrapper chain (1 % of PPO Pendulum's profile).
+  std::vector<float> inner_low_, inner_high_;
   std::vector<float> inner_action_;
 };
 

@@ -97,8 +97,11 @@ void A2C::train(double progress_remaining, Logger* logger) {
 
   if (!logger) return;
   logger->record("train/n_updates", static_cast<double>(n_updates_));
+  // Flattened in SB3's order (rollout_buffer.values.flatten(): step by step, the envs of a
+  // step in turn), which is also the buffer's storage order, so the sums read memory in line.
   logger->record("train/explained_variance",
-                 explained_variance(rollout.values.reshaped(), rollout.returns.reshaped()));
+                 explained_variance(rollout.values.reshaped<Eigen::RowMajor>(),
+                                    rollout.returns.reshaped<Eigen::RowMajor>()));
   logger->record("train/entropy_loss", entropy_loss);
   logger->record("train/policy_loss", policy_loss);
   logger->record("train/value_loss", value_loss);

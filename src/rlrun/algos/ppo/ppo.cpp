@@ -154,8 +154,11 @@ void PPO::train(double progress_remaining, Logger* logger) {
   logger->record("train/approx_kl", approx_kl_count ? approx_kl_sum / approx_kl_count : 0.0);
   logger->record("train/clip_fraction", clip_fraction_sum / n);
   logger->record("train/loss", last_loss);
+  // Flattened in SB3's order (rollout_buffer.values.flatten(): step by step, the envs of a
+  // step in turn), which is also the buffer's storage order, so the sums read memory in line.
   logger->record("train/explained_variance",
-                 explained_variance(rollout.values.reshaped(), rollout.returns.reshaped()));
+                 explained_variance(rollout.values.reshaped<Eigen::RowMajor>(),
+                                    rollout.returns.reshaped<Eigen::RowMajor>()));
   if (policy_.gaussian()) logger->record("train/std", policy_.mean_std());
   logger->record("train/n_updates", static_cast<double>(n_updates_));
   logger->record("train/clip_range", clip_range);
