@@ -2,6 +2,12 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
 
 #include "rlrun/core/float_format.hpp"
 #include "rlrun/wrappers/monitor.hpp"
@@ -23,6 +29,48 @@ TEST_CASE("python_float_repr matches Python's repr", "[wrappers][monitor]") {
   CHECK(python_float_repr(1.5e-7) == "1.5e-07");
   CHECK(python_float_repr(0.0001) == "0.0001");
   CHECK(python_float_repr(1732243200.123456) == "1732243200.123456");
+}
+
+TEST_CASE("python_float_repr: the fewest digits that read back, for any double", "[wrappers][monitor]") {
+  // The reference is the definition: the first number of significant digits at which the
+  // correctly rounded "%.*e" text reads back to the same double (what rlrun did before it used
+  // std::to_chars). Random bit patterns cover every exponent; rounded numbers of every scale
+  // the values monitor.csv really holds (returns, lengths, times).
+  const auto reference_digits = [](double v) {
+    char text[64];
+    for (int precision = 0; precision < 17; ++precision) {
+      std::snprintf(text, sizeof text, "%.*e", precision, v);
+      if (std::strtod(text, nullptr) == v) break;
+    }
+    return std::string(text, std::strchr(text, 'e'));
+  };
+  // The significant digits of a decimal text: no sign, point, exponent, leading or trailing 0.
+  const auto significant = [](const std::string& text) {
+    std::string digits;
+    for (char c : text.substr(0, text.find('e')))
+      if (c >= '0' && c <= '9' && !(digits.empty() && c == '0')) digits += c;
+    while (digits.size() > 1 && digits.back() == '0') digits.pop_back();
+    return digits;
+  };
+  std::mt19937_64 bits(24);
+  int checked = 0;
+  for (int i = 0; i < 200000; ++i) {
+    double v;
+    if (i % 2 == 0) {
+      const uint64_t b = bits();
+      std::memcpy(&v, &b, sizeof v);
+    } else {
+      v = static_cast<double>(static_cast<int64_t>(bits() % 2000001) - 1000000) *
+          std::pow(10.0, static_cast<int>(bits() % 25) - 12);
+    }
+    if (!std::isfinite(v) || v == 0.0) continue;
+    const std::string repr = python_float_repr(v);
+    INFO(repr);
+    REQUIRE(std::strtod(repr.c_str(), nullptr) == v);
+    REQUIRE(significant(repr) == significant(reference_digits(v)));
+    ++checked;
+  }
+  CHECK(checked > 190000);
 }
 
 TEST_CASE("Monitor writes SB3's monitor.csv format and reports episodes", "[wrappers][monitor]") {
