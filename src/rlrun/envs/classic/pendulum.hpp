@@ -1,6 +1,7 @@
 #pragma once
 // Pendulum-v1: gymnasium/envs/classic_control/pendulum.py (Gymnasium 1.0.0). Swing a
 // frictionless pendulum up; torque clipped to [-2, 2], angular speed clipped to [-8, 8].
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
@@ -31,6 +32,13 @@ class Pendulum : public ClassicControlEnv {
 
  private:
   Config config_;
+  // sin(theta) of the last observation this step wrote, and the bits of that theta: the next
+  // step's dynamics need the same sine, unless reset, set_state or a restore changed theta
+  // since (then the bits differ and it is computed again). glibc's sin was 3 % of a PPO
+  // Pendulum run.
+  double last_sin_theta_ = 0.0;
+  uint64_t last_theta_bits_ = 0;
+  bool has_last_sin_ = false;
 };
 
 }  // namespace rlrun
