@@ -135,7 +135,9 @@ build/rlrun sweep run "$out/manifest.yaml" | tail -1 | grep -q "4 of 4 runs fini
 echo "test_slurm: sweep passed"
 
 # A 2-worker `rlrun tune` study through sbatch (issue 23): both array tasks share one study
-# journal; together they run n_trials trials, each taken once; Optuna reads the result.
+# journal; together they run n_trials trials, each taken once; Optuna reads the result. (Trials
+# of 60 000 steps, a few tenths of a second each, so that a task Slurm starts a little later
+# still finds trials to take.)
 tune_out="$work/tune dir 'q' #x"
 cat >"$work/study.yaml" <<YAML
 name: rlrun_slurm_tune
@@ -143,7 +145,7 @@ base: $root/configs/cartpole_ppo.yaml
 out_dir: "$tune_out"
 n_trials: 8
 seeds_per_trial: 1
-n_timesteps: 20000
+n_timesteps: 60000
 n_evaluations: 4
 eval_episodes: 2
 sampler: {type: tpe, seed: 1, n_startup_trials: 4}
