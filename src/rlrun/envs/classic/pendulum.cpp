@@ -75,9 +75,8 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   const double th_norm = angle_normalize(theta);
   const double costs = th_norm * th_norm + 0.1 * (theta_dot * theta_dot) + 0.001 * (u * u);
 
-  const double sin_theta = has_last_sin_ && std::bit_cast<uint64_t>(theta) == last_theta_bits_
-                               ? last_sin_theta_
-                               : std::sin(theta);
+  const double sin_theta =
+      std::bit_cast<uint64_t>(theta) == last_theta_bits_ ? last_sin_theta_ : std::sin(theta);
   double new_theta_dot =
       theta_dot +
       (3 * g / (2 * kLength) * sin_theta + 3.0 / (kMass * kLength * kLength) * u) * kDt;
@@ -88,7 +87,6 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
 
   last_sin_theta_ = observe(std::span<const double>(state_.data(), 2), obs);
   last_theta_bits_ = std::bit_cast<uint64_t>(theta);
-  has_last_sin_ = true;
   return {-costs, false, false};
 }
 

@@ -35,10 +35,9 @@ class Pendulum : public ClassicControlEnv {
   // sin(theta) of the last observation this step wrote, and the bits of that theta: the next
   // step's dynamics need the same sine, unless reset, set_state or a restore changed theta
   // since (then the bits differ and it is computed again). glibc's sin was 3 % of a PPO
-  // Pendulum run.
+  // Pendulum run. Starts as the pair (+0.0, sin(+0.0) = +0.0), true like every later one.
   double last_sin_theta_ = 0.0;
   uint64_t last_theta_bits_ = 0;
-  bool has_last_sin_ = false;
 };
 
 }  // namespace rlrun
