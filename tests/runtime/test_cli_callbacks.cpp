@@ -11,6 +11,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/evaluator.hpp"
+#include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "runtime/cli_runner.hpp"
@@ -117,6 +118,74 @@ TEST_CASE("cli: eval.max_no_improvement_evals stops as SB3's StopTrainingOnNoMod
   CHECK(count_lines(read_text(dir / "runs/mc2/seed1/evaluations.csv")) == 6);
   // The evaluation columns: mean length and an empty success rate (MountainCar has none).
   CHECK(evals.rfind("timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n", 0) == 0);
+}
+
+namespace {
+
+// The steps of the evaluation best_model.zip must hold: the first row of evaluations.csv with
+// the best value of `column` (larger or smaller is better).
+int64_t first_best_row(const std::string& evaluations_csv, const std::string& column, bool minimize) {
+  std::stringstream lines(read_text(evaluations_csv));
+  std::string line;
+  std::getline(lines, line);
+  const std::vector<std::string> header = split_csv_line(line);
+  const size_t k = static_cast<size_t>(std::find(header.begin(), header.end(), column) - header.begin());
+  REQUIRE(k < header.size());
+  int64_t best_steps = -1;
+  double best = 0;
+  while (std::getline(lines, line)) {
+    const std::vector<std::string> cells = split_csv_line(line);
+    const double v = std::stod(cells.at(k));
+    if (best_steps < 0 || (minimize ? v < best : v > best)) best = v, best_steps = std::stoll(cells[0]);
+  }
+  return best_steps;
+}
+
+}  // namespace
+
+TEST_CASE("cli: eval.best_metric chooses best_model.zip by a column, in best_direction, across a resume",
+          "[cli][callbacks]") {
+  TempDir dir("best_metric");
+  // CartPole's episodes grow longer as PPO learns: the shortest evaluation is an early one and
+  // the longest a late one, so the two directions pick different models.
+  const std::string shortest =
+      cartpole(dir, "short", 1200, "",
+               "eval: {freq: 200, n_episodes: 2, best_metric: mean_ep_length, best_direction: minimize}\n"
+               "checkpoint: {freq: 600}\n");
+  const auto r = run_rlrun("--threads 1 train " + shortest);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const std::string run = dir / "runs/short/seed2";
+  const int64_t best_short = first_best_row(run + "/evaluations.csv", "mean_ep_length", true);
+  CHECK(read_model(run + "/best_model.zip").meta.num_timesteps == best_short);
+  CHECK(r.output.find("(new best mean_ep_length ") != std::string::npos);
+
+  // The default is SB3's: the largest mean reward.
+  const auto longest = run_rlrun("--threads 1 train " + shortest +
+                                 " --set run.name=long --set eval.best_metric=mean_reward"
+                                 " --set eval.best_direction=maximize");
+  REQUIRE(longest.exit_code == 0);
+  const int64_t best_long = first_best_row(dir / "runs/long/seed2/evaluations.csv", "mean_reward", false);
+  CHECK(read_model(dir / "runs/long/seed2/best_model.zip").meta.num_timesteps == best_long);
+  CHECK(best_long != best_short);
+
+  // Resumed, the run remembers its best: a longer later evaluation does not replace the model.
+  const auto more = run_rlrun("--threads 1 train --resume " + run + " --set run.total_timesteps=2400");
+  INFO(more.output);
+  REQUIRE(more.exit_code == 0);
+  CHECK(read_model(run + "/best_model.zip").meta.num_timesteps ==
+        first_best_row(run + "/evaluations.csv", "mean_ep_length", true));
+
+  // A column the env does not have is refused before training, naming the ones it has.
+  const auto typo = run_rlrun("train " + shortest + " --set run.name=typo --set eval.best_metric=mean_ep_lenght");
+  CHECK(typo.exit_code == 2);
+  CHECK(typo.output.find("eval.best_metric: 'mean_ep_lenght' is not a column of evaluations.csv") !=
+        std::string::npos);
+  CHECK(typo.output.find("did you mean 'mean_ep_length'?") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "runs/typo/seed2"));
+  const auto direction = run_rlrun("train " + shortest + " --set run.name=dir --set eval.best_direction=min");
+  CHECK(direction.exit_code == 2);
+  CHECK(direction.output.find("did you mean 'minimize'") != std::string::npos);
 }
 
 TEST_CASE("cli: obs_log saves the env's own observations of env 0 as float32 .npy chunks",

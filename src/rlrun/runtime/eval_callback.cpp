@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
@@ -21,8 +22,23 @@ EvalCallback::EvalCallback(TrainingContext& context)
       env_(make_env(context.experiment.env, context.registry, "", unix_time_now())),
       next_(context.experiment.eval.freq) {
   set_statistics_training(*env_, false);
-  for (const std::string& key : episode_info_keywords(context.experiment.env, context.registry, *env_))
-    if (key != "is_success") metric_keys_.push_back(key);
+  std::vector<std::string> columns = {"mean_reward", "mean_ep_length"};
+  for (const std::string& key : episode_info_keywords(context.experiment.env, context.registry, *env_)) {
+    if (key == "is_success") {
+      columns.push_back("success_rate");
+    } else {
+      metric_keys_.push_back(key);
+      columns.push_back(key);
+    }
+  }
+  // Checked before the first step, so a misspelt metric costs no training.
+  if (std::find(columns.begin(), columns.end(), config_.best_metric) == columns.end()) {
+    std::string known;
+    for (const std::string& c : columns) known += (known.empty() ? "" : ", ") + c;
+    throw ConfigError("eval.best_metric: '" + config_.best_metric + "' is not a column of " +
+                      "evaluations.csv for this env" + did_you_mean(config_.best_metric, columns) +
+                      "; its columns: " + known);
+  }
   const std::string path = context.run_dir + "/evaluations.csv";
   csv_ = CheckedFile(path, context.resuming ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
   if (!context.resuming) {
@@ -52,10 +68,16 @@ double mean_metric(const EvalResult& r, const std::string& key) {
 
 }  // namespace
 
+double EvalCallback::best_metric_value() const {
+  if (best_score_ == -std::numeric_limits<double>::infinity()) return std::nan("");
+  return config_.best_direction == "minimize" ? -best_score_ : best_score_;
+}
+
 void EvalCallback::write_state(StateWriter& out) const {
   out.put_int("next", next_);
   out.put_int("evaluations", evaluations_);
   out.put_double("best", best_);
+  out.put_double("best_score", best_score_);
   out.put_double("last_best", last_best_);
   out.put_int("no_improvement_evals", no_improvement_evals_);
 }
@@ -64,6 +86,8 @@ void EvalCallback::read_state(const StateReader& in) {
   next_ = in.get_int("next");
   evaluations_ = static_cast<int>(in.get_int("evaluations"));
   best_ = in.get_double("best");
+  // Checkpoints written before best_metric existed chose on the mean reward.
+  best_score_ = in.has("best_score") ? in.get_double("best_score") : best_;
   last_best_ = in.get_double("last_best");
   no_improvement_evals_ = static_cast<int>(in.get_int("no_improvement_evals"));
 }
@@ -118,10 +142,21 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
                         format_log_value(r.std_return()) + ", length " +
                         format_log_value(r.mean_length());
   if (!std::isnan(success)) message += ", success rate " + format_log_value(success);
-  if (r.mean_return() > best_) {
-    best_ = r.mean_return();
+  if (r.mean_return() > best_) best_ = r.mean_return();
+  // The value best_model.zip is chosen by (a NaN, e.g. a metric no episode reported, never wins).
+  double chosen = r.mean_return();
+  if (config_.best_metric == "mean_ep_length") chosen = r.mean_length();
+  if (config_.best_metric == "success_rate") chosen = success;
+  for (size_t k = 0; k < metric_keys_.size(); ++k)
+    if (metric_keys_[k] == config_.best_metric) chosen = metric_means[k];
+  const double score = config_.best_direction == "minimize" ? -chosen : chosen;
+  if (score > best_score_) {
+    best_score_ = score;
     context_.save_model(context_.run_dir + "/best_model.zip");
-    message += " (new best, saved best_model.zip)";
+    message += config_.best_metric == "mean_reward"
+                   ? " (new best, saved best_model.zip)"
+                   : " (new best " + config_.best_metric + " " + format_log_value(chosen) +
+                         ", saved best_model.zip)";
   }
   context_.message(message);
   if (context_.on_evaluation) {
@@ -148,13 +183,13 @@ bool EvalCallback::check_stop_rules() {
   if (config_.max_no_improvement_evals) {
     bool stop = false;
     if (evaluations_ > config_.min_evals) {
-      if (best_ > last_best_) {
+      if (best_score_ > last_best_) {
         no_improvement_evals_ = 0;
       } else if (++no_improvement_evals_ > *config_.max_no_improvement_evals) {
         stop = true;
       }
     }
-    last_best_ = best_;
+    last_best_ = best_score_;
     if (stop) {
       stop_reason_ = "no new best model in the last " +
                      count_of(no_improvement_evals_, "evaluation") +

@@ -10,10 +10,14 @@
 //     env's info keywords, runtime/env_factory.hpp, each the mean over the episodes), records
 //     eval/mean_reward, eval/mean_ep_length (and eval/success_rate, eval/<metric>) for
 //     progress.csv;
-//   * saves best_model.zip on a new best mean reward;
+//   * saves best_model.zip on a new best mean reward, or on a new best of `best_metric`
+//     (any evaluations.csv column, e.g. an env metric such as mean_delay) in `best_direction`:
+//     SB3 always selects on the return; an env whose return is a poor proxy for what the user
+//     measures (sumo-rl's diff-waiting-time reward telescopes to the waiting time at the
+//     episode's last step) selects on the measure itself;
 //   * reward_threshold: stops once the best mean reward >= it (StopTrainingOnRewardThreshold);
 //   * max_no_improvement_evals / min_evals: stops when, after more than min_evals evaluations,
-//     more than max_no_improvement_evals evaluations in a row brought no new best
+//     more than max_no_improvement_evals evaluations in a row brought no new best model
 //     (StopTrainingOnNoModelImprovement, same counting as SB3).
 #include <fstream>
 #include <limits>
@@ -33,6 +37,8 @@ struct EvalConfig {
   std::optional<double> reward_threshold;       // stop once best mean reward >= this
   std::optional<int> max_no_improvement_evals;  // stop after more evals than this without a new best
   int min_evals = 0;                            // evaluations before counting no-improvement
+  std::string best_metric = "mean_reward";      // the evaluations.csv column best_model.zip is chosen by
+  std::string best_direction = "maximize";
   template <class V>
   void visit(V& v) {
     v("freq", freq, "evaluate every `freq` TOTAL env steps (all envs counted; 0 = never)",
@@ -46,6 +52,11 @@ struct EvalConfig {
       "StopTrainingOnNoModelImprovement; null = never)",
       non_negative());
     v("min_evals", min_evals, "evaluations before no-improvement is counted", non_negative());
+    v("best_metric", best_metric,
+      "the evaluations.csv column that chooses best_model.zip: mean_reward (SB3's), success_rate "
+      "or one of the env's metrics (mean_delay, ...)");
+    v("best_direction", best_direction, "maximize or minimize best_metric",
+      OneOf{{"maximize", "minimize"}});
   }
 };
 
@@ -59,6 +70,8 @@ class EvalCallback : public Callback {
   void flush() override { csv_.flush(); }
 
   double best_mean_reward() const { return best_; }
+  // The best value of config.best_metric so far (NaN before the first evaluation).
+  double best_metric_value() const;
   int evaluations() const { return evaluations_; }
 
  private:
@@ -69,8 +82,11 @@ class EvalCallback : public Callback {
   EnvPtr env_;
   int64_t next_;
   int evaluations_ = 0;
-  double best_ = -std::numeric_limits<double>::infinity();
-  // StopTrainingOnNoModelImprovement state.
+  double best_ = -std::numeric_limits<double>::infinity();  // best mean reward (reward_threshold)
+  // The best of best_metric, signed so that larger is better (-value when minimising): a new
+  // one saves best_model.zip. Equal to best_ when best_metric is mean_reward.
+  double best_score_ = -std::numeric_limits<double>::infinity();
+  // StopTrainingOnNoModelImprovement state (on best_score_: "no new best model").
   double last_best_ = -std::numeric_limits<double>::infinity();
   int no_improvement_evals_ = 0;
   std::vector<std::string> metric_keys_;  // the env's metrics: evaluations.csv columns, eval/<key>
