@@ -75,15 +75,20 @@ TEST_CASE("tensorboard: a killed and resumed run continues its TensorBoard run, 
           "[cli][tensorboard][resume]") {
   TempDir dir("tb_resume_cli");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
-  const std::string settings = " --set run.total_timesteps=40000 --set checkpoint.freq=8192"
-                               " --set eval.freq=10000 --set eval.n_episodes=3 --out " +
+  const std::string settings = " --set run.total_timesteps=200000 --set checkpoint.freq=8192"
+                               " --set checkpoint.keep=0 --set eval.freq=10000"
+                               " --set eval.n_episodes=3 --out " +
                                dir / "runs" + " --tensorboard-log " + dir / "tb";
   const std::string run_dir = dir / "runs/cartpole_ppo/seed1";
-  // Killed (SIGKILL) once the second checkpoint exists: rows after it are in the files already.
-  const std::string cmd = std::string(RLRUN_BINARY) + " --threads 1 train " + config + settings +
-                          " > " + dir / "cut.log" + " 2>&1 & pid=$!; while [ ! -e " + run_dir +
-                          "/checkpoints/step_16384.zip ] && kill -0 $pid 2>/dev/null; do sleep "
-                          "0.01; done; sleep 0.2; kill -KILL $pid; wait $pid; echo exit=$?";
+  // Killed (SIGKILL) once the second checkpoint exists and the evaluation at 20 000 steps, after
+  // it, is in evaluations.csv: rows after the checkpoint are in the files already. (Waiting for
+  // that row, not for a fixed time: a fast CPU trains the whole run in a fraction of a second.)
+  const std::string cmd =
+      std::string(RLRUN_BINARY) + " --threads 1 train " + config + settings + " > " +
+      dir / "cut.log" + " 2>&1 & pid=$!; while ! { [ -e " + run_dir +
+      "/checkpoints/step_16384.zip ] && grep -q '^20000,' " + run_dir +
+      "/evaluations.csv 2>/dev/null; } && kill -0 $pid 2>/dev/null; do sleep 0.001; done; "
+      "kill -KILL $pid; wait $pid; echo exit=$?";
   const auto killed = run_command(cmd);
   INFO(killed.output << read_text(dir / "cut.log"));
   REQUIRE(killed.output.find("exit=137") != std::string::npos);
@@ -102,7 +107,7 @@ TEST_CASE("tensorboard: a killed and resumed run continues its TensorBoard run, 
   const auto checked = check_events(dir / "tb/cartpole_ppo_1", run_dir + "/progress.csv");
   INFO(checked.output);
   REQUIRE(checked.exit_code == 0);
-  CHECK(checked.output.find("\"last_step\": 40192") != std::string::npos);
+  CHECK(checked.output.find("\"last_step\": 200192") != std::string::npos);
 }
 
 TEST_CASE("tensorboard: a sweep's runs share one log directory, named by run id",
