@@ -68,11 +68,6 @@ double mean_metric(const EvalResult& r, const std::string& key) {
 
 }  // namespace
 
-double EvalCallback::best_metric_value() const {
-  if (best_score_ == -std::numeric_limits<double>::infinity()) return std::nan("");
-  return config_.best_direction == "minimize" ? -best_score_ : best_score_;
-}
-
 void EvalCallback::write_state(StateWriter& out) const {
   out.put_int("next", next_);
   out.put_int("evaluations", evaluations_);

@@ -70,8 +70,6 @@ class EvalCallback : public Callback {
   void flush() override { csv_.flush(); }
 
   double best_mean_reward() const { return best_; }
-  // The best value of config.best_metric so far (NaN before the first evaluation).
-  double best_metric_value() const;
   int evaluations() const { return evaluations_; }
 
  private:
