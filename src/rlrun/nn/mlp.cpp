@@ -128,11 +128,13 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
   // input is one block copy: Eigen copies a Ref with a run-time stride column by column, a
   // scalar loop of 3 floats per column for Pendulum (2.5 % of RLtools-PPO's profile).
   const bool stored_input = x.data() == acts_[0].data() && x.size() == acts_[0].size();
-  if (!stored_input && x.outerStride() == x.rows()) {
-    acts_[0].resize(x.rows(), x.cols());
-    std::copy_n(x.data(), x.size(), acts_[0].data());
-  } else if (!stored_input) {
-    acts_[0] = x;
+  if (!stored_input) {
+    if (x.outerStride() == x.rows()) {
+      acts_[0].resize(x.rows(), x.cols());
+      std::copy_n(x.data(), x.size(), acts_[0].data());
+    } else {
+      acts_[0] = x;
+    }
   }
   for (int l = 0; l < layers; ++l) {
     const Eigen::Index in = dims_[l];

@@ -124,6 +124,13 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
   }
   csv_ << '\n';
   csv_.flush();  // a full disk stops the run: RuntimeFailure naming the file and errno
+  // The row's reported columns by name: what best_metric and the evaluation listener read.
+  EvaluationRow row{num_timesteps, {{"mean_reward", r.mean_return()},
+                                    {"std_reward", r.std_return()},
+                                    {"mean_ep_length", r.mean_length()}}};
+  if (!std::isnan(success)) row.values["success_rate"] = success;
+  for (size_t k = 0; k < metric_keys_.size(); ++k)
+    if (!std::isnan(metric_means[k])) row.values[metric_keys_[k]] = metric_means[k];
   if (context_.logger) {
     context_.logger->record("eval/mean_reward", r.mean_return());
     context_.logger->record("eval/mean_ep_length", r.mean_length());
@@ -138,12 +145,9 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
                         format_log_value(r.mean_length());
   if (!std::isnan(success)) message += ", success rate " + format_log_value(success);
   if (r.mean_return() > best_) best_ = r.mean_return();
-  // The value best_model.zip is chosen by (a NaN, e.g. a metric no episode reported, never wins).
-  double chosen = r.mean_return();
-  if (config_.best_metric == "mean_ep_length") chosen = r.mean_length();
-  if (config_.best_metric == "success_rate") chosen = success;
-  for (size_t k = 0; k < metric_keys_.size(); ++k)
-    if (metric_keys_[k] == config_.best_metric) chosen = metric_means[k];
+  // The value best_model.zip is chosen by (a column no episode reported is NaN: never a best).
+  const auto column = row.values.find(config_.best_metric);
+  const double chosen = column != row.values.end() ? column->second : std::nan("");
   const double score = config_.best_direction == "minimize" ? -chosen : chosen;
   if (score > best_score_) {
     best_score_ = score;
@@ -155,12 +159,6 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
   }
   context_.message(message);
   if (context_.on_evaluation) {
-    EvaluationRow row{num_timesteps, {{"mean_reward", r.mean_return()},
-                                      {"std_reward", r.std_return()},
-                                      {"mean_ep_length", r.mean_length()}}};
-    if (!std::isnan(success)) row.values["success_rate"] = success;
-    for (size_t k = 0; k < metric_keys_.size(); ++k)
-      if (!std::isnan(metric_means[k])) row.values[metric_keys_[k]] = metric_means[k];
     stop_reason_ = context_.on_evaluation(row);
     if (!stop_reason_.empty()) return false;
   }
