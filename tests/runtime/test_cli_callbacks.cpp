@@ -182,7 +182,15 @@ TEST_CASE("cli: eval.best_metric chooses best_model.zip by a column, in best_dir
   CHECK(typo.output.find("eval.best_metric: 'mean_ep_lenght' is not a column of evaluations.csv") !=
         std::string::npos);
   CHECK(typo.output.find("did you mean 'mean_ep_length'?") != std::string::npos);
+  CHECK(typo.output.find("--set eval.best_metric=mean_ep_lenght: ") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "runs/typo/seed2"));
+  // Misspelt in the file, the message points at it (line 4: run, env, algo, eval).
+  const auto in_file = run_rlrun("train " + cartpole(dir, "typo_file", 1200, "", "eval: {freq: 200, best_metric: mean_rewrd}\n"));
+  CHECK(in_file.exit_code == 2);
+  CHECK(in_file.output.find(dir / "typo_file.yaml:4:32: eval.best_metric: 'mean_rewrd' is not a column") !=
+        std::string::npos);
+  CHECK(in_file.output.find("did you mean 'mean_reward'?") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "runs/typo_file/seed2"));
   const auto direction = run_rlrun("train " + shortest + " --set run.name=dir --set eval.best_direction=min");
   CHECK(direction.exit_code == 2);
   CHECK(direction.output.find("did you mean 'minimize'") != std::string::npos);

@@ -35,7 +35,8 @@ EvalCallback::EvalCallback(TrainingContext& context)
   if (std::find(columns.begin(), columns.end(), config_.best_metric) == columns.end()) {
     std::string known;
     for (const std::string& c : columns) known += (known.empty() ? "" : ", ") + c;
-    throw ConfigError("eval.best_metric: '" + config_.best_metric + "' is not a column of " +
+    const std::string where = config_.best_metric_where.empty() ? "" : config_.best_metric_where + ": ";
+    throw ConfigError(where + "eval.best_metric: '" + config_.best_metric + "' is not a column of " +
                       "evaluations.csv for this env" + did_you_mean(config_.best_metric, columns) +
                       "; its columns: " + known);
   }

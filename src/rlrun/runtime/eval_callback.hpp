@@ -39,6 +39,9 @@ struct EvalConfig {
   int min_evals = 0;                            // evaluations before counting no-improvement
   std::string best_metric = "mean_reward";      // the evaluations.csv column best_model.zip is chosen by
   std::string best_direction = "maximize";
+  // "file:line:col" of eval.best_metric, set by the experiment reader: the metric is checked
+  // against the env's columns only once the evaluation env exists (not a visited field).
+  std::string best_metric_where;
   template <class V>
   void visit(V& v) {
     v("freq", freq, "evaluate every `freq` TOTAL env steps (all envs counted; 0 = never)",

@@ -121,13 +121,15 @@ void parse_env(const ConfigNode& env, const Registry& registry, Experiment& exp,
 
 void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems) {
   const ConfigNode eval = root.child("eval");
-  if (problems.attempt([&] { exp.eval = read_config<EvalConfig>(eval); }))
+  if (problems.attempt([&] { exp.eval = read_config<EvalConfig>(eval); })) {
+    exp.eval.best_metric_where = eval.child("best_metric").where();
     for (const char* rule : {"reward_threshold", "max_no_improvement_evals"})
       if (exp.eval.freq == 0 && eval.child(rule).defined())
         problems.attempt([&] {
           eval.child(rule).fail(std::string(rule) +
                                 " acts after evaluations: set eval.freq > 0 too");
         });
+  }
   problems.attempt([&] { exp.checkpoint = read_config<CheckpointConfig>(root.child("checkpoint")); });
   const ConfigNode obs_log = root.child("obs_log");
   if (problems.attempt([&] { exp.obs_log = read_config<ObsLogConfig>(obs_log); }) &&
