@@ -14,6 +14,9 @@
 # model. Wall time is the training process's (rlrun's evaluation is not counted; RLtools' is,
 # and is also shown apart: "RLtools' own time" is the loop time it prints, evaluation excluded).
 # Run it on a quiet machine: the variants share the cores with nothing else.
+# OpenBLAS picks its kernels by CPU model; one older than the CPU (Debian 12's 0.3.21 on a Zen 4
+# or Zen 5) falls back to its AVX2 "Haswell" kernels on an AVX-512 CPU. OPENBLAS_CORETYPE (e.g.
+# SkylakeX for its AVX-512 kernels) is passed through to RLtools and named in the table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 algos=("$@")
@@ -117,6 +120,6 @@ table=$(
     done
   done
 )
-header="Pendulum-v1, $(date -u +%Y-%m-%d), $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')), load before the last run: $(cut -d' ' -f1-3 /proc/loadavg)"
+header="Pendulum-v1, $(date -u +%Y-%m-%d), $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')), load before the last run: $(cut -d' ' -f1-3 /proc/loadavg), OpenBLAS kernels: ${OPENBLAS_CORETYPE:-chosen by OpenBLAS}"
 printf '%s\n\n%s\n' "$header" "$table"
 [[ -z "${OUT:-}" ]] || printf '%s\n\n%s\n' "$header" "$table" >"$OUT"
