@@ -109,13 +109,19 @@ TEST_CASE(
     "are close to one pass over the whole batch",
     "[nn][split]") {
   const int n = GENERATE(5, 37, 64);
-  INFO("batch " << n);
+  // 6 inputs: the input gradient (rows 2..5) by dot products; 40: through the transposed first
+  // weight, which the halves share (SplitMlp::transpose_for_halves), as they share the hidden
+  // layers' (300 and 200 rows: W^T split between the cores off a 16-float boundary too).
+  const int in_dim = GENERATE(6, 40);
+  INFO("batch " << n << ", " << in_dim << " inputs");
   Rng rng(3);
-  Mlp net(6, {256, 256}, 3, Activation::kReLU);  // 67 k multiply-adds a column: 37 columns split
+  // 67 k and 76 k multiply-adds a column: 37 columns split.
+  Mlp net = in_dim == 6 ? Mlp(6, {256, 256}, 3, Activation::kReLU)
+                        : Mlp(40, {300, 200}, 20, Activation::kTanh);
   net.init_torch_default(rng);
   REQUIRE(column_parts(n, net.multiply_adds_per_column()) == (n >= 32 ? 2 : 1));
-  const Eigen::MatrixXf x = random_matrix(6, n, rng);
-  const Eigen::MatrixXf grad_out = random_matrix(3, n, rng);
+  const Eigen::MatrixXf x = random_matrix(in_dim, n, rng);
+  const Eigen::MatrixXf grad_out = random_matrix(net.out_dim(), n, rng);
 
   ForkJoin serial(false), parallel(true);
   const Passes one = split_passes(net, serial, x, grad_out);

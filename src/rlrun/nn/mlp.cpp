@@ -179,9 +179,21 @@ void Mlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
   backward_pass(params_.data(), grad_output, false, grad_input.data(), first_input_row);
 }
 
+bool Mlp::uses_transposed_weight(Eigen::Index rows, Eigen::Index batch) {
+  return rows >= dense::kLogicalLanes && batch >= kMinBatchForTranspose;
+}
+
+void Mlp::transpose_weight_rows(const float* p, int l, Eigen::Index begin, Eigen::Index count) {
+  // W is out x in (column-major): its columns [begin, begin + count) are W^T's rows.
+  const Eigen::Index out = dims_[l + 1];
+  dense::transpose(out, count, p + w_offset_[l] + begin * out, out, wt_[l].data() + begin,
+                   dims_[l]);
+}
+
 void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                         bool param_grads, float* grad_input, int first_input_row,
-                        const float* grad_hidden, Eigen::Index ld_grad_hidden) {
+                        const float* grad_hidden, Eigen::Index ld_grad_hidden,
+                        const Mlp* transposed_by) {
   const int layers = num_layers();
   const Eigen::Index batch = acts_[0].cols();
   if (grad_output.rows() != out_dim() || grad_output.cols() != batch) {
@@ -237,10 +249,10 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
     // the rows of the result. Small batches (environment stepping) or narrow inputs: dot
     // products against W's columns, which needs no transpose.
     const float* w = p + w_offset_[l];
-    if (rows >= lanes && batch >= kMinBatchForTranspose) {
-      dense::transpose(out, in, w, out, wt_[l].data(), in);
-      dense::gemm_rows(rows, batch, out, wt_[l].data() + first, in, delta, 1, ld_delta, epilogue,
-                       args);
+    if (uses_transposed_weight(rows, batch)) {
+      if (transposed_by == nullptr) transpose_weight_rows(p, l, 0, in);
+      const float* wt = (transposed_by ? transposed_by : this)->wt_[l].data();
+      dense::gemm_rows(rows, batch, out, wt + first, in, delta, 1, ld_delta, epilogue, args);
     } else {
       dense::gemm_dot(rows, batch, out, w + first * out, out, delta, ld_delta, epilogue, args);
     }

@@ -117,9 +117,18 @@ class Mlp {
   // batch, column-major, leading dimension its row count; e.g. columns of a larger matrix).
   // grad_hidden (optional): dL/d(last_hidden()) added before the last hidden layer's
   // activation derivative, column-major with leading dimension ld_grad_hidden.
+  // transposed_by (optional): an Mlp whose wt_ already holds W^T of every layer this pass
+  // would transpose (a SplitMlp transposes once for both halves); else the pass transposes.
   void backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                      bool param_grads, float* grad_input, int first_input_row,
-                     const float* grad_hidden = nullptr, Eigen::Index ld_grad_hidden = 0);
+                     const float* grad_hidden = nullptr, Eigen::Index ld_grad_hidden = 0,
+                     const Mlp* transposed_by = nullptr);
+  // Whether backward_pass carries dL/d(input) through layer l with W^T for a batch of `batch`
+  // columns when `rows` rows of that gradient are wanted (the layer's in_dim for a hidden input).
+  static bool uses_transposed_weight(Eigen::Index rows, Eigen::Index batch);
+  // Rows [begin, begin + count) of wt_[l] = W_l^T, from the parameters at p: a part of the
+  // transpose, so that two cores can share one.
+  void transpose_weight_rows(const float* p, int l, Eigen::Index begin, Eigen::Index count);
   // delta (the last hidden layer's dL/dz) += grad * act'(act), act the layer's activations.
   void add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const float* act,
                            Eigen::Index rows, Eigen::Index batch, Eigen::MatrixXf& delta) const;

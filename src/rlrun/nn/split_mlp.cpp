@@ -1,5 +1,6 @@
 #include "rlrun/nn/split_mlp.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -78,6 +79,7 @@ void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_out
   const Eigen::Index n = grad_output.cols();
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
+  transpose_for_halves(n, false);
   run_parts(fork_join_, 2, [&](int k) {
     const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
@@ -86,7 +88,7 @@ void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_out
         grad_last_hidden ? grad_last_hidden->data() + cols.begin * grad_last_hidden->rows()
                          : nullptr;
     half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, nullptr, 0,
-                       grad_hidden, grad_last_hidden ? grad_last_hidden->rows() : 0);
+                       grad_hidden, grad_last_hidden ? grad_last_hidden->rows() : 0, &net_);
   });
   // grads += the second half's gradient, each core adding its part of the parameter vector.
   run_parts(fork_join_, 2, [&](int k) {
@@ -110,11 +112,28 @@ void SplitMlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_outp
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
   grad_input.resize(net_.in_dim() - first_input_row, n);
+  transpose_for_halves(n, true, first_input_row);
   run_parts(fork_join_, 2, [&](int k) {
     const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), false,
-                       grad_input.data() + cols.begin * grad_input.rows(), first_input_row);
+                       grad_input.data() + cols.begin * grad_input.rows(), first_input_row,
+                       nullptr, 0, &net_);
+  });
+}
+
+void SplitMlp::transpose_for_halves(Eigen::Index n, bool input_gradient, int first_input_row) {
+  // A layer is transposed when either half's backward_pass would use W^T (the larger half's
+  // batch decides); each half still chooses its kernel from its own batch.
+  const Eigen::Index batch = std::max(column_part(n, 2, 0).count, column_part(n, 2, 1).count);
+  const float* p = net_.params_.data();
+  run_parts(fork_join_, 2, [&](int k) {
+    for (int l = input_gradient ? 0 : 1; l < net_.num_layers(); ++l) {
+      const Eigen::Index in = net_.dims_[l];
+      if (!Mlp::uses_transposed_weight(l == 0 ? in - first_input_row : in, batch)) continue;
+      const Part rows = param_part(in, k);  // whole cache lines of each W^T column per core
+      net_.transpose_weight_rows(p, l, rows.begin, rows.count);
+    }
   });
 }
 
