@@ -257,7 +257,13 @@ struct KernelSet {
     const int skip = static_cast<int>(i0 + (kP - 1) * kLanes - last);
     for (int r = 0; r < kNr; ++r) {
       for (int p = 0; p + 1 < kP; ++p) epi.packet(acc[p][r], i0 + p * kLanes, j0 + r);
-      epi.tail(acc[kP - 1][r], last, j0 + r, skip);
+      // A rest of whole packets (e.g. a 32-row layer) overlaps nothing: the packet epilogue
+      // (an accumulating tail adds lane by lane).
+      if (skip == 0) {
+        epi.packet(acc[kP - 1][r], last, j0 + r);
+      } else {
+        epi.tail(acc[kP - 1][r], last, j0 + r, skip);
+      }
     }
   }
 

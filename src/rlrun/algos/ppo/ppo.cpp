@@ -109,10 +109,13 @@ void PPO::train(double progress_remaining, Logger* logger) {
                                       &values_pred_, &grad_values_, &grad_log_prob_, &grad_entropy_})
           v->resize(batch);
       }
+      // Columns copied as raw blocks: Eigen's per-column assignment of a run-time size (3 floats
+      // for Pendulum) costs more than the copy.
+      const Eigen::Index obs_rows = rollout.obs.rows(), act_rows = rollout.actions.rows();
       for (int j = 0; j < batch; ++j) {
         const int k = indices_[start + j];
-        mb_obs_.col(j) = rollout.obs.col(k);
-        mb_act_.col(j) = rollout.actions.col(k);
+        std::copy_n(rollout.obs.data() + k * obs_rows, obs_rows, mb_obs_.data() + j * obs_rows);
+        std::copy_n(rollout.actions.data() + k * act_rows, act_rows, mb_act_.data() + j * act_rows);
         mb_adv_(j) = rollout.advantages.data()[k];
         mb_ret_(j) = rollout.returns.data()[k];
         mb_old_logp_(j) = rollout.log_probs.data()[k];
