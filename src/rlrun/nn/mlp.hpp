@@ -123,8 +123,9 @@ class Mlp {
                      bool param_grads, float* grad_input, int first_input_row,
                      const float* grad_hidden = nullptr, Eigen::Index ld_grad_hidden = 0,
                      const Mlp* transposed_by = nullptr);
-  // Whether backward_pass carries dL/d(input) through layer l with W^T for a batch of `batch`
-  // columns when `rows` rows of that gradient are wanted (the layer's in_dim for a hidden input).
+  // Whether backward_pass carries dL/d(input) through a layer with its W^T (rather than dot
+  // products against W's columns) when `rows` rows of that gradient are wanted (a hidden
+  // input: all in_dim of them) for a batch of `batch` columns.
   static bool uses_transposed_weight(Eigen::Index rows, Eigen::Index batch);
   // Rows [begin, begin + count) of wt_[l] = W_l^T, from the parameters at p: a part of the
   // transpose, so that two cores can share one.
