@@ -203,16 +203,20 @@ struct KernelSet {
 
   // ---- gemm_rows: C = A B, vectorised over rows of A and C ---------------------------------
 
-  // One register tile: kMp packets of rows by kNr columns, summed over k in order.
+  // One register tile: kMp packets of rows by kNr columns, summed over k in order. Packet p
+  // starts at row p * kLanes of `a`, the last one at row `last` (a rest tile's last packet
+  // overlaps the one before it; a full tile passes (kMp - 1) * kLanes).
   template <int kMp, int kNr>
   static void rows_accumulate(V (&acc)[kMp][kNr], Index k, const float* a, Index lda,
-                              const float* b, Index b_k, Index b_j) {
+                              const float* b, Index b_k, Index b_j,
+                              Index last = (kMp - 1) * kLanes) {
     for (int p = 0; p < kMp; ++p) {
       for (int r = 0; r < kNr; ++r) acc[p][r] = V::zero();
     }
     for (Index kk = 0; kk < k; ++kk) {
       V av[kMp];
-      for (int p = 0; p < kMp; ++p) av[p] = V::load(a + kk * lda + p * kLanes);
+      for (int p = 0; p + 1 < kMp; ++p) av[p] = V::load(a + kk * lda + p * kLanes);
+      av[kMp - 1] = V::load(a + kk * lda + last);
       const float* bk = b + kk * b_k;
       for (int r = 0; r < kNr; ++r) {
         const V bv = V::set1(bk[r * b_j]);
@@ -241,19 +245,7 @@ struct KernelSet {
                              Index b_j, Index i0, Index m, Index j0, const Epi& epi) {
     const Index last = m - kLanes;  // the last packet's first row
     V acc[kP][kNr];
-    for (int p = 0; p < kP; ++p) {
-      for (int r = 0; r < kNr; ++r) acc[p][r] = V::zero();
-    }
-    for (Index kk = 0; kk < k; ++kk) {
-      V av[kP];
-      for (int p = 0; p + 1 < kP; ++p) av[p] = V::load(a + i0 + kk * lda + p * kLanes);
-      av[kP - 1] = V::load(a + last + kk * lda);
-      const float* bk = b + kk * b_k;
-      for (int r = 0; r < kNr; ++r) {
-        const V bv = V::set1(bk[r * b_j]);
-        for (int p = 0; p < kP; ++p) acc[p][r] = fma(av[p], bv, acc[p][r]);
-      }
-    }
+    rows_accumulate(acc, k, a + i0, lda, b, b_k, b_j, last - i0);
     const int skip = static_cast<int>(i0 + (kP - 1) * kLanes - last);
     for (int r = 0; r < kNr; ++r) {
       for (int p = 0; p + 1 < kP; ++p) epi.packet(acc[p][r], i0 + p * kLanes, j0 + r);
