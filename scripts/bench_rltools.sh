@@ -13,6 +13,12 @@
 # return of 100 episodes. rlrun trains, then `rlrun eval --episodes 100 --seed 1000` scores the
 # model. Wall time is the training process's (rlrun's evaluation is not counted; RLtools' is,
 # and is also shown apart: "RLtools' own time" is the loop time it prints, evaluation excluded).
+# The two returns come from different start states, which move a 100-episode mean by ~10 points
+# (docs/rltools.md, "The return on the same start states"). So each seed's RLtools policy (the
+# checkpoint.h its benchmark build writes) and rlrun's single-thread model are also scored by
+# scripts/rltools_cross_eval.py on RLtools' own 100 start states and on 10 000 common ones
+# (needs numpy and rlrun's Python package: PYTHON, default /usr/bin/python3, with
+# RLRUN_PYTHONPATH, default build/python; skipped with a note when either is missing).
 # Run it on a quiet machine: the variants share the cores with nothing else.
 # OpenBLAS picks its kernels by CPU model; one older than the CPU (Debian 12's 0.3.21 on a Zen 4
 # or Zen 5) falls back to its AVX2 "Haswell" kernels on an AVX-512 CPU. OPENBLAS_CORETYPE (e.g.
@@ -37,6 +43,14 @@ for algo in "${algos[@]}"; do
     [[ -x "$bin" ]] || { echo "bench_rltools: no RLtools binary $bin" >&2; exit 2; }
   done
 done
+python=${PYTHON:-/usr/bin/python3}
+rlrun_pythonpath=${RLRUN_PYTHONPATH:-build/python}
+cross_eval=1
+PYTHONPATH=$rlrun_pythonpath "$python" -c 'import numpy, rlrun' 2>/dev/null || {
+  cross_eval=0
+  echo "bench_rltools: no numpy or rlrun Python package for $python (PYTHONPATH=$rlrun_pythonpath):" \
+       "the same-start-state returns are skipped (docs/python.md)" >&2
+}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 now() { date +%s.%N; }
@@ -63,6 +77,24 @@ run_rltools() {
     /Mean return:/ { for (i = 1; i <= NF; ++i) if ($i == "return:") r = $(i + 1) }
     END { printf "%.2f %s %s\n", wall, (t == "" ? "-" : t), r }' "$log" \
     >"$out/$algo.rltools-$kind.$seed"
+  find "$dir" -name checkpoint.h -print -quit >"$out/$algo.checkpoint-$kind.$seed"
+}
+
+# Both policies of a seed on the same start states: writes "rltools_own rlrun_own
+# rltools_common rlrun_common" (mean returns) to $out/<algo>.cross.<seed>.
+run_cross_eval() {
+  local algo=$1 seed=$2 checkpoint
+  ((cross_eval)) || return 0
+  checkpoint=$(cat "$out/$algo.checkpoint-openblas.$seed" 2>/dev/null ||
+               cat "$out/$algo.checkpoint-plain.$seed" 2>/dev/null || true)
+  [[ -n "$checkpoint" ]] || { echo "bench_rltools: RLtools wrote no checkpoint.h for $algo seed $seed" >&2; return 0; }
+  PYTHONPATH=$rlrun_pythonpath "$python" scripts/rltools_cross_eval.py --checkpoint "$checkpoint" \
+    --model "$out/rlrun-t1-$algo-$seed/rltools_pendulum_$algo/seed$seed/model.zip" \
+    --rltools-seed "$seed" >"$out/cross-$algo-$seed.log" ||
+    { echo "bench_rltools: rltools_cross_eval.py failed:" >&2; tail -5 "$out/cross-$algo-$seed.log" >&2; exit 1; }
+  awk '$1 == "cross_eval" { v[$2] = $4 " " $5 }
+       END { print v["rltools_states"], v["common_states"] }' "$out/cross-$algo-$seed.log" \
+    >"$out/$algo.cross.$seed"
 }
 
 # rlrun run: writes "wall - return" to $out/<algo>.rlrun-t<threads>.<seed>.
@@ -96,6 +128,7 @@ for algo in "${algos[@]}"; do
     fi
     echo "$algo seed $seed: rlrun --threads 2" >&2
     run_rlrun "$algo" 2 "$seed"
+    run_cross_eval "$algo" "$seed"
   done
 done
 
@@ -111,7 +144,7 @@ table=$(
         rlrun-t1) name="rlrun"; threads=1 ;;
         rlrun-t2) name="rlrun"; threads=2 ;;
       esac
-      files=("$out/$algo.$variant".*)
+      mapfile -t files < <(ls -v "$out/$algo.$variant".*)
       wall=$(cat "${files[@]}" | awk '{ print $1 }' | median)
       own=$(cat "${files[@]}" | awk '$2 != "-" { print $2 }' | median)
       ret=$(cat "${files[@]}" | awk '{ print $3 }' | median)
@@ -120,6 +153,23 @@ table=$(
     done
   done
 )
+# The same policies on the same start states (columns of $out/<algo>.cross.<seed>).
+same_states=$(
+  compgen -G "$out/*.cross.*" >/dev/null || exit 0
+  echo "| algorithm | start states | RLtools (median) | rlrun (median) | RLtools by seed | rlrun by seed |"
+  echo "| --- | --- | --- | --- | --- | --- |"
+  for algo in "${algos[@]}"; do
+    compgen -G "$out/$algo.cross.*" >/dev/null || continue
+    mapfile -t files < <(ls -v "$out/$algo.cross".*)
+    for set in "RLtools' own 100:1" "10 000 common:3"; do
+      col=${set##*:}
+      r=$(cat "${files[@]}" | awk -v c="$col" '{ print $c }')
+      l=$(cat "${files[@]}" | awk -v c="$col" '{ print $(c + 1) }')
+      echo "| ${algo^^} | ${set%:*} | $(median <<<"$r") | $(median <<<"$l") | $(paste -sd ' ' <<<"$r") | $(paste -sd ' ' <<<"$l") |"
+    done
+  done
+)
+[[ -z "$same_states" ]] || table+=$'\n\nThe same policies on the same start states (scripts/rltools_cross_eval.py; RLtools by seed = its printed return on its own states, PPO apart: Gymnasium charges the clamped torque):\n\n'"$same_states"
 header="Pendulum-v1, $(date -u +%Y-%m-%d), $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')), load before the last run: $(cut -d' ' -f1-3 /proc/loadavg), OpenBLAS kernels: ${OPENBLAS_CORETYPE:-chosen by OpenBLAS}"
 printf '%s\n\n%s\n' "$header" "$table"
 [[ -z "${OUT:-}" ]] || printf '%s\n\n%s\n' "$header" "$table" >"$OUT"

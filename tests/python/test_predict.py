@@ -157,6 +157,13 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
         for a, r in zip(actions, rows):
             single, _ = model.predict(r["obs"], deterministic=True)
             np.testing.assert_allclose(a, single, rtol=1e-5, atol=1e-6)
+        # A batch longer than an episode (Pendulum's TimeLimit is 200) gives the same actions
+        # as one observation at a time.
+        wide = np.random.default_rng(0).uniform(-1, 1, (450, 3)).astype(np.float32)
+        actions, _ = model.predict(wide, deterministic=True)
+        self.assertEqual(actions.shape, (450, 1))
+        for a, o in zip(actions[::50], wide[::50]):
+            np.testing.assert_array_equal(a, model.predict(o, deterministic=True)[0])
         with self.assertRaisesRegex(ValueError, "Unexpected observation shape"):
             model.predict(np.zeros(4, dtype=np.float32))
         with self.assertRaisesRegex(ValueError, "mixing Gym API"):
