@@ -84,9 +84,11 @@ def gymnasium_start_states(seed, episodes):
 
 # --- the two policies, as functions from observations (n, 3) to torques (n,) in [-2, 2] ------
 
-def _floats(text):
-    return np.array([float.fromhex(v.strip().rstrip("fF")) for v in text.split(",")],
-                    dtype=np.float32)
+def _memory_arrays(text):
+    """Every `constexpr float memory[] = {...}` array in `text` (hex floats), in order."""
+    return [np.array([float.fromhex(v.strip().rstrip("fF")) for v in body.split(",")],
+                     dtype=np.float32)
+            for body in re.findall(r"constexpr float memory\[\] = \{([^}]*)\}", text)]
 
 
 def _fast_tanh(x):
@@ -109,7 +111,7 @@ def rltools_policy(path):
     if len(parts) != 3:
         raise SystemExit(f"{path}: not an RLtools checkpoint.h (no example input/output)")
     actor = parts[0]
-    arrays = [_floats(m) for m in re.findall(r"constexpr float memory\[\] = \{([^}]*)\}", actor)]
+    arrays = _memory_arrays(actor)
     standardize = "layers::standardize::" in actor
     if standardize:
         obs_mean, obs_precision, arrays = arrays[0], arrays[1], arrays[2:]
@@ -128,8 +130,10 @@ def rltools_policy(path):
         h = np.maximum(np.maximum(obs @ w0.T + b0, 0) @ w1.T + b1, 0)
         return np.tanh((h @ w2.T + b2)[:, 0])
 
-    example_in = _floats(re.search(r"memory\[\] = \{([^}]*)\}", parts[1]).group(1)).reshape(-1, 3)
-    example_out = _floats(re.search(r"memory\[\] = \{([^}]*)\}", parts[2]).group(1))
+    examples = [_memory_arrays(part) for part in parts[1:]]
+    if not all(examples):
+        raise SystemExit(f"{path}: not an RLtools checkpoint.h (empty example input/output)")
+    example_in, example_out = examples[0][0].reshape(-1, 3), examples[1][0]
     error = np.abs(raw_action(example_in) - example_out).max()
     if error > 1e-4:
         raise SystemExit(f"{path}: forward pass differs from the file's example by {error}")

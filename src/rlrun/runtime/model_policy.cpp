@@ -76,20 +76,20 @@ void ModelPolicy::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool det
   Env& stack = *loaded_.env;
   const int policy_obs_dim = policy_observation_space().flat_dim();
   policy_obs_.resize(policy_obs_dim, batch);
-  for (Eigen::Index j = 0; j < batch; ++j) {
+  // Starts an episode of the stack at observation j; `out` receives what the policy sees.
+  const auto reset_at = [&](Eigen::Index j, std::span<float> out) {
     std::span<float> next = feed_->next_obs();
     std::copy(obs.col(j).data(), obs.col(j).data() + obs_dim, next.begin());
-    stack.reset(std::nullopt, {policy_obs_.col(j).data(), static_cast<size_t>(policy_obs_dim)});
-  }
+    stack.reset(std::nullopt, out);
+  };
+  for (Eigen::Index j = 0; j < batch; ++j)
+    reset_at(j, {policy_obs_.col(j).data(), static_cast<size_t>(policy_obs_dim)});
   algorithm.predict(policy_obs_, deterministic, policy_actions_);
   actions.resize(act_dim, batch);
   for (Eigen::Index j = 0; j < batch; ++j) {
-    // Each action follows a reset with its own observation, as in a one-by-one predict: the
-    // stack's TimeLimit then counts one step whatever the batch (without it a batch longer
-    // than the episode limit, 200 for Pendulum, ran into Monitor's "step after the end").
-    std::span<float> next = feed_->next_obs();
-    std::copy(obs.col(j).data(), obs.col(j).data() + obs_dim, next.begin());
-    stack.reset(std::nullopt, scratch_obs_);
+    // Each action follows a reset with its own observation, as in a one-by-one predict, so the
+    // stack's TimeLimit counts one step whatever the batch size.
+    reset_at(j, scratch_obs_);
     stack.step({policy_actions_.col(j).data(), static_cast<size_t>(policy_actions_.rows())},
                scratch_obs_);
     const std::span<const float> action = feed_->last_action();
