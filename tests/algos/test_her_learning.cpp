@@ -11,6 +11,7 @@
 #include <string>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 

@@ -21,6 +21,7 @@
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using rlrun::testing::run_command;
 using rlrun::testing::TempDir;

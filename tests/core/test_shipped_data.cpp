@@ -11,6 +11,7 @@
 #include "rlrun/core/shipped_data.hpp"
 #include "rlrun/core/trusted_values.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -23,6 +23,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/model_file.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -92,7 +93,7 @@ nlohmann::json run_onnxruntime(const std::string& model, const PolicyGraph& grap
   std::ofstream(in_path) << request.dump();
   const char* modules = std::getenv("RLRUN_ONNXRUNTIME_NODE_MODULES");
   const std::string node_path = modules ? modules : RLRUN_TEST_NODE_MODULES;
-  const std::string command = "NODE_PATH='" + node_path + "' node '" RLRUN_SOURCE_DIR
+  const std::string command = "NODE_PATH='" + node_path + "' node '" + RLRUN_SOURCE_DIR +
                               "/tests/deploy/onnx_run.js' '" + model + "' '" + in_path + "' '" +
                               out_path + "' 2>&1";
   const CommandResult r = run_command(command);
@@ -126,7 +127,7 @@ Eigen::MatrixXf run_c_export(const std::string& model, const Eigen::MatrixXf& ob
   REQUIRE(x.exit_code == 0);
   const std::string binary = dir / "c_policy_run";
   const CommandResult cc = run_command(
-      "cc -std=c99 -O2 -Wall -Wextra -Werror -pedantic -I'" + c_dir + "' '" RLRUN_SOURCE_DIR
+      "cc -std=c99 -O2 -Wall -Wextra -Werror -pedantic -I'" + c_dir + "' '" + RLRUN_SOURCE_DIR +
       "/tests/deploy/c_policy_main.c' '" + c_dir + "/policy.c' -lm -o '" + binary + "' 2>&1");
   INFO(cc.output);
   REQUIRE(cc.exit_code == 0);

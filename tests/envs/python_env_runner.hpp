@@ -6,6 +6,7 @@
 #include <string>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 namespace rlrun::testing {
 

@@ -13,6 +13,7 @@
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -49,6 +49,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
+#include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 using namespace rlrun;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "envs/python_env_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 

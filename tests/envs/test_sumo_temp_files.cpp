@@ -21,6 +21,7 @@
 #include "rlrun/envs/traffic/sumo_process.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -124,7 +125,7 @@ TEST_CASE("rlrun killed with SIGKILL: the next rlrun removes its SUMO directorie
   // Training on the traffic task, killed once its SUMO runs: no destructor removes its
   // directories (SUMO itself goes with it, PR_SET_PDEATHSIG).
   const auto killed = run_command(
-      env + RLRUN_BINARY + " train " RLRUN_SOURCE_DIR "/configs/cartpole_ppo.yaml --set "
+      env + RLRUN_BINARY + " train " + RLRUN_SOURCE_DIR + "/configs/cartpole_ppo.yaml --set "
       "env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]' --set env.n_envs=1 --timesteps "
       "100000000 --out '" + dir / "runs" + "' > /dev/null 2>&1 & pid=$!; "
       "for i in $(seq 200); do ls '" + tmp + "' | grep -q rlrun-sumo- && break; sleep 0.05; done; "

@@ -18,6 +18,7 @@
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
 #include "rlrun/rng.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::traffic;

@@ -17,6 +17,7 @@
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/envs/traffic/tripinfo.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -10,6 +10,7 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "test_paths.hpp"
 
 namespace rlrun::testing {
 

@@ -7,6 +7,7 @@
 #include "rlrun/nn/dense_kernels.hpp"
 #include "runtime/cli_runner.hpp"
 #include "runtime/same_tensors.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -11,6 +11,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/model_policy.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

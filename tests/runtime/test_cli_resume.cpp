@@ -14,6 +14,7 @@
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/session_summary.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -10,6 +10,7 @@
 
 #include "rlrun/runtime/run_results.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 namespace fs = std::filesystem;

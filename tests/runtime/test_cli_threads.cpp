@@ -4,6 +4,7 @@
 
 #include "runtime/cli_runner.hpp"
 #include "runtime/same_tensors.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

@@ -9,6 +9,7 @@
 
 #include "rlrun/core/zip_archive.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

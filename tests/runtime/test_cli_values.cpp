@@ -11,6 +11,7 @@
 
 #include "rlrun/render/video_limits.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

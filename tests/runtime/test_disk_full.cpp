@@ -30,6 +30,7 @@
 #include "rlrun/runtime/run_directory.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -209,7 +210,7 @@ TEST_CASE("train on a disk that fills up: exit 1, ENOSPC and the file named, che
   std::ofstream(dir / "run.sh")
       << "mount -t tmpfs -o size=4m tmpfs \"$1\" 2>\"$2/mount_error\" || exit 77\n"
          "cd \"$1\"\n"
-         "\"$3\" train " RLRUN_SOURCE_DIR "/configs/cartpole_ppo.yaml --set "
+         "\"$3\" train " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml --set "
          "run.total_timesteps=100000000 --set checkpoint.freq=20000 --set eval.freq=0 "
          "--out \"$1/runs\" > \"$2/train.log\" 2>&1 &\n"
          "pid=$!\n"
@@ -220,7 +221,7 @@ TEST_CASE("train on a disk that fills up: exit 1, ENOSPC and the file named, che
          "cp \"$run\"/checkpoints/*.zip \"$2/\"\n"
          "dd if=/dev/zero of=\"$1/fill\" bs=64k 2>/dev/null\n"
          "wait $pid; echo $? > \"$2/rc\"\n"
-         "\"$3\" train " RLRUN_SOURCE_DIR "/configs/cartpole_ppo.yaml --out \"$1/full\" > "
+         "\"$3\" train " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml --out \"$1/full\" > "
          "\"$2/second.log\" 2>&1; echo $? > \"$2/second_rc\"\n"
          "rm -f \"$1/fill\"\n"
          "cp -a \"$1/runs\" \"$1/full\" \"$2/\"\n";

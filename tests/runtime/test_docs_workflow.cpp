@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 namespace fs = std::filesystem;

@@ -12,6 +12,7 @@
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/model_budget.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;

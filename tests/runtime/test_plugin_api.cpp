@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rlrun/version.hpp"
+#include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 

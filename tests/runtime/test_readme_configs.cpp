@@ -7,6 +7,7 @@
 #include <set>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 namespace fs = std::filesystem;

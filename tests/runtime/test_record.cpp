@@ -12,6 +12,7 @@
 #include "rlrun/core/npy.hpp"
 #include "rlrun/envs/classic/cartpole.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 namespace fs = std::filesystem;

@@ -12,6 +12,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/sbatch_script.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -52,7 +53,7 @@ TEST_CASE("sweep slurm: an out_dir with blanks, quotes and $(...) is one argumen
   std::ofstream(dir / "sweep.yaml") << "name: quoted\nbase: " << base_config() << "\nout_dir: \""
                                     << out << "\"\nseeds: [1]\n"
                                     << "slurm: {time: \"00:05:00\", mem: 1G}\n";
-  const auto expand = run_command("cd " + sh(dir.str()) + " && " RLRUN_BINARY " sweep sweep.yaml");
+  const auto expand = run_command("cd " + sh(dir.str()) + " && " + std::string(RLRUN_BINARY) + " sweep sweep.yaml");
   INFO(expand.output);
   REQUIRE(expand.exit_code == 0);
   const std::string manifest = out + "/manifest.yaml";

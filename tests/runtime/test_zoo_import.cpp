@@ -14,6 +14,7 @@
 #include "rlrun/runtime/zoo/python_literal.hpp"
 #include "rlrun/runtime/zoo/zoo_import.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::zoo;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 using json = nlohmann::json;

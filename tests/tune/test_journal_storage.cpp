@@ -18,6 +18,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/tune/journal_storage.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::tune;

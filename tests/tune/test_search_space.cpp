@@ -14,6 +14,7 @@
 #include "rlrun/tune/search_space.hpp"
 #include "rlrun/tune/study_config.hpp"
 #include "rlrun/tune/zoo_spaces.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::tune;

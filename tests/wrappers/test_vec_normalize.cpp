@@ -18,6 +18,7 @@
 #include "rlrun/wrappers/vec_normalize.hpp"
 #include "runtime/cli_runner.hpp"
 #include "wrappers/scripted_env.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using rlrun::testing::ScriptedEnv;
