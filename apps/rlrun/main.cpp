@@ -1,5 +1,6 @@
 // rlrun: train, evaluate and inspect RL agents from YAML experiment files.
-// Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure.
+// Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure, 128 + signal
+// (130: Ctrl-C) when interrupted where no safe point could be waited for (core/errors.hpp).
 #include <algorithm>
 #include <csignal>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "parse_errors.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/interrupt.hpp"
 #include "rlrun/nn/dense_kernels.hpp"
 #include "rlrun/runtime/builtins.hpp"
 
@@ -33,6 +35,10 @@ int main(int argc, char** argv) {
   // A file-size limit (ulimit -f) must end in the write error EFBIG, which names the file
   // (core/checked_file.hpp), not in SIGXFSZ killing rlrun with a core dump.
   std::signal(SIGXFSZ, SIG_IGN);
+  // Ctrl-C and `kill -INT` stop rlrun in every phase, also when it was started with SIGINT
+  // ignored (a shell's background job); commands that can stop cleanly install their handlers
+  // (core/interrupt.hpp).
+  rlrun::use_default_interrupt_actions();
   CLI::App app{"rlrun " RLRUN_VERSION
                ": Stable-Baselines3-style reinforcement learning from YAML experiment files"};
   app.require_subcommand(1);
@@ -89,6 +95,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("zoo")) return zoo();
     if (app.got_subcommand("export")) return export_policy();
     if (app.got_subcommand("tune")) return tune();
+  } catch (const rlrun::Interrupted& e) {
+    print_error(e.what());
+    return 128 + e.signal();
   } catch (const rlrun::ConfigError& e) {
     print_error(e.what());
     return rlrun::kExitUsage;

@@ -16,7 +16,7 @@ import sys as _sys
 if _sys.executable:
     _os.environ.setdefault("RLRUN_PYTHON", _sys.executable)
 
-from ._core import ConfigError, RuntimeFailure, UsageError
+from ._core import ConfigError, Interrupted, RuntimeFailure, UsageError
 from ._core import __version__
 from ._env import RlrunEnv, make
 from ._model import Model, load
@@ -45,6 +45,7 @@ def list_envs():
 __all__ = [
     "ConfigError",
     "HAVE_GYMNASIUM",
+    "Interrupted",
     "Model",
     "RlrunEnv",
     "RlrunVectorEnv",

@@ -87,7 +87,8 @@ def train(config, overrides=None, /, **kwargs) -> str:
     (file:line:col, the key path, the closest valid name); a failure while training raises
     rlrun.RuntimeFailure (a RuntimeError). The GIL is released while training. Ctrl-C stops
     the training as on the command line, at its next safe point with a checkpoint, and then
-    raises KeyboardInterrupt (resume with ``rlrun train --resume RUN_DIR``).
+    raises KeyboardInterrupt (resume with ``rlrun train --resume RUN_DIR``); where no safe point
+    comes (a Python env's worker that hangs) it raises rlrun.Interrupted, a KeyboardInterrupt.
     """
     assignments = override_assignments(overrides) + override_assignments(kwargs)
     if isinstance(config, dict):

@@ -1,6 +1,7 @@
 // rlrun._core: rlrun's envs, models and trainer for Python (pybind11). Exceptions carry the
 // CLI's messages (DESIGN.md §6): ConfigError and UsageError (bad input, exit 2 on the command
-// line) are ValueErrors, RuntimeFailure (exit 1) a RuntimeError.
+// line) are ValueErrors, RuntimeFailure (exit 1) a RuntimeError, Interrupted (Ctrl-C) a
+// KeyboardInterrupt.
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -61,6 +62,8 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<rlrun::ConfigError>(m, "ConfigError", PyExc_ValueError);
   py::register_exception<rlrun::UsageError>(m, "UsageError", PyExc_ValueError);
   py::register_exception<rlrun::RuntimeFailure>(m, "RuntimeFailure", PyExc_RuntimeError);
+  // Stopped by Ctrl-C where no safe point could be waited for (a Python env's worker that hangs).
+  py::register_exception<rlrun::Interrupted>(m, "Interrupted", PyExc_KeyboardInterrupt);
   m.def(
       "list_envs",
       [] {

@@ -27,6 +27,8 @@ class ScopedTrainingSignals {
   ~ScopedTrainingSignals() {
     sigaction(SIGINT, &old_int_, nullptr);
     sigaction(SIGTERM, &old_term_, nullptr);
+    // The outcome has been taken: a later wait (rlrun.make's worker) must not see this Ctrl-C.
+    clear_interrupts();
   }
   ScopedTrainingSignals(const ScopedTrainingSignals&) = delete;
   ScopedTrainingSignals& operator=(const ScopedTrainingSignals&) = delete;

@@ -1,113 +1,59 @@
-// No Python worker outlives rlrun: Ctrl-C (SIGINT to the whole foreground process group, as a
-// terminal sends it) stops the run cleanly and the workers with it; `kill -9` of rlrun takes
-// the workers down too (PR_SET_PDEATHSIG). The real binary, the real interpreter.
+// No Python worker outlives rlrun, and Ctrl-C works in every phase: while a worker starts or
+// hangs in __init__ (also when rlrun was started with SIGINT ignored, as a shell starts a
+// background job), during training (checkpoint, exit 130), while an env hangs in step() (one
+// Ctrl-C: rlrun stops once the env has not answered 5 s after it; two: at once); `kill -9` of
+// rlrun takes the workers down too (PR_SET_PDEATHSIG). The real binary, the real interpreter.
 #include <catch2/catch.hpp>
 
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
+#include "envs/child_processes.hpp"
 #include "envs/python_env_runner.hpp"
-#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 
 namespace {
 
-// "R", "S", "Z", ... of /proc/<pid>/stat, or "" when the process is gone.
-std::string process_state(pid_t pid, pid_t* parent = nullptr, std::string* name = nullptr) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  if (!std::getline(in, text)) return "";
-  const auto open = text.find('('), close = text.rfind(')');
-  if (name) *name = text.substr(open + 1, close - open - 1);
-  std::stringstream rest(text.substr(close + 2));
-  std::string state;
-  long ppid = 0;
-  rest >> state >> ppid;
-  if (parent) *parent = static_cast<pid_t>(ppid);
-  return state;
-}
+const std::string kBroken = "python:rlrun_test_envs.broken:";
 
-bool alive(pid_t pid) {
-  const std::string state = process_state(pid);
-  return !state.empty() && state != "Z" && state != "X";
-}
-
-std::vector<pid_t> python_children(pid_t parent) {
-  std::vector<pid_t> found;
-  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
-    const std::string name = entry.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    pid_t ppid = 0;
-    std::string comm;
-    const pid_t pid = std::stoi(name);
-    if (alive(pid) && !process_state(pid, &ppid, &comm).empty() && ppid == parent &&
-        comm.rfind("python", 0) == 0)
-      found.push_back(pid);
-  }
-  return found;
-}
-
-// Starts `rlrun train` on 4 Python envs, in a process group of its own (as a shell's job),
-// and waits until its 4 workers run. Returns rlrun's pid and the workers'.
+// Starts `rlrun train` on `n_envs` Python envs and waits until its workers run and `started`
+// is in its log. Returns rlrun's pid and the workers'.
 pid_t start_training(const std::string& dir, std::vector<pid_t>& workers,
                      const std::string& env_id = "python:rlrun_test_envs.cartpole:CartPolePort",
-                     const char* started = "total_timesteps") {
+                     const char* started = "total_timesteps", int n_envs = 4) {
   const std::string config = python_experiment(dir, "long", env_id, "id: PPO, n_steps: 64",
-                                               10000000, 4, ", max_episode_steps: 500");
+                                               10000000, n_envs, ", max_episode_steps: 500");
   const std::string log = dir + "/log.txt";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, STDOUT_FILENO);
-    dup2(fd, STDERR_FILENO);
-    setenv("PYTHONPATH", (kSourceDir + "/tests/python_envs").c_str(), 1);
-    execl(RLRUN_BINARY, RLRUN_BINARY, "train", config.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  setpgid(pid, pid);
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (std::chrono::steady_clock::now() < until) {
-    workers = python_children(pid);
-    if (workers.size() >= 4 && read_text(log).find(started) != std::string::npos)
-      break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  const pid_t pid = start_rlrun({"train", config}, log);
+  wait_until(
+      [&] {
+        workers = python_children(pid);
+        return static_cast<int>(workers.size()) >= n_envs &&
+               read_text(log).find(started) != std::string::npos;
+      },
+      60);
   return pid;
 }
 
-// Waits up to `seconds` for the child to exit; its wait status, or -1.
-int wait_exit(pid_t pid, double seconds) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  int status = 0;
-  while (std::chrono::steady_clock::now() < until) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return status;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, &status, 0);
-  return -1;
-}
-
-bool all_gone(const std::vector<pid_t>& pids, double seconds) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < until) {
-    bool any = false;
-    for (pid_t p : pids) any = any || alive(p);
-    if (!any) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
+// Waits until all `n` HangsInStep envs of the run hang in step() (each says so once).
+bool all_hanging(const std::string& log, int n) {
+  return wait_until(
+      [&] {
+        const std::string text = read_text(log);
+        int count = 0;
+        for (size_t at = text.find("hanging in step()"); at != std::string::npos;
+             at = text.find("hanging in step()", at + 1))
+          ++count;
+        return count >= n;
+      },
+      60);
 }
 
 }  // namespace
@@ -141,9 +87,9 @@ TEST_CASE("A second Ctrl-C stops rlrun while a Python env hangs in step()", "[py
   TempDir dir("python_hang");
   std::vector<pid_t> workers;
   const pid_t rlrun =
-      start_training(dir.str(), workers, "python:rlrun_test_envs.broken:HangsInStep", "training PPO");
+      start_training(dir.str(), workers, kBroken + "HangsInStep", "training PPO");
   REQUIRE(workers.size() == 4);
-  std::this_thread::sleep_for(std::chrono::seconds(2));  // every worker is stuck at step 5
+  REQUIRE(all_hanging(dir / "log.txt", 4));  // every worker is stuck at step 5
   kill(-rlrun, SIGINT);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   kill(-rlrun, SIGINT);
@@ -152,4 +98,68 @@ TEST_CASE("A second Ctrl-C stops rlrun while a Python env hangs in step()", "[py
   REQUIRE(status != -1);  // it stopped (wait_exit kills it after 30 s and returns -1)
   CHECK(read_text(dir / "log.txt").find("second Ctrl-C") != std::string::npos);
   CHECK(all_gone(workers, 10));
+}
+
+TEST_CASE("One Ctrl-C stops rlrun when a Python env hangs in step()", "[python]") {
+  // The first Ctrl-C waits for the step to end (training then writes its checkpoint); an env
+  // that has not answered 5 s later hangs: rlrun stops without one (before: it waited for ever).
+  TempDir dir("python_hang_one");
+  std::vector<pid_t> workers;
+  const pid_t rlrun =
+      start_training(dir.str(), workers, kBroken + "HangsInStep", "training PPO");
+  REQUIRE(workers.size() == 4);
+  REQUIRE(all_hanging(dir / "log.txt", 4));  // every worker is stuck at step 5
+  kill(-rlrun, SIGINT);
+  const int status = wait_exit(rlrun, 60);
+  const std::string log = read_text(dir / "log.txt");
+  INFO(log);
+  REQUIRE(status != -1);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(log.find("HangsInStep (Python worker pid") != std::string::npos);
+  CHECK(log.find("has not answered in step() 5 s after Ctrl-C") != std::string::npos);
+  CHECK(all_gone(workers, 10));
+}
+
+TEST_CASE("Ctrl-C stops rlrun while a Python env hangs in __init__", "[python]") {
+  TempDir dir("python_hang_init");
+  const std::string config =
+      python_experiment(dir.str(), "hang", kBroken + "HangsInInit", "id: PPO", 1000);
+
+  SECTION("train, started as a background job (SIGINT ignored), checking the experiment") {
+    // rlrun has not installed its handlers yet: Ctrl-C ends it as it ends any program (the
+    // shell reports 130); before, the SIGINT its parent ignored stayed ignored.
+    const pid_t rlrun = start_rlrun({"train", config}, dir / "log.txt", true);
+    std::vector<pid_t> workers;
+    REQUIRE(wait_until([&] { return !(workers = python_children(rlrun)).empty(); }, 30));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the worker is in __init__
+    kill(-rlrun, SIGINT);
+    const int status = wait_exit(rlrun, 30);
+    INFO(read_text(dir / "log.txt"));
+    REQUIRE(status != -1);
+    CHECK(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == SIGINT);
+    CHECK(all_gone(workers, 5));  // PR_SET_PDEATHSIG
+  }
+  SECTION("record, which handles Ctrl-C itself") {
+    // The first Ctrl-C was only counted (a request for the next safe point, which never came).
+    const pid_t rlrun = start_rlrun({"record", "--env", kBroken + "HangsInInit", "--policy",
+                                     "random", "--output", dir / "v.mp4", "--set",
+                                     "env.python=" + kPython},
+                                    dir / "log.txt");
+    std::vector<pid_t> workers;
+    REQUIRE(wait_until([&] { return !(workers = python_children(rlrun)).empty(); }, 30));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(-rlrun, SIGINT);
+    const int status = wait_exit(rlrun, 30);
+    const std::string log = read_text(dir / "log.txt");
+    INFO(log);
+    REQUIRE(status != -1);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 130);
+    CHECK(log.find("error: stopped (Ctrl-C) while waiting for " + kBroken +
+                   "HangsInInit (Python worker pid") != std::string::npos);
+    CHECK(log.find("to start") != std::string::npos);
+    CHECK(all_gone(workers, 5));
+  }
 }

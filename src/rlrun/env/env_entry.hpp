@@ -27,9 +27,11 @@ struct PolicyEntry {
 };
 
 // What the experiment (not the env's kwargs) decides about how an env is built: the
-// `env.python` interpreter of Python envs.
+// `env.python` interpreter of Python envs and the seconds its worker may take to start
+// (`env.startup_timeout`).
 struct EnvContext {
   std::string python = "python3";
+  double startup_timeout = 60.0;
 };
 
 struct EnvEntry {

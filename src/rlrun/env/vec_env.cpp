@@ -1,4 +1,5 @@
 #include "rlrun/env/vec_env.hpp"
+#include "rlrun/core/errors.hpp"
 #include "rlrun/core/state_dict.hpp"
 
 #include <algorithm>
@@ -108,8 +109,11 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
                                 std::to_string(actions.cols()));
   if (!split_.empty()) {
     // Every started step is finished, also when one copy fails: a copy left with a reply
-    // unread would read it as the answer to its next request. The first error is rethrown.
+    // unread would read it as the answer to its next request. The first error is rethrown. A
+    // copy that hung past a Ctrl-C (Interrupted, core/worker_wait.hpp) ends the run: the others
+    // are not waited for, each for its own grace period.
     std::exception_ptr error;
+    bool interrupted = false;
     int started = 0;
     try {
       for (; started < num_copies(); ++started) {
@@ -123,7 +127,7 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
     } catch (...) {
       error = std::current_exception();
     }
-    for (int c = 0; c < started; ++c) {
+    for (int c = 0; c < started && !interrupted; ++c) {
       try {
         const int first = first_slot_[c], agents = agents_[c];
         if (agents > 1) {
@@ -135,6 +139,9 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
           const StepResult r = split_[c]->finish_step(std::span<float>(obs_.col(first).data(), obs_dim_));
           if (!error) finish_copy(c, r);
         }
+      } catch (const Interrupted&) {
+        interrupted = true;
+        error = std::current_exception();
       } catch (...) {
         if (!error) error = std::current_exception();
       }

@@ -32,7 +32,7 @@ const EnvEntry& env_entry(const EnvSpec& spec, const Registry& registry) {
 EnvPtr make_registered_env(const EnvSpec& spec, const Registry& registry) {
   const EnvEntry& entry = env_entry(spec, registry);
   return entry.build(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs,
-                     EnvContext{spec.section.python.value});
+                     EnvContext{spec.section.python.value, spec.section.startup_timeout});
 }
 
 // TimeLimit, Monitor, the user's wrappers and the action adapter around a registered env.

@@ -75,6 +75,7 @@ struct EnvSectionConfig {
   std::optional<int> max_episode_steps;    // override the registered time limit
   bool auto_wrap = false;                  // add the action-space wrapper the algorithm needs
   ProgramPath python{"python3"};           // interpreter of python:/gymnasium: envs
+  double startup_timeout = 60.0;           // seconds their worker may take to build the env
   // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
   std::optional<std::vector<std::string>> info_keywords;
   NormalizeSetting normalize;              // SB3 VecNormalize (wrappers/vec_normalize.hpp)
@@ -89,6 +90,10 @@ struct EnvSectionConfig {
     v("python", python,
       "Python interpreter for python:/gymnasium: envs (a name on PATH or a path, e.g. a "
       "virtualenv's bin/python); the default python3 gives way to $RLRUN_PYTHON when set");
+    v("startup_timeout", startup_timeout,
+      "seconds a python:/gymnasium: env's worker may take to import its module and build the "
+      "env (its __init__) before rlrun stops it with an error",
+      in_range(0, 1e6).open_low());
     v("info_keywords", info_keywords,
       "info keys read at each episode's end: monitor.csv columns, rollout/<key> and eval/<key> "
       "means (SB3's Monitor info_keywords); null = the env's metrics and is_success, [] = none");

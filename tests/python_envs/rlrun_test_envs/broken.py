@@ -85,6 +85,25 @@ class FailsInInit:
 
 class HangsInStep(_Base):
     def go_wrong(self):
+        import sys
+        import time
+        print("HangsInStep: hanging in step()", file=sys.stderr, flush=True)  # tests wait for it
+        while True:
+            time.sleep(1)
+
+
+class HangsInInit:
+    """__init__ never returns (it waits for a server that never answers, or deadlocks)."""
+
+    def __init__(self, **kwargs):
         import time
         while True:
             time.sleep(1)
+
+
+class HugeDiscrete(_Base):
+    """Discrete(2**62) actions: no policy can have an output per value."""
+
+    def __init__(self):
+        super().__init__()
+        self.action_space = Discrete(2 ** 62)

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/envs/python/python_protocol.hpp"
@@ -127,8 +128,11 @@ void PythonEnv::park_idle(std::string key, std::unique_ptr<PythonWorker> worker,
   }
 }
 
-PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python)
-    : target_(std::move(target)), key_(python + '\n' + target_ + '\n' + kwargs_json) {
+PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
+                     double startup_timeout)
+    : target_(std::move(target)),
+      startup_timeout_(startup_timeout),
+      key_(python + '\n' + target_ + '\n' + kwargs_json) {
   // Keys every Python env declares up front: the Monitor writes is_success into
   // <i>.monitor.csv only for keys known when it is built (empty when the env never reports it).
   is_success_ = info_.add_key("is_success");
@@ -143,11 +147,11 @@ PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::str
   std::vector<std::byte> message(4 + text.size());
   std::memcpy(message.data(), &length, 4);
   std::memcpy(message.data() + 4, text.data(), text.size());
-  if (!worker_->write(message)) worker_gone("while starting");
+  if (!worker_->write(message, waiting("to start"))) worker_gone("while starting");
 }
 
 PythonEnv::~PythonEnv() {
-  if (worker_ && !broken_ && !was_reset_) {
+  if (worker_ && !broken_ && !was_reset_ && !worker_->hung()) {
     try {
       park_idle(key_, std::move(worker_), std::move(handshake_));
     } catch (...) {
@@ -156,13 +160,34 @@ PythonEnv::~PythonEnv() {
   }
 }
 
+WorkerWait PythonEnv::waiting(const char* what) const {
+  WorkerWait wait;
+  wait.who = target_ + " (Python worker pid " + std::to_string(worker_->pid()) + ")";
+  wait.what = what;
+  if (handshake_) return wait;
+  // Before the handshake: the interpreter imports the module and builds the env.
+  wait.starting = true;
+  wait.since = worker_->started();
+  wait.timeout_seconds = startup_timeout_;
+  std::ostringstream seconds;
+  seconds << startup_timeout_;
+  wait.timeout_message =
+      target_ + ": its Python worker (pid " + std::to_string(worker_->pid()) + ", " +
+      worker_->python() + ") has not finished starting within " + seconds.str() +
+      " s (env.startup_timeout), so it was stopped: importing the module or building the env "
+      "(its __init__) hangs or takes longer. Raise env.startup_timeout if it needs more time";
+  return wait;
+}
+
 void PythonEnv::ready() const {
   if (handshake_) return;
+  const WorkerWait starting = waiting("to start");
   uint32_t length = 0;
-  if (!worker_->read(std::as_writable_bytes(std::span(&length, 1)))) worker_gone("while starting");
+  if (!worker_->read(std::as_writable_bytes(std::span(&length, 1)), starting))
+    worker_gone("while starting");
   if (length > protocol::kMaxHandshakeBytes) fail("its worker sent a handshake of " + std::to_string(length) + " bytes");
   std::string text(length, '\0');
-  if (!worker_->read(std::as_writable_bytes(std::span(text.data(), text.size()))))
+  if (!worker_->read(std::as_writable_bytes(std::span(text.data(), text.size())), starting))
     worker_gone("while starting");
   json reply;
   try {
@@ -218,12 +243,14 @@ void PythonEnv::worker_gone(const char* during) const {
 }
 
 void PythonEnv::send_request() const {
-  if (!worker_->write(request_)) worker_gone("while sending a request");
+  worker_->set_awaiting_reply(true);
+  if (!worker_->write(request_, waiting("to take a request"))) worker_gone("while sending a request");
 }
 
 const std::vector<std::byte>& PythonEnv::receive(const char* during) const {
+  const WorkerWait wait = waiting(during);
   std::byte header[5];
-  if (!worker_->read(header)) worker_gone(during);
+  if (!worker_->read(header, wait)) worker_gone(during);
   uint32_t length = 0;
   std::memcpy(&length, header + 1, 4);
   const char status = static_cast<char>(header[0]);
@@ -231,7 +258,8 @@ const std::vector<std::byte>& PythonEnv::receive(const char* during) const {
   if ((status != protocol::kOk && status != protocol::kError) || length > limit)
     fail(std::string("its worker sent a malformed reply ") + during);
   reply_.resize(length);
-  if (!worker_->read(reply_)) worker_gone(during);
+  if (!worker_->read(reply_, wait)) worker_gone(during);
+  worker_->set_awaiting_reply(false);
   if (status == protocol::kError) {
     broken_ = true;
     std::string where = during;

@@ -7,7 +7,9 @@
 // workers run in parallel.
 //
 // The worker is started in the constructor and answers the handshake while the caller goes on
-// (make_vec_env starts all copies before it needs their spaces). Everything the env does wrong
+// (make_vec_env starts all copies before it needs their spaces); one that has not answered
+// within env.startup_timeout seconds (an __init__ that hangs) is stopped with an error naming
+// the env and that setting. Everything the env does wrong
 // (an exception, a crash, an observation that does not fit its space, NaN) ends the run with a
 // RuntimeFailure that names the env, the worker's pid, the step and episode, and carries the
 // Python traceback. A Python env cannot snapshot itself, so checkpoints hold the model only.
@@ -26,8 +28,11 @@ namespace rlrun {
 class PythonEnv : public Env, public SplitStep {
  public:
   // `target` is the env id ("python:module:Attr" or "gymnasium:ID"), `kwargs_json` a JSON
-  // object, `python` the interpreter (a name on PATH or a path).
-  PythonEnv(std::string target, std::string kwargs_json, const std::string& python);
+  // object, `python` the interpreter (a name on PATH or a path), `startup_timeout` the seconds
+  // its worker may take to import the module and build the env (env.startup_timeout).
+  PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
+            double startup_timeout = kDefaultStartupTimeout);
+  static constexpr double kDefaultStartupTimeout = 60.0;
   ~PythonEnv() override;
 
   const Space& observation_space() const override;
@@ -55,6 +60,8 @@ class PythonEnv : public Env, public SplitStep {
   void ready() const;
   [[noreturn]] void fail(const std::string& what) const;
   [[noreturn]] void worker_gone(const char* during) const;
+  // How to wait for the worker (core/worker_wait.hpp) `what` ("in step()").
+  WorkerWait waiting(const char* what) const;
   void send_request() const;
   // Reads a reply; on 'E' throws with the worker's text. Returns the body.
   const std::vector<std::byte>& receive(const char* during) const;
@@ -70,6 +77,7 @@ class PythonEnv : public Env, public SplitStep {
                         std::unique_ptr<Handshake> handshake);
 
   std::string target_;
+  double startup_timeout_;
   std::string key_;  // interpreter, target and kwargs: what the worker's env was built from
   mutable bool broken_ = false;  // the worker failed or sent something wrong: never reused
   mutable std::unique_ptr<PythonWorker> worker_;

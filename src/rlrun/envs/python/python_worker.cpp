@@ -1,8 +1,8 @@
 #include "rlrun/envs/python/python_worker.hpp"
 
+#include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
-#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,7 +25,6 @@ namespace rlrun {
 namespace {
 
 constexpr int kWorkerFd = 3;  // worker.py reads sys.argv[1]; rlrun always passes 3
-constexpr double kPollSeconds = 0.25;
 
 }  // namespace
 
@@ -37,32 +36,33 @@ PythonWorker::PythonWorker(const std::string& python, const std::string& script)
                          (python.find('/') == std::string::npos ? " on PATH" : "") +
                          ". Install python3 and numpy (Debian: apt install python3 "
                          "python3-numpy) or set env.python to your virtualenv's python");
+  started_ = std::chrono::steady_clock::now();
   const SpawnedWorker worker =
       spawn_worker({python_, "-c", script, std::to_string(kWorkerFd)}, kWorkerFd,
                    "a Python worker");
   pid_ = worker.pid;
   fd_ = worker.fd;
-  // recv wakes up every kPollSeconds when the worker is silent, so that a second Ctrl-C stops
-  // rlrun even while an env hangs (rlrun's SIGINT handler restarts system calls).
-  timeval timeout{};
-  timeout.tv_usec = static_cast<suseconds_t>(kPollSeconds * 1e6);
-  setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-}
-
-bool PythonWorker::waited_out(ssize_t n) const {
-  if (n >= 0 || (errno != EAGAIN && errno != EWOULDBLOCK)) return false;
-  if (interrupt_count() >= 2)
-    throw RuntimeFailure("stopped (a second Ctrl-C) while waiting for the Python worker (pid " +
-                         std::to_string(pid_) + ")");
-  return true;
 }
 
 PythonWorker::~PythonWorker() { stop(); }
 
-bool PythonWorker::write(std::span<const std::byte> data) {
+void PythonWorker::await(short events, const WorkerWait& wait) {
+  try {
+    wait_for_worker(fd_, events, wait);
+  } catch (...) {
+    hung_ = true;
+    throw;
+  }
+}
+
+bool PythonWorker::write(std::span<const std::byte> data, const WorkerWait& wait) {
   size_t done = 0;
   while (done < data.size()) {
-    const ssize_t n = send(fd_, data.data() + done, data.size() - done, MSG_NOSIGNAL);
+    const ssize_t n = send(fd_, data.data() + done, data.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT);
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+      await(POLLOUT, wait);  // the socket's buffer is full: the worker is not reading
+      continue;
+    }
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     done += static_cast<size_t>(n);
@@ -71,22 +71,25 @@ bool PythonWorker::write(std::span<const std::byte> data) {
 }
 
 // Buffered: a reply usually arrives in one piece, so one recv serves its header and body.
-bool PythonWorker::read(std::span<std::byte> data) {
+bool PythonWorker::read(std::span<std::byte> data, const WorkerWait& wait) {
   size_t done = 0;
   while (done < data.size()) {
     if (buffer_start_ == buffer_end_) {
       const size_t wanted = data.size() - done;
-      if (wanted >= buffer_.size()) {  // large (a frame): straight into place
-        const ssize_t n = recv(fd_, data.data() + done, wanted, 0);
-        if ((n < 0 && errno == EINTR) || waited_out(n)) continue;
-        if (n <= 0) return false;
+      const bool direct = wanted >= buffer_.size();  // large (a frame): straight into place
+      std::byte* into = direct ? data.data() + done : buffer_.data();
+      const ssize_t n = recv(fd_, into, direct ? wanted : buffer_.size(), MSG_DONTWAIT);
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+        // A first Ctrl-C: the trainer acts after the reply; a second one: await throws.
+        await(POLLIN, wait);
+        continue;
+      }
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return false;
+      if (direct) {
         done += static_cast<size_t>(n);
         continue;
       }
-      const ssize_t n = recv(fd_, buffer_.data(), buffer_.size(), 0);
-      // A first Ctrl-C: the trainer acts after the step; a second one: waited_out throws.
-      if ((n < 0 && errno == EINTR) || waited_out(n)) continue;
-      if (n <= 0) return false;
       buffer_start_ = 0;
       buffer_end_ = static_cast<size_t>(n);
     }
@@ -133,14 +136,18 @@ void PythonWorker::stop() {
     fd_ = -1;
     return;
   }
-  if (fd_ >= 0 && request_bytes_ > 0) {
+  // Before its handshake the worker is importing or building its env (maybe forever), a hung
+  // one reads nothing, and one in a step when Ctrl-C came may never finish it: none would act
+  // on a close request.
+  const bool graceful = !hung_ && request_bytes_ > 0 && !(awaiting_reply_ && interrupt_requested());
+  if (graceful && fd_ >= 0) {
     // Best effort: the worker closes its env (env.close()) and returns.
     std::vector<std::byte> request(request_bytes_, std::byte{0});
     request[0] = static_cast<std::byte>(python_protocol::kClose);
     (void)send(fd_, request.data(), request.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
   }
   if (fd_ >= 0) shutdown(fd_, SHUT_WR);
-  if (!wait_for_exit(2.0)) {
+  if (!graceful || !wait_for_exit(2.0)) {
     kill(pid_, SIGKILL);
     wait_for_exit(10.0);
   }

@@ -40,7 +40,7 @@ EnvEntry python_entry(const std::string& id, std::string description) {
   };
   entry.make_in_context = [id](const AnyConfig& kwargs, const EnvContext& context) -> EnvPtr {
     return std::make_unique<PythonEnv>(id, kwargs_json(kwargs.get<YAML::Node>()),
-                                       interpreter(context.python));
+                                       interpreter(context.python), context.startup_timeout);
   };
   entry.params = [] { return std::vector<FieldDoc>{}; };
   return entry;

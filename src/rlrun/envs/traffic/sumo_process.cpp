@@ -22,6 +22,8 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
+#include "rlrun/core/quoted_text.hpp"
+#include "rlrun/core/worker_wait.hpp"
 
 namespace rlrun {
 
@@ -102,9 +104,21 @@ SumoProcess::SumoProcess(const Options& options)
   }
   close(log_fd);
   // SUMO listens after loading the network (milliseconds); poll instead of libtraci's
-  // one-second retry sleep.
+  // one-second retry sleep, and for Ctrl-C (core/worker_wait.hpp: nothing to save yet).
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  WorkerWait starting;
+  starting.who = "SUMO (pid " + std::to_string(pid_) + ")";
+  starting.what = "to accept the TraCI connection";
+  starting.starting = true;
   while (true) {
+    try {
+      check_worker_wait(starting);
+    } catch (const Interrupted&) {
+      kill(pid_, SIGKILL);  // still loading: nothing of it to keep
+      waitpid(pid_, nullptr, 0);
+      pid_ = -1;
+      throw;
+    }
     try {
       libtraci::Simulation::init(port, 0, "localhost", label_);
       connected_ = true;

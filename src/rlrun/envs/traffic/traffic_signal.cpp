@@ -82,6 +82,8 @@ TrafficSignal::~TrafficSignal() {
 }
 
 void TrafficSignal::sumo_failed(const std::exception& e) const {
+  // A Ctrl-C while SUMO did not answer is no SUMO failure (core/worker_wait.hpp).
+  if (const auto* interrupted = dynamic_cast<const Interrupted*>(&e)) throw *interrupted;
   throw RuntimeFailure("TrafficSignal-v0: SUMO stopped at simulated time " +
                        std::to_string(sim_time_) + " s (" + e.what() +
                        "); the last lines of its output:\n" +

@@ -1,5 +1,6 @@
 #include "rlrun/envs/traffic_network/network_worker.hpp"
 
+#include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -13,7 +14,9 @@
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/worker_spawn.hpp"
+#include "rlrun/core/worker_wait.hpp"
 #include "rlrun/envs/traffic_network/worker_protocol.hpp"
 
 namespace rlrun::traffic {
@@ -42,7 +45,7 @@ NetworkWorker::NetworkWorker(const std::string& backend, const SumoLaunch& launc
   start.str(backend).str(launch.binary).strings(launch.inputs).str(std::to_string(launch.seed))
       .f64(launch.scale).strings(launch.extra_args);
   send(start.framed());
-  wire::Reader reply(answer());
+  wire::Reader reply(answer(true));
   sumo_pid_ = reply.i32();
 }
 
@@ -52,7 +55,7 @@ void NetworkWorker::stop() {
   if (fd_ >= 0) close(fd_);  // the worker reads the end, ends SUMO and exits
   fd_ = -1;
   if (worker_ <= 0) return;
-  for (int i = 0; i < 200; ++i) {  // 2 s for SUMO to close its files
+  for (int i = 0; i < 200 && !hung_; ++i) {  // 2 s for SUMO to close its files
     if (waitpid(worker_, nullptr, WNOHANG) == worker_) {
       worker_ = -1;
       return;
@@ -69,9 +72,21 @@ void NetworkWorker::send(const std::vector<char>& framed) {
     throw RuntimeFailure("the SUMO worker (pid " + std::to_string(worker_) + ") has gone");
 }
 
-wire::Reader NetworkWorker::answer() {
+wire::Reader NetworkWorker::answer(bool starting) {
+  WorkerWait wait;
+  wait.who = "the SUMO worker (pid " + std::to_string(worker_) + ")";
+  wait.what = starting ? "to start SUMO" : "in a simulation step";
+  wait.starting = starting;
+  const auto poll_for_interrupts = [&] {
+    try {
+      wait_for_worker(fd_, POLLIN, wait);
+    } catch (...) {
+      hung_ = true;
+      throw;
+    }
+  };
   std::vector<char> body;
-  if (fd_ < 0 || !wire::receive_message(fd_, body)) {
+  if (fd_ < 0 || !wire::receive_message(fd_, body, poll_for_interrupts)) {
     int status = 0;
     std::string how = "ended";
     // The socket closes while the worker exits: give the kernel a moment to report how.

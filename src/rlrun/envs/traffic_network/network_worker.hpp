@@ -7,7 +7,8 @@
 // The worker is started with fork + exec (the child makes only system calls before exec:
 // rlrun's other threads may hold locks), dies with rlrun (PR_SET_PDEATHSIG) and ends when this
 // object closes its socket. A worker or SUMO that dies is a RuntimeFailure with SUMO's last
-// output, never a hang.
+// output, never a hang; every wait for an answer polls (core/worker_wait.hpp), so Ctrl-C stops
+// rlrun while SUMO starts or while a worker hangs.
 #include <sys/types.h>
 
 #include <memory>
@@ -46,14 +47,16 @@ class NetworkWorker : public NetworkConnection {
 
  private:
   void send(const std::vector<char>& framed);
-  // The answer to the last request that has one; throws RuntimeFailure on kError.
-  wire::Reader answer();
+  // The answer to the last request that has one; throws RuntimeFailure on kError, Interrupted
+  // (worker_wait.hpp) on Ctrl-C. `starting`: the answer to kStart (SUMO loads its network).
+  wire::Reader answer(bool starting = false);
   void stop();
 
   int fd_ = -1;
   pid_t worker_ = -1;
   pid_t sumo_pid_ = -1;
   bool finished_ = false;
+  bool hung_ = false;  // a wait for it was interrupted: killed at once, not given 2 s
   std::string tail_;  // SUMO's last output, from the worker's last error
 };
 

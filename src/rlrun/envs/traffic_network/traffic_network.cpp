@@ -157,6 +157,8 @@ void TrafficNetwork::find_neighbours(const std::vector<TrafficLightProgram>& lig
 }
 
 void TrafficNetwork::sumo_failed(const std::exception& e) const {
+  // A Ctrl-C while the SUMO worker did not answer is no SUMO failure (core/worker_wait.hpp).
+  if (const auto* interrupted = dynamic_cast<const Interrupted*>(&e)) throw *interrupted;
   throw RuntimeFailure("TrafficNetwork-v0: SUMO stopped at simulated time " +
                        std::to_string(reading_.time) + " s (" + e.what() +
                        "); the last lines of its output:\n" +

@@ -49,10 +49,14 @@ bool send_message(int fd, const std::vector<char>& framed) {
 
 namespace {
 
-bool receive_exact(int fd, char* data, size_t size) {
+bool receive_exact(int fd, char* data, size_t size, const std::function<void()>& wait) {
   size_t done = 0;
   while (done < size) {
-    const ssize_t n = recv(fd, data + done, size - done, 0);
+    const ssize_t n = recv(fd, data + done, size - done, wait ? MSG_DONTWAIT : 0);
+    if (n < 0 && wait && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+      wait();
+      continue;
+    }
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     done += static_cast<size_t>(n);
@@ -62,13 +66,13 @@ bool receive_exact(int fd, char* data, size_t size) {
 
 }  // namespace
 
-bool receive_message(int fd, std::vector<char>& body) {
+bool receive_message(int fd, std::vector<char>& body, const std::function<void()>& wait) {
   uint32_t n = 0;
-  if (!receive_exact(fd, reinterpret_cast<char*>(&n), 4)) return false;
+  if (!receive_exact(fd, reinterpret_cast<char*>(&n), 4, wait)) return false;
   // A reading of a city map with every vehicle is a few MB; more is a broken stream.
   if (n > (1u << 30)) return false;
   body.resize(n);
-  return receive_exact(fd, body.data(), n);
+  return receive_exact(fd, body.data(), n, wait);
 }
 
 }  // namespace rlrun::traffic::wire

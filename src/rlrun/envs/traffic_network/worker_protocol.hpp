@@ -14,6 +14,7 @@
 // threads may hold locks), and it trusts its parent: this is not a network protocol.
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -105,8 +106,10 @@ class Reader {
 void write_reading(Writer& w, const NetworkReading& r);
 void read_reading(Reader& r, NetworkReading& out);
 
-// Whole messages over a stream socket; false when the other side has gone.
+// Whole messages over a stream socket; false when the other side has gone. With `wait`,
+// receive_message calls it whenever nothing has arrived (rlrun polls for Ctrl-C there,
+// core/worker_wait.hpp) instead of blocking in recv.
 bool send_message(int fd, const std::vector<char>& framed);
-bool receive_message(int fd, std::vector<char>& body);
+bool receive_message(int fd, std::vector<char>& body, const std::function<void()>& wait = {});
 
 }  // namespace rlrun::traffic::wire
