@@ -15,7 +15,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev                  # logging
   catch2                                    # tests (v2.13)
   libzip-dev zip unzip                      # model files are zips
-  zlib1g-dev                                # tests write hostile zips (tests/core/crafted_zip.hpp)
+  zlib1g-dev                                # gzip SUMO inputs checked (sumo_xml_guard); tests' hostile zips
   libbullet-dev                             # 3D grasp task
   libbox2d-dev                              # LunarLander, BipedalWalker (Gymnasium's Box2D tasks)
   libpugixml-dev                            # SUMO network files read before SUMO runs (traffic_network)

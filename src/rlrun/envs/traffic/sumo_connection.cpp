@@ -9,6 +9,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/shipped_data.hpp"
+#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
 
 namespace rlrun {
 
@@ -20,8 +21,17 @@ std::vector<std::string> sumo_arguments(const SumoLaunch& launch) {
                                 "--no-step-log", "true",
                                 "--no-warnings", "true",
                                 "--duration-log.disable", "true"});
+  // No XML Schema is loaded: a scenario file may name any local .xsd, which Xerces reads with
+  // its entities (docs/security.md, "SUMO scenarios"); the command line outranks the .sumocfg.
+  // Nor is SUMO_HOME needed then (SUMO looks for its own schemas there, or on the web).
+  args.insert(args.end(), {"--xml-validation", "never", "--xml-validation.net", "never",
+                           "--xml-validation.routes", "never"});
   args.insert(args.end(), launch.extra_args.begin(), launch.extra_args.end());
   return args;
+}
+
+void check_sumo_launch(const SumoLaunch& launch) {
+  check_sumo_command_inputs(sumo_arguments(launch));
 }
 
 namespace {
@@ -81,6 +91,7 @@ void* libsumo_module_symbol(const char* name) {
 }
 
 std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const SumoLaunch& launch) {
+  check_sumo_launch(launch);
   if (backend == "traci") return start_traci_connection(launch);
   if (backend != "libsumo")
     throw RuntimeFailure("unknown SUMO backend '" + backend + "' (traci or libsumo)");

@@ -40,6 +40,9 @@ struct SumoLaunch {
 
 // SUMO's command line for a launch, without the program and without --remote-port.
 std::vector<std::string> sumo_arguments(const SumoLaunch& launch);
+// Refuses a launch whose XML inputs declare a DOCTYPE or entities (sumo_xml_guard.hpp);
+// start_sumo and start_network_sumo call it before SUMO reads anything.
+void check_sumo_launch(const SumoLaunch& launch);
 
 struct SumoLaneShape {
   std::string id;

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -163,13 +164,22 @@ void SumoProcess::stop() {
   pid_ = -1;
 }
 
+// The log's last 64 KiB, each line cut to 200 characters: SUMO quotes its inputs in its
+// messages, and a crafted input can make one line of them megabytes long.
 std::string SumoProcess::output_tail(int lines) const {
-  std::ifstream in(log_path_);
+  constexpr std::streamoff kTailBytes = 64 << 10;
+  std::ifstream in(log_path_, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : 0;
+  std::string text(static_cast<size_t>(std::min(size, kTailBytes)), '\0');
+  in.seekg(size - static_cast<std::streamoff>(text.size()));
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   std::vector<std::string> all;
-  for (std::string line; std::getline(in, line);) all.push_back(line);
+  std::stringstream stream(text);
+  for (std::string line; std::getline(stream, line);) all.push_back(line);
+  if (size > kTailBytes && !all.empty()) all.front().insert(0, "...");  // a line's end
   std::string tail;
   for (size_t i = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0; i < all.size(); ++i)
-    tail += "  " + all[i] + "\n";
+    tail += "  " + quoted_text(all[i]) + "\n";
   return tail.empty() ? "  (no output)\n" : tail;
 }
 

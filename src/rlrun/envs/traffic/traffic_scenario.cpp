@@ -5,6 +5,7 @@
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/shipped_data.hpp"
+#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
 
 namespace rlrun {
 
@@ -31,6 +32,7 @@ TrafficScenario load_traffic_scenario(const std::string& path) {
   if (fs::path(file).extension() == ".sumocfg") {
     scenario.name = fs::path(file).stem().string();
     scenario.sumocfg = scenario.sumocfg_path = file;
+    check_sumo_config(file);  // no DOCTYPE in it or the files it names (sumo_xml_guard.hpp)
     return scenario;
   }
   const ConfigNode root = ConfigNode::load_file(file);
@@ -42,6 +44,7 @@ TrafficScenario load_traffic_scenario(const std::string& path) {
   if (!fs::exists(sumocfg))
     root.child("sumocfg").fail(sumocfg.string() + " does not exist");
   scenario.sumocfg_path = sumocfg.lexically_normal().string();
+  check_sumo_config(scenario.sumocfg_path);
   return scenario;
 }
 

@@ -6,12 +6,14 @@
 #include <string>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
 
 namespace rlrun::traffic {
 
 // The <net> element of `path`, parsed into `doc`. Throws ConfigError naming the file when it
-// cannot be read or is not a SUMO network.
+// cannot be read, is not a SUMO network, or declares a DOCTYPE (sumo_xml_guard.hpp).
 inline pugi::xml_node load_net_file(const std::string& path, pugi::xml_document& doc) {
+  check_sumo_xml(path);
   const pugi::xml_parse_result parsed = doc.load_file(path.c_str());
   if (!parsed)
     throw ConfigError(path + ": not a readable SUMO network (" + parsed.description() +

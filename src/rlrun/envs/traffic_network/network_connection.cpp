@@ -6,6 +6,7 @@ namespace rlrun::traffic {
 
 std::unique_ptr<NetworkConnection> start_network_sumo(const std::string& backend,
                                                       const SumoLaunch& launch) {
+  check_sumo_launch(launch);
   if (backend == "traci") return start_network_traci(launch);
   if (backend != "libsumo")
     throw RuntimeFailure("unknown SUMO backend '" + backend + "' (traci or libsumo)");

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/envs/traffic_network/net_file.hpp"
 
 namespace rlrun::traffic {
@@ -28,7 +29,7 @@ std::vector<std::array<double, 2>> parse_shape(const char* text) {
 
 const LaneGeometry& NetworkGeometry::lane(const std::string& id) const {
   const auto it = lane_index.find(id);
-  if (it == lane_index.end()) throw ConfigError("the network has no lane '" + id + "'");
+  if (it == lane_index.end()) throw ConfigError("the network has no lane '" + quoted_text(id) + "'");
   return lanes[it->second];
 }
 

@@ -3,20 +3,26 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/shipped_data.hpp"
+#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
 
 namespace rlrun::traffic {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// check_routes_fit reads a route file whole; randomTrips' files for a city-day are ~100 MB.
+constexpr size_t kMaxRouteFileBytes = size_t{1} << 30;
 
 std::string number_text(double v) {
   std::ostringstream out;
@@ -106,15 +112,18 @@ NetworkScenario load_network_scenario(const std::string& path) {
         root.fail("net_file: missing (the SUMO network), or sumocfg: a SUMO configuration");
       s.files.net = resolved(base, s.net_file);
       if (!fs::is_regular_file(s.files.net)) root.child("net_file").fail(s.files.net + " does not exist");
+      check_sumo_xml(s.files.net);
       for (size_t i = 0; i < s.route_files.size(); ++i) {
         s.files.routes.push_back(resolved(base, s.route_files[i]));
         if (!fs::is_regular_file(s.files.routes.back()))
           root.child("route_files").fail(s.files.routes.back() + " does not exist");
+        check_sumo_xml(s.files.routes.back());
       }
       for (const std::string& f : s.additional_files) {
         s.files.additionals.push_back(resolved(base, f));
         if (!fs::is_regular_file(s.files.additionals.back()))
           root.child("additional_files").fail(s.files.additionals.back() + " does not exist");
+        check_sumo_xml(s.files.additionals.back());
       }
     }
     if (!(s.scale > 0)) root.child("scale").fail("must be > 0");
@@ -164,10 +173,7 @@ void check_routes_fit(const std::vector<std::string>& route_files,
                       const std::map<std::string, std::vector<std::string>>& successors) {
   const std::set<std::string> known(edges.begin(), edges.end());
   for (const std::string& file : route_files) {
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    const std::string text = read_sumo_xml(file, kMaxRouteFileBytes);
     pugi::xml_document doc;
     const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size());
     if (!parsed)
@@ -220,13 +226,13 @@ void check_routes_fit(const std::vector<std::string>& route_files,
     doc.traverse(walker);
     if (!walker.gap.empty())
       throw ConfigError(file + ":" + std::to_string(line_of(text, walker.offset)) +
-                        ": a <route> whose " + walker.gap +
+                        ": a <route> whose " + quoted_text(walker.gap, 300) +
                         " in the network: the route file does not fit the network");
     if (!walker.unknown.empty())
       throw ConfigError(file + ":" + std::to_string(line_of(text, walker.offset)) + ": " +
-                        walker.where + " names edge '" + walker.unknown +
+                        walker.where + " names edge '" + quoted_text(walker.unknown) +
                         "', which the network does not have: the route file does not fit the "
-                        "network" + did_you_mean(walker.unknown, edges));
+                        "network" + quoted_text(did_you_mean(walker.unknown, edges), 300));
   }
 }
 

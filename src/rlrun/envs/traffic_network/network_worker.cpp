@@ -109,7 +109,7 @@ wire::Reader NetworkWorker::answer(bool starting) {
   const std::string message = reader.str();
   const size_t line = message.find('\n');
   tail_ = line == std::string::npos ? std::string() : message.substr(line + 1);
-  throw RuntimeFailure(line == std::string::npos ? message : message.substr(0, line));
+  throw RuntimeFailure(quoted_text(line == std::string::npos ? message : message.substr(0, line), 500));
 }
 
 void NetworkWorker::subscribe_lanes(const std::vector<std::string>& lanes) {

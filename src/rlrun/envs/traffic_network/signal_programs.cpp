@@ -5,6 +5,7 @@
 
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/envs/traffic_network/net_file.hpp"
 
 namespace rlrun::traffic {
@@ -53,7 +54,9 @@ std::vector<TrafficLightProgram> read_signal_programs(const std::string& net_fil
   }
   for (TrafficLightProgram& light : lights) {
     for (const auto& [link, lanes] : links[light.id]) {
-      if (link < 0) throw ConfigError(net_file + ": light " + light.id + " has a connection without a linkIndex");
+      if (link < 0)
+        throw ConfigError(net_file + ": light " + quoted_text(light.id) +
+                          " has a connection without a linkIndex");
       light.num_links = std::max(light.num_links, link + 1);
       add_unique(light.incoming_lanes, lanes.first);
       add_unique(light.outgoing_lanes, lanes.second);
@@ -61,8 +64,9 @@ std::vector<TrafficLightProgram> read_signal_programs(const std::string& net_fil
     }
     for (const SignalPhase& phase : light.phases)
       if (static_cast<int>(phase.state.size()) < light.num_links)
-        throw ConfigError(net_file + ": light " + light.id + " has a phase state '" + phase.state +
-                          "' for " + std::to_string(light.num_links) + " controlled links");
+        throw ConfigError(net_file + ": light " + quoted_text(light.id) + " has a phase state '" +
+                          quoted_text(phase.state) + "' for " + std::to_string(light.num_links) +
+                          " controlled links");
   }
   return lights;
 }
@@ -81,10 +85,10 @@ std::vector<TrafficLightProgram> select_lights(const std::vector<TrafficLightPro
     const auto it = std::find(ids.begin(), ids.end(), id);
     if (it == ids.end()) {
       std::string all;
-      for (size_t k = 0; k < ids.size() && k < 20; ++k) all += (k ? ", " : "") + ids[k];
+      for (size_t k = 0; k < ids.size() && k < 20; ++k) all += (k ? ", " : "") + quoted_text(ids[k], 60);
       if (ids.size() > 20) all += ", ...";
       throw ConfigError("ts_ids: '" + id + "' is not a traffic light of " + net_file +
-                        did_you_mean(id, ids) + " (its lights: " + all + ")");
+                        quoted_text(did_you_mean(id, ids), 300) + " (its lights: " + all + ")");
     }
     out.push_back(lights[static_cast<size_t>(it - ids.begin())]);
   }
@@ -96,7 +100,7 @@ SignalControl derive_signal_control(const TrafficLightProgram& light) {
   for (const SignalPhase& phase : light.phases)
     if (is_green(phase.state)) control.green_states.push_back(phase.state);
   if (control.green_states.empty())
-    throw ConfigError("traffic light " + light.id + ": its program has no green phase, so an agent "
+    throw ConfigError("traffic light " + quoted_text(light.id) + ": its program has no green phase, so an agent "
                       "has nothing to choose (leave it out of ts_ids)");
   const size_t n = control.green_states.size();
   control.yellow_states.assign(n, std::vector<std::string>(n));

@@ -207,10 +207,8 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   launch.inputs = scenario_arguments(scenario, more_additionals);
   launch.seed = seed;
   launch.scale = config_.scale * scenario_.scale;
-  // No SUMO_HOME needed: a file naming an XML schema is not validated against it (SUMO would
-  // look for the schema under SUMO_HOME, or on the web). sumo-rl's waiting-time memory.
-  launch.extra_args = {"--tripinfo-output", tripinfo_path_, "--xml-validation", "never",
-                       "--xml-validation.routes", "never", "--waiting-time-memory", "1000"};
+  // sumo-rl's waiting-time memory (sumo_arguments turns XML validation off).
+  launch.extra_args = {"--tripinfo-output", tripinfo_path_, "--waiting-time-memory", "1000"};
   worker_ = nullptr;
   if (config_.own_process) {
     auto worker = std::make_unique<NetworkWorker>(config_.backend, launch);
