@@ -88,6 +88,14 @@ void write_csv(const std::string& path, const std::vector<std::pair<std::string,
   file.close();
 }
 
+// The files written after the episodes (--csv, --trajectory) can be written: a bad path fails
+// before the first episode, not after the last.
+template <class Options>
+void check_outputs(const Options& o) {
+  if (!o.csv.empty()) check_writable_file(o.csv);
+  if (!o.trajectory.empty()) check_writable_file(o.trajectory);
+}
+
 // The command line's settings for a named policy (--green-time for the traffic baseline).
 template <class Options>
 PolicyOptions policy_options(const Options& o) {
@@ -112,6 +120,7 @@ int evaluate_without_model(const Options& o, Registry& registry) {
   if (o.env_id.empty() == o.config.empty())
     throw UsageError("--policy " + o.policy + " needs exactly one of --env ID or --config CFG");
   if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
+  check_outputs(o);
   EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
                                            registry, "", unix_time_now())
                                 : env_by_id(o.env_id, registry, o.overrides);
@@ -167,6 +176,7 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
 }
 
 int evaluate_model(const EvalOptions& o, Registry& registry) {
+  check_outputs(o);
   // Normalisation statistics frozen; tensors read within the config's budget.
   const LoadedModel loaded = load_model(o.model, registry, o.overrides);
   const ModelFile& model = loaded.file;

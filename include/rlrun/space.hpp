@@ -42,6 +42,11 @@ inline const char* space_kind_name(SpaceKind kind) {
   return "?";
 }
 
+// The most values a Discrete space (or one entry of a MultiDiscrete) may have: every sample is
+// a float32, which holds integers exactly up to 2^24, and a policy gives a Discrete action one
+// output per value (SB3's Categorical) and a Discrete observation one input per value (one-hot).
+inline constexpr int64_t kMaxDiscreteValues = int64_t{1} << 24;
+
 class Space {
  public:
   Space() = default;
@@ -70,6 +75,10 @@ class Space {
   // Discrete(n, start): values start, ..., start + n - 1.
   static Space discrete(int64_t n, int64_t start = 0) {
     if (n <= 0) throw std::invalid_argument("Space::discrete: n must be positive");
+    if (n > kMaxDiscreteValues || start < -kMaxDiscreteValues ||
+        start > kMaxDiscreteValues - n)
+      throw std::invalid_argument(too_many_values("Discrete(" + std::to_string(n) +
+                                                  (start ? ", start=" + std::to_string(start) : "") + ")"));
     Space s;
     s.kind_ = SpaceKind::kDiscrete;
     s.n_ = n;
@@ -78,8 +87,11 @@ class Space {
   }
   static Space multi_discrete(std::vector<int64_t> nvec) {
     if (nvec.empty()) throw std::invalid_argument("Space::multi_discrete: nvec is empty");
-    for (auto n : nvec)
+    for (auto n : nvec) {
       if (n <= 0) throw std::invalid_argument("Space::multi_discrete: entries must be positive");
+      if (n > kMaxDiscreteValues)
+        throw std::invalid_argument(too_many_values("a MultiDiscrete entry of " + std::to_string(n)));
+    }
     Space s;
     s.kind_ = SpaceKind::kMultiDiscrete;
     s.shape_ = {static_cast<int>(nvec.size())};
@@ -254,6 +266,14 @@ class Space {
   }
 
   bool operator==(const Space& other) const = default;
+
+  // Why a Discrete space this large cannot be learnt here.
+  static std::string too_many_values(const std::string& what) {
+    return what + " has too many values: rlrun gives a Discrete action one policy output per "
+           "value and a Discrete observation a one-hot input of that many floats, and holds the "
+           "value in a float32; at most " + std::to_string(kMaxDiscreteValues) +
+           " (2^24) values, from -2^24 to 2^24";
+  }
 
  private:
   static int64_t product(const std::vector<int>& shape) {

@@ -95,3 +95,11 @@ TEST_CASE("A Python env whose __init__ hangs is stopped after env.startup_timeou
                             "(env.startup_timeout)", "Raise env.startup_timeout"}},
                        ", startup_timeout: 1");
 }
+
+TEST_CASE("A Python env's Discrete space too large for a policy is refused at its creation",
+          "[python]") {
+  // Was "layer sizes must be positive, got 0" (2^62 cast to int) when the network was built.
+  check_training_fails(kBroken + "HugeDiscrete",
+                       {2, {"HugeDiscrete", "its action_space: Discrete(4611686018427387904) has "
+                            "too many values", "at most 16777216 (2^24)"}});
+}

@@ -182,3 +182,15 @@ TEST_CASE("Text quoted from a SUMO input is one short line", "[traffic]") {
     CHECK(r.output.size() < 5000);
   }
 }
+
+TEST_CASE("A .sumocfg <time> value that is not a time is named with its file", "[traffic]") {
+  TempDir dir("sumo_bad_begin");
+  const std::string cfg = write(dir / "abc.sumocfg", sumocfg(kSingle + "routes.rou.xml", "abc"));
+  const auto r = run_command(std::string(RLRUN_BINARY) +
+                             " eval --env TrafficNetwork-v0 --policy fixed-time --episodes 1 "
+                             "--set env.kwargs.scenario=" + cfg);
+  INFO(r.output);
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find(cfg + ": <time><begin value=\"abc\">: not a time") != std::string::npos);
+  CHECK(r.output.find("stod") == std::string::npos);  // was all it said: "error: stod"
+}

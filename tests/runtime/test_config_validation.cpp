@@ -90,6 +90,13 @@ TEST_CASE("validation: values SB3 or sense refuse", "[cli][config]") {
       {ppo + " --set run.name=/tmp/x", "run.name: must be a relative name"},
       {ppo + " --set 'run.name=\"nul\\0byte\"'", "run.name: must not contain control characters"},
       {ppo + " --set algo.gamma=.nan", "NaN is not a setting"},
+      // Infinity as NaN, also where no range would catch it (Pendulum's gravity g has none).
+      {kConfigs + "/pendulum_ppo.yaml --timesteps 64 --set env.kwargs.g=.inf",
+       "--set env.kwargs.g=.inf: env.kwargs.g: expected a finite number, got '.inf' (infinity is "
+       "not a setting)"},
+      {ppo + " --timesteps 64 --set algo.learning_rate=inf",
+       "algo.learning_rate: expected a finite number or lin_<number>, got 'inf'"},
+      {ppo + " --timesteps 64 --set env.startup_timeout=0", "env.startup_timeout: must be in (0, 1000000]"},
       {ppo + " --set run.seed=-1", "run.seed: expected a non-negative integer"},
       {ppo + " --set video.freq=1000 --set video.width=100000 --set video.height=100000",
        "video.width: must be in [0, 4096], got 100000"},

@@ -194,6 +194,27 @@ TEST_CASE("eval --csv on a full disk: exit 1 naming the file and ENOSPC", "[disk
   CHECK(fs::is_character_file("/dev/full"));  // written to, never replaced
 }
 
+TEST_CASE("eval --csv / --trajectory that cannot be written fail before the first episode",
+          "[disk][cli]") {
+  // It used to fail only after all episodes, which a long evaluation wastes.
+  for (const char* option : {"--csv", "--trajectory"}) {
+    const auto r = run_rlrun(std::string("eval --env CartPole-v1 --policy random --episodes 3 ") +
+                             option + " /proc/x/y.csv");
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK(contains(r.output, "cannot write /proc/x/y.csv: No such file or directory (ENOENT)"));
+    CHECK_FALSE(contains(r.output, "mean_reward"));  // no episode ran
+  }
+  TempDir dir("eval_csv_check");
+  const std::string existing = dir / "old.csv";
+  std::ofstream(existing) << "kept\n";
+  check_writable_file(existing);  // checked without truncating it
+  CHECK(contains(read_text(existing), "kept"));
+  check_writable_file(dir / "new/new.csv");  // its directory made, the file not left behind
+  CHECK(fs::is_directory(dir / "new"));
+  CHECK_FALSE(fs::exists(dir / "new/new.csv"));
+}
+
 TEST_CASE("train on a disk that fills up: exit 1, ENOSPC and the file named, checkpoint intact",
           "[disk][cli]") {
   TempDir dir("train_disk_full");

@@ -1,10 +1,12 @@
 #include "rlrun/core/checked_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <utility>
 
 #include "rlrun/core/errors.hpp"
@@ -16,6 +18,20 @@ std::string describe_errno(int error) {
   // glibc >= 2.32 names the constant; it is what people search for.
   if (const char* name = strerrorname_np(error)) text += std::string(" (") + name + ")";
   return text;
+}
+
+void check_writable_file(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // as write_csv does
+  struct stat st {};
+  const bool exists = ::stat(path.c_str(), &st) == 0;
+  if (exists && S_ISDIR(st.st_mode)) throw RuntimeFailure("cannot write " + path + ": it is a directory");
+  if (exists && !S_ISREG(st.st_mode)) return;
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | (exists ? 0 : O_CREAT | O_EXCL), 0666);
+  if (fd < 0) throw RuntimeFailure("cannot write " + path + ": " + describe_errno(errno));
+  ::close(fd);
+  if (!exists) ::unlink(path.c_str());
 }
 
 CheckedFile::CheckedFile(std::string path, Mode mode) : path_(std::move(path)) {

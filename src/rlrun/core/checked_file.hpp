@@ -14,6 +14,13 @@ namespace rlrun {
 // strerror text and the errno's name: "No space left on device (ENOSPC)".
 std::string describe_errno(int error);
 
+// For a file written at the end of a command (eval --csv): fails now, with the RuntimeFailure
+// CheckedFile would give then ("cannot write /proc/x/y.csv: No such file or directory"), when
+// `path` cannot be opened for writing. Its directory is made as the writer would; an existing
+// file keeps its content (opened without O_TRUNC), a new one is removed again; a FIFO or device
+// (/dev/stdout) is left to the write.
+void check_writable_file(const std::string& path);
+
 class CheckedFile {
  public:
   enum class Mode { kTruncate, kAppend };

@@ -307,17 +307,19 @@ double ConfigNode::as_double() const {
   if (!is_scalar()) fail("expected a number");
   const std::string text = strip_digit_separators(node_.Scalar());
   // YAML 1.1/1.2 spell infinity .inf / -.inf (any case); std::stod knows inf and infinity.
+  // Neither is a setting, as NaN is not: every number rlrun takes is finite (a gravity of
+  // .inf made Pendulum's episodes NaN), and a bound that may be open is written as null.
   std::string lower = text;
   std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-  if (lower == ".inf" || lower == "+.inf") return std::numeric_limits<double>::infinity();
-  if (lower == "-.inf") return -std::numeric_limits<double>::infinity();
   if (lower.find("nan") != std::string::npos)
     fail("expected a number, got '" + node_.Scalar() + "' (NaN is not a setting)");
+  if (lower.find("inf") != std::string::npos)
+    fail("expected a finite number, got '" + node_.Scalar() + "' (infinity is not a setting)");
   bool out_of_range = false;
   try {
     size_t used = 0;
     const double v = std::stod(text, &used);
-    if (used == text.size()) return v;
+    if (used == text.size() && std::isfinite(v)) return v;
   } catch (const std::out_of_range&) {
     out_of_range = true;
   } catch (const std::exception&) {

@@ -1,6 +1,7 @@
 #include "rlrun/core/schedule.hpp"
 
 #include "rlrun/core/float_format.hpp"
+#include <cmath>
 #include <stdexcept>
 
 namespace rlrun {
@@ -16,6 +17,8 @@ double parse_number(const std::string& text) {
   }
   if (used == 0 || used != text.size())
     throw std::invalid_argument("expected a number or lin_<number>, got '" + text + "'");
+  if (!std::isfinite(v))
+    throw std::invalid_argument("expected a finite number or lin_<number>, got '" + text + "'");
   return v;
 }
 

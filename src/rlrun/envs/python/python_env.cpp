@@ -34,6 +34,15 @@ float json_bound(const json& v) {
   return static_cast<float>(v.get<double>());
 }
 
+// A count of a Discrete or MultiDiscrete space. Python's ints have no bound: one beyond int64
+// arrives as a float or an unsigned number, and is refused as written.
+int64_t discrete_count(const json& v, const std::string& space) {
+  if (v.is_number_integer() &&
+      !(v.is_number_unsigned() && v.get<uint64_t>() > uint64_t{std::numeric_limits<int64_t>::max()}))
+    return v.get<int64_t>();
+  throw std::invalid_argument(Space::too_many_values(space + " of " + v.dump()));
+}
+
 // A space as worker.py describes it (python_protocol.hpp). Box dtypes other than float32
 // become float32 observations and are converted back by the worker for actions.
 Space space_from_json(const json& s) {
@@ -44,8 +53,15 @@ Space space_from_json(const json& s) {
     for (const json& v : s.at("high")) high.push_back(json_bound(v));
     return Space::box(std::move(low), std::move(high), s.at("shape").get<std::vector<int>>());
   }
-  if (kind == "Discrete") return Space::discrete(s.at("n").get<int64_t>(), s.value("start", 0));
-  if (kind == "MultiDiscrete") return Space::multi_discrete(s.at("nvec").get<std::vector<int64_t>>());
+  if (kind == "Discrete") {
+    const int64_t n = discrete_count(s.at("n"), "a Discrete space");
+    return Space::discrete(n, discrete_count(s.value("start", json(0)), "a Discrete start"));
+  }
+  if (kind == "MultiDiscrete") {
+    std::vector<int64_t> nvec;
+    for (const json& n : s.at("nvec")) nvec.push_back(discrete_count(n, "a MultiDiscrete entry"));
+    return Space::multi_discrete(std::move(nvec));
+  }
   if (kind == "MultiBinary") return Space::multi_binary(s.at("n").get<int>());
   if (kind == "Dict") {
     std::vector<std::pair<std::string, Space>> entries;
@@ -202,11 +218,19 @@ void PythonEnv::ready() const {
                          reply.value("error", std::string("(no message)")));
   }
   auto h = std::make_unique<Handshake>();
+  // A space rlrun cannot learn on (Discrete(2**62)) is the env's problem, named as such.
+  const auto space = [&](const char* name) {
+    try {
+      return space_from_json(reply.at(name));
+    } catch (const std::invalid_argument& e) {
+      fail(std::string("its ") + name + ": " + e.what());
+    }
+  };
   try {
     if (reply.at("protocol").get<int>() != protocol::kVersion)
       throw std::invalid_argument("protocol version differs");
-    h->observation_space = space_from_json(reply.at("observation_space"));
-    h->action_space = space_from_json(reply.at("action_space"));
+    h->observation_space = space("observation_space");
+    h->action_space = space("action_space");
     h->obs_dim = reply.at("obs_dim").get<int>();
     h->act_dim = reply.at("act_dim").get<int>();
     if (h->obs_dim != h->observation_space.flat_dim() || h->act_dim != h->action_space.flat_dim())
@@ -217,6 +241,8 @@ void PythonEnv::ready() const {
     if (!(h->render_fps > 0 && h->render_fps <= 1000)) h->render_fps = 30.0;
     if (reply.contains("max_episode_steps") && reply["max_episode_steps"].is_number_integer())
       h->max_episode_steps = reply["max_episode_steps"].get<int>();
+  } catch (const RuntimeFailure&) {
+    throw;
   } catch (const std::exception& e) {
     fail(std::string("its worker's handshake does not describe the env: ") + e.what());
   }

@@ -50,8 +50,30 @@ std::string resolved(const fs::path& base, const std::string& file) {
   return (base / file).lexically_normal().string();
 }
 
+// A <time> value of a .sumocfg in seconds: a number, or SUMO's [[days:]hours:]minutes:seconds.
+double sumocfg_seconds(const std::string& path, const char* key, const std::string& text) {
+  std::vector<double> parts;
+  bool ok = !text.empty();
+  for (size_t start = 0; ok && start <= text.size();) {
+    const size_t end = std::min(text.find(':', start), text.size());
+    double part = 0;
+    const auto [stop, error] = std::from_chars(text.data() + start, text.data() + end, part);
+    ok = error == std::errc() && stop == text.data() + end && std::isfinite(part) && part >= 0;
+    parts.push_back(part);
+    start = end + 1;
+  }
+  if (!ok || parts.size() > 4)
+    throw ConfigError(path + ": <time><" + key + " value=\"" + quoted_text(text, 40) +
+                      "\">: not a time (seconds >= 0, or [[days:]hours:]minutes:seconds)");
+  static const double kFactor[] = {86400, 3600, 60, 1};  // of days, hours, minutes, seconds
+  double total = 0;
+  for (size_t i = 0; i < parts.size(); ++i) total += parts[i] * kFactor[4 - parts.size() + i];
+  return total;
+}
+
 // A .sumocfg's <input> files (relative to it) and <time>; only what is set is changed.
 void read_sumocfg(const std::string& path, NetworkScenario& s) {
+  check_sumo_config(path);  // before anything parses it: no DOCTYPE, nor in what it names
   pugi::xml_document doc;
   const pugi::xml_parse_result parsed = doc.load_file(path.c_str());
   if (!parsed)
@@ -69,8 +91,10 @@ void read_sumocfg(const std::string& path, NetworkScenario& s) {
     s.files.routes.push_back(resolved(base, f));
   for (const std::string& f : split_list(value("input", "additional-files")))
     s.files.additionals.push_back(resolved(base, f));
-  if (s.begin < 0 && !value("time", "begin").empty()) s.begin = std::stod(value("time", "begin"));
-  if (s.end < 0 && !value("time", "end").empty()) s.end = std::stod(value("time", "end"));
+  if (s.begin < 0 && !value("time", "begin").empty())
+    s.begin = sumocfg_seconds(path, "begin", value("time", "begin"));
+  if (s.end < 0 && !value("time", "end").empty())
+    s.end = sumocfg_seconds(path, "end", value("time", "end"));
 }
 
 void require_file(const std::string& path, const std::string& what) {
