@@ -102,3 +102,36 @@ TEST_CASE("output: TrafficNetwork-v0's baselines get the env's reward", "[output
     CHECK(std::stod(r.output.substr(at + 14)) < 0);  // waiting time grows from an empty network
   }
 }
+
+// Baselines side by side: one row per policy, the env's metrics as columns, every policy on the
+// same episodes (so two random policies, seeded alike, give the same row).
+TEST_CASE("output: eval --policy with several names compares them in one table", "[output][cli]") {
+  TempDir dir("output_policies");
+  const auto r = run_rlrun("eval --env GripperReach-v0 --policy scripted,random,random --episodes 3 "
+                           "--csv " + dir / "episodes.csv");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  std::vector<std::string> lines;
+  std::istringstream in(r.output);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  REQUIRE(lines.size() == 6);
+  CHECK(lines[0] == "scripted,random,random on GripperReach-v0, 3 episodes each from seed 0 (the "
+                    "same episodes for every policy):");
+  CHECK(lines[1] == "| policy   | mean_reward | std_reward | mean_ep_length | success_rate | distance |");
+  CHECK(lines[3].rfind("| scripted | ", 0) == 0);
+  CHECK(lines[3].find("| 1.000        |") != std::string::npos);  // the scripted reach succeeds
+  CHECK(lines[4].rfind("| random   | ", 0) == 0);
+  CHECK(lines[4] == lines[5]);
+  // --csv: every episode of every policy (the single-policy layout).
+  const std::string csv = read_text(dir / "episodes.csv");
+  CHECK(csv.rfind("policy,episode,return,length,is_success,distance\n", 0) == 0);
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 3 * 3);
+  // One policy: the summary lines as before; a list with an empty name or --trajectory: refused.
+  const auto one = run_rlrun("eval --env GripperReach-v0 --policy scripted --episodes 3");
+  CHECK(one.output.rfind("scripted on GripperReach-v0, 3 episodes: mean_reward = ", 0) == 0);
+  CHECK(run_rlrun("eval --env GripperReach-v0 --policy scripted,").exit_code == 2);
+  const auto trajectory = run_rlrun("eval --env GripperReach-v0 --policy scripted,random "
+                                    "--trajectory " + dir / "t.csv");
+  CHECK(trajectory.exit_code == 2);
+  CHECK(trajectory.output.find("give --policy one name") != std::string::npos);
+}
