@@ -18,6 +18,7 @@
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "policy_comparison.hpp"
+#include "trust_option.hpp"
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
@@ -188,6 +189,7 @@ struct EvalOptions {
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   std::vector<std::string> overrides;   // --set: the user's values over the model's config
   std::string trajectory;  // every step's env observation and action (runtime/trajectory_tap.hpp)
+  bool trust = false;      // --trust: run what the model file names (trust_option.hpp)
 };
 
 // The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
@@ -216,7 +218,8 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
 
 int evaluate_model(const EvalOptions& o, Registry& registry) {
   // Normalisation statistics frozen; tensors read within the config's budget.
-  const LoadedModel loaded = load_model(o.model, registry, o.overrides);
+  const LoadedModel loaded =
+      load_model(o.model, registry, o.overrides, model_trust(o.trust, o.model, registry));
   const ModelFile& model = loaded.file;
   const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*loaded.env);
   const Experiment& experiment = loaded.experiment;
@@ -271,6 +274,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
                   "then is_success and the env's metrics where it has them (the means are "
                   "printed, not written)");
   add_plugin_option(sub, options->plugins);
+  add_trust_option(sub, options->trust)->needs(model_option);
   sub->add_option("--set", options->overrides,
                   "override a value of the model's config or --config (a model file is "
                   "untrusted: this is how you vouch for a program or file it names; repeatable)")
