@@ -21,8 +21,11 @@
 
 namespace rlrun {
 
-// Where a config's text came from (docs/security.md, DESIGN.md §6b).
-enum class ConfigTrust { kUser, kUntrusted };
+// Where a config's text came from (docs/security.md, DESIGN.md §6b). kAccepted: untrusted text
+// the user accepted as a whole for one command (`--trust`, `rlrun.load(..., trust=True)`): it
+// may name what the user's own text may, and each value a --set would otherwise have had to
+// vouch for is printed before use (core/trusted_values.hpp).
+enum class ConfigTrust { kUser, kUntrusted, kAccepted };
 
 inline constexpr std::size_t kMaxConfigBytes = 1 << 20;  // experiment files are a few KB
 inline constexpr std::size_t kMaxConfigNodes = 100000;
@@ -58,8 +61,18 @@ class ConfigNode {
   YAML::Node& yaml() { return node_; }
   const std::string& path() const { return path_; }
   const std::string& origin() const { return context_->origin; }
-  // True for the user's own text: a trusted file, or a value typed with --set.
-  bool trusted() const { return context_->trust == ConfigTrust::kUser || from_command_line(); }
+  // True for the user's own text (a trusted file, a value typed with --set) and for text the
+  // user accepted as a whole.
+  bool trusted() const { return context_->trust != ConfigTrust::kUntrusted || from_command_line(); }
+  // True when the value is trusted only because the user accepted the whole text: rlrun
+  // prints it before using it.
+  bool accepted_as_a_whole() const {
+    return context_->trust == ConfigTrust::kAccepted && !from_command_line();
+  }
+  // The command's option that accepts this text as a whole ("--trust"), named in refusals and
+  // announcements; "" when the command has none. Shared by every node of the text.
+  const std::string& trust_option() const { return context_->trust_option; }
+  void set_trust_option(std::string option) const { context_->trust_option = std::move(option); }
   bool from_command_line() const;
   bool defined() const { return node_.IsDefined() && !node_.IsNull(); }
   // Absent keys give "invalid" yaml-cpp nodes whose Type() throws: check IsDefined() first.
@@ -94,6 +107,7 @@ class ConfigNode {
   struct Context {
     std::string origin;                        // file name or description
     ConfigTrust trust = ConfigTrust::kUser;
+    std::string trust_option;                  // e.g. "--trust" (see trust_option())
     std::vector<std::string> override_paths;  // paths set from the command line
     std::vector<std::string> override_texts;  // "path=value" as typed
   };
