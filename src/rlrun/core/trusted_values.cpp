@@ -15,8 +15,8 @@ namespace {
 // The message for a value untrusted text may not set: what it is and how to vouch for it.
 [[noreturn]] void refuse(const ConfigNode& n, const std::string& what, const std::string& value) {
   n.fail(what + " '" + value + "' named in " + n.origin() +
-         ", which rlrun does not trust (model files, checkpoints, run directories and sweep "
-         "manifests may come from anyone; docs/security.md). If you trust it, pass --set " +
+         ", which rlrun does not trust (model files, checkpoints, run directories, sweep "
+         "manifests and zoo files may come from anyone; docs/security.md). If you trust it, pass --set " +
          n.path() + "=" + value + " (or another value) on the command line");
 }
 
