@@ -12,6 +12,9 @@
 // Loading bounds the input before anything else reads it: at most kMaxConfigBytes of text,
 // one YAML document, at most kMaxConfigNodes nodes counted with aliases expanded (so later
 // walks are bounded too), and no key twice in one map (YAML tools disagree on which one wins).
+// YAML merge keys (`<<: *defaults`, `<<: [*a, *b]`; yaml.org/type/merge.html) are then
+// resolved as PyYAML resolves them: keys written in the map win, and of several merged maps
+// the earlier; merging never adds nodes to the count above.
 #include <yaml-cpp/yaml.h>
 
 #include <memory>
@@ -51,11 +54,17 @@ class ConfigNode {
   // Parses YAML text; `origin` names it in messages (e.g. "model.zip:config.yaml").
   static ConfigNode load_string(const std::string& text, const std::string& origin,
                                 ConfigTrust trust = ConfigTrust::kUser);
-  // Wraps an existing node (e.g. built in code, trusted); positions are unknown.
-  static ConfigNode from_yaml(YAML::Node node, const std::string& origin, std::string path = "");
+  // Wraps an existing node (built in code, or translated from a file of `trust`); positions
+  // are the node's own.
+  static ConfigNode from_yaml(YAML::Node node, const std::string& origin, std::string path = "",
+                              ConfigTrust trust = ConfigTrust::kUser);
 
   // Applies `--set a.b.c=value`: the value is parsed as YAML, missing maps are created.
   void apply_override(const std::string& assignment);
+  // Marks the value at `key_path` as the user's own, as a `--set` value is: code put it there
+  // from the user's command line in another form (`rlrun train --zoo ... --env ID`). Messages
+  // about it name `shown` as its place.
+  void vouch_for(const std::string& key_path, const std::string& shown);
 
   const YAML::Node& yaml() const { return node_; }
   YAML::Node& yaml() { return node_; }
@@ -109,7 +118,7 @@ class ConfigNode {
     ConfigTrust trust = ConfigTrust::kUser;
     std::string trust_option;                  // e.g. "--trust" (see trust_option())
     std::vector<std::string> override_paths;  // paths set from the command line
-    std::vector<std::string> override_texts;  // "path=value" as typed
+    std::vector<std::string> override_shown;  // where each came from: "--set path=value"
   };
   ConfigNode(YAML::Node node, std::shared_ptr<Context> context, std::string path)
       : node_(std::move(node)), context_(std::move(context)), path_(std::move(path)) {}

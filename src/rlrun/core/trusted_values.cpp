@@ -42,8 +42,8 @@ std::string trust_alternative(const ConfigNode& n) {
 void require_vouched(const ConfigNode& n, const std::string& what, const std::string& value) {
   if (!n.trusted())
     n.fail(what + ", '" + value + "' named in " + n.origin() +
-           ", which rlrun does not trust (model files, checkpoints, run directories and sweep "
-           "manifests may come from anyone; docs/security.md). If you trust it, pass --set " +
+           ", which rlrun does not trust (model files, checkpoints, run directories, sweep "
+           "manifests and zoo files may come from anyone; docs/security.md). If you trust it, pass --set " +
            n.path() + "=" + value + " (or another value) on the command line." +
            trust_alternative(n));
   if (n.accepted_as_a_whole())

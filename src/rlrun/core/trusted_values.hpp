@@ -3,7 +3,7 @@
 // that may do either (a SUMO configuration can name output files). The user's own experiment
 // files and `--set` values may set them freely. Text rlrun does not trust (the config.yaml
 // inside a model file or checkpoint, a run directory's config.yaml, a sweep manifest's
-// configs; docs/security.md) may not: there such a field must keep its default, and a
+// configs, a zoo hyperparameter file; docs/security.md) may not: there such a field must keep its default, and a
 // SimulatorInput may also name a file shipped with rlrun. Anything else is refused with the
 // `--set` that vouches for the value (or `--trust`, which accepts a model file's config as a
 // whole and prints each such value), so opening a model file from elsewhere never runs code
