@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Rebuilds the model, npy and journal seed corpora of the fuzz targets (fuzz/corpus/) from tiny
+# Rebuilds the model, npy, journal and run_dir seed corpora of the fuzz targets (fuzz/corpus/) from tiny
 # runs of the rlrun binary and of Optuna (the config corpus is the shipped configs plus a few
 # hand-written files). The journal seeds need Optuna 3.1 (PYTHON=..., default python3).
 #   fuzz/make_corpus.sh [path/to/rlrun]      (default: build/rlrun)
@@ -12,8 +12,8 @@ RLRUN=$(realpath "${1:-build/rlrun}")
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 OUT=fuzz/corpus
-rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/*
-mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal"
+rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/* "$OUT"/run_dir/*
+mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal" "$OUT/run_dir"
 
 train() {  # name config-text
   printf '%s\n' "$2" > "$WORK/$1.yaml"
@@ -60,6 +60,36 @@ PY
 ls "$OUT/npy" | awk 'NR % 4 != 1' | sed "s|^|$OUT/npy/|" | xargs rm -f
 ls -l "$OUT"/model | awk '{s += $5} END {print "model seeds:", NR - 1, "files,", s, "bytes"}'
 ls "$OUT"/npy | wc -l | sed 's/^/npy seeds: /'
+
+# The run-directory corpus (fuzz_run_dir.cpp): the tiny PPO run above as entries, and the same
+# with the links, FIFOs and temporaries of docs/security.md's cases planted in it.
+"${PYTHON:-python3}" - "$WORK/runs/ppo/seed1" "$OUT/run_dir" <<'PY'
+import pathlib, sys
+run, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+def entries(replace={}):
+    parts = []
+    for path in sorted(run.rglob("*")):
+        rel = path.relative_to(run).as_posix()
+        if path.name == ".lock":
+            continue
+        if rel in replace:
+            parts.append(replace[rel])
+        elif path.is_dir():
+            parts.append(b"@@ dir " + rel.encode() + b"\n")
+        else:
+            parts.append(b"@@ file " + rel.encode() + b"\n" + path.read_bytes())
+    return b"\n".join(parts)
+(out / "whole_run").write_bytes(entries())
+(out / "progress_only").write_bytes((run / "progress.csv").read_bytes())
+(out / "log_link").write_bytes(entries({"log.txt": b"@@ link log.txt\nvictim"}))
+(out / "progress_zero").write_bytes(entries({"progress.csv": b"@@ link progress.csv\nzero"}))
+(out / "progress_fifo").write_bytes(entries({"progress.csv": b"@@ fifo progress.csv\n"}))
+(out / "checkpoints_link").write_bytes(
+    entries({"checkpoints": b"@@ link checkpoints\noutside"}) + b"\n@@ link config.yaml\nfifo")
+(out / "stale_temporaries").write_bytes(
+    entries() + b"\n@@ file .config.yaml.Ab12Cd.tmp\nhalf\n@@ file checkpoints/step_96.zip.tmp.Xy34Zw\nhalf")
+PY
+ls "$OUT"/run_dir | wc -l | sed 's/^/run_dir seeds: /'
 
 # The journal corpus (fuzz_journal.cpp): study files as the two writers of the format write
 # them. rlrun: a 3-trial study on CartPole PPO (a parameter of each kind, one conditional, the

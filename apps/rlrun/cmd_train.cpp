@@ -11,10 +11,12 @@
 #include "commands.hpp"
 #include "parallel_runs.hpp"
 #include "plugin_option.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/runtime/resume_point.hpp"
+#include "rlrun/runtime/run_lock.hpp"
 #include "rlrun/runtime/trainer.hpp"
 #include "rlrun/runtime/zoo/zoo_import.hpp"
 
@@ -82,10 +84,19 @@ int resume(const TrainOptions& o, Registry& registry) {
                                   : run_dir_of_checkpoint(o.resume);
   const std::string config = run_dir + "/config.yaml";
   const std::vector<std::string> overrides = all_overrides(o);
-  // A run directory may come from anyone: its config.yaml is untrusted (docs/security.md).
-  const ConfigNode stored = std::filesystem::exists(config, ec)
-                                ? ConfigNode::load_file(config, ConfigTrust::kUntrusted)
-                                : ConfigNode();
+  // A run directory may come from anyone: it must be a directory, not a link, its config.yaml
+  // a regular file (core/dir_handle.hpp), and that config is untrusted (docs/security.md).
+  bool has_config = false;
+  if (std::filesystem::is_directory(run_dir, ec)) {
+    const DirHandle dir = DirHandle::open(run_dir);
+    has_config = static_cast<bool>(dir.open_for_reading("config.yaml"));
+    // What a killed process left (the temporaries of atomic writes) goes now, also when it was
+    // killed before its first checkpoint and there is nothing to resume from.
+    const RunLock lock(dir);
+    remove_stale_temporaries(dir);
+  }
+  const ConfigNode stored =
+      has_config ? ConfigNode::load_file(config, ConfigTrust::kUntrusted) : ConfigNode();
   for (const std::string& override : overrides)
     if (override.rfind("run.total_timesteps=", 0) != 0 &&
         override.rfind("run.console_interval=", 0) != 0 && !restates(stored, override))

@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <deque>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -20,6 +20,8 @@
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/line_reader.hpp"
+#include "rlrun/core/regular_file.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
@@ -33,25 +35,47 @@ struct Child {
   std::string log_path;
 };
 
+// A child's console log line by line (`sweep run` keeps them in the sweep's directory, which
+// may come from anyone: not through a link, a regular file, within bounds; lines cut at 64 KiB).
+std::optional<LineReader> read_log(const std::string& path) {
+  FileDescriptor fd;
+  try {
+    fd = open_regular_file(AT_FDCWD, path, O_RDONLY, path);
+  } catch (const RuntimeFailure&) {
+    return std::nullopt;  // the child's output is a courtesy here; the exit code tells the rest
+  }
+  if (!fd) return std::nullopt;
+  return LineReader(std::move(fd), path, uint64_t{1} << 30, size_t{64} << 10,
+                    LineReader::LongLines::kCut);
+}
+
 // The last `n` lines of a file.
 std::string tail_lines(const std::string& path, size_t n) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::deque<std::string> lines;
+  std::optional<LineReader> in = read_log(path);
+  try {
+    for (std::string line; in && in->next(line);) {
+      lines.push_back(line);
+      if (lines.size() > n) lines.pop_front();
+    }
+  } catch (const RuntimeFailure&) {
+  }
   std::string out;
-  for (size_t i = lines.size() > n ? lines.size() - n : 0; i < lines.size(); ++i)
-    out += "    " + lines[i] + "\n";
+  for (const std::string& line : lines) out += "    " + line + "\n";
   return out;
 }
 
 // The trainer's summary line ("trained N steps in ... model saved to ...").
 std::string summary_line(const std::string& path) {
-  std::ifstream in(path);
+  std::optional<LineReader> in = read_log(path);
   std::string found;
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("trained ", 0) == 0 || line.rfind("interrupted after ", 0) == 0 ||
-        line.rfind("sweep: ", 0) == 0 || line.rfind("this worker: ", 0) == 0)
-      found = line;
+  try {
+    for (std::string line; in && in->next(line);)
+      if (line.rfind("trained ", 0) == 0 || line.rfind("interrupted after ", 0) == 0 ||
+          line.rfind("sweep: ", 0) == 0 || line.rfind("this worker: ", 0) == 0)
+        found = line;
+  } catch (const RuntimeFailure&) {
+  }
   return found;
 }
 
@@ -86,10 +110,13 @@ int open_child_log(const ChildRun& run) {
   const std::filesystem::path path(run.log_path);
   std::error_code ec;
   std::filesystem::create_directories(path.parent_path(), ec);
-  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd < 0)
-    throw RuntimeFailure("cannot open " + run.log_path + " for the console output of " +
-                         run.label + ": " + std::strerror(errno));
+  // Not through a link, and a regular file (a FIFO would block here; core/regular_file.hpp).
+  int fd = -1;
+  try {
+    fd = open_regular_file(AT_FDCWD, run.log_path, O_WRONLY | O_CREAT | O_APPEND, run.log_path).release();
+  } catch (const RuntimeFailure& e) {
+    throw RuntimeFailure(std::string(e.what()) + " (the console output of " + run.label + ")");
+  }
   const std::time_t now = std::time(nullptr);
   std::tm local{};
   localtime_r(&now, &local);

@@ -80,6 +80,9 @@ TEST_CASE("CheckedFile: a failed write names the file and errno", "[disk]") {
   CheckedFile full("/dev/full", CheckedFile::Mode::kTruncate);
   full << "r,l,t\n";
   CHECK_THROWS_WITH(full.flush(), Catch::Contains("cannot write /dev/full: No space left on device (ENOSPC)"));
+  // A run directory's file must be regular (core/regular_file.hpp).
+  CHECK_THROWS_WITH(CheckedFile::run_file("/dev/full", CheckedFile::Mode::kTruncate),
+                    Catch::Contains("/dev/full is a character device, not a regular file"));
   CHECK_THROWS_WITH(CheckedFile("/nonexistent/dir/x.csv", CheckedFile::Mode::kAppend),
                     Catch::Contains("(ENOENT)"));
 }
@@ -140,10 +143,12 @@ TEST_CASE("CsvSink and Monitor: a failed write stops with the file and errno", "
   }
   CHECK(hidden_files(dir.str()) == 0);
 
-  // Monitor: its header is flushed when it opens, each episode's row when the episode ends.
+  // Monitor: its header is flushed when it opens, each episode's row when the episode ends. Its
+  // file is a run directory's, so /dev/full is refused (core/checked_file.hpp: run_file); the
+  // file-size limit makes the writes fail.
   EnvPtr cartpole = std::make_unique<CartPole>(CartPole::Config{});
   CHECK_THROWS_WITH(Monitor(std::move(cartpole), "/dev/full", 0.0),
-                    Catch::Contains("cannot write /dev/full: No space left on device (ENOSPC)"));
+                    Catch::Contains("/dev/full is a character device, not a regular file"));
   const std::string monitor_path = dir / "0.monitor.csv";
   Monitor monitor(std::make_unique<CartPole>(CartPole::Config{}), monitor_path, 0.0);
   std::vector<float> obs(4);

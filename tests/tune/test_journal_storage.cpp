@@ -22,6 +22,7 @@
 
 using namespace rlrun;
 using namespace rlrun::tune;
+using rlrun::testing::read_text;
 using rlrun::testing::run_command;
 using rlrun::testing::TempDir;
 using json = nlohmann::json;
@@ -334,4 +335,60 @@ TEST_CASE("journal: a damaged file is refused with its name, never a crash", "[t
   const FrozenTrial& t = storage.state().trial(0);
   CHECK(std::isnan(t.intermediate_values.at(1)));
   CHECK(t.intermediate_values.at(2) == -HUGE_VAL);
+}
+
+TEST_CASE("journal: a half-written last line is left by readers and repaired by the next append",
+          "[tune]") {
+  TempDir dir("journal_half_line");
+  const std::string path = dir.str() + "/study.journal";
+  const std::string create = R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})";
+  const auto text = [&] { return read_text(path); };
+  // A fragment (a writer killed mid-append): readers leave it, the next append cuts it first.
+  std::ofstream(path) << create << "\n{\"op_code\": 4, \"worker_id\": \"dead\", \"stu";
+  {
+    JournalStorage storage(path);
+    CHECK(storage.state().study_names() == std::vector<std::string>{"s"});
+    storage.create_or_load_study("t", StudyDirection::kMinimize);
+  }
+  CHECK(text().find("dead") == std::string::npos);
+  JournalStorage again(path);
+  CHECK(again.state().study_names() == std::vector<std::string>{"s", "t"});
+  // A whole operation without its newline (as Optuna 3.1 would still read it) gets the newline.
+  std::ofstream(path, std::ios::trunc) << create;
+  {
+    JournalStorage storage(path);
+    CHECK(storage.state().study_names().empty());  // not read yet: it may be an append going on
+    storage.create_or_load_study("t", StudyDirection::kMinimize);
+    CHECK(storage.state().study_names() == std::vector<std::string>{"s", "t"});
+  }
+  CHECK(text().rfind(create + "\n", 0) == 0);
+}
+
+TEST_CASE("journal: nesting deeper than the bound, a link or a FIFO is refused", "[tune][security]") {
+  TempDir dir("journal_refused");
+  const std::string path = dir.str() + "/study.journal";
+  const auto message = [&]() -> std::string {
+    try {
+      JournalStorage storage(path);
+    } catch (const RuntimeFailure& e) {
+      return e.what();
+    }
+    return "";
+  };
+  std::ofstream(path) << std::string(200000, '[') << std::string(200000, ']') << "\n";
+  CHECK_THAT(message(), Catch::Contains(path + ":1: JSON nested deeper than 128 levels"));
+  // 128 levels are fine (then refused as no operation, as any array).
+  std::ofstream(path, std::ios::trunc) << std::string(128, '[') << std::string(128, ']') << "\n";
+  CHECK_THAT(message(), Catch::Contains("an operation is a JSON object"));
+  std::ofstream(path, std::ios::trunc) << "{\"a\": \"" << std::string(300, '[') << "\"}\n";
+  CHECK_THAT(message(), Catch::Contains("op_code"));  // brackets in a string do not count
+
+  std::filesystem::remove(path);
+  std::ofstream(dir.str() + "/victim") << "";
+  std::filesystem::create_symlink(dir.str() + "/victim", path);
+  CHECK_THAT(message(), Catch::Contains(path + " is a symbolic link"));
+  CHECK(read_text(dir.str() + "/victim").empty());
+  std::filesystem::remove(path);
+  REQUIRE(mkfifo(path.c_str(), 0600) == 0);
+  CHECK_THAT(message(), Catch::Contains(path + " is a FIFO (named pipe), not a regular file"));
 }

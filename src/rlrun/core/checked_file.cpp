@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/regular_file.hpp"
 
 namespace rlrun {
 
@@ -38,6 +39,19 @@ CheckedFile::CheckedFile(std::string path, Mode mode) : path_(std::move(path)) {
   const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (mode == Mode::kAppend ? O_APPEND : O_TRUNC);
   fd_ = ::open(path_.c_str(), flags, 0666);
   if (fd_ < 0) throw RuntimeFailure("cannot write " + path_ + ": " + describe_errno(errno));
+}
+
+CheckedFile CheckedFile::run_file(std::string path, Mode mode) {
+  const int flags = O_WRONLY | O_CREAT | (mode == Mode::kAppend ? O_APPEND : O_TRUNC);
+  FileDescriptor fd = open_regular_file(AT_FDCWD, path, flags, path);
+  return adopt(std::move(fd), std::move(path));
+}
+
+CheckedFile CheckedFile::adopt(FileDescriptor fd, std::string path) {
+  CheckedFile file;
+  file.path_ = std::move(path);
+  file.fd_ = fd.release();
+  return file;
 }
 
 CheckedFile::~CheckedFile() {

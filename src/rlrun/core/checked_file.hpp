@@ -6,8 +6,16 @@
 // failed write into a RuntimeFailure that names the file and the error ("cannot write
 // runs/x/progress.csv: No space left on device (ENOSPC)"). The training then stops (exit 1),
 // its last checkpoint untouched.
+//
+// Most of these files live in run directories, which may come from anyone (docs/security.md):
+// run_file() opens them without following a symbolic link at their name, and only a regular
+// file (core/regular_file.hpp), so a planted `log.txt -> ~/.bashrc` or a FIFO is refused, not
+// appended to or waited on. The constructor opens a path the user named (`eval --csv`, which
+// may be /dev/stdout or a pipe) as it is.
 #include <string>
 #include <string_view>
+
+#include "rlrun/core/file_descriptor.hpp"
 
 namespace rlrun {
 
@@ -26,8 +34,15 @@ class CheckedFile {
   enum class Mode { kTruncate, kAppend };
 
   CheckedFile() = default;
-  // Opens (creating it, mode 0666 less the umask). Throws RuntimeFailure with the reason.
+  // Opens the user's `path` (creating it, mode 0666 less the umask). Throws RuntimeFailure with
+  // the reason.
   CheckedFile(std::string path, Mode mode);
+  // Opens a file of a run directory the same way, refusing a symbolic link at `path` and a file
+  // that is not regular.
+  static CheckedFile run_file(std::string path, Mode mode);
+  // Takes over `fd`, a regular file open for writing (core/dir_handle.hpp opens them);
+  // `path` names it in messages.
+  static CheckedFile adopt(FileDescriptor fd, std::string path);
   // Writes what is still buffered (errors ignored: a destructor cannot report them) and closes.
   ~CheckedFile();
   CheckedFile(CheckedFile&& other) noexcept;

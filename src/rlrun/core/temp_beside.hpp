@@ -9,6 +9,8 @@
 
 namespace rlrun {
 
+class DirHandle;  // core/dir_handle.hpp
+
 struct TempBeside {
   int fd = -1;       // open for writing, close-on-exec
   std::string path;  // <dir of target>/.<name of target>.XXXXXX<suffix>
@@ -16,5 +18,10 @@ struct TempBeside {
 
 // Throws RuntimeFailure naming the target and the reason (e.g. the directory is missing).
 TempBeside create_temp_beside(const std::string& target, const std::string& suffix = ".tmp");
+
+// The same inside an open directory (openat with O_EXCL|O_NOFOLLOW, mode 0666 less the umask):
+// `.<name>.XXXXXX<suffix>` beside `name` in `dir`; `path` is then the temporary's name there.
+TempBeside create_temp_in(const DirHandle& dir, const std::string& name,
+                          const std::string& suffix = ".tmp");
 
 }  // namespace rlrun

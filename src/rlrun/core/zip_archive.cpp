@@ -1,19 +1,28 @@
 #include "rlrun/core/zip_archive.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <zip.h>
 
 #include <cstdio>
-#include <filesystem>
+#include <cerrno>
 
+#include "rlrun/core/checked_file.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/zip_reader.hpp"
 
 namespace rlrun {
 
-void write_zip_atomic(const std::string& path, const ZipMembers& members) {
-  const std::string temp = path + ".tmp";
-  std::error_code ec;
-  std::filesystem::remove(temp, ec);
+namespace {
+
+// libzip takes a path: `at` names `name` in the directory (DirHandle::proc_path), `shown` is
+// what messages say. libzip builds the archive in a temporary of its own beside `<at>.tmp` and
+// renames it there; then `.tmp` is renamed over `name` within the directory.
+void write_zip_at(const DirHandle& dir, const std::string& name, const std::string& at,
+                  const std::string& shown, const ZipMembers& members) {
+  const std::string temp = at + ".tmp", temp_name = name + ".tmp", temp_shown = shown + ".tmp";
+  dir.remove(temp_name);  // a killed writer's, or a planted file or link: never written through
   int error = 0;
   zip_t* zip = zip_open(temp.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
   if (!zip) {
@@ -21,26 +30,40 @@ void write_zip_atomic(const std::string& path, const ZipMembers& members) {
     zip_error_init_with_code(&ze, error);
     const std::string why = zip_error_strerror(&ze);
     zip_error_fini(&ze);
-    throw RuntimeFailure("cannot create " + temp + ": " + why);
+    throw RuntimeFailure("cannot create " + temp_shown + ": " + why);
   }
-  for (const auto& [name, data] : members) {
+  for (const auto& [member, data] : members) {
     // libzip reads the buffer at zip_close time; `members` outlives that call.
     zip_source_t* source = zip_source_buffer(zip, data.data(), data.size(), 0);
-    if (!source || zip_file_add(zip, name.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
+    if (!source || zip_file_add(zip, member.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
       if (source) zip_source_free(source);
       const std::string why = zip_strerror(zip);
       zip_discard(zip);
-      throw RuntimeFailure("cannot add " + name + " to " + temp + ": " + why);
+      throw RuntimeFailure("cannot add " + member + " to " + temp_shown + ": " + why);
     }
   }
   if (zip_close(zip) < 0) {
     const std::string why = zip_strerror(zip);
     zip_discard(zip);
-    std::filesystem::remove(temp, ec);
-    throw RuntimeFailure("cannot write " + path + ": " + why);
+    dir.remove(temp_name);
+    throw RuntimeFailure("cannot write " + shown + ": " + why);
   }
-  std::filesystem::rename(temp, path, ec);
-  if (ec) throw RuntimeFailure("cannot rename " + temp + " to " + path + ": " + ec.message());
+  if (::renameat(dir.fd(), temp_name.c_str(), dir.fd(), name.c_str()) != 0)
+    throw RuntimeFailure("cannot rename " + temp_shown + " to " + shown + ": " +
+                         describe_errno(errno));
+}
+
+}  // namespace
+
+void write_zip_atomic(const std::string& path, const ZipMembers& members) {
+  const auto [dir, name] = DirHandle::open_parent(path);
+  write_zip_atomic(dir, name, members);
+}
+
+void write_zip_atomic(const DirHandle& dir, const std::string& name, const ZipMembers& members) {
+  // Without /proc (a chroot, say) the directory's path is the next best thing.
+  const bool proc = ::access("/proc/self/fd", X_OK) == 0;
+  write_zip_at(dir, name, proc ? dir.proc_path(name) : dir.child(name), dir.child(name), members);
 }
 
 ZipMembers read_zip(const std::string& path, uint64_t max_total_bytes) {

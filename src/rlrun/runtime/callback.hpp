@@ -40,8 +40,10 @@ struct TrainingContext {
   VecEnv& env;                                          // the training envs
   Logger* logger = nullptr;                             // records land in the next progress.csv row
   std::function<void(const std::string&)> message;      // a line on the console and in log.txt
-  std::function<void(const std::string&)> save_model;   // model file (with wrapper statistics)
-  std::function<void(const std::string&)> save_checkpoint;  // what checkpoints/ holds
+  // A model file (with wrapper statistics) of that name in the run directory (best_model.zip).
+  std::function<void(const std::string&)> save_model;
+  // A checkpoint of that name in <run_dir>/checkpoints (step_<N>.zip).
+  std::function<void(const std::string&)> save_checkpoint;
   bool resuming = false;  // continuing a run: append to its files, do not start them anew
   EvaluationListener on_evaluation;  // optional: told of every evaluation (EvalCallback)
 };

@@ -3,39 +3,32 @@
 #include "rlrun/runtime/experiment.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <regex>
 
 #include "rlrun/core/errors.hpp"
 
 namespace rlrun {
 
-namespace fs = std::filesystem;
-
 CheckpointCallback::CheckpointCallback(TrainingContext& context)
     : context_(context),
       config_(context.experiment.checkpoint),
-      dir_(context.run_dir + "/checkpoints"),
+      dir_(DirHandle::open(context.run_dir).make_subdir("checkpoints")),
       next_(context.experiment.checkpoint.freq) {
-  std::error_code ec;
-  fs::create_directories(dir_, ec);
-  if (ec) throw RuntimeFailure("cannot create " + dir_ + ": " + ec.message());
   kept_ = list_checkpoints(dir_);
 }
 
-std::vector<std::string> CheckpointCallback::list_checkpoints(const std::string& dir) {
-  static const std::regex name("step_([0-9]+)\\.zip");
+std::vector<std::string> CheckpointCallback::list_checkpoints(const DirHandle& dir) {
+  static const std::regex name("step_([0-9]{1,18})\\.zip");
   std::vector<std::pair<int64_t, std::string>> found;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+  for (const DirHandle::Entry& entry : dir.list()) {
     std::smatch m;
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name)) found.emplace_back(std::stoll(m[1]), entry.path().string());
+    if (entry.kind == EntryKind::kRegular && std::regex_match(entry.name, m, name))
+      found.emplace_back(std::stoll(m[1]), entry.name);
   }
   std::sort(found.begin(), found.end());
-  std::vector<std::string> paths;
-  for (auto& f : found) paths.push_back(std::move(f.second));
-  return paths;
+  std::vector<std::string> names;
+  for (auto& f : found) names.push_back(std::move(f.second));
+  return names;
 }
 
 bool CheckpointCallback::on_step(int64_t num_timesteps) {
@@ -58,15 +51,15 @@ void CheckpointCallback::at_safe_point(int64_t num_timesteps) {
   // once crossed the multiple of freq (SB3 names its files by num_timesteps the same way).
   if (!due_) return;
   due_ = false;  // before saving: the checkpoint holds the state after this point
-  const std::string path = dir_ + "/step_" + std::to_string(num_timesteps) + ".zip";
-  context_.save_checkpoint(path);
-  kept_.erase(std::remove(kept_.begin(), kept_.end(), path), kept_.end());
-  kept_.push_back(path);
+  const std::string name = "step_" + std::to_string(num_timesteps) + ".zip";
+  const std::string path = dir_.child(name);
+  context_.save_checkpoint(name);
+  kept_.erase(std::remove(kept_.begin(), kept_.end(), name), kept_.end());
+  kept_.push_back(name);
   std::string removed;
   while (config_.keep > 0 && static_cast<int>(kept_.size()) > config_.keep) {
-    std::error_code ec;
-    fs::remove(kept_.front(), ec);
-    removed.append(" ").append(fs::path(kept_.front()).filename().string());
+    dir_.remove(kept_.front());  // unlinkat in checkpoints/ itself: never elsewhere
+    removed.append(" ").append(kept_.front());
     kept_.erase(kept_.begin());
   }
   std::string message = "checkpoint saved to " + path;

@@ -7,11 +7,14 @@
 // (keep 0: all, as SB3 does). Checkpoints already in the directory (a resumed run) count.
 // A checkpoint is a model file (eval and record read it) plus the training state that
 // `rlrun train --resume` continues from.
+// checkpoints/ is held open and never a link (core/dir_handle.hpp): a resumed run directory may
+// come from anyone, and keep-N deletes only step_<N>.zip files that are really in it.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "rlrun/core/config_checks.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/runtime/callback.hpp"
 
 namespace rlrun {
@@ -37,16 +40,17 @@ class CheckpointCallback : public Callback {
   void write_state(StateWriter& out) const override;
   void read_state(const StateReader& in) override;
 
-  // `<dir>/step_<N>.zip` files present, oldest (smallest N) first.
-  static std::vector<std::string> list_checkpoints(const std::string& dir);
+  // The names of the step_<N>.zip regular files in `dir` (links and others left out), oldest
+  // (smallest N) first.
+  static std::vector<std::string> list_checkpoints(const DirHandle& dir);
 
  private:
   TrainingContext& context_;
   const CheckpointConfig& config_;
-  std::string dir_;
+  DirHandle dir_;  // <run_dir>/checkpoints
   int64_t next_;
   bool due_ = false;  // freq steps passed; write at the next safe point
-  std::vector<std::string> kept_;  // oldest first
+  std::vector<std::string> kept_;  // names in dir_, oldest first
 };
 
 }  // namespace rlrun

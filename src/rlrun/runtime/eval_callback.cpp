@@ -41,7 +41,8 @@ EvalCallback::EvalCallback(TrainingContext& context)
                       "; its columns: " + known);
   }
   const std::string path = context.run_dir + "/evaluations.csv";
-  csv_ = CheckedFile(path, context.resuming ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
+  csv_ = CheckedFile::run_file(path, context.resuming ? CheckedFile::Mode::kAppend
+                                                      : CheckedFile::Mode::kTruncate);
   if (!context.resuming) {
     csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate";
     for (const std::string& key : metric_keys_) csv_ << ',' << key;
@@ -152,7 +153,7 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
   const double score = config_.best_direction == "minimize" ? -chosen : chosen;
   if (score > best_score_) {
     best_score_ = score;
-    context_.save_model(context_.run_dir + "/best_model.zip");
+    context_.save_model("best_model.zip");
     message += config_.best_metric == "mean_reward"
                    ? " (new best, saved best_model.zip)"
                    : " (new best " + config_.best_metric + " " + format_log_value(chosen) +

@@ -1,12 +1,18 @@
 #include "rlrun/runtime/log_sinks.hpp"
 
+#include <fcntl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/line_reader.hpp"
+#include "rlrun/core/regular_file.hpp"
 #include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/run_file_bounds.hpp"
 
 namespace rlrun {
 
@@ -30,23 +36,34 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return cells;
 }
 
+namespace {
+
+// progress.csv's lines (a resumed run's: from anyone), within runtime/run_file_bounds.hpp;
+// none when it does not exist.
+std::optional<LineReader> read_progress(const std::string& path) {
+  FileDescriptor fd = open_regular_file(AT_FDCWD, path, O_RDONLY, path);
+  if (!fd) return std::nullopt;
+  return LineReader(std::move(fd), path, kMaxRunCsvBytes, kMaxRunCsvLineBytes);
+}
+
+}  // namespace
+
 CsvSink::CsvSink(std::string path, bool append) : path_(std::move(path)) {
   if (append) {
-    std::ifstream in(path_);
+    std::optional<LineReader> in = read_progress(path_);
     std::string header;
-    if (in && std::getline(in, header)) keys_ = split_csv_line(header);
+    if (in && in->next(header)) keys_ = split_csv_line(header);
   }
-  file_ = CheckedFile(path_, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
+  file_ = CheckedFile::run_file(path_, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
 }
 
 void CsvSink::rewrite_with_header() {
   file_.close();
   std::vector<std::string> lines;
-  {
-    std::ifstream in(path_);
+  if (std::optional<LineReader> in = read_progress(path_)) {
     std::string line;
-    std::getline(in, line);  // old header
-    while (std::getline(in, line)) lines.push_back(line);
+    in->next(line);  // old header
+    while (in->next(line)) lines.push_back(line);
   }
   // Atomically: a full disk leaves the old file, not a truncated one.
   std::string text;
@@ -57,7 +74,7 @@ void CsvSink::rewrite_with_header() {
     text += line + std::string(keys_.size() - std::min(cells, keys_.size()), ',') + '\n';
   }
   write_text_atomic(path_, text);
-  file_ = CheckedFile(path_, CheckedFile::Mode::kAppend);
+  file_ = CheckedFile::run_file(path_, CheckedFile::Mode::kAppend);
 }
 
 void CsvSink::write(const LogRow& row, int64_t /*step*/) {

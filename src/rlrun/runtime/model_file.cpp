@@ -14,6 +14,13 @@ namespace rlrun {
 void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
                 const Space& observation_space, const Space& action_space,
                 const TensorMap& env_tensors) {
+  write_zip_atomic(path, model_members(algorithm, experiment, observation_space, action_space,
+                                       env_tensors));
+}
+
+ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment,
+                         const Space& observation_space, const Space& action_space,
+                         const TensorMap& env_tensors) {
   TensorMap tensors;
   algorithm.save(tensors);
   ZipMembers members;
@@ -31,7 +38,7 @@ void save_model(const std::string& path, const Algorithm& algorithm, const Exper
   meta["num_timesteps"] = algorithm.num_timesteps();
   const std::string meta_text = meta.dump(2) + "\n";
   members["meta.json"] = std::vector<uint8_t>(meta_text.begin(), meta_text.end());
-  write_zip_atomic(path, members);
+  return members;
 }
 
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,

@@ -26,6 +26,7 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/core/zip_archive.hpp"
 #include "rlrun/env.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/model_trust.hpp"
@@ -77,6 +78,11 @@ enum class ModelParts { kModel, kCheckpoint };
 void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
                 const Space& observation_space, const Space& action_space,
                 const TensorMap& env_tensors = {});
+// The members save_model writes (for writers into a run directory: core/zip_archive.hpp's
+// write_zip_atomic into a DirHandle).
+ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment,
+                         const Space& observation_space, const Space& action_space,
+                         const TensorMap& env_tensors = {});
 
 // Phase 1 (see the top of this file). Throws RuntimeFailure naming the file and the reason.
 ModelFile read_model_header(const std::string& path);

@@ -4,30 +4,23 @@
 
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <regex>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
-#include "rlrun/runtime/run_directory.hpp"
 
 namespace rlrun {
-
-namespace fs = std::filesystem;
 
 ObsLogCallback::ObsLogCallback(TrainingContext& context)
     : context_(context),
       config_(context.experiment.obs_log),
       tap_(find_wrapper<ObservationTap>(context.env.env(context.experiment.obs_log.env))),
-      dir_(context.run_dir + "/obs_log"),
+      dir_(DirHandle::open(context.run_dir).make_subdir("obs_log")),
       next_(context.experiment.obs_log.freq) {
   if (!tap_) throw std::logic_error("obs_log: training env has no ObservationTap");
   obs_dim_ = static_cast<int>(tap_->last_step_obs().size());
-  std::error_code ec;
-  fs::create_directories(dir_, ec);
-  if (ec) throw RuntimeFailure("cannot create " + dir_ + ": " + ec.message());
   // One chunk's rows, allocated once: the step loop does not allocate.
   const int64_t rows = config_.freq / context.env.num_envs() + 2;
   rows_.reserve(static_cast<size_t>(rows * obs_dim_));
@@ -63,13 +56,11 @@ void ObsLogCallback::read_state(const StateReader& in) {
     throw StateMismatch("checkpoint obs_log rows do not match the observation size " +
                         std::to_string(obs_dim_));
   rows_.assign(rows.begin(), rows.end());
-  static const std::regex name("obs_([0-9]+)\\.npy");
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir_, ec)) {
+  static const std::regex name("obs_([0-9]{1,18})\\.npy");
+  for (const DirHandle::Entry& entry : dir_.list()) {
     std::smatch m;
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name) && std::stoll(m[1]) > last_chunk_step_)
-      fs::remove(entry.path(), ec);
+    if (std::regex_match(entry.name, m, name) && std::stoll(m[1]) > last_chunk_step_)
+      dir_.remove(entry.name);  // in obs_log/ itself: never elsewhere
   }
 }
 
@@ -81,10 +72,9 @@ void ObsLogCallback::save_chunk(int64_t num_timesteps) {
   std::memcpy(t.bytes.data(), rows_.data(), t.bytes.size());
   const std::vector<uint8_t> bytes = encode_npy(t);
   char name[64];
-  std::snprintf(name, sizeof name, "/obs_%010lld.npy", static_cast<long long>(num_timesteps));
+  std::snprintf(name, sizeof name, "obs_%010lld.npy", static_cast<long long>(num_timesteps));
   // Atomic and checked (a full disk is an error naming the file, not a short chunk).
-  write_text_atomic(dir_ + name,
-                    std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  dir_.write_atomic(name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   rows_.clear();  // keeps its capacity
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rlrun/core/config_checks.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/runtime/callback.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
 
@@ -52,7 +53,7 @@ class ObsLogCallback : public Callback {
   TrainingContext& context_;
   const ObsLogConfig& config_;
   const ObservationTap* tap_;
-  std::string dir_;
+  DirHandle dir_;  // <run_dir>/obs_log, held open: never a link (core/dir_handle.hpp)
   int obs_dim_;
   int64_t next_;
   int64_t last_chunk_step_ = 0;  // N of the last full chunk written

@@ -5,6 +5,7 @@
 #include <optional>
 #include <regex>
 
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/checkpoint_callback.hpp"
 #include "rlrun/runtime/model_budget.hpp"
@@ -18,10 +19,17 @@ std::string run_dir_of_checkpoint(const std::string& checkpoint) {
 }
 
 std::vector<std::string> resume_candidates(const std::string& run_dir_or_checkpoint) {
+  // The run directory and checkpoints/ are opened without following links, and only regular
+  // step_<N>.zip files are candidates (core/dir_handle.hpp): a run directory may come from
+  // anyone.
   std::error_code ec;
   if (fs::is_directory(run_dir_or_checkpoint, ec)) {
-    std::vector<std::string> found =
-        CheckpointCallback::list_checkpoints(run_dir_or_checkpoint + "/checkpoints");
+    const DirHandle run = DirHandle::open(run_dir_or_checkpoint);
+    const std::optional<DirHandle> checkpoints = run.subdir("checkpoints");
+    std::vector<std::string> found;
+    if (checkpoints)
+      for (const std::string& name : CheckpointCallback::list_checkpoints(*checkpoints))
+        found.push_back(checkpoints->child(name));
     if (found.empty())
       throw UsageError("cannot resume " + run_dir_or_checkpoint +
                        ": it has no checkpoints/step_<N>.zip (checkpoints are written every "
@@ -29,13 +37,21 @@ std::vector<std::string> resume_candidates(const std::string& run_dir_or_checkpo
     std::reverse(found.begin(), found.end());
     return found;
   }
-  if (!fs::is_regular_file(run_dir_or_checkpoint, ec))
+  if (!fs::exists(fs::symlink_status(run_dir_or_checkpoint, ec)))
     throw UsageError("cannot resume " + run_dir_or_checkpoint +
                      ": no such run directory or checkpoint file");
-  if (fs::path(run_dir_or_checkpoint).parent_path().filename() != "checkpoints")
+  const fs::path file(run_dir_or_checkpoint);
+  if (file.parent_path().filename() != "checkpoints")
     throw UsageError("cannot resume from " + run_dir_or_checkpoint +
                      ": only checkpoints (<run_dir>/checkpoints/step_<N>.zip) hold a training "
                      "state; to start a new run from a model's weights use --init-from");
+  const std::optional<DirHandle> checkpoints =
+      DirHandle::open(run_dir_of_checkpoint(run_dir_or_checkpoint)).subdir("checkpoints");
+  const std::string name = file.filename().string();
+  if (!checkpoints || checkpoints->kind(name) != EntryKind::kRegular) {
+    if (checkpoints) checkpoints->open_for_reading(name);  // says what it is instead
+    throw UsageError("cannot resume " + run_dir_or_checkpoint + ": no such checkpoint file");
+  }
   return {run_dir_or_checkpoint};
 }
 
@@ -95,16 +111,15 @@ ResumePoint open_resume_point(const std::vector<std::string>& candidates,
   throw RuntimeFailure("cannot resume: no checkpoint can continue the run; tried:" + tried);
 }
 
-void remove_stale_temporaries(const std::string& run_dir) {
+void remove_stale_temporaries(const DirHandle& run_dir) {
   static const std::regex temporary(".+\\.tmp(\\.[A-Za-z0-9]{6})?");
-  for (const fs::path& dir : {fs::path(run_dir), fs::path(run_dir) / "checkpoints"}) {
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-      if (!entry.is_regular_file(ec) || entry.is_symlink(ec)) continue;
-      if (std::regex_match(entry.path().filename().string(), temporary))
-        fs::remove(entry.path(), ec);
-    }
-  }
+  const auto clean = [](const DirHandle& dir) {
+    for (const DirHandle::Entry& entry : dir.list())
+      if (entry.kind == EntryKind::kRegular && std::regex_match(entry.name, temporary))
+        dir.remove(entry.name);
+  };
+  clean(run_dir);
+  if (const std::optional<DirHandle> checkpoints = run_dir.subdir("checkpoints")) clean(*checkpoints);
 }
 
 }  // namespace rlrun

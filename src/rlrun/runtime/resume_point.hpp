@@ -12,6 +12,8 @@
 
 namespace rlrun {
 
+class DirHandle;  // core/dir_handle.hpp
+
 // `<run_dir>/checkpoints/step_<N>.zip` -> `<run_dir>`.
 std::string run_dir_of_checkpoint(const std::string& checkpoint);
 
@@ -32,8 +34,9 @@ ResumePoint open_resume_point(const std::vector<std::string>& candidates,
                               const Experiment& experiment, const Registry& registry);
 
 // Removes what a killed process leaves behind in a run directory it owns: the temporary files
-// of atomic writes (`*.tmp`, `*.tmp.XXXXXX`) in the run directory and in checkpoints/. Call
-// with the run locked (runtime/run_lock.hpp).
-void remove_stale_temporaries(const std::string& run_dir);
+// of atomic writes (`*.tmp`, `*.tmp.XXXXXX`) in the run directory and in checkpoints/ (regular
+// files only; a checkpoints/ that is a link is refused, never cleaned). Call with the run
+// locked (runtime/run_lock.hpp).
+void remove_stale_temporaries(const DirHandle& run_dir);
 
 }  // namespace rlrun

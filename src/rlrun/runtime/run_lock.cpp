@@ -7,16 +7,16 @@
 #include <cerrno>
 #include <cstring>
 
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/regular_file.hpp"
 
 namespace rlrun {
 
-RunLock::RunLock(const std::string& run_dir) {
-  const std::string path = run_dir + "/.lock";
-  // O_NOFOLLOW: a run directory may come from elsewhere; a planted link is not followed.
-  fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd_ < 0)
-    throw RuntimeFailure("cannot create " + path + ": " + std::strerror(errno));
+RunLock::RunLock(const DirHandle& run_dir) {
+  const std::string path = run_dir.child(".lock");
+  // A run directory may come from anyone: a planted link or FIFO is refused, not followed.
+  fd_ = open_regular_file(run_dir.fd(), ".lock", O_RDWR | O_CREAT, path).release();
   if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     char holder[32] = {0};
@@ -27,7 +27,7 @@ RunLock::RunLock(const std::string& run_dir) {
       throw RuntimeFailure("another rlrun process" +
                            (n > 0 ? " (pid " + std::string(holder, strcspn(holder, "\n")) + ")"
                                   : std::string()) +
-                           " is training " + run_dir + "; wait for it to finish or stop it first");
+                           " is training " + run_dir.path() + "; wait for it to finish or stop it first");
     throw RuntimeFailure("cannot lock " + path + ": " + std::strerror(error));
   }
   // The holder's pid, for the message above (informational only).

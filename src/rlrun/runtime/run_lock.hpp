@@ -8,10 +8,13 @@
 
 namespace rlrun {
 
+class DirHandle;  // core/dir_handle.hpp
+
 class RunLock {
  public:
-  // Throws RuntimeFailure when another process holds the run, or the lock cannot be made.
-  explicit RunLock(const std::string& run_dir);
+  // Throws RuntimeFailure when another process holds the run, or the lock cannot be made
+  // (`.lock` is opened in the run directory without following a link, and must be regular).
+  explicit RunLock(const DirHandle& run_dir);
   ~RunLock();
   RunLock(const RunLock&) = delete;
   RunLock& operator=(const RunLock&) = delete;

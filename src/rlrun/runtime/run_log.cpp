@@ -4,7 +4,8 @@
 
 namespace rlrun {
 
-RunLog::RunLog(const std::string& path) : file_(path, CheckedFile::Mode::kAppend) {}
+RunLog::RunLog(const std::string& path)
+    : file_(CheckedFile::run_file(path, CheckedFile::Mode::kAppend)) {}
 
 void RunLog::line(const std::string& text) {
   std::cout << text << std::endl;

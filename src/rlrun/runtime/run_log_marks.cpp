@@ -1,28 +1,28 @@
 #include "rlrun/runtime/run_log_marks.hpp"
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
-#include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/run_file_bounds.hpp"
 #include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
 namespace {
 
-// The first `max_lines` lines of a file (all by default).
-std::vector<std::string> read_lines(const std::string& path,
+// The first `max_lines` lines of one of the run's CSV files (all by default), within the
+// bounds of runtime/run_file_bounds.hpp; none when it does not exist.
+std::vector<std::string> read_lines(const DirHandle& run, const std::string& name,
                                     size_t max_lines = std::numeric_limits<size_t>::max()) {
   std::vector<std::string> lines;
-  std::ifstream in(path);
-  for (std::string line; lines.size() < max_lines && std::getline(in, line);)
-    lines.push_back(line);
+  std::optional<LineReader> in = run.read_lines(name, kMaxRunCsvBytes, kMaxRunCsvLineBytes);
+  for (std::string line; in && lines.size() < max_lines && in->next(line);) lines.push_back(line);
   return lines;
 }
 
@@ -44,19 +44,19 @@ std::string project_row(const std::string& row, const std::vector<std::string>& 
 
 }  // namespace
 
-void write_log_marks(StateWriter out, const std::string& run_dir,
+void write_log_marks(StateWriter out, const DirHandle& run_dir,
                      const std::vector<std::string>& files) {
   out.put_int("count", static_cast<int64_t>(files.size()));
   for (size_t i = 0; i < files.size(); ++i) {
     StateWriter file = out.sub(std::to_string(i));
-    const std::vector<std::string> lines = read_lines(run_dir + "/" + files[i]);
+    const std::vector<std::string> lines = read_lines(run_dir, files[i]);
     file.put_string("name", files[i]);
     file.put_int("lines", static_cast<int64_t>(lines.size()));
     file.put_string("first_line", lines.empty() ? std::string() : lines.front());
   }
 }
 
-void restore_log_marks(const StateReader& in, const std::string& run_dir,
+void restore_log_marks(const StateReader& in, const DirHandle& run_dir,
                        const std::vector<std::string>& expected) {
   const int64_t count = in.get_int("count");
   if (count < 0 || count > static_cast<int64_t>(expected.size()))
@@ -73,13 +73,12 @@ void restore_log_marks(const StateReader& in, const std::string& run_dir,
       throw RuntimeFailure("cannot resume: the checkpoint records " +
                            count_of(lines_recorded, "line") + " of " + name);
     const auto kept = static_cast<size_t>(lines_recorded);
-    const std::string path = run_dir + "/" + name;
+    const std::string path = run_dir.child(name);
     if (kept == 0) {
-      std::error_code ec;
-      std::filesystem::remove(path, ec);
+      run_dir.remove(name);
       continue;
     }
-    std::vector<std::string> lines = read_lines(path, kept);
+    std::vector<std::string> lines = read_lines(run_dir, name, kept);
     if (lines.size() < kept)
       throw RuntimeFailure("cannot resume: " + path + " has " + std::to_string(lines.size()) +
                            " lines, the checkpoint recorded " + std::to_string(kept) +
@@ -95,7 +94,7 @@ void restore_log_marks(const StateReader& in, const std::string& run_dir,
     }
     std::ostringstream text;
     for (const std::string& line : lines) text << line << '\n';
-    write_text_atomic(path, text.str());
+    run_dir.write_atomic(name, text.str());
   }
 }
 

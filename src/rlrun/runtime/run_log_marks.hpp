@@ -13,10 +13,14 @@
 
 #include "rlrun/core/state_dict.hpp"
 
+
 namespace rlrun {
 
-// `files` are paths relative to `run_dir`; a file that does not exist is recorded as empty.
-void write_log_marks(StateWriter out, const std::string& run_dir,
+class DirHandle;  // core/dir_handle.hpp
+
+// `files` are names in `run_dir`; a file that does not exist is recorded as empty. Files are
+// read without following links, within runtime/run_file_bounds.hpp.
+void write_log_marks(StateWriter out, const DirHandle& run_dir,
                      const std::vector<std::string>& files);
 
 // Cuts every recorded file back to its mark (atomically). A checkpoint is untrusted data: only
@@ -24,7 +28,7 @@ void write_log_marks(StateWriter out, const std::string& run_dir,
 // are touched, so a crafted name such as "../../x" is refused, never joined to the run
 // directory. Throws RuntimeFailure naming the file when one is unexpected, or shorter than its
 // mark (edited or truncated since the checkpoint).
-void restore_log_marks(const StateReader& in, const std::string& run_dir,
+void restore_log_marks(const StateReader& in, const DirHandle& run_dir,
                        const std::vector<std::string>& expected);
 
 }  // namespace rlrun

@@ -5,16 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <numeric>
+#include <sstream>
 
 #include "rlrun/core/config_node.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/log_sinks.hpp"
 #include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/run_file_bounds.hpp"
 #include "rlrun/runtime/session_summary.hpp"
 #include "rlrun/runtime/trainer.hpp"
 
@@ -38,20 +40,28 @@ double number(const std::string& cell) {
   }
 }
 
-// A CSV file as columns; `skip_comment` drops a first line starting with '#' (Monitor files).
-std::map<std::string, std::vector<double>> read_columns(const fs::path& path) {
+// A CSV file of the run as columns (empty when it does not exist); a first line starting with
+// '#' is skipped (Monitor files). Read within the bounds of runtime/run_file_bounds.hpp.
+std::map<std::string, std::vector<double>> read_columns(const DirHandle& run, const std::string& name) {
   std::map<std::string, std::vector<double>> columns;
-  std::ifstream in(path);
+  std::optional<LineReader> in = run.read_lines(name, kMaxRunCsvBytes, kMaxRunCsvLineBytes);
+  if (!in) return columns;
   std::string line;
-  while (std::getline(in, line) && !line.empty() && line[0] == '#') {}
+  while (in->next(line) && !line.empty() && line[0] == '#') {}
   if (line.empty()) return columns;
   const std::vector<std::string> header = split_csv_line(line);
-  for (const auto& name : header) columns[name];
-  while (std::getline(in, line)) {
+  std::vector<std::vector<double>*> column_of;
+  for (const auto& key : header) column_of.push_back(&columns[key]);
+  uint64_t values = 0;
+  while (in->next(line)) {
     if (line.empty()) continue;
+    values += header.size();
+    if (values > kMaxRunCsvValues)
+      throw RuntimeFailure(in->shown() + " holds more than " + std::to_string(kMaxRunCsvValues) +
+                           " values, the most rlrun reads of a CSV file (docs/security.md)");
     const std::vector<std::string> cells = split_csv_line(line);
     for (size_t i = 0; i < header.size(); ++i)
-      columns[header[i]].push_back(i < cells.size() ? number(cells[i]) : kNaN);
+      column_of[i]->push_back(i < cells.size() ? number(cells[i]) : kNaN);
   }
   return columns;
 }
@@ -72,16 +82,26 @@ double percentile(std::vector<double> v, double p) {  // numpy's default, linear
 }  // namespace
 
 std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths) {
+  // The paths named are the user's (followed); below them, links are not: a run directory
+  // must be a directory itself (core/dir_handle.hpp), and the search does not enter links.
+  const auto is_real_directory = [](const fs::path& p) {
+    std::error_code ec;
+    return fs::is_directory(fs::symlink_status(p, ec));
+  };
+  const auto exists_here = [](const fs::path& p) {
+    std::error_code ec;
+    return fs::exists(fs::symlink_status(p, ec));
+  };
   std::vector<std::string> dirs;
   for (const std::string& path : paths) {
     if (!fs::is_directory(path)) throw UsageError(path + " is not a directory");
     const size_t before = dirs.size();
-    if (fs::exists(fs::path(path) / "config.yaml")) {
+    if (exists_here(fs::path(path) / "config.yaml")) {
       dirs.push_back(path);
     } else {
       for (const auto& entry : fs::recursive_directory_iterator(path))
-        if (entry.is_directory() && fs::exists(entry.path() / "config.yaml") &&
-            fs::exists(entry.path() / "progress.csv"))
+        if (is_real_directory(entry.path()) && exists_here(entry.path() / "config.yaml") &&
+            exists_here(entry.path() / "progress.csv"))
           dirs.push_back(entry.path().string());
     }
     if (dirs.size() == before) throw UsageError(path + " holds no run directory (config.yaml + progress.csv)");
@@ -101,11 +121,12 @@ constexpr const char* kNotConfiguration[] = {"seed", "out_dir", "tb_log_name", "
 // The run's config.yaml: a run directory may come from anyone (docs/security.md), so it is read
 // with the same bounds as any untrusted config text (size, alias expansion, one document).
 // Fills seed and name; returns the resolved config without kNotConfiguration (the group key).
-std::string read_run_config(const std::string& dir, RunResult& r) {
-  const fs::path config = fs::path(dir) / "config.yaml";
-  if (!fs::exists(config)) throw RuntimeFailure(dir + " has no config.yaml: not a run directory");
+std::string read_run_config(const DirHandle& run_dir, RunResult& r) {
+  const std::optional<std::string> text = run_dir.read("config.yaml", kMaxConfigBytes + 1);
+  if (!text) throw RuntimeFailure(run_dir.path() + " has no config.yaml: not a run directory");
   try {
-    const ConfigNode root = ConfigNode::load_file(config.string(), ConfigTrust::kUntrusted);
+    const ConfigNode root =
+        ConfigNode::load_string(*text, run_dir.child("config.yaml"), ConfigTrust::kUntrusted);
     const ConfigNode run = root.child("run");
     if (run.child("seed").defined()) r.seed = static_cast<uint64_t>(run.child("seed").as_int());
     if (run.child("name").defined()) r.name = run.child("name").as_string();
@@ -120,11 +141,12 @@ std::string read_run_config(const std::string& dir, RunResult& r) {
 
 // The sessions' summary lines of log.txt added up (a resumed run has several; one per
 // `train` or `train --resume`, runtime/session_summary.hpp); NaN when there is none.
-double logged_wall_seconds(const std::string& dir) {
-  std::ifstream log(fs::path(dir) / "log.txt");
+double logged_wall_seconds(const DirHandle& run) {
+  std::optional<LineReader> log =
+      run.read_lines("log.txt", kMaxRunLogBytes, kMaxRunLogLineBytes, LineReader::LongLines::kCut);
   bool logged = false;
   double seconds = 0;
-  for (std::string line; std::getline(log, line);) {
+  for (std::string line; log && log->next(line);) {
     const std::optional<SessionSummary> session = parse_session_summary(line);
     if (!session) continue;
     seconds += session->wall_seconds;
@@ -138,18 +160,16 @@ double logged_wall_seconds(const std::string& dir) {
 // marker (written last, "timesteps N") is the count of a finished run; otherwise model.zip's
 // meta.json (written at the end of every session, also an interrupted one), unless progress.csv
 // got further (a run training now, after a resume).
-double true_timesteps(const std::string& dir, double progress_timesteps) {
-  std::ifstream marker(fs::path(dir) / kFinishedMarker);
+double true_timesteps(const DirHandle& run, double progress_timesteps) {
+  std::istringstream marker(run.read(kFinishedMarker, kMaxRunMarkerBytes).value_or(""));
   std::string word;
   long long steps = 0;
   if (marker >> word >> steps && word == "timesteps" && steps >= 0)
     return static_cast<double>(steps);
   double best = std::isfinite(progress_timesteps) ? progress_timesteps : 0.0;
-  const fs::path model = fs::path(dir) / "model.zip";
-  std::error_code ec;
-  if (fs::is_regular_file(model, ec)) {
+  if (run.kind("model.zip") == EntryKind::kRegular) {  // a link is not followed
     try {  // meta.json only, within its bound (model files are untrusted: model_file.hpp)
-      const ModelFile header = read_model_header(model.string());
+      const ModelFile header = read_model_header(run.child("model.zip"));
       best = std::max(best, static_cast<double>(header.meta.num_timesteps));
     } catch (const std::exception&) {
       // A damaged model.zip: progress.csv's count stands.
@@ -160,13 +180,13 @@ double true_timesteps(const std::string& dir, double progress_timesteps) {
 
 // The mean of the last 100 training episodes over all monitor files, in the order they ended
 // (and their success rate when the monitor has is_success); source "none" without episodes.
-void monitor_return(const std::string& dir, RunResult& r) {
+void monitor_return(const DirHandle& run, RunResult& r) {
   std::vector<std::pair<double, double>> episodes;  // (t, r)
   std::vector<std::pair<double, double>> successes;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string file = entry.path().filename().string();
+  for (const DirHandle::Entry& entry : run.list()) {
+    const std::string& file = entry.name;
     if (file.size() < 12 || file.substr(file.size() - 12) != ".monitor.csv") continue;
-    const auto m = read_columns(entry.path());
+    const auto m = read_columns(run, file);
     if (!m.count("r") || !m.count("t")) continue;
     for (size_t i = 0; i < m.at("r").size(); ++i) {
       episodes.emplace_back(m.at("t")[i], m.at("r")[i]);
@@ -195,17 +215,18 @@ void monitor_return(const std::string& dir, RunResult& r) {
 RunResult read_run(const std::string& dir) {
   RunResult r;
   r.dir = dir;
-  r.config_key = read_run_config(dir, r);
-  r.progress = read_columns(fs::path(dir) / "progress.csv");
+  const DirHandle run = DirHandle::open(dir);  // a run directory: not a link (dir_handle.hpp)
+  r.config_key = read_run_config(run, r);
+  r.progress = read_columns(run, "progress.csv");
   // Wall time from log.txt, else progress.csv's whole seconds.
-  r.wall_seconds = logged_wall_seconds(dir);
+  r.wall_seconds = logged_wall_seconds(run);
   if (std::isnan(r.wall_seconds))
     r.wall_seconds = r.progress.count("time/time_elapsed") ? last_finite(r.progress["time/time_elapsed"]) : 0.0;
   const auto logged = r.progress.find("time/total_timesteps");
   r.timesteps =
-      true_timesteps(dir, logged != r.progress.end() ? last_finite(logged->second) : kNaN);
+      true_timesteps(run, logged != r.progress.end() ? last_finite(logged->second) : kNaN);
   // The last evaluation when the run evaluated, else the last 100 training episodes.
-  const auto evaluations = read_columns(fs::path(dir) / "evaluations.csv");
+  const auto evaluations = read_columns(run, "evaluations.csv");
   if (evaluations.count("mean_reward") && !evaluations.at("mean_reward").empty()) {
     r.final_return = evaluations.at("mean_reward").back();
     r.return_source = "eval";
@@ -213,7 +234,7 @@ RunResult read_run(const std::string& dir) {
       r.success_rate = evaluations.at("success_rate").back();
     return r;
   }
-  monitor_return(dir, r);
+  monitor_return(run, r);
   return r;
 }
 

@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/core/plural.hpp"
+#include "rlrun/core/zip_archive.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/callback.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -63,8 +65,9 @@ std::vector<std::string> appended_files(const Experiment& experiment) {
   return files;
 }
 
-std::string checkpoint_name(const std::string& run_dir, int64_t num_timesteps) {
-  return run_dir + "/checkpoints/step_" + std::to_string(num_timesteps) + ".zip";
+// checkpoints/<this>: what CheckpointCallback writes too.
+std::string checkpoint_name(int64_t num_timesteps) {
+  return "step_" + std::to_string(num_timesteps) + ".zip";
 }
 
 // One training run, in the order it happens: open the run directory (new, or the resumed
@@ -94,8 +97,8 @@ class TrainingRun {
   void restore();
   TrainingHooks hooks();
   bool at_safe_point(int64_t num_timesteps);
-  void save_model(const std::string& path);
-  void save_checkpoint(const std::string& path);
+  void save_model(const std::string& name);
+  void save_checkpoint(const std::string& name);
   TensorMap finite_model_tensors();
   [[noreturn]] void stop_diverged(const std::string& problem);
   void finish();
@@ -104,6 +107,7 @@ class TrainingRun {
   const Registry& registry_;
   const bool resuming_;
   TrainOutcome outcome_;
+  std::optional<DirHandle> dir_;  // the run directory, held open (core/dir_handle.hpp)
   std::optional<RunLock> lock_;
   std::optional<NewRunDirectoryGuard> new_run_guard_;
   std::optional<ResumePoint> resume_;
@@ -122,27 +126,31 @@ class TrainingRun {
 };
 
 // A new run gets a fresh directory; a resumed one its own, cut back to the checkpoint. Either
-// is locked for this process (a second `--resume` of the same run is refused).
+// is held open (a resumed one may come from anyone: it must be a directory, not a link, and so
+// must checkpoints/; core/dir_handle.hpp) and locked for this process (a second `--resume` of
+// the same run is refused).
 void TrainingRun::open_run_directory(const std::vector<std::string>& resume_from) {
   const RunConfig& run = experiment_.run;
   if (resuming_) {
     outcome_.run_dir = run_dir_of_checkpoint(resume_from.front());
-    lock_.emplace(outcome_.run_dir);
-    remove_stale_temporaries(outcome_.run_dir);
+    dir_ = DirHandle::open(outcome_.run_dir);
+    lock_.emplace(*dir_);
+    remove_stale_temporaries(*dir_);
     resume_ = open_resume_point(resume_from, experiment_, registry_);
     // The files go back to where the checkpoint left them (rows written after it would
     // otherwise appear twice).
-    restore_log_marks(training_state_reader(resume_->checkpoint, kFileMarks), outcome_.run_dir,
+    restore_log_marks(training_state_reader(resume_->checkpoint, kFileMarks), *dir_,
                       appended_files(experiment_));
   } else {
     outcome_.run_dir = create_run_directory(run.out_dir, run.name, run.seed);
-    lock_.emplace(outcome_.run_dir);
+    new_run_guard_.emplace(outcome_.run_dir);
+    dir_ = DirHandle::open(outcome_.run_dir);
+    lock_.emplace(*dir_);
   }
-  new_run_guard_.emplace(resuming_ ? "" : outcome_.run_dir);
-  std::error_code no_marker;
-  fs::remove(outcome_.run_dir + "/" + kFinishedMarker, no_marker);  // training again
-  write_text_atomic(outcome_.run_dir + "/config.yaml", dump_yaml(experiment_.resolved));
-  log_.emplace(outcome_.run_dir + "/log.txt");
+  if (!new_run_guard_) new_run_guard_.emplace("");
+  dir_->remove(kFinishedMarker);  // training again
+  dir_->write_atomic("config.yaml", dump_yaml(experiment_.resolved));
+  log_.emplace(outcome_.run_dir + "/log.txt");  // not through a link (core/checked_file.hpp)
   announce();
 }
 
@@ -214,8 +222,8 @@ void TrainingRun::build_logging() {
                                      bar_->clear();
                                      log_->line(message);
                                    },
-                                   [this](const std::string& path) { save_model(path); },
-                                   [this](const std::string& path) { save_checkpoint(path); },
+                                   [this](const std::string& name) { save_model(name); },
+                                   [this](const std::string& name) { save_checkpoint(name); },
                                    resuming_, on_evaluation_});
   callbacks_ = make_callbacks(*context_);
   last_checkpoint_ = resuming_ ? resume_->path : "";
@@ -281,15 +289,18 @@ TensorMap TrainingRun::finite_model_tensors() {
 }
 
 // Model files carry the normalisation statistics of training env 0 (shared by all envs).
-void TrainingRun::save_model(const std::string& path) {
+// `name` is a file of the run directory (model.zip, best_model.zip).
+void TrainingRun::save_model(const std::string& name) {
   finite_model_tensors();
   TensorMap statistics;
   save_model_statistics(env_->env(0), statistics);
-  rlrun::save_model(path, *algorithm_, experiment_, env_->observation_space(),
-                    env_->action_space(), statistics);
+  write_zip_atomic(*dir_, name,
+                   model_members(*algorithm_, experiment_, env_->observation_space(),
+                                 env_->action_space(), statistics));
 }
 
-void TrainingRun::save_checkpoint(const std::string& path) {
+// `name`: checkpoints/<name>, a step_<N>.zip.
+void TrainingRun::save_checkpoint(const std::string& name) {
   finite_model_tensors();
   TensorMap extra;
   save_model_statistics(env_->env(0), extra);
@@ -303,12 +314,13 @@ void TrainingRun::save_checkpoint(const std::string& path) {
     if (tensorboard_) tensorboard_->write_state(state.part(kTensorBoardState));
     progress_csv_->flush();
     log_->check();
-    write_log_marks(state.part(kFileMarks), outcome_.run_dir, appended_files(experiment_));
+    write_log_marks(state.part(kFileMarks), *dir_, appended_files(experiment_));
   }
-  fs::create_directories(fs::path(path).parent_path());
-  rlrun::save_model(path, *algorithm_, experiment_, env_->observation_space(),
-                    env_->action_space(), extra);
-  if (resumable_) last_checkpoint_ = path;
+  const DirHandle checkpoints = dir_->make_subdir("checkpoints");
+  write_zip_atomic(checkpoints, name,
+                   model_members(*algorithm_, experiment_, env_->observation_space(),
+                                 env_->action_space(), extra));
+  if (resumable_) last_checkpoint_ = checkpoints.child(name);
 }
 
 bool TrainingRun::at_safe_point(int64_t num_timesteps) {
@@ -318,8 +330,9 @@ bool TrainingRun::at_safe_point(int64_t num_timesteps) {
   log_->check();
   if (!interrupt_requested()) return true;
   if (!resumable_) return false;  // nothing to resume from: just stop, model.zip follows
-  const std::string path = checkpoint_name(outcome_.run_dir, num_timesteps);
-  if (last_checkpoint_ != path) save_checkpoint(path);
+  const std::string name = checkpoint_name(num_timesteps);
+  const std::string path = outcome_.run_dir + "/checkpoints/" + name;
+  if (last_checkpoint_ != path) save_checkpoint(name);
   outcome_.checkpoint_path = path;
   return false;
 }
@@ -374,13 +387,12 @@ void TrainingRun::finish() {
     tensorboard_->finish(outcome_.timesteps, true, curve);
   }
   outcome_.model_path = outcome_.run_dir + "/model.zip";
-  save_model(outcome_.model_path);
+  save_model("model.zip");
   if (!outcome_.stop_reason.empty()) log_->line("stopped early: " + outcome_.stop_reason);
   log_->line(format_session_summary(session_summary(outcome_)) + "; model saved to " +
              outcome_.model_path);
   if (!outcome_.interrupted) {  // the last file written: `rlrun sweep run` skips such runs
-    write_text_atomic(outcome_.run_dir + "/" + kFinishedMarker,
-                      "timesteps " + std::to_string(outcome_.timesteps) + "\n");
+    dir_->write_atomic(kFinishedMarker, "timesteps " + std::to_string(outcome_.timesteps) + "\n");
     return;
   }
   if (!outcome_.checkpoint_path.empty())

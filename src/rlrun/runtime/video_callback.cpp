@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/render/video_writer.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -24,6 +25,9 @@ VideoCallback::VideoCallback(TrainingContext& context)
   if (env_->render_spec().width <= 0)
     throw UsageError("video.freq > 0 but " + context.experiment.env.id + " cannot render frames");
   set_statistics_training(*env_, false);
+  // videos/ inside the run directory, not a link to elsewhere (core/dir_handle.hpp); ffmpeg
+  // then writes there by path (a race with someone replacing it meanwhile is not defended).
+  DirHandle::open(context.run_dir).make_subdir("videos");
 }
 
 bool VideoCallback::on_step(int64_t num_timesteps) {

@@ -65,7 +65,30 @@ const nlohmann::json& one_attribute(const nlohmann::json& op, const char* key, c
   return v;
 }
 
+// What keeping a parsed JSON value costs, about (measured: an object's member ~200 bytes with
+// its value, an array's element 16): 64 bytes per value, 128 more per object member (a map
+// node and its key), plus the strings. The reader bounds the depth (journal_file.hpp).
+uint64_t json_charge(const nlohmann::json& v) {
+  uint64_t bytes = 64;
+  if (v.is_string()) {
+    bytes += v.get_ref<const std::string&>().size();
+  } else if (v.is_object()) {
+    for (auto it = v.begin(); it != v.end(); ++it) bytes += 128 + it.key().size() + json_charge(it.value());
+  } else if (v.is_array()) {
+    for (const auto& x : v) bytes += json_charge(x);
+  }
+  return bytes;
+}
+
 }  // namespace
+
+void JournalReplay::charge(uint64_t bytes, const std::string& where) {
+  state_bytes_ += bytes;
+  if (state_bytes_ > kMaxJournalStateBytes)
+    damaged(where, "the study's trials and attributes so far need more than " +
+                       std::to_string(kMaxJournalStateBytes >> 20) +
+                       " MiB of memory, the most rlrun keeps of a journal (docs/security.md)");
+}
 
 void JournalReplay::apply(const std::vector<nlohmann::json>& operations, const std::string& origin) {
   for (const auto& op : operations) apply_one(op, origin);
@@ -115,6 +138,7 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
         if (mine(op)) throw RuntimeFailure("another study with name '" + name + "' already exists");
         return;
       }
+      charge(512 + name.size(), where);
       StudyRecord study;
       study.study_id = next_study_id_++;
       study.name = name;
@@ -133,6 +157,7 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
       const int64_t id = id_field(op, "study_id", where);
       const auto& attr = one_attribute(op, user ? "user_attr" : "system_attr", where);
       if (!study_exists(id, op, where)) return;
+      charge(json_charge(attr), where);
       auto& target = user ? studies_[id].user_attrs : studies_[id].system_attrs;
       target.update(attr);
       return;
@@ -142,6 +167,7 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
       if (!study_exists(study_id, op, where)) return;
       if (trials_.size() >= kMaxJournalTrials)
         damaged(where, "more than " + std::to_string(kMaxJournalTrials) + " trials");
+      charge(1024 + json_charge(op), where);
       StudyRecord& study = studies_[study_id];
       FrozenTrial t;
       t.trial_id = static_cast<int64_t>(trials_.size());
@@ -190,6 +216,8 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
       if (op.contains("values")) t.values = values_value(op["values"], where);
       else if (op.contains("value") && !op["value"].is_null())
         t.values = std::vector<double>{number_value(op["value"], where, "'value'")};
+      for (const auto& [name, distribution] : t.distributions)
+        study.first_trial_with_param.emplace(name, t.trial_id);  // kept when an earlier has it
       trials_.push_back(std::move(t));
       trial_study_.push_back(study_id);
       study.trial_ids.push_back(trials_.back().trial_id);
@@ -211,20 +239,22 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
         damaged(where, e.what());
       }
       if (!contains(distribution, internal)) damaged(where, "parameter '" + name + "' is outside its distribution");
-      // Optuna: the first earlier trial with this parameter decides whether it fits.
-      for (int64_t other : studies_.at(trial_study_[static_cast<size_t>(id)]).trial_ids) {
-        const FrozenTrial& prev = trials_[static_cast<size_t>(other)];
-        auto d = prev.distributions.find(name);
-        if (d == prev.distributions.end()) continue;
-        if (!compatible(d->second, distribution)) {
-          if (mine(op)) throw RuntimeFailure(where + ": parameter '" + name + "' changed its distribution");
-          return;
-        }
-        break;
+      // Optuna: the first trial (lowest number) with this parameter decides whether it fits.
+      StudyRecord& study = studies_.at(trial_study_[static_cast<size_t>(id)]);
+      const auto first = study.first_trial_with_param.find(name);
+      if (first != study.first_trial_with_param.end() &&
+          !compatible(trials_[static_cast<size_t>(first->second)].distributions.at(name), distribution)) {
+        if (mine(op)) throw RuntimeFailure(where + ": parameter '" + name + "' changed its distribution");
+        return;
       }
+      charge(256 + name.size(), where);
       FrozenTrial& t = trials_[static_cast<size_t>(id)];
       t.params[name] = internal;
       t.distributions[name] = distribution;
+      if (first == study.first_trial_with_param.end())
+        study.first_trial_with_param.emplace(name, id);
+      else if (t.number < trials_[static_cast<size_t>(first->second)].number)
+        first->second = id;
       return;
     }
     case JournalOperation::kSetTrialStateValues: {
@@ -248,6 +278,7 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
       if (!step.is_number_integer()) damaged(where, "'step' is not an integer");
       const double value = number_value(field(op, "intermediate_value", where), where, "'intermediate_value'");
       if (!trial_updatable(id, op, where)) return;
+      charge(64, where);
       trials_[static_cast<size_t>(id)].intermediate_values[step.get<int64_t>()] = value;
       return;
     }
@@ -257,6 +288,7 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
       const int64_t id = id_field(op, "trial_id", where);
       const auto& attr = one_attribute(op, user ? "user_attr" : "system_attr", where);
       if (!trial_updatable(id, op, where)) return;
+      charge(json_charge(attr), where);
       FrozenTrial& t = trials_[static_cast<size_t>(id)];
       (user ? t.user_attrs : t.system_attrs).update(attr);
       return;

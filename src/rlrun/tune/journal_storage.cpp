@@ -46,7 +46,10 @@ JournalStorage::JournalStorage(const std::string& path, std::string worker_id)
   sync();
 }
 
-void JournalStorage::sync() { replay_.apply(file_.read(lines_read_), file_.path()); }
+void JournalStorage::sync() {
+  // One operation at a time: the replay's state is what stays, not the file's parsed lines.
+  file_.read(lines_read_, [this](nlohmann::json&& op, const std::string& where) { replay_.apply(op, where); });
+}
 
 JournalStorage::Transaction::Transaction(JournalStorage& storage)
     : storage_(storage), lock_(storage.file_) {

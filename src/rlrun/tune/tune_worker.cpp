@@ -10,6 +10,7 @@
 #include <iostream>
 #include <numeric>
 
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/runtime/experiment.hpp"
@@ -251,6 +252,10 @@ class TrialRunner {
 WorkerSummary run_worker(const StudyConfig& study, Registry& registry, bool verbose) {
   install_interrupt_handlers();
   fs::create_directories(fs::path(study.storage).parent_path());
+  // The trials' run directories go to <out_dir>/trials (study_config.hpp): inside the study,
+  // which may come from anyone, so not through a link (core/dir_handle.hpp).
+  fs::create_directories(study.out_dir);
+  DirHandle::open(study.out_dir, DirHandle::LastLink::kFollow).make_subdir("trials");
   JournalStorage storage(study.storage);
   const StudyDirection direction = study.maximize() ? StudyDirection::kMaximize : StudyDirection::kMinimize;
   const int64_t study_id = storage.create_or_load_study(study.name, direction);

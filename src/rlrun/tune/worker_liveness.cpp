@@ -4,14 +4,13 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "rlrun/core/checked_file.hpp"
+
 namespace rlrun::tune {
 namespace {
-
-namespace fs = std::filesystem;
 
 std::string host_name() {
   char name[256] = {0};
@@ -39,7 +38,7 @@ std::string heartbeat_path(const std::string& journal, const std::string& worker
 
 double seconds_since_modified(const std::string& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return 1e30;
+  if (::lstat(path.c_str(), &st) != 0) return 1e30;  // a link's own time: never followed
   const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   return now - (static_cast<double>(st.st_mtim.tv_sec) + 1e-9 * static_cast<double>(st.st_mtim.tv_nsec));
 }
@@ -69,12 +68,21 @@ bool worker_alive(const nlohmann::json& record, const std::string& journal) {
 }
 
 Heartbeat::Heartbeat(const std::string& journal, const std::string& worker_id)
-    : path_(heartbeat_path(journal, worker_id)) {
-  std::error_code ec;
-  fs::create_directories(fs::path(path_).parent_path(), ec);
+    : name_(worker_id) {
+  // <journal>.workers/ beside the journal, not a link to elsewhere, and the heartbeat a regular
+  // file in it (core/dir_handle.hpp): a study may come from anyone.
+  const auto [dir, journal_name] = DirHandle::open_parent(journal);
+  dir_ = dir.make_subdir(journal_name + ".workers");
+  dir_.open_for_writing(name_, CheckedFile::Mode::kTruncate);  // fails here, not in the thread
   thread_ = std::thread([this] {
     while (!stop_) {
-      std::ofstream(path_, std::ios::trunc) << "rlrun tune worker\n";
+      try {
+        CheckedFile beat = dir_.open_for_writing(name_, CheckedFile::Mode::kTruncate);
+        beat << "rlrun tune worker\n";
+        beat.close();
+      } catch (const std::exception&) {
+        // A beat that cannot be written makes this worker look gone later; the study goes on.
+      }
       for (int i = 0; i < static_cast<int>(kHeartbeatInterval * 10) && !stop_; ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
@@ -84,8 +92,7 @@ Heartbeat::Heartbeat(const std::string& journal, const std::string& worker_id)
 Heartbeat::~Heartbeat() {
   stop_ = true;
   thread_.join();
-  std::error_code ec;
-  fs::remove(path_, ec);
+  dir_.remove(name_);
 }
 
 }  // namespace rlrun::tune

@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rlrun/core/dir_handle.hpp"
+
 namespace rlrun::tune {
 
 inline constexpr double kHeartbeatInterval = 10.0;  // seconds
@@ -26,6 +28,7 @@ nlohmann::json this_worker(const std::string& worker_id);
 bool worker_alive(const nlohmann::json& record, const std::string& journal);
 
 // Touches the heartbeat file from a thread of its own while it lives; removes it at the end.
+// Throws RuntimeFailure when <journal>.workers is a link or the file cannot be written.
 class Heartbeat {
  public:
   Heartbeat(const std::string& journal, const std::string& worker_id);
@@ -34,7 +37,8 @@ class Heartbeat {
   Heartbeat& operator=(const Heartbeat&) = delete;
 
  private:
-  std::string path_;
+  DirHandle dir_;     // <journal>.workers
+  std::string name_;  // the worker id: the heartbeat file's name
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

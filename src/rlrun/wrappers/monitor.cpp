@@ -30,7 +30,8 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
     keyword_own_index_.push_back(info_.add_key("episode." + keyword));
   }
   if (path.empty()) return;
-  file_ = CheckedFile(path, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
+  // A run directory's file: not through a link, a regular file (core/checked_file.hpp).
+  file_ = CheckedFile::run_file(path, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
   if (append) return;
   char t_start_text[64];
   std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);

@@ -1,19 +1,19 @@
 #include "rlrun/runtime/tensorboard/event_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <filesystem>
+#include <optional>
 
 #include "rlrun/core/crc32c.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/regular_file.hpp"
 
 namespace rlrun {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -31,17 +31,6 @@ std::string host_name() {
   return host;
 }
 
-// Creates `path` only if it does not exist yet (never another run's file).
-bool create_exclusively(const std::string& path) {
-  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) {
-    if (errno == EEXIST) return false;
-    throw RuntimeFailure("cannot create " + path + ": " + describe_errno(errno));
-  }
-  close(fd);
-  return true;
-}
-
 }  // namespace
 
 std::string tfrecord(const std::string& data) {
@@ -54,29 +43,33 @@ std::string tfrecord(const std::string& data) {
   return record;
 }
 
-EventFile EventFile::create(const std::string& dir, double wall_time) {
-  const std::string stem =
-      dir + "/events.out.tfevents." + std::to_string(static_cast<int64_t>(std::floor(wall_time))) +
-      "." + host_name();
-  std::string path = stem;
-  for (int n = 2; !create_exclusively(path); ++n) path = stem + "." + std::to_string(n);
-  EventFile file(CheckedFile(path, CheckedFile::Mode::kAppend), 0);
+EventFile EventFile::create(const DirHandle& dir, double wall_time) {
+  const std::string stem = "events.out.tfevents." +
+                           std::to_string(static_cast<int64_t>(std::floor(wall_time))) + "." +
+                           host_name();
+  // Only a name that does not exist yet (never another run's file).
+  std::optional<CheckedFile> created = dir.create_new(stem);
+  for (int n = 2; !created; ++n) created = dir.create_new(stem + "." + std::to_string(n));
+  EventFile file(std::move(*created), 0);
   ProtoWriter event;
   event.float64(1, wall_time).bytes(3, "brain.Event:2");  // Event.wall_time, Event.file_version
   file.write(event);
   return file;
 }
 
-EventFile EventFile::reopen(const std::string& path, uint64_t bytes) {
-  std::error_code ec;
-  const uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw RuntimeFailure("cannot open " + path + ": " + ec.message());
-  if (size < bytes)
-    throw RuntimeFailure(path + " holds " + std::to_string(size) + " bytes, fewer than the " +
+EventFile EventFile::reopen(const DirHandle& dir, const std::string& name, uint64_t bytes) {
+  const std::string path = dir.child(name);
+  FileDescriptor fd = open_regular_file(dir.fd(), name, O_WRONLY | O_APPEND, path);
+  if (!fd) throw RuntimeFailure("cannot open " + path + ": it is gone");
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0)
+    throw RuntimeFailure("cannot open " + path + ": " + describe_errno(errno));
+  if (static_cast<uint64_t>(st.st_size) < bytes)
+    throw RuntimeFailure(path + " holds " + std::to_string(st.st_size) + " bytes, fewer than the " +
                          std::to_string(bytes) + " the checkpoint recorded (cut or replaced since)");
-  fs::resize_file(path, bytes, ec);
-  if (ec) throw RuntimeFailure("cannot cut " + path + " back to the checkpoint: " + ec.message());
-  return EventFile(CheckedFile(path, CheckedFile::Mode::kAppend), bytes);
+  if (::ftruncate(fd.get(), static_cast<off_t>(bytes)) != 0)
+    throw RuntimeFailure("cannot cut " + path + " back to the checkpoint: " + describe_errno(errno));
+  return EventFile(CheckedFile::adopt(std::move(fd), path), bytes);
 }
 
 void EventFile::write(const ProtoWriter& event) {

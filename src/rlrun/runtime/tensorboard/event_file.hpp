@@ -9,18 +9,20 @@
 #include <string>
 
 #include "rlrun/core/checked_file.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/protobuf_writer.hpp"
 
 namespace rlrun {
 
 class EventFile {
  public:
-  // A new event file in `dir` (which must exist), starting with the file_version event.
-  static EventFile create(const std::string& dir, double wall_time);
-  // An existing event file cut back to its first `bytes` bytes (a resumed run continues where
-  // its checkpoint was written; records written after it would appear twice). Throws
-  // RuntimeFailure when the file is shorter than that.
-  static EventFile reopen(const std::string& path, uint64_t bytes);
+  // A new event file in `dir`, starting with the file_version event.
+  static EventFile create(const DirHandle& dir, double wall_time);
+  // The existing event file `name` in `dir` cut back to its first `bytes` bytes (a resumed run
+  // continues where its checkpoint was written; records written after it would appear twice).
+  // A checkpoint names it: it must be a regular file, not a link (core/dir_handle.hpp). Throws
+  // RuntimeFailure when it is not, or is shorter than that.
+  static EventFile reopen(const DirHandle& dir, const std::string& name, uint64_t bytes);
 
   // Appends one Event record and writes it through (TensorBoard shows it on its next reload;
   // a full disk is a RuntimeFailure naming the file).

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "rlrun/core/checked_file.hpp"
+#include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/tensorboard/learning_curve_image.hpp"
 #include "rlrun/runtime/tensorboard/summaries.hpp"
@@ -69,10 +70,24 @@ TensorBoardLog TensorBoardLog::start(const std::string& dir, const std::string& 
   std::string run_name;
   const std::string run_dir = create_run_directory(dir, name, run_name);
   const double now = wall_time_now();
-  TensorBoardLog log(run_dir, run_name, EventFile::create(run_dir, now));
+  TensorBoardLog log(run_dir, run_name, EventFile::create(DirHandle::open(run_dir), now));
   log.file_.write(session_start_event(now, hparams_of_config(config)));
   return log;
 }
+
+namespace {
+
+// DIR/<run_name> for a resumed run: DIR is the user's (--tensorboard-log), the directories
+// below it come from the checkpoint and are opened without following links, created when gone.
+DirHandle open_tensorboard_run(const std::string& dir, const fs::path& run_name) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  DirHandle at = DirHandle::open(dir, DirHandle::LastLink::kFollow);
+  for (const fs::path& part : run_name) at = at.make_subdir(part.string());
+  return at;
+}
+
+}  // namespace
 
 TensorBoardLog TensorBoardLog::resume(const std::string& dir, const std::string& name,
                                       const StateReader& state,
@@ -91,17 +106,16 @@ TensorBoardLog TensorBoardLog::resume(const std::string& dir, const std::string&
       file_name.find('/') != std::string::npos || file_name.find('\0') != std::string::npos)
     throw StateMismatch("checkpoint names the TensorBoard event file '" + file_name +
                         "', not events.out.tfevents.*");
-  const std::string run_dir = (fs::path(dir) / run_path).string();
-  const std::string path = run_dir + "/" + file_name;
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    fs::create_directories(run_dir, ec);
-    note("note: the TensorBoard event file " + path +
+  const DirHandle run_dir = open_tensorboard_run(dir, run_path);
+  if (run_dir.kind(file_name) == EntryKind::kMissing) {
+    note("note: the TensorBoard event file " + run_dir.child(file_name) +
          " is gone; this run's curves continue in a new file there from the checkpoint's step");
-    TensorBoardLog log(run_dir, run_name, EventFile::create(run_dir, wall_time_now()));
+    TensorBoardLog log(run_dir.path(), run_name, EventFile::create(run_dir, wall_time_now()));
     return log;
   }
-  TensorBoardLog log(run_dir, run_name, EventFile::reopen(path, static_cast<uint64_t>(bytes)));
+  // A link or a file that is not regular is refused here (EventFile::reopen).
+  TensorBoardLog log(run_dir.path(), run_name,
+                     EventFile::reopen(run_dir, file_name, static_cast<uint64_t>(bytes)));
   log.last_ep_rew_mean_ = state.get_double("last_ep_rew_mean");
   log.last_eval_mean_reward_ = state.get_double("last_eval_mean_reward");
   return log;
