@@ -60,9 +60,16 @@ Action add_export(CLI::App& app, Registry& registry) {
     load_plugin_options(o->plugins, registry);
     check_output_directory(o->output);
     const LoadedModel model = load_model(o->model, registry);
+    // The whole output is made before anything is written: a refusal leaves nothing behind.
     PolicyGraph graph;
+    CSource c;
+    std::string onnx;
     try {
       graph = build_model_graph(model, o->with_value);
+      if (o->format == "c")
+        c = c_policy_source(graph);
+      else
+        onnx = onnx_model_bytes(graph);
     } catch (const ExportError& e) {
       throw RuntimeFailure("cannot export " + o->model + ": " + e.what());
     }
@@ -71,7 +78,6 @@ Action add_export(CLI::App& app, Registry& registry) {
       std::filesystem::create_directory(o->output, ec);
       if (!std::filesystem::is_directory(o->output, ec))
         throw RuntimeFailure("cannot write " + o->output + ": not a directory");
-      const CSource c = c_policy_source(graph);
       write_text_atomic((std::filesystem::path(o->output) / "policy.h").string(), c.header);
       write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
       std::printf("exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
@@ -81,7 +87,7 @@ Action add_export(CLI::App& app, Registry& registry) {
                   graph.width(graph.action()));
       return 0;
     } else {
-      write_text_atomic(o->output, onnx_model_bytes(graph));
+      write_text_atomic(o->output, onnx);
     }
     std::string inputs;
     for (const GraphInput& in : graph.inputs())
