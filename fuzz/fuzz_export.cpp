@@ -26,7 +26,7 @@
 #include "fuzz_limits.hpp"
 #include "private_file.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/utf8_text.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/deploy/c_writer.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -148,7 +148,7 @@ std::vector<Field> fields(std::string_view message) {
   return out;
 }
 void check_text(const Field& f, const char* what) {
-  if (f.type != 2 || !is_utf8(f.bytes)) violated(std::string(what) + " is not UTF-8 text", f.bytes);
+  if (f.type != 2 || !valid_utf8(f.bytes)) violated(std::string(what) + " is not UTF-8 text", f.bytes);
 }
 
 // onnx/onnx.proto: ModelProto 2 producer_name, 3 producer_version, 6 doc_string, 7 graph,

@@ -1,4 +1,4 @@
-// rlrun export --model FILE --format onnx --output policy.onnx [--with-value]
+// rlrun export --model FILE --format onnx --output policy.onnx [--with-value] [--set k=v]... [--trust]
 // rlrun export --model FILE --format c --output DIR        (DIR/policy.c, DIR/policy.h)
 // The model's deterministic policy as a file that runs without rlrun (deploy/): the env's
 // observation in, the env's action out, as `rlrun eval` acts (docs/deploy.md).
@@ -8,7 +8,9 @@
 
 #include "commands.hpp"
 #include "plugin_option.hpp"
+#include "trust_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/deploy/c_writer.hpp"
 #include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
@@ -25,6 +27,8 @@ struct ExportOptions {
   std::string output;
   bool with_value = false;
   std::vector<std::string> plugins;
+  std::vector<std::string> overrides;  // --set: the user's values over the model's config
+  bool trust = false;                  // --trust: run what the model file names
 };
 
 // The output's directory must exist: exporting never creates directories (a typo in a path
@@ -56,10 +60,18 @@ Action add_export(CLI::App& app, Registry& registry) {
                 "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
                 "critic's Q(s, action) for SAC/TD3/DDPG, mean quantile for TQC");
   add_plugin_option(sub, o->plugins);
+  sub->add_option("--set", o->overrides,
+                  "override a value of the model's config (a model file is untrusted: this is "
+                  "how you vouch for a program or file it names; repeatable)")
+      ->allow_extra_args(false);
+  add_trust_option(sub, o->trust);
   return [o, &registry]() {
     load_plugin_options(o->plugins, registry);
     check_output_directory(o->output);
-    const LoadedModel model = load_model(o->model, registry);
+    // The policy graph is built on the model's env stack (its wrappers' exports, the env's own
+    // spaces, which a model file does not store): the env is built, so its code runs.
+    const LoadedModel model = load_model(o->model, registry, o->overrides,
+                                         model_trust(o->trust, o->model, registry));
     // The whole output is made before anything is written: a refusal leaves nothing behind.
     PolicyGraph graph;
     CSource c;
@@ -73,6 +85,9 @@ Action add_export(CLI::App& app, Registry& registry) {
     } catch (const ExportError& e) {
       throw RuntimeFailure("cannot export " + o->model + ": " + e.what());
     }
+    // meta.json's text is the model file's: quoted (one printable line) when printed.
+    const std::string algorithm = quoted_text(model.file.meta.algorithm);
+    const std::string env_id = quoted_text(model.file.meta.env_id);
     if (o->format == "c") {
       std::error_code ec;
       std::filesystem::create_directory(o->output, ec);
@@ -82,18 +97,18 @@ Action add_export(CLI::App& app, Registry& registry) {
       write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
       std::printf("exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
                   "action[%d])\n",
-                  o->model.c_str(), model.file.meta.algorithm.c_str(),
-                  model.file.meta.env_id.c_str(), o->output.c_str(), graph.observation_width(),
-                  graph.width(graph.action()));
+                  o->model.c_str(), algorithm.c_str(), env_id.c_str(), o->output.c_str(),
+                  graph.observation_width(), graph.width(graph.action()));
       return 0;
     } else {
       write_text_atomic(o->output, onnx);
     }
-    std::string inputs;
+    std::string inputs;  // Dict keys come from the model file: quoted
     for (const GraphInput& in : graph.inputs())
-      inputs += (inputs.empty() ? "" : ", ") + in.name + " [batch, " + std::to_string(in.width) + "]";
+      inputs += (inputs.empty() ? "" : ", ") + quoted_text(in.name) + " [batch, " +
+                std::to_string(in.width) + "]";
     std::printf("exported %s (%s on %s) to %s: inputs %s; outputs action [batch, %d]%s\n",
-                o->model.c_str(), model.file.meta.algorithm.c_str(), model.file.meta.env_id.c_str(),
+                o->model.c_str(), algorithm.c_str(), env_id.c_str(),
                 o->output.c_str(), inputs.c_str(), graph.width(graph.action()),
                 graph.value().empty()
                     ? ""

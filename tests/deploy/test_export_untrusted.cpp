@@ -15,6 +15,7 @@
 
 #include "core/crafted_zip.hpp"
 #include "rlrun/core/npy.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/utf8_text.hpp"
 #include "rlrun/core/zip_archive.hpp"
 #include "rlrun/deploy/c_comment_text.hpp"
@@ -122,15 +123,15 @@ TEST_CASE("export: c_comment_text and printable_utf8 keep hostile text inert",
   CHECK(c_comment_text(std::string(kBytes, sizeof kBytes - 1)) == "a%00b%7F%1B%24%40%60%25");
   CHECK(c_comment_text("\xc3\xa9") == "%C3%A9");
 
-  CHECK(is_utf8("plain \xc3\xa9 \xe2\x88\x9e \xf0\x9f\x98\x80"));
-  CHECK_FALSE(is_utf8("\xff"));
-  CHECK_FALSE(is_utf8("\xc0\xaf"));          // overlong '/'
-  CHECK_FALSE(is_utf8("\xed\xa0\x80"));      // a surrogate
-  CHECK_FALSE(is_utf8("\xf4\x90\x80\x80"));  // beyond U+10FFFF
-  CHECK_FALSE(is_utf8("\xe2\x88"));          // cut short
+  CHECK(valid_utf8("plain \xc3\xa9 \xe2\x88\x9e \xf0\x9f\x98\x80"));
+  CHECK_FALSE(valid_utf8("\xff"));
+  CHECK_FALSE(valid_utf8("\xc0\xaf"));          // overlong '/'
+  CHECK_FALSE(valid_utf8("\xed\xa0\x80"));      // a surrogate
+  CHECK_FALSE(valid_utf8("\xf4\x90\x80\x80"));  // beyond U+10FFFF
+  CHECK_FALSE(valid_utf8("\xe2\x88"));          // cut short
   CHECK(printable_utf8("CartPole-v1 \xc3\xa9") == "CartPole-v1 \xc3\xa9");
   CHECK(printable_utf8(std::string("a\0\n\\\xff\xc2\x85", 7)) == "a\\x00\\x0a\\\\\\xff\\xc2\\x85");
-  CHECK(is_utf8(printable_utf8("\xf4\x90\x80\x80 \xed\xa0\x80 \xc3")));
+  CHECK(valid_utf8(printable_utf8("\xf4\x90\x80\x80 \xed\xa0\x80 \xc3")));
 }
 
 TEST_CASE("export: meta.json strings cannot end the C header's comment or break the ONNX file",

@@ -1,7 +1,7 @@
 // Replays trajectories recorded from the real Gymnasium 1.0.0 classic-control envs
-// (../shared/reference/README.md) through our ports and checks every observation, reward
-// and flag. The directory is $RLRUN_GYM_REFERENCE if set (DESIGN.md §8), otherwise
-// RLRUN_DEFAULT_GYM_REFERENCE from tests/CMakeLists.txt. Every `<id>.csv` + `<id>.init.csv`
+// (tests/data/gymnasium/README.md, made by scripts/data/make_gymnasium_reference.py) through
+// our ports and checks every observation, reward and flag. The directory is
+// $RLRUN_GYM_REFERENCE if set, otherwise tests/data/gymnasium. Every `<id>.csv` + `<id>.init.csv`
 // pair in it is replayed; nothing is hard-coded about which ids exist.
 //
 // What fails the test (see replay()): the first observation of an episode, and every
@@ -177,6 +177,21 @@ struct ReplayResult {
 constexpr double kTwinOffset = 1e-9;
 constexpr double kRoundingBound = 1e-10;
 
+// Moves the twin's state kTwinOffset (relative) away from where it is. An env whose state is
+// float32 at that moment (Acrobot right after reset: Gymnasium's `.astype(np.float32)`) keeps
+// float32 values, which cannot hold such an offset: then nothing changes and this returns
+// false, and the caller tries again after the next step (float64 by then).
+bool offset_twin(ClassicControlEnv& twin, std::span<float> twin_obs) {
+  std::vector<double> state(static_cast<size_t>(twin.state_dim())), moved;
+  twin.get_state(state);
+  moved = state;
+  for (double& v : moved) v += kTwinOffset * std::max(1.0, std::abs(v));
+  twin.set_state(moved, twin_obs);
+  std::vector<double> now(state.size());
+  twin.get_state(now);
+  return now != state;
+}
+
 // The physical state behind a reference observation, to float32 precision. Used to restart
 // the env from Gymnasium's own trajectory at every step (the one-step check).
 std::vector<double> state_from_observation(const std::string& id, std::span<const float> o) {
@@ -271,6 +286,7 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
       action(act_cols.size());
   long episode = -1, step = -1;
   bool free_running = false;
+  bool twin_offset = false;  // the twin's state differs from the free run's
   for (size_t r = 0; r < traj.rows.size(); ++r) {
     const auto& row = traj.rows[r];
     const long row_episode = static_cast<long>(number(row[c_episode]));
@@ -285,10 +301,9 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
       classic->set_state(it->second, obs);
       teacher->reset(static_cast<uint64_t>(row_episode), teacher_obs);
       teacher_classic->set_state(it->second, teacher_obs);
-      std::vector<double> twin_start = it->second;
-      for (double& v : twin_start) v += kTwinOffset * std::max(1.0, std::abs(v));
       twin->reset(static_cast<uint64_t>(row_episode), twin_obs);
-      twin_classic->set_state(twin_start, twin_obs);
+      twin_classic->set_state(it->second, twin_obs);
+      twin_offset = offset_twin(*twin_classic, twin_obs);
       episode = row_episode;
       step = 0;
       free_running = true;
@@ -317,6 +332,7 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
       if (free_running) {
         const StepResult got = env->step(action, obs);
         twin_classic->step(action, twin_obs);  // the physics only: no time limit, no flags
+        if (!twin_offset) twin_offset = offset_twin(*twin_classic, twin_obs);
         if (std::string m = compare_step(got, obs, row, traj, obs_cols, exact_reward); !m.empty()) {
           double drift = 0, twin_apart = 0;
           for (size_t k = 0; k < obs_dim; ++k) {

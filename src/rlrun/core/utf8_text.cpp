@@ -44,15 +44,6 @@ void append_hex_escape(std::string& out, uint8_t byte) {
 
 }  // namespace
 
-bool is_utf8(std::string_view text) {
-  for (size_t at = 0; at < text.size();) {
-    const size_t n = sequence_length(text, at);
-    if (n == 0) return false;
-    at += n;
-  }
-  return true;
-}
-
 std::string printable_utf8(std::string_view text) {
   std::string out;
   out.reserve(text.size());

@@ -7,14 +7,11 @@
 
 namespace rlrun {
 
-// Well-formed UTF-8 (RFC 3629): no overlong forms, no surrogates (U+D800..U+DFFF), nothing
-// beyond U+10FFFF, no truncated sequence.
-bool is_utf8(std::string_view text);
-
 // `text` as printable UTF-8: well-formed sequences of printable characters pass unchanged;
 // a backslash becomes `\\`, and every byte of a control character (C0, DEL, C1) or of an invalid
 // sequence becomes `\xNN` (two hex digits), so the result is always valid UTF-8 and the
-// original bytes can be read back from it.
+// original bytes can be read back from it. Unlike quoted_text (core/quoted_text.hpp, for
+// messages), nothing is cut: metadata keeps all of its text. valid_utf8 is there too.
 std::string printable_utf8(std::string_view text);
 
 }  // namespace rlrun

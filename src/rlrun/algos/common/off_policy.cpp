@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rlrun/algos/common/session_time.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/env/goal_env.hpp"
 #include "rlrun/env/vec_env.hpp"
@@ -58,12 +59,11 @@ void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks
     // SB3 OffPolicyAlgorithm._dump_logs.
     if (!hooks.logger) return;
     Logger& log = *hooks.logger;
-    const double elapsed = std::max(
-        1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log.record("time/episodes", static_cast<double>(state.episode_num));
     state.episode_stats.record(log);
-    log.record("time/fps", std::floor(static_cast<double>(num_timesteps - start_timesteps) / elapsed));
-    log.record("time/time_elapsed", std::floor(elapsed));
+    record_session_time(log, elapsed, num_timesteps - start_timesteps);
     log.record("time/total_timesteps", static_cast<double>(num_timesteps));
     if (callbacks.record_rollout_logs) callbacks.record_rollout_logs(log);
     log.dump(num_timesteps);
