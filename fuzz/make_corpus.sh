@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Rebuilds the model, npy, journal and run_dir seed corpora of the fuzz targets (fuzz/corpus/) from tiny
-# runs of the rlrun binary and of Optuna (the config corpus is the shipped configs plus a few
-# hand-written files). The journal seeds need Optuna 3.1 (PYTHON=..., default python3).
+# Rebuilds the model, npy, export, journal and run_dir seed corpora of the fuzz targets
+# (fuzz/corpus/) from tiny runs of the rlrun binary and of Optuna (the config corpus is the
+# shipped configs plus a few hand-written files). The journal seeds need Optuna 3.1 (PYTHON=...,
+# default python3).
 #   fuzz/make_corpus.sh [path/to/rlrun]      (default: build/rlrun)
 # Each model file becomes two seeds (fuzz_model.cpp): "raw_*" (0x00 + the zip) and "list_*"
 # (0x01 + its members, stored). Seeds are kept tiny (4-unit layers, 16-transition buffers) so
@@ -12,8 +13,8 @@ RLRUN=$(realpath "${1:-build/rlrun}")
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 OUT=fuzz/corpus
-rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/* "$OUT"/run_dir/*
-mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal" "$OUT/run_dir"
+rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/* "$OUT"/run_dir/* "$OUT"/export/*
+mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal" "$OUT/run_dir" "$OUT/export"
 
 train() {  # name config-text
   printf '%s\n' "$2" > "$WORK/$1.yaml"
@@ -56,6 +57,14 @@ for path in sorted(runs.glob("*/seed1/model.zip")) + sorted(runs.glob("*/seed1/c
                 (out / "npy" / f"{algo}_{short}").write_bytes(data)
     (out / "model" / f"list_{tag}").write_bytes(bytes(listing))
 PY
+# The export corpus (fuzz_export.cpp): the exportable models (A2C's FrameStack is not), a Dict
+# observation, and one with hostile meta.json strings.
+train ppo_dict 'run: {name: ppo_dict, seed: 1, total_timesteps: 32}
+env: {id: SimpleMultiObsEnv-v0}
+algo: {id: PPO, n_steps: 16, batch_size: 16, n_epochs: 1, policy: {net_arch: [4]}}'
+python3 fuzz/make_export_corpus.py "$OUT/export" "$WORK"/runs/{ppo,ppo_dict,dqn,sac,td3}/seed1/model.zip
+ls "$OUT"/export | wc -l | sed 's/^/export seeds: /'
+
 # The npy corpus: a few of each dtype is enough.
 ls "$OUT/npy" | awk 'NR % 4 != 1' | sed "s|^|$OUT/npy/|" | xargs rm -f
 ls -l "$OUT"/model | awk '{s += $5} END {print "model seeds:", NR - 1, "files,", s, "bytes"}'

@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 RUNS=${1:-1000000}
 shift || true
 TARGETS=("$@")
-((${#TARGETS[@]})) || TARGETS=(fuzz_config fuzz_model fuzz_npy fuzz_journal fuzz_zoo fuzz_run_dir)
+((${#TARGETS[@]})) || TARGETS=(fuzz_config fuzz_model fuzz_npy fuzz_journal fuzz_zoo fuzz_run_dir fuzz_export)
 
 CXX_FUZZ=${CXX_FUZZ:-clang++-14}
 [[ -n "${RLRUN_SKIP_INSTALL:-}" ]] || scripts/install_packages.sh clang-14 libclang-rt-14-dev
@@ -28,6 +28,8 @@ cmake --build build-fuzz --target "${TARGETS[@]}"
 
 declare -A DICT=([fuzz_config]=config.dict [fuzz_model]=model.dict [fuzz_npy]=model.dict [fuzz_journal]=journal.dict [fuzz_zoo]=zoo.dict [fuzz_run_dir]=run_dir.dict)
 declare -A SEEDS=([fuzz_config]="fuzz/corpus/config configs" [fuzz_model]=fuzz/corpus/model [fuzz_npy]=fuzz/corpus/npy [fuzz_journal]=fuzz/corpus/journal [fuzz_zoo]="fuzz/corpus/zoo tests/data/zoo" [fuzz_run_dir]=fuzz/corpus/run_dir)
+DICT[fuzz_export]=export.dict
+SEEDS[fuzz_export]=fuzz/corpus/export
 mkdir -p build-fuzz/artifacts
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 for target in "${TARGETS[@]}"; do

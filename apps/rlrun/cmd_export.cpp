@@ -10,6 +10,7 @@
 #include "plugin_option.hpp"
 #include "trust_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/deploy/c_writer.hpp"
 #include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
@@ -71,34 +72,43 @@ Action add_export(CLI::App& app, Registry& registry) {
     // spaces, which a model file does not store): the env is built, so its code runs.
     const LoadedModel model = load_model(o->model, registry, o->overrides,
                                          model_trust(o->trust, o->model, registry));
+    // The whole output is made before anything is written: a refusal leaves nothing behind.
     PolicyGraph graph;
+    CSource c;
+    std::string onnx;
     try {
       graph = build_model_graph(model, o->with_value);
+      if (o->format == "c")
+        c = c_policy_source(graph);
+      else
+        onnx = onnx_model_bytes(graph);
     } catch (const ExportError& e) {
       throw RuntimeFailure("cannot export " + o->model + ": " + e.what());
     }
+    // meta.json's text is the model file's: quoted (one printable line) when printed.
+    const std::string algorithm = quoted_text(model.file.meta.algorithm);
+    const std::string env_id = quoted_text(model.file.meta.env_id);
     if (o->format == "c") {
       std::error_code ec;
       std::filesystem::create_directory(o->output, ec);
       if (!std::filesystem::is_directory(o->output, ec))
         throw RuntimeFailure("cannot write " + o->output + ": not a directory");
-      const CSource c = c_policy_source(graph);
       write_text_atomic((std::filesystem::path(o->output) / "policy.h").string(), c.header);
       write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
       std::printf("exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
                   "action[%d])\n",
-                  o->model.c_str(), model.file.meta.algorithm.c_str(),
-                  model.file.meta.env_id.c_str(), o->output.c_str(), graph.observation_width(),
-                  graph.width(graph.action()));
+                  o->model.c_str(), algorithm.c_str(), env_id.c_str(), o->output.c_str(),
+                  graph.observation_width(), graph.width(graph.action()));
       return 0;
     } else {
-      write_text_atomic(o->output, onnx_model_bytes(graph));
+      write_text_atomic(o->output, onnx);
     }
-    std::string inputs;
+    std::string inputs;  // Dict keys come from the model file: quoted
     for (const GraphInput& in : graph.inputs())
-      inputs += (inputs.empty() ? "" : ", ") + in.name + " [batch, " + std::to_string(in.width) + "]";
+      inputs += (inputs.empty() ? "" : ", ") + quoted_text(in.name) + " [batch, " +
+                std::to_string(in.width) + "]";
     std::printf("exported %s (%s on %s) to %s: inputs %s; outputs action [batch, %d]%s\n",
-                o->model.c_str(), model.file.meta.algorithm.c_str(), model.file.meta.env_id.c_str(),
+                o->model.c_str(), algorithm.c_str(), env_id.c_str(),
                 o->output.c_str(), inputs.c_str(), graph.width(graph.action()),
                 graph.value().empty()
                     ? ""

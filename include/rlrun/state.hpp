@@ -10,6 +10,7 @@
 // instead of resuming into a silently different run.
 #include <algorithm>
 #include <bit>
+#include <climits>
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -91,6 +92,10 @@ class StateReader {
       throw StateMismatch("checkpoint state '" + prefix_ + name + "' is " + std::to_string(v) +
                           ", outside [" + std::to_string(low) + ", " + std::to_string(high) + "]");
     return v;
+  }
+  // A counter (steps, episodes, the step something is next due): in [0, high].
+  int64_t get_count(const std::string& name, int64_t high = INT64_MAX) const {
+    return get_int_in(name, 0, high);
   }
   double get_double(const std::string& name) const { return get_span<double>(name, 1)[0]; }
   bool get_bool(const std::string& name) const { return get_int(name) != 0; }

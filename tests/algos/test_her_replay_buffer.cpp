@@ -221,3 +221,84 @@ TEST_CASE("HER: n_sampled_goal 0 samples real transitions only, errors, exact st
   CHECK(x.rewards == y.rewards);
   CHECK(x.dones == y.dones);
 }
+
+namespace {
+
+// The buffer's state with `edit(tensors)` applied, restored into a fresh buffer like `s`'s.
+template <class Edit>
+void restore_edited(const Setup& s, int64_t size, Edit edit) {
+  TensorMap tensors;
+  s.buffer->write_state(StateWriter(tensors, "buffer/"));
+  edit(tensors);
+  HerReplayBuffer restored(size, s.env.num_envs(), s.env.observation_space(), 1, s.goals, 4,
+                           GoalSelection::kFuture);
+  restored.read_state(StateReader(tensors, "buffer/"));
+}
+
+int64_t& entry(TensorMap& tensors, const std::string& key, size_t index) {
+  return tensors.at("buffer/her/" + key).data<int64_t>()[index];
+}
+
+}  // namespace
+
+TEST_CASE("HER: restored episode bookkeeping must be what add() writes (no unwritten slots)",
+          "[algos][her]") {
+  // States the buffer writes itself are accepted: not full, wrapped, an episode longer than
+  // the buffer, one exactly as long, two envs.
+  for (const auto& [lengths, size, steps] :
+       std::vector<std::tuple<std::vector<int>, int64_t, int>>{
+           {{4}, 40, 10}, {{5}, 12, 17}, {{15}, 10, 17}, {{10}, 10, 10}, {{10}, 10, 23}, {{3, 5}, 60, 15},
+           {{3, 5}, 16, 45}}) {
+    Setup s(lengths, size, GoalSelection::kFuture);
+    s.steps(steps);
+    INFO(size << " slots, " << steps << " steps");
+    CHECK_NOTHROW(restore_edited(s, size, [](TensorMap&) {}));
+  }
+
+  // 40 slots, episodes of 4 after 10 steps: [0, 4) and [4, 8) finished, 8 and 9 unfinished,
+  // the write position at 10.
+  Setup s({4}, 40, GoalSelection::kFuture);
+  s.steps(10);
+  const auto refused = [&](auto edit, const std::string& why) {
+    CHECK_THROWS_WITH(restore_edited(s, 40, edit), Catch::Contains(why));
+  };
+  // The issue's case: the unfinished episode "starts" at a slot never written (its goals would
+  // be read from uninitialised memory once it ends).
+  refused([](TensorMap& t) { entry(t, "current_ep_start", 0) = 39; },
+          "the unfinished episode starts at slot 39, but 10 of 40 slots are written");
+  refused([](TensorMap& t) { entry(t, "current_ep_start", 0) = 4; },
+          "slot 4 of the unfinished episode from slot 4 is recorded as another episode");
+  refused([](TensorMap& t) { entry(t, "current_ep_start", 0) = 7; },
+          "is recorded as another episode");
+  refused([](TensorMap& t) { entry(t, "ep_length", 0) = 12; }, "outside the 10 written slots");
+  refused([](TensorMap& t) { entry(t, "ep_length", 20) = 1; entry(t, "ep_start", 20) = 20; },
+          "slot 20 records an episode of 1 from slot 20, outside the 10 written slots");
+  refused([](TensorMap& t) { entry(t, "ep_start", 2) = 1; },
+          "slot 0 records an episode of 4 from slot 0, but its slot 2 records another");
+  refused([](TensorMap& t) { entry(t, "ep_length", 3) = 3; }, "but its slot 3 records another");
+  refused([](TensorMap& t) { entry(t, "ep_start", 5) = 3; entry(t, "ep_length", 5) = 1; },
+          "slot 4 records an episode of 4 from slot 4, but its slot 5 records another");
+  refused([](TensorMap& t) { entry(t, "ep_length", 1) = 0; },
+          "slot 0 records an episode of 4 from slot 0, but its slot 1 records another");
+  refused([](TensorMap& t) { entry(t, "ep_length", 9) = 0; entry(t, "ep_start", 9) = 0; },
+          "slot 9 of the unfinished episode from slot 8 is recorded as another episode");
+  refused([](TensorMap& t) { entry(t, "ep_length", 20) = -1; },
+          "slot 20 records an episode of -1 from slot 0, outside the 10 written slots");
+  refused([](TensorMap& t) { t.at("buffer/full").data<int64_t>()[0] = 2; }, "'buffer/full' is 2");
+
+  // Full: the slot at the write position, when valid, starts its episode (the oldest data).
+  Setup wrapped({5}, 12, GoalSelection::kFuture);
+  wrapped.steps(17);  // pos 5: [5, 10) the oldest episode, [10, 15) wrapped, slots 3, 4 open
+  CHECK_THROWS_WITH(restore_edited(wrapped, 12, [](TensorMap& t) {
+                      entry(t, "current_ep_start", 0) = 5;  // no unfinished episode
+                      for (size_t slot = 3; slot < 8; ++slot) {
+                        entry(t, "ep_start", slot) = 3;
+                        entry(t, "ep_length", slot) = 5;
+                      }
+                    }),
+                    Catch::Contains("slot 5 records an episode of 5 from slot 3, but the write "
+                                    "position is inside it"));
+  // Slot 0 of the episode that wrapped (slots 10, 11, 0, 1, 2), said to start at slot 1.
+  CHECK_THROWS_WITH(restore_edited(wrapped, 12, [](TensorMap& t) { entry(t, "ep_start", 0) = 1; }),
+                    Catch::Contains("slot 0 records an episode of 5 from slot 1 that does not cover it"));
+}

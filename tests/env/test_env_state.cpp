@@ -92,3 +92,35 @@ TEST_CASE("Restoring into another env or n_envs is refused with the key", "[env]
   VecEnv pendulum = make_classic("Pendulum-v1", 2);
   CHECK_THROWS_AS(pendulum.read_state(StateReader(saved)), StateMismatch);
 }
+
+TEST_CASE("Restored step counters out of range are refused with the key", "[env][resume]") {
+  // A checkpoint is untrusted: TimeLimit's elapsed steps must lie in [0, max_episode_steps],
+  // the Monitor's counts must not be negative.
+  VecEnv cartpole = make_classic("CartPole-v1", 1);
+  cartpole.seed(1);
+  cartpole.reset();
+  TensorMap saved;
+  StateWriter out(saved);
+  cartpole.write_state(out);
+  const auto with = [&](const std::string& suffix, int64_t value) {
+    TensorMap changed = saved;
+    int found = 0;
+    for (auto& [key, tensor] : changed)
+      if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
+        *tensor.data<int64_t>() = value;
+        ++found;
+      }
+    REQUIRE(found == 1);
+    return changed;
+  };
+  VecEnv restored = make_classic("CartPole-v1", 1);
+  CHECK_NOTHROW(restored.read_state(StateReader(with("time_limit/elapsed_steps", 500))));
+  CHECK_THROWS_WITH(restored.read_state(StateReader(with("time_limit/elapsed_steps", 501))),
+                    Catch::Contains("time_limit/elapsed_steps' is 501, outside [0, 500]"));
+  CHECK_THROWS_WITH(restored.read_state(StateReader(with("time_limit/elapsed_steps", -3))),
+                    Catch::Contains("outside [0, 500]"));
+  CHECK_THROWS_WITH(restored.read_state(StateReader(with("monitor/total_steps", -1))),
+                    Catch::Contains("monitor/total_steps' is -1"));
+  CHECK_THROWS_WITH(restored.read_state(StateReader(with("steps_beyond_terminated", -2))),
+                    Catch::Contains("steps_beyond_terminated' is -2"));
+}

@@ -211,6 +211,31 @@ class UntrustedModelFiles(TempDirMixin, unittest.TestCase):
         self.assertEqual(code, 1)
         self.assertIn(str(caught.exception), output)
 
+    def test_nan_weights_are_refused_naming_the_tensor(self):
+        # A model whose weights hold a NaN (training diverged, or a tampered file) would predict
+        # NaN actions: rlrun.load refuses it as eval does (runtime/model_file.hpp).
+        import io
+        import zipfile
+
+        source = train_model(self.tmp, "tiny_nan", "run: {name: tiny_nan, seed: 1, total_timesteps: 64}\n"
+                             "env: {id: CartPole-v1}\n"
+                             "algo: {id: PPO, n_steps: 64, batch_size: 64, n_epochs: 1}\n")
+        damaged = os.path.join(self.tmp, "nan.zip")
+        with zipfile.ZipFile(source) as src, zipfile.ZipFile(damaged, "w") as out:
+            for name in src.namelist():
+                data = src.read(name)
+                if name == "action_net.weight.npy":
+                    weight = np.load(io.BytesIO(data))
+                    weight[0, 0] = np.nan
+                    buffer = io.BytesIO()
+                    np.save(buffer, weight)
+                    data = buffer.getvalue()
+                out.writestr(name, data)
+        with self.assertRaises(rlrun.RuntimeFailure) as caught:
+            rlrun.load(damaged)
+        self.assertIn(damaged + ": parameter action_net.weight has 1 non-finite value (first: nan)",
+                      str(caught.exception))
+
     def test_errors_are_exceptions_with_the_cli_message(self):
         missing = os.path.join(self.tmp, "missing.zip")
         with self.assertRaises(rlrun.RuntimeFailure) as caught:

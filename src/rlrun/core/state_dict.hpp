@@ -37,4 +37,21 @@ void get_matrix(const StateReader& in, const std::string& name, Eigen::MatrixBas
   get_matrix(in, name, m);
 }
 
+// get_matrix for numbers that must be finite (optimizer moments, network parameters): a NaN
+// there makes the first update NaN, so a resumed run would diverge at once. Throws
+// StateMismatch naming the key.
+template <class Derived>
+void get_finite_matrix(const StateReader& in, const std::string& name,
+                       Eigen::MatrixBase<Derived>& m) {
+  get_matrix(in, name, m);
+  if (!m.allFinite())
+    throw StateMismatch("checkpoint state '" + in.prefix() + name +
+                        "' holds a NaN or infinite value (the checkpoint is damaged)");
+}
+template <class Derived>
+void get_finite_matrix(const StateReader& in, const std::string& name,
+                       Eigen::MatrixBase<Derived>&& m) {
+  get_finite_matrix(in, name, m);
+}
+
 }  // namespace rlrun

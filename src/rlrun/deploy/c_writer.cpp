@@ -5,25 +5,23 @@
 #include <map>
 #include <sstream>
 
+#include "rlrun/deploy/c_comment_text.hpp"
+#include "rlrun/deploy/graph_numbers.hpp"
+
 namespace rlrun {
 
 namespace {
 
 // A float literal that reads back as the same float (9 significant digits); infinite bounds
-// are <math.h>'s HUGE_VALF.
+// are <math.h>'s HUGE_VALF. C has no NaN literal: check_graph_numbers refused those before.
 std::string literal(float v) {
+  if (std::isnan(v)) throw ExportError("a NaN reached the C writer");
   if (std::isinf(v)) return v > 0 ? "HUGE_VALF" : "-HUGE_VALF";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9gf", static_cast<double>(v));
   std::string s = buf;
   // "1f" is not a C float literal: it needs a decimal point or an exponent.
   if (s.find_first_of(".eEn") == std::string::npos) s.insert(s.size() - 1, ".0");
-  return s;
-}
-
-// Text inside a /* */ comment.
-std::string comment_safe(std::string s) {
-  for (size_t at = s.find("*/"); at != std::string::npos; at = s.find("*/", at)) s.replace(at, 2, "* /");
   return s;
 }
 
@@ -37,13 +35,15 @@ class CWriter {
 
     std::ostringstream h;
     h << "/* Policy exported by `rlrun export --format c`";
-    for (const auto& [key, value] : graph_.metadata) h << "\n * " << key << ": " << comment_safe(value);
+    // The metadata comes from the model file (untrusted): c_comment_text keeps it inside.
+    for (const auto& [key, value] : graph_.metadata)
+      h << "\n * " << c_comment_text(key) << ": " << c_comment_text(value);
     h << "\n *\n * policy_act: one observation in (POLICY_OBS_DIM floats";
     if (graph_.inputs().size() > 1) {
       h << ": the Dict keys";
       int at = 0;
       for (const GraphInput& in : graph_.inputs()) {
-        h << " " << in.name << " [" << at << ", " << at + in.width << ")";
+        h << " " << c_comment_text(in.name) << " [" << at << ", " << at + in.width << ")";
         at += in.width;
       }
     }
@@ -190,6 +190,7 @@ class CWriter {
 
 CSource c_policy_source(const PolicyGraph& graph) {
   if (graph.action().empty()) throw ExportError("the policy graph has no action output");
+  check_graph_numbers(graph);
   return CWriter(graph).write();
 }
 

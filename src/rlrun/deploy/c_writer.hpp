@@ -7,6 +7,9 @@
 // local array. For microcontrollers and plain C programs (RLtools ships the same idea).
 // The arithmetic is the graph's, in float: dense layers sum in input order, ELU is
 // expf(x) - 1, the one-hot rounds half away from zero (observation values are integers).
+// Text from the model file (metadata, Dict keys) goes into policy.h's comment only, through
+// c_comment_text (deploy/c_comment_text.hpp); every number is a C literal (HUGE_VALF for an
+// infinite bound): a NaN or other infinite number is refused (deploy/graph_numbers.hpp).
 #include <string>
 
 #include "rlrun/nn/policy_graph.hpp"
@@ -18,6 +21,7 @@ struct CSource {
   std::string source;  // policy.c (includes "policy.h")
 };
 
+// Throws ExportError for a graph without an action or with a number C cannot hold.
 CSource c_policy_source(const PolicyGraph& graph);
 
 }  // namespace rlrun

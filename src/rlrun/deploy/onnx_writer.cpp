@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "rlrun/core/protobuf_writer.hpp"
+#include "rlrun/core/utf8_text.hpp"
+#include "rlrun/deploy/graph_numbers.hpp"
 
 namespace rlrun {
 
@@ -49,7 +51,8 @@ class OnnxGraphWriter {
     m.int64(model_proto::kIrVersion, kOnnxIrVersion);
     m.bytes(model_proto::kProducerName, "rlrun");
     const auto version = graph_.metadata.find("rlrun_version");
-    if (version != graph_.metadata.end()) m.bytes(model_proto::kProducerVersion, version->second);
+    if (version != graph_.metadata.end())
+      m.bytes(model_proto::kProducerVersion, printable_utf8(version->second));
     m.bytes(model_proto::kDocString,
             "deterministic policy exported by `rlrun export`: observation -> action");
     m.message(model_proto::kGraph, g);
@@ -57,9 +60,10 @@ class OnnxGraphWriter {
     opset.bytes(1, "");  // the default domain (ai.onnx)
     opset.int64(2, kOnnxOpset);
     m.message(model_proto::kOpsetImport, opset);
+    // Protobuf strings must be UTF-8, and the metadata comes from the model file (untrusted).
     for (const auto& [key, value] : graph_.metadata) {
       ProtoWriter entry;
-      entry.bytes(1, key).bytes(2, value);
+      entry.bytes(1, printable_utf8(key)).bytes(2, printable_utf8(value));
       m.message(model_proto::kMetadataProps, entry);
     }
     return m.str();
@@ -223,10 +227,19 @@ class OnnxGraphWriter {
 
 std::string onnx_model_bytes(const PolicyGraph& graph) {
   if (graph.action().empty()) throw ExportError("the policy graph has no action output");
-  for (const GraphInput& in : graph.inputs())
+  for (const GraphInput& in : graph.inputs()) {
+    // Input names are the file's interface: refused, not rewritten, when they cannot be one.
     if (in.name == "action" || in.name == "value")
       throw ExportError("a Dict observation key named '" + in.name +
                         "' would clash with the ONNX output of that name");
+    if (in.name.rfind("rlrun/", 0) == 0)
+      throw ExportError("a Dict observation key named '" + printable_utf8(in.name) +
+                        "' would clash with the exporter's own tensor names (rlrun/...)");
+    if (printable_utf8(in.name) != in.name)
+      throw ExportError("a Dict observation key '" + printable_utf8(in.name) +
+                        "' is not printable UTF-8 text, which an ONNX input name must be");
+  }
+  check_graph_numbers(graph);
   return OnnxGraphWriter(graph).model();
 }
 

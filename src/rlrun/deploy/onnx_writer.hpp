@@ -2,7 +2,10 @@
 // A PolicyGraph as an ONNX model (onnx/onnx.proto, IR version 7, default-domain opset 13),
 // written with rlrun's own protobuf encoder (core/protobuf_writer.hpp): float32 inputs
 // [batch, width] with a symbolic batch dimension, outputs "action" [batch, action floats] and,
-// when the graph has one, "value"; the graph's metadata as the model's metadata_props.
+// when the graph has one, "value"; the graph's metadata as the model's metadata_props
+// (through printable_utf8, core/utf8_text.hpp: protobuf strings must be UTF-8, and the metadata
+// comes from the model file). A NaN, or an infinite number other than a bound, is refused
+// (deploy/graph_numbers.hpp), as are Dict keys that cannot be ONNX input names.
 //
 // Each graph node becomes standard operators: Dense -> Gemm (transB), activations -> Tanh /
 // Relu / Elu / LeakyRelu (torch's alpha 1 and 0.01), Affine -> Add, Mul, Add, Clamp -> Max,

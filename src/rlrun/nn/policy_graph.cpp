@@ -25,6 +25,8 @@ int PolicyGraph::width(const std::string& name) const {
 std::string PolicyGraph::add(GraphNode node, const char* prefix) {
   for (const std::string& in : node.inputs) width(in);  // every input exists
   node.output = std::string(prefix) + "_" + std::to_string(nodes_.size());
+  // A Dict key may be spelled like a node ("dense_3"): the node's name moves aside.
+  while (widths_.count(node.output)) node.output += "_";
   widths_[node.output] = node.width;
   nodes_.push_back(std::move(node));
   return nodes_.back().output;

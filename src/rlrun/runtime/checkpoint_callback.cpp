@@ -42,7 +42,7 @@ void CheckpointCallback::write_state(StateWriter& out) const {
 }
 
 void CheckpointCallback::read_state(const StateReader& in) {
-  next_ = in.get_int("next");
+  next_ = in.get_count("next");  // crossed() counts up from it
   due_ = in.get_bool("due");
 }
 

@@ -80,13 +80,15 @@ void EvalCallback::write_state(StateWriter& out) const {
 }
 
 void EvalCallback::read_state(const StateReader& in) {
-  next_ = in.get_int("next");
-  evaluations_ = static_cast<int>(in.get_int("evaluations"));
+  // Counters from an untrusted checkpoint: a negative `next` would make crossed() count up
+  // from it for ever.
+  next_ = in.get_count("next");
+  evaluations_ = static_cast<int>(in.get_count("evaluations", INT_MAX));
   best_ = in.get_double("best");
   // Checkpoints written before best_metric existed chose on the mean reward.
   best_score_ = in.has("best_score") ? in.get_double("best_score") : best_;
   last_best_ = in.get_double("last_best");
-  no_improvement_evals_ = static_cast<int>(in.get_int("no_improvement_evals"));
+  no_improvement_evals_ = static_cast<int>(in.get_count("no_improvement_evals", INT_MAX));
 }
 
 bool EvalCallback::on_step(int64_t num_timesteps) {

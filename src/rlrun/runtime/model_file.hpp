@@ -89,7 +89,9 @@ ModelFile read_model_header(const std::string& path);
 // Phase 2: fills model.tensors, wrapper_statistics (and training_state for kCheckpoint).
 // Refuses, before reading any tensor, a file whose selected `.npy` members charge more than
 // `budget_bytes` together (tensor_member_charge); then each member's npy header must be valid
-// and match its declared size, and its data must decompress to exactly that size.
+// and match its declared size, and its data must decompress to exactly that size. Last, the
+// weights and statistics must be finite, and no `wrappers/.../var` or `.../count` negative
+// (RuntimeFailure naming the tensor: every command that loads a model refuses it).
 void read_model_tensors(ModelFile& model, ModelParts parts, uint64_t budget_bytes);
 // Both phases with a fixed budget, for files rlrun just wrote (tests, tools). The commands
 // read untrusted files with load_model() / read_checkpoint() (model_budget.hpp) instead.

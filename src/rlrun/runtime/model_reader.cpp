@@ -1,11 +1,14 @@
 // Reading model files in two phases (model_file.hpp), without trusting what they declare.
 #include <nlohmann/json.hpp>
 
+#include <cstring>
+
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/zip_reader.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/non_finite_check.hpp"
 #include "rlrun/core/plural.hpp"
 
 namespace rlrun {
@@ -110,6 +113,32 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
   return t;
 }
 
+// "statistic wrappers/NormalizeObservation/var has a negative value (-1.000000)" for the first
+// variance or count below 0 (RunningMeanStd's `var` and `count`), or "".
+std::string describe_negative_statistic(const TensorMap& statistics) {
+  for (const auto& [name, tensor] : statistics) {
+    const bool counted = name.ends_with("/var") || name.ends_with("/count");
+    if (!counted || tensor.dtype != DType::kFloat64) continue;
+    for (size_t at = 0; at + sizeof(double) <= tensor.bytes.size(); at += sizeof(double)) {
+      double v = 0;
+      std::memcpy(&v, tensor.bytes.data() + at, sizeof v);  // bytes need not be aligned
+      if (v < 0) return "statistic " + name + " has a negative value (" + std::to_string(v) + ")";
+    }
+  }
+  return "";
+}
+
+// Weights and normalisation statistics from anyone must be numbers: a NaN weight evaluates to
+// a mean reward of nan with exit 0, and would be exported (issue 41). The training state is
+// checked where it is read (get_finite_matrix, RunningMeanStd::read): some of it may be
+// infinite (EvalCallback's best reward starts at -inf).
+void check_numbers(const ModelFile& model) {
+  std::string problem = describe_non_finite(model.tensors, "parameter");
+  if (problem.empty()) problem = describe_non_finite(model.wrapper_statistics, "statistic");
+  if (problem.empty()) problem = describe_negative_statistic(model.wrapper_statistics);
+  if (!problem.empty()) throw RuntimeFailure(model.path + ": " + problem);
+}
+
 }  // namespace
 
 ModelFile read_model_header(const std::string& path) {
@@ -151,6 +180,7 @@ void read_model_tensors(ModelFile& model, ModelParts parts, uint64_t budget_byte
     const std::string key = e->name.substr(0, e->name.size() - 4);
     group_of(model, key)[key] = read_npy_member(archive, *e);
   }
+  check_numbers(model);
 }
 
 ModelFile read_model(const std::string& path, uint64_t budget_bytes) {

@@ -12,7 +12,7 @@ namespace {
 std::string name_value(double v) { return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"); }
 
 template <class T>
-std::string check_values(const std::string& name, const Tensor& t) {
+std::string check_values(const std::string& noun, const std::string& name, const Tensor& t) {
   std::vector<T> values(t.bytes.size() / sizeof(T));
   if (!values.empty()) std::memcpy(values.data(), t.bytes.data(), values.size() * sizeof(T));
   int64_t bad = 0;
@@ -22,7 +22,7 @@ std::string check_values(const std::string& name, const Tensor& t) {
     if (bad++ == 0) first = static_cast<double>(v);
   }
   if (bad == 0) return "";
-  return "parameter " + name + " has " + std::to_string(bad) + " non-finite value" +
+  return noun + " " + name + " has " + std::to_string(bad) + " non-finite value" +
          (bad == 1 ? "" : "s") + " (first: " + name_value(first) + ")";
 }
 
@@ -37,11 +37,11 @@ std::string describe_non_finite(const LogRow& row) {
   return "";
 }
 
-std::string describe_non_finite(const TensorMap& tensors) {
+std::string describe_non_finite(const TensorMap& tensors, const std::string& noun) {
   for (const auto& [name, tensor] : tensors) {
     std::string problem;
-    if (tensor.dtype == DType::kFloat32) problem = check_values<float>(name, tensor);
-    if (tensor.dtype == DType::kFloat64) problem = check_values<double>(name, tensor);
+    if (tensor.dtype == DType::kFloat32) problem = check_values<float>(noun, name, tensor);
+    if (tensor.dtype == DType::kFloat64) problem = check_values<double>(noun, name, tensor);
     if (!problem.empty()) return problem;
   }
   return "";

@@ -14,7 +14,7 @@ namespace rlrun {
 std::string describe_non_finite(const LogRow& row);
 
 // "parameter actor.mu.weight has 12 non-finite values (first: inf)" for the first tensor with
-// a NaN or inf among float tensors, or "".
-std::string describe_non_finite(const TensorMap& tensors);
+// a NaN or inf among float tensors, or "". `noun` names what the tensors are.
+std::string describe_non_finite(const TensorMap& tensors, const std::string& noun = "parameter");
 
 }  // namespace rlrun

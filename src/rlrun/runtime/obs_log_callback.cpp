@@ -49,8 +49,8 @@ void ObsLogCallback::write_state(StateWriter& out) const {
 }
 
 void ObsLogCallback::read_state(const StateReader& in) {
-  next_ = in.get_int("next");
-  last_chunk_step_ = in.get_int("last_chunk_step");
+  next_ = in.get_count("next");  // crossed() counts up from it
+  last_chunk_step_ = in.get_count("last_chunk_step");
   const std::vector<float> rows = in.get_span<float>("rows");
   if (rows.size() % static_cast<size_t>(obs_dim_) != 0)
     throw StateMismatch("checkpoint obs_log rows do not match the observation size " +

@@ -69,8 +69,8 @@ void VideoCallback::write_state(StateWriter& out) const {
 }
 
 void VideoCallback::read_state(const StateReader& in) {
-  next_ = in.get_int("next");
-  videos_ = static_cast<int>(in.get_int("videos"));
+  next_ = in.get_count("next");  // crossed() counts up from it
+  videos_ = static_cast<int>(in.get_count("videos", INT_MAX));
 }
 
 }  // namespace rlrun

@@ -66,9 +66,9 @@ void Monitor::read_own_state(const StateReader& in) {
   episode_return_ = own.get_double("episode_return");
   if (agent_columns() > 0 && own.has("agent_returns"))
     agent_returns_ = own.get_span<double>("agent_returns", agent_columns());
-  episode_length_ = own.get_int("episode_length");
-  total_episodes_ = static_cast<int>(own.get_int("total_episodes"));
-  total_steps_ = own.get_int("total_steps");
+  episode_length_ = own.get_count("episode_length");
+  total_episodes_ = static_cast<int>(own.get_count("total_episodes", INT_MAX));
+  total_steps_ = own.get_count("total_steps");
   needs_reset_ = own.get_bool("needs_reset");
   t_start_ = own.get_double("t_start");
   const double since_start =

@@ -1,6 +1,8 @@
 #include "rlrun/wrappers/running_mean_std.hpp"
 #include "rlrun/core/state_dict.hpp"
 
+#include <cmath>
+
 namespace rlrun {
 
 namespace {
@@ -113,9 +115,21 @@ void RunningMeanStd::write(StateWriter& out) const {
 }
 
 void RunningMeanStd::read(const StateReader& in) {
-  get_matrix(in, "mean", mean_);
-  get_matrix(in, "var", var_);
-  count_ = in.get_double("count");
+  // From a model file or checkpoint (untrusted), or another env's statistics: they normalise
+  // every observation or reward, so NaN, infinity or a negative variance is refused.
+  Eigen::VectorXd mean(dim()), var(dim());
+  get_matrix(in, "mean", mean);
+  get_matrix(in, "var", var);
+  const double count = in.get_double("count");
+  const auto refuse = [&](const char* field, const char* why) {
+    throw StateMismatch("statistics '" + in.prefix() + field + "' " + why);
+  };
+  if (!mean.allFinite()) refuse("mean", "is not finite");
+  if (!var.allFinite() || (var.array() < 0).any()) refuse("var", "is not a finite variance >= 0");
+  if (!std::isfinite(count) || count < 0) refuse("count", "is not a finite count >= 0");
+  mean_ = mean;
+  var_ = var;
+  count_ = count;
 }
 
 }  // namespace rlrun

@@ -42,7 +42,8 @@ class RunningMeanStd {
   double count() const { return count_; }
 
   // Stored as `mean`, `var` (float64, shape (dim,)) and `count` (float64 scalar), the fields of
-  // SB3's object. read() throws StateMismatch when the stored dimension differs.
+  // SB3's object. read() throws StateMismatch when the stored dimension differs, a value is
+  // not finite, or a variance or the count is negative (leaving the statistics as they were).
   void write(StateWriter& out) const;
   void read(const StateReader& in);
 

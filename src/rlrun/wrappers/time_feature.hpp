@@ -39,7 +39,7 @@ class TimeFeature : public Wrapper {
     out.put_int("time_feature/step", current_step_);
   }
   void read_own_state(const StateReader& in) override {
-    current_step_ = static_cast<int>(in.get_int("time_feature/step"));
+    current_step_ = static_cast<int>(in.get_count("time_feature/step", INT_MAX));
   }
 
  private:

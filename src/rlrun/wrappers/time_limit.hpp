@@ -50,7 +50,7 @@ class TimeLimit : public Wrapper, public SplitStep {
     out.put_int("time_limit/elapsed_steps", elapsed_steps_);
   }
   void read_own_state(const StateReader& in) override {
-    elapsed_steps_ = static_cast<int>(in.get_int("time_limit/elapsed_steps"));
+    elapsed_steps_ = static_cast<int>(in.get_count("time_limit/elapsed_steps", max_episode_steps_));
   }
 
  private:

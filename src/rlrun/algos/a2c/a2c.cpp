@@ -130,8 +130,8 @@ void A2C::save_training_state(StateWriter& out) const {
 }
 
 void A2C::load_training_state(const StateReader& in) {
-  num_timesteps_ = in.get_int("num_timesteps");
-  n_updates_ = in.get_int("n_updates");
+  num_timesteps_ = in.get_count("num_timesteps");
+  n_updates_ = in.get_count("n_updates");
   in.get_rng("action_rng", action_rng_);
   if (rmsprop_) read_rmsprop(in.sub("optimizer"), *rmsprop_);
   if (adam_) read_adam(in.sub("optimizer"), *adam_);

@@ -73,6 +73,9 @@ class EpisodeStats {
     load("returns", returns_);
     load("lengths", lengths_);
     load("successes", successes_);
+    if (lengths_.size() != returns_.size())  // push() keeps them in pairs
+      throw StateMismatch("checkpoint episode statistics hold " + std::to_string(returns_.size()) +
+                          " returns but " + std::to_string(lengths_.size()) + " lengths");
     metrics_.clear();
     if (!in.has("metric_names")) return;  // a checkpoint of an older rlrun: none
     const std::string names = in.get_string("metric_names");

@@ -157,13 +157,63 @@ void HerReplayBuffer::read_state(const StateReader& in) {
   ep_start_ = in.get_span<int64_t>("her/ep_start", capacity());
   ep_length_ = in.get_span<int64_t>("her/ep_length", capacity());
   current_ep_start_ = in.get_span<int64_t>("her/current_ep_start", n_envs_);
-  // A checkpoint is untrusted: indices must stay inside the buffer.
-  for (size_t k = 0; k < ep_length_.size(); ++k)
-    if (ep_start_[k] < 0 || ep_start_[k] >= slots_ || ep_length_[k] < 0 || ep_length_[k] > slots_)
-      throw StateMismatch("checkpoint HER buffer has an episode outside the buffer");
-  for (int64_t s : current_ep_start_)
-    if (s < 0 || s >= slots_) throw StateMismatch("checkpoint HER buffer has a bad episode start");
+  // A checkpoint is untrusted: its indices must agree with each other (issue 41: an unfinished
+  // episode "starting" beyond the written slots relabelled goals from uninitialised memory).
+  for (int e = 0; e < n_envs_; ++e) {
+    const std::string problem = describe_inconsistent_episodes(e);
+    if (!problem.empty())
+      throw StateMismatch("checkpoint HER buffer: env " + std::to_string(e) + ": " + problem);
+  }
   valid_ = std::count_if(ep_length_.begin(), ep_length_.end(), [](int64_t l) { return l > 0; });
+}
+
+namespace {
+
+std::string slot_record(int64_t slot, int64_t start, int64_t length) {
+  return "slot " + std::to_string(slot) + " records an episode of " + std::to_string(length) +
+         " from slot " + std::to_string(start);
+}
+
+}  // namespace
+
+// What add() and close_episode() leave, restated as checks: the unfinished episode runs from
+// current_ep_start to pos with no length yet; each finished episode lies inside the written
+// slots and every one of its slots records the same start and length; when the buffer is full,
+// the write position is at the start of the oldest episode (add() invalidates an episode from
+// there on), never inside one.
+std::string HerReplayBuffer::describe_inconsistent_episodes(int e) const {
+  const auto column = [&](int64_t slot) { return static_cast<size_t>(slot * n_envs_ + e); };
+  const auto start = [&](int64_t slot) { return ep_start_[column(slot)]; };
+  const auto length = [&](int64_t slot) { return ep_length_[column(slot)]; };
+  const int64_t written = full_ ? slots_ : pos_;
+  const int64_t open = current_ep_start_[static_cast<size_t>(e)];
+  if (open < 0 || open >= slots_ || (!full_ && open > pos_))
+    return "the unfinished episode starts at slot " + std::to_string(open) + ", but " +
+           std::to_string(written) + " of " + std::to_string(slots_) + " slots are written";
+  for (int64_t slot = open; slot != pos_; slot = (slot + 1) % slots_)
+    if (length(slot) != 0 || start(slot) != open)
+      return "slot " + std::to_string(slot) + " of the unfinished episode from slot " +
+             std::to_string(open) + " is recorded as another episode";
+  if (full_ && length(pos_) != 0 && start(pos_) != pos_)
+    return slot_record(pos_, start(pos_), length(pos_)) + ", but the write position is inside it";
+  std::vector<bool> checked(static_cast<size_t>(slots_), false);  // each episode once: linear
+  for (int64_t slot = 0; slot < slots_; ++slot) {
+    const int64_t first = start(slot), n = length(slot);
+    if (n == 0 || checked[static_cast<size_t>(slot)]) continue;
+    if (n < 0 || n > written || first < 0 || first >= slots_ || (!full_ && first + n > written))
+      return slot_record(slot, first, n) + ", outside the " + std::to_string(written) +
+             " written slots";
+    if ((slot - first + slots_) % slots_ >= n)
+      return slot_record(slot, first, n) + " that does not cover it";
+    for (int64_t i = 0; i < n; ++i) {
+      const int64_t other = (first + i) % slots_;
+      if (start(other) != first || length(other) != n)
+        return slot_record(slot, first, n) + ", but its slot " + std::to_string(other) +
+               " records another";
+      checked[static_cast<size_t>(other)] = true;
+    }
+  }
+  return "";
 }
 
 }  // namespace rlrun

@@ -56,12 +56,17 @@ class HerReplayBuffer : public ReplayBuffer {
   int64_t valid_transitions() const { return valid_; }
 
   void write_state(StateWriter out) const override;
+  // Refuses (StateMismatch, naming the env and slot) bookkeeping add() could not have written:
+  // every index and length is checked against pos, full and the others.
   void read_state(const StateReader& in) override;
 
  private:
   // SB3 _compute_episode_length: the episode env `e` just finished spans
   // [current_ep_start, pos).
   void close_episode(int e);
+  // "" when env `e`'s episode bookkeeping (ep_start_, ep_length_, current_ep_start_) is what
+  // add() can have written at this pos_ and full_, else why not (read_state).
+  std::string describe_inconsistent_episodes(int e) const;
 
   const GoalEnv* rewards_of_;
   GoalSelection selection_;

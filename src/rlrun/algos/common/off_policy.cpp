@@ -137,8 +137,11 @@ void OffPolicyState::write_state(StateWriter out) const {
 void OffPolicyState::read_state(const StateReader& in) {
   buffer->read_state(in.sub("replay_buffer"));
   episode_stats.read_state(in.sub("episode_stats"));
-  episode_num = in.get_int("episode_num");
+  episode_num = in.get_count("episode_num");
   progress_remaining = in.get_double("progress_remaining");
+  if (!(progress_remaining >= 0.0 && progress_remaining <= 1.0))  // NaN too: schedules read it
+    throw StateMismatch("checkpoint state '" + in.prefix() + "progress_remaining' is " +
+                        std::to_string(progress_remaining) + ", outside [0, 1]");
   last_original_obs.resize(0, 0);
   if (in.has("last_original_obs")) {
     last_original_obs.resize(buffer->obs_dim(), buffer->n_envs());

@@ -254,7 +254,8 @@ void OffPolicyAlgorithm::checkpoint(const std::string& key, T& item) {
     read_items_.push_back([key, &item](const StateReader& in) { in.get_rng(key, item); });
   } else if constexpr (std::is_same_v<T, int64_t>) {
     write_items_.push_back([key, &item](StateWriter& out) { out.put_int(key, item); });
-    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_int(key); });
+    // Counters (num_timesteps, n_updates, ...): never negative.
+    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_count(key); });
   } else if constexpr (std::is_same_v<T, double>) {
     write_items_.push_back([key, &item](StateWriter& out) { out.put_double(key, item); });
     read_items_.push_back([key, &item](const StateReader& in) { item = in.get_double(key); });

@@ -69,7 +69,7 @@ void OnPolicyCollector::write_state(StateWriter out) const {
 void OnPolicyCollector::read_state(const StateReader& in) {
   get_matrix(in, "last_obs", last_obs_);
   get_matrix(in, "last_episode_starts", last_episode_starts_);
-  iterations_ = in.get_int("iterations");
+  iterations_ = in.get_count("iterations");
   episode_stats_.read_state(in.sub("episode_stats"));
   restored_ = true;
 }

@@ -87,7 +87,7 @@ void ReplayBuffer::read_state(const StateReader& in) {
     throw StateMismatch("checkpoint replay buffer holds " + std::to_string(in.get_int("capacity")) +
                         " transitions, this run's buffer_size gives " + std::to_string(capacity()));
   pos_ = in.get_int_in("pos", 0, slots_ - 1);
-  full_ = in.get_bool("full");
+  full_ = in.get_int_in("full", 0, 1) != 0;
   const int64_t used = size();
   get_matrix(in, "obs", obs_.leftCols(used));
   get_matrix(in, "next_obs", next_obs_.leftCols(used));

@@ -2,7 +2,8 @@
 // Checkpoint helpers shared by the algorithms' save_training_state / load_training_state:
 // optimizer moments (torch's optimizer.state_dict(): exp_avg, exp_avg_sq, step; square_avg
 // for RMSprop) and network parameters under a prefix. Shapes come from the configuration, so
-// reading checks them and names the key that does not fit.
+// reading checks them and names the key that does not fit; moments and parameters must be
+// finite (get_finite_matrix).
 #include <string>
 #include <vector>
 
@@ -25,8 +26,8 @@ inline void write_adam(StateWriter out, const Adam& adam) {
 inline void read_adam(const StateReader& in, Adam& adam) {
   adam.set_steps(in.get_int("step"));
   for (size_t i = 0; i < adam.exp_avg().size(); ++i) {
-    get_matrix(in, "exp_avg." + std::to_string(i), adam.exp_avg()[i]);
-    get_matrix(in, "exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
+    get_finite_matrix(in, "exp_avg." + std::to_string(i), adam.exp_avg()[i]);
+    get_finite_matrix(in, "exp_avg_sq." + std::to_string(i), adam.exp_avg_sq()[i]);
   }
 }
 
@@ -47,7 +48,7 @@ inline void write_rmsprop(StateWriter out, const RmsProp& rmsprop) {
 inline void read_rmsprop(const StateReader& in, RmsProp& rmsprop) {
   rmsprop.set_steps(in.get_int("step"));
   for (size_t i = 0; i < rmsprop.square_avg().size(); ++i)
-    get_matrix(in, "square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
+    get_finite_matrix(in, "square_avg." + std::to_string(i), rmsprop.square_avg()[i]);
 }
 
 // gSDE's exploration matrices and the draws behind them (log_std travels with the model).
@@ -79,7 +80,7 @@ inline void write_params(StateWriter& out, const std::string& name, const Mlp& n
   put_matrix(out, name, net.params());
 }
 inline void read_params(const StateReader& in, const std::string& name, Mlp& net) {
-  get_matrix(in, name, net.params());
+  get_finite_matrix(in, name, net.params());
 }
 
 }  // namespace rlrun

@@ -193,8 +193,8 @@ void PPO::save_training_state(StateWriter& out) const {
 }
 
 void PPO::load_training_state(const StateReader& in) {
-  num_timesteps_ = in.get_int("num_timesteps");
-  n_updates_ = in.get_int("n_updates");
+  num_timesteps_ = in.get_count("num_timesteps");
+  n_updates_ = in.get_count("n_updates");
   in.get_rng("action_rng", action_rng_);
   read_adam(in.sub("optimizer"), optimizer_);
   in.get_rng("shuffle_rng", shuffle_rng_);

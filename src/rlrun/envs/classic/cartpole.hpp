@@ -39,7 +39,8 @@ class CartPole : public ClassicControlEnv {
     out.put_int("steps_beyond_terminated", steps_beyond_terminated_);
   }
   void read_extra_state(const StateReader& in) override {
-    steps_beyond_terminated_ = static_cast<int>(in.get_int("steps_beyond_terminated"));
+    steps_beyond_terminated_ =
+        static_cast<int>(in.get_int_in("steps_beyond_terminated", -1, INT_MAX));
   }
 };
 
