@@ -5,6 +5,7 @@
 
 #include "rlrun/algos/common/explained_variance.hpp"
 #include "rlrun/algos/ppo/ppo_loss.hpp"
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/clip_grad.hpp"
 
 namespace rlrun {
@@ -17,7 +18,7 @@ ConfigProblems A2C::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 A2C::A2C(const Config& config, const AlgorithmSetup& setup)
-    : OnPolicyAlgorithm("A2C", setup, config.policy,
+    : OnPolicyAlgorithm("A2C", setup, valid_config(config, "A2C").policy,
                         {config.n_steps, config.gamma, config.gae_lambda, config.use_sde,
                          config.sde_sample_freq}),
       config_(config) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/env/goal_env.hpp"
 #include "rlrun/env/vec_env.hpp"
@@ -122,17 +123,8 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
       batch_obs_(setup.observation_space),
       batch_next_obs_(setup.observation_space),
       acting_obs_(setup.observation_space) {
-  const auto require = [this](bool ok, const std::string& message) {
-    if (!ok) throw std::invalid_argument(id_ + ": " + message);
-  };
-  require(setup.n_envs >= 1, "n_envs must be >= 1");
-  require(config.batch_size >= 1, "batch_size must be >= 1");
-  require(config.buffer_size >= 1, "buffer_size must be >= 1");
-  require(config.learning_starts >= 0, "learning_starts must be >= 0");
-  require(config.tau >= 0.0 && config.tau <= 1.0, "tau must be in [0, 1]");
-  require(config.gamma >= 0.0 && config.gamma <= 1.0, "gamma must be in [0, 1]");
-  require(config.gradient_steps >= -1,
-          "gradient_steps must be >= 0, or -1 (as many as env steps)");
+  valid_config(config, id_);
+  if (setup.n_envs < 1) throw std::invalid_argument(id_ + ": n_envs must be >= 1");
   checkpoint("num_timesteps", num_timesteps_);
   checkpoint("n_updates", n_updates_);
   checkpoint(replay.key, replay_rng_);

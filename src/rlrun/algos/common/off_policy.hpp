@@ -77,7 +77,8 @@ struct OffPolicyConfig {
     v("tau", tau, "soft update coefficient for target networks (1 = hard copy)", unit_interval());
     v("gamma", gamma, "discount factor", unit_interval());
     v("train_freq", train_freq, "update every N steps, or [N, episode]");
-    v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)");
+    v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)",
+      at_least(-1));
     v("handle_timeout_termination", handle_timeout_termination,
       "treat time-limit truncation as not done (bootstrap), as SB3");
     v("replay_buffer_class", replay_buffer_class,

@@ -8,6 +8,7 @@
 #include "rlrun/algos/common/explained_variance.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/algos/ppo/ppo_loss.hpp"
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/clip_grad.hpp"
 
 namespace rlrun {
@@ -24,15 +25,11 @@ ConfigProblems PPO::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 PPO::PPO(const Config& config, const AlgorithmSetup& setup)
-    : OnPolicyAlgorithm("PPO", setup, config.policy,
+    : OnPolicyAlgorithm("PPO", setup, valid_config(config, "PPO").policy,
                         {config.n_steps, config.gamma, config.gae_lambda, config.use_sde,
                          config.sde_sample_freq}),
       config_(config),
       shuffle_rng_(setup.seed ^ kSampleStream) {
-  if (config_.n_steps < 1) throw std::invalid_argument("PPO: n_steps must be >= 1");
-  if (config_.batch_size < 2)
-    throw std::invalid_argument("PPO: batch_size must be > 1 (advantage normalisation)");
-  if (config_.n_epochs < 1) throw std::invalid_argument("PPO: n_epochs must be >= 1");
   // SB3 ActorCriticPolicy: Adam with eps=1e-5 "to avoid NaN".
   AdamConfig adam;
   adam.eps = 1e-5;

@@ -1,7 +1,6 @@
 #include "rlrun/algos/sac/sac.hpp"
 
-#include <stdexcept>
-
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
@@ -15,9 +14,8 @@ ConfigProblems SAC::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 SAC::SAC(const Config& config, const AlgorithmSetup& setup)
-    : EntropyRegularizedActorCritic("SAC", config, config.policy, setup, /*critic_outputs=*/1) {
-  if (config.target_update_interval < 1)
-    throw std::invalid_argument("SAC: target_update_interval must be >= 1");
+    : EntropyRegularizedActorCritic("SAC", valid_config(config, "SAC"), config.policy, setup,
+                                    /*critic_outputs=*/1) {
   grad_min_q_.resize(critic_.n_critics());
   grad_q_.resize(critic_.n_critics());
   grad_critic_actions_.resize(critic_.n_critics());

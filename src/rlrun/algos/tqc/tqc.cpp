@@ -5,6 +5,7 @@
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/tqc/quantile_huber_loss.hpp"
 #include "rlrun/algos/tqc/truncated_quantiles.hpp"
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
@@ -31,11 +32,9 @@ ConfigProblems TQC::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 TQC::TQC(const Config& config, const AlgorithmSetup& setup)
-    : EntropyRegularizedActorCritic("TQC", config, config.policy, setup,
+    : EntropyRegularizedActorCritic("TQC", valid_config(config, "TQC"), config.policy, setup,
                                     /*critic_outputs=*/config.policy.n_quantiles),
       top_quantiles_to_drop_per_net_(config.top_quantiles_to_drop_per_net) {
-  if (config.target_update_interval < 1)
-    throw std::invalid_argument("TQC: target_update_interval must be >= 1");
   if (const std::string p = drop_problem(config); !p.empty())
     throw std::invalid_argument("TQC: top_quantiles_to_drop_per_net " + p);
 }
