@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 RUNS=${1:-1000000}
 shift || true
 TARGETS=("$@")
-((${#TARGETS[@]})) || TARGETS=(fuzz_config fuzz_model fuzz_npy fuzz_journal)
+((${#TARGETS[@]})) || TARGETS=(fuzz_config fuzz_model fuzz_npy fuzz_journal fuzz_zoo)
 
 CXX_FUZZ=${CXX_FUZZ:-clang++-14}
 [[ -n "${RLRUN_SKIP_INSTALL:-}" ]] || scripts/install_packages.sh clang-14 libclang-rt-14-dev
@@ -26,8 +26,8 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
   -DRLRUN_FUZZ=ON -DRLRUN_BUILD_TESTS=OFF ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} >/dev/null
 cmake --build build-fuzz --target "${TARGETS[@]}"
 
-declare -A DICT=([fuzz_config]=config.dict [fuzz_model]=model.dict [fuzz_npy]=model.dict [fuzz_journal]=journal.dict)
-declare -A SEEDS=([fuzz_config]="fuzz/corpus/config configs" [fuzz_model]=fuzz/corpus/model [fuzz_npy]=fuzz/corpus/npy [fuzz_journal]=fuzz/corpus/journal)
+declare -A DICT=([fuzz_config]=config.dict [fuzz_model]=model.dict [fuzz_npy]=model.dict [fuzz_journal]=journal.dict [fuzz_zoo]=zoo.dict)
+declare -A SEEDS=([fuzz_config]="fuzz/corpus/config configs" [fuzz_model]=fuzz/corpus/model [fuzz_npy]=fuzz/corpus/npy [fuzz_journal]=fuzz/corpus/journal [fuzz_zoo]="fuzz/corpus/zoo tests/data/zoo")
 mkdir -p build-fuzz/artifacts
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 for target in "${TARGETS[@]}"; do

@@ -1,7 +1,7 @@
 // rlrun eval --model FILE [--episodes N] [--seed S] [--deterministic|--stochastic] [--csv FILE]
 //            [--record video.mp4] [--baseline fixed-time [--green-time S] | --baseline scripted]
 //            [--trajectory steps.csv]
-// rlrun eval --env ID | --config CFG  --policy scripted|fixed-time|random  [--episodes N] ...
+// rlrun eval --env ID | --config CFG  --policy scripted|fixed-time|random[,...]  [--episodes N] ...
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +17,8 @@
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
+#include "policy_comparison.hpp"
+#include "trust_option.hpp"
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
@@ -105,16 +107,63 @@ std::string settings_text(const PolicyOptions& options) {
   return text.empty() ? text : text + ")";
 }
 
+// The env `eval --policy` runs in: --env ID's, or --config CFG's env.
+template <class Options>
+EnvPtr policy_env(const Options& o, Registry& registry) {
+  return o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
+                                     registry, "", unix_time_now())
+                          : env_by_id(o.env_id, registry, o.overrides);
+}
+
+// "a,b,c" -> {a, b, c}: --policy's names.
+std::vector<std::string> policy_names(const std::string& list) {
+  std::vector<std::string> names;
+  std::stringstream in(list);
+  for (std::string name; std::getline(in, name, ',');) {
+    if (name.empty()) throw UsageError("--policy " + list + ": an empty policy name");
+    names.push_back(name);
+  }
+  if (list.empty() || list.back() == ',') throw UsageError("--policy " + list + ": an empty policy name");
+  return names;
+}
+
+// `eval --policy a,b,c`: each policy on an env of its own (a baseline may take over the env,
+// as fixed-time hands the lights to SUMO), each env's first reset seeded with --seed, so every
+// policy plays the same episodes as `--model M --baseline P` does; one row per policy. Every
+// policy is built before any episode runs, so a wrong name costs nothing.
+template <class Options>
+int compare_policies(const Options& o, Registry& registry, const std::vector<std::string>& names) {
+  if (!o.trajectory.empty())
+    throw UsageError("--trajectory writes one policy's steps: give --policy one name");
+  std::vector<std::pair<EnvPtr, NamedPolicy>> players;
+  for (const std::string& name : names) {
+    EnvPtr env = policy_env(o, registry);
+    NamedPolicy policy = named_policy(name, *env, registry, policy_options(o));
+    players.emplace_back(std::move(env), std::move(policy));
+  }
+  std::vector<std::pair<std::string, EvalResult>> runs;
+  for (size_t i = 0; i < names.size(); ++i)
+    runs.emplace_back(names[i], evaluate_policy(players[i].second.act, *players[i].first,
+                                                o.episodes, o.seed));
+  std::printf("%s on %s, %s each from seed %llu (the same episodes for every policy)%s:\n%s",
+              o.policy.c_str(), players.front().first->id().c_str(),
+              count_of(o.episodes, "episode").c_str(), static_cast<unsigned long long>(o.seed),
+              settings_text(policy_options(o)).c_str(), comparison_table(runs).c_str());
+  if (!o.csv.empty()) write_csv(o.csv, runs);
+  return 0;
+}
+
 // `eval --policy P --env ID | --config CFG`: a policy that needs no model file, e.g. the grasp
-// task's scripted controller (shows the task is solvable) or a uniform random policy.
+// task's scripted controller (shows the task is solvable) or a uniform random policy; several
+// (`--policy a,b,c`) are compared in one table.
 template <class Options>
 int evaluate_without_model(const Options& o, Registry& registry) {
   if (o.env_id.empty() == o.config.empty())
     throw UsageError("--policy " + o.policy + " needs exactly one of --env ID or --config CFG");
   if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
-  EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
-                                           registry, "", unix_time_now())
-                                : env_by_id(o.env_id, registry, o.overrides);
+  const std::vector<std::string> names = policy_names(o.policy);
+  if (names.size() > 1) return compare_policies(o, registry, names);
+  EnvPtr env = policy_env(o, registry);
   const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*env);
   const EvalResult r =
       evaluate_policy(named_policy(o.policy, *env, registry, policy_options(o)).act, *env,
@@ -140,6 +189,7 @@ struct EvalOptions {
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   std::vector<std::string> overrides;   // --set: the user's values over the model's config
   std::string trajectory;  // every step's env observation and action (runtime/trajectory_tap.hpp)
+  bool trust = false;      // --trust: run what the model file names (trust_option.hpp)
 };
 
 // The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
@@ -168,7 +218,8 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
 
 int evaluate_model(const EvalOptions& o, Registry& registry) {
   // Normalisation statistics frozen; tensors read within the config's budget.
-  const LoadedModel loaded = load_model(o.model, registry, o.overrides);
+  const LoadedModel loaded =
+      load_model(o.model, registry, o.overrides, model_trust(o.trust, o.model, registry));
   const ModelFile& model = loaded.file;
   const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*loaded.env);
   const Experiment& experiment = loaded.experiment;
@@ -206,7 +257,8 @@ Action add_eval(CLI::App& app, Registry& registry) {
   CLI::Option* policy_option = sub->add_option(
       "--policy", options->policy,
       "evaluate a policy without a model: random, or one that comes with the env (`rlrun list "
-      "ID` shows them: fixed-time for the traffic task, scripted for the grasp task); needs "
+      "ID` shows them: fixed-time for the traffic task, scripted for the grasp task); several "
+      "separated by commas (a,b,c) are compared on the same episodes in one table; needs "
       "--env ID or --config CFG");
   policy_option->excludes(model_option);
   sub->add_option("--env", options->env_id, "env id for --policy")->needs(policy_option);
@@ -222,6 +274,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
                   "then is_success and the env's metrics where it has them (the means are "
                   "printed, not written)");
   add_plugin_option(sub, options->plugins);
+  add_trust_option(sub, options->trust)->needs(model_option);
   sub->add_option("--set", options->overrides,
                   "override a value of the model's config or --config (a model file is "
                   "untrusted: this is how you vouch for a program or file it names; repeatable)")

@@ -1,4 +1,4 @@
-// rlrun export --model FILE --format onnx --output policy.onnx [--with-value]
+// rlrun export --model FILE --format onnx --output policy.onnx [--with-value] [--set k=v]... [--trust]
 // rlrun export --model FILE --format c --output DIR        (DIR/policy.c, DIR/policy.h)
 // The model's deterministic policy as a file that runs without rlrun (deploy/): the env's
 // observation in, the env's action out, as `rlrun eval` acts (docs/deploy.md).
@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "plugin_option.hpp"
+#include "trust_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/deploy/c_writer.hpp"
 #include "rlrun/runtime/model_graph.hpp"
@@ -25,6 +26,8 @@ struct ExportOptions {
   std::string output;
   bool with_value = false;
   std::vector<std::string> plugins;
+  std::vector<std::string> overrides;  // --set: the user's values over the model's config
+  bool trust = false;                  // --trust: run what the model file names
 };
 
 // The output's directory must exist: exporting never creates directories (a typo in a path
@@ -56,10 +59,18 @@ Action add_export(CLI::App& app, Registry& registry) {
                 "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
                 "critic's Q(s, action) for SAC/TD3/DDPG, mean quantile for TQC");
   add_plugin_option(sub, o->plugins);
+  sub->add_option("--set", o->overrides,
+                  "override a value of the model's config (a model file is untrusted: this is "
+                  "how you vouch for a program or file it names; repeatable)")
+      ->allow_extra_args(false);
+  add_trust_option(sub, o->trust);
   return [o, &registry]() {
     load_plugin_options(o->plugins, registry);
     check_output_directory(o->output);
-    const LoadedModel model = load_model(o->model, registry);
+    // The policy graph is built on the model's env stack (its wrappers' exports, the env's own
+    // spaces, which a model file does not store): the env is built, so its code runs.
+    const LoadedModel model = load_model(o->model, registry, o->overrides,
+                                         model_trust(o->trust, o->model, registry));
     PolicyGraph graph;
     try {
       graph = build_model_graph(model, o->with_value);

@@ -14,6 +14,7 @@
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
+#include "trust_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/render/video_limits.hpp"
@@ -39,6 +40,7 @@ struct Options {
   std::optional<double> fps;
   bool stochastic = false;
   bool no_overlay = false;
+  bool trust = false;  // --trust: run what the model file names (trust_option.hpp)
 };
 
 // "600x400" -> width, height, bounded up front (render/video_limits.hpp): a size ffmpeg would
@@ -107,7 +109,8 @@ int run(const Options& o, Registry& registry) {
   std::unique_ptr<Algorithm> algorithm;
   std::string algo_id;
   if (!o.model.empty()) {
-    LoadedModel model = load_model(o.model, registry, o.overrides);  // statistics frozen
+    LoadedModel model = load_model(o.model, registry, o.overrides,  // statistics frozen
+                                   model_trust(o.trust, o.model, registry));
     env = std::move(model.env);
     algorithm = std::move(model.algorithm);
     algo_id = model.file.meta.algorithm;
@@ -183,6 +186,7 @@ Action add_record(CLI::App& app, Registry& registry) {
       ->excludes(det);
   sub->add_flag("--no-overlay", options->no_overlay, "no text (env id, episode, step, return)");
   add_plugin_option(sub, options->plugins);
+  add_trust_option(sub, options->trust);
   return [options, deterministic, &registry]() { return run(*options, registry); };
 }
 

@@ -1,4 +1,5 @@
-// rlrun tune STUDY.yaml [-j N] [--n-trials N] [--out DIR] [--set key=value]... [--plugin LIB]...
+// rlrun tune STUDY.yaml [-j N] [--n-trials N] [--n-timesteps N] [--out DIR] [--set key=value]...
+//                      [--plugin LIB]...
 //                                  run the study's trials (docs/tune.md): N worker processes
 //                                  share the study journal; a study resumes where it stopped
 // rlrun tune STUDY.yaml --slurm [--workers N]
@@ -43,6 +44,7 @@ struct TuneOptions {
   std::string study_file;
   int jobs = 1;
   std::optional<int> n_trials;
+  std::optional<int64_t> n_timesteps;
   std::string out;
   std::vector<std::string> set, plugins;
   bool slurm = false;
@@ -62,6 +64,7 @@ std::vector<std::string> passed_on(const TuneOptions& o) {
   for (const std::string& v : o.set) args.insert(args.end(), {"--set", v});
   for (const std::string& p : o.plugins) args.insert(args.end(), {"--plugin", p});
   if (o.n_trials) args.insert(args.end(), {"--n-trials", std::to_string(*o.n_trials)});
+  if (o.n_timesteps) args.insert(args.end(), {"--n-timesteps", std::to_string(*o.n_timesteps)});
   if (!o.out.empty()) args.insert(args.end(), {"--out", fs::absolute(o.out).string()});
   if (o.verbose) args.push_back("--verbose");
   return args;
@@ -97,7 +100,7 @@ void print_study_summary(const StudyConfig& study) {
 
 int run_study(const TuneOptions& o, Registry& registry) {
   load_plugin_options(o.plugins, registry);
-  StudyConfig study = tune::load_study(o.study_file, registry, o.set, o.out);
+  StudyConfig study = tune::load_study(o.study_file, registry, o.set, o.out, o.n_timesteps);
   if (o.n_trials) study.n_trials = *o.n_trials;
   fs::create_directories(study.out_dir);
   if (o.slurm) {
@@ -163,7 +166,7 @@ int report(const TuneOptions& o, Registry& registry) {
   std::string journal = o.study, name = o.study_name;
   const std::string ext = fs::path(o.study).extension().string();
   if (ext == ".yaml" || ext == ".yml") {
-    study = tune::load_study(o.study, registry, {}, o.out);
+    study = tune::load_study(o.study, registry, {}, o.out, o.n_timesteps);
     journal = study->storage;
     if (name.empty()) name = study->name;
   }
@@ -245,6 +248,9 @@ Action add_tune(CLI::App& app, Registry& registry) {
       ->transform(integer_in(1, 256));
   sub->add_option("--n-trials", o->n_trials, "trials in total (instead of the file's n_trials)")
       ->transform(integer_in(1, 1000000));
+  sub->add_option("--n-timesteps", o->n_timesteps,
+                  "env steps per seed of every trial (instead of the file's n_timesteps)")
+      ->transform(integer_in(1, 1'000'000'000'000'000));
   sub->add_option("--out", o->out, "the study's out_dir (its journal, trials/, logs/) instead of the file's");
   sub->add_option("--set", o->set, "override a value of every trial's experiment (repeatable)")
       ->allow_extra_args(false);
@@ -257,6 +263,10 @@ Action add_tune(CLI::App& app, Registry& registry) {
   rep->add_option("study", o->study, "the study file or its journal")->required();
   rep->add_option("--study-name", o->study_name, "with a journal of several studies: which one");
   rep->add_option("--out", o->out, "the study's out_dir, when it ran with tune --out");
+  rep->add_option("--n-timesteps", o->n_timesteps,
+                  "the steps per seed, when it ran with tune --n-timesteps (for --best-config and "
+                  "--trial)")
+      ->transform(integer_in(1, 1'000'000'000'000'000));
   rep->add_option("--top", o->top, "best trials listed")->transform(integer_in(1, 100000));
   rep->add_option("--plot", o->plot, "write the optimisation history plot (.png or .svg)");
   rep->add_option("--best-config", o->best_config, "write the best trial as an experiment file");

@@ -1,11 +1,15 @@
-// rlrun zoo import HYPERPARAMS.yml ENV_ID [-o FILE] [--algo ALGO]: an rl-baselines3-zoo
-// hyperparameter entry as an rlrun experiment file (runtime/zoo/zoo_import.hpp, docs/zoo.md).
+// rlrun zoo import HYPERPARAMS.yml ENV_ID [-o FILE] [--algo ALGO] [--entry NAME] [--set K=V]...:
+// an rl-baselines3-zoo hyperparameter entry as an rlrun experiment file
+// (runtime/zoo/zoo_import.hpp, docs/zoo.md). The zoo file is untrusted, the written file the
+// user's own: a value that names a program, a file to write or a simulator input is refused
+// unless the user's `--set` vouches for it, and then written as set.
 #include <cstdio>
 #include <memory>
 
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/zoo/experiment_text.hpp"
 #include "rlrun/runtime/zoo/zoo_import.hpp"
 
 namespace rlrun::cli {
@@ -18,6 +22,7 @@ struct ZooOptions {
   std::string output;
   std::string algo;
   std::string entry;  // another env's entry to use (--entry)
+  std::vector<std::string> overrides;  // --set
 };
 
 }  // namespace
@@ -38,11 +43,15 @@ Action add_zoo(CLI::App& app, Registry& registry) {
                      "the algorithm, when the file name does not say (ppo, a2c, dqn, sac, td3, ddpg, tqc)");
   import->add_option("--entry", options->entry,
                      "use this entry's settings for env_id (e.g. PandaReach-v1 for GripperReach-v0)");
+  import->add_option("--set", options->overrides,
+                     "set a value in the written file, e.g. --set run.seed=3 (repeatable); also "
+                     "vouches for a value the zoo file may not set itself (docs/security.md)")
+      ->allow_extra_args(false);
   return [options, &registry]() {
-    const zoo::ZooImport imported = zoo::translate_zoo_entry(
+    zoo::ZooImport imported = zoo::translate_zoo_entry(
         zoo::read_zoo_entry(options->hyperparams, options->env_id, options->algo, options->entry), registry);
-    // Checked as `rlrun train` would check it, with the zoo file's positions in messages.
-    parse_experiment(ConfigNode::from_yaml(imported.experiment, options->hyperparams), registry);
+    // Checked as `rlrun train --zoo` checks it, with the zoo file's positions in messages.
+    zoo::check_zoo_experiment(imported, options->overrides, registry);
     const std::string text = zoo::experiment_text(imported);
     if (options->output.empty()) {
       std::fputs(text.c_str(), stdout);

@@ -141,13 +141,21 @@ class RlrunEnv(_EnvBase):
             obs = _spaces.from_flat(self.observation_space, obs)
         return obs, reward, terminated, truncated, info
 
-    def compute_reward(self, achieved_goal, desired_goal, info=None):
-        """GoalEnv.compute_reward (Gymnasium-Robotics' contract) of a goal-conditioned env
-        (BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0): goals of
-        shape (goal_dim,) or (n, goal_dim), rewards of shape () or (n,). ``info`` is not read.
-        SB3's HerReplayBuffer calls it through ``env_method``."""
+    @property
+    def compute_reward(self):
+        """GoalEnv.compute_reward(achieved_goal, desired_goal, info) (Gymnasium-Robotics'
+        contract), on goal-conditioned envs only (BitFlippingEnv-v0, GripperReach-v0,
+        GripperPush-v0, GripperPickAndPlace-v0: Dict observations with ``achieved_goal`` and
+        ``desired_goal``). Other envs have no such attribute: SB3 takes any env that has one for
+        a GoalEnv (``env_checker._is_goal_env``: ``hasattr(env.unwrapped, "compute_reward")``)
+        and checks it as one."""
         if not self._core.is_goal_env:
             raise AttributeError(f"{self.id} is not a goal-conditioned env: it has no compute_reward")
+        return self._compute_goal_reward
+
+    def _compute_goal_reward(self, achieved_goal, desired_goal, info=None):
+        # Goals of shape (goal_dim,) or (n, goal_dim), rewards of shape () or (n,); ``info`` is
+        # not read. SB3's HerReplayBuffer calls it through ``env_method``.
         return self._core.compute_reward(np.asarray(achieved_goal), np.asarray(desired_goal))
 
     def render(self):

@@ -87,9 +87,9 @@ def _is_vectorized_dict(observation: dict, space) -> bool:
 class Model:
     """A model file loaded for prediction. Build it with ``rlrun.load(path)``."""
 
-    def __init__(self, path: str | os.PathLike, overrides=None):
+    def __init__(self, path: str | os.PathLike, overrides=None, trust: bool = False):
         self.path = os.fspath(path)
-        self._core = _core.Model(self.path, list(overrides or []))
+        self._core = _core.Model(self.path, list(overrides or []), bool(trust))
         self.observation_space = _spaces.from_description(self._core.observation_space)
         self.action_space = _spaces.from_description(self._core.action_space)
         self._obs_dim = _spaces.flat_dim(self.observation_space)
@@ -160,12 +160,16 @@ class Model:
         return f"<rlrun.Model {self.algorithm} on {self.env_id}, {self.num_timesteps} steps: {self.path}>"
 
 
-def load(path: str | os.PathLike, overrides=None) -> Model:
+def load(path: str | os.PathLike, overrides=None, trust: bool = False) -> Model:
     """Loads a model file written by ``rlrun train`` (model.zip, best_model.zip, a checkpoint).
 
     Model files are untrusted input (docs/security.md): the file is read in two phases within
     a budget its own configuration justifies, and can name no program or plugin. Problems
     raise rlrun.RuntimeFailure with ``rlrun eval``'s message. ``overrides`` are ``--set``
     assignments ("key=value") over the model's config, as ``rlrun eval --set``.
+    ``trust=True`` is ``rlrun eval --trust``: for your own models, accept what the file names
+    (a ``python:``/``gymnasium:`` env's code, its interpreter, a SUMO binary or scenario,
+    plugin libraries) instead of vouching for each with ``overrides``; each such value is
+    printed on stderr before it is used.
     """
-    return Model(path, overrides)
+    return Model(path, overrides, trust)

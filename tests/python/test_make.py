@@ -225,6 +225,68 @@ class GoalEnvs(unittest.TestCase):
             rlrun.make("CartPole-v1").compute_reward(np.zeros(1), np.zeros(1), None)
 
 
+# Every env rlrun.make builds without a simulator or named code (TrafficSignal-v0 and
+# TrafficNetwork-v0 need SUMO; python:/gymnasium: name a module).
+def makeable_envs():
+    return [i for i in rlrun.list_envs() if not i.startswith("Traffic") and not i.endswith(":")]
+
+
+GOAL_KEYS = {"observation", "achieved_goal", "desired_goal"}
+
+
+class Sb3CheckEnv(unittest.TestCase):
+    """SB3's check_env (stable_baselines3/common/env_checker.py) takes any env with a
+    ``compute_reward`` attribute for a GoalEnv (``_is_goal_env``: hasattr on env.unwrapped) and
+    then requires a Dict observation with observation/achieved_goal/desired_goal and rewards
+    equal to compute_reward's. Issue 41: every rlrun.make env had compute_reward, so SB3's
+    check_env failed on all but the goal envs."""
+
+    def test_compute_reward_only_on_goal_envs(self):
+        # The check SB3's check_env makes, mirrored (it runs without SB3 and Gymnasium).
+        goal_envs = []
+        for env_id in makeable_envs():
+            with self.subTest(env=env_id):
+                env = rlrun.make(env_id)
+                space = env.observation_space
+                goal_obs = type(space).__name__ == "Dict" and GOAL_KEYS <= set(space.spaces)
+                self.assertEqual(hasattr(env.unwrapped, "compute_reward"), goal_obs)
+                if goal_obs:
+                    goal_envs.append(env_id)
+                env.close()
+        self.assertEqual(sorted(goal_envs), ["BitFlippingEnv-v0", "GripperPickAndPlace-v0",
+                                             "GripperPush-v0", "GripperReach-v0"])
+
+    def test_goal_env_rewards_are_compute_reward(self):
+        # SB3's _check_goal_env_compute_reward: the step reward equals compute_reward of the
+        # step's goals, and a batch of goals gives a batch of rewards.
+        for env_id in ("BitFlippingEnv-v0", "GripperReach-v0"):
+            with self.subTest(env=env_id):
+                env = rlrun.make(env_id)
+                env.reset(seed=1)
+                env.action_space.seed(1)
+                obs, reward, _, _, info = env.step(env.action_space.sample())
+                self.assertEqual(env.compute_reward(obs["achieved_goal"], obs["desired_goal"], info), reward)
+                batch = env.compute_reward(np.stack([obs["achieved_goal"]] * 2),
+                                           np.stack([obs["desired_goal"]] * 2), [info] * 2)
+                self.assertEqual(batch.shape, (2,))
+                self.assertEqual(float(batch[0]), reward)
+
+    def test_stable_baselines3_check_env(self):
+        try:
+            from stable_baselines3.common.env_checker import check_env as sb3_check_env
+        except ImportError:
+            self.skipTest("stable_baselines3 is not importable")
+        import warnings
+
+        for env_id in makeable_envs():
+            with self.subTest(env=env_id):
+                env = rlrun.make(env_id)
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")  # SB3's advice (e.g. normalise Box actions)
+                    sb3_check_env(env)
+                env.close()
+
+
 class SameTrajectoriesAsTheCppEnvs(TempDirMixin, unittest.TestCase):
     def replay(self, env_id, episodes=2, seed=9, **kwargs):
         path = os.path.join(self.tmp, env_id + ".csv")

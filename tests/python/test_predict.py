@@ -230,5 +230,66 @@ class UntrustedModelFiles(TempDirMixin, unittest.TestCase):
         self.assertIn(str(caught.exception), output)
 
 
+def stderr_of(call):
+    """call()'s result and what it wrote to file descriptor 2 (C++'s stderr included)."""
+    import tempfile
+
+    with tempfile.TemporaryFile() as captured:
+        saved = os.dup(2)
+        os.dup2(captured.fileno(), 2)
+        try:
+            result = call()
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+        captured.seek(0)
+        return result, captured.read().decode()
+
+
+class TrustedModel(TempDirMixin, unittest.TestCase):
+    """rlrun.load(path, trust=True), as `rlrun eval --trust` (issue 41): a model of one's own
+    Python env loads without an override per value its config names; each value is printed on
+    stderr before it is used. Without trust the error names both ways to vouch."""
+
+    ENV_ID = "python:rlrun_test_envs.cartpole:CartPolePort"
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        source = os.environ.get("RLRUN_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "../.."))
+        cls.saved_path = os.environ.get("PYTHONPATH")
+        envs = os.path.join(source, "tests", "python_envs")
+        os.environ["PYTHONPATH"] = envs + (os.pathsep + cls.saved_path if cls.saved_path else "")
+        cls.model = train_model(cls.tmp, "port", "run: {name: port, seed: 1, total_timesteps: 64}\n"
+                                f'env: {{id: "{cls.ENV_ID}"}}\n'
+                                "algo: {id: PPO, n_steps: 64, batch_size: 64, n_epochs: 1}\n")
+
+    @classmethod
+    def tearDownClass(cls):
+        if cls.saved_path is None:
+            os.environ.pop("PYTHONPATH", None)
+        else:
+            os.environ["PYTHONPATH"] = cls.saved_path
+        super().tearDownClass()
+
+    def test_refused_without_trust(self):
+        with self.assertRaises(rlrun.ConfigError) as caught:
+            rlrun.load(self.model)
+        self.assertIn("--set env.id=" + self.ENV_ID, str(caught.exception))
+        self.assertIn("Or pass trust=True to accept everything " + self.model, str(caught.exception))
+
+    def test_trust_true_loads_and_says_what_runs(self):
+        model, said = stderr_of(lambda: rlrun.load(self.model, trust=True))
+        self.assertIn(f"trusting {self.model}:config.yaml (trust=True): env.id = {self.ENV_ID}: "
+                      "an env that runs the Python code it names", said)
+        action, _ = model.predict(np.zeros(4, dtype=np.float32), deterministic=True)
+        self.assertIn(int(action), (0, 1))
+        self.assertEqual(model.env_id, self.ENV_ID)
+
+    def test_an_override_still_vouches_for_one_value(self):
+        model, said = stderr_of(lambda: rlrun.load(self.model, overrides=["env.id=" + self.ENV_ID]))
+        self.assertEqual(model.env_id, self.ENV_ID)
+        self.assertNotIn("trusting", said)
+
 if __name__ == "__main__":
     unittest.main()

@@ -190,6 +190,39 @@ TEST_CASE("sweep --out and --set: the sweep's out_dir and a value for every run,
         std::string::npos);
 }
 
+// Issue 41: each run of a sweep has its own run.tb_log_name (<label>_seed<N>), so report and
+// plot saw six configurations of one seed each. A configuration is the run's config without
+// what differs per seed; the 2 x 3 sweep is 2 rows of 3 seeds and 2 lines with bands.
+TEST_CASE("report and plot of a real 2 x 3 sweep: one row and one line per configuration",
+          "[sweep][report][plot]") {
+  TempDir dir("sweep_report");
+  REQUIRE(run_rlrun("sweep " + write_sweep(dir, 512)).exit_code == 0);
+  const auto trained = run_rlrun("sweep run " + dir / "out/manifest.yaml" + " -j 2");
+  INFO(trained.output);
+  REQUIRE(trained.exit_code == 0);
+  const auto report = run_rlrun("report " + dir / "out/runs" + " --csv " + dir / "report.csv");
+  INFO(report.output);
+  REQUIRE(report.exit_code == 0);
+  CHECK(report.output.find("| learning_rate=lin_0.001 | 3 (1 2 3) |") != std::string::npos);
+  CHECK(report.output.find("| learning_rate=3.0e-4 | 3 (1 2 3) |") != std::string::npos);
+  const std::string csv = read_text(dir / "report.csv");
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2);  // header, 2 configurations
+  const auto plot = run_rlrun("plot " + dir / "out/runs" + " --output " + dir / "curves.svg");
+  INFO(plot.output);
+  REQUIRE(plot.exit_code == 0);
+  CHECK(plot.output.find("plotted 2 configurations (6 runs)") != std::string::npos);
+  // In the SVG, each configuration is a mean line (stroke width 2) over a band (opacity 0.2),
+  // and its legend entry one of each again.
+  const std::string svg = read_text(dir / "curves.svg");
+  const auto count = [&svg](const std::string& what) {
+    int n = 0;
+    for (size_t at = 0; (at = svg.find(what, at)) != std::string::npos; ++at) ++n;
+    return n;
+  };
+  CHECK(count("stroke-width:2;") == 2 * 2);
+  CHECK(count("fill-opacity:0.2;") == 2 * 2);
+}
+
 TEST_CASE("sweep: the shipped example sweep expands into 6 runs", "[sweep]") {
   TempDir dir("sweep_example");
   std::ifstream in(std::string(RLRUN_SOURCE_DIR) + "/configs/sweeps/cartpole_ppo_lr.yaml");

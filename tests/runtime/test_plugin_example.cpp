@@ -79,6 +79,14 @@ TEST_CASE("plugin example: builds out of tree, passes check-env, trains and eval
   CHECK(eval.output.find("mean_reward = 1.00") != std::string::npos);
   CHECK(eval.output.find("mean_ep_length = 9.0") != std::string::npos);
   CHECK(eval.output.find("success_rate = 1.000") != std::string::npos);
+  // Or --trust (issue 41): the model's own `plugins:` line is loaded, after saying so.
+  CHECK(refused_plugin.output.find("Or pass --trust to accept everything") != std::string::npos);
+  const auto trusted = run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10 --trust");
+  INFO(trusted.output);
+  CHECK(trusted.exit_code == 0);
+  CHECK(trusted.output.find("(--trust): plugins[0] = " + library + ": a plugin library rlrun "
+                            "loads") != std::string::npos);
+  CHECK(trusted.output.find("mean_reward = 1.00") != std::string::npos);
 
   // --plugin instead of the `plugins:` line; a missing library is a clear usage error.
   {

@@ -11,6 +11,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/trainer.hpp"
+#include "rlrun/runtime/zoo/experiment_text.hpp"
 #include "rlrun/runtime/zoo/python_literal.hpp"
 #include "rlrun/runtime/zoo/zoo_import.hpp"
 #include "runtime/cli_runner.hpp"
@@ -459,4 +460,82 @@ TEST_CASE("zoo import: --entry uses another env's entry (the zoo's PandaReach TQ
   // A missing entry is named with the closest one.
   CHECK_THROWS_WITH(read_zoo_entry(file, "GripperReach-v0", "", "PandaReach-v3"),
                     Catch::Contains("did you mean 'PandaReach-v1'"));
+}
+
+TEST_CASE("zoo import: YAML merge keys, as the zoo's MuJoCo and PyBullet sections write them",
+          "[zoo][merge]") {
+  TempDir dir("zoo_merge");
+  Registry registry = make_builtin_registry();
+  // The shape of rl-zoo's hyperparams/a2c.yml `HalfCheetah-v4: &mujoco-defaults` section and
+  // its `Humanoid-v4: {<<: *mujoco-defaults, n_timesteps: ...}` entries, on rlrun's envs.
+  const std::string file = write_file(dir, "a2c.yml", R"zoo(Pendulum-v1: &pendulum-defaults
+  normalize: true
+  n_envs: 4
+  n_timesteps: !!float 1e6
+  policy: 'MlpPolicy'
+  ent_coef: 0.0
+  use_rms_prop: True
+
+MountainCarContinuous-v0:
+  <<: *pendulum-defaults
+  n_timesteps: !!float 2e6
+
+LunarLanderContinuous-v3:
+  <<: [*pendulum-defaults, {gamma: 0.9, n_envs: 16}]
+  n_envs: 8
+)zoo");
+  const YAML::Node car =
+      translate_zoo_entry(read_zoo_entry(file, "MountainCarContinuous-v0", ""), registry).experiment;
+  CHECK(car["run"]["total_timesteps"].as<double>() == 2e6);
+  CHECK(car["env"]["n_envs"].as<int>() == 4);
+  CHECK(car["env"]["normalize"].as<bool>());
+  CHECK(car["algo"]["use_rms_prop"].as<bool>());
+  CHECK_FALSE(car["algo"]["<<"]);
+  const Experiment lander = load_zoo_experiment(file, "LunarLanderContinuous-v3", "", {}, registry);
+  CHECK(lander.env.section.n_envs == 8);
+  CHECK(lander.algo.params.resolved()["gamma"].as<double>() == 0.9);
+  CHECK(lander.run.total_timesteps == 1000000);
+}
+
+TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", "[zoo]") {
+  TempDir dir("zoo_missing_algo");
+  const std::string entry = "CartPole-v1:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n";
+  const std::vector<std::pair<std::string, std::string>> files{
+      {"qrdqn.yml", "rlrun has no QR-DQN (sb3-contrib's QRDQN) yet"},
+      {"trpo.yml", "rlrun has no TRPO (sb3-contrib's TRPO) yet"},
+      {"ars.yml", "rlrun has no ARS"},
+      {"crossq.yml", "rlrun has no CrossQ"},
+      {"ppo_lstm.yml", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm)"},
+      {"her.yml", "HER became a replay buffer"}};
+  for (const auto& [name, message] : files) {
+    INFO(name);
+    const std::string error = import_error(write_file(dir, name, entry), "CartPole-v1");
+    CHECK_THAT(error, Catch::Contains(message) && !Catch::Contains("pass --algo"));
+  }
+  Registry registry = make_builtin_registry();
+  CHECK_THROWS_WITH(read_zoo_entry(write_file(dir, "tuned.yml", entry), "CartPole-v1", "maskable_ppo"),
+                    Catch::Contains("--algo maskable_ppo: rlrun has no MaskablePPO"));
+}
+
+TEST_CASE("zoo import: a gymnasium: env takes the entry of its Gymnasium id, run names are one "
+          "path component",
+          "[zoo]") {
+  TempDir dir("zoo_gymnasium");
+  Registry registry = make_builtin_registry();
+  const std::string file = write_file(dir, "ppo.yml", "LunarLander-v2:\n  n_timesteps: 1000\n"
+                                                      "  policy: 'MlpPolicy'\n  n_steps: 64\n"
+                                                      "default:\n  n_timesteps: 5\n");
+  const ZooEntry lander = read_zoo_entry(file, "gymnasium:LunarLander-v3", "");
+  CHECK(lander.entry_name == "LunarLander-v2");
+  CHECK(lander.env_id == "gymnasium:LunarLander-v3");
+  const ZooImport imported = translate_zoo_entry(lander, registry);
+  CHECK(imported.experiment["env"]["id"].as<std::string>() == "gymnasium:LunarLander-v3");
+  CHECK(imported.experiment["run"]["name"].as<std::string>() == "ppo_gymnasium-LunarLander-v3");
+  CHECK(imported.experiment["algo"]["n_steps"].as<int>() == 64);
+  CHECK(read_zoo_entry(file, "gymnasium:CartPole-v1", "").entry_name == "default");
+  CHECK(zoo_run_name("PPO", "gymnasium:ALE/Pong-v5") == "ppo_gymnasium-ALE-Pong-v5");
+  CHECK(zoo_run_name("SAC", "python:my_pkg.envs:Arm") == "sac_python-my_pkg.envs-Arm");
+  CHECK(zoo_run_name("DQN", "CartPole-v1") == "dqn_CartPole-v1");
+  CHECK(zoo_run_name("DQN", "../../x y\n") == "dqn_..-..-x-y-");
+  CHECK(zoo_run_name("DQN", std::string(500, 'x')).size() == 104);
 }

@@ -320,3 +320,36 @@ TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial
   CHECK(retrain.exit_code == 0);
   CHECK(std::filesystem::exists(dir / "out/retrained/trial_0/seed1/model.zip"));
 }
+
+// Issue 41: `--set run.total_timesteps=512` ran every trial for the study's n_timesteps,
+// silently. The keys a study sets for every trial itself are refused as fixed overrides, naming
+// the study's own option; --n-timesteps replaces n_timesteps (workers and report included).
+TEST_CASE("tune: --set of a key the study sets per trial is refused; --n-timesteps", "[cli][tune]") {
+  TempDir dir("tune_steps");
+  const std::string study = write_study(dir, "", 1, 4096, 1, 1);
+  auto r = run_rlrun("tune " + study + " --set run.total_timesteps=512");
+  INFO(r.output);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("--set run.total_timesteps=512") &&
+                           Catch::Contains("n_timesteps") && Catch::Contains("--n-timesteps 512"));
+  CHECK_FALSE(std::filesystem::exists(dir / "out/study.journal"));
+  r = run_rlrun("tune " + study + " --set eval.n_episodes=3");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("eval_episodes"));
+
+  r = run_rlrun("tune " + study + " --n-timesteps 512");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("1 seed x 512 steps"));
+  CHECK(read_text(dir / "out/trials/trial_0/seed1/finished") == "timesteps 512\n");
+  r = run_rlrun("tune report " + study + " --n-timesteps 512 --best-config " + (dir / "best.yaml"));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(read_text(dir / "best.yaml"), Catch::Contains("total_timesteps: 512"));
+
+  // The study file's own `set:` is refused at its line.
+  std::ofstream(study, std::ios::app) << "set: {run.total_timesteps: 512}\n";
+  r = run_rlrun("tune " + study);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("study.yaml:") && Catch::Contains("n_timesteps"));
+}

@@ -7,10 +7,12 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 #include <yaml-cpp/eventhandler.h>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 
 namespace rlrun {
 
@@ -125,6 +127,72 @@ void check_structure(const YAML::Node& root, const std::string& origin) {
   throw ConfigError(message);
 }
 
+// A merge key: `<<` written plain (or tagged !!merge); a quoted "<<" is an ordinary key.
+bool is_merge_key(const YAML::Node& key) {
+  return key.IsScalar() && key.Scalar() == "<<" &&
+         (key.Tag() == "?" || key.Tag() == "tag:yaml.org,2002:merge");
+}
+
+// Merged maps that merge others, and so on: a chain this long is not a config.
+constexpr int kMaxMergeDepth = 64;
+
+// Resolves the merge key of `map`, if it has one (yaml.org/type/merge.html, as PyYAML's
+// flatten_mapping): the keys of the merged map (or maps, earlier ones first) that `map` does not
+// write itself are added to it, as the same nodes (their positions are the anchor's). yaml-cpp
+// 0.7 reads `<<` as an ordinary key. The merged maps are resolved first; in document order
+// (resolve_merge_keys) they already are, so the recursion stays shallow.
+void merge_into(YAML::Node map, const std::string& origin, int depth) {
+  YAML::Node merge_key, sources;
+  bool found = false;
+  for (const auto& kv : map) {
+    if (!is_merge_key(kv.first)) continue;
+    merge_key = kv.first;
+    sources = kv.second;
+    found = true;
+  }
+  if (!found) return;
+  if (depth > kMaxMergeDepth)
+    throw ConfigError(position(origin, merge_key.Mark()) + ": merge keys (<<) chained more than " +
+                      std::to_string(kMaxMergeDepth) + " maps deep");
+  std::vector<YAML::Node> merged;
+  if (sources.IsMap()) merged.push_back(sources);
+  if (sources.IsSequence())
+    for (const YAML::Node& item : sources) merged.push_back(item);
+  if (merged.empty() || std::any_of(merged.begin(), merged.end(),
+                                    [](const YAML::Node& m) { return !m.IsMap(); }))
+    throw ConfigError(position(origin, merge_key.Mark()) +
+                      ": a merge key (<<) takes a map or a list of maps, e.g. <<: *defaults or "
+                      "<<: [*a, *b]");
+  std::unordered_set<std::string> present;
+  for (const auto& kv : map)
+    if (!is_merge_key(kv.first)) present.insert(kv.first.Scalar());
+  map.remove(merge_key);
+  for (const YAML::Node& source : merged) {
+    merge_into(source, origin, depth + 1);
+    for (const auto& kv : source)
+      if (present.insert(kv.first.Scalar()).second) map.force_insert(kv.first, kv.second);
+  }
+}
+
+// Resolves every merge key of the tree, visiting maps in document order (an anchor comes before
+// its aliases, so a merged map is resolved before the maps that merge it). check_structure has
+// bounded the tree with aliases expanded, which bounds this walk; merging adds no node to it.
+void resolve_merge_keys(const YAML::Node& root, const std::string& origin) {
+  std::vector<YAML::Node> stack{root};
+  while (!stack.empty()) {
+    YAML::Node node = stack.back();
+    stack.pop_back();
+    std::vector<YAML::Node> children;
+    if (node.IsMap()) {
+      merge_into(node, origin, 0);
+      for (const auto& kv : node) children.push_back(kv.second);
+    } else if (node.IsSequence()) {
+      for (const YAML::Node& item : node) children.push_back(item);
+    }
+    stack.insert(stack.end(), children.rbegin(), children.rend());
+  }
+}
+
 }  // namespace
 
 std::string closest_name(const std::string& name, const std::vector<std::string>& candidates) {
@@ -184,12 +252,15 @@ ConfigNode ConfigNode::load_string(const std::string& text, const std::string& o
   }
   if (!node.IsDefined() || node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
   check_structure(node, origin);
+  resolve_merge_keys(node, origin);
   return ConfigNode(node, context, "");
 }
 
-ConfigNode ConfigNode::from_yaml(YAML::Node node, const std::string& origin, std::string path) {
+ConfigNode ConfigNode::from_yaml(YAML::Node node, const std::string& origin, std::string path,
+                                 ConfigTrust trust) {
   auto context = std::make_shared<Context>();
   context->origin = origin;
+  context->trust = trust;
   return ConfigNode(std::move(node), context, std::move(path));
 }
 
@@ -204,6 +275,7 @@ void ConfigNode::apply_override(const std::string& assignment) {
     check_one_document(value_text, "--set " + assignment);
     value = YAML::Load(value_text);
     check_structure(value, "--set " + assignment);
+    resolve_merge_keys(value, "--set " + assignment);
   } catch (const YAML::Exception& e) {
     throw UsageError("--set " + assignment + ": value is not valid YAML: " + e.msg);
   } catch (const ConfigError& e) {
@@ -229,7 +301,12 @@ void ConfigNode::apply_override(const std::string& assignment) {
   }
   chain.back()[parts.back()] = value;
   context_->override_paths.push_back(key_path);
-  context_->override_texts.push_back(assignment);
+  context_->override_shown.push_back("--set " + assignment);
+}
+
+void ConfigNode::vouch_for(const std::string& key_path, const std::string& shown) {
+  context_->override_paths.push_back(key_path);
+  context_->override_shown.push_back(shown);
 }
 
 bool ConfigNode::has(const std::string& key) const {
@@ -278,24 +355,25 @@ std::string ConfigNode::where() const {
   for (size_t i = context_->override_paths.size(); i-- > 0;) {
     const std::string& p = context_->override_paths[i];
     if (path_ == p || path_.rfind(p + ".", 0) == 0 || path_.rfind(p + "[", 0) == 0)
-      return "--set " + context_->override_texts[i];
+      return context_->override_shown[i];
   }
   if (node_.IsDefined()) return position(context_->origin, node_.Mark());
   return context_->origin;
 }
 
+// A key path in a message: keys of an untrusted file may be long or hold line breaks.
 void ConfigNode::fail(const std::string& message) const {
-  throw ConfigError(where() + ": " + (path_.empty() ? "" : path_ + ": ") + message);
+  throw ConfigError(where() + ": " + (path_.empty() ? "" : quoted_text(path_) + ": ") + message);
 }
 
 void ConfigNode::fail_at_key(const std::string& key, const std::string& message) const {
   const ConfigNode value = child(key);
   std::string where = value.where();
-  if (where.rfind("--set", 0) != 0 && is_map()) {
+  if (!value.from_command_line() && is_map()) {
     for (const auto& kv : node_)
       if (kv.first.IsScalar() && kv.first.Scalar() == key) where = position(context_->origin, kv.first.Mark());
   }
-  throw ConfigError(where + ": " + value.path() + ": " + message);
+  throw ConfigError(where + ": " + quoted_text(value.path()) + ": " + message);
 }
 
 std::string ConfigNode::as_string() const {

@@ -12,6 +12,9 @@
 // Loading bounds the input before anything else reads it: at most kMaxConfigBytes of text,
 // one YAML document, at most kMaxConfigNodes nodes counted with aliases expanded (so later
 // walks are bounded too), and no key twice in one map (YAML tools disagree on which one wins).
+// YAML merge keys (`<<: *defaults`, `<<: [*a, *b]`; yaml.org/type/merge.html) are then
+// resolved as PyYAML resolves them: keys written in the map win, and of several merged maps
+// the earlier; merging never adds nodes to the count above.
 #include <yaml-cpp/yaml.h>
 
 #include <memory>
@@ -21,8 +24,11 @@
 
 namespace rlrun {
 
-// Where a config's text came from (docs/security.md, DESIGN.md §6b).
-enum class ConfigTrust { kUser, kUntrusted };
+// Where a config's text came from (docs/security.md, DESIGN.md §6b). kAccepted: untrusted text
+// the user accepted as a whole for one command (`--trust`, `rlrun.load(..., trust=True)`): it
+// may name what the user's own text may, and each value a --set would otherwise have had to
+// vouch for is printed before use (core/trusted_values.hpp).
+enum class ConfigTrust { kUser, kUntrusted, kAccepted };
 
 inline constexpr std::size_t kMaxConfigBytes = 1 << 20;  // experiment files are a few KB
 inline constexpr std::size_t kMaxConfigNodes = 100000;
@@ -48,18 +54,34 @@ class ConfigNode {
   // Parses YAML text; `origin` names it in messages (e.g. "model.zip:config.yaml").
   static ConfigNode load_string(const std::string& text, const std::string& origin,
                                 ConfigTrust trust = ConfigTrust::kUser);
-  // Wraps an existing node (e.g. built in code, trusted); positions are unknown.
-  static ConfigNode from_yaml(YAML::Node node, const std::string& origin, std::string path = "");
+  // Wraps an existing node (built in code, or translated from a file of `trust`); positions
+  // are the node's own.
+  static ConfigNode from_yaml(YAML::Node node, const std::string& origin, std::string path = "",
+                              ConfigTrust trust = ConfigTrust::kUser);
 
   // Applies `--set a.b.c=value`: the value is parsed as YAML, missing maps are created.
   void apply_override(const std::string& assignment);
+  // Marks the value at `key_path` as the user's own, as a `--set` value is: code put it there
+  // from the user's command line in another form (`rlrun train --zoo ... --env ID`). Messages
+  // about it name `shown` as its place.
+  void vouch_for(const std::string& key_path, const std::string& shown);
 
   const YAML::Node& yaml() const { return node_; }
   YAML::Node& yaml() { return node_; }
   const std::string& path() const { return path_; }
   const std::string& origin() const { return context_->origin; }
-  // True for the user's own text: a trusted file, or a value typed with --set.
-  bool trusted() const { return context_->trust == ConfigTrust::kUser || from_command_line(); }
+  // True for the user's own text (a trusted file, a value typed with --set) and for text the
+  // user accepted as a whole.
+  bool trusted() const { return context_->trust != ConfigTrust::kUntrusted || from_command_line(); }
+  // True when the value is trusted only because the user accepted the whole text: rlrun
+  // prints it before using it.
+  bool accepted_as_a_whole() const {
+    return context_->trust == ConfigTrust::kAccepted && !from_command_line();
+  }
+  // The command's option that accepts this text as a whole ("--trust"), named in refusals and
+  // announcements; "" when the command has none. Shared by every node of the text.
+  const std::string& trust_option() const { return context_->trust_option; }
+  void set_trust_option(std::string option) const { context_->trust_option = std::move(option); }
   bool from_command_line() const;
   bool defined() const { return node_.IsDefined() && !node_.IsNull(); }
   // Absent keys give "invalid" yaml-cpp nodes whose Type() throws: check IsDefined() first.
@@ -94,8 +116,9 @@ class ConfigNode {
   struct Context {
     std::string origin;                        // file name or description
     ConfigTrust trust = ConfigTrust::kUser;
+    std::string trust_option;                  // e.g. "--trust" (see trust_option())
     std::vector<std::string> override_paths;  // paths set from the command line
-    std::vector<std::string> override_texts;  // "path=value" as typed
+    std::vector<std::string> override_shown;  // where each came from: "--set path=value"
   };
   ConfigNode(YAML::Node node, std::shared_ptr<Context> context, std::string path)
       : node_(std::move(node)), context_(std::move(context)), path_(std::move(path)) {}

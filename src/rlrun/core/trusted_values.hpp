@@ -3,10 +3,12 @@
 // that may do either (a SUMO configuration can name output files). The user's own experiment
 // files and `--set` values may set them freely. Text rlrun does not trust (the config.yaml
 // inside a model file or checkpoint, a run directory's config.yaml, a sweep manifest's
-// configs; docs/security.md) may not: there such a field must keep its default, and a
+// configs, a zoo hyperparameter file; docs/security.md) may not: there such a field must keep its default, and a
 // SimulatorInput may also name a file shipped with rlrun. Anything else is refused with the
-// `--set` that vouches for the value, so opening a model file from elsewhere never runs code
-// or writes outside the run (DESIGN.md §6b; SB3's pickled model files do run code on load).
+// `--set` that vouches for the value (or `--trust`, which accepts a model file's config as a
+// whole and prints each such value), so opening a model file from elsewhere never runs code
+// or writes outside the run unasked (DESIGN.md §6b; SB3's pickled model files do run code on
+// load).
 #include <string>
 
 #include "rlrun/core/config_node.hpp"
@@ -30,6 +32,18 @@ struct SimulatorInput {
   std::string value;
   bool operator==(const SimulatorInput&) const = default;
 };
+
+// A value `n` holds that makes rlrun run code, start a program, or write or hand over a file;
+// `what` says which ("a program to run"). Returns when the text is the user's own. When the
+// user accepted the whole text (ConfigTrust::kAccepted, `--trust`), prints on stderr first
+//   trusting <origin> (--trust): <path> = <value>: <what>
+// (the value with control characters escaped, so the line shows exactly what will be used).
+// Otherwise throws ConfigError saying how to vouch for it: `--set <path>=<value>`, and the
+// text's trust option when the command has one.
+void require_vouched(const ConfigNode& n, const std::string& what, const std::string& value);
+// " Or pass --trust to accept everything <origin> names (each printed first)." when the text
+// has a trust option, else "": for refusals that name another way to vouch (--plugin).
+std::string trust_alternative(const ConfigNode& n);
 
 // Each decode keeps `out` (the default) unless the node is trusted or the value is allowed.
 void decode(const ConfigNode& n, ProgramPath& out);

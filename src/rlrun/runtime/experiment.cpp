@@ -96,12 +96,13 @@ void parse_env(const ConfigNode& env, const Registry& registry, Experiment& exp,
       env.child("id").fail("env '" + exp.env.id + "' comes from a plugin library named in " +
                            env.origin() + "; rlrun loads no library named in a file it does "
                            "not trust (docs/security.md). If you trust it, pass --plugin " +
-                           exp.plugins.front());
+                           exp.plugins.front() + "." + trust_alternative(env));
     const EnvEntry& found = registry.env(exp.env.id, env.child("id"));
-    if (found.runs_named_code && !env.child("id").trusted())
-      env.child("id").fail("env '" + exp.env.id + "' runs Python code named in " + env.origin() +
-                           ", a file rlrun does not trust (docs/security.md). If you trust that "
-                           "code, pass --set env.id=" + exp.env.id);
+    if (found.runs_named_code)
+      require_vouched(env.child("id"),
+                      "an env that runs the Python code it names (interpreter: env.python " +
+                          exp.env.section.python.value + ")",
+                      exp.env.id);
     exp.env.kwargs = found.parse(env.child("kwargs"));
   });
   const ConfigNode wrappers = env.child("wrappers");
@@ -231,7 +232,9 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
   problems.attempt([&] {
     if (!plugins.defined()) return;
     decode(plugins, exp.plugins);
-    if (plugins.trusted())
+    // The user's own list, relative to the user's file (an accepted model's list was loaded,
+    // as written, by load_accepted_plugins: runtime/model_trust.hpp).
+    if (plugins.trusted() && !plugins.accepted_as_a_whole())
       for (std::string& path : exp.plugins) path = resolve_plugin_path(path, plugin_base_dir(plugins));
   });
   problems.attempt([&] { exp.run = read_config<RunConfig>(root.child("run")); });

@@ -35,11 +35,18 @@ void save_model(const std::string& path, const Algorithm& algorithm, const Exper
 }
 
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
-                                 const std::vector<std::string>& overrides) {
+                                 const std::vector<std::string>& overrides,
+                                 const ModelTrust& trust) {
   // The model's config is data from anyone (docs/security.md): parsed untrusted, so it can
-  // name no plugin library, program or output file; the user's --set values can.
+  // name no plugin library, program or output file; the user's --set values can, and so can
+  // the whole file when the user accepts it (--trust), each value printed first.
   ConfigNode root = ConfigNode::load_string(model.config_yaml, model.path + ":config.yaml",
-                                            ConfigTrust::kUntrusted);
+                                            trust.config_trust());
+  root.set_trust_option(trust.option);
+  // Where training wrote TensorBoard files: nothing that loads a model writes any, so the
+  // run's directory is not the user's to vouch for (it refused every model of a run with
+  // --tensorboard-log).
+  if (root.is_map() && root.child("run").is_map()) root.yaml()["run"].remove("tensorboard_log");
   for (const std::string& o : overrides) root.apply_override(o);
   Experiment experiment = parse_experiment(root, registry);
   if (experiment.algo.id != model.meta.algorithm)
@@ -112,11 +119,12 @@ EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
 namespace {
 
 LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
-                                 const std::vector<std::string>& overrides) {
+                                 const std::vector<std::string>& overrides,
+                                 const ModelTrust& trust) {
   LoadedModel loaded;
   loaded.file = read_model_header(path);
   const ModelFile& model = loaded.file;
-  loaded.experiment = experiment_from_model(model, registry, overrides);
+  loaded.experiment = experiment_from_model(model, registry, overrides, trust);
   // make_model_env's env, before its statistics are read.
   loaded.env = make_env(loaded.experiment.env, registry, "", unix_time_now());
   loaded.algorithm = make_model_algorithm(model, loaded.experiment, registry,
@@ -132,11 +140,11 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
 }  // namespace
 
 LoadedModel load_model(const std::string& path, const Registry& registry,
-                       const std::vector<std::string>& overrides) {
+                       const std::vector<std::string>& overrides, const ModelTrust& trust) {
   // The config in the file sizes the env and networks built before any tensor is read: a
   // size beyond this machine's memory is the file's problem, said as such.
   try {
-    return load_model_unguarded(path, registry, overrides);
+    return load_model_unguarded(path, registry, overrides, trust);
   } catch (const std::bad_alloc&) {
     throw RuntimeFailure(path + ": its config.yaml describes an env or networks larger than this "
                                 "machine's memory (std::bad_alloc while building them)");

@@ -28,6 +28,7 @@
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/env.hpp"
 #include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/model_trust.hpp"
 
 namespace rlrun {
 
@@ -90,9 +91,11 @@ ModelFile read_model(const std::string& path, uint64_t budget_bytes = uint64_t{1
 
 // Rebuilds the experiment stored in a model file (env, algorithm config), and an algorithm
 // with the stored weights, checking the spaces against `observation_space`/`action_space`.
-// `overrides` are the user's `--set key=value` (trusted, unlike the file).
+// `overrides` are the user's `--set key=value` (trusted, unlike the file); `trust` whether the
+// user accepted the file's config as a whole (--trust: runtime/model_trust.hpp).
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
-                                 const std::vector<std::string>& overrides = {});
+                                 const std::vector<std::string>& overrides = {},
+                                 const ModelTrust& trust = {});
 std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
                                                 const Registry& registry,
                                                 const Space& observation_space,
@@ -115,8 +118,9 @@ struct LoadedModel {
   EnvPtr env;
   std::unique_ptr<Algorithm> algorithm;
 };
-// `overrides` as for experiment_from_model.
+// `overrides` and `trust` as for experiment_from_model.
 LoadedModel load_model(const std::string& path, const Registry& registry,
-                       const std::vector<std::string>& overrides = {});
+                       const std::vector<std::string>& overrides = {},
+                       const ModelTrust& trust = {});
 
 }  // namespace rlrun

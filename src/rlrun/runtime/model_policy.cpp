@@ -35,8 +35,8 @@ class FeedLayer : public Wrapper {
 };
 
 ModelPolicy::ModelPolicy(const std::string& path, const Registry& registry,
-                         const std::vector<std::string>& overrides)
-    : loaded_(load_model(path, registry, overrides)) {
+                         const std::vector<std::string>& overrides, const ModelTrust& trust)
+    : loaded_(load_model(path, registry, overrides, trust)) {
   Env& stack = *loaded_.env;
   if (stack.num_agents() > 1) {
     // Multi-agent stacks hold only TimeLimit and Monitor (make_env): the policy acts on the

@@ -30,9 +30,9 @@ class FeedLayer;
 class ModelPolicy {
  public:
   // Reads an untrusted model file; throws RuntimeFailure naming the file (as `rlrun eval`),
-  // ConfigError for a bad `overrides` entry.
+  // ConfigError for a bad `overrides` entry. `trust` as load_model's (`trust=True`).
   ModelPolicy(const std::string& path, const Registry& registry,
-              const std::vector<std::string>& overrides = {});
+              const std::vector<std::string>& overrides = {}, const ModelTrust& trust = {});
   ~ModelPolicy();
 
   const ModelMeta& meta() const { return loaded_.file.meta; }

@@ -93,9 +93,14 @@ std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths) {
 
 namespace {
 
+// The run.* keys that are not part of a configuration: what differs between the seeds of one
+// (the seed, and the TensorBoard run name `rlrun sweep` derives from it: <label>_seed<N>) and
+// where its outputs go. Two runs whose configs differ only there are seeds of one group.
+constexpr const char* kNotConfiguration[] = {"seed", "out_dir", "tb_log_name", "tensorboard_log"};
+
 // The run's config.yaml: a run directory may come from anyone (docs/security.md), so it is read
 // with the same bounds as any untrusted config text (size, alias expansion, one document).
-// Fills seed and name; returns the resolved config without seed and out_dir (the group key).
+// Fills seed and name; returns the resolved config without kNotConfiguration (the group key).
 std::string read_run_config(const std::string& dir, RunResult& r) {
   const fs::path config = fs::path(dir) / "config.yaml";
   if (!fs::exists(config)) throw RuntimeFailure(dir + " has no config.yaml: not a run directory");
@@ -105,10 +110,8 @@ std::string read_run_config(const std::string& dir, RunResult& r) {
     if (run.child("seed").defined()) r.seed = static_cast<uint64_t>(run.child("seed").as_int());
     if (run.child("name").defined()) r.name = run.child("name").as_string();
     YAML::Node node = YAML::Clone(root.yaml());
-    if (node["run"].IsMap()) {
-      node["run"].remove("seed");
-      node["run"].remove("out_dir");
-    }
+    if (node["run"].IsMap())
+      for (const char* key : kNotConfiguration) node["run"].remove(key);
     return dump_yaml(node);
   } catch (const ConfigError& e) {
     throw RuntimeFailure(std::string(e.what()) + " (not a run directory written by rlrun?)");

@@ -3,10 +3,11 @@
 // plot`: each run's final return, success rate, wall time and learning curve, grouped by
 // configuration across seeds.
 //
-// A run's configuration is its resolved config.yaml without run.seed and run.out_dir (so a
-// sweep's seeds of one grid point, or `rlrun train x.yaml --seed 1/2/3`, form one group); the
-// group is labelled with run.name (a sweep run's label), made unique when two configurations
-// share a name.
+// A run's configuration is its resolved config.yaml without what differs between seeds or only
+// names where outputs go: run.seed, run.out_dir, run.tb_log_name (`rlrun sweep` gives each
+// run <label>_seed<N>) and run.tensorboard_log. So a sweep's seeds of one grid point, or
+// `rlrun train x.yaml --seed 1/2/3`, form one group; the group is labelled with run.name (a
+// sweep run's label), made unique when two configurations share a name.
 #include <map>
 #include <optional>
 #include <string>
@@ -16,7 +17,7 @@ namespace rlrun {
 
 struct RunResult {
   std::string dir;
-  std::string config_key;  // the resolved config minus seed and out_dir, as YAML text
+  std::string config_key;  // the resolved config minus the per-seed and output keys, as YAML
   std::string name;        // run.name
   uint64_t seed = 0;
   double final_return = 0;

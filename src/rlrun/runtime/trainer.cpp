@@ -89,6 +89,7 @@ class TrainingRun {
   void announce();
   void build();
   void build_logging();
+  void announce_agents();
   void build_tensorboard_log();
   void restore();
   TrainingHooks hooks();
@@ -176,12 +177,26 @@ void TrainingRun::build() {
     log_->line(initialize_from_model(experiment_.run.init_from, *algorithm_, *env_));
   // Envs that cannot snapshot themselves (plugins, external simulators) get model-only
   // checkpoints, as SB3's CheckpointCallback writes; --resume refuses those with the reason.
+  announce_agents();
   resumable_ = env_->can_save_state();
   if (!resumable_ && experiment_.checkpoint.freq > 0)
     log_->line("note: " + experiment_.env.id +
                " cannot save its state, so checkpoints hold the model only and the run cannot "
                "be resumed exactly");
   build_logging();
+}
+
+// Several agents per env share the policy (each a column of the VecEnv): the counts in the
+// console table are then of two kinds, said once before the first table.
+void TrainingRun::announce_agents() {
+  const int agents = env_->num_envs() / env_->num_copies();
+  if (agents <= 1) return;
+  const std::string k = std::to_string(agents);
+  log_->line("note: " + experiment_.env.id + " has " + k +
+             " agents sharing one policy: each env step counts as " + k +
+             " timesteps (total_timesteps, time/total_timesteps, time/fps, every freq; a rollout "
+             "of n_steps is n_steps x " + k + " samples per env), while ep_len_mean counts env "
+             "steps and ep_rew_mean sums the " + k + " agents' rewards");
 }
 
 void TrainingRun::build_logging() {

@@ -62,6 +62,38 @@ struct StudyFile {
   }
 };
 
+// The keys StudyConfig::seed_overrides sets in every trial's run, with the study's own way to
+// choose each: a fixed override (`set:` or --set) of one would be replaced without a word.
+struct PerTrialKey {
+  const char* key;
+  const char* instead;
+};
+constexpr PerTrialKey kPerTrialKeys[] = {
+    {"run.out_dir", "trials train into the study's <out_dir>/trials/ (out_dir, or --out DIR)"},
+    {"run.name", "each trial's runs are named trial_<N>"},
+    {"eval.freq", "each seed evaluates n_evaluations times, evenly spread (set n_evaluations)"},
+    {"eval.n_episodes", "each evaluation runs eval_episodes episodes (set eval_episodes)"},
+    {"checkpoint.freq", "trials keep no checkpoints (a killed trial runs again from its start)"},
+};
+
+// Why a fixed override of `key` to `value` would not reach the trials ("" when it would).
+// run.total_timesteps is every trial's step count unless the study names one: n_timesteps in
+// the file, or --n-timesteps.
+std::string per_trial_problem(const std::string& key, const std::string& value,
+                              const ConfigNode& root, std::optional<int64_t> n_timesteps_option) {
+  for (const PerTrialKey& k : kPerTrialKeys)
+    if (key == k.key) return "the study sets " + key + " for every trial: " + k.instead;
+  if (key != "run.total_timesteps") return "";
+  if (n_timesteps_option)
+    return "--n-timesteps " + std::to_string(*n_timesteps_option) +
+           " gives every trial its steps; leave out this override";
+  const ConfigNode n_timesteps = root.child("n_timesteps");
+  if (!n_timesteps.defined()) return "";  // the base's run.total_timesteps, this override's
+  return "the study's n_timesteps (" + n_timesteps.yaml().Scalar() + ", " + n_timesteps.where() +
+         ") gives every trial its steps and would replace it; use --n-timesteps " + value +
+         " (or change n_timesteps)";
+}
+
 }  // namespace
 
 std::vector<std::string> StudyConfig::seed_overrides(const std::vector<Override>& params,
@@ -86,7 +118,7 @@ std::string StudyConfig::trial_dir(int trial_number) const {
 }
 
 StudyConfig load_study(const std::string& path, Registry& registry, const std::vector<std::string>& set,
-                       const std::string& out_dir) {
+                       const std::string& out_dir, std::optional<int64_t> n_timesteps) {
   if (!fs::exists(path)) throw UsageError(path + " does not exist");
   const ConfigNode root = ConfigNode::load_file(path);
   StudyFile file;
@@ -125,6 +157,9 @@ StudyConfig load_study(const std::string& path, Registry& registry, const std::v
     if (!file.set.is_map()) file.set.fail("expected a map of key: value");
     for (const std::string& key : file.set.keys()) {
       Override o{key, yaml_override_text(file.set.child(key).yaml())};
+      if (const std::string problem = per_trial_problem(key, o.yaml, root, n_timesteps);
+          !problem.empty())
+        file.set.fail_at_key(key, problem);
       try {
         load_experiment(study.base, {o.assignment()}, registry);
       } catch (const ConfigError& e) {
@@ -137,14 +172,18 @@ StudyConfig load_study(const std::string& path, Registry& registry, const std::v
     const size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0)
       throw UsageError("--set " + assignment + ": expected key=value");
-    study.set.push_back({assignment.substr(0, eq), assignment.substr(eq + 1)});
+    const std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+    if (const std::string problem = per_trial_problem(key, value, root, n_timesteps);
+        !problem.empty())
+      throw UsageError("--set " + assignment + ": " + problem);
+    study.set.push_back({key, value});
   }
   std::vector<std::string> fixed;
   for (const Override& o : study.set) fixed.push_back(o.assignment());
   const Experiment base = load_experiment(study.base, fixed, registry);
   study.base_seed = base.run.seed;
   study.algo_id = base.algo.id;
-  study.n_timesteps = file.n_timesteps.value_or(base.run.total_timesteps);
+  study.n_timesteps = n_timesteps.value_or(file.n_timesteps.value_or(base.run.total_timesteps));
   study.n_evaluations =
       file.n_evaluations.value_or(static_cast<int>(std::max<int64_t>(1, study.n_timesteps / 100000)));
   if (study.n_evaluations > study.n_timesteps)

@@ -97,8 +97,12 @@ struct StudyConfig {
 
 // Reads and checks a study file (trusted: the user's own), its base experiment and every
 // fixed override; `set` adds command-line overrides after the file's. ConfigError at the line.
-// `out_dir`: instead of the file's (the command line's --out).
+// `out_dir`: instead of the file's (the command line's --out); `n_timesteps`: instead of the
+// file's (--n-timesteps). A fixed override of a key the study sets for every trial (run.out_dir,
+// run.name, eval.freq, eval.n_episodes, checkpoint.freq; run.total_timesteps when the study
+// names n_timesteps) is refused with the study's own option, rather than silently replaced.
 StudyConfig load_study(const std::string& path, Registry& registry,
-                       const std::vector<std::string>& set = {}, const std::string& out_dir = "");
+                       const std::vector<std::string>& set = {}, const std::string& out_dir = "",
+                       std::optional<int64_t> n_timesteps = std::nullopt);
 
 }  // namespace rlrun::tune

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rlrun/algos/common/session_time.hpp"
 #include "rlrun/core/config_validation.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/env/goal_env.hpp"
@@ -253,13 +254,11 @@ bool OffPolicyAlgorithm::collect_rollouts(LearnCall& call) {
 void OffPolicyAlgorithm::dump_logs(LearnCall& call) {
   if (!call.hooks.logger) return;
   Logger& log = *call.hooks.logger;
-  const double elapsed = std::max(
-      1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - call.start).count());
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - call.start).count();
   log.record("time/episodes", static_cast<double>(state_->episode_num));
   state_->episode_stats.record(log);
-  log.record("time/fps",
-             std::floor(static_cast<double>(num_timesteps_ - call.start_timesteps) / elapsed));
-  log.record("time/time_elapsed", std::floor(elapsed));
+  record_session_time(log, elapsed, num_timesteps_ - call.start_timesteps);
   log.record("time/total_timesteps", static_cast<double>(num_timesteps_));
   record_rollout_logs(log);
   log.dump(num_timesteps_);

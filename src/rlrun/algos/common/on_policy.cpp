@@ -1,5 +1,6 @@
 #include "rlrun/algos/common/on_policy.hpp"
 
+#include "rlrun/algos/common/session_time.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
@@ -165,14 +166,12 @@ void OnPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHook
         1.0 - static_cast<double>(num_timesteps_) / static_cast<double>(total_timesteps);
     if (hooks.logger && iteration % log_interval == 0) {
       // SB3 OnPolicyAlgorithm._dump_logs, written before this iteration's train() as SB3 does.
-      const double elapsed = std::max(
-          1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       Logger& log = *hooks.logger;
       log.record("time/iterations", static_cast<double>(iteration));
       collector_.episode_stats().record(log);
-      log.record("time/fps",
-                 std::floor(static_cast<double>(num_timesteps_ - start_timesteps) / elapsed));
-      log.record("time/time_elapsed", std::floor(elapsed));
+      record_session_time(log, elapsed, num_timesteps_ - start_timesteps);
       log.record("time/total_timesteps", static_cast<double>(num_timesteps_));
       log.dump(num_timesteps_);
       if (hooks.on_log) hooks.on_log(num_timesteps_);

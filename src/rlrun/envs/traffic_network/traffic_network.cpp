@@ -222,9 +222,12 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
     sumo_->subscribe_lanes(outgoing_subscribed_ ? lanes_
                                     : std::vector<std::string>(lanes_.begin(),
                                                                lanes_.begin() + incoming_lanes_));
+    // The rewards that read vehicles need them under every control: a baseline's episodes
+    // (the lights' own programs, SUMO's actuated control) get the env's reward too, so `eval
+    // --baseline` compares returns, not the model's against 0 (issue 41). Subscribing only
+    // reads; SUMO simulates the same either way.
     vehicles_subscribed_ = false;
-    if (running_control_ == Control::kAgents &&
-        (reward_ == RewardFunction::kDiffWaitingTime || reward_ == RewardFunction::kAverageSpeed)) {
+    if (reward_ == RewardFunction::kDiffWaitingTime || reward_ == RewardFunction::kAverageSpeed) {
       sumo_->subscribe_vehicles(geometry_.junctions.begin()->first, reading_);
       vehicles_subscribed_ = true;
     }

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cstdlib>
 
+#include "rlrun/core/quoted_text.hpp"
+
 namespace rlrun::zoo {
 
 PyValue::PyValue() = default;
@@ -16,11 +18,11 @@ std::string PyValue::describe() const {
   switch (kind) {
     case Kind::kNone: return "None";
     case Kind::kBool: return boolean ? "True" : "False";
-    case Kind::kNumber: return "the number " + text;
-    case Kind::kString: return "the string '" + text + "'";
+    case Kind::kNumber: return "the number " + quoted_text(text);
+    case Kind::kString: return "the string '" + quoted_text(text) + "'";
     case Kind::kList: return "a list";
     case Kind::kDict: return "a dict";
-    case Kind::kName: return "the name " + text;
+    case Kind::kName: return "the name " + quoted_text(text);
   }
   return "a value";
 }
@@ -37,7 +39,7 @@ class Parser {
   PyValue whole() {
     PyValue v = value(0);
     skip_space();
-    if (pos_ != s_.size()) fail("unexpected '" + s_.substr(pos_, 1) + "' after the expression");
+    if (pos_ != s_.size()) fail("unexpected '" + quoted_text(s_.substr(pos_, 1)) + "' after the expression");
     return v;
   }
 
@@ -59,7 +61,7 @@ class Parser {
   static bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
   PyValue value(int depth) {
-    if (depth > kMaxDepth) fail("nested too deeply");
+    if (depth > kMaxDepth) fail("nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
     skip_space();
     if (pos_ >= s_.size()) fail("expected a value, found the end of the text");
     const char c = s_[pos_];
@@ -70,7 +72,7 @@ class Parser {
     if (name_start(c)) return named(depth);
     // (built with append, not "'" + std::string: GCC 12 warns -Wrestrict on that spelling)
     std::string message = "'";
-    message.append(1, c).append("' is not part of a literal rlrun reads");
+    message.append(quoted_text(std::string(1, c))).append("' is not part of a literal rlrun reads");
     fail(message);
   }
 
@@ -109,7 +111,7 @@ class Parser {
   void add_entry(PyValue& dict, const std::string& key, PyValue value, std::size_t at) {
     if (dict.find(key)) {
       pos_ = at;
-      fail("key '" + key + "' given twice");
+      fail("key '" + quoted_text(key) + "' given twice");
     }
     dict.entries.emplace_back(key, std::move(value));
   }

@@ -1,15 +1,11 @@
 #include "rlrun/runtime/zoo/zoo_import.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cctype>
-#include <cmath>
-#include <cstdlib>
-#include <ctime>
 #include <functional>
-#include <map>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/quoted_text.hpp"
 #include "rlrun/runtime/zoo/zoo_policy.hpp"
 #include "rlrun/runtime/zoo/zoo_values.hpp"
 #include "rlrun/runtime/zoo/zoo_wrappers.hpp"
@@ -71,6 +67,10 @@ std::string lower(std::string s) {
   return s;
 }
 
+// Run names are one path component of at most 200 characters (RelativeName); an env id's
+// part is kept well below.
+constexpr std::size_t kMaxRunNameEnvChars = 100;
+
 class Translation {
  public:
   Translation(const ZooEntry& entry, const Registry& registry) : entry_(entry) {
@@ -86,7 +86,7 @@ class Translation {
     ZooImport out;
     out.source = entry_;
     YAML::Node& x = out.experiment;
-    x["run"]["name"] = lower(entry_.algorithm) + "_" + entry_.env_id;
+    x["run"]["name"] = zoo_run_name(entry_.algorithm, entry_.env_id);
     x["env"]["id"] = entry_.env_id;
     x["algo"]["id"] = entry_.algorithm;
     const ConfigNode& e = entry_.node;
@@ -184,7 +184,7 @@ class Translation {
     if (key == "policy") return;
     if (std::find(algo_keys_.begin(), algo_keys_.end(), key) == algo_keys_.end())
       entry_.node.fail_at_key(key, "rlrun's " + entry_.algorithm + " has no hyperparameter '" +
-                                       key + "'" + did_you_mean(key, algo_keys_) +
+                                       quoted_text(key) + "'" + did_you_mean(key, algo_keys_) +
                                        " (see `rlrun list " + entry_.algorithm + "`)");
     x["algo"][key] = value.yaml();
   }
@@ -225,84 +225,48 @@ class Translation {
   YAML::Node policy_{YAML::NodeType::Map};
 };
 
-// A copy without the zoo file's tags (!!float) and with lists in flow style.
-YAML::Node clean(const YAML::Node& node) {
-  if (node.IsSequence()) {
-    YAML::Node seq(YAML::NodeType::Sequence);
-    for (const YAML::Node& item : node) seq.push_back(clean(item));
-    seq.SetStyle(node.Style() == YAML::EmitterStyle::Block && seq.size() > 0 && seq[0].IsMap()
-                     ? YAML::EmitterStyle::Block
-                     : YAML::EmitterStyle::Flow);
-    return seq;
-  }
-  if (node.IsMap()) {
-    YAML::Node map(YAML::NodeType::Map);
-    for (const auto& kv : node) map[kv.first.Scalar()] = clean(kv.second);
-    map.SetStyle(node.Style());
-    return map;
-  }
-  if (node.IsNull()) return YAML::Node(YAML::NodeType::Null);
-  return YAML::Node(node.Scalar());
-}
-
-// Counts the zoo writes as floats (`n_timesteps: !!float 1e6`), written as integers.
-void write_counts_as_integers(YAML::Node experiment) {
-  const std::pair<const char*, const char*> counts[] = {
-      {"run", "total_timesteps"}, {"algo", "buffer_size"}, {"algo", "learning_starts"}};
-  for (const auto& [section, key] : counts) {
-    YAML::Node node = experiment[section][key];
-    if (!node || !node.IsScalar()) continue;
-    char* end = nullptr;
-    const std::string text = node.Scalar();
-    const double value = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() + text.size() && std::floor(value) == value && std::fabs(value) < 9e15)
-      experiment[section][key] = static_cast<int64_t>(value);
-  }
-}
-
-std::string today() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[16];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", &utc);
-  return buffer;
-}
-
 }  // namespace
 
+std::string zoo_run_name(const std::string& algorithm, const std::string& env_id) {
+  std::string name = lower(algorithm) + "_";
+  for (const char c : env_id.substr(0, kMaxRunNameEnvChars))
+    name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' ? c : '-';
+  return name;
+}
+
 ZooImport translate_zoo_entry(const ZooEntry& entry, const Registry& registry) {
-  return Translation(entry, registry).run();
+  try {
+    return Translation(entry, registry).run();
+  } catch (const ConfigError& e) {
+    throw ConfigError(bounded_message(e.what()));
+  }
+}
+
+Experiment check_zoo_experiment(ZooImport& imported, const std::vector<std::string>& overrides,
+                                const Registry& registry) {
+  // The zoo file's values are untrusted; the env id is the one the user named.
+  ConfigNode root = ConfigNode::from_yaml(imported.experiment, imported.source.file, "",
+                                          ConfigTrust::kUntrusted);
+  root.vouch_for("env.id", "the env id " + quoted_text(imported.source.env_id) +
+                               " on the command line");
+  for (const std::string& o : overrides) root.apply_override(o);
+  imported.overrides = overrides;
+  try {
+    return parse_experiment(root, registry);
+  } catch (const ConfigError& e) {
+    throw ConfigError(bounded_message(e.what()));
+  } catch (const RuntimeFailure& e) {
+    throw RuntimeFailure(bounded_message(e.what()));
+  }
 }
 
 Experiment load_zoo_experiment(const std::string& path, const std::string& env_id,
                                const std::string& algorithm,
-                               const std::vector<std::string>& overrides, Registry& registry,
+                               const std::vector<std::string>& overrides, const Registry& registry,
                                const std::string& entry_name) {
-  const ZooImport imported = translate_zoo_entry(read_zoo_entry(path, env_id, algorithm, entry_name), registry);
-  // The zoo file's own nodes keep their positions: a value rlrun refuses is named at its line.
-  ConfigNode root = ConfigNode::from_yaml(imported.experiment, path);
-  for (const std::string& o : overrides) root.apply_override(o);
-  return parse_experiment(root, registry);
-}
-
-std::string experiment_text(const ZooImport& imported) {
-  const ZooEntry& s = imported.source;
-  std::string text = "# Imported by `rlrun zoo import` (rlrun " RLRUN_VERSION ") on " + today() +
-                     " from the rl-baselines3-zoo\n# hyperparameters " + s.file + ", entry '" +
-                     s.entry_name + "' (" + s.algorithm + ")";
-  if (s.entry_name == "default") text += ": the file has no entry for " + s.env_id;
-  text += ".\n# Evaluation as rl-zoo's train.py defaults: every 25000 env steps, 5 episodes, "
-          "deterministic.\n";
-  for (const std::string& note : imported.notes) text += "# Note: " + note + "\n";
-  YAML::Node ordered(YAML::NodeType::Map);
-  for (const char* section : {"run", "env", "algo", "eval", "checkpoint"})
-    if (imported.experiment[section]) ordered[section] = clean(imported.experiment[section]);
-  write_counts_as_integers(ordered);
-  YAML::Emitter out;
-  out.SetIndent(2);
-  out << ordered;
-  return text + out.c_str() + "\n";
+  ZooImport imported =
+      translate_zoo_entry(read_zoo_entry(path, env_id, algorithm, entry_name), registry);
+  return check_zoo_experiment(imported, overrides, registry);
 }
 
 }  // namespace rlrun::zoo

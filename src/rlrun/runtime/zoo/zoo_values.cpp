@@ -1,5 +1,7 @@
 #include "rlrun/runtime/zoo/zoo_values.hpp"
 
+#include "rlrun/core/quoted_text.hpp"
+
 namespace rlrun::zoo {
 
 namespace {
@@ -45,8 +47,9 @@ PyValue python_value(const ConfigNode& node, const std::string& what) {
   try {
     return parse_python_literal(text);
   } catch (const PythonLiteralError& e) {
-    node.fail(what + " \"" + text + "\": at character " + std::to_string(e.offset() + 1) + ": " +
-              e.what());
+    // The text may be long (up to the file's 1 MiB) and hold newlines: quoted as one short line.
+    node.fail(what + " \"" + quoted_text(text) + "\": at character " +
+              std::to_string(e.offset() + 1) + ": " + e.what());
   }
 }
 

@@ -1,0 +1,85 @@
+// YAML merge keys (`<<: *defaults`, yaml.org/type/merge.html) in every config rlrun loads, as
+// PyYAML reads them (rl-zoo's hyperparameter files use them for their MuJoCo and PyBullet
+// sections): keys written in the map win, of several merged maps the earlier one.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "rlrun/core/config_node.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/experiment.hpp"
+
+using namespace rlrun;
+
+namespace {
+
+std::string load_error(const std::string& text) {
+  try {
+    ConfigNode::load_string(text, "m.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("config: YAML merge keys merge maps, written keys win", "[core][config][merge]") {
+  const ConfigNode root = ConfigNode::load_string(R"(defaults: &defaults
+  n_timesteps: 1000
+  gamma: 0.9
+  kwargs: {a: 1}
+other: &other {gamma: 0.5, lam: 0.8, extra: 7}
+one:
+  <<: *defaults
+  gamma: 0.99
+two:
+  <<: [*defaults, *other]
+  lam: 0.95
+nested: &nested
+  <<: *defaults
+  n_timesteps: 5
+three: {<<: *nested, tag: x}
+quoted: {"<<": 1}
+)", "m.yaml");
+  const ConfigNode one = root.child("one");
+  CHECK_FALSE(one.has("<<"));
+  CHECK(one.child("gamma").as_double() == 0.99);       // written in the map
+  CHECK(one.child("n_timesteps").as_int() == 1000);    // merged
+  CHECK(one.child("kwargs").child("a").as_int() == 1);
+  // A merged value keeps its own position (the anchor's lines).
+  CHECK_THAT(one.child("n_timesteps").where(), Catch::Equals("m.yaml:2:16"));
+  const ConfigNode two = root.child("two");
+  CHECK(two.child("gamma").as_double() == 0.9);  // the earlier map wins
+  CHECK(two.child("lam").as_double() == 0.95);
+  CHECK(two.child("extra").as_int() == 7);
+  // A merged map that merges itself: resolved first.
+  CHECK(root.child("three").child("n_timesteps").as_int() == 5);
+  CHECK(root.child("three").child("gamma").as_double() == 0.9);
+  CHECK(root.child("three").keys().size() == 4);
+  // A quoted "<<" is an ordinary key (as in PyYAML).
+  CHECK(root.child("quoted").child("<<").as_int() == 1);
+  // Merging adds no key twice and no `<<`.
+  CHECK(one.keys().size() == 3);
+}
+
+TEST_CASE("config: a merge key names maps, else the error names its line", "[core][config][merge]") {
+  CHECK_THAT(load_error("a: 1\nb:\n  <<: 5\n"), Catch::Contains("m.yaml:3:3") &&
+                                                      Catch::Contains("a merge key (<<) takes a map"));
+  CHECK_THAT(load_error("a: &a {x: 1}\nb: {<<: [*a, 2]}\n"), Catch::Contains("m.yaml:2:5"));
+  CHECK_THAT(load_error("a: {x: 1}\nb: {<<: {y: 1}, <<: {z: 2}}\n"), Catch::Contains("repeats"));
+}
+
+TEST_CASE("config: an experiment file may use merge keys", "[core][config][merge]") {
+  Registry registry = make_builtin_registry();
+  const Experiment e = load_experiment_text(R"(run: {name: merged}
+env: {id: CartPole-v1}
+algo:
+  <<: &common {gamma: 0.98, n_steps: 64, batch_size: 64}
+  id: PPO
+  n_steps: 128
+)", "merged.yaml", "merged", {}, registry);
+  CHECK(e.algo.params.resolved()["gamma"].as<double>() == 0.98);
+  CHECK(e.algo.params.resolved()["n_steps"].as<int>() == 128);
+}
