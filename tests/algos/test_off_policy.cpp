@@ -126,30 +126,41 @@ struct LoopTrace {
   int on_steps = 0;
 };
 
+// An off-policy algorithm that only records what the loop asks of it.
+class LoopProbe : public OffPolicyAlgorithm {
+ public:
+  LoopProbe(const OffPolicyConfig& config, const AlgorithmSetup& setup, LoopTrace& trace)
+      : OffPolicyAlgorithm("LoopProbe", config, setup, 1, {0, "replay_rng"}), trace_(trace) {}
+  void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
+                      Eigen::MatrixXf& buffer_actions) override {
+    trace_.actions.emplace_back(num_timesteps(), warmup);
+    env_actions = Eigen::MatrixXf::Zero(1, obs.cols());
+    buffer_actions = env_actions;
+  }
+  void predict(const Eigen::Ref<const Eigen::MatrixXf>&, bool, Eigen::MatrixXf&) override {}
+  void save(TensorMap&) const override {}
+  void load(const TensorMap&) override {}
+
+ private:
+  void train(int gradient_steps, Logger*) override {
+    trace_.trains.emplace_back(num_timesteps(), gradient_steps);
+  }
+  void on_step(Logger*) override { ++trace_.on_steps; }
+  LoopTrace& trace_;
+};
+
 LoopTrace run_loop(OffPolicyConfig config, int n_envs, int episode_length, int64_t total) {
   VecEnv env = constant_vec_env(n_envs, /*truncate=*/false, episode_length);
-  OffPolicyState state(config, n_envs, env.observation_space(), 1);
   LoopTrace trace;
-  int64_t num_timesteps = 0;
-  OffPolicyCallbacks callbacks;
-  callbacks.select_actions = [&](const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_a,
-                                 Eigen::MatrixXf& buffer_a) {
-    trace.actions.emplace_back(num_timesteps, warmup);
-    env_a = Eigen::MatrixXf::Zero(1, obs.cols());
-    buffer_a = env_a;
-  };
-  callbacks.on_step = [&] { ++trace.on_steps; };
-  callbacks.train = [&](int gradient_steps, Logger*) {
-    trace.trains.emplace_back(num_timesteps, gradient_steps);
-  };
+  LoopProbe probe(config, {env.observation_space(), env.action_space(), n_envs, 1}, trace);
   TrainingHooks hooks;
-  off_policy_learn(env, total, hooks, config, state, callbacks, num_timesteps);
-  CHECK(num_timesteps >= total);
+  probe.learn(env, total, hooks);
+  CHECK(probe.num_timesteps() >= total);
   return trace;
 }
 }  // namespace
 
-TEST_CASE("off_policy_learn: warm-up below learning_starts, training strictly above it",
+TEST_CASE("OffPolicyAlgorithm::learn: warm-up below learning_starts, training strictly above it",
           "[algos][off_policy][dqn]") {
   OffPolicyConfig config;
   config.buffer_size = 100;
@@ -168,7 +179,7 @@ TEST_CASE("off_policy_learn: warm-up below learning_starts, training strictly ab
   CHECK(trace.trains == expected);
 }
 
-TEST_CASE("off_policy_learn: fixed gradient_steps, 0 skips training, episodic train_freq",
+TEST_CASE("OffPolicyAlgorithm::learn: fixed gradient_steps, 0 skips training, episodic train_freq",
           "[algos][off_policy][dqn]") {
   OffPolicyConfig config;
   config.buffer_size = 100;

@@ -75,6 +75,30 @@ Eigen::VectorXf resume(Algo& algo, VecEnv& env, int64_t total, const Snapshot& s
   return flatten(final_model);
 }
 
+// Trains `cfg` on `n_envs` copies of `env_id` (seeded `seed`) to `total` steps twice:
+// uninterrupted, and stopped at the first safe point at or after `save_at` steps, saved, and
+// continued to `total` by a fresh copy built with another seed (so everything must come from
+// the checkpoint). Both must end with the same weights. Returns the step of the snapshot.
+template <class Algo>
+int64_t check_exact_resume(const typename Algo::Config& cfg, const std::string& env_id,
+                           int n_envs, uint64_t seed, int64_t total, int64_t save_at) {
+  Snapshot snapshot;
+  int64_t saved_at = 0;
+  VecEnv env1 = make_envs(env_id, n_envs, seed);
+  Algo uninterrupted(cfg,
+                     AlgorithmSetup{env1.observation_space(), env1.action_space(), n_envs, seed});
+  const Eigen::VectorXf expected =
+      train_and_snapshot(uninterrupted, env1, total, save_at, snapshot, saved_at);
+  VecEnv env2 = make_envs(env_id, n_envs, seed);
+  Algo resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), n_envs,
+                                   seed + 1000});
+  const Eigen::VectorXf actual = resume(resumed, env2, total, snapshot);
+  CHECK(resumed.num_timesteps() == total);
+  REQUIRE(actual.size() == expected.size());
+  CHECK(actual == expected);
+  return saved_at;
+}
+
 }  // namespace
 
 TEST_CASE("PPO resumed from a safe point ends with the uninterrupted run's weights",
@@ -86,38 +110,17 @@ TEST_CASE("PPO resumed from a safe point ends with the uninterrupted run's weigh
   cfg.batch_size = 32;
   cfg.n_epochs = 3;
   cfg.learning_rate = Schedule::linear(1e-3);
-  const int64_t total = 2048;
-  Snapshot snapshot;
-  int64_t saved_at = 0;
-  VecEnv env1 = make_envs(id, 2, 7);
-  PPO uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 2, 7});
-  const Eigen::VectorXf expected =
-      train_and_snapshot(uninterrupted, env1, total, 900, snapshot, saved_at);
-  REQUIRE(saved_at == 1024);  // 4 iterations of 2 x 64 steps... the first >= 900
-
-  VecEnv env2 = make_envs(id, 2, 7);
-  // Another seed for the fresh copy: everything must come from the checkpoint.
-  PPO resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 99});
-  const Eigen::VectorXf actual = resume(resumed, env2, total, snapshot);
-  CHECK(resumed.num_timesteps() == total);
-  REQUIRE(actual.size() == expected.size());
-  CHECK(actual == expected);
+  // 4 iterations of 2 x 64 steps: the first safe point >= 900.
+  CHECK(check_exact_resume<PPO>(cfg, id, 2, 7, 2048, 900) == 1024);
 }
 
-TEST_CASE("A2C resumed from a safe point ends with the uninterrupted run's weights",
+TEST_CASE("A2C (RMSprop and Adam) resumed from a safe point ends with the uninterrupted run's "
+          "weights",
           "[algos][resume]") {
   A2C::Config cfg;
-  const int64_t total = 1000;
-  Snapshot snapshot;
-  int64_t saved_at = 0;
-  VecEnv env1 = make_envs("CartPole-v1", 4, 3);
-  A2C uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 4, 3});
-  const Eigen::VectorXf expected =
-      train_and_snapshot(uninterrupted, env1, total, 500, snapshot, saved_at);
-  REQUIRE(saved_at == 500);
-  VecEnv env2 = make_envs("CartPole-v1", 4, 3);
-  A2C resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 4, 5});
-  CHECK(resume(resumed, env2, total, snapshot) == expected);
+  cfg.use_rms_prop = GENERATE(true, false);
+  INFO("use_rms_prop " << cfg.use_rms_prop);
+  CHECK(check_exact_resume<A2C>(cfg, "CartPole-v1", 4, 3, 1000, 500) == 500);
 }
 
 TEST_CASE("DDPG resumed from a safe point ends with the uninterrupted run's weights",
@@ -128,18 +131,7 @@ TEST_CASE("DDPG resumed from a safe point ends with the uninterrupted run's weig
   cfg.off_policy.batch_size = 32;
   cfg.policy.net_arch = {{16, 16}, {16, 16}};
   cfg.action_noise.noise_type = "ornstein-uhlenbeck";
-  const int64_t total = 600;
-  Snapshot snapshot;
-  int64_t saved_at = 0;
-  VecEnv env1 = make_envs("Pendulum-v1", 1, 3);
-  DDPG uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 1, 3});
-  const Eigen::VectorXf expected =
-      train_and_snapshot(uninterrupted, env1, total, 300, snapshot, saved_at);
-  REQUIRE(saved_at == 300);
-  VecEnv env2 = make_envs("Pendulum-v1", 1, 3);
-  DDPG resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 1, 8});
-  CHECK(resume(resumed, env2, total, snapshot) == expected);
-  CHECK(resumed.num_timesteps() == total);
+  CHECK(check_exact_resume<DDPG>(cfg, "Pendulum-v1", 1, 3, 600, 300) == 300);
 }
 
 TEST_CASE("PPO and A2C with gSDE resume from a safe point to the uninterrupted run's weights",
@@ -153,83 +145,31 @@ TEST_CASE("PPO and A2C with gSDE resume from a safe point to the uninterrupted r
   ppo.use_sde = true;
   ppo.sde_sample_freq = 3;
   ppo.policy.full_std = false;
-  {
-    Snapshot snapshot;
-    int64_t saved_at = 0;
-    VecEnv env1 = make_envs("Pendulum-v1", 2, 4);
-    PPO uninterrupted(ppo, AlgorithmSetup{env1.observation_space(), env1.action_space(), 2, 4});
-    const Eigen::VectorXf expected =
-        train_and_snapshot(uninterrupted, env1, 640, 300, snapshot, saved_at);
-    REQUIRE(saved_at == 320);
-    VecEnv env2 = make_envs("Pendulum-v1", 2, 4);
-    PPO resumed(ppo, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 77});
-    CHECK(resume(resumed, env2, 640, snapshot) == expected);
-  }
+  CHECK(check_exact_resume<PPO>(ppo, "Pendulum-v1", 2, 4, 640, 300) == 320);
   A2C::Config a2c;
   a2c.use_sde = true;
   a2c.sde_sample_freq = 2;
-  {
-    Snapshot snapshot;
-    int64_t saved_at = 0;
-    VecEnv env1 = make_envs("Pendulum-v1", 2, 6);
-    A2C uninterrupted(a2c, AlgorithmSetup{env1.observation_space(), env1.action_space(), 2, 6});
-    const Eigen::VectorXf expected =
-        train_and_snapshot(uninterrupted, env1, 400, 200, snapshot, saved_at);
-    REQUIRE(saved_at == 200);
-    VecEnv env2 = make_envs("Pendulum-v1", 2, 6);
-    A2C resumed(a2c, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 8});
-    CHECK(resume(resumed, env2, 400, snapshot) == expected);
-  }
+  CHECK(check_exact_resume<A2C>(a2c, "Pendulum-v1", 2, 6, 400, 200) == 200);
 }
 
-TEST_CASE("SAC with gSDE resumes from a safe point to the uninterrupted run's weights",
-          "[algos][resume][gsde]") {
-  SAC::Config cfg;
-  cfg.off_policy.learning_starts = 64;
-  cfg.off_policy.batch_size = 32;
-  cfg.off_policy.train_freq.frequency = 8;
-  cfg.off_policy.gradient_steps = 4;
-  cfg.policy.net_arch = {{16, 16}, {16, 16}};
-  cfg.use_sde = true;
-  cfg.sde_sample_freq = 3;
-  const int64_t total = 400;
-  Snapshot snapshot;
-  int64_t saved_at = 0;
-  VecEnv env1 = make_envs("Pendulum-v1", 2, 3);
-  SAC uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 2, 3});
-  const Eigen::VectorXf expected =
-      train_and_snapshot(uninterrupted, env1, total, 200, snapshot, saved_at);
-  REQUIRE(saved_at == 208);
-  VecEnv env2 = make_envs("Pendulum-v1", 2, 3);
-  SAC resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 9});
-  CHECK(resume(resumed, env2, total, snapshot) == expected);
-  CHECK(resumed.num_timesteps() == total);
-}
-
-TEST_CASE("TQC (plain and gSDE) resumes from a safe point to the uninterrupted run's weights",
-          "[algos][resume][tqc]") {
+TEST_CASE("SAC and TQC (plain and gSDE) resume from a safe point to the uninterrupted run's "
+          "weights",
+          "[algos][resume][gsde][tqc]") {
   const bool use_sde = GENERATE(false, true);
   INFO("use_sde " << use_sde);
-  TQC::Config cfg;
-  cfg.off_policy.learning_starts = 64;
-  cfg.off_policy.batch_size = 32;
-  cfg.off_policy.train_freq.frequency = 8;
-  cfg.off_policy.gradient_steps = 4;
-  cfg.policy.net_arch = {{16, 16}, {16, 16}};
-  cfg.policy.n_quantiles = 7;
-  cfg.top_quantiles_to_drop_per_net = 3;
-  cfg.use_sde = use_sde;
-  cfg.sde_sample_freq = 3;
-  const int64_t total = 400;
-  Snapshot snapshot;
-  int64_t saved_at = 0;
-  VecEnv env1 = make_envs("Pendulum-v1", 2, 3);
-  TQC uninterrupted(cfg, AlgorithmSetup{env1.observation_space(), env1.action_space(), 2, 3});
-  const Eigen::VectorXf expected =
-      train_and_snapshot(uninterrupted, env1, total, 200, snapshot, saved_at);
-  REQUIRE(saved_at == 208);
-  VecEnv env2 = make_envs("Pendulum-v1", 2, 3);
-  TQC resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), 2, 9});
-  CHECK(resume(resumed, env2, total, snapshot) == expected);
-  CHECK(resumed.num_timesteps() == total);
+  const auto small = [&](auto cfg) {
+    cfg.off_policy.learning_starts = 64;
+    cfg.off_policy.batch_size = 32;
+    cfg.off_policy.train_freq.frequency = 8;
+    cfg.off_policy.gradient_steps = 4;
+    cfg.policy.net_arch = {{16, 16}, {16, 16}};
+    cfg.use_sde = use_sde;
+    cfg.sde_sample_freq = 3;
+    return cfg;
+  };
+  CHECK(check_exact_resume<SAC>(small(SAC::Config()), "Pendulum-v1", 2, 3, 400, 200) == 208);
+  TQC::Config tqc = small(TQC::Config());
+  tqc.policy.n_quantiles = 7;
+  tqc.top_quantiles_to_drop_per_net = 3;
+  CHECK(check_exact_resume<TQC>(tqc, "Pendulum-v1", 2, 3, 400, 200) == 208);
 }

@@ -11,65 +11,18 @@
 #include <limits>
 #include <vector>
 
-#include "nn/grad_check.hpp"
+#include "algos/entropy_regularized_fixtures.hpp"
 #include "rlrun/algos/common/action_scaling.hpp"
 #include "rlrun/algos/common/entropy_coefficient.hpp"
 #include "rlrun/algos/sac/sac.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/evaluator.hpp"
-#include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 
 using namespace rlrun;
-using test::numeric_gradient;
-using test::params_of;
-using test::require_grad_close;
+using namespace rlrun::test;
 
 namespace {
-
-constexpr double kHalfLog2Pi = 0.91893853320467274;
-
-// ---- double re-implementations (independent of the float code under test) --------------
-
-// One sample through test::mlp_forward.
-Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
-  return test::mlp_forward(net, p, x).col(0);
-}
-
-// SB3's Actor.action_log_prob for one observation with fixed noise: (action, log_prob).
-std::pair<Eigen::VectorXd, double> actor_sample(const Mlp& net, const Eigen::VectorXd& p, int a_dim,
-                                                const Eigen::VectorXd& obs,
-                                                const Eigen::VectorXd& noise) {
-  const Eigen::VectorXd out = mlp_forward(net, p, obs);
-  Eigen::VectorXd a(a_dim);
-  double logp = 0.0;
-  for (int i = 0; i < a_dim; ++i) {
-    const double mu = out(i);
-    const double log_std = std::clamp(out(a_dim + i), -20.0, 2.0);
-    const double std = std::exp(log_std);
-    const double u = mu + std * noise(i);
-    a(i) = std::tanh(u);
-    // Normal(mu, std).log_prob(u) - log(1 - tanh(u)^2 + 1e-6), from u as torch computes it.
-    logp += -(u - mu) * (u - mu) / (2 * std * std) - log_std - kHalfLog2Pi -
-            std::log(1.0 - a(i) * a(i) + 1e-6);
-  }
-  return {a, logp};
-}
-
-Eigen::VectorXd concat(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  Eigen::VectorXd c(a.size() + b.size());
-  c << a, b;
-  return c;
-}
-
-Eigen::MatrixXf random_matrix(Rng& rng, int rows, int cols, double scale = 1.0) {
-  Eigen::MatrixXf m(rows, cols);
-  for (Eigen::Index k = 0; k < m.size(); ++k) m(k) = static_cast<float>(scale * rng.normal());
-  return m;
-}
 
 SAC::Config small_config() {
   SAC::Config c;
@@ -82,35 +35,22 @@ SAC::Config small_config() {
   return c;
 }
 
-AlgorithmSetup box_setup(int obs_dim, int act_dim, uint64_t seed = 7) {
-  std::vector<float> low(act_dim), high(act_dim);
-  for (int i = 0; i < act_dim; ++i) {
-    low[i] = -2.0f + static_cast<float>(i);
-    high[i] = 2.0f + 3.0f * static_cast<float>(i);
-  }
-  return AlgorithmSetup{Space::box(-10.0f, 10.0f, {obs_dim}), Space::box(low, high, {act_dim}), 1,
-                        seed};
-}
-
-ReplayBatch random_batch(Rng& rng, int obs_dim, int act_dim, int n) {
-  ReplayBatch b;
-  b.obs = random_matrix(rng, obs_dim, n);
-  b.next_obs = random_matrix(rng, obs_dim, n);
-  b.actions = random_matrix(rng, act_dim, n, 0.5).cwiseMax(-0.99f).cwiseMin(0.99f);
-  b.rewards = random_matrix(rng, 1, n);
-  b.dones = Eigen::RowVectorXf::Zero(n);
-  for (int j = 0; j < n; j += 3) b.dones(j) = 1.0f;
-  return b;
-}
-
-}  // namespace
-
-namespace {
 // Q_i(x) in double with critic i's parameters p.
 double q_value(const ContinuousCritic& critic, int i, const Eigen::VectorXd& p,
                const Eigen::VectorXd& x) {
-  return mlp_forward(critic.q(i).net(), p, x)(0);
+  return mlp_forward_one(critic.q(i).net(), p, x)(0);
 }
+
+// min_i Q_i(s, a) with the critics' current parameters.
+ActorQ min_q(const SAC& sac) {
+  return [&sac](const Eigen::VectorXd& o, const Eigen::VectorXd& a) {
+    double q = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < sac.critic().n_critics(); ++i)
+      q = std::min(q, q_value(sac.critic(), i, params_of(sac.critic().q(i).net()), concat(o, a)));
+    return q;
+  };
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -124,71 +64,35 @@ TEST_CASE(
   SAC sac(small_config(), box_setup(obs_dim, act_dim));
   Rng rng(11);
   ReplayBatch b = random_batch(rng, obs_dim, act_dim, n);
-  // Parameters before the step.
-  const Eigen::VectorXd actor_p = params_of(sac.actor().net());
-  std::vector<Eigen::VectorXd> online_p, target_p;
-  for (int i = 0; i < 2; ++i) {
-    online_p.push_back(params_of(sac.critic().q(i).net()));
-    target_p.push_back(params_of(sac.critic_target().q(i).net()));
-  }
-  const double alpha = std::exp(static_cast<double>(sac.ent_coef().log_value()));
+  const StepStart start(sac);
+  const double alpha = start.alpha;
   CHECK(alpha == Approx(0.5));
 
   const float lr = 1e-3f;
   const EntropyRegularizedStepStats stats = sac.train_on_batch(b, lr, true);
-  CHECK(stats.ent_coef == Approx(alpha));
   const Eigen::MatrixXf& noise = sac.last_next_noise();
   const Eigen::MatrixXf& y = sac.last_critic_target();
   double critic_loss = 0.0;
   for (int j = 0; j < n; ++j) {
     const auto [a, logp] =
-        actor_sample(sac.actor().net(), actor_p, act_dim, b.next_obs.col(j).cast<double>(),
+        actor_sample(sac.actor().net(), start.actor, act_dim, b.next_obs.col(j).cast<double>(),
                      noise.col(j).cast<double>());
     const Eigen::VectorXd x = concat(b.next_obs.col(j).cast<double>(), a);
     const double min_q =
-        std::min(q_value(sac.critic_target(), 0, target_p[0], x),
-                 q_value(sac.critic_target(), 1, target_p[1], x));
+        std::min(q_value(sac.critic_target(), 0, start.targets[0], x),
+                 q_value(sac.critic_target(), 1, start.targets[1], x));
     const double expected = b.rewards(j) + (1.0 - b.dones(j)) * 0.9 * (min_q - alpha * logp);
     INFO("sample " << j);
     CHECK(y(0, j) == Approx(expected).epsilon(1e-4).margin(1e-5));
     const Eigen::VectorXd xa = concat(b.obs.col(j).cast<double>(), b.actions.col(j).cast<double>());
     for (int i = 0; i < 2; ++i) {
-      const double d = q_value(sac.critic(), i, online_p[i], xa) - y(0, j);
+      const double d = q_value(sac.critic(), i, start.critics[i], xa) - y(0, j);
       critic_loss += 0.5 * d * d / n;
     }
   }
   CHECK(stats.critic_loss == Approx(critic_loss).epsilon(1e-4));
-  // Actor loss mean(alpha log pi(a_pi|s) - min_i Q_i(s, a_pi)) with the stepped critics, and
-  // the entropy coefficient's loss -log_alpha mean(log pi + target_entropy).
-  double actor_loss = 0.0, mean_logp = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const Eigen::VectorXd o = b.obs.col(j).cast<double>();
-    const auto [a, logp] = actor_sample(sac.actor().net(), actor_p, act_dim, o,
-                                        sac.last_policy_noise().col(j).cast<double>());
-    double min_q = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 2; ++i)
-      min_q = std::min(min_q, q_value(sac.critic(), i, params_of(sac.critic().q(i).net()),
-                                      concat(o, a)));
-    actor_loss += (alpha * logp - min_q) / n;
-    mean_logp += logp / n;
-  }
-  CHECK(stats.actor_loss == Approx(actor_loss).epsilon(1e-4).margin(1e-5));
-  const double target_entropy = -act_dim;
-  CHECK(stats.ent_coef_loss ==
-        Approx(-std::log(alpha) * (mean_logp + target_entropy)).epsilon(1e-4));
-  // Adam's first step is lr * g / (|g| + eps) = lr * sign(g), g = -(mean log pi + target).
-  const double g = -(mean_logp + target_entropy);
-  CHECK(sac.ent_coef().log_value() ==
-        Approx(std::log(alpha) - lr * (g > 0 ? 1 : -1)).epsilon(1e-5));
-  // target <- (1 - tau) target + tau * online (after the critic step), tau = 0.1.
-  for (int i = 0; i < 2; ++i) {
-    const Eigen::VectorXd online = params_of(sac.critic().q(i).net());
-    const Eigen::VectorXd expected = 0.9 * target_p[i] + 0.1 * online;
-    CHECK((params_of(sac.critic_target().q(i).net()) - expected).cwiseAbs().maxCoeff() < 1e-6);
-    // The critics and the actor moved.
-    CHECK((online - online_p[i]).cwiseAbs().maxCoeff() > 1e-4);
-  }
-  CHECK((params_of(sac.actor().net()) - actor_p).cwiseAbs().maxCoeff() > 1e-4);
+  // Actor loss mean(alpha log pi(a_pi|s) - min_i Q_i(s, a_pi)) with the stepped critics.
+  check_actor_temperature_and_targets(sac, start, b, lr, 0.1, stats, min_q(sac));
 }
 
 TEST_CASE(
@@ -231,18 +135,7 @@ TEST_CASE(
 
   // actor_loss = mean(alpha log pi(a|s) - min_i Q_i(s, a)), a = tanh(mu + std eps), eps fixed.
   const auto loss_of = [&](const Eigen::VectorXd& p) {
-    double sum = 0.0;
-    for (int j = 0; j < n; ++j) {
-      const Eigen::VectorXd o = b.obs.col(j).cast<double>();
-      const auto [a, lp] = actor_sample(sac.actor().net(), p, act_dim, o,
-                                        sac.last_policy_noise().col(j).cast<double>());
-      double min_q = std::numeric_limits<double>::infinity();
-      for (int i = 0; i < 2; ++i)
-        min_q = std::min(min_q, q_value(sac.critic(), i, params_of(sac.critic().q(i).net()),
-                                        concat(o, a)));
-      sum += alpha * lp - min_q;
-    }
-    return sum / n;
+    return actor_loss(sac, p, b, alpha, min_q(sac));
   };
   const Eigen::VectorXd p = params_of(sac.actor().net());
   require_grad_close(sac.actor().net().grads().cast<double>(), numeric_gradient(loss_of, p));
@@ -316,17 +209,8 @@ TEST_CASE("SAC model tensors use SB3's names and load back", "[algos][sac]") {
   a.train_on_batch(random_batch(rng, 3, 1, 6), 1e-2f, true);  // targets now differ from init
   TensorMap t;
   a.save(t);
-  for (const char* name :
-       {"actor.latent_pi.0.weight", "actor.latent_pi.2.bias", "actor.mu.weight", "actor.mu.bias",
-        "actor.log_std.weight", "actor.log_std.bias", "critic.qf0.0.weight", "critic.qf0.4.weight",
-        "critic.qf1.2.bias", "critic_target.qf0.0.weight", "critic_target.qf1.4.bias",
-        "log_ent_coef"}) {
-    INFO(name);
-    CHECK(t.count(name) == 1);
-  }
+  check_sb3_tensor_names(t);
   CHECK(t.at("actor.mu.weight").shape == std::vector<int64_t>{1, 8});
-  CHECK(t.at("critic.qf0.0.weight").shape == std::vector<int64_t>{8, 4});
-  CHECK(t.size() == 8 + 2 * 2 * 6 + 1);
 
   SAC b(cfg, box_setup(3, 1, 99));
   b.load(t);
@@ -341,19 +225,6 @@ TEST_CASE("SAC model tensors use SB3's names and load back", "[algos][sac]") {
   CHECK_THROWS(b.load(t));
 }
 
-namespace {
-Experiment pendulum_experiment(const std::string& out_dir, int64_t steps, uint64_t seed,
-                               const std::string& algo_extra) {
-  const std::string yaml = "run: {name: sac_smoke, seed: " + std::to_string(seed) +
-                           ", total_timesteps: " + std::to_string(steps) + ", out_dir: " + out_dir +
-                           ", console_interval: 1000}\n"
-                           "env: {id: Pendulum-v1}\n"
-                           "algo: {id: SAC" +
-                           algo_extra + "}\n";
-  return parse_experiment(ConfigNode::load_string(yaml, "sac.yaml"), builtin_registry());
-}
-}  // namespace
-
 TEST_CASE(
     "SAC trains a few hundred steps on Pendulum-v1 through the registry, "
     "deterministically",
@@ -361,7 +232,7 @@ TEST_CASE(
   testing::TempDir dir("sac_smoke");
   const auto run = [&](uint64_t seed) {
     const Experiment e =
-        pendulum_experiment(dir.str(), 400, seed,
+        pendulum_experiment("SAC", dir.str(), 400, seed,
                             ", learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32]}");
     const TrainOutcome outcome = train_experiment(e, builtin_registry());
     CHECK(outcome.timesteps == 400);
@@ -377,11 +248,7 @@ TEST_CASE(
   CHECK(log_alpha != 0.0f);
   CHECK(std::abs(log_alpha) <= 300 * 3e-4 * 1.01);
 
-  const Experiment stored = experiment_from_model(m1, builtin_registry());
-  EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
-  auto loaded = algorithm_from_model(m1, stored, builtin_registry(), env->observation_space(),
-                                     env->action_space());
-  const EvalResult r = evaluate_policy(*loaded, *env, 1, true, 5);
+  const EvalResult r = evaluate_model(m1, 1, 5);
   REQUIRE(r.returns.size() == 1);
   CHECK(r.lengths[0] == 200);
 }
@@ -461,12 +328,7 @@ double train_and_evaluate(const std::string& config, uint64_t seed) {
       {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed), "run.console_interval=1000"},
       registry);
   const TrainOutcome outcome = train_experiment(e, builtin_registry());
-  const ModelFile model = read_model(outcome.model_path);
-  const Experiment stored = experiment_from_model(model, builtin_registry());
-  EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
-  auto loaded = algorithm_from_model(model, stored, builtin_registry(), env->observation_space(),
-                                     env->action_space());
-  const double mean = evaluate_policy(*loaded, *env, 10, true, 1000 + seed).mean_return();
+  const double mean = evaluate_model(read_model(outcome.model_path), 10, 1000 + seed).mean_return();
   std::printf("%s seed %llu: %.1f s, eval %.1f\n", config.c_str(),
               static_cast<unsigned long long>(seed), outcome.wall_seconds, mean);
   return mean;

@@ -11,52 +11,19 @@
 #include <limits>
 #include <vector>
 
-#include "nn/grad_check.hpp"
+#include "algos/entropy_regularized_fixtures.hpp"
 #include "rlrun/algos/tqc/quantile_huber_loss.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
 #include "rlrun/algos/tqc/truncated_quantiles.hpp"
 #include "rlrun/nn/policy_graph.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/evaluator.hpp"
-#include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 
 using namespace rlrun;
-using test::numeric_gradient;
-using test::params_of;
-using test::require_grad_close;
+using namespace rlrun::test;
 
 namespace {
-
-constexpr double kHalfLog2Pi = 0.91893853320467274;
-
-// ---- double re-implementations (independent of the float code under test) --------------
-
-Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
-  return test::mlp_forward(net, p, x).col(0);
-}
-
-// SB3's Actor.action_log_prob for one observation with fixed noise: (action, log_prob).
-std::pair<Eigen::VectorXd, double> actor_sample(const Mlp& net, const Eigen::VectorXd& p, int a_dim,
-                                                const Eigen::VectorXd& obs,
-                                                const Eigen::VectorXd& noise) {
-  const Eigen::VectorXd out = mlp_forward(net, p, obs);
-  Eigen::VectorXd a(a_dim);
-  double logp = 0.0;
-  for (int i = 0; i < a_dim; ++i) {
-    const double mu = out(i);
-    const double log_std = std::clamp(out(a_dim + i), -20.0, 2.0);
-    const double std = std::exp(log_std);
-    const double u = mu + std * noise(i);
-    a(i) = std::tanh(u);
-    logp += -(u - mu) * (u - mu) / (2 * std * std) - log_std - kHalfLog2Pi -
-            std::log(1.0 - a(i) * a(i) + 1e-6);
-  }
-  return {a, logp};
-}
 
 // sb3-contrib quantile_huber_loss summed (not averaged) over one sample's K x T atom pairs.
 double rho_sum(const Eigen::VectorXd& current, const Eigen::VectorXd& target) {
@@ -73,17 +40,8 @@ double rho_sum(const Eigen::VectorXd& current, const Eigen::VectorXd& target) {
   return sum;
 }
 
-Eigen::VectorXd concat(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  Eigen::VectorXd c(a.size() + b.size());
-  c << a, b;
-  return c;
-}
-
-Eigen::MatrixXf random_matrix(Rng& rng, int rows, int cols, double scale = 1.0) {
-  Eigen::MatrixXf m(rows, cols);
-  for (Eigen::Index k = 0; k < m.size(); ++k) m(k) = static_cast<float>(scale * rng.normal());
-  return m;
-}
+// Rewards of a few units: the target atoms spread over several Huber scales.
+constexpr double kRewardScale = 2.0;
 
 TQC::Config small_config() {
   TQC::Config c;
@@ -98,32 +56,20 @@ TQC::Config small_config() {
   return c;
 }
 
-AlgorithmSetup box_setup(int obs_dim, int act_dim, uint64_t seed = 7) {
-  std::vector<float> low(act_dim), high(act_dim);
-  for (int i = 0; i < act_dim; ++i) {
-    low[i] = -2.0f + static_cast<float>(i);
-    high[i] = 2.0f + 3.0f * static_cast<float>(i);
-  }
-  return AlgorithmSetup{Space::box(-10.0f, 10.0f, {obs_dim}), Space::box(low, high, {act_dim}), 1,
-                        seed};
-}
-
-// Rewards of a few units: the target atoms spread over several Huber scales.
-ReplayBatch random_batch(Rng& rng, int obs_dim, int act_dim, int n) {
-  ReplayBatch b;
-  b.obs = random_matrix(rng, obs_dim, n);
-  b.next_obs = random_matrix(rng, obs_dim, n);
-  b.actions = random_matrix(rng, act_dim, n, 0.5).cwiseMax(-0.99f).cwiseMin(0.99f);
-  b.rewards = random_matrix(rng, 1, n, 2.0);
-  b.dones = Eigen::RowVectorXf::Zero(n);
-  for (int j = 0; j < n; j += 3) b.dones(j) = 1.0f;
-  return b;
-}
-
 // Critic i's atoms at x, in double with parameters p.
 Eigen::VectorXd atoms(const ContinuousCritic& critic, int i, const Eigen::VectorXd& p,
                       const Eigen::VectorXd& x) {
-  return mlp_forward(critic.q(i).net(), p, x);
+  return mlp_forward_one(critic.q(i).net(), p, x);
+}
+
+// The mean of every critic's atoms at (s, a) with their current parameters.
+ActorQ mean_atom(const TQC& tqc) {
+  return [&tqc](const Eigen::VectorXd& o, const Eigen::VectorXd& a) {
+    double q = 0.0;
+    for (int i = 0; i < tqc.critic().n_critics(); ++i)
+      q += atoms(tqc.critic(), i, params_of(tqc.critic().q(i).net()), concat(o, a)).mean();
+    return q / tqc.critic().n_critics();
+  };
 }
 
 }  // namespace
@@ -242,31 +188,25 @@ TEST_CASE(
   TQC tqc(small_config(), box_setup(obs_dim, act_dim));
   REQUIRE(tqc.n_target_quantiles() == n_target);
   Rng rng(11);
-  ReplayBatch b = random_batch(rng, obs_dim, act_dim, n);
-  const Eigen::VectorXd actor_p = params_of(tqc.actor().net());
-  std::vector<Eigen::VectorXd> online_p, target_p;
-  for (int i = 0; i < n_critics; ++i) {
-    online_p.push_back(params_of(tqc.critic().q(i).net()));
-    target_p.push_back(params_of(tqc.critic_target().q(i).net()));
-  }
-  const double alpha = std::exp(static_cast<double>(tqc.ent_coef().log_value()));
+  ReplayBatch b = random_batch(rng, obs_dim, act_dim, n, kRewardScale);
+  const StepStart start(tqc);
+  const double alpha = start.alpha;
   CHECK(alpha == Approx(0.5));
 
   const float lr = 1e-3f;
   const EntropyRegularizedStepStats stats = tqc.train_on_batch(b, lr, true);
-  CHECK(stats.ent_coef == Approx(alpha));
   const Eigen::MatrixXf& y = tqc.last_target_quantiles();
   REQUIRE(y.rows() == n_target);
   double critic_loss = 0.0;
   for (int j = 0; j < n; ++j) {
     INFO("sample " << j);
-    const auto [a, logp] = actor_sample(tqc.actor().net(), actor_p, act_dim,
+    const auto [a, logp] = actor_sample(tqc.actor().net(), start.actor, act_dim,
                                         b.next_obs.col(j).cast<double>(),
                                         tqc.last_next_noise().col(j).cast<double>());
     const Eigen::VectorXd x = concat(b.next_obs.col(j).cast<double>(), a);
     std::vector<double> pooled;
     for (int i = 0; i < n_critics; ++i) {
-      const Eigen::VectorXd z = atoms(tqc.critic_target(), i, target_p[i], x);
+      const Eigen::VectorXd z = atoms(tqc.critic_target(), i, start.targets[i], x);
       pooled.insert(pooled.end(), z.data(), z.data() + z.size());
     }
     std::sort(pooled.begin(), pooled.end());
@@ -277,40 +217,14 @@ TEST_CASE(
       CHECK(y(t, j) == Approx(expected(t)).epsilon(1e-4).margin(1e-5));
     const Eigen::VectorXd xa = concat(b.obs.col(j).cast<double>(), b.actions.col(j).cast<double>());
     for (int i = 0; i < n_critics; ++i)
-      critic_loss += rho_sum(atoms(tqc.critic(), i, online_p[i], xa), expected);
+      critic_loss += rho_sum(atoms(tqc.critic(), i, start.critics[i], xa), expected);
   }
   critic_loss /= static_cast<double>(n * n_critics * k_count * n_target);
   CHECK(stats.critic_loss == Approx(critic_loss).epsilon(1e-4));
 
   // Actor loss mean(alpha log pi(a_pi|s) - mean of all atoms at (s, a_pi)) with the stepped
-  // critics; the entropy coefficient's loss -log_alpha mean(log pi + target_entropy).
-  double actor_loss = 0.0, mean_logp = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const Eigen::VectorXd o = b.obs.col(j).cast<double>();
-    const auto [a, logp] = actor_sample(tqc.actor().net(), actor_p, act_dim, o,
-                                        tqc.last_policy_noise().col(j).cast<double>());
-    double qf_pi = 0.0;
-    for (int i = 0; i < n_critics; ++i)
-      qf_pi += atoms(tqc.critic(), i, params_of(tqc.critic().q(i).net()), concat(o, a)).mean();
-    actor_loss += (alpha * logp - qf_pi / n_critics) / n;
-    mean_logp += logp / n;
-  }
-  CHECK(stats.actor_loss == Approx(actor_loss).epsilon(1e-4).margin(1e-5));
-  const double target_entropy = -act_dim;
-  CHECK(stats.ent_coef_loss ==
-        Approx(-std::log(alpha) * (mean_logp + target_entropy)).epsilon(1e-4));
-  // Adam's first step is lr * sign(g), g = -(mean log pi + target).
-  const double g = -(mean_logp + target_entropy);
-  CHECK(tqc.ent_coef().log_value() ==
-        Approx(std::log(alpha) - lr * (g > 0 ? 1 : -1)).epsilon(1e-5));
-  // target <- (1 - tau) target + tau * online (after the critic step), tau = 0.1.
-  for (int i = 0; i < n_critics; ++i) {
-    const Eigen::VectorXd online = params_of(tqc.critic().q(i).net());
-    const Eigen::VectorXd expected = 0.9 * target_p[i] + 0.1 * online;
-    CHECK((params_of(tqc.critic_target().q(i).net()) - expected).cwiseAbs().maxCoeff() < 1e-6);
-    CHECK((online - online_p[i]).cwiseAbs().maxCoeff() > 1e-4);
-  }
-  CHECK((params_of(tqc.actor().net()) - actor_p).cwiseAbs().maxCoeff() > 1e-4);
+  // critics.
+  check_actor_temperature_and_targets(tqc, start, b, lr, 0.1, stats, mean_atom(tqc));
 }
 
 TEST_CASE(
@@ -324,7 +238,7 @@ TEST_CASE(
   cfg.ent_coef = "0.3";
   TQC tqc(cfg, box_setup(obs_dim, act_dim, 9));
   Rng rng(5);
-  const ReplayBatch b = random_batch(rng, obs_dim, act_dim, n);
+  const ReplayBatch b = random_batch(rng, obs_dim, act_dim, n, kRewardScale);
   // Learning rate 0: the step leaves every parameter where it was and its gradients in place.
   tqc.train_on_batch(b, 0.0f, false);
   const double alpha = 0.3;
@@ -348,17 +262,7 @@ TEST_CASE(
 
   // actor_loss = mean(alpha log pi(a|s) - mean_ik Q_ik(s, a)), a = tanh(mu + std eps).
   const auto loss_of = [&](const Eigen::VectorXd& p) {
-    double sum = 0.0;
-    for (int j = 0; j < n; ++j) {
-      const Eigen::VectorXd o = b.obs.col(j).cast<double>();
-      const auto [a, lp] = actor_sample(tqc.actor().net(), p, act_dim, o,
-                                        tqc.last_policy_noise().col(j).cast<double>());
-      double qf_pi = 0.0;
-      for (int i = 0; i < n_critics; ++i)
-        qf_pi += atoms(tqc.critic(), i, params_of(tqc.critic().q(i).net()), concat(o, a)).mean();
-      sum += alpha * lp - qf_pi / n_critics;
-    }
-    return sum / n;
+    return actor_loss(tqc, p, b, alpha, mean_atom(tqc));
   };
   const Eigen::VectorXd p = params_of(tqc.actor().net());
   require_grad_close(tqc.actor().net().grads().cast<double>(), numeric_gradient(loss_of, p));
@@ -369,22 +273,13 @@ TEST_CASE("TQC model tensors use sb3-contrib's names and load back, and the expo
   TQC::Config cfg = small_config();
   TQC a(cfg, box_setup(3, 1, 1));
   Rng rng(4);
-  a.train_on_batch(random_batch(rng, 3, 1, 6), 1e-2f, true);  // targets now differ from init
+  // Targets now differ from init.
+  a.train_on_batch(random_batch(rng, 3, 1, 6, kRewardScale), 1e-2f, true);
   TensorMap t;
   a.save(t);
-  // TQCPolicy.state_dict(): Critic registers its networks as qf0, qf1 (add_module).
-  for (const char* name :
-       {"actor.latent_pi.0.weight", "actor.latent_pi.2.bias", "actor.mu.weight", "actor.mu.bias",
-        "actor.log_std.weight", "actor.log_std.bias", "critic.qf0.0.weight", "critic.qf0.4.weight",
-        "critic.qf1.2.bias", "critic_target.qf0.0.weight", "critic_target.qf1.4.bias",
-        "log_ent_coef"}) {
-    INFO(name);
-    CHECK(t.count(name) == 1);
-  }
-  CHECK(t.at("critic.qf0.0.weight").shape == std::vector<int64_t>{8, 4});
+  check_sb3_tensor_names(t);
   CHECK(t.at("critic.qf0.4.weight").shape == std::vector<int64_t>{5, 8});  // n_quantiles out
   CHECK(t.at("critic_target.qf1.4.bias").shape == std::vector<int64_t>{5});
-  CHECK(t.size() == 8 + 2 * 2 * 6 + 1);
 
   TQC b(cfg, box_setup(3, 1, 99));
   b.load(t);
@@ -462,24 +357,8 @@ TEST_CASE("TQC rejects bad settings with a message", "[algos][tqc]") {
 }
 
 namespace {
-Experiment pendulum_experiment(const std::string& out_dir, int64_t steps, uint64_t seed,
-                               const std::string& algo_extra) {
-  const std::string yaml = "run: {name: tqc_smoke, seed: " + std::to_string(seed) +
-                           ", total_timesteps: " + std::to_string(steps) + ", out_dir: " + out_dir +
-                           ", console_interval: 1000000}\n"
-                           "env: {id: Pendulum-v1}\n"
-                           "algo: {id: TQC" +
-                           algo_extra + "}\n";
-  return parse_experiment(ConfigNode::load_string(yaml, "tqc.yaml"), builtin_registry());
-}
-
 double evaluate_model(const std::string& model_path, int episodes, uint64_t seed) {
-  const ModelFile m = read_model(model_path);
-  const Experiment stored = experiment_from_model(m, builtin_registry());
-  EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
-  auto loaded = algorithm_from_model(m, stored, builtin_registry(), env->observation_space(),
-                                     env->action_space());
-  return evaluate_policy(*loaded, *env, episodes, true, seed).mean_return();
+  return test::evaluate_model(read_model(model_path), episodes, seed).mean_return();
 }
 }  // namespace
 
@@ -488,7 +367,7 @@ TEST_CASE("TQC trains a few hundred steps on Pendulum-v1 through the registry, d
   testing::TempDir dir("tqc_smoke");
   const auto run = [&](uint64_t seed, const std::string& extra) {
     const Experiment e = pendulum_experiment(
-        dir.str(), 400, seed,
+        "TQC", dir.str(), 400, seed,
         ", learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32], n_quantiles: 10}" +
             extra);
     const TrainOutcome outcome = train_experiment(e, builtin_registry());
@@ -518,7 +397,7 @@ TEST_CASE("TQC trains a few hundred steps on Pendulum-v1 through the registry, d
 TEST_CASE("TQC learns Pendulum-v1 with small networks in 8000 steps", "[algos][tqc][learning]") {
   testing::TempDir dir("tqc_learn");
   const Experiment e = pendulum_experiment(
-      dir.str(), 8000, 1,
+      "TQC", dir.str(), 8000, 1,
       ", learning_rate: 1.0e-3, batch_size: 128, policy: {net_arch: [64, 64]}");
   const TrainOutcome outcome = train_experiment(e, builtin_registry());
   const double mean = evaluate_model(outcome.model_path, 10, 1001);

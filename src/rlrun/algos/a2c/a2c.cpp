@@ -1,15 +1,11 @@
 #include "rlrun/algos/a2c/a2c.hpp"
 
-#include "rlrun/nn/policy_graph.hpp"
-
 #include <cmath>
 #include <stdexcept>
 
 #include "rlrun/algos/common/explained_variance.hpp"
-#include "rlrun/algos/common/rng_streams.hpp"
-#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/algos/ppo/ppo_loss.hpp"
-#include "rlrun/env/vec_env.hpp"
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/clip_grad.hpp"
 
 namespace rlrun {
@@ -22,39 +18,24 @@ ConfigProblems A2C::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 A2C::A2C(const Config& config, const AlgorithmSetup& setup)
-    : config_(config),
-      setup_(setup),
-      init_rng_(setup.seed),
-      action_rng_(setup.seed ^ kActionStream),
-      policy_(setup.observation_space, setup.action_space, config.policy, init_rng_,
-              config.use_sde),
-      collector_(setup, config.n_steps, policy_.action_dim(), config.sde_sample_freq) {
+    : OnPolicyAlgorithm("A2C", setup, valid_config(config, "A2C").policy,
+                        {config.n_steps, config.gamma, config.gae_lambda, config.use_sde,
+                         config.sde_sample_freq}),
+      config_(config) {
   if (config_.use_rms_prop) {
     // SB3 A2C: RMSprop(alpha=0.99, eps=rms_prop_eps, weight_decay=0).
     RmsPropConfig rms;
     rms.alpha = 0.99;
     rms.eps = config_.rms_prop_eps;
-    rmsprop_.emplace(policy_.param_blocks(), rms);
+    checkpoint("optimizer", rmsprop_.emplace(policy_.param_blocks(), rms));
   } else {
     AdamConfig adam;
     adam.eps = 1e-5;  // SB3 ActorCriticPolicy's Adam eps
-    adam_.emplace(policy_.param_blocks(), adam);
+    checkpoint("optimizer", adam_.emplace(policy_.param_blocks(), adam));
   }
   const int size = config_.n_steps * setup.n_envs;
   for (Eigen::RowVectorXf* v : {&advantages_, &returns_, &grad_values_, &grad_log_prob_, &grad_entropy_})
     v->resize(size);
-}
-
-// predict(deterministic): the policy's mode, clipped to a Box.
-void A2C::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  policy_.export_to(graph, obs, setup_.action_space, with_value);
-  graph.set_action(export_clip_to_box(graph, setup_.action_space, graph.action()));
-}
-
-void A2C::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-                  Eigen::MatrixXf& actions) {
-  policy_.act(obs, action_rng_, deterministic, actions, predict_values_, predict_log_probs_);
-  clip_to_box(setup_.action_space, actions);
 }
 
 void A2C::train(double progress_remaining, Logger* logger) {
@@ -107,36 +88,6 @@ void A2C::train(double progress_remaining, Logger* logger) {
   logger->record("train/value_loss", value_loss);
   logger->record("train/learning_rate", lr);
   if (policy_.gaussian()) logger->record("train/std", policy_.mean_std());
-}
-
-void A2C::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
-  const float gamma = static_cast<float>(config_.gamma);
-  const float gae_lambda = static_cast<float>(config_.gae_lambda);
-  on_policy_learn(
-      env, total_timesteps, hooks, collector_, num_timesteps_,
-      [&] { return collector_.collect(env, policy_, action_rng_, gamma, gae_lambda, hooks, num_timesteps_); },
-      [&](double progress_remaining) { train(progress_remaining, hooks.logger); });
-}
-
-// The policy's parameters travel in save(); this is the rest of SB3's training state.
-void A2C::save_training_state(StateWriter& out) const {
-  out.put_int("num_timesteps", num_timesteps_);
-  out.put_int("n_updates", n_updates_);
-  out.put_rng("action_rng", action_rng_);
-  if (rmsprop_) write_rmsprop(out.sub("optimizer"), *rmsprop_);
-  if (adam_) write_adam(out.sub("optimizer"), *adam_);
-  collector_.write_state(out.sub("collector"));
-  if (policy_.use_sde()) write_sde(out.sub("sde"), policy_.sde());
-}
-
-void A2C::load_training_state(const StateReader& in) {
-  num_timesteps_ = in.get_count("num_timesteps");
-  n_updates_ = in.get_count("n_updates");
-  in.get_rng("action_rng", action_rng_);
-  if (rmsprop_) read_rmsprop(in.sub("optimizer"), *rmsprop_);
-  if (adam_) read_adam(in.sub("optimizer"), *adam_);
-  collector_.read_state(in.sub("collector"));
-  if (policy_.use_sde()) read_sde(in.sub("sde"), policy_.sde());
 }
 
 }  // namespace rlrun

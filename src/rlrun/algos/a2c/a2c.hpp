@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
 #include "rlrun/core/schedule.hpp"
@@ -16,7 +15,7 @@
 
 namespace rlrun {
 
-class A2C : public Algorithm {
+class A2C : public OnPolicyAlgorithm {
  public:
   struct Config {
     Schedule learning_rate = Schedule::constant(7e-4);
@@ -62,31 +61,16 @@ class A2C : public Algorithm {
 
   A2C(const Config& config, const AlgorithmSetup& setup);
 
-  std::string id() const override { return "A2C"; }
-  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
-  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
-  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-               Eigen::MatrixXf& actions) override;
-  void save(TensorMap& tensors) const override { policy_.save(tensors); }
-  void load(const TensorMap& tensors) override { policy_.load(tensors); }
-  void save_training_state(StateWriter& out) const override;
-  void load_training_state(const StateReader& in) override;
-
  private:
-  void train(double progress_remaining, Logger* logger);
+  // SB3 A2C.train: one gradient step on the whole rollout.
+  void train(double progress_remaining, Logger* logger) override;
 
   Config config_;
-  AlgorithmSetup setup_;
-  Rng init_rng_, action_rng_;
-  ActorCriticPolicy policy_;
   std::optional<RmsProp> rmsprop_;
   std::optional<Adam> adam_;
-  OnPolicyCollector collector_;
-  int64_t n_updates_ = 0;
 
-  Eigen::MatrixXf predict_actions_;
   Eigen::RowVectorXf advantages_, returns_, values_, log_prob_, entropy_, grad_values_,
-      grad_log_prob_, grad_entropy_, predict_values_, predict_log_probs_;
+      grad_log_prob_, grad_entropy_;
 };
 
 }  // namespace rlrun

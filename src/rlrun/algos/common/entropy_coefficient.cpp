@@ -71,6 +71,15 @@ float EntropyCoefficient::value() const {
   return learned_ ? std::exp(log_ent_coef_.value(0)) : fixed_;
 }
 
+double EntropyCoefficient::update(const Eigen::RowVectorXf& log_prob, float lr) {
+  if (!learned_) return 0.0;
+  const double shifted = static_cast<double>(log_prob.mean()) + target_entropy_;
+  const double loss = -static_cast<double>(log_value()) * shifted;
+  log_ent_coef_.grad(0) = static_cast<float>(-shifted);
+  adam_.step(lr);
+  return loss;
+}
+
 void EntropyCoefficient::save(TensorMap& tensors) const {
   if (learned_)
     tensors["log_ent_coef"] = to_tensor(log_ent_coef_.value);

@@ -3,8 +3,8 @@
 // Actor-Critic Algorithms and Applications", arXiv:1812.05905, section 5): either a fixed
 // number, or learned ("auto", "auto_<initial>") by Adam on log(alpha). SB3 optimises log(alpha)
 // rather than alpha (softlearning issue #37) and starts it at log(initial) (1.0 unless
-// "auto_<initial>" says otherwise; sb3-contrib tqc/tqc.py _setup_model is the same code). Its
-// loss and step are in SAC::train_on_batch and TQC::train_on_batch.
+// "auto_<initial>" says otherwise; sb3-contrib tqc/tqc.py _setup_model is the same code).
+// update() is the temperature step of both algorithms' train().
 #include <Eigen/Core>
 #include <string>
 
@@ -40,6 +40,13 @@ class EntropyCoefficient {
   // alpha = exp(log_alpha) now (SB3 reads it before this step's update), or the fixed value.
   float value() const;
   float log_value() const { return log_ent_coef_.value(0); }
+
+  // The temperature update (Haarnoja et al. 2018b, eq. 18; SB3 SAC.train): with a learned
+  // coefficient, ent_coef_loss = -(log_ent_coef * (log_prob + target_entropy).detach()).mean()
+  // and one Adam step on log_ent_coef, whose gradient is -mean(log_prob + target_entropy).
+  // `log_prob` are the policy's log-probabilities of its own actions at the batch's states.
+  // Returns the loss (0 for a fixed coefficient, which nothing updates).
+  double update(const Eigen::RowVectorXf& log_prob, float lr);
 
   // SB3's log_ent_coef (learned() only) and its optimizer (Adam with torch's defaults).
   ParamVector& log_ent_coef() { return log_ent_coef_; }

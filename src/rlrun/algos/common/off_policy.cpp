@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "rlrun/algos/common/session_time.hpp"
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/env/goal_env.hpp"
 #include "rlrun/env/vec_env.hpp"
@@ -35,80 +36,6 @@ YAML::Node encode(const TrainFreq& value) {
   node.push_back(value.episodes ? "episode" : "step");
   node.SetStyle(YAML::EmitterStyle::Flow);
   return node;
-}
-
-void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
-                      const OffPolicyConfig& config, OffPolicyState& state,
-                      const OffPolicyCallbacks& callbacks, int64_t& num_timesteps) {
-  const auto start = std::chrono::steady_clock::now();
-  const int64_t start_timesteps = num_timesteps;
-  const int n_envs = env.num_envs();
-  const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 4;
-  // A restored state continues the envs where the checkpoint left them; the last
-  // observations are the VecEnv's (the loop below keeps last_obs == env.obs() at safe points).
-  Eigen::MatrixXf last_obs = state.restored ? env.obs() : env.reset();
-  // SB3 _last_original_obs: what the replay buffer stores, VecNormalize's original observations
-  // (the same as last_obs without env.normalize). A checkpoint carries it; one written before
-  // rlrun kept it holds the VecEnv's.
-  if (!state.restored || state.last_original_obs.cols() != n_envs)
-    state.last_original_obs = state.restored ? env.obs() : env.original_obs();
-  state.restored = false;
-  Eigen::MatrixXf env_actions, buffer_actions;
-
-  auto dump_logs = [&] {
-    // SB3 OffPolicyAlgorithm._dump_logs.
-    if (!hooks.logger) return;
-    Logger& log = *hooks.logger;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    log.record("time/episodes", static_cast<double>(state.episode_num));
-    state.episode_stats.record(log);
-    record_session_time(log, elapsed, num_timesteps - start_timesteps);
-    log.record("time/total_timesteps", static_cast<double>(num_timesteps));
-    if (callbacks.record_rollout_logs) callbacks.record_rollout_logs(log);
-    log.dump(num_timesteps);
-    if (hooks.on_log) hooks.on_log(num_timesteps);
-  };
-
-  while (num_timesteps < total_timesteps) {
-    // collect_rollouts: train_freq steps per env, or train_freq episodes.
-    int64_t collected_steps = 0, collected_episodes = 0;
-    bool continue_training = true;
-    while (config.train_freq.episodes ? collected_episodes < config.train_freq.frequency
-                                      : collected_steps < config.train_freq.frequency) {
-      if (callbacks.before_collect_step) callbacks.before_collect_step(collected_steps);
-      const bool warmup = num_timesteps < config.learning_starts;
-      callbacks.select_actions(last_obs, warmup, env_actions, buffer_actions);
-      env.step(env_actions);
-      num_timesteps += n_envs;
-      ++collected_steps;
-      if (hooks.on_step && !hooks.on_step(num_timesteps)) {
-        continue_training = false;
-        break;
-      }
-      state.episode_stats.update(env);
-      state.buffer->add(state.last_original_obs, buffer_actions, env);
-      last_obs = env.obs();
-      state.last_original_obs = env.original_obs();
-      state.progress_remaining =
-          1.0 - static_cast<double>(num_timesteps) / static_cast<double>(total_timesteps);
-      if (callbacks.on_step) callbacks.on_step();
-      for (int e = 0; e < n_envs; ++e) {
-        if (!env.done(e)) continue;
-        ++collected_episodes;
-        ++state.episode_num;
-        if (callbacks.on_episode_end) callbacks.on_episode_end(e);
-        if (state.episode_num % log_interval == 0) dump_logs();
-      }
-    }
-    if (!continue_training) break;
-    if (num_timesteps > 0 && num_timesteps > config.learning_starts) {
-      const int64_t steps = config.gradient_steps >= 0 ? config.gradient_steps : collected_steps * n_envs;
-      if (steps > 0) callbacks.train(static_cast<int>(steps), hooks.logger);
-    }
-    // Between rounds nothing is in flight: the state can be saved and resumed exactly.
-    if (hooks.at_safe_point && !hooks.at_safe_point(num_timesteps)) break;
-  }
 }
 
 OffPolicyState::OffPolicyState(const OffPolicyConfig& config, int n_envs,
@@ -174,7 +101,8 @@ void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
 
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
                             const OffPolicyConfig& config, const NetArchPiQf& net_arch,
-                            int n_critics, int actor_outputs, int actor_copies) {
+                            int n_critics, int actor_outputs, int actor_copies,
+                            int critic_outputs) {
   check_box_actor_spaces(out, setup);
   check_gradient_steps(out, config.gradient_steps);
   check_net_arch(out, "policy.net_arch", net_arch.pi, net_arch.qf);
@@ -183,8 +111,8 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
   check_network_memory(out, "policy.net_arch", obs, net_arch.pi, actor_outputs, actor_copies,
                        config.batch_size);
   // Each critic, its target and the second core's activations of both.
-  check_network_memory(out, "policy.net_arch", obs + act, net_arch.qf, 1, 4 * n_critics,
-                       config.batch_size);
+  check_network_memory(out, "policy.net_arch", obs + act, net_arch.qf, critic_outputs,
+                       4 * n_critics, config.batch_size);
   check_replay_buffer(out, config, setup);
 }
 
@@ -199,20 +127,22 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
       batch_obs_(setup.observation_space),
       batch_next_obs_(setup.observation_space),
       acting_obs_(setup.observation_space) {
-  const auto require = [this](bool ok, const std::string& message) {
-    if (!ok) throw std::invalid_argument(id_ + ": " + message);
-  };
-  require(setup.n_envs >= 1, "n_envs must be >= 1");
-  require(config.batch_size >= 1, "batch_size must be >= 1");
-  require(config.buffer_size >= 1, "buffer_size must be >= 1");
-  require(config.learning_starts >= 0, "learning_starts must be >= 0");
-  require(config.tau >= 0.0 && config.tau <= 1.0, "tau must be in [0, 1]");
-  require(config.gamma >= 0.0 && config.gamma <= 1.0, "gamma must be in [0, 1]");
-  require(config.gradient_steps >= -1,
-          "gradient_steps must be >= 0, or -1 (as many as env steps)");
+  valid_config(config, id_);
+  if (setup.n_envs < 1) throw std::invalid_argument(id_ + ": n_envs must be >= 1");
   checkpoint("num_timesteps", num_timesteps_);
   checkpoint("n_updates", n_updates_);
   checkpoint(replay.key, replay_rng_);
+  // The replay buffer and what goes with it, once there is one (a model only evaluated has
+  // none); DQN's checkpoints from before the flag always held it.
+  checkpoint(
+      [this](StateWriter& out) {
+        out.put_bool("has_off_policy", state_.has_value());
+        if (state_) state_->write_state(out.sub("off_policy"));
+      },
+      [this](const StateReader& in) {
+        if (!in.has("has_off_policy") || in.get_bool("has_off_policy"))
+          state().read_state(in.sub("off_policy"));
+      });
 }
 
 OffPolicyState& OffPolicyAlgorithm::state() {
@@ -233,12 +163,24 @@ const ReplayBatch& OffPolicyAlgorithm::sample_batch() {
   return batch_;
 }
 
+struct OffPolicyAlgorithm::LearnCall {
+  VecEnv& env;
+  TrainingHooks& hooks;
+  int64_t total_timesteps;
+  int log_interval;  // finished episodes between log dumps
+  std::chrono::steady_clock::time_point start;
+  int64_t start_timesteps;
+  Eigen::MatrixXf last_obs, env_actions, buffer_actions;
+  int64_t collected_steps = 0;  // VecEnv steps of the current collect_rollouts
+};
+
 void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
   if (env.num_envs() != setup_.n_envs)
     throw std::invalid_argument(id_ + ": env has " + std::to_string(env.num_envs()) +
                                 " copies, the algorithm was built for " +
                                 std::to_string(setup_.n_envs));
-  if (HerReplayBuffer* her = state().her) {
+  OffPolicyState& s = state();
+  if (HerReplayBuffer* her = s.her) {
     // SB3 HerReplayBuffer.set_env: rewards of relabelled goals come from the first env's
     // compute_reward (a restored buffer gets the env here too).
     const GoalEnv* goals = goal_env_of(env.env(0));
@@ -249,37 +191,81 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
                 "BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0)");
     her->set_goal_env(goals);
   }
-  Logger* logger = hooks.logger;
-  OffPolicyCallbacks callbacks;
-  callbacks.select_actions = [this](const Eigen::MatrixXf& obs, bool warmup,
-                                    Eigen::MatrixXf& env_actions, Eigen::MatrixXf& buffer_actions) {
-    select_actions(obs, warmup, env_actions, buffer_actions);
-  };
-  callbacks.on_step = [this, logger] { on_step(logger); };
-  callbacks.on_episode_end = [this](int e) { on_episode_end(e); };
-  callbacks.before_collect_step = [this](int64_t steps) { before_collect_step(steps); };
-  callbacks.record_rollout_logs = [this](Logger& log) { record_rollout_logs(log); };
-  callbacks.train = [this](int gradient_steps, Logger* log) { train(gradient_steps, log); };
   // Batches are normalised as the env's VecNormalize says while this learn() runs.
   step_hook_ = env.step_hook();
   struct Forget {
     const VecStepHook*& hook;
     ~Forget() { hook = nullptr; }
   } forget{step_hook_};
-  off_policy_learn(env, total_timesteps, hooks, config_, state(), callbacks, num_timesteps_);
+
+  LearnCall call{env, hooks, total_timesteps, hooks.log_interval > 0 ? hooks.log_interval : 4,
+                 std::chrono::steady_clock::now(), num_timesteps_, {}, {}, {}};
+  // A restored state continues the envs where the checkpoint left them; the last
+  // observations are the VecEnv's (the loop below keeps last_obs == env.obs() at safe points).
+  call.last_obs = s.restored ? env.obs() : env.reset();
+  // SB3 _last_original_obs: what the replay buffer stores, VecNormalize's original observations
+  // (the same as last_obs without env.normalize). A checkpoint carries it; one written before
+  // rlrun kept it holds the VecEnv's.
+  if (!s.restored || s.last_original_obs.cols() != setup_.n_envs)
+    s.last_original_obs = s.restored ? env.obs() : env.original_obs();
+  s.restored = false;
+
+  while (num_timesteps_ < total_timesteps) {
+    if (!collect_rollouts(call)) break;
+    if (num_timesteps_ > 0 && num_timesteps_ > config_.learning_starts) {
+      const int64_t steps = config_.gradient_steps >= 0 ? config_.gradient_steps
+                                                        : call.collected_steps * setup_.n_envs;
+      if (steps > 0) train(static_cast<int>(steps), hooks.logger);
+    }
+    // Between rounds nothing is in flight: the state can be saved and resumed exactly.
+    if (hooks.at_safe_point && !hooks.at_safe_point(num_timesteps_)) break;
+  }
 }
 
-void OffPolicyAlgorithm::save_training_state(StateWriter& out) const {
-  for (const auto& write : write_items_) write(out);
-  out.put_bool("has_off_policy", state_.has_value());
-  if (state_) state_->write_state(out.sub("off_policy"));
+bool OffPolicyAlgorithm::collect_rollouts(LearnCall& call) {
+  OffPolicyState& s = *state_;
+  VecEnv& env = call.env;
+  int64_t collected_episodes = 0;
+  call.collected_steps = 0;
+  while (config_.train_freq.episodes ? collected_episodes < config_.train_freq.frequency
+                                     : call.collected_steps < config_.train_freq.frequency) {
+    before_collect_step(call.collected_steps);
+    const bool warmup = num_timesteps_ < config_.learning_starts;
+    select_actions(call.last_obs, warmup, call.env_actions, call.buffer_actions);
+    env.step(call.env_actions);
+    num_timesteps_ += setup_.n_envs;
+    ++call.collected_steps;
+    if (call.hooks.on_step && !call.hooks.on_step(num_timesteps_)) return false;
+    s.episode_stats.update(env);
+    s.buffer->add(s.last_original_obs, call.buffer_actions, env);
+    call.last_obs = env.obs();
+    s.last_original_obs = env.original_obs();
+    s.progress_remaining =
+        1.0 - static_cast<double>(num_timesteps_) / static_cast<double>(call.total_timesteps);
+    on_step(call.hooks.logger);
+    for (int e = 0; e < setup_.n_envs; ++e) {
+      if (!env.done(e)) continue;
+      ++collected_episodes;
+      ++s.episode_num;
+      on_episode_end(e);
+      if (s.episode_num % call.log_interval == 0) dump_logs(call);
+    }
+  }
+  return true;
 }
 
-void OffPolicyAlgorithm::load_training_state(const StateReader& in) {
-  for (const auto& read : read_items_) read(in);
-  // DQN's checkpoints before the flag always held the state.
-  if (!in.has("has_off_policy") || in.get_bool("has_off_policy"))
-    state().read_state(in.sub("off_policy"));
+void OffPolicyAlgorithm::dump_logs(LearnCall& call) {
+  if (!call.hooks.logger) return;
+  Logger& log = *call.hooks.logger;
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - call.start).count();
+  log.record("time/episodes", static_cast<double>(state_->episode_num));
+  state_->episode_stats.record(log);
+  record_session_time(log, elapsed, num_timesteps_ - call.start_timesteps);
+  log.record("time/total_timesteps", static_cast<double>(num_timesteps_));
+  record_rollout_logs(log);
+  log.dump(num_timesteps_);
+  if (call.hooks.on_log) call.hooks.on_log(num_timesteps_);
 }
 
 }  // namespace rlrun

@@ -1,18 +1,13 @@
 #pragma once
-// What DQN, SAC, TD3 and DDPG share (SB3 common/off_policy_algorithm.py): their common
-// hyperparameters, the learning loop — collect `train_freq` steps (or episodes) into the
-// replay buffer, then run `gradient_steps` updates once num_timesteps > learning_starts; random
-// actions from the action space before learning_starts; logs dumped every `log_interval`
-// finished episodes (SB3's default for off-policy algorithms is 4) — and OffPolicyAlgorithm,
-// the base class that holds the replay buffer, runs that loop and checkpoints what they share.
-// Each algorithm keeps its whole update (train) in its own file.
+// What DQN, SAC, TQC, TD3 and DDPG share (SB3 common/off_policy_algorithm.py): their common
+// hyperparameters and OffPolicyAlgorithm, the base class that holds the replay buffer, runs the
+// learning loop and checkpoints what they share. Each algorithm keeps its whole update (train)
+// in its own file.
 #include <Eigen/Core>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "rlrun/algos/common/config_checks.hpp"
@@ -21,6 +16,7 @@
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/her_replay_buffer.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
+#include "rlrun/algos/common/resumable_algorithm.hpp"
 #include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/env/observation_encoder.hpp"
@@ -81,7 +77,8 @@ struct OffPolicyConfig {
     v("tau", tau, "soft update coefficient for target networks (1 = hard copy)", unit_interval());
     v("gamma", gamma, "discount factor", unit_interval());
     v("train_freq", train_freq, "update every N steps, or [N, episode]");
-    v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)");
+    v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)",
+      at_least(-1));
     v("handle_timeout_termination", handle_timeout_termination,
       "treat time-limit truncation as not done (bootstrap), as SB3");
     v("replay_buffer_class", replay_buffer_class,
@@ -90,27 +87,6 @@ struct OffPolicyConfig {
     v("replay_buffer_kwargs", replay_buffer_kwargs,
       "HerReplayBuffer options: n_sampled_goal, goal_selection_strategy");
   }
-};
-
-// What the loop asks of the algorithm.
-struct OffPolicyCallbacks {
-  // Actions for `obs` (obs_dim x n_envs): `env_actions` in the env's action space and
-  // `buffer_actions` as stored in the replay buffer (Box: scaled to [-1, 1]). `warmup` is
-  // true before learning_starts: the algorithm samples its action space uniformly.
-  std::function<void(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
-                     Eigen::MatrixXf& buffer_actions)>
-      select_actions;
-  // Before each env step of a collection, with the steps collected so far in it (0 at its
-  // start): SAC's gSDE reset_noise points. Optional.
-  std::function<void(int64_t collected_steps)> before_collect_step;
-  // After every env step (SB3 _on_step: DQN's target update and exploration schedule).
-  std::function<void()> on_step;
-  // Called for each env whose episode just ended (e.g. noise reset).
-  std::function<void(int env)> on_episode_end;
-  // `gradient_steps` updates from the replay buffer; records train/ values on the logger.
-  std::function<void(int gradient_steps, Logger* logger)> train;
-  // Extra values for the rollout log (SB3 _dump_logs: train/std with gSDE). Optional.
-  std::function<void(Logger& logger)> record_rollout_logs;
 };
 
 // Off-policy state that persists across learn() calls (and into checkpoints).
@@ -137,44 +113,37 @@ struct OffPolicyState {
   void read_state(const StateReader& in);
 };
 
-// SB3 OffPolicyAlgorithm.learn + collect_rollouts. `num_timesteps` is the algorithm's counter.
-// Uses hooks.log_interval as episodes between dumps (0 = SB3's off-policy default, 4).
-void off_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
-                      const OffPolicyConfig& config, OffPolicyState& state,
-                      const OffPolicyCallbacks& callbacks, int64_t& num_timesteps);
-
 // What every off-policy algorithm checks of the replay buffer: its memory, and for
 // HerReplayBuffer a goal-conditioned observation (Dict with observation, achieved_goal and
 // desired_goal of one size).
 void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
                          const AlgorithmSetup& setup);
 
-// SAC's and TD3's checks: a bounded Box action space, gradient_steps, net_arch, the memory of the actor
-// (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the second core's
-// activations) and of n_critics critics with their targets, and the replay buffer's.
+// SAC's, TQC's and TD3's checks: a bounded Box action space, gradient_steps, net_arch, the
+// memory of the actor (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the
+// second core's activations) and of n_critics critics of `critic_outputs` outputs (TQC:
+// n_quantiles) with their targets, and the replay buffer's.
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
                             const OffPolicyConfig& config, const NetArchPiQf& net_arch,
-                            int n_critics, int actor_outputs, int actor_copies);
+                            int n_critics, int actor_outputs, int actor_copies,
+                            int critic_outputs = 1);
 
 // SB3 OffPolicyAlgorithm: the replay buffer (allocated on first use: learn or resume, never for
-// a model that is only evaluated) and the stream that samples it, learn() (off_policy_learn
-// with the algorithm's hooks below), the gradient-step counter, and the training state for an
-// exact resume: num_timesteps, n_updates, the replay stream and buffer, and whatever the
-// algorithm registers with checkpoint() (each item written and read back under one key).
-class OffPolicyAlgorithm : public Algorithm {
+// a model that is only evaluated) and the stream that samples it; learn(), SB3's learn and
+// collect_rollouts: collect `train_freq` steps (or episodes) into the replay buffer, then run
+// `gradient_steps` updates once num_timesteps > learning_starts; random actions from the action
+// space before learning_starts; logs dumped every `log_interval` finished episodes (SB3's
+// default for off-policy algorithms is 4). The algorithm supplies its actions, its update and
+// the optional hooks below. The training state for an exact resume is ResumableAlgorithm's
+// list: num_timesteps, n_updates, the replay stream and buffer, and what the algorithm adds.
+class OffPolicyAlgorithm : public ResumableAlgorithm {
  public:
-  // Optimizers point into the networks: no copies or moves.
-  OffPolicyAlgorithm(const OffPolicyAlgorithm&) = delete;
-  OffPolicyAlgorithm& operator=(const OffPolicyAlgorithm&) = delete;
-
   std::string id() const override { return id_; }
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) final;
-  void save_training_state(StateWriter& out) const final;
-  void load_training_state(const StateReader& in) final;
 
   // SB3 _sample_action: actions for obs (obs_dim x n_envs), `env_actions` for the env and
-  // `buffer_actions` as the replay buffer stores them; `warmup` (before learning_starts) asks
-  // for uniform samples of the action space.
+  // `buffer_actions` as the replay buffer stores them (Box: scaled to [-1, 1]); `warmup`
+  // (before learning_starts) asks for uniform samples of the action space.
   virtual void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
                               Eigen::MatrixXf& buffer_actions) = 0;
 
@@ -188,7 +157,7 @@ class OffPolicyAlgorithm : public Algorithm {
     uint64_t stream;
     std::string key;
   };
-  // Throws std::invalid_argument, naming `id`, for a shared hyperparameter out of its range.
+  // `config` and `setup` as the algorithm's constructor validated them (valid_config).
   OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config, const AlgorithmSetup& setup,
                      int buffer_action_dim, const ReplayStream& replay);
 
@@ -202,11 +171,6 @@ class OffPolicyAlgorithm : public Algorithm {
   virtual void before_collect_step(int64_t /*collected_steps*/) {}
   // What _dump_logs adds for this algorithm (SAC with gSDE: train/std).
   virtual void record_rollout_logs(Logger& /*logger*/) {}
-  // Adds `item` to the training state under `key`: an Rng, an int64_t or double counter, an
-  // Adam, or a component with write_state(StateWriter) and read_state(const StateReader&). It
-  // must stay where it is (a member built in the constructor).
-  template <class T>
-  void checkpoint(const std::string& key, T& item);
 
   // replay_buffer.sample(batch_size) with the replay stream, into a reused batch.
   const ReplayBatch& sample_batch();
@@ -232,7 +196,13 @@ class OffPolicyAlgorithm : public Algorithm {
   int64_t n_updates_ = 0;
 
  private:
+  struct LearnCall;  // one learn() call's clock, hooks and acting workspaces (off_policy.cpp)
   OffPolicyState& state();
+  // SB3 collect_rollouts: train_freq steps per env, or train_freq episodes, into the replay
+  // buffer. False when a callback stopped training.
+  bool collect_rollouts(LearnCall& call);
+  // SB3 _dump_logs.
+  void dump_logs(LearnCall& call);
 
   std::string id_;
   OffPolicyConfig config_;
@@ -242,30 +212,6 @@ class OffPolicyAlgorithm : public Algorithm {
   ReplayBatch batch_;
   const VecStepHook* step_hook_ = nullptr;  // the training env's VecNormalize, during learn()
   ObservationEncoder batch_obs_, batch_next_obs_, acting_obs_;
-  // checkpoint()'s items: how each is written and read back.
-  std::vector<std::function<void(StateWriter&)>> write_items_;
-  std::vector<std::function<void(const StateReader&)>> read_items_;
 };
-
-template <class T>
-void OffPolicyAlgorithm::checkpoint(const std::string& key, T& item) {
-  if constexpr (std::is_same_v<T, Rng>) {
-    write_items_.push_back([key, &item](StateWriter& out) { out.put_rng(key, item); });
-    read_items_.push_back([key, &item](const StateReader& in) { in.get_rng(key, item); });
-  } else if constexpr (std::is_same_v<T, int64_t>) {
-    write_items_.push_back([key, &item](StateWriter& out) { out.put_int(key, item); });
-    // Counters (num_timesteps, n_updates, ...): never negative.
-    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_count(key); });
-  } else if constexpr (std::is_same_v<T, double>) {
-    write_items_.push_back([key, &item](StateWriter& out) { out.put_double(key, item); });
-    read_items_.push_back([key, &item](const StateReader& in) { item = in.get_double(key); });
-  } else if constexpr (std::is_same_v<T, Adam>) {
-    write_items_.push_back([key, &item](StateWriter& out) { write_adam(out.sub(key), item); });
-    read_items_.push_back([key, &item](const StateReader& in) { read_adam(in.sub(key), item); });
-  } else {
-    write_items_.push_back([key, &item](StateWriter& out) { item.write_state(out.sub(key)); });
-    read_items_.push_back([key, &item](const StateReader& in) { item.read_state(in.sub(key)); });
-  }
-}
 
 }  // namespace rlrun

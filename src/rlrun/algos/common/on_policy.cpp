@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
+#include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/core/state_dict.hpp"
 
@@ -117,34 +119,65 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
   return true;
 }
 
-void on_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
-                     OnPolicyCollector& collector, int64_t& num_timesteps,
-                     const std::function<bool()>& collect,
-                     const std::function<void(double progress_remaining)>& train) {
+OnPolicyAlgorithm::OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup,
+                                     const ActorCriticPolicyConfig& policy, const Rollout& rollout)
+    : setup_(setup),
+      // The weights (and gSDE's first exploration matrix) from the seed itself.
+      policy_([&] {
+        Rng init_rng(setup.seed);
+        return ActorCriticPolicy(setup.observation_space, setup.action_space, policy, init_rng,
+                                 rollout.use_sde);
+      }()),
+      collector_(setup, rollout.n_steps, policy_.action_dim(), rollout.sde_sample_freq),
+      id_(std::move(id)),
+      gamma_(static_cast<float>(rollout.gamma)),
+      gae_lambda_(static_cast<float>(rollout.gae_lambda)),
+      action_rng_(setup.seed ^ kActionStream) {
+  checkpoint("num_timesteps", num_timesteps_);
+  checkpoint("n_updates", n_updates_);
+  checkpoint("action_rng", action_rng_);
+  checkpoint("collector", collector_);
+  if (policy_.use_sde()) checkpoint("sde", policy_.sde());
+}
+
+void OnPolicyAlgorithm::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+                                Eigen::MatrixXf& actions) {
+  policy_.act(obs, action_rng_, deterministic, actions, predict_values_, predict_log_probs_);
+  clip_to_box(setup_.action_space, actions);
+}
+
+void OnPolicyAlgorithm::export_policy(PolicyGraph& graph, const std::string& obs,
+                                      bool with_value) const {
+  policy_.export_to(graph, obs, setup_.action_space, with_value);
+  graph.set_action(export_clip_to_box(graph, setup_.action_space, graph.action()));
+}
+
+void OnPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
-  const int64_t start_timesteps = num_timesteps;
-  collector.start(env);
+  const int64_t start_timesteps = num_timesteps_;
+  collector_.start(env);
   const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 1;
-  int64_t& iteration = collector.iterations();
-  while (num_timesteps < total_timesteps) {
-    if (!collect()) break;
+  int64_t& iteration = collector_.iterations();
+  while (num_timesteps_ < total_timesteps) {
+    if (!collector_.collect(env, policy_, action_rng_, gamma_, gae_lambda_, hooks, num_timesteps_))
+      break;
     ++iteration;
     const double progress_remaining =
-        1.0 - static_cast<double>(num_timesteps) / static_cast<double>(total_timesteps);
+        1.0 - static_cast<double>(num_timesteps_) / static_cast<double>(total_timesteps);
     if (hooks.logger && iteration % log_interval == 0) {
       // SB3 OnPolicyAlgorithm._dump_logs, written before this iteration's train() as SB3 does.
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       Logger& log = *hooks.logger;
       log.record("time/iterations", static_cast<double>(iteration));
-      collector.episode_stats().record(log);
-      record_session_time(log, elapsed, num_timesteps - start_timesteps);
-      log.record("time/total_timesteps", static_cast<double>(num_timesteps));
-      log.dump(num_timesteps);
-      if (hooks.on_log) hooks.on_log(num_timesteps);
+      collector_.episode_stats().record(log);
+      record_session_time(log, elapsed, num_timesteps_ - start_timesteps);
+      log.record("time/total_timesteps", static_cast<double>(num_timesteps_));
+      log.dump(num_timesteps_);
+      if (hooks.on_log) hooks.on_log(num_timesteps_);
     }
-    train(progress_remaining);
-    if (hooks.at_safe_point && !hooks.at_safe_point(num_timesteps)) break;
+    train(progress_remaining, hooks.logger);
+    if (hooks.at_safe_point && !hooks.at_safe_point(num_timesteps_)) break;
   }
 }
 

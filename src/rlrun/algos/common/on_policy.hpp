@@ -1,14 +1,16 @@
 #pragma once
 // What PPO and A2C share (SB3 common/on_policy_algorithm.py and common/buffers.py
 // RolloutBuffer): the rollout buffer, collect_rollouts with timeout bootstrapping and GAE, and
-// the learn loop (collect, log, train).
+// OnPolicyAlgorithm, the base class that holds the actor-critic policy, runs the learn loop
+// (collect, log, train), acts, saves and checkpoints what they share. Each algorithm keeps its
+// whole update (train) in its own file.
 #include <Eigen/Core>
-#include <functional>
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/gae.hpp"
+#include "rlrun/algos/common/resumable_algorithm.hpp"
 
 namespace rlrun {
 
@@ -68,11 +70,55 @@ void clip_to_box(const Space& space, Eigen::MatrixXf& actions);
 // The same as graph nodes (nn/policy_graph.hpp); `actions` unchanged for other spaces.
 std::string export_clip_to_box(PolicyGraph& graph, const Space& space, const std::string& actions);
 
-// SB3 OnPolicyAlgorithm.learn: until total_timesteps: collect, update progress, dump logs every
-// log_interval iterations (before train, as SB3), train.
-void on_policy_learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks,
-                     OnPolicyCollector& collector, int64_t& num_timesteps,
-                     const std::function<bool()>& collect,
-                     const std::function<void(double progress_remaining)>& train);
+// SB3 OnPolicyAlgorithm: the policy (ActorCriticPolicy, built from the seed), the rollout
+// collector and its action stream; learn(): until total_timesteps, collect a rollout, dump
+// logs every log_interval iterations (before train, as SB3), train; predict() and the export
+// act with the policy's mode or a sample, clipped to a Box; save()/load() move the policy's
+// tensors. The training state for an exact resume is ResumableAlgorithm's list:
+// num_timesteps, n_updates, the action stream, the collector and gSDE's exploration matrices,
+// and what the algorithm adds (its optimizer, PPO's shuffling stream).
+class OnPolicyAlgorithm : public ResumableAlgorithm {
+ public:
+  std::string id() const override { return id_; }
+  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) final;
+  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
+               Eigen::MatrixXf& actions) final;
+  // predict(deterministic): the policy's mode, clipped to a Box; the value is the critic's V(s).
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const final;
+  void save(TensorMap& tensors) const final { policy_.save(tensors); }
+  void load(const TensorMap& tensors) final { policy_.load(tensors); }
+
+  const ActorCriticPolicy& policy() const { return policy_; }
+  // The last rollout's rewards (after timeout bootstrapping) and values, n_steps x n_envs.
+  const StepEnvMatrix& rollout_rewards() const { return collector_.buffer().rewards; }
+  const StepEnvMatrix& rollout_values() const { return collector_.buffer().values; }
+
+ protected:
+  // What the base needs of the algorithm's Config (each algorithm has its own defaults).
+  struct Rollout {
+    int n_steps;  // steps per env per rollout
+    double gamma, gae_lambda;
+    bool use_sde;
+    int sde_sample_freq;
+  };
+  // `setup` and the settings as the algorithm's constructor validated them (valid_config).
+  OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup,
+                    const ActorCriticPolicyConfig& policy, const Rollout& rollout);
+
+  // One update on the rollout just collected (collector_.buffer()), SB3 train(); records its
+  // train/ values on `logger` if any.
+  virtual void train(double progress_remaining, Logger* logger) = 0;
+
+  const AlgorithmSetup setup_;
+  ActorCriticPolicy policy_;
+  OnPolicyCollector collector_;
+  int64_t n_updates_ = 0;
+
+ private:
+  std::string id_;
+  float gamma_, gae_lambda_;
+  Rng action_rng_;  // collection samples and predict()
+  Eigen::RowVectorXf predict_values_, predict_log_probs_;
+};
 
 }  // namespace rlrun

@@ -9,6 +9,7 @@
 
 #include "rlrun/algos/common/polyak.hpp"
 #include "rlrun/algos/common/training_state.hpp"
+#include "rlrun/core/config_validation.hpp"
 
 namespace rlrun {
 
@@ -21,20 +22,13 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("DQN: " + message);
 }
 
-// Validates before the networks are built from the config (OffPolicyAlgorithm checks the
-// shared hyperparameters).
+// Validates before the networks are built from the config: the fields' constraints (visit),
+// then what DQN adds: Discrete actions, and a target network that moves (tau > 0).
 const DQN::Config& checked(const DQN::Config& c, const AlgorithmSetup& setup) {
+  valid_config(c, "DQN");
   require(setup.action_space.is_discrete(),
           "action space " + setup.action_space.describe() + " is not supported (Discrete only)");
   require(c.off_policy.tau > 0.0, "tau must be in (0, 1]");
-  require(c.learning_rate.initial() >= 0.0, "learning_rate must be >= 0");
-  require(c.target_update_interval >= 1, "target_update_interval must be >= 1");
-  require(c.exploration_fraction > 0.0, "exploration_fraction must be > 0");
-  require(c.exploration_initial_eps >= 0.0 && c.exploration_initial_eps <= 1.0,
-          "exploration_initial_eps must be in [0, 1]");
-  require(c.exploration_final_eps >= 0.0 && c.exploration_final_eps <= 1.0,
-          "exploration_final_eps must be in [0, 1]");
-  require(c.max_grad_norm > 0.0, "max_grad_norm must be > 0");
   return c;
 }
 }  // namespace
@@ -55,9 +49,9 @@ ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 DQN::DQN(const Config& config, const AlgorithmSetup& setup)
-    : OffPolicyAlgorithm("DQN", config.off_policy, setup, /*buffer_action_dim=*/1,
-                         {kReplayStream, "replay_rng"}),
-      config_(checked(config, setup)),
+    : OffPolicyAlgorithm("DQN", checked(config, setup).off_policy, setup,
+                         /*buffer_action_dim=*/1, {kReplayStream, "replay_rng"}),
+      config_(config),
       action_start_(static_cast<float>(setup.action_space.start())),
       action_rng_(setup.seed ^ kActionStream),
       // DQNPolicy._build: q_net with torch's default Linear init, then q_net_target loaded

@@ -1,7 +1,5 @@
 #include "rlrun/algos/ppo/ppo.hpp"
 
-#include "rlrun/nn/policy_graph.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -9,18 +7,11 @@
 
 #include "rlrun/algos/common/explained_variance.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
-#include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/algos/ppo/ppo_loss.hpp"
-#include "rlrun/env/vec_env.hpp"
+#include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/clip_grad.hpp"
 
 namespace rlrun {
-
-namespace {
-// Distinct streams from one seed: weights (the seed), action sampling (kActionStream,
-// rng_streams.hpp), minibatch shuffling.
-constexpr uint64_t kShuffleStream = 0x14057b7ef767814fULL;
-}  // namespace
 
 ConfigProblems PPO::check(const Config& config, const AlgorithmSetup& setup) {
   const int64_t rollout = static_cast<int64_t>(config.n_steps) * setup.n_envs;
@@ -34,22 +25,17 @@ ConfigProblems PPO::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 PPO::PPO(const Config& config, const AlgorithmSetup& setup)
-    : config_(config),
-      setup_(setup),
-      init_rng_(setup.seed),
-      action_rng_(setup.seed ^ kActionStream),
-      shuffle_rng_(setup.seed ^ kShuffleStream),
-      policy_(setup.observation_space, setup.action_space, config.policy, init_rng_,
-              config.use_sde),
-      collector_(setup, config.n_steps, policy_.action_dim(), config.sde_sample_freq) {
-  if (config_.n_steps < 1) throw std::invalid_argument("PPO: n_steps must be >= 1");
-  if (config_.batch_size < 2)
-    throw std::invalid_argument("PPO: batch_size must be > 1 (advantage normalisation)");
-  if (config_.n_epochs < 1) throw std::invalid_argument("PPO: n_epochs must be >= 1");
+    : OnPolicyAlgorithm("PPO", setup, valid_config(config, "PPO").policy,
+                        {config.n_steps, config.gamma, config.gae_lambda, config.use_sde,
+                         config.sde_sample_freq}),
+      config_(config),
+      shuffle_rng_(setup.seed ^ kSampleStream) {
   // SB3 ActorCriticPolicy: Adam with eps=1e-5 "to avoid NaN".
   AdamConfig adam;
   adam.eps = 1e-5;
   optimizer_ = Adam(policy_.param_blocks(), adam);
+  checkpoint("optimizer", optimizer_);
+  checkpoint("shuffle_rng", shuffle_rng_);
 
   const int obs_dim = setup.observation_space.flat_dim();
   const int size = config_.n_steps * setup.n_envs;
@@ -60,18 +46,6 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
   for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_, &values_pred_,
                                 &grad_values_, &grad_log_prob_, &grad_entropy_})
     v->resize(batch);
-}
-
-// predict(deterministic): the policy's mode, clipped to a Box.
-void PPO::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  policy_.export_to(graph, obs, setup_.action_space, with_value);
-  graph.set_action(export_clip_to_box(graph, setup_.action_space, graph.action()));
-}
-
-void PPO::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-                  Eigen::MatrixXf& actions) {
-  policy_.act(obs, action_rng_, deterministic, actions, predict_values_, predict_log_probs_);
-  clip_to_box(setup_.action_space, actions);
 }
 
 void PPO::train(double progress_remaining, Logger* logger) {
@@ -167,39 +141,6 @@ void PPO::train(double progress_remaining, Logger* logger) {
   logger->record("train/clip_range", clip_range);
   if (clip_range_vf) logger->record("train/clip_range_vf", *clip_range_vf);
   logger->record("train/learning_rate", lr);
-}
-
-void PPO::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
-  const float gamma = static_cast<float>(config_.gamma);
-  const float gae_lambda = static_cast<float>(config_.gae_lambda);
-  on_policy_learn(
-      env, total_timesteps, hooks, collector_, num_timesteps_,
-      [&] { return collector_.collect(env, policy_, action_rng_, gamma, gae_lambda, hooks, num_timesteps_); },
-      [&](double progress_remaining) { train(progress_remaining, hooks.logger); });
-}
-
-void PPO::save(TensorMap& tensors) const { policy_.save(tensors); }
-void PPO::load(const TensorMap& tensors) { policy_.load(tensors); }
-
-// The policy's parameters travel in save(); this is the rest of SB3's training state.
-void PPO::save_training_state(StateWriter& out) const {
-  out.put_int("num_timesteps", num_timesteps_);
-  out.put_int("n_updates", n_updates_);
-  out.put_rng("action_rng", action_rng_);
-  write_adam(out.sub("optimizer"), optimizer_);
-  out.put_rng("shuffle_rng", shuffle_rng_);
-  collector_.write_state(out.sub("collector"));
-  if (policy_.use_sde()) write_sde(out.sub("sde"), policy_.sde());
-}
-
-void PPO::load_training_state(const StateReader& in) {
-  num_timesteps_ = in.get_count("num_timesteps");
-  n_updates_ = in.get_count("n_updates");
-  in.get_rng("action_rng", action_rng_);
-  read_adam(in.sub("optimizer"), optimizer_);
-  in.get_rng("shuffle_rng", shuffle_rng_);
-  collector_.read_state(in.sub("collector"));
-  if (policy_.use_sde()) read_sde(in.sub("sde"), policy_.sde());
 }
 
 }  // namespace rlrun

@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
 #include "rlrun/core/schedule.hpp"
@@ -15,7 +14,7 @@
 
 namespace rlrun {
 
-class PPO : public Algorithm {
+class PPO : public OnPolicyAlgorithm {
  public:
   struct Config {
     Schedule learning_rate = Schedule::constant(3e-4);
@@ -70,35 +69,16 @@ class PPO : public Algorithm {
 
   PPO(const Config& config, const AlgorithmSetup& setup);
 
-  std::string id() const override { return "PPO"; }
-  void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) override;
-  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
-  void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-               Eigen::MatrixXf& actions) override;
-  void save(TensorMap& tensors) const override;
-  void load(const TensorMap& tensors) override;
-  void save_training_state(StateWriter& out) const override;
-  void load_training_state(const StateReader& in) override;
-
-  const ActorCriticPolicy& policy() const { return policy_; }
-  // The last rollout's rewards (after timeout bootstrapping) and values, n_steps x n_envs.
-  const StepEnvMatrix& rollout_rewards() const { return collector_.buffer().rewards; }
-  const StepEnvMatrix& rollout_values() const { return collector_.buffer().values; }
-
  private:
-  void train(double progress_remaining, Logger* logger);
+  // SB3 PPO.train: n_epochs over the rollout in shuffled minibatches of the clipped surrogate,
+  // the (optionally clipped) value loss and the entropy bonus.
+  void train(double progress_remaining, Logger* logger) override;
 
   Config config_;
-  AlgorithmSetup setup_;
-  Rng init_rng_, action_rng_, shuffle_rng_;
-  ActorCriticPolicy policy_;
+  Rng shuffle_rng_;
   Adam optimizer_;
-  OnPolicyCollector collector_;
-  int64_t n_updates_ = 0;
 
   // Minibatch workspaces, allocated once in the constructor.
-  Eigen::MatrixXf predict_actions_;
-  Eigen::RowVectorXf predict_values_, predict_log_probs_;
   std::vector<int> indices_;
   Eigen::MatrixXf mb_obs_, mb_act_;
   Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;

@@ -10,6 +10,7 @@
 #include "rlrun/algos/common/polyak.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/algos/common/training_state.hpp"
+#include "rlrun/core/config_validation.hpp"
 
 namespace rlrun {
 
@@ -22,13 +23,6 @@ const std::string kKeyNUpdates = "train/n_updates";
 const std::string kKeyActorLoss = "train/actor_loss";
 const std::string kKeyCriticLoss = "train/critic_loss";
 const std::string kKeyLearningRate = "train/learning_rate";
-
-const TD3::Config& checked(const TD3::Config& c, const std::string& id) {
-  if (c.policy_delay < 1) throw std::invalid_argument(id + ": policy_delay must be >= 1");
-  if (!(c.target_policy_noise >= 0.0) || !(c.target_noise_clip >= 0.0))
-    throw std::invalid_argument(id + ": target_policy_noise and target_noise_clip must be >= 0");
-  return c;
-}
 }  // namespace
 
 ConfigProblems TD3::check(const Config& config, const AlgorithmSetup& setup) {
@@ -40,10 +34,10 @@ ConfigProblems TD3::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
-    : OffPolicyAlgorithm(id, config.off_policy, setup,
+    : OffPolicyAlgorithm(id, valid_config(config, id).off_policy, setup,
                          BoxActionSelection::checked_action_dim(setup, id),
                          {kSampleStream, "sample_rng"}),
-      config_(checked(config, id)),
+      config_(config),
       action_dim_(setup.action_space.flat_dim()),
       smoothing_rng_(setup.seed ^ kSmoothingStream),
       actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn),
