@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Training speed and the return reached, per config over seeds, beside SB3's wall time on the
-# same machine kind (../shared/reference/anchors.md, quiet-machine medians).
+# same machine kind (docs/benchmarks.md, "Anchors": quiet-machine medians).
 #   scripts/bench.sh [--update-docs] [CONFIG...]    (default: every configs/*.yaml)
 #   SEEDS="1 2 3" JOBS=1 scripts/bench.sh ...
 # JOBS=1 (default) runs one training at a time on both cores (rlrun's default --threads 2);
@@ -22,7 +22,7 @@ threads=${THREADS:-$(( jobs > 1 ? 1 : 2 ))}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# SB3 2.4.1 learn() wall seconds on this machine kind (anchors.md), by "ALGO ENV".
+# SB3 2.4.1 learn() wall seconds on this machine kind (docs/benchmarks.md, "Anchors"), by "ALGO ENV".
 sb3_seconds() {
   case "$1" in
     "PPO CartPole-v1") echo 18.4 ;; "DQN CartPole-v1") echo 53.9 ;; "A2C CartPole-v1") echo 40.1 ;;

@@ -2,11 +2,15 @@
 # Installs the Debian packages given as arguments that are not installed yet (apt-get, as root
 # or with sudo). Used by setup.sh (everything rlrun needs) and fuzz.sh (clang, libFuzzer).
 #   scripts/install_packages.sh PACKAGE...
+#   scripts/install_packages.sh --list-missing PACKAGE...   # only print those not installed
 set -euo pipefail
+list_only=""
+if [[ ${1:-} == --list-missing ]]; then list_only=1; shift; fi
 missing=()
 for p in "$@"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+if [[ -n $list_only ]]; then echo "${missing[*]}"; exit 0; fi
 ((${#missing[@]})) || exit 0
 echo "installing ${missing[*]}"
 SUDO=""

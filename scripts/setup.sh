@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package rlrun uses (DESIGN.md §2) and builds into build/.
+# Installs the Debian 12 packages rlrun uses and builds the programs into build/ (not the tests:
+# scripts/test.sh builds those). Says what it will change on the system before it does it.
 # Idempotent: packages already present are not reinstalled, the build is incremental.
 #   scripts/setup.sh            # install + build (Release)
 #   RLRUN_SKIP_INSTALL=1 ...    # build only
@@ -29,11 +30,34 @@ PACKAGES=(
   python3-sklearn python3-matplotlib        # tests: Optuna's importance and plot functions on them
 )
 
+# The Python package's .pth file (below): Debian python3's site directory, the user's own when
+# not root; RLRUN_SITE_DIR picks another directory.
+PYTHON=/usr/bin/python3
+site_dir() {
+  if [[ -n "${RLRUN_SITE_DIR:-}" ]]; then
+    echo "$RLRUN_SITE_DIR"
+  elif [[ $(id -u) -eq 0 ]]; then
+    $PYTHON -c 'import site; print(site.getsitepackages()[0])'
+  else
+    $PYTHON -c 'import site; print(site.getusersitepackages())'
+  fi
+}
+
+# What this script changes outside the checkout, said before it changes anything.
+if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
+  missing=$(scripts/install_packages.sh --list-missing "${PACKAGES[@]}")
+  command -v npm >/dev/null || missing="$missing nodejs npm"   # for ONNX Runtime in the tests
+  [[ -n $missing ]] && echo "setup: will install Debian packages with apt-get: $missing"
+fi
+if [[ -x $PYTHON ]]; then
+  echo "setup: will write $(site_dir)/rlrun.pth (one line: $(pwd)/build/python, so python3 can import rlrun)"
+fi
+
 if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
   scripts/install_packages.sh "${PACKAGES[@]}"
 fi
 
-# SUMO's tools look for their data here (DESIGN.md §2).
+# SUMO's tools look for their data here.
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
 
 # Tests run exported policies in a real ONNX Runtime: the npm package onnxruntime-node (its CPU
@@ -52,22 +76,14 @@ if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build --parallel "$(nproc)"
+cmake --build build --parallel "$(nproc)" --target rlrun_programs
 echo "setup: built build/rlrun"
 
-# The Python package (docs/python.md): build/python/rlrun is a ready package; a .pth file in
-# Debian python3's site directory (the user's own when not root) puts build/python on its path,
-# so `python3 -c "import rlrun"` works from anywhere. RLRUN_SITE_DIR picks another directory.
+# The Python package (docs/python.md): build/python/rlrun is a ready package; the .pth file
+# puts build/python on python3's path, so `python3 -c "import rlrun"` works from anywhere.
 # The wheel for virtualenvs goes to build/python/dist/.
-PYTHON=/usr/bin/python3
 if [[ -x $PYTHON && -d build/python/rlrun ]]; then
-  if [[ -n "${RLRUN_SITE_DIR:-}" ]]; then
-    site=$RLRUN_SITE_DIR
-  elif [[ $(id -u) -eq 0 ]]; then
-    site=$($PYTHON -c 'import site; print(site.getsitepackages()[0])')
-  else
-    site=$($PYTHON -c 'import site; print(site.getusersitepackages())')
-  fi
+  site=$(site_dir)
   mkdir -p "$site"
   echo "$(pwd)/build/python" > "$site/rlrun.pth"
   echo "setup: $site/rlrun.pth -> $(pwd)/build/python (import rlrun)"

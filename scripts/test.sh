@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Sets up (packages + build) if needed, then runs the test suite with ctest.
+# Sets up (packages + the programs) if needed, builds the tests, then runs them with ctest.
 # Tests tagged [.slow] are hidden from this run; run them with
 #   build/tests/rlrun_tests "[.slow]"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
+cmake --build build --parallel "$(nproc)"     # the tests, benchmarks and fuzz smoke targets too
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 900
