@@ -28,7 +28,7 @@ void write_file(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("DirHandle: links are refused, not followed; the user's path above is", "[core][security]") {
+TEST_CASE("DirHandle: links are refused, not followed, the user's path above is", "[core][security]") {
   TempDir tmp("dir_handle_links");
   fs::create_directories(tmp / "real/run/checkpoints");
   fs::create_directories(tmp / "elsewhere");
@@ -92,7 +92,7 @@ TEST_CASE("DirHandle: FIFOs and devices are refused without blocking", "[core][s
   CHECK_FALSE(open_regular_file(AT_FDCWD, tmp / "missing", O_RDONLY, "missing"));
 }
 
-TEST_CASE("DirHandle: reads stop at their bound; a missing file is none", "[core][security]") {
+TEST_CASE("DirHandle: reads stop at their bound, a missing file is none", "[core][security]") {
   TempDir tmp("dir_handle_bounds");
   write_file(tmp / "a.csv", "x,y\n1,2\n3,4");
   const DirHandle dir = DirHandle::open(tmp.str());

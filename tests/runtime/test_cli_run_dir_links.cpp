@@ -92,7 +92,7 @@ TEST_CASE("run dir links: a log.txt link is refused on resume, its target untouc
   CHECK(read_text(dir / "victim.txt") == "precious\n");
 }
 
-TEST_CASE("run dir links: a checkpoints/ link is refused; nothing is written or deleted there",
+TEST_CASE("run dir links: a checkpoints/ link is refused, nothing is written or deleted there",
           "[cli][security]") {
   TempDir dir("links_checkpoints");
   // keep=2: the resumed run's keep-N clean-up would delete the oldest step_*.zip it sees.
@@ -193,7 +193,7 @@ TEST_CASE("run dir links: a link to a run directory is not followed by report or
   CHECK(contains(r.output, "is a symbolic link"));
 }
 
-TEST_CASE("study links: a study.journal link is refused by tune and tune report; a FIFO too",
+TEST_CASE("study links: a study.journal link is refused by tune and tune report, a FIFO too",
           "[cli][security][tune]") {
   TempDir dir("links_study");
   const std::string out = dir / "out";
