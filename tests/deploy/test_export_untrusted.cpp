@@ -199,7 +199,7 @@ TEST_CASE("export: metadata that is not UTF-8 is escaped, Dict keys that cannot 
   CHECK(clash.width(both) == 2);
 }
 
-TEST_CASE("export: NaN and infinite numbers are refused naming the tensor; bounds may be infinite",
+TEST_CASE("export: NaN and infinite numbers are refused naming the tensor, bounds may be infinite",
           "[deploy][export][untrusted]") {
   constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
   constexpr float kInf = std::numeric_limits<float>::infinity();

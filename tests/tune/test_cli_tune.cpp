@@ -324,7 +324,7 @@ TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial
 // Issue 41: `--set run.total_timesteps=512` ran every trial for the study's n_timesteps,
 // silently. The keys a study sets for every trial itself are refused as fixed overrides, naming
 // the study's own option; --n-timesteps replaces n_timesteps (workers and report included).
-TEST_CASE("tune: --set of a key the study sets per trial is refused; --n-timesteps", "[cli][tune]") {
+TEST_CASE("tune: --set of a key the study sets per trial is refused, and --n-timesteps", "[cli][tune]") {
   TempDir dir("tune_steps");
   const std::string study = write_study(dir, "", 1, 4096, 1, 1);
   auto r = run_rlrun("tune " + study + " --set run.total_timesteps=512");
