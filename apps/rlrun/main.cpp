@@ -1,5 +1,5 @@
 // rlrun: train, evaluate and inspect RL agents from YAML experiment files.
-// Exit codes (DESIGN.md §6): 0 ok, 2 bad usage or config, 1 runtime failure, 128 + signal
+// Exit codes (docs/commands.md): 0 ok, 2 bad usage or config, 1 runtime failure, 128 + signal
 // (130: Ctrl-C) when interrupted where no safe point could be waited for (core/errors.hpp).
 #include <algorithm>
 #include <csignal>

@@ -1,5 +1,5 @@
 #pragma once
-// One explicit, serialisable random number generator per component (DESIGN.md §3).
+// One explicit, serialisable random number generator per component, so a run replays from its seed.
 // xoshiro256** (Blackman & Vigna, "Scrambled linear pseudorandom number generators", 2018),
 // seeded through splitmix64 so that nearby seeds give unrelated streams. The whole state is
 // four words plus the cached second Box-Muller normal, so checkpoints restore it exactly.

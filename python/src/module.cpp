@@ -1,5 +1,5 @@
 // rlrun._core: rlrun's envs, models and trainer for Python (pybind11). Exceptions carry the
-// CLI's messages (DESIGN.md §6): ConfigError and UsageError (bad input, exit 2 on the command
+// CLI's messages (docs/commands.md): ConfigError and UsageError (bad input, exit 2 on the command
 // line) are ValueErrors, RuntimeFailure (exit 1) a RuntimeError, Interrupted (Ctrl-C) a
 // KeyboardInterrupt.
 #include <pybind11/stl.h>

@@ -453,7 +453,7 @@ TEST_CASE("learning: DDPG rl-zoo Pendulum config reaches -200 in 2 of 3 seeds",
   CHECK(pendulum_seeds_solved("ddpg") >= 2);
 }
 
-// Throughput of train_on_batch at rl-zoo's Pendulum size; prints, asserts nothing (DESIGN §8).
+// Throughput of train_on_batch at rl-zoo's Pendulum size; prints, asserts nothing (docs/benchmarks.md).
 TEST_CASE("bench: TD3 gradient steps at rl-zoo Pendulum size", "[.td3_bench]") {
   for (const char* algo : {"TD3", "DDPG"}) {
     TD3::Config cfg;  // 400x300, batch 256

@@ -413,7 +413,7 @@ TEST_CASE("eval and record --policy heuristic on BipedalWalker", "[walker][cli]"
 }
 
 // Steps per second of wall time and of this process's CPU time (the machine may be shared:
-// CPU time is what one core delivers). Measured, not asserted (DESIGN.md §8).
+// CPU time is what one core delivers). Measured, not asserted (docs/benchmarks.md).
 TEST_CASE("bench: BipedalWalker-v3 env steps/s", "[.bench][walker_bench]") {
   std::printf("| run | steps/s (wall) | steps/s (CPU) |\n|---|---|---|\n");
   for (const bool hardcore : {false, true}) {

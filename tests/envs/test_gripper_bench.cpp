@@ -1,5 +1,5 @@
 // GripperLift-v0's speed (issue 8: >= 3 000 env steps/s on one core) and SAC's training speed
-// on it. Measured, not asserted (DESIGN.md §8): `build/tests/rlrun_tests "[gripper_bench]"`,
+// on it. Measured, not asserted (docs/benchmarks.md): `build/tests/rlrun_tests "[gripper_bench]"`,
 // run by scripts/bench.sh.
 #include <catch2/catch.hpp>
 #include <chrono>

@@ -417,7 +417,7 @@ TEST_CASE("lunar lander: eval and record --policy heuristic", "[lunar_lander][cl
 }
 
 // Env steps per second on one core, random actions, resets included. Measured,
-// not asserted (DESIGN.md §8): `build/tests/rlrun_tests
+// not asserted (docs/benchmarks.md): `build/tests/rlrun_tests
 // "[lunar_lander_bench]"`, run by scripts/bench.sh.
 TEST_CASE("bench: LunarLander-v3 env steps/s", "[.bench][lunar_lander_bench]") {
   std::printf("| run | steps/s |\n|---|---|\n");

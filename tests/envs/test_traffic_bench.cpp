@@ -1,6 +1,6 @@
 // TrafficSignal-v0's speed (issue 7: over traci at least 70 % of plain sumo's simulated
 // seconds per second; anchors.md: plain sumo 8 372 sim steps/s, sumo-rl over traci 709).
-// Measured, not asserted (DESIGN.md §8): `build/tests/rlrun_tests "[traffic_bench]"`, run by
+// Measured, not asserted (docs/benchmarks.md): `build/tests/rlrun_tests "[traffic_bench]"`, run by
 // scripts/bench.sh. One hour of the shipped scenario (3600 simulated seconds) each way, best
 // of three, startup included:
 //   plain    `sumo -c single.sumocfg --end 3600` running a fixed-time program with the same

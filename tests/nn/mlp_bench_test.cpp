@@ -1,6 +1,6 @@
 // Micro-benchmark of Mlp forward + backward. Hidden (and not tagged [nn], which would select it):
 // run with `rlrun_tests "[nn_bench]"`.
-// Prints throughput; asserts nothing about time (DESIGN.md §8). FLOPs are counted as
+// Prints throughput; asserts nothing about time (docs/benchmarks.md). FLOPs are counted as
 // 2 * in * out * batch per layer forward and twice that backward (weight and input gradients),
 // the usual 3x-forward convention.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Hostile model files and checkpoints through the real binary (DESIGN.md §6b): each file is
+// Hostile model files and checkpoints through the real binary (docs/security.md): each file is
 // crafted by the test from a real tiny run (core/crafted_zip.hpp); rlrun must refuse it with
 // exit 1 and a message naming the file and member — or skip what it does not use — while its
 // peak memory stays small (a 4 GiB member must never be allocated or inflated).

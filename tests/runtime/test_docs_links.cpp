@@ -73,7 +73,7 @@ TEST_CASE("docs: every relative link leads to a file of the checkout and an exis
   for (const fs::path& page : pages()) {
     const std::string text = read_text(page.string());
     INFO(page.string());
-    CHECK(text.find("../shared") == std::string::npos);  // material beside a checkout, not in it
+    CHECK(text.find(std::string("../") + "shared") == std::string::npos);  // beside a checkout
     for (std::sregex_iterator it(text.begin(), text.end(), link), end; it != end; ++it) {
       const std::string target = (*it)[1].str();
       if (target.rfind("http://", 0) == 0 || target.rfind("https://", 0) == 0 ||
@@ -93,4 +93,34 @@ TEST_CASE("docs: every relative link leads to a file of the checkout and an exis
     }
   }
   CHECK(checked > 50);
+}
+
+TEST_CASE("repo: no file refers to material outside the checkout", "[docs]") {
+  // The reading material beside a developer's checkout (its design notes and reference data) is
+  // not part of the repo: what the project needs of it lives in docs/ and tests/data/.
+  const std::vector<std::string> outside{std::string("../") + "shared",
+                                         std::string("DESIGN") + ".md"};
+  const fs::path root = RLRUN_SOURCE_DIR;
+  int scanned = 0;
+  for (const char* file : {"README.md", "CMakeLists.txt"}) {
+    const std::string text = read_text((root / file).string());
+    for (const std::string& name : outside) {
+      INFO(file << " mentions " << name);
+      CHECK(text.find(name) == std::string::npos);
+    }
+  }
+  for (const char* dir : {"src", "include", "apps", "python", "tests", "scripts", "fuzz", "docs",
+                          "examples", "configs", ".ci"}) {
+    if (!fs::exists(root / dir)) continue;
+    for (const auto& entry : fs::recursive_directory_iterator(root / dir)) {
+      if (!entry.is_regular_file() || entry.file_size() > (1 << 20)) continue;
+      const std::string text = read_text(entry.path().string());
+      for (const std::string& name : outside) {
+        INFO(entry.path().string() << " mentions " << name);
+        CHECK(text.find(name) == std::string::npos);
+      }
+      ++scanned;
+    }
+  }
+  CHECK(scanned > 500);
 }

@@ -1,5 +1,5 @@
 // Recording speed (issue 5: 1000 CartPole frames at 600x400 in under 2 s). Measured, not
-// asserted (DESIGN.md §8): run `build/tests/rlrun_tests "[record_bench]"`.
+// asserted (docs/benchmarks.md): run `build/tests/rlrun_tests "[record_bench]"`.
 #include <sys/resource.h>
 
 #include <catch2/catch.hpp>

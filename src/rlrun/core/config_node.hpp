@@ -24,7 +24,7 @@
 
 namespace rlrun {
 
-// Where a config's text came from (docs/security.md, DESIGN.md §6b). kAccepted: untrusted text
+// Where a config's text came from (docs/security.md). kAccepted: untrusted text
 // the user accepted as a whole for one command (`--trust`, `rlrun.load(..., trust=True)`): it
 // may name what the user's own text may, and each value a --set would otherwise have had to
 // vouch for is printed before use (core/trusted_values.hpp).

@@ -1,5 +1,5 @@
 #pragma once
-// Error types mapped to exit codes in main (DESIGN.md §6):
+// Error types mapped to exit codes in main (docs/commands.md):
 //   ConfigError / UsageError -> 2 (the user's input is wrong: fix the file or the command line)
 //   RuntimeFailure           -> 1 (env, I/O, simulator failed while running)
 //   Interrupted              -> 128 + the signal (130 for Ctrl-C), as a shell reports it

@@ -1,7 +1,7 @@
 #pragma once
 // A private temporary directory: made with mkdtemp(3) (a fresh, unpredictable name, mode 0700,
 // so no other user can list it or plant a file or symlink in it) under $TMPDIR or /tmp, and
-// removed with everything in it when the object goes (DESIGN.md §6b: temporary files are
+// removed with everything in it when the object goes (docs/security.md: temporary files are
 // created with O_EXCL in private directories). Files inside are created with create_file(),
 // which refuses to follow a symlink or to reuse an existing file.
 //

@@ -7,7 +7,7 @@
 // SimulatorInput may also name a file shipped with rlrun. Anything else is refused with the
 // `--set` that vouches for the value (or `--trust`, which accepts a model file's config as a
 // whole and prints each such value), so opening a model file from elsewhere never runs code
-// or writes outside the run unasked (DESIGN.md §6b; SB3's pickled model files do run code on
+// or writes outside the run unasked (docs/security.md; SB3's pickled model files do run code on
 // load).
 #include <string>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Reading and writing zip files of named members (libzip). Writes are atomic: the archive is
 // built under a temporary name in the same directory and renamed over the target, so a crash
-// never leaves a half-written model (DESIGN.md §5).
+// never leaves a half-written model (docs/experiments.md, "Output files").
 #include <cstdint>
 #include <map>
 #include <string>

@@ -37,7 +37,7 @@ std::string printable_name(const std::string& name) {
 
 // Why `name` is not acceptable as a member of a model file ("" if it is). rlrun never extracts
 // members to disk, but names are used as keys and shown in messages, and a name that could
-// escape a directory marks a file that was not written by rlrun (DESIGN.md §6b).
+// escape a directory marks a file that was not written by rlrun (docs/security.md).
 std::string name_problem(const std::string& name) {
   if (name.empty()) return "an empty name";
   if (name.size() > kMaxZipNameBytes)

@@ -1,5 +1,5 @@
 #pragma once
-// Reading zip files that may come from anyone (model files, checkpoints: DESIGN.md §6b) with
+// Reading zip files that may come from anyone (model files, checkpoints: docs/security.md) with
 // libzip, without trusting what the archive says about itself:
 //  * the member list is checked when the archive opens: at most kMaxZipMembers members, names
 //    of at most kMaxZipNameBytes printable bytes, relative, without a `..` component or a

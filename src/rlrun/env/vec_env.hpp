@@ -8,7 +8,7 @@
 //     info["terminal_observation"]), obs() column i the new episode's first observation.
 //   * info(i) is env i's Info of that step, copied before the auto-reset (SB3 keeps the
 //     step's info dict; the reset info is separate).
-// Observations and actions are one column per env (features x n_envs, DESIGN.md §3).
+// Observations and actions are one column per env (features x n_envs).
 // All buffers are allocated in the constructor; step() does not allocate.
 //
 // Multi-agent envs (Env::num_agents() > 1, include/rlrun/env.hpp) take one column per agent:

@@ -1,6 +1,6 @@
 // The built-in components: the envs every env folder registers (collected by CMake into
 // builtin_env_entries(), build/generated/builtin_envs.cpp), and the wrappers and algorithms,
-// named here (DESIGN.md §1, §7).
+// named here (docs/architecture.md).
 #include "rlrun/runtime/builtins.hpp"
 
 #include "rlrun/algos/a2c/a2c.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// The built-in components (DESIGN.md §7): every env folder's envs, the wrappers, the
+// The built-in components (docs/architecture.md): every env folder's envs, the wrappers, the
 // algorithms.
 #include "rlrun/runtime/registry.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The experiment file (DESIGN.md §4), parsed strictly and resolved:
+// The experiment file (docs/experiments.md), parsed strictly and resolved:
 //   run:  {name, seed, total_timesteps, out_dir, log_interval, tensorboard_log, ...}
 //   env:  {id, n_envs, max_episode_steps, kwargs: {...}, wrappers: [{id: ..., ...}]}
 //   algo: {id, <hyperparameters>, policy: {...}}

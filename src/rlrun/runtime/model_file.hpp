@@ -1,5 +1,5 @@
 #pragma once
-// Model files (DESIGN.md §5): a zip whose tensors are `<name>.npy` members, so
+// Model files (docs/experiments.md): a zip whose tensors are `<name>.npy` members, so
 // `numpy.load("model.zip")` lists the weights, plus `config.yaml` (the resolved experiment) and
 // `meta.json` (format version, rlrun version, algorithm, env id, spaces, timesteps).
 // Wrappers with model statistics (NormalizeObservation, NormalizeReward) add their running
@@ -10,7 +10,7 @@
 // Loading refuses, with the reason, files of another format version, of another algorithm than
 // the caller expects, or whose spaces do not match the env they are used with.
 //
-// Model files are untrusted (DESIGN.md §6b, docs/security.md): reading one never allocates
+// Model files are untrusted (docs/security.md): reading one never allocates
 // by what the file declares. It happens in two phases —
 //  1. read_model_header(): the member list (core/zip_reader.hpp checks), meta.json and
 //     config.yaml, each at most kMaxModelTextBytes; no tensor is read;

@@ -1,6 +1,6 @@
 #pragma once
-// The run directory `<out_dir>/<name>/seed<N>/` (DESIGN.md §5). An existing directory is never
-// overwritten: the new run gets `seed<N>_2`, `seed<N>_3`, ... (as rl-zoo numbers its runs).
+// The run directory `<out_dir>/<name>/seed<N>/` (docs/experiments.md). An existing directory is
+// never overwritten: the new run gets `seed<N>_2`, `seed<N>_3`, ... (as rl-zoo numbers its runs).
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -1,6 +1,6 @@
 #pragma once
 // The sbatch script of a sweep (`rlrun sweep slurm`), written so that no value in it can become
-// a command (DESIGN.md §6b: generated scripts quote every value).
+// a command (docs/security.md: generated scripts quote every value).
 //
 // Two languages read the script. bash runs its body: every value there (the rlrun binary, the
 // manifest) is a POSIX single-quoted word. sbatch reads the `#SBATCH` lines before bash runs,

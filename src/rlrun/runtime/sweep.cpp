@@ -309,7 +309,7 @@ Sweep read_manifest(const std::string& manifest) {
   sweep.source = root.child("sweep").as_string();
   sweep.name = root.child("name").as_string();
   decode(root.child("slurm"), sweep.slurm);
-  // A manifest is not trusted (DESIGN.md §6b): its slurm options become #SBATCH lines.
+  // A manifest is not trusted (docs/security.md): its slurm options become #SBATCH lines.
   check_slurm_options(root.child("slurm"), sweep.slurm);
   const ConfigNode runs = root.child("runs");
   if (!runs.is_sequence()) root.fail("runs: expected the list of runs");

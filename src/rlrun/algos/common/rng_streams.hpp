@@ -1,5 +1,5 @@
 #pragma once
-// The random streams an algorithm derives from its one seed (DESIGN.md §3: one explicit RNG per
+// The random streams an algorithm derives from its one seed (one explicit RNG per
 // component). The weights use `seed` itself; every other purpose gets `seed ^ k<Purpose>`, so
 // that, e.g., drawing more exploration noise never shifts the replay sampling. The constants
 // are arbitrary odd 64-bit words (PCG's and SplitMix64's multipliers, golden-ratio bits); they

@@ -4,7 +4,7 @@
 // point. The agent succeeds by closing the gripper within `success_threshold` of the object
 // and fails by moving the arm out of the workspace. Both end the episode (terminated); the
 // registered TimeLimit truncates after 100 steps (the course's `max_steps`; set it with
-// `env.max_episode_steps`, DESIGN.md §3: only TimeLimit truncates for time).
+// `env.max_episode_steps`: as in Gymnasium, only TimeLimit truncates for time).
 //
 //   observation  Box(0, 1, (6,), float32): arm x, arm y, object x, object y,
 //                gripper closed (0/1), grasped (0/1)
