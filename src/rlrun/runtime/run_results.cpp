@@ -131,7 +131,9 @@ std::string read_run_config(const DirHandle& run_dir, RunResult& r) {
     if (run.child("seed").defined()) r.seed = static_cast<uint64_t>(run.child("seed").as_int());
     if (run.child("name").defined()) r.name = run.child("name").as_string();
     YAML::Node node = YAML::Clone(root.yaml());
-    if (node["run"].IsMap())
+    // A config.yaml that is a scalar or a list (not rlrun's) has no run section to drop; a
+    // non-const operator[] on it would throw yaml-cpp's BadSubscript (found by fuzz_run_dir).
+    if (node.IsMap() && node["run"].IsMap())
       for (const char* key : kNotConfiguration) node["run"].remove(key);
     return dump_yaml(node);
   } catch (const ConfigError& e) {
