@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "../tests/core/yaml_tree.hpp"
 #include "fuzz_limits.hpp"
 #include "private_file.hpp"
 #include "rlrun/core/config_node.hpp"
@@ -64,25 +65,6 @@ Selection selection(const std::string& text) {
   std::abort();
 }
 
-// Same tree: maps with the same keys in the same order, sequences, scalars of the same text,
-// nulls (an emitted scalar must not turn into null or back, nor a map into a string).
-bool same_tree(const YAML::Node& a, const YAML::Node& b) {
-  if (a.Type() != b.Type()) return false;
-  if (a.IsScalar()) return a.Scalar() == b.Scalar();
-  if (a.IsNull()) return true;
-  if (a.size() != b.size()) return false;
-  if (a.IsSequence()) {
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (!same_tree(a[i], b[i])) return false;
-    return true;
-  }
-  auto ia = a.begin();
-  auto ib = b.begin();
-  for (; ia != a.end(); ++ia, ++ib)
-    if (ia->first.Scalar() != ib->first.Scalar() || !same_tree(ia->second, ib->second)) return false;
-  return true;
-}
-
 void check_written(const std::string& written, const YAML::Node& tree) {
   for (const char c : written)
     if ((static_cast<unsigned char>(c) < 0x20 && c != '\n') || c == '\r')
@@ -91,7 +73,8 @@ void check_written(const std::string& written, const YAML::Node& tree) {
   for (const std::string& key : reread.keys())
     if (key != "run" && key != "env" && key != "algo" && key != "eval" && key != "checkpoint")
       fail("the written file has a section '" + key + "'", written);
-  if (!same_tree(reread.yaml(), tree)) fail("the written file reads back differently", written);
+  if (!rlrun::testing::same_yaml_tree(reread.yaml(), tree))
+    fail("the written file reads back differently", written);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/yaml_tree.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -28,22 +29,6 @@ std::string write_file(const std::string& path, const std::string& text) {
   return path;
 }
 
-// Same tree: maps with the same keys in order, sequences, scalars of the same text, nulls.
-bool same_tree(const YAML::Node& a, const YAML::Node& b) {
-  if (a.Type() != b.Type()) return false;
-  if (a.IsScalar()) return a.Scalar() == b.Scalar();
-  if (a.IsNull()) return true;
-  if (a.size() != b.size()) return false;
-  if (a.IsSequence()) {
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (!same_tree(a[i], b[i])) return false;
-    return true;
-  }
-  for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib)
-    if (ia->first.Scalar() != ib->first.Scalar() || !same_tree(ia->second, ib->second)) return false;
-  return true;
-}
-
 // What the written file must be: no raw control character but newlines, the sections the
 // import writes and no others, and read back (as `rlrun train FILE` reads it) the tree it was
 // written from.
@@ -57,7 +42,7 @@ void check_written(const zoo::ZooImport& imported) {
   for (const std::string& key : reread.keys())
     CHECK((key == "run" || key == "env" || key == "algo" || key == "eval" || key == "checkpoint"));
   CHECK_FALSE(reread.has("plugins"));
-  CHECK(same_tree(reread.yaml(), zoo::experiment_tree(imported)));
+  CHECK(same_yaml_tree(reread.yaml(), zoo::experiment_tree(imported)));
 }
 
 // Text that would end a comment, start a line, a key, a document, a merge or a flow collection
