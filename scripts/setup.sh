@@ -75,7 +75,10 @@ if [[ -z "${RLRUN_SKIP_INSTALL:-}" ]]; then
   fi
 fi
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Every optional component (docs/install.md): the packages above bring them all, and a build
+# that silently lost one would also lose the tests that need it.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DRLRUN_WITH_SUMO=ON -DRLRUN_WITH_BULLET=ON \
+  -DRLRUN_WITH_BOX2D=ON -DRLRUN_WITH_PYTHON=ON >/dev/null
 cmake --build build --parallel "$(nproc)" --target rlrun_programs
 echo "setup: built build/rlrun"
 

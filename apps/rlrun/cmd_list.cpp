@@ -10,6 +10,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/space_text.hpp"
 #include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/optional_components.hpp"
 
 namespace rlrun::cli {
 
@@ -27,6 +28,10 @@ void print_table(const char* title, const Entries& entries) {
 
 // An env's spaces (as built with default parameters), time limit, metrics and policies.
 void print_env_details(const EnvEntry& entry) {
+  if (const OptionalComponent* component = unbuilt_component_of(entry.id)) {
+    std::printf("%s\n", unbuilt_env_message(entry.id, *component).c_str());
+    return;
+  }
   std::printf("%s: %s\n", entry.id.c_str(), entry.description.c_str());
   if (entry.expand) {
     std::printf(

@@ -22,8 +22,9 @@ namespace {
 }
 
 const EnvEntry& env_entry(const EnvSpec& spec, const Registry& registry) {
-  const EnvEntry* entry = registry.find_env(spec.id);
-  if (!entry) fail_at_env(spec, "unknown environment '" + spec.id + "'");
+  std::string why;  // a malformed family id, or an env this build left out
+  const EnvEntry* entry = registry.find_env(spec.id, &why);
+  if (!entry) fail_at_env(spec, why.empty() ? "unknown environment '" + spec.id + "'" : why);
   return *entry;
 }
 
