@@ -5,6 +5,7 @@
 #   scripts/fuzz.sh                   # every target, 1 000 000 executions each
 #   scripts/fuzz.sh 50000 fuzz_model  # some targets, fewer executions
 #   FUZZ_JOBS=2 scripts/fuzz.sh       # libFuzzer -fork=2: two processes per target
+#   TMPDIR=/var/tmp scripts/fuzz.sh   # where the targets build their files (default /dev/shm)
 #   FUZZ_TIMEOUT=10 scripts/fuzz.sh   # on a busy machine: libFuzzer's timeout is wall time;
 #                                     # then replay with -timeout=1 (see the end of this file)
 # New inputs go to build-fuzz/corpus/<target> (the committed seeds in fuzz/corpus/ stay as
@@ -31,6 +32,9 @@ declare -A SEEDS=([fuzz_config]="fuzz/corpus/config configs" [fuzz_model]=fuzz/c
 DICT[fuzz_export]=export.dict
 SEEDS[fuzz_export]=fuzz/corpus/export
 mkdir -p build-fuzz/artifacts
+# The run-directory and journal targets build files in a private temporary directory for every
+# input: on a RAM file system they run about 1.7 times as fast (fuzz_run_dir: 176 -> 300 exec/s).
+if [[ -z "${TMPDIR:-}" && -d /dev/shm && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 for target in "${TARGETS[@]}"; do
   mkdir -p "build-fuzz/corpus/$target"
