@@ -1,5 +1,5 @@
-// rlrun's samplers on standard test functions, for scripts/bench_tpe.sh, which runs Optuna's
-// samplers on the same functions (scripts/bench_tpe.py) and compares the two.
+// rlrun's samplers on standard test functions, for scripts/bench/tpe.sh, which runs Optuna's
+// samplers on the same functions (scripts/bench/tpe.py) and compares the two.
 //
 //   rlrun_tpe_bench [--seeds N] [--trials T] [--samplers tpe,random,tpe_univariate]
 //                   [--functions branin,hartmann6,noisy_quad]
@@ -11,7 +11,7 @@
 //  * noisy_quad: sum_i (x_i - 0.3)^2 on [-1, 1]^4, observed with N(0, 0.01^2) noise; the best
 //    *observed* trial's noise-free value is reported (what a user would pick and get).
 // The definitions are the usual ones (Surjanovic & Bingham's Virtual Library of Simulation
-// Experiments); scripts/bench_tpe.py writes them the same way.
+// Experiments); scripts/bench/tpe.py writes them the same way.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

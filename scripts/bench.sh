@@ -40,7 +40,7 @@ run_one() {
   summary=$(grep -E "^trained [0-9]+ steps in" <<<"$log" | tail -1)
   model=$(sed -E 's/.*model saved to (.*)$/\1/' <<<"$summary")
   # A config that evaluates during training keeps its best model and is scored by it (the zoo's
-  # `enjoy.py --load-best`; such configs say so in their header), as in scripts/bench_seeds.sh.
+  # `enjoy.py --load-best`; such configs say so in their header), as in scripts/bench/seeds.sh.
   local scored=$model eval_line
   [[ -f "$(dirname "$model")/best_model.zip" ]] && scored=$(dirname "$model")/best_model.zip
   eval_line=$(build/rlrun eval --model "$scored" --episodes 10 | grep "mean_reward =")
@@ -101,15 +101,15 @@ lander_table=$(build/tests/rlrun_tests "[lunar_lander_bench]" | grep '^|' || tru
 # Box2D: BipedalWalker-v3 / Hardcore env steps/s on one core (tests/envs/test_bipedal_walker.cpp).
 walker_table=$(build/tests/rlrun_tests "[walker_bench]" | grep '^|' || true)
 # Python: env steps/s of rlrun.make_vec("CartPole-v1", 64) from Python against a pure-Python
-# CartPole loop (and Gymnasium's, when importable) (scripts/bench_python_env.py; issue 17).
+# CartPole loop (and Gymnasium's, when importable) (scripts/bench/python_env.py; issue 17).
 python_table=""
 if [[ -d build/python/rlrun ]]; then
-  python_table=$(PYTHONPATH=build/python${PYTHONPATH:+:$PYTHONPATH} /usr/bin/python3 scripts/bench_python_env.py | grep '^|' || true)
+  python_table=$(PYTHONPATH=build/python${PYTHONPATH:+:$PYTHONPATH} /usr/bin/python3 scripts/bench/python_env.py | grep '^|' || true)
 fi
 # Python envs in training: PPO zoo CartPole on a pure-Python CartPole port vs SB3 (issue 17).
-python_train_table=$(scripts/bench_python_train.sh | grep '^|' || true)
+python_train_table=$(scripts/bench/python_train.sh | grep '^|' || true)
 # TensorBoard event files: their cost in a PPO CartPole run (issue 18: < 2 %).
-tensorboard_table=$(scripts/bench_tensorboard.sh | grep -E '^(\||$)' || true)
+tensorboard_table=$(scripts/bench/tensorboard.sh | grep -E '^(\||$)' || true)
 machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg), JOBS=$jobs, threads=$threads, $(date -u +%Y-%m-%d)"
 echo "$table"
 echo
@@ -123,7 +123,7 @@ echo
 [[ -n "$tensorboard_table" ]] && echo "$tensorboard_table" && echo
 echo "machine: $machine"
 if ((update_docs)); then
-  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}${lander_table:+LunarLander-v3 (Box2D):$'\n\n'$lander_table$'\n\n'}${walker_table:+BipedalWalker (Box2D):$'\n\n'$walker_table$'\n\n'}${python_table:+Env steps from Python (scripts/bench_python_env.py):$'\n\n'$python_table$'\n\n'}${python_train_table:+PPO zoo CartPole on a Python env (scripts/bench_python_train.sh):$'\n\n'$python_train_table$'\n\n'}${tensorboard_table:+TensorBoard event files (scripts/bench_tensorboard.sh):$'\n\n'$tensorboard_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
+  block="$table"$'\n\n'"${record_line:+$record_line$'\n\n'}${traffic_table:+TrafficSignal-v0, one simulated hour of the shipped scenario:$'\n\n'$traffic_table$'\n\n'}${gripper_table:+GripperLift-v0 (Bullet):$'\n\n'$gripper_table$'\n\n'}${lander_table:+LunarLander-v3 (Box2D):$'\n\n'$lander_table$'\n\n'}${walker_table:+BipedalWalker (Box2D):$'\n\n'$walker_table$'\n\n'}${python_table:+Env steps from Python (scripts/bench/python_env.py):$'\n\n'$python_table$'\n\n'}${python_train_table:+PPO zoo CartPole on a Python env (scripts/bench/python_train.sh):$'\n\n'$python_train_table$'\n\n'}${tensorboard_table:+TensorBoard event files (scripts/bench/tensorboard.sh):$'\n\n'$tensorboard_table$'\n\n'}Measured by \`scripts/bench.sh\` on $machine."
   BLOCK="$block" python3 - <<'PY'
 import os, re
 path = "docs/benchmarks.md"

@@ -2,7 +2,7 @@
 // Loads a trained rlrun model with rlrun::Policy (include/rlrun/policy.hpp) and acts:
 // with two files, on every observation in OBS.f32 (float32, observation_size() per step),
 // writing the actions to ACTIONS.f32; with --latency N, times N single-observation act() calls
-// and prints the median and 99th percentile in microseconds (scripts/bench_deploy.sh);
+// and prints the median and 99th percentile in microseconds (scripts/bench/deploy.sh);
 // otherwise on an all-zero observation, printed.
 #include <rlrun/policy.hpp>
 

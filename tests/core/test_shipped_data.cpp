@@ -1,6 +1,6 @@
 // Where the shipped data is found at run time (core/shipped_data.hpp), and that untrusted text
 // still names only files inside it (core/trusted_values.hpp) whichever place it was found in.
-// scripts/test_install.sh checks an installed, relocated rlrun.
+// scripts/tests/test_install.sh checks an installed, relocated rlrun.
 #include <stdlib.h>
 
 #include <catch2/catch.hpp>

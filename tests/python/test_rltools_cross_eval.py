@@ -1,4 +1,4 @@
-"""scripts/rltools_cross_eval.py, the tool behind docs/rltools.md's same-start-state returns:
+"""scripts/bench/rltools_cross_eval.py, the tool behind docs/rltools.md's same-start-state returns:
 its std::mt19937 and libstdc++ float draws against a C++ program compiled here, its Pendulum
 against Gymnasium's recorded episodes, its reading of RLtools' checkpoint.h (the forward pass
 checked against the file's own example), and rlrun models scored in batches."""
@@ -16,7 +16,7 @@ from rlrun_testing import TempDirMixin, train_model
 SOURCE_DIR = os.environ.get("RLRUN_SOURCE_DIR",
                             os.path.join(os.path.dirname(__file__), "..", ".."))
 spec = importlib.util.spec_from_file_location(
-    "rltools_cross_eval", os.path.join(SOURCE_DIR, "scripts", "rltools_cross_eval.py"))
+    "rltools_cross_eval", os.path.join(SOURCE_DIR, "scripts", "bench", "rltools_cross_eval.py"))
 cross_eval = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(cross_eval)
 

@@ -1,5 +1,5 @@
 // rlrun sweep / sweep run / sweep slurm / report / plot and scripts/sweep.sh, through the real
-// binary (issue 9). The Slurm cluster itself is scripts/test_slurm.sh's (run by CI).
+// binary (issue 9). The Slurm cluster itself is scripts/tests/test_slurm.sh's (run by CI).
 #include <catch2/catch.hpp>
 
 #include <cmath>

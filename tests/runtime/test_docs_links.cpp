@@ -124,3 +124,32 @@ TEST_CASE("repo: no file refers to material outside the checkout", "[docs]") {
   }
   CHECK(scanned > 500);
 }
+
+// scripts/ is grouped by purpose (scripts/README.md): every scripts/<path> that a page, a
+// script, a test or a build file names must be there, so a script moved between groups cannot
+// leave a stale command behind.
+TEST_CASE("every scripts/ path named in the repo exists", "[docs]") {
+  const fs::path root = rlrun::test_paths::source_dir();
+  const std::regex named(R"((?:^|[^A-Za-z0-9_./-])(scripts/[A-Za-z0-9_./-]*[A-Za-z0-9_]))");
+  int checked = 0;
+  for (const char* dir : {"README.md", "CMakeLists.txt", ".ci", "apps", "bench", "configs", "docs",
+                          "examples", "fuzz", "python", "scripts", "src", "tests"}) {
+    if (!fs::exists(root / dir)) continue;
+    std::vector<fs::path> files;
+    if (fs::is_regular_file(root / dir)) files.push_back(root / dir);
+    else
+      for (const auto& entry : fs::recursive_directory_iterator(root / dir))
+        if (entry.is_regular_file() && entry.file_size() < (1 << 20)) files.push_back(entry.path());
+    for (const fs::path& file : files) {
+      const std::string text = read_text(file.string());
+      for (std::sregex_iterator m(text.begin(), text.end(), named), end; m != end; ++m) {
+        const std::string path = (*m)[1].str();
+        if (path.find("...") != std::string::npos) continue;
+        INFO(file.string() << " names " << path);
+        CHECK(fs::exists(root / path));
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked > 50);
+}

@@ -1,7 +1,7 @@
 // The optional components (runtime/optional_components.hpp, CMakeLists.txt): the table CMake
 // generates must name exactly the envs its folders register, or a build that leaves a component
 // out would answer "unknown environment" for an env it forgot (or hide one it does not own).
-// The build without them is checked by scripts/test_minimal_build.sh.
+// The build without them is checked by scripts/tests/test_minimal_build.sh.
 #include <catch2/catch.hpp>
 
 #include <set>

@@ -1,6 +1,6 @@
 // configs/rltools/ (issue 24): RLtools' Pendulum-v1 zoo hyperparameters as rlrun experiments.
 // Each file must load, cite RLtools, stay out of scripts/bench.sh's default set, and keep the
-// values that make the side-by-side benchmark (scripts/bench_rltools.sh) a like-for-like one.
+// values that make the side-by-side benchmark (scripts/bench/rltools.sh) a like-for-like one.
 #include <catch2/catch.hpp>
 
 #include <filesystem>

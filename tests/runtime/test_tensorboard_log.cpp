@@ -116,7 +116,7 @@ TEST_CASE("tensorboard log: resume cuts the event file back to the checkpoint", 
 // What one progress row costs in TensorBoard: encoding and writing an Event of the keys of a
 // PPO CartPole row (14 scalars), through the sink as training calls it. Measured, not asserted
 // (docs/benchmarks.md): `build/tests/rlrun_tests "[tensorboard_bench]"`, run by
-// scripts/bench_tensorboard.sh.
+// scripts/bench/tensorboard.sh.
 TEST_CASE("bench: TensorBoard cost per progress row", "[.bench][tensorboard_bench]") {
   TempDir dir("tb_bench");
   TensorBoardLog log = TensorBoardLog::start(dir.str(), "bench", YAML::Load("a: 1"));

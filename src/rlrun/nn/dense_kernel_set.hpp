@@ -71,7 +71,7 @@ struct KernelSet {
   }
 
   // tanh(x) = x P(x^2) / Q(x^2) with x clamped to [-9, 9] (tanh rounds to +-1 in float beyond):
-  // a (4, 4) rational approximation fitted for rlrun by scripts/fit_tanh.py (minimax of the
+  // a (4, 4) rational approximation fitted for rlrun by scripts/data/fit_tanh.py (minimax of the
   // relative error on [0, 9], 2e-8 in exact arithmetic; at most ~5 float ulp evaluated in float
   // as here). 13 vector operations, one division; the exp-based formula it replaced took ~28 and
   // was a sixth of PPO's time on 32-wide tanh networks. Q > 0 everywhere (positive

@@ -3,9 +3,9 @@
 # through examples/embed_policy built against this build tree) against ONNX Runtime for
 # Node.js on the exported ONNX file of the same model, for PPO CartPole (configs/cartpole_ppo.yaml,
 # 64x64 tanh) and SAC Pendulum (configs/pendulum_sac.yaml's network). docs/benchmarks.md.
-#   scripts/bench_deploy.sh [CALLS]        (default 100000)
+#   scripts/bench/deploy.sh [CALLS]        (default 100000)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 RLRUN_SKIP_INSTALL=${RLRUN_SKIP_INSTALL:-} scripts/setup.sh >/dev/null
 calls=${1:-100000}
 out=$(mktemp -d)
@@ -23,5 +23,5 @@ for config in cartpole_ppo:2048 pendulum_sac:300; do
             sed -E 's/.*policy_act\(obs\[([0-9]+)\].*/\1/')
   echo "## $name"
   "$out/embed/embed_policy" "$model" --latency "$calls"
-  NODE_PATH=build/onnxruntime/node_modules node scripts/onnx_latency.js "$out/$name.onnx" "$calls" "$obs_dim"
+  NODE_PATH=build/onnxruntime/node_modules node scripts/bench/onnx_latency.js "$out/$name.onnx" "$calls" "$obs_dim"
 done

@@ -5,10 +5,10 @@
 # with the median wall times, the median of the per-pair ratios and the event file's size;
 # then the cost of one row measured inside the process (tests/runtime/test_tensorboard_log.cpp)
 # and what the run's rows cost at that rate, which whole-process timing noise cannot resolve.
-#   scripts/bench_tensorboard.sh              (after scripts/setup.sh)
-#   PAIRS=9 scripts/bench_tensorboard.sh
+#   scripts/bench/tensorboard.sh              (after scripts/setup.sh)
+#   PAIRS=9 scripts/bench/tensorboard.sh
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 pairs=${PAIRS:-7}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

@@ -18,8 +18,8 @@ vectorised over episodes. RLtools' reward (include/rl_tools/rl/environments/pend
 operations_generic.h) charges the torque before clamping; `--rltools-reward` does the same,
 only to recompute RLtools' printed PPO return (its policy's mean can leave [-1, 1]).
 
-Usage (docs/rltools.md; scripts/bench_rltools.sh calls it):
-  PYTHONPATH=build/python /usr/bin/python3 scripts/rltools_cross_eval.py \
+Usage (docs/rltools.md; scripts/bench/rltools.sh calls it):
+  PYTHONPATH=build/python /usr/bin/python3 scripts/bench/rltools_cross_eval.py \
       --checkpoint DIR/.../checkpoint.h --model runs/.../model.zip --rltools-seed 1
 Prints one line per policy and start-state set, then `cross_eval` lines for scripts to parse.
 """

@@ -8,7 +8,7 @@ towards the minimax of the relative error. Then every coefficient is rounded to 
 formula is evaluated as the kernels do (float32, fused multiply-adds in Horner order, one
 division) on a dense grid, and its worst error reported in float ulps.
 
-    /usr/bin/python3 scripts/fit_tanh.py      # needs numpy; prints the coefficients and errors
+    /usr/bin/python3 scripts/data/fit_tanh.py      # needs numpy; prints the coefficients and errors
 """
 import numpy as np
 

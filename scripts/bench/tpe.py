@@ -1,15 +1,15 @@
 """Optuna 3.1's samplers on the test functions of bench/tpe_bench.cpp, and the comparison table.
 
-  /usr/bin/python3 scripts/bench_tpe.py run [--seeds 20] [--trials 100] [--samplers tpe,random]
+  /usr/bin/python3 scripts/bench/tpe.py run [--seeds 20] [--trials 100] [--samplers tpe,random]
                                              [--functions branin,hartmann6,noisy_quad]
       prints "function<TAB>optuna_<sampler><TAB>seed<TAB>best" lines, best being the true value
       of the best observed trial (as rlrun_tpe_bench does);
-  /usr/bin/python3 scripts/bench_tpe.py table RESULTS...
+  /usr/bin/python3 scripts/bench/tpe.py table RESULTS...
       reads such lines (rlrun's and Optuna's) and prints a Markdown table: median best,
       interquartile range, and the two-sided Mann-Whitney U p-value of rlrun's sampler against
       Optuna's same sampler.
 
-scripts/bench_tpe.sh runs both. Samplers: TPESampler(multivariate=True, seed=s) — rl-zoo's
+scripts/bench/tpe.sh runs both. Samplers: TPESampler(multivariate=True, seed=s) — rl-zoo's
 setting, Optuna's other defaults (n_startup_trials=10, n_ei_candidates=24) — and
 RandomSampler(seed=s). Mann-Whitney is written out here because Debian's python3 here has numpy
 but no scipy: normal approximation with tie correction and continuity correction (scipy's

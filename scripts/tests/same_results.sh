@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # Trains every shipped config (configs/*.yaml) with seed 1 using two rlrun binaries and
 # compares the models' tensors byte for byte: a refactoring must not change results.
-#   scripts/same_results.sh OLD_RLRUN NEW_RLRUN [CONFIG...]
+#   scripts/tests/same_results.sh OLD_RLRUN NEW_RLRUN [CONFIG...]
 # OLD_RLRUN may be a directory of model files saved by an earlier call (KEEP_MODELS=DIR keeps
 # this call's models there as <config>.zip), so the old build need not exist any more.
 # Prints one line per config (same / DIFFERENT, with the first differing tensor) and exits 1
 # when any differs. Threads: --threads 1 (results are identical with 2; 1 leaves a core free).
 set -euo pipefail
-cd "$(dirname "$0")/.."
-old=${1:?usage: scripts/same_results.sh OLD_RLRUN|MODEL_DIR NEW_RLRUN [CONFIG...]}
-new=${2:?usage: scripts/same_results.sh OLD_RLRUN|MODEL_DIR NEW_RLRUN [CONFIG...]}
+cd "$(dirname "$0")/../.."
+old=${1:?usage: scripts/tests/same_results.sh OLD_RLRUN|MODEL_DIR NEW_RLRUN [CONFIG...]}
+new=${2:?usage: scripts/tests/same_results.sh OLD_RLRUN|MODEL_DIR NEW_RLRUN [CONFIG...]}
 shift 2
 configs=("$@")
 ((${#configs[@]})) || configs=(configs/*.yaml)

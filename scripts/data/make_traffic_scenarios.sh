@@ -14,7 +14,7 @@
 #                north-south streets (1 lane, 40 km/h) 250 m apart, 16 lights; demand weighted
 #                by lanes, so most of it runs along the arterials (RESCO's arterial4x4 idea).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
 TOOLS=$SUMO_HOME/tools
 PY=${PYTHON:-/usr/bin/python3}

@@ -2,9 +2,9 @@
 # The rl-zoo entries (configs/zoo/, written by `rlrun zoo import`) trained with the zoo's own
 # budgets, per seed, beside the zoo's published scores (rl-baselines3-zoo benchmark.md: mean and
 # std of the return of its trained agent, deterministic, v2 landers).
-#   scripts/bench_zoo.sh [CONFIG...]        (default: the classic-control and LunarLander entries)
-#   SEEDS="1 2 3" JOBS=2 EPISODES=20 scripts/bench_zoo.sh ...
-#   MODEL=best EVAL_FREQ=2000 scripts/bench_zoo.sh ...
+#   scripts/bench/zoo.sh [CONFIG...]        (default: the classic-control and LunarLander entries)
+#   SEEDS="1 2 3" JOBS=2 EPISODES=20 scripts/bench/zoo.sh ...
+#   MODEL=best EVAL_FREQ=2000 scripts/bench/zoo.sh ...
 # MODEL=best scores best_model.zip, the model the eval callback kept (rl-zoo's
 # `enjoy.py --load-best`), where the run wrote one; EVAL_FREQ sets eval.freq (the imported files
 # keep the zoo's 25 000 steps, which a 2e4-step entry never reaches).
@@ -12,7 +12,7 @@
 # each seed's mean return over EPISODES deterministic episodes (seeds 1000..), how many seeds are
 # within the zoo's reported std of its mean (or above it), and the median wall time.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 RLRUN_SKIP_INSTALL=${RLRUN_SKIP_INSTALL:-} scripts/setup.sh >/dev/null
 configs=("$@")
 if ((${#configs[@]} == 0)); then

@@ -3,7 +3,7 @@
 # seeds 1..N on each network-kernel path (RLRUN_KERNELS, docs/portability.md), its final model
 # scored by `rlrun eval --episodes E --seed 1000`, against the config's bar. One Markdown row
 # per config and path: how many seeds reach the bar, and every seed's score.
-#   scripts/bench_seeds.sh [CONFIG...]          (default: the quick configs listed below)
+#   scripts/bench/seeds.sh [CONFIG...]          (default: the quick configs listed below)
 #   SEEDS=10 PATHS="avx512 avx2" JOBS=2 EPISODES=20 RLRUN=build/rlrun OUT=table.md KEEP=1
 #   FIRST_SEED=7 SEEDS=10: seeds 7..10 only (a long config's seeds split over several sittings)
 # (KEEP=1 leaves the runs, logs and models in the temporary directory it names at the end.)
@@ -16,7 +16,7 @@
 # step 2) is trained after that run's config, which must be in the list too, from the same seed's
 # file (the two steps of one seed are one experiment).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 rlrun=${RLRUN:-build/rlrun}
 seeds=${SEEDS:-10}
 first_seed=${FIRST_SEED:-1}

@@ -4,10 +4,10 @@
 # and the three baselines on the same 5 evaluation hours (seeds 1000..1004), and print a table
 # of mean_delay (RESCO's delay: mean tripinfo timeLoss), avg_waiting_time and throughput.
 #
-#   scripts/bench_traffic_network.sh                       # grid4x4 and arterial4x4, seeds 1 2 3
-#   SCENARIOS="grid4x4_peak" SEEDS="1" TIMESTEPS=691200 scripts/bench_traffic_network.sh
+#   scripts/bench/traffic_network.sh                       # grid4x4 and arterial4x4, seeds 1 2 3
+#   SCENARIOS="grid4x4_peak" SEEDS="1" TIMESTEPS=691200 scripts/bench/traffic_network.sh
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 RLRUN=${RLRUN:-build/rlrun}
 SCENARIOS=${SCENARIOS:-"grid4x4 arterial4x4"}
 SEEDS=${SEEDS:-"1 2 3"}

@@ -4,9 +4,9 @@
 # accounting), expands a small CartPole sweep (2 learning rates x 2 seeds), submits the
 # `rlrun sweep slurm` array script with `sbatch --wait`, and checks that every run finished.
 # Stops the daemons it started on exit. Needs root (or sudo) for the packages and munged.
-#   scripts/test_slurm.sh            (CI runs it after the test suite)
+#   scripts/tests/test_slurm.sh            (CI runs it after the test suite)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 root=$(pwd)
 SUDO=""
 [[ $(id -u) -eq 0 ]] || SUDO=sudo

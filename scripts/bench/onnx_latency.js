@@ -1,7 +1,7 @@
 // Single-observation latency of ONNX Runtime for Node.js on an exported policy:
-//   NODE_PATH=build/onnxruntime/node_modules node scripts/onnx_latency.js policy.onnx N OBS_DIM
+//   NODE_PATH=build/onnxruntime/node_modules node scripts/bench/onnx_latency.js policy.onnx N OBS_DIM
 // Times N session.run calls (after 1000 warm-up calls) with one observation each and prints
-// the median and 99th percentile in microseconds (scripts/bench_deploy.sh).
+// the median and 99th percentile in microseconds (scripts/bench/deploy.sh).
 'use strict';
 const ort = require('onnxruntime-node');
 

@@ -2,10 +2,10 @@
 # Issue 23's end-to-end measurement: `rlrun tune` with rl-zoo's PPO search space on CartPole-v1
 # (configs/tune/cartpole_ppo_zoo.yaml: 100 trials, 2 seeds x 5e4 steps each, 10 evaluations,
 # TPE, median pruner) with -j 2 workers; then the study read back with Optuna
-# (scripts/tune_study_stats.py): wall time, pruned fraction, trials reaching 475 in every seed.
-#   scripts/bench_tune.sh                 (OUT=runs/bench_tune, JOBS=2)
+# (scripts/bench/tune_study_stats.py): wall time, pruned fraction, trials reaching 475 in every seed.
+#   scripts/bench/tune.sh                 (OUT=runs/bench_tune, JOBS=2)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 RLRUN=${RLRUN:-build/rlrun}
 OUT=${OUT:-runs/bench_tune}
 JOBS=${JOBS:-2}
@@ -16,4 +16,4 @@ mkdir -p "$OUT"
 took=$(echo "$(date +%s.%N) - $start" | bc)
 journal=$OUT/study.journal
 printf "rlrun tune -j %s: %.0f s wall\n" "$JOBS" "$took"
-/usr/bin/python3 scripts/tune_study_stats.py "$journal" cartpole_ppo_zoo 475
+/usr/bin/python3 scripts/bench/tune_study_stats.py "$journal" cartpole_ppo_zoo 475

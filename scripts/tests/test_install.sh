@@ -7,9 +7,9 @@
 # checkout is in the installed files, that a binary without its data says what to do, and
 # that RLRUN_DATA_DIR points it at data elsewhere; then builds examples/embed_policy against the
 # installed CMake package (rlrun::policy) and compares its actions with `rlrun eval`'s.
-#   scripts/test_install.sh [BUILD_DIR]       (ctest runs it as `install_relocatable`)
+#   scripts/tests/test_install.sh [BUILD_DIR]       (ctest runs it as `install_relocatable`)
 set -euo pipefail
-source_dir=$(cd "$(dirname "$0")/.." && pwd -P)
+source_dir=$(cd "$(dirname "$0")/../.." && pwd -P)
 build=$(cd "${1:-$source_dir/build}" && pwd -P)
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
 unset RLRUN_DATA_DIR RLRUN_LIBSUMO_MODULE

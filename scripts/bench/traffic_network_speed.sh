@@ -7,10 +7,10 @@
 # then training decisions per second (PPO, every light's decision counted). Runs alternate
 # (sumo, rlrun libsumo, rlrun traci, ...) and the median of RUNS is printed.
 #
-#   scripts/bench_traffic_network_speed.sh                 # grid4x4, 3 runs each
-#   SCENARIO=arterial4x4 RUNS=5 scripts/bench_traffic_network_speed.sh
+#   scripts/bench/traffic_network_speed.sh                 # grid4x4, 3 runs each
+#   SCENARIO=arterial4x4 RUNS=5 scripts/bench/traffic_network_speed.sh
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 RLRUN=${RLRUN:-build/rlrun}
 SCENARIO=${SCENARIO:-grid4x4}
 RUNS=${RUNS:-3}

@@ -5,7 +5,7 @@ classic_control/cartpole.py physics written here (what an SB3 user's DummyVecEnv
 Gymnasium's own CartPole when gymnasium is importable. Random actions drawn up front. Prints a
 Markdown table (scripts/bench.sh adds it to docs/benchmarks.md).
 
-    PYTHONPATH=build/python /usr/bin/python3 scripts/bench_python_env.py [--steps N]
+    PYTHONPATH=build/python /usr/bin/python3 scripts/bench/python_env.py [--steps N]
 """
 
 import argparse
@@ -18,7 +18,7 @@ import numpy as np
 
 import rlrun
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests",
                                 "python_envs"))
 from rlrun_test_envs.cartpole import CartPolePort  # noqa: E402
 

@@ -3,10 +3,10 @@
 # (tests/python_envs/rlrun_test_envs/cartpole.py, one worker process per env, issue 17),
 # against rlrun on its C++ CartPole-v1 and SB3's wall time for the same config (docs/benchmarks.md, "Anchors":
 # 18.4 s, quiet machine). Whole processes, A B A B, median of SEEDS; prints a markdown table.
-#   scripts/bench_python_train.sh            (after scripts/setup.sh)
-#   SEEDS="1 2 3" PYTHON=/usr/bin/python3 scripts/bench_python_train.sh
+#   scripts/bench/python_train.sh            (after scripts/setup.sh)
+#   SEEDS="1 2 3" PYTHON=/usr/bin/python3 scripts/bench/python_train.sh
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 seeds=${SEEDS:-"1 2 3"}
 python=${PYTHON:-/usr/bin/python3}
 out=$(mktemp -d)

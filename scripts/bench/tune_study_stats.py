@@ -1,6 +1,6 @@
-"""Summary of an `rlrun tune` study read with Optuna itself (scripts/bench_tune.sh).
+"""Summary of an `rlrun tune` study read with Optuna itself (scripts/bench/tune.sh).
 
-  /usr/bin/python3 scripts/tune_study_stats.py JOURNAL STUDY [THRESHOLD]
+  /usr/bin/python3 scripts/bench/tune_study_stats.py JOURNAL STUDY [THRESHOLD]
 
 Prints the trial counts by state, the pruned fraction, the complete trials whose every seed
 reached THRESHOLD (rlrun's user attribute rlrun:seed_values), the first such trial after the

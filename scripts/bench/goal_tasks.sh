@@ -5,12 +5,12 @@
 # during training that reached the bar, the wall time and the training speed. Prints a
 # Markdown table (docs/her.md).
 #
-#   scripts/bench_goal_tasks.sh                          # Reach (SAC, TQC), Push, PickAndPlace; seeds 1 2 3
-#   CONFIGS="gripper_reach_sac_her" SEEDS="1" NOHER=1 scripts/bench_goal_tasks.sh
+#   scripts/bench/goal_tasks.sh                          # Reach (SAC, TQC), Push, PickAndPlace; seeds 1 2 3
+#   CONFIGS="gripper_reach_sac_her" SEEDS="1" NOHER=1 scripts/bench/goal_tasks.sh
 #
 # Push and PickAndPlace take ~35-60 min per seed on this 2-core machine (docs/her.md).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 RLRUN=${RLRUN:-build/rlrun}
 CONFIGS=${CONFIGS:-"gripper_reach_sac_her gripper_reach_tqc_her gripper_push_sac_her gripper_pick_and_place_sac_her"}
 SEEDS=${SEEDS:-"1 2 3"}

@@ -2,12 +2,12 @@
 # Regenerates configs/zoo/ with `rlrun zoo import` from a checkout of rl-baselines3-zoo:
 # the entries of its algorithm files (SB3's six and sb3-contrib's TQC) for the classic-control
 # and Box2D tasks (docs/zoo.md).
-#   scripts/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]
+#   scripts/data/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]
 # An entry the file does not have (e.g. DQN on Pendulum) is skipped; an entry that needs what
 # this rlrun build lacks is reported and skipped, and the script exits 1 at the end.
 set -euo pipefail
-zoo=${1:?usage: scripts/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]}
-here=$(cd "$(dirname "$0")/.." && pwd)
+zoo=${1:?usage: scripts/data/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]}
+here=$(cd "$(dirname "$0")/../.." && pwd)
 rlrun=${2:-$here/build/rlrun}
 out=$here/configs/zoo
 mkdir -p "$out"

@@ -8,9 +8,9 @@
 #     the CMake option and the Debian package, before any run directory is made.
 # scripts/test.sh runs it after ctest (a second build: about 9 minutes on 2 cores, less with
 # ccache).
-#   scripts/test_minimal_build.sh [BUILD_DIR]
+#   scripts/tests/test_minimal_build.sh [BUILD_DIR]
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 build=${1:-build-minimal}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -3,7 +3,7 @@
 # (configs/rltools/): wall time to RLtools' step budget and the final return over 100
 # deterministic evaluation episodes. Not part of the test suite; docs/rltools.md says how to
 # build RLtools (outside this repository, with RL_TOOLS_RL_ZOO_BENCHMARK) and records results.
-#   RLTOOLS_BUILD_OPENBLAS=DIR RLTOOLS_BUILD_PLAIN=DIR RLRUN=BIN scripts/bench_rltools.sh [sac td3 ppo]
+#   RLTOOLS_BUILD_OPENBLAS=DIR RLTOOLS_BUILD_PLAIN=DIR RLRUN=BIN scripts/bench/rltools.sh [sac td3 ppo]
 #   REPS=3 (runs of each variant, seeds 1..REPS)   OUT=FILE (also write the table there)
 # RLTOOLS_BUILD_*: RLtools CMake build directories (either may be left unset to skip it) holding
 # src/rl/zoo/rl_zoo_pendulum_v1_{sac,td3,ppo}. RLRUN: the rlrun binary (default build/rlrun).
@@ -16,7 +16,7 @@
 # The two returns come from different start states, which move a 100-episode mean by ~10 points
 # (docs/rltools.md, "The return on the same start states"). So each seed's RLtools policy (the
 # checkpoint.h its benchmark build writes) and rlrun's single-thread model are also scored by
-# scripts/rltools_cross_eval.py on RLtools' own 100 start states and on 10 000 common ones
+# scripts/bench/rltools_cross_eval.py on RLtools' own 100 start states and on 10 000 common ones
 # (needs numpy and rlrun's Python package: PYTHON, default /usr/bin/python3, with
 # RLRUN_PYTHONPATH, default build/python; skipped with a note when either is missing).
 # Run it on a quiet machine: the variants share the cores with nothing else.
@@ -24,7 +24,7 @@
 # or Zen 5) falls back to its AVX2 "Haswell" kernels on an AVX-512 CPU. OPENBLAS_CORETYPE (e.g.
 # SkylakeX for its AVX-512 kernels) is passed through to RLtools and named in the table.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 algos=("$@")
 ((${#algos[@]})) || algos=(sac td3 ppo)
 reps=${REPS:-3}
@@ -88,7 +88,7 @@ run_cross_eval() {
   checkpoint=$(cat "$out/$algo.checkpoint-openblas.$seed" 2>/dev/null ||
                cat "$out/$algo.checkpoint-plain.$seed" 2>/dev/null || true)
   [[ -n "$checkpoint" ]] || { echo "bench_rltools: RLtools wrote no checkpoint.h for $algo seed $seed" >&2; return 0; }
-  PYTHONPATH=$rlrun_pythonpath "$python" scripts/rltools_cross_eval.py --checkpoint "$checkpoint" \
+  PYTHONPATH=$rlrun_pythonpath "$python" scripts/bench/rltools_cross_eval.py --checkpoint "$checkpoint" \
     --model "$out/rlrun-t1-$algo-$seed/rltools_pendulum_$algo/seed$seed/model.zip" \
     --rltools-seed "$seed" >"$out/cross-$algo-$seed.log" ||
     { echo "bench_rltools: rltools_cross_eval.py failed:" >&2; tail -5 "$out/cross-$algo-$seed.log" >&2; exit 1; }
@@ -169,7 +169,7 @@ same_states=$(
     done
   done
 )
-[[ -z "$same_states" ]] || table+=$'\n\nThe same policies on the same start states, Gymnasium\'s Pendulum (scripts/rltools_cross_eval.py). On its own 100 states RLtools\' SAC and TD3 score what it printed; its PPO ~1 point more, as Gymnasium charges the clamped torque and RLtools the unclamped one:\n\n'"$same_states"
+[[ -z "$same_states" ]] || table+=$'\n\nThe same policies on the same start states, Gymnasium\'s Pendulum (scripts/bench/rltools_cross_eval.py). On its own 100 states RLtools\' SAC and TD3 score what it printed; its PPO ~1 point more, as Gymnasium charges the clamped torque and RLtools the unclamped one:\n\n'"$same_states"
 header="Pendulum-v1, $(date -u +%Y-%m-%d), $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')), load before the last run: $(cut -d' ' -f1-3 /proc/loadavg), OpenBLAS kernels: ${OPENBLAS_CORETYPE:-chosen by OpenBLAS}"
 printf '%s\n\n%s\n' "$header" "$table"
 [[ -z "${OUT:-}" ]] || printf '%s\n\n%s\n' "$header" "$table" >"$OUT"
