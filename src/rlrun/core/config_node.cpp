@@ -90,21 +90,45 @@ std::string strip_digit_separators(std::string s) {
 }
 
 // Counts nodes with aliases expanded (a "billion laughs" file is refused before anything walks
-// it) and refuses a key written twice in one map, naming both places.
+// it), refuses a collection that holds itself through an alias (`a: &x {b: *x}`, or a map that
+// merges itself with `<<: *x`: endless, and found at once rather than after the count's bound
+// of expansions), and refuses a key written twice in one map, naming both places.
 void check_structure(const YAML::Node& root, const std::string& origin) {
   std::size_t visited = 0;
   std::vector<std::string> duplicates;
-  std::vector<YAML::Node> stack{root};
+  // Depth-first, with the collections from the root to the node being looked at: an alias
+  // shares its anchor's node, so a collection that contains itself meets its own start
+  // position (YAML::Mark::pos; distinct collections of one text start at distinct places).
+  struct Visit {
+    YAML::Node node;
+    std::size_t depth;  // collections above it
+  };
+  std::vector<Visit> stack{{root, 0}};
+  std::vector<int> path;
+  std::unordered_set<int> on_path;
   while (!stack.empty()) {
-    const YAML::Node node = stack.back();
+    const Visit visit = stack.back();
     stack.pop_back();
+    while (path.size() > visit.depth) {
+      on_path.erase(path.back());
+      path.pop_back();
+    }
+    const YAML::Node& node = visit.node;
     if (++visited > kMaxConfigNodes)
       throw ConfigError(origin + ": more than " + std::to_string(kMaxConfigNodes) +
                         " YAML values (with aliases expanded); an experiment file has a few "
                         "hundred");
+    if (!node.IsSequence() && !node.IsMap()) continue;
+    const int start = node.Mark().pos;
+    if (start >= 0 && !on_path.insert(start).second)
+      throw ConfigError(position(origin, node.Mark()) +
+                        ": this value contains itself through an alias (a recursive alias, "
+                        "endless when expanded)");
+    path.push_back(start);
+    const std::size_t depth = path.size();
     if (node.IsSequence()) {
-      for (const auto& item : node) stack.push_back(item);
-    } else if (node.IsMap()) {
+      for (const auto& item : node) stack.push_back({item, depth});
+    } else {
       std::vector<std::pair<std::string, YAML::Mark>> seen;
       for (const auto& kv : node) {
         const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string();
@@ -117,7 +141,7 @@ void check_structure(const YAML::Node& root, const std::string& origin) {
                                  ", column " + std::to_string(mark.column + 1) +
                                  " of the same map: write it once");
         seen.emplace_back(key, kv.first.Mark());
-        stack.push_back(kv.second);
+        stack.push_back({kv.second, depth});
       }
     }
   }
