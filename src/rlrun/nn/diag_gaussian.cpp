@@ -1,14 +1,10 @@
 #include "rlrun/nn/diag_gaussian.hpp"
+#include "rlrun/nn/log_sqrt_2pi.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
 namespace rlrun {
-
-namespace {
-// log(sqrt(2 pi)), the constant in torch.distributions.Normal.log_prob.
-constexpr float kLogSqrt2Pi = 0.91893853320467274f;
-}  // namespace
 
 void DiagGaussian::set(const Eigen::Ref<const Eigen::MatrixXf>& mean,
                        const Eigen::Ref<const Eigen::VectorXf>& log_std) {

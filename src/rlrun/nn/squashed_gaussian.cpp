@@ -1,4 +1,5 @@
 #include "rlrun/nn/squashed_gaussian.hpp"
+#include "rlrun/nn/log_sqrt_2pi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +7,6 @@
 #include <stdexcept>
 
 namespace rlrun {
-
-namespace {
-constexpr float kLogSqrt2Pi = 0.91893853320467274f;  // torch Normal.log_prob's constant
-}  // namespace
 
 void SquashedGaussian::clamp_log_std(const Eigen::Ref<const Eigen::MatrixXf>& raw,
                                      Eigen::Ref<Eigen::MatrixXf> out) {

@@ -1,4 +1,5 @@
 #include "rlrun/nn/state_dependent_noise.hpp"
+#include "rlrun/nn/log_sqrt_2pi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,6 @@
 namespace rlrun {
 
 namespace {
-constexpr float kLogSqrt2Pi = 0.91893853320467274f;  // torch Normal.log_prob's constant
 // TanhBijector.inverse clamps to [-1 + eps, 1 - eps] with th.finfo(float32).eps.
 constexpr float kFloatEps = std::numeric_limits<float>::epsilon();
 

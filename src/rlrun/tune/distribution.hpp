@@ -43,6 +43,13 @@ struct CategoricalDistribution {
 
 using Distribution = std::variant<FloatDistribution, IntDistribution, CategoricalDistribution>;
 
+// Whether the distribution is sampled on a log scale (`log: true`; Optuna's `log` flag).
+inline bool is_log_scale(const Distribution& d) {
+  if (const auto* f = std::get_if<FloatDistribution>(&d)) return f->log;
+  if (const auto* i = std::get_if<IntDistribution>(&d)) return i->log;
+  return false;
+}
+
 // The constructors' checks and adjustments as Optuna's: low <= high, log needs low > 0, step >
 // 0, log and step not together, high moved down onto the step grid (Optuna warns; rlrun too,
 // in the caller's words). Throw ConfigError with `what` (the parameter's name) in the message.

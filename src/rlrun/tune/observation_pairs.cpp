@@ -11,12 +11,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool log_scale(const Distribution& d) {
-  if (const auto* f = std::get_if<FloatDistribution>(&d)) return f->log;
-  if (const auto* i = std::get_if<IntDistribution>(&d)) return i->log;
-  return false;
-}
-
 // numpy sorts NaN after every number; a strict weak order with that rule.
 bool less_nan_last(double a, double b) {
   if (std::isnan(a)) return false;
@@ -53,7 +47,7 @@ ObservationPairs get_observation_pairs(const StudyView& study, const SearchSpace
       const auto asked = trial.distributions.find(name);
       if (param != trial.params.end() && asked != trial.distributions.end() &&
           compatible(asked->second, distribution) &&
-          !(log_scale(distribution) && !(param->second > 0)) &&
+          !(is_log_scale(distribution) && !(param->second > 0)) &&
           !(std::holds_alternative<CategoricalDistribution>(distribution) &&
             !contains(distribution, param->second)))
         value = param->second;

@@ -8,14 +8,15 @@
 #include <stdexcept>
 
 #include "rlrun/algos/common/polyak.hpp"
+#include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/algos/common/training_state.hpp"
 #include "rlrun/core/config_validation.hpp"
 
 namespace rlrun {
 
 namespace {
-// Distinct streams from one seed: weights (the seed itself), exploration, replay sampling.
-constexpr uint64_t kActionStream = 0x5851f42d4c957f2dULL;
+// Replay sampling: DQN's own stream, drawn before algos/common/rng_streams.hpp named them (it is
+// kNoiseStream's word; fixed forever, as every stream is). Exploration is kActionStream.
 constexpr uint64_t kReplayStream = 0x2545f4914f6cdd1dULL;
 
 void require(bool ok, const std::string& message) {

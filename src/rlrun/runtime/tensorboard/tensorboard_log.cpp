@@ -34,7 +34,7 @@ int64_t run_number(const std::string& entry, const std::string& stem) {
 
 // Creates DIR/<name>_<N> with N above every existing one (mkdir is atomic: two runs starting
 // at once in one log directory, as a sweep's do, get different numbers).
-std::string create_run_directory(const std::string& dir, const std::string& name,
+std::string create_tensorboard_run_directory(const std::string& dir, const std::string& name,
                                  std::string& run_name) {
   const fs::path full = fs::path(dir) / name;
   const fs::path parent = full.parent_path();
@@ -68,7 +68,7 @@ bool excluded_from_tensorboard(const std::string& key) {
 TensorBoardLog TensorBoardLog::start(const std::string& dir, const std::string& name,
                                      const YAML::Node& config) {
   std::string run_name;
-  const std::string run_dir = create_run_directory(dir, name, run_name);
+  const std::string run_dir = create_tensorboard_run_directory(dir, name, run_name);
   const double now = wall_time_now();
   TensorBoardLog log(run_dir, run_name, EventFile::create(DirHandle::open(run_dir), now));
   log.file_.write(session_start_event(now, hparams_of_config(config)));

@@ -1,4 +1,5 @@
 #include "rlrun/runtime/zoo/zoo_file.hpp"
+#include "rlrun/core/ascii_lower.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -53,14 +54,9 @@ constexpr int kMaxEntryDepth = 16;
 constexpr std::size_t kMaxEntryBytes = 64 * 1024;
 constexpr std::size_t kMaxEntryValues = 10000;
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // The rlrun algorithm named `name` (a file stem or --algo), "" for none.
 std::string rlrun_algorithm(const std::string& name) {
-  const std::string wanted = lower(name);
+  const std::string wanted = ascii_lower(name);
   for (const auto& [zoo, rlrun] : kAlgorithms)
     if (wanted == zoo) return rlrun;
   return "";
@@ -69,7 +65,7 @@ std::string rlrun_algorithm(const std::string& name) {
 // What to say when `name` is an algorithm rlrun does not have (kNotInRlrun), else "".
 std::string missing_algorithm(const std::string& name) {
   std::string key;
-  for (const char c : lower(name))
+  for (const char c : ascii_lower(name))
     if (c != '-' && c != '_') key += c;
   for (const auto& [known, description] : kNotInRlrun)
     if (key == known) return description;

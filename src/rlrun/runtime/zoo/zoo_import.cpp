@@ -1,4 +1,5 @@
 #include "rlrun/runtime/zoo/zoo_import.hpp"
+#include "rlrun/core/ascii_lower.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -60,11 +61,6 @@ std::vector<std::string> policy_keys(const std::vector<FieldDoc>& rows) {
   for (const FieldDoc& row : rows)
     if (row.key.starts_with(prefix)) keys.push_back(row.key.substr(prefix.size()));
   return keys;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 // Run names are one path component of at most 200 characters (RelativeName); an env id's
@@ -228,7 +224,7 @@ class Translation {
 }  // namespace
 
 std::string zoo_run_name(const std::string& algorithm, const std::string& env_id) {
-  std::string name = lower(algorithm) + "_";
+  std::string name = ascii_lower(algorithm) + "_";
   for (const char c : env_id.substr(0, kMaxRunNameEnvChars))
     name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' ? c : '-';
   return name;
