@@ -7,25 +7,9 @@
 #include <string>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/spin_wait.hpp"
 
 namespace rlrun {
-
-namespace {
-// About 20-50 µs of spinning before sleeping.
-constexpr int kSpinIterations = 4000;
-
-// Pause for the first spins, then give the core away: if the other thread is not running,
-// spinning only delays it.
-inline void cpu_relax(int iteration) {
-  if (iteration < 2000) {
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
-#endif
-  } else {
-    std::this_thread::yield();
-  }
-}
-}  // namespace
 
 ForkJoin::ForkJoin(bool enabled) {
   if (enabled && std::thread::hardware_concurrency() > 1) worker_ = std::thread([this] { worker_loop(); });

@@ -1,4 +1,5 @@
 #include "rlrun/core/thread_pool.hpp"
+#include "rlrun/core/spin_wait.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -7,21 +8,6 @@
 namespace rlrun {
 
 namespace {
-
-// About 20-50 µs of spinning before sleeping.
-constexpr int kSpinIterations = 4000;
-
-// Pause for the first spins, then give the core away: if the thread we wait for is not
-// running, spinning only delays it.
-inline void cpu_relax(int iteration) {
-  if (iteration < 2000) {
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
-#endif
-  } else {
-    std::this_thread::yield();
-  }
-}
 
 constexpr uint64_t generation_of(uint64_t claim) { return claim >> 32; }
 constexpr int parts_of(uint64_t claim) { return static_cast<int>((claim >> 16) & 0xffff); }
