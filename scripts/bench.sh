@@ -3,9 +3,9 @@
 # same machine kind (docs/benchmarks.md, "Anchors": quiet-machine medians).
 #   scripts/bench.sh [--update-docs] [CONFIG...]    (default: every configs/*.yaml)
 #   SEEDS="1 2 3" JOBS=1 scripts/bench.sh ...
-# JOBS=1 (default) runs one training at a time on both cores (rlrun's default --threads 2);
+# JOBS=1 (default) runs one training at a time on every CPU (rlrun's default --threads auto);
 # JOBS=2 runs two trainings at once with --threads 1 each (faster to collect, slower per run).
-# THREADS=1|2 forces the per-run thread count. --update-docs replaces the table between the
+# THREADS=N forces the per-run thread count. --update-docs replaces the table between the
 # `bench:begin` / `bench:end` markers in docs/benchmarks.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +18,7 @@ configs=("$@")
 ((${#configs[@]})) || mapfile -t configs < <(grep -L '^# bench: skip' configs/*.yaml)
 seeds=${SEEDS:-"1 2 3"}
 jobs=${JOBS:-1}
-threads=${THREADS:-$(( jobs > 1 ? 1 : 2 ))}
+threads=${THREADS:-$( ((jobs > 1)) && echo 1 || echo auto)}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 

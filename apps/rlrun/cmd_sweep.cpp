@@ -27,7 +27,6 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/fork_join.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/experiment.hpp"
@@ -71,7 +70,7 @@ class SweepSlotLock {
 // `overrides` are the user's --set values, which vouch for values the untrusted manifest's
 // configs carry (docs/security.md); `plugins` are loaded already.
 int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overrides,
-            Registry& registry) {
+            Registry& registry, const ExecutionContext& execution) {
   if (index < 0 || index >= static_cast<int>(sweep.runs.size()))
     throw UsageError("--index " + std::to_string(index) + ": the manifest has runs 0-" +
                      std::to_string(sweep.runs.size() - 1));
@@ -101,7 +100,7 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
       std::fflush(stdout);
       const Experiment experiment = load_experiment(run.run_dir + "/config.yaml", vouched,
                                                     registry, ConfigTrust::kUntrusted);
-      outcome = train_experiment(experiment, registry, checkpoints);
+      outcome = train_experiment(experiment, registry, execution, checkpoints);
       break;
     }
     case RunState::kPartial:
@@ -119,7 +118,7 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
       if (target != fs::path(run.run_dir))
         throw UsageError(name + ": its config " + run.config + " trains into " + target.string() +
                          ", not the manifest's " + run.run_dir);
-      outcome = train_experiment(experiment, registry);
+      outcome = train_experiment(experiment, registry, execution);
       if (fs::absolute(outcome.run_dir).lexically_normal() != fs::path(run.run_dir))
         throw RuntimeFailure("run " + run.id + " trained into " + outcome.run_dir +
                              " instead of " + run.run_dir);
@@ -148,15 +147,16 @@ std::vector<std::string> passed_on(const SweepCliOptions& o) {
   return args;
 }
 
-int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed_on) {
+int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed_on,
+            const ExecutionContext& execution) {
   std::map<RunState, int> before;
   std::vector<ChildRun> children;
   for (const SweepRun& run : sweep.runs) {
     const RunState state = run_state(run);
     ++before[state];
     if (state == RunState::kFinished) continue;
-    // One core per run when several share the machine; else this process's own setting.
-    const char* threads = jobs > 1 ? "1" : (ForkJoin::shared().enabled() ? "2" : "1");
+    // Runs at once share this process's threads.
+    const std::string threads = std::to_string(threads_per_job(execution, jobs));
     std::vector<std::string> args{"--threads", threads, "sweep", "run", sweep.manifest,
                                   "--index", std::to_string(run.index)};
     args.insert(args.end(), passed_on.begin(), passed_on.end());
@@ -183,7 +183,7 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
 
 }  // namespace
 
-Action add_sweep(CLI::App& app, Registry& registry) {
+Action add_sweep(CLI::App& app, Registry& registry, const ExecutionContext& execution) {
   auto options = std::make_shared<SweepCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "sweep", "expand a sweep file (base config x overrides x seeds) into a manifest of runs");
@@ -206,7 +206,7 @@ Action add_sweep(CLI::App& app, Registry& registry) {
   CLI::App* run = sub->add_subcommand(
       "run", "train a manifest's runs: finished ones are skipped, interrupted ones resumed");
   run->add_option("manifest", options->manifest, "manifest.yaml written by `rlrun sweep`")->required();
-  run->add_option("-j,--jobs", options->jobs, "runs at once (each with --threads 1)")
+  run->add_option("-j,--jobs", options->jobs, "runs at once (sharing --threads equally)")
       ->transform(integer_in(1));
   run->add_option("--index", options->index, "train only run I (what a Slurm array task does)")
       ->transform(integer_in(0));
@@ -216,7 +216,7 @@ Action add_sweep(CLI::App& app, Registry& registry) {
   add_run_options(slurm, "(passed on to each array task's `sweep run`)");
   CLI::App* status = sub->add_subcommand("status", "print each run's state");
   status->add_option("manifest", options->manifest, "manifest.yaml")->required();
-  return [options, run, slurm, status, out_option, expand_set_option, &registry]() {
+  return [options, run, slurm, status, out_option, expand_set_option, &registry, &execution]() {
     // CLI11 lets a subcommand's unknown option fall through to `sweep`'s own: refuse those that
     // belong to expanding a sweep file rather than take them silently.
     if (run->parsed() || slurm->parsed() || status->parsed()) {
@@ -239,8 +239,9 @@ Action add_sweep(CLI::App& app, Registry& registry) {
     if (run->parsed()) {
       load_plugin_options(options->plugins, registry);
       const Sweep sweep = read_manifest(options->manifest);
-      if (options->index >= 0) return run_one(sweep, options->index, options->overrides, registry);
-      return run_all(sweep, options->jobs, passed_on(*options));
+      if (options->index >= 0)
+        return run_one(sweep, options->index, options->overrides, registry, execution);
+      return run_all(sweep, options->jobs, passed_on(*options), execution);
     }
     if (slurm->parsed()) {
       const Sweep sweep = read_manifest(options->manifest);

@@ -73,7 +73,7 @@ bool restates(const ConfigNode& config, const std::string& assignment) {
   }
 }
 
-int resume(const TrainOptions& o, Registry& registry) {
+int resume(const TrainOptions& o, Registry& registry, const ExecutionContext& execution) {
   // A resumed run is the same run: its config.yaml, except for how long it trains.
   if (!o.configs.empty() || o.seed || !o.out.empty() || !o.init_from.empty() || o.jobs != 1)
     throw UsageError("--resume continues a run with its own config.yaml; it takes no experiment "
@@ -106,10 +106,10 @@ int resume(const TrainOptions& o, Registry& registry) {
   const std::vector<std::string> candidates = resume_candidates(o.resume);
   const Experiment experiment = load_experiment(config, overrides, registry, ConfigTrust::kUntrusted);
   install_interrupt_handlers();
-  return exit_code(train_experiment(experiment, registry, candidates));
+  return exit_code(train_experiment(experiment, registry, execution, candidates));
 }
 
-int train_zoo(const TrainOptions& o, Registry& registry) {
+int train_zoo(const TrainOptions& o, Registry& registry, const ExecutionContext& execution) {
   if (!o.configs.empty() || o.jobs != 1)
     throw UsageError("--zoo trains one zoo entry; it takes no experiment files or -j");
   if (o.zoo_env.empty()) throw UsageError("--zoo needs --env ENV_ID (the entry to train)");
@@ -117,12 +117,12 @@ int train_zoo(const TrainOptions& o, Registry& registry) {
       zoo::load_zoo_experiment(o.zoo, o.zoo_env, o.zoo_algo, all_overrides(o), registry,
                                 o.zoo_entry);
   install_interrupt_handlers();
-  return exit_code(train_experiment(experiment, registry));
+  return exit_code(train_experiment(experiment, registry, execution));
 }
 
 }  // namespace
 
-Action add_train(CLI::App& app, Registry& registry) {
+Action add_train(CLI::App& app, Registry& registry, const ExecutionContext& execution) {
   auto options = std::make_shared<TrainOptions>();
   CLI::App* sub = app.add_subcommand("train", "train an agent from one or more experiment files");
   sub->add_option("configs", options->configs,
@@ -143,7 +143,7 @@ Action add_train(CLI::App& app, Registry& registry) {
                   "write TensorBoard event files under DIR (run.tensorboard_log; with --resume: "
                   "the run's own DIR, to continue its TensorBoard run)");
   sub->add_option("-j,--jobs", options->jobs,
-                  "train up to N experiment files at once, as processes with --threads 1 each")
+                  "train up to N experiment files at once, as processes sharing --threads equally")
       ->transform(integer_in(1));
   sub->add_option("--resume", options->resume,
                   "continue an interrupted run exactly: its run directory (newest checkpoint) or "
@@ -159,10 +159,10 @@ Action add_train(CLI::App& app, Registry& registry) {
                   "with --zoo: use this entry's settings for --env (e.g. PandaReach-v1 for "
                   "GripperReach-v0)");
   add_plugin_option(sub, options->plugins);
-  return [options, &registry]() {
+  return [options, &registry, &execution]() {
     load_plugin_options(options->plugins, registry);
-    if (!options->resume.empty()) return resume(*options, registry);
-    if (!options->zoo.empty()) return train_zoo(*options, registry);
+    if (!options->resume.empty()) return resume(*options, registry, execution);
+    if (!options->zoo.empty()) return train_zoo(*options, registry, execution);
     if (!options->zoo_env.empty() || !options->zoo_algo.empty() || !options->zoo_entry.empty())
       throw UsageError("--env, --algo and --zoo-entry go with --zoo HYPERPARAMS.yml");
     if (options->configs.empty())
@@ -191,11 +191,12 @@ Action add_train(CLI::App& app, Registry& registry) {
         child_options.push_back("--plugin");
         child_options.push_back(plugin);
       }
-      return train_in_parallel(options->configs, child_options, options->jobs);
+      return train_in_parallel(options->configs, child_options, options->jobs,
+                               threads_per_job(execution, options->jobs));
     }
     install_interrupt_handlers();
     for (const auto& experiment : experiments) {
-      const TrainOutcome outcome = train_experiment(experiment, registry);
+      const TrainOutcome outcome = train_experiment(experiment, registry, execution);
       if (outcome.interrupted) return exit_code(outcome);
     }
     return 0;

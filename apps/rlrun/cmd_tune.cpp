@@ -98,7 +98,7 @@ void print_study_summary(const StudyConfig& study) {
   std::printf("report: rlrun tune report %s\n", shell_quote(study.source).c_str());
 }
 
-int run_study(const TuneOptions& o, Registry& registry) {
+int run_study(const TuneOptions& o, Registry& registry, const ExecutionContext& execution) {
   load_plugin_options(o.plugins, registry);
   StudyConfig study = tune::load_study(o.study_file, registry, o.set, o.out, o.n_timesteps);
   if (o.n_trials) study.n_trials = *o.n_trials;
@@ -114,7 +114,7 @@ int run_study(const TuneOptions& o, Registry& registry) {
                    "Each array task is one worker of study " + study.name + " (" + study.storage +
                        "); together they run " + std::to_string(study.n_trials) + " trials."};
     job.command = shell_quote(own_binary()) + " --threads " +
-                  (study.slurm.cpus_per_task >= 2 ? "2" : "1") + " tune " + shell_quote(study.source);
+                  std::to_string(study.slurm.cpus_per_task) + " tune " + shell_quote(study.source);
     for (const std::string& arg : passed_on(o)) {
       if (!script_path_problem(arg).empty())
         throw UsageError("cannot write the sbatch script: a control character in " + arg);
@@ -141,14 +141,15 @@ int run_study(const TuneOptions& o, Registry& registry) {
     const fs::path logs = fs::path(study.out_dir) / "logs";
     fs::create_directories(logs);
     for (int w = 0; w < o.jobs; ++w) {
-      std::vector<std::string> args{"--threads", "1", "tune", study.source};
+      std::vector<std::string> args{"--threads", std::to_string(threads_per_job(execution, o.jobs)),
+                                    "tune", study.source};
       const auto more = passed_on(o);
       args.insert(args.end(), more.begin(), more.end());
       workers.push_back({"worker " + std::to_string(w), args, (logs / ("worker_" + std::to_string(w) + ".txt")).string()});
     }
     code = run_in_parallel(workers, o.jobs, "worker", logs.string() + "/worker_<i>.txt");
   } else {
-    const tune::WorkerSummary summary = tune::run_worker(study, registry, o.verbose);
+    const tune::WorkerSummary summary = tune::run_worker(study, registry, execution, o.verbose);
     std::printf("this worker: %d complete, %d pruned, %d failed%s\n", summary.complete,
                 summary.pruned, summary.failed,
                 summary.interrupted ? "; interrupted (the running trial was re-queued: run the "
@@ -160,7 +161,7 @@ int run_study(const TuneOptions& o, Registry& registry) {
   return code;
 }
 
-int report(const TuneOptions& o, Registry& registry) {
+int report(const TuneOptions& o, Registry& registry, const ExecutionContext& execution) {
   // A study file (YAML) names the journal; anything else is read as a journal.
   std::optional<StudyConfig> study;
   std::string journal = o.study, name = o.study_name;
@@ -226,7 +227,7 @@ int report(const TuneOptions& o, Registry& registry) {
         seed_overrides.push_back("run.out_dir=" + (fs::path(study->out_dir) / "retrained").string());
         seed_overrides.push_back("run.name=trial_" + std::to_string(chosen->number));
         const Experiment experiment = load_experiment(study->base, seed_overrides, registry);
-        const TrainOutcome outcome = train_experiment(experiment, registry);
+        const TrainOutcome outcome = train_experiment(experiment, registry, execution);
         std::printf("trial %d seed %llu: %s (%s)\n", chosen->number,
                     static_cast<unsigned long long>(experiment.run.seed),
                     format_session_summary(session_summary(outcome)).c_str(), outcome.run_dir.c_str());
@@ -239,7 +240,7 @@ int report(const TuneOptions& o, Registry& registry) {
 
 }  // namespace
 
-Action add_tune(CLI::App& app, Registry& registry) {
+Action add_tune(CLI::App& app, Registry& registry, const ExecutionContext& execution) {
   auto o = std::make_shared<TuneOptions>();
   CLI::App* sub = app.add_subcommand(
       "tune", "hyperparameter search (TPE, pruning) into an Optuna study journal (docs/tune.md)");
@@ -272,11 +273,11 @@ Action add_tune(CLI::App& app, Registry& registry) {
   rep->add_option("--best-config", o->best_config, "write the best trial as an experiment file");
   rep->add_option("--trial", o->trial, "re-train trial N (all its seeds) into <out_dir>/retrained/")
       ->transform(integer_in(0));
-  return [o, rep, &registry]() {
+  return [o, rep, &registry, &execution]() {
     if (rep->parsed()) {
       if (!o->study_file.empty())
         throw UsageError("rlrun tune report: unexpected argument '" + o->study_file + "'");
-      return report(*o, registry);
+      return report(*o, registry, execution);
     }
     if (o->study_file.empty())
       throw UsageError("tune needs a study file (rlrun tune configs/tune/cartpole_ppo.yaml), or "
@@ -287,7 +288,7 @@ Action add_tune(CLI::App& app, Registry& registry) {
         throw UsageError("'" + o->study_file + "' is neither a study file nor a tune command; did "
                          "you mean 'rlrun tune " + meant + "'?");
     }
-    return run_study(*o, registry);
+    return run_study(*o, registry, execution);
   };
 }
 

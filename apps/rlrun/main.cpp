@@ -5,13 +5,15 @@
 #include <csignal>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "cli_values.hpp"
 #include "commands.hpp"
 #include "parse_errors.hpp"
+#include "thread_count.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/execution_context.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/nn/dense_kernels.hpp"
 #include "rlrun/runtime/builtins.hpp"
@@ -48,25 +50,29 @@ int main(int argc, char** argv) {
                               "; RLRUN_KERNELS=avx512|avx2|baseline forces one)";
   app.set_version_flag("--version", version);
   // A global option, accepted before or after the subcommand (fallthrough).
-  int threads = 0;
+  std::string threads;
   app.add_option("--threads", threads,
-                 "cores per run, 1 or 2 (default: RLRUN_THREADS, else 2 when two CPUs are "
-                 "available; use 1 when several runs share the cores). Results are identical.")
-      ->transform(rlrun::cli::integer_in(1, 2));
+                 "threads per run: N, or auto = the CPUs this process may use (affinity mask "
+                 "and cgroup quota). Default: RLRUN_THREADS, else auto; use 1 when several runs "
+                 "share the cores. Results are identical for any count.")
+      ->type_name("N|auto");
   app.fallthrough();
+  // Made once the options are read (the thread count), used by the commands' actions.
+  std::optional<rlrun::ThreadPool> pool;
+  rlrun::ExecutionContext execution;
   // The registry is built here and passed down; --plugin adds to it (runtime/builtins.hpp).
   rlrun::Registry registry = rlrun::make_builtin_registry();
-  rlrun::cli::Action train = rlrun::cli::add_train(app, registry);
+  rlrun::cli::Action train = rlrun::cli::add_train(app, registry, execution);
   rlrun::cli::Action eval = rlrun::cli::add_eval(app, registry);
   rlrun::cli::Action list = rlrun::cli::add_list(app, registry);
   rlrun::cli::Action check_env = rlrun::cli::add_check_env(app, registry);
   rlrun::cli::Action record = rlrun::cli::add_record(app, registry);
-  rlrun::cli::Action sweep = rlrun::cli::add_sweep(app, registry);
+  rlrun::cli::Action sweep = rlrun::cli::add_sweep(app, registry, execution);
   rlrun::cli::Action report = rlrun::cli::add_report(app);
   rlrun::cli::Action plot = rlrun::cli::add_plot(app);
   rlrun::cli::Action zoo = rlrun::cli::add_zoo(app, registry);
   rlrun::cli::Action export_policy = rlrun::cli::add_export(app, registry);
-  rlrun::cli::Action tune = rlrun::cli::add_tune(app, registry);
+  rlrun::cli::Action tune = rlrun::cli::add_tune(app, registry, execution);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -78,7 +84,8 @@ int main(int argc, char** argv) {
     return code == 0 ? rlrun::kExitOk : rlrun::kExitUsage;
   }
   try {
-    rlrun::ForkJoin::configure_shared(threads != 0 ? threads : rlrun::ForkJoin::default_threads());
+    pool.emplace(rlrun::cli::threads_for_run(threads));
+    execution.pool = &*pool;
     try {
       rlrun::dense::active_kernels();  // RLRUN_KERNELS is checked once, before any work
     } catch (const std::runtime_error& e) {

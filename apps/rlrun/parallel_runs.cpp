@@ -83,7 +83,7 @@ std::string summary_line(const std::string& path) {
 pid_t start_child(const std::vector<std::string>& child_args, int log_fd) {
   std::vector<std::string> args{"/proc/self/exe"};
   args.insert(args.end(), child_args.begin(), child_args.end());
-  // argv is built before fork(): this process may have a ForkJoin worker thread, and the child
+  // argv is built before fork(): this process may have thread-pool workers, and the child
   // of a threaded process may only call async-signal-safe functions (no malloc) until exec.
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -135,11 +135,15 @@ int open_child_log(const ChildRun& run) {
 
 }  // namespace
 
+int threads_per_job(const ExecutionContext& execution, int jobs) {
+  return std::max(1, execution.threads() / std::max(1, jobs));
+}
+
 int train_in_parallel(const std::vector<std::string>& configs,
-                      const std::vector<std::string>& child_options, int jobs) {
+                      const std::vector<std::string>& child_options, int jobs, int threads_per_run) {
   std::vector<ChildRun> runs;
   for (const std::string& config : configs) {
-    ChildRun run{config, {"--threads", "1", "train", config}, ""};
+    ChildRun run{config, {"--threads", std::to_string(threads_per_run), "train", config}, ""};
     run.args.insert(run.args.end(), child_options.begin(), child_options.end());
     runs.push_back(run);
   }

@@ -12,6 +12,7 @@
 // The children run in their own process group, so a Ctrl-C at the terminal reaches only this
 // process, which forwards exactly one SIGINT to each child (each then checkpoints at its next
 // safe point, see runtime/trainer.hpp); a second Ctrl-C is forwarded too and stops them at once.
+#include "rlrun/core/execution_context.hpp"
 #include <string>
 #include <vector>
 
@@ -34,8 +35,12 @@ int run_in_parallel(const std::vector<ChildRun>& runs, int jobs, const std::stri
 // This rlrun binary's path (what child processes and sbatch scripts run).
 std::string own_binary();
 
-// `rlrun train -j N`: each config as `rlrun --threads 1 train <config> <child_options>`.
+// `rlrun train -j N`: each config as `rlrun --threads T train <config> <child_options>`.
 int train_in_parallel(const std::vector<std::string>& configs,
-                      const std::vector<std::string>& child_options, int jobs);
+                      const std::vector<std::string>& child_options, int jobs, int threads_per_run);
+
+// The threads each of `jobs` runs at once gets when they share this run's: an equal share,
+// at least 1 (runs sharing cores slow each other's hand-offs; results never change).
+int threads_per_job(const ExecutionContext& execution, int jobs);
 
 }  // namespace rlrun::cli

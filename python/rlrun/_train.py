@@ -85,7 +85,9 @@ def train(config, overrides=None, /, **kwargs) -> str:
 
     A bad file or value raises rlrun.ConfigError (a ValueError) with the CLI's message
     (file:line:col, the key path, the closest valid name); a failure while training raises
-    rlrun.RuntimeFailure (a RuntimeError). The GIL is released while training. Ctrl-C stops
+    rlrun.RuntimeFailure (a RuntimeError). The GIL is released while training, which uses the
+    CPUs this process may use (as ``rlrun --threads auto``; the result is the same with any
+    number). Ctrl-C stops
     the training as on the command line, at its next safe point with a checkpoint, and then
     raises KeyboardInterrupt (resume with ``rlrun train --resume RUN_DIR``); where no safe point
     comes (a Python env's worker that hangs) it raises rlrun.Interrupted, a KeyboardInterrupt.

@@ -8,6 +8,8 @@
 #include <csignal>
 
 #include "bindings.hpp"
+#include "rlrun/core/available_cpus.hpp"
+#include "rlrun/core/execution_context.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/runtime/trainer.hpp"
 
@@ -43,7 +45,10 @@ py::dict run(const Experiment& experiment) {
   {
     ScopedTrainingSignals signals;
     py::gil_scoped_release release;
-    outcome = train_experiment(experiment, module_registry());
+    // As `rlrun --threads auto`: the CPUs this process may use (the result is the same with any
+    // number). The pool lives for this training only.
+    ThreadPool pool(available_cpus());
+    outcome = train_experiment(experiment, module_registry(), ExecutionContext{&pool});
   }
   py::dict d;
   d["run_dir"] = outcome.run_dir;

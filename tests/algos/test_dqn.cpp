@@ -16,7 +16,6 @@
 #include "nn/grad_check.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/dqn/exploration_schedule.hpp"
-#include "rlrun/core/fork_join.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
@@ -25,6 +24,7 @@
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 using test::numeric_gradient;
@@ -502,7 +502,7 @@ TEST_CASE(
   testing::TempDir dir("dqn_smoke");
   const auto run = [&](uint64_t seed) {
     const TrainOutcome outcome =
-        train_experiment(cartpole_experiment(dir.str(), 600, seed), builtin_registry());
+        train_experiment(cartpole_experiment(dir.str(), 600, seed), builtin_registry(), testing::test_execution());
     CHECK(outcome.timesteps == 608);  // whole train_freq rounds of 8 steps x 2 envs, as SB3
     return read_model(outcome.model_path);
   };
@@ -530,7 +530,9 @@ TEST_CASE("DQN update micro-benchmark (rl-zoo CartPole sizes)", "[.bench][dqn_be
   DQN::Config cfg;
   cfg.policy.net_arch = {256, 256};
   cfg.off_policy.batch_size = 64;
-  DQN dqn(cfg, discrete_setup(4, 2, 1, 1));
+  AlgorithmSetup setup = discrete_setup(4, 2, 1, 1);
+  setup.pool = &testing::test_thread_pool();
+  DQN dqn(cfg, setup);
   Rng rng(1);
   const ReplayBatch b = random_batch(rng, 4, 2, 64);
   for (int i = 0; i < 200; ++i) dqn.train_on_batch(b, 1e-6f);
@@ -549,7 +551,7 @@ TEST_CASE("DQN update micro-benchmark (rl-zoo CartPole sizes)", "[.bench][dqn_be
   std::printf(
       "DQN gradient step (4-256-256-2, batch 64, %d threads): %.1f us, %.1f MFLOP, "
       "%.1f GFLOP/s; 24.5k steps: %.1f s\n",
-      ForkJoin::shared().enabled() ? 2 : 1, best * 1e6, flops * 1e-6, flops / best * 1e-9,
+      testing::test_thread_pool().threads(), best * 1e6, flops * 1e-6, flops / best * 1e-9,
       best * 24.5e3);
   CHECK(q.params().allFinite());
 }
@@ -561,7 +563,7 @@ double train_and_evaluate(const std::string& config, uint64_t seed) {
   Experiment e = load_experiment(std::string(RLRUN_SOURCE_DIR) + "/configs/" + config,
                                  {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed)},
                                  registry);
-  const TrainOutcome outcome = train_experiment(e, builtin_registry());
+  const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   // A config that evaluates during training is scored by the best model it kept (the zoo's
   // --load-best; configs/cartpole_dqn.yaml).
   std::string path = outcome.model_path;

@@ -25,6 +25,7 @@
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 using test::numeric_gradient;
@@ -379,7 +380,7 @@ TEST_CASE("gSDE runs through the registry log train/std and evaluate determinist
                              algo + ", use_sde: true, sde_sample_freq: 8" + extra + "}\n";
     const Experiment e =
         parse_experiment(ConfigNode::load_string(yaml, "gsde.yaml"), builtin_registry());
-    const TrainOutcome outcome = train_experiment(e, builtin_registry());
+    const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
     CHECK(outcome.timesteps >= steps);
     const ModelFile model = read_model(outcome.model_path);
     CHECK(model.tensors.count(std::string(algo) == "SAC" ? "actor.log_std" : "log_std") == 1);
@@ -410,7 +411,7 @@ double train_and_evaluate(const std::string& name, const std::string& yaml, uint
                            ", out_dir: " + dir.str() + ", console_interval: 1000000, " + yaml;
   const Experiment e = parse_experiment(ConfigNode::load_string(full, name + ".yaml"),
                                         builtin_registry());
-  const TrainOutcome outcome = train_experiment(e, builtin_registry());
+  const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   const ModelFile model = read_model(outcome.model_path);
   const Experiment stored = experiment_from_model(model, builtin_registry());
   EnvPtr env = make_model_env(model, stored, builtin_registry());

@@ -18,6 +18,7 @@
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 using namespace rlrun::test;
@@ -234,7 +235,7 @@ TEST_CASE(
     const Experiment e =
         pendulum_experiment("SAC", dir.str(), 400, seed,
                             ", learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32]}");
-    const TrainOutcome outcome = train_experiment(e, builtin_registry());
+    const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
     CHECK(outcome.timesteps == 400);
     return read_model(outcome.model_path);
   };
@@ -292,7 +293,9 @@ double sac_step_flops(const SAC& sac, int batch) {
 
 TEST_CASE("SAC update micro-benchmark (rl-zoo Pendulum sizes)", "[.bench][sac_bench]") {
   SAC::Config cfg;  // 256x256, batch 256
-  SAC sac(cfg, box_setup(3, 1));
+  AlgorithmSetup setup = box_setup(3, 1);
+  setup.pool = &testing::test_thread_pool();
+  SAC sac(cfg, setup);
   Rng rng(1);
   const ReplayBatch b = random_batch(rng, 3, 1, 256);
   for (int i = 0; i < 50; ++i) sac.train_on_batch(b, 1e-3f, true);
@@ -310,10 +313,11 @@ TEST_CASE("SAC update micro-benchmark (rl-zoo Pendulum sizes)", "[.bench][sac_be
   // Wall time is what a run takes; process CPU time (both threads) is steadier on a shared
   // machine. Percentages are of one core's 102 GFLOP/s.
   std::printf(
-      "SAC gradient step (3-256-256-2 actor, 2x 4-256-256-1 critics, batch 256): %.0f us wall, "
+      "SAC gradient step (3-256-256-2 actor, 2x 4-256-256-1 critics, batch 256, %d threads): "
+      "%.0f us wall, "
       "%.0f us CPU, %.1f MFLOP, %.1f GFLOP/s wall (%.0f%% of 102), %.1f GFLOP/s per CPU-s "
       "(%.0f%%)\n",
-      best * 1e6, best_cpu * 1e6, flops * 1e-6, flops / best * 1e-9,
+      testing::test_thread_pool().threads(), best * 1e6, best_cpu * 1e6, flops * 1e-6, flops / best * 1e-9,
       flops / best * 1e-9 / 102 * 100, flops / best_cpu * 1e-9,
       flops / best_cpu * 1e-9 / 102 * 100);
   CHECK(sac.actor().net().params().allFinite());
@@ -327,7 +331,7 @@ double train_and_evaluate(const std::string& config, uint64_t seed) {
       std::string(RLRUN_SOURCE_DIR) + "/configs/" + config,
       {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed), "run.console_interval=1000"},
       registry);
-  const TrainOutcome outcome = train_experiment(e, builtin_registry());
+  const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   const double mean = evaluate_model(read_model(outcome.model_path), 10, 1000 + seed).mean_return();
   std::printf("%s seed %llu: %.1f s, eval %.1f\n", config.c_str(),
               static_cast<unsigned long long>(seed), outcome.wall_seconds, mean);

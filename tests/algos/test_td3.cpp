@@ -14,7 +14,6 @@
 #include "nn/grad_check.hpp"
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/td3/td3.hpp"
-#include "rlrun/core/fork_join.hpp"
 #include "rlrun/runtime/builtins.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/evaluator.hpp"
@@ -22,6 +21,7 @@
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 
@@ -391,7 +391,7 @@ TEST_CASE("TD3 and DDPG train via the registry on Pendulum and MountainCarContin
       INFO(yaml);
       const Experiment experiment =
           parse_experiment(ConfigNode::load_string(yaml, "smoke.yaml"), registry);
-      const TrainOutcome outcome = train_experiment(experiment, registry);
+      const TrainOutcome outcome = train_experiment(experiment, registry, testing::test_execution());
       CHECK(outcome.timesteps == 400);
       const ModelFile model = read_model(outcome.model_path);
       const Experiment stored = experiment_from_model(model, registry);
@@ -458,7 +458,8 @@ TEST_CASE("bench: TD3 gradient steps at rl-zoo Pendulum size", "[.td3_bench]") {
   for (const char* algo : {"TD3", "DDPG"}) {
     TD3::Config cfg;  // 400x300, batch 256
     if (std::string(algo) == "DDPG") cfg = DDPG::to_td3(DDPG::Config{});
-    const AlgorithmSetup setup{Space::box(-8.0f, 8.0f, {3}), Space::box(-2.0f, 2.0f, {1}), 1, 1};
+    const AlgorithmSetup setup{Space::box(-8.0f, 8.0f, {3}), Space::box(-2.0f, 2.0f, {1}), 1, 1,
+                               &testing::test_thread_pool()};
     TD3 td3(cfg, setup, algo);
     ReplayBatch b;
     b.obs = Eigen::MatrixXf::Random(3, 256);
@@ -484,7 +485,7 @@ TEST_CASE("bench: TD3 gradient steps at rl-zoo Pendulum size", "[.td3_bench]") {
     // machine.
     std::printf("%s (%d threads) train_on_batch: %.0f us/step wall, %.0f us CPU, %.1f GFLOP/s "
                 "wall (%.0f%% of one core's 102), %.1f GFLOP/s per CPU-s (%.3f GFLOP/step)\n",
-                algo, ForkJoin::shared().enabled() ? 2 : 1, s / steps * 1e6, cpu / steps * 1e6,
+                algo, testing::test_thread_pool().threads(), s / steps * 1e6, cpu / steps * 1e6,
                 per_step * steps / s * 1e-9, per_step * steps / s * 1e-9 / 102 * 100,
                 per_step * steps / cpu * 1e-9, per_step * 1e-9);
   }

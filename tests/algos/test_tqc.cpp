@@ -19,6 +19,7 @@
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 using namespace rlrun::test;
@@ -370,7 +371,7 @@ TEST_CASE("TQC trains a few hundred steps on Pendulum-v1 through the registry, d
         "TQC", dir.str(), 400, seed,
         ", learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32], n_quantiles: 10}" +
             extra);
-    const TrainOutcome outcome = train_experiment(e, builtin_registry());
+    const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
     CHECK(outcome.timesteps == 400);
     return outcome.model_path;
   };
@@ -399,7 +400,7 @@ TEST_CASE("TQC learns Pendulum-v1 with small networks in 8000 steps", "[algos][t
   const Experiment e = pendulum_experiment(
       "TQC", dir.str(), 8000, 1,
       ", learning_rate: 1.0e-3, batch_size: 128, policy: {net_arch: [64, 64]}");
-  const TrainOutcome outcome = train_experiment(e, builtin_registry());
+  const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   const double mean = evaluate_model(outcome.model_path, 10, 1001);
   std::printf("TQC Pendulum-v1 8000 steps, 64x64: %.1f s, eval %.1f\n", outcome.wall_seconds,
               mean);
@@ -417,7 +418,7 @@ TEST_CASE("TQC learns Pendulum-v1 (rl-zoo settings, 2e4 steps) in 2 of 3 seeds",
                                           "run.seed=" + std::to_string(seed),
                                           "run.console_interval=1000000"},
                                          registry);
-    const TrainOutcome outcome = train_experiment(e, builtin_registry());
+    const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
     const double mean = evaluate_model(outcome.model_path, 10, 1000 + seed);
     std::printf("pendulum_tqc.yaml seed %llu: %.1f s, eval %.1f\n",
                 static_cast<unsigned long long>(seed), outcome.wall_seconds, mean);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "env/vec_env_trace.hpp"
 #include "fakes/counter_env.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/rng.hpp"
@@ -20,6 +21,8 @@
 
 using namespace rlrun;
 using rlrun::testing::CounterEnv;
+using rlrun::testing::trace_random_steps;
+using rlrun::testing::VecEnvTrace;
 
 namespace {
 
@@ -49,33 +52,6 @@ class SplitCounter : public CounterEnv, public SplitStep {
   int& most_;
 };
 
-struct Trace {
-  std::vector<float> obs, final_obs;
-  std::vector<double> rewards;
-  std::vector<int> dones;
-};
-
-Trace run(VecEnv& env, int steps, uint64_t seed) {
-  Trace t;
-  env.seed(seed);
-  env.reset();
-  Rng rng(7);
-  Eigen::MatrixXf actions(env.action_space().flat_dim(), env.num_envs());
-  for (int s = 0; s < steps; ++s) {
-    for (int c = 0; c < env.num_envs(); ++c)
-      env.action_space().sample(rng, {actions.col(c).data(), static_cast<size_t>(actions.rows())});
-    env.step(actions);
-    for (int c = 0; c < env.num_envs(); ++c) {
-      t.rewards.push_back(env.rewards()[c]);
-      t.dones.push_back(env.done(c));
-      for (int k = 0; k < env.obs().rows(); ++k) {
-        t.obs.push_back(env.obs()(k, c));
-        if (env.done(c)) t.final_obs.push_back(env.final_obs()(k, c));
-      }
-    }
-  }
-  return t;
-}
 
 }  // namespace
 
@@ -103,7 +79,7 @@ TEST_CASE("VecEnv starts every copy's step before finishing any (SplitStep)", "[
     dynamic_cast<ModelStatistics&>(*plain[i]).share_statistics_with(dynamic_cast<ModelStatistics&>(*plain[0]));
   }
   VecEnv a(std::move(split)), b(std::move(plain));
-  const Trace ta = run(a, 40, 3), tb = run(b, 40, 3);
+  const VecEnvTrace ta = trace_random_steps(a, 40, 3), tb = trace_random_steps(b, 40, 3);
   CHECK(most == 4);
   CHECK(in_flight == 0);
   CHECK(ta.obs == tb.obs);
@@ -152,7 +128,7 @@ TEST_CASE("The action and reward wrappers forward split steps too", "[vec_env]")
   }
   REQUIRE(asynchronous_steps(*split[0]) != nullptr);
   VecEnv a(std::move(split)), b(std::move(plain));
-  const Trace ta = run(a, 30, 5), tb = run(b, 30, 5);
+  const VecEnvTrace ta = trace_random_steps(a, 30, 5), tb = trace_random_steps(b, 30, 5);
   CHECK(most == 3);
   CHECK(ta.rewards == tb.rewards);
   CHECK(ta.obs == tb.obs);

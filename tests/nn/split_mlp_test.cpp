@@ -1,7 +1,8 @@
 // The two-core split of a training step (nn/batch_split.hpp, split_mlp.*, split_adam.*): a
 // SplitMlp's passes over a minibatch are exactly those of two plain Mlps on its halves with the
 // second half's gradient added last, close to one pass over the whole batch, and the same bits
-// with the second core on or off; a SplitAdam is one Adam over the whole vector.
+// with no pool and with pools of 1, 2, 3 and 8 threads; a SplitAdam is one Adam over the whole
+// vector.
 #include "rlrun/nn/split_mlp.hpp"
 
 #include <catch2/catch.hpp>
@@ -26,9 +27,9 @@ struct Passes {
 };
 
 // forward, backward (twice: gradients add up) and backward_input through a SplitMlp.
-Passes split_passes(const Mlp& net, ForkJoin& fork_join, const Eigen::MatrixXf& x,
+Passes split_passes(const Mlp& net, ThreadPool* pool, const Eigen::MatrixXf& x,
                     const Eigen::MatrixXf& grad_out) {
-  SplitMlp split(net, &fork_join);
+  SplitMlp split(net, pool);
   Passes p;
   p.output = split.forward(x);
   CHECK(split.output() == p.output);
@@ -39,7 +40,7 @@ Passes split_passes(const Mlp& net, ForkJoin& fork_join, const Eigen::MatrixXf& 
   split.backward_input(grad_out, p.grad_input, 2);
   CHECK(split.grads() == p.grads);  // input gradient only
   // zero_grad_and_backward is zero_grad, then backward.
-  SplitMlp other(net, &fork_join);
+  SplitMlp other(net, pool);
   other.forward(x);
   other.zero_grad();
   other.backward(grad_out);
@@ -123,12 +124,15 @@ TEST_CASE(
   const Eigen::MatrixXf x = random_matrix(in_dim, n, rng);
   const Eigen::MatrixXf grad_out = random_matrix(net.out_dim(), n, rng);
 
-  ForkJoin serial(false), parallel(true);
-  const Passes one = split_passes(net, serial, x, grad_out);
-  const Passes two = split_passes(net, parallel, x, grad_out);
-  CHECK(one.output == two.output);
-  CHECK(one.grads == two.grads);
-  CHECK(one.grad_input == two.grad_input);
+  const Passes one = split_passes(net, nullptr, x, grad_out);
+  for (const int threads : {1, 2, 3, 8}) {
+    INFO(threads << " threads");
+    ThreadPool pool(threads);
+    const Passes pooled = split_passes(net, &pool, x, grad_out);
+    CHECK(one.output == pooled.output);
+    CHECK(one.grads == pooled.grads);
+    CHECK(one.grad_input == pooled.grad_input);
+  }
 
   const Passes halves = halves_passes(net, x, grad_out, true);
   CHECK(one.output == halves.output);
@@ -165,8 +169,8 @@ TEST_CASE("SplitAdam is one Adam over the whole vector, its norm is the gradient
   const int size = 1000;  // parts of 496 and 504
   Eigen::VectorXf p_split = random_matrix(size, 1, rng), g_split(size);
   Eigen::VectorXf p_one = p_split, g_one(size);
-  ForkJoin parallel(true);
-  SplitAdam split({p_split.data(), g_split.data(), size}, {}, &parallel);
+  ThreadPool pool(2);
+  SplitAdam split({p_split.data(), g_split.data(), size}, {}, &pool);
   Adam one({{p_one.data(), g_one.data(), size}});
   for (int step = 0; step < 5; ++step) {
     g_split = random_matrix(size, 1, rng);

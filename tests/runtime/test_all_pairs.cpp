@@ -11,6 +11,7 @@
 #include "rlrun/runtime/model_file.hpp"
 #include "rlrun/runtime/trainer.hpp"
 #include "runtime/cli_runner.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 
@@ -52,7 +53,7 @@ TEST_CASE("every algorithm trains on every classic env (auto_wrap) and its model
       INFO(algo.id << " on " << env_id << "\n" << yaml);
       const Experiment experiment =
           parse_experiment(ConfigNode::load_string(yaml, "pairs.yaml"), registry);
-      const TrainOutcome outcome = train_experiment(experiment, registry);
+      const TrainOutcome outcome = train_experiment(experiment, registry, testing::test_execution());
       CHECK(outcome.timesteps >= 400);
       const ModelFile model = read_model(outcome.model_path);
       const Experiment stored = experiment_from_model(model, registry);

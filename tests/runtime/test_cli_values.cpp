@@ -76,7 +76,7 @@ TEST_CASE("CLI: counts and rates say their rule", "[cli][values]") {
   check_refused(train + " --timesteps 1e30", "--timesteps: must be an integer >= 1, got '1e30'");
   check_refused(train + " -j 0", "--jobs: must be an integer >= 1, got '0'");
   check_refused("sweep run " + dir / "m.yaml" + " --index -2", "--index: must be an integer >= 0, got '-2'");
-  check_refused("--threads 3 list", "--threads: must be 1 or 2, got '3'");
+  check_refused("--threads 0 list", "--threads must be a whole number from 1 to 4096 or auto (the CPUs this process may use), got '0'");
   check_refused("record --env CartPole-v1 --policy random --fps 0 --output " + dir / "v.mp4",
                 "--fps: must be a number > 0 and <= 1000, got '0'");
   check_refused("record --env CartPole-v1 --policy random --fps inf --output " + dir / "v.mp4",

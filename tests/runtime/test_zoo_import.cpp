@@ -16,6 +16,7 @@
 #include "rlrun/runtime/zoo/zoo_import.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
+#include "test_threads.hpp"
 
 using namespace rlrun;
 using namespace rlrun::zoo;
@@ -65,7 +66,7 @@ std::string import_and_train(const std::string& file, const std::string& algo, c
     }
     const Experiment experiment = load_zoo_experiment(file, env, "", overrides, registry);
     if (!train) return "";
-    const TrainOutcome outcome = train_experiment(experiment, registry);
+    const TrainOutcome outcome = train_experiment(experiment, registry, testing::test_execution());
     if (!std::filesystem::exists(outcome.run_dir + "/model.zip")) return "no model.zip";
     return "";
   } catch (const std::exception& e) {
@@ -455,7 +456,7 @@ TEST_CASE("zoo import: --entry uses another env's entry (the zoo's PandaReach TQ
                                             "run.out_dir=" + dir / "runs"},
                                            registry, "PandaReach-v1");
   CHECK(e.env.section.normalize.enabled);
-  const TrainOutcome outcome = train_experiment(e, registry);
+  const TrainOutcome outcome = train_experiment(e, registry, testing::test_execution());
   CHECK(std::filesystem::exists(outcome.run_dir + "/model.zip"));
   // A missing entry is named with the closest one.
   CHECK_THROWS_WITH(read_zoo_entry(file, "GripperReach-v0", "", "PandaReach-v3"),

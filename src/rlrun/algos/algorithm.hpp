@@ -18,13 +18,16 @@ namespace rlrun {
 
 class VecEnv;
 class PolicyGraph;
-class PolicyGraph;
+class ThreadPool;
 
 struct AlgorithmSetup {
   Space observation_space;
   Space action_space;
   int n_envs = 1;
   uint64_t seed = 0;
+  // The run's threads (core/thread_pool.hpp), which the update's parts share; null: the
+  // calling thread alone. Never changes a result (nn/batch_split.hpp).
+  ThreadPool* pool = nullptr;
 };
 
 // What learn() reports to and asks of the runtime.

@@ -1,5 +1,5 @@
 #pragma once
-// How rlrun's hand-offs between threads wait (core/fork_join.cpp, core/thread_pool.cpp): spin
+// How rlrun's hand-offs between threads wait (core/thread_pool.cpp): spin
 // kSpinIterations times (about 20-50 µs; a job is ~100 µs, a futex wake-up ~10 µs), then sleep
 // on std::atomic::wait.
 #include <thread>

@@ -95,7 +95,14 @@ void ThreadPool::run_job(int parts, Call call, void* fn) {
     done_.store(0, std::memory_order_relaxed);
     const uint64_t generation = generation_of(claim_.load(std::memory_order_relaxed)) + 1;
     claim_.store(make_claim(generation, parts, 0), std::memory_order_release);
-    claim_.notify_all();
+    // Wake no more sleeping workers than there are parts for them (the calling thread takes
+    // one): on a 64-core pool a two-part minibatch must not wake 63 threads. A worker left
+    // asleep simply misses this job; spinning ones see it without a wake-up.
+    if (static_cast<size_t>(parts - 1) >= workers_.size()) {
+      claim_.notify_all();
+    } else {
+      for (int k = 1; k < parts; ++k) claim_.notify_one();
+    }
     run_claimed_parts(generation);
     // Every part is claimed; wait for the workers still running theirs.
     int finished = done_.load(std::memory_order_acquire);

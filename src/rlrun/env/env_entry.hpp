@@ -59,6 +59,11 @@ struct EnvEntry {
   // The id names code that building the env runs (a Python class): an id from a file rlrun
   // does not trust is refused unless `--set env.id=...` vouches for it (docs/security.md).
   bool runs_named_code = false;
+  // Copies of this env share nothing a step changes (each its own simulation and RNG, no
+  // process-wide state): a VecEnv may step them on several threads at once (env/vec_env.hpp).
+  // Built-in envs that simulate in this process say so. Envs in other processes overlap
+  // already (env/split_step.hpp); plugin envs are not assumed to.
+  bool independent_copies = false;
 
   EnvPtr build(const AnyConfig& kwargs, const EnvContext& context) const {
     return make_in_context ? make_in_context(kwargs, context) : make(kwargs);
@@ -66,6 +71,12 @@ struct EnvEntry {
 };
 
 using EnvEntries = std::vector<EnvEntry>;
+
+// Sets independent_copies on out[first], out[first + 1], ...: the entries a folder's
+// register function added.
+inline void mark_independent_copies(EnvEntries& out, size_t first) {
+  for (size_t i = first; i < out.size(); ++i) out[i].independent_copies = true;
+}
 
 // The entry of an env class whose constructor takes its own `Config`.
 template <class E>

@@ -3,6 +3,7 @@
 #include "rlrun/core/state_dict.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <limits>
 #include <span>
@@ -148,9 +149,28 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
     }
     if (error) std::rethrow_exception(error);
   } else {
-    for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
+    step_copies(actions);
   }
   if (hook_) run_step_hook();
+}
+
+void VecEnv::step_copies(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
+  if (parallel_) {
+    // Each part touches copy c's env and its own columns, flags, info and reset only.
+    pool_->run(num_copies(), [&](int c) { step_copy(c, actions); });
+    return;
+  }
+  const bool may_go_parallel = independent_copies_ && pool_ != nullptr && pool_->threads() > 1 &&
+                               num_copies() > 1 && num_envs() == num_copies();
+  if (!may_go_parallel || timed_steps_ >= kTimedSteps) {
+    for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (int c = 0; c < num_copies(); ++c) step_copy(c, actions);
+  timed_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (++timed_steps_ == kTimedSteps)
+    parallel_ = timed_seconds_ / kTimedSteps >= parallel_step_seconds_;
 }
 
 void VecEnv::step_copy(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions) {

@@ -1,14 +1,13 @@
 #pragma once
-// How a gradient step shares its work between the two cores (core/fork_join.hpp, `--threads
-// 1|2`): the one rule SplitMlp (a minibatch's columns) and SplitAdam (a parameter vector) use.
-// A part is computed on the calling thread (part 0) or on ForkJoin's worker (part 1; after part
-// 0 on the calling thread when the worker is off). How a range is split depends only on its
-// size, never on the thread count, and sums over parts are taken in part order, so a run is
-// bit-identical with one thread or two.
+// How a gradient step cuts its work into parts for the run's thread pool (core/thread_pool.hpp,
+// `--threads N`): the one rule SplitMlp (a minibatch's columns) and SplitAdam (a parameter
+// vector) use. How a range is cut depends only on its size, never on the thread count; each
+// part writes only what it owns and sums over parts are taken in part order, so a run is
+// bit-identical with 1, 2 or 64 threads. Which thread computes a part is the pool's choice.
 #include <Eigen/Core>
 #include <type_traits>
 
-#include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/thread_pool.hpp"
 
 namespace rlrun {
 
@@ -49,24 +48,15 @@ inline Part param_part(Eigen::Index n, int part) {
   return part == 0 ? Part{0, split} : Part{split, n - split};
 }
 
-// Runs fn(0) here and, when parts is 2, fn(1) on the worker of `fork_join` (null: the process's
-// ForkJoin::shared(), made on this first use); returns when both are done. fn(k) must write
-// only what part k owns.
+// fn(0), ..., fn(parts - 1) on the threads of `pool` (null: all on the calling thread, in part
+// order); returns when all are done. fn(k) must write only what part k owns.
 template <class F>
-void run_parts(ForkJoin* fork_join, int parts, F&& fn) {
-  if (parts == 1) {
-    fn(0);
+void run_parts(ThreadPool* pool, int parts, F&& fn) {
+  if (pool == nullptr || parts == 1) {
+    for (int k = 0; k < parts; ++k) fn(k);
     return;
   }
-  // Each part is captured through one reference, so std::function stores it in place (no
-  // allocation per gradient step).
-  struct Call {
-    std::remove_reference_t<F>* fn;
-    int part;
-    void operator()() const { (*fn)(part); }
-  };
-  const Call first{&fn, 0}, second{&fn, 1};
-  (fork_join ? *fork_join : ForkJoin::shared()).run([&first] { first(); }, [&second] { second(); });
+  pool->run(parts, fn);
 }
 
 }  // namespace rlrun

@@ -15,15 +15,15 @@ ParamBlock sub_block(const ParamBlock& b, const Part& part) {
 
 }  // namespace
 
-SplitAdam::SplitAdam(ParamBlock block, AdamConfig config, ForkJoin* fork_join)
-    : block_(block), fork_join_(fork_join) {
+SplitAdam::SplitAdam(ParamBlock block, AdamConfig config, ThreadPool* pool)
+    : block_(block), pool_(pool) {
   for (int k = 0; k < 2; ++k)
     parts_[k] = Adam({sub_block(block_, param_part(block_.size, k))}, config);
 }
 
 float SplitAdam::grad_norm() const {
   double sum_sq[2] = {0.0, 0.0};
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     const Part part = param_part(block_.size, k);
     sum_sq[k] = dense::sum_of_squares(part.count, block_.grad + part.begin);
   });
@@ -31,7 +31,7 @@ float SplitAdam::grad_norm() const {
 }
 
 void SplitAdam::step(float lr, float grad_scale) {
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     const Part part = param_part(block_.size, k);
     if (grad_scale != 1.0f)
       Eigen::Map<Eigen::VectorXf>(block_.grad + part.begin, part.count) *= grad_scale;

@@ -1,5 +1,5 @@
 #pragma once
-// torch.optim.Adam over one network's parameter vector with its element-wise work on both cores
+// torch.optim.Adam over one network's parameter vector with its element-wise work in two parts
 // (batch_split.hpp param_part): two Adams over the vector's two parts, stepped at once. Adam is
 // element-wise with one step count, so this is exactly one Adam over the whole vector. Also
 // the total gradient norm of torch.nn.utils.clip_grad_norm_, summed the same way, and the
@@ -7,7 +7,7 @@
 // over the parameters is a large share of it).
 #include <array>
 
-#include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/thread_pool.hpp"
 #include "rlrun/nn/adam.hpp"
 #include "rlrun/nn/param_block.hpp"
 
@@ -16,9 +16,9 @@ namespace rlrun {
 class SplitAdam {
  public:
   SplitAdam() = default;
-  // `block` must outlive the optimizer and stay where it is (see ParamBlock). `fork_join` runs
-  // part 1 (null: ForkJoin::shared(), on first use).
-  explicit SplitAdam(ParamBlock block, AdamConfig config = {}, ForkJoin* fork_join = nullptr);
+  // `block` must outlive the optimizer and stay where it is (see ParamBlock). `pool` runs the
+  // two parts (null: both on the calling thread).
+  explicit SplitAdam(ParamBlock block, AdamConfig config = {}, ThreadPool* pool = nullptr);
 
   // The L2 norm of the whole gradient: each part's sum of squares (in double, over float chunks),
   // part 0's plus part 1's.
@@ -34,7 +34,7 @@ class SplitAdam {
  private:
   ParamBlock block_;
   std::array<Adam, 2> parts_;
-  ForkJoin* fork_join_ = nullptr;
+  ThreadPool* pool_ = nullptr;
 };
 
 }  // namespace rlrun

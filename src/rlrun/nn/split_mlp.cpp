@@ -10,15 +10,15 @@
 namespace rlrun {
 
 SplitMlp::SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
-                   ForkJoin* fork_join)
-    : net_(in_dim, std::move(hidden), out_dim, act), fork_join_(fork_join) {}
+                   ThreadPool* pool)
+    : net_(in_dim, std::move(hidden), out_dim, act), pool_(pool) {}
 
-SplitMlp::SplitMlp(Mlp net, ForkJoin* fork_join) : net_(std::move(net)), fork_join_(fork_join) {}
+SplitMlp::SplitMlp(Mlp net, ThreadPool* pool) : net_(std::move(net)), pool_(pool) {}
 
 SplitMlp& SplitMlp::operator=(const SplitMlp& other) {
   if (this == &other) return *this;
   net_ = other.net_;
-  fork_join_ = other.fork_join_;
+  pool_ = other.pool_;
   replica_.reset();
   parts_ = 1;
   return *this;
@@ -39,7 +39,7 @@ const Eigen::MatrixXf& SplitMlp::forward(const Eigen::Ref<const Eigen::MatrixXf>
   Mlp& replica = this->replica();
   const float* p = net_.params_.data();
   output_.resize(net_.out_dim(), n);
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     output_.middleCols(cols.begin, cols.count) =
@@ -80,7 +80,7 @@ void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_out
   Mlp& replica = *replica_;
   const float* p = net_.params_.data();
   transpose_for_halves(n, false);
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     if (k == 1 || zero_first) half.zero_grad();  // the replica holds the second half's alone
@@ -91,7 +91,7 @@ void SplitMlp::backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_out
                        grad_hidden, grad_last_hidden ? grad_last_hidden->rows() : 0, &net_);
   });
   // grads += the second half's gradient, each core adding its part of the parameter vector.
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     const Part params = param_part(net_.num_params(), k);
     net_.grads_.segment(params.begin, params.count) +=
         replica.grads_.segment(params.begin, params.count);
@@ -113,7 +113,7 @@ void SplitMlp::backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_outp
   const float* p = net_.params_.data();
   grad_input.resize(net_.in_dim() - first_input_row, n);
   transpose_for_halves(n, true, first_input_row);
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     const Part cols = column_part(n, 2, k);
     Mlp& half = k == 0 ? net_ : replica;
     half.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), false,
@@ -127,7 +127,7 @@ void SplitMlp::transpose_for_halves(Eigen::Index n, bool input_gradient, int fir
   // batch decides); each half still chooses its kernel from its own batch.
   const Eigen::Index batch = std::max(column_part(n, 2, 0).count, column_part(n, 2, 1).count);
   const float* p = net_.params_.data();
-  run_parts(fork_join_, 2, [&](int k) {
+  run_parts(pool_, 2, [&](int k) {
     for (int l = input_gradient ? 0 : 1; l < net_.num_layers(); ++l) {
       const Eigen::Index in = net_.dims_[l];
       if (!Mlp::uses_transposed_weight(l == 0 ? in - first_input_row : in, batch)) continue;

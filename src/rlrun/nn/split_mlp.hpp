@@ -1,7 +1,7 @@
 #pragma once
-// An Mlp whose passes over a training minibatch use both cores: data parallelism over the
-// batch's columns (batch_split.hpp). The first half of the columns runs through the network
-// itself on the calling thread, the second through a replica on ForkJoin's worker. The replica
+// An Mlp whose passes over a training minibatch use the run's threads: data parallelism over
+// the batch's columns (batch_split.hpp). The first half of the columns runs through the network
+// itself, the second through a replica, each on whichever thread of the pool takes it. The replica
 // reads the network's parameters in place (it has none of its own) and keeps its own
 // activations and gradient; backward adds the second half's gradient to the network's once both
 // halves are done, so grads() ends as (grads + first half's) + second half's, the same bits with
@@ -14,7 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "rlrun/core/fork_join.hpp"
+#include "rlrun/core/thread_pool.hpp"
 #include "rlrun/nn/mlp.hpp"
 
 namespace rlrun {
@@ -23,13 +23,13 @@ class SplitMlp {
  public:
   SplitMlp() = default;
   // Parameters start at zero (see Mlp). Throws std::invalid_argument for non-positive sizes.
-  // `fork_join` runs the second halves (null: ForkJoin::shared(), on the first split pass).
+  // `pool` runs the halves (null: both on the calling thread, one after the other).
   SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
-           ForkJoin* fork_join = nullptr);
-  explicit SplitMlp(Mlp net, ForkJoin* fork_join = nullptr);
+           ThreadPool* pool = nullptr);
+  explicit SplitMlp(Mlp net, ThreadPool* pool = nullptr);
   // Copies the network; the copy makes its own replica when a pass first needs one (acting
   // copies, whose batches are small, never do).
-  SplitMlp(const SplitMlp& other) : net_(other.net_), fork_join_(other.fork_join_) {}
+  SplitMlp(const SplitMlp& other) : net_(other.net_), pool_(other.pool_) {}
   SplitMlp& operator=(const SplitMlp& other);
 
   // The network: parameters, gradients, shape, and unsplit passes.
@@ -74,7 +74,7 @@ class SplitMlp {
 
   Mlp net_;
   std::optional<Mlp> replica_;
-  ForkJoin* fork_join_ = nullptr;
+  ThreadPool* pool_ = nullptr;
   int parts_ = 1;           // of the last forward
   Eigen::MatrixXf output_;  // the last split forward's output, both halves
   Eigen::MatrixXf last_hidden_;  // last_hidden() of a split forward, both halves

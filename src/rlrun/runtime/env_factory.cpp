@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
@@ -109,6 +110,11 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
   }
   VecEnv vec(std::move(envs));
   install_batch_normalization(vec, spec.section.normalize);
+  // Copies share nothing when the env says so and no wrapper shares state across them:
+  // normalisation statistics are shared (runtime/env_statistics.hpp), and the observation tap
+  // feeds one log. The wrappers of env.wrappers are otherwise per copy.
+  vec.set_independent_copies(env_entry(spec, registry).independent_copies &&
+                             model_statistics(vec.env(0)).empty() && tap_env < 0);
   return vec;
 }
 

@@ -192,7 +192,7 @@ std::string slurm_script(const Sweep& sweep, const std::string& rlrun_binary,
   job.comment = {"Written by: rlrun sweep slurm " + shell_quote(sweep.manifest),
                  "Task i trains run i of the manifest (a finished run is skipped, an interrupted "
                  "one resumed)."};
-  const int threads = sweep.slurm.cpus_per_task >= 2 ? 2 : 1;
+  const int threads = sweep.slurm.cpus_per_task;  // the CPUs Slurm gives each task
   for (const std::string& arg : run_args)
     if (!script_path_problem(arg).empty())
       throw UsageError("cannot write the sbatch script: the argument " + printable(arg) +

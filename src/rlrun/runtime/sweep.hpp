@@ -42,7 +42,7 @@ struct SlurmOptions {
   void visit(V& v) {
     v("partition", partition, "sbatch --partition (empty: the cluster's default)");
     v("time", time, "sbatch --time per run");
-    v("cpus_per_task", cpus_per_task, "sbatch --cpus-per-task; also rlrun --threads (1 or 2)");
+    v("cpus_per_task", cpus_per_task, "sbatch --cpus-per-task; also each task's rlrun --threads");
     v("mem", mem, "sbatch --mem (empty: the cluster's default)");
     v("extra", extra, "further sbatch options, one per #SBATCH line (--option=value)");
   }

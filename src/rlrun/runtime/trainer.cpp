@@ -76,8 +76,10 @@ std::string checkpoint_name(int64_t num_timesteps) {
 class TrainingRun {
  public:
   TrainingRun(const Experiment& experiment, const Registry& registry,
-              const std::vector<std::string>& resume_from, EvaluationListener on_evaluation)
-      : experiment_(experiment), registry_(registry), resuming_(!resume_from.empty()),
+              const ExecutionContext& execution, const std::vector<std::string>& resume_from,
+              EvaluationListener on_evaluation)
+      : experiment_(experiment), registry_(registry), execution_(execution),
+        resuming_(!resume_from.empty()),
         on_evaluation_(std::move(on_evaluation)) {
     open_run_directory(resume_from);
     build();
@@ -105,6 +107,7 @@ class TrainingRun {
 
   const Experiment& experiment_;
   const Registry& registry_;
+  const ExecutionContext execution_;
   const bool resuming_;
   TrainOutcome outcome_;
   std::optional<DirHandle> dir_;  // the run directory, held open (core/dir_handle.hpp)
@@ -160,7 +163,8 @@ void TrainingRun::announce() {
     log_->line("rlrun " RLRUN_VERSION ": training " + experiment_.algo.id + " on " +
                experiment_.env.id + " for " + count_of(run.total_timesteps, "step") +
                " (seed " + std::to_string(run.seed) + ", " +
-               count_of(experiment_.env.section.n_envs, "env") + ") -> " + outcome_.run_dir);
+               count_of(experiment_.env.section.n_envs, "env") + ", " +
+               count_of(execution_.threads(), "thread") + ") -> " + outcome_.run_dir);
     return;
   }
   for (const std::string& skipped : resume_->skipped)
@@ -168,7 +172,8 @@ void TrainingRun::announce() {
   log_->line("rlrun " RLRUN_VERSION ": resuming " + experiment_.algo.id + " on " +
              experiment_.env.id + " from " + resume_->path + " (step " +
              std::to_string(resume_->checkpoint.meta.num_timesteps) + " of " +
-             std::to_string(run.total_timesteps) + ")");
+             std::to_string(run.total_timesteps) + ", " + count_of(execution_.threads(), "thread") +
+             ")");
 }
 
 void TrainingRun::build() {
@@ -178,8 +183,9 @@ void TrainingRun::build() {
                             outcome_.run_dir, tap_env, /*append_monitor=*/resuming_));
   share_model_statistics(*env_);  // one set of normalisation statistics, like VecNormalize
   if (!resuming_) env_->seed(experiment_.run.seed);
+  env_->set_thread_pool(execution_.pool);
   const AlgorithmSetup setup{env_->observation_space(), env_->action_space(), env_->num_envs(),
-                             experiment_.run.seed};
+                             experiment_.run.seed, execution_.pool};
   algorithm_ = make_algorithm(experiment_, registry_, setup);
   if (!resuming_ && !experiment_.run.init_from.empty())
     log_->line(initialize_from_model(experiment_.run.init_from, *algorithm_, *env_));
@@ -406,9 +412,10 @@ void TrainingRun::finish() {
 }  // namespace
 
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
+                              const ExecutionContext& execution,
                               const std::vector<std::string>& resume_from,
                               EvaluationListener on_evaluation) {
-  TrainingRun run(experiment, registry, resume_from, std::move(on_evaluation));
+  TrainingRun run(experiment, registry, execution, resume_from, std::move(on_evaluation));
   return run.run();
 }
 

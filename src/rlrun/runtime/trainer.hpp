@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/execution_context.hpp"
 #include "rlrun/runtime/callback.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/session_summary.hpp"
@@ -50,7 +51,9 @@ inline SessionSummary session_summary(const TrainOutcome& outcome) {
 // runtime/resume_point.hpp lists them; a damaged one is skipped with a note), with
 // `experiment` loaded from that run's config.yaml.
 // `on_evaluation`: told of every evaluation; may stop training (runtime/callback.hpp).
+// `execution`: the threads the run uses (its results are the same with any number).
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
+                              const ExecutionContext& execution,
                               const std::vector<std::string>& resume_from = {},
                               EvaluationListener on_evaluation = {});
 

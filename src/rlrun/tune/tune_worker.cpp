@@ -125,10 +125,10 @@ struct TrialResult {
 
 class TrialRunner {
  public:
-  TrialRunner(const StudyConfig& study, Registry& registry, JournalStorage& storage,
-              int64_t study_id, Pruner& pruner, bool verbose)
-      : study_(study), registry_(registry), storage_(storage), study_id_(study_id), pruner_(pruner),
-        verbose_(verbose) {}
+  TrialRunner(const StudyConfig& study, Registry& registry, const ExecutionContext& execution,
+              JournalStorage& storage, int64_t study_id, Pruner& pruner, bool verbose)
+      : study_(study), registry_(registry), execution_(execution), storage_(storage),
+        study_id_(study_id), pruner_(pruner), verbose_(verbose) {}
 
   TrialResult run(Trial& trial) {
     TrialResult result;
@@ -181,7 +181,7 @@ class TrialRunner {
       TrainOutcome outcome;
       try {
         QuietTraining quiet(!verbose_);
-        outcome = train_experiment(experiment, registry_, {}, on_evaluation);
+        outcome = train_experiment(experiment, registry_, execution_, {}, on_evaluation);
       } catch (const ConfigError& e) {
         return fail(std::string("the sampled configuration is not valid: ") + e.what());
       } catch (const std::exception& e) {
@@ -241,6 +241,7 @@ class TrialRunner {
 
   const StudyConfig& study_;
   Registry& registry_;
+  const ExecutionContext execution_;
   JournalStorage& storage_;
   int64_t study_id_;
   Pruner& pruner_;
@@ -249,7 +250,8 @@ class TrialRunner {
 
 }  // namespace
 
-WorkerSummary run_worker(const StudyConfig& study, Registry& registry, bool verbose) {
+WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
+                         const ExecutionContext& execution, bool verbose) {
   install_interrupt_handlers();
   fs::create_directories(fs::path(study.storage).parent_path());
   // The trials' run directories go to <out_dir>/trials (study_config.hpp): inside the study,
@@ -270,7 +272,7 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry, bool verb
   Heartbeat heartbeat(study.storage, storage.worker_id());
   std::unique_ptr<Sampler> sampler = make_sampler(study.sampler);
   std::unique_ptr<Pruner> pruner = make_pruner(study.pruner, study.n_evaluations / 3);
-  TrialRunner runner(study, registry, storage, study_id, *pruner, verbose);
+  TrialRunner runner(study, registry, execution, storage, study_id, *pruner, verbose);
   WorkerSummary summary;
   const auto start = std::chrono::steady_clock::now();
   for (;;) {

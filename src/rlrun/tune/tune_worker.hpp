@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <string>
 
+#include "rlrun/core/execution_context.hpp"
 #include "rlrun/tune/study_config.hpp"
 
 namespace rlrun {
@@ -37,7 +38,9 @@ struct WorkerSummary {
 };
 
 // `verbose`: show each seed's training output (else only the trial lines; log.txt has it all).
-WorkerSummary run_worker(const StudyConfig& study, Registry& registry, bool verbose = false);
+// `execution`: the threads each trial's training uses.
+WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
+                         const ExecutionContext& execution, bool verbose = false);
 
 // The trials that count towards n_trials: all but the FAIL ones marked rlrun:requeued.
 int counted_trials(const std::vector<FrozenTrial>& trials);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "rlrun/core/fork_join.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include <stdexcept>
 
@@ -307,8 +306,8 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
 void ActorCriticPolicy::run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
                                  const std::function<void()>& critic_part) {
   // Below ~32 samples the hand-off costs more than the halved work.
-  if (batch >= 32) {
-    ForkJoin::shared().run(actor_part, critic_part);
+  if (batch >= 32 && pool_ != nullptr) {
+    pool_->run(2, [&](int part) { part == 0 ? actor_part() : critic_part(); });
   } else {
     actor_part();
     critic_part();

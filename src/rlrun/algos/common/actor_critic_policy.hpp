@@ -18,6 +18,7 @@
 #include "rlrun/rng.hpp"
 #include "rlrun/space.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/core/thread_pool.hpp"
 #include "rlrun/env/observation_encoder.hpp"
 #include "rlrun/nn/bernoulli.hpp"
 #include "rlrun/nn/categorical.hpp"
@@ -129,14 +130,19 @@ class ActorCriticPolicy {
   void export_to(PolicyGraph& graph, const std::string& obs, const Space& action_space,
                  bool with_value) const;
 
+  // The threads a training minibatch's actor and critic passes share (null, the default: the
+  // calling thread alone). Never changes a result: the two write separate networks.
+  void set_thread_pool(ThreadPool* pool) { pool_ = pool; }
+
   const ObservationEncoder& encoder() const { return encoder_; }
   const Mlp& actor() const { return actor_; }
   const Mlp& critic() const { return critic_; }
 
  private:
-  static void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
-                       const std::function<void()>& critic_part);
+  void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
+                const std::function<void()>& critic_part);
 
+  ThreadPool* pool_ = nullptr;
   ObservationEncoder encoder_;
   Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;

@@ -8,12 +8,13 @@
 namespace rlrun {
 
 ContinuousCritic::ContinuousCritic(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                                   Activation activation, int n_critics, int n_outputs)
-    : obs_dim_(obs_dim) {
+                                   Activation activation, int n_critics, int n_outputs,
+                                   ThreadPool* pool)
+    : obs_dim_(obs_dim), pool_(pool) {
   if (n_critics < 1) throw std::invalid_argument("ContinuousCritic: n_critics must be >= 1");
   if (n_outputs < 1) throw std::invalid_argument("ContinuousCritic: n_outputs must be >= 1");
   for (int i = 0; i < n_critics; ++i)
-    q_.emplace_back(obs_dim + action_dim, net_arch, n_outputs, activation);
+    q_.emplace_back(obs_dim + action_dim, net_arch, n_outputs, activation, pool);
 }
 
 void ContinuousCritic::init(Rng& rng) {

@@ -23,9 +23,10 @@ class ContinuousCritic {
  public:
   // Parameters start at zero: call init (or copy another critic). Throws std::invalid_argument
   // for n_critics < 1, n_outputs < 1 or bad sizes. n_outputs: 1 (a Q-value) or TQC's
-  // n_quantiles.
+  // n_quantiles. `pool` runs a minibatch's parts (SplitMlp) or the critics side by side.
   ContinuousCritic(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                   Activation activation, int n_critics, int n_outputs = 1);
+                   Activation activation, int n_critics, int n_outputs = 1,
+                   ThreadPool* pool = nullptr);
 
   // torch's default Linear init, Q-network by Q-network (SB3 never calls init_weights for
   // off-policy critics).
@@ -36,10 +37,10 @@ class ContinuousCritic {
   SplitMlp& q(int i) { return q_[i]; }
   const SplitMlp& q(int i) const { return q_[i]; }
 
-  // Runs fn(i) for every critic i, critics 0, 2, ... on this thread and 1, 3, ... on the other
-  // core (core/fork_join.hpp) when a pass of n columns through one critic does not already
-  // split over both (nn/batch_split.hpp): small critics such as RLtools' 64x64 ones still use
-  // the second core. fn(i) must read and write only critic i's state (its network, optimizer
+  // Runs fn(i) for every critic i, critics 0, 2, ... as one part and 1, 3, ... as another on
+  // the pool (core/thread_pool.hpp) when a pass of n columns through one critic does not
+  // already split (nn/batch_split.hpp): small critics such as RLtools' 64x64 ones still use a
+  // second core. fn(i) must read and write only critic i's state (its network, optimizer
   // and buffers). Which critics run together depends on sizes only, so results do not depend
   // on the thread count.
   template <class F>
@@ -47,7 +48,7 @@ class ContinuousCritic {
     const int critics = n_critics();
     const bool apart =
         critics > 1 && column_parts(n, q_.front().net().multiply_adds_per_column()) == 1;
-    run_parts(nullptr, apart ? 2 : 1, [&](int part) {
+    run_parts(pool_, apart ? 2 : 1, [&](int part) {
       for (int i = apart ? part : 0; i < critics; i += apart ? 2 : 1) fn(i);
     });
   }
@@ -77,6 +78,7 @@ class ContinuousCritic {
 
  private:
   int obs_dim_ = 0;
+  ThreadPool* pool_ = nullptr;
   std::vector<SplitMlp> q_;
   Eigen::MatrixXf obs_action_;
 };

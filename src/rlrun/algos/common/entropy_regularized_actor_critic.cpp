@@ -35,13 +35,13 @@ EntropyRegularizedActorCritic::EntropyRegularizedActorCritic(
       config_(config),
       action_dim_(setup.action_space.flat_dim()),
       critic_(features_dim(), action_dim_, policy.net_arch.qf, policy.activation_fn,
-              policy.n_critics, critic_outputs),
+              policy.n_critics, critic_outputs, setup.pool),
       critic_target_(critic_),
       ent_coef_(config.ent_coef, config.target_entropy, action_dim_),
       train_rng_(setup.seed ^ kTrainStream),
       predict_rng_(setup.seed ^ kPredictStream),
       actor_(features_dim(), action_dim_, policy.net_arch.pi, policy.activation_fn,
-             policy.actor_sde(config.use_sde)),
+             policy.actor_sde(config.use_sde), setup.pool),
       acting_(setup, config.action_noise) {
   // SB3 SACPolicy._build (sb3-contrib TQCPolicy._build alike): the actor, then the critics (the
   // targets copies), torch's default Linear init for all; Adam with torch's eps 1e-8 everywhere.

@@ -12,8 +12,8 @@
 //
 // Each algorithm's train_on_batch (sac.cpp, tqc.cpp) reads top to bottom like its paper's
 // gradient step and calls these pieces in that order; its target and critic loss are its own.
-// The networks are SplitMlps, so a training minibatch runs on both cores when ForkJoin's worker
-// is on (RLRUN_THREADS=2), with the same bits as on one.
+// Its networks are SplitMlps, so a training minibatch's parts run on the run's threads
+// (AlgorithmSetup::pool, `--threads`), with the same bits on any number.
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -133,6 +133,7 @@ OnPolicyAlgorithm::OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup
       gamma_(static_cast<float>(rollout.gamma)),
       gae_lambda_(static_cast<float>(rollout.gae_lambda)),
       action_rng_(setup.seed ^ kActionStream) {
+  policy_.set_thread_pool(setup.pool);
   checkpoint("num_timesteps", num_timesteps_);
   checkpoint("n_updates", n_updates_);
   checkpoint("action_rng", action_rng_);

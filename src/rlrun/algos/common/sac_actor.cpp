@@ -9,9 +9,9 @@
 namespace rlrun {
 
 SacActor::SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                   Activation activation, const SacActorSde& sde)
+                   Activation activation, const SacActorSde& sde, ThreadPool* pool)
     : action_dim_(action_dim),
-      net_(obs_dim, net_arch, sde.use_sde ? action_dim : 2 * action_dim, activation),
+      net_(obs_dim, net_arch, sde.use_sde ? action_dim : 2 * action_dim, activation, pool),
       sde_options_(sde) {
   if (sde.use_sde) {
     // SB3 Actor: StateDependentNoiseDistribution(action_dim, full_std, use_expln,

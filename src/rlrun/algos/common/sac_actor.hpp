@@ -44,8 +44,9 @@ struct SacActorSde {
 class SacActor {
  public:
   SacActor() = default;
+  // `pool` runs a minibatch's parts (SplitMlp).
   SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation,
-           const SacActorSde& sde = {});
+           const SacActorSde& sde = {}, ThreadPool* pool = nullptr);
 
   int obs_dim() const { return net_.net().in_dim(); }
   int action_dim() const { return action_dim_; }

@@ -59,12 +59,13 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
       // from q_net's state_dict.
       q_net_([&] {
         Rng init_rng(setup.seed);
-        return make_q_network(features_dim(),
-                              static_cast<int>(setup.action_space.n()), config.policy, init_rng);
+        return SplitMlp(make_q_network(features_dim(), static_cast<int>(setup.action_space.n()),
+                                       config.policy, init_rng),
+                        setup.pool);
       }()),
       q_net_target_(q_net_),
       act_net_(q_net_.net()),
-      optimizer_(q_net_.net().block()),
+      optimizer_(q_net_.net().block(), AdamConfig{}, setup.pool),
       exploration_schedule_{config.exploration_initial_eps, config.exploration_final_eps,
                             config.exploration_fraction} {
   // Resume: counters, exploration rate, the action stream and the optimizer's two parts (the

@@ -8,8 +8,8 @@
 // Collection, replay and the train_freq / gradient_steps cadence are OffPolicyAlgorithm's.
 //
 // One gradient step (train_on_batch, dqn.cpp) reads top to bottom like DQN.train's loop body.
-// The Q-networks are SplitMlps and the optimizer a SplitAdam, so a training minibatch runs on
-// both cores when ForkJoin's worker is on (RLRUN_THREADS=2), with the same bits as on one.
+// The Q-networks are SplitMlps and the optimizer a SplitAdam, so a training minibatch's parts
+// run on the run's threads (AlgorithmSetup::pool, `--threads`), with the same bits on any number.
 #include <cstdint>
 #include <string>
 

@@ -40,10 +40,11 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
       config_(config),
       action_dim_(setup.action_space.flat_dim()),
       smoothing_rng_(setup.seed ^ kSmoothingStream),
-      actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn),
+      actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn,
+             setup.pool),
       actor_target_(actor_),
       critic_(features_dim(), action_dim_, config.policy.net_arch.qf, config.policy.activation_fn,
-              config.policy.n_critics),
+              config.policy.n_critics, /*n_outputs=*/1, setup.pool),
       critic_target_(critic_),
       acting_(setup, config.action_noise) {
   // SB3 TD3Policy._build: the actor (its target a copy), then the critics (targets copies);

@@ -9,8 +9,8 @@
 // one critic, as SB3's DDPG is a TD3 subclass with those settings.
 //
 // One gradient step (train_on_batch, td3.cpp) reads top to bottom like TD3.train's loop body.
-// Its networks are SplitMlps, so a training minibatch runs on both cores when ForkJoin's worker
-// is on (RLRUN_THREADS=2), with the same bits as on one.
+// Its networks are SplitMlps, so a training minibatch's parts run on the run's threads
+// (AlgorithmSetup::pool, `--threads`), with the same bits on any number.
 #include <string>
 #include <vector>
 

@@ -5,8 +5,8 @@
 namespace rlrun {
 
 Td3Actor::Td3Actor(int obs_dim, int action_dim, const std::vector<int>& net_arch,
-                   Activation activation)
-    : net_(obs_dim, net_arch, action_dim, activation) {}
+                   Activation activation, ThreadPool* pool)
+    : net_(obs_dim, net_arch, action_dim, activation, pool) {}
 
 const Eigen::MatrixXf& Td3Actor::forward(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
   actions_ = net_.forward(obs).array().tanh().matrix();

@@ -18,7 +18,9 @@ class Td3Actor {
  public:
   Td3Actor() = default;
   // Parameters start at zero; call net().init_torch_default(rng) (SB3: torch's Linear init).
-  Td3Actor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation);
+  // `pool` runs a minibatch's parts (SplitMlp).
+  Td3Actor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation,
+           ThreadPool* pool = nullptr);
 
   int action_dim() const { return net_.net().out_dim(); }
   // The network's parameters and gradients.

@@ -18,6 +18,7 @@ struct HardcoreConfig : BipedalWalker::Config {
 }  // namespace
 
 void register_bipedal_walker(EnvEntries& out) {
+  const size_t first = out.size();
   const PolicyEntry heuristic{
       "heuristic",
       "Gymnasium's scripted gait (BipedalWalkerHeuristics): walks on normal terrain",
@@ -40,6 +41,10 @@ void register_bipedal_walker(EnvEntries& out) {
 
   out.push_back(std::move(walker));
   out.push_back(std::move(hardcore));
+  // Steps of copies may run on several threads at once: each copy is its own b2World, terrain
+  // and RNG (Box2D's only process-wide variables are its profiling counters, which no result
+  // reads).
+  mark_independent_copies(out, first);
 }
 
 }  // namespace rlrun::envs

@@ -10,6 +10,7 @@
 namespace rlrun::envs {
 
 void register_classic(EnvEntries& out) {
+  const size_t first = out.size();
   out.push_back(make_env_entry<CartPole>("CartPole-v1", "balance a pole on a cart; Discrete(2)",
                                          CartPole::kMaxEpisodeSteps));
   out.push_back(make_env_entry<Pendulum>("Pendulum-v1",
@@ -24,6 +25,8 @@ void register_classic(EnvEntries& out) {
   out.push_back(make_env_entry<Acrobot>("Acrobot-v1",
                                         "swing a two-link arm above a line; Discrete(3)",
                                         Acrobot::kMaxEpisodeSteps));
+  // Steps of copies may run on several threads at once: each copy is its own few floats of state and its own RNG.
+  mark_independent_copies(out, first);
 }
 
 }  // namespace rlrun::envs

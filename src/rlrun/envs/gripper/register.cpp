@@ -23,6 +23,7 @@ EnvEntry goal_task(const char* id, const char* description, const char* scripted
 }  // namespace
 
 void register_gripper(EnvEntries& out) {
+  const size_t first = out.size();
   const PolicyEntry scripted{"scripted",
                              "moves above the cube, descends, closes and lifts (solves the task)",
                              [](Env& env, const PolicyOptions&) {
@@ -53,6 +54,8 @@ void register_gripper(EnvEntries& out) {
       "GripperPickAndPlace-v0",
       "goal env (panda-gym PickAndPlace): carry a cube to a goal, half in the air; Box(4) + grip",
       "grasps the cube, lifts it and carries it to the goal"));
+  // Steps of copies may run on several threads at once: each copy is its own Bullet world and RNG.
+  mark_independent_copies(out, first);
 }
 
 }  // namespace rlrun::envs

@@ -43,6 +43,7 @@ EnvEntry continuous_alias(const EnvEntry& discrete) {
 }  // namespace
 
 void register_lunar_lander(EnvEntries& out) {
+  const size_t first = out.size();
   EnvEntry lander = make_env_entry<LunarLander>("LunarLander-v3",
                                                 "land a Box2D lander on the pad (Gymnasium); "
                                                 "Discrete(4): noop left main right",
@@ -53,6 +54,10 @@ void register_lunar_lander(EnvEntries& out) {
   EnvEntry continuous = continuous_alias(lander);
   out.push_back(std::move(lander));
   out.push_back(std::move(continuous));
+  // Steps of copies may run on several threads at once: each copy is its own b2World and RNG
+  // (Box2D's only process-wide variables are its profiling counters, b2_gjkCalls and the
+  // like, which no result reads).
+  mark_independent_copies(out, first);
 }
 
 }  // namespace rlrun::envs

@@ -10,6 +10,7 @@
 namespace rlrun::envs {
 
 void register_probe(EnvEntries& out) {
+  const size_t first = out.size();
   out.push_back(make_env_entry<IdentityDiscrete>(
       "IdentityEnv-v0", "probe: act the observed value; Discrete(4) obs = action space",
       IdentityEnv::kMaxEpisodeSteps));
@@ -38,6 +39,8 @@ void register_probe(EnvEntries& out) {
       "SimpleMultiObsEnv-v0",
       "probe: 4x4 ring grid, Dict obs {moves: MultiBinary, row: Discrete, vec: Box}; Discrete(4)",
       SimpleMultiObs::kMaxEpisodeSteps));
+  // Steps of copies may run on several threads at once: each copy is its own state and RNG.
+  mark_independent_copies(out, first);
 }
 
 }  // namespace rlrun::envs

@@ -77,8 +77,8 @@ SumoProcess::SumoProcess(const Options& options)
   const int port = free_port();
   std::vector<std::string> args{binary, "--remote-port", std::to_string(port)};
   for (std::string& a : sumo_arguments(options)) args.push_back(std::move(a));
-  // Everything the child needs is prepared before fork(): rlrun may run a ForkJoin worker
-  // thread, and the child of a threaded process may only call async-signal-safe functions
+  // Everything the child needs is prepared before fork(): rlrun may run thread-pool workers,
+  // and the child of a threaded process may only call async-signal-safe functions
   // (no malloc) until exec.
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());

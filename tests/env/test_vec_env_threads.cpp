@@ -1,0 +1,72 @@
+// VecEnv stepping independent env copies on a thread pool (vec_env.hpp, EnvPool's way): the
+// batch must be the same bits as stepping one copy after another, for every pool size, through
+// auto-resets and time limits; copies not vouched for never go to the pool. (Whether a real
+// run's steps are worth the hand-off is measured at run time; no test asserts a timing.)
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "env/vec_env_trace.hpp"
+#include "rlrun/core/thread_pool.hpp"
+#include "rlrun/env/vec_env.hpp"
+#include "rlrun/envs/classic/cartpole.hpp"
+#include "rlrun/envs/lunar_lander/lunar_lander.hpp"
+#include "rlrun/wrappers/time_limit.hpp"
+
+using namespace rlrun;
+using rlrun::testing::trace_random_steps;
+using rlrun::testing::VecEnvTrace;
+
+namespace {
+
+template <class E>
+VecEnv copies(int n, int max_steps) {
+  std::vector<EnvPtr> envs;
+  for (int i = 0; i < n; ++i)
+    envs.push_back(std::make_unique<TimeLimit>(std::make_unique<E>(), max_steps));
+  return VecEnv(std::move(envs));
+}
+
+template <class E>
+void check_pooled_equals_serial(int n, int max_steps, int steps) {
+  VecEnv serial = copies<E>(n, max_steps);
+  const VecEnvTrace want = trace_random_steps(serial, steps, 11);
+  REQUIRE_FALSE(serial.steps_in_parallel());
+  CHECK(std::count(want.dones.begin(), want.dones.end(), 1) > 0);  // auto-resets happened
+  for (const int threads : {1, 2, 3, 8}) {
+    INFO(threads << " threads");
+    ThreadPool pool(threads);
+    VecEnv pooled = copies<E>(n, max_steps);
+    pooled.set_independent_copies(true);
+    pooled.set_thread_pool(&pool);
+    pooled.set_parallel_step_seconds(0.0);
+    const VecEnvTrace got = trace_random_steps(pooled, steps, 11);
+    CHECK(pooled.steps_in_parallel() == (threads > 1));
+    CHECK(got.obs == want.obs);
+    CHECK(got.final_obs == want.final_obs);
+    CHECK(got.rewards == want.rewards);
+    CHECK(got.dones == want.dones);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("VecEnv on a pool: independent copies step at once, with the serial bits",
+          "[vec_env][thread_pool]") {
+  SECTION("CartPole") { check_pooled_equals_serial<CartPole>(5, 50, 400); }
+  SECTION("LunarLander (a Box2D world per copy)") {
+    check_pooled_equals_serial<LunarLander>(4, 60, 300);
+  }
+}
+
+TEST_CASE("VecEnv on a pool: copies nobody vouched for stay on one thread",
+          "[vec_env][thread_pool]") {
+  ThreadPool pool(3);
+  VecEnv unvouched = copies<CartPole>(4, 50);
+  unvouched.set_thread_pool(&pool);
+  unvouched.set_parallel_step_seconds(0.0);
+  trace_random_steps(unvouched, 40, 11);
+  CHECK_FALSE(unvouched.steps_in_parallel());
+}
