@@ -49,8 +49,9 @@ Passes split_passes(const Mlp& net, ThreadPool* pool, const Eigen::MatrixXf& x,
   return p;
 }
 
-// The same passes through plain Mlps: the whole batch in one, or its halves in two, where each
-// backward adds the second half's gradient (computed from zero) to the first's.
+// The same passes through plain Mlps: the whole batch in one, or its parts in one Mlp each,
+// where each backward adds the further parts' gradients (each computed from zero) to the
+// first's, in part order.
 Passes halves_passes(const Mlp& net, const Eigen::MatrixXf& x, const Eigen::MatrixXf& grad_out,
                      bool halves) {
   const Eigen::Index n = x.cols();
@@ -59,26 +60,24 @@ Passes halves_passes(const Mlp& net, const Eigen::MatrixXf& x, const Eigen::Matr
   Passes p;
   p.output.resize(net.out_dim(), n);
   p.grad_input.resize(net.in_dim() - 2, n);
-  Mlp first = net, second = net;
-  for (int k = 0; k < parts; ++k) {
-    Mlp& m = k == 0 ? first : second;
+  std::vector<Mlp> nets(static_cast<size_t>(parts), net);
+  Mlp& first = nets.front();
+  for (int k = 0; k < parts; ++k)
     p.output.middleCols(cols(k).begin, cols(k).count) =
-        m.forward(x.middleCols(cols(k).begin, cols(k).count));
-  }
+        nets[k].forward(x.middleCols(cols(k).begin, cols(k).count));
   first.zero_grad();
   for (int pass = 0; pass < 2; ++pass) {
     first.backward(grad_out.middleCols(cols(0).begin, cols(0).count));
-    if (parts == 2) {
-      second.zero_grad();
-      second.backward(grad_out.middleCols(cols(1).begin, cols(1).count));
-      first.grads() += second.grads();
+    for (int k = 1; k < parts; ++k) {
+      nets[k].zero_grad();
+      nets[k].backward(grad_out.middleCols(cols(k).begin, cols(k).count));
     }
+    for (int k = 1; k < parts; ++k) first.grads() += nets[k].grads();
   }
   p.grads = first.grads();
   for (int k = 0; k < parts; ++k) {
     Eigen::MatrixXf gi;
-    (k == 0 ? first : second)
-        .backward_input(grad_out.middleCols(cols(k).begin, cols(k).count), gi, 2);
+    nets[k].backward_input(grad_out.middleCols(cols(k).begin, cols(k).count), gi, 2);
     p.grad_input.middleCols(cols(k).begin, cols(k).count) = gi;
   }
   return p;
@@ -103,13 +102,23 @@ TEST_CASE(
   CHECK(param_part(1000, 1).begin == 496);
   CHECK(param_part(1000, 1).count == 504);
   CHECK(param_part(10, 0).count == 0);
+  // Beyond two: parts of at least 128 columns and 4 M multiply-adds each, at most 16.
+  CHECK(column_parts(256, 67000) == 2);     // rl-zoo SAC critics at batch 256
+  CHECK(column_parts(512, 540000) == 4);    // TQC's 512x512x512 critics at batch 512
+  CHECK(column_parts(1024, 540000) == 8);
+  CHECK(column_parts(1 << 20, 540000) == 16);
+  CHECK(column_parts(4096, 4416) == 4);     // small networks: bounded by the work
+  CHECK(column_part(10, 4, 0).count == 2);  // [0, 2) [2, 5) [5, 7) [7, 10)
+  CHECK(column_part(10, 4, 1).begin == 2);
+  CHECK(column_part(10, 4, 2).begin == 5);
+  CHECK(column_part(10, 4, 3).count == 3);
 }
 
 TEST_CASE(
     "SplitMlp passes equal two plain Mlps on the halves, with or without the second core, and "
     "are close to one pass over the whole batch",
     "[nn][split]") {
-  const int n = GENERATE(5, 37, 64);
+  const int n = GENERATE(5, 37, 64, 600);
   // 6 inputs: the input gradient (rows 2..5) by dot products; 40: through the transposed first
   // weight, which the halves share (SplitMlp::transpose_for_halves), as they share the hidden
   // layers' (300 and 200 rows: W^T split between the cores off a 16-float boundary too).
@@ -120,7 +129,7 @@ TEST_CASE(
   Mlp net = in_dim == 6 ? Mlp(6, {256, 256}, 3, Activation::kReLU)
                         : Mlp(40, {300, 200}, 20, Activation::kTanh);
   net.init_torch_default(rng);
-  REQUIRE(column_parts(n, net.multiply_adds_per_column()) == (n >= 32 ? 2 : 1));
+  REQUIRE(column_parts(n, net.multiply_adds_per_column()) == (n >= 512 ? 4 : n >= 32 ? 2 : 1));
   const Eigen::MatrixXf x = random_matrix(in_dim, n, rng);
   const Eigen::MatrixXf grad_out = random_matrix(net.out_dim(), n, rng);
 

@@ -25,20 +25,31 @@ struct Part {
 inline constexpr Eigen::Index kMinSplitColumns = 32;
 inline constexpr double kMinSplitMultiplyAdds = 1.5e6;
 
-// A minibatch of n columns through a network of `multiply_adds_per_column`: 1 or 2 parts, by
-// size only (never the thread count, so results do not depend on it).
+// Beyond two parts, a minibatch is cut further only while every part keeps at least
+// kMinColumnsPerExtraPart columns and kMinMultiplyAddsPerExtraPart of work, so that GEMMs stay
+// wide enough to run near peak and each hand-off is worth it on a many-core machine; at most
+// kMaxColumnParts. The rl-zoo sizes of the shipped configs (batch <= 256) stay at two parts, as
+// they were before the pool; TQC's 512-wide critics at batch 512 go to four.
+inline constexpr Eigen::Index kMinColumnsPerExtraPart = 128;
+inline constexpr double kMinMultiplyAddsPerExtraPart = 4e6;
+inline constexpr int kMaxColumnParts = 16;
+
+// A minibatch of n columns through a network of `multiply_adds_per_column`: 1, 2, 4, 8 or 16
+// parts, by size only (never the thread count, so results do not depend on it).
 inline int column_parts(Eigen::Index n, Eigen::Index multiply_adds_per_column) {
-  return n >= kMinSplitColumns &&
-                 static_cast<double>(n) * static_cast<double>(multiply_adds_per_column) >=
-                     kMinSplitMultiplyAdds
-             ? 2
-             : 1;
+  const double work = static_cast<double>(n) * static_cast<double>(multiply_adds_per_column);
+  if (n < kMinSplitColumns || work < kMinSplitMultiplyAdds) return 1;
+  int parts = 2;
+  while (parts * 2 <= kMaxColumnParts && n / (parts * 2) >= kMinColumnsPerExtraPart &&
+         work / (parts * 2) >= kMinMultiplyAddsPerExtraPart)
+    parts *= 2;
+  return parts;
 }
-// Part `part` of n columns cut into `parts` (1: all of them; 2: [0, n/2) and [n/2, n)).
+// Part `part` of n columns cut into `parts` consecutive ranges, n * part / parts onwards (two
+// parts: [0, n/2) and [n/2, n)).
 inline Part column_part(Eigen::Index n, int parts, int part) {
-  if (parts == 1) return {0, n};
-  const Eigen::Index half = n / 2;
-  return part == 0 ? Part{0, half} : Part{half, n - half};
+  const Eigen::Index begin = n * part / parts, end = n * (part + 1) / parts;
+  return {begin, end - begin};
 }
 
 // A parameter vector of n floats (gradient sums, optimizer steps): two parts, the first a whole

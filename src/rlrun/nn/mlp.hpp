@@ -18,7 +18,7 @@
 // One forward, then its backward: forward overwrites the cached activations, so run the
 // backward of one batch before the next forward through the same Mlp (SAC's target networks are
 // separate Mlp copies anyway). Not thread-safe: each thread needs its own Mlp (SplitMlp runs
-// half of a batch through a replica that reads this Mlp's parameters in place).
+// part of a batch through a replica that reads this Mlp's parameters in place).
 #include <Eigen/Core>
 #include <vector>
 

@@ -1,17 +1,17 @@
 #pragma once
 // An Mlp whose passes over a training minibatch use the run's threads: data parallelism over
-// the batch's columns (batch_split.hpp). The first half of the columns runs through the network
-// itself, the second through a replica, each on whichever thread of the pool takes it. The replica
-// reads the network's parameters in place (it has none of its own) and keeps its own
-// activations and gradient; backward adds the second half's gradient to the network's once both
-// halves are done, so grads() ends as (grads + first half's) + second half's, the same bits with
-// one thread or two. Callers (SAC, TD3, DQN) pass whole minibatches and never see the halves.
+// the batch's columns (batch_split.hpp cuts them into 2 to 16 parts by size). The first part
+// runs through the network itself, each further part through a replica, each on whichever
+// thread of the pool takes it. A replica reads the network's parameters in place (it has none
+// of its own) and keeps its own activations and gradient; backward adds the parts' gradients
+// to the network's in part order once all are done, so grads() ends as ((grads + part 0's) +
+// part 1's) + ..., the same bits with any number of threads. Callers (SAC, TD3, DQN) pass whole
+// minibatches and never see the parts.
 //
 // Like Mlp: a backward belongs to the last forward through the same SplitMlp; not thread-safe
 // otherwise. Between passes the parameters may change freely (optimizer steps, Polyak updates,
 // loading): the replica has no copy to refresh.
 #include <Eigen/Core>
-#include <optional>
 #include <vector>
 
 #include "rlrun/core/thread_pool.hpp"
@@ -27,7 +27,7 @@ class SplitMlp {
   SplitMlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act,
            ThreadPool* pool = nullptr);
   explicit SplitMlp(Mlp net, ThreadPool* pool = nullptr);
-  // Copies the network; the copy makes its own replica when a pass first needs one (acting
+  // Copies the network; the copy makes its own replicas when a pass first needs them (acting
   // copies, whose batches are small, never do).
   SplitMlp(const SplitMlp& other) : net_(other.net_), pool_(other.pool_) {}
   SplitMlp& operator=(const SplitMlp& other);
@@ -44,14 +44,14 @@ class SplitMlp {
   // Mlp::forward of a whole batch x (in_dim x n): out_dim x n, valid until the next forward.
   const Eigen::MatrixXf& forward(const Eigen::Ref<const Eigen::MatrixXf>& x);
   const Eigen::MatrixXf& output() const { return parts_ == 1 ? net_.output() : output_; }
-  // Mlp::last_hidden of the whole last forward (the halves gathered into one matrix on a split
+  // Mlp::last_hidden of the whole last forward (the parts gathered into one matrix on a split
   // pass; only callers that need the latent features pay for the copy).
   const Eigen::MatrixXf& last_hidden();
   // Mlp::backward of the last forward (dL/doutput, out_dim x n): ADDS the whole batch's
   // parameter gradient to grads().
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output);
   // torch's optimizer.zero_grad(); loss.backward(): grads() becomes the whole batch's gradient
-  // (the same bits as zero_grad() then backward(), the zeroing done on both cores).
+  // (the same bits as zero_grad() then backward(), the zeroing done by each part's thread).
   // grad_last_hidden (optional): a further dL/d(last_hidden()), as in Mlp::backward.
   void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                               const Eigen::MatrixXf* grad_last_hidden = nullptr);
@@ -61,23 +61,24 @@ class SplitMlp {
                       Eigen::MatrixXf& grad_input, int first_input_row = 0);
 
  private:
-  // The second half's network, made on first use.
-  Mlp& replica();
-  void backward_halves(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
+  // The network that computes part k: the network itself for part 0, else replica k - 1 (made
+  // on first use).
+  Mlp& part_net(int k);
+  void backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
                        const Eigen::MatrixXf* grad_last_hidden = nullptr);
-  // Before a split backward of n columns: W^T of every layer the halves carry the input
-  // gradient through, transposed once into net_ (each core a part of the rows) for both halves
-  // to read, rather than once per half (DQN's 4-256-256-2 update at batch 64 on a Zen 5:
+  // Before a split backward of n columns: W^T of every layer the parts carry the input
+  // gradient through, transposed once into net_ (two threads a part of the rows each) for all
+  // parts to read, rather than once per part (DQN's 4-256-256-2 update at batch 64 on a Zen 5:
   // 227 -> 214 us on one core). With the network's input gradient from row first_input_row
   // when input_gradient. Only a copy: the same bits either way.
-  void transpose_for_halves(Eigen::Index n, bool input_gradient, int first_input_row = 0);
+  void transpose_for_parts(Eigen::Index n, bool input_gradient, int first_input_row = 0);
 
   Mlp net_;
-  std::optional<Mlp> replica_;
+  std::vector<Mlp> replicas_;  // parts 1, 2, ... of the largest split so far
   ThreadPool* pool_ = nullptr;
   int parts_ = 1;           // of the last forward
-  Eigen::MatrixXf output_;  // the last split forward's output, both halves
-  Eigen::MatrixXf last_hidden_;  // last_hidden() of a split forward, both halves
+  Eigen::MatrixXf output_;  // the last split forward's output, all parts
+  Eigen::MatrixXf last_hidden_;  // last_hidden() of a split forward, all parts
 };
 
 }  // namespace rlrun

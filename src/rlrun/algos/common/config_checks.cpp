@@ -1,5 +1,6 @@
 #include "rlrun/algos/common/config_checks.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "rlrun/env/observation_encoder.hpp"
@@ -7,6 +8,7 @@
 #include <cmath>
 
 #include "rlrun/core/resource_limits.hpp"
+#include "rlrun/nn/batch_split.hpp"
 
 namespace rlrun {
 
@@ -35,13 +37,19 @@ double mlp_parameter_count(int in, const std::vector<int>& hidden, int out) {
 void check_network_memory(ConfigProblems& out, const std::string& key, int in,
                           const std::vector<int>& hidden, int outputs, int networks,
                           double batch) {
-  // Weights, gradients, Adam's two moments and a target or replica copy: 5 floats each.
-  const double parameters = mlp_parameter_count(in, hidden, outputs) * networks;
+  // Weights, gradients, Adam's two moments and a target or replica copy: 5 floats each; a
+  // minibatch cut into more than two parts (nn/batch_split.hpp) keeps one more gradient per
+  // further replica.
+  const double per_network = mlp_parameter_count(in, hidden, outputs);
+  const int parts = column_parts(static_cast<Eigen::Index>(std::clamp(batch, 1.0, 1e9)),
+                                 static_cast<Eigen::Index>(std::min(per_network, 1e15)));
+  const double floats_per_parameter = 5.0 + std::max(0, parts - 2);
+  const double parameters = per_network * networks;
   double widest = 0;
   for (int width : hidden) widest += width;
   const double activations = widest * std::max(batch, 1.0) * networks * 4;  // forward + backward
-  const std::string problem =
-      memory_problem((parameters * 5 + activations) * sizeof(float), "this network");
+  const std::string problem = memory_problem(
+      (parameters * floats_per_parameter + activations) * sizeof(float), "this network");
   if (!problem.empty()) out.push_back({key, problem});
 }
 
