@@ -1,6 +1,8 @@
 // --threads N|auto / RLRUN_THREADS: the thread count changes the speed of a run, never its
 // result — 1, 2, 3 and 8 threads on any machine (more threads than cores included) train the
 // same tensors, bit for bit.
+#include <sched.h>
+
 #include <catch2/catch.hpp>
 #include <fstream>
 
@@ -65,14 +67,19 @@ TEST_CASE("cli: --threads auto uses the CPUs this process may use", "[cli]") {
   TempDir dir("threads_auto");
   const Case c{"auto", "PPO", "CartPole-v1", 1, "n_steps: 64, batch_size: 64, n_epochs: 1"};
   const std::string config = write_config(dir, c);
-  // taskset (util-linux) pins rlrun to CPU 0: auto is then 1, whatever the machine has.
-  const auto pinned =
-      run_command("taskset -c 0 " + std::string(RLRUN_BINARY) + " --threads auto train " +
-                  config + " --timesteps 64");
+  // taskset (util-linux) pins rlrun to one CPU this process may use (not always CPU 0 in a
+  // container): auto is then 1, whatever the machine has.
+  cpu_set_t allowed;
+  REQUIRE(sched_getaffinity(0, sizeof(allowed), &allowed) == 0);
+  int cpu = 0;
+  while (cpu < CPU_SETSIZE && !CPU_ISSET(cpu, &allowed)) ++cpu;
+  const std::string pin = "taskset -c " + std::to_string(cpu) + " ";
+  const auto pinned = run_command(pin + std::string(RLRUN_BINARY) + " --threads auto train " +
+                                  config + " --timesteps 64");
   INFO(pinned.output);
   REQUIRE(pinned.exit_code == 0);
   CHECK(pinned.output.find("1 env, 1 thread)") != std::string::npos);
-  const auto from_env = run_command("taskset -c 0 env RLRUN_THREADS=auto " +
+  const auto from_env = run_command(pin + "env RLRUN_THREADS=auto " +
                                     std::string(RLRUN_BINARY) + " train " + config +
                                     " --timesteps 64");
   INFO(from_env.output);
