@@ -84,8 +84,12 @@ int main(int argc, char** argv) {
     return code == 0 ? rlrun::kExitOk : rlrun::kExitUsage;
   }
   try {
-    pool.emplace(rlrun::cli::threads_for_run(threads));
-    execution.pool = &*pool;
+    // Checked for every command; the threads themselves only for those that train.
+    const int thread_count = rlrun::cli::threads_for_run(threads);
+    if (app.got_subcommand("train") || app.got_subcommand("sweep") || app.got_subcommand("tune")) {
+      pool.emplace(thread_count);
+      execution.pool = &*pool;
+    }
     try {
       rlrun::dense::active_kernels();  // RLRUN_KERNELS is checked once, before any work
     } catch (const std::runtime_error& e) {

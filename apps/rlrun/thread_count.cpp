@@ -1,6 +1,8 @@
 #include "thread_count.hpp"
 
+#include <charconv>
 #include <cstdlib>
+#include <system_error>
 
 #include "rlrun/core/available_cpus.hpp"
 #include "rlrun/core/errors.hpp"
@@ -11,15 +13,9 @@ namespace rlrun::cli {
 int thread_count(const std::string& text, const std::string& source) {
   if (text == "auto") return available_cpus();
   int value = 0;
-  bool digits = !text.empty() && text.size() <= 9;
-  for (const char c : text) {
-    if (c < '0' || c > '9') {
-      digits = false;
-      break;
-    }
-    value = value * 10 + (c - '0');
-  }
-  if (!digits || value < 1 || value > kMaxThreads)
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  if (error != std::errc() || stop != end || value < 1 || value > kMaxThreads)
     throw UsageError(source + " must be a whole number from 1 to " + std::to_string(kMaxThreads) +
                      " or auto (the CPUs this process may use), got '" + quoted_text(text) + "'");
   return value;
