@@ -181,7 +181,7 @@ void export_like_the_cli(const std::string& path) {
   try {
     const ModelFile header = read_model_header(path);
     if (!fuzz::fuzzable_config(ConfigNode::load_string(header.config_yaml, "config.yaml"))) return;
-    const LoadedModel loaded = load_model(path, builtin_registry());
+    const LoadedModel loaded = load_model(path, builtin_registry(), {}, {}, ModelEnv::kSpacesOnly);
     for (const bool with_value : {false, true}) {
       const PolicyGraph graph = build_model_graph(loaded, with_value);
       check_c(c_policy_source(graph));

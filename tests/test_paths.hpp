@@ -12,6 +12,7 @@ const char* gym_reference();    // tests/data/gymnasium (tests/envs/test_gym_ref
 const char* node_modules();     // onnxruntime-node for the ONNX export tests (scripts/setup.sh)
 const char* cxx_compiler();     // the compiler this build uses (tests/core/test_quiet_intrinsics.cpp)
 const char* cxx_compiler_id();  // CMake's name for it: GNU, Clang
+const char* policy_library();   // build/librlrun_policy.so (the deploy library, docs/deploy.md)
 }  // namespace rlrun::test_paths
 
 #define RLRUN_SOURCE_DIR (::rlrun::test_paths::source_dir())
@@ -20,3 +21,4 @@ const char* cxx_compiler_id();  // CMake's name for it: GNU, Clang
 #define RLRUN_TEST_NODE_MODULES (::rlrun::test_paths::node_modules())
 #define RLRUN_CXX_COMPILER (::rlrun::test_paths::cxx_compiler())
 #define RLRUN_CXX_COMPILER_ID (::rlrun::test_paths::cxx_compiler_id())
+#define RLRUN_POLICY_LIBRARY (::rlrun::test_paths::policy_library())

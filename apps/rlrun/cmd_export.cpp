@@ -68,10 +68,11 @@ Action add_export(CLI::App& app, Registry& registry) {
   return [o, &registry]() {
     load_plugin_options(o->plugins, registry);
     check_output_directory(o->output);
-    // The policy graph is built on the model's env stack (its wrappers' exports, the env's own
-    // spaces, which a model file does not store): the env is built, so its code runs.
+    // The policy graph is built on the model's env stack (its wrappers' exports) over the env's
+    // spaces as the file records them: no env is built, so none of its code runs.
     const LoadedModel model = load_model(o->model, registry, o->overrides,
-                                         model_trust(o->trust, o->model, registry));
+                                         model_trust(o->trust, o->model, registry),
+                                         ModelEnv::kSpacesOnly);
     // The whole output is made before anything is written: a refusal leaves nothing behind.
     PolicyGraph graph;
     CSource c;

@@ -42,9 +42,11 @@ void print_env_details(const EnvEntry& entry) {
     return;
   }
   try {
-    const EnvPtr env = entry.build(entry.parse(ConfigNode()), EnvContext{});
-    std::printf("%s", labeled_space("observation_space", env->observation_space(), 17).c_str());
-    std::printf("%s", labeled_space("action_space", env->action_space(), 17).c_str());
+    // As the entry declares them: no simulator or worker starts (env/env_entry.hpp).
+    const EnvSpaces spaces = entry.spaces(entry.parse(ConfigNode()));
+    std::printf("%s", labeled_space("observation_space", spaces.observation, 17).c_str());
+    std::printf("%s", labeled_space("action_space", spaces.action, 17).c_str());
+    if (spaces.num_agents > 1) std::printf("  agents             %d\n", spaces.num_agents);
   } catch (const std::exception& e) {
     std::printf("  (spaces unknown: the env cannot be built with its defaults: %s)\n", e.what());
   }

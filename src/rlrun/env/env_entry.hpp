@@ -14,6 +14,7 @@
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/env_spaces.hpp"
 #include "rlrun/env/policy.hpp"
 
 namespace rlrun {
@@ -40,6 +41,13 @@ struct EnvEntry {
   int max_episode_steps = 0;  // TimeLimit added by make_env, like gymnasium.make; 0 = none
   std::function<AnyConfig(const ConfigNode& kwargs)> parse;  // strict; all problems at once
   std::function<EnvPtr(const AnyConfig& kwargs)> make;
+  // The spaces of the env `kwargs` configure, learned without starting a simulator or a worker
+  // (experiment parsing, `rlrun list`). Envs that live in this process are built and asked:
+  // their constructors read files at most (SUMO starts at the first reset, and so does a
+  // Bullet world). Unset for envs whose spaces only a running worker knows (python:,
+  // gymnasium:): parsing then leaves the checks that need them to the first env built
+  // (make_algorithm), and a model file records them (runtime/model_file.hpp).
+  std::function<EnvSpaces(const AnyConfig& kwargs)> spaces;
   std::function<std::vector<FieldDoc>()> params;
   std::vector<PolicyEntry> policies;
   // The info keys that measure how well an episode went, read at its last step (the traffic
@@ -90,6 +98,9 @@ EnvEntry make_env_entry(std::string id, std::string description, int max_episode
   };
   entry.make = [](const AnyConfig& kwargs) -> EnvPtr {
     return std::make_unique<E>(kwargs.get<typename E::Config>());
+  };
+  entry.spaces = [](const AnyConfig& kwargs) {
+    return spaces_of(E(kwargs.get<typename E::Config>()));
   };
   entry.params = [] { return document_config<typename E::Config>(); };
   return entry;

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/spaces_only_env.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
@@ -37,14 +38,32 @@ EnvPtr make_registered_env(const EnvSpec& spec, const Registry& registry) {
                      EnvContext{spec.section.python.value, spec.section.startup_timeout});
 }
 
+// Builds the envs `start` makes and has each say its spaces: a Python env's worker answers
+// its handshake here. An env that cannot be built (a module that does not import, an __init__
+// that raises or hangs, a space rlrun cannot learn on) is the experiment's problem, said at
+// its env.id, as parsing says one whose entry refuses its kwargs.
+template <class Start>
+void build_checked(const EnvSpec& spec, Start&& start) {
+  try {
+    for (Env* env : start()) (void)env->observation_space();
+  } catch (const RuntimeFailure& e) {
+    fail_at_env(spec, e.what());
+  } catch (const std::invalid_argument& e) {
+    fail_at_env(spec, e.what());
+  }
+}
+
 // TimeLimit, Monitor, the user's wrappers and the action adapter around a registered env.
-EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const Registry& registry,
+// `entry` is null only under an env known by its spaces (make_spaces_only_env) whose id this
+// build does not register: a model loaded for predict or export.
+EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const EnvEntry* entry, const Registry& registry,
                 const std::string& monitor_path, double t_start, bool tap_observations,
                 bool append_monitor) {
-  const EnvEntry& entry = env_entry(spec, registry);
-  const int limit = spec.section.max_episode_steps.value_or(entry.max_episode_steps);
+  const int limit = spec.section.max_episode_steps.value_or(entry ? entry->max_episode_steps : 0);
   if (limit > 0) env = std::make_unique<TimeLimit>(std::move(env), limit);
-  std::vector<std::string> keywords = episode_info_keywords(spec, registry, *env);
+  std::vector<std::string> keywords =
+      entry ? episode_info_keywords(spec, registry, *env)
+            : spec.section.info_keywords.value_or(std::vector<std::string>{});
   env = std::make_unique<Monitor>(std::move(env), monitor_path, t_start, std::move(keywords),
                                   append_monitor);
   // Several agents: TimeLimit and Monitor know how to step them; other wrappers not yet.
@@ -72,8 +91,24 @@ EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const Registry& registry,
 
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
                 double t_start, bool tap_observations, bool append_monitor) {
-  return wrap_env(make_registered_env(spec, registry), spec, registry, monitor_path, t_start,
-                  tap_observations, append_monitor);
+  EnvPtr env;
+  build_checked(spec, [&] {
+    env = make_registered_env(spec, registry);
+    return std::vector<Env*>{env.get()};
+  });
+  return wrap_env(std::move(env), spec, &env_entry(spec, registry), registry, monitor_path,
+                  t_start, tap_observations, append_monitor);
+}
+
+std::optional<EnvSpaces> declared_env_spaces(const EnvSpec& spec, const Registry& registry) {
+  const EnvEntry& entry = env_entry(spec, registry);
+  if (!entry.spaces) return std::nullopt;
+  return entry.spaces(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs);
+}
+
+EnvPtr make_spaces_only_env(const EnvSpec& spec, const Registry& registry, const EnvSpaces& env) {
+  return wrap_env(std::make_unique<SpacesOnlyEnv>(spec.id, env), spec, registry.find_env(spec.id),
+                  registry, "", 0.0, false, false);
 }
 
 EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& registry) {
@@ -102,11 +137,18 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                     const std::string& monitor_dir, int tap_env, bool append_monitor) {
   std::vector<EnvPtr> envs;
   const double t_start = unix_time_now();
-  for (int i = 0; i < n_envs; ++i) envs.push_back(make_registered_env(spec, registry));
+  build_checked(spec, [&] {
+    std::vector<Env*> started;
+    for (int i = 0; i < n_envs; ++i) {
+      envs.push_back(make_registered_env(spec, registry));
+      started.push_back(envs.back().get());
+    }
+    return started;
+  });
   for (int i = 0; i < n_envs; ++i) {
     const std::string path = monitor_dir.empty() ? "" : monitor_dir + "/" + monitor_file_name(i);
-    envs[i] = wrap_env(std::move(envs[i]), spec, registry, path, t_start, i == tap_env,
-                       append_monitor);
+    envs[i] = wrap_env(std::move(envs[i]), spec, &env_entry(spec, registry), registry, path,
+                       t_start, i == tap_env, append_monitor);
   }
   VecEnv vec(std::move(envs));
   install_batch_normalization(vec, spec.section.normalize);

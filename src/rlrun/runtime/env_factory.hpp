@@ -3,8 +3,10 @@
 // use: registered env -> TimeLimit (registered limit or override) -> Monitor (true episode
 // returns, `<rank>.monitor.csv`) -> the user's wrappers in YAML order -> env.normalize (SB3's
 // VecNormalize, outermost; batched over the copies of a VecEnv: wrappers/vec_normalize.hpp).
+#include <optional>
 #include <string>
 
+#include "rlrun/env/env_spaces.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/experiment.hpp"
 
@@ -15,6 +17,16 @@ namespace rlrun {
 // `append_monitor` continues the monitor file of a resumed run.
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
                 double t_start, bool tap_observations = false, bool append_monitor = false);
+
+// The spaces of the env `spec` configures as its entry declares them (EnvEntry::spaces: no
+// simulator or worker starts), or nullopt for an env whose spaces only a running worker knows.
+// Throws ConfigError for an unknown id, std::invalid_argument for kwargs the env refuses.
+std::optional<EnvSpaces> declared_env_spaces(const EnvSpec& spec, const Registry& registry);
+
+// The stack make_env builds, over an env known by its spaces `env` (env/spaces_only_env.hpp):
+// the spaces the agent sees, and a stack a model turns into a policy (predict, export). It
+// cannot be stepped. The env's id need not be registered in this build.
+EnvPtr make_spaces_only_env(const EnvSpec& spec, const Registry& registry, const EnvSpaces& env);
 
 // Checks the env's action space against spec.accepted_action_spaces; with auto_wrap adds
 // DiscreteAsBox or BoxAsDiscrete, otherwise a ConfigError names the wrapper that fixes it.

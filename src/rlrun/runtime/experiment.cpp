@@ -76,8 +76,8 @@ void report(Problems& problems, const ConfigNode& section, const ConfigProblems&
   }
 }
 
-void parse_env(const ConfigNode& env, const Registry& registry, Experiment& exp,
-               Problems& problems) {
+void parse_env(const ConfigNode& env, const Registry& registry, const ParseOptions& options,
+               Experiment& exp, Problems& problems) {
   if (!problems.attempt([&] { exp.env.id = required_id(env, "environment"); })) return;
   exp.env.where = env.child("id").where();
   // rlrun 0.1 wrote `max_episode_steps: 0` for envs without a registered limit; that still
@@ -87,10 +87,20 @@ void parse_env(const ConfigNode& env, const Registry& registry, Experiment& exp,
   const bool legacy_zero = registered && registered->max_episode_steps == 0 &&
                            limit.is_scalar() && limit.yaml().Scalar() == "0";
   problems.attempt([&] {
-    exp.env.section = read_config<EnvSectionConfig>(
-        legacy_zero ? env.without("max_episode_steps") : env, {"id", "kwargs", "wrappers"});
+    ConfigNode section = legacy_zero ? env.without("max_episode_steps") : env;
+    // The interpreter of an env never built runs nothing: not read, so not vouched for.
+    if (options.env_not_built) section = section.without("python");
+    exp.env.section = read_config<EnvSectionConfig>(section, {"id", "kwargs", "wrappers"});
   });
   problems.attempt([&] {
+    if (options.env_not_built) {
+      // Kept as written: nothing is built from them (ParseOptions).
+      const ConfigNode kwargs = env.child("kwargs");
+      if (kwargs.defined() && !kwargs.is_map()) kwargs.fail("expected a map of the env's settings");
+      YAML::Node copy = kwargs.defined() ? YAML::Clone(kwargs.yaml()) : YAML::Node(YAML::NodeType::Map);
+      exp.env.kwargs = AnyConfig::of_yaml(copy, copy);
+      return;
+    }
     const EnvEntry* entry = registry.find_env(exp.env.id);
     if (!entry && !exp.plugins.empty() && !env.trusted())
       env.child("id").fail("env '" + exp.env.id + "' comes from a plugin library named in " +
@@ -150,37 +160,43 @@ void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems
   }
 }
 
-// Checks that need the env itself: one env is built (as gymnasium.make would) to learn its
-// spaces; then the algorithm checks its settings against them, and the resources the run will
-// take are bounded.
-void check_against_env(const ConfigNode& root, const Registry& registry, Experiment& exp,
-                       Problems& problems) {
+// Checks that need the env's spaces: the env's own (recorded in a model file, or as its entry
+// declares them: no simulator or worker starts) under the experiment's wrappers give the
+// spaces the agent sees; the algorithm checks its settings against them, and the resources the
+// run will take are bounded. An env whose spaces only its running worker knows (python:) is
+// checked when the first one is built (make_algorithm).
+void check_against_env(const ConfigNode& root, const Registry& registry,
+                       const ParseOptions& options, Experiment& exp, Problems& problems) {
   const ConfigNode env = root.child("env");
   const ConfigNode algo = root.child("algo");
+  problems.attempt([&] { check_open_files(exp.env.section.n_envs, env.child("n_envs")); });
   EnvPtr probe;
   if (!problems.attempt([&] {
         try {
-          probe = make_env(exp.env, registry, "", 0.0);
+          std::optional<EnvSpaces> spaces = options.recorded_env_spaces;
+          if (!spaces) spaces = declared_env_spaces(exp.env, registry);
+          if (spaces) probe = make_spaces_only_env(exp.env, registry, *spaces);
         } catch (const std::invalid_argument& e) {
           env.fail(e.what());
         } catch (const RuntimeFailure& e) {
           env.fail(e.what());
         }
-      }))
+      }) ||
+      !probe)
     return;
   // Each agent of a multi-agent env is one env column of the shared policy (rlrun/env.hpp).
   const AlgorithmSetup setup{probe->observation_space(), probe->action_space(),
                              exp.env.section.n_envs * probe->num_agents(), exp.run.seed};
   const AlgorithmEntry& entry = registry.algorithm(exp.algo.id, algo.child("id"));
   report(problems, algo, entry.check(exp.algo.params, setup));
-  problems.attempt([&] { check_open_files(exp.env.section.n_envs, env.child("n_envs")); });
 }
 
 YAML::Node resolve(const Experiment& exp, const Registry& registry) {
   YAML::Node resolved_env(YAML::NodeType::Map);
   resolved_env["id"] = exp.env.id;
   for (const auto& kv : write_config(exp.env.section)) resolved_env[kv.first] = kv.second;
-  const int registered_limit = registry.find_env(exp.env.id)->max_episode_steps;
+  const EnvEntry* entry = registry.find_env(exp.env.id);  // null only for an env not built
+  const int registered_limit = entry ? entry->max_episode_steps : 0;
   if (!exp.env.section.max_episode_steps && registered_limit > 0)
     resolved_env["max_episode_steps"] = registered_limit;
   resolved_env["kwargs"] = exp.env.kwargs.resolved();
@@ -211,7 +227,8 @@ YAML::Node resolve(const Experiment& exp, const Registry& registry) {
 
 }  // namespace
 
-Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
+Experiment parse_experiment(const ConfigNode& root, const Registry& registry,
+                            const ParseOptions& options) {
   if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
   Problems problems;
   std::string section_list;
@@ -238,7 +255,7 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
       for (std::string& path : exp.plugins) path = resolve_plugin_path(path, plugin_base_dir(plugins));
   });
   problems.attempt([&] { exp.run = read_config<RunConfig>(root.child("run")); });
-  parse_env(root.child("env"), registry, exp, problems);
+  parse_env(root.child("env"), registry, options, exp, problems);
 
   const ConfigNode algo = root.child("algo");
   problems.attempt([&] {
@@ -252,12 +269,13 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry) {
     if (gamma.IsDefined() && gamma.IsScalar()) exp.env.algorithm_gamma = gamma.as<double>();
   });
   parse_callbacks(root, exp, problems);
-  if (problems.empty()) check_against_env(root, registry, exp, problems);
+  if (problems.empty()) check_against_env(root, registry, options, exp, problems);
   problems.throw_if_any();
 
   // The libraries the run needs (absolute paths, the env's own included even when it came
   // from --plugin), so `rlrun eval` can name them when a model file needs one.
-  const std::string env_plugin = registry.find_env(exp.env.id)->plugin;
+  const EnvEntry* env_entry = registry.find_env(exp.env.id);
+  const std::string env_plugin = env_entry ? env_entry->plugin : "";
   if (!env_plugin.empty() &&
       std::find(exp.plugins.begin(), exp.plugins.end(), env_plugin) == exp.plugins.end())
     exp.plugins.push_back(env_plugin);
@@ -320,7 +338,7 @@ EnvSpec default_env_spec(const std::string& id, const Registry& registry,
   }
   Experiment exp;
   Problems problems;
-  parse_env(node.child("env"), registry, exp, problems);
+  parse_env(node.child("env"), registry, ParseOptions{}, exp, problems);
   problems.throw_if_any();
   return exp.env;
 }
@@ -336,6 +354,16 @@ std::unique_ptr<Algorithm> make_algorithm(const Experiment& experiment, const Re
                                           const AlgorithmSetup& setup) {
   const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
   if (!entry) throw ConfigError(experiment.algo.where + ": unknown algorithm " + experiment.algo.id);
+  // The checks parsing made, again: for an env whose spaces were unknown then (python:),
+  // this is their first run.
+  const ConfigProblems problems = entry->check(experiment.algo.params, setup);
+  if (!problems.empty()) {
+    std::string message;
+    for (const ConfigProblem& p : problems)
+      message += (message.empty() ? "" : "\n") + experiment.algo.where + ": algo." + p.key + ": " +
+                 p.message;
+    throw ConfigError(message);
+  }
   try {
     return entry->make(experiment.algo.params, setup);
   } catch (const std::invalid_argument& e) {

@@ -17,6 +17,7 @@
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/trusted_values.hpp"
+#include "rlrun/env/env_spaces.hpp"
 #include "rlrun/runtime/checkpoint_callback.hpp"
 #include "rlrun/runtime/eval_callback.hpp"
 #include "rlrun/runtime/obs_log_callback.hpp"
@@ -148,12 +149,27 @@ struct Experiment {
   YAML::Node resolved;
 };
 
+// What parsing knows of the env beyond the file.
+struct ParseOptions {
+  // The env's spaces as a model file recorded them: the algorithm is checked against these,
+  // and the env is neither built nor asked (runtime/model_file.hpp).
+  std::optional<EnvSpaces> recorded_env_spaces;
+  // The env will never be built, only stood for by its recorded spaces (loading a model for
+  // predict or export: make_spaces_only_env). Its kwargs are kept as written, unchecked: they
+  // build nothing, so nothing in them needs vouching, and an env id this build does not
+  // register is no error. Needs recorded_env_spaces.
+  bool env_not_built = false;
+};
+
 // Parses and checks a whole experiment: every section is decoded once into its typed Config;
-// ids, values, value constraints, wrapper parameters, algorithm/space compatibility (one env is
-// built to learn its spaces) and resource bounds are checked before anything runs. All problems
-// of the file come in one ConfigError, one line each with file:line:col. Plugins must be in
-// `registry` already (load_experiment loads a trusted file's; docs/security.md).
-Experiment parse_experiment(const ConfigNode& root, const Registry& registry);
+// ids, values, value constraints, wrapper parameters, algorithm/space compatibility (against
+// the spaces the env's entry declares: env/env_entry.hpp; an env whose spaces only its running
+// worker knows is checked by make_algorithm) and resource bounds are checked before anything
+// runs. All problems of the file come in one ConfigError, one line each with file:line:col.
+// Plugins must be in `registry` already (load_experiment loads a trusted file's;
+// docs/security.md).
+Experiment parse_experiment(const ConfigNode& root, const Registry& registry,
+                            const ParseOptions& options = {});
 
 // Loads a file, applies `--set` overrides, loads the plugins a trusted file names into
 // `registry`, parses. The run name defaults to the file stem.
@@ -174,8 +190,9 @@ EnvSpec default_env_spec(const std::string& id, const Registry& registry,
                          const std::vector<std::string>& overrides = {});
 
 // The experiment's algorithm, fresh, for envs of `setup`'s spaces (the trainer's, and the probes
-// that size what a checkpoint may hold). Throws ConfigError (file:line:col of the algo section)
-// for a configuration the algorithm refuses.
+// that size what a checkpoint may hold), after the algorithm's checks against those spaces
+// (AlgorithmEntry::check, as parsing runs them). Throws ConfigError (file:line:col of the algo
+// section) for a configuration the algorithm refuses.
 std::unique_ptr<Algorithm> make_algorithm(const Experiment& experiment, const Registry& registry,
                                           const AlgorithmSetup& setup);
 

@@ -5,6 +5,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/zip_archive.hpp"
+#include "rlrun/env/space_json.hpp"
 #include "rlrun/runtime/env_factory.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
 #include "rlrun/runtime/model_budget.hpp"
@@ -12,14 +13,11 @@
 namespace rlrun {
 
 void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
-                const Space& observation_space, const Space& action_space,
-                const TensorMap& env_tensors) {
-  write_zip_atomic(path, model_members(algorithm, experiment, observation_space, action_space,
-                                       env_tensors));
+                Env& env, const TensorMap& env_tensors) {
+  write_zip_atomic(path, model_members(algorithm, experiment, env, env_tensors));
 }
 
-ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment,
-                         const Space& observation_space, const Space& action_space,
+ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment, Env& env,
                          const TensorMap& env_tensors) {
   TensorMap tensors;
   algorithm.save(tensors);
@@ -28,14 +26,18 @@ ZipMembers model_members(const Algorithm& algorithm, const Experiment& experimen
   for (const auto& [name, tensor] : env_tensors) members[name + ".npy"] = encode_npy(tensor);
   const std::string config = dump_yaml(experiment.resolved);
   members["config.yaml"] = std::vector<uint8_t>(config.begin(), config.end());
+  const Env& own = env.unwrapped();
   nlohmann::ordered_json meta;
   meta["format_version"] = kModelFormatVersion;
   meta["rlrun_version"] = RLRUN_VERSION;
   meta["algorithm"] = algorithm.id();
   meta["env_id"] = experiment.env.id;
-  meta["observation_space"] = observation_space.describe();
-  meta["action_space"] = action_space.describe();
+  meta["observation_space"] = env.observation_space().describe();
+  meta["action_space"] = env.action_space().describe();
   meta["num_timesteps"] = algorithm.num_timesteps();
+  meta["env_spaces"] = {{"observation_space", space_to_json(own.observation_space())},
+                        {"action_space", space_to_json(own.action_space())},
+                        {"num_agents", own.num_agents()}};
   const std::string meta_text = meta.dump(2) + "\n";
   members["meta.json"] = std::vector<uint8_t>(meta_text.begin(), meta_text.end());
   return members;
@@ -43,7 +45,7 @@ ZipMembers model_members(const Algorithm& algorithm, const Experiment& experimen
 
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
                                  const std::vector<std::string>& overrides,
-                                 const ModelTrust& trust) {
+                                 const ModelTrust& trust, ModelEnv use) {
   // The model's config is data from anyone (docs/security.md): parsed untrusted, so it can
   // name no plugin library, program or output file; the user's --set values can, and so can
   // the whole file when the user accepts it (--trust), each value printed first.
@@ -55,7 +57,10 @@ Experiment experiment_from_model(const ModelFile& model, const Registry& registr
   // --tensorboard-log).
   if (root.is_map() && root.child("run").is_map()) root.yaml()["run"].remove("tensorboard_log");
   for (const std::string& o : overrides) root.apply_override(o);
-  Experiment experiment = parse_experiment(root, registry);
+  ParseOptions options;
+  options.recorded_env_spaces = model.meta.env_spaces;
+  options.env_not_built = use == ModelEnv::kSpacesOnly && model.meta.env_spaces.has_value();
+  Experiment experiment = parse_experiment(root, registry, options);
   if (experiment.algo.id != model.meta.algorithm)
     throw RuntimeFailure(model.path + ": meta.json says algorithm " + model.meta.algorithm +
                          " but config.yaml says " + experiment.algo.id);
@@ -125,15 +130,26 @@ EnvPtr make_model_env(const ModelFile& model, const Experiment& experiment,
 
 namespace {
 
+// The env stack a model acts on: built (kRun), or over the env's recorded or declared spaces.
+EnvPtr model_env(const ModelFile& model, const Experiment& experiment, const Registry& registry,
+                 ModelEnv use) {
+  if (use == ModelEnv::kSpacesOnly) {
+    std::optional<EnvSpaces> spaces = model.meta.env_spaces;
+    if (!spaces) spaces = declared_env_spaces(experiment.env, registry);
+    if (spaces) return make_spaces_only_env(experiment.env, registry, *spaces);
+  }
+  return make_env(experiment.env, registry, "", unix_time_now());
+}
+
 LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
                                  const std::vector<std::string>& overrides,
-                                 const ModelTrust& trust) {
+                                 const ModelTrust& trust, ModelEnv use) {
   LoadedModel loaded;
   loaded.file = read_model_header(path);
   const ModelFile& model = loaded.file;
-  loaded.experiment = experiment_from_model(model, registry, overrides, trust);
+  loaded.experiment = experiment_from_model(model, registry, overrides, trust, use);
   // make_model_env's env, before its statistics are read.
-  loaded.env = make_env(loaded.experiment.env, registry, "", unix_time_now());
+  loaded.env = model_env(model, loaded.experiment, registry, use);
   loaded.algorithm = make_model_algorithm(model, loaded.experiment, registry,
                                           loaded.env->observation_space(),
                                           loaded.env->action_space());
@@ -147,11 +163,12 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
 }  // namespace
 
 LoadedModel load_model(const std::string& path, const Registry& registry,
-                       const std::vector<std::string>& overrides, const ModelTrust& trust) {
+                       const std::vector<std::string>& overrides, const ModelTrust& trust,
+                       ModelEnv use) {
   // The config in the file sizes the env and networks built before any tensor is read: a
   // size beyond this machine's memory is the file's problem, said as such.
   try {
-    return load_model_unguarded(path, registry, overrides, trust);
+    return load_model_unguarded(path, registry, overrides, trust, use);
   } catch (const std::bad_alloc&) {
     throw RuntimeFailure(path + ": its config.yaml describes an env or networks larger than this "
                                 "machine's memory (std::bad_alloc while building them)");

@@ -20,6 +20,7 @@
 // Members other than meta.json, config.yaml and `*.npy` are skipped unread.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/core/zip_archive.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/env_spaces.hpp"
 #include "rlrun/runtime/experiment.hpp"
 #include "rlrun/runtime/model_trust.hpp"
 
@@ -41,10 +43,17 @@ struct ModelMeta {
   std::string rlrun_version;
   std::string algorithm;
   std::string env_id;
-  std::string observation_space;  // Space::describe()
+  std::string observation_space;  // Space::describe() of the spaces the agent sees
   std::string action_space;
   int64_t num_timesteps = 0;
+  // The env's own spaces, under the wrappers ("env_spaces": env/space_json.hpp), so that
+  // loading the model for predict or export needs neither the env nor what builds it (a Python
+  // worker, a scenario's files). Absent in files written before rlrun recorded them.
+  std::optional<EnvSpaces> env_spaces;
 };
+
+// Agents a model file may say its env has: a multi-agent env steps each as one env column.
+inline constexpr int64_t kMaxModelAgents = 4096;
 
 struct ModelFile {
   std::string path;
@@ -73,16 +82,15 @@ inline uint64_t tensor_member_charge(uint64_t name_bytes, uint64_t member_bytes)
 // record, init-from); kCheckpoint = also `training/...` (resume).
 enum class ModelParts { kModel, kCheckpoint };
 
-// Writes atomically (temp file + rename). `env_tensors` are stored beside the algorithm's
-// (save_model_statistics() of the training env: normalisation statistics).
+// Writes atomically (temp file + rename). `env` is one copy of the env stack the algorithm
+// acts on (its spaces, and its unwrapped env's, are recorded); `env_tensors` are stored beside
+// the algorithm's (save_model_statistics() of the training env: normalisation statistics).
 void save_model(const std::string& path, const Algorithm& algorithm, const Experiment& experiment,
-                const Space& observation_space, const Space& action_space,
-                const TensorMap& env_tensors = {});
+                Env& env, const TensorMap& env_tensors = {});
 // The members save_model writes (for writers into a run directory: core/zip_archive.hpp's
 // write_zip_atomic into a DirHandle).
 ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment,
-                         const Space& observation_space, const Space& action_space,
-                         const TensorMap& env_tensors = {});
+                         Env& env, const TensorMap& env_tensors = {});
 
 // Phase 1 (see the top of this file). Throws RuntimeFailure naming the file and the reason.
 ModelFile read_model_header(const std::string& path);
@@ -97,13 +105,21 @@ void read_model_tensors(ModelFile& model, ModelParts parts, uint64_t budget_byte
 // read untrusted files with load_model() / read_checkpoint() (model_budget.hpp) instead.
 ModelFile read_model(const std::string& path, uint64_t budget_bytes = uint64_t{1} << 30);
 
+// What the caller does with a model's env. kRun builds and steps it (eval, record, resume).
+// kSpacesOnly only turns the model into a policy (predict, export): the env stands for the
+// spaces the file records (make_spaces_only_env), so nothing the env would need (a Python
+// worker, a scenario's files, a simulator this build left out) is started, read or required,
+// and its kwargs need no vouching. Files written before rlrun recorded the spaces fall back
+// to the env's declared spaces, or to building it.
+enum class ModelEnv { kRun, kSpacesOnly };
+
 // Rebuilds the experiment stored in a model file (env, algorithm config), and an algorithm
 // with the stored weights, checking the spaces against `observation_space`/`action_space`.
 // `overrides` are the user's `--set key=value` (trusted, unlike the file); `trust` whether the
 // user accepted the file's config as a whole (--trust: runtime/model_trust.hpp).
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
                                  const std::vector<std::string>& overrides = {},
-                                 const ModelTrust& trust = {});
+                                 const ModelTrust& trust = {}, ModelEnv use = ModelEnv::kRun);
 std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
                                                 const Registry& registry,
                                                 const Space& observation_space,
@@ -126,9 +142,10 @@ struct LoadedModel {
   EnvPtr env;
   std::unique_ptr<Algorithm> algorithm;
 };
-// `overrides` and `trust` as for experiment_from_model.
+// `overrides`, `trust` and `use` as for experiment_from_model; with kSpacesOnly, `env` cannot
+// be stepped.
 LoadedModel load_model(const std::string& path, const Registry& registry,
                        const std::vector<std::string>& overrides = {},
-                       const ModelTrust& trust = {});
+                       const ModelTrust& trust = {}, ModelEnv use = ModelEnv::kRun);
 
 }  // namespace rlrun

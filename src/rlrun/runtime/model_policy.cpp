@@ -8,8 +8,8 @@
 namespace rlrun {
 
 // The layer under the model's stack: reset() and step() write the observation predict() was
-// given and step() keeps the action that came down the stack; the env it wraps is never
-// stepped (it is still there for its spaces, id and info keys, which wrappers look up).
+// given and step() keeps the action that came down the stack; the env it wraps stands for the
+// env's spaces only (env/spaces_only_env.hpp) and is never stepped.
 class FeedLayer : public Wrapper {
  public:
   explicit FeedLayer(EnvPtr env)
@@ -36,7 +36,7 @@ class FeedLayer : public Wrapper {
 
 ModelPolicy::ModelPolicy(const std::string& path, const Registry& registry,
                          const std::vector<std::string>& overrides, const ModelTrust& trust)
-    : loaded_(load_model(path, registry, overrides, trust)) {
+    : loaded_(load_model(path, registry, overrides, trust, ModelEnv::kSpacesOnly)) {
   Env& stack = *loaded_.env;
   if (stack.num_agents() > 1) {
     // Multi-agent stacks hold only TimeLimit and Monitor (make_env): the policy acts on the

@@ -6,9 +6,10 @@
 // rlrun's policies act on the observations their wrapper stack produces (NormalizeObservation
 // with the model's frozen statistics, OneHotObservation, ...) and their actions pass back
 // down that stack (RescaleAction, ClipAction, DiscreteAsBox, ...) before the env sees them.
-// Rather than re-implement those steps, ModelPolicy builds the model's env exactly as eval
-// does (load_model: the two-phase reader and its budget, docs/security.md) and slips a feed
-// under it (runtime/base_layer.hpp): predict() hands each observation to the stack as the
+// Rather than re-implement those steps, ModelPolicy builds the model's wrapper stack as eval
+// does (load_model: the two-phase reader and its budget, docs/security.md), over an env that
+// stands for the spaces the file records (ModelEnv::kSpacesOnly: no Python worker, no
+// simulator), and slips a feed under it (runtime/base_layer.hpp): predict() hands each observation to the stack as the
 // env's reset observation, runs the algorithm's predict() on what comes out on top, and steps
 // the stack with the result so that the action wrappers turn it into the env's action, which
 // the feed keeps instead of stepping the env.

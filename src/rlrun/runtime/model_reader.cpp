@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/space_json.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/zip_reader.hpp"
 #include "rlrun/runtime/env_statistics.hpp"
@@ -41,6 +42,29 @@ int64_t integer_field(const nlohmann::json& meta, const char* key) {
   return it->get<int64_t>();
 }
 
+// "env_spaces" (files written since rlrun recorded them): the env's own spaces, each as
+// env/space_json.hpp decodes it, and its number of agents.
+EnvSpaces env_spaces_field(const nlohmann::json& env) {
+  if (!env.is_object()) throw RuntimeFailure("'env_spaces' is not a JSON object");
+  EnvSpaces spaces;
+  for (const auto& [key, space] : {std::pair{"observation_space", &spaces.observation},
+                                   std::pair{"action_space", &spaces.action}}) {
+    const auto it = env.find(key);
+    if (it == env.end()) throw RuntimeFailure(std::string("'env_spaces' has no '") + key + "'");
+    try {
+      *space = space_from_json(*it);
+    } catch (const std::invalid_argument& e) {
+      throw RuntimeFailure(std::string("'env_spaces' ") + key + ": " + e.what());
+    }
+  }
+  const int64_t agents = integer_field(env, "num_agents");
+  if (agents < 1 || agents > kMaxModelAgents)
+    throw RuntimeFailure("'env_spaces' num_agents is " + std::to_string(agents) + ", not 1 to " +
+                         std::to_string(kMaxModelAgents));
+  spaces.num_agents = static_cast<int>(agents);
+  return spaces;
+}
+
 ModelMeta parse_meta(const std::vector<uint8_t>& bytes, const std::string& path) {
   ModelMeta m;
   try {
@@ -64,6 +88,7 @@ ModelMeta parse_meta(const std::vector<uint8_t>& bytes, const std::string& path)
     m.observation_space = text_field(meta, "observation_space");
     m.action_space = text_field(meta, "action_space");
     m.num_timesteps = integer_field(meta, "num_timesteps");
+    if (const auto env = meta.find("env_spaces"); env != meta.end()) m.env_spaces = env_spaces_field(*env);
   } catch (const nlohmann::json::exception& e) {
     throw RuntimeFailure(path + ": meta.json is malformed: " + e.what());
   } catch (const RuntimeFailure& e) {

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <set>
 #include <stdexcept>
 
 #include "rlrun/core/config_fields.hpp"
@@ -19,13 +18,6 @@ namespace rlrun {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The libraries this process has loaded (process-wide, as the libraries themselves are:
-// dlopen keeps one copy per process).
-std::set<std::string>& loaded_plugins() {
-  static std::set<std::string> set;
-  return set;
-}
 
 // Lets a plugin Config's visit() talk to one of rlrun's config visitors (strict YAML reader,
 // resolved-config writer, `rlrun list` documenter).
@@ -78,6 +70,8 @@ EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFact
     }
     return std::make_unique<PluginEnv>(std::move(env), id);
   };
+  // A plugin env lives in this process: built and asked, like the built-in ones.
+  entry.spaces = [make = entry.make](const AnyConfig& kwargs) { return spaces_of(*make(kwargs)); };
   entry.params = [factory] {
     ConfigDocumenter documenter;
     ForwardingVisitor<ConfigDocumenter> visitor(documenter);
@@ -88,9 +82,10 @@ EnvEntry make_entry(const api::EnvSpec& spec, std::shared_ptr<const api::EnvFact
   return entry;
 }
 
-std::string loaded_with_file_name(const std::string& file_name) {
-  for (const auto& path : loaded_plugins())
-    if (fs::path(path).filename() == file_name) return path;
+// The library of that file name whose envs `registry` holds (loaded by --plugin), or "".
+std::string loaded_with_file_name(const Registry& registry, const std::string& file_name) {
+  for (const EnvEntry& e : registry.envs())
+    if (!e.plugin.empty() && fs::path(e.plugin).filename() == file_name) return e.plugin;
   return "";
 }
 
@@ -179,9 +174,8 @@ std::string load_plugin(const std::string& path, Registry& registry) {
                      std::string(RLRUN_PLUGIN_ENTRY_SYMBOL) +
                      "` function (define one with RLRUN_PLUGIN from <rlrun/plugin.hpp>)");
   }
-  // The library stays loaded for the life of the process: its code backs the envs (a second
-  // dlopen of the same file returns the same handle).
-  loaded_plugins().insert(resolved);
+  // The handle is never closed: the library's code backs the envs for the life of the process
+  // (a second dlopen of the same file, by another registry, returns the same handle).
   register_plugin(reinterpret_cast<PluginEntry>(symbol), resolved, registry);
   return resolved;
 }
@@ -200,7 +194,8 @@ std::vector<std::string> load_plugins_section(const ConfigNode& plugins, Registr
     } catch (const UsageError& e) {
       // A config records where its plugin was; when the library has moved since, a --plugin
       // naming the same file at its new place stands in for it.
-      const std::string moved = loaded_with_file_name(fs::path(path).filename().string());
+      const std::string moved =
+          loaded_with_file_name(registry, fs::path(path).filename().string());
       if (moved.empty()) item.fail(e.what());
       loaded.push_back(moved);
     }

@@ -5,6 +5,7 @@
 // prints it.
 // Lookups of unknown ids fail with the YAML position and the closest registered id.
 #include <deque>
+#include <mutex>
 #include <functional>
 #include <memory>
 #include <string>
@@ -66,6 +67,7 @@ class Registry {
   // nullptr for an unknown id; `why` (if given) says what is wrong with a malformed family id.
   const EnvEntry* find_env(const std::string& id, std::string* why = nullptr) const {
     if (const EnvEntry* e = find_or_null(envs_, id); e && !e->expand) return e;
+    const std::lock_guard<std::mutex> lock(*expanded_mutex_);
     if (const EnvEntry* e = find_or_null(expanded_, id)) return e;
     for (const EnvEntry& family : envs_) {
       if (!family.expand || id.size() < family.id.size() || id.compare(0, family.id.size(), family.id) != 0)
@@ -111,9 +113,11 @@ class Registry {
   }
 
   std::vector<EnvEntry> envs_;
-  // Family members built by find_env (a deque: entries keep their address). Lookups happen
-  // while an experiment is read, on one thread.
+  // Family members built by find_env (a deque: entries keep their address, so a pointer
+  // handed out stays valid). Any thread may look up (two rlrun::Policy::load at once): the
+  // mutex guards the deque; a copy of the registry shares it, which only serialises more.
   mutable std::deque<EnvEntry> expanded_;
+  std::shared_ptr<std::mutex> expanded_mutex_ = std::make_shared<std::mutex>();
   std::vector<WrapperEntry> wrappers_;
   std::vector<AlgorithmEntry> algorithms_;
 };

@@ -301,8 +301,7 @@ void TrainingRun::save_model(const std::string& name) {
   TensorMap statistics;
   save_model_statistics(env_->env(0), statistics);
   write_zip_atomic(*dir_, name,
-                   model_members(*algorithm_, experiment_, env_->observation_space(),
-                                 env_->action_space(), statistics));
+                   model_members(*algorithm_, experiment_, env_->env(0), statistics));
 }
 
 // `name`: checkpoints/<name>, a step_<N>.zip.
@@ -324,8 +323,7 @@ void TrainingRun::save_checkpoint(const std::string& name) {
   }
   const DirHandle checkpoints = dir_->make_subdir("checkpoints");
   write_zip_atomic(checkpoints, name,
-                   model_members(*algorithm_, experiment_, env_->observation_space(),
-                                 env_->action_space(), extra));
+                   model_members(*algorithm_, experiment_, env_->env(0), extra));
   if (resumable_) last_checkpoint_ = checkpoints.child(name);
 }
 

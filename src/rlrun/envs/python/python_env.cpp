@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <deque>
-#include <mutex>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/space_json.hpp"
 #include "rlrun/envs/python/python_protocol.hpp"
 #include "rlrun/frame.hpp"
 
@@ -22,54 +21,6 @@ namespace protocol = python_protocol;
 using nlohmann::json;
 
 namespace {
-
-float json_bound(const json& v) {
-  if (v.is_string()) {
-    const std::string s = v.get<std::string>();
-    if (s == "inf") return std::numeric_limits<float>::infinity();
-    if (s == "-inf") return -std::numeric_limits<float>::infinity();
-    throw std::invalid_argument("a Box bound is '" + s + "'");
-  }
-  // float32 as numpy's Box.low.astype(np.float32): beyond float32's range is +-inf.
-  return static_cast<float>(v.get<double>());
-}
-
-// A count of a Discrete or MultiDiscrete space. Python's ints have no bound: one beyond int64
-// arrives as a float or an unsigned number, and is refused as written.
-int64_t discrete_count(const json& v, const std::string& space) {
-  if (v.is_number_integer() &&
-      !(v.is_number_unsigned() && v.get<uint64_t>() > uint64_t{std::numeric_limits<int64_t>::max()}))
-    return v.get<int64_t>();
-  throw std::invalid_argument(Space::too_many_values(space + " of " + v.dump()));
-}
-
-// A space as worker.py describes it (python_protocol.hpp). Box dtypes other than float32
-// become float32 observations and are converted back by the worker for actions.
-Space space_from_json(const json& s) {
-  const std::string kind = s.at("kind").get<std::string>();
-  if (kind == "Box") {
-    std::vector<float> low, high;
-    for (const json& v : s.at("low")) low.push_back(json_bound(v));
-    for (const json& v : s.at("high")) high.push_back(json_bound(v));
-    return Space::box(std::move(low), std::move(high), s.at("shape").get<std::vector<int>>());
-  }
-  if (kind == "Discrete") {
-    const int64_t n = discrete_count(s.at("n"), "a Discrete space");
-    return Space::discrete(n, discrete_count(s.value("start", json(0)), "a Discrete start"));
-  }
-  if (kind == "MultiDiscrete") {
-    std::vector<int64_t> nvec;
-    for (const json& n : s.at("nvec")) nvec.push_back(discrete_count(n, "a MultiDiscrete entry"));
-    return Space::multi_discrete(std::move(nvec));
-  }
-  if (kind == "MultiBinary") return Space::multi_binary(s.at("n").get<int>());
-  if (kind == "Dict") {
-    std::vector<std::pair<std::string, Space>> entries;
-    for (const auto& [key, sub] : s.at("spaces").items()) entries.emplace_back(key, space_from_json(sub));
-    return Space::dict(std::move(entries));
-  }
-  throw std::invalid_argument("unknown space kind '" + kind + "'");
-}
 
 template <class T>
 T take(const std::vector<std::byte>& body, size_t& at) {
@@ -90,72 +41,13 @@ struct PythonEnv::Handshake {
   std::optional<int> max_episode_steps;
 };
 
-// Idle workers: experiment parsing builds one env to learn the spaces (runtime/experiment.cpp
-// check_against_env) and drops it unused; training then builds the same env again. A worker
-// whose env was built but never reset or stepped is exactly what a new worker would build, so
-// it is kept for the next env of the same interpreter, id and kwargs: one interpreter start
-// (numpy's import: ~0.1 s) saved per run. At most kMaxIdle wait; the rest exit at once.
-namespace {
-constexpr size_t kMaxIdle = 2;
-std::mutex g_idle_mutex;
-}  // namespace
-
-struct IdleWorkers {
-  struct Entry {
-    std::string key;
-    std::unique_ptr<PythonWorker> worker;
-    std::unique_ptr<PythonEnv::Handshake> handshake;
-  };
-  std::deque<Entry> entries;
-};
-
-namespace {
-IdleWorkers& idle_workers() {
-  static IdleWorkers workers;  // destroyed at exit: the idle workers are closed then
-  return workers;
-}
-}  // namespace
-
-bool PythonEnv::take_idle(const std::string& key, std::unique_ptr<PythonWorker>& worker,
-                          std::unique_ptr<Handshake>& handshake) {
-  std::lock_guard<std::mutex> lock(g_idle_mutex);
-  auto& entries = idle_workers().entries;
-  for (auto it = entries.begin(); it != entries.end(); ++it)
-    if (it->key == key) {
-      worker = std::move(it->worker);
-      handshake = std::move(it->handshake);
-      entries.erase(it);
-      return true;
-    }
-  return false;
-}
-
-void PythonEnv::park_idle(std::string key, std::unique_ptr<PythonWorker> worker,
-                          std::unique_ptr<Handshake> handshake) {
-  std::unique_ptr<PythonWorker> dropped;
-  {
-    std::lock_guard<std::mutex> lock(g_idle_mutex);
-    auto& entries = idle_workers().entries;
-    entries.push_back({std::move(key), std::move(worker), std::move(handshake)});
-    if (entries.size() > kMaxIdle) {
-      dropped = std::move(entries.front().worker);
-      entries.pop_front();
-    }
-  }
-}
-
 PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
                      double startup_timeout)
     : target_(std::move(target)),
-      startup_timeout_(startup_timeout),
-      key_(python + '\n' + target_ + '\n' + kwargs_json) {
+      startup_timeout_(startup_timeout) {
   // Keys every Python env declares up front: the Monitor writes is_success into
   // <i>.monitor.csv only for keys known when it is built (empty when the env never reports it).
   is_success_ = info_.add_key("is_success");
-  if (take_idle(key_, worker_, handshake_)) {
-    if (handshake_) request_.assign(protocol::request_bytes(handshake_->act_dim), std::byte{0});
-    return;
-  }
   worker_ = std::make_unique<PythonWorker>(python, python_worker_script());
   const json spec = {{"target", target_}, {"kwargs", json::parse(kwargs_json)}};
   const std::string text = spec.dump();
@@ -166,15 +58,7 @@ PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::str
   if (!worker_->write(message, waiting("to start"))) worker_gone("while starting");
 }
 
-PythonEnv::~PythonEnv() {
-  if (worker_ && !broken_ && !was_reset_ && !worker_->hung()) {
-    try {
-      park_idle(key_, std::move(worker_), std::move(handshake_));
-    } catch (...) {
-      // Out of memory while parking: the worker is simply closed.
-    }
-  }
-}
+PythonEnv::~PythonEnv() = default;
 
 WorkerWait PythonEnv::waiting(const char* what) const {
   WorkerWait wait;
@@ -212,7 +96,6 @@ void PythonEnv::ready() const {
     fail(std::string("its worker sent a handshake that is not JSON: ") + e.what());
   }
   if (!reply.value("ok", false)) {
-    broken_ = true;
     throw RuntimeFailure(target_ + " (Python worker pid " + std::to_string(worker_->pid()) + ", " +
                          worker_->python() + ") could not be built:\n" +
                          reply.value("error", std::string("(no message)")));
@@ -252,13 +135,11 @@ void PythonEnv::ready() const {
 }
 
 void PythonEnv::fail(const std::string& what) const {
-  broken_ = true;
   throw RuntimeFailure(target_ + " (Python worker pid " + std::to_string(worker_->pid()) + "): " +
                        what);
 }
 
 void PythonEnv::worker_gone(const char* during) const {
-  broken_ = true;
   const std::string ended = worker_->how_it_ended();
   std::string where = during;
   if (was_reset_)
@@ -287,7 +168,6 @@ const std::vector<std::byte>& PythonEnv::receive(const char* during) const {
   if (!worker_->read(reply_, wait)) worker_gone(during);
   worker_->set_awaiting_reply(false);
   if (status == protocol::kError) {
-    broken_ = true;
     std::string where = during;
     if (was_reset_)
       where += " at step " + std::to_string(step_) + " of episode " + std::to_string(episode_);

@@ -52,10 +52,10 @@ class PythonEnv : public Env, public SplitStep {
   // The time limit the env's own registration holds (gymnasium.make's spec), if any.
   std::optional<int> registered_time_limit() const;
 
-  // What the worker said of its env (python_env.cpp); public for the idle-worker pool there.
+ private:
+  // What the worker said of its env (python_env.cpp).
   struct Handshake;
 
- private:
   // Waits for the worker's handshake once (every public method calls it first).
   void ready() const;
   [[noreturn]] void fail(const std::string& what) const;
@@ -69,17 +69,8 @@ class PythonEnv : public Env, public SplitStep {
   // Fetches a frame into frame_rgb_ (height x width x 3); false when the env gives none.
   bool fetch_frame() const;
 
-  // Idle workers (python_env.cpp): taken by a new env of the same key, parked by an env that
-  // was never reset.
-  static bool take_idle(const std::string& key, std::unique_ptr<PythonWorker>& worker,
-                        std::unique_ptr<Handshake>& handshake);
-  static void park_idle(std::string key, std::unique_ptr<PythonWorker> worker,
-                        std::unique_ptr<Handshake> handshake);
-
   std::string target_;
   double startup_timeout_;
-  std::string key_;  // interpreter, target and kwargs: what the worker's env was built from
-  mutable bool broken_ = false;  // the worker failed or sent something wrong: never reused
   mutable std::unique_ptr<PythonWorker> worker_;
   mutable std::unique_ptr<Handshake> handshake_;
   mutable std::vector<std::byte> request_;
