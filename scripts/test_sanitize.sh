@@ -17,6 +17,10 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRLRUN_
   ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} >/dev/null
 cmake --build build-sanitize
 echo "sanitize: built in ${SECONDS} s"
+# The ONNX export tests run onnxruntime-node, which scripts/setup.sh installs into build/.
+if [ -d build/onnxruntime ] && [ ! -e build-sanitize/onnxruntime ]; then
+  ln -s ../build/onnxruntime build-sanitize/onnxruntime
+fi
 
 LOGS=$PWD/build-sanitize/sanitizer-logs
 rm -rf "$LOGS" && mkdir -p "$LOGS"

@@ -53,7 +53,8 @@ std::vector<Step> episode(GripperGoalEnv& env, std::optional<uint64_t> seed, uin
   do {
     float a[4];
     if (action_seed) {
-      env.action_space().sample(actions, a);
+      env.action_space().sample(
+          actions, std::span<float>(a, static_cast<size_t>(env.action_space().flat_dim())));
     } else {
       const auto s = scripted_goal_action(env);
       std::copy(s.begin(), s.end(), a);

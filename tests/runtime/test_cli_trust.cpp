@@ -25,7 +25,7 @@ CommandResult stderr_of(const std::string& args) {
 }  // namespace
 
 TEST_CASE("trust: --trust evaluates a Python env's model (and records it) after saying what "
-          "runs; export runs nothing and needs no trust", "[cli][python][security]") {
+          "runs, and export runs nothing, so it needs no trust", "[cli][python][security]") {
   TempDir dir("trust_python");
   const auto trained = run_rlrun_python(
       "train " + python_experiment(dir.str(), "port", kCartPolePort,

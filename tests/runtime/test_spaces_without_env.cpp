@@ -133,7 +133,7 @@ TEST_CASE("every built-in env declares the spaces it has when built", "[spaces]"
   CHECK(checked >= 20);
 }
 
-TEST_CASE("parsing a Python env's experiment starts no worker; the checks run once it is built",
+TEST_CASE("parsing a Python env's experiment starts no worker, and the checks run once it is built",
           "[spaces][python]") {
   TempDir dir("spaces_parse_python");
   Registry registry = make_builtin_registry();
