@@ -10,6 +10,7 @@
 #include "rlrun/core/zip_archive.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
+#include "runtime/peak_memory_bound.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -17,9 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// rlrun eval of a tiny CartPole model needs ~15 MB (more under ASan); a member of the crafted
-// sizes read or inflated whole would need 1 to 4 GiB.
-constexpr long kMaxPeakRssKb = 300 * 1024;
+// rlrun eval of a tiny CartPole model needs ~15 MB (more under ASan: peak_memory_bound.hpp); a
+// member of the crafted sizes read or inflated whole would need 1 to 4 GiB.
+constexpr long kMaxPeakRssKb = peak_rss_bound_kb(300 * 1024);
 constexpr uint64_t kFourGiB = uint64_t{4} << 30;
 
 const std::string kTinyConfig = R"(run: {name: tiny, seed: 1, total_timesteps: 128}
