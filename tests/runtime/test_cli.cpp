@@ -194,11 +194,15 @@ TEST_CASE("learning: fast configs reach their bar in at least 2 of 3 seeds", "[c
 
 TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
   TempDir dir("sigint");
-  // Start a long run in the background, interrupt it after a moment.
+  // Start a long run in the background, interrupt it a moment after it says it trains (its
+  // handlers are in place then; a background job starts with SIGINT ignored, so a Ctrl-C
+  // before would be lost, as it was under ASan's slow start).
   const std::string cmd = std::string(RLRUN_BINARY) + " train " + kSource +
                           "/configs/cartpole_ppo.yaml --set run.total_timesteps=100000000 "
                           "--set run.out_dir=" + dir.str() + " > " + dir / "out.txt" +
-                          " 2>&1 & pid=$!; sleep 1.5; kill -INT $pid; wait $pid; echo exit=$?";
+                          " 2>&1 & pid=$!; for i in $(seq 600); do grep -q 'training PPO' " +
+                          dir / "out.txt" + " && break; sleep 0.05; done; sleep 0.5; "
+                          "kill -INT $pid; wait $pid; echo exit=$?";
   const auto r = run_command(cmd);
   INFO(r.output << read_text(dir / "out.txt"));
   CHECK(r.output.find("exit=130") != std::string::npos);
