@@ -126,7 +126,9 @@ Parameter parse_parameter(const std::string& key, const ConfigNode& spec,
       if (spec.has("log") || spec.has("step")) spec.fail("log and step are for float and int parameters");
       std::vector<nlohmann::json> values;
       for (size_t i = 0; i < choices.size(); ++i) {
-        const YAML::Node& c = choices.at(i).yaml();
+        // A copy (a handle into the same document): yaml() is a reference into the ConfigNode
+        // at(i) returns, which ends with this statement (ASan: stack-use-after-scope).
+        const YAML::Node c = choices.at(i).yaml();
         if (c.IsScalar() || c.IsNull()) {
           values.push_back(c.IsNull() ? nlohmann::json(nullptr) : scalar_json(c));
         } else {
