@@ -51,6 +51,14 @@ std::string python_config(const TempDir& dir, const std::string& algo) {
                         counting_python(dir) + "}\nalgo: {" + algo + "}\n");
 }
 
+// Every member of a model file, as written.
+ZipMembers members_of(const std::string& model) {
+  ZipReader reader(model);
+  ZipMembers members;
+  for (const ZipEntry& e : reader.entries()) members[e.name] = reader.read(e, uint64_t{1} << 26);
+  return members;
+}
+
 Space round_trip(const Space& s) { return space_from_json(json::parse(space_to_json(s).dump())); }
 
 }  // namespace
@@ -270,9 +278,7 @@ TEST_CASE("a model file without recorded spaces (older rlrun) still loads for pr
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   const std::string model = dir / "runs/cp/seed1/model.zip";
-  ZipReader reader(model);
-  ZipMembers members;
-  for (const ZipEntry& e : reader.entries()) members[e.name] = reader.read(e, uint64_t{1} << 26);
+  ZipMembers members = members_of(model);
   json meta = json::parse(members["meta.json"].begin(), members["meta.json"].end());
   meta.erase("env_spaces");
   const std::string text = meta.dump(2);
@@ -310,9 +316,7 @@ TEST_CASE("a model file's env_spaces is untrusted: malformed ones are refused na
                                       "algo: {id: PPO, n_steps: 128, batch_size: 64}\n");
   REQUIRE(run_rlrun("train " + config).exit_code == 0);
   const std::string model = dir / "runs/cp/seed1/model.zip";
-  ZipReader reader(model);
-  ZipMembers members;
-  for (const ZipEntry& e : reader.entries()) members[e.name] = reader.read(e, uint64_t{1} << 26);
+  ZipMembers members = members_of(model);
   const json good = json::parse(members["meta.json"].begin(), members["meta.json"].end());
   const std::vector<std::pair<json, std::string>> cases = {
       {json("Box"), "'env_spaces' is not a JSON object"},

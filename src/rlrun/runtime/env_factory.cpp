@@ -38,19 +38,22 @@ EnvPtr make_registered_env(const EnvSpec& spec, const Registry& registry) {
                      EnvContext{spec.section.python.value, spec.section.startup_timeout});
 }
 
-// Builds the envs `start` makes and has each say its spaces: a Python env's worker answers
-// its handshake here. An env that cannot be built (a module that does not import, an __init__
-// that raises or hangs, a space rlrun cannot learn on) is the experiment's problem, said at
-// its env.id, as parsing says one whose entry refuses its kwargs.
-template <class Start>
-void build_checked(const EnvSpec& spec, Start&& start) {
+// `n` registered envs, all started before any is asked its spaces (a Python env's worker
+// answers its handshake then, so the workers start in parallel). An env that cannot be built
+// (a module that does not import, an __init__ that raises or hangs, a space rlrun cannot learn
+// on) is the experiment's problem, said at its env.id, as parsing says one whose entry refuses
+// its kwargs.
+std::vector<EnvPtr> build_registered_envs(const EnvSpec& spec, const Registry& registry, int n) {
+  std::vector<EnvPtr> envs;
   try {
-    for (Env* env : start()) (void)env->observation_space();
+    for (int i = 0; i < n; ++i) envs.push_back(make_registered_env(spec, registry));
+    for (const EnvPtr& env : envs) (void)env->observation_space();
   } catch (const RuntimeFailure& e) {
     fail_at_env(spec, e.what());
   } catch (const std::invalid_argument& e) {
     fail_at_env(spec, e.what());
   }
+  return envs;
 }
 
 // TimeLimit, Monitor, the user's wrappers and the action adapter around a registered env.
@@ -91,13 +94,9 @@ EnvPtr wrap_env(EnvPtr env, const EnvSpec& spec, const EnvEntry* entry, const Re
 
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
                 double t_start, bool tap_observations, bool append_monitor) {
-  EnvPtr env;
-  build_checked(spec, [&] {
-    env = make_registered_env(spec, registry);
-    return std::vector<Env*>{env.get()};
-  });
-  return wrap_env(std::move(env), spec, &env_entry(spec, registry), registry, monitor_path,
-                  t_start, tap_observations, append_monitor);
+  return wrap_env(std::move(build_registered_envs(spec, registry, 1).front()), spec,
+                  &env_entry(spec, registry), registry, monitor_path, t_start, tap_observations,
+                  append_monitor);
 }
 
 std::optional<EnvSpaces> declared_env_spaces(const EnvSpec& spec, const Registry& registry) {
@@ -135,16 +134,8 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
 
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                     const std::string& monitor_dir, int tap_env, bool append_monitor) {
-  std::vector<EnvPtr> envs;
   const double t_start = unix_time_now();
-  build_checked(spec, [&] {
-    std::vector<Env*> started;
-    for (int i = 0; i < n_envs; ++i) {
-      envs.push_back(make_registered_env(spec, registry));
-      started.push_back(envs.back().get());
-    }
-    return started;
-  });
+  std::vector<EnvPtr> envs = build_registered_envs(spec, registry, n_envs);
   for (int i = 0; i < n_envs; ++i) {
     const std::string path = monitor_dir.empty() ? "" : monitor_dir + "/" + monitor_file_name(i);
     envs[i] = wrap_env(std::move(envs[i]), spec, &env_entry(spec, registry), registry, path,

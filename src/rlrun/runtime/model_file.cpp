@@ -147,6 +147,14 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
   LoadedModel loaded;
   loaded.file = read_model_header(path);
   const ModelFile& model = loaded.file;
+  // Without recorded spaces the env must say them, so this program must have it (the deploy
+  // library's registry holds no env).
+  if (use == ModelEnv::kSpacesOnly && !model.meta.env_spaces && !registry.find_env(model.meta.env_id))
+    throw RuntimeFailure(path + ": written by an rlrun that did not record the env's spaces in "
+                                "meta.json (env_spaces), and this program does not have " +
+                         model.meta.env_id + " to learn them from; `rlrun export`, `rlrun eval` "
+                         "and the Python package's rlrun.load read it, and a model trained again "
+                         "records them");
   loaded.experiment = experiment_from_model(model, registry, overrides, trust, use);
   // make_model_env's env, before its statistics are read.
   loaded.env = model_env(model, loaded.experiment, registry, use);

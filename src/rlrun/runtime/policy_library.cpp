@@ -11,7 +11,6 @@
 
 #include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/nn/policy_graph.hpp"
-#include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/policy_components.hpp"
 #include "rlrun/runtime/model_file.hpp"
 
@@ -88,12 +87,6 @@ Policy Policy::load(const std::string& model_path) {
   try {
     // The model's env is never built: its spaces come from the file, so the registry holds
     // the wrappers and algorithms alone and this library links no env or simulator.
-    if (!read_model_header(model_path).meta.env_spaces)
-      throw RuntimeFailure(model_path +
-                           ": written by an rlrun that did not record the env's spaces in "
-                           "meta.json (env_spaces), which rlrun::Policy needs to run without "
-                           "the env; `rlrun export`, `rlrun eval` and the Python package's "
-                           "rlrun.load still read it, and a model trained again records them");
     const LoadedModel model =
         load_model(model_path, policy_registry(), {}, {}, ModelEnv::kSpacesOnly);
     impl->graph = build_model_graph(model, /*with_value=*/false);
