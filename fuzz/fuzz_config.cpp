@@ -12,8 +12,8 @@
 #include "fuzz_limits.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 
 using namespace rlrun;
 

@@ -1,5 +1,5 @@
 // Fuzz target: `rlrun export` of a model file built from arbitrary bytes (deploy/: the C and
-// ONNX writers, runtime/model_graph.hpp). A model file is untrusted and its meta.json strings
+// ONNX writers, runtime/io/model_graph.hpp). A model file is untrusted and its meta.json strings
 // reach the generated files: the C header's comment, ONNX metadata_props (docs/security.md).
 // Refusing is fine (RuntimeFailure, ConfigError, UsageError, ExportError); a crash, sanitizer
 // report or hang is a bug, and so is output that breaks an invariant below (the target aborts):
@@ -29,9 +29,9 @@
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/deploy/c_writer.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/model_graph.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/model_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
 
 using namespace rlrun;
 using rlrun::testing::CraftedMember;

@@ -1,6 +1,6 @@
 // Fuzz target: reading a model file or checkpoint from arbitrary bytes, as `rlrun eval`,
 // `rlrun train --init-from` and `--resume` do (core/zip_reader.hpp, core/npy.hpp,
-// runtime/model_file.hpp, runtime/model_budget.hpp). Refusing is fine (RuntimeFailure,
+// runtime/io/model_file.hpp, runtime/io/model_budget.hpp). Refusing is fine (RuntimeFailure,
 // ConfigError, UsageError); any other exception, a crash, a sanitizer report, a hang or a large
 // allocation is a bug.
 //
@@ -13,7 +13,7 @@
 //         declared size is off by the signed byte that follows the data length (a lie).
 // Each zip then goes through: read_zip + decode_npy of every .npy member; load_model (the
 // eval path: config -> env + algorithm -> budgeted tensors -> weights, statistics) and one
-// predict(), the exports (runtime/model_graph.hpp, deploy/); read_checkpoint with the file's own config as the run's, then the trainer's
+// predict(), the exports (runtime/io/model_graph.hpp, deploy/); read_checkpoint with the file's own config as the run's, then the trainer's
 // load / load_training_state / VecEnv::read_state on fresh objects.
 
 #include <algorithm>
@@ -27,17 +27,17 @@
 #include "fuzz_limits.hpp"
 #include "private_file.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/deploy/c_writer.hpp"
-#include "rlrun/deploy/onnx_writer.hpp"
-#include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/zip_archive.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/env_statistics.hpp"
-#include "rlrun/runtime/model_budget.hpp"
-#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/deploy/c_writer.hpp"
+#include "rlrun/deploy/onnx_writer.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/env_statistics.hpp"
+#include "rlrun/runtime/io/model_budget.hpp"
+#include "rlrun/runtime/io/model_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
 
 using namespace rlrun;
 using rlrun::testing::CraftedMember;

@@ -30,11 +30,11 @@
 #include "private_file.hpp"
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/log_sinks.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/resume_point.hpp"
-#include "rlrun/runtime/run_lock.hpp"
-#include "rlrun/runtime/run_results.hpp"
+#include "rlrun/runtime/io/log_sinks.hpp"
+#include "rlrun/runtime/io/model_file.hpp"
+#include "rlrun/runtime/io/run_lock.hpp"
+#include "rlrun/runtime/io/run_results.hpp"
+#include "rlrun/runtime/run/resume_point.hpp"
 
 using namespace rlrun;
 namespace fs = std::filesystem;

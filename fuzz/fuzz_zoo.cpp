@@ -25,10 +25,10 @@
 #include "private_file.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/experiment.hpp"
-#include "rlrun/runtime/zoo/experiment_text.hpp"
-#include "rlrun/runtime/zoo/zoo_import.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/workflows/zoo/experiment_text.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
 
 using namespace rlrun;
 

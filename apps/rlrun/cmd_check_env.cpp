@@ -18,13 +18,13 @@
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
-#include "rlrun/rng.hpp"
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/env/space_text.hpp"
 #include "rlrun/env/step_all_agents.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/experiment.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
 namespace rlrun::cli {

@@ -18,18 +18,18 @@
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "policy_comparison.hpp"
-#include "trust_option.hpp"
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
-#include "rlrun/runtime/experiment.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/evaluator.hpp"
-#include "rlrun/runtime/log_sinks.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/recorder.hpp"
-#include "rlrun/runtime/trajectory_tap.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/io/log_sinks.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
+#include "rlrun/runtime/run/recorder.hpp"
+#include "rlrun/runtime/run/trajectory_tap.hpp"
+#include "trust_option.hpp"
 
 namespace rlrun::cli {
 
@@ -198,7 +198,7 @@ struct EvalOptions {
   std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   std::vector<std::string> overrides;   // --set: the user's values over the model's config
-  std::string trajectory;  // every step's env observation and action (runtime/trajectory_tap.hpp)
+  std::string trajectory;  // every step's env observation and action (runtime/run/trajectory_tap.hpp)
   bool trust = false;      // --trust: run what the model file names (trust_option.hpp)
 };
 

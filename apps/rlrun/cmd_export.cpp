@@ -8,14 +8,14 @@
 
 #include "commands.hpp"
 #include "plugin_option.hpp"
-#include "trust_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/deploy/c_writer.hpp"
-#include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/deploy/onnx_writer.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/io/model_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/io/run_directory.hpp"
+#include "trust_option.hpp"
 
 namespace rlrun::cli {
 

@@ -9,8 +9,8 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/space_text.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/optional_components.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/components/optional_components.hpp"
 
 namespace rlrun::cli {
 

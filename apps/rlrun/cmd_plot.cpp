@@ -9,7 +9,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/render/learning_curves.hpp"
-#include "rlrun/runtime/run_results.hpp"
+#include "rlrun/runtime/io/run_results.hpp"
 
 namespace rlrun::cli {
 

@@ -14,16 +14,16 @@
 #include "env_by_id.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
-#include "trust_option.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/interrupt.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/render/video_limits.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/observation_log.hpp"
-#include "rlrun/runtime/recorder.hpp"
-#include "rlrun/core/interrupt.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/io/observation_log.hpp"
+#include "rlrun/runtime/run/recorder.hpp"
+#include "trust_option.hpp"
 
 namespace rlrun::cli {
 

@@ -1,5 +1,5 @@
 // rlrun report RUN_DIRS... [--csv FILE] [--markdown FILE]: per configuration across seeds, the
-// final return's mean, std, median and IQM with a bootstrap 95 % CI (runtime/run_results.hpp),
+// final return's mean, std, median and IQM with a bootstrap 95 % CI (runtime/io/run_results.hpp),
 // the success rate where the runs record one, wall time and steps/s.
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/run_results.hpp"
+#include "rlrun/runtime/io/run_results.hpp"
 
 namespace rlrun::cli {
 

@@ -27,15 +27,15 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/plural.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/experiment.hpp"
-#include "rlrun/runtime/run_directory.hpp"
-#include "rlrun/runtime/sbatch_script.hpp"
-#include "rlrun/runtime/sweep.hpp"
 #include "rlrun/core/interrupt.hpp"
-#include "rlrun/runtime/resume_point.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/core/plural.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/io/run_directory.hpp"
+#include "rlrun/runtime/run/resume_point.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
+#include "rlrun/runtime/workflows/sbatch_script.hpp"
+#include "rlrun/runtime/workflows/sweep.hpp"
 
 namespace rlrun::cli {
 

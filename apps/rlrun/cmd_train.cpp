@@ -13,12 +13,12 @@
 #include "plugin_option.hpp"
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
 #include "rlrun/core/interrupt.hpp"
-#include "rlrun/runtime/resume_point.hpp"
-#include "rlrun/runtime/run_lock.hpp"
-#include "rlrun/runtime/trainer.hpp"
-#include "rlrun/runtime/zoo/zoo_import.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/run_lock.hpp"
+#include "rlrun/runtime/run/resume_point.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
 
 namespace rlrun::cli {
 

@@ -1,6 +1,6 @@
 // rlrun zoo import HYPERPARAMS.yml ENV_ID [-o FILE] [--algo ALGO] [--entry NAME] [--set K=V]...:
 // an rl-baselines3-zoo hyperparameter entry as an rlrun experiment file
-// (runtime/zoo/zoo_import.hpp, docs/zoo.md). The zoo file is untrusted, the written file the
+// (runtime/workflows/zoo/zoo_import.hpp, docs/zoo.md). The zoo file is untrusted, the written file the
 // user's own: a value that names a program, a file to write or a simulator input is refused
 // unless the user's `--set` vouches for it, and then written as set.
 #include <cstdio>
@@ -8,9 +8,9 @@
 
 #include "commands.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/run_directory.hpp"
-#include "rlrun/runtime/zoo/experiment_text.hpp"
-#include "rlrun/runtime/zoo/zoo_import.hpp"
+#include "rlrun/runtime/io/run_directory.hpp"
+#include "rlrun/runtime/workflows/zoo/experiment_text.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
 
 namespace rlrun::cli {
 

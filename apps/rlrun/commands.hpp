@@ -5,7 +5,7 @@
 #include <functional>
 
 #include "rlrun/core/execution_context.hpp"
-#include "rlrun/runtime/registry.hpp"
+#include "rlrun/runtime/components/registry.hpp"
 
 namespace rlrun::cli {
 

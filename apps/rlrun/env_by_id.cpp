@@ -2,7 +2,8 @@
 
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 
 namespace rlrun::cli {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "rlrun/env.hpp"
-#include "rlrun/runtime/registry.hpp"
+#include "rlrun/runtime/components/registry.hpp"
 
 namespace rlrun::cli {
 

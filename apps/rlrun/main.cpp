@@ -11,12 +11,12 @@
 #include "cli_values.hpp"
 #include "commands.hpp"
 #include "parse_errors.hpp"
-#include "thread_count.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/execution_context.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/nn/dense_kernels.hpp"
-#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "thread_count.hpp"
 
 namespace {
 
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   // Made once the options are read (the thread count), used by the commands' actions.
   std::optional<rlrun::ThreadPool> pool;
   rlrun::ExecutionContext execution;
-  // The registry is built here and passed down; --plugin adds to it (runtime/builtins.hpp).
+  // The registry is built here and passed down; --plugin adds to it (runtime/components/builtins.hpp).
   rlrun::Registry registry = rlrun::make_builtin_registry();
   rlrun::cli::Action train = rlrun::cli::add_train(app, registry, execution);
   rlrun::cli::Action eval = rlrun::cli::add_eval(app, registry);

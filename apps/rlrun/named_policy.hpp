@@ -7,7 +7,7 @@
 
 #include "rlrun/env.hpp"
 #include "rlrun/env/policy.hpp"
-#include "rlrun/runtime/registry.hpp"
+#include "rlrun/runtime/components/registry.hpp"
 
 namespace rlrun::cli {
 

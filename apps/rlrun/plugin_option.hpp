@@ -1,12 +1,12 @@
 #pragma once
 // `--plugin LIB` (repeatable), shared by the subcommands that build envs: loads users' env
-// libraries (runtime/plugin_loader.hpp) before any config is read, so their env ids resolve.
+// libraries (runtime/components/plugin_loader.hpp) before any config is read, so their env ids resolve.
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/plugin_loader.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/components/plugin_loader.hpp"
 
 namespace rlrun::cli {
 

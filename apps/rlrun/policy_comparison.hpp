@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "rlrun/runtime/evaluator.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
 
 namespace rlrun::cli {
 

@@ -1,11 +1,11 @@
 #pragma once
 // `--trust`, shared by the subcommands that read a model file (eval, record, export): accept
 // what the model's config names for this command, each value printed on stderr first
-// (runtime/model_trust.hpp). Without it, a refusal names --trust beside the --set that vouches
+// (runtime/io/model_trust.hpp). Without it, a refusal names --trust beside the --set that vouches
 // for the one value.
 #include <CLI/CLI.hpp>
 
-#include "rlrun/runtime/model_trust.hpp"
+#include "rlrun/runtime/io/model_trust.hpp"
 
 namespace rlrun::cli {
 

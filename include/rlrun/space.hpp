@@ -195,7 +195,13 @@ class Space {
   // Uniform sample as gymnasium does (Box: uniform on bounded dims, shifted exponential on
   // half-bounded ones, normal on unbounded ones, gymnasium/spaces/box.py; Discrete: uniform
   // integer; Dict: each key in order).
+  // `out` must hold exactly flat_dim() floats (a wrong size is refused: the bounds are read
+  // index by index alongside it).
   void sample(Rng& rng, std::span<float> out) const {
+    if (out.size() != static_cast<size_t>(flat_dim()))
+      throw std::invalid_argument("Space::sample: " + std::to_string(out.size()) +
+                                  " floats given for " + describe() + ", which has " +
+                                  std::to_string(flat_dim()));
     switch (kind_) {
       case SpaceKind::kBox:
         for (size_t i = 0; i < out.size(); ++i) {

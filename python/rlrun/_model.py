@@ -7,7 +7,7 @@ actions; Dict observations are dicts of arrays. Unlike SB3, where a VecNormalize
 the caller's business, the observation is the env's own and the model applies everything
 ``rlrun eval`` applies between the env and the policy — the normalisation statistics stored
 in the model, one-hot encoding, action rescaling and clipping — so the action can be passed
-straight to ``rlrun.make(model.env_id).step`` (runtime/model_policy.hpp).
+straight to ``rlrun.make(model.env_id).step`` (runtime/io/model_policy.hpp).
 """
 
 from __future__ import annotations

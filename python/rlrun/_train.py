@@ -1,4 +1,4 @@
-"""rlrun.train: ``rlrun train`` in-process (runtime/trainer.hpp, the same code as the CLI).
+"""rlrun.train: ``rlrun train`` in-process (runtime/run/trainer.hpp, the same code as the CLI).
 
 Overrides map to ``rlrun train --set`` assignments by one rule:
 

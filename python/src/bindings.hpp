@@ -9,7 +9,7 @@
 #include <string>
 
 #include "rlrun/env.hpp"
-#include "rlrun/runtime/registry.hpp"
+#include "rlrun/runtime/components/registry.hpp"
 
 namespace rlrun::python {
 

@@ -6,8 +6,8 @@
 
 #include "bindings.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/plugin_loader.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/components/plugin_loader.hpp"
 
 namespace rlrun::python {
 

@@ -1,10 +1,10 @@
-// rlrun._core.Model: a model file loaded for prediction (runtime/model_policy.hpp: the env's
+// rlrun._core.Model: a model file loaded for prediction (runtime/io/model_policy.hpp: the env's
 // own observations in, the env's own actions out, through the model's wrappers as `rlrun eval`
 // steps them). python/rlrun/_model.py adds SB3's predict() signature and batching rules.
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "rlrun/runtime/model_policy.hpp"
+#include "rlrun/runtime/io/model_policy.hpp"
 
 namespace rlrun::python {
 
@@ -37,7 +37,7 @@ void bind_model(py::module_& m) {
   py::class_<ModelPolicy>(m, "Model")
       .def(py::init([](const std::string& path, const std::vector<std::string>& overrides,
                        bool trust) {
-             // trust=True: runtime/model_trust.hpp, as the command line's --trust.
+             // trust=True: runtime/io/model_trust.hpp, as the command line's --trust.
              const ModelTrust accepted{trust, "trust=True"};
              load_accepted_plugins(path, accepted, module_registry());
              return std::make_unique<ModelPolicy>(path, module_registry(), overrides, accepted);

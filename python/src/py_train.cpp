@@ -1,4 +1,4 @@
-// rlrun._core.train_file / train_text: `rlrun train` in-process (runtime/trainer.hpp), for
+// rlrun._core.train_file / train_text: `rlrun train` in-process (runtime/run/trainer.hpp), for
 // rlrun.train (python/rlrun/_train.py). Training runs without the GIL; while it runs,
 // rlrun's own SIGINT/SIGTERM handlers (core/interrupt.hpp) replace Python's, so Ctrl-C stops
 // it as on the command line: at the next safe point, with a checkpoint; Python's handlers come
@@ -11,7 +11,7 @@
 #include "rlrun/core/available_cpus.hpp"
 #include "rlrun/core/execution_context.hpp"
 #include "rlrun/core/interrupt.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
 
 namespace rlrun::python {
 

@@ -15,11 +15,11 @@
 #include "nn/grad_check.hpp"
 #include "rlrun/algos/common/entropy_regularized_actor_critic.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/evaluator.hpp"
-#include "rlrun/runtime/experiment.hpp"
-#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
 
 namespace rlrun::test {
 

@@ -10,8 +10,9 @@
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
 #include "rlrun/env/vec_env.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 
 using namespace rlrun;
 

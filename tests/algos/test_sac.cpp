@@ -15,7 +15,7 @@
 #include "rlrun/algos/common/action_scaling.hpp"
 #include "rlrun/algos/common/entropy_coefficient.hpp"
 #include "rlrun/algos/sac/sac.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 #include "test_threads.hpp"

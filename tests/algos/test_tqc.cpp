@@ -16,7 +16,7 @@
 #include "rlrun/algos/tqc/tqc.hpp"
 #include "rlrun/algos/tqc/truncated_quantiles.hpp"
 #include "rlrun/nn/policy_graph.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 #include "test_threads.hpp"

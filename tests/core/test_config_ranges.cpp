@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 
 using namespace rlrun;
 

@@ -3,7 +3,7 @@
 
 #include "rlrun/core/crc32c.hpp"
 #include "rlrun/core/protobuf_writer.hpp"
-#include "rlrun/runtime/tensorboard/event_file.hpp"
+#include "rlrun/runtime/io/tensorboard/event_file.hpp"
 
 using namespace rlrun;
 

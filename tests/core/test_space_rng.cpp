@@ -82,3 +82,21 @@ TEST_CASE("rng: serialisable, reproducible, uniform", "[core][rng]") {
     REQUIRE(a.below(7) < 7u);
   }
 }
+
+// ASan found a test sampling a 3-float Box into 4 floats: sample() read the bounds past their
+// end. A span of another size than flat_dim() is refused before anything is read or written.
+TEST_CASE("spaces: sample refuses a span of the wrong size", "[core][space]") {
+  Rng rng(1);
+  const Space box = Space::box(-1.0f, 1.0f, {3});
+  std::vector<float> longer(4, 7.0f), shorter(2, 7.0f);
+  CHECK_THROWS_WITH(box.sample(rng, longer),
+                    Catch::Contains("4 floats given for Box(-1.0, 1.0, (3,), float32), which has 3"));
+  CHECK_THROWS_AS(box.sample(rng, shorter), std::invalid_argument);
+  CHECK(longer == std::vector<float>(4, 7.0f));
+  std::vector<float> none;
+  CHECK_THROWS_AS(Space::discrete(3).sample(rng, none), std::invalid_argument);
+  const Space dict = Space::dict({{"a", Space::box(0.0f, 1.0f, {2})}, {"b", Space::discrete(2)}});
+  std::vector<float> exact(3);
+  dict.sample(rng, exact);
+  CHECK(dict.contains(exact));
+}

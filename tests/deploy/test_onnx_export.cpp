@@ -17,11 +17,11 @@
 #include <thread>
 
 #include "rlrun/core/zip_archive.hpp"
-#include "rlrun/runtime/model_graph.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 #include "rlrun/policy.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/model_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

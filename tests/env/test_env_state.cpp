@@ -3,10 +3,11 @@
 #include <catch2/catch.hpp>
 #include <yaml-cpp/yaml.h>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/env/vec_env.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 
 using namespace rlrun;
 

@@ -17,8 +17,8 @@
 #include "rlrun/envs/bipedal_walker/walking_heuristic.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/rng.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;

@@ -9,7 +9,7 @@
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
 #include "rlrun/frame.hpp"
-#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
 
 using namespace rlrun;
 

@@ -8,7 +8,7 @@
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
 #include "rlrun/frame.hpp"
-#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/wrappers/one_hot_observation.hpp"
 
 using namespace rlrun;

@@ -46,8 +46,9 @@
 #include <vector>
 
 #include "rlrun/envs/classic/classic_control_env.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 #include "test_paths.hpp"
 

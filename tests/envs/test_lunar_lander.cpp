@@ -17,7 +17,7 @@
 #include "rlrun/envs/lunar_lander/heuristic_policy.hpp"
 #include "rlrun/envs/lunar_lander/lunar_lander.hpp"
 #include "rlrun/frame.hpp"
-#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 #include "runtime/cli_runner.hpp"
 

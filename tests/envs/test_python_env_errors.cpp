@@ -89,7 +89,7 @@ TEST_CASE("Python envs that cannot be built", "[python]") {
 
 TEST_CASE("A Python env whose __init__ hangs is stopped after env.startup_timeout", "[python]") {
   // The message names the env and the setting; exit code 2: an env that cannot be built is the
-  // experiment's problem, said at its env.id (runtime/env_factory.cpp).
+  // experiment's problem, said at its env.id (runtime/experiment/env_factory.cpp).
   check_training_fails(kBroken + "HangsInInit",
                        {2, {"HangsInInit", "has not finished starting within 1 s",
                             "(env.startup_timeout)", "Raise env.startup_timeout"}},

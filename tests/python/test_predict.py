@@ -190,7 +190,7 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 class UntrustedModelFiles(TempDirMixin, unittest.TestCase):
     def test_a_zip_bomb_is_refused_before_reading(self):
         # A tiny model whose weight member inflates to 64 MiB of zeros: refused by the byte
-        # budget its configuration justifies (runtime/model_budget.hpp), as eval refuses it.
+        # budget its configuration justifies (runtime/io/model_budget.hpp), as eval refuses it.
         import zipfile
 
         source = train_model(self.tmp, "tiny", "run: {name: tiny, seed: 1, total_timesteps: 64}\n"
@@ -213,7 +213,7 @@ class UntrustedModelFiles(TempDirMixin, unittest.TestCase):
 
     def test_nan_weights_are_refused_naming_the_tensor(self):
         # A model whose weights hold a NaN (training diverged, or a tampered file) would predict
-        # NaN actions: rlrun.load refuses it as eval does (runtime/model_file.hpp).
+        # NaN actions: rlrun.load refuses it as eval does (runtime/io/model_file.hpp).
         import io
         import zipfile
 

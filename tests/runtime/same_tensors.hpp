@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/io/model_file.hpp"
 
 namespace rlrun::testing {
 

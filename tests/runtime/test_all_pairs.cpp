@@ -5,11 +5,11 @@
 #include <filesystem>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/evaluator.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/trainer.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_threads.hpp"
 

@@ -8,11 +8,11 @@
 
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/zip_archive.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_statistics.hpp"
-#include "rlrun/runtime/evaluator.hpp"
-#include "rlrun/runtime/log_sinks.hpp"
-#include "rlrun/runtime/model_file.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_statistics.hpp"
+#include "rlrun/runtime/io/log_sinks.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "runtime/cli_runner.hpp"
 

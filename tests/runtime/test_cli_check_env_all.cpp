@@ -3,7 +3,7 @@
 // the space, render).
 #include <catch2/catch.hpp>
 
-#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;

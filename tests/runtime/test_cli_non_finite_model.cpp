@@ -1,6 +1,6 @@
 // A model file or checkpoint whose weights or normalisation statistics are not numbers an
 // evaluation can use (NaN, infinity, a negative variance or count): every command that loads
-// one refuses it naming the tensor (runtime/model_file.hpp), instead of evaluating to a mean
+// one refuses it naming the tensor (runtime/io/model_file.hpp), instead of evaluating to a mean
 // reward of nan with exit 0 or exporting it. A resume skips such a checkpoint for the previous
 // good one, with a note, and never calls it "the last good checkpoint".
 #include <catch2/catch.hpp>

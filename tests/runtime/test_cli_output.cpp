@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "rlrun/algos/common/session_time.hpp"
-#include "rlrun/runtime/log_sinks.hpp"
+#include "rlrun/runtime/io/log_sinks.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

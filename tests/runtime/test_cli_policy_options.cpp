@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/model_policy.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/model_policy.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

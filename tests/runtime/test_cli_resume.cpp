@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "rlrun/core/zip_archive.hpp"
-#include "rlrun/runtime/log_sinks.hpp"
-#include "rlrun/runtime/session_summary.hpp"
+#include "rlrun/runtime/io/log_sinks.hpp"
+#include "rlrun/runtime/io/session_summary.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

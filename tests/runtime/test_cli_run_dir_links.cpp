@@ -16,8 +16,8 @@
 #include <string>
 
 #include "runtime/cli_runner.hpp"
-#include "test_paths.hpp"
 #include "runtime/peak_memory_bound.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun::testing;
 namespace fs = std::filesystem;
@@ -165,7 +165,7 @@ TEST_CASE("run dir links: a progress.csv link to /dev/zero is refused at once, i
     CHECK(contains(r.output, run + "/progress.csv is a symbolic link"));
     CHECK(r.peak_rss_kb < peak_rss_bound_kb(200 * 1024));
   }
-  // The same bytes in a regular file: read within the bound of runtime/run_file_bounds.hpp,
+  // The same bytes in a regular file: read within the bound of runtime/io/run_file_bounds.hpp,
   // not to the end (a line of NULs longer than one row may be).
   fs::remove(run + "/progress.csv");
   write_file(run + "/progress.csv", std::string(3 << 20, '\0'));

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <thread>
 
-#include "rlrun/runtime/run_results.hpp"
+#include "rlrun/runtime/io/run_results.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

@@ -9,8 +9,8 @@
 #include "rlrun/core/npy.hpp"
 #include "rlrun/core/zip_archive.hpp"
 #include "runtime/cli_runner.hpp"
-#include "test_paths.hpp"
 #include "runtime/peak_memory_bound.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -231,7 +231,7 @@ TEST_CASE("untrusted model: train --resume refuses hostile checkpoints", "[cli][
   const std::string original = tiny.dir / "step_128.zip";
   fs::copy_file(checkpoint, original);
   // The checkpoint named itself: resuming the run directory would skip a damaged newest
-  // checkpoint for the one before it (runtime/resume_point.hpp; tested in test_cli_resume.cpp).
+  // checkpoint for the one before it (runtime/run/resume_point.hpp; tested in test_cli_resume.cpp).
   const std::string resume = "train --resume " + checkpoint + " --timesteps 256";
   const std::string state = "training/algo/optimizer/exp_avg.0.npy";
   REQUIRE(read_zip(original).count(state) == 1);

@@ -18,16 +18,16 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/algorithm.hpp"
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/envs/classic/cartpole.hpp"
-#include "rlrun/algos/algorithm.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/eval_callback.hpp"
-#include "rlrun/runtime/experiment.hpp"
-#include "rlrun/runtime/log_sinks.hpp"
-#include "rlrun/runtime/run_directory.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/io/log_sinks.hpp"
+#include "rlrun/runtime/io/run_directory.hpp"
+#include "rlrun/runtime/run/eval_callback.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
@@ -178,9 +178,10 @@ TEST_CASE("EvalCallback: a failed evaluations.csv row stops with the file and er
   std::unique_ptr<Algorithm> algorithm =
       registry.find_algorithm(experiment.algo.id)->make(experiment.algo.params, setup);
   const auto ignore = [](const std::string&) {};
-  TrainingContext context{experiment, registry, dir.str(), *algorithm, env, nullptr,
-                          ignore,     ignore,   ignore,    false, {}};
-  EvalCallback callback(context);
+  TrainingContext context{experiment.env, experiment.run.seed, registry, dir.str(), *algorithm,
+                          env,            nullptr,             ignore,   ignore,    ignore,
+                          false,          {}};
+  EvalCallback callback(context, experiment.eval);
   const std::string path = dir / "evaluations.csv";
   FileSizeLimit limit(fs::file_size(path) + 10);  // the header fits, a row does not
   try {

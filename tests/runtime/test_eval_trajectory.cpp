@@ -1,5 +1,5 @@
-// `rlrun eval --trajectory` (runtime/trajectory_tap.hpp) and ModelPolicy
-// (runtime/model_policy.hpp, the Python package's model.predict): the file holds the env's own
+// `rlrun eval --trajectory` (runtime/run/trajectory_tap.hpp) and ModelPolicy
+// (runtime/io/model_policy.hpp, the Python package's model.predict): the file holds the env's own
 // observations and actions bit for bit, and a model's predict() on those observations gives
 // the actions eval took.
 #include <catch2/catch.hpp>
@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "rlrun/core/config_node.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/model_policy.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/model_policy.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;

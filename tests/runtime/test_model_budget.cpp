@@ -1,4 +1,4 @@
-// runtime/model_budget.hpp: real checkpoints of every algorithm — replay buffers full, obs_log
+// runtime/io/model_budget.hpp: real checkpoints of every algorithm — replay buffers full, obs_log
 // rows pending, normalisation statistics, several envs — fit the budget derived from their
 // config, and the budget is not much more than the file (plus the documented slack).
 #include <catch2/catch.hpp>
@@ -9,8 +9,8 @@
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/core/zip_reader.hpp"
 #include "rlrun/env/vec_env.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/model_budget.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/model_budget.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

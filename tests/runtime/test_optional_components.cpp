@@ -1,4 +1,4 @@
-// The optional components (runtime/optional_components.hpp, CMakeLists.txt): the table CMake
+// The optional components (runtime/components/optional_components.hpp, CMakeLists.txt): the table CMake
 // generates must name exactly the envs its folders register, or a build that leaves a component
 // out would answer "unknown environment" for an env it forgot (or hide one it does not own).
 // The build without them is checked by scripts/tests/test_minimal_build.sh.
@@ -8,8 +8,8 @@
 #include <string>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/optional_components.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/components/optional_components.hpp"
 
 using namespace rlrun;
 

@@ -10,9 +10,9 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/env/env_checker.hpp"
 #include "rlrun/plugin.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/plugin_env.hpp"
-#include "rlrun/runtime/plugin_loader.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/components/plugin_env.hpp"
+#include "rlrun/runtime/components/plugin_loader.hpp"
 
 using namespace rlrun;
 

@@ -7,8 +7,8 @@
 #include <map>
 #include <string>
 
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

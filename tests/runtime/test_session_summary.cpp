@@ -1,8 +1,8 @@
-// The summary line a training session ends with (runtime/session_summary.hpp): this session's
+// The summary line a training session ends with (runtime/io/session_summary.hpp): this session's
 // steps and rate, the run's count before and after for a resumed run, read back by `report`.
 #include <catch2/catch.hpp>
 
-#include "rlrun/runtime/session_summary.hpp"
+#include "rlrun/runtime/io/session_summary.hpp"
 
 using namespace rlrun;
 

@@ -15,10 +15,10 @@
 #include "rlrun/core/zip_reader.hpp"
 #include "rlrun/env/space_json.hpp"
 #include "rlrun/policy.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/env_factory.hpp"
-#include "rlrun/runtime/model_file.hpp"
-#include "rlrun/runtime/model_policy.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/io/model_file.hpp"
+#include "rlrun/runtime/io/model_policy.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -201,7 +201,7 @@ TEST_CASE("a Python env's model: export and rlrun::Policy::load start no Python,
   ModelPolicy from_python_package(model, builtin_registry());
   CHECK(python_starts(dir) == after_eval);
 
-  // The trajectory's obs_i and action_0 columns (runtime/trajectory_tap.hpp): what the env
+  // The trajectory's obs_i and action_0 columns (runtime/run/trajectory_tap.hpp): what the env
   // gave the policy and what the policy did.
   std::ifstream steps(dir / "steps.csv");
   std::string line;

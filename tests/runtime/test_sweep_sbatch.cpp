@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/sbatch_script.hpp"
+#include "rlrun/runtime/workflows/sbatch_script.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

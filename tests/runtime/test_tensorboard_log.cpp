@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/tensorboard/tensorboard_log.hpp"
+#include "rlrun/runtime/io/tensorboard/tensorboard_log.hpp"
 #include "runtime/cli_runner.hpp"
 
 using namespace rlrun;

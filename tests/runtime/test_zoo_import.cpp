@@ -9,11 +9,11 @@
 #include <set>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/trainer.hpp"
-#include "rlrun/runtime/zoo/experiment_text.hpp"
-#include "rlrun/runtime/zoo/python_literal.hpp"
-#include "rlrun/runtime/zoo/zoo_import.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/run/trainer.hpp"
+#include "rlrun/runtime/workflows/zoo/experiment_text.hpp"
+#include "rlrun/runtime/workflows/zoo/python_literal.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 #include "test_threads.hpp"

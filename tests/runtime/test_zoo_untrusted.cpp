@@ -12,9 +12,9 @@
 #include "core/yaml_tree.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/zoo/experiment_text.hpp"
-#include "rlrun/runtime/zoo/zoo_import.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/workflows/zoo/experiment_text.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 

@@ -8,8 +8,8 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/rng.hpp"
-#include "rlrun/runtime/builtins.hpp"
-#include "rlrun/runtime/experiment.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 #include "rlrun/tune/random_sampler.hpp"
 #include "rlrun/tune/search_space.hpp"
 #include "rlrun/tune/study_config.hpp"

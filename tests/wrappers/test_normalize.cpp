@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "rlrun/env/vec_env.hpp"
-#include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/experiment/env_statistics.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "rlrun/wrappers/normalize_reward.hpp"
 #include "wrappers/scripted_env.hpp"

@@ -12,13 +12,13 @@
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/core/float_format.hpp"
 #include "rlrun/env/vec_env.hpp"
-#include "rlrun/runtime/env_statistics.hpp"
+#include "rlrun/runtime/experiment/env_statistics.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "rlrun/wrappers/normalize_reward.hpp"
 #include "rlrun/wrappers/vec_normalize.hpp"
 #include "runtime/cli_runner.hpp"
-#include "wrappers/scripted_env.hpp"
 #include "test_paths.hpp"
+#include "wrappers/scripted_env.hpp"
 
 using namespace rlrun;
 using rlrun::testing::ScriptedEnv;

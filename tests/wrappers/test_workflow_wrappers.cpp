@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/builtins.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/frame_stack.hpp"
 #include "rlrun/wrappers/rescale_action.hpp"

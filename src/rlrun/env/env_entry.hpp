@@ -3,7 +3,7 @@
 // a description, the time limit gymnasium.make would add, how its `kwargs` are parsed into its
 // typed Config and how it is built from that, and the baseline policies that come with it
 // (`eval --policy` / `--baseline`, `record --policy`). Each folder under src/rlrun/envs/ has
-// one register.cpp listing its entries; CMake collects the folders (runtime/builtins.cpp), so
+// one register.cpp listing its entries; CMake collects the folders (runtime/components/builtins.cpp), so
 // nothing above envs/ names a concrete env.
 #include <functional>
 #include <memory>
@@ -46,7 +46,7 @@ struct EnvEntry {
   // their constructors read files at most (SUMO starts at the first reset, and so does a
   // Bullet world). Unset for envs whose spaces only a running worker knows (python:,
   // gymnasium:): parsing then leaves the checks that need them to the first env built
-  // (make_algorithm), and a model file records them (runtime/model_file.hpp).
+  // (make_algorithm), and a model file records them (runtime/io/model_file.hpp).
   std::function<EnvSpaces(const AnyConfig& kwargs)> spaces;
   std::function<std::vector<FieldDoc>()> params;
   std::vector<PolicyEntry> policies;

@@ -3,7 +3,7 @@
 // spaces and the number of agents (rlrun/env.hpp). Parsing an experiment, `rlrun list`, and
 // loading a model for predict/export need no more than this, so none of them has to start a
 // simulator or a Python worker (env/env_entry.hpp EnvEntry::spaces; model files record it:
-// runtime/model_file.hpp).
+// runtime/io/model_file.hpp).
 #include "rlrun/env.hpp"
 #include "rlrun/space.hpp"
 

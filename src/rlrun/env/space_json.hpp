@@ -1,7 +1,7 @@
 #pragma once
 // Spaces as JSON, the form Python workers describe their env's spaces in
 // (envs/python/worker.py) and model files record them in (meta.json's "env_spaces",
-// runtime/model_file.hpp):
+// runtime/io/model_file.hpp):
 //   {"kind": "Box", "shape": [2, 3], "low": [...] or one number, "high": ...}   "inf"/"-inf"
 //   {"kind": "Discrete", "n": 4, "start": 0}     {"kind": "MultiDiscrete", "nvec": [3, 2]}
 //   {"kind": "MultiBinary", "n": 5}              {"kind": "Dict", "spaces": {"key": {...}}}

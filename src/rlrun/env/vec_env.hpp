@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "rlrun/core/thread_pool.hpp"
-#include "rlrun/env/split_step.hpp"
-#include "rlrun/space.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/split_step.hpp"
 #include "rlrun/info.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 
@@ -112,7 +112,7 @@ class VecEnv {
   VecStepHook* step_hook() const { return hook_.get(); }
 
   // Whoever built the copies vouches that they share no state: no simulator, RNG, file or
-  // statistics (runtime/env_factory.cpp decides from the env's entry and the wrappers). Then
+  // statistics (runtime/experiment/env_factory.cpp decides from the env's entry and the wrappers). Then
   // step() may step them on the pool's threads at once. Off by default.
   void set_independent_copies(bool independent) { independent_copies_ = independent; }
   // The threads step() may use (null: the calling thread). Never changes a result.

@@ -68,8 +68,8 @@ class Wrapper : public Env {
   virtual std::string export_observation(PolicyGraph& graph, const std::string& obs) const;
   virtual std::string export_action(PolicyGraph& graph, const std::string& action) const;
   // Puts `inner` in place of the inner env and returns the old one. For runtime code that
-  // slips a layer under a built stack (runtime/trajectory_tap.hpp records what the env itself
-  // sees; runtime/model_policy.hpp feeds the stack observations from elsewhere): the new
+  // slips a layer under a built stack (runtime/run/trajectory_tap.hpp records what the env itself
+  // sees; runtime/io/model_policy.hpp feeds the stack observations from elsewhere): the new
   // inner env must have the old one's spaces, since wrappers size their buffers from them.
   EnvPtr exchange_inner(EnvPtr inner) {
     std::swap(inner_, inner);

@@ -180,19 +180,6 @@ Parameter parse_parameter(const std::string& key, const ConfigNode& spec,
 
 }  // namespace
 
-std::string yaml_text_of(const nlohmann::json& value) {
-  if (value.is_string()) return yaml_double_quoted(value.get<std::string>());
-  if (value.is_null()) return "null";
-  if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
-  if (value.is_number_float()) {
-    const double x = value.get<double>();
-    char text[64];
-    std::snprintf(text, sizeof text, "%.17g", x);
-    return text;
-  }
-  return value.dump();
-}
-
 std::unique_ptr<StudySpace> parse_space(const ConfigNode& node, const std::string& algo_id, bool uses_her) {
   if (!node.defined()) node.fail("space: missing (zoo, or a map of parameters)");
   if (node.is_scalar()) {

@@ -6,8 +6,8 @@
 
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/experiment.hpp"
-#include "rlrun/runtime/sbatch_script.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/workflows/sbatch_script.hpp"
 
 namespace rlrun::tune {
 

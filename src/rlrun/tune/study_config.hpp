@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "rlrun/core/config_node.hpp"
-#include "rlrun/runtime/sweep.hpp"
+#include "rlrun/runtime/workflows/sweep.hpp"
 #include "rlrun/tune/pruner.hpp"
 #include "rlrun/tune/search_space.hpp"
 

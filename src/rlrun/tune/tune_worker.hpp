@@ -11,7 +11,7 @@
 //   3. else a new trial is created while the trials that count (every trial but the re-queued
 //      failures) number fewer than n_trials.
 // Running a trial: the space samples its parameters (tune/trial.hpp), each seed trains in this
-// process (runtime/trainer.hpp) into <out_dir>/trials/trial_<N>/seed<S>; every evaluation is
+// process (runtime/run/trainer.hpp) into <out_dir>/trials/trial_<N>/seed<S>; every evaluation is
 // reported (step = seed index * evaluations per seed + k, k from 1, as rl-zoo's
 // TrialEvalCallback counts) and the pruner may stop the trial (PRUNED, with the last value).
 // The trial's value is the objective's per-seed value (last/best/mean of its column) averaged

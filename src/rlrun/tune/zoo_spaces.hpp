@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "rlrun/tune/search_space.hpp"
+#include "rlrun/tune/study_space.hpp"
 
 namespace rlrun::tune {
 

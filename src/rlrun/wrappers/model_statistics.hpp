@@ -6,7 +6,7 @@
 //
 // The n env copies of a training VecEnv share one statistics object (SB3's VecNormalize has
 // one for all envs): share_statistics_with() makes this wrapper use `first`'s statistics.
-// runtime/env_statistics.hpp finds these wrappers in an env stack and does the bookkeeping.
+// runtime/experiment/env_statistics.hpp finds these wrappers in an env stack and does the bookkeeping.
 #include <string>
 
 #include "rlrun/core/state_dict.hpp"

@@ -7,7 +7,7 @@
 //     21.0,21,0.000153
 // and reports a finished episode through info keys `episode.r`, `episode.l`, `episode.t` (SB3's
 // info["episode"]), which the algorithms read for rollout/ep_rew_mean. Each of `info_keywords`
-// (SB3's Monitor argument; runtime/env_factory.hpp picks them) becomes a column after r,l,t
+// (SB3's Monitor argument; runtime/experiment/env_factory.hpp picks them) becomes a column after r,l,t
 // and an info key `episode.<key>` with its value at the episode's last step, which training
 // averages into rollout/<key> (algos/common/episode_stats.hpp). A multi-agent env's row ends
 // with each agent's own return (r_0, r_1, ...); `r` is their sum.

@@ -54,7 +54,7 @@ EnvPtr add_normalization(EnvPtr env, const NormalizeSetting& setting, double gam
 namespace {
 
 // VecNormalize.reset / step_wait over the copies' env.normalize wrappers. The statistics are
-// copy 0's (the trainer shares them across copies, runtime/env_statistics.hpp); the
+// copy 0's (the trainer shares them across copies, runtime/experiment/env_statistics.hpp); the
 // discounted returns are each copy's own.
 class BatchNormalization : public VecStepHook {
  public:

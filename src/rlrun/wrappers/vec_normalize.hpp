@@ -5,7 +5,7 @@
 //     normalize: true                     # observations and rewards, VecNormalize's defaults
 //     normalize: {norm_obs: true, norm_reward: false, clip_obs: 10.0, gamma: null, ...}
 // It is built from the NormalizeObservation and NormalizeReward wrappers (their statistics are
-// saved in the model file and frozen at evaluation: runtime/env_statistics.hpp), placed where
+// saved in the model file and frozen at evaluation: runtime/experiment/env_statistics.hpp), placed where
 // VecNormalize sits: outermost, above the Monitor and the user's wrappers. In a training VecEnv
 // a step hook does VecNormalize.step_wait's work for the whole batch: the observation
 // statistics are updated with every env's observation at once, then all envs are normalised
@@ -19,8 +19,8 @@
 
 #include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_fields.hpp"
-#include "rlrun/env/vec_env.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
 

@@ -1,0 +1,30 @@
+// The built-in components: the envs every env folder registers (collected by CMake into
+// builtin_env_entries(), build/generated/builtin_envs.cpp), and the wrappers and algorithms
+// (runtime/components/policy_components.cpp) (docs/architecture.md).
+#include "rlrun/runtime/components/builtins.hpp"
+
+#include "rlrun/runtime/components/policy_components.hpp"
+
+namespace rlrun {
+
+namespace {
+
+Registry make_builtins() {
+  Registry r;
+  // Every env folder's register.cpp (src/rlrun/envs/*/register.cpp), collected by CMake.
+  for (EnvEntry& entry : builtin_env_entries()) r.add(std::move(entry));
+  add_builtin_wrappers(r);
+  add_builtin_algorithms(r);
+  return r;
+}
+
+}  // namespace
+
+Registry make_builtin_registry() { return make_builtins(); }
+
+const Registry& builtin_registry() {
+  static const Registry registry = make_builtins();
+  return registry;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,19 @@
+#pragma once
+// The policy of a loaded model file as a PolicyGraph (nn/policy_graph.hpp): the env's own
+// observation in, the env's own action out, exactly the steps `rlrun eval --deterministic`
+// takes between them: the observation wrappers of the model's env (normalisation with the
+// frozen statistics, one-hot encodings), the algorithm's encoding, networks and mode, then the
+// action wrappers (RescaleAction, ClipAction, DiscreteAsBox) down to the env.
+#include <string>
+
+#include "rlrun/nn/policy_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+
+namespace rlrun {
+
+// Inputs: one per key of a Dict observation (named by the key, in the space's order), else
+// one named "obs". Throws ExportError for a multi-agent env, a wrapper that keeps state
+// between steps (FrameStack, TimeFeature) or an algorithm without export.
+PolicyGraph build_model_graph(const LoadedModel& model, bool with_value);
+
+}  // namespace rlrun

@@ -1,0 +1,125 @@
+// rlrun::Policy (include/rlrun/policy.hpp): the model's PolicyGraph (runtime/io/model_graph.hpp),
+// compiled once into a list of steps over one scratch buffer per thread, so that act() is a
+// few matrix-vector products and loops with no allocation and no shared mutable state.
+#include "rlrun/policy.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "rlrun/nn/policy_graph.hpp"
+#include "rlrun/runtime/components/policy_components.hpp"
+#include "rlrun/runtime/io/model_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+
+namespace rlrun {
+
+namespace {
+
+// Where a tensor lives: a run of rows of the caller's observations (a graph input), or its own
+// width x batch block of the scratch buffer.
+struct Slot {
+  bool observation = false;
+  int row = 0;     // observation: first row; scratch: first float per column (x batch)
+  int width = 0;
+};
+
+}  // namespace
+
+struct Policy::Impl {
+  std::string env_id, algorithm;
+  int observation_size = 0, action_size = 0;
+  PolicyGraph graph;
+  std::vector<std::vector<Slot>> node_inputs;  // per node, resolved once
+  std::vector<Slot> node_outputs;
+  int scratch_rows = 0;  // floats per observation in the scratch buffer
+  Slot action;
+
+  void compile() {
+    std::map<std::string, Slot> slots;  // tensor name -> where it lives
+    for (const GraphInput& in : graph.inputs()) {
+      slots[in.name] = {true, observation_size, in.width};
+      observation_size += in.width;
+    }
+    for (const GraphNode& n : graph.nodes()) {  // in order: a node reads only earlier tensors
+      std::vector<Slot> inputs;
+      for (const std::string& in : n.inputs) inputs.push_back(slots.at(in));
+      node_inputs.push_back(std::move(inputs));
+      slots[n.output] = {false, scratch_rows, n.width};
+      node_outputs.push_back(slots[n.output]);
+      scratch_rows += n.width;
+    }
+    action = slots.at(graph.action());
+    action_size = action.width;
+  }
+
+  ConstGraphBlock view(const Slot& s, const float* obs, const float* scratch, Eigen::Index n) const {
+    if (s.observation) return {obs + s.row, s.width, n, Eigen::OuterStride<>(observation_size)};
+    return {scratch + static_cast<Eigen::Index>(s.row) * n, s.width, n, Eigen::OuterStride<>(s.width)};
+  }
+
+  void run(const float* obs, float* actions, Eigen::Index n) const {
+    thread_local std::vector<float> scratch;
+    thread_local std::vector<ConstGraphBlock> inputs;  // reused: no allocation once grown
+    const size_t needed = static_cast<size_t>(scratch_rows) * static_cast<size_t>(n);
+    if (scratch.size() < needed) scratch.resize(needed);
+    for (size_t i = 0; i < graph.nodes().size(); ++i) {
+      const Slot& out = node_outputs[i];
+      inputs.clear();
+      for (const Slot& in : node_inputs[i]) inputs.push_back(view(in, obs, scratch.data(), n));
+      run_node(graph.nodes()[i], inputs,
+               GraphBlock(scratch.data() + static_cast<Eigen::Index>(out.row) * n, out.width, n,
+                          Eigen::OuterStride<>(out.width)));
+    }
+    Eigen::Map<Eigen::MatrixXf>(actions, action_size, n) = view(action, obs, scratch.data(), n);
+  }
+};
+
+Policy::Policy(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Policy::Policy(Policy&&) noexcept = default;
+Policy& Policy::operator=(Policy&&) noexcept = default;
+Policy::~Policy() = default;
+
+Policy Policy::load(const std::string& model_path) {
+  auto impl = std::make_unique<Impl>();
+  try {
+    // The model's env is never built: its spaces come from the file, so the registry holds
+    // the wrappers and algorithms alone and this library links no env or simulator.
+    const LoadedModel model =
+        load_model(model_path, policy_registry(), {}, {}, ModelEnv::kSpacesOnly);
+    impl->graph = build_model_graph(model, /*with_value=*/false);
+    impl->env_id = model.file.meta.env_id;
+    impl->algorithm = model.file.meta.algorithm;
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("rlrun::Policy::load: ") + e.what());
+  } catch (const std::exception& e) {
+    throw std::runtime_error("rlrun::Policy::load: " + model_path + ": " + e.what());
+  }
+  impl->compile();
+  return Policy(std::move(impl));
+}
+
+std::size_t Policy::observation_size() const { return static_cast<std::size_t>(impl_->observation_size); }
+std::size_t Policy::action_size() const { return static_cast<std::size_t>(impl_->action_size); }
+const std::string& Policy::env_id() const { return impl_->env_id; }
+const std::string& Policy::algorithm() const { return impl_->algorithm; }
+
+void Policy::act(std::span<const float> observation, std::span<float> action) const {
+  act_batch(observation, action, 1);
+}
+
+void Policy::act_batch(std::span<const float> observations, std::span<float> actions,
+                       std::size_t count) const {
+  if (observations.size() != count * observation_size() || actions.size() != count * action_size())
+    throw std::invalid_argument(
+        "rlrun::Policy::act: " + std::to_string(count) + " observation(s) of " +
+        std::to_string(observation_size()) + " floats and " + std::to_string(action_size()) +
+        " action floats each expected, got " + std::to_string(observations.size()) + " and " +
+        std::to_string(actions.size()));
+  if (count == 0) return;
+  impl_->run(observations.data(), actions.data(), static_cast<Eigen::Index>(count));
+}
+
+}  // namespace rlrun

@@ -1,0 +1,90 @@
+#include "rlrun/runtime/run/evaluator.hpp"
+
+#include <cmath>
+
+#include "rlrun/env/step_all_agents.hpp"
+
+namespace rlrun {
+
+namespace {
+double mean_of(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? std::nan("") : s / static_cast<double>(v.size());
+}
+}  // namespace
+
+double EvalResult::mean_return() const { return mean_of(returns); }
+
+double EvalResult::std_return() const {
+  const double m = mean_return();
+  double s = 0;
+  for (double x : returns) s += (x - m) * (x - m);
+  return returns.empty() ? std::nan("") : std::sqrt(s / static_cast<double>(returns.size()));
+}
+
+double EvalResult::mean_length() const {
+  double s = 0;
+  for (auto l : lengths) s += static_cast<double>(l);
+  return lengths.empty() ? std::nan("") : s / static_cast<double>(lengths.size());
+}
+
+EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
+                           std::optional<uint64_t> seed) {
+  return evaluate_policy(
+      [&](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
+        algorithm.predict(obs, deterministic, actions);
+      },
+      env, n_episodes, seed);
+}
+
+EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
+                           std::optional<uint64_t> seed) {
+  EvalResult result;
+  const int obs_dim = env.observation_space().flat_dim();
+  // Several agents (include/rlrun/env.hpp): one column each, stepped together; the episode's
+  // return is the sum of all agents' rewards, as Monitor counts it.
+  const int agents = env.num_agents();
+  const size_t obs_size = static_cast<size_t>(obs_dim) * agents;
+  Eigen::MatrixXf obs(obs_dim, agents);
+  Eigen::MatrixXf actions;
+  std::vector<StepResult> steps;
+  const int r_key = env.info().find("episode.r");
+  const int l_key = env.info().find("episode.l");
+  const int success_key = env.info().find("is_success");
+  std::vector<int> metric_indices;
+  const std::vector<std::string>& keys = env.unwrapped().info().keys();
+  for (const std::string& key : keys) {
+    if (key == "is_success" || key.rfind("episode.", 0) == 0 || key == "TimeLimit.truncated") continue;
+    const int index = env.info().find(key);
+    if (index < 0) continue;
+    result.metric_keys.push_back(key);
+    metric_indices.push_back(index);
+  }
+  for (int episode = 0; episode < n_episodes; ++episode) {
+    env.reset(episode == 0 ? seed : std::nullopt, {obs.data(), obs_size});
+    double episode_return = 0;
+    int64_t length = 0;
+    while (true) {
+      policy(obs, actions);
+      const StepResult step = step_all_agents(
+          env, {actions.data(), static_cast<size_t>(actions.size())}, {obs.data(), obs_size}, steps);
+      episode_return += step.reward;
+      const bool done = step.terminated || step.truncated;
+      ++length;
+      if (done) {
+        const Info& info = env.info();
+        result.returns.push_back(info.has(r_key) ? info.get(r_key) : episode_return);
+        result.lengths.push_back(info.has(l_key) ? static_cast<int64_t>(info.get(l_key)) : length);
+        if (info.has(success_key)) result.successes.push_back(info.get(success_key));
+        std::vector<double> values;
+        for (const int index : metric_indices) values.push_back(info.get(index));
+        result.metrics.push_back(std::move(values));
+        break;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace rlrun

@@ -1,0 +1,56 @@
+#pragma once
+// Runs one experiment end to end: run directory, resolved config.yaml, envs with monitor
+// files, the algorithm, logging (progress.csv, console, log.txt), the callbacks the config
+// turns on (runtime/run/callback.hpp: eval, checkpoint, obs_log, video), and model.zip at the end,
+// after an early stop or on Ctrl-C. Model files hold the normalisation statistics.
+//
+// Exact resume (`rlrun train --resume`): a checkpoint (checkpoints/step_<N>.zip) holds, beside
+// the model, the training state — the algorithm's counters, optimizer moments, RNG streams and
+// replay buffer, every env's state with its wrappers (normalisation statistics, Monitor
+// counters), the callbacks' counters, the logger's pending values and how far each CSV file had
+// got. Resuming cuts the files back to the checkpoint and continues: the weights, progress.csv
+// and monitor files end as those of the uninterrupted run.
+//
+// One process trains a run directory at a time (runtime/io/run_lock.hpp).
+//
+// Ctrl-C (SIGINT/SIGTERM, core/interrupt.hpp) asks training to stop at the next safe point (after the current
+// PPO/A2C update or off-policy round), where a checkpoint is written; a second Ctrl-C stops at
+// the next env step without one. A NaN or inf in a loss or a parameter stops the run with a
+// RuntimeFailure naming the step and the quantity; nothing non-finite is ever saved.
+#include <string>
+#include <vector>
+
+#include "rlrun/core/execution_context.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/io/session_summary.hpp"
+#include "rlrun/runtime/run/callback.hpp"
+
+namespace rlrun {
+
+struct TrainOutcome {
+  std::string run_dir;
+  std::string model_path;
+  int64_t start_timesteps = 0;  // the step count this session began at (a resumed run's checkpoint)
+  int64_t timesteps = 0;        // ... and ended at: the run's total
+  double wall_seconds = 0;      // this session's training time
+  bool interrupted = false;
+  std::string checkpoint_path;  // written on interruption: resume from it
+  std::string stop_reason;      // set when a callback stopped training early
+};
+
+// The session's summary line's numbers (runtime/io/session_summary.hpp).
+inline SessionSummary session_summary(const TrainOutcome& outcome) {
+  return {outcome.interrupted, outcome.start_timesteps, outcome.timesteps, outcome.wall_seconds};
+}
+
+// `resume_from` non-empty: continue the run these checkpoints belong to (newest first, as
+// runtime/run/resume_point.hpp lists them; a damaged one is skipped with a note), with
+// `experiment` loaded from that run's config.yaml.
+// `on_evaluation`: told of every evaluation; may stop training (runtime/run/callback.hpp).
+// `execution`: the threads the run uses (its results are the same with any number).
+TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
+                              const ExecutionContext& execution,
+                              const std::vector<std::string>& resume_from = {},
+                              EvaluationListener on_evaluation = {});
+
+}  // namespace rlrun
