@@ -224,10 +224,10 @@ TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges and half of 
       CHECK((env->info().get(env->info().find("is_success")) == 0.0 || task == GoalTask::kReach));
       if (task != GoalTask::kReach) {
         const Vec3 c = env->world().cube_position();
-        CHECK(c[0] >= s.cube_x[0]);
-        CHECK(c[0] <= s.cube_x[1]);
-        CHECK(c[1] >= s.cube_y[0]);
-        CHECK(c[1] <= s.cube_y[1]);
+        CHECK(c[0] >= s.cube.x[0]);
+        CHECK(c[0] <= s.cube.x[1]);
+        CHECK(c[1] >= s.cube.y[0]);
+        CHECK(c[1] <= s.cube.y[1]);
         CHECK(c[2] == Approx(0.02));
         // goal_apart: never solved at the start.
         CHECK(GripperGoalEnv::distance(&obs[kAchieved], &obs[kDesired]) >= 0.05f);
