@@ -19,6 +19,7 @@
 #include "rlrun/frame.hpp"
 #include "rlrun/rng.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/video_probe.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -364,10 +365,7 @@ TEST_CASE("eval and record --policy scripted on the goal tasks", "[gripper_goal]
                                dir / "pick.mp4");
   INFO(video.output);
   REQUIRE(video.exit_code == 0);
-  const auto probe = run_command(
-      "ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,width,height "
-      "-of csv=p=0 " + dir / "pick.mp4");
-  CHECK(probe.output.find("h264,480,480") != std::string::npos);
+  CHECK(probe_video(dir / "pick.mp4").find("h264,480,480,") != std::string::npos);
   const auto kwargs = run_rlrun(
       "eval --env GripperReach-v0 --policy scripted --episodes 3 --set "
       "env.kwargs.reward_type=dense");
