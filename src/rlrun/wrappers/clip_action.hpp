@@ -7,15 +7,13 @@
 #include <vector>
 
 #include "rlrun/wrappers/action_wrapper.hpp"
+#include "rlrun/wrappers/no_options.hpp"
 
 namespace rlrun {
 
 class ClipAction : public ActionWrapper {
  public:
-  struct Config {
-    template <class V>
-    void visit(V& /*v*/) {}
-  };
+  using Config = NoOptions;
   // Throws std::invalid_argument for a non-Box action space.
   ClipAction(EnvPtr inner, const Config& config);
   explicit ClipAction(EnvPtr inner) : ClipAction(std::move(inner), Config()) {}
