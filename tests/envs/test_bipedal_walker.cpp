@@ -20,6 +20,7 @@
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/experiment/env_factory.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/video_probe.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -405,10 +406,7 @@ TEST_CASE("eval and record --policy heuristic on BipedalWalker", "[walker][cli]"
   REQUIRE(video.exit_code == 0);
   std::smatch m;
   REQUIRE(std::regex_search(video.output, m, std::regex(R"((\d+) frames at 600x400, 50 fps)")));
-  const auto probe = run_command(
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " + dir / "walker.mp4");
-  CHECK(probe.output.find("h264,600,400," + m[1].str()) != std::string::npos);
+  CHECK(probe_video(dir / "walker.mp4").find("h264,600,400," + m[1].str()) != std::string::npos);
   CHECK(std::filesystem::exists(dir / "frames/frame_000001.png"));
 }
 

@@ -19,6 +19,7 @@
 #include "rlrun/frame.hpp"
 #include "rlrun/rng.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/video_probe.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -224,10 +225,10 @@ TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges and half of 
       CHECK((env->info().get(env->info().find("is_success")) == 0.0 || task == GoalTask::kReach));
       if (task != GoalTask::kReach) {
         const Vec3 c = env->world().cube_position();
-        CHECK(c[0] >= s.cube_x[0]);
-        CHECK(c[0] <= s.cube_x[1]);
-        CHECK(c[1] >= s.cube_y[0]);
-        CHECK(c[1] <= s.cube_y[1]);
+        CHECK(c[0] >= s.cube.x[0]);
+        CHECK(c[0] <= s.cube.x[1]);
+        CHECK(c[1] >= s.cube.y[0]);
+        CHECK(c[1] <= s.cube.y[1]);
         CHECK(c[2] == Approx(0.02));
         // goal_apart: never solved at the start.
         CHECK(GripperGoalEnv::distance(&obs[kAchieved], &obs[kDesired]) >= 0.05f);
@@ -364,10 +365,7 @@ TEST_CASE("eval and record --policy scripted on the goal tasks", "[gripper_goal]
                                dir / "pick.mp4");
   INFO(video.output);
   REQUIRE(video.exit_code == 0);
-  const auto probe = run_command(
-      "ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,width,height "
-      "-of csv=p=0 " + dir / "pick.mp4");
-  CHECK(probe.output.find("h264,480,480") != std::string::npos);
+  CHECK(probe_video(dir / "pick.mp4").find("h264,480,480,") != std::string::npos);
   const auto kwargs = run_rlrun(
       "eval --env GripperReach-v0 --policy scripted --episodes 3 --set "
       "env.kwargs.reward_type=dense");

@@ -13,6 +13,7 @@
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/video_probe.hpp"
 #include "test_paths.hpp"
 
 using namespace rlrun;
@@ -170,10 +171,7 @@ TEST_CASE("eval and record --policy scripted on the grasp task", "[gripper][cli]
                                dir / "lift.mp4");
   INFO(video.output);
   REQUIRE(video.exit_code == 0);
-  const auto probe = run_command(
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " + dir / "lift.mp4");
-  CHECK(probe.output.find("h264,480,480,51") != std::string::npos);  // reset + 50 steps
+  CHECK(probe_video(dir / "lift.mp4").find("h264,480,480,51") != std::string::npos);  // reset + 50 steps
   const auto wrong = run_rlrun("eval --env CartPole-v1 --policy scripted --episodes 1");
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.output.find("policy 'scripted' does not come with CartPole-v1; its policies: "

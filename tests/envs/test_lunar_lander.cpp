@@ -20,6 +20,7 @@
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/video_probe.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -407,11 +408,8 @@ TEST_CASE("lunar lander: eval and record --policy heuristic", "[lunar_lander][cl
       video.output, m, std::regex(R"(recorded 1 episode .*: (\d+) frames at 600x400, 50 fps)")));
   const int frames = std::stoi(m[1].str());
   CHECK(frames > 100);
-  const auto probe = run_command(
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " +
-      dir / "lander.mp4");
-  CHECK(probe.output.find("h264,600,400," + std::to_string(frames)) != std::string::npos);
+  CHECK(probe_video(dir / "lander.mp4").find("h264,600,400," + std::to_string(frames)) !=
+        std::string::npos);
   const auto wrong = run_rlrun("eval --env CartPole-v1 --policy heuristic --episodes 1");
   CHECK(wrong.exit_code == 2);
 }

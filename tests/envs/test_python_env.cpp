@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "envs/python_env_runner.hpp"
+#include "runtime/video_probe.hpp"
 #include "test_paths.hpp"
 
 using namespace rlrun::testing;
@@ -145,12 +146,10 @@ TEST_CASE("rlrun record films a Python env through its render()", "[python]") {
                                   kPython + " --output " + video);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  const auto probe = run_command(
-      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " + video);
-  INFO(probe.output);
+  const std::string probe = probe_video(video);
+  INFO(probe);
   // The env's own 300x200 frames, one per step plus the first.
-  CHECK(probe.output.find("h264,300,200,") != std::string::npos);
+  CHECK(probe.find("h264,300,200,") != std::string::npos);
 }
 
 TEST_CASE("the documented Python env example trains and evaluates as docs/python.md says",

@@ -17,6 +17,7 @@
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "rlrun/envs/traffic/tripinfo.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/video_probe.hpp"
 #include "test_paths.hpp"
 
 using namespace rlrun;
@@ -435,11 +436,8 @@ TEST_CASE("record --policy fixed-time: an mp4 of the intersection from above", "
                            " --frames " + dir / "frames");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  const auto probe = run_command(
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " + dir / "ft.mp4");
   // 100 s at 5 s per decision: 20 steps, plus the frame after reset.
-  CHECK(probe.output.find("h264,600,600,21") != std::string::npos);
+  CHECK(probe_video(dir / "ft.mp4").find("h264,600,600,21") != std::string::npos);
   CHECK(std::filesystem::exists(dir / "frames/frame_000020.png"));
   const auto refused = run_rlrun("record --env CartPole-v1 --policy fixed-time --output " + dir / "x.mp4");
   CHECK(refused.exit_code == 2);

@@ -1,27 +1,15 @@
 #include "rlrun/nn/adam.hpp"
 
 #include <cmath>
-#include <stdexcept>
 #include <utility>
 
 #include "rlrun/nn/dense_kernels.hpp"
 
 namespace rlrun {
 
-Adam::Adam(std::vector<ParamBlock> blocks, AdamConfig cfg) : blocks_(std::move(blocks)), cfg_(cfg) {
-  for (const ParamBlock& b : blocks_) {
-    exp_avg_.push_back(Eigen::VectorXf::Zero(b.size));
-    exp_avg_sq_.push_back(Eigen::VectorXf::Zero(b.size));
-  }
-}
-
-void Adam::rebind(std::vector<ParamBlock> blocks) {
-  if (blocks.size() != blocks_.size()) throw std::invalid_argument("Adam::rebind: block count");
-  for (size_t i = 0; i < blocks.size(); ++i) {
-    if (blocks[i].size != blocks_[i].size) throw std::invalid_argument("Adam::rebind: block size");
-  }
-  blocks_ = std::move(blocks);
-}
+Adam::Adam(std::vector<ParamBlock> blocks, AdamConfig cfg)
+    : BlockOptimizer(std::move(blocks), "Adam"), cfg_(cfg), exp_avg_(zero_state()),
+      exp_avg_sq_(zero_state()) {}
 
 void Adam::step(float lr) {
   ++steps_;

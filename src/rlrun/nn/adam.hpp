@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rlrun/nn/param_block.hpp"
+#include "rlrun/nn/block_optimizer.hpp"
 
 namespace rlrun {
 
@@ -22,7 +22,7 @@ struct AdamConfig {
   double eps = 1e-8;     // added to the bias-corrected sqrt(v) in the denominator
 };
 
-class Adam {
+class Adam : public BlockOptimizer {
  public:
   Adam() = default;
   explicit Adam(std::vector<ParamBlock> blocks, AdamConfig cfg = {});
@@ -31,14 +31,7 @@ class Adam {
   // scheduled lr on the param groups before each optimizer.step()).
   void step(float lr);
 
-  // Points the optimizer at new storage of the same shapes (e.g. after copying the networks),
-  // keeping its moments and step count.
-  void rebind(std::vector<ParamBlock> blocks);
-
   const AdamConfig& config() const { return cfg_; }
-  const std::vector<ParamBlock>& blocks() const { return blocks_; }
-  int64_t steps() const { return steps_; }
-  void set_steps(int64_t steps) { steps_ = steps; }
   // Per-block first and second moments (checkpointed as torch's state exp_avg / exp_avg_sq).
   std::vector<Eigen::VectorXf>& exp_avg() { return exp_avg_; }
   const std::vector<Eigen::VectorXf>& exp_avg() const { return exp_avg_; }
@@ -46,11 +39,9 @@ class Adam {
   const std::vector<Eigen::VectorXf>& exp_avg_sq() const { return exp_avg_sq_; }
 
  private:
-  std::vector<ParamBlock> blocks_;
   AdamConfig cfg_;
   std::vector<Eigen::VectorXf> exp_avg_;
   std::vector<Eigen::VectorXf> exp_avg_sq_;
-  int64_t steps_ = 0;
 };
 
 }  // namespace rlrun

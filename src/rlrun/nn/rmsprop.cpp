@@ -1,6 +1,5 @@
 #include "rlrun/nn/rmsprop.hpp"
 
-#include <stdexcept>
 #include <utility>
 
 #include "rlrun/nn/dense_kernels.hpp"
@@ -8,19 +7,7 @@
 namespace rlrun {
 
 RmsProp::RmsProp(std::vector<ParamBlock> blocks, RmsPropConfig cfg)
-    : blocks_(std::move(blocks)), cfg_(cfg) {
-  for (const ParamBlock& b : blocks_) square_avg_.push_back(Eigen::VectorXf::Zero(b.size));
-}
-
-void RmsProp::rebind(std::vector<ParamBlock> blocks) {
-  if (blocks.size() != blocks_.size()) throw std::invalid_argument("RmsProp::rebind: block count");
-  for (size_t i = 0; i < blocks.size(); ++i) {
-    if (blocks[i].size != blocks_[i].size) {
-      throw std::invalid_argument("RmsProp::rebind: block size");
-    }
-  }
-  blocks_ = std::move(blocks);
-}
+    : BlockOptimizer(std::move(blocks), "RmsProp"), cfg_(cfg), square_avg_(zero_state()) {}
 
 void RmsProp::step(float lr) {
   ++steps_;

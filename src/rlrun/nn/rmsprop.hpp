@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rlrun/nn/param_block.hpp"
+#include "rlrun/nn/block_optimizer.hpp"
 
 namespace rlrun {
 
@@ -18,28 +18,21 @@ struct RmsPropConfig {
   double eps = 1e-5;    // added to sqrt(v) in the denominator
 };
 
-class RmsProp {
+class RmsProp : public BlockOptimizer {
  public:
   RmsProp() = default;
   explicit RmsProp(std::vector<ParamBlock> blocks, RmsPropConfig cfg = {});
 
   void step(float lr);
-  // Same shapes, new storage (e.g. after copying the networks); keeps square_avg and steps.
-  void rebind(std::vector<ParamBlock> blocks);
 
   const RmsPropConfig& config() const { return cfg_; }
-  const std::vector<ParamBlock>& blocks() const { return blocks_; }
-  int64_t steps() const { return steps_; }
-  void set_steps(int64_t steps) { steps_ = steps; }
   // Per-block running average of g^2 (torch's state square_avg).
   std::vector<Eigen::VectorXf>& square_avg() { return square_avg_; }
   const std::vector<Eigen::VectorXf>& square_avg() const { return square_avg_; }
 
  private:
-  std::vector<ParamBlock> blocks_;
   RmsPropConfig cfg_;
   std::vector<Eigen::VectorXf> square_avg_;
-  int64_t steps_ = 0;
 };
 
 }  // namespace rlrun

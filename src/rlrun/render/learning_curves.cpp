@@ -59,6 +59,67 @@ Band band_of(const CurveGroup& group) {
   return band;
 }
 
+// Each band (lowest to highest seed, translucent), then the mean lines on top, clipped to the
+// plot area; colours by index.
+void draw_bands(cairo_t* cr, const PlotArea& area, const std::vector<Band>& bands) {
+  const auto px = [&](double x) { return area.px(x); };
+  const auto py = [&](double y) { return area.py(y); };
+  cairo_save(cr);
+  cairo_rectangle(cr, area.left, area.top, area.width, area.height);
+  cairo_clip(cr);
+  for (size_t g = 0; g < bands.size(); ++g) {
+    const Band& b = bands[g];
+    if (b.x.empty()) continue;
+    const double* c = kPlotColours[g % 10];
+    cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.2);
+    cairo_move_to(cr, px(b.x[0]), py(b.high[0]));
+    for (size_t i = 1; i < b.x.size(); ++i) cairo_line_to(cr, px(b.x[i]), py(b.high[i]));
+    for (size_t i = b.x.size(); i-- > 0;) cairo_line_to(cr, px(b.x[i]), py(b.low[i]));
+    cairo_close_path(cr);
+    cairo_fill(cr);
+  }
+  cairo_set_line_width(cr, 2);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (size_t g = 0; g < bands.size(); ++g) {
+    const Band& b = bands[g];
+    if (b.x.empty()) continue;
+    const double* c = kPlotColours[g % 10];
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_move_to(cr, px(b.x[0]), py(b.mean[0]));
+    for (size_t i = 1; i < b.x.size(); ++i) cairo_line_to(cr, px(b.x[i]), py(b.mean[i]));
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
+// Right of the plot: one entry per configuration (its colour's band and line, its label), then
+// the caption saying what line and band mean.
+void draw_legend(cairo_t* cr, const PlotArea& area, const std::vector<std::string>& entries) {
+  cairo_set_font_size(cr, 12);
+  double ly = kTop + 10;
+  for (size_t g = 0; g < entries.size(); ++g) {
+    const double* c = kPlotColours[g % 10];
+    const double lx = area.left + area.width + 18;
+    cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.2);
+    cairo_rectangle(cr, lx, ly - 6, 26, 12);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_set_line_width(cr, 2);
+    cairo_move_to(cr, lx, ly);
+    cairo_line_to(cr, lx + 26, ly);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    draw_text(cr, entries[g], lx + 34, ly, 0, 0.5);
+    ly += 22;
+  }
+  cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+  cairo_set_font_size(cr, 11);
+  for (const char* line : kCaption) {
+    draw_text(cr, line, area.left + area.width + 18, ly + 6, 0, 0.5);
+    ly += 16;
+  }
+}
+
 }  // namespace
 
 void plot_learning_curves(const std::vector<CurveGroup>& groups, const std::string& y_label,
@@ -93,66 +154,13 @@ void plot_learning_curves(const std::vector<CurveGroup>& groups, const std::stri
   for (const std::string& e : entries) legend_width = std::max(legend_width, 34 + text_width(e, 12));
   for (const char* line : kCaption) legend_width = std::max(legend_width, text_width(line, 11));
   const int width = static_cast<int>(kLeft + kPlotWidth + 18 + legend_width + 16);
-  const auto px = [&](double x) { return area.px(x); };
-  const auto py = [&](double y) { return area.py(y); };
 
   PlotCanvas canvas(output, width, kHeight);
   cairo_t* cr = canvas.cr();
   draw_grid(cr, area, x_ticks, y_ticks);
-
-  // Bands, then mean lines on top, clipped to the plot area.
-  cairo_save(cr);
-  cairo_rectangle(cr, area.left, area.top, area.width, area.height);
-  cairo_clip(cr);
-  for (size_t g = 0; g < bands.size(); ++g) {
-    const Band& b = bands[g];
-    if (b.x.empty()) continue;
-    const double* c = kPlotColours[g % 10];
-    cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.2);
-    cairo_move_to(cr, px(b.x[0]), py(b.high[0]));
-    for (size_t i = 1; i < b.x.size(); ++i) cairo_line_to(cr, px(b.x[i]), py(b.high[i]));
-    for (size_t i = b.x.size(); i-- > 0;) cairo_line_to(cr, px(b.x[i]), py(b.low[i]));
-    cairo_close_path(cr);
-    cairo_fill(cr);
-  }
-  cairo_set_line_width(cr, 2);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for (size_t g = 0; g < bands.size(); ++g) {
-    const Band& b = bands[g];
-    if (b.x.empty()) continue;
-    const double* c = kPlotColours[g % 10];
-    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
-    cairo_move_to(cr, px(b.x[0]), py(b.mean[0]));
-    for (size_t i = 1; i < b.x.size(); ++i) cairo_line_to(cr, px(b.x[i]), py(b.mean[i]));
-    cairo_stroke(cr);
-  }
-  cairo_restore(cr);
-
-  // Axis labels, title, legend (right of the plot: one entry per configuration).
+  draw_bands(cr, area, bands);
   draw_titles(cr, area, kHeight, "timesteps", y_label, title);
-  cairo_set_font_size(cr, 12);
-  double ly = kTop + 10;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    const double* c = kPlotColours[g % 10];
-    const double lx = area.left + area.width + 18;
-    cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.2);
-    cairo_rectangle(cr, lx, ly - 6, 26, 12);
-    cairo_fill(cr);
-    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
-    cairo_set_line_width(cr, 2);
-    cairo_move_to(cr, lx, ly);
-    cairo_line_to(cr, lx + 26, ly);
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    draw_text(cr, entries[g], lx + 34, ly, 0, 0.5);
-    ly += 22;
-  }
-  cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
-  cairo_set_font_size(cr, 11);
-  for (const char* line : kCaption) {
-    draw_text(cr, line, area.left + area.width + 18, ly + 6, 0, 0.5);
-    ly += 16;
-  }
+  draw_legend(cr, area, entries);
   canvas.save();
 }
 

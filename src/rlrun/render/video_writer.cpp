@@ -56,6 +56,76 @@ std::string ffmpeg_file_url(const std::string& path) {
   return "file:" + std::filesystem::absolute(path).string();
 }
 
+// ffmpeg's command line: raw yuv420p frames on stdin, H.264 in an mp4 at output_url. The
+// stream is tagged BT.601 limited range, which is what render/yuv420.hpp's conversion produces.
+std::vector<std::string> ffmpeg_arguments(const std::string& ffmpeg, int width, int height,
+                                          const VideoOptions& options,
+                                          const std::string& output_url) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  std::vector<std::string> args = {ffmpeg,
+                                   "-hide_banner",
+                                   "-nostdin",
+                                   "-loglevel",
+                                   "error",
+                                   "-f",
+                                   "rawvideo",
+                                   "-pix_fmt",
+                                   "yuv420p",
+                                   "-video_size",
+                                   size,
+                                   "-framerate",
+                                   fps_text(options.fps),
+                                   "-i",
+                                   "pipe:0",
+                                   "-an",
+                                   "-c:v",
+                                   "libx264",
+                                   "-preset",
+                                   options.preset,
+                                   "-crf",
+                                   std::to_string(options.crf),
+                                   "-pix_fmt",
+                                   "yuv420p",
+                                   "-colorspace",
+                                   "smpte170m",
+                                   "-color_primaries",
+                                   "smpte170m",
+                                   "-color_trc",
+                                   "smpte170m",
+                                   "-color_range",
+                                   "tv",
+                                   "-movflags",
+                                   "+faststart",
+                                   "-f",
+                                   "mp4",
+                                   "-y",
+                                   output_url};
+  return args;
+}
+
+// posix_spawn of args[0] with stdin, stdout (when >= 0) and stderr redirected, in its own
+// process group (a terminal's Ctrl-C stays with rlrun). Returns posix_spawn's error number.
+int spawn_in_own_group(std::vector<std::string> args, int stdin_fd, int stdout_fd, int stderr_fd,
+                       pid_t* pid) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, stdin_fd, 0);
+  if (stdout_fd >= 0) posix_spawn_file_actions_adddup2(&actions, stdout_fd, 1);
+  posix_spawn_file_actions_adddup2(&actions, stderr_fd, 2);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setpgroup(&attr, 0);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  const int rc = ::posix_spawn(pid, args[0].c_str(), &actions, &attr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  return rc;
+}
+
 }  // namespace
 
 std::string VideoWriter::find_ffmpeg() {
@@ -120,63 +190,10 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
   }
   const int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
 
-  // Frames arrive as yuv420p already (render/yuv420.hpp); ffmpeg only encodes, and the
-  // stream is tagged BT.601 limited range, which is what the conversion produces.
-  const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  std::vector<std::string> args = {ffmpeg,
-                                   "-hide_banner",
-                                   "-nostdin",
-                                   "-loglevel",
-                                   "error",
-                                   "-f",
-                                   "rawvideo",
-                                   "-pix_fmt",
-                                   "yuv420p",
-                                   "-video_size",
-                                   size,
-                                   "-framerate",
-                                   fps_text(options.fps),
-                                   "-i",
-                                   "pipe:0",
-                                   "-an",
-                                   "-c:v",
-                                   "libx264",
-                                   "-preset",
-                                   options.preset,
-                                   "-crf",
-                                   std::to_string(options.crf),
-                                   "-pix_fmt",
-                                   "yuv420p",
-                                   "-colorspace",
-                                   "smpte170m",
-                                   "-color_primaries",
-                                   "smpte170m",
-                                   "-color_trc",
-                                   "smpte170m",
-                                   "-color_range",
-                                   "tv",
-                                   "-movflags",
-                                   "+faststart",
-                                   "-f",
-                                   "mp4",
-                                   "-y",
-                                   ffmpeg_file_url(temp_path_)};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
-  if (devnull >= 0) posix_spawn_file_actions_adddup2(&actions, devnull, 1);
-  posix_spawn_file_actions_adddup2(&actions, stderr_fd_, 2);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setpgroup(&attr, 0);  // own process group: terminal Ctrl-C stays with rlrun
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-  const int rc = ::posix_spawn(&pid_, ffmpeg.c_str(), &actions, &attr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
+  // Frames arrive as yuv420p already (render/yuv420.hpp); ffmpeg only encodes.
+  const int rc = spawn_in_own_group(
+      ffmpeg_arguments(ffmpeg, width, height, options, ffmpeg_file_url(temp_path_)), fds[0],
+      devnull, stderr_fd_, &pid_);
   ::close(fds[0]);
   if (devnull >= 0) ::close(devnull);
   if (rc != 0) {

@@ -79,6 +79,14 @@ class JournalReplay {
 
  private:
   void apply_one(const nlohmann::json& op, const std::string& where);
+  // One per kind of operation (apply_one dispatches on op_code).
+  void create_study(const nlohmann::json& op, const std::string& where);
+  void set_study_attr(const nlohmann::json& op, bool user, const std::string& where);
+  void create_trial(const nlohmann::json& op, const std::string& where);
+  void set_trial_param(const nlohmann::json& op, const std::string& where);
+  void set_trial_state_values(const nlohmann::json& op, const std::string& where);
+  void set_trial_intermediate_value(const nlohmann::json& op, const std::string& where);
+  void set_trial_attr(const nlohmann::json& op, bool user, const std::string& where);
   bool mine(const nlohmann::json& op) const;
   bool study_exists(int64_t study_id, const nlohmann::json& op, const std::string& where) const;
   bool trial_updatable(int64_t trial_id, const nlohmann::json& op, const std::string& where) const;

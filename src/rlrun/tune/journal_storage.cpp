@@ -41,6 +41,17 @@ std::string new_worker_id() {
   return text;
 }
 
+namespace {
+
+// A SET_*_ATTR operation: {"op_code": code, id_key: id, attr_key: {key: value}}.
+nlohmann::json attribute_operation(JournalOperation code, const char* id_key, int64_t id,
+                                   const char* attr_key, const std::string& key,
+                                   const nlohmann::json& value) {
+  return {{"op_code", static_cast<int>(code)}, {id_key, id}, {attr_key, {{key, value}}}};
+}
+
+}  // namespace
+
 JournalStorage::JournalStorage(const std::string& path, std::string worker_id)
     : file_(path), replay_(std::move(worker_id)) {
   sync();
@@ -90,16 +101,14 @@ int64_t JournalStorage::create_or_load_study(const std::string& name, StudyDirec
 
 void JournalStorage::set_study_user_attr(int64_t study_id, const std::string& key,
                                          const nlohmann::json& value) {
-  write({{"op_code", static_cast<int>(JournalOperation::kSetStudyUserAttr)},
-         {"study_id", study_id},
-         {"user_attr", {{key, value}}}});
+  write(attribute_operation(JournalOperation::kSetStudyUserAttr,
+                            "study_id", study_id, "user_attr", key, value));
 }
 
 void JournalStorage::set_study_system_attr(int64_t study_id, const std::string& key,
                                            const nlohmann::json& value) {
-  write({{"op_code", static_cast<int>(JournalOperation::kSetStudySystemAttr)},
-         {"study_id", study_id},
-         {"system_attr", {{key, value}}}});
+  write(attribute_operation(JournalOperation::kSetStudySystemAttr,
+                            "study_id", study_id, "system_attr", key, value));
 }
 
 int64_t JournalStorage::create_running_trial(int64_t study_id) {
@@ -168,16 +177,14 @@ void JournalStorage::report(int64_t trial_id, int64_t step, double value) {
 
 void JournalStorage::set_trial_user_attr(int64_t trial_id, const std::string& key,
                                          const nlohmann::json& value) {
-  write({{"op_code", static_cast<int>(JournalOperation::kSetTrialUserAttr)},
-         {"trial_id", trial_id},
-         {"user_attr", {{key, value}}}});
+  write(attribute_operation(JournalOperation::kSetTrialUserAttr,
+                            "trial_id", trial_id, "user_attr", key, value));
 }
 
 void JournalStorage::set_trial_system_attr(int64_t trial_id, const std::string& key,
                                            const nlohmann::json& value) {
-  write({{"op_code", static_cast<int>(JournalOperation::kSetTrialSystemAttr)},
-         {"trial_id", trial_id},
-         {"system_attr", {{key, value}}}});
+  write(attribute_operation(JournalOperation::kSetTrialSystemAttr,
+                            "trial_id", trial_id, "system_attr", key, value));
 }
 
 }  // namespace rlrun::tune

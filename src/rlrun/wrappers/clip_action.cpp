@@ -10,7 +10,7 @@
 
 namespace rlrun {
 
-ClipAction::ClipAction(EnvPtr inner, const Config& /*config*/) : Wrapper(std::move(inner)) {
+ClipAction::ClipAction(EnvPtr inner, const Config& /*config*/) : ActionWrapper(std::move(inner)) {
   const Space& inner_space = inner_->action_space();
   if (!inner_space.is_box())
     throw std::invalid_argument("ClipAction needs a Box action space, " + inner_->id() + " has " +
@@ -27,11 +27,7 @@ std::string ClipAction::export_action(PolicyGraph& graph, const std::string& act
                      Eigen::Map<const Eigen::VectorXf>(inner_space.high().data(), n));
 }
 
-StepResult ClipAction::step(std::span<const float> action, std::span<float> obs) {
-  return inner_->step(clip(action), obs);
-}
-
-std::span<const float> ClipAction::clip(std::span<const float> action) {
+std::span<const float> ClipAction::map_action(std::span<const float> action) {
   const Space& inner_space = inner_->action_space();
   for (size_t i = 0; i < clipped_.size(); ++i)
     clipped_[i] = std::clamp(action[i], inner_space.low()[i], inner_space.high()[i]);

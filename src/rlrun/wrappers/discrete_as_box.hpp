@@ -3,15 +3,13 @@
 // one score per discrete action in Box(-1, 1, (n,)) and the env receives the argmax (first
 // maximum on ties). Used by `env.auto_wrap: true` or `wrappers: [{id: DiscreteAsBox}]`.
 #include "rlrun/env/wrapper.hpp"
+#include "rlrun/wrappers/no_options.hpp"
 
 namespace rlrun {
 
 class DiscreteAsBox : public Wrapper {
  public:
-  struct Config {
-    template <class V>
-    void visit(V&) {}
-  };
+  using Config = NoOptions;
   // Throws std::invalid_argument when the inner action space is not Discrete.
   DiscreteAsBox(EnvPtr inner, const Config& config);
   explicit DiscreteAsBox(EnvPtr inner) : DiscreteAsBox(std::move(inner), Config()) {}

@@ -12,7 +12,7 @@
 namespace rlrun {
 
 NormalizeObservation::NormalizeObservation(EnvPtr inner, const Config& config)
-    : Wrapper(std::move(inner)), config_(config) {
+    : RunningStatisticsWrapper(std::move(inner)), config_(config) {
   const Space& inner_space = inner_->observation_space();
   // SB3 VecNormalize._sanity_checks: only Box observations (or Box keys of a Dict) can be
   // normalised.
@@ -75,10 +75,6 @@ void NormalizeObservation::reset(std::optional<uint64_t> seed, std::span<float> 
   if (batched_) return;
   if (updating()) rms_->update(selected(obs));  // VecNormalize.reset updates obs_rms
   normalize(obs);
-}
-
-StepResult NormalizeObservation::step(std::span<const float> action, std::span<float> obs) {
-  return after_step(inner_->step(action, obs), obs);
 }
 
 StepResult NormalizeObservation::after_step(StepResult result, std::span<float> obs) {

@@ -38,14 +38,11 @@
 #include <vector>
 
 #include "rlrun/core/config_checks.hpp"
-#include "rlrun/env/split_step.hpp"
-#include "rlrun/env/wrapper.hpp"
-#include "rlrun/wrappers/model_statistics.hpp"
-#include "rlrun/wrappers/running_mean_std.hpp"
+#include "rlrun/wrappers/running_statistics_wrapper.hpp"
 
 namespace rlrun {
 
-class NormalizeObservation : public Wrapper, public ModelStatistics, public SplitStep {
+class NormalizeObservation : public RunningStatisticsWrapper {
  public:
   struct Config {
     double clip_obs = 10.0;  // SB3 VecNormalize clip_obs
@@ -71,27 +68,11 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
 
   const Space& observation_space() const override { return space_; }
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
-  StepResult step(std::span<const float> action, std::span<float> obs) override;
-  // The two halves of step() (env/split_step.hpp): forwarded, then this wrapper's work.
-  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
-  void start_step(std::span<const float> action) override {
-    asynchronous_steps(*inner_)->start_step(action);
-  }
-  StepResult finish_step(std::span<float> obs) override {
-    return after_step(asynchronous_steps(*inner_)->finish_step(obs), obs);
-  }
-
   std::string statistics_name() const override { return "NormalizeObservation"; }
-  void save_statistics(StateWriter& out) const override { rms_->write(out); }
-  void load_statistics(const StateReader& in) override { rms_->read(in); }
-  void set_training(bool training) override { training_ = training; }
-  bool training() const override { return training_; }
   void share_statistics_with(ModelStatistics& first) override;
 
-  const RunningMeanStd& statistics() const { return *rms_; }
-  // Batched mode (wrappers/vec_normalize.hpp): reset() and step() pass observations through;
-  // update_batch() and normalize() do the work for the whole VecEnv.
-  void set_batched(bool batched) { batched_ = batched; }
+  // Batched mode (set_batched; wrappers/vec_normalize.hpp): reset() and step() pass
+  // observations through; update_batch() and normalize() do the work for the whole VecEnv.
   // While training: SB3's obs_rms.update(obs) with one observation per column of `obs`
   // (observations of this wrapper's inner space).
   void update_batch(const Eigen::Ref<const Eigen::MatrixXf>& obs);
@@ -113,8 +94,7 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
   void read_own_state(const StateReader& in) override { rms_->read(in.sub("normalize_observation")); }
 
  private:
-  // What step() does after the inner env stepped.
-  StepResult after_step(StepResult result, std::span<float> obs);
+  StepResult after_step(StepResult result, std::span<float> obs) override;
   // The floats the statistics see: the observation itself, or its normalised keys' floats.
   std::span<const float> selected(std::span<const float> obs);
 
@@ -123,14 +103,11 @@ class NormalizeObservation : public Wrapper, public ModelStatistics, public Spli
   std::vector<int> indices_;   // else: the normalised floats' positions
   std::vector<float> picked_;  // their values, for the statistics
   Space space_;
-  std::shared_ptr<RunningMeanStd> rms_;
-  bool training_ = true;
   // Whether this observation goes into the statistics: while training, until freeze_after.
   bool updating() const {
     return training_ && (!config_.freeze_after ||
                          rms_->count() < static_cast<double>(*config_.freeze_after));
   }
-  bool batched_ = false;
   std::vector<float> batch_scratch_;  // update_batch()'s float32 moments
   std::vector<float> original_;
 };

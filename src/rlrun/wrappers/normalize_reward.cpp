@@ -7,7 +7,8 @@
 namespace rlrun {
 
 NormalizeReward::NormalizeReward(EnvPtr inner, const Config& config)
-    : Wrapper(std::move(inner)), config_(config), rms_(std::make_shared<RunningMeanStd>(1)) {
+    : RunningStatisticsWrapper(std::move(inner)), config_(config) {
+  rms_ = std::make_shared<RunningMeanStd>(1);
   if (!(config_.gamma >= 0 && config_.gamma <= 1))
     throw std::invalid_argument("NormalizeReward: gamma must be in [0, 1]");
   if (!(config_.clip_reward > 0)) throw std::invalid_argument("NormalizeReward: clip_reward must be > 0");
@@ -17,10 +18,6 @@ NormalizeReward::NormalizeReward(EnvPtr inner, const Config& config)
 void NormalizeReward::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   inner_->reset(seed, obs);
   if (!batched_) return_ = 0.0;  // VecNormalize.reset: self.returns = np.zeros(num_envs)
-}
-
-StepResult NormalizeReward::step(std::span<const float> action, std::span<float> obs) {
-  return after_step(inner_->step(action, obs), obs);
 }
 
 StepResult NormalizeReward::after_step(StepResult result, std::span<float> /*obs*/) {

@@ -15,14 +15,11 @@
 #include <memory>
 
 #include "rlrun/core/config_checks.hpp"
-#include "rlrun/env/split_step.hpp"
-#include "rlrun/env/wrapper.hpp"
-#include "rlrun/wrappers/model_statistics.hpp"
-#include "rlrun/wrappers/running_mean_std.hpp"
+#include "rlrun/wrappers/running_statistics_wrapper.hpp"
 
 namespace rlrun {
 
-class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep {
+class NormalizeReward : public RunningStatisticsWrapper {
  public:
   // Observations and actions pass unchanged (rlrun export).
   bool exports_unchanged() const override { return true; }
@@ -44,29 +41,13 @@ class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep
   explicit NormalizeReward(EnvPtr inner) : NormalizeReward(std::move(inner), Config()) {}
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
-  StepResult step(std::span<const float> action, std::span<float> obs) override;
-  // The two halves of step() (env/split_step.hpp): forwarded, then this wrapper's work.
-  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
-  void start_step(std::span<const float> action) override {
-    asynchronous_steps(*inner_)->start_step(action);
-  }
-  StepResult finish_step(std::span<float> obs) override {
-    return after_step(asynchronous_steps(*inner_)->finish_step(obs), obs);
-  }
-
   std::string statistics_name() const override { return "NormalizeReward"; }
-  void save_statistics(StateWriter& out) const override { rms_->write(out); }
-  void load_statistics(const StateReader& in) override { rms_->read(in); }
-  void set_training(bool training) override { training_ = training; }
-  bool training() const override { return training_; }
   void share_statistics_with(ModelStatistics& first) override;
 
-  const RunningMeanStd& statistics() const { return *rms_; }
   double discounted_return() const { return return_; }
 
-  // Batched mode (wrappers/vec_normalize.hpp): reset() and step() pass rewards through and
-  // leave the return alone; the VecEnv's hook calls the functions below.
-  void set_batched(bool batched) { batched_ = batched; }
+  // Batched mode (set_batched; wrappers/vec_normalize.hpp): reset() and step() pass rewards
+  // through and leave the return alone; the VecEnv's hook calls the functions below.
   // Frozen (training false): rewards pass unchanged instead of being scaled.
   void set_unscaled_when_frozen(bool unscaled) { unscaled_when_frozen_ = unscaled; }
   // While training: ret = ret * gamma + reward. Returns ret.
@@ -82,13 +63,9 @@ class NormalizeReward : public Wrapper, public ModelStatistics, public SplitStep
   void read_own_state(const StateReader& in) override;
 
  private:
-  // What step() does after the inner env stepped.
-  StepResult after_step(StepResult result, std::span<float> obs);
+  StepResult after_step(StepResult result, std::span<float> obs) override;
   Config config_;
-  std::shared_ptr<RunningMeanStd> rms_;
   double return_ = 0.0;
-  bool training_ = true;
-  bool batched_ = false;
   bool unscaled_when_frozen_ = false;
 };
 

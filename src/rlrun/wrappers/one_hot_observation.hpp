@@ -11,15 +11,13 @@
 
 #include "rlrun/env/observation_encoder.hpp"
 #include "rlrun/env/wrapper.hpp"
+#include "rlrun/wrappers/no_options.hpp"
 
 namespace rlrun {
 
 class OneHotObservation : public Wrapper {
  public:
-  struct Config {
-    template <class V>
-    void visit(V&) {}
-  };
+  using Config = NoOptions;
   // Throws std::invalid_argument when the inner observation space is a Box or a Dict.
   OneHotObservation(EnvPtr inner, const Config& config);
   explicit OneHotObservation(EnvPtr inner) : OneHotObservation(std::move(inner), Config()) {}

@@ -25,7 +25,7 @@ std::vector<float> broadcast(const std::vector<double>& values, int dims, const 
 
 }  // namespace
 
-RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : Wrapper(std::move(inner)) {
+RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : ActionWrapper(std::move(inner)) {
   const Space& inner_space = inner_->action_space();
   if (!inner_space.is_box())
     throw std::invalid_argument("RescaleAction needs a Box action space, " + inner_->id() +
@@ -52,10 +52,6 @@ RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : Wrapper(std::
   inner_action_.resize(dims);
 }
 
-StepResult RescaleAction::step(std::span<const float> action, std::span<float> obs) {
-  return inner_->step(rescale(action), obs);
-}
-
 std::string RescaleAction::export_action(PolicyGraph& graph, const std::string& action) const {
   const Space& inner_space = inner_->action_space();
   const int n = inner_space.flat_dim();
@@ -64,7 +60,7 @@ std::string RescaleAction::export_action(PolicyGraph& graph, const std::string& 
   return graph.clamp(graph.affine(action, Eigen::VectorXf::Zero(n), gradient, intercept), low, high);
 }
 
-std::span<const float> RescaleAction::rescale(std::span<const float> action) {
+std::span<const float> RescaleAction::map_action(std::span<const float> action) {
   for (size_t i = 0; i < inner_action_.size(); ++i)
     inner_action_[i] =
         std::clamp(gradient_[i] * action[i] + intercept_[i], inner_low_[i], inner_high_[i]);

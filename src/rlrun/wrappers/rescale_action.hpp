@@ -8,8 +8,7 @@
 #include <vector>
 
 #include "rlrun/core/config_fields.hpp"
-#include "rlrun/env/split_step.hpp"
-#include "rlrun/env/wrapper.hpp"
+#include "rlrun/wrappers/action_wrapper.hpp"
 
 namespace rlrun {
 
@@ -29,7 +28,7 @@ inline YAML::Node encode(const ActionBound& b) {
   return b.values.size() == 1 ? encode(b.values[0]) : encode(b.values);
 }
 
-class RescaleAction : public Wrapper, public SplitStep {
+class RescaleAction : public ActionWrapper {
  public:
   struct Config {
     ActionBound min_action{{-1.0}};  // one value, or one per action dimension
@@ -45,25 +44,11 @@ class RescaleAction : public Wrapper, public SplitStep {
   RescaleAction(EnvPtr inner, const Config& config);
   explicit RescaleAction(EnvPtr inner) : RescaleAction(std::move(inner), Config()) {}
 
-  const Space& action_space() const override { return space_; }
-  StepResult step(std::span<const float> action, std::span<float> obs) override;
-  // The two halves of step() (env/split_step.hpp): the rescaled action is handed on.
-  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
-  void start_step(std::span<const float> action) override {
-    asynchronous_steps(*inner_)->start_step(rescale(action));
-  }
-  StepResult finish_step(std::span<float> obs) override {
-    return asynchronous_steps(*inner_)->finish_step(obs);
-  }
-
-  std::string export_observation(PolicyGraph& /*graph*/, const std::string& obs) const override {
-    return obs;
-  }
   std::string export_action(PolicyGraph& graph, const std::string& action) const override;
 
  private:
-  std::span<const float> rescale(std::span<const float> action);
-  Space space_;
+  // The action mapped affinely onto the inner env's bounds and clipped to them.
+  std::span<const float> map_action(std::span<const float> action) override;
   std::vector<float> gradient_, intercept_;  // Gymnasium's: inner = gradient * action + intercept
   // The inner env's bounds, copied once: asking for its action space on every step went
   // through the whole wrapper chain (1 % of PPO Pendulum's profile).

@@ -48,6 +48,30 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
     v->resize(batch);
 }
 
+// What SB3's PPO.train logs: the minibatches' mean losses and clip fraction, the mean
+// approx_kl of the last epoch run, the last minibatch's loss.
+struct PPO::TrainStatistics {
+  double entropy_loss_sum = 0, pg_loss_sum = 0, value_loss_sum = 0, clip_fraction_sum = 0;
+  int n_minibatches = 0;
+  double last_loss = 0, approx_kl_sum = 0;
+  int approx_kl_count = 0;
+
+  void start_epoch() {
+    approx_kl_sum = 0;
+    approx_kl_count = 0;
+  }
+  void add(const PpoLossTerms& t) {
+    pg_loss_sum += t.policy_loss;
+    value_loss_sum += t.value_loss;
+    entropy_loss_sum += t.entropy_loss;
+    clip_fraction_sum += t.clip_fraction;
+    approx_kl_sum += t.approx_kl;
+    ++approx_kl_count;
+    ++n_minibatches;
+    last_loss = t.loss;
+  }
+};
+
 void PPO::train(double progress_remaining, Logger* logger) {
   const float lr = static_cast<float>(config_.learning_rate(progress_remaining));
   const float clip_range = static_cast<float>(config_.clip_range(progress_remaining));
@@ -57,44 +81,20 @@ void PPO::train(double progress_remaining, Logger* logger) {
   const float ent_coef = static_cast<float>(config_.ent_coef);
   const float vf_coef = static_cast<float>(config_.vf_coef);
   const int size = static_cast<int>(indices_.size());
-  const RolloutBuffer& rollout = collector_.buffer();
 
-  double entropy_loss_sum = 0, pg_loss_sum = 0, value_loss_sum = 0, clip_fraction_sum = 0;
-  int n_minibatches = 0;
-  double last_loss = 0, approx_kl_sum = 0;
-  int approx_kl_count = 0;
+  TrainStatistics statistics;
   bool continue_training = true;
   std::vector<ParamBlock> blocks = policy_.param_blocks();
 
   for (int epoch = 0; epoch < config_.n_epochs && continue_training; ++epoch) {
-    approx_kl_sum = 0;
-    approx_kl_count = 0;
+    statistics.start_epoch();
     // np.random.permutation: Fisher-Yates with the run's RNG.
     std::iota(indices_.begin(), indices_.end(), 0);
     for (int i = size - 1; i > 0; --i)
       std::swap(indices_[i], indices_[static_cast<int>(shuffle_rng_.below(i + 1))]);
 
     for (int start = 0; start < size; start += config_.batch_size) {
-      const int batch = std::min(config_.batch_size, size - start);
-      if (mb_obs_.cols() != batch) {
-        mb_obs_.resize(Eigen::NoChange, batch);
-        mb_act_.resize(Eigen::NoChange, batch);
-        for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_,
-                                      &values_pred_, &grad_values_, &grad_log_prob_, &grad_entropy_})
-          v->resize(batch);
-      }
-      // Columns copied as raw blocks: Eigen's per-column assignment of a run-time size (3 floats
-      // for Pendulum) costs more than the copy.
-      const Eigen::Index obs_rows = rollout.obs.rows(), act_rows = rollout.actions.rows();
-      for (int j = 0; j < batch; ++j) {
-        const int k = indices_[start + j];
-        std::copy_n(rollout.obs.data() + k * obs_rows, obs_rows, mb_obs_.data() + j * obs_rows);
-        std::copy_n(rollout.actions.data() + k * act_rows, act_rows, mb_act_.data() + j * act_rows);
-        mb_adv_(j) = rollout.advantages.data()[k];
-        mb_ret_(j) = rollout.returns.data()[k];
-        mb_old_logp_(j) = rollout.log_probs.data()[k];
-        mb_old_val_(j) = rollout.values.data()[k];
-      }
+      gather_minibatch(start, std::min(config_.batch_size, size - start));
       policy_.evaluate_actions(mb_obs_, mb_act_, values_pred_, log_prob_, entropy_);
 
       if (config_.normalize_advantage) normalize_advantages(mb_adv_);
@@ -102,14 +102,7 @@ void PPO::train(double progress_remaining, Logger* logger) {
                                        mb_old_val_, mb_adv_, mb_ret_},
                                       clip_range, clip_range_vf, ent_coef, vf_coef, grad_values_,
                                       grad_log_prob_, grad_entropy_);
-      pg_loss_sum += t.policy_loss;
-      value_loss_sum += t.value_loss;
-      entropy_loss_sum += t.entropy_loss;
-      clip_fraction_sum += t.clip_fraction;
-      approx_kl_sum += t.approx_kl;
-      ++approx_kl_count;
-      ++n_minibatches;
-      last_loss = t.loss;
+      statistics.add(t);
 
       if (config_.target_kl && t.approx_kl > 1.5 * *config_.target_kl) {
         continue_training = false;
@@ -123,24 +116,52 @@ void PPO::train(double progress_remaining, Logger* logger) {
     ++n_updates_;
   }
 
-  if (!logger) return;
-  const double n = std::max(n_minibatches, 1);
-  logger->record("train/entropy_loss", entropy_loss_sum / n);
-  logger->record("train/policy_gradient_loss", pg_loss_sum / n);
-  logger->record("train/value_loss", value_loss_sum / n);
-  logger->record("train/approx_kl", approx_kl_count ? approx_kl_sum / approx_kl_count : 0.0);
-  logger->record("train/clip_fraction", clip_fraction_sum / n);
-  logger->record("train/loss", last_loss);
+  if (logger) record_statistics(*logger, statistics, lr, clip_range, clip_range_vf);
+}
+
+void PPO::gather_minibatch(int start, int batch) {
+  const RolloutBuffer& rollout = collector_.buffer();
+  if (mb_obs_.cols() != batch) {
+    mb_obs_.resize(Eigen::NoChange, batch);
+    mb_act_.resize(Eigen::NoChange, batch);
+    for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_,
+                                  &values_pred_, &grad_values_, &grad_log_prob_, &grad_entropy_})
+      v->resize(batch);
+  }
+  // Columns copied as raw blocks: Eigen's per-column assignment of a run-time size (3 floats
+  // for Pendulum) costs more than the copy.
+  const Eigen::Index obs_rows = rollout.obs.rows(), act_rows = rollout.actions.rows();
+  for (int j = 0; j < batch; ++j) {
+    const int k = indices_[start + j];
+    std::copy_n(rollout.obs.data() + k * obs_rows, obs_rows, mb_obs_.data() + j * obs_rows);
+    std::copy_n(rollout.actions.data() + k * act_rows, act_rows, mb_act_.data() + j * act_rows);
+    mb_adv_(j) = rollout.advantages.data()[k];
+    mb_ret_(j) = rollout.returns.data()[k];
+    mb_old_logp_(j) = rollout.log_probs.data()[k];
+    mb_old_val_(j) = rollout.values.data()[k];
+  }
+}
+
+void PPO::record_statistics(Logger& logger, const TrainStatistics& s, float lr, float clip_range,
+                            std::optional<float> clip_range_vf) const {
+  const RolloutBuffer& rollout = collector_.buffer();
+  const double n = std::max(s.n_minibatches, 1);
+  logger.record("train/entropy_loss", s.entropy_loss_sum / n);
+  logger.record("train/policy_gradient_loss", s.pg_loss_sum / n);
+  logger.record("train/value_loss", s.value_loss_sum / n);
+  logger.record("train/approx_kl", s.approx_kl_count ? s.approx_kl_sum / s.approx_kl_count : 0.0);
+  logger.record("train/clip_fraction", s.clip_fraction_sum / n);
+  logger.record("train/loss", s.last_loss);
   // Flattened in SB3's order (rollout_buffer.values.flatten(): step by step, the envs of a
   // step in turn), which is also the buffer's storage order, so the sums read memory in line.
-  logger->record("train/explained_variance",
-                 explained_variance(rollout.values.reshaped<Eigen::RowMajor>(),
-                                    rollout.returns.reshaped<Eigen::RowMajor>()));
-  if (policy_.gaussian()) logger->record("train/std", policy_.mean_std());
-  logger->record("train/n_updates", static_cast<double>(n_updates_));
-  logger->record("train/clip_range", clip_range);
-  if (clip_range_vf) logger->record("train/clip_range_vf", *clip_range_vf);
-  logger->record("train/learning_rate", lr);
+  logger.record("train/explained_variance",
+                explained_variance(rollout.values.reshaped<Eigen::RowMajor>(),
+                                   rollout.returns.reshaped<Eigen::RowMajor>()));
+  if (policy_.gaussian()) logger.record("train/std", policy_.mean_std());
+  logger.record("train/n_updates", static_cast<double>(n_updates_));
+  logger.record("train/clip_range", clip_range);
+  if (clip_range_vf) logger.record("train/clip_range_vf", *clip_range_vf);
+  logger.record("train/learning_rate", lr);
 }
 
 }  // namespace rlrun

@@ -73,6 +73,12 @@ class PPO : public OnPolicyAlgorithm {
   // SB3 PPO.train: n_epochs over the rollout in shuffled minibatches of the clipped surrogate,
   // the (optionally clipped) value loss and the entropy bonus.
   void train(double progress_remaining, Logger* logger) override;
+  // The minibatch of rollout columns indices_[start, start + batch) into the mb_ workspaces
+  // (SB3 RolloutBuffer.get).
+  void gather_minibatch(int start, int batch);
+  struct TrainStatistics;  // ppo.cpp
+  void record_statistics(Logger& logger, const TrainStatistics& statistics, float lr,
+                         float clip_range, std::optional<float> clip_range_vf) const;
 
   Config config_;
   Rng shuffle_rng_;

@@ -45,45 +45,94 @@ void draw_outlined(Frame& frame, std::span<const Point> path, Rgb fill, Rgb line
   frame.polyline(closed, line, 1.0);
 }
 
-}  // namespace
+// The window onto the world: it starts at world x `scroll`; Gymnasium draws on a surface
+// VIEWPORT_W + max(0, scroll) * SCALE wide and keeps its last VIEWPORT_W columns, so pixels
+// are shifted left by max(0, scroll) * SCALE.
+struct View {
+  double scroll;
+  double left = std::max(0.0, scroll) * kScale;
+  Point px(double wx, double wy) const { return Point{wx * kScale - left, wy * kScale}; }
+};
 
-bool BipedalWalker::render(Frame& frame) const {
-  if (!hull_) throw std::logic_error(id() + ": call reset() before render()");
-  const double scroll = hull_->GetPosition().x - kViewportW / kScale / 5;
-  // Gymnasium draws on a surface VIEWPORT_W + max(0, scroll) * SCALE wide and keeps its last
-  // VIEWPORT_W columns: the window starts at max(0, scroll) in world x.
-  const double left = std::max(0.0, scroll) * kScale;
-  auto px = [&](double wx, double wy) { return Point{wx * kScale - left, wy * kScale}; };
-  frame.begin_scene(kViewportW, kViewportH, kBlack);
-
-  const Point sky[] = {px(scroll, 0), px(scroll + kViewportW / kScale, 0),
-                       px(scroll + kViewportW / kScale, kViewportH / kScale),
-                       px(scroll, kViewportH / kScale)};
+// Sky, the clouds (moving at half the scroll's speed) and the ground under the visible edges.
+void draw_background(Frame& frame, const View& view, const Terrain& terrain) {
+  const double scroll = view.scroll;
+  const Point sky[] = {view.px(scroll, 0), view.px(scroll + kViewportW / kScale, 0),
+                       view.px(scroll + kViewportW / kScale, kViewportH / kScale),
+                       view.px(scroll, kViewportH / kScale)};
   frame.polygon(sky, kSky);
 
   std::vector<Point> path;
-  for (const Cloud& cloud : terrain_.clouds) {
+  for (const Cloud& cloud : terrain.clouds) {
     if (cloud.x2 < scroll / 2 || cloud.x1 > scroll / 2 + kViewportW / kScale) continue;
     path.clear();
-    for (const Vec2d& p : cloud.corners) path.push_back(px(p.x + scroll / 2, p.y));
+    for (const Vec2d& p : cloud.corners) path.push_back(view.px(p.x + scroll / 2, p.y));
     frame.polygon(path, kCloud);
   }
   // terrain_poly: Gymnasium fills one quad under each visible edge, down to y = 0. Drawn as
   // one polygon here, the same area, so that antialiasing leaves no seams between the quads.
   path.clear();
   double ground_x0 = 0, ground_x1 = 0;
-  for (size_t i = 0; i + 1 < terrain_.x.size(); ++i) {
-    if (terrain_.x[i + 1] < scroll || terrain_.x[i] > scroll + kViewportW / kScale) continue;
+  for (size_t i = 0; i + 1 < terrain.x.size(); ++i) {
+    if (terrain.x[i + 1] < scroll || terrain.x[i] > scroll + kViewportW / kScale) continue;
     if (path.empty()) {
-      ground_x0 = terrain_.x[i];
-      path.push_back(px(terrain_.x[i], terrain_.y[i]));
+      ground_x0 = terrain.x[i];
+      path.push_back(view.px(terrain.x[i], terrain.y[i]));
     }
-    path.push_back(px(terrain_.x[i + 1], terrain_.y[i + 1]));
-    ground_x1 = terrain_.x[i + 1];
+    path.push_back(view.px(terrain.x[i + 1], terrain.y[i + 1]));
+    ground_x1 = terrain.x[i + 1];
   }
-  path.push_back(px(ground_x1, 0));
-  path.push_back(px(ground_x0, 0));
+  path.push_back(view.px(ground_x1, 0));
+  path.push_back(view.px(ground_x0, 0));
   if (path.size() > 2) frame.polygon(path, kGround);
+}
+
+// Gymnasium's drawlist's terrain part, reversed: grass edges last to first, then the obstacles.
+void draw_terrain_edges(Frame& frame, const View& view, const Terrain& terrain) {
+  for (size_t i = terrain.x.size() - 1; i-- > 0;) {
+    const Rgb grass{76, static_cast<uint8_t>(i % 2 == 0 ? 255 : 204), 76};
+    frame.line(view.px(terrain.x[i], terrain.y[i]), view.px(terrain.x[i + 1], terrain.y[i + 1]),
+               grass);
+  }
+  std::vector<Point> path;
+  for (auto it = terrain.obstacles.rbegin(); it != terrain.obstacles.rend(); ++it) {
+    path.clear();
+    for (const Vec2d& p : it->corners) path.push_back(view.px(p.x, p.y));
+    draw_outlined(frame, path, kObstacleFill, kObstacleLine);
+  }
+}
+
+// Every polygon fixture of the body, where the body is now.
+void draw_body(Frame& frame, const View& view, const b2Body* body, Rgb fill, Rgb line) {
+  const b2Transform& xf = body->GetTransform();
+  std::vector<Point> path;
+  for (const b2Fixture* f = body->GetFixtureList(); f; f = f->GetNext()) {
+    const auto* shape = static_cast<const b2PolygonShape*>(f->GetShape());
+    path.clear();
+    for (int k = 0; k < shape->m_count; ++k) {
+      const b2Vec2 v = b2Mul(xf, shape->m_vertices[k]);
+      path.push_back(view.px(v.x, v.y));
+    }
+    draw_outlined(frame, path, fill, line);
+  }
+}
+
+// The start flag, in pixels: a pole 50 high at x = 3 TERRAIN_STEP and a pennant.
+void draw_flag(Frame& frame, const View& view) {
+  const double flag_x = kTerrainStep * 3 * kScale - view.left;
+  const double flag_y1 = kTerrainHeight * kScale, flag_y2 = flag_y1 + 50;
+  frame.line({flag_x, flag_y1}, {flag_x, flag_y2}, kBlack);
+  const Point pennant[] = {{flag_x, flag_y2}, {flag_x, flag_y2 - 10}, {flag_x + 25, flag_y2 - 5}};
+  draw_outlined(frame, pennant, kFlag, kBlack);
+}
+
+}  // namespace
+
+bool BipedalWalker::render(Frame& frame) const {
+  if (!hull_) throw std::logic_error(id() + ": call reset() before render()");
+  const View view{hull_->GetPosition().x - kViewportW / kScale / 5};
+  frame.begin_scene(kViewportW, kViewportH, kBlack);
+  draw_background(frame, view, terrain_);
 
   // self.lidar_render counts renders since the reset (1 at the reset's picture) modulo 100;
   // the first 20 show rays 0..9 and back.
@@ -91,43 +140,17 @@ bool BipedalWalker::render(Frame& frame) const {
   if (sweep < 2 * kLidarRays) {
     const int ray = sweep < kLidarRays ? sweep : 2 * kLidarRays - 1 - sweep;
     const auto [p1, p2] = lidar_ray(ray);
-    frame.line(px(p1.x, p1.y), px(p2.x, p2.y), kLidar, 1.0);
+    frame.line(view.px(p1.x, p1.y), view.px(p2.x, p2.y), kLidar, 1.0);
   }
 
-  // drawlist = reversed terrain (grass edges last to first, then the obstacles), legs, hull.
-  for (size_t i = terrain_.x.size() - 1; i-- > 0;) {
-    const Rgb grass{76, static_cast<uint8_t>(i % 2 == 0 ? 255 : 204), 76};
-    frame.line(px(terrain_.x[i], terrain_.y[i]), px(terrain_.x[i + 1], terrain_.y[i + 1]), grass);
-  }
-  for (auto it = terrain_.obstacles.rbegin(); it != terrain_.obstacles.rend(); ++it) {
-    path.clear();
-    for (const Vec2d& p : it->corners) path.push_back(px(p.x, p.y));
-    draw_outlined(frame, path, kObstacleFill, kObstacleLine);
-  }
-  auto draw_body = [&](const b2Body* body, Rgb fill, Rgb line) {
-    const b2Transform& xf = body->GetTransform();
-    for (const b2Fixture* f = body->GetFixtureList(); f; f = f->GetNext()) {
-      const auto* shape = static_cast<const b2PolygonShape*>(f->GetShape());
-      path.clear();
-      for (int k = 0; k < shape->m_count; ++k) {
-        const b2Vec2 v = b2Mul(xf, shape->m_vertices[k]);
-        path.push_back(px(v.x, v.y));
-      }
-      draw_outlined(frame, path, fill, line);
-    }
-  };
+  // drawlist = reversed terrain, legs, hull.
+  draw_terrain_edges(frame, view, terrain_);
   for (size_t k = 0; k < legs_.size(); ++k) {
     const int side = k < 2 ? -1 : +1;
-    draw_body(legs_[k], leg_fill(side), leg_line(side));
+    draw_body(frame, view, legs_[k], leg_fill(side), leg_line(side));
   }
-  draw_body(hull_, kHullFill, kHullLine);
-
-  // The start flag, in pixels: a pole 50 high at x = 3 TERRAIN_STEP and a pennant.
-  const double flag_x = kTerrainStep * 3 * kScale - left;
-  const double flag_y1 = kTerrainHeight * kScale, flag_y2 = flag_y1 + 50;
-  frame.line({flag_x, flag_y1}, {flag_x, flag_y2}, kBlack);
-  const Point pennant[] = {{flag_x, flag_y2}, {flag_x, flag_y2 - 10}, {flag_x + 25, flag_y2 - 5}};
-  draw_outlined(frame, pennant, kFlag, kBlack);
+  draw_body(frame, view, hull_, kHullFill, kHullLine);
+  draw_flag(frame, view);
   frame.end_scene();
   return true;
 }

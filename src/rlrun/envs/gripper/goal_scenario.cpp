@@ -29,21 +29,21 @@ GoalTaskScenario load_goal_task_scenario(const std::string& path) {
       at(key).fail("must lie in [" + python_float_repr(low) + ", " + python_float_repr(high) + "]");
   };
   using W = GoalWorkspace;
-  range("cube_size", s.cube_size, 0.01, 0.08);  // 0.08: the open gripper's reach
-  range("cube_mass", s.cube_mass, 1e-3, 10.0);
-  range("cube_friction", s.cube_friction, 1e-3, 10.0);
-  const double half_cube = s.cube_size[1] / 2;
-  range("cube_x", s.cube_x, -W::kXY + half_cube, W::kXY - half_cube);
-  range("cube_y", s.cube_y, -W::kXY + half_cube, W::kXY - half_cube);
-  range("cube_yaw", s.cube_yaw, -M_PI, M_PI);
+  range("cube_size", s.cube.size, 0.01, 0.08);  // 0.08: the open gripper's reach
+  range("cube_mass", s.cube.mass, 1e-3, 10.0);
+  range("cube_friction", s.cube.friction, 1e-3, 10.0);
+  const double half_cube = s.cube.size[1] / 2;
+  range("cube_x", s.cube.x, -W::kXY + half_cube, W::kXY - half_cube);
+  range("cube_y", s.cube.y, -W::kXY + half_cube, W::kXY - half_cube);
+  range("cube_yaw", s.cube.yaw, -M_PI, M_PI);
   range("goal_x", s.goal_x, -W::kXY, W::kXY);
   range("goal_y", s.goal_y, -W::kXY, W::kXY);
-  range("goal_z", s.goal_z, 0.0, W::kTop - s.cube_size[1] / 2);
+  range("goal_z", s.goal_z, 0.0, W::kTop - s.cube.size[1] / 2);
   if (!(s.goal_in_air_probability >= 0 && s.goal_in_air_probability <= 1))
     at("goal_in_air_probability").fail("must be in [0, 1]");
-  range("palm_x", s.palm_x, -W::kXY, W::kXY);
-  range("palm_y", s.palm_y, -W::kXY, W::kXY);
-  range("palm_z", s.palm_z, W::kBottom, W::kTop);
+  range("palm_x", s.palm.x, -W::kXY, W::kXY);
+  range("palm_y", s.palm.y, -W::kXY, W::kXY);
+  range("palm_z", s.palm.z, W::kBottom, W::kTop);
   if (s.episode_steps < 1) at("episode_steps").fail("must be >= 1");
   return s;
 }

@@ -10,18 +10,21 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/envs/gripper/spawn_ranges.hpp"
+
 namespace rlrun {
 
 struct GoalTaskScenario {
   std::string name;
   std::string description;
-  // The object (Push, PickAndPlace; Reach has none and ignores these).
-  std::vector<double> cube_size{0.04, 0.04};    // edge length, m (panda-gym: 0.04)
-  std::vector<double> cube_mass{0.1, 0.1};      // kg
-  std::vector<double> cube_friction{1.0, 1.0};  // Bullet friction coefficient
-  std::vector<double> cube_x{-0.15, 0.15};      // spawn position of its centre on the table, m
-  std::vector<double> cube_y{-0.15, 0.15};
-  std::vector<double> cube_yaw{0.0, 0.0};       // rad (panda-gym places it unturned)
+  // The object (Push, PickAndPlace; Reach has none and ignores these). panda-gym: a 4 cm cube
+  // placed unturned.
+  CubeRanges cube{.size = {0.04, 0.04},
+                  .mass = {0.1, 0.1},
+                  .friction = {1.0, 1.0},
+                  .x = {-0.15, 0.15},
+                  .y = {-0.15, 0.15},
+                  .yaw = {0.0, 0.0}};
   // The goal. Reach: the grasp point's target, goal_z its height above the table. Push,
   // PickAndPlace: the cube centre's target, goal_z its height above the cube's resting height.
   std::vector<double> goal_x{-0.15, 0.15};
@@ -34,22 +37,15 @@ struct GoalTaskScenario {
   // Reach) is already within the env's distance_threshold of it, so no episode starts solved.
   // panda-gym draws the two independently (false).
   bool goal_apart = false;
-  // Where the fingertips' centre (grasp point) starts, m above the table for palm_z.
-  std::vector<double> palm_x{0.0, 0.0};
-  std::vector<double> palm_y{0.0, 0.0};
-  std::vector<double> palm_z{0.2, 0.2};
+  // Where the fingertips' centre (grasp point) starts, m above the table for z.
+  PalmRanges palm{.x = {0.0, 0.0}, .y = {0.0, 0.0}, .z = {0.2, 0.2}};
   int episode_steps = 50;  // decisions per episode (then truncated); panda-gym: 50
 
   template <class V>
   void visit(V& v) {
     v("name", name, "the scenario's name");
     v("description", description, "what it is for");
-    v("cube_size", cube_size, "[low, high] cube edge length in m");
-    v("cube_mass", cube_mass, "[low, high] cube mass in kg");
-    v("cube_friction", cube_friction, "[low, high] cube friction coefficient");
-    v("cube_x", cube_x, "[low, high] cube spawn x on the table, m");
-    v("cube_y", cube_y, "[low, high] cube spawn y on the table, m");
-    v("cube_yaw", cube_yaw, "[low, high] cube rotation about the vertical, rad");
+    cube.visit(v);
     v("goal_x", goal_x, "[low, high] goal x, m");
     v("goal_y", goal_y, "[low, high] goal y, m");
     v("goal_z", goal_z,
@@ -57,9 +53,7 @@ struct GoalTaskScenario {
     v("goal_in_air_probability", goal_in_air_probability,
       "probability that goal_z is drawn (else its low bound)");
     v("goal_apart", goal_apart, "redraw goals the start already reaches");
-    v("palm_x", palm_x, "[low, high] start x of the fingertips' centre, m");
-    v("palm_y", palm_y, "[low, high] start y of the fingertips' centre, m");
-    v("palm_z", palm_z, "[low, high] start height of the fingertips' centre, m");
+    palm.visit(v);
     v("episode_steps", episode_steps, "decisions per episode (truncated after)");
   }
 };

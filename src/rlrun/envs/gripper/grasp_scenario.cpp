@@ -26,16 +26,16 @@ GraspScenario load_grasp_scenario(const std::string& path) {
       root.child(key).fail("expected [low, high] with low <= high");
     if (positive && r[0] <= 0) root.child(key).fail("must be > 0");
   };
-  range("cube_size", s.cube_size, true);
-  range("cube_mass", s.cube_mass, true);
-  range("cube_friction", s.cube_friction, true);
-  range("cube_x", s.cube_x, false);
-  range("cube_y", s.cube_y, false);
-  range("cube_yaw", s.cube_yaw, false);
-  range("palm_x", s.palm_x, false);
-  range("palm_y", s.palm_y, false);
-  range("palm_z", s.palm_z, false);
-  if (s.cube_size[1] > 0.08) root.child("cube_size").fail("the open gripper holds cubes up to 0.08 m");
+  range("cube_size", s.cube.size, true);
+  range("cube_mass", s.cube.mass, true);
+  range("cube_friction", s.cube.friction, true);
+  range("cube_x", s.cube.x, false);
+  range("cube_y", s.cube.y, false);
+  range("cube_yaw", s.cube.yaw, false);
+  range("palm_x", s.palm.x, false);
+  range("palm_y", s.palm.y, false);
+  range("palm_z", s.palm.z, false);
+  if (s.cube.size[1] > 0.08) root.child("cube_size").fail("the open gripper holds cubes up to 0.08 m");
   if (s.episode_steps < 1) root.child("episode_steps").fail("must be >= 1");
   return s;
 }

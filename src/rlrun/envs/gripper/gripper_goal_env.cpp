@@ -130,13 +130,13 @@ void GripperGoalEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   GripperWorld::Layout layout;
   layout.with_cube = task_ != GoalTask::kReach;
   if (layout.with_cube) {
-    layout.cube_size = draw(rng, s.cube_size);
-    layout.cube_mass = draw(rng, s.cube_mass);
-    layout.cube_friction = draw(rng, s.cube_friction);
-    layout.cube_position = {draw(rng, s.cube_x), draw(rng, s.cube_y), layout.cube_size / 2};
-    layout.cube_yaw = draw(rng, s.cube_yaw);
+    layout.cube_size = draw(rng, s.cube.size);
+    layout.cube_mass = draw(rng, s.cube.mass);
+    layout.cube_friction = draw(rng, s.cube.friction);
+    layout.cube_position = {draw(rng, s.cube.x), draw(rng, s.cube.y), layout.cube_size / 2};
+    layout.cube_yaw = draw(rng, s.cube.yaw);
   }
-  layout.grasp_point = {draw(rng, s.palm_x), draw(rng, s.palm_y), draw(rng, s.palm_z)};
+  layout.grasp_point = {draw(rng, s.palm.x), draw(rng, s.palm.y), draw(rng, s.palm.z)};
   // panda-gym's neutral pose has the fingers closed (panda.py neutral_joint_values).
   layout.opening = 0.0;
   layout.palm_force = config_.palm_force;

@@ -45,13 +45,13 @@ void GripperLift::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   Rng& rng = seeding_.rng();
   // Draws in a fixed order: the episode depends on the seed alone.
   GripperWorld::Layout layout;
-  layout.cube_size = draw(rng, scenario_.cube_size);
-  layout.cube_mass = draw(rng, scenario_.cube_mass);
-  layout.cube_friction = draw(rng, scenario_.cube_friction);
-  layout.cube_position = {draw(rng, scenario_.cube_x), draw(rng, scenario_.cube_y),
+  layout.cube_size = draw(rng, scenario_.cube.size);
+  layout.cube_mass = draw(rng, scenario_.cube.mass);
+  layout.cube_friction = draw(rng, scenario_.cube.friction);
+  layout.cube_position = {draw(rng, scenario_.cube.x), draw(rng, scenario_.cube.y),
                           layout.cube_size / 2};
-  layout.cube_yaw = draw(rng, scenario_.cube_yaw);
-  Vec3 start{draw(rng, scenario_.palm_x), draw(rng, scenario_.palm_y), draw(rng, scenario_.palm_z)};
+  layout.cube_yaw = draw(rng, scenario_.cube.yaw);
+  Vec3 start{draw(rng, scenario_.palm.x), draw(rng, scenario_.palm.y), draw(rng, scenario_.palm.z)};
   if (scenario_.palm_above_cube) {
     start[0] += layout.cube_position[0];
     start[1] += layout.cube_position[1];
