@@ -6,8 +6,9 @@
 #   * PPO trains on CartPole, its model file evaluates, `rlrun list` works;
 #   * a config that needs a component left out fails while it is read, at its env.id, naming
 #     the CMake option and the Debian package, before any run directory is made.
-# scripts/test.sh runs it after ctest (a second build: about 9 minutes on 2 cores, less with
-# ccache).
+# The library is compiled in batches, as scripts/setup.sh configures it (docs/install.md,
+# "Compiling in batches"). scripts/test.sh runs it after ctest (a second build: about 8 minutes on 2
+# cores without a compiler cache, less with ccache).
 #   scripts/tests/test_minimal_build.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -31,7 +32,7 @@ if [[ -n "${CMAKE_CXX_COMPILER_LAUNCHER:-}" ]]; then
 elif command -v ccache >/dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
-run cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
+run cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" -DRLRUN_UNITY_BUILD=ON \
   -DRLRUN_WITH_SUMO=OFF -DRLRUN_WITH_BULLET=OFF -DRLRUN_WITH_BOX2D=OFF -DRLRUN_WITH_PYTHON=OFF
 expect_in_log "tests, benchmarks and fuzz targets: not built"
 run cmake --build "$build" --target rlrun_programs
