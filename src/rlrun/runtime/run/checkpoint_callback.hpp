@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/runtime/experiment/checkpoint_config.hpp"
 #include "rlrun/runtime/run/callback.hpp"

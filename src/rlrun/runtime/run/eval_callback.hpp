@@ -24,7 +24,6 @@
 #include <string>
 
 #include "rlrun/core/checked_file.hpp"
-#include "rlrun/core/config_checks.hpp"
 #include "rlrun/runtime/experiment/eval_config.hpp"
 #include "rlrun/runtime/run/callback.hpp"
 

@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/runtime/experiment/obs_log_config.hpp"
 #include "rlrun/runtime/run/callback.hpp"

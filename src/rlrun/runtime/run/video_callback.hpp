@@ -9,8 +9,6 @@
 // missing ffmpeg is reported before any training time is spent.
 #include <cstdint>
 
-#include "rlrun/core/config_checks.hpp"
-#include "rlrun/render/video_limits.hpp"
 #include "rlrun/runtime/experiment/video_config.hpp"
 #include "rlrun/runtime/run/callback.hpp"
 

@@ -1,9 +1,7 @@
 #include "rlrun/runtime/workflows/sbatch_script.hpp"
 
 #include <cctype>
-#include <cstdio>
 #include <filesystem>
-#include <regex>
 
 #include "rlrun/core/errors.hpp"
 

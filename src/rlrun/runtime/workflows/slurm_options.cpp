@@ -1,11 +1,7 @@
 #include "rlrun/runtime/workflows/slurm_options.hpp"
 
-#include <cctype>
 #include <cstdio>
-#include <filesystem>
 #include <regex>
-
-#include "rlrun/core/errors.hpp"
 
 namespace rlrun {
 
@@ -14,7 +10,6 @@ bool is_control_char(char c) {
   return u < 0x20 || u == 0x7f;
 }
 
-// The value as it may be shown in a one-line message: control characters as \n, \r, \xNN.
 std::string printable_value(const std::string& value) {
   std::string out;
   for (char c : value) {
