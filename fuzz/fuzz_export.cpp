@@ -52,8 +52,8 @@ std::vector<CraftedMember> members_from(std::string_view input) {
   for (size_t at = text.find(separator); at != std::string::npos;) {
     const size_t begin = at + separator.size();
     const size_t next = text.find(separator, begin);
-    const std::string_view part =
-        std::string_view(text).substr(begin, next == std::string::npos ? std::string::npos : next - begin);
+    const std::string_view part = std::string_view(text).substr(
+        begin, next == std::string::npos ? std::string::npos : next - begin);
     const size_t newline = part.find('\n');
     if (newline != std::string_view::npos && newline > 0) {
       CraftedMember m{std::string(part.substr(0, newline)), {}};
@@ -77,9 +77,11 @@ size_t count(std::string_view text, std::string_view what) {
 void check_c(const CSource& c) {
   for (const std::string* file : {&c.header, &c.source}) {
     if (file->find('\\') != std::string::npos) violated("a backslash in generated C", *file);
-    if (file->find("?\?") != std::string::npos) violated("a '?\?' (trigraph) in generated C", *file);
+    if (file->find("?\?") != std::string::npos)
+      violated("a '?\?' (trigraph) in generated C", *file);
     for (char ch : *file)
-      if (!printable_ascii(ch)) violated("a byte that is not printable ASCII in generated C", *file);
+      if (!printable_ascii(ch))
+        violated("a byte that is not printable ASCII in generated C", *file);
   }
   const std::string& h = c.header;
   if (h.rfind("/* Policy exported by `rlrun export --format c`", 0) != 0)
@@ -138,17 +140,20 @@ std::vector<Field> fields(std::string_view message) {
       message.remove_prefix(n);
     }
     if (f.type == 2) {
-      if (!read_varint(message, value) || value > message.size()) violated("a truncated protobuf field", message);
+      if (!read_varint(message, value) || value > message.size())
+        violated("a truncated protobuf field", message);
       f.bytes = message.substr(0, value);
       message.remove_prefix(value);
     }
-    if (f.type != 0 && f.type != 1 && f.type != 2 && f.type != 5) violated("a protobuf wire type the writer does not use", message);
+    if (f.type != 0 && f.type != 1 && f.type != 2 && f.type != 5)
+      violated("a protobuf wire type the writer does not use", message);
     out.push_back(f);
   }
   return out;
 }
 void check_text(const Field& f, const char* what) {
-  if (f.type != 2 || !valid_utf8(f.bytes)) violated(std::string(what) + " is not UTF-8 text", f.bytes);
+  if (f.type != 2 || !valid_utf8(f.bytes))
+    violated(std::string(what) + " is not UTF-8 text", f.bytes);
 }
 
 // onnx/onnx.proto: ModelProto 2 producer_name, 3 producer_version, 6 doc_string, 7 graph,
@@ -167,10 +172,12 @@ void check_onnx(const std::string& bytes, const PolicyGraph& graph) {
     for (const Field& g : fields(m.bytes)) {
       if (g.number == 2) check_text(g, "the graph's name");
       for (const Field& x : g.number == 1 || g.number == 5 || g.number == 11 || g.number == 12
-                                ? fields(g.bytes) : std::vector<Field>{}) {
+                                ? fields(g.bytes)
+                                : std::vector<Field>{}) {
         if (g.number == 1 && x.number >= 1 && x.number <= 4) check_text(x, "a node's name");
         if (g.number == 5 && x.number == 8) check_text(x, "an initializer's name");
-        if ((g.number == 11 || g.number == 12) && x.number == 1) check_text(x, "an input or output name");
+        if ((g.number == 11 || g.number == 12) && x.number == 1)
+          check_text(x, "an input or output name");
       }
     }
   }

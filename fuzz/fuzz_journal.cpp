@@ -57,8 +57,10 @@ void sample_from(const StudyView& view) {
     const SearchSpace space = sampler->infer_relative_search_space(view);
     sampler->sample_relative(view, space);
     std::map<std::string, Distribution> every;
-    for (const FrozenTrial& t : view.trials) every.insert(t.distributions.begin(), t.distributions.end());
-    for (const auto& [name, distribution] : every) sampler->sample_independent(view, name, distribution);
+    for (const FrozenTrial& t : view.trials)
+      every.insert(t.distributions.begin(), t.distributions.end());
+    for (const auto& [name, distribution] : every)
+      sampler->sample_independent(view, name, distribution);
   }
 }
 

@@ -123,7 +123,8 @@ void export_like_the_cli(const LoadedModel& loaded) {
     (void)onnx_model_bytes(graph);
     (void)c_policy_source(graph);
     std::vector<Eigen::MatrixXf> inputs;
-    for (const GraphInput& in : graph.inputs()) inputs.push_back(Eigen::MatrixXf::Zero(in.width, 1));
+    for (const GraphInput& in : graph.inputs())
+      inputs.push_back(Eigen::MatrixXf::Zero(in.width, 1));
     (void)evaluate_graph(graph, inputs);
   } catch (const ExportError&) {
   }

@@ -41,7 +41,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kMinimalConfig = "run: {name: fuzz, seed: 1}\nenv: {id: CartPole-v1}\nalgo: {id: PPO}\n";
+constexpr const char* kMinimalConfig =
+    "run: {name: fuzz, seed: 1}\nenv: {id: CartPole-v1}\nalgo: {id: PPO}\n";
 
 struct Entry {
   std::string kind, path, contents;
@@ -55,8 +56,8 @@ std::vector<Entry> parse_entries(const std::string& input) {
   size_t at = 0;
   while (at < input.size()) {
     const size_t header_end = input.find('\n', at);
-    const std::string header = input.substr(at + 3, header_end == std::string::npos ? std::string::npos
-                                                                                    : header_end - at - 3);
+    const std::string header = input.substr(
+        at + 3, header_end == std::string::npos ? std::string::npos : header_end - at - 3);
     const size_t body = header_end == std::string::npos ? input.size() : header_end + 1;
     size_t next = input.find("\n@@ ", body);
     Entry entry;
@@ -172,9 +173,9 @@ void refusable(F&& read) {
 }
 
 void read_like_the_commands(const fs::path& root, const fs::path& run) {
-  refusable([&] { group_runs(read_runs({run.string()})); });     // report/plot RUN
-  refusable([&] { group_runs(read_runs({root.string()})); });    // report/plot DIR
-  refusable([&] {                                                // train --resume RUN
+  refusable([&] { group_runs(read_runs({run.string()})); });   // report/plot RUN
+  refusable([&] { group_runs(read_runs({root.string()})); });  // report/plot DIR
+  refusable([&] {                                              // train --resume RUN
     for (const std::string& candidate : resume_candidates(run.string()))
       refusable([&] { read_model_header(candidate); });
   });
@@ -198,7 +199,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   build(parse_entries(std::string(reinterpret_cast<const char*>(data), size)), base, run);
   const int free_before = lowest_free_descriptor();
   read_like_the_commands(root, run);
-  if (lowest_free_descriptor() != free_before) std::abort();  // a descriptor leaked
+  if (lowest_free_descriptor() != free_before) std::abort();     // a descriptor leaked
   if (outside_state(base / "outside") != outside) std::abort();  // written outside the run
   return 0;
 }

@@ -41,17 +41,22 @@ struct Selection {
 };
 
 // Envs whose spaces are known without starting a process: these are checked too.
-const std::set<std::string> kCheckedEnvs{"CartPole-v1",  "Pendulum-v1",        "Acrobot-v1",
-                                         "MountainCar-v0", "MountainCarContinuous-v0",
-                                         "BitFlippingEnv-v0", "LunarLander-v3", "LunarLander-v2",
-                                         "IdentityEnv-v0", "IdentityEnvBox-v0"};
+const std::set<std::string> kCheckedEnvs{"CartPole-v1",
+                                         "Pendulum-v1",
+                                         "Acrobot-v1",
+                                         "MountainCar-v0",
+                                         "MountainCarContinuous-v0",
+                                         "BitFlippingEnv-v0",
+                                         "LunarLander-v3",
+                                         "LunarLander-v2",
+                                         "IdentityEnv-v0",
+                                         "IdentityEnvBox-v0"};
 
 Selection selection(const std::string& text) {
   Selection s;
   if (text.empty() || text[0] != '#') return s;
-  std::istringstream line(text.substr(1, text.find('\n') == std::string::npos
-                                             ? std::string::npos
-                                             : text.find('\n') - 1));
+  std::istringstream line(text.substr(
+      1, text.find('\n') == std::string::npos ? std::string::npos : text.find('\n') - 1));
   std::string algorithm, env, entry;
   line >> algorithm >> env >> entry;
   if (!algorithm.empty()) s.algorithm = algorithm;
@@ -88,8 +93,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   zoo::ZooImport imported;
   std::string written;
   try {
-    imported = zoo::translate_zoo_entry(zoo::read_zoo_entry(path, pick.env_id, pick.algorithm, pick.entry),
-                                        registry);
+    imported = zoo::translate_zoo_entry(
+        zoo::read_zoo_entry(path, pick.env_id, pick.algorithm, pick.entry), registry);
     written = zoo::experiment_text(imported);
   } catch (const ConfigError&) {
     return 0;
@@ -112,9 +117,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   // Accepted as the zoo file's: the written file, now the user's own, is the same experiment.
   try {
-    const Experiment again = parse_experiment(ConfigNode::load_string(written, "imported.yaml"), registry);
+    const Experiment again =
+        parse_experiment(ConfigNode::load_string(written, "imported.yaml"), registry);
     if (dump_yaml(again.resolved) != resolved)
-      fail("the written file resolves differently:\n" + dump_yaml(again.resolved) + "\n--- checked:\n" + resolved, written);
+      fail("the written file resolves differently:\n" + dump_yaml(again.resolved) +
+               "\n--- checked:\n" + resolved,
+           written);
   } catch (const std::exception& e) {
     fail(std::string("the written file does not parse again: ") + e.what(), written);
   }

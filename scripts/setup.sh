@@ -28,6 +28,7 @@ PACKAGES=(
   python3-onnx                              # tests: the ONNX checker validates exported graphs
   python3-optuna                            # tests: Optuna loads and writes the studies rlrun tune keeps
   python3-sklearn python3-matplotlib        # tests: Optuna's importance and plot functions on them
+  clang-format-14                           # tests: the sources' layout (.clang-format)
 )
 
 # The Python package's .pth file (below): Debian python3's site directory, the user's own when

@@ -6,11 +6,11 @@
 // tests through a compiler cache, and changing a path rebuilds one file.
 
 namespace rlrun::test_paths {
-const char* source_dir();       // the checkout (configs/, scenarios/, tests/data/, ...)
-const char* rlrun_binary();     // build/rlrun
-const char* gym_reference();    // tests/data/gymnasium (tests/envs/test_gym_reference.cpp)
-const char* node_modules();     // onnxruntime-node for the ONNX export tests (scripts/setup.sh)
-const char* cxx_compiler();     // the compiler this build uses (tests/core/test_quiet_intrinsics.cpp)
+const char* source_dir();     // the checkout (configs/, scenarios/, tests/data/, ...)
+const char* rlrun_binary();   // build/rlrun
+const char* gym_reference();  // tests/data/gymnasium (tests/envs/test_gym_reference.cpp)
+const char* node_modules();   // onnxruntime-node for the ONNX export tests (scripts/setup.sh)
+const char* cxx_compiler();   // the compiler this build uses (tests/core/test_quiet_intrinsics.cpp)
 const char* cxx_compiler_id();  // CMake's name for it: GNU, Clang
 const char* policy_library();   // build/librlrun_policy.so (the deploy library, docs/deploy.md)
 }  // namespace rlrun::test_paths

@@ -175,12 +175,11 @@ Action add_check_env(CLI::App& app, Registry& registry) {
       ->transform(integer_in(0));
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);
-    CheckTarget t = is_config_file(options->target)
-                        ? target_from_config(options->target, options->overrides, registry)
-                        : target_from_id(options->target, options->overrides, registry,
-                                         options->python.empty()
-                                             ? EnvContext{}
-                                             : EnvContext{options->python});
+    CheckTarget t =
+        is_config_file(options->target)
+            ? target_from_config(options->target, options->overrides, registry)
+            : target_from_id(options->target, options->overrides, registry,
+                             options->python.empty() ? EnvContext{} : EnvContext{options->python});
     Env& env = *t.env;
     std::string keys;
     for (const auto& k : env.info().keys()) keys += (keys.empty() ? "" : ", ") + k;

@@ -39,9 +39,8 @@ namespace {
 // scripts and users grep for, then the success rate and the env's own metrics.
 void print_summary(const std::string& what, const std::string& how, const std::string& env_id,
                    int episodes, const EvalResult& r) {
-  std::printf("%s on %s, %s%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n",
-              what.c_str(), env_id.c_str(), count_of(episodes, "episode").c_str(), how.c_str(),
-              r.mean_return(),
+  std::printf("%s on %s, %s%s: mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f\n", what.c_str(),
+              env_id.c_str(), count_of(episodes, "episode").c_str(), how.c_str(), r.mean_return(),
               r.std_return(), r.mean_length());
   if (!r.successes.empty()) {
     double s = 0;
@@ -63,15 +62,15 @@ void print_summary(const std::string& what, const std::string& how, const std::s
 // is_success appears when the env reports it, the metrics when the env has any (the traffic
 // task's avg_waiting_time, ...); every policy of one file ran on the same env, so they share
 // the columns.
-void write_csv(const std::string& path, const std::vector<std::pair<std::string, EvalResult>>& runs) {
+void write_csv(const std::string& path,
+               const std::vector<std::pair<std::string, EvalResult>>& runs) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // e.g. results/
   std::ostringstream csv;  // written at the end, every write checked (a full disk: exit 1)
   const EvalResult& first = runs.front().second;
-  const bool with_success = std::any_of(runs.begin(), runs.end(), [](const auto& run) {
-    return !run.second.successes.empty();
-  });
+  const bool with_success = std::any_of(
+      runs.begin(), runs.end(), [](const auto& run) { return !run.second.successes.empty(); });
   csv << "policy,episode,return,length" << (with_success ? ",is_success" : "");
   for (const auto& key : first.metric_keys) csv << ',' << key;
   csv << '\n';
@@ -118,8 +117,8 @@ std::string settings_text(const PolicyOptions& options) {
 // The env `eval --policy` runs in: --env ID's, or --config CFG's env.
 template <class Options>
 EnvPtr policy_env(const Options& o, Registry& registry) {
-  return o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
-                                     registry, "", unix_time_now())
+  return o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env, registry,
+                                     "", unix_time_now())
                           : env_by_id(o.env_id, registry, o.overrides);
 }
 
@@ -131,7 +130,8 @@ std::vector<std::string> policy_names(const std::string& list) {
     if (name.empty()) throw UsageError("--policy " + list + ": an empty policy name");
     names.push_back(name);
   }
-  if (list.empty() || list.back() == ',') throw UsageError("--policy " + list + ": an empty policy name");
+  if (list.empty() || list.back() == ',')
+    throw UsageError("--policy " + list + ": an empty policy name");
   return names;
 }
 
@@ -152,8 +152,8 @@ int compare_policies(const Options& o, Registry& registry, const std::vector<std
   }
   std::vector<std::pair<std::string, EvalResult>> runs;
   for (size_t i = 0; i < names.size(); ++i)
-    runs.emplace_back(names[i], evaluate_policy(players[i].second.act, *players[i].first,
-                                                o.episodes, o.seed));
+    runs.emplace_back(
+        names[i], evaluate_policy(players[i].second.act, *players[i].first, o.episodes, o.seed));
   std::printf("%s on %s, %s each from seed %llu (the same episodes for every policy)%s:\n%s",
               o.policy.c_str(), players.front().first->id().c_str(),
               count_of(o.episodes, "episode").c_str(), static_cast<unsigned long long>(o.seed),
@@ -169,15 +169,15 @@ template <class Options>
 int evaluate_without_model(const Options& o, Registry& registry) {
   if (o.env_id.empty() == o.config.empty())
     throw UsageError("--policy " + o.policy + " needs exactly one of --env ID or --config CFG");
-  if (!o.baseline.empty()) throw UsageError("--baseline compares with a model: use it with --model");
+  if (!o.baseline.empty())
+    throw UsageError("--baseline compares with a model: use it with --model");
   const std::vector<std::string> names = policy_names(o.policy);
   if (names.size() > 1) return compare_policies(o, registry, names);
   check_outputs(o);
   EnvPtr env = policy_env(o, registry);
   const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*env);
-  const EvalResult r =
-      evaluate_policy(named_policy(o.policy, *env, registry, policy_options(o)).act, *env,
-                      o.episodes, o.seed);
+  const EvalResult r = evaluate_policy(
+      named_policy(o.policy, *env, registry, policy_options(o)).act, *env, o.episodes, o.seed);
   print_summary(o.policy, "", env->id(), o.episodes, r);
   if (!o.csv.empty()) write_csv(o.csv, {{o.policy, r}});
   if (tap) write_trajectory(*tap, o.trajectory);
@@ -194,12 +194,13 @@ struct EvalOptions {
   std::string csv;
   std::string record;  // mp4 of the evaluation episodes
   std::vector<std::string> plugins;
-  std::string baseline;  // fixed-time (traffic task) or scripted (grasp task)
-  std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
+  std::string baseline;                // fixed-time (traffic task) or scripted (grasp task)
+  std::optional<int> green_time;       // --green-time (the traffic task's fixed-time plan)
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
-  std::vector<std::string> overrides;   // --set: the user's values over the model's config
-  std::string trajectory;  // every step's env observation and action (runtime/run/trajectory_tap.hpp)
-  bool trust = false;      // --trust: run what the model file names (trust_option.hpp)
+  std::vector<std::string> overrides;  // --set: the user's values over the model's config
+  std::string
+      trajectory;      // every step's env observation and action (runtime/run/trajectory_tap.hpp)
+  bool trust = false;  // --trust: run what the model file names (trust_option.hpp)
 };
 
 // The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
@@ -207,8 +208,7 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
   Env& env = *loaded.env;
   Algorithm& algorithm = *loaded.algorithm;
   const bool deterministic = !o.stochastic;
-  if (o.record.empty())
-    return evaluate_policy(algorithm, env, o.episodes, deterministic, o.seed);
+  if (o.record.empty()) return evaluate_policy(algorithm, env, o.episodes, deterministic, o.seed);
   RecordOptions record;
   record.video_path = o.record;
   record.episodes = o.episodes;
@@ -262,7 +262,8 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
 
 Action add_eval(CLI::App& app, Registry& registry) {
   auto options = std::make_shared<EvalOptions>();
-  CLI::App* sub = app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
+  CLI::App* sub =
+      app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
   CLI::Option* model_option =
       sub->add_option("--model", options->model, "model.zip written by rlrun train");
   CLI::Option* policy_option = sub->add_option(
@@ -276,10 +277,12 @@ Action add_eval(CLI::App& app, Registry& registry) {
   sub->add_option("--config", options->config, "experiment file whose env --policy runs in")
       ->needs(policy_option);
   sub->add_option("--episodes", options->episodes, "number of episodes")->transform(integer_in(1));
-  sub->add_option("--seed", options->seed, "seed of the first episode's reset")->check(seed_value());
+  sub->add_option("--seed", options->seed, "seed of the first episode's reset")
+      ->check(seed_value());
   CLI::Option* det = sub->add_flag("--deterministic", options->deterministic,
                                    "use the deterministic policy (default)");
-  sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")->excludes(det);
+  sub->add_flag("--stochastic", options->stochastic, "sample actions from the policy")
+      ->excludes(det);
   sub->add_option("--csv", options->csv,
                   "also write one row per episode of each policy: policy,episode,return,length, "
                   "then is_success and the env's metrics where it has them (the means are "
@@ -306,7 +309,8 @@ Action add_eval(CLI::App& app, Registry& registry) {
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
-    if (options->model.empty()) throw UsageError("eval needs --model FILE, or --policy P with --env ID");
+    if (options->model.empty())
+      throw UsageError("eval needs --model FILE, or --policy P with --env ID");
     return evaluate_model(*options, registry);
   };
 }

@@ -45,8 +45,9 @@ void check_output_directory(const std::string& output) {
 
 Action add_export(CLI::App& app, Registry& registry) {
   auto o = std::make_shared<ExportOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "export", "write a trained model's deterministic policy as an ONNX file or C99 source (docs/deploy.md)");
+  CLI::App* sub = app.add_subcommand("export",
+                                     "write a trained model's deterministic policy as an ONNX file "
+                                     "or C99 source (docs/deploy.md)");
   sub->add_option("--model", o->model, "the model file (model.zip, best_model.zip, a checkpoint)")
       ->required();
   sub->add_option("--format", o->format,
@@ -56,9 +57,10 @@ Action add_export(CLI::App& app, Registry& registry) {
                   "the file to write (onnx: e.g. policy.onnx) or the directory (c; created if "
                   "its parent exists)")
       ->required();
-  sub->add_flag("--with-value", o->with_value,
-                "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
-                "critic's Q(s, action) for SAC/TD3/DDPG, mean quantile for TQC");
+  sub->add_flag(
+      "--with-value", o->with_value,
+      "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
+      "critic's Q(s, action) for SAC/TD3/DDPG, mean quantile for TQC");
   add_plugin_option(sub, o->plugins);
   sub->add_option("--set", o->overrides,
                   "override a value of the model's config (a model file is untrusted: this is "
@@ -70,9 +72,9 @@ Action add_export(CLI::App& app, Registry& registry) {
     check_output_directory(o->output);
     // The policy graph is built on the model's env stack (its wrappers' exports) over the env's
     // spaces as the file records them: no env is built, so none of its code runs.
-    const LoadedModel model = load_model(o->model, registry, o->overrides,
-                                         model_trust(o->trust, o->model, registry),
-                                         ModelEnv::kSpacesOnly);
+    const LoadedModel model =
+        load_model(o->model, registry, o->overrides, model_trust(o->trust, o->model, registry),
+                   ModelEnv::kSpacesOnly);
     // The whole output is made before anything is written: a refusal leaves nothing behind.
     PolicyGraph graph;
     CSource c;
@@ -96,10 +98,11 @@ Action add_export(CLI::App& app, Registry& registry) {
         throw RuntimeFailure("cannot write " + o->output + ": not a directory");
       write_text_atomic((std::filesystem::path(o->output) / "policy.h").string(), c.header);
       write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
-      std::printf("exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
-                  "action[%d])\n",
-                  o->model.c_str(), algorithm.c_str(), env_id.c_str(), o->output.c_str(),
-                  graph.observation_width(), graph.width(graph.action()));
+      std::printf(
+          "exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
+          "action[%d])\n",
+          o->model.c_str(), algorithm.c_str(), env_id.c_str(), o->output.c_str(),
+          graph.observation_width(), graph.width(graph.action()));
       return 0;
     } else {
       write_text_atomic(o->output, onnx);
@@ -108,12 +111,13 @@ Action add_export(CLI::App& app, Registry& registry) {
     for (const GraphInput& in : graph.inputs())
       inputs += (inputs.empty() ? "" : ", ") + quoted_text(in.name) + " [batch, " +
                 std::to_string(in.width) + "]";
-    std::printf("exported %s (%s on %s) to %s: inputs %s; outputs action [batch, %d]%s\n",
-                o->model.c_str(), algorithm.c_str(), env_id.c_str(),
-                o->output.c_str(), inputs.c_str(), graph.width(graph.action()),
-                graph.value().empty()
-                    ? ""
-                    : (", value [batch, " + std::to_string(graph.width(graph.value())) + "]").c_str());
+    std::printf(
+        "exported %s (%s on %s) to %s: inputs %s; outputs action [batch, %d]%s\n", o->model.c_str(),
+        algorithm.c_str(), env_id.c_str(), o->output.c_str(), inputs.c_str(),
+        graph.width(graph.action()),
+        graph.value().empty()
+            ? ""
+            : (", value [batch, " + std::to_string(graph.width(graph.value())) + "]").c_str());
     return 0;
   };
 }

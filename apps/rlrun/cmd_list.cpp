@@ -50,9 +50,9 @@ void print_env_details(const EnvEntry& entry) {
   } catch (const std::exception& e) {
     std::printf("  (spaces unknown: the env cannot be built with its defaults: %s)\n", e.what());
   }
-  std::printf("  time limit         %s\n",
-              entry.max_episode_steps > 0 ? std::to_string(entry.max_episode_steps).c_str()
-                                          : "none (the env ends its own episodes)");
+  std::printf("  time limit         %s\n", entry.max_episode_steps > 0
+                                               ? std::to_string(entry.max_episode_steps).c_str()
+                                               : "none (the env ends its own episodes)");
   if (!entry.metrics.empty()) {
     std::string metrics;
     for (const std::string& m : entry.metrics) metrics += (metrics.empty() ? "" : ", ") + m;
@@ -105,7 +105,8 @@ bool print_params_if_found(const Entries& entries, const std::string& id) {
 
 Action add_list(CLI::App& app, Registry& registry) {
   auto id = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand("list", "list registered environments, wrappers and algorithms");
+  CLI::App* sub =
+      app.add_subcommand("list", "list registered environments, wrappers and algorithms");
   sub->add_option("id", *id, "show the parameters of one component, e.g. `rlrun list PPO`");
   auto plugins = std::make_shared<std::vector<std::string>>();
   add_plugin_option(sub, *plugins);

@@ -31,9 +31,11 @@ Action add_plot(CLI::App& app) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("plot", "learning curves of runs (PNG or SVG)");
-  sub->add_option("run_dirs", options->paths, "run directories, or directories holding them")->required();
+  sub->add_option("run_dirs", options->paths, "run directories, or directories holding them")
+      ->required();
   sub->add_option("-o,--output", options->output, "curves.png or curves.svg")->required();
-  sub->add_option("--metric", options->metric, "a progress.csv column (default rollout/ep_rew_mean)");
+  sub->add_option("--metric", options->metric,
+                  "a progress.csv column (default rollout/ep_rew_mean)");
   sub->add_option("--title", options->title, "the plot's title (default: the metric)");
   return [options]() {
     std::vector<RunResult> runs;
@@ -46,10 +48,9 @@ Action add_plot(CLI::App& app) {
     }
     if (runs.empty())
       throw RuntimeFailure(
-          (empty.size() == 1
-               ? empty.front() + "/progress.csv has"
-               : "the progress.csv of each of the " +
-                     count_of(static_cast<int64_t>(empty.size()), "run") + " has") +
+          (empty.size() == 1 ? empty.front() + "/progress.csv has"
+                             : "the progress.csv of each of the " +
+                                   count_of(static_cast<int64_t>(empty.size()), "run") + " has") +
           " no rows yet (nothing logged so far: a row comes every run.log_interval iterations, "
           "or episodes for DQN/SAC/TD3/DDPG); plot again once training has logged");
     for (const std::string& dir : empty)
@@ -68,10 +69,11 @@ Action add_plot(CLI::App& app) {
             names.push_back(name);
           }
           throw UsageError("--metric " + options->metric + ": " + r.dir +
-                           "/progress.csv has no such column" + did_you_mean(options->metric, names) +
-                           "; it has " + columns);
+                           "/progress.csv has no such column" +
+                           did_you_mean(options->metric, names) + "; it has " + columns);
         }
-        if (x == r.progress.end()) throw RuntimeFailure(r.dir + "/progress.csv has no time/total_timesteps");
+        if (x == r.progress.end())
+          throw RuntimeFailure(r.dir + "/progress.csv has no time/total_timesteps");
         std::vector<std::pair<double, double>> points;
         for (size_t i = 0; i < x->second.size() && i < y->second.size(); ++i)
           points.emplace_back(x->second[i], y->second[i]);
@@ -79,7 +81,8 @@ Action add_plot(CLI::App& app) {
       }
       groups.push_back(curves);
     }
-    const std::string title = options->title.empty() ? options->metric + " over training" : options->title;
+    const std::string title =
+        options->title.empty() ? options->metric + " over training" : options->title;
     plot_learning_curves(groups, options->metric, title, options->output);
     std::printf("plotted %s (%s) -> %s\n",
                 count_of(static_cast<int64_t>(groups.size()), "configuration").c_str(),

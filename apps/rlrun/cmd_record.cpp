@@ -57,12 +57,11 @@ void parse_size(const std::string& text, RecordOptions& record, bool video) {
   if (!problem.empty()) throw UsageError("--size " + text + ": " + problem);
 }
 
-
 void print_summary(const RecordResult& r, const std::string& what, const Options& o) {
   std::string targets = o.output;
   if (!o.frames.empty()) targets += (targets.empty() ? "" : " and ") + o.frames + "/";
-  std::printf("%s: %s at %dx%d, %g fps -> %s\n", what.c_str(),
-              count_of(r.frames, "frame").c_str(), r.width, r.height, r.fps, targets.c_str());
+  std::printf("%s: %s at %dx%d, %g fps -> %s\n", what.c_str(), count_of(r.frames, "frame").c_str(),
+              r.width, r.height, r.fps, targets.c_str());
   if (!r.episodes.returns.empty())
     std::printf("mean_reward = %.2f +/- %.2f, mean_ep_length = %.1f over %s\n",
                 r.episodes.mean_return(), r.episodes.std_return(), r.episodes.mean_length(),
@@ -138,9 +137,8 @@ int run(const Options& o, Registry& registry) {
   }
   const RecordResult r = record_episodes(*env, act, record);
   print_summary(r,
-                "recorded " +
-                    count_of(static_cast<int64_t>(r.episodes.returns.size()), "episode") + " of " +
-                    env->id() + " (" + record.policy_label + ")",
+                "recorded " + count_of(static_cast<int64_t>(r.episodes.returns.size()), "episode") +
+                    " of " + env->id() + " (" + record.policy_label + ")",
                 o);
   return r.interrupted ? 130 : 0;
 }
@@ -170,8 +168,7 @@ Action add_record(CLI::App& app, Registry& registry) {
   sub->add_option("--output,-o", options->output, "mp4 file to write (H.264, yuv420p)");
   sub->add_option("--frames", options->frames,
                   "also (or instead) write PNG frames into this directory");
-  sub->add_option("--episodes", options->episodes, "number of episodes")
-      ->transform(integer_in(1));
+  sub->add_option("--episodes", options->episodes, "number of episodes")->transform(integer_in(1));
   sub->add_option("--fps", options->fps,
                   "frames per second (default: the env's, e.g. 50 for CartPole)")
       ->check(positive_number(kMaxVideoFps));

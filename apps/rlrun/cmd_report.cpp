@@ -46,8 +46,9 @@ Action add_report(CLI::App& app) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
-      "report", "per configuration across seeds: final return mean, std, median, IQM with a "
-                "bootstrap 95 % CI, success rate, wall time, steps/s");
+      "report",
+      "per configuration across seeds: final return mean, std, median, IQM with a "
+      "bootstrap 95 % CI, success rate, wall time, steps/s");
   sub->add_option("run_dirs", options->paths,
                   "run directories, or directories holding them (e.g. a sweep's runs/)")
       ->required();
@@ -80,8 +81,10 @@ Action add_report(CLI::App& app) {
       rows.push_back(row);
     }
     std::ostringstream md, csv;
-    md << "| configuration | seeds | final return mean | std | median | IQM [95% CI] | success rate "
-          "| timesteps | wall s | steps/s | return from |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md << "| configuration | seeds | final return mean | std | median | IQM [95% CI] | success "
+          "rate "
+          "| timesteps | wall s | steps/s | return from "
+          "|\n|---|---|---|---|---|---|---|---|---|---|---|\n";
     csv << "configuration,n_seeds,seeds,mean,std,median,iqm,iqm_ci_low,iqm_ci_high,success_rate,"
            "timesteps,wall_seconds,steps_per_second,return_source\n";
     for (const Row& r : rows) {

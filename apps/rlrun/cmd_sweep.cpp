@@ -84,7 +84,8 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
   const RunState state = run_state(run);
   if (state != RunState::kNew && !run_config_matches(run))
     throw UsageError(name + ": " + run.run_dir + " was trained with other settings than " +
-                     run.config + " (the sweep file changed after the run started); delete "
+                     run.config +
+                     " (the sweep file changed after the run started); delete "
                      "that directory to train the run again, or give the sweep another out_dir");
   std::vector<std::string> vouched = overrides;
   for (const std::string& o : sweep_vouched_overrides(sweep, run)) vouched.push_back(o);
@@ -98,8 +99,8 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
       const std::vector<std::string> checkpoints = resume_candidates(run.run_dir);
       std::printf("sweep: %s resuming from %s\n", name.c_str(), checkpoints.front().c_str());
       std::fflush(stdout);
-      const Experiment experiment = load_experiment(run.run_dir + "/config.yaml", vouched,
-                                                    registry, ConfigTrust::kUntrusted);
+      const Experiment experiment =
+          load_experiment(run.run_dir + "/config.yaml", vouched, registry, ConfigTrust::kUntrusted);
       outcome = train_experiment(experiment, registry, execution, checkpoints);
       break;
     }
@@ -120,8 +121,8 @@ int run_one(const Sweep& sweep, int index, const std::vector<std::string>& overr
                          ", not the manifest's " + run.run_dir);
       outcome = train_experiment(experiment, registry, execution);
       if (fs::absolute(outcome.run_dir).lexically_normal() != fs::path(run.run_dir))
-        throw RuntimeFailure("run " + run.id + " trained into " + outcome.run_dir +
-                             " instead of " + run.run_dir);
+        throw RuntimeFailure("run " + run.id + " trained into " + outcome.run_dir + " instead of " +
+                             run.run_dir);
       break;
     }
   }
@@ -157,17 +158,17 @@ int run_all(const Sweep& sweep, int jobs, const std::vector<std::string>& passed
     if (state == RunState::kFinished) continue;
     // Runs at once share this process's threads.
     const std::string threads = std::to_string(threads_per_job(execution, jobs));
-    std::vector<std::string> args{"--threads", threads, "sweep", "run", sweep.manifest,
-                                  "--index", std::to_string(run.index)};
+    std::vector<std::string> args{
+        "--threads", threads, "sweep", "run", sweep.manifest, "--index", std::to_string(run.index)};
     args.insert(args.end(), passed_on.begin(), passed_on.end());
     children.push_back({run.id, args, run_console_log(sweep, run)});
   }
-  std::printf("sweep %s: %s: %d finished before (skipped), %d to resume, %d to start "
-              "(%d again, having left no checkpoint)\n",
-              sweep.name.c_str(), count_of(static_cast<int64_t>(sweep.runs.size()), "run").c_str(),
-              before[RunState::kFinished],
-              before[RunState::kResumable], before[RunState::kNew] + before[RunState::kPartial],
-              before[RunState::kPartial]);
+  std::printf(
+      "sweep %s: %s: %d finished before (skipped), %d to resume, %d to start "
+      "(%d again, having left no checkpoint)\n",
+      sweep.name.c_str(), count_of(static_cast<int64_t>(sweep.runs.size()), "run").c_str(),
+      before[RunState::kFinished], before[RunState::kResumable],
+      before[RunState::kNew] + before[RunState::kPartial], before[RunState::kPartial]);
   int code = 0;
   const std::string logs = "console output of each in " +
                            (fs::path(sweep.manifest).parent_path() / "logs").string() +
@@ -196,16 +197,18 @@ Action add_sweep(CLI::App& app, Registry& registry, const ExecutionContext& exec
                       "over it), e.g. --set run.total_timesteps=20000 (repeatable)")
           ->allow_extra_args(false);
   const auto add_run_options = [&options](CLI::App* command, const std::string& what) {
-    command->add_option("--set", options->overrides,
-                        "override a value in every run's config " + what +
-                            " (a manifest is untrusted: this is how you vouch for a program or "
-                            "scenario file it names; docs/security.md; repeatable)")
+    command
+        ->add_option("--set", options->overrides,
+                     "override a value in every run's config " + what +
+                         " (a manifest is untrusted: this is how you vouch for a program or "
+                         "scenario file it names; docs/security.md; repeatable)")
         ->allow_extra_args(false);
     add_plugin_option(command, options->plugins);
   };
   CLI::App* run = sub->add_subcommand(
       "run", "train a manifest's runs: finished ones are skipped, interrupted ones resumed");
-  run->add_option("manifest", options->manifest, "manifest.yaml written by `rlrun sweep`")->required();
+  run->add_option("manifest", options->manifest, "manifest.yaml written by `rlrun sweep`")
+      ->required();
   run->add_option("-j,--jobs", options->jobs, "runs at once (sharing --threads equally)")
       ->transform(integer_in(1));
   run->add_option("--index", options->index, "train only run I (what a Slurm array task does)")
@@ -226,15 +229,16 @@ Action add_sweep(CLI::App& app, Registry& registry, const ExecutionContext& exec
                          options->sweep_file + "' (rlrun sweep " + command +
                          " --help lists its options)");
       if (out_option->count() > 0)
-        throw UsageError("sweep " + command + " takes no --out: a manifest's runs train where it "
+        throw UsageError("sweep " + command +
+                         " takes no --out: a manifest's runs train where it "
                          "says; expand the sweep file again with --out (rlrun sweep SWEEP.yaml "
                          "--out DIR) for another place");
       if (expand_set_option->count() > 0)
-        throw UsageError(command == "status"
-                             ? std::string("sweep status takes no --set")
-                             : "--set before `" + command + "` is for expanding a sweep file; "
-                               "give it after the manifest: rlrun sweep " + command +
-                               " MANIFEST --set key=value");
+        throw UsageError(command == "status" ? std::string("sweep status takes no --set")
+                                             : "--set before `" + command +
+                                                   "` is for expanding a sweep file; "
+                                                   "give it after the manifest: rlrun sweep " +
+                                                   command + " MANIFEST --set key=value");
     }
     if (run->parsed()) {
       load_plugin_options(options->plugins, registry);
@@ -258,18 +262,22 @@ Action add_sweep(CLI::App& app, Registry& registry, const ExecutionContext& exec
       const Sweep sweep = read_manifest(options->manifest);
       for (const SweepRun& r : sweep.runs)
         std::printf("%3d  %-10s %s  %s%s\n", r.index, to_string(run_state(r)), r.id.c_str(),
-                    r.run_dir.c_str(), run_config_matches(r) ? "" : "  (settings changed since it ran)");
+                    r.run_dir.c_str(),
+                    run_config_matches(r) ? "" : "  (settings changed since it ran)");
       return 0;
     }
     if (options->sweep_file.empty())
-      throw UsageError("sweep needs a sweep file (rlrun sweep configs/sweeps/x.yaml) or one of "
-                       "run, slurm, status with a manifest");
+      throw UsageError(
+          "sweep needs a sweep file (rlrun sweep configs/sweeps/x.yaml) or one of "
+          "run, slurm, status with a manifest");
     std::error_code ec;
     if (!fs::exists(options->sweep_file, ec)) {  // `rlrun sweep rnu m.yaml`: a mistyped command
       const std::string meant = closest_name(options->sweep_file, {"run", "slurm", "status"});
       if (!meant.empty())
-        throw UsageError("'" + options->sweep_file + "' is neither a sweep file nor a sweep "
-                         "command; did you mean 'rlrun sweep " + meant + "'?");
+        throw UsageError("'" + options->sweep_file +
+                         "' is neither a sweep file nor a sweep "
+                         "command; did you mean 'rlrun sweep " +
+                         meant + "'?");
     }
     const Sweep sweep =
         expand_sweep(options->sweep_file, registry, {options->out, options->expand_overrides});
@@ -277,7 +285,8 @@ Action add_sweep(CLI::App& app, Registry& registry, const ExecutionContext& exec
                 count_of(static_cast<int64_t>(sweep.runs.size()), "run").c_str(),
                 sweep.manifest.c_str());
     for (const SweepRun& r : sweep.runs) std::printf("  %3d  %s\n", r.index, r.id.c_str());
-    const std::string manifest = shell_quote(sweep.manifest);  // the commands as one would type them
+    const std::string manifest =
+        shell_quote(sweep.manifest);  // the commands as one would type them
     std::printf("train them: rlrun sweep run %s -j 2\n  or on Slurm: rlrun sweep slurm %s\n",
                 manifest.c_str(), manifest.c_str());
     return 0;

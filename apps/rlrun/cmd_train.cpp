@@ -76,12 +76,12 @@ bool restates(const ConfigNode& config, const std::string& assignment) {
 int resume(const TrainOptions& o, Registry& registry, const ExecutionContext& execution) {
   // A resumed run is the same run: its config.yaml, except for how long it trains.
   if (!o.configs.empty() || o.seed || !o.out.empty() || !o.init_from.empty() || o.jobs != 1)
-    throw UsageError("--resume continues a run with its own config.yaml; it takes no experiment "
-                     "files, --seed, --out, --init-from or -j");
+    throw UsageError(
+        "--resume continues a run with its own config.yaml; it takes no experiment "
+        "files, --seed, --out, --init-from or -j");
   std::error_code ec;
-  const std::string run_dir = std::filesystem::is_directory(o.resume, ec)
-                                  ? o.resume
-                                  : run_dir_of_checkpoint(o.resume);
+  const std::string run_dir =
+      std::filesystem::is_directory(o.resume, ec) ? o.resume : run_dir_of_checkpoint(o.resume);
   const std::string config = run_dir + "/config.yaml";
   const std::vector<std::string> overrides = all_overrides(o);
   // A run directory may come from anyone: it must be a directory, not a link, its config.yaml
@@ -104,7 +104,8 @@ int resume(const TrainOptions& o, Registry& registry, const ExecutionContext& ex
                        "' (only run.total_timesteps and run.console_interval): an exact resume "
                        "needs the run's settings");
   const std::vector<std::string> candidates = resume_candidates(o.resume);
-  const Experiment experiment = load_experiment(config, overrides, registry, ConfigTrust::kUntrusted);
+  const Experiment experiment =
+      load_experiment(config, overrides, registry, ConfigTrust::kUntrusted);
   install_interrupt_handlers();
   return exit_code(train_experiment(experiment, registry, execution, candidates));
 }
@@ -113,9 +114,8 @@ int train_zoo(const TrainOptions& o, Registry& registry, const ExecutionContext&
   if (!o.configs.empty() || o.jobs != 1)
     throw UsageError("--zoo trains one zoo entry; it takes no experiment files or -j");
   if (o.zoo_env.empty()) throw UsageError("--zoo needs --env ENV_ID (the entry to train)");
-  const Experiment experiment =
-      zoo::load_zoo_experiment(o.zoo, o.zoo_env, o.zoo_algo, all_overrides(o), registry,
-                                o.zoo_entry);
+  const Experiment experiment = zoo::load_zoo_experiment(o.zoo, o.zoo_env, o.zoo_algo,
+                                                         all_overrides(o), registry, o.zoo_entry);
   install_interrupt_handlers();
   return exit_code(train_experiment(experiment, registry, execution));
 }
@@ -148,9 +148,10 @@ Action add_train(CLI::App& app, Registry& registry, const ExecutionContext& exec
   sub->add_option("--resume", options->resume,
                   "continue an interrupted run exactly: its run directory (newest checkpoint) or "
                   "a checkpoints/step_<N>.zip file");
-  sub->add_option("--zoo", options->zoo,
-                  "train an rl-baselines3-zoo hyperparameter entry directly (hyperparams/<algo>.yml "
-                  "with --env; `rlrun zoo import` writes the same experiment as a file)")
+  sub->add_option(
+         "--zoo", options->zoo,
+         "train an rl-baselines3-zoo hyperparameter entry directly (hyperparams/<algo>.yml "
+         "with --env; `rlrun zoo import` writes the same experiment as a file)")
       ->check(CLI::ExistingFile);
   sub->add_option("--env", options->zoo_env, "with --zoo: the env whose entry to train");
   sub->add_option("--algo", options->zoo_algo,
@@ -166,7 +167,8 @@ Action add_train(CLI::App& app, Registry& registry, const ExecutionContext& exec
     if (!options->zoo_env.empty() || !options->zoo_algo.empty() || !options->zoo_entry.empty())
       throw UsageError("--env, --algo and --zoo-entry go with --zoo HYPERPARAMS.yml");
     if (options->configs.empty())
-      throw UsageError("train needs experiment files (rlrun train configs/x.yaml) or --resume RUN_DIR");
+      throw UsageError(
+          "train needs experiment files (rlrun train configs/x.yaml) or --resume RUN_DIR");
     const std::vector<std::string> overrides = all_overrides(*options);
     // Validate every file before training any: a typo in the last file should not surface
     // after hours of training on the first.

@@ -78,17 +78,22 @@ void print_study_summary(const StudyConfig& study) {
   const std::vector<FrozenTrial> trials = storage.state().trials(*id);
   int complete = 0, pruned = 0, failed = 0, other = 0;
   for (const FrozenTrial& t : trials) {
-    if (t.state == TrialState::kComplete) ++complete;
-    else if (t.state == TrialState::kPruned) ++pruned;
-    else if (t.state == TrialState::kFail) ++failed;
-    else ++other;
+    if (t.state == TrialState::kComplete)
+      ++complete;
+    else if (t.state == TrialState::kPruned)
+      ++pruned;
+    else if (t.state == TrialState::kFail)
+      ++failed;
+    else
+      ++other;
   }
   const FrozenTrial* best = tune::best_trial(
       trials, study.maximize() ? tune::StudyDirection::kMaximize : tune::StudyDirection::kMinimize);
-  std::printf("study %s (%s): %d complete, %d pruned, %d failed, %d running or waiting; %d of "
-              "%d trials counted\n",
-              study.name.c_str(), study.storage.c_str(), complete, pruned, failed, other,
-              tune::counted_trials(trials), study.n_trials);
+  std::printf(
+      "study %s (%s): %d complete, %d pruned, %d failed, %d running or waiting; %d of "
+      "%d trials counted\n",
+      study.name.c_str(), study.storage.c_str(), complete, pruned, failed, other,
+      tune::counted_trials(trials), study.n_trials);
   if (best) {
     std::printf("best: trial %d, value %.6g:", best->number, *best->value());
     for (const auto& [name, internal] : best->params)
@@ -127,13 +132,13 @@ int run_study(const TuneOptions& o, Registry& registry, const ExecutionContext& 
                 count_of(o.workers, "worker").c_str(), shell_quote(job.script).c_str());
     return 0;
   }
-  std::printf("study %s: %s, %d trials of %s x %lld steps, objective %s (%s), sampler %s, pruner "
-              "%s, journal %s\n",
-              study.name.c_str(), study.space->describe().c_str(), study.n_trials,
-              count_of(study.seeds_per_trial, "seed").c_str(),
-              static_cast<long long>(study.n_timesteps), study.objective.metric.c_str(),
-              study.objective.direction.c_str(), study.sampler.type.c_str(),
-              study.pruner.type.c_str(), study.storage.c_str());
+  std::printf(
+      "study %s: %s, %d trials of %s x %lld steps, objective %s (%s), sampler %s, pruner "
+      "%s, journal %s\n",
+      study.name.c_str(), study.space->describe().c_str(), study.n_trials,
+      count_of(study.seeds_per_trial, "seed").c_str(), static_cast<long long>(study.n_timesteps),
+      study.objective.metric.c_str(), study.objective.direction.c_str(), study.sampler.type.c_str(),
+      study.pruner.type.c_str(), study.storage.c_str());
   std::fflush(stdout);
   int code = 0;
   if (o.jobs > 1) {
@@ -145,7 +150,8 @@ int run_study(const TuneOptions& o, Registry& registry, const ExecutionContext& 
                                     "tune", study.source};
       const auto more = passed_on(o);
       args.insert(args.end(), more.begin(), more.end());
-      workers.push_back({"worker " + std::to_string(w), args, (logs / ("worker_" + std::to_string(w) + ".txt")).string()});
+      workers.push_back({"worker " + std::to_string(w), args,
+                         (logs / ("worker_" + std::to_string(w) + ".txt")).string()});
     }
     code = run_in_parallel(workers, o.jobs, "worker", logs.string() + "/worker_<i>.txt");
   } else {
@@ -192,7 +198,9 @@ int report(const TuneOptions& o, Registry& registry, const ExecutionContext& exe
   tune::print_study_report(name, direction, trials, options, std::cout);
 
   if (!o.best_config.empty() || o.trial) {
-    if (!study) throw UsageError("--best-config and --trial need the study file (it names the base experiment)");
+    if (!study)
+      throw UsageError(
+          "--best-config and --trial need the study file (it names the base experiment)");
     const FrozenTrial* chosen = nullptr;
     if (o.trial) {
       for (const FrozenTrial& t : trials)
@@ -212,9 +220,11 @@ int report(const TuneOptions& o, Registry& registry, const ExecutionContext& exe
       const Experiment experiment = load_experiment(study->base, overrides, registry);
       std::string header = "# Trial " + std::to_string(chosen->number) + " of study " + name +
                            " (" + study->source + ")";
-      if (chosen->value()) header += ": " + study->objective.metric + " = " + std::to_string(*chosen->value());
+      if (chosen->value())
+        header += ": " + study->objective.metric + " = " + std::to_string(*chosen->value());
       header += "\n# written by rlrun tune report --best-config; the trial's parameters:\n";
-      for (const auto& [pname, value] : params.items()) header += "#   " + pname + ": " + value.dump() + "\n";
+      for (const auto& [pname, value] : params.items())
+        header += "#   " + pname + ": " + value.dump() + "\n";
       write_text_atomic(o.best_config, header + dump_yaml(experiment.resolved));
       std::printf("wrote %s (trial %d); train it with: rlrun train %s\n", o.best_config.c_str(),
                   chosen->number, shell_quote(o.best_config).c_str());
@@ -223,14 +233,17 @@ int report(const TuneOptions& o, Registry& registry, const ExecutionContext& exe
       install_interrupt_handlers();
       for (int s = 0; s < study->seeds_per_trial; ++s) {
         std::vector<std::string> seed_overrides = overrides;
-        seed_overrides.push_back("run.seed=" + std::to_string(study->base_seed + static_cast<uint64_t>(s)));
-        seed_overrides.push_back("run.out_dir=" + (fs::path(study->out_dir) / "retrained").string());
+        seed_overrides.push_back("run.seed=" +
+                                 std::to_string(study->base_seed + static_cast<uint64_t>(s)));
+        seed_overrides.push_back("run.out_dir=" +
+                                 (fs::path(study->out_dir) / "retrained").string());
         seed_overrides.push_back("run.name=trial_" + std::to_string(chosen->number));
         const Experiment experiment = load_experiment(study->base, seed_overrides, registry);
         const TrainOutcome outcome = train_experiment(experiment, registry, execution);
         std::printf("trial %d seed %llu: %s (%s)\n", chosen->number,
                     static_cast<unsigned long long>(experiment.run.seed),
-                    format_session_summary(session_summary(outcome)).c_str(), outcome.run_dir.c_str());
+                    format_session_summary(session_summary(outcome)).c_str(),
+                    outcome.run_dir.c_str());
         if (outcome.interrupted) return 130;
       }
     }
@@ -252,7 +265,8 @@ Action add_tune(CLI::App& app, Registry& registry, const ExecutionContext& execu
   sub->add_option("--n-timesteps", o->n_timesteps,
                   "env steps per seed of every trial (instead of the file's n_timesteps)")
       ->transform(integer_in(1, 1'000'000'000'000'000));
-  sub->add_option("--out", o->out, "the study's out_dir (its journal, trials/, logs/) instead of the file's");
+  sub->add_option("--out", o->out,
+                  "the study's out_dir (its journal, trials/, logs/) instead of the file's");
   sub->add_option("--set", o->set, "override a value of every trial's experiment (repeatable)")
       ->allow_extra_args(false);
   add_plugin_option(sub, o->plugins);
@@ -260,7 +274,8 @@ Action add_tune(CLI::App& app, Registry& registry, const ExecutionContext& execu
   sub->add_flag("--slurm", o->slurm, "write an sbatch array script of --workers workers instead");
   sub->add_option("--workers", o->workers, "with --slurm: array tasks (workers)")
       ->transform(integer_in(1, 10000));
-  CLI::App* rep = sub->add_subcommand("report", "a study's best trials, importances and history plot");
+  CLI::App* rep =
+      sub->add_subcommand("report", "a study's best trials, importances and history plot");
   rep->add_option("study", o->study, "the study file or its journal")->required();
   rep->add_option("--study-name", o->study_name, "with a journal of several studies: which one");
   rep->add_option("--out", o->out, "the study's out_dir, when it ran with tune --out");
@@ -280,13 +295,16 @@ Action add_tune(CLI::App& app, Registry& registry, const ExecutionContext& execu
       return report(*o, registry, execution);
     }
     if (o->study_file.empty())
-      throw UsageError("tune needs a study file (rlrun tune configs/tune/cartpole_ppo.yaml), or "
-                       "report with a study");
+      throw UsageError(
+          "tune needs a study file (rlrun tune configs/tune/cartpole_ppo.yaml), or "
+          "report with a study");
     if (!fs::exists(o->study_file) && o->study_file.size() < 12) {
       const std::string meant = closest_name(o->study_file, {"report"});
       if (!meant.empty())
-        throw UsageError("'" + o->study_file + "' is neither a study file nor a tune command; did "
-                         "you mean 'rlrun tune " + meant + "'?");
+        throw UsageError("'" + o->study_file +
+                         "' is neither a study file nor a tune command; did "
+                         "you mean 'rlrun tune " +
+                         meant + "'?");
     }
     return run_study(*o, registry, execution);
   };

@@ -21,7 +21,7 @@ struct ZooOptions {
   std::string env_id;
   std::string output;
   std::string algo;
-  std::string entry;  // another env's entry to use (--entry)
+  std::string entry;                   // another env's entry to use (--entry)
   std::vector<std::string> overrides;  // --set
 };
 
@@ -39,17 +39,21 @@ Action add_zoo(CLI::App& app, Registry& registry) {
   import->add_option("env_id", options->env_id, "the env whose entry to import (else `default`)")
       ->required();
   import->add_option("-o,--output", options->output, "write the experiment here (default: stdout)");
-  import->add_option("--algo", options->algo,
-                     "the algorithm, when the file name does not say (ppo, a2c, dqn, sac, td3, ddpg, tqc)");
-  import->add_option("--entry", options->entry,
-                     "use this entry's settings for env_id (e.g. PandaReach-v1 for GripperReach-v0)");
-  import->add_option("--set", options->overrides,
-                     "set a value in the written file, e.g. --set run.seed=3 (repeatable); also "
-                     "vouches for a value the zoo file may not set itself (docs/security.md)")
+  import->add_option(
+      "--algo", options->algo,
+      "the algorithm, when the file name does not say (ppo, a2c, dqn, sac, td3, ddpg, tqc)");
+  import->add_option(
+      "--entry", options->entry,
+      "use this entry's settings for env_id (e.g. PandaReach-v1 for GripperReach-v0)");
+  import
+      ->add_option("--set", options->overrides,
+                   "set a value in the written file, e.g. --set run.seed=3 (repeatable); also "
+                   "vouches for a value the zoo file may not set itself (docs/security.md)")
       ->allow_extra_args(false);
   return [options, &registry]() {
     zoo::ZooImport imported = zoo::translate_zoo_entry(
-        zoo::read_zoo_entry(options->hyperparams, options->env_id, options->algo, options->entry), registry);
+        zoo::read_zoo_entry(options->hyperparams, options->env_id, options->algo, options->entry),
+        registry);
     // Checked as `rlrun train --zoo` checks it, with the zoo file's positions in messages.
     zoo::check_zoo_experiment(imported, options->overrides, registry);
     const std::string text = zoo::experiment_text(imported);

@@ -10,7 +10,8 @@ namespace rlrun::cli {
 EnvPtr env_by_id(const std::string& id, const Registry& registry,
                  const std::vector<std::string>& overrides) {
   try {
-    return make_env(default_env_spec(id, registry, "--env", overrides), registry, "", unix_time_now());
+    return make_env(default_env_spec(id, registry, "--env", overrides), registry, "",
+                    unix_time_now());
   } catch (const ConfigError& e) {
     throw UsageError(e.what());
   }

@@ -25,7 +25,8 @@ void print_error(const std::string& message) {
   std::string::size_type start = 0;
   while (start <= message.size()) {
     const auto end = std::min(message.find('\n', start), message.size());
-    if (end > start || start == 0) std::cerr << "error: " << message.substr(start, end - start) << '\n';
+    if (end > start || start == 0)
+      std::cerr << "error: " << message.substr(start, end - start) << '\n';
     start = end + 1;
   }
   std::cerr.flush();
@@ -121,8 +122,9 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     // Config values are bounded when parsed (core/resource_limits.hpp); this is the machine
     // running out while training, e.g. other processes took the memory.
-    print_error("out of memory (std::bad_alloc); free memory, or reduce buffer_size, n_envs or "
-                "net_arch");
+    print_error(
+        "out of memory (std::bad_alloc); free memory, or reduce buffer_size, n_envs or "
+        "net_arch");
     return rlrun::kExitRuntime;
   } catch (const std::exception& e) {
     print_error(e.what());

@@ -20,11 +20,11 @@
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/core/line_reader.hpp"
-#include "rlrun/core/regular_file.hpp"
 #include "rlrun/core/interrupt.hpp"
+#include "rlrun/core/line_reader.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
+#include "rlrun/core/regular_file.hpp"
 
 namespace rlrun::cli {
 
@@ -98,7 +98,8 @@ pid_t start_child(const std::vector<std::string>& child_args, int log_fd) {
     std::signal(SIGTERM, SIG_DFL);
     execv(argv[0], argv.data());
     const char kExecFailed[] = "rlrun: cannot start /proc/self/exe (exec failed)\n";
-    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kExecFailed, sizeof(kExecFailed) - 1);
+    [[maybe_unused]] const ssize_t written =
+        write(STDERR_FILENO, kExecFailed, sizeof(kExecFailed) - 1);
     _exit(127);
   }
   return pid;
@@ -113,7 +114,8 @@ int open_child_log(const ChildRun& run) {
   // Not through a link, and a regular file (a FIFO would block here; core/regular_file.hpp).
   int fd = -1;
   try {
-    fd = open_regular_file(AT_FDCWD, run.log_path, O_WRONLY | O_CREAT | O_APPEND, run.log_path).release();
+    fd = open_regular_file(AT_FDCWD, run.log_path, O_WRONLY | O_CREAT | O_APPEND, run.log_path)
+             .release();
   } catch (const RuntimeFailure& e) {
     throw RuntimeFailure(std::string(e.what()) + " (the console output of " + run.label + ")");
   }
@@ -140,7 +142,8 @@ int threads_per_job(const ExecutionContext& execution, int jobs) {
 }
 
 int train_in_parallel(const std::vector<std::string>& configs,
-                      const std::vector<std::string>& child_options, int jobs, int threads_per_run) {
+                      const std::vector<std::string>& child_options, int jobs,
+                      int threads_per_run) {
   std::vector<ChildRun> runs;
   for (const std::string& config : configs) {
     ChildRun run{config, {"--threads", std::to_string(threads_per_run), "train", config}, ""};
@@ -205,18 +208,19 @@ int run_in_parallel(const std::vector<ChildRun>& configs, int jobs, const std::s
     running.erase(pid);
     ++finished;
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::cout << "[" << finished << "/" << configs.size() << "] " << configs[child.index].label << ": ";
+    std::cout << "[" << finished << "/" << configs.size() << "] " << configs[child.index].label
+              << ": ";
     if (code == 0) {
       std::cout << summary_line(child.log_path) << std::endl;
     } else if (code == 130) {
       // A temporary log goes at the end: name only one that stays.
       const bool kept = !configs[child.index].log_path.empty();
       std::cout << "interrupted" << (kept ? " (output in " + child.log_path + ")" : std::string())
-                << "\n" << tail_lines(child.log_path, 2) << std::flush;
+                << "\n"
+                << tail_lines(child.log_path, 2) << std::flush;
     } else {
       ++failures;
-      std::cout << "FAILED (exit " << code << "), end of its output (" << child.log_path
-                << "):\n"
+      std::cout << "FAILED (exit " << code << "), end of its output (" << child.log_path << "):\n"
                 << tail_lines(child.log_path, 8) << std::flush;
     }
   }

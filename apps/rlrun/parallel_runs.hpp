@@ -12,9 +12,9 @@
 // The children run in their own process group, so a Ctrl-C at the terminal reaches only this
 // process, which forwards exactly one SIGINT to each child (each then checkpoints at its next
 // safe point, see runtime/run/trainer.hpp); a second Ctrl-C is forwarded too and stops them at once.
-#include "rlrun/core/execution_context.hpp"
 #include <string>
 #include <vector>
+#include "rlrun/core/execution_context.hpp"
 
 namespace rlrun::cli {
 

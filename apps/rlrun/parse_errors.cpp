@@ -72,9 +72,8 @@ std::string mistyped_subcommand(const CLI::App& command, int argc, char** argv) 
 std::optional<std::string> describe_parse_error(const CLI::App& app, const CLI::ParseError& error,
                                                 int argc, char** argv) {
   const std::vector<std::string> commands = command_names(app);
-  if (app.get_subcommands().empty() &&
-      (dynamic_cast<const CLI::RequiredError*>(&error) ||
-       dynamic_cast<const CLI::ExtrasError*>(&error))) {
+  if (app.get_subcommands().empty() && (dynamic_cast<const CLI::RequiredError*>(&error) ||
+                                        dynamic_cast<const CLI::ExtrasError*>(&error))) {
     const std::optional<std::string> word = first_word(argc, argv);
     if (!word)
       return "a command is required: " + joined(commands, ", ") + " (rlrun --help says more)";

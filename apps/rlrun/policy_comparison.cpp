@@ -54,9 +54,8 @@ std::string markdown(const std::vector<std::vector<std::string>>& rows) {
 }  // namespace
 
 std::string comparison_table(const std::vector<std::pair<std::string, EvalResult>>& runs) {
-  const bool with_success = std::any_of(runs.begin(), runs.end(), [](const auto& run) {
-    return !run.second.successes.empty();
-  });
+  const bool with_success = std::any_of(
+      runs.begin(), runs.end(), [](const auto& run) { return !run.second.successes.empty(); });
   const std::vector<std::string>& keys = runs.front().second.metric_keys;
   std::vector<std::vector<std::string>> rows{
       {"policy", "mean_reward", "std_reward", "mean_ep_length"}};

@@ -123,7 +123,8 @@ struct Worker {
 
 int main(int argc, char** argv) {
   if (argc != 2) {
-    std::fprintf(stderr, "rlrun-sumo-worker is started by rlrun (TrafficNetwork-v0), not by hand\n");
+    std::fprintf(stderr,
+                 "rlrun-sumo-worker is started by rlrun (TrafficNetwork-v0), not by hand\n");
     return 2;
   }
   signal(SIGINT, SIG_IGN);

@@ -41,10 +41,9 @@ class GoLeft : public rlrun::EnvBase {
   // gymnasium.Env.reset(seed=...)
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override {
     seeding_.on_reset(seed);  // super().reset(seed=seed)
-    position_ = config_.random_start
-                    ? 1 + static_cast<int>(seeding_.rng().below(
-                              static_cast<uint64_t>(config_.grid_size - 1)))
-                    : config_.grid_size - 1;
+    position_ = config_.random_start ? 1 + static_cast<int>(seeding_.rng().below(
+                                               static_cast<uint64_t>(config_.grid_size - 1)))
+                                     : config_.grid_size - 1;
     info_.clear();
     obs[0] = static_cast<float>(position_);
   }
@@ -86,8 +85,8 @@ class GoLeft : public rlrun::EnvBase {
     frame.begin_scene(config_.grid_size, 1.0, {255, 255, 255});
     for (int cell = 0; cell < config_.grid_size; ++cell) {
       const double x = cell;
-      const rlrun::Point square[] = {{x + 0.05, 0.05}, {x + 0.95, 0.05}, {x + 0.95, 0.95},
-                                     {x + 0.05, 0.95}};
+      const rlrun::Point square[] = {
+          {x + 0.05, 0.05}, {x + 0.95, 0.05}, {x + 0.95, 0.95}, {x + 0.05, 0.95}};
       frame.polygon(square, cell == 0 ? rlrun::Rgb{120, 200, 120} : rlrun::Rgb{220, 220, 220});
     }
     frame.circle({position_ + 0.5, 0.5}, 0.3, {60, 90, 200});

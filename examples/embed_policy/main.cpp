@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
   }
   try {
     const rlrun::Policy policy = rlrun::Policy::load(argv[1]);
-    if (argc == 4 && std::string(argv[2]) == "--latency") return latency(policy, std::max(1, std::atoi(argv[3])));
+    if (argc == 4 && std::string(argv[2]) == "--latency")
+      return latency(policy, std::max(1, std::atoi(argv[3])));
     std::vector<float> obs(policy.observation_size()), action(policy.action_size());
     if (argc == 2) {
       policy.act(obs, action);

@@ -13,10 +13,10 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <stdexcept>
-#include <utility>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rlrun {
@@ -95,7 +95,6 @@ class Frame {
 
 // --- implementation (header-only: plugin envs draw with the same code) ---
 
-
 namespace frame_detail {
 
 inline constexpr int kMaxSide = 16384;
@@ -112,7 +111,8 @@ inline void trace_path(cairo_t* cr, std::span<const Point> points) {
 }  // namespace frame_detail
 
 inline Frame::Frame(int width, int height) : width_(width), height_(height) {
-  if (width <= 0 || height <= 0 || width > frame_detail::kMaxSide || height > frame_detail::kMaxSide)
+  if (width <= 0 || height <= 0 || width > frame_detail::kMaxSide ||
+      height > frame_detail::kMaxSide)
     throw std::invalid_argument("frame size " + std::to_string(width) + "x" +
                                 std::to_string(height) + " is not between 1 and " +
                                 std::to_string(frame_detail::kMaxSide));

@@ -33,11 +33,16 @@ enum class SpaceKind : int32_t {
 // "Box", "Discrete", ... as Gymnasium names the classes.
 inline const char* space_kind_name(SpaceKind kind) {
   switch (kind) {
-    case SpaceKind::kBox: return "Box";
-    case SpaceKind::kDiscrete: return "Discrete";
-    case SpaceKind::kMultiDiscrete: return "MultiDiscrete";
-    case SpaceKind::kMultiBinary: return "MultiBinary";
-    case SpaceKind::kDict: return "Dict";
+    case SpaceKind::kBox:
+      return "Box";
+    case SpaceKind::kDiscrete:
+      return "Discrete";
+    case SpaceKind::kMultiDiscrete:
+      return "MultiDiscrete";
+    case SpaceKind::kMultiBinary:
+      return "MultiBinary";
+    case SpaceKind::kDict:
+      return "Dict";
   }
   return "?";
 }
@@ -75,10 +80,10 @@ class Space {
   // Discrete(n, start): values start, ..., start + n - 1.
   static Space discrete(int64_t n, int64_t start = 0) {
     if (n <= 0) throw std::invalid_argument("Space::discrete: n must be positive");
-    if (n > kMaxDiscreteValues || start < -kMaxDiscreteValues ||
-        start > kMaxDiscreteValues - n)
-      throw std::invalid_argument(too_many_values("Discrete(" + std::to_string(n) +
-                                                  (start ? ", start=" + std::to_string(start) : "") + ")"));
+    if (n > kMaxDiscreteValues || start < -kMaxDiscreteValues || start > kMaxDiscreteValues - n)
+      throw std::invalid_argument(
+          too_many_values("Discrete(" + std::to_string(n) +
+                          (start ? ", start=" + std::to_string(start) : "") + ")"));
     Space s;
     s.kind_ = SpaceKind::kDiscrete;
     s.n_ = n;
@@ -90,7 +95,8 @@ class Space {
     for (auto n : nvec) {
       if (n <= 0) throw std::invalid_argument("Space::multi_discrete: entries must be positive");
       if (n > kMaxDiscreteValues)
-        throw std::invalid_argument(too_many_values("a MultiDiscrete entry of " + std::to_string(n)));
+        throw std::invalid_argument(
+            too_many_values("a MultiDiscrete entry of " + std::to_string(n)));
     }
     Space s;
     s.kind_ = SpaceKind::kMultiDiscrete;
@@ -133,10 +139,14 @@ class Space {
   // Number of floats in one flat sample (Discrete: 1; Dict: its keys' together).
   int flat_dim() const {
     switch (kind_) {
-      case SpaceKind::kBox: return static_cast<int>(product(shape_));
-      case SpaceKind::kDiscrete: return 1;
-      case SpaceKind::kMultiDiscrete: return static_cast<int>(nvec_.size());
-      case SpaceKind::kMultiBinary: return static_cast<int>(n_);
+      case SpaceKind::kBox:
+        return static_cast<int>(product(shape_));
+      case SpaceKind::kDiscrete:
+        return 1;
+      case SpaceKind::kMultiDiscrete:
+        return static_cast<int>(nvec_.size());
+      case SpaceKind::kMultiBinary:
+        return static_cast<int>(n_);
       case SpaceKind::kDict: {
         int total = 0;
         for (const Space& s : subspaces_) total += s.flat_dim();
@@ -240,8 +250,8 @@ class Space {
     switch (kind_) {
       case SpaceKind::kBox:
         if (all_equal(low_) && all_equal(high_)) {
-          out << "Box(" << format_bound(low_.front()) << ", " << format_bound(high_.front())
-              << ", " << shape_text() << ", float32)";
+          out << "Box(" << format_bound(low_.front()) << ", " << format_bound(high_.front()) << ", "
+              << shape_text() << ", float32)";
         } else {
           out << "Box([";
           for (size_t i = 0; i < low_.size(); ++i) out << (i ? " " : "") << format_bound(low_[i]);
@@ -260,7 +270,9 @@ class Space {
         for (size_t i = 0; i < nvec_.size(); ++i) out << (i ? " " : "") << nvec_[i];
         out << "])";
         break;
-      case SpaceKind::kMultiBinary: out << "MultiBinary(" << n_ << ")"; break;
+      case SpaceKind::kMultiBinary:
+        out << "MultiBinary(" << n_ << ")";
+        break;
       case SpaceKind::kDict:
         out << "Dict(";
         for (size_t i = 0; i < keys_.size(); ++i)
@@ -275,10 +287,11 @@ class Space {
 
   // Why a Discrete space this large cannot be learnt here.
   static std::string too_many_values(const std::string& what) {
-    return what + " has too many values: rlrun gives a Discrete action one policy output per "
+    return what +
+           " has too many values: rlrun gives a Discrete action one policy output per "
            "value and a Discrete observation a one-hot input of that many floats, and holds the "
-           "value in a float32; at most " + std::to_string(kMaxDiscreteValues) +
-           " (2^24) values, from -2^24 to 2^24";
+           "value in a float32; at most " +
+           std::to_string(kMaxDiscreteValues) + " (2^24) values, from -2^24 to 2^24";
   }
 
  private:

@@ -31,10 +31,13 @@ class StateMismatch : public std::runtime_error {
 
 class StateWriter {
  public:
-  StateWriter(TensorMap& tensors, std::string prefix = "") : tensors_(tensors), prefix_(std::move(prefix)) {}
+  StateWriter(TensorMap& tensors, std::string prefix = "")
+      : tensors_(tensors), prefix_(std::move(prefix)) {}
 
   // A writer whose keys start with "<prefix><name>/".
-  StateWriter sub(const std::string& name) const { return StateWriter(tensors_, prefix_ + name + "/"); }
+  StateWriter sub(const std::string& name) const {
+    return StateWriter(tensors_, prefix_ + name + "/");
+  }
   const std::string& prefix() const { return prefix_; }
   TensorMap& tensors() const { return tensors_; }
 
@@ -64,7 +67,11 @@ class StateWriter {
 
   void put_rng(const std::string& name, const Rng& rng) {
     const Rng::State& s = rng.state();
-    const uint64_t words[6] = {s.s[0], s.s[1], s.s[2], s.s[3], s.has_spare_normal ? 1u : 0u,
+    const uint64_t words[6] = {s.s[0],
+                               s.s[1],
+                               s.s[2],
+                               s.s[3],
+                               s.has_spare_normal ? 1u : 0u,
                                std::bit_cast<uint64_t>(s.spare_normal)};
     put_span<uint64_t>(name, words);
   }
@@ -79,7 +86,9 @@ class StateReader {
   StateReader(const TensorMap& tensors, std::string prefix = "")
       : tensors_(tensors), prefix_(std::move(prefix)) {}
 
-  StateReader sub(const std::string& name) const { return StateReader(tensors_, prefix_ + name + "/"); }
+  StateReader sub(const std::string& name) const {
+    return StateReader(tensors_, prefix_ + name + "/");
+  }
   const std::string& prefix() const { return prefix_; }
   bool has(const std::string& name) const { return tensors_.count(prefix_ + name) != 0; }
 
@@ -132,7 +141,7 @@ class StateReader {
     rng.set_state(s);
   }
 
- // The stored tensor (rlrun's Eigen helpers read matrices through it).
+  // The stored tensor (rlrun's Eigen helpers read matrices through it).
   const Tensor& find(const std::string& name, DType dtype) const {
     const auto it = tensors_.find(prefix_ + name);
     if (it == tensors_.end())

@@ -154,7 +154,8 @@ py::array_t<float> compute_goal_reward(PyEnv& self, const py::object& achieved,
   const Array a = Array::ensure(achieved), d = Array::ensure(desired);
   if (!a || !d) throw py::type_error("compute_reward: goals must be numeric arrays");
   if (a.ndim() != d.ndim() || a.ndim() < 1 || a.ndim() > 2)
-    throw py::value_error("compute_reward: goals must both have shape (goal_dim,) or (n, goal_dim)");
+    throw py::value_error(
+        "compute_reward: goals must both have shape (goal_dim,) or (n, goal_dim)");
   for (py::ssize_t i = 0; i < a.ndim(); ++i)
     if (a.shape(i) != d.shape(i)) throw py::value_error("compute_reward: goal shapes differ");
   const Eigen::Index n = a.ndim() == 2 ? a.shape(0) : 1;
@@ -184,7 +185,8 @@ void bind_env(py::module_& m) {
       .def("info", [](PyEnv& self) { return info_dict(self.env().info()); })
       .def_property_readonly("is_goal_env",
                              [](PyEnv& self) { return goal_env_of(self.env()) != nullptr; })
-      .def("compute_reward", &compute_goal_reward, py::arg("achieved_goal"), py::arg("desired_goal"))
+      .def("compute_reward", &compute_goal_reward, py::arg("achieved_goal"),
+           py::arg("desired_goal"))
       .def("render", &PyEnv::render)
       .def("close", &PyEnv::close)
       .def_property_readonly("closed", [](const PyEnv& self) { return !self.env_; })

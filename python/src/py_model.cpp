@@ -35,13 +35,13 @@ py::array_t<float> predict(ModelPolicy& model,
 
 void bind_model(py::module_& m) {
   py::class_<ModelPolicy>(m, "Model")
-      .def(py::init([](const std::string& path, const std::vector<std::string>& overrides,
-                       bool trust) {
-             // trust=True: runtime/io/model_trust.hpp, as the command line's --trust.
-             const ModelTrust accepted{trust, "trust=True"};
-             load_accepted_plugins(path, accepted, module_registry());
-             return std::make_unique<ModelPolicy>(path, module_registry(), overrides, accepted);
-           }),
+      .def(py::init(
+               [](const std::string& path, const std::vector<std::string>& overrides, bool trust) {
+                 // trust=True: runtime/io/model_trust.hpp, as the command line's --trust.
+                 const ModelTrust accepted{trust, "trust=True"};
+                 load_accepted_plugins(path, accepted, module_registry());
+                 return std::make_unique<ModelPolicy>(path, module_registry(), overrides, accepted);
+               }),
            py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
            py::arg("trust") = false)
       .def("predict", &predict, py::arg("obs"), py::arg("deterministic"))

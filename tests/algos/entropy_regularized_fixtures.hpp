@@ -174,13 +174,13 @@ inline void check_sb3_tensor_names(const TensorMap& t) {
 }
 
 inline Experiment pendulum_experiment(const std::string& algo, const std::string& out_dir,
-                                      int64_t steps, uint64_t seed,
-                                      const std::string& algo_extra) {
+                                      int64_t steps, uint64_t seed, const std::string& algo_extra) {
   const std::string yaml = "run: {name: smoke, seed: " + std::to_string(seed) +
                            ", total_timesteps: " + std::to_string(steps) + ", out_dir: " + out_dir +
                            ", console_interval: 1000000}\n"
                            "env: {id: Pendulum-v1}\n"
-                           "algo: {id: " + algo + algo_extra + "}\n";
+                           "algo: {id: " +
+                           algo + algo_extra + "}\n";
   return parse_experiment(ConfigNode::load_string(yaml, "smoke.yaml"), builtin_registry());
 }
 

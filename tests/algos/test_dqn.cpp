@@ -6,10 +6,10 @@
 // ([.bench]).
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <fstream>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <vector>
 
 #include "fakes/constant_env.hpp"
@@ -501,8 +501,8 @@ TEST_CASE(
     "[algos][dqn]") {
   testing::TempDir dir("dqn_smoke");
   const auto run = [&](uint64_t seed) {
-    const TrainOutcome outcome =
-        train_experiment(cartpole_experiment(dir.str(), 600, seed), builtin_registry(), testing::test_execution());
+    const TrainOutcome outcome = train_experiment(cartpole_experiment(dir.str(), 600, seed),
+                                                  builtin_registry(), testing::test_execution());
     CHECK(outcome.timesteps == 608);  // whole train_freq rounds of 8 steps x 2 envs, as SB3
     return read_model(outcome.model_path);
   };
@@ -560,9 +560,9 @@ namespace {
 double train_and_evaluate(const std::string& config, uint64_t seed) {
   testing::TempDir dir("dqn_slow_" + std::to_string(seed));
   Registry registry = make_builtin_registry();
-  Experiment e = load_experiment(std::string(RLRUN_SOURCE_DIR) + "/configs/" + config,
-                                 {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed)},
-                                 registry);
+  Experiment e =
+      load_experiment(std::string(RLRUN_SOURCE_DIR) + "/configs/" + config,
+                      {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed)}, registry);
   const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   // A config that evaluates during training is scored by the best model it kept (the zoo's
   // --load-best; configs/cartpole_dqn.yaml).

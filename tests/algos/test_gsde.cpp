@@ -3,8 +3,8 @@
 // reset), SAC's actor gradient through the noise and the latent features against a double
 // re-implementation, SB3's tensor names, deterministic actions, the config check, and (hidden)
 // the rl-zoo learning bars.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -167,10 +167,18 @@ ActorOut gsde_actor(const Mlp& net, const Eigen::VectorXd& p, const Eigen::Matri
       a = w * a + b;
       for (Eigen::Index k = 0; k < a.size(); ++k) {
         switch (net.activation()) {
-          case Activation::kReLU: a(k) = std::max(a(k), 0.0); break;
-          case Activation::kTanh: a(k) = std::tanh(a(k)); break;
-          case Activation::kELU: a(k) = a(k) > 0.0 ? a(k) : std::expm1(a(k)); break;
-          case Activation::kLeakyReLU: a(k) = a(k) > 0.0 ? a(k) : kLeakyReLUSlope * a(k); break;
+          case Activation::kReLU:
+            a(k) = std::max(a(k), 0.0);
+            break;
+          case Activation::kTanh:
+            a(k) = std::tanh(a(k));
+            break;
+          case Activation::kELU:
+            a(k) = a(k) > 0.0 ? a(k) : std::expm1(a(k));
+            break;
+          case Activation::kLeakyReLU:
+            a(k) = a(k) > 0.0 ? a(k) : kLeakyReLUSlope * a(k);
+            break;
         }
       }
     } else {
@@ -212,8 +220,8 @@ TEST_CASE(
     "[algos][gsde][gradcheck]") {
   const int n = GENERATE(8, 40);  // 40: split over both cores (SplitMlp)
   // The latent's gradient passes each activation's derivative (Mlp::add_hidden_gradient).
-  const Activation activation = GENERATE(Activation::kReLU, Activation::kTanh, Activation::kELU,
-                                         Activation::kLeakyReLU);
+  const Activation activation =
+      GENERATE(Activation::kReLU, Activation::kTanh, Activation::kELU, Activation::kLeakyReLU);
   INFO("batch " << n << ", " << activation_name(activation));
   const int obs_dim = 3, act_dim = 2;
   SAC::Config cfg;
@@ -386,8 +394,8 @@ TEST_CASE("gSDE runs through the registry log train/std and evaluate determinist
     CHECK(model.tensors.count(std::string(algo) == "SAC" ? "actor.log_std" : "log_std") == 1);
     const Experiment stored = experiment_from_model(model, builtin_registry());
     EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
-    auto loaded = algorithm_from_model(model, stored, builtin_registry(),
-                                       env->observation_space(), env->action_space());
+    auto loaded = algorithm_from_model(model, stored, builtin_registry(), env->observation_space(),
+                                       env->action_space());
     const EvalResult r1 = evaluate_policy(*loaded, *env, 1, true, 7);
     const EvalResult r2 = evaluate_policy(*loaded, *env, 1, true, 7);
     CHECK(r1.returns == r2.returns);
@@ -409,8 +417,8 @@ double train_and_evaluate(const std::string& name, const std::string& yaml, uint
   testing::TempDir dir("gsde_slow_" + name + std::to_string(seed));
   const std::string full = "run: {name: " + name + ", seed: " + std::to_string(seed) +
                            ", out_dir: " + dir.str() + ", console_interval: 1000000, " + yaml;
-  const Experiment e = parse_experiment(ConfigNode::load_string(full, name + ".yaml"),
-                                        builtin_registry());
+  const Experiment e =
+      parse_experiment(ConfigNode::load_string(full, name + ".yaml"), builtin_registry());
   const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   const ModelFile model = read_model(outcome.model_path);
   const Experiment stored = experiment_from_model(model, builtin_registry());

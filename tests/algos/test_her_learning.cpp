@@ -46,7 +46,8 @@ double final_success(const std::string& run_dir) {
 TEST_CASE("HER: DQN learns 15-bit flipping with HER (success 1) and not without (success 0)",
           "[her][cli]") {
   TempDir dir("her_bitflip_" + std::to_string(getpid()));
-  const std::string settings = " --set eval.freq=20000 --set eval.n_episodes=50 --set run.out_dir=" + dir.str();
+  const std::string settings =
+      " --set eval.freq=20000 --set eval.n_episodes=50 --set run.out_dir=" + dir.str();
   const auto her = run_rlrun("train " + kConfigs + "bitflipping_dqn_her.yaml" + settings);
   INFO(her.output);
   REQUIRE(her.exit_code == 0);
@@ -56,8 +57,8 @@ TEST_CASE("HER: DQN learns 15-bit flipping with HER (success 1) and not without 
   REQUIRE(plain.exit_code == 0);
   CHECK(final_success(dir / "bitflipping_dqn/seed1") == 0.0);
   // The saved model acts like that in `rlrun eval` too.
-  const auto eval = run_rlrun("eval --model " + dir / "bitflipping_dqn_her/seed1/model.zip" +
-                              " --episodes 20");
+  const auto eval =
+      run_rlrun("eval --model " + dir / "bitflipping_dqn_her/seed1/model.zip" + " --episodes 20");
   INFO(eval.output);
   CHECK(eval.output.find("success_rate = 1.000") != std::string::npos);
 }
@@ -80,8 +81,9 @@ eval: {freq: 2500, n_episodes: 50}
   // SAC needs longer here: it only has to train with the HER buffer.
   for (const std::string algo : {"TD3", "DDPG", "SAC"}) {
     const std::string out = dir / algo;
-    const auto run = run_rlrun("train " + config + " --set algo.id=" + algo + " --set run.out_dir=" + out +
-                               (algo == "SAC" ? " --set run.total_timesteps=1000" : ""));
+    const auto run =
+        run_rlrun("train " + config + " --set algo.id=" + algo + " --set run.out_dir=" + out +
+                  (algo == "SAC" ? " --set run.total_timesteps=1000" : ""));
     INFO(algo << "\n" << run.output);
     REQUIRE(run.exit_code == 0);
     if (algo != "SAC") CHECK(final_success(out + "/bitflip_box/seed2") >= 0.9);
@@ -95,7 +97,8 @@ TEST_CASE("HER with env.normalize: relabelled from originals, normalised when sa
   TempDir dir("her_normalize_" + std::to_string(getpid()));
   const auto run = run_rlrun("train " + kConfigs +
                              "bitflipping_dqn_her.yaml --set 'env.normalize={norm_obs: false}'"
-                             " --set eval.freq=20000 --set eval.n_episodes=50 --set run.out_dir=" + dir.str());
+                             " --set eval.freq=20000 --set eval.n_episodes=50 --set run.out_dir=" +
+                             dir.str());
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
   CHECK(final_success(dir / "bitflipping_dqn_her/seed1") == 1.0);
@@ -105,27 +108,33 @@ TEST_CASE("HER: refusals before anything trains", "[her][cli]") {
   TempDir dir("her_refusals_" + std::to_string(getpid()));
   const std::string out = " --set run.out_dir=" + dir.str();
   // Not a goal-conditioned env.
-  auto r = run_rlrun("train " + kConfigs + "cartpole_dqn.yaml --set algo.replay_buffer_class=HerReplayBuffer" + out);
+  auto r = run_rlrun("train " + kConfigs +
+                     "cartpole_dqn.yaml --set algo.replay_buffer_class=HerReplayBuffer" + out);
   CHECK(r.exit_code != 0);
   CHECK(r.output.find("HerReplayBuffer needs a goal-conditioned env") != std::string::npos);
   // A misspelt strategy is named with the right one.
-  r = run_rlrun("train " + kConfigs +
-                "bitflipping_dqn_her.yaml --set algo.replay_buffer_kwargs.goal_selection_strategy=futur" + out);
+  r = run_rlrun(
+      "train " + kConfigs +
+      "bitflipping_dqn_her.yaml --set algo.replay_buffer_kwargs.goal_selection_strategy=futur" +
+      out);
   CHECK(r.exit_code != 0);
   CHECK(r.output.find("did you mean 'future'") != std::string::npos);
   // Sampling before any episode ended: SB3's error, with the setting to change.
-  r = run_rlrun("train " + kConfigs + "bitflipping_dqn_her.yaml --set algo.learning_starts=0" + out);
+  r = run_rlrun("train " + kConfigs + "bitflipping_dqn_her.yaml --set algo.learning_starts=0" +
+                out);
   CHECK(r.exit_code != 0);
   CHECK(r.output.find("learning_starts") != std::string::npos);
 }
 
-TEST_CASE("HER: SAC with the zoo's FetchReach settings learns GripperReach-v0", "[her][cli][gripper_goal]") {
+TEST_CASE("HER: SAC with the zoo's FetchReach settings learns GripperReach-v0",
+          "[her][cli][gripper_goal]") {
   // configs/gripper_reach_sac_her.yaml reaches success 1.0 in evaluations from 6000-8000 steps
   // (seeds 1-3) and over 100 episodes after its 2e4; half the budget keeps this test short.
   TempDir dir("her_reach_" + std::to_string(getpid()));
   const auto run = run_rlrun("train " + kConfigs +
                              "gripper_reach_sac_her.yaml --set run.total_timesteps=10000"
-                             " --set eval.freq=10000 --set eval.n_episodes=50 --set run.out_dir=" + dir.str());
+                             " --set eval.freq=10000 --set eval.n_episodes=50 --set run.out_dir=" +
+                             dir.str());
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
   CHECK(final_success(dir / "gripper_reach_sac_her/seed1") >= 0.9);

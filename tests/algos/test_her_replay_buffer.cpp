@@ -23,7 +23,8 @@ namespace {
 // `length` steps, terminated or truncated. Reward -1 unless |achieved - desired| < 0.5.
 class LineGoalEnv : public EnvBase, public GoalEnv {
  public:
-  LineGoalEnv(int marker, int length, bool terminate) : marker_(marker), length_(length), terminate_(terminate) {
+  LineGoalEnv(int marker, int length, bool terminate)
+      : marker_(marker), length_(length), terminate_(terminate) {
     observation_space_ = Space::dict({{"achieved_goal", Space::box(-1e6f, 1e6f, {1})},
                                       {"desired_goal", Space::box(-1e6f, 1e6f, {1})},
                                       {"observation", Space::box(-1e6f, 1e6f, {2})}});
@@ -51,8 +52,8 @@ class LineGoalEnv : public EnvBase, public GoalEnv {
  private:
   void write(std::span<float> obs) const {
     obs[0] = static_cast<float>(position_);  // achieved_goal
-    obs[1] = 100.0f;                          // desired_goal
-    obs[2] = static_cast<float>(marker_);     // observation
+    obs[1] = 100.0f;                         // desired_goal
+    obs[2] = static_cast<float>(marker_);    // observation
     obs[3] = static_cast<float>(episode_);
   }
   int marker_, length_;
@@ -94,10 +95,12 @@ struct Setup {
 
 }  // namespace
 
-TEST_CASE("HER: future goals come from the transition onwards, final from the end, episode from anywhere",
-          "[algos][her]") {
+TEST_CASE(
+    "HER: future goals come from the transition onwards, final from the end, episode from anywhere",
+    "[algos][her]") {
   constexpr int kLength = 5;
-  for (const auto selection : {GoalSelection::kFuture, GoalSelection::kFinal, GoalSelection::kEpisode}) {
+  for (const auto selection :
+       {GoalSelection::kFuture, GoalSelection::kFinal, GoalSelection::kEpisode}) {
     Setup s({kLength}, 100, selection);
     s.steps(4 * kLength);
     Rng rng(7);
@@ -108,7 +111,7 @@ TEST_CASE("HER: future goals come from the transition onwards, final from the en
     std::set<int> goals_seen;
     std::set<std::pair<int, int>> future_pairs;
     for (int j = 0; j < 2000; ++j) {
-      const float t = batch.obs(kAchieved, j);   // position before the step
+      const float t = batch.obs(kAchieved, j);  // position before the step
       const float g = batch.obs(kDesired, j);
       CHECK(batch.next_obs(kAchieved, j) == t + 1);
       CHECK(batch.next_obs(kDesired, j) == g);  // the same goal in obs and next_obs
@@ -132,13 +135,15 @@ TEST_CASE("HER: future goals come from the transition onwards, final from the en
         CHECK(g <= kLength);
       }
     }
-    if (selection == GoalSelection::kFuture) CHECK(future_pairs.size() == 15);  // every (t, g >= t+1)
+    if (selection == GoalSelection::kFuture)
+      CHECK(future_pairs.size() == 15);  // every (t, g >= t+1)
     if (selection == GoalSelection::kFinal) CHECK(goals_seen == std::set<int>{kLength});
     if (selection == GoalSelection::kEpisode) CHECK(goals_seen == std::set<int>{1, 2, 3, 4, 5});
   }
 }
 
-TEST_CASE("HER: unfinished and overwritten episodes are not sampled, the buffer wraps", "[algos][her]") {
+TEST_CASE("HER: unfinished and overwritten episodes are not sampled, the buffer wraps",
+          "[algos][her]") {
   // 12 slots, episodes of 5: after 3 episodes + 2 steps the third episode wrapped (slots 10,
   // 11, 0, 1, 2), the first lost its start (slots 3, 4 left: not sampled), the fourth is
   // unfinished.
@@ -163,7 +168,8 @@ TEST_CASE("HER: unfinished and overwritten episodes are not sampled, the buffer 
   CHECK(by_episode[3] > 1200);
 }
 
-TEST_CASE("HER: several envs keep their own episodes, terminations do not bootstrap", "[algos][her]") {
+TEST_CASE("HER: several envs keep their own episodes, terminations do not bootstrap",
+          "[algos][her]") {
   Setup s({3, 5}, 60, GoalSelection::kEpisode, /*terminate=*/true);
   s.steps(15);
   Rng rng(11);
@@ -199,10 +205,12 @@ TEST_CASE("HER: n_sampled_goal 0 samples real transitions only, errors, exact st
   CHECK_THROWS_AS(parse_goal_selection("random"), std::invalid_argument);
   CHECK(parse_goal_selection("final") == GoalSelection::kFinal);
   const LineGoalEnv goals(0, 3, false);
-  CHECK_THROWS_WITH(HerReplayBuffer(10, 1, Space::box(0.0f, 1.0f, {3}), 1, &goals, 4, GoalSelection::kFuture),
-                    Catch::Contains("Dict observation"));
-  CHECK_THROWS_WITH(HerReplayBuffer(10, 1, Space::dict({{"achieved_goal", Space::box(0.0f, 1.0f, {2})},
-                                                        {"observation", Space::box(0.0f, 1.0f, {2})}}),
+  CHECK_THROWS_WITH(
+      HerReplayBuffer(10, 1, Space::box(0.0f, 1.0f, {3}), 1, &goals, 4, GoalSelection::kFuture),
+      Catch::Contains("Dict observation"));
+  CHECK_THROWS_WITH(HerReplayBuffer(10, 1,
+                                    Space::dict({{"achieved_goal", Space::box(0.0f, 1.0f, {2})},
+                                                 {"observation", Space::box(0.0f, 1.0f, {2})}}),
                                     1, &goals, 4, GoalSelection::kFuture),
                     Catch::Contains("desired_goal"));
 
@@ -246,9 +254,13 @@ TEST_CASE("HER: restored episode bookkeeping must be what add() writes (no unwri
   // States the buffer writes itself are accepted: not full, wrapped, an episode longer than
   // the buffer, one exactly as long, two envs.
   for (const auto& [lengths, size, steps] :
-       std::vector<std::tuple<std::vector<int>, int64_t, int>>{
-           {{4}, 40, 10}, {{5}, 12, 17}, {{15}, 10, 17}, {{10}, 10, 10}, {{10}, 10, 23}, {{3, 5}, 60, 15},
-           {{3, 5}, 16, 45}}) {
+       std::vector<std::tuple<std::vector<int>, int64_t, int>>{{{4}, 40, 10},
+                                                               {{5}, 12, 17},
+                                                               {{15}, 10, 17},
+                                                               {{10}, 10, 10},
+                                                               {{10}, 10, 23},
+                                                               {{3, 5}, 60, 15},
+                                                               {{3, 5}, 16, 45}}) {
     Setup s(lengths, size, GoalSelection::kFuture);
     s.steps(steps);
     INFO(size << " slots, " << steps << " steps");
@@ -271,17 +283,29 @@ TEST_CASE("HER: restored episode bookkeeping must be what add() writes (no unwri
   refused([](TensorMap& t) { entry(t, "current_ep_start", 0) = 7; },
           "is recorded as another episode");
   refused([](TensorMap& t) { entry(t, "ep_length", 0) = 12; }, "outside the 10 written slots");
-  refused([](TensorMap& t) { entry(t, "ep_length", 20) = 1; entry(t, "ep_start", 20) = 20; },
-          "slot 20 records an episode of 1 from slot 20, outside the 10 written slots");
+  refused(
+      [](TensorMap& t) {
+        entry(t, "ep_length", 20) = 1;
+        entry(t, "ep_start", 20) = 20;
+      },
+      "slot 20 records an episode of 1 from slot 20, outside the 10 written slots");
   refused([](TensorMap& t) { entry(t, "ep_start", 2) = 1; },
           "slot 0 records an episode of 4 from slot 0, but its slot 2 records another");
   refused([](TensorMap& t) { entry(t, "ep_length", 3) = 3; }, "but its slot 3 records another");
-  refused([](TensorMap& t) { entry(t, "ep_start", 5) = 3; entry(t, "ep_length", 5) = 1; },
-          "slot 4 records an episode of 4 from slot 4, but its slot 5 records another");
+  refused(
+      [](TensorMap& t) {
+        entry(t, "ep_start", 5) = 3;
+        entry(t, "ep_length", 5) = 1;
+      },
+      "slot 4 records an episode of 4 from slot 4, but its slot 5 records another");
   refused([](TensorMap& t) { entry(t, "ep_length", 1) = 0; },
           "slot 0 records an episode of 4 from slot 0, but its slot 1 records another");
-  refused([](TensorMap& t) { entry(t, "ep_length", 9) = 0; entry(t, "ep_start", 9) = 0; },
-          "slot 9 of the unfinished episode from slot 8 is recorded as another episode");
+  refused(
+      [](TensorMap& t) {
+        entry(t, "ep_length", 9) = 0;
+        entry(t, "ep_start", 9) = 0;
+      },
+      "slot 9 of the unfinished episode from slot 8 is recorded as another episode");
   refused([](TensorMap& t) { entry(t, "ep_length", 20) = -1; },
           "slot 20 records an episode of -1 from slot 0, outside the 10 written slots");
   refused([](TensorMap& t) { t.at("buffer/full").data<int64_t>()[0] = 2; }, "'buffer/full' is 2");
@@ -289,16 +313,18 @@ TEST_CASE("HER: restored episode bookkeeping must be what add() writes (no unwri
   // Full: the slot at the write position, when valid, starts its episode (the oldest data).
   Setup wrapped({5}, 12, GoalSelection::kFuture);
   wrapped.steps(17);  // pos 5: [5, 10) the oldest episode, [10, 15) wrapped, slots 3, 4 open
-  CHECK_THROWS_WITH(restore_edited(wrapped, 12, [](TensorMap& t) {
-                      entry(t, "current_ep_start", 0) = 5;  // no unfinished episode
-                      for (size_t slot = 3; slot < 8; ++slot) {
-                        entry(t, "ep_start", slot) = 3;
-                        entry(t, "ep_length", slot) = 5;
-                      }
-                    }),
+  CHECK_THROWS_WITH(restore_edited(wrapped, 12,
+                                   [](TensorMap& t) {
+                                     entry(t, "current_ep_start", 0) = 5;  // no unfinished episode
+                                     for (size_t slot = 3; slot < 8; ++slot) {
+                                       entry(t, "ep_start", slot) = 3;
+                                       entry(t, "ep_length", slot) = 5;
+                                     }
+                                   }),
                     Catch::Contains("slot 5 records an episode of 5 from slot 3, but the write "
                                     "position is inside it"));
   // Slot 0 of the episode that wrapped (slots 10, 11, 0, 1, 2), said to start at slot 1.
-  CHECK_THROWS_WITH(restore_edited(wrapped, 12, [](TensorMap& t) { entry(t, "ep_start", 0) = 1; }),
-                    Catch::Contains("slot 0 records an episode of 5 from slot 1 that does not cover it"));
+  CHECK_THROWS_WITH(
+      restore_edited(wrapped, 12, [](TensorMap& t) { entry(t, "ep_start", 0) = 1; }),
+      Catch::Contains("slot 0 records an episode of 5 from slot 1 that does not cover it"));
 }

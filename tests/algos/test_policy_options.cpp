@@ -20,15 +20,15 @@ using namespace rlrun;
 namespace {
 
 template <class C>
-C parse(const std::string &yaml) {
+C parse(const std::string& yaml) {
   return read_config<C>(ConfigNode::load_string(yaml, "exp.yaml"));
 }
 
 template <class C>
-std::string error_of(const std::string &yaml) {
+std::string error_of(const std::string& yaml) {
   try {
     parse<C>(yaml);
-  } catch (const ConfigError &e) {
+  } catch (const ConfigError& e) {
     return e.what();
   }
   return "";
@@ -36,7 +36,7 @@ std::string error_of(const std::string &yaml) {
 
 // The resolved config's text of one key (flow style), e.g. "{pi: [32], vf: [64, 64]}".
 template <class C>
-std::string resolved(const C &config, const std::string &section, const std::string &key) {
+std::string resolved(const C& config, const std::string& section, const std::string& key) {
   YAML::Emitter out;
   out.SetMapFormat(YAML::Flow);
   out.SetSeqFormat(YAML::Flow);
@@ -173,7 +173,7 @@ TEST_CASE("ActorCriticPolicy: separate pi / vf towers under SB3's state_dict nam
   TensorMap l;
   linear.save(l);
   CHECK(l.at("action_net.weight").shape == Shape{4, 3});
-  for (const auto &[name, tensor] : l) CHECK(name.rfind("mlp_extractor.policy_net", 0) != 0);
+  for (const auto& [name, tensor] : l) CHECK(name.rfind("mlp_extractor.policy_net", 0) != 0);
   ActorCriticPolicy reloaded(Space::box(-1.0f, 1.0f, {3}), Space::discrete(4), cfg, rng);
   reloaded.load(l);
   CHECK(reloaded.actor().params() == linear.actor().params());
@@ -191,7 +191,7 @@ TEST_CASE(
   ActorCriticPolicy policy(Space::box(-1.0f, 1.0f, {16}), Space::box(-1.0f, 1.0f, {3}), cfg, rng);
   // SB3 _build skips init_weights: every layer, action_net and value_net included, keeps
   // nn.Linear.reset_parameters: weight and bias U(-1/sqrt(fan_in), 1/sqrt(fan_in)).
-  for (const Mlp *net : {&policy.actor(), &policy.critic()}) {
+  for (const Mlp* net : {&policy.actor(), &policy.critic()}) {
     for (int l = 0; l < net->num_layers(); ++l) {
       const double bound = 1.0 / std::sqrt(static_cast<double>(net->layer_in(l)));
       INFO("layer " << l << " of " << net->num_layers());
@@ -218,7 +218,7 @@ TEST_CASE(
 TEST_CASE("SAC, TD3, DDPG: the actor takes net_arch.pi, each critic net_arch.qf",
           "[algos][policy_options]") {
   const AlgorithmSetup setup{Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {1}), 1, 5};
-  const auto shapes_of = [](const Algorithm &algo) {
+  const auto shapes_of = [](const Algorithm& algo) {
     TensorMap t;
     algo.save(t);
     return t;
@@ -264,7 +264,7 @@ namespace {
 // Builds an algorithm from `yaml`, saves it, rebuilds it from its resolved config (as a model
 // file's config.yaml is read back) with another seed, loads the tensors: same actions.
 template <class A>
-void check_save_load_same_actions(const std::string &yaml, const AlgorithmSetup &setup) {
+void check_save_load_same_actions(const std::string& yaml, const AlgorithmSetup& setup) {
   const typename A::Config config = parse<typename A::Config>(yaml);
   A original(config, setup);
   TensorMap tensors;

@@ -78,8 +78,8 @@ void check_policy_gradient(const Space& obs_space, const Space& act_space,
   const Mlp& actor = policy.actor();
   const int head = actor.num_layers() - 1;
   const Eigen::Index hidden_params =
-      actor.num_params() - static_cast<Eigen::Index>(actor.layer_out(head)) *
-                               (actor.layer_in(head) + 1);
+      actor.num_params() -
+      static_cast<Eigen::Index>(actor.layer_out(head)) * (actor.layer_in(head) + 1);
   bool actor_block = true;
   for (ParamBlock block : policy.param_blocks()) {
     const Eigen::Index first = actor_block && use_sde ? hidden_params : 0;
@@ -136,8 +136,8 @@ TEST_CASE("PPO loss gradient through the policy matches finite differences (Box,
   ActorCriticPolicyConfig cfg = small_policy();
   cfg.full_std = full_std;
   cfg.log_std_init = -0.5;
-  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}), cfg, 0.2f,
-                        0.1f, 0.05f, true);
+  check_policy_gradient(Space::box(-1.0f, 1.0f, {3}), Space::box(-2.0f, 2.0f, {2}), cfg, 0.2f, 0.1f,
+                        0.05f, true);
 }
 
 TEST_CASE("PPO loss gradient through the policy matches finite differences (MultiDiscrete)",
@@ -223,8 +223,8 @@ TEST_CASE("PPO loss terms on a hand-made batch", "[algos][ppo]") {
   ov << 1, 2;
   adv << 1, -1;
   ret << 2, 2;
-  const PpoLossTerms t = ppo_loss({v, lp, h, olp, ov, adv, ret}, 0.2f, std::nullopt, 0.1f, 0.5f,
-                                  gv, gl, ge);
+  const PpoLossTerms t =
+      ppo_loss({v, lp, h, olp, ov, adv, ret}, 0.2f, std::nullopt, 0.1f, 0.5f, gv, gl, ge);
   // Sample 0: A=1, r=1.5 -> min(1.5, 1.2) = 1.2 (clipped: no gradient).
   // Sample 1: A=-1, r=0.5 -> min(-0.5, -0.8) = -0.8 (clipped: no gradient).
   CHECK(t.policy_loss == Approx(-(1.2 - 0.8) / 2));

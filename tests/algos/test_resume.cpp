@@ -1,8 +1,8 @@
 // Exact resume, algorithm side (issue 4): stopping at a safe point, saving the model, the
 // training state and the envs, and continuing in a fresh process-like copy (new algorithm,
 // new envs, state loaded) ends with the same bits as the uninterrupted run.
-#include <catch2/catch.hpp>
 #include <yaml-cpp/yaml.h>
+#include <catch2/catch.hpp>
 
 #include "rlrun/algos/a2c/a2c.hpp"
 #include "rlrun/algos/ddpg/ddpg.hpp"
@@ -81,8 +81,8 @@ Eigen::VectorXf resume(Algo& algo, VecEnv& env, int64_t total, const Snapshot& s
 // continued to `total` by a fresh copy built with another seed (so everything must come from
 // the checkpoint). Both must end with the same weights. Returns the step of the snapshot.
 template <class Algo>
-int64_t check_exact_resume(const typename Algo::Config& cfg, const std::string& env_id,
-                           int n_envs, uint64_t seed, int64_t total, int64_t save_at) {
+int64_t check_exact_resume(const typename Algo::Config& cfg, const std::string& env_id, int n_envs,
+                           uint64_t seed, int64_t total, int64_t save_at) {
   Snapshot snapshot;
   int64_t saved_at = 0;
   VecEnv env1 = make_envs(env_id, n_envs, seed);
@@ -91,8 +91,8 @@ int64_t check_exact_resume(const typename Algo::Config& cfg, const std::string& 
   const Eigen::VectorXf expected =
       train_and_snapshot(uninterrupted, env1, total, save_at, snapshot, saved_at);
   VecEnv env2 = make_envs(env_id, n_envs, seed);
-  Algo resumed(cfg, AlgorithmSetup{env2.observation_space(), env2.action_space(), n_envs,
-                                   seed + 1000});
+  Algo resumed(cfg,
+               AlgorithmSetup{env2.observation_space(), env2.action_space(), n_envs, seed + 1000});
   const Eigen::VectorXf actual = resume(resumed, env2, total, snapshot);
   CHECK(resumed.num_timesteps() == total);
   REQUIRE(actual.size() == expected.size());
@@ -115,9 +115,10 @@ TEST_CASE("PPO resumed from a safe point ends with the uninterrupted run's weigh
   CHECK(check_exact_resume<PPO>(cfg, id, 2, 7, 2048, 900) == 1024);
 }
 
-TEST_CASE("A2C (RMSprop and Adam) resumed from a safe point ends with the uninterrupted run's "
-          "weights",
-          "[algos][resume]") {
+TEST_CASE(
+    "A2C (RMSprop and Adam) resumed from a safe point ends with the uninterrupted run's "
+    "weights",
+    "[algos][resume]") {
   A2C::Config cfg;
   cfg.use_rms_prop = GENERATE(true, false);
   INFO("use_rms_prop " << cfg.use_rms_prop);
@@ -153,9 +154,10 @@ TEST_CASE("PPO and A2C with gSDE resume from a safe point to the uninterrupted r
   CHECK(check_exact_resume<A2C>(a2c, "Pendulum-v1", 2, 6, 400, 200) == 200);
 }
 
-TEST_CASE("SAC and TQC (plain and gSDE) resume from a safe point to the uninterrupted run's "
-          "weights",
-          "[algos][resume][gsde][tqc]") {
+TEST_CASE(
+    "SAC and TQC (plain and gSDE) resume from a safe point to the uninterrupted run's "
+    "weights",
+    "[algos][resume][gsde][tqc]") {
   const bool use_sde = GENERATE(false, true);
   INFO("use_sde " << use_sde);
   const auto small = [&](auto cfg) {

@@ -79,9 +79,8 @@ TEST_CASE(
         actor_sample(sac.actor().net(), start.actor, act_dim, b.next_obs.col(j).cast<double>(),
                      noise.col(j).cast<double>());
     const Eigen::VectorXd x = concat(b.next_obs.col(j).cast<double>(), a);
-    const double min_q =
-        std::min(q_value(sac.critic_target(), 0, start.targets[0], x),
-                 q_value(sac.critic_target(), 1, start.targets[1], x));
+    const double min_q = std::min(q_value(sac.critic_target(), 0, start.targets[0], x),
+                                  q_value(sac.critic_target(), 1, start.targets[1], x));
     const double expected = b.rewards(j) + (1.0 - b.dones(j)) * 0.9 * (min_q - alpha * logp);
     INFO("sample " << j);
     CHECK(y(0, j) == Approx(expected).epsilon(1e-4).margin(1e-5));
@@ -123,9 +122,10 @@ TEST_CASE(
     const auto loss_of = [&](const Eigen::VectorXd& p) {
       double sum = 0.0;
       for (int j = 0; j < n; ++j) {
-        const double d = q_value(sac.critic(), i, p, concat(b.obs.col(j).cast<double>(),
-                                                            b.actions.col(j).cast<double>())) -
-                         y(0, j);
+        const double d =
+            q_value(sac.critic(), i, p,
+                    concat(b.obs.col(j).cast<double>(), b.actions.col(j).cast<double>())) -
+            y(0, j);
         sum += d * d;
       }
       return 0.5 * sum / n;
@@ -145,8 +145,7 @@ TEST_CASE(
   CHECK(sac.actor().net().bias_grad(last)(act_dim) != 0.0f);
 }
 
-TEST_CASE("SAC entropy coefficient: parsing, initial value and target",
-          "[algos][sac]") {
+TEST_CASE("SAC entropy coefficient: parsing, initial value and target", "[algos][sac]") {
   SECTION("auto starts at 1 and targets -dim(A)") {
     EntropyCoefficient e("auto", "auto", 3);
     CHECK(e.learned());
@@ -317,8 +316,8 @@ TEST_CASE("SAC update micro-benchmark (rl-zoo Pendulum sizes)", "[.bench][sac_be
       "%.0f us wall, "
       "%.0f us CPU, %.1f MFLOP, %.1f GFLOP/s wall (%.0f%% of 102), %.1f GFLOP/s per CPU-s "
       "(%.0f%%)\n",
-      testing::test_thread_pool().threads(), best * 1e6, best_cpu * 1e6, flops * 1e-6, flops / best * 1e-9,
-      flops / best * 1e-9 / 102 * 100, flops / best_cpu * 1e-9,
+      testing::test_thread_pool().threads(), best * 1e6, best_cpu * 1e6, flops * 1e-6,
+      flops / best * 1e-9, flops / best * 1e-9 / 102 * 100, flops / best_cpu * 1e-9,
       flops / best_cpu * 1e-9 / 102 * 100);
   CHECK(sac.actor().net().params().allFinite());
 }

@@ -131,7 +131,8 @@ TEST_CASE("TD3 critic target matches an independent double-precision computation
       Eigen::RowVectorXd min_q = Eigen::RowVectorXd::Constant(n, 1e300);
       for (int i = 0; i < 2; ++i) {
         const Mlp& target = td3.critic_target().q(i).net();
-        min_q = min_q.cwiseMin(test::mlp_forward(target, test::params_of(target), stack(s2, next_a)));
+        min_q =
+            min_q.cwiseMin(test::mlp_forward(target, test::params_of(target), stack(s2, next_a)));
       }
       const Eigen::RowVectorXd y = b.rewards.cast<double>().array() +
                                    (1.0 - b.dones.cast<double>().array()) * 0.9 * min_q.array();
@@ -189,8 +190,9 @@ TEST_CASE("TD3 actor loss gradient runs through critic 1 into the actor only",
       return -test::mlp_forward(q1, test::params_of(q1), stack(s, a)).mean();
     };
     CHECK(stats.actor_loss == Approx(actor_loss(test::params_of(td3.actor().net()))).epsilon(1e-5));
-    test::require_grad_close(td3.actor().net().grads().cast<double>(),
-                             test::numeric_gradient(actor_loss, test::params_of(td3.actor().net())));
+    test::require_grad_close(
+        td3.actor().net().grads().cast<double>(),
+        test::numeric_gradient(actor_loss, test::params_of(td3.actor().net())));
     // The actor loss adds nothing to the critics' gradients (SB3's critic optimizer zeroes
     // what its backward leaves there).
     critics_only.train_on_batch(b, 0.0f);
@@ -359,9 +361,8 @@ TEST_CASE("TD3 training is deterministic for a seed", "[algos][td3]") {
     const Experiment e = parse_experiment(ConfigNode::load_string(yaml, "det.yaml"), registry);
     VecEnv env = make_vec_env(e.env, registry, 1, "");
     env.seed(3);
-    auto algo =
-        registry.find_algorithm("TD3")->make(
-            e.algo.params, AlgorithmSetup{env.observation_space(), env.action_space(), 1, 3});
+    auto algo = registry.find_algorithm("TD3")->make(
+        e.algo.params, AlgorithmSetup{env.observation_space(), env.action_space(), 1, 3});
     TrainingHooks hooks;
     algo->learn(env, 300, hooks);
     TensorMap t;
@@ -391,7 +392,8 @@ TEST_CASE("TD3 and DDPG train via the registry on Pendulum and MountainCarContin
       INFO(yaml);
       const Experiment experiment =
           parse_experiment(ConfigNode::load_string(yaml, "smoke.yaml"), registry);
-      const TrainOutcome outcome = train_experiment(experiment, registry, testing::test_execution());
+      const TrainOutcome outcome =
+          train_experiment(experiment, registry, testing::test_execution());
       CHECK(outcome.timesteps == 400);
       const ModelFile model = read_model(outcome.model_path);
       const Experiment stored = experiment_from_model(model, registry);
@@ -483,10 +485,11 @@ TEST_CASE("bench: TD3 gradient steps at rl-zoo Pendulum size", "[.td3_bench]") {
     const double per_step = fwd * (1 + n_critics + 3 * n_critics + 5.0 / cfg.policy_delay) * 256;
     // Wall time is what a run takes; process CPU time (both threads) is steadier on a shared
     // machine.
-    std::printf("%s (%d threads) train_on_batch: %.0f us/step wall, %.0f us CPU, %.1f GFLOP/s "
-                "wall (%.0f%% of one core's 102), %.1f GFLOP/s per CPU-s (%.3f GFLOP/step)\n",
-                algo, testing::test_thread_pool().threads(), s / steps * 1e6, cpu / steps * 1e6,
-                per_step * steps / s * 1e-9, per_step * steps / s * 1e-9 / 102 * 100,
-                per_step * steps / cpu * 1e-9, per_step * 1e-9);
+    std::printf(
+        "%s (%d threads) train_on_batch: %.0f us/step wall, %.0f us CPU, %.1f GFLOP/s "
+        "wall (%.0f%% of one core's 102), %.1f GFLOP/s per CPU-s (%.3f GFLOP/step)\n",
+        algo, testing::test_thread_pool().threads(), s / steps * 1e6, cpu / steps * 1e6,
+        per_step * steps / s * 1e-9, per_step * steps / s * 1e-9 / 102 * 100,
+        per_step * steps / cpu * 1e-9, per_step * 1e-9);
   }
 }

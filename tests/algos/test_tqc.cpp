@@ -116,7 +116,8 @@ TEST_CASE("TQC quantile Huber loss and its gradient on hand-computed values", "[
                   std::invalid_argument);
 }
 
-TEST_CASE("TQC quantile Huber loss gradient matches finite differences", "[algos][tqc][gradcheck]") {
+TEST_CASE("TQC quantile Huber loss gradient matches finite differences",
+          "[algos][tqc][gradcheck]") {
   Rng rng(3);
   const int k_count = 4, t_count = 7, n = 5;
   const Eigen::MatrixXf current = random_matrix(rng, k_count, n, 1.5);
@@ -130,8 +131,8 @@ TEST_CASE("TQC quantile Huber loss gradient matches finite differences", "[algos
       sum += rho_sum(flat.segment(j * k_count, k_count), target.col(j).cast<double>());
     return sum * scale;
   };
-  const Eigen::VectorXd flat = Eigen::Map<const Eigen::VectorXf>(current.data(), current.size())
-                                   .cast<double>();
+  const Eigen::VectorXd flat =
+      Eigen::Map<const Eigen::VectorXf>(current.data(), current.size()).cast<double>();
   CHECK(loss == Approx(loss_of(flat)).epsilon(1e-5));
   require_grad_close(Eigen::Map<const Eigen::VectorXf>(grad.data(), grad.size()).cast<double>(),
                      numeric_gradient(loss_of, flat));
@@ -201,9 +202,9 @@ TEST_CASE(
   double critic_loss = 0.0;
   for (int j = 0; j < n; ++j) {
     INFO("sample " << j);
-    const auto [a, logp] = actor_sample(tqc.actor().net(), start.actor, act_dim,
-                                        b.next_obs.col(j).cast<double>(),
-                                        tqc.last_next_noise().col(j).cast<double>());
+    const auto [a, logp] =
+        actor_sample(tqc.actor().net(), start.actor, act_dim, b.next_obs.col(j).cast<double>(),
+                     tqc.last_next_noise().col(j).cast<double>());
     const Eigen::VectorXd x = concat(b.next_obs.col(j).cast<double>(), a);
     std::vector<double> pooled;
     for (int i = 0; i < n_critics; ++i) {
@@ -343,7 +344,8 @@ TEST_CASE("TQC rejects bad settings with a message", "[algos][tqc]") {
     try {
       parse_experiment(ConfigNode::load_string("run: {name: x, total_timesteps: 100}\n"
                                                "env: {id: Pendulum-v1}\n"
-                                               "algo: {id: TQC" + algo + "}\n",
+                                               "algo: {id: TQC" +
+                                                   algo + "}\n",
                                                "tqc.yaml"),
                        builtin_registry());
     } catch (const std::exception& e) {
@@ -397,13 +399,12 @@ TEST_CASE("TQC trains a few hundred steps on Pendulum-v1 through the registry, d
 // -1200 that the zoo settings (configs/pendulum_tqc.yaml, [.slow] below) clear by far.
 TEST_CASE("TQC learns Pendulum-v1 with small networks in 8000 steps", "[algos][tqc][learning]") {
   testing::TempDir dir("tqc_learn");
-  const Experiment e = pendulum_experiment(
-      "TQC", dir.str(), 8000, 1,
-      ", learning_rate: 1.0e-3, batch_size: 128, policy: {net_arch: [64, 64]}");
+  const Experiment e =
+      pendulum_experiment("TQC", dir.str(), 8000, 1,
+                          ", learning_rate: 1.0e-3, batch_size: 128, policy: {net_arch: [64, 64]}");
   const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
   const double mean = evaluate_model(outcome.model_path, 10, 1001);
-  std::printf("TQC Pendulum-v1 8000 steps, 64x64: %.1f s, eval %.1f\n", outcome.wall_seconds,
-              mean);
+  std::printf("TQC Pendulum-v1 8000 steps, 64x64: %.1f s, eval %.1f\n", outcome.wall_seconds, mean);
   CHECK(mean >= -400.0);
 }
 
@@ -413,11 +414,11 @@ TEST_CASE("TQC learns Pendulum-v1 (rl-zoo settings, 2e4 steps) in 2 of 3 seeds",
   for (uint64_t seed : {1, 2, 3}) {
     testing::TempDir dir("tqc_slow_" + std::to_string(seed));
     Registry registry = make_builtin_registry();
-    const Experiment e = load_experiment(std::string(RLRUN_SOURCE_DIR) + "/configs/pendulum_tqc.yaml",
-                                         {"run.out_dir=" + dir.str(),
-                                          "run.seed=" + std::to_string(seed),
-                                          "run.console_interval=1000000"},
-                                         registry);
+    const Experiment e =
+        load_experiment(std::string(RLRUN_SOURCE_DIR) + "/configs/pendulum_tqc.yaml",
+                        {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed),
+                         "run.console_interval=1000000"},
+                        registry);
     const TrainOutcome outcome = train_experiment(e, builtin_registry(), testing::test_execution());
     const double mean = evaluate_model(outcome.model_path, 10, 1000 + seed);
     std::printf("pendulum_tqc.yaml seed %llu: %.1f s, eval %.1f\n",

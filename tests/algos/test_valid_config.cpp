@@ -47,8 +47,7 @@ TEST_CASE("valid_config: every visit() constraint, nested sections as key paths"
   }
 }
 
-TEST_CASE("algorithm constructors check their Config's visit() constraints",
-          "[algos][config]") {
+TEST_CASE("algorithm constructors check their Config's visit() constraints", "[algos][config]") {
   {
     PPO::Config c;
     c.gamma = 1.5;  // PPO's constructor checked only n_steps, batch_size and n_epochs

@@ -1,10 +1,10 @@
 // core/dir_handle, core/regular_file and core/line_reader: how rlrun opens the files of run
 // directories and studies (issue 41, item 4). Links are refused, never followed; only regular
 // files are read or written; the open never blocks; reads stop at their bound.
-#include <catch2/catch.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -28,19 +28,21 @@ void write_file(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("DirHandle: links are refused, not followed, the user's path above is", "[core][security]") {
+TEST_CASE("DirHandle: links are refused, not followed, the user's path above is",
+          "[core][security]") {
   TempDir tmp("dir_handle_links");
   fs::create_directories(tmp / "real/run/checkpoints");
   fs::create_directories(tmp / "elsewhere");
   write_file(tmp / "victim.txt", "keep\n");
-  fs::create_symlink(tmp / "real", tmp / "user_link");                  // the user's own link
-  fs::create_symlink(tmp / "real/run", tmp / "run_link");               // a link to a run
-  fs::create_symlink(tmp / "elsewhere", tmp / "real/run/videos");       // planted inside
+  fs::create_symlink(tmp / "real", tmp / "user_link");             // the user's own link
+  fs::create_symlink(tmp / "real/run", tmp / "run_link");          // a link to a run
+  fs::create_symlink(tmp / "elsewhere", tmp / "real/run/videos");  // planted inside
   fs::create_symlink(tmp / "victim.txt", tmp / "real/run/log.txt");
 
   const DirHandle run = DirHandle::open(tmp / "user_link/run/");  // through the user's link
   CHECK(run.path() == tmp / "user_link/run");
-  CHECK_THROWS_WITH(DirHandle::open(tmp / "run_link"), Catch::Contains("run_link is a symbolic link"));
+  CHECK_THROWS_WITH(DirHandle::open(tmp / "run_link"),
+                    Catch::Contains("run_link is a symbolic link"));
   CHECK_THROWS_WITH(DirHandle::open(tmp / "run_link/"), Catch::Contains("is a symbolic link"));
   CHECK(DirHandle::open(tmp / "run_link", DirHandle::LastLink::kFollow).is_open());
   CHECK_THROWS_WITH(DirHandle::open(tmp / "nowhere"), Catch::Contains("no such directory"));
@@ -80,7 +82,8 @@ TEST_CASE("DirHandle: FIFOs and devices are refused without blocking", "[core][s
   REQUIRE(mkfifo((tmp / "fifo").c_str(), 0600) == 0);
   const DirHandle dir = DirHandle::open(tmp.str());
   CHECK(dir.kind("fifo") == EntryKind::kOther);
-  CHECK_THROWS_WITH(dir.read("fifo", 100), Catch::Contains("fifo is a FIFO (named pipe), not a regular file"));
+  CHECK_THROWS_WITH(dir.read("fifo", 100),
+                    Catch::Contains("fifo is a FIFO (named pipe), not a regular file"));
   CHECK_THROWS_WITH(dir.open_for_writing("fifo", CheckedFile::Mode::kAppend),
                     Catch::Contains("is a FIFO (named pipe)"));
   CHECK_THROWS_WITH(dir.write_atomic("fifo", "x"), Catch::Contains("not a regular file"));
@@ -134,7 +137,8 @@ TEST_CASE("DirHandle: write_atomic and write_text_atomic keep mode and leave no 
   dir.write_atomic("config.yaml", "a: 1\n");
   dir.write_atomic("config.yaml", "a: 2\n");
   CHECK(read_text(tmp / "config.yaml") == "a: 2\n");
-  CHECK((fs::status(tmp / "config.yaml").permissions() & fs::perms::others_read) != fs::perms::none);
+  CHECK((fs::status(tmp / "config.yaml").permissions() & fs::perms::others_read) !=
+        fs::perms::none);
   const auto entries = dir.list();
   REQUIRE(entries.size() == 1);
   CHECK(entries[0].name == "config.yaml");

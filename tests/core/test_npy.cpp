@@ -86,8 +86,9 @@ TEST_CASE("npy: headers as numpy writes them in any key order", "[core][npy]") {
   CHECK(t.shape == std::vector<int64_t>{2});
   CHECK(decode_npy(npy_with_header("{'descr':'<i8','fortran_order':False,'shape':(),}", 8), "x")
             .shape.empty());
-  CHECK(decode_npy(npy_with_header("{'descr': '<u8', 'fortran_order': False, 'shape': (3, 0, 2)}", 0),
-                   "x").numel() == 0);
+  CHECK(decode_npy(
+            npy_with_header("{'descr': '<u8', 'fortran_order': False, 'shape': (3, 0, 2)}", 0), "x")
+            .numel() == 0);
 }
 
 TEST_CASE("npy: malformed headers are refused with a reason, never 'stoll'", "[core][npy]") {
@@ -124,7 +125,8 @@ TEST_CASE("npy: malformed headers are refused with a reason, never 'stoll'", "[c
 }
 
 TEST_CASE("npy: prelude problems: magic, version, header length past the end", "[core][npy]") {
-  std::vector<uint8_t> bytes = npy_with_header("{'descr': '<f4', 'fortran_order': False, 'shape': (1,)}", 4);
+  std::vector<uint8_t> bytes =
+      npy_with_header("{'descr': '<f4', 'fortran_order': False, 'shape': (1,)}", 4);
   std::vector<uint8_t> v2 = bytes;
   v2[6] = 2;
   CHECK(decode_error(v2).find("only format version 1.0") != std::string::npos);

@@ -19,8 +19,10 @@ std::string compile(const TempDir& dir, const std::string& name, const std::stri
                     bool quiet_header) {
   const std::string file = dir / (name + ".cpp");
   std::ofstream(file) << code;
-  std::string cmd = std::string(RLRUN_CXX_COMPILER) + " -std=c++20 -O2 -Wall -Wextra -march=native -isystem /usr/include/eigen3";
-  if (quiet_header) cmd += std::string(" -include ") + RLRUN_SOURCE_DIR + "/src/rlrun/core/quiet_intrinsics.hpp";
+  std::string cmd = std::string(RLRUN_CXX_COMPILER) +
+                    " -std=c++20 -O2 -Wall -Wextra -march=native -isystem /usr/include/eigen3";
+  if (quiet_header)
+    cmd += std::string(" -include ") + RLRUN_SOURCE_DIR + "/src/rlrun/core/quiet_intrinsics.hpp";
   return run_command(cmd + " -c " + file + " -o " + (dir / (name + ".o"))).output;
 }
 
@@ -39,7 +41,8 @@ TEST_CASE("quiet intrinsics: our own maybe-uninitialized reads are still reporte
   CHECK_THAT(out, Catch::Contains("uninitialized"));
 }
 
-TEST_CASE("quiet intrinsics: Eigen's vector code compiles without warnings from GCC's headers", "[core]") {
+TEST_CASE("quiet intrinsics: Eigen's vector code compiles without warnings from GCC's headers",
+          "[core]") {
   if (std::string(RLRUN_CXX_COMPILER_ID) != "GNU") {
     WARN("not GCC: quiet_intrinsics.hpp is not used");
     return;
@@ -49,11 +52,14 @@ TEST_CASE("quiet intrinsics: Eigen's vector code compiles without warnings from 
   // matrices (as nn/orthogonal_init.cpp's QR decomposition).
   const std::string code =
       "#include <Eigen/Dense>\n"
-      "Eigen::MatrixXf q(const Eigen::MatrixXf& a) { return Eigen::HouseholderQR<Eigen::MatrixXf>(a).householderQ(); }\n"
-      "float s(const Eigen::MatrixXf& a, const Eigen::MatrixXf& b) { return (a * b).array().tanh().sum(); }\n";
+      "Eigen::MatrixXf q(const Eigen::MatrixXf& a) { return "
+      "Eigen::HouseholderQR<Eigen::MatrixXf>(a).householderQ(); }\n"
+      "float s(const Eigen::MatrixXf& a, const Eigen::MatrixXf& b) { return (a * "
+      "b).array().tanh().sum(); }\n";
   const std::string without = compile(dir, "eigen_plain", code, false);
   const std::string with = compile(dir, "eigen_quiet", code, true);
   // Where GCC warns at all (AVX-512 machines), the header removes every one.
-  WARN("without the header: " << std::count(without.begin(), without.end(), '\n') << " lines of compiler output");
+  WARN("without the header: " << std::count(without.begin(), without.end(), '\n')
+                              << " lines of compiler output");
   CHECK(with.find("warning:") == std::string::npos);
 }

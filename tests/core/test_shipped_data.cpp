@@ -72,13 +72,15 @@ TEST_CASE("shipped data: found beside the test binary, not through a compiled-in
   // Untrusted text may name a shipped file through the build tree's links (relative or
   // absolute, by either path), nothing outside.
   const std::string shipped = untrusted_simulator_input("scenarios/single_intersection.yaml");
-  CHECK(shipped == fs::canonical(fs::path(RLRUN_SOURCE_DIR) / "scenarios/single_intersection.yaml"));
+  CHECK(shipped ==
+        fs::canonical(fs::path(RLRUN_SOURCE_DIR) / "scenarios/single_intersection.yaml"));
   CHECK(untrusted_simulator_input(data / "sumo_data/single_intersection/single.sumocfg") != "");
   CHECK(untrusted_simulator_input(std::string(RLRUN_SOURCE_DIR) +
                                   "/sumo_data/single_intersection/single.sumocfg") != "");
   write_file(dir / "evil.sumocfg", "<configuration/>\n");
   CHECK(untrusted_simulator_input(dir / "evil.sumocfg") == "");
-  CHECK(untrusted_simulator_input("scenarios/../../../../../../../../" + dir / "evil.sumocfg") == "");
+  CHECK(untrusted_simulator_input("scenarios/../../../../../../../../" + dir / "evil.sumocfg") ==
+        "");
 }
 
 TEST_CASE("shipped data: RLRUN_DATA_DIR overrides the lookup, and untrusted text stays inside it",

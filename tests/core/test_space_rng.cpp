@@ -89,8 +89,9 @@ TEST_CASE("spaces: sample refuses a span of the wrong size", "[core][space]") {
   Rng rng(1);
   const Space box = Space::box(-1.0f, 1.0f, {3});
   std::vector<float> longer(4, 7.0f), shorter(2, 7.0f);
-  CHECK_THROWS_WITH(box.sample(rng, longer),
-                    Catch::Contains("4 floats given for Box(-1.0, 1.0, (3,), float32), which has 3"));
+  CHECK_THROWS_WITH(
+      box.sample(rng, longer),
+      Catch::Contains("4 floats given for Box(-1.0, 1.0, (3,), float32), which has 3"));
   CHECK_THROWS_AS(box.sample(rng, shorter), std::invalid_argument);
   CHECK(longer == std::vector<float>(4, 7.0f));
   std::vector<float> none;

@@ -14,7 +14,8 @@
 
 using namespace rlrun;
 
-TEST_CASE("ThreadPool runs every part exactly once, for any thread and part count", "[core][thread_pool]") {
+TEST_CASE("ThreadPool runs every part exactly once, for any thread and part count",
+          "[core][thread_pool]") {
   for (int threads : {1, 2, 3, 8}) {
     ThreadPool pool(threads);
     CHECK(pool.threads() == threads);
@@ -30,7 +31,8 @@ TEST_CASE("ThreadPool runs every part exactly once, for any thread and part coun
   }
 }
 
-TEST_CASE("ThreadPool: parts combined in part order give the same bits with any thread count", "[core][thread_pool]") {
+TEST_CASE("ThreadPool: parts combined in part order give the same bits with any thread count",
+          "[core][thread_pool]") {
   std::vector<float> values(100000);
   for (size_t i = 0; i < values.size(); ++i) values[i] = 1.0f / static_cast<float>(i + 1);
   auto sum_with = [&](int threads) {
@@ -63,13 +65,15 @@ TEST_CASE("ThreadPool spreads parts over its threads", "[core][thread_pool]") {
     }
     arrived.fetch_add(1);
     const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (arrived.load() < 3 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    while (arrived.load() < 3 && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::yield();
   });
   CHECK(ids.size() == 3);
   CHECK(ids.count(std::this_thread::get_id()) == 1);
 }
 
-TEST_CASE("ThreadPool rethrows the lowest failing part's exception after all parts ran", "[core][thread_pool]") {
+TEST_CASE("ThreadPool rethrows the lowest failing part's exception after all parts ran",
+          "[core][thread_pool]") {
   for (int threads : {1, 4}) {
     ThreadPool pool(threads);
     std::atomic<int> ran{0};
@@ -93,7 +97,8 @@ TEST_CASE("ThreadPool rethrows the lowest failing part's exception after all par
   CHECK_THROWS_AS(pool.run(-1, [](int) {}), std::invalid_argument);
 }
 
-TEST_CASE("available_cpus: the affinity mask and the cgroup quota, whichever is smaller", "[core][thread_pool]") {
+TEST_CASE("available_cpus: the affinity mask and the cgroup quota, whichever is smaller",
+          "[core][thread_pool]") {
   CHECK_FALSE(cpus_of_cgroup_v2_max("max 100000\n"));
   CHECK(cpus_of_cgroup_v2_max("200000 100000\n") == 2);
   CHECK(cpus_of_cgroup_v2_max("150000 100000") == 2);  // 1.5 CPUs: two threads may run

@@ -58,8 +58,9 @@ TEST_CASE("trusted values: --trust accepts a program and prints it first", "[con
   const ConfigNode accepted = model_config(yaml, ConfigTrust::kAccepted);
   const std::string said = stderr_of([&] { decode(accepted.child("sumo_binary"), program); });
   CHECK(program.value == "/opt/evil\x1b[2K\nsumo");
-  CHECK(said == "trusting m.zip:config.yaml (--trust): sumo_binary = /opt/evil\\x1b[2K\\x0asumo: "
-                "a program to run\n");
+  CHECK(said ==
+        "trusting m.zip:config.yaml (--trust): sumo_binary = /opt/evil\\x1b[2K\\x0asumo: "
+        "a program to run\n");
   // The default needs no word, and a --set over accepted text is the user's own: silent.
   ConfigNode defaulted = model_config("sumo_binary: sumo\n", ConfigTrust::kAccepted);
   program = ProgramPath{"sumo"};

@@ -6,16 +6,16 @@
 
 #include "policy.h"
 
-int main(int argc, char **argv) {
-    float obs[POLICY_OBS_DIM], action[POLICY_ACTION_DIM];
-    FILE *in, *out;
-    if (argc != 3) return 2;
-    in = fopen(argv[1], "rb");
-    out = fopen(argv[2], "wb");
-    if (!in || !out) return 1;
-    while (fread(obs, sizeof(float), POLICY_OBS_DIM, in) == POLICY_OBS_DIM) {
-        policy_act(obs, action);
-        if (fwrite(action, sizeof(float), POLICY_ACTION_DIM, out) != POLICY_ACTION_DIM) return 1;
-    }
-    return fclose(out) == 0 && fclose(in) == 0 ? 0 : 1;
+int main(int argc, char** argv) {
+  float obs[POLICY_OBS_DIM], action[POLICY_ACTION_DIM];
+  FILE *in, *out;
+  if (argc != 3) return 2;
+  in = fopen(argv[1], "rb");
+  out = fopen(argv[2], "wb");
+  if (!in || !out) return 1;
+  while (fread(obs, sizeof(float), POLICY_OBS_DIM, in) == POLICY_OBS_DIM) {
+    policy_act(obs, action);
+    if (fwrite(action, sizeof(float), POLICY_ACTION_DIM, out) != POLICY_ACTION_DIM) return 1;
+  }
+  return fclose(out) == 0 && fclose(in) == 0 ? 0 : 1;
 }

@@ -54,7 +54,8 @@ struct TinyModel {
     write_crafted_zip(out, crafted);
     return out;
   }
-  std::string with_meta(const std::string& name, const std::string& key, const std::string& value) const {
+  std::string with_meta(const std::string& name, const std::string& key,
+                        const std::string& value) const {
     return variant(name, [&](ZipMembers& members) {
       nlohmann::json meta = nlohmann::json::parse(members.at("meta.json"));
       meta[key] = value;
@@ -68,12 +69,14 @@ struct TinyModel {
 // Exports `model` as C into <dir>/<name>_c, compiles policy.c with the test driver under the
 // strictest flags (-trigraphs: `??/` is a backslash), and returns policy.h as the preprocessor
 // sees it (comments gone): whatever escaped the comment is in there.
-std::string export_c_and_compile(const TinyModel& tiny, const std::string& model, const std::string& name) {
+std::string export_c_and_compile(const TinyModel& tiny, const std::string& model,
+                                 const std::string& name) {
   const std::string c_dir = tiny.dir / (name + "_c");
   const auto x = run_rlrun("export --model " + model + " --format c --output " + c_dir);
   INFO(x.output);
   REQUIRE(x.exit_code == 0);
-  const std::string flags = "-std=c99 -Wall -Wextra -Werror -pedantic -trigraphs -I'" + c_dir + "' ";
+  const std::string flags =
+      "-std=c99 -Wall -Wextra -Werror -pedantic -trigraphs -I'" + c_dir + "' ";
   const CommandResult cc = run_command("cc " + flags + "'" + std::string(RLRUN_SOURCE_DIR) +
                                        "/tests/deploy/c_policy_main.c' '" + c_dir +
                                        "/policy.c' -lm -o '" + tiny.dir / (name + "_run") + "'");
@@ -86,7 +89,8 @@ std::string export_c_and_compile(const TinyModel& tiny, const std::string& model
 }
 
 // Exports `model` as ONNX; Debian's onnx checker must accept it; returns its env_id metadata.
-std::string export_onnx_env_id(const TinyModel& tiny, const std::string& model, const std::string& name) {
+std::string export_onnx_env_id(const TinyModel& tiny, const std::string& model,
+                               const std::string& name) {
   const std::string onnx = tiny.dir / (name + ".onnx");
   const auto x = run_rlrun("export --model " + model + " --output " + onnx);
   INFO(x.output);
@@ -94,7 +98,8 @@ std::string export_onnx_env_id(const TinyModel& tiny, const std::string& model, 
   const CommandResult check = run_command(
       "/usr/bin/python3 -c \"import onnx, sys; m = onnx.load(sys.argv[1]); "
       "onnx.checker.check_model(m, full_check=True); "
-      "sys.stdout.write({p.key: p.value for p in m.metadata_props}['env_id'])\" '" + onnx + "'");
+      "sys.stdout.write({p.key: p.value for p in m.metadata_props}['env_id'])\" '" +
+      onnx + "'");
   INFO(check.output);
   REQUIRE(check.exit_code == 0);
   return check.output;
@@ -114,7 +119,8 @@ PolicyGraph one_layer(float weight, float bias, std::map<std::string, std::strin
 
 TEST_CASE("export: c_comment_text and printable_utf8 keep hostile text inert",
           "[deploy][export][untrusted]") {
-  const std::string plain = "Box([-4.8 -inf], [4.8 inf], (2,), float32) Dict('a': Discrete(3)) ~^|{}";
+  const std::string plain =
+      "Box([-4.8 -inf], [4.8 inf], (2,), float32) Dict('a': Discrete(3)) ~^|{}";
   CHECK(c_comment_text(plain) == plain);
   CHECK(c_comment_text("*/") == "%2A/");
   CHECK(c_comment_text("*\\\n/") == "%2A%5C%0A/");
@@ -140,8 +146,9 @@ TEST_CASE("export: meta.json strings cannot end the C header's comment or break 
   static constexpr char kControls[] = "a\0b\x07\x1b[2J\x7f \xc3\xa9 \xc2\x85 */ int injected_c;";
   // The issue's case: `*\` newline `/` is `*/` after line splicing (translation phase 2).
   const std::vector<std::pair<std::string, std::string>> attacks = {
-      {"splice", "CartPole-v1 *\\\n/ __attribute__((constructor)) static void injected(void) "
-                 "{ __builtin_trap(); } /*"},
+      {"splice",
+       "CartPole-v1 *\\\n/ __attribute__((constructor)) static void injected(void) "
+       "{ __builtin_trap(); } /*"},
       {"close", "x */ int injected_global = 1; /* "},
       {"trigraph", "x *?\?/\n/ int injected_trigraph; /* ?\?= ?\?' "},
       {"controls", std::string(kControls, sizeof kControls - 1)},
@@ -164,19 +171,21 @@ TEST_CASE("export: metadata that is not UTF-8 is escaped, Dict keys that cannot 
   // meta.json is JSON (UTF-8 by rule), but the writers take any graph: text reaching a protobuf
   // string must be UTF-8, or python's onnx.load refuses the whole file.
   TempDir dir("export_utf8");
-  const PolicyGraph graph = one_layer(0.5f, 0.25f, {{"env_id", "bad \xff\xfe end"},
-                                                    {"key \xc0", "value"}});
+  const PolicyGraph graph =
+      one_layer(0.5f, 0.25f, {{"env_id", "bad \xff\xfe end"}, {"key \xc0", "value"}});
   const std::string onnx = dir / "p.onnx";
   std::ofstream(onnx, std::ios::binary) << onnx_model_bytes(graph);
   const CommandResult check = run_command(
       "/usr/bin/python3 -c \"import onnx, sys; m = onnx.load(sys.argv[1]); "
       "onnx.checker.check_model(m, full_check=True); "
-      "sys.stdout.write({p.key: p.value for p in m.metadata_props}['env_id'])\" '" + onnx + "'");
+      "sys.stdout.write({p.key: p.value for p in m.metadata_props}['env_id'])\" '" +
+      onnx + "'");
   INFO(check.output);
   REQUIRE(check.exit_code == 0);
   CHECK(check.output == "bad \\xff\\xfe end");
 
-  for (const std::string& key : {std::string("k\xff"), std::string("a\nb"), std::string("rlrun/Gemm_0")}) {
+  for (const std::string& key :
+       {std::string("k\xff"), std::string("a\nb"), std::string("rlrun/Gemm_0")}) {
     PolicyGraph dict;
     dict.add_input(key, 2);
     dict.add_input("other", 1);
@@ -207,8 +216,9 @@ TEST_CASE("export: NaN and infinite numbers are refused naming the tensor, bound
                     Catch::Contains("dense_0 (Dense weight) holds nan at row 0, column 0"));
   CHECK_THROWS_WITH(onnx_model_bytes(one_layer(kNan, 0.0f)),
                     Catch::Contains("dense_0 (Dense weight) holds nan"));
-  CHECK_THROWS_WITH(c_policy_source(one_layer(1.0f, -kInf)),
-                    Catch::Contains("dense_0 (Dense bias) holds -inf at index 0 (only bounds may be infinite)"));
+  CHECK_THROWS_WITH(
+      c_policy_source(one_layer(1.0f, -kInf)),
+      Catch::Contains("dense_0 (Dense bias) holds -inf at index 0 (only bounds may be infinite)"));
   // Infinite bounds are HUGE_VALF; a NaN bound is refused.
   PolicyGraph clamp = one_layer(1.0f, 0.0f);
   clamp.set_action(clamp.clamp(clamp.action(), Eigen::VectorXf::Constant(1, -kInf),
@@ -231,7 +241,8 @@ TEST_CASE("export: NaN and infinite numbers are refused naming the tensor, bound
   });
   for (const char* format : {"c", "onnx"}) {
     const std::string out = tiny.dir / (std::string("huge_") + format);
-    const auto r = run_rlrun("export --model " + model + " --format " + format + " --output " + out);
+    const auto r =
+        run_rlrun("export --model " + model + " --format " + format + " --output " + out);
     INFO(r.output);
     CHECK(r.exit_code == 1);
     CHECK(r.output.find("(Affine shift) holds -inf at index 1") != std::string::npos);

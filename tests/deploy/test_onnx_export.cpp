@@ -10,9 +10,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <filesystem>
 #include <sstream>
 #include <thread>
 
@@ -52,7 +52,8 @@ Trajectory read_trajectory(const std::string& path, int limit) {
   while (static_cast<int>(rows.size()) < limit && std::getline(in, line)) {
     std::vector<float> row;
     std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) row.push_back(std::strtof(cell.c_str(), nullptr));
+    for (std::string cell; std::getline(s, cell, ',');)
+      row.push_back(std::strtof(cell.c_str(), nullptr));
     REQUIRE(row.size() == header.size());
     rows.push_back(std::move(row));
   }
@@ -113,7 +114,8 @@ void check_actions(const Eigen::MatrixXf& got, const Eigen::MatrixXf& expected, 
       if (discrete)
         REQUIRE(got(i, j) == expected(i, j));
       else
-        REQUIRE(std::abs(got(i, j) - expected(i, j)) <= 1e-5f * std::max(1.0f, std::abs(expected(i, j))));
+        REQUIRE(std::abs(got(i, j) - expected(i, j)) <=
+                1e-5f * std::max(1.0f, std::abs(expected(i, j))));
     }
 }
 
@@ -133,13 +135,16 @@ Eigen::MatrixXf run_c_export(const std::string& model, const Eigen::MatrixXf& ob
   REQUIRE(cc.exit_code == 0);
   const std::string in_path = dir / "obs.f32", out_path = dir / "actions.f32";
   std::ofstream(in_path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(obs.data()), static_cast<std::streamsize>(obs.size() * sizeof(float)));
-  const CommandResult run = run_command("'" + binary + "' '" + in_path + "' '" + out_path + "' 2>&1");
+      .write(reinterpret_cast<const char*>(obs.data()),
+             static_cast<std::streamsize>(obs.size() * sizeof(float)));
+  const CommandResult run =
+      run_command("'" + binary + "' '" + in_path + "' '" + out_path + "' 2>&1");
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
   Eigen::MatrixXf actions(action_dim, obs.cols());
   std::ifstream out(out_path, std::ios::binary);
-  out.read(reinterpret_cast<char*>(actions.data()), static_cast<std::streamsize>(actions.size() * sizeof(float)));
+  out.read(reinterpret_cast<char*>(actions.data()),
+           static_cast<std::streamsize>(actions.size() * sizeof(float)));
   REQUIRE(out.gcount() == static_cast<std::streamsize>(actions.size() * sizeof(float)));
   return actions;
 }
@@ -180,7 +185,8 @@ void check_case(const Case& c) {
   REQUIRE(steps.obs.cols() == 1000);
 
   const std::string onnx = dir / "policy.onnx";
-  const auto x = run_rlrun("export --model " + model + " --format onnx --output " + onnx + " --with-value");
+  const auto x =
+      run_rlrun("export --model " + model + " --format onnx --output " + onnx + " --with-value");
   INFO(x.output);
   REQUIRE(x.exit_code == 0);
 
@@ -197,8 +203,8 @@ void check_case(const Case& c) {
   const Eigen::MatrixXf value = from_json(ort["value"], steps.obs.cols());
   const Eigen::MatrixXf& expected_value = values.at(graph.value());
   REQUIRE(value.rows() == expected_value.rows());
-  CHECK(((value - expected_value).array().abs() <=
-         1e-4f * expected_value.array().abs().max(1.0f)).all());
+  CHECK(((value - expected_value).array().abs() <= 1e-4f * expected_value.array().abs().max(1.0f))
+            .all());
 
   // rlrun::Policy (the embeddable library), one observation at a time and as one batch.
   const Policy policy = Policy::load(model);
@@ -210,17 +216,19 @@ void check_case(const Case& c) {
                {single.col(j).data(), policy.action_size()});
   check_actions(single, steps.actions, c.discrete);
   policy.act_batch({steps.obs.data(), static_cast<size_t>(steps.obs.size())},
-                   {batch.data(), static_cast<size_t>(batch.size())}, static_cast<size_t>(steps.obs.cols()));
+                   {batch.data(), static_cast<size_t>(batch.size())},
+                   static_cast<size_t>(steps.obs.cols()));
   check_actions(batch, steps.actions, c.discrete);
 
   // The C export, compiled and run: the same actions.
   check_actions(run_c_export(model, steps.obs, steps.act_dim, dir), steps.actions, c.discrete);
 
   // Debian's onnx checker, with shape inference, accepts the graph.
-  const CommandResult check = run_command(
-      "/usr/bin/python3 -c \"import onnx; m = onnx.load('" + onnx +
-      "'); onnx.checker.check_model(m, full_check=True); "
-      "print(m.opset_import[0].version, {p.key: p.value for p in m.metadata_props}['env_id'])\" 2>&1");
+  const CommandResult check =
+      run_command("/usr/bin/python3 -c \"import onnx; m = onnx.load('" + onnx +
+                  "'); onnx.checker.check_model(m, full_check=True); "
+                  "print(m.opset_import[0].version, {p.key: p.value for p in "
+                  "m.metadata_props}['env_id'])\" 2>&1");
   INFO(check.output);
   REQUIRE(check.exit_code == 0);
   CHECK(check.output.find("13 ") == 0);
@@ -230,10 +238,11 @@ void check_case(const Case& c) {
 
 TEST_CASE("export onnx: Discrete, MultiDiscrete and MultiBinary actions (PPO, A2C, DQN)",
           "[deploy][onnx]") {
-  check_case({"ppo_cartpole", 2048,
-              "env: {id: CartPole-v1}\n"
-              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2, policy: {net_arch: [32, 32]}}\n",
-              100, true});
+  check_case(
+      {"ppo_cartpole", 2048,
+       "env: {id: CartPole-v1}\n"
+       "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2, policy: {net_arch: [32, 32]}}\n",
+       100, true});
   check_case({"dqn_cartpole", 2000,
               "env: {id: CartPole-v1}\n"
               "algo: {id: DQN, learning_starts: 500, policy: {net_arch: [32, 32]}}\n",
@@ -275,11 +284,12 @@ TEST_CASE("export onnx: Box actions, normalised observations and action wrappers
               "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2,\n"
               "       policy: {net_arch: {pi: [16], vf: [32]}, activation_fn: leaky_relu}}\n",
               5, false});
-  check_case({"sac_pendulum_wrappers", 300,
-              "env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},\n"
-              "  {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
-              "algo: {id: SAC, learning_starts: 100, batch_size: 32, policy: {net_arch: [16, 16]}}\n",
-              5, false});
+  check_case(
+      {"sac_pendulum_wrappers", 300,
+       "env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},\n"
+       "  {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
+       "algo: {id: SAC, learning_starts: 100, batch_size: 32, policy: {net_arch: [16, 16]}}\n",
+       5, false});
   check_case({"sac_gsde", 300,
               "env: {id: MountainCarContinuous-v0}\n"
               "algo: {id: SAC, learning_starts: 100, batch_size: 32, use_sde: true,\n"
@@ -303,19 +313,21 @@ TEST_CASE("export onnx: TD3 and DDPG (deterministic tanh actors, Q(s, a) as the 
               "algo: {id: TD3, learning_starts: 100, batch_size: 32,\n"
               "       policy: {net_arch: [16, 16], activation_fn: elu}}\n",
               5, false});
-  check_case({"ddpg_lunar", 300,
-              "env: {id: LunarLanderContinuous-v3}\n"
-              "algo: {id: DDPG, learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32]}}\n",
-              30, false});
+  check_case(
+      {"ddpg_lunar", 300,
+       "env: {id: LunarLanderContinuous-v3}\n"
+       "algo: {id: DDPG, learning_starts: 100, batch_size: 32, policy: {net_arch: [32, 32]}}\n",
+       30, false});
 }
 
 TEST_CASE("rlrun::Policy: wrong sizes and bad files are exceptions, act is thread-safe",
           "[deploy][onnx]") {
   TempDir dir("policy_library");
   const std::string config = dir / "exp.yaml";
-  std::ofstream(config) << "run: {name: m, seed: 1, total_timesteps: 300, out_dir: " << dir.str()
-                        << "/runs}\nenv: {id: Pendulum-v1}\n"
-                           "algo: {id: SAC, learning_starts: 100, batch_size: 32, policy: {net_arch: [16]}}\n";
+  std::ofstream(config)
+      << "run: {name: m, seed: 1, total_timesteps: 300, out_dir: " << dir.str()
+      << "/runs}\nenv: {id: Pendulum-v1}\n"
+         "algo: {id: SAC, learning_starts: 100, batch_size: 32, policy: {net_arch: [16]}}\n";
   REQUIRE(run_rlrun("train " + config).exit_code == 0);
   const Policy policy = Policy::load(dir / "runs/m/seed1/model.zip");
   CHECK(policy.env_id() == "Pendulum-v1");
@@ -346,9 +358,10 @@ TEST_CASE("rlrun::Policy: wrong sizes and bad files are exceptions, act is threa
 TEST_CASE("export: refusals are clear errors", "[deploy][onnx]") {
   TempDir dir("onnx_refusals");
   const std::string config = dir / "exp.yaml";
-  std::ofstream(config) << "run: {name: m, seed: 1, total_timesteps: 512, out_dir: " << dir.str()
-                        << "/runs}\nenv: {id: CartPole-v1, wrappers: [{id: FrameStack, n_stack: 2}]}\n"
-                           "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 1}\n";
+  std::ofstream(config)
+      << "run: {name: m, seed: 1, total_timesteps: 512, out_dir: " << dir.str()
+      << "/runs}\nenv: {id: CartPole-v1, wrappers: [{id: FrameStack, n_stack: 2}]}\n"
+         "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 1}\n";
   REQUIRE(run_rlrun("train " + config).exit_code == 0);
   const std::string model = dir / "runs/m/seed1/model.zip";
   // A stateful wrapper: named, and nothing written.
@@ -357,19 +370,22 @@ TEST_CASE("export: refusals are clear errors", "[deploy][onnx]") {
   CHECK(stacked.output.find("FrameStack") != std::string::npos);
   CHECK_FALSE(std::ifstream(dir / "p.onnx").good());
   // An output in a directory that does not exist.
-  const auto missing = run_rlrun("export --model " + model + " --output " + (dir / "no/such/p.onnx"));
+  const auto missing =
+      run_rlrun("export --model " + model + " --output " + (dir / "no/such/p.onnx"));
   CHECK(missing.exit_code == 1);
   CHECK(missing.output.find("does not exist") != std::string::npos);
   // Not a model file.
   std::ofstream(dir / "junk.zip") << "not a zip";
-  const auto junk = run_rlrun("export --model " + (dir / "junk.zip") + " --output " + (dir / "j.onnx"));
+  const auto junk =
+      run_rlrun("export --model " + (dir / "junk.zip") + " --output " + (dir / "j.onnx"));
   CHECK(junk.exit_code == 1);
   CHECK_FALSE(std::ifstream(dir / "j.onnx").good());
   // A model of a format version this rlrun does not know: export and the library refuse.
   const std::string meta = R"({"format_version": 99, "rlrun_version": "9.0.0", "algorithm": "PPO",
     "env_id": "CartPole-v1", "observation_space": "", "action_space": "", "num_timesteps": 0})";
-  write_zip_atomic(dir / "future.zip", {{"meta.json", std::vector<uint8_t>(meta.begin(), meta.end())},
-                                        {"config.yaml", {}}});
+  write_zip_atomic(
+      dir / "future.zip",
+      {{"meta.json", std::vector<uint8_t>(meta.begin(), meta.end())}, {"config.yaml", {}}});
   const auto future = run_rlrun("export --model " + (dir / "future.zip") + " --format c --output " +
                                 (dir / "future_c"));
   CHECK(future.exit_code == 1);

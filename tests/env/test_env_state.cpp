@@ -1,7 +1,7 @@
 // Exact resume, env side: a VecEnv of registered envs (with TimeLimit and Monitor) saved
 // mid-episode and restored into freshly built envs continues bit-identically.
-#include <catch2/catch.hpp>
 #include <yaml-cpp/yaml.h>
+#include <catch2/catch.hpp>
 
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/rng.hpp"
@@ -49,10 +49,10 @@ Trace run(VecEnv& env, Rng& action_rng, int steps) {
 }  // namespace
 
 TEST_CASE("A saved VecEnv of classic and probe envs resumes bit-identically", "[env][resume]") {
-  for (const char* id : {"CartPole-v1", "Pendulum-v1", "MountainCar-v0",
-                         "MountainCarContinuous-v0", "Acrobot-v1", "IdentityEnv-v0",
-                         "IdentityEnvBox-v0", "IdentityEnvMultiDiscrete-v0",
-                         "IdentityEnvMultiBinary-v0", "DictReach-v0", "SimpleMultiObsEnv-v0"}) {
+  for (const char* id :
+       {"CartPole-v1", "Pendulum-v1", "MountainCar-v0", "MountainCarContinuous-v0", "Acrobot-v1",
+        "IdentityEnv-v0", "IdentityEnvBox-v0", "IdentityEnvMultiDiscrete-v0",
+        "IdentityEnvMultiBinary-v0", "DictReach-v0", "SimpleMultiObsEnv-v0"}) {
     INFO(id);
     VecEnv original = make_classic(id, 3);
     REQUIRE(original.can_save_state());
@@ -107,7 +107,8 @@ TEST_CASE("Restored step counters out of range are refused with the key", "[env]
     TensorMap changed = saved;
     int found = 0;
     for (auto& [key, tensor] : changed)
-      if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      if (key.size() >= suffix.size() &&
+          key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
         *tensor.data<int64_t>() = value;
         ++found;
       }

@@ -21,9 +21,9 @@ std::vector<float> encode(const ObservationEncoder& encoder, std::vector<float> 
 
 TEST_CASE("observation encoder: Box and MultiBinary are the identity, without a copy",
           "[env][space]") {
-  for (const Space& space : {Space::box(-1.0f, 1.0f, {3}), Space::multi_binary(4),
-                             Space::dict({{"b", Space::box(0.0f, 1.0f, {2})},
-                                          {"a", Space::multi_binary(2)}})}) {
+  for (const Space& space :
+       {Space::box(-1.0f, 1.0f, {3}), Space::multi_binary(4),
+        Space::dict({{"b", Space::box(0.0f, 1.0f, {2})}, {"a", Space::multi_binary(2)}})}) {
     INFO(space.describe());
     ObservationEncoder encoder(space);
     CHECK(encoder.identity());
@@ -77,8 +77,7 @@ TEST_CASE("observation encoder: a Dict is each key encoded, in sorted key order,
   // The batch forms agree with the sample form, for any batch size (the workspace grows).
   for (int batch : {3, 1, 4}) {
     Eigen::MatrixXf many(7, batch);
-    for (int j = 0; j < batch; ++j)
-      many.col(j) = Eigen::Map<const Eigen::VectorXf>(obs.data(), 7);
+    for (int j = 0; j < batch; ++j) many.col(j) = Eigen::Map<const Eigen::VectorXf>(obs.data(), 7);
     many(0, batch - 1) = 0;
     const Eigen::Ref<const Eigen::MatrixXf> features = encoder(many);
     Eigen::MatrixXf copy;

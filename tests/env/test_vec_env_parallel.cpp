@@ -12,12 +12,12 @@
 #include "fakes/counter_env.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/rng.hpp"
-#include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
+#include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "rlrun/wrappers/rescale_action.hpp"
-#include "rlrun/wrappers/transform_reward.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
+#include "rlrun/wrappers/transform_reward.hpp"
 
 using namespace rlrun;
 using rlrun::testing::CounterEnv;
@@ -52,7 +52,6 @@ class SplitCounter : public CounterEnv, public SplitStep {
   int& most_;
 };
 
-
 }  // namespace
 
 TEST_CASE("VecEnv starts every copy's step before finishing any (SplitStep)", "[vec_env]") {
@@ -62,11 +61,11 @@ TEST_CASE("VecEnv starts every copy's step before finishing any (SplitStep)", "[
   for (int i = 0; i < 4; ++i) {
     // TimeLimit and Monitor forward the halves, so the stack stays asynchronous.
     split.push_back(std::make_unique<Monitor>(
-        std::make_unique<TimeLimit>(std::make_unique<SplitCounter>(7, in_flight, most), 5), "",
-        0.0, std::vector<std::string>{"is_success"}, false));
-    plain.push_back(std::make_unique<Monitor>(
-        std::make_unique<TimeLimit>(std::make_unique<CounterEnv>(7), 5), "", 0.0,
+        std::make_unique<TimeLimit>(std::make_unique<SplitCounter>(7, in_flight, most), 5), "", 0.0,
         std::vector<std::string>{"is_success"}, false));
+    plain.push_back(
+        std::make_unique<Monitor>(std::make_unique<TimeLimit>(std::make_unique<CounterEnv>(7), 5),
+                                  "", 0.0, std::vector<std::string>{"is_success"}, false));
     // Shared running statistics, as make_vec_env links them: finished in copy order, the
     // split steps update them in the same sequence as whole steps.
     split.back() = std::make_unique<NormalizeObservation>(std::move(split.back()),
@@ -75,8 +74,10 @@ TEST_CASE("VecEnv starts every copy's step before finishing any (SplitStep)", "[
                                                           NormalizeObservation::Config{});
   }
   for (int i = 1; i < 4; ++i) {
-    dynamic_cast<ModelStatistics&>(*split[i]).share_statistics_with(dynamic_cast<ModelStatistics&>(*split[0]));
-    dynamic_cast<ModelStatistics&>(*plain[i]).share_statistics_with(dynamic_cast<ModelStatistics&>(*plain[0]));
+    dynamic_cast<ModelStatistics&>(*split[i]).share_statistics_with(
+        dynamic_cast<ModelStatistics&>(*split[0]));
+    dynamic_cast<ModelStatistics&>(*plain[i]).share_statistics_with(
+        dynamic_cast<ModelStatistics&>(*plain[0]));
   }
   VecEnv a(std::move(split)), b(std::move(plain));
   const VecEnvTrace ta = trace_random_steps(a, 40, 3), tb = trace_random_steps(b, 40, 3);

@@ -15,8 +15,8 @@ inline const std::string kPython = "/usr/bin/python3";
 
 // `rlrun ARGS` with the test envs importable (PYTHONPATH), from the source directory.
 inline CommandResult run_rlrun_python(const std::string& args) {
-  return run_command("cd " + kSourceDir + " && PYTHONPATH=" + kSourceDir +
-                     "/tests/python_envs " + RLRUN_BINARY + " " + args);
+  return run_command("cd " + kSourceDir + " && PYTHONPATH=" + kSourceDir + "/tests/python_envs " +
+                     RLRUN_BINARY + " " + args);
 }
 
 inline std::string write_file(const std::string& path, const std::string& text) {
@@ -31,10 +31,10 @@ inline std::string python_experiment(const std::string& dir, const std::string& 
                                      const std::string& env_extra = "",
                                      const std::string& extra = "") {
   return write_file(dir + "/" + name + ".yaml",
-                    "run: {name: " + name + ", seed: 1, total_timesteps: " +
-                        std::to_string(steps) + ", out_dir: " + dir + "/runs}\n" +
-                        "env: {id: \"" + env_id + "\", n_envs: " + std::to_string(n_envs) +
-                        ", python: " + kPython + env_extra + "}\n" + "algo: {" + algo + "}\n" + extra);
+                    "run: {name: " + name + ", seed: 1, total_timesteps: " + std::to_string(steps) +
+                        ", out_dir: " + dir + "/runs}\n" + "env: {id: \"" + env_id +
+                        "\", n_envs: " + std::to_string(n_envs) + ", python: " + kPython +
+                        env_extra + "}\n" + "algo: {" + algo + "}\n" + extra);
 }
 
 }  // namespace rlrun::testing

@@ -67,8 +67,8 @@ TEST_CASE("BipedalWalker: Gymnasium's ids, spaces, kwargs and time limits", "[wa
   CHECK(env.id() == "BipedalWalker-v3");
   CHECK(env.action_space().describe() == "Box(-1.0, 1.0, (4,), float32)");
   const float pi = static_cast<float>(M_PI);
-  const std::vector<float> high{pi, 5, 5, 5, pi, 5, pi, 5, 5, pi, 5, pi, 5, 5,
-                                1,  1, 1, 1, 1,  1, 1,  1, 1, 1};
+  const std::vector<float> high{pi, 5, 5, 5, pi, 5, pi, 5, 5, pi, 5, pi,
+                                5,  5, 1, 1, 1,  1, 1,  1, 1, 1,  1, 1};
   std::vector<float> low(high.size());
   for (size_t i = 0; i < high.size(); ++i) low[i] = -high[i];
   low[8] = low[13] = 0.0f;  // the contacts' lower bound is -0.0
@@ -90,7 +90,8 @@ TEST_CASE("BipedalWalker: Gymnasium's ids, spaces, kwargs and time limits", "[wa
   EnvPtr made = hard->make(hard->parse(ConfigNode{}));
   CHECK(dynamic_cast<BipedalWalker&>(*made).config().hardcore);
   CHECK(made->id() == "BipedalWalkerHardcore-v3");
-  CHECK_FALSE(dynamic_cast<BipedalWalker&>(*normal->make(normal->parse(ConfigNode{}))).config().hardcore);
+  CHECK_FALSE(
+      dynamic_cast<BipedalWalker&>(*normal->make(normal->parse(ConfigNode{}))).config().hardcore);
   REQUIRE(normal->policies.size() == 1);
   CHECK(normal->policies[0].name == "heuristic");
 }
@@ -325,8 +326,8 @@ TEST_CASE("BipedalWalker: Gymnasium's scripted gait walks as it does in Gymnasiu
       finished += e.terminated && !env.game_over();
     }
     const double mean = sum / 100;
-    INFO((hardcore ? "hardcore" : "normal") << ": mean return " << mean << ", " << finished
-                                            << " of 100 reached the end");
+    INFO((hardcore ? "hardcore" : "normal")
+         << ": mean return " << mean << ", " << finished << " of 100 reached the end");
     CHECK(std::abs(mean - reference) < 3 * std_error);
     if (!hardcore) {
       CHECK(finished >= 5);  // walks the whole course (x > 88.7 m) in some episodes
@@ -400,8 +401,9 @@ TEST_CASE("eval and record --policy heuristic on BipedalWalker", "[walker][cli]"
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   CHECK(r.output.find("heuristic on BipedalWalker-v3, 2 episodes") != std::string::npos);
-  const auto video = run_rlrun("record --env BipedalWalkerHardcore-v3 --policy heuristic --output " +
-                               dir / "walker.mp4" + " --frames " + dir / "frames");
+  const auto video =
+      run_rlrun("record --env BipedalWalkerHardcore-v3 --policy heuristic --output " +
+                dir / "walker.mp4" + " --frames " + dir / "frames");
   INFO(video.output);
   REQUIRE(video.exit_code == 0);
   std::smatch m;

@@ -3,16 +3,16 @@
 // run by scripts/bench.sh.
 #include <catch2/catch.hpp>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <regex>
 #include <string>
 #include <vector>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/envs/gripper/gripper_goal_env.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "rlrun/envs/gripper/scripted_goal_policy.hpp"
+#include "rlrun/rng.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
 
@@ -33,7 +33,8 @@ TEST_CASE("bench: GripperLift-v0 env steps/s and SAC training steps/s", "[.bench
       env.action_space().sample(actions, a);
       if (env.step(a, obs).truncated) env.reset(std::nullopt, obs);
     }
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("| %s, random actions, one core | %.0f |\n", env.id().c_str(), kSteps / s);
   }
   // SAC as configs/grasp_sac.yaml trains it (256x256, batch 256, one update per step), 6 000
@@ -71,7 +72,8 @@ TEST_CASE("bench: goal tasks' env steps/s", "[.bench][gripper_bench]") {
         } else {
           env.action_space().sample(actions, a);
         }
-        const StepResult r = env.step(std::span<const float>(a, env.action_space().flat_dim()), obs);
+        const StepResult r =
+            env.step(std::span<const float>(a, env.action_space().flat_dim()), obs);
         if (r.terminated || r.truncated) env.reset(std::nullopt, obs);
       }
       const double s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;

@@ -117,8 +117,9 @@ TEST_CASE("Goal tasks: spaces, Dict keys, GoalEnv, observation layout", "[grippe
   }
 }
 
-TEST_CASE("Goal tasks: compute_reward for a batch equals step()'s reward and success is d < threshold",
-          "[gripper_goal]") {
+TEST_CASE(
+    "Goal tasks: compute_reward for a batch equals step()'s reward and success is d < threshold",
+    "[gripper_goal]") {
   for (const char* reward_type : {"sparse", "dense"}) {
     for (GoalTask task : kTasks) {
       GripperGoalEnv::Config config;
@@ -199,8 +200,10 @@ TEST_CASE("Goal tasks: the same seed gives the same episode bit for bit", "[grip
   }
 }
 
-TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges and half of PickAndPlace's "
-          "goals in the air", "[gripper_goal]") {
+TEST_CASE(
+    "Goal tasks: goals and cubes within the scenario's ranges and half of PickAndPlace's "
+    "goals in the air",
+    "[gripper_goal]") {
   constexpr int kResets = 400;
   for (GoalTask task : kTasks) {
     auto env = make(task);
@@ -250,7 +253,8 @@ TEST_CASE("Goal tasks: goals and cubes within the scenario's ranges and half of 
   CHECK(reach->scenario().goal_x == std::vector<double>{-0.15, 0.15});
 }
 
-TEST_CASE("Goal tasks: a world without the cube and GripperLift's world unchanged", "[gripper_goal]") {
+TEST_CASE("Goal tasks: a world without the cube and GripperLift's world unchanged",
+          "[gripper_goal]") {
   GripperWorld::Layout layout;
   layout.with_cube = false;
   GripperWorld empty(layout);
@@ -326,7 +330,8 @@ TEST_CASE("Goal tasks: the goal marker is drawn", "[gripper_goal]") {
 
 TEST_CASE("Goal tasks: scenario files and settings", "[gripper_goal]") {
   CHECK(load_goal_task_scenario("scenarios/grasp/push.yaml").goal_apart);
-  CHECK(load_goal_task_scenario("scenarios/grasp/pick_and_place.yaml").goal_in_air_probability == 0.5);
+  CHECK(load_goal_task_scenario("scenarios/grasp/pick_and_place.yaml").goal_in_air_probability ==
+        0.5);
   TempDir dir("goal_scenario");
   std::ofstream(dir / "typo.yaml") << "name: x\ngoal_in_air_probabilty: 0.3\n";
   CHECK_THROWS_WITH(load_goal_task_scenario(dir / "typo.yaml"),

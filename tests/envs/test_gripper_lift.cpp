@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/rng.hpp"
 #include "rlrun/envs/gripper/gripper_lift.hpp"
 #include "rlrun/envs/gripper/scripted_grasp_policy.hpp"
+#include "rlrun/rng.hpp"
 #include "runtime/cli_runner.hpp"
 #include "runtime/video_probe.hpp"
 #include "test_paths.hpp"
@@ -60,8 +60,8 @@ TEST_CASE("GripperLift: spaces, the same seed gives the same episode bit for bit
   const auto first = random_episode(env, 42, 7);
   GripperLift other;
   const auto second = random_episode(other, 42, 7);
-  CHECK(first.size() == 51 * 26 + 50);  // reset + 50 steps (scenario episode_steps)
-  CHECK(first == second);               // a fresh env, the same floats
+  CHECK(first.size() == 51 * 26 + 50);         // reset + 50 steps (scenario episode_steps)
+  CHECK(first == second);                      // a fresh env, the same floats
   CHECK(random_episode(env, 42, 7) == first);  // the same env after other episodes
   CHECK(random_episode(env, 43, 7) != first);
 }
@@ -139,8 +139,9 @@ TEST_CASE("GripperLift: scenario files", "[gripper]") {
   CHECK(load_grasp_scenario("scenarios/grasp/lift_easy.yaml").palm_above_cube);
   TempDir dir("grasp_scenario");
   std::ofstream(dir / "typo.yaml") << "name: x\ncube_sise: [0.05, 0.05]\n";
-  CHECK_THROWS_WITH(load_grasp_scenario(dir / "typo.yaml"),
-                    Catch::Contains("typo.yaml:2:1") && Catch::Contains("did you mean 'cube_size'"));
+  CHECK_THROWS_WITH(
+      load_grasp_scenario(dir / "typo.yaml"),
+      Catch::Contains("typo.yaml:2:1") && Catch::Contains("did you mean 'cube_size'"));
   std::ofstream(dir / "range.yaml") << "cube_mass: [0.2, 0.1]\n";
   CHECK_THROWS_WITH(load_grasp_scenario(dir / "range.yaml"), Catch::Contains("low <= high"));
   std::ofstream(dir / "big.yaml") << "cube_size: [0.05, 0.09]\n";
@@ -156,7 +157,8 @@ TEST_CASE("GripperLift: scenario files", "[gripper]") {
   const float a[4] = {0, 0, 0, 0};
   while (!env.step(a, obs).truncated) ++steps;
   CHECK(steps + 1 == 20);
-  CHECK_THROWS_WITH(GripperLift(GripperLift::Config{"no/such.yaml"}), Catch::Contains("does not exist"));
+  CHECK_THROWS_WITH(GripperLift(GripperLift::Config{"no/such.yaml"}),
+                    Catch::Contains("does not exist"));
 }
 
 TEST_CASE("eval and record --policy scripted on the grasp task", "[gripper][cli]") {
@@ -167,11 +169,12 @@ TEST_CASE("eval and record --policy scripted on the grasp task", "[gripper][cli]
   REQUIRE(r.exit_code == 0);
   CHECK(r.output.find("scripted on GripperLift-v0, 10 episodes") != std::string::npos);
   CHECK(r.output.find("success_rate = 1.000") != std::string::npos);
-  const auto video = run_rlrun("record --env GripperLiftEasy-v0 --policy scripted --output " +
-                               dir / "lift.mp4");
+  const auto video =
+      run_rlrun("record --env GripperLiftEasy-v0 --policy scripted --output " + dir / "lift.mp4");
   INFO(video.output);
   REQUIRE(video.exit_code == 0);
-  CHECK(probe_video(dir / "lift.mp4").find("h264,480,480,51") != std::string::npos);  // reset + 50 steps
+  CHECK(probe_video(dir / "lift.mp4").find("h264,480,480,51") !=
+        std::string::npos);  // reset + 50 steps
   const auto wrong = run_rlrun("eval --env CartPole-v1 --policy scripted --episodes 1");
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.output.find("policy 'scripted' does not come with CartPole-v1; its policies: "

@@ -342,8 +342,8 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
           }
           if (drift > kObsTolerance && twin_apart < drift * kTwinOffset / kRoundingBound)
             return fail(where + " (free run) " + m + ": a drift of " + brief(drift) +
-                        " that the dynamics do not explain (a twin started " +
-                        brief(kTwinOffset) + " away is only " + brief(twin_apart) +
+                        " that the dynamics do not explain (a twin started " + brief(kTwinOffset) +
+                        " away is only " + brief(twin_apart) +
                         " apart): the physics differ from the reference");
           free_running = false;
           ++result.diverged;
@@ -362,7 +362,8 @@ ReplayResult replay(const fs::path& dir, const std::string& id) {
 // One line on the free runs of `id` (information, not a failure).
 std::string free_run_report(const std::string& id, const ReplayResult& r) {
   std::string text = id + " free run: " + std::to_string(r.episodes - r.diverged) + " of " +
-                     std::to_string(r.episodes) + " episodes follow the reference to 1e-5 to the end";
+                     std::to_string(r.episodes) +
+                     " episodes follow the reference to 1e-5 to the end";
   if (r.diverged > 0)
     text += "; " + std::to_string(r.diverged) + " drift past it, earliest at step " +
             std::to_string(r.first_divergence_step) + " (" + r.divergence + ")";
@@ -549,8 +550,9 @@ TEST_CASE("the reference replay reads any directory in the same format", "[envs]
       csv.rows[2][csv.column(flag)] = "1";  // episode 0, step 2: neither happened
       write_csv(path, csv);
       const ReplayResult r = replay(tmp.path, "CartPole-v1");
-      CHECK_THAT(r.error, Catch::Contains("episode 0 step 2") &&
-                              Catch::Contains(std::string("column ") + flag + ": expected 1 got 0"));
+      CHECK_THAT(r.error,
+                 Catch::Contains("episode 0 step 2") &&
+                     Catch::Contains(std::string("column ") + flag + ": expected 1 got 0"));
     }
   }
 
@@ -609,4 +611,3 @@ TEST_CASE("the reference replay reads any directory in the same format", "[envs]
     CHECK(reference_ids(empty.path / "missing").empty());
   }
 }
-

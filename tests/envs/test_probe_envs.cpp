@@ -1,7 +1,7 @@
 // The probe envs (envs/probe/): SB3's identity and multi-input test envs and DictReach-v0.
 // Learning through the real binary is in tests/runtime/test_cli_spaces.cpp.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -104,7 +104,8 @@ TEST_CASE("SimpleMultiObsEnv: the ring grid, its Dict observation and SB3's rewa
   // The walls are never entered.
   for (int cell = 0; cell < 16; ++cell)
     for (int a = 0; a < 4; ++a)
-      if (!SimpleMultiObs::is_wall(cell)) CHECK_FALSE(SimpleMultiObs::is_wall(SimpleMultiObs::next_cell(cell, a)));
+      if (!SimpleMultiObs::is_wall(cell))
+        CHECK_FALSE(SimpleMultiObs::is_wall(SimpleMultiObs::next_cell(cell, a)));
 
   // Random starts are free, non-goal cells; every copy shows the same column vectors.
   SimpleMultiObs other;

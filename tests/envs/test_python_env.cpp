@@ -46,9 +46,9 @@ double mean_reward(const std::string& output) {
 TEST_CASE("check-env passes the Python test envs, with python3 from PATH", "[python]") {
   for (const std::string& id : {kCartPolePort, kReach, kDictGoal}) {
     // The default interpreter is `python3` on PATH: put Debian's first.
-    const auto r = run_command("cd " + kSourceDir + " && PATH=/usr/bin:$PATH PYTHONPATH=" +
-                               kSourceDir + "/tests/python_envs " + RLRUN_BINARY +
-                               " check-env " + id);
+    const auto r =
+        run_command("cd " + kSourceDir + " && PATH=/usr/bin:$PATH PYTHONPATH=" + kSourceDir +
+                    "/tests/python_envs " + RLRUN_BINARY + " check-env " + id);
     INFO(r.output);
     CHECK(r.exit_code == 0);
   }
@@ -61,10 +61,10 @@ TEST_CASE("Python envs train deterministically: same seed, same episodes", "[pyt
   std::vector<std::vector<std::string>> runs;
   for (const char* name : {"a", "b", "c"}) {
     const std::string seed = name[0] == 'c' ? "2" : "1";
-    const auto r = run_rlrun_python(
-        "train " + python_experiment(dir.str(), name, kCartPolePort, kPpoZoo, 4096, 4,
-                                     ", max_episode_steps: 500") +
-        " --seed " + seed);
+    const auto r = run_rlrun_python("train " +
+                                    python_experiment(dir.str(), name, kCartPolePort, kPpoZoo, 4096,
+                                                      4, ", max_episode_steps: 500") +
+                                    " --seed " + seed);
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     std::vector<std::string> all;
@@ -83,8 +83,8 @@ TEST_CASE("Python envs train deterministically: same seed, same episodes", "[pyt
 TEST_CASE("PPO learns the Python CartPole port to >= 475 with the zoo's settings",
           "[python][python_learning]") {
   TempDir dir("python_ppo");
-  const std::string config = python_experiment(dir.str(), "cartpole_port", kCartPolePort,
-                                               kPpoZoo, 100000, 8, ", max_episode_steps: 500");
+  const std::string config = python_experiment(dir.str(), "cartpole_port", kCartPolePort, kPpoZoo,
+                                               100000, 8, ", max_episode_steps: 500");
   const auto train = run_rlrun_python("train " + config);
   INFO(train.output);
   REQUIRE(train.exit_code == 0);
@@ -95,8 +95,9 @@ TEST_CASE("PPO learns the Python CartPole port to >= 475 with the zoo's settings
   INFO(refused.output);
   CHECK(refused.exit_code != 0);
   CHECK(refused.output.find("--set env.id=" + kCartPolePort) != std::string::npos);
-  const auto eval = run_rlrun_python("eval --model " + model + " --episodes 10 --seed 1000 --set env.id=" +
-                                     kCartPolePort + " --set env.python=" + kPython);
+  const auto eval = run_rlrun_python("eval --model " + model +
+                                     " --episodes 10 --seed 1000 --set env.id=" + kCartPolePort +
+                                     " --set env.python=" + kPython);
   INFO(eval.output);
   REQUIRE(eval.exit_code == 0);
   CHECK(mean_reward(eval.output) >= 475);
@@ -111,10 +112,12 @@ TEST_CASE("SAC learns a continuous Python task", "[python][python_learning]") {
   INFO(train.output);
   REQUIRE(train.exit_code == 0);
   const std::string model = dir / "runs/reach/seed1/model.zip";
-  const auto eval = run_rlrun_python("eval --model " + model + " --episodes 20 --seed 7 --set env.id=" +
-                                     kReach + " --set env.python=" + kPython);
-  const auto random = run_rlrun_python("eval --env " + kReach +
-                                       " --policy random --episodes 20 --seed 7 --set env.python=" + kPython);
+  const auto eval =
+      run_rlrun_python("eval --model " + model + " --episodes 20 --seed 7 --set env.id=" + kReach +
+                       " --set env.python=" + kPython);
+  const auto random =
+      run_rlrun_python("eval --env " + kReach +
+                       " --policy random --episodes 20 --seed 7 --set env.python=" + kPython);
   INFO(eval.output << random.output);
   REQUIRE(eval.exit_code == 0);
   REQUIRE(random.exit_code == 0);
@@ -141,9 +144,9 @@ TEST_CASE("A Dict-observation Python env trains and its is_success reaches monit
 TEST_CASE("rlrun record films a Python env through its render()", "[python]") {
   TempDir dir("python_record");
   const std::string video = dir / "port.mp4";
-  const auto r = run_rlrun_python("record --env " + kCartPolePort +
-                                  " --policy random --episodes 1 --seed 3 --set env.python=" +
-                                  kPython + " --output " + video);
+  const auto r = run_rlrun_python(
+      "record --env " + kCartPolePort +
+      " --policy random --episodes 1 --seed 3 --set env.python=" + kPython + " --output " + video);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   const std::string probe = probe_video(video);
@@ -157,9 +160,9 @@ TEST_CASE("the documented Python env example trains and evaluates as docs/python
   TempDir dir("python_example");
   const std::string example = kSourceDir + "/examples/python_env";
   // As the docs run it: from the example's directory, python3 from PATH (Debian's first).
-  const auto train = run_command("cd " + example + " && PATH=/usr/bin:$PATH " + RLRUN_BINARY +
-                                 " train walk_to_target_ppo.yaml --timesteps 2048 --set eval.freq=0 --out " +
-                                 dir.str());
+  const auto train = run_command(
+      "cd " + example + " && PATH=/usr/bin:$PATH " + RLRUN_BINARY +
+      " train walk_to_target_ppo.yaml --timesteps 2048 --set eval.freq=0 --out " + dir.str());
   INFO(train.output);
   REQUIRE(train.exit_code == 0);
   const auto eval = run_command("cd " + example + " && PATH=/usr/bin:$PATH " + RLRUN_BINARY +
@@ -181,12 +184,14 @@ TEST_CASE("env.python: a virtualenv's interpreter runs the env", "[python]") {
                                 dir.str() + "/venv");
   INFO(venv.output);
   REQUIRE(venv.exit_code == 0);
-  const auto r = run_rlrun_python("check-env python:rlrun_test_envs.continuous:Reach1D --episodes 2 --python " +
-                                  dir.str() + "/venv/bin/python");
+  const auto r = run_rlrun_python(
+      "check-env python:rlrun_test_envs.continuous:Reach1D --episodes 2 --python " + dir.str() +
+      "/venv/bin/python");
   INFO(r.output);
   CHECK(r.exit_code == 0);
-  const auto wrong = run_rlrun_python("check-env python:rlrun_test_envs.continuous:Reach1D --python " +
-                                      dir.str() + "/venv/bin/no-python");
+  const auto wrong =
+      run_rlrun_python("check-env python:rlrun_test_envs.continuous:Reach1D --python " + dir.str() +
+                       "/venv/bin/no-python");
   CHECK(wrong.exit_code != 0);
   CHECK(wrong.output.find("cannot run the Python interpreter") != std::string::npos);
 }
@@ -201,14 +206,14 @@ TEST_CASE("rlrun's wrappers stack on a Python env, deterministically", "[python]
     for (int run = 0; run < 2; ++run) {
       const std::string name = "wrapped" + std::to_string(run) + wrapper.substr(0, 5);
       const auto r = run_rlrun_python(
-          "train " + python_experiment(dir.str(), name, kCartPolePort, "id: PPO, n_steps: 64",
-                                       2048, 4,
-                                       ", max_episode_steps: 500, wrappers: [{id: " + wrapper + "}]"));
+          "train " +
+          python_experiment(dir.str(), name, kCartPolePort, "id: PPO, n_steps: 64", 2048, 4,
+                            ", max_episode_steps: 500, wrappers: [{id: " + wrapper + "}]"));
       INFO(r.output);
       REQUIRE(r.exit_code == 0);
       for (int i = 0; i < 4; ++i)
-        for (const auto& e : episodes(dir / ("runs/" + name + "/seed1/" + std::to_string(i) +
-                                             ".monitor.csv")))
+        for (const auto& e :
+             episodes(dir / ("runs/" + name + "/seed1/" + std::to_string(i) + ".monitor.csv")))
           monitors[run] += e + "\n";
     }
     INFO(wrapper);

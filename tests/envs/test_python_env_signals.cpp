@@ -86,8 +86,7 @@ TEST_CASE("kill -9 of rlrun takes its Python workers down", "[python]") {
 TEST_CASE("A second Ctrl-C stops rlrun while a Python env hangs in step()", "[python]") {
   TempDir dir("python_hang");
   std::vector<pid_t> workers;
-  const pid_t rlrun =
-      start_training(dir.str(), workers, kBroken + "HangsInStep", "training PPO");
+  const pid_t rlrun = start_training(dir.str(), workers, kBroken + "HangsInStep", "training PPO");
   REQUIRE(workers.size() == 4);
   REQUIRE(all_hanging(dir / "log.txt", 4));  // every worker is stuck at step 5
   kill(-rlrun, SIGINT);
@@ -105,8 +104,7 @@ TEST_CASE("One Ctrl-C stops rlrun when a Python env hangs in step()", "[python]"
   // that has not answered 5 s later hangs: rlrun stops without one (before: it waited for ever).
   TempDir dir("python_hang_one");
   std::vector<pid_t> workers;
-  const pid_t rlrun =
-      start_training(dir.str(), workers, kBroken + "HangsInStep", "training PPO");
+  const pid_t rlrun = start_training(dir.str(), workers, kBroken + "HangsInStep", "training PPO");
   REQUIRE(workers.size() == 4);
   REQUIRE(all_hanging(dir / "log.txt", 4));  // every worker is stuck at step 5
   kill(-rlrun, SIGINT);
@@ -147,10 +145,10 @@ TEST_CASE("Ctrl-C stops rlrun while a Python env hangs in __init__", "[python]")
   }
   SECTION("record, which handles Ctrl-C itself") {
     // The first Ctrl-C was only counted (a request for the next safe point, which never came).
-    const pid_t rlrun = start_rlrun({"record", "--env", kBroken + "HangsInInit", "--policy",
-                                     "random", "--output", dir / "v.mp4", "--set",
-                                     "env.python=" + kPython},
-                                    dir / "log.txt");
+    const pid_t rlrun =
+        start_rlrun({"record", "--env", kBroken + "HangsInInit", "--policy", "random", "--output",
+                     dir / "v.mp4", "--set", "env.python=" + kPython},
+                    dir / "log.txt");
     std::vector<pid_t> workers;
     REQUIRE(wait_until([&] { return !(workers = python_children(rlrun)).empty(); }, 30));
     std::this_thread::sleep_for(std::chrono::milliseconds(500));

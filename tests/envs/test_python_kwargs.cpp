@@ -14,5 +14,6 @@ TEST_CASE("Python env kwargs become JSON with YAML's scalar types", "[python]") 
         R"({"big":1000.0,"flag":true,"list":[1,"two",3.5],"name":"grid","nested":{"a":null},)"
         R"("none":null,"off":false,"quoted":"12","rate":0.5,"size":7})");
   CHECK(kwargs_json(YAML::Node()) == "{}");
-  CHECK_THROWS_WITH(kwargs_json(YAML::Load("{x: .inf}")), "'.inf': JSON has no inf or NaN; pass it as a string");
+  CHECK_THROWS_WITH(kwargs_json(YAML::Load("{x: .inf}")),
+                    "'.inf': JSON has no inf or NaN; pass it as a string");
 }

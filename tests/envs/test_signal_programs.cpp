@@ -24,7 +24,8 @@ namespace {
 
 // A network of one light, three controlled links, with the given phases.
 std::string one_light_net(const std::vector<std::string>& states) {
-  std::string xml = "<net version=\"1.9\">\n  <tlLogic id=\"J1\" type=\"static\" programID=\"0\" offset=\"0\">\n";
+  std::string xml =
+      "<net version=\"1.9\">\n  <tlLogic id=\"J1\" type=\"static\" programID=\"0\" offset=\"0\">\n";
   for (const std::string& s : states) xml += "    <phase duration=\"10\" state=\"" + s + "\"/>\n";
   xml +=
       "  </tlLogic>\n"
@@ -48,8 +49,8 @@ TEST_CASE("signal programs: green phases, yellow transitions and lanes as sumo-r
           "[traffic_network]") {
   TempDir dir("signal_programs");
   // Greens: no 'y' and not all 'r'/'s'. The yellow and all-red phases are not actions.
-  const std::string net = write(dir, "one.net.xml",
-                                one_light_net({"GGr", "yyr", "rrr", "rsG", "srs", "gGG"}));
+  const std::string net =
+      write(dir, "one.net.xml", one_light_net({"GGr", "yyr", "rrr", "rsG", "srs", "gGG"}));
   const std::vector<TrafficLightProgram> lights = read_signal_programs(net);
   REQUIRE(lights.size() == 1);
   const TrafficLightProgram& light = lights[0];
@@ -63,12 +64,12 @@ TEST_CASE("signal programs: green phases, yellow transitions and lanes as sumo-r
   const SignalControl control = derive_signal_control(light);
   CHECK(control.green_states == std::vector<std::string>{"GGr", "rsG", "gGG"});
   // 'G'/'g' followed by 'r'/'s' turns 'y'; everything else keeps green i's character.
-  CHECK(control.yellow_states[0][1] == "yyr");   // GGr -> rsG
-  CHECK(control.yellow_states[0][2] == "GGr");   // GGr -> gGG: nothing stops
-  CHECK(control.yellow_states[1][0] == "rsy");   // rsG -> GGr
-  CHECK(control.yellow_states[1][2] == "rsG");   // rsG -> gGG
-  CHECK(control.yellow_states[2][0] == "gGy");   // gGG -> GGr
-  CHECK(control.yellow_states[2][1] == "yyG");   // gGG -> rsG: g -> r and G -> s
+  CHECK(control.yellow_states[0][1] == "yyr");  // GGr -> rsG
+  CHECK(control.yellow_states[0][2] == "GGr");  // GGr -> gGG: nothing stops
+  CHECK(control.yellow_states[1][0] == "rsy");  // rsG -> GGr
+  CHECK(control.yellow_states[1][2] == "rsG");  // rsG -> gGG
+  CHECK(control.yellow_states[2][0] == "gGy");  // gGG -> GGr
+  CHECK(control.yellow_states[2][1] == "yyG");  // gGG -> rsG: g -> r and G -> s
   CHECK(control.yellow_states[1][1].empty());
 
   CHECK(select_lights(lights, {}, net).size() == 1);
@@ -80,7 +81,8 @@ TEST_CASE("signal programs: a netgenerate grid's lights, lanes and phases", "[tr
   const std::string net = dir / "grid.net.xml";
   const CommandResult made = run_command(
       "netgenerate --grid --grid.number 4 --grid.length 200 --default.lanenumber 2 "
-      "--tls.guess true --no-turnarounds true -o '" + net + "' 2>&1");
+      "--tls.guess true --no-turnarounds true -o '" +
+      net + "' 2>&1");
   INFO(made.output);
   REQUIRE(made.exit_code == 0);
   std::ifstream in(net);
@@ -90,10 +92,12 @@ TEST_CASE("signal programs: a netgenerate grid's lights, lanes and phases", "[tr
   // What the file holds, counted independently of the reader.
   std::set<std::string> lane_ids;
   const std::regex lane(R"re(<lane id="([^"]+)")re");
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), lane); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), lane); it != std::sregex_iterator();
+       ++it)
     lane_ids.insert((*it)[1]);
   const std::regex logic(R"re(<tlLogic id="([^"]+)")re");
-  const auto n_logics = std::distance(std::sregex_iterator(xml.begin(), xml.end(), logic), std::sregex_iterator());
+  const auto n_logics =
+      std::distance(std::sregex_iterator(xml.begin(), xml.end(), logic), std::sregex_iterator());
   REQUIRE(n_logics >= 4);
 
   const std::vector<TrafficLightProgram> lights = read_signal_programs(net);
@@ -105,7 +109,8 @@ TEST_CASE("signal programs: a netgenerate grid's lights, lanes and phases", "[tr
     CHECK_FALSE(light.outgoing_lanes.empty());
     for (const std::string& l : light.incoming_lanes) CHECK(lane_ids.count(l) == 1);
     for (const std::string& l : light.outgoing_lanes) CHECK(lane_ids.count(l) == 1);
-    for (const SignalPhase& p : light.phases) CHECK(static_cast<int>(p.state.size()) == light.num_links);
+    for (const SignalPhase& p : light.phases)
+      CHECK(static_cast<int>(p.state.size()) == light.num_links);
     const SignalControl control = derive_signal_control(light);
     CHECK(control.green_states.size() >= 2);
     for (size_t i = 0; i < control.green_states.size(); ++i)
@@ -114,12 +119,14 @@ TEST_CASE("signal programs: a netgenerate grid's lights, lanes and phases", "[tr
   }
 }
 
-TEST_CASE("signal programs: the reader agrees with a running SUMO (TraCI) on lights, lanes and phases",
-          "[traffic_network]") {
+TEST_CASE(
+    "signal programs: the reader agrees with a running SUMO (TraCI) on lights, lanes and phases",
+    "[traffic_network]") {
   TempDir dir("signal_traci");
   const std::string net = dir / "grid.net.xml";
   REQUIRE(run_command("netgenerate --grid --grid.number 3 --grid.length 150 --default.lanenumber 2 "
-                      "--tls.guess true -o '" + net + "' 2>&1")
+                      "--tls.guess true -o '" +
+                      net + "' 2>&1")
               .exit_code == 0);
   std::ofstream(dir / "grid.sumocfg") << "<configuration><input><net-file value=\"grid.net.xml\"/>"
                                          "</input></configuration>\n";

@@ -47,8 +47,8 @@ TEST_CASE("One Ctrl-C stops training while its SUMO worker does not answer", "[t
   const std::string config = dir / "network.yaml";
   std::ofstream(config) << "run: {name: hang, seed: 1, total_timesteps: 1000000, out_dir: "
                         << dir.str() << "/runs}\n"
-                        << "env: {id: TrafficNetwork-v0, kwargs: {scenario: "
-                        << RLRUN_SOURCE_DIR << "/scenarios/grid4x4.yaml}}\n"
+                        << "env: {id: TrafficNetwork-v0, kwargs: {scenario: " << RLRUN_SOURCE_DIR
+                        << "/scenarios/grid4x4.yaml}}\n"
                         << "algo: {id: PPO, n_steps: 64, batch_size: 256}\n";
   const std::string log = dir / "log.txt";
   const pid_t rlrun = start_rlrun({"train", config}, log);
@@ -72,8 +72,8 @@ TEST_CASE("One Ctrl-C stops training while its SUMO worker does not answer", "[t
   CHECK(output.find("the SUMO worker (pid ") != std::string::npos);
   // Stopped while it starts SUMO (the log line above can come before the start-up ends) or
   // while it runs a step: either way one Ctrl-C ends rlrun and says which wait it was.
-  CHECK((output.find("has not answered in a simulation step 5 s after Ctrl-C") !=
-             std::string::npos ||
-         output.find("while waiting for the SUMO worker (pid ") != std::string::npos));
+  CHECK(
+      (output.find("has not answered in a simulation step 5 s after Ctrl-C") != std::string::npos ||
+       output.find("while waiting for the SUMO worker (pid ") != std::string::npos));
   CHECK(all_gone(workers, 10));  // killed, stopped or not
 }

@@ -2,11 +2,11 @@
 // metrics come from live in private mkdtemp directories, so a symlink planted at the names
 // rlrun once used (<tmp>/rlrun<pid>_<n>.log, .tripinfo.xml) is never followed, and nothing is
 // left behind, also when SUMO fails at start-up (whose error still quotes SUMO's own lines).
-#include <catch2/catch.hpp>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cstdlib>
@@ -114,10 +114,13 @@ TEST_CASE("PrivateTempDir: removes this user's directories of ended processes, n
   CHECK(fs::exists(other + "/x.log"));
   CHECK(fs::is_symlink(link));
   CHECK(read_text(dir / "target/keep.txt") == "keep\n");
-  CHECK(fs::path(temp.path()).filename().string().rfind(prefix + std::to_string(getpid()) + "-", 0) == 0);
+  CHECK(
+      fs::path(temp.path()).filename().string().rfind(prefix + std::to_string(getpid()) + "-", 0) ==
+      0);
 }
 
-TEST_CASE("rlrun killed with SIGKILL: the next rlrun removes its SUMO directories", "[traffic][cli]") {
+TEST_CASE("rlrun killed with SIGKILL: the next rlrun removes its SUMO directories",
+          "[traffic][cli]") {
   TempDir dir("sumo_killed_leftovers");
   const std::string tmp = dir / "tmp";
   fs::create_directories(tmp);
@@ -125,11 +128,17 @@ TEST_CASE("rlrun killed with SIGKILL: the next rlrun removes its SUMO directorie
   // Training on the traffic task, killed once its SUMO runs: no destructor removes its
   // directories (SUMO itself goes with it, PR_SET_PDEATHSIG).
   const auto killed = run_command(
-      env + RLRUN_BINARY + " train " + RLRUN_SOURCE_DIR + "/configs/cartpole_ppo.yaml --set "
+      env + RLRUN_BINARY + " train " + RLRUN_SOURCE_DIR +
+      "/configs/cartpole_ppo.yaml --set "
       "env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]' --set env.n_envs=1 --timesteps "
-      "100000000 --out '" + dir / "runs" + "' > /dev/null 2>&1 & pid=$!; "
-      "for i in $(seq 200); do ls '" + tmp + "' | grep -q rlrun-sumo- && break; sleep 0.05; done; "
-      "sleep 0.5; kill -9 $pid; wait $pid; ls '" + tmp + "'");
+      "100000000 --out '" +
+      dir / "runs" +
+      "' > /dev/null 2>&1 & pid=$!; "
+      "for i in $(seq 200); do ls '" +
+      tmp +
+      "' | grep -q rlrun-sumo- && break; sleep 0.05; done; "
+      "sleep 0.5; kill -9 $pid; wait $pid; ls '" +
+      tmp + "'");
   INFO(killed.output);
   CHECK(contains_text(killed.output, "rlrun-sumo-"));
   CHECK(contains_text(killed.output, "rlrun-tripinfo-"));
@@ -179,7 +188,8 @@ TEST_CASE("SUMO's log and tripinfo: private directories, planted symlinks untouc
       }
       const float action = 0.0f;
       StepResult step;
-      for (int i = 0; i < 100 && !step.terminated && !step.truncated; ++i) step = env.step({&action, 1}, obs);
+      for (int i = 0; i < 100 && !step.terminated && !step.truncated; ++i)
+        step = env.step({&action, 1}, obs);
       REQUIRE((step.terminated || step.truncated));
       // The episode's metrics came from the tripinfo file in the private directory.
       CHECK(env.info().get(env.info().find("throughput")) > 0);
@@ -190,7 +200,8 @@ TEST_CASE("SUMO's log and tripinfo: private directories, planted symlinks untouc
   CHECK(entries(tmp) == planted);
 }
 
-TEST_CASE("SUMO failing at start-up: its own error quoted, no files left, no process", "[traffic]") {
+TEST_CASE("SUMO failing at start-up: its own error quoted, no files left, no process",
+          "[traffic]") {
   TempDir dir("sumo_startup_failure");
   const std::string tmp = dir / "tmp";
   fs::create_directories(tmp);

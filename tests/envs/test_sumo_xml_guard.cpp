@@ -40,8 +40,10 @@ std::string entity_bomb(const std::string& root, int levels = 7) {
 
 // The shipped single-intersection scenario's configuration with other inputs.
 std::string sumocfg(const std::string& routes, const std::string& begin = "0") {
-  return "<configuration>\n  <input>\n    <net-file value=\"" + kSingle + "single.net.xml\"/>\n"
-         "    <route-files value=\"" + routes + "\"/>\n    <additional-files value=\"" + kSingle +
+  return "<configuration>\n  <input>\n    <net-file value=\"" + kSingle +
+         "single.net.xml\"/>\n"
+         "    <route-files value=\"" +
+         routes + "\"/>\n    <additional-files value=\"" + kSingle +
          "tls.tll.xml\"/>\n  </input>\n  <time>\n    <begin value=\"" + begin +
          "\"/>\n    <end value=\"3600\"/>\n  </time>\n</configuration>\n";
 }
@@ -64,12 +66,14 @@ std::string refusal(const std::string& path) {
 
 TEST_CASE("A billion-laughs .sumocfg is refused quickly with a short error", "[traffic]") {
   TempDir dir("sumo_bomb_cfg");
-  const std::string cfg = write(dir / "bomb.sumocfg",
-                                entity_bomb("configuration") + sumocfg(kSingle + "routes.rou.xml", "&a7;"));
+  const std::string cfg =
+      write(dir / "bomb.sumocfg",
+            entity_bomb("configuration") + sumocfg(kSingle + "routes.rou.xml", "&a7;"));
   // TrafficSignal-v0 hands the .sumocfg to SUMO, whose parser expanded the entity (10^7 times).
   const auto r = run_command_measured(std::string(RLRUN_BINARY) +
                                       " eval --env TrafficSignal-v0 --policy fixed-time "
-                                      "--episodes 1 --set env.kwargs.scenario=" + cfg);
+                                      "--episodes 1 --set env.kwargs.scenario=" +
+                                      cfg);
   INFO(r.output.substr(0, 2000));
   CHECK(r.exit_code == 2);
   CHECK(r.output.size() < 1000);
@@ -82,13 +86,15 @@ TEST_CASE("A billion-laughs network file is refused before pugixml or SUMO reads
   TempDir dir("sumo_bomb_net");
   std::string net = read_text(kGrid + "grid4x4.net.xml");
   net.replace(net.find("<net "), 5, "<net junk=\"&a7;\" ");
-  const std::string bomb = write(dir / "bomb.net.xml", entity_bomb("net") + net.substr(net.find("<net ")));
+  const std::string bomb =
+      write(dir / "bomb.net.xml", entity_bomb("net") + net.substr(net.find("<net ")));
   const std::string scenario =
       write(dir / "bomb.yaml", "name: bomb\nnet_file: bomb.net.xml\nroute_files: [" + kGrid +
                                    "grid4x4.rou.xml]\nbegin: 0\nend: 100\n");
   const auto r = run_command_measured(std::string(RLRUN_BINARY) +
                                       " eval --env TrafficNetwork-v0 --policy fixed-time "
-                                      "--episodes 1 --set env.kwargs.scenario=" + scenario);
+                                      "--episodes 1 --set env.kwargs.scenario=" +
+                                      scenario);
   INFO(r.output.substr(0, 2000));
   CHECK(r.exit_code == 2);
   CHECK(r.output.size() < 1000);
@@ -109,13 +115,14 @@ TEST_CASE("Every SUMO input is checked: named by a .sumocfg or included or gzip-
       FAIL("accepted");
     } catch (const ConfigError& e) {
       CHECK(std::string(e.what()).find(bomb_routes + ":2: a markup declaration") == 0);
-      CHECK(std::string(e.what()).find("(named by " + cfg + ", <route-files>)") != std::string::npos);
+      CHECK(std::string(e.what()).find("(named by " + cfg + ", <route-files>)") !=
+            std::string::npos);
     }
   }
   SECTION("a file an additional file includes, and what that includes") {
     write(dir / "inner.add.xml", "<additional><include href=\"bomb.rou.xml\"/></additional>\n");
-    const std::string outer =
-        write(dir / "outer.add.xml", "<additional>\n<include href='inner.add.xml' />\n</additional>\n");
+    const std::string outer = write(
+        dir / "outer.add.xml", "<additional>\n<include href='inner.add.xml' />\n</additional>\n");
     const std::string message = refusal(outer);
     CHECK(message.find(bomb_routes + ":2: a markup declaration") == 0);
     CHECK(message.find("(included by " + dir / "inner.add.xml" + ") (included by " + outer + ")") !=
@@ -126,7 +133,8 @@ TEST_CASE("Every SUMO input is checked: named by a .sumocfg or included or gzip-
     gzFile gz = gzopen((dir / "bomb.net.xml").c_str(), "wb");
     gzwrite(gz, text.data(), static_cast<unsigned>(text.size()));
     gzclose(gz);
-    CHECK(refusal(dir / "bomb.net.xml").find(":2: a markup declaration (<!DOCTYPE") != std::string::npos);
+    CHECK(refusal(dir / "bomb.net.xml").find(":2: a markup declaration (<!DOCTYPE") !=
+          std::string::npos);
   }
   SECTION("an include cycle, UTF-16, a FIFO") {
     write(dir / "a.xml", "<additional><include href=\"b.xml\"/></additional>");
@@ -156,11 +164,13 @@ TEST_CASE("Text quoted from a SUMO input is one short line", "[traffic]") {
     const std::string routes = write(
         dir / "long.rou.xml", "<routes>\n<route id=\"r\" edges=\"" + id + "\"/>\n</routes>\n");
     const std::string scenario =
-        write(dir / "long.yaml", "name: long\nnet_file: " + kGrid +
-                                     "grid4x4.net.xml\nroute_files: [long.rou.xml]\nbegin: 0\nend: 100\n");
+        write(dir / "long.yaml",
+              "name: long\nnet_file: " + kGrid +
+                  "grid4x4.net.xml\nroute_files: [long.rou.xml]\nbegin: 0\nend: 100\n");
     const auto r = run_command(std::string(RLRUN_BINARY) +
                                " eval --env TrafficNetwork-v0 --policy fixed-time --episodes 1 "
-                               "--set env.kwargs.scenario=" + scenario);
+                               "--set env.kwargs.scenario=" +
+                               scenario);
     INFO(r.output.substr(0, 2000));
     CHECK(r.exit_code == 2);
     CHECK(r.output.find(routes + ":2: <route edges> names edge 'eeee") != std::string::npos);
@@ -176,7 +186,8 @@ TEST_CASE("Text quoted from a SUMO input is one short line", "[traffic]") {
     const std::string cfg = write(dir / "type.sumocfg", sumocfg("type.rou.xml"));
     const auto r = run_command(std::string(RLRUN_BINARY) +
                                " eval --env TrafficSignal-v0 --policy fixed-time --episodes 1 "
-                               "--set env.kwargs.scenario=" + cfg);
+                               "--set env.kwargs.scenario=" +
+                               cfg);
     INFO(r.output.substr(0, 3000));
     CHECK(r.exit_code == 1);
     CHECK(r.output.find("tttttttt") != std::string::npos);  // SUMO's line, cut
@@ -189,7 +200,8 @@ TEST_CASE("A .sumocfg <time> value that is not a time is named with its file", "
   const std::string cfg = write(dir / "abc.sumocfg", sumocfg(kSingle + "routes.rou.xml", "abc"));
   const auto r = run_command(std::string(RLRUN_BINARY) +
                              " eval --env TrafficNetwork-v0 --policy fixed-time --episodes 1 "
-                             "--set env.kwargs.scenario=" + cfg);
+                             "--set env.kwargs.scenario=" +
+                             cfg);
   INFO(r.output);
   CHECK(r.exit_code == 2);
   CHECK(r.output.find(cfg + ": <time><begin value=\"abc\">: not a time") != std::string::npos);

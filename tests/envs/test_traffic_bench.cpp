@@ -54,15 +54,18 @@ double best_of_3(auto&& run) {
 
 }  // namespace
 
-TEST_CASE("bench: TrafficSignal-v0 over traci and libsumo vs plain sumo", "[.bench][traffic_bench]") {
-  const std::string cfg = rlrun::load_traffic_scenario(rlrun::default_traffic_scenario()).sumocfg_path;
+TEST_CASE("bench: TrafficSignal-v0 over traci and libsumo vs plain sumo",
+          "[.bench][traffic_bench]") {
+  const std::string cfg =
+      rlrun::load_traffic_scenario(rlrun::default_traffic_scenario()).sumocfg_path;
   // The shipped plan (tls.tll.xml: 30 s green, 3 s yellow) with the env cycle's 27 s greens.
   std::ifstream shipped(std::filesystem::path(cfg).parent_path() / "tls.tll.xml");
   std::stringstream text;
   text << shipped.rdbuf();
-  const std::string plan = (std::filesystem::temp_directory_path() / "rlrun_bench_tls.xml").string();
+  const std::string plan =
+      (std::filesystem::temp_directory_path() / "rlrun_bench_tls.xml").string();
   std::ofstream(plan) << std::regex_replace(text.str(), std::regex("duration=\"30\""),
-                                             "duration=\"27\"");
+                                            "duration=\"27\"");
   const std::string plain_command = "sumo -c " + cfg + " --additional-files " + plan +
                                     " --end 3600 --no-step-log true --no-warnings true "
                                     "--duration-log.disable true >/dev/null 2>&1";

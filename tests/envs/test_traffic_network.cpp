@@ -58,7 +58,8 @@ Trips read_trips(const std::string& path) {
   static const std::regex trip(
       R"re(<tripinfo [^>]*duration="([0-9.]+)"[^>]*waitingTime="([0-9.]+)"[^>]*timeLoss="([0-9.]+)")re");
   Trips t;
-  for (auto it = std::sregex_iterator(s.begin(), s.end(), trip); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), trip); it != std::sregex_iterator();
+       ++it) {
     ++t.count;
     t.duration += std::stod((*it)[1]);
     t.waiting += std::stod((*it)[2]);
@@ -81,7 +82,8 @@ std::vector<double> run_episode(TrafficNetwork& env, uint64_t seed, Policy polic
     policy(env, obs, actions, t);
     env.step_agents(actions, obs, results);
     for (int a = 0; a < env.num_agents(); ++a) {
-      REQUIRE(env.observation_space().contains(std::span<const float>(obs.data() + a * width, width)));
+      REQUIRE(
+          env.observation_space().contains(std::span<const float>(obs.data() + a * width, width)));
       REQUIRE(std::isfinite(results[a].reward));
     }
     if (results[0].truncated) break;
@@ -93,9 +95,8 @@ double info_of(const TrafficNetwork& env, const std::string& key) {
   return env.info().get(env.info().find(key));
 }
 
-const auto kMaxPressure = [](TrafficNetwork& env, const std::vector<float>&, std::vector<float>& a, int) {
-  env.max_pressure_actions(a);
-};
+const auto kMaxPressure = [](TrafficNetwork& env, const std::vector<float>&, std::vector<float>& a,
+                             int) { env.max_pressure_actions(a); };
 const auto kNothing = [](TrafficNetwork&, const std::vector<float>&, std::vector<float>& a, int) {
   std::fill(a.begin(), a.end(), 0.0f);
 };
@@ -107,7 +108,8 @@ std::string write(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("TrafficNetwork: one light's actions, observation and rewards follow sumo-rl", "[traffic_network]") {
+TEST_CASE("TrafficNetwork: one light's actions, observation and rewards follow sumo-rl",
+          "[traffic_network]") {
   // Greens 0 = "GGr" (N), 1 = "rrG" (W); "yyr" is a transition, not an action.
   LightAgent agent = make_agent(one_light({"GGr", "yyr", "rrG", "rry"}));
   const LightTiming timing{5, 2, 5, 0};
@@ -131,9 +133,9 @@ TEST_CASE("TrafficNetwork: one light's actions, observation and rewards follow s
   // Observation: one-hot of 3 (padded), min-green flag, densities and queues of 4 lanes
   // (padded): vehicles / (length / (2.5 + mean vehicle length)), at most 1.
   std::vector<LaneReading> lanes(5);
-  lanes[0] = {3, 2, 5.0};   // N_0: 75 m / 7.5 m = 10 vehicles fit
+  lanes[0] = {3, 2, 5.0};    // N_0: 75 m / 7.5 m = 10 vehicles fit
   lanes[1] = {20, 15, 5.0};  // N_1: more than fit -> 1
-  lanes[2] = {6, 0, 10.0};  // W_0: 150 / 12.5 = 12 fit
+  lanes[2] = {6, 0, 10.0};   // W_0: 150 / 12.5 = 12 fit
   lanes[3] = {4, 1, 5.0};
   lanes[4] = {1, 1, 5.0};
   std::vector<float> obs(3 + 1 + 2 * 4, -1.0f);
@@ -148,10 +150,13 @@ TEST_CASE("TrafficNetwork: one light's actions, observation and rewards follow s
   const std::vector<double> waiting{100, 50, 0, 0, 0}, speed{1.0, 0.5, 0.5, 0, 0};
   const std::vector<int> count{2, 1, 1, 0, 0};
   CHECK(agent.reward(RewardFunction::kQueue, lanes, waiting, speed, count) == -17.0);
-  CHECK(agent.reward(RewardFunction::kPressure, lanes, waiting, speed, count) == (4 + 1) - (3 + 20 + 6));
-  CHECK(agent.reward(RewardFunction::kAverageSpeed, lanes, waiting, speed, count) == Approx(2.0 / 4));
+  CHECK(agent.reward(RewardFunction::kPressure, lanes, waiting, speed, count) ==
+        (4 + 1) - (3 + 20 + 6));
+  CHECK(agent.reward(RewardFunction::kAverageSpeed, lanes, waiting, speed, count) ==
+        Approx(2.0 / 4));
   // diff-waiting-time: the drop of the accumulated waiting time / 100 since the last call.
-  CHECK(agent.reward(RewardFunction::kDiffWaitingTime, lanes, waiting, speed, count) == Approx(-1.5));
+  CHECK(agent.reward(RewardFunction::kDiffWaitingTime, lanes, waiting, speed, count) ==
+        Approx(-1.5));
   const std::vector<double> less{20, 10, 0, 0, 0};
   CHECK(agent.reward(RewardFunction::kDiffWaitingTime, lanes, less, speed, count) == Approx(1.2));
   CHECK_THROWS_AS(parse_reward_function("speed"), std::invalid_argument);
@@ -194,7 +199,8 @@ TEST_CASE("TrafficNetwork: the 4x4 grid is 16 agents with padded spaces and grid
   CHECK(two.observation_space().flat_dim() == 4 + 1 + 2 * 12 + 2);
 }
 
-TEST_CASE("TrafficNetwork: reward_scope neighbourhood adds the neighbours' rewards", "[traffic_network]") {
+TEST_CASE("TrafficNetwork: reward_scope neighbourhood adds the neighbours' rewards",
+          "[traffic_network]") {
   TrafficNetwork::Config config;
   config.num_seconds = 200;
   config.reward_fn = "queue";
@@ -240,7 +246,8 @@ TEST_CASE("TrafficNetwork: fixed-time control equals a plain sumo run on every s
     const std::string plain = dir / (name + ".xml");
     const CommandResult sumo = run_command("sumo -n '" + s.files.net + "' -r '" + routes +
                                            "' -b 0 -e 3600 --seed 7 --no-step-log "
-                                           "--tripinfo-output '" + plain + "'");
+                                           "--tripinfo-output '" +
+                                           plain + "'");
     INFO(sumo.output);
     REQUIRE(sumo.exit_code == 0);
     const Trips t = read_trips(plain);
@@ -257,12 +264,13 @@ TEST_CASE("TrafficNetwork: a .sumocfg scenario: its files and times, fixed-time 
           "[traffic_network]") {
   TempDir dir("traffic_network_sumocfg");
   const std::string grid = kSource + "/sumo_data/grid4x4/";
-  const std::string cfg = write(dir / "grid.sumocfg",
-                                "<configuration>\n  <input>\n    <net-file value=\"" + grid +
-                                "grid4x4.net.xml\"/>\n    <route-files value=\"" + grid +
-                                "grid4x4.rou.xml\"/>\n  </input>\n  <time>\n    <begin value=\"0\"/>\n"
-                                "    <end value=\"900\"/>\n  </time>\n  <processing>\n"
-                                "    <time-to-teleport value=\"120\"/>\n  </processing>\n</configuration>\n");
+  const std::string cfg =
+      write(dir / "grid.sumocfg",
+            "<configuration>\n  <input>\n    <net-file value=\"" + grid +
+                "grid4x4.net.xml\"/>\n    <route-files value=\"" + grid +
+                "grid4x4.rou.xml\"/>\n  </input>\n  <time>\n    <begin value=\"0\"/>\n"
+                "    <end value=\"900\"/>\n  </time>\n  <processing>\n"
+                "    <time-to-teleport value=\"120\"/>\n  </processing>\n</configuration>\n");
   TrafficNetwork::Config config;
   config.scenario.value = cfg;
   TrafficNetwork env(config);
@@ -271,8 +279,8 @@ TEST_CASE("TrafficNetwork: a .sumocfg scenario: its files and times, fixed-time 
   CHECK(env.scenario().files.net == grid + "grid4x4.net.xml");
   env.set_control(TrafficNetwork::Control::kOwnPrograms);
   run_episode(env, 7, kNothing);
-  const CommandResult sumo = run_command("sumo -c '" + cfg + "' --seed 7 --no-step-log --tripinfo-output '" +
-                                         dir / "plain.xml" + "'");
+  const CommandResult sumo = run_command(
+      "sumo -c '" + cfg + "' --seed 7 --no-step-log --tripinfo-output '" + dir / "plain.xml" + "'");
   INFO(sumo.output);
   REQUIRE(sumo.exit_code == 0);
   const Trips t = read_trips(dir / "plain.xml");
@@ -303,9 +311,10 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run, libsum
     CHECK(info_of(env, "sim_time") == 600.0);
     CHECK(info_of(env, "throughput") > 100);
     // The agents' own control: switching every decision where allowed.
-    run_episode(env, 3, [](TrafficNetwork&, const std::vector<float>&, std::vector<float>& a, int t) {
-      for (size_t i = 0; i < a.size(); ++i) a[i] = static_cast<float>((t / 4 + i) % 4);
-    });
+    run_episode(env, 3,
+                [](TrafficNetwork&, const std::vector<float>&, std::vector<float>& a, int t) {
+                  for (size_t i = 0; i < a.size(); ++i) a[i] = static_cast<float>((t / 4 + i) % 4);
+                });
     delay["cycling"] = info_of(env, "mean_delay");
     env.set_control(TrafficNetwork::Control::kActuated);
     run_episode(env, 3, kNothing);
@@ -315,10 +324,13 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run, libsum
     delay["fixed-time"] = info_of(env, "mean_delay");
   }
   INFO("max-pressure " << delay["max-pressure"] << ", actuated " << delay["actuated"]
-                       << ", fixed-time " << delay["fixed-time"] << ", cycling " << delay["cycling"]);
+                       << ", fixed-time " << delay["fixed-time"] << ", cycling "
+                       << delay["cycling"]);
   // Each control is really in charge: four different outcomes, and max-pressure beats the
   // fixed programs on this grid.
-  CHECK(std::set<double>{delay["max-pressure"], delay["actuated"], delay["fixed-time"], delay["cycling"]}.size() == 4);
+  CHECK(std::set<double>{delay["max-pressure"], delay["actuated"], delay["fixed-time"],
+                         delay["cycling"]}
+            .size() == 4);
   CHECK(delay["max-pressure"] < delay["fixed-time"]);
 
   // SUMO inside a worker process (own_process, the default) and inside rlrun itself.
@@ -339,8 +351,9 @@ TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run, libsum
   CHECK(run_episode(direct, 3, kMaxPressure) == traci_info);
 }
 
-TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, lights of 1 to 6 greens",
-          "[traffic_network]") {
+TEST_CASE(
+    "TrafficNetwork: networks from netconvert's OpenStreetMap import, lights of 1 to 6 greens",
+    "[traffic_network]") {
   TempDir dir("traffic_network_osm");
   // A main road through four signalised nodes: a 4-way crossing, a T-junction, a lone
   // pedestrian-crossing signal (one green) and a 6-arm junction.
@@ -374,21 +387,25 @@ TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, ligh
   for (const std::string layout : {"opposites", "incoming"}) {
     INFO(layout);
     const std::string net = dir / ("city_" + layout + ".net.xml");
-    const CommandResult made = run_command(
-        "netconvert --osm-files '" + osm + "' --type-files /usr/share/sumo/data/typemap/osmNetconvert.typ.xml "
-        "--xml-validation never --tls.layout " + layout + " -o '" + net + "'");
+    const CommandResult made =
+        run_command("netconvert --osm-files '" + osm +
+                    "' --type-files /usr/share/sumo/data/typemap/osmNetconvert.typ.xml "
+                    "--xml-validation never --tls.layout " +
+                    layout + " -o '" + net + "'");
     INFO(made.output);
     REQUIRE(made.exit_code == 0);
     const std::string routes = dir / ("city_" + layout + ".rou.xml");
     const CommandResult trips = run_command(
-        "SUMO_HOME=/usr/share/sumo /usr/bin/python3 /usr/share/sumo/tools/randomTrips.py -n '" + net +
-        "' -b 0 -e 600 -p 2 --seed 1 --validate --fringe-factor max -o '" + dir / "trips.xml" +
-        "' -r '" + routes + "'");
+        "SUMO_HOME=/usr/share/sumo /usr/bin/python3 /usr/share/sumo/tools/randomTrips.py -n '" +
+        net + "' -b 0 -e 600 -p 2 --seed 1 --validate --fringe-factor max -o '" +
+        dir / "trips.xml" + "' -r '" + routes + "'");
     INFO(trips.output);
     REQUIRE(trips.exit_code == 0);
-    const std::string scenario = write(dir / ("city_" + layout + ".yaml"),
-                                       "name: city\nnet_file: city_" + layout + ".net.xml\n"
-                                       "route_files: [city_" + layout + ".rou.xml]\nbegin: 0\nend: 600\n");
+    const std::string scenario =
+        write(dir / ("city_" + layout + ".yaml"), "name: city\nnet_file: city_" + layout +
+                                                      ".net.xml\n"
+                                                      "route_files: [city_" +
+                                                      layout + ".rou.xml]\nbegin: 0\nend: 600\n");
     TrafficNetwork::Config config;
     config.scenario.value = scenario;
     TrafficNetwork env(config);
@@ -408,9 +425,10 @@ TEST_CASE("TrafficNetwork: networks from netconvert's OpenStreetMap import, ligh
     CHECK(env.observation_space().flat_dim() == most_greens + 1 + 2 * most_lanes);
     // Random actions (within the widest light's greens) and max-pressure run a whole episode.
     Rng rng(5);
-    run_episode(env, 1, [&](TrafficNetwork& e, const std::vector<float>&, std::vector<float>& a, int) {
-      for (float& x : a) e.action_space().sample(rng, std::span<float>(&x, 1));
-    });
+    run_episode(env, 1,
+                [&](TrafficNetwork& e, const std::vector<float>&, std::vector<float>& a, int) {
+                  for (float& x : a) e.action_space().sample(rng, std::span<float>(&x, 1));
+                });
     CHECK(info_of(env, "throughput") > 50);
     run_episode(env, 1, kMaxPressure);
     CHECK(info_of(env, "throughput") > 50);
@@ -449,11 +467,11 @@ TEST_CASE("TrafficNetwork: bad scenarios are clear errors before SUMO runs", "[t
              Catch::Contains("bad.rou.xml:3") && Catch::Contains("'nowhere'") &&
                  Catch::Contains("does not fit the network"));
   // Edges that exist but do not connect (A0B0 ends at B0; A1B1 starts at A1).
-  write(dir / "gap.rou.xml",
-        "<routes>\n  <route id=\"r\" edges=\"A0B0 A1B1\"/>\n</routes>\n");
+  write(dir / "gap.rou.xml", "<routes>\n  <route id=\"r\" edges=\"A0B0 A1B1\"/>\n</routes>\n");
   CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [gap.rou.xml]\n"),
              Catch::Contains("gap.rou.xml:2") && Catch::Contains("'A0B0' does not lead to 'A1B1'"));
-  write(dir / "trip.rou.xml", "<routes>\n<trip id=\"t\" depart=\"0\" from=\"A0B0\" to=\"B0A9\"/>\n</routes>\n");
+  write(dir / "trip.rou.xml",
+        "<routes>\n<trip id=\"t\" depart=\"0\" from=\"A0B0\" to=\"B0A9\"/>\n</routes>\n");
   CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [trip.rou.xml]\n"),
              Catch::Contains("trip.rou.xml:2") && Catch::Contains("'B0A9'"));
   // Missing files, misspelt keys.
@@ -462,20 +480,23 @@ TEST_CASE("TrafficNetwork: bad scenarios are clear errors before SUMO runs", "[t
   CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_file: [x]\n"),
              Catch::Contains("route_file") && Catch::Contains("route_files"));
   // A network without traffic lights.
-  const CommandResult made = run_command("netgenerate --grid --grid.number 2 -o '" + dir / "plain.net.xml" + "'");
+  const CommandResult made =
+      run_command("netgenerate --grid --grid.number 2 -o '" + dir / "plain.net.xml" + "'");
   REQUIRE(made.exit_code == 0);
   write(dir / "empty.rou.xml", "<routes/>\n");
   CHECK_THAT(error_of("net_file: plain.net.xml\nroute_files: [empty.rou.xml]\n"),
              Catch::Contains("no traffic light"));
   // ts_ids naming no light: did-you-mean.
   config.ts_ids = {"B2", "C7"};
-  CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [" + grid + "grid4x4.rou.xml]\n"),
+  CHECK_THAT(error_of("net_file: " + grid + "grid4x4.net.xml\nroute_files: [" + grid +
+                      "grid4x4.rou.xml]\n"),
              Catch::Contains("'C7' is not a traffic light") && Catch::Contains("did you mean"));
   config.ts_ids.clear();
   // Only now is SUMO needed: the missing program names the package.
   config.scenario.value.clear();
   TrafficNetwork env(config);
-  std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) * env.num_agents());
+  std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) *
+                         env.num_agents());
   CHECK_THROWS_WITH(env.reset(1, obs), Catch::Contains("install the Debian package 'sumo'"));
   // One agent's buffer for a 16-agent env is an error, not an overrun.
   std::vector<float> one(static_cast<size_t>(env.observation_space().flat_dim()));
@@ -488,7 +509,8 @@ TEST_CASE("TrafficNetwork: a SUMO that dies is an error with its output, and non
   config.backend = "traci";
   config.num_seconds = 300;
   TrafficNetwork env(config);
-  std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) * env.num_agents());
+  std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) *
+                         env.num_agents());
   std::vector<float> actions(env.num_agents(), 0.0f);
   std::vector<StepResult> results(env.num_agents());
   env.reset(1, obs);
@@ -517,8 +539,9 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
           "[traffic_network][cli]") {
   TempDir dir("traffic_network_cli");
   const std::string shorter = " --set env.kwargs.num_seconds=300";
-  const auto trained = run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
-                                 " --set env.n_envs=2 --timesteps 4000 --out " + dir.str());
+  const auto trained =
+      run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
+                " --set env.n_envs=2 --timesteps 4000 --out " + dir.str());
   INFO(trained.output);
   REQUIRE(trained.exit_code == 0);
   // 2 envs x 16 agents = 32 columns of one policy; monitor.csv has the network's metrics.
@@ -527,7 +550,8 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
     const std::string monitor = read_text(run + "/" + rank + ".monitor.csv");
     INFO(monitor);
     // SB3's r,l,t, the network's metrics, then each light's own return.
-    CHECK(monitor.find("\nr,l,t,mean_delay,avg_waiting_time,avg_travel_time,throughput,mean_queue,r_0,") !=
+    CHECK(monitor.find(
+              "\nr,l,t,mean_delay,avg_waiting_time,avg_travel_time,throughput,mean_queue,r_0,") !=
           std::string::npos);
     CHECK(monitor.find(",r_15\n") != std::string::npos);
     CHECK(std::count(monitor.begin(), monitor.end(), '\n') >= 2 + 2);  // header lines + episodes
@@ -537,27 +561,32 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
   INFO(eval.output);
   CHECK(eval.exit_code == 0);
   CHECK(eval.output.find("mean_delay") != std::string::npos);
-  const auto baseline = run_rlrun("eval --model " + run + "/model.zip --episodes 1 --baseline max-pressure" + shorter);
+  const auto baseline = run_rlrun("eval --model " + run +
+                                  "/model.zip --episodes 1 --baseline max-pressure" + shorter);
   INFO(baseline.output);
   CHECK(baseline.exit_code == 0);
   CHECK(baseline.output.find("max-pressure") != std::string::npos);
-  const auto video = run_rlrun("record --model " + run + "/model.zip --set env.kwargs.num_seconds=60"
-                               " --set env.kwargs.render_focus=B1 --output " + dir / "v.mp4");
+  const auto video = run_rlrun("record --model " + run +
+                               "/model.zip --set env.kwargs.num_seconds=60"
+                               " --set env.kwargs.render_focus=B1 --output " +
+                               dir / "v.mp4");
   INFO(video.output);
   CHECK(video.exit_code == 0);
   CHECK(std::filesystem::file_size(dir / "v.mp4") > 1000);
   // DQN: one replay buffer and one Q-network for all lights (RESCO's IDQN with sharing).
-  const auto dqn = run_rlrun("train " + kSource + "/configs/traffic_network_dqn.yaml" + shorter +
-                             " --set algo.learning_starts=500 --timesteps 2000 --out " + dir / "dqn");
+  const auto dqn =
+      run_rlrun("train " + kSource + "/configs/traffic_network_dqn.yaml" + shorter +
+                " --set algo.learning_starts=500 --timesteps 2000 --out " + dir / "dqn");
   INFO(dqn.output);
   CHECK(dqn.exit_code == 0);
   CHECK(std::filesystem::exists(dir / "dqn/traffic_network_dqn/seed1/model.zip"));
   // libsumo, two envs and an eval env at once: each SUMO in a worker process of its own
   // (sumo-rl's LIBSUMO_AS_TRACI allows one simulation in all).
-  const auto libsumo = run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
-                                 " --set env.kwargs.backend=libsumo --set env.n_envs=2"
-                                 " --set eval.freq=4096 --set eval.n_episodes=1 --timesteps 4000 --out " +
-                                 dir / "libsumo");
+  const auto libsumo =
+      run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
+                " --set env.kwargs.backend=libsumo --set env.n_envs=2"
+                " --set eval.freq=4096 --set eval.n_episodes=1 --timesteps 4000 --out " +
+                dir / "libsumo");
   INFO(libsumo.output);
   CHECK(libsumo.exit_code == 0);
   CHECK(read_text(dir / "libsumo/traffic_network_ppo/seed1/evaluations.csv").find("mean_delay") !=
@@ -565,7 +594,8 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
   // In rlrun's own process, libsumo allows one simulation, and says so.
   const auto two = run_rlrun("train " + kSource + "/configs/traffic_network_ppo.yaml" + shorter +
                              " --set env.kwargs.backend=libsumo --set env.kwargs.own_process=false"
-                             " --set env.n_envs=2 --timesteps 300 --out " + dir / "two");
+                             " --set env.n_envs=2 --timesteps 300 --out " +
+                             dir / "two");
   CHECK(two.exit_code != 0);
   CHECK(two.output.find("one simulation per process") != std::string::npos);
 }

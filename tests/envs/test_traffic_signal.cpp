@@ -1,8 +1,8 @@
 // TrafficSignal-v0 on the real SUMO (installed by scripts/setup.sh): the light's rules, the
 // metrics against SUMO's own tripinfo output, process ownership and SUMO failures.
-#include <catch2/catch.hpp>
 #include <signal.h>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -45,9 +45,11 @@ TripStats read_trips_independently(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   const std::string s = text.str();
-  static const std::regex trip(R"re(<tripinfo [^>]*duration="([0-9.]+)"[^>]*waitingTime="([0-9.]+)")re");
+  static const std::regex trip(
+      R"re(<tripinfo [^>]*duration="([0-9.]+)"[^>]*waitingTime="([0-9.]+)")re");
   TripStats stats;
-  for (auto it = std::sregex_iterator(s.begin(), s.end(), trip); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), trip); it != std::sregex_iterator();
+       ++it) {
     ++stats.trips;
     stats.duration += std::stod((*it)[1]);
     stats.waiting += std::stod((*it)[2]);
@@ -171,7 +173,8 @@ TEST_CASE("read_tripinfo: means over the trips, clear errors", "[traffic]") {
   CHECK(s.mean_waiting == 2.0);
   CHECK(s.mean_time_loss == 3.5);
   std::ofstream(dir / "bad.xml") << "<tripinfos><tripinfo id=\"a\" duration=\"3\"/></tripinfos>";
-  CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "bad.xml"), Catch::Contains("without duration, waitingTime and timeLoss"));
+  CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "bad.xml"),
+                    Catch::Contains("without duration, waitingTime and timeLoss"));
   CHECK_THROWS_WITH(rlrun::read_tripinfo(dir / "none.xml"), Catch::Contains("is missing"));
 }
 
@@ -254,7 +257,8 @@ TEST_CASE("TrafficSignal: scenario files", "[traffic]") {
   std::ofstream(dir / "nocfg.yaml") << "name: x\nsumocfg: missing.sumocfg\n";
   CHECK_THROWS_WITH(load_traffic_scenario(dir / "nocfg.yaml"),
                     Catch::Contains("nocfg.yaml:2") && Catch::Contains("does not exist"));
-  CHECK_THROWS_WITH(load_traffic_scenario("no/such/scenario.yaml"), Catch::Contains("does not exist"));
+  CHECK_THROWS_WITH(load_traffic_scenario("no/such/scenario.yaml"),
+                    Catch::Contains("does not exist"));
 }
 
 TEST_CASE("TrafficSignal: same seed, same episode, reward functions", "[traffic]") {
@@ -322,15 +326,16 @@ TEST_CASE("TrafficSignal: a missing sumo binary names the package", "[traffic]")
 TEST_CASE("TrafficSignal: no SUMO survives rlrun being killed", "[traffic][cli]") {
   TempDir dir("traffic_kill");
   // A long training run, killed with SIGKILL: its SUMO must go too (PR_SET_PDEATHSIG).
-  const std::string cmd = std::string(RLRUN_BINARY) +
-                          " train " + std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml" +
-                          " --set env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]'" +
-                          " --set env.n_envs=2 --set env.kwargs.scale=1.0001" +
-                          " --set env.kwargs.num_seconds=100000" +  // no SUMO restart within the test
-                          " --timesteps 100000000 --out " + dir.str() +
-                          " > " + dir / "out.txt" + " 2>&1 & pid=$!; sleep 2; " +
-                          "pgrep -P $pid -x sumo | wc -l; kill -9 $pid; wait $pid; sleep 0.5; " +
-                          "pgrep -f 'scale 1[.]000100' | wc -l";  // [.]: not this shell's own command line
+  const std::string cmd =
+      std::string(RLRUN_BINARY) + " train " + std::string(RLRUN_SOURCE_DIR) +
+      "/configs/cartpole_ppo.yaml" +
+      " --set env.id=TrafficSignal-v0 --set 'algo.policy.net_arch=[8]'" +
+      " --set env.n_envs=2 --set env.kwargs.scale=1.0001" +
+      " --set env.kwargs.num_seconds=100000" +  // no SUMO restart within the test
+      " --timesteps 100000000 --out " + dir.str() + " > " + dir / "out.txt" +
+      " 2>&1 & pid=$!; sleep 2; " +
+      "pgrep -P $pid -x sumo | wc -l; kill -9 $pid; wait $pid; sleep 0.5; " +
+      "pgrep -f 'scale 1[.]000100' | wc -l";  // [.]: not this shell's own command line
   const auto r = run_command(cmd);
   INFO(r.output);
   std::istringstream lines(r.output);
@@ -340,13 +345,14 @@ TEST_CASE("TrafficSignal: no SUMO survives rlrun being killed", "[traffic][cli]"
   CHECK(after == 0);
 }
 
-TEST_CASE("TrafficSignal: Ctrl-C stops training, saves the model, leaves no SUMO", "[traffic][cli]") {
+TEST_CASE("TrafficSignal: Ctrl-C stops training, saves the model, leaves no SUMO",
+          "[traffic][cli]") {
   TempDir dir("traffic_sigint");
   const std::string cmd = std::string(RLRUN_BINARY) + " train " + std::string(RLRUN_SOURCE_DIR) +
                           "/configs/traffic_dqn.yaml --set env.n_envs=2" +
                           " --set env.kwargs.scale=1.0002 --set env.kwargs.num_seconds=100000" +
-                          " --out " + dir.str() +
-                          " > " + dir / "out.txt" + " 2>&1 & pid=$!; sleep 2; " +
+                          " --out " + dir.str() + " > " + dir / "out.txt" +
+                          " 2>&1 & pid=$!; sleep 2; " +
                           "pgrep -P $pid -x sumo | wc -l; kill -INT $pid; wait $pid; echo $?; " +
                           "sleep 0.2; pgrep -f 'scale 1[.]000200' | wc -l";
   const auto r = run_command(cmd);
@@ -439,7 +445,8 @@ TEST_CASE("record --policy fixed-time: an mp4 of the intersection from above", "
   // 100 s at 5 s per decision: 20 steps, plus the frame after reset.
   CHECK(probe_video(dir / "ft.mp4").find("h264,600,600,21") != std::string::npos);
   CHECK(std::filesystem::exists(dir / "frames/frame_000020.png"));
-  const auto refused = run_rlrun("record --env CartPole-v1 --policy fixed-time --output " + dir / "x.mp4");
+  const auto refused =
+      run_rlrun("record --env CartPole-v1 --policy fixed-time --output " + dir / "x.mp4");
   CHECK(refused.exit_code == 2);
 }
 

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun::testing {
 

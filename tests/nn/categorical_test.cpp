@@ -21,7 +21,8 @@ TEST_CASE("Categorical log_prob, entropy and their gradients", "[nn]") {
   const int n = 5;
   const int batch = 6;
   Eigen::MatrixXf logits(n, batch);
-  for (Eigen::Index k = 0; k < logits.size(); ++k) logits(k) = static_cast<float>(2.0 * rng.normal());
+  for (Eigen::Index k = 0; k < logits.size(); ++k)
+    logits(k) = static_cast<float>(2.0 * rng.normal());
   logits.col(0).array() += 100.0f;  // shift invariance and overflow safety
   Eigen::RowVectorXf actions(batch), w_logp(batch), w_ent(batch);
   for (int j = 0; j < batch; ++j) {

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/nn/dense_kernels.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 namespace {
@@ -27,12 +27,18 @@ Eigen::MatrixXf random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
 Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixXd& c0,
                       const Eigen::VectorXd& bias, const Eigen::MatrixXd& act) {
   switch (e) {
-    case Epilogue::kStore: return s;
-    case Epilogue::kAdd: return c0 + s;
-    case Epilogue::kAddTransposed: return c0 + s.transpose();
-    case Epilogue::kBias: return s.colwise() + bias;
-    case Epilogue::kBiasTanh: return (s.colwise() + bias).array().tanh().matrix();
-    case Epilogue::kBiasReLU: return (s.colwise() + bias).cwiseMax(0.0);
+    case Epilogue::kStore:
+      return s;
+    case Epilogue::kAdd:
+      return c0 + s;
+    case Epilogue::kAddTransposed:
+      return c0 + s.transpose();
+    case Epilogue::kBias:
+      return s.colwise() + bias;
+    case Epilogue::kBiasTanh:
+      return (s.colwise() + bias).array().tanh().matrix();
+    case Epilogue::kBiasReLU:
+      return (s.colwise() + bias).cwiseMax(0.0);
     case Epilogue::kBiasELU: {  // torch.nn.ELU(alpha=1)
       const Eigen::MatrixXd v = s.colwise() + bias;
       return v.unaryExpr([](double x) { return x > 0.0 ? x : std::expm1(x); });
@@ -41,22 +47,22 @@ Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixX
       const Eigen::MatrixXd v = s.colwise() + bias;
       return v.unaryExpr([](double x) { return x > 0.0 ? x : 0.01 * x; });
     }
-    case Epilogue::kTanhGrad: return s.cwiseProduct((1.0 - act.array().square()).matrix());
+    case Epilogue::kTanhGrad:
+      return s.cwiseProduct((1.0 - act.array().square()).matrix());
     case Epilogue::kReLUGrad:
       return (act.array() > 0.0).select(s, Eigen::MatrixXd::Zero(s.rows(), s.cols()));
     case Epilogue::kELUGrad:  // d/dv expm1(v) = exp(v) = a + 1 below 0
       return (act.array() > 0.0).select(s, s.cwiseProduct((act.array() + 1.0).matrix()));
-    case Epilogue::kLeakyReLUGrad: return (act.array() > 0.0).select(s, 0.01 * s);
+    case Epilogue::kLeakyReLUGrad:
+      return (act.array() > 0.0).select(s, 0.01 * s);
   }
   return s;
 }
 
-const Epilogue kAll[] = {Epilogue::kStore,         Epilogue::kAdd,
-                         Epilogue::kAddTransposed, Epilogue::kBias,
-                         Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
-                         Epilogue::kBiasELU,       Epilogue::kBiasLeakyReLU,
-                         Epilogue::kTanhGrad,      Epilogue::kReLUGrad,
-                         Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
+const Epilogue kAll[] = {Epilogue::kStore,    Epilogue::kAdd,           Epilogue::kAddTransposed,
+                         Epilogue::kBias,     Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
+                         Epilogue::kBiasELU,  Epilogue::kBiasLeakyReLU, Epilogue::kTanhGrad,
+                         Epilogue::kReLUGrad, Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
 
 // Runs one kernel product through every epilogue and compares with apply(). product(args, e)
 // must compute the m x n product s_ref into args.c.
@@ -72,11 +78,10 @@ void check_epilogues(Eigen::Index m, Eigen::Index n, const Eigen::MatrixXd& s_re
     const bool transposed = e == Epilogue::kAddTransposed;
     Eigen::MatrixXf c = random_matrix(transposed ? n : m, transposed ? m : n, rng);
     const Eigen::MatrixXd c0 = c.cast<double>();
-    dense::EpilogueArgs args{.c = c.data(), .ldc = c.rows(), .bias = bias.data(),
-                             .act = act.data(), .ld_act = m};
+    dense::EpilogueArgs args{
+        .c = c.data(), .ldc = c.rows(), .bias = bias.data(), .act = act.data(), .ld_act = m};
     product(e, args);
-    const Eigen::MatrixXd expected =
-        apply(e, s_ref, c0, bias.cast<double>(), act.cast<double>());
+    const Eigen::MatrixXd expected = apply(e, s_ref, c0, bias.cast<double>(), act.cast<double>());
     INFO("epilogue " << static_cast<int>(e));
     REQUIRE(c.rows() == expected.rows());
     const double err = (c.cast<double>() - expected).cwiseAbs().maxCoeff();
@@ -89,8 +94,8 @@ TEST_CASE("gemm_rows matches Eigen for heights that are not a multiple of the pa
   struct Shape {
     Eigen::Index m, n, k;
   };
-  const std::vector<Shape> shapes = {{300, 13, 40}, {13, 7, 9},  {300, 6, 400}, {9, 1, 5},
-                                     {17, 11, 3},   {8, 5, 4},   {5, 3, 6},     {31, 12, 2}};
+  const std::vector<Shape> shapes = {{300, 13, 40}, {13, 7, 9}, {300, 6, 400}, {9, 1, 5},
+                                     {17, 11, 3},   {8, 5, 4},  {5, 3, 6},     {31, 12, 2}};
   for (const Shape& sh : shapes) {
     INFO("m " << sh.m << " n " << sh.n << " k " << sh.k);
     const Eigen::MatrixXf a = random_matrix(sh.m, sh.k, rng);
@@ -141,7 +146,7 @@ TEST_CASE("transpose matches Eigen for any shape and leading dimension", "[nn]")
   for (const auto& [rows, cols] : std::vector<std::pair<Eigen::Index, Eigen::Index>>{
            {300, 400}, {13, 7}, {1, 256}, {256, 1}, {16, 24}, {9, 17}}) {
     INFO(rows << " x " << cols);
-    const Eigen::MatrixXf big = random_matrix(rows + 3, cols, rng);  // lda = rows + 3
+    const Eigen::MatrixXf big = random_matrix(rows + 3, cols, rng);        // lda = rows + 3
     Eigen::MatrixXf t = Eigen::MatrixXf::Constant(cols + 2, rows, -7.0f);  // ldb = cols + 2
     dense::transpose(rows, cols, big.data(), big.rows(), t.data(), t.rows());
     CHECK(t.topRows(cols) == big.topRows(rows).transpose());

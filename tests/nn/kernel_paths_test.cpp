@@ -30,10 +30,9 @@ bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
 }
 
 constexpr Epilogue kEpilogues[] = {
-    Epilogue::kStore,     Epilogue::kAdd,           Epilogue::kAddTransposed,
-    Epilogue::kBias,      Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
-    Epilogue::kBiasELU,   Epilogue::kBiasLeakyReLU, Epilogue::kTanhGrad,
-    Epilogue::kReLUGrad,  Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
+    Epilogue::kStore,    Epilogue::kAdd,      Epilogue::kAddTransposed, Epilogue::kBias,
+    Epilogue::kBiasTanh, Epilogue::kBiasReLU, Epilogue::kBiasELU,       Epilogue::kBiasLeakyReLU,
+    Epilogue::kTanhGrad, Epilogue::kReLUGrad, Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
 
 // Everything one kernel table computes for one shape (m x n results, depth k), concatenated.
 std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n, dense::Index k,
@@ -41,15 +40,14 @@ std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n,
   Rng rng(seed);
   const std::vector<float> a = random_values(m * k, rng), b = random_values(k * n, rng),
                            x = random_values(k * m, rng), bias = random_values(m, rng),
-                           act = random_values(m * n, rng, 0.5),
-                           c0 = random_values(m * n, rng);
+                           act = random_values(m * n, rng, 0.5), c0 = random_values(m * n, rng);
   std::vector<float> out;
   for (Epilogue e : kEpilogues) {
     std::vector<float> act_tanh = act;  // a valid stored activation for each Grad epilogue
     std::vector<float> c = c0;
     const dense::Index ldc = e == Epilogue::kAddTransposed ? n : m;
-    const dense::EpilogueArgs args{.c = c.data(), .ldc = ldc, .bias = bias.data(),
-                                   .act = act_tanh.data(), .ld_act = m};
+    const dense::EpilogueArgs args{
+        .c = c.data(), .ldc = ldc, .bias = bias.data(), .act = act_tanh.data(), .ld_act = m};
     t.gemm_rows(m, n, k, a.data(), m, b.data(), 1, k, e, args);  // A (m x k) B (k x n)
     out.insert(out.end(), c.begin(), c.end());
     c = c0;
@@ -66,11 +64,15 @@ std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n,
   std::vector<float> p = a, mom(a.size(), 0.0f), sq(a.size(), 0.0f);
   for (int step = 1; step <= 3; ++step) {
     const std::vector<float> g = random_values(a.size(), rng);
-    const dense::AdamCoefficients co{.w1 = 0.1f, .beta2 = 0.999f, .w2 = 0.001f,
-                                     .step_size = static_cast<float>(1e-3 / (1.0 - std::pow(0.9, step))),
-                                     .inv_bias_c2_sqrt = static_cast<float>(1.0 / std::sqrt(1.0 - std::pow(0.999, step))),
-                                     .eps = 1e-8f};
-    t.adam_update(static_cast<dense::Index>(p.size()), p.data(), g.data(), mom.data(), sq.data(), co);
+    const dense::AdamCoefficients co{
+        .w1 = 0.1f,
+        .beta2 = 0.999f,
+        .w2 = 0.001f,
+        .step_size = static_cast<float>(1e-3 / (1.0 - std::pow(0.9, step))),
+        .inv_bias_c2_sqrt = static_cast<float>(1.0 / std::sqrt(1.0 - std::pow(0.999, step))),
+        .eps = 1e-8f};
+    t.adam_update(static_cast<dense::Index>(p.size()), p.data(), g.data(), mom.data(), sq.data(),
+                  co);
   }
   out.insert(out.end(), p.begin(), p.end());
   // Three RMSprop steps, and the gradient norm's sum of squares.
@@ -81,7 +83,8 @@ std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n,
                      0.99f, 7e-4f, 1e-5f);
   }
   out.insert(out.end(), r.begin(), r.end());
-  out.push_back(static_cast<float>(t.sum_of_squares(static_cast<dense::Index>(r.size()), r.data())));
+  out.push_back(
+      static_cast<float>(t.sum_of_squares(static_cast<dense::Index>(r.size()), r.data())));
   return out;
 }
 
@@ -90,8 +93,8 @@ std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n,
 struct Shape {
   dense::Index m, n, k;
 };
-constexpr Shape kShapes[] = {{1, 1, 1},   {3, 7, 5},    {8, 9, 8},     {15, 13, 17},
-                             {16, 6, 16}, {17, 11, 31}, {33, 25, 3},   {64, 100, 64},
+constexpr Shape kShapes[] = {{1, 1, 1},    {3, 7, 5},    {8, 9, 8},     {15, 13, 17},
+                             {16, 6, 16},  {17, 11, 31}, {33, 25, 3},   {64, 100, 64},
                              {1, 100, 64}, {2, 37, 300}, {300, 7, 400}, {65, 2, 129}};
 
 }  // namespace
@@ -111,7 +114,8 @@ TEST_CASE("AVX-512 and AVX2 kernels give the same bits, the baseline agrees to r
     REQUIRE(v2.size() == base.size());
     for (std::size_t i = 0; i < v2.size(); ++i) {
       INFO("element " << i);
-      REQUIRE(std::abs(v2[i] - base[i]) <= 1e-4f * (1.0f + std::abs(base[i])) * std::sqrt(float(s.k)));
+      REQUIRE(std::abs(v2[i] - base[i]) <=
+              1e-4f * (1.0f + std::abs(base[i])) * std::sqrt(float(s.k)));
     }
     if (!avx512) continue;
     const std::vector<float> v4 = run_all(dense::kernels(KernelPath::kAvx512), s.m, s.n, s.k, 11);
@@ -131,10 +135,12 @@ TEST_CASE("the kernels' tanh and exp are accurate and keep NaN", "[nn][kernels]"
     for (double x = -12.0; x <= 12.0; x += 0.0009765625 * 3.1) {
       const auto xf = static_cast<float>(x);
       float y = 0.0f;
-      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasTanh, {.c = &y, .ldc = 1, .bias = &zero});
+      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasTanh,
+                  {.c = &y, .ldc = 1, .bias = &zero});
       const double want = std::tanh(static_cast<double>(xf));
       worst_tanh = std::max(worst_tanh, std::abs(y - want) / std::max(std::abs(want), 1e-30));
-      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasELU, {.c = &y, .ldc = 1, .bias = &zero});
+      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasELU,
+                  {.c = &y, .ldc = 1, .bias = &zero});
       const double elu = xf > 0 ? xf : std::expm1(static_cast<double>(xf));
       worst_elu = std::max(worst_elu, std::abs(y - elu));
     }

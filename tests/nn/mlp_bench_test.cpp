@@ -12,8 +12,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/nn/mlp.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 namespace {
@@ -52,10 +52,11 @@ void bench(int in, std::vector<int> hidden, int out, Activation act, int batch) 
   }
   std::printf("mlp %d-", in);
   for (int h : hidden) std::printf("%d-", h);
-  std::printf("%d %s batch %4d: fwd+bwd %8.2f us  %10.0f samples/s  %6.1f GFLOP/s | fwd %7.2f us "
-              "%6.1f GFLOP/s\n",
-              out, std::string(activation_name(act)).c_str(), batch, best * 1e6, batch / best,
-              flops / best * 1e-9, best_fwd * 1e6, flops_fwd / best_fwd * 1e-9);
+  std::printf(
+      "%d %s batch %4d: fwd+bwd %8.2f us  %10.0f samples/s  %6.1f GFLOP/s | fwd %7.2f us "
+      "%6.1f GFLOP/s\n",
+      out, std::string(activation_name(act)).c_str(), batch, best * 1e6, batch / best,
+      flops / best * 1e-9, best_fwd * 1e6, flops_fwd / best_fwd * 1e-9);
   CHECK(net.output().allFinite());
 }
 
@@ -102,9 +103,10 @@ void bench_plain_eigen(int batch) {
     auto t1 = std::chrono::steady_clock::now();
     best = std::min(best, std::chrono::duration<double>(t1 - t0).count() / iters);
   }
-  std::printf("plain Eigen 4-64-64-2 tanh batch %4d: fwd+bwd %8.2f us  %10.0f samples/s  %6.1f "
-              "GFLOP/s\n",
-              batch, best * 1e6, batch / best, flops / best * 1e-9);
+  std::printf(
+      "plain Eigen 4-64-64-2 tanh batch %4d: fwd+bwd %8.2f us  %10.0f samples/s  %6.1f "
+      "GFLOP/s\n",
+      batch, best * 1e6, batch / best, flops / best * 1e-9);
   CHECK(gw1.allFinite());
 }
 

@@ -48,7 +48,8 @@ void check_mlp_gradients(const Case& c, uint64_t seed) {
   const Eigen::MatrixXd xd = x.cast<double>();
   const Eigen::MatrixXd wd = weights.cast<double>();
   const Eigen::MatrixXd y_ref = test::mlp_forward(net, params, xd);
-  CHECK((y.cast<double>() - y_ref).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + y_ref.cwiseAbs().maxCoeff()));
+  CHECK((y.cast<double>() - y_ref).cwiseAbs().maxCoeff() <
+        1e-5 * (1.0 + y_ref.cwiseAbs().maxCoeff()));
 
   net.zero_grad();
   Eigen::MatrixXf grad_x;
@@ -75,23 +76,34 @@ void check_mlp_gradients(const Case& c, uint64_t seed) {
 
 TEST_CASE("Mlp gradients match finite differences", "[nn]") {
   const std::vector<Case> cases = {
-      {3, {5, 7}, 2, Activation::kTanh, 4},    {3, {5, 7}, 2, Activation::kReLU, 4},
-      {1, {1}, 1, Activation::kTanh, 1},       {1, {3}, 1, Activation::kReLU, 1},
-      {6, {}, 3, Activation::kTanh, 2},        {4, {64, 64}, 2, Activation::kTanh, 3},
-      {7, {9, 3, 11}, 5, Activation::kReLU, 13}, {2, {33}, 1, Activation::kTanh, 17},
+      {3, {5, 7}, 2, Activation::kTanh, 4},
+      {3, {5, 7}, 2, Activation::kReLU, 4},
+      {1, {1}, 1, Activation::kTanh, 1},
+      {1, {3}, 1, Activation::kReLU, 1},
+      {6, {}, 3, Activation::kTanh, 2},
+      {4, {64, 64}, 2, Activation::kTanh, 3},
+      {7, {9, 3, 11}, 5, Activation::kReLU, 13},
+      {2, {33}, 1, Activation::kTanh, 17},
       // Batch 1 and 2 take the dot-product path for the input gradient of wide layers.
-      {5, {16, 24}, 3, Activation::kTanh, 2},  {4, {64, 64}, 2, Activation::kReLU, 1},
+      {5, {16, 24}, 3, Activation::kTanh, 2},
+      {4, {64, 64}, 2, Activation::kReLU, 1},
       // Every tile shape of the kernels: 2-packet, 1-packet and scalar rows, 6..1 columns.
-      {20, {40, 17}, 9, Activation::kReLU, 37}, {9, {8}, 12, Activation::kTanh, 11},
+      {20, {40, 17}, 9, Activation::kReLU, 37},
+      {9, {8}, 12, Activation::kTanh, 11},
       // Widths off the packet size: the overlapping last packet in every product.
       {13, {300, 13}, 3, Activation::kReLU, 9},
       // ELU and LeakyReLU through the same tile shapes: packet and scalar rows, both paths of
       // the input gradient (batch 1 and 2 use dot products).
-      {3, {5, 7}, 2, Activation::kELU, 4},       {3, {5, 7}, 2, Activation::kLeakyReLU, 4},
-      {20, {40, 17}, 9, Activation::kELU, 37},   {20, {40, 17}, 9, Activation::kLeakyReLU, 37},
-      {13, {300, 13}, 3, Activation::kELU, 9},   {13, {300, 13}, 3, Activation::kLeakyReLU, 9},
-      {4, {64, 64}, 2, Activation::kELU, 1},     {5, {16, 24}, 3, Activation::kLeakyReLU, 2},
-      {7, {9, 3, 11}, 5, Activation::kELU, 13},  {1, {3}, 1, Activation::kLeakyReLU, 1},
+      {3, {5, 7}, 2, Activation::kELU, 4},
+      {3, {5, 7}, 2, Activation::kLeakyReLU, 4},
+      {20, {40, 17}, 9, Activation::kELU, 37},
+      {20, {40, 17}, 9, Activation::kLeakyReLU, 37},
+      {13, {300, 13}, 3, Activation::kELU, 9},
+      {13, {300, 13}, 3, Activation::kLeakyReLU, 9},
+      {4, {64, 64}, 2, Activation::kELU, 1},
+      {5, {16, 24}, 3, Activation::kLeakyReLU, 2},
+      {7, {9, 3, 11}, 5, Activation::kELU, 13},
+      {1, {3}, 1, Activation::kLeakyReLU, 1},
   };
   uint64_t seed = 11;
   for (const Case& c : cases) {
@@ -144,8 +156,7 @@ TEST_CASE("Mlp backward reads a strided grad_output and any batch size", "[nn]")
   CHECK(net.grads().isApprox(batched, 1e-5f));
 }
 
-TEST_CASE("Mlp backward_input gives backward's input gradient and no parameter gradient",
-          "[nn]") {
+TEST_CASE("Mlp backward_input gives backward's input gradient and no parameter gradient", "[nn]") {
   // Widths off the packet size (TD3's 300-wide layer among them) and both input-gradient paths
   // (batch 2: dot products; larger: transposed weights).
   struct Shape {
@@ -251,8 +262,8 @@ TEST_CASE("Mlp init_orthogonal gives (semi-)orthogonal weights and zero biases",
     Mlp layer(cols, {}, rows, Activation::kTanh);
     layer.init_orthogonal(rng, 1.0f, 1.0f);
     const Eigen::MatrixXf w = layer.weight(0);
-    const Eigen::MatrixXf gram = rows <= cols ? Eigen::MatrixXf(w * w.transpose())
-                                              : Eigen::MatrixXf(w.transpose() * w);
+    const Eigen::MatrixXf gram =
+        rows <= cols ? Eigen::MatrixXf(w * w.transpose()) : Eigen::MatrixXf(w.transpose() * w);
     CHECK(gram.isApprox(Eigen::MatrixXf::Identity(gram.rows(), gram.cols()), 1e-5f));
   }
   Rng a(1), b(1), c(2);

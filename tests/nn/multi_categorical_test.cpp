@@ -47,7 +47,8 @@ TEST_CASE("MultiCategorical log_prob, entropy and their gradients", "[nn]") {
   const int rows = 10, entries = 4, batch = 5;
   Rng rng(11);
   Eigen::MatrixXf logits(rows, batch);
-  for (Eigen::Index k = 0; k < logits.size(); ++k) logits(k) = static_cast<float>(2.0 * rng.normal());
+  for (Eigen::Index k = 0; k < logits.size(); ++k)
+    logits(k) = static_cast<float>(2.0 * rng.normal());
   logits.col(3).array() += 50.0f;  // shift invariance
   Eigen::MatrixXf actions(entries, batch);
   Eigen::RowVectorXf w_logp(batch), w_ent(batch);
@@ -74,7 +75,8 @@ TEST_CASE("MultiCategorical log_prob, entropy and their gradients", "[nn]") {
     const Eigen::Map<const Eigen::MatrixXd> z(p.data(), rows, batch);
     double total = 0.0;
     for (int j = 0; j < batch; ++j)
-      total += w_logp(j) * ref.log_prob(z.col(j), actions.col(j)) + w_ent(j) * ref.entropy(z.col(j));
+      total +=
+          w_logp(j) * ref.log_prob(z.col(j), actions.col(j)) + w_ent(j) * ref.entropy(z.col(j));
     return total;
   };
   Eigen::MatrixXf grad;

@@ -14,7 +14,9 @@ namespace rlrun {
 namespace {
 
 // Gradient of step t (1-based) for parameter k: varies in sign and size.
-double grad_at(int t, int k) { return (k % 2 == 0 ? 1.0 : -1.0) * (0.1 * (k + 1)) * (1.0 + 0.5 * t) + (t == 2 ? 0.3 : 0.0); }
+double grad_at(int t, int k) {
+  return (k % 2 == 0 ? 1.0 : -1.0) * (0.1 * (k + 1)) * (1.0 + 0.5 * t) + (t == 2 ? 0.3 : 0.0);
+}
 
 TEST_CASE("Adam matches torch.optim.Adam step by step", "[nn]") {
   ParamVector a(3, 0.0f), b(2, 0.0f);
@@ -28,7 +30,10 @@ TEST_CASE("Adam matches torch.optim.Adam step by step", "[nn]") {
   for (int t = 1; t <= 3; ++t) {
     for (int k = 0; k < 5; ++k) {
       const float g = static_cast<float>(grad_at(t, k));
-      if (k < 3) a.grad(k) = g; else b.grad(k - 3) = g;
+      if (k < 3)
+        a.grad(k) = g;
+      else
+        b.grad(k - 3) = g;
       const double gd = g;
       m[k] = 0.9 * m[k] + 0.1 * gd;
       v[k] = 0.999 * v[k] + 0.001 * gd * gd;

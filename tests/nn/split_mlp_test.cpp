@@ -103,8 +103,8 @@ TEST_CASE(
   CHECK(param_part(1000, 1).count == 504);
   CHECK(param_part(10, 0).count == 0);
   // Beyond two: parts of at least 128 columns and 4 M multiply-adds each, at most 16.
-  CHECK(column_parts(256, 67000) == 2);     // rl-zoo SAC critics at batch 256
-  CHECK(column_parts(512, 540000) == 4);    // TQC's 512x512x512 critics at batch 512
+  CHECK(column_parts(256, 67000) == 2);   // rl-zoo SAC critics at batch 256
+  CHECK(column_parts(512, 540000) == 4);  // TQC's 512x512x512 critics at batch 512
   CHECK(column_parts(1024, 540000) == 8);
   CHECK(column_parts(1 << 20, 540000) == 16);
   CHECK(column_parts(4096, 4416) == 4);     // small networks: bounded by the work

@@ -52,8 +52,8 @@ TEST_CASE("SquashedGaussian pathwise gradients through tanh and its log-det", "[
         const double u = m(i, j) + s * noise(i, j);
         const double a = std::tanh(u);
         out.a(i, j) = a;
-        out.logp(j) += -(u - m(i, j)) * (u - m(i, j)) / (2 * s * s) - std::log(s) -
-                       0.5 * kLog2Pi - std::log(1.0 - a * a + 1e-6);
+        out.logp(j) += -(u - m(i, j)) * (u - m(i, j)) / (2 * s * s) - std::log(s) - 0.5 * kLog2Pi -
+                       std::log(1.0 - a * a + 1e-6);
       }
     }
     return out;
@@ -115,7 +115,8 @@ TEST_CASE("SquashedGaussian sampling, mode, log_prob of given actions, clamp", "
   Eigen::RowVectorXf from_sample(3), from_actions(3);
   dist.log_prob(from_sample);
   dist.log_prob(a, from_actions);
-  for (int j = 0; j < 3; ++j) CHECK(from_actions(j) == Approx(from_sample(j)).epsilon(1e-3).margin(1e-3));
+  for (int j = 0; j < 3; ++j)
+    CHECK(from_actions(j) == Approx(from_sample(j)).epsilon(1e-3).margin(1e-3));
 
   Eigen::MatrixXf raw(1, 4), clamped(1, 4), grad(1, 4);
   raw << -25.0f, -20.0f, 1.0f, 3.0f;

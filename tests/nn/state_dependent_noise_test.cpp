@@ -19,7 +19,7 @@ using test::numeric_gradient;
 using test::require_grad_close;
 
 constexpr double kHalfLog2Pi = 0.91893853320467274;  // log(sqrt(2 pi))
-constexpr double kEps = 1e-6;                         // SB3's epsilon
+constexpr double kEps = 1e-6;                        // SB3's epsilon
 
 StateDependentNoiseOptions options(bool full_std, bool use_expln, bool squash, bool learn) {
   StateDependentNoiseOptions o;
@@ -286,9 +286,9 @@ Eigen::MatrixXf log_std_values(Rng& rng, int rows, int cols) {
 
 TEST_CASE("gSDE scored gradients (PPO's evaluate_actions) match finite differences",
           "[nn][gsde][gradcheck]") {
-  const Case c = GENERATE(Case{true, false, false}, Case{false, false, false},
-                          Case{true, true, false}, Case{true, false, true},
-                          Case{false, true, true});
+  const Case c =
+      GENERATE(Case{true, false, false}, Case{false, false, false}, Case{true, true, false},
+               Case{true, false, true}, Case{false, true, true});
   INFO("full_std " << c.full_std << " use_expln " << c.use_expln << " learn_features "
                    << c.learn_features);
   Rng rng(41);
@@ -296,7 +296,8 @@ TEST_CASE("gSDE scored gradients (PPO's evaluate_actions) match finite differenc
   StateDependentNoise sde(latent_dim, a_dim, 0.0f,
                           options(c.full_std, c.use_expln, false, c.learn_features));
   sde.log_std() = log_std_values(rng, latent_dim, cols);
-  const Eigen::MatrixXf mean = random_matrix(rng, a_dim, n), latent = random_matrix(rng, latent_dim, n);
+  const Eigen::MatrixXf mean = random_matrix(rng, a_dim, n),
+                        latent = random_matrix(rng, latent_dim, n);
   const Eigen::MatrixXf actions = random_matrix(rng, a_dim, n);
   const Eigen::RowVectorXf w_lp = random_matrix(rng, 1, n), w_ent = random_matrix(rng, 1, n);
   sde.set(mean, latent);
@@ -330,10 +331,10 @@ TEST_CASE("gSDE sampled gradients (SAC's actor loss) match finite differences",
           "[nn][gsde][gradcheck]") {
   const bool squash = GENERATE(true, false);
   const bool batched = GENERATE(false, true);
-  const Case c = GENERATE(Case{true, false, true}, Case{false, true, true},
-                          Case{true, true, false});
-  INFO("squash " << squash << " batched " << batched << " full_std " << c.full_std
-                 << " use_expln " << c.use_expln << " learn_features " << c.learn_features);
+  const Case c =
+      GENERATE(Case{true, false, true}, Case{false, true, true}, Case{true, true, false});
+  INFO("squash " << squash << " batched " << batched << " full_std " << c.full_std << " use_expln "
+                 << c.use_expln << " learn_features " << c.learn_features);
   Rng rng(43);
   const int latent_dim = 3, a_dim = 2, n = 4, cols = c.full_std ? a_dim : 1;
   StateDependentNoise sde(latent_dim, a_dim, 0.0f,
@@ -382,8 +383,8 @@ TEST_CASE("gSDE sampled gradients (SAC's actor loss) match finite differences",
   // The float forward agrees with the reference.
   {
     const Eigen::MatrixXd std = std_of(sde.log_std().cast<double>(), a_dim, c.use_expln);
-    const Eigen::MatrixXd noise = noise_of(std, latent.cast<double>(), eps_mat.cast<double>(),
-                                           eps_matrices.cast<double>());
+    const Eigen::MatrixXd noise =
+        noise_of(std, latent.cast<double>(), eps_mat.cast<double>(), eps_matrices.cast<double>());
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < a_dim; ++i) {
         const double u = mean(i, j) + noise(i, j);

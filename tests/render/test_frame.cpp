@@ -105,8 +105,8 @@ TEST_CASE("Text overlay keeps to the left 40 % of the frame, splitting wide line
   // A recorded traffic video's lines: the box once reached past the middle, over the road.
   Frame frame(600, 600);
   frame.fill(kWhite);
-  rlrun::draw_text_overlay(frame, {"TrafficSignal-v0  DQN deterministic", "episode 10/10  step 1000",
-                                   "return -1234.00"});
+  rlrun::draw_text_overlay(frame, {"TrafficSignal-v0  DQN deterministic",
+                                   "episode 10/10  step 1000", "return -1234.00"});
   for (int y = 0; y < 600; ++y)
     for (int x = 240; x < 600; ++x) REQUIRE(frame.pixel(x, y) == kWhite);
   CHECK(frame.pixel(2, 2).r < 200);

@@ -1,15 +1,15 @@
 #pragma once
 // Runs the real rlrun binary (or another command) and captures exit code and output, for
 // end-to-end tests of the CLI as a user types it.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include "test_paths.hpp"
 
 namespace rlrun::testing {
@@ -24,7 +24,7 @@ inline std::string read_text(const std::string& path) {
 
 struct CommandResult {
   int exit_code = -1;
-  std::string output;  // stdout and stderr together
+  std::string output;     // stdout and stderr together
   long peak_rss_kb = -1;  // run_command_measured only: the child's peak resident memory
 };
 
@@ -33,7 +33,8 @@ inline CommandResult run_command(const std::string& command) {
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+    result.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -57,7 +58,8 @@ inline CommandResult run_command_measured(const std::string& command) {
   close(fds[1]);
   std::array<char, 4096> buffer;
   ssize_t n = 0;
-  while ((n = read(fds[0], buffer.data(), buffer.size())) > 0) result.output.append(buffer.data(), n);
+  while ((n = read(fds[0], buffer.data(), buffer.size())) > 0)
+    result.output.append(buffer.data(), n);
   close(fds[0]);
   int status = 0;
   struct rusage usage {};

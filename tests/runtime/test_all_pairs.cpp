@@ -25,10 +25,13 @@ bool has_param(const AlgorithmEntry& entry, const std::string& key) {
 
 // Small, fast settings for whichever of these keys the algorithm has.
 std::string smoke_settings(const AlgorithmEntry& entry) {
-  const std::pair<const char*, const char*> small[] = {
-      {"n_steps", "32"},        {"batch_size", "32"},      {"buffer_size", "2000"},
-      {"learning_starts", "64"}, {"train_freq", "4"},       {"target_update_interval", "50"},
-      {"policy", "{net_arch: [16, 16]}"}};
+  const std::pair<const char*, const char*> small[] = {{"n_steps", "32"},
+                                                       {"batch_size", "32"},
+                                                       {"buffer_size", "2000"},
+                                                       {"learning_starts", "64"},
+                                                       {"train_freq", "4"},
+                                                       {"target_update_interval", "50"},
+                                                       {"policy", "{net_arch: [16, 16]}"}};
   std::string out;
   for (const auto& [key, value] : small)
     if (has_param(entry, key)) out += std::string(", ") + key + ": " + value;
@@ -48,12 +51,16 @@ TEST_CASE("every algorithm trains on every classic env (auto_wrap) and its model
       const std::string yaml = "run: {name: " + algo.id + "_" + env_id +
                                ", seed: 1, total_timesteps: 400, out_dir: " + dir.str() +
                                ", console_interval: 1000}\n"
-                               "env: {id: " + env_id + ", n_envs: 2, auto_wrap: true}\n"
-                               "algo: {id: " + algo.id + smoke_settings(algo) + "}\n";
+                               "env: {id: " +
+                               env_id +
+                               ", n_envs: 2, auto_wrap: true}\n"
+                               "algo: {id: " +
+                               algo.id + smoke_settings(algo) + "}\n";
       INFO(algo.id << " on " << env_id << "\n" << yaml);
       const Experiment experiment =
           parse_experiment(ConfigNode::load_string(yaml, "pairs.yaml"), registry);
-      const TrainOutcome outcome = train_experiment(experiment, registry, testing::test_execution());
+      const TrainOutcome outcome =
+          train_experiment(experiment, registry, testing::test_execution());
       CHECK(outcome.timesteps >= 400);
       const ModelFile model = read_model(outcome.model_path);
       const Experiment stored = experiment_from_model(model, registry);

@@ -75,12 +75,11 @@ TEST_CASE("cli: a YAML typo exits 2 naming file:line:col and the suggested key",
 TEST_CASE("cli: train writes the run directory, eval needs only the model file", "[cli]") {
   TempDir dir("train");
   const std::string config = dir / "tiny.yaml";
-  write_file(config,
-             "run: {name: tiny, seed: 3, total_timesteps: 4096, out_dir: " + dir.str() +
-                 "/runs}\n"
-                 "env: {id: CartPole-v1, n_envs: 2}\n"
-                 "algo: {id: PPO, n_steps: 64, batch_size: 32, n_epochs: 2}\n"
-                 "eval: {freq: 2048, n_episodes: 3}\n");
+  write_file(config, "run: {name: tiny, seed: 3, total_timesteps: 4096, out_dir: " + dir.str() +
+                         "/runs}\n"
+                         "env: {id: CartPole-v1, n_envs: 2}\n"
+                         "algo: {id: PPO, n_steps: 64, batch_size: 32, n_epochs: 2}\n"
+                         "eval: {freq: 2048, n_episodes: 3}\n");
   const auto r = run_rlrun("train " + config);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -90,9 +89,9 @@ TEST_CASE("cli: train writes the run directory, eval needs only the model file",
     CHECK(fs::exists(run + "/" + f));
   const std::string header = first_line(run + "/progress.csv");
   // (time/fps comes only from rows 0.1 s or more into the run: algos/common/session_time.hpp.)
-  for (const char* key : {"time/total_timesteps", "rollout/ep_rew_mean",
-                          "rollout/ep_len_mean", "train/value_loss", "train/approx_kl",
-                          "train/clip_fraction", "train/entropy_loss", "train/learning_rate"})
+  for (const char* key :
+       {"time/total_timesteps", "rollout/ep_rew_mean", "rollout/ep_len_mean", "train/value_loss",
+        "train/approx_kl", "train/clip_fraction", "train/entropy_loss", "train/learning_rate"})
     CHECK(header.find(key) != std::string::npos);
   CHECK(first_line(run + "/0.monitor.csv").rfind("#{\"t_start\": ", 0) == 0);
   CHECK(read_text(run + "/config.yaml").find("gae_lambda: 0.95") != std::string::npos);
@@ -131,9 +130,9 @@ TEST_CASE("cli: eval refuses files that are not models of this format", "[cli]")
   CHECK(junk.output.find("not a readable model file") != std::string::npos);
   const std::string meta = R"({"format_version": 99, "rlrun_version": "9.0.0", "algorithm": "PPO",
     "env_id": "CartPole-v1", "observation_space": "", "action_space": "", "num_timesteps": 0})";
-  rlrun::write_zip_atomic(dir / "future.zip",
-                          {{"meta.json", std::vector<uint8_t>(meta.begin(), meta.end())},
-                           {"config.yaml", {}}});
+  rlrun::write_zip_atomic(
+      dir / "future.zip",
+      {{"meta.json", std::vector<uint8_t>(meta.begin(), meta.end())}, {"config.yaml", {}}});
   const auto future = run_rlrun("eval --model " + dir / "future.zip");
   CHECK(future.exit_code == 1);
   CHECK(future.output.find("format version 99") != std::string::npos);
@@ -142,8 +141,9 @@ TEST_CASE("cli: eval refuses files that are not models of this format", "[cli]")
 TEST_CASE("cli: SB3 users' tools read the outputs (pandas load_results, numpy.load)",
           "[cli][python]") {
   TempDir dir("python");
-  const auto r = run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --set run.out_dir=" +
-                           dir.str() + " --set run.total_timesteps=2048");
+  const auto r =
+      run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --set run.out_dir=" + dir.str() +
+                " --set run.total_timesteps=2048");
   REQUIRE(r.exit_code == 0);
   const std::string run = dir / "cartpole_ppo/seed1";
   const auto monitor =
@@ -151,11 +151,12 @@ TEST_CASE("cli: SB3 users' tools read the outputs (pandas load_results, numpy.lo
   INFO(monitor.output);
   CHECK(monitor.exit_code == 0);
   CHECK(monitor.output.find("env_id=CartPole-v1") != std::string::npos);
-  const auto model =
-      run_command("/usr/bin/python3 " + kSource + "/tests/data/numpy_load_model.py " + run + "/model.zip");
+  const auto model = run_command("/usr/bin/python3 " + kSource +
+                                 "/tests/data/numpy_load_model.py " + run + "/model.zip");
   INFO(model.output);
   CHECK(model.exit_code == 0);
-  CHECK(model.output.find("mlp_extractor.policy_net.0.weight float32 (64, 4)") != std::string::npos);
+  CHECK(model.output.find("mlp_extractor.policy_net.0.weight float32 (64, 4)") !=
+        std::string::npos);
   CHECK(model.output.find("action_net.weight float32 (2, 64)") != std::string::npos);
   CHECK(model.output.find("value_net.bias float32 (1,)") != std::string::npos);
 }
@@ -199,9 +200,11 @@ TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
   // before would be lost, as it was under ASan's slow start).
   const std::string cmd = std::string(RLRUN_BINARY) + " train " + kSource +
                           "/configs/cartpole_ppo.yaml --set run.total_timesteps=100000000 "
-                          "--set run.out_dir=" + dir.str() + " > " + dir / "out.txt" +
+                          "--set run.out_dir=" +
+                          dir.str() + " > " + dir / "out.txt" +
                           " 2>&1 & pid=$!; for i in $(seq 600); do grep -q 'training PPO' " +
-                          dir / "out.txt" + " && break; sleep 0.05; done; sleep 0.5; "
+                          dir / "out.txt" +
+                          " && break; sleep 0.05; done; sleep 0.5; "
                           "kill -INT $pid; wait $pid; echo exit=$?";
   const auto r = run_command(cmd);
   INFO(r.output << read_text(dir / "out.txt"));
@@ -209,7 +212,8 @@ TEST_CASE("cli: Ctrl-C stops training cleanly and keeps the model", "[cli]") {
   CHECK(fs::exists(dir / "cartpole_ppo/seed1/model.zip"));
   CHECK(read_text(dir / "out.txt").find("interrupted") != std::string::npos);
   // The interrupted model is a valid model file.
-  CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code == 0);
+  CHECK(run_rlrun("eval --model " + dir / "cartpole_ppo/seed1/model.zip --episodes 1").exit_code ==
+        0);
 }
 
 TEST_CASE("cli: a mistyped command is named with the command meant", "[cli]") {
@@ -228,7 +232,8 @@ TEST_CASE("cli: a mistyped command is named with the command meant", "[cli]") {
   CHECK(r.output.find("a command is required: train, eval") != std::string::npos);
   r = run_rlrun("sweep rnu manifest.yaml");
   CHECK(r.exit_code == 2);
-  CHECK(r.output.find("rlrun sweep: unknown command 'rnu'; did you mean 'run'?") != std::string::npos);
+  CHECK(r.output.find("rlrun sweep: unknown command 'rnu'; did you mean 'run'?") !=
+        std::string::npos);
   // Unexpected arguments in the order they were typed (CLI11 2.1 reverses them).
   r = run_rlrun("sweep s.yaml --colour always");
   CHECK(r.exit_code == 2);
@@ -246,8 +251,9 @@ TEST_CASE("cli: counts say 1 episode, 1 env", "[cli]") {
   CHECK(eval.exit_code == 0);
   CHECK(eval.output.find("random on CartPole-v1, 1 episode: mean_reward") != std::string::npos);
   TempDir dir("cli_plurals");
-  const auto train = run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --set env.n_envs=1 " +
-                               "--set algo.n_steps=64 --set algo.batch_size=64 --timesteps 64 --out " + dir.str());
+  const auto train =
+      run_rlrun("train " + kSource + "/configs/cartpole_ppo.yaml --set env.n_envs=1 " +
+                "--set algo.n_steps=64 --set algo.batch_size=64 --timesteps 64 --out " + dir.str());
   INFO(train.output);
   CHECK(train.exit_code == 0);
   CHECK(train.output.find("for 64 steps (seed 1, 1 env, ") != std::string::npos);

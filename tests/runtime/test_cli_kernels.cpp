@@ -14,28 +14,31 @@ using namespace rlrun::testing;
 
 TEST_CASE("cli: the AVX2 and AVX-512 kernels train byte-equal models", "[cli][kernels]") {
   if (!dense::kernel_path_available(dense::KernelPath::kAvx512)) {
-    WARN("this CPU has no AVX-512: only the AVX2 path ran (the kernel-level test still compares "
-         "AVX2 with the baseline)");
+    WARN(
+        "this CPU has no AVX-512: only the AVX2 path ran (the kernel-level test still compares "
+        "AVX2 with the baseline)");
     return;
   }
   TempDir dir("kernels");
   for (const auto& [algo, env, extra] :
        {std::tuple{"PPO", "CartPole-v1", "n_steps: 128, batch_size: 64, n_epochs: 3"},
         {"DQN", "CartPole-v1", "learning_starts: 200, batch_size: 64"},
-        {"TD3", "Pendulum-v1", "learning_starts: 200, batch_size: 100, policy: {net_arch: [64, 64]}"},
+        {"TD3", "Pendulum-v1",
+         "learning_starts: 200, batch_size: 100, policy: {net_arch: [64, 64]}"},
         {"SAC", "Pendulum-v1", "learning_starts: 200, batch_size: 256"}}) {
     INFO(algo);
     const std::string config = dir / (std::string(algo) + ".yaml");
-    std::ofstream(config) << "run: {name: " << algo << ", seed: 5, total_timesteps: 1500, out_dir: "
-                          << dir.str() << "/runs}\n"
+    std::ofstream(config) << "run: {name: " << algo
+                          << ", seed: 5, total_timesteps: 1500, out_dir: " << dir.str()
+                          << "/runs}\n"
                           << "env: {id: " << env << ", n_envs: 2}\n"
                           << "algo: {id: " << algo << ", " << extra << "}\n";
-    const auto wide = run_command("RLRUN_KERNELS=avx512 " + std::string(RLRUN_BINARY) +
-                                  " train " + config);
+    const auto wide =
+        run_command("RLRUN_KERNELS=avx512 " + std::string(RLRUN_BINARY) + " train " + config);
     INFO(wide.output);
     REQUIRE(wide.exit_code == 0);
-    const auto narrow = run_command("RLRUN_KERNELS=avx2 " + std::string(RLRUN_BINARY) +
-                                    " train " + config);
+    const auto narrow =
+        run_command("RLRUN_KERNELS=avx2 " + std::string(RLRUN_BINARY) + " train " + config);
     INFO(narrow.output);
     REQUIRE(narrow.exit_code == 0);
     check_same_tensors(dir / ("runs/" + std::string(algo) + "/seed5/model.zip"),

@@ -72,29 +72,35 @@ void check_refused(const CommandResult& r, const std::string& fragment) {
 TEST_CASE("non-finite model: eval, record, export and init-from refuse it naming the tensor",
           "[cli][untrusted][non_finite]") {
   TinyRun tiny("non_finite_model");
-  const std::string nan_weight = tampered(tiny.model(), tiny.dir / "nan_weight.zip",
-                                          "action_net.weight.npy", 3, kNan);
-  const std::string named = nan_weight + ": parameter action_net.weight has 1 non-finite value (first: nan)";
+  const std::string nan_weight =
+      tampered(tiny.model(), tiny.dir / "nan_weight.zip", "action_net.weight.npy", 3, kNan);
+  const std::string named =
+      nan_weight + ": parameter action_net.weight has 1 non-finite value (first: nan)";
   check_refused(run_rlrun("eval --model " + nan_weight + " --episodes 1"), named);
-  check_refused(run_rlrun("record --model " + nan_weight + " --frames " + tiny.dir / "frames"), named);
-  check_refused(run_rlrun("export --model " + nan_weight + " --output " + tiny.dir / "p.onnx"), named);
+  check_refused(run_rlrun("record --model " + nan_weight + " --frames " + tiny.dir / "frames"),
+                named);
+  check_refused(run_rlrun("export --model " + nan_weight + " --output " + tiny.dir / "p.onnx"),
+                named);
   CHECK_FALSE(fs::exists(tiny.dir / "p.onnx"));
-  check_refused(run_rlrun("train " + tiny.dir / "tiny.yaml" + " --set run.out_dir=" +
-                          tiny.dir / "again --init-from " + nan_weight),
+  check_refused(run_rlrun("train " + tiny.dir / "tiny.yaml" +
+                          " --set run.out_dir=" + tiny.dir / "again --init-from " + nan_weight),
                 named);
   // The embeddable library too (Python's rlrun.load: tests/python/test_predict.py).
-  CHECK_THROWS_WITH(Policy::load(nan_weight), Catch::Contains("action_net.weight has 1 non-finite"));
+  CHECK_THROWS_WITH(Policy::load(nan_weight),
+                    Catch::Contains("action_net.weight has 1 non-finite"));
 
   // Normalisation statistics: finite, variances and counts >= 0.
   const std::string stats = "wrappers/NormalizeObservation/";
   const auto statistic = [&](const std::string& field, size_t index, double value) {
-    return tampered(tiny.model(), tiny.dir / (field + ".zip"), stats + field + ".npy", index, value);
+    return tampered(tiny.model(), tiny.dir / (field + ".zip"), stats + field + ".npy", index,
+                    value);
   };
   check_refused(run_rlrun("eval --model " + statistic("mean", 2, kInf)),
                 "statistic " + stats + "mean has 1 non-finite value (first: inf)");
   check_refused(run_rlrun("eval --model " + statistic("var", 0, -1.0)),
                 "statistic " + stats + "var has a negative value (-1.000000)");
-  check_refused(run_rlrun("export --format c --output " + tiny.dir / "c --model " + statistic("count", 0, -5.0)),
+  check_refused(run_rlrun("export --format c --output " + tiny.dir / "c --model " +
+                          statistic("count", 0, -5.0)),
                 "statistic " + stats + "count has a negative value");
   check_refused(run_rlrun("eval --model " + statistic("count", 0, kNan)),
                 "statistic " + stats + "count has 1 non-finite value (first: nan)");
@@ -115,7 +121,8 @@ TEST_CASE("non-finite checkpoint: resume skips it for the previous good one, or 
   INFO(skipped.output);
   CHECK(skipped.exit_code == 0);
   CHECK(skipped.output.find("note: skipping checkpoint " + newest + ": " + newest +
-                            ": parameter action_net.weight has 1 non-finite value") != std::string::npos);
+                            ": parameter action_net.weight has 1 non-finite value") !=
+        std::string::npos);
   CHECK(skipped.output.find("from " + older) != std::string::npos);
   CHECK(skipped.output.find("last good checkpoint") == std::string::npos);
 
@@ -124,16 +131,19 @@ TEST_CASE("non-finite checkpoint: resume skips it for the previous good one, or 
   tampered(good_older, older, "wrappers/NormalizeObservation/var.npy", 1, -2.0);
   const auto none = run_rlrun("train --resume " + tiny.run());
   check_refused(none, "cannot resume: no checkpoint can continue the run; tried:");
-  CHECK(none.output.find("statistic wrappers/NormalizeObservation/var has a negative value") != std::string::npos);
+  CHECK(none.output.find("statistic wrappers/NormalizeObservation/var has a negative value") !=
+        std::string::npos);
   CHECK(none.output.find("last good checkpoint") == std::string::npos);
 
   // NaN in the training state (optimizer moments, the env's running statistics): refused.
   fs::copy_file(good_older, older, fs::copy_options::overwrite_existing);
   tampered(good_newest, newest, "training/algo/optimizer/exp_avg_sq.0.npy", 5, kNan);
-  check_refused(run_rlrun("train --resume " + newest),
-                "checkpoint state 'training/algo/optimizer/exp_avg_sq.0' holds a NaN or infinite value");
+  check_refused(
+      run_rlrun("train --resume " + newest),
+      "checkpoint state 'training/algo/optimizer/exp_avg_sq.0' holds a NaN or infinite value");
   const std::string env_var = "training/env/0/normalize_observation/var.npy";
   REQUIRE(read_zip(good_newest).count(env_var) == 1);
   tampered(good_newest, newest, env_var, 0, -1.0);
-  check_refused(run_rlrun("train --resume " + newest), "normalize_observation/var' is not a finite variance >= 0");
+  check_refused(run_rlrun("train --resume " + newest),
+                "normalize_observation/var' is not a finite variance >= 0");
 }

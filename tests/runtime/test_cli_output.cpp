@@ -65,11 +65,15 @@ TEST_CASE("output: the first progress row of a fast run has no absurd fps", "[ou
 
 // TrafficNetwork-v0's 16 lights are 16 agents: 8 env steps per episode (40 s / 5 s) are 128
 // timesteps. The console says how each count counts before the first table.
-TEST_CASE("output: a multi-agent run says what its step counts count", "[output][cli][traffic_network]") {
+TEST_CASE("output: a multi-agent run says what its step counts count",
+          "[output][cli][traffic_network]") {
   TempDir dir("output_agents");
   const auto r = run_command("SUMO_HOME=/usr/share/sumo " + std::string(RLRUN_BINARY) + " train " +
-                             RLRUN_SOURCE_DIR + "/configs/traffic_network_ppo.yaml --timesteps 128 "
-                             "--out " + dir.str() + " --set env.kwargs.num_seconds=40 "
+                             RLRUN_SOURCE_DIR +
+                             "/configs/traffic_network_ppo.yaml --timesteps 128 "
+                             "--out " +
+                             dir.str() +
+                             " --set env.kwargs.num_seconds=40 "
                              "--set algo.n_steps=8 --set algo.batch_size=32");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -90,7 +94,8 @@ TEST_CASE("output: a multi-agent run says what its step counts count", "[output]
 // The network's baselines hand the lights to SUMO; the reward (diff-waiting-time, from the
 // vehicles on each light's incoming lanes) was then not computed and eval printed
 // mean_reward = 0.00. It is the env's reward under every control.
-TEST_CASE("output: TrafficNetwork-v0's baselines get the env's reward", "[output][cli][traffic_network]") {
+TEST_CASE("output: TrafficNetwork-v0's baselines get the env's reward",
+          "[output][cli][traffic_network]") {
   for (const char* policy : {"fixed-time", "actuated"}) {
     const auto r = run_command("SUMO_HOME=/usr/share/sumo " + std::string(RLRUN_BINARY) +
                                " eval --env TrafficNetwork-v0 --episodes 1 --policy " + policy +
@@ -107,17 +112,21 @@ TEST_CASE("output: TrafficNetwork-v0's baselines get the env's reward", "[output
 // same episodes (so two random policies, seeded alike, give the same row).
 TEST_CASE("output: eval --policy with several names compares them in one table", "[output][cli]") {
   TempDir dir("output_policies");
-  const auto r = run_rlrun("eval --env GripperReach-v0 --policy scripted,random,random --episodes 3 "
-                           "--csv " + dir / "episodes.csv");
+  const auto r = run_rlrun(
+      "eval --env GripperReach-v0 --policy scripted,random,random --episodes 3 "
+      "--csv " +
+      dir / "episodes.csv");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   std::vector<std::string> lines;
   std::istringstream in(r.output);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   REQUIRE(lines.size() == 6);
-  CHECK(lines[0] == "scripted,random,random on GripperReach-v0, 3 episodes each from seed 0 (the "
-                    "same episodes for every policy):");
-  CHECK(lines[1] == "| policy   | mean_reward | std_reward | mean_ep_length | success_rate | distance |");
+  CHECK(lines[0] ==
+        "scripted,random,random on GripperReach-v0, 3 episodes each from seed 0 (the "
+        "same episodes for every policy):");
+  CHECK(lines[1] ==
+        "| policy   | mean_reward | std_reward | mean_ep_length | success_rate | distance |");
   CHECK(lines[3].rfind("| scripted | ", 0) == 0);
   CHECK(lines[3].find("| 1.000        |") != std::string::npos);  // the scripted reach succeeds
   CHECK(lines[4].rfind("| random   | ", 0) == 0);
@@ -130,8 +139,10 @@ TEST_CASE("output: eval --policy with several names compares them in one table",
   const auto one = run_rlrun("eval --env GripperReach-v0 --policy scripted --episodes 3");
   CHECK(one.output.rfind("scripted on GripperReach-v0, 3 episodes: mean_reward = ", 0) == 0);
   CHECK(run_rlrun("eval --env GripperReach-v0 --policy scripted,").exit_code == 2);
-  const auto trajectory = run_rlrun("eval --env GripperReach-v0 --policy scripted,random "
-                                    "--trajectory " + dir / "t.csv");
+  const auto trajectory = run_rlrun(
+      "eval --env GripperReach-v0 --policy scripted,random "
+      "--trajectory " +
+      dir / "t.csv");
   CHECK(trajectory.exit_code == 2);
   CHECK(trajectory.output.find("give --policy one name") != std::string::npos);
 }

@@ -70,7 +70,8 @@ void require_same_run(const std::string& a, const std::string& b, int n_envs, bo
     REQUIRE(model_b.count(name) == 1);
     CHECK(bytes == model_b.at(name));
   }
-  const auto rows_a = progress_rows(a + "/progress.csv"), rows_b = progress_rows(b + "/progress.csv");
+  const auto rows_a = progress_rows(a + "/progress.csv"),
+             rows_b = progress_rows(b + "/progress.csv");
   CHECK(rows_a.size() > 2);
   CHECK(rows_a == rows_b);
   for (int i = 0; i < n_envs; ++i) {
@@ -101,9 +102,9 @@ std::string train_then_signal(const std::string& args, const std::string& wait_f
 }
 
 struct ResumeCase {
-  std::string config;     // file under configs/
-  std::string run_name;   // run.name of that file
-  std::string settings;   // --set ... shortening it
+  std::string config;            // file under configs/
+  std::string run_name;          // run.name of that file
+  std::string settings;          // --set ... shortening it
   std::string first_checkpoint;  // checkpoints/step_<N>.zip that the kill waits for
   int n_envs = 1;
   bool eval = false;
@@ -113,7 +114,8 @@ void check_resume_equals_uninterrupted(const ResumeCase& c, const std::string& s
   TempDir dir("resume_" + c.run_name + "_" + signal);
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/" + c.config;
   const std::string whole = dir / "whole", cut = dir / "cut";
-  const auto full = run_rlrun("--threads 1 train " + config + c.settings + " --set run.out_dir=" + whole);
+  const auto full =
+      run_rlrun("--threads 1 train " + config + c.settings + " --set run.out_dir=" + whole);
   INFO(full.output);
   REQUIRE(full.exit_code == 0);
 
@@ -125,7 +127,8 @@ void check_resume_equals_uninterrupted(const ResumeCase& c, const std::string& s
   // SIGINT: exit 130 after writing a checkpoint at the next safe point; SIGKILL: killed.
   if (signal == "INT") {
     REQUIRE(status.find("exit=130") != std::string::npos);
-    CHECK(read_text(dir / "cut.log").find("resume with: rlrun train --resume") != std::string::npos);
+    CHECK(read_text(dir / "cut.log").find("resume with: rlrun train --resume") !=
+          std::string::npos);
   } else {
     REQUIRE(status.find("exit=137") != std::string::npos);
   }
@@ -164,8 +167,9 @@ const ResumeCase kDictPpo{"simplemultiobs_ppo.yaml",
 
 }  // namespace
 
-TEST_CASE("resume: PPO on a Dict observation killed after a checkpoint ends as the uninterrupted run",
-          "[cli][resume][spaces]") {
+TEST_CASE(
+    "resume: PPO on a Dict observation killed after a checkpoint ends as the uninterrupted run",
+    "[cli][resume][spaces]") {
   check_resume_equals_uninterrupted(kDictPpo, "KILL");
 }
 
@@ -187,16 +191,22 @@ TEST_CASE("resume: SAC killed after a checkpoint ends as the uninterrupted run",
 }
 
 TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][resume]") {
-  const ResumeCase dqn{"cartpole_dqn.yaml", "cartpole_dqn",
+  const ResumeCase dqn{"cartpole_dqn.yaml",
+                       "cartpole_dqn",
                        " --set run.total_timesteps=3000 --set algo.learning_starts=500"
                        " --set checkpoint.freq=1000",
-                       "step_1024.zip", 1, false};
+                       "step_1024.zip",
+                       1,
+                       false};
   check_resume_equals_uninterrupted(dqn, "KILL");
-  const ResumeCase td3{"pendulum_td3.yaml", "pendulum_td3",
+  const ResumeCase td3{"pendulum_td3.yaml",
+                       "pendulum_td3",
                        " --set run.total_timesteps=1200 --set algo.learning_starts=200"
                        " --set algo.batch_size=64 --set 'algo.policy.net_arch=[64, 64]'"
                        " --set checkpoint.freq=400 --set run.log_interval=1",
-                       "step_400.zip", 1, false};
+                       "step_400.zip",
+                       1,
+                       false};
   check_resume_equals_uninterrupted(td3, "KILL");
 }
 
@@ -207,22 +217,29 @@ TEST_CASE("resume: SAC with env.normalize resumes exactly (original observations
   check_resume_equals_uninterrupted(sac, "KILL");
 }
 
-TEST_CASE("resume: DQN with HerReplayBuffer resumes exactly (episode bookkeeping in the checkpoint)",
-          "[cli][resume][her]") {
-  const ResumeCase her{"bitflipping_dqn_her.yaml", "bitflipping_dqn_her",
+TEST_CASE(
+    "resume: DQN with HerReplayBuffer resumes exactly (episode bookkeeping in the checkpoint)",
+    "[cli][resume][her]") {
+  const ResumeCase her{"bitflipping_dqn_her.yaml",
+                       "bitflipping_dqn_her",
                        " --set run.total_timesteps=3000 --set checkpoint.freq=1000"
                        " --set eval.freq=0",
-                       "step_1000.zip", 1, false};
+                       "step_1000.zip",
+                       1,
+                       false};
   check_resume_equals_uninterrupted(her, "KILL");
 }
 
 TEST_CASE("resume: a TQC run killed after a checkpoint ends as the uninterrupted run",
           "[cli][resume][tqc]") {
-  const ResumeCase tqc{"pendulum_tqc.yaml", "pendulum_tqc",
+  const ResumeCase tqc{"pendulum_tqc.yaml",
+                       "pendulum_tqc",
                        " --set run.total_timesteps=1200 --set algo.learning_starts=200"
                        " --set algo.batch_size=64 --set 'algo.policy.net_arch=[64, 64]'"
                        " --set checkpoint.freq=400 --set run.log_interval=1",
-                       "step_400.zip", 1, false};
+                       "step_400.zip",
+                       1,
+                       false};
   check_resume_equals_uninterrupted(tqc, "KILL");
 }
 
@@ -231,7 +248,8 @@ TEST_CASE("resume: --timesteps extends a finished run from its last checkpoint",
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
   const auto first = run_rlrun("--threads 1 train " + config +
                                " --set run.total_timesteps=4096 --set checkpoint.freq=4096"
-                               " --set run.out_dir=" + dir.str());
+                               " --set run.out_dir=" +
+                               dir.str());
   REQUIRE(first.exit_code == 0);
   const auto more = run_rlrun("--threads 1 train --resume " + dir / "cartpole_ppo/seed1" +
                               " --set run.total_timesteps=8192");
@@ -257,9 +275,9 @@ TEST_CASE("resume: --timesteps extends a finished run from its last checkpoint",
 TEST_CASE("resume: refusals name the reason", "[cli][resume]") {
   TempDir dir("resume_refusals");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
-  REQUIRE(run_rlrun("train " + config + " --set run.total_timesteps=512 --set run.out_dir=" +
-                    dir.str())
-              .exit_code == 0);
+  REQUIRE(
+      run_rlrun("train " + config + " --set run.total_timesteps=512 --set run.out_dir=" + dir.str())
+          .exit_code == 0);
   const std::string run_dir = dir / "cartpole_ppo/seed1";
   // No checkpoint in the run.
   auto r = run_rlrun("train --resume " + run_dir);
@@ -288,8 +306,7 @@ TEST_CASE("divergence: a non-finite loss stops training, naming the step and the
                            " --set 'env.wrappers=[{id: TransformReward, scale: 1.0e+30}]'");
   INFO(r.output);
   CHECK(r.exit_code == 1);
-  CHECK(r.output.find("training diverged at step 256: train/loss is inf") !=
-        std::string::npos);
+  CHECK(r.output.find("training diverged at step 256: train/loss is inf") != std::string::npos);
   CHECK(r.output.find("No checkpoint was written") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "cartpole_ppo/seed1/model.zip"));
 }

@@ -6,9 +6,9 @@
 // be refused, naming the file, with nothing outside changed. Commands run under `timeout -s
 // KILL` (a process blocked opening a FIFO ignores SIGTERM), so a hang fails the test (exit 124)
 // instead of hanging the suite.
-#include <catch2/catch.hpp>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -132,17 +132,17 @@ TEST_CASE("run dir links: a TensorBoard event file link is not cut or appended t
   CHECK(read_text(victim) == victim_text);
 }
 
-TEST_CASE("run dir links: FIFOs as log.txt and progress.csv are refused by report, plot and "
-          "resume, not waited on",
-          "[cli][security]") {
+TEST_CASE(
+    "run dir links: FIFOs as log.txt and progress.csv are refused by report, plot and "
+    "resume, not waited on",
+    "[cli][security]") {
   TempDir dir("links_fifo");
   const std::string run = train_with_checkpoints(dir);
   for (const std::string file : {"log.txt", "progress.csv"}) {
     const std::string saved = read_text(run + "/" + file);
     make_fifo(run + "/" + file);
-    for (const std::string& args :
-         {"report " + run, "plot " + run + " -o " + dir / "curves.png",
-          "train --resume " + run + " --timesteps 768"}) {
+    for (const std::string& args : {"report " + run, "plot " + run + " -o " + dir / "curves.png",
+                                    "train --resume " + run + " --timesteps 768"}) {
       const auto r = run_bounded(args);
       INFO(args << "\n" << r.output);
       CHECK(r.exit_code == 1);  // 124: it hung
@@ -228,9 +228,10 @@ TEST_CASE("study links: a study.journal link is refused by tune and tune report,
   CHECK(fs::is_empty(dir / "elsewhere"));
 }
 
-TEST_CASE("run dir temporaries: a run killed before its first checkpoint leaves none behind "
-          "once resumed",
-          "[cli][security][resume]") {
+TEST_CASE(
+    "run dir temporaries: a run killed before its first checkpoint leaves none behind "
+    "once resumed",
+    "[cli][security][resume]") {
   TempDir dir("links_stale_tmp");
   const std::string run = dir / "runs/cartpole_ppo/seed1";
   // Killed (SIGKILL) once training has logged, long before its first checkpoint.

@@ -27,8 +27,8 @@ double number_after(const std::string& output, const std::string& key) {
 
 // numpy.load of a model file as an SB3 user would do it: "<name> <dtype> <shape>" per tensor.
 std::string model_tensors(const std::string& model_zip) {
-  const auto r = run_command("/usr/bin/python3 " + kSource + "/tests/data/numpy_load_model.py " +
-                             model_zip);
+  const auto r =
+      run_command("/usr/bin/python3 " + kSource + "/tests/data/numpy_load_model.py " + model_zip);
   INFO(r.output);
   CHECK(r.exit_code == 0);
   return r.output;
@@ -100,9 +100,9 @@ TEST_CASE("spaces: MultiBinary observations and actions, PPO and A2C", "[cli][sp
 TEST_CASE("spaces: a Dict of MultiBinary, Discrete and Box keys (SimpleMultiObsEnv-v0), PPO",
           "[cli][spaces]") {
   TempDir dir("spaces_dict_discrete");
-  const auto train = run_rlrun("train " + kSource + "/configs/simplemultiobs_ppo.yaml --set run.out_dir=" +
-                               dir.str() + " --set env.kwargs.random_start=false" +
-                               " --set obs_log.freq=800");
+  const auto train = run_rlrun("train " + kSource +
+                               "/configs/simplemultiobs_ppo.yaml --set run.out_dir=" + dir.str() +
+                               " --set env.kwargs.random_start=false" + " --set obs_log.freq=800");
   INFO(train.output);
   REQUIRE(train.exit_code == 0);
   const std::string run = dir / "simplemultiobs_ppo/seed1";
@@ -138,17 +138,19 @@ TEST_CASE("spaces: a Dict of Box keys with a Box action (DictReach-v0), PPO, pla
   const auto plain = run_rlrun("train " + config);
   INFO(plain.output);
   REQUIRE(plain.exit_code == 0);
-  const auto eval = run_rlrun("eval --model " + dir / "dictreach_ppo/seed1/model.zip --episodes 20");
+  const auto eval =
+      run_rlrun("eval --model " + dir / "dictreach_ppo/seed1/model.zip --episodes 20");
   INFO(eval.output);
   REQUIRE(eval.exit_code == 0);
   CHECK(number_after(eval.output, "success_rate") == 1.0);
   // FrameStack and NormalizeObservation key by key; the statistics travel in the model file.
-  const auto wrapped = run_rlrun(
-      "train " + config + " --set run.name=wrapped --set run.total_timesteps=8192" +
-      " --set 'env.wrappers=[{id: NormalizeObservation}, {id: FrameStack, n_stack: 2}]'");
+  const auto wrapped =
+      run_rlrun("train " + config + " --set run.name=wrapped --set run.total_timesteps=8192" +
+                " --set 'env.wrappers=[{id: NormalizeObservation}, {id: FrameStack, n_stack: 2}]'");
   INFO(wrapped.output);
   REQUIRE(wrapped.exit_code == 0);
-  const auto wrapped_eval = run_rlrun("eval --model " + dir / "wrapped/seed1/model.zip --episodes 3");
+  const auto wrapped_eval =
+      run_rlrun("eval --model " + dir / "wrapped/seed1/model.zip --episodes 3");
   INFO(wrapped_eval.output);
   CHECK(wrapped_eval.exit_code == 0);
 }
@@ -175,10 +177,12 @@ TEST_CASE("spaces: every probe env's optimum for seeds 1, 2, 3", "[cli][spaces][
   TempDir dir("spaces_seeds");
   for (const char* seed : {"1", "2", "3"}) {
     const std::string set = " --seed " + std::string(seed) + " --set run.out_dir=" + dir.str();
-    for (const char* id : {"IdentityEnv-v0", "IdentityEnvMultiDiscrete-v0", "IdentityEnvMultiBinary-v0"}) {
+    for (const char* id :
+         {"IdentityEnv-v0", "IdentityEnvMultiDiscrete-v0", "IdentityEnvMultiBinary-v0"}) {
       for (const std::string& algo : {kPpo, kA2c}) {
         INFO(id << " " << algo << " seed " << seed);
-        const std::string name = std::string("s") + seed + "_" + id + (algo == kPpo ? "_ppo" : "_a2c");
+        const std::string name =
+            std::string("s") + seed + "_" + id + (algo == kPpo ? "_ppo" : "_a2c");
         const std::string config = dir / (name + ".yaml");
         std::ofstream(config) << "run: {name: " << name << ", total_timesteps: 20000}\n"
                               << "env: " << identity(id) << "\nalgo: " << algo << "\n";
@@ -190,8 +194,9 @@ TEST_CASE("spaces: every probe env's optimum for seeds 1, 2, 3", "[cli][spaces][
     for (const char* config : {"dictreach_ppo", "simplemultiobs_ppo"}) {
       INFO(config << " seed " << seed);
       REQUIRE(run_rlrun("train " + kSource + "/configs/" + config + ".yaml" + set).exit_code == 0);
-      const auto eval = run_rlrun("eval --model " + dir / (std::string(config) + "/seed" + seed +
-                                                            "/model.zip") + " --episodes 20");
+      const auto eval =
+          run_rlrun("eval --model " + dir / (std::string(config) + "/seed" + seed + "/model.zip") +
+                    " --episodes 20");
       CHECK(number_after(eval.output, "success_rate") == 1.0);
     }
     const std::string grid = dir / "grid.yaml";
@@ -200,7 +205,8 @@ TEST_CASE("spaces: every probe env's optimum for seeds 1, 2, 3", "[cli][spaces][
                         << "algo: {id: PPO, n_steps: 64, batch_size: 128, n_epochs: 10, "
                            "learning_rate: 0.001, gamma: 0.95}\n";
     REQUIRE(run_rlrun("train " + grid + set).exit_code == 0);
-    const auto eval = run_rlrun("eval --model " + dir / ("grid/seed" + std::string(seed) + "/model.zip"));
+    const auto eval =
+        run_rlrun("eval --model " + dir / ("grid/seed" + std::string(seed) + "/model.zip"));
     CHECK(number_after(eval.output, "mean_reward") == -8.0);
   }
 }
@@ -208,8 +214,8 @@ TEST_CASE("spaces: every probe env's optimum for seeds 1, 2, 3", "[cli][spaces][
 TEST_CASE("spaces: off-policy algorithms take Dict observations (SAC learns DictReach-v0)",
           "[cli][spaces]") {
   TempDir dir("spaces_dict_sac");
-  const auto train =
-      run_rlrun("--threads 1 train " + kSource + "/configs/dictreach_sac.yaml --set run.out_dir=" + dir.str());
+  const auto train = run_rlrun("--threads 1 train " + kSource +
+                               "/configs/dictreach_sac.yaml --set run.out_dir=" + dir.str());
   INFO(train.output);
   REQUIRE(train.exit_code == 0);
   const std::string run = dir / "dictreach_sac/seed1";

@@ -21,12 +21,13 @@ namespace {
 // The 2 x 3 CartPole sweep of the issue, short runs with frequent checkpoints.
 std::string write_sweep(const TempDir& dir, int timesteps) {
   const std::string path = dir / "sweep.yaml";
-  std::ofstream(path) << "name: test_sweep\nbase: " << RLRUN_SOURCE_DIR
-                      << "/configs/cartpole_ppo.yaml\nout_dir: " << dir / "out"
-                      << "\nseeds: [1, 2, 3]\ngrid:\n  algo.learning_rate: [lin_0.001, 3.0e-4]\n"
-                      << "set: {run.total_timesteps: " << timesteps
-                      << ", checkpoint: {freq: 4096, keep: 2}, run.console_interval: 1000}\n"
-                      << "slurm: {time: \"00:05:00\", cpus_per_task: 2, mem: 1G, extra: [\"--qos=short\"]}\n";
+  std::ofstream(path)
+      << "name: test_sweep\nbase: " << RLRUN_SOURCE_DIR
+      << "/configs/cartpole_ppo.yaml\nout_dir: " << dir / "out"
+      << "\nseeds: [1, 2, 3]\ngrid:\n  algo.learning_rate: [lin_0.001, 3.0e-4]\n"
+      << "set: {run.total_timesteps: " << timesteps
+      << ", checkpoint: {freq: 4096, keep: 2}, run.console_interval: 1000}\n"
+      << "slurm: {time: \"00:05:00\", cpus_per_task: 2, mem: 1G, extra: [\"--qos=short\"]}\n";
   return path;
 }
 
@@ -42,7 +43,8 @@ std::vector<double> column(const std::string& csv_path, const std::string& name)
   while (std::getline(in, line)) {
     std::stringstream row(line);
     std::string cell;
-    for (size_t i = 0; i <= k && std::getline(row, cell, ','); ++i) {}
+    for (size_t i = 0; i <= k && std::getline(row, cell, ','); ++i) {
+    }
     values.push_back(std::stod(cell));
   }
   return values;
@@ -67,8 +69,9 @@ TEST_CASE("sweep: expansion, stable ids, errors at the sweep file's line", "[swe
   CHECK(run_rlrun("sweep " + sweep).exit_code == 0);  // again: the same manifest
   CHECK(read_text(dir / "out/manifest.yaml") == manifest);
 
-  std::ofstream(dir / "typo.yaml") << "base: " << RLRUN_SOURCE_DIR
-                                    << "/configs/cartpole_ppo.yaml\ngrid:\n  algo.lerning_rate: [1, 2]\n";
+  std::ofstream(dir / "typo.yaml")
+      << "base: " << RLRUN_SOURCE_DIR
+      << "/configs/cartpole_ppo.yaml\ngrid:\n  algo.lerning_rate: [1, 2]\n";
   const auto typo = run_rlrun("sweep " + dir / "typo.yaml");
   CHECK(typo.exit_code == 2);
   CHECK(typo.output.find("typo.yaml:3:3") != std::string::npos);
@@ -99,20 +102,23 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
   REQUIRE(run_rlrun("sweep " + sweep).exit_code == 0);
   const std::string manifest = dir / "out/manifest.yaml";
   // Ctrl-C as soon as a run has written its first checkpoint (whatever the machine's speed).
-  const auto first = run_command(
-      std::string(RLRUN_BINARY) + " sweep run " + manifest + " -j 2 > " + dir / "first.txt" +
-      " 2>&1 & pid=$!; for i in $(seq 600); do ls " + dir / "out/runs" +
-      "/*/*/checkpoints/*.zip >/dev/null 2>&1 && break; sleep 0.05; done; kill -INT $pid; wait $pid; echo $?");
+  const auto first = run_command(std::string(RLRUN_BINARY) + " sweep run " + manifest + " -j 2 > " +
+                                 dir / "first.txt" + " 2>&1 & pid=$!; for i in $(seq 600); do ls " +
+                                 dir / "out/runs" +
+                                 "/*/*/checkpoints/*.zip >/dev/null 2>&1 && break; sleep 0.05; "
+                                 "done; kill -INT $pid; wait $pid; echo $?");
   const std::string first_out = read_text(dir / "first.txt");
   INFO(first_out);
   CHECK(first.output.find("130") != std::string::npos);
   const auto status = run_rlrun("sweep status " + manifest);
   INFO(status.output);
   int resumable = 0, finished_early = 0;
-  for (size_t at = 0; (at = status.output.find("resumable", at)) != std::string::npos; ++at) ++resumable;
-  for (size_t at = 0; (at = status.output.find(" finished ", at)) != std::string::npos; ++at) ++finished_early;
-  CHECK(resumable >= 1);        // stopped mid-run with a checkpoint
-  CHECK(finished_early < 6);    // the interruption came before the end
+  for (size_t at = 0; (at = status.output.find("resumable", at)) != std::string::npos; ++at)
+    ++resumable;
+  for (size_t at = 0; (at = status.output.find(" finished ", at)) != std::string::npos; ++at)
+    ++finished_early;
+  CHECK(resumable >= 1);      // stopped mid-run with a checkpoint
+  CHECK(finished_early < 6);  // the interruption came before the end
 
   // Each run's console output stays in the sweep's logs/, named by the first line.
   CHECK(first_out.find("console output of each in " + dir / "out/logs" + "/<run id>.txt") !=
@@ -135,8 +141,8 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
       const std::string log = read_text(run + "/log.txt");
       if (log.find("resuming") != std::string::npos) ++resumed;
       // Its console output, kept: each `sweep run` session appended under a header line.
-      const std::string console = read_text(dir / "out/logs" + "/" + label + "/seed" +
-                                            std::to_string(seed) + ".txt");
+      const std::string console =
+          read_text(dir / "out/logs" + "/" + label + "/seed" + std::to_string(seed) + ".txt");
       CHECK(console.find("=== ") == 0);
       CHECK(console.find("sweep: run ") != std::string::npos);
       if (log.find("resuming") != std::string::npos)
@@ -144,14 +150,17 @@ TEST_CASE("sweep run -j 2: interrupted, re-run, 6 finished runs", "[sweep]") {
     }
   CHECK(resumed == resumable);
   // A third run trains nothing.
-  const auto model_time = fs::last_write_time(dir / "out/runs/learning_rate=3.0e-4/seed3/model.zip");
+  const auto model_time =
+      fs::last_write_time(dir / "out/runs/learning_rate=3.0e-4/seed3/model.zip");
   const auto third = run_rlrun("sweep run " + manifest + " -j 2");
-  CHECK(third.output.find("6 finished before (skipped), 0 to resume, 0 to start") != std::string::npos);
+  CHECK(third.output.find("6 finished before (skipped), 0 to resume, 0 to start") !=
+        std::string::npos);
   CHECK(fs::last_write_time(dir / "out/runs/learning_rate=3.0e-4/seed3/model.zip") == model_time);
 }
 
-TEST_CASE("sweep --out and --set: the sweep's out_dir and a value for every run, as train takes them",
-          "[sweep]") {
+TEST_CASE(
+    "sweep --out and --set: the sweep's out_dir and a value for every run, as train takes them",
+    "[sweep]") {
   TempDir dir("sweep_options");
   const std::string sweep = write_sweep(dir, 8192);
   auto r = run_rlrun("sweep " + sweep + " --out " + dir / "elsewhere" +
@@ -185,9 +194,11 @@ TEST_CASE("sweep --out and --set: the sweep's out_dir and a value for every run,
   r = run_rlrun("sweep slurm " + manifest + " --set 'env.kwargs.sumo_binary=/opt/my sumo'");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  CHECK(read_text(dir / "elsewhere/sweep.sbatch").find(
-            "--index \"$SLURM_ARRAY_TASK_ID\" '--set' 'env.kwargs.sumo_binary=/opt/my sumo'\n") !=
-        std::string::npos);
+  CHECK(
+      read_text(dir / "elsewhere/sweep.sbatch")
+          .find(
+              "--index \"$SLURM_ARRAY_TASK_ID\" '--set' 'env.kwargs.sumo_binary=/opt/my sumo'\n") !=
+      std::string::npos);
 }
 
 // Issue 41: each run of a sweep has its own run.tb_log_name (<label>_seed<N>), so report and
@@ -228,7 +239,8 @@ TEST_CASE("sweep: the shipped example sweep expands into 6 runs", "[sweep]") {
   std::ifstream in(std::string(RLRUN_SOURCE_DIR) + "/configs/sweeps/cartpole_ppo_lr.yaml");
   std::ofstream out(dir / "lr.yaml");
   for (std::string line; std::getline(in, line);) {
-    if (line.rfind("base:", 0) == 0) line = "base: " + std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
+    if (line.rfind("base:", 0) == 0)
+      line = "base: " + std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
     if (line.rfind("out_dir:", 0) == 0) line = "out_dir: " + dir / "out";
     out << line << "\n";
   }
@@ -279,12 +291,15 @@ namespace {
 void make_run(const std::string& dir, const std::string& name, int seed, double lr,
               const std::vector<double>& eval_rewards, double success, double wall, int steps) {
   fs::create_directories(dir);
-  std::ofstream(dir + "/config.yaml") << "run: {name: " << name << ", seed: " << seed
-                                      << ", out_dir: somewhere}\nalgo: {id: PPO, learning_rate: " << lr << "}\n";
+  std::ofstream(dir + "/config.yaml")
+      << "run: {name: " << name << ", seed: " << seed
+      << ", out_dir: somewhere}\nalgo: {id: PPO, learning_rate: " << lr << "}\n";
   std::ofstream progress(dir + "/progress.csv");
   progress << "rollout/ep_rew_mean,time/time_elapsed,time/total_timesteps\n";
-  for (int i = 1; i <= 4; ++i) progress << (10.0 * i + seed) << ',' << i << ',' << steps * i / 4 << '\n';
-  std::ofstream(dir + "/log.txt") << "trained " << steps << " steps in " << wall << " s (1 steps/s); model saved\n";
+  for (int i = 1; i <= 4; ++i)
+    progress << (10.0 * i + seed) << ',' << i << ',' << steps * i / 4 << '\n';
+  std::ofstream(dir + "/log.txt") << "trained " << steps << " steps in " << wall
+                                  << " s (1 steps/s); model saved\n";
   if (!eval_rewards.empty()) {
     std::ofstream eval(dir + "/evaluations.csv");
     eval << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate\n";
@@ -300,8 +315,8 @@ TEST_CASE("report: statistics over seeds on hand-made run directories", "[report
   // Configuration A, 4 seeds; final evaluation returns 10, 20, 30, 100 (earlier rows differ).
   const double finals[] = {10, 20, 30, 100}, successes[] = {0.5, 1.0, 1.0, 0.5};
   for (int s = 0; s < 4; ++s)
-    make_run(dir / "a/seed" + std::to_string(s + 1), "a", s + 1, 0.001, {-5, finals[s]}, successes[s],
-             2.0 * (s + 1), 1000);
+    make_run(dir / "a/seed" + std::to_string(s + 1), "a", s + 1, 0.001, {-5, finals[s]},
+             successes[s], 2.0 * (s + 1), 1000);
   // Configuration B, 1 seed, no evaluations: the last 100 of 150 monitor episodes, two files,
   // ordered by their end time t: returns 1..150 ending at t = episode -> mean(51..150) = 100.5.
   make_run(dir / "b/seed1", "b", 1, 0.01, {}, 0, 4.0, 2000);
@@ -312,19 +327,20 @@ TEST_CASE("report: statistics over seeds on hand-made run directories", "[report
   m0.close();
   m1.close();
 
-  const auto r = run_rlrun("report " + dir.str() + " --csv " + dir / "report.csv" + " --markdown " + dir / "report.md");
+  const auto r = run_rlrun("report " + dir.str() + " --csv " + dir / "report.csv" + " --markdown " +
+                           dir / "report.md");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   CHECK(r.output.find("| a | 4 (1 2 3 4) | 40.00 | 35.36 | 25.00 | 25.00 [") != std::string::npos);
   CHECK(r.output.find("| 0.750 | 1000 | 5.0 | 200 | eval |") != std::string::npos);
-  CHECK(r.output.find("| b | 1 (1) | 100.50 | 0.00 | 100.50 | 100.50 [100.50, 100.50] | — | 2000 | 4.0 | 500 | monitor |") !=
-        std::string::npos);
+  CHECK(r.output.find("| b | 1 (1) | 100.50 | 0.00 | 100.50 | 100.50 [100.50, 100.50] | — | 2000 | "
+                      "4.0 | 500 | monitor |") != std::string::npos);
   CHECK(read_text(dir / "report.md") == r.output);
   const std::string csv = read_text(dir / "report.csv");
   CHECK(csv.find("a,4,1 2 3 4,40.000000,35.355339,25.000000,25.000000,") != std::string::npos);
 
   // The statistics themselves: scipy.stats.trim_mean(x, 0.25) and the bootstrap interval.
-  CHECK(interquartile_mean({1, 2, 3, 4, 5, 6, 7, 8}) == 4.5);       // cuts 2 each side
+  CHECK(interquartile_mean({1, 2, 3, 4, 5, 6, 7, 8}) == 4.5);           // cuts 2 each side
   CHECK(interquartile_mean({5, 1, 100, 2, 3, 4, -50}) == Approx(3.0));  // cuts 1 each side
   const SeedStatistics s = seed_statistics({10, 20, 30, 100});
   CHECK(s.iqm == 25.0);
@@ -377,18 +393,22 @@ TEST_CASE("report: the run's true step count and training time, not progress.csv
 
 TEST_CASE("plot: PNG and SVG learning curves, a wrong metric is named", "[plot]") {
   TempDir dir("plot");
-  for (int s = 1; s <= 3; ++s) make_run(dir / "a/seed" + std::to_string(s), "a", s, 0.001, {}, 0, 1, 1000);
+  for (int s = 1; s <= 3; ++s)
+    make_run(dir / "a/seed" + std::to_string(s), "a", s, 0.001, {}, 0, 1, 1000);
   make_run(dir / "single/seed1", "single", 1, 0.1, {}, 0, 1, 800);
   const auto png = run_rlrun("plot " + dir.str() + " --output " + dir / "curves.png");
   INFO(png.output);
   REQUIRE(png.exit_code == 0);
   CHECK(png.output.find("plotted 2 configurations (4 runs)") != std::string::npos);
-  const auto probe = run_command("ffprobe -v error -show_entries stream=width,height -of csv=p=0 " + dir / "curves.png");
+  const auto probe = run_command("ffprobe -v error -show_entries stream=width,height -of csv=p=0 " +
+                                 dir / "curves.png");
   CHECK(probe.output.find(",560") != std::string::npos);
-  const auto svg = run_rlrun("plot " + dir / "single" + " --output " + dir / "one.svg --title 'one run'");
+  const auto svg =
+      run_rlrun("plot " + dir / "single" + " --output " + dir / "one.svg --title 'one run'");
   REQUIRE(svg.exit_code == 0);
   CHECK(read_text(dir / "one.svg").rfind("<?xml", 0) == 0);
-  const auto wrong = run_rlrun("plot " + dir.str() + " --output " + dir / "x.png --metric rollout/ep_rew_meen");
+  const auto wrong =
+      run_rlrun("plot " + dir.str() + " --output " + dir / "x.png --metric rollout/ep_rew_meen");
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.output.find("did you mean 'rollout/ep_rew_mean'") != std::string::npos);
   CHECK(run_rlrun("plot " + dir.str() + " --output " + dir / "x.jpg").exit_code == 2);
@@ -398,7 +418,8 @@ TEST_CASE("plot: PNG and SVG learning curves, a wrong metric is named", "[plot]"
   std::ofstream(dir / "fresh/seed1/progress.csv", std::ios::trunc).close();
   const auto fresh = run_rlrun("plot " + dir / "fresh/seed1" + " --output " + dir / "f.png");
   CHECK(fresh.exit_code == 1);
-  CHECK(fresh.output.find(dir / "fresh/seed1" + "/progress.csv has no rows yet") != std::string::npos);
+  CHECK(fresh.output.find(dir / "fresh/seed1" + "/progress.csv has no rows yet") !=
+        std::string::npos);
   const auto rest = run_rlrun("plot " + dir.str() + " --output " + dir / "rest.png");
   INFO(rest.output);
   CHECK(rest.exit_code == 0);
@@ -408,14 +429,15 @@ TEST_CASE("plot: PNG and SVG learning curves, a wrong metric is named", "[plot]"
 
 TEST_CASE("scripts/sweep.sh: seeds x learning rates in plain shell", "[sweep]") {
   TempDir dir("shell_sweep");
-  const auto r = run_command("cd " + std::string(RLRUN_SOURCE_DIR) + " && OUT=" + dir.str() +
-                             " RLRUN=" + RLRUN_BINARY +
-                             " TIMESTEPS=2048 SEEDS='1 2' RATES='1e-3 3e-4' JOBS=2 scripts/sweep.sh");
+  const auto r = run_command(
+      "cd " + std::string(RLRUN_SOURCE_DIR) + " && OUT=" + dir.str() + " RLRUN=" + RLRUN_BINARY +
+      " TIMESTEPS=2048 SEEDS='1 2' RATES='1e-3 3e-4' JOBS=2 scripts/sweep.sh");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   for (const char* rate : {"1e-3", "3e-4"})
     for (int seed : {1, 2})
-      CHECK(fs::exists(dir / ("cartpole_ppo_lr=" + std::string(rate) + "/seed" + std::to_string(seed) + "/finished")));
+      CHECK(fs::exists(dir / ("cartpole_ppo_lr=" + std::string(rate) + "/seed" +
+                              std::to_string(seed) + "/finished")));
   const auto report = run_rlrun("report " + dir.str());
   CHECK(report.output.find("| cartpole_ppo_lr=1e-3 | 2 (1 2) |") != std::string::npos);
 }

@@ -37,7 +37,8 @@ TEST_CASE("resume: a HER checkpoint with inconsistent episode indices is refused
           "[cli][resume][her][untrusted]") {
   TempDir dir("tampered_her");
   std::ofstream(dir / "her.yaml")
-      << "run: {name: her, seed: 1, total_timesteps: 400, out_dir: " << dir.str() << "/runs}\n"
+      << "run: {name: her, seed: 1, total_timesteps: 400, out_dir: " << dir.str()
+      << "/runs}\n"
          "env: {id: BitFlippingEnv-v0, kwargs: {n_bits: 4}}\n"
          "algo: {id: DQN, replay_buffer_class: HerReplayBuffer, buffer_size: 1000,\n"
          "       learning_starts: 50, batch_size: 8, policy: {net_arch: [8]}}\n"
@@ -54,7 +55,8 @@ TEST_CASE("resume: a HER checkpoint with inconsistent episode indices is refused
   const auto r = run_rlrun("train --resume " + checkpoint);
   INFO(r.output);
   CHECK(r.exit_code == 1);
-  CHECK(r.output.find("cannot resume from " + checkpoint + ": checkpoint HER buffer") != std::string::npos);
+  CHECK(r.output.find("cannot resume from " + checkpoint + ": checkpoint HER buffer") !=
+        std::string::npos);
   CHECK(r.output.find("env 0: the unfinished episode starts at slot 999, but 200 of 1000 slots "
                       "are written") != std::string::npos);
   // A finished episode reaching slots not written yet.

@@ -27,7 +27,8 @@ CommandResult check_events(const std::string& tb_run, const std::string& progres
 std::vector<std::string> entries(const std::string& dir) {
   std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) names.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -45,9 +46,10 @@ TEST_CASE("tensorboard: a PPO run's event file matches progress.csv, eval and hp
           "[cli][tensorboard]") {
   TempDir dir("tb_ppo");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
-  const auto r = run_rlrun("--threads 1 train " + config + " --timesteps 12000 --out " + dir / "runs" +
-                           " --set eval.freq=4000 --set eval.n_episodes=3 --tensorboard-log " +
-                           dir / "tb" + " --set run.tensorboard_images=true");
+  const auto r =
+      run_rlrun("--threads 1 train " + config + " --timesteps 12000 --out " + dir / "runs" +
+                " --set eval.freq=4000 --set eval.n_episodes=3 --tensorboard-log " + dir / "tb" +
+                " --set run.tensorboard_images=true");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   CHECK(r.output.find("TensorBoard: " + dir / "tb/cartpole_ppo_1") != std::string::npos);
@@ -55,7 +57,8 @@ TEST_CASE("tensorboard: a PPO run's event file matches progress.csv, eval and hp
   const auto files = entries(dir / "tb/cartpole_ppo_1");
   REQUIRE(files.size() == 1);
   CHECK(files[0].rfind("events.out.tfevents.", 0) == 0);
-  const auto checked = check_events(dir / "tb/cartpole_ppo_1", dir / "runs/cartpole_ppo/seed1/progress.csv");
+  const auto checked =
+      check_events(dir / "tb/cartpole_ppo_1", dir / "runs/cartpole_ppo/seed1/progress.csv");
   INFO(checked.output);
   REQUIRE(checked.exit_code == 0);
   CHECK(checked.output.find("\"algo\": \"PPO\"") != std::string::npos);
@@ -76,10 +79,11 @@ TEST_CASE("tensorboard: a killed and resumed run continues its TensorBoard run, 
           "[cli][tensorboard][resume]") {
   TempDir dir("tb_resume_cli");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";
-  const std::string settings = " --set run.total_timesteps=200000 --set checkpoint.freq=8192"
-                               " --set checkpoint.keep=0 --set eval.freq=10000"
-                               " --set eval.n_episodes=3 --out " +
-                               dir / "runs" + " --tensorboard-log " + dir / "tb";
+  const std::string settings =
+      " --set run.total_timesteps=200000 --set checkpoint.freq=8192"
+      " --set checkpoint.keep=0 --set eval.freq=10000"
+      " --set eval.n_episodes=3 --out " +
+      dir / "runs" + " --tensorboard-log " + dir / "tb";
   const std::string run_dir = dir / "runs/cartpole_ppo/seed1";
   // Killed (SIGKILL) once the second checkpoint exists and the evaluation at 20 000 steps, after
   // it, is in evaluations.csv: rows after the checkpoint are in the files already. (Waiting for
@@ -114,10 +118,10 @@ TEST_CASE("tensorboard: a killed and resumed run continues its TensorBoard run, 
 TEST_CASE("tensorboard: a sweep's runs share one log directory, named by run id",
           "[cli][tensorboard][sweep]") {
   TempDir dir("tb_sweep");
-  std::ofstream(dir / "sweep.yaml") << "base: " << RLRUN_SOURCE_DIR
-                                    << "/configs/cartpole_ppo.yaml\nout_dir: " << dir / "out"
-                                    << "\nseeds: [1, 2]\ngrid: {algo.n_epochs: [2]}\n"
-                                    << "set: {run.total_timesteps: 2048}\n";
+  std::ofstream(dir / "sweep.yaml")
+      << "base: " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml\nout_dir: " << dir / "out"
+      << "\nseeds: [1, 2]\ngrid: {algo.n_epochs: [2]}\n"
+      << "set: {run.total_timesteps: 2048}\n";
   const auto expanded = run_rlrun("sweep " + dir / "sweep.yaml");
   INFO(expanded.output);
   REQUIRE(expanded.exit_code == 0);
@@ -157,7 +161,8 @@ TEST_CASE("task metrics: grasp SAC logs rollout/success_rate and rollout/lift, i
   const auto r = run_rlrun("--threads 1 train " + std::string(RLRUN_SOURCE_DIR) +
                            "/configs/grasp_sac.yaml --timesteps 400 --set algo.learning_starts=100"
                            " --set run.log_interval=1 --set eval.freq=400 --set eval.n_episodes=2"
-                           " --out " + dir / "runs");
+                           " --out " +
+                           dir / "runs");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   const std::string run = dir / "runs/grasp_sac/seed1";
@@ -174,10 +179,11 @@ TEST_CASE("task metrics: grasp SAC logs rollout/success_rate and rollout/lift, i
   const auto none = run_rlrun("--threads 1 train " + grasp2d + " --timesteps 500 --out " +
                               dir / "none" + " --set 'env.info_keywords=[]'");
   REQUIRE(none.exit_code == 0);
-  CHECK(read_text(dir / "none/grasp2d_dqn/seed1/0.monitor.csv").find("\nr,l,t\n") != std::string::npos);
-  const auto distance = run_rlrun("--threads 1 train " + grasp2d + " --timesteps 2000 --out " +
-                                  dir / "distance" + " --set 'env.info_keywords=[distance]'" +
-                                  " --set run.log_interval=1");
+  CHECK(read_text(dir / "none/grasp2d_dqn/seed1/0.monitor.csv").find("\nr,l,t\n") !=
+        std::string::npos);
+  const auto distance =
+      run_rlrun("--threads 1 train " + grasp2d + " --timesteps 2000 --out " + dir / "distance" +
+                " --set 'env.info_keywords=[distance]'" + " --set run.log_interval=1");
   INFO(distance.output);
   REQUIRE(distance.exit_code == 0);
   CHECK(read_text(dir / "distance/grasp2d_dqn/seed1/0.monitor.csv").find("\nr,l,t,distance\n") !=

@@ -25,8 +25,8 @@ struct Case {
 
 std::string write_config(const TempDir& dir, const Case& c) {
   const std::string path = dir / (std::string(c.name) + ".yaml");
-  std::ofstream(path) << "run: {name: " << c.name << ", seed: 4, total_timesteps: 1500, out_dir: "
-                      << dir.str() << "/runs}\n"
+  std::ofstream(path) << "run: {name: " << c.name
+                      << ", seed: 4, total_timesteps: 1500, out_dir: " << dir.str() << "/runs}\n"
                       << "env: {id: " << c.env << ", n_envs: " << c.n_envs << "}\n"
                       << "algo: {id: " << c.algo << ", " << c.algo_settings << "}\n";
   return path;
@@ -55,10 +55,12 @@ TEST_CASE("cli: 1, 2, 3 and 8 threads train bit-identical models", "[cli]") {
       const auto r = run_rlrun("--threads " + std::string(threads) + " train " + config);
       INFO(r.output);
       REQUIRE(r.exit_code == 0);
-      const std::string said = std::string(threads) == "1" ? "1 thread)" : std::string(threads) + " threads)";
+      const std::string said =
+          std::string(threads) == "1" ? "1 thread)" : std::string(threads) + " threads)";
       CHECK(r.output.find(said) != std::string::npos);
       // Runs of one name go to seed4, seed4_2, seed4_3, ...
-      if (++run > 1) check_same_tensors(base + "/model.zip", base + "_" + std::to_string(run) + "/model.zip");
+      if (++run > 1)
+        check_same_tensors(base + "/model.zip", base + "_" + std::to_string(run) + "/model.zip");
     }
   }
 }
@@ -79,9 +81,8 @@ TEST_CASE("cli: --threads auto uses the CPUs this process may use", "[cli]") {
   INFO(pinned.output);
   REQUIRE(pinned.exit_code == 0);
   CHECK(pinned.output.find("1 env, 1 thread)") != std::string::npos);
-  const auto from_env = run_command(pin + "env RLRUN_THREADS=auto " +
-                                    std::string(RLRUN_BINARY) + " train " + config +
-                                    " --timesteps 64");
+  const auto from_env = run_command(pin + "env RLRUN_THREADS=auto " + std::string(RLRUN_BINARY) +
+                                    " train " + config + " --timesteps 64");
   INFO(from_env.output);
   REQUIRE(from_env.exit_code == 0);
   CHECK(from_env.output.find("1 env, 1 thread)") != std::string::npos);

@@ -43,15 +43,15 @@ TEST_CASE("train: --timesteps and --out set the run and are recorded in config.y
   CHECK(contains(config, "out_dir: " + dir / "elsewhere"));
 }
 
-TEST_CASE("train -j 2: several experiments as processes, failures reported", "[cli][train_options]") {
+TEST_CASE("train -j 2: several experiments as processes, failures reported",
+          "[cli][train_options]") {
   TempDir dir("train_jobs");
   // A third experiment that fails at run time (its init_from file does not exist).
-  write_text(dir / "broken.yaml",
-             "run: {name: broken, init_from: " + dir / "missing.zip" +
-                 "}\nenv: {id: CartPole-v1}\nalgo: {id: PPO}\n");
-  auto r = run_rlrun("train -j 2 " + kConfigs + "cartpole_a2c.yaml " + kConfigs +
-                     "pendulum_ppo.yaml " + kConfigs + "cartpole_ppo.yaml --timesteps 4096 --out " +
-                     dir / "runs");
+  write_text(dir / "broken.yaml", "run: {name: broken, init_from: " + dir / "missing.zip" +
+                                      "}\nenv: {id: CartPole-v1}\nalgo: {id: PPO}\n");
+  auto r =
+      run_rlrun("train -j 2 " + kConfigs + "cartpole_a2c.yaml " + kConfigs + "pendulum_ppo.yaml " +
+                kConfigs + "cartpole_ppo.yaml --timesteps 4096 --out " + dir / "runs");
   INFO(r.output);
   CHECK(r.exit_code == 0);
   CHECK(contains(r.output, "training 3 experiments, 2 at a time"));
@@ -67,21 +67,24 @@ TEST_CASE("train -j 2: several experiments as processes, failures reported", "[c
   CHECK(fs::exists(dir / "runs2/cartpole_a2c/seed1/model.zip"));
   // A failed sweep keeps its children's console logs for the user; the test removes them.
   std::smatch logs;
-  REQUIRE(std::regex_search(r.output, logs, std::regex("console output of each in (\\S+)/ while it runs")));
+  REQUIRE(std::regex_search(r.output, logs,
+                            std::regex("console output of each in (\\S+)/ while it runs")));
   CHECK(fs::exists(logs[1].str() + "/1.log"));
   // A private directory (mkdtemp): only its owner may enter it or plant files in it.
   CHECK((fs::status(logs[1].str()).permissions() & fs::perms::all) == fs::perms::owner_all);
   fs::remove_all(logs[1].str());
 }
 
-TEST_CASE("train -j 2: Ctrl-C reaches every run, each writes a checkpoint", "[cli][train_options]") {
+TEST_CASE("train -j 2: Ctrl-C reaches every run, each writes a checkpoint",
+          "[cli][train_options]") {
   TempDir dir("train_jobs_sigint");
-  const std::string cmd = std::string(RLRUN_BINARY) + " train -j 2 " + kConfigs +
-                          "cartpole_ppo.yaml " + kConfigs + "cartpole_a2c.yaml " + kConfigs +
-                          "pendulum_ppo.yaml --timesteps 100000000 --out " + dir / "runs" + " > " +
-                          dir / "out.txt" + " 2>&1 & pid=$!; while [ ! -e " + dir / "runs/cartpole_ppo/seed1/progress.csv" +
-                          " ] || [ ! -e " + dir / "runs/cartpole_a2c/seed1/progress.csv" +
-                          " ]; do sleep 0.05; done; sleep 0.3; kill -INT $pid; wait $pid; echo exit=$?";
+  const std::string cmd =
+      std::string(RLRUN_BINARY) + " train -j 2 " + kConfigs + "cartpole_ppo.yaml " + kConfigs +
+      "cartpole_a2c.yaml " + kConfigs + "pendulum_ppo.yaml --timesteps 100000000 --out " +
+      dir / "runs" + " > " + dir / "out.txt" + " 2>&1 & pid=$!; while [ ! -e " +
+      dir / "runs/cartpole_ppo/seed1/progress.csv" + " ] || [ ! -e " +
+      dir / "runs/cartpole_a2c/seed1/progress.csv" +
+      " ]; do sleep 0.05; done; sleep 0.3; kill -INT $pid; wait $pid; echo exit=$?";
   const auto r = run_command(cmd);
   const std::string out = read_text(dir / "out.txt");
   INFO(r.output << out);
@@ -104,13 +107,15 @@ TEST_CASE("train --init-from: starts from the model's weights", "[cli][train_opt
               .exit_code == 0);
   const std::string model = dir / "shaped/cartpole_ppo/seed1/model.zip";
   // ... fine-tuned on the plain reward with learning rate 0: the weights stay the model's.
-  const auto r = run_rlrun("train " + kConfigs + "cartpole_ppo.yaml --timesteps 512 --out " +
-                           dir / "tuned" + " --init-from " + model +
-                           " --set algo.learning_rate=0 --set 'env.wrappers=[{id: NormalizeObservation}]'");
+  const auto r =
+      run_rlrun("train " + kConfigs + "cartpole_ppo.yaml --timesteps 512 --out " + dir / "tuned" +
+                " --init-from " + model +
+                " --set algo.learning_rate=0 --set 'env.wrappers=[{id: NormalizeObservation}]'");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  CHECK(contains(r.output, "initialised from " + model + " (PPO, CartPole-v1, 4096 steps) with its "
-                           "normalisation statistics"));
+  CHECK(contains(r.output, "initialised from " + model +
+                               " (PPO, CartPole-v1, 4096 steps) with its "
+                               "normalisation statistics"));
   const ZipMembers before = read_zip(model);
   const ZipMembers after = read_zip(dir / "tuned/cartpole_ppo/seed1/model.zip");
   int compared = 0;

@@ -18,14 +18,16 @@ const std::string kCartPolePort = "python:rlrun_test_envs.cartpole:CartPolePort"
 
 // `rlrun ARGS` as run_rlrun_python, with stderr alone on the output (stdout dropped).
 CommandResult stderr_of(const std::string& args) {
-  return run_command("(cd " + kSourceDir + " && PYTHONPATH=" + kSourceDir +
-                     "/tests/python_envs " + RLRUN_BINARY + " " + args + " 2>&1 >/dev/null)");
+  return run_command("(cd " + kSourceDir + " && PYTHONPATH=" + kSourceDir + "/tests/python_envs " +
+                     RLRUN_BINARY + " " + args + " 2>&1 >/dev/null)");
 }
 
 }  // namespace
 
-TEST_CASE("trust: --trust evaluates a Python env's model (and records it) after saying what "
-          "runs, and export runs nothing, so it needs no trust", "[cli][python][security]") {
+TEST_CASE(
+    "trust: --trust evaluates a Python env's model (and records it) after saying what "
+    "runs, and export runs nothing, so it needs no trust",
+    "[cli][python][security]") {
   TempDir dir("trust_python");
   const auto trained = run_rlrun_python(
       "train " + python_experiment(dir.str(), "port", kCartPolePort,
@@ -43,13 +45,15 @@ TEST_CASE("trust: --trust evaluates a Python env's model (and records it) after 
     INFO(command << "\n" << refused.output);
     CHECK(refused.exit_code == 2);
     CHECK(refused.output.find("--set env.python=" + kPython) != std::string::npos);
-    CHECK(refused.output.find("Or pass --trust to accept everything " + origin) != std::string::npos);
+    CHECK(refused.output.find("Or pass --trust to accept everything " + origin) !=
+          std::string::npos);
   }
 
   // --trust: what will run is on stderr, one line per value, then it runs.
   const std::string announced_id = "trusting " + origin + " (--trust): env.id = " + kCartPolePort +
                                    ": an env that runs the Python code it names (interpreter: "
-                                   "env.python " + kPython + ")";
+                                   "env.python " +
+                                   kPython + ")";
   const std::string announced_python =
       "trusting " + origin + " (--trust): env.python = " + kPython + ": a program to run";
   const auto said = stderr_of("eval --model " + model + " --episodes 2 --trust");
@@ -60,8 +64,8 @@ TEST_CASE("trust: --trust evaluates a Python env's model (and records it) after 
   const auto eval = run_rlrun_python("eval --model " + model + " --episodes 2 --trust");
   INFO(eval.output);
   CHECK(eval.exit_code == 0);
-  CHECK(eval.output.find("PPO on " + kCartPolePort + ", 2 episodes (deterministic): mean_reward = ") !=
-        std::string::npos);
+  CHECK(eval.output.find("PPO on " + kCartPolePort +
+                         ", 2 episodes (deterministic): mean_reward = ") != std::string::npos);
 
   const auto record = run_rlrun_python("record --model " + model + " --frames " + dir / "frames" +
                                        " --trust --episodes 1");
@@ -73,8 +77,8 @@ TEST_CASE("trust: --trust evaluates a Python env's model (and records it) after 
   // export builds no env (the model file records the env's spaces): nothing it names runs, so
   // it needs no one's word, and --trust has nothing to announce.
   for (const char* trust : {"", " --trust"}) {
-    const auto exported = run_rlrun_python("export --model " + model + " --output " +
-                                           dir / "policy.onnx" + trust);
+    const auto exported =
+        run_rlrun_python("export --model " + model + " --output " + dir / "policy.onnx" + trust);
     INFO(exported.output);
     CHECK(exported.exit_code == 0);
     CHECK(exported.output.find("trusting") == std::string::npos);
@@ -90,23 +94,26 @@ TEST_CASE("trust: --trust evaluates a Python env's model (and records it) after 
   // A model of a built-in env exports with neither, also when its run wrote TensorBoard files
   // (the model's run.tensorboard_log is where training wrote: nothing that loads it writes
   // there, so it needs no one's word; it refused eval, record and export before).
-  const auto cartpole = run_rlrun("train " + kSourceDir + "/configs/cartpole_ppo.yaml --timesteps 64 "
-                                  "--out " + dir / "builtin --tensorboard-log " + dir / "tb");
+  const auto cartpole = run_rlrun("train " + kSourceDir +
+                                  "/configs/cartpole_ppo.yaml --timesteps 64 "
+                                  "--out " +
+                                  dir / "builtin --tensorboard-log " + dir / "tb");
   REQUIRE(cartpole.exit_code == 0);
   const auto plain = run_rlrun("export --model " + dir / "builtin/cartpole_ppo/seed1/model.zip" +
                                " --output " + dir / "cartpole.onnx");
   INFO(plain.output);
   CHECK(plain.exit_code == 0);
   CHECK(plain.output.find("trusting") == std::string::npos);
-  const auto evaluated = run_rlrun("eval --model " + dir / "builtin/cartpole_ppo/seed1/model.zip" +
-                                   " --episodes 1");
+  const auto evaluated =
+      run_rlrun("eval --model " + dir / "builtin/cartpole_ppo/seed1/model.zip" + " --episodes 1");
   INFO(evaluated.output);
   CHECK(evaluated.exit_code == 0);
 }
 
 // A traffic model trained on one's own scenario (a copy of the shipped one, outside rlrun's
 // data directory) needed --set env.kwargs.scenario=... on every eval.
-TEST_CASE("trust: --trust evaluates a traffic model of one's own scenario", "[cli][security][traffic]") {
+TEST_CASE("trust: --trust evaluates a traffic model of one's own scenario",
+          "[cli][security][traffic]") {
   TempDir dir("trust_scenario");
   fs::copy(kSourceDir + "/sumo_data/single_intersection", dir / "single_intersection",
            fs::copy_options::recursive);

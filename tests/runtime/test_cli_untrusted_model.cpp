@@ -263,7 +263,8 @@ TEST_CASE("untrusted model: train --resume refuses hostile checkpoints", "[cli][
       m.data = encode_npy(vector_tensor(std::vector<int64_t>{0}));
   }
   write_crafted_zip(checkpoint, marks);
-  check_refused(rlrun_measured(resume), {"names a log file '" + escape + "' that this run does not write"});
+  check_refused(rlrun_measured(resume),
+                {"names a log file '" + escape + "' that this run does not write"});
   CHECK(fs::exists(victim));
   // The real checkpoint still resumes.
   fs::copy_file(original, checkpoint, fs::copy_options::overwrite_existing);

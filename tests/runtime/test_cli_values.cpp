@@ -54,7 +54,8 @@ TEST_CASE("CLI: out-of-range seeds are refused by every command taking --seed", 
   CHECK(fs::is_empty(dir.str()));  // nothing trained, nothing recorded
 
   // The largest seed is a seed: the same episode every time.
-  const auto top = run_rlrun("eval --env CartPole-v1 --policy random --episodes 1 --seed 9223372036854775807");
+  const auto top =
+      run_rlrun("eval --env CartPole-v1 --policy random --episodes 1 --seed 9223372036854775807");
   INFO(top.output);
   CHECK(top.exit_code == 0);
   CHECK(run_rlrun("eval --env CartPole-v1 --policy random --episodes 1 --seed 9223372036854775807")
@@ -71,12 +72,16 @@ TEST_CASE("CLI: counts and rates say their rule", "[cli][values]") {
   check_refused("eval --env CartPole-v1 --policy random --episodes 1e10",
                 "--episodes: must be an integer >= 1, got '1e10'");
   check_refused("check-env CartPole-v1 --steps 0", "--steps: must be an integer >= 1, got '0'");
-  check_refused("check-env CartPole-v1 --episodes -1", "--episodes: must be an integer >= 0, got '-1'");
+  check_refused("check-env CartPole-v1 --episodes -1",
+                "--episodes: must be an integer >= 0, got '-1'");
   check_refused(train + " --timesteps 0", "--timesteps: must be an integer >= 1, got '0'");
   check_refused(train + " --timesteps 1e30", "--timesteps: must be an integer >= 1, got '1e30'");
   check_refused(train + " -j 0", "--jobs: must be an integer >= 1, got '0'");
-  check_refused("sweep run " + dir / "m.yaml" + " --index -2", "--index: must be an integer >= 0, got '-2'");
-  check_refused("--threads 0 list", "--threads must be a whole number from 1 to 4096 or auto (the CPUs this process may use), got '0'");
+  check_refused("sweep run " + dir / "m.yaml" + " --index -2",
+                "--index: must be an integer >= 0, got '-2'");
+  check_refused("--threads 0 list",
+                "--threads must be a whole number from 1 to 4096 or auto (the CPUs this process "
+                "may use), got '0'");
   check_refused("record --env CartPole-v1 --policy random --fps 0 --output " + dir / "v.mp4",
                 "--fps: must be a number > 0 and <= 1000, got '0'");
   check_refused("record --env CartPole-v1 --policy random --fps inf --output " + dir / "v.mp4",
@@ -90,7 +95,8 @@ TEST_CASE("CLI: counts and rates say their rule", "[cli][values]") {
   CHECK(contains(read_text(dir / "runs/cartpole_ppo/seed3/config.yaml"), "total_timesteps: 1000"));
 }
 
-TEST_CASE("record --size: bounded before anything is allocated or ffmpeg starts", "[cli][values][record]") {
+TEST_CASE("record --size: bounded before anything is allocated or ffmpeg starts",
+          "[cli][values][record]") {
   TempDir dir("cli_record_size");
   const std::string base = "record --env CartPole-v1 --policy random ";
   const auto start = std::chrono::steady_clock::now();
@@ -110,7 +116,8 @@ TEST_CASE("record --size: bounded before anything is allocated or ffmpeg starts"
   CHECK(png.exit_code == 0);
 }
 
-TEST_CASE("check_video_size / check_frame_size: the one place of the frame-size rule", "[render][video]") {
+TEST_CASE("check_video_size / check_frame_size: the one place of the frame-size rule",
+          "[render][video]") {
   CHECK(check_video_size(600, 400).empty());
   CHECK(check_video_size(kMaxFrameSide, kMaxFrameSide).empty());
   CHECK(check_video_size(2, 2).empty());

@@ -48,12 +48,13 @@ TEST_CASE("validation: a later file's error stops everything before the first fi
       write_config(dir, "acrobot_bad.yaml",
                    "env: {id: Acrobot-v1}\nalgo:\n  id: DQN\n  policy: {activation_fn: nn.Relu}\n");
   const auto r = refused(dir, kConfigs + "/cartpole_ppo.yaml " + bad);
-  CHECK(has(r, "acrobot_bad.yaml:4:27: algo.policy.activation_fn: unknown activation 'nn.Relu' "
-               "(did you mean 'nn.ReLU'?)"));
+  CHECK(has(r,
+            "acrobot_bad.yaml:4:27: algo.policy.activation_fn: unknown activation 'nn.Relu' "
+            "(did you mean 'nn.ReLU'?)"));
   CHECK_FALSE(has(r, "training"));
   // A critic key of the off-policy algorithms in a PPO entry: SB3 would ignore it silently.
-  const auto qf = refused(
-      dir, kConfigs + "/cartpole_ppo.yaml --set 'algo.policy.net_arch={pi: [8], qf: [8]}'");
+  const auto qf =
+      refused(dir, kConfigs + "/cartpole_ppo.yaml --set 'algo.policy.net_arch={pi: [8], qf: [8]}'");
   CHECK(has(qf, "algo.policy.net_arch.qf: unknown key 'qf'"));
   CHECK(has(qf, "valid keys: pi, vf"));
   CHECK_FALSE(has(qf, "training"));
@@ -67,7 +68,9 @@ TEST_CASE("validation: a file with three problems reports all three", "[cli][con
                                         "algo: {id: PPO, gamma: 2, clip_range: -0.2}\n");
   const auto r = refused(dir, path);
   CHECK(has(r, "three.yaml:2:24: env.wrapers: unknown key 'wrapers' (did you mean 'wrappers'?)"));
-  CHECK(has(r, "valid keys: n_envs, max_episode_steps, auto_wrap, python, startup_timeout, info_keywords, normalize, id, kwargs, wrappers"));
+  CHECK(has(r,
+            "valid keys: n_envs, max_episode_steps, auto_wrap, python, startup_timeout, "
+            "info_keywords, normalize, id, kwargs, wrappers"));
   CHECK(has(r, "three.yaml:3:24: algo.gamma: must be in [0, 1], got 2"));
   CHECK(has(r, "three.yaml:3:39: algo.clip_range: must be > 0, got -0.2"));
 }
@@ -79,7 +82,8 @@ TEST_CASE("validation: values SB3 or sense refuse", "[cli][config]") {
   const std::vector<std::pair<std::string, std::string>> cases{
       {ppo + " --set algo.gamma=-0.5", "algo.gamma: must be in [0, 1], got -0.5"},
       {ppo + " --set algo.learning_rate=-1", "algo.learning_rate: must be >= 0, got -1"},
-      {dqn + " --set algo.exploration_fraction=2", "algo.exploration_fraction: must be in (0, 1], got 2"},
+      {dqn + " --set algo.exploration_fraction=2",
+       "algo.exploration_fraction: must be in (0, 1], got 2"},
       {ppo + " --set run.console_interval=-1", "run.console_interval: must be in [0, "},
       {ppo + " --set env.max_episode_steps=0", "env.max_episode_steps: must be >= 1, got 0"},
       {ppo + " --set env.max_episode_steps=-1", "env.max_episode_steps: must be >= 1, got -1"},
@@ -96,7 +100,8 @@ TEST_CASE("validation: values SB3 or sense refuse", "[cli][config]") {
        "not a setting)"},
       {ppo + " --timesteps 64 --set algo.learning_rate=inf",
        "algo.learning_rate: expected a finite number or lin_<number>, got 'inf'"},
-      {ppo + " --timesteps 64 --set env.startup_timeout=0", "env.startup_timeout: must be in (0, 1000000]"},
+      {ppo + " --timesteps 64 --set env.startup_timeout=0",
+       "env.startup_timeout: must be in (0, 1000000]"},
       {ppo + " --set run.seed=-1", "run.seed: expected a non-negative integer"},
       {ppo + " --set video.freq=1000 --set video.width=100000 --set video.height=100000",
        "video.width: must be in [0, 4096], got 100000"},
@@ -148,18 +153,21 @@ TEST_CASE("validation: sizes that would take the machine are refused with their 
   CHECK(has(refused(dir, write_config(dir, "big.yaml", big)), "big.yaml: larger than 1 MiB"));
   // Aliases that expand to billions of values.
   const std::string laughs = "env: {id: CartPole-v1}\nalgo: {id: PPO}\n" + yaml_alias_bomb();
-  CHECK(has(refused(dir, write_config(dir, "laughs.yaml", laughs)), "more than 100000 YAML values"));
+  CHECK(
+      has(refused(dir, write_config(dir, "laughs.yaml", laughs)), "more than 100000 YAML values"));
 }
 
 TEST_CASE("validation: a sweep of 10^8 runs is refused before it is expanded", "[cli][config]") {
   TempDir dir("validate_sweep");
   std::string grid;
-  for (const char* key : {"gamma", "gae_lambda", "ent_coef", "vf_coef", "max_grad_norm",
-                          "n_epochs", "batch_size", "n_steps"})
-    grid += std::string(grid.empty() ? "" : ", ") + "algo." + key + ": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]";
-  const std::string sweep = write_config(dir, "huge.yaml",
-                                         "base: " + kConfigs + "/cartpole_ppo.yaml\nout_dir: " +
-                                             dir / "out" + "\ngrid: {" + grid + "}\n");
+  for (const char* key : {"gamma", "gae_lambda", "ent_coef", "vf_coef", "max_grad_norm", "n_epochs",
+                          "batch_size", "n_steps"})
+    grid +=
+        std::string(grid.empty() ? "" : ", ") + "algo." + key + ": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]";
+  const std::string sweep =
+      write_config(dir, "huge.yaml",
+                   "base: " + kConfigs + "/cartpole_ppo.yaml\nout_dir: " + dir / "out" +
+                       "\ngrid: {" + grid + "}\n");
   const auto r = run_rlrun("sweep " + sweep);
   INFO(r.output);
   CHECK(r.exit_code == 2);

@@ -8,10 +8,10 @@
 // privileges needed), and a real tmpfs of a few MB that fills up, mounted in a user and mount
 // namespace of its own (`unshare -rm`, unprivileged where the kernel allows user namespaces, as
 // Debian 12's does; skipped with a message where it is not available).
-#include <catch2/catch.hpp>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -79,7 +79,8 @@ class FileSizeLimit {
 TEST_CASE("CheckedFile: a failed write names the file and errno", "[disk]") {
   CheckedFile full("/dev/full", CheckedFile::Mode::kTruncate);
   full << "r,l,t\n";
-  CHECK_THROWS_WITH(full.flush(), Catch::Contains("cannot write /dev/full: No space left on device (ENOSPC)"));
+  CHECK_THROWS_WITH(full.flush(),
+                    Catch::Contains("cannot write /dev/full: No space left on device (ENOSPC)"));
   // A run directory's file must be regular (core/regular_file.hpp).
   CHECK_THROWS_WITH(CheckedFile::run_file("/dev/full", CheckedFile::Mode::kTruncate),
                     Catch::Contains("/dev/full is a character device, not a regular file"));
@@ -87,7 +88,8 @@ TEST_CASE("CheckedFile: a failed write names the file and errno", "[disk]") {
                     Catch::Contains("(ENOENT)"));
 }
 
-TEST_CASE("write_text_atomic: a failed write keeps the old file and leaves no temporary", "[disk]") {
+TEST_CASE("write_text_atomic: a failed write keeps the old file and leaves no temporary",
+          "[disk]") {
   TempDir dir("write_atomic_full");
   const std::string path = dir / "config.yaml";
   write_text_atomic(path, "old: 1\n");
@@ -178,8 +180,11 @@ TEST_CASE("EvalCallback: a failed evaluations.csv row stops with the file and er
   std::unique_ptr<Algorithm> algorithm =
       registry.find_algorithm(experiment.algo.id)->make(experiment.algo.params, setup);
   const auto ignore = [](const std::string&) {};
-  TrainingContext context{experiment.env, experiment.run.seed, registry, dir.str(), *algorithm,
-                          env,            nullptr,             ignore,   ignore,    ignore,
+  TrainingContext context{experiment.env, experiment.run.seed,
+                          registry,       dir.str(),
+                          *algorithm,     env,
+                          nullptr,        ignore,
+                          ignore,         ignore,
                           false,          {}};
   EvalCallback callback(context, experiment.eval);
   const std::string path = dir / "evaluations.csv";
@@ -237,7 +242,9 @@ TEST_CASE("train on a disk that fills up: exit 1, ENOSPC and the file named, che
   std::ofstream(dir / "run.sh")
       << "mount -t tmpfs -o size=4m tmpfs \"$1\" 2>\"$2/mount_error\" || exit 77\n"
          "cd \"$1\"\n"
-         "\"$3\" train " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml --set "
+         "\"$3\" train "
+      << RLRUN_SOURCE_DIR
+      << "/configs/cartpole_ppo.yaml --set "
          "run.total_timesteps=100000000 --set checkpoint.freq=20000 --set eval.freq=0 "
          "--out \"$1/runs\" > \"$2/train.log\" 2>&1 &\n"
          "pid=$!\n"
@@ -248,12 +255,14 @@ TEST_CASE("train on a disk that fills up: exit 1, ENOSPC and the file named, che
          "cp \"$run\"/checkpoints/*.zip \"$2/\"\n"
          "dd if=/dev/zero of=\"$1/fill\" bs=64k 2>/dev/null\n"
          "wait $pid; echo $? > \"$2/rc\"\n"
-         "\"$3\" train " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml --out \"$1/full\" > "
+         "\"$3\" train "
+      << RLRUN_SOURCE_DIR
+      << "/configs/cartpole_ppo.yaml --out \"$1/full\" > "
          "\"$2/second.log\" 2>&1; echo $? > \"$2/second_rc\"\n"
          "rm -f \"$1/fill\"\n"
          "cp -a \"$1/runs\" \"$1/full\" \"$2/\"\n";
-  const auto r = run_command("unshare -rm sh " + dir / "run.sh" + " '" + mnt + "' '" + out +
-                             "' '" + RLRUN_BINARY + "'");
+  const auto r = run_command("unshare -rm sh " + dir / "run.sh" + " '" + mnt + "' '" + out + "' '" +
+                             RLRUN_BINARY + "'");
   if (r.exit_code == 77 || contains(r.output, "unshare:")) {
     WARN("skipped: cannot mount a small tmpfs in a user namespace here (" + r.output +
          read_text(out + "/mount_error") + ")");
@@ -274,7 +283,8 @@ TEST_CASE("train on a disk that fills up: exit 1, ENOSPC and the file named, che
   for (const auto& e : fs::directory_iterator(out))
     if (e.path().extension() == ".zip") saved.push_back(e.path());
   REQUIRE(saved.size() == 1);
-  const std::string copied = out + "/runs/cartpole_ppo/seed1/checkpoints/" + saved[0].filename().string();
+  const std::string copied =
+      out + "/runs/cartpole_ppo/seed1/checkpoints/" + saved[0].filename().string();
   REQUIRE(fs::exists(copied));
   CHECK(read_text(copied) == read_text(saved[0].string()));
   const auto eval = run_rlrun("eval --model " + copied + " --episodes 1");

@@ -136,7 +136,8 @@ TEST_CASE("every scripts/ path named in the repo exists", "[docs]") {
                           "examples", "fuzz", "python", "scripts", "src", "tests"}) {
     if (!fs::exists(root / dir)) continue;
     std::vector<fs::path> files;
-    if (fs::is_regular_file(root / dir)) files.push_back(root / dir);
+    if (fs::is_regular_file(root / dir))
+      files.push_back(root / dir);
     else
       for (const auto& entry : fs::recursive_directory_iterator(root / dir))
         if (entry.is_regular_file() && entry.file_size() < (1 << 20)) files.push_back(entry.path());

@@ -3,8 +3,8 @@
 // sections replace the file's sections of the same name, as the page tells readers to do)
 // and trained for 2048 steps with the real binary. A renamed key or wrapper parameter then
 // fails here instead of in a reader's terminal.
-#include <catch2/catch.hpp>
 #include <yaml-cpp/yaml.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -71,7 +71,8 @@ TEST_CASE("docs/workflow.md: every YAML example trains", "[cli][docs]") {
       std::ofstream out(path);
       out << YAML::Dump(config) << "\n";
     }
-    const auto r = run_rlrun("--threads 1 train " + path + " --timesteps 2048 --out " + dir / "runs");
+    const auto r =
+        run_rlrun("--threads 1 train " + path + " --timesteps 2048 --out " + dir / "runs");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     const std::string run_dir = dir / ("runs/example" + std::to_string(i + 1) + "/seed1");

@@ -13,7 +13,8 @@
 
 using namespace rlrun;
 
-TEST_CASE("each optional component declares exactly the env ids its folders register", "[components]") {
+TEST_CASE("each optional component declares exactly the env ids its folders register",
+          "[components]") {
   REQUIRE(optional_components().size() >= 4);
   for (const OptionalComponent& component : optional_components()) {
     INFO(component.option);
@@ -33,9 +34,11 @@ TEST_CASE("each optional component declares exactly the env ids its folders regi
   }
 }
 
-TEST_CASE("an env of a component left out is refused at env.id with the option and packages", "[components]") {
-  const OptionalComponent sumo{"RLRUN_WITH_SUMO", "the SUMO traffic envs", "sumo libpugixml-dev",
-                               false, {"traffic"}, {"TrafficSignal-v0"}};
+TEST_CASE("an env of a component left out is refused at env.id with the option and packages",
+          "[components]") {
+  const OptionalComponent sumo{"RLRUN_WITH_SUMO",     "the SUMO traffic envs",
+                               "sumo libpugixml-dev", false,
+                               {"traffic"},           {"TrafficSignal-v0"}};
   const std::string message = unbuilt_env_message("TrafficSignal-v0", sumo);
   CHECK_THAT(message, Catch::Contains("TrafficSignal-v0 is not built into this rlrun"));
   CHECK_THAT(message, Catch::Contains("-DRLRUN_WITH_SUMO=ON"));

@@ -135,8 +135,9 @@ TEST_CASE("plugin: registered envs work like built-ins", "[plugin]") {
 TEST_CASE("plugin: invalid spaces, version mismatches and id clashes are refused", "[plugin]") {
   Registry registry = builtin_registry();
   register_plugin(&rlrun_plugin_register, "test-plugin", registry);
-  CHECK_THROWS_WITH(registry.find_env("TestBrokenSpace-v0")->make(AnyConfig::of_yaml(YAML::Node(), YAML::Node())),
-                    Catch::Contains("TestBrokenSpace-v0: Space::box: low > high"));
+  CHECK_THROWS_WITH(
+      registry.find_env("TestBrokenSpace-v0")->make(AnyConfig::of_yaml(YAML::Node(), YAML::Node())),
+      Catch::Contains("TestBrokenSpace-v0: Space::box: low > high"));
 
   Registry fresh = builtin_registry();
   CHECK_THROWS_WITH(register_plugin(&wrong_version, "old.so", fresh),

@@ -84,7 +84,8 @@ TEST_CASE("plugin example: builds out of tree, passes check-env, trains and eval
   const auto trusted = run_rlrun("eval --model " + run_dir + "/model.zip --episodes 10 --trust");
   INFO(trusted.output);
   CHECK(trusted.exit_code == 0);
-  CHECK(trusted.output.find("(--trust): plugins[0] = " + library + ": a plugin library rlrun "
+  CHECK(trusted.output.find("(--trust): plugins[0] = " + library +
+                            ": a plugin library rlrun "
                             "loads") != std::string::npos);
   CHECK(trusted.output.find("mean_reward = 1.00") != std::string::npos);
 

@@ -1,7 +1,7 @@
 // End-to-end tests of `rlrun record`, `rlrun eval --record` and the training video callback,
 // run as a user would, with every video checked by ffprobe.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -322,7 +322,8 @@ TEST_CASE("record: ffmpeg failing after writing part of the video leaves no file
   // A stand-in ffmpeg that writes half a video to its output, then fails.
   const auto r = record_with_fake_ffmpeg(
       dir,
-      "#!/bin/sh\nfor last; do :; done\nprintf '%s\\n' \"$last\" > \"$(dirname \"$0\")/output_arg\"\n"
+      "#!/bin/sh\nfor last; do :; done\nprintf '%s\\n' \"$last\" > \"$(dirname "
+      "\"$0\")/output_arg\"\n"
       "cat > /dev/null\necho partial > \"${last#file:}\"\necho 'encoder died' >&2\nexit 1\n");
   INFO(r.output);
   CHECK(r.exit_code == 1);
@@ -335,8 +336,8 @@ TEST_CASE("record: ffmpeg failing after writing part of the video leaves no file
 
   // The rename into place fails (a directory holds the name): no .part left either.
   fs::create_directories(dir / "out/taken.mp4");
-  const auto taken = run_rlrun("record --env CartPole-v1 --policy random --output " +
-                               (dir / "out/taken.mp4"));
+  const auto taken =
+      run_rlrun("record --env CartPole-v1 --policy random --output " + (dir / "out/taken.mp4"));
   INFO(taken.output);
   CHECK(taken.exit_code == 1);
   CHECK_THAT(taken.output, Catch::Contains("cannot rename"));

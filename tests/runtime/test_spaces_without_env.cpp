@@ -6,8 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "envs/python_env_runner.hpp"
 #include "rlrun/core/errors.hpp"
@@ -31,8 +31,8 @@ const std::string kCartPolePort = "python:rlrun_test_envs.cartpole:CartPolePort"
 // A Python interpreter that writes a line to `log` each time it starts, then runs Debian's.
 std::string counting_python(const TempDir& dir) {
   const std::string path = dir / "counting_python";
-  std::ofstream(path) << "#!/bin/sh\necho started >> '" << (dir / "starts.log")
-                      << "'\nexec " << kPython << " \"$@\"\n";
+  std::ofstream(path) << "#!/bin/sh\necho started >> '" << (dir / "starts.log") << "'\nexec "
+                      << kPython << " \"$@\"\n";
   std::filesystem::permissions(path, std::filesystem::perms::owner_all);
   return path;
 }
@@ -45,10 +45,10 @@ int python_starts(const TempDir& dir) {
 }
 
 std::string python_config(const TempDir& dir, const std::string& algo) {
-  return write_file(dir / "py.yaml",
-                    "run: {name: py, seed: 1, total_timesteps: 256, out_dir: " + dir.str() +
-                        "/runs}\nenv: {id: \"" + kCartPolePort + "\", n_envs: 2, python: " +
-                        counting_python(dir) + "}\nalgo: {" + algo + "}\n");
+  return write_file(dir / "py.yaml", "run: {name: py, seed: 1, total_timesteps: 256, out_dir: " +
+                                         dir.str() + "/runs}\nenv: {id: \"" + kCartPolePort +
+                                         "\", n_envs: 2, python: " + counting_python(dir) +
+                                         "}\nalgo: {" + algo + "}\n");
 }
 
 // Every member of a model file, as written.
@@ -166,8 +166,10 @@ TEST_CASE("parsing a Python env's experiment starts no worker, and the checks ru
   CHECK_THAT(r.output, Catch::Contains("algo.use_sde: gSDE can only be used with continuous"));
 }
 
-TEST_CASE("a Python env's model: export and rlrun::Policy::load start no Python, and act as "
-          "eval does", "[spaces][python][deploy]") {
+TEST_CASE(
+    "a Python env's model: export and rlrun::Policy::load start no Python, and act as "
+    "eval does",
+    "[spaces][python][deploy]") {
   TempDir dir("spaces_policy_python");
   const std::string config = python_config(dir, "id: PPO, n_steps: 64, batch_size: 64");
   auto r = run_rlrun_python("train " + config);
@@ -185,9 +187,9 @@ TEST_CASE("a Python env's model: export and rlrun::Policy::load start no Python,
 
   // eval runs the env (the interpreter vouched for on the command line) and writes what the
   // policy saw and did.
-  r = run_rlrun_python("eval --model " + model + " --episodes 2 --deterministic --set env.id=" +
-                       kCartPolePort + " --set env.python=" + (dir / "counting_python") +
-                       " --trajectory " + (dir / "steps.csv"));
+  r = run_rlrun_python(
+      "eval --model " + model + " --episodes 2 --deterministic --set env.id=" + kCartPolePort +
+      " --set env.python=" + (dir / "counting_python") + " --trajectory " + (dir / "steps.csv"));
   REQUIRE(r.exit_code == 0);
   const int after_eval = python_starts(dir);
   CHECK(after_eval == 3);
@@ -222,14 +224,16 @@ TEST_CASE("a Python env's model: export and rlrun::Policy::load start no Python,
   while (std::getline(steps, line)) {
     std::vector<float> cells;
     std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(std::strtof(cell.c_str(), nullptr));
+    for (std::string cell; std::getline(s, cell, ',');)
+      cells.push_back(std::strtof(cell.c_str(), nullptr));
     std::vector<float> obs;
     for (size_t c : obs_columns) obs.push_back(cells.at(c));
     float action = -1;
     policy.act(obs, {&action, 1});
     CHECK(action == cells.at(action_column));
     Eigen::MatrixXf predicted;
-    from_python_package.predict(Eigen::Map<const Eigen::MatrixXf>(obs.data(), 4, 1), true, predicted);
+    from_python_package.predict(Eigen::Map<const Eigen::MatrixXf>(obs.data(), 4, 1), true,
+                                predicted);
     CHECK(predicted(0, 0) == cells.at(action_column));
     ++compared;
   }
@@ -263,17 +267,18 @@ TEST_CASE("the deploy library links no simulator", "[spaces][deploy]") {
   const auto r = run_command(std::string("ldd ") + RLRUN_POLICY_LIBRARY);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  for (const char* simulator : {"sumo", "Bullet", "box2d", "pugixml", "python", "cairo", "tracicpp"})
+  for (const char* simulator :
+       {"sumo", "Bullet", "box2d", "pugixml", "python", "cairo", "tracicpp"})
     CHECK(r.output.find(simulator) == std::string::npos);
 }
 
 TEST_CASE("a model file without recorded spaces (older rlrun) still loads for predict and export",
           "[spaces][deploy]") {
   TempDir dir("spaces_old_model");
-  const std::string config =
-      write_file(dir / "cp.yaml", "run: {name: cp, seed: 1, total_timesteps: 512, out_dir: " +
-                                      dir.str() + "/runs}\nenv: {id: CartPole-v1}\n"
-                                      "algo: {id: PPO, n_steps: 128, batch_size: 64}\n");
+  const std::string config = write_file(
+      dir / "cp.yaml", "run: {name: cp, seed: 1, total_timesteps: 512, out_dir: " + dir.str() +
+                           "/runs}\nenv: {id: CartPole-v1}\n"
+                           "algo: {id: PPO, n_steps: 128, batch_size: 64}\n");
   const auto r = run_rlrun("train " + config);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -310,10 +315,10 @@ TEST_CASE("a model file without recorded spaces (older rlrun) still loads for pr
 TEST_CASE("a model file's env_spaces is untrusted: malformed ones are refused naming the file",
           "[spaces]") {
   TempDir dir("spaces_bad_meta");
-  const std::string config =
-      write_file(dir / "cp.yaml", "run: {name: cp, seed: 1, total_timesteps: 256, out_dir: " +
-                                      dir.str() + "/runs}\nenv: {id: CartPole-v1}\n"
-                                      "algo: {id: PPO, n_steps: 128, batch_size: 64}\n");
+  const std::string config = write_file(
+      dir / "cp.yaml", "run: {name: cp, seed: 1, total_timesteps: 256, out_dir: " + dir.str() +
+                           "/runs}\nenv: {id: CartPole-v1}\n"
+                           "algo: {id: PPO, n_steps: 128, batch_size: 64}\n");
   REQUIRE(run_rlrun("train " + config).exit_code == 0);
   const std::string model = dir / "runs/cp/seed1/model.zip";
   ZipMembers members = members_of(model);
@@ -343,8 +348,8 @@ TEST_CASE("a model file's env_spaces is untrusted: malformed ones are refused na
       (void)read_model_header(bad);
       FAIL("accepted");
     } catch (const RuntimeFailure& e) {
-      CHECK_THAT(e.what(), Catch::Contains(bad + ": meta.json is malformed") &&
-                               Catch::Contains(why));
+      CHECK_THAT(e.what(),
+                 Catch::Contains(bad + ": meta.json is malformed") && Catch::Contains(why));
     }
   }
 }

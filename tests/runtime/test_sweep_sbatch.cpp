@@ -1,8 +1,8 @@
 // The generated sweep.sbatch quotes every value (issue 15, item 8): an out_dir with blanks,
 // quotes and $(...) stays one argument and runs nothing; slurm options with newlines or other
 // text sbatch would misread are refused, in the sweep file and in a manifest.
-#include <catch2/catch.hpp>
 #include <yaml-cpp/yaml.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -50,10 +50,11 @@ TEST_CASE("sweep slurm: an out_dir with blanks, quotes and $(...) is one argumen
           "[sweep]") {
   TempDir dir("sweep_sbatch_quote");
   const std::string out = dir / "out dir 'q' $(touch pwned) `touch pwned2` %A #x";
-  std::ofstream(dir / "sweep.yaml") << "name: quoted\nbase: " << base_config() << "\nout_dir: \""
-                                    << out << "\"\nseeds: [1]\n"
-                                    << "slurm: {time: \"00:05:00\", mem: 1G}\n";
-  const auto expand = run_command("cd " + sh(dir.str()) + " && " + std::string(RLRUN_BINARY) + " sweep sweep.yaml");
+  std::ofstream(dir / "sweep.yaml")
+      << "name: quoted\nbase: " << base_config() << "\nout_dir: \"" << out << "\"\nseeds: [1]\n"
+      << "slurm: {time: \"00:05:00\", mem: 1G}\n";
+  const auto expand =
+      run_command("cd " + sh(dir.str()) + " && " + std::string(RLRUN_BINARY) + " sweep sweep.yaml");
   INFO(expand.output);
   REQUIRE(expand.exit_code == 0);
   const std::string manifest = out + "/manifest.yaml";
@@ -80,8 +81,9 @@ TEST_CASE("sweep slurm: an out_dir with blanks, quotes and $(...) is one argumen
   std::string test_script = script;
   test_script.replace(at + 5, real.size(), sh(fake));
   std::ofstream(dir / "task.sh") << test_script;
-  const auto task = run_command("cd " + sh(dir.str()) + " && SLURM_ARRAY_TASK_ID=0 ARGS_OUT=" +
-                                sh(dir / "args") + " bash task.sh");
+  const auto task =
+      run_command("cd " + sh(dir.str()) + " && SLURM_ARRAY_TASK_ID=0 ARGS_OUT=" + sh(dir / "args") +
+                  " bash task.sh");
   INFO(task.output);
   CHECK(task.exit_code == 0);
   CHECK(lines_of(dir / "args") ==
@@ -97,9 +99,10 @@ TEST_CASE("sweep: slurm values sbatch would misread are refused at the sweep fil
           "[sweep]") {
   TempDir dir("sweep_sbatch_values");
   const auto sweep_with = [&](const std::string& slurm) {
-    std::ofstream(dir / "sweep.yaml") << "name: values\nbase: " << base_config()
-                                      << "\nout_dir: " << dir / "out" << "\nseeds: [1]\nslurm:\n"
-                                      << slurm;
+    std::ofstream(dir / "sweep.yaml")
+        << "name: values\nbase: " << base_config() << "\nout_dir: " << dir / "out"
+        << "\nseeds: [1]\nslurm:\n"
+        << slurm;
     return run_rlrun("sweep " + dir / "sweep.yaml");
   };
   struct Case {
@@ -131,24 +134,27 @@ TEST_CASE("sweep: slurm values sbatch would misread are refused at the sweep fil
   REQUIRE(fine.exit_code == 0);
   REQUIRE(run_rlrun("sweep slurm " + dir / "out/manifest.yaml").exit_code == 0);
   const std::string script = read_text(dir / "out/sweep.sbatch");
-  CHECK(script.find("#SBATCH --time=2-00:00:00\n#SBATCH --mem=500M\n#SBATCH --partition=debug,long\n"
-                    "#SBATCH --qos=short\n#SBATCH --exclusive\n#SBATCH --gres=gpu:1\nexec ") !=
-        std::string::npos);
+  CHECK(
+      script.find("#SBATCH --time=2-00:00:00\n#SBATCH --mem=500M\n#SBATCH --partition=debug,long\n"
+                  "#SBATCH --qos=short\n#SBATCH --exclusive\n#SBATCH --gres=gpu:1\nexec ") !=
+      std::string::npos);
 }
 
 TEST_CASE("sweep: negative seeds are refused at their line, in a sweep file and a manifest",
           "[sweep]") {
   TempDir dir("sweep_seed_range");
-  std::ofstream(dir / "sweep.yaml") << "name: seeds\nbase: " << base_config()
-                                    << "\nout_dir: " << dir / "out" << "\nseeds: [1, -1]\n";
+  std::ofstream(dir / "sweep.yaml")
+      << "name: seeds\nbase: " << base_config() << "\nout_dir: " << dir / "out"
+      << "\nseeds: [1, -1]\n";
   const auto r = run_rlrun("sweep " + dir / "sweep.yaml");
   INFO(r.output);
   CHECK(r.exit_code == 2);
   CHECK(r.output.find("sweep.yaml:4:12") != std::string::npos);
   CHECK(r.output.find("seeds are integers from 0 to 2^63 - 1, got -1") != std::string::npos);
 
-  std::ofstream(dir / "sweep.yaml") << "name: seeds\nbase: " << base_config()
-                                    << "\nout_dir: " << dir / "out" << "\nseeds: [1]\n";
+  std::ofstream(dir / "sweep.yaml")
+      << "name: seeds\nbase: " << base_config() << "\nout_dir: " << dir / "out"
+      << "\nseeds: [1]\n";
   REQUIRE(run_rlrun("sweep " + dir / "sweep.yaml").exit_code == 0);
   const std::string manifest = dir / "out/manifest.yaml";
   YAML::Node node = YAML::LoadFile(manifest);
@@ -162,8 +168,9 @@ TEST_CASE("sweep: negative seeds are refused at their line, in a sweep file and 
 
 TEST_CASE("sweep slurm: a manifest carrying a newline in a slurm value is refused", "[sweep]") {
   TempDir dir("sweep_sbatch_manifest");
-  std::ofstream(dir / "sweep.yaml") << "name: edited\nbase: " << base_config()
-                                    << "\nout_dir: " << dir / "out" << "\nseeds: [1]\n";
+  std::ofstream(dir / "sweep.yaml")
+      << "name: edited\nbase: " << base_config() << "\nout_dir: " << dir / "out"
+      << "\nseeds: [1]\n";
   REQUIRE(run_rlrun("sweep " + dir / "sweep.yaml").exit_code == 0);
   const std::string manifest = dir / "out/manifest.yaml";
   for (const char* key : {"time", "mem", "partition"}) {
@@ -193,7 +200,8 @@ TEST_CASE("shell_quote: any text comes back unchanged from bash, paths with newl
           "[sweep]") {
   TempDir dir("shell_quote");
   const std::vector<std::string> texts = {
-      "plain", "", "it's", "'", "a b\tc", "$(touch x) `y` $HOME ${Z} \\ \" ! * ? ~ # ; & | < >",
+      "plain",      "",       "it's",
+      "'",          "a b\tc", "$(touch x) `y` $HOME ${Z} \\ \" ! * ? ~ # ; & | < >",
       "two\nlines", "''\\''"};
   for (const std::string& text : texts) {
     std::ofstream(dir / "q.sh") << "printf '%s' " << shell_quote(text);

@@ -37,9 +37,8 @@ TEST_CASE("tensorboard log: runs are numbered <name>_<N> as SB3 numbers them", "
   fs::create_directories(dir / "cartpole_ppo_9");  // another name
   TensorBoardLog b = TensorBoardLog::start(dir.str(), "cartpole", config);
   CHECK(b.run_dir() == dir / "cartpole_8");
-  CHECK(entries(dir.str()) ==
-        std::vector<std::string>{"cartpole_1", "cartpole_7", "cartpole_8", "cartpole_ppo_9",
-                                 "cartpole_x"});
+  CHECK(entries(dir.str()) == std::vector<std::string>{"cartpole_1", "cartpole_7", "cartpole_8",
+                                                       "cartpole_ppo_9", "cartpole_x"});
   // A name with a folder: DIR/group/name_N.
   TensorBoardLog c = TensorBoardLog::start(dir.str(), "group/run", config);
   CHECK(c.run_dir() == dir / "group/run_1");
@@ -70,7 +69,8 @@ TEST_CASE("tensorboard log: resume cuts the event file back to the checkpoint", 
   }
   REQUIRE(fs::file_size(dir / ("run_1/" + file)) > mark);
   {
-    TensorBoardLog log = TensorBoardLog::resume(dir.str(), "run", StateReader(tensors, "tb/"), no_note);
+    TensorBoardLog log =
+        TensorBoardLog::resume(dir.str(), "run", StateReader(tensors, "tb/"), no_note);
     CHECK(log.run_dir() == dir / "run_1");
     CHECK(fs::file_size(dir / ("run_1/" + file)) == mark);
     log.write({{"rollout/ep_rew_mean", 20.0}}, 200);
@@ -85,13 +85,13 @@ TEST_CASE("tensorboard log: resume cuts the event file back to the checkpoint", 
       w.put_string("file", name);
       return t;
     };
-    for (const auto& [run, name] :
-         std::vector<std::pair<std::string, std::string>>{{"../run_1", file},
-                                                          {"other_1", file},
-                                                          {"run_x", file},
-                                                          {"run_1", "../../x"},
-                                                          {"run_1", "model.zip"},
-                                                          {"run_1", "events.out.tfevents.1/../x"}}) {
+    for (const auto& [run, name] : std::vector<std::pair<std::string, std::string>>{
+             {"../run_1", file},
+             {"other_1", file},
+             {"run_x", file},
+             {"run_1", "../../x"},
+             {"run_1", "model.zip"},
+             {"run_1", "events.out.tfevents.1/../x"}}) {
       INFO(run << " " << name);
       const TensorMap t = crafted(run, name);
       CHECK_THROWS_AS(TensorBoardLog::resume(dir.str(), "run", StateReader(t, "tb/"), no_note),
@@ -121,12 +121,11 @@ TEST_CASE("bench: TensorBoard cost per progress row", "[.bench][tensorboard_benc
   TempDir dir("tb_bench");
   TensorBoardLog log = TensorBoardLog::start(dir.str(), "bench", YAML::Load("a: 1"));
   LogRow row;
-  for (const char* key : {"rollout/ep_len_mean", "rollout/ep_rew_mean", "time/fps",
-                          "time/iterations", "time/time_elapsed", "time/total_timesteps",
-                          "train/approx_kl", "train/clip_fraction", "train/clip_range",
-                          "train/entropy_loss", "train/explained_variance", "train/learning_rate",
-                          "train/loss", "train/n_updates", "train/policy_gradient_loss",
-                          "train/value_loss"})
+  for (const char* key :
+       {"rollout/ep_len_mean", "rollout/ep_rew_mean", "time/fps", "time/iterations",
+        "time/time_elapsed", "time/total_timesteps", "train/approx_kl", "train/clip_fraction",
+        "train/clip_range", "train/entropy_loss", "train/explained_variance", "train/learning_rate",
+        "train/loss", "train/n_updates", "train/policy_gradient_loss", "train/value_loss"})
     row[key] = 0.123456789;
   constexpr int kRows = 20000;
   const auto start = std::chrono::steady_clock::now();

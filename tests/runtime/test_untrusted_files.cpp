@@ -11,8 +11,8 @@
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/zip_archive.hpp"
 #include "runtime/cli_runner.hpp"
-#include "test_paths.hpp"
 #include "runtime/peak_memory_bound.hpp"
+#include "test_paths.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -48,8 +48,9 @@ void replace_state(const std::string& zip, const std::string& key, const std::st
 
 // A CartPole PPO run with two checkpoints (steps 256 and 512) and a model.
 std::string train_with_checkpoints(const TempDir& dir) {
-  const auto r = run_rlrun("train " + kConfigs + "/cartpole_ppo.yaml --set run.total_timesteps=512" +
-                           " --set checkpoint.freq=256 --set run.out_dir=" + dir.str());
+  const auto r =
+      run_rlrun("train " + kConfigs + "/cartpole_ppo.yaml --set run.total_timesteps=512" +
+                " --set checkpoint.freq=256 --set run.out_dir=" + dir.str());
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   return dir / "cartpole_ppo/seed1";
@@ -84,16 +85,20 @@ TEST_CASE("untrusted: a model file names no library, program or output file that
   TempDir dir("untrusted_model");
   const std::string marker = dir / "code_ran";
   // A library whose constructor runs on dlopen, and a script: either would leave the marker.
-  write_file(dir / "evil.c", "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
-                             " { FILE* f = fopen(\"" + marker + "\", \"w\"); if (f) fclose(f); }\n");
-  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code == 0);
+  write_file(dir / "evil.c",
+             "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
+             " { FILE* f = fopen(\"" +
+                 marker + "\", \"w\"); if (f) fclose(f); }\n");
+  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code ==
+          0);
   write_file(dir / "evil.sh", "#!/bin/sh\ntouch " + marker + "\n");
   fs::permissions(dir / "evil.sh", fs::perms::owner_all);
   const std::string victim = dir / "victim.txt";
   write_file(victim, "precious\n");
 
-  const auto trained = run_rlrun("train " + kConfigs + "/cartpole_ppo.yaml --set run.total_timesteps=256" +
-                                 " --set run.out_dir=" + dir.str());
+  const auto trained =
+      run_rlrun("train " + kConfigs + "/cartpole_ppo.yaml --set run.total_timesteps=256" +
+                " --set run.out_dir=" + dir.str());
   REQUIRE(trained.exit_code == 0);
   const std::string model = dir / "cartpole_ppo/seed1/model.zip";
   const std::string config = read_text(dir / "cartpole_ppo/seed1/config.yaml");
@@ -128,9 +133,12 @@ TEST_CASE("untrusted: a resumed run's config.yaml loads no library", "[cli][secu
   TempDir dir("untrusted_run_dir");
   const std::string run = train_with_checkpoints(dir);
   const std::string marker = dir / "code_ran";
-  write_file(dir / "evil.c", "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
-                             " { FILE* f = fopen(\"" + marker + "\", \"w\"); if (f) fclose(f); }\n");
-  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code == 0);
+  write_file(dir / "evil.c",
+             "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
+             " { FILE* f = fopen(\"" +
+                 marker + "\", \"w\"); if (f) fclose(f); }\n");
+  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code ==
+          0);
   const std::string config = read_text(run + "/config.yaml");
   write_file(run + "/config.yaml", "plugins: [" + dir / "libevil.so" + "]\n" + config);
   const auto r = run_rlrun("train --resume " + run + "/checkpoints/step_256.zip");
@@ -172,9 +180,10 @@ TEST_CASE("untrusted: two resumes of one run at once: the second is refused", "[
   CHECK(read_text(third_log).find("resuming") != std::string::npos);
 }
 
-TEST_CASE("untrusted: stale temporaries are removed, a damaged newest checkpoint is skipped, "
-          "counters are checked",
-          "[cli][security]") {
+TEST_CASE(
+    "untrusted: stale temporaries are removed, a damaged newest checkpoint is skipped, "
+    "counters are checked",
+    "[cli][security]") {
   TempDir dir("untrusted_resume");
   const std::string run = train_with_checkpoints(dir);
   write_file(run + "/checkpoints/step_768.zip.tmp.a1B2c3", "half a zip");

@@ -49,8 +49,8 @@ bool off_policy(const std::string& algo) {
 // steps (at least one rollout), with learning_starts lowered to 1500 so that off-policy
 // entries take (500) gradient steps, and a replay buffer of at most 100000 transitions. Returns ""
 // or the error.
-std::string import_and_train(const std::string& file, const std::string& algo, const std::string& env,
-                             const std::string& out_dir, bool train) {
+std::string import_and_train(const std::string& file, const std::string& algo,
+                             const std::string& env, const std::string& out_dir, bool train) {
   try {
     Registry registry = make_builtin_registry();
     std::vector<std::string> overrides{"run.total_timesteps=2000", "run.out_dir=" + out_dir,
@@ -122,9 +122,10 @@ TEST_CASE("Python literals: the zoo's subset is read, anything else refused",
     }
     return std::string("accepted");
   };
-  CHECK_THAT(refused("__import__('os').system('x')"), Catch::Contains("calls other than dict") &&
-                                                          Catch::Contains("@0"));
-  CHECK_THAT(refused("dict(a=open('f'))"), Catch::Contains("calls other than dict") && Catch::Contains("@7"));
+  CHECK_THAT(refused("__import__('os').system('x')"),
+             Catch::Contains("calls other than dict") && Catch::Contains("@0"));
+  CHECK_THAT(refused("dict(a=open('f'))"),
+             Catch::Contains("calls other than dict") && Catch::Contains("@7"));
   CHECK_THAT(refused("dict(a=[1][0])"), Catch::Contains("expected ','"));
   CHECK_THAT(refused("dict(a=1 + 2)"), Catch::Contains("expected ','"));
   CHECK_THAT(refused("dict(a=nn.ReLU())"), Catch::Contains("calls other than dict"));
@@ -234,7 +235,8 @@ default:
   const Experiment m = load_zoo_experiment(with_gamma, "MountainCar-v0", "", {}, registry);
   CHECK(m.env.normalize_gamma() == 0.95);
   // v2 lander entries serve the v3 env; `default` serves an env without an entry.
-  const std::string lander = write_file(dir, "dqn.yml", "LunarLander-v2:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n");
+  const std::string lander =
+      write_file(dir, "dqn.yml", "LunarLander-v2:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n");
   CHECK(read_zoo_entry(lander, "LunarLander-v3", "").entry_name == "LunarLander-v2");
   CHECK(read_zoo_entry(lander, "LunarLander-v2", "").env_id == "LunarLander-v3");
   CHECK(read_zoo_entry(file, "Acrobot-v1", "").entry_name == "default");
@@ -268,8 +270,8 @@ MountainCarContinuous-v0:
   // The algorithm from the file name; the zoo's Pendulum entry is configs/pendulum_tqc.yaml.
   const Experiment p = load_zoo_experiment(file, "Pendulum-v1", "", {}, registry);
   CHECK(p.algo.id == "TQC");
-  const YAML::Node pendulum = translate_zoo_entry(read_zoo_entry(file, "Pendulum-v1", ""), registry)
-                                  .experiment;
+  const YAML::Node pendulum =
+      translate_zoo_entry(read_zoo_entry(file, "Pendulum-v1", ""), registry).experiment;
   CHECK(pendulum["algo"]["id"].as<std::string>() == "TQC");
   CHECK(pendulum["algo"]["learning_rate"].as<double>() == 1e-3);
   CHECK(pendulum["run"]["total_timesteps"].as<double>() == 20000);
@@ -289,8 +291,9 @@ MountainCarContinuous-v0:
   const std::string text = experiment_text(imported);
   CHECK_THAT(text, Catch::Contains("entry 'MountainCarContinuous-v0' (TQC)"));
   // --algo tqc for a file named otherwise; a policy key TQC does not have is named.
-  const std::string renamed = write_file(dir, "tuned.yml", "Pendulum-v1:\n  n_timesteps: 1000\n"
-                                                           "  policy: 'MlpPolicy'\n");
+  const std::string renamed = write_file(dir, "tuned.yml",
+                                         "Pendulum-v1:\n  n_timesteps: 1000\n"
+                                         "  policy: 'MlpPolicy'\n");
   CHECK(read_zoo_entry(renamed, "Pendulum-v1", "tqc").algorithm == "TQC");
   TempDir bad_dir("zoo_tqc_bad");
   const std::string bad = write_file(bad_dir, "tqc.yml",
@@ -299,8 +302,7 @@ MountainCarContinuous-v0:
   CHECK_THAT(import_error(bad, "Pendulum-v1"), Catch::Contains("n_quantiles"));
 }
 
-TEST_CASE("zoo import: what cannot be translated is an error at the zoo file's line",
-          "[zoo]") {
+TEST_CASE("zoo import: what cannot be translated is an error at the zoo file's line", "[zoo]") {
   TempDir dir("zoo_errors");
   const std::string file = write_file(dir, "ppo.yml", R"zoo(CartPole-v1:
   n_timesteps: 1000
@@ -322,12 +324,14 @@ MountainCar-v0:
   normalize: "dict(norm_obs=True, norm_obs_keys=['a'])"
 )zoo");
   const std::string cartpole = import_error(file, "CartPole-v1");
-  CHECK_THAT(cartpole, Catch::Contains(file + ":4:3") && Catch::Contains("no hyperparameter 'n_stpes'") &&
+  CHECK_THAT(cartpole, Catch::Contains(file + ":4:3") &&
+                           Catch::Contains("no hyperparameter 'n_stpes'") &&
                            Catch::Contains("did you mean 'n_steps'"));
   CHECK_THAT(cartpole, Catch::Contains(file + ":5:18") && Catch::Contains("calls other than dict"));
   const std::string pendulum = import_error(file, "Pendulum-v1");
   CHECK_THAT(pendulum, Catch::Contains(file + ":8:11") && Catch::Contains("CnnPolicy"));
-  CHECK_THAT(pendulum, Catch::Contains(file + ":9:16") && Catch::Contains("env_wrapper my_package.MyWrapper"));
+  CHECK_THAT(pendulum, Catch::Contains(file + ":9:16") &&
+                           Catch::Contains("env_wrapper my_package.MyWrapper"));
   const std::string acrobot = import_error(file, "Acrobot-v1");
   CHECK_THAT(acrobot, Catch::Contains(file + ":13:18") && Catch::Contains("nn.Sigmoid"));
   const std::string car = import_error(file, "MountainCar-v0");
@@ -337,7 +341,8 @@ MountainCar-v0:
   CHECK_THAT(import_error(file, "MountainCarContinuous-v0"),
              Catch::Contains("no entry for MountainCarContinuous-v0 and no `default` entry"));
   // The algorithm from the file name, or --algo.
-  const std::string unnamed = write_file(dir, "hyperparams.yml", "CartPole-v1:\n  n_timesteps: 10\n");
+  const std::string unnamed =
+      write_file(dir, "hyperparams.yml", "CartPole-v1:\n  n_timesteps: 10\n");
   CHECK_THAT(import_error(unnamed, "CartPole-v1"), Catch::Contains("pass --algo"));
 }
 
@@ -345,21 +350,23 @@ TEST_CASE("rlrun zoo import writes a file rlrun train accepts, train --zoo train
           "[zoo][cli]") {
   TempDir dir("zoo_cli");
   const std::string out = dir / "cartpole_ppo.yaml";
-  const auto imported = rlrun::testing::run_rlrun("zoo import " + kZooData + "/ppo.yml CartPole-v1 -o " + out);
+  const auto imported =
+      rlrun::testing::run_rlrun("zoo import " + kZooData + "/ppo.yml CartPole-v1 -o " + out);
   INFO(imported.output);
   REQUIRE(imported.exit_code == 0);
   const std::string text = rlrun::testing::read_text(out);
   CHECK_THAT(text, Catch::Contains("entry 'CartPole-v1' (PPO)"));
   CHECK_THAT(text, Catch::Contains("learning_rate: lin_0.001"));
-  const auto trained = rlrun::testing::run_rlrun("train " + out + " --timesteps 512 --out " + dir.str() +
-                                                 " --set eval.freq=0");
+  const auto trained = rlrun::testing::run_rlrun("train " + out + " --timesteps 512 --out " +
+                                                 dir.str() + " --set eval.freq=0");
   INFO(trained.output);
   CHECK(trained.exit_code == 0);
   CHECK(std::filesystem::exists(dir / "ppo_CartPole-v1/seed0/model.zip"));
 
   // train --zoo with env.normalize: the model holds the statistics and eval uses them.
-  const auto zoo = rlrun::testing::run_rlrun("train --zoo " + kZooData + "/ppo.yml --env Acrobot-v1 --out " +
-                                             dir.str() + " --set run.total_timesteps=4096 --set eval.freq=0");
+  const auto zoo =
+      rlrun::testing::run_rlrun("train --zoo " + kZooData + "/ppo.yml --env Acrobot-v1 --out " +
+                                dir.str() + " --set run.total_timesteps=4096 --set eval.freq=0");
   INFO(zoo.output);
   REQUIRE(zoo.exit_code == 0);
   const std::string model = dir / "ppo_Acrobot-v1/seed0/model.zip";
@@ -426,8 +433,10 @@ TEST_CASE("zoo import: a HER entry (replay_buffer_class, replay_buffer_kwargs as
              Catch::Contains("n_sampled_goal"));
 }
 
-TEST_CASE("zoo import: --entry uses another env's entry (the zoo's PandaReach TQC + HER entry for GripperReach)",
-          "[zoo][her]") {
+TEST_CASE(
+    "zoo import: --entry uses another env's entry (the zoo's PandaReach TQC + HER entry for "
+    "GripperReach)",
+    "[zoo][her]") {
   TempDir dir("zoo_entry");
   Registry registry = make_builtin_registry();
   // rl-baselines3-zoo hyperparams/tqc.yml, PandaReach-v1, as the zoo writes it.
@@ -451,10 +460,10 @@ TEST_CASE("zoo import: --entry uses another env's entry (the zoo's PandaReach TQ
   const ZooEntry entry = read_zoo_entry(file, "GripperReach-v0", "", "PandaReach-v1");
   CHECK(entry.entry_name == "PandaReach-v1");
   CHECK(entry.env_id == "GripperReach-v0");
-  const Experiment e = load_zoo_experiment(file, "GripperReach-v0", "",
-                                           {"run.total_timesteps=1500", "eval.freq=0",
-                                            "run.out_dir=" + dir / "runs"},
-                                           registry, "PandaReach-v1");
+  const Experiment e = load_zoo_experiment(
+      file, "GripperReach-v0", "",
+      {"run.total_timesteps=1500", "eval.freq=0", "run.out_dir=" + dir / "runs"}, registry,
+      "PandaReach-v1");
   CHECK(e.env.section.normalize.enabled);
   const TrainOutcome outcome = train_experiment(e, registry, testing::test_execution());
   CHECK(std::filesystem::exists(outcome.run_dir + "/model.zip"));
@@ -486,7 +495,8 @@ LunarLanderContinuous-v3:
   n_envs: 8
 )zoo");
   const YAML::Node car =
-      translate_zoo_entry(read_zoo_entry(file, "MountainCarContinuous-v0", ""), registry).experiment;
+      translate_zoo_entry(read_zoo_entry(file, "MountainCarContinuous-v0", ""), registry)
+          .experiment;
   CHECK(car["run"]["total_timesteps"].as<double>() == 2e6);
   CHECK(car["env"]["n_envs"].as<int>() == 4);
   CHECK(car["env"]["normalize"].as<bool>());
@@ -514,18 +524,21 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
     CHECK_THAT(error, Catch::Contains(message) && !Catch::Contains("pass --algo"));
   }
   Registry registry = make_builtin_registry();
-  CHECK_THROWS_WITH(read_zoo_entry(write_file(dir, "tuned.yml", entry), "CartPole-v1", "maskable_ppo"),
-                    Catch::Contains("--algo maskable_ppo: rlrun has no MaskablePPO"));
+  CHECK_THROWS_WITH(
+      read_zoo_entry(write_file(dir, "tuned.yml", entry), "CartPole-v1", "maskable_ppo"),
+      Catch::Contains("--algo maskable_ppo: rlrun has no MaskablePPO"));
 }
 
-TEST_CASE("zoo import: a gymnasium: env takes the entry of its Gymnasium id, run names are one "
-          "path component",
-          "[zoo]") {
+TEST_CASE(
+    "zoo import: a gymnasium: env takes the entry of its Gymnasium id, run names are one "
+    "path component",
+    "[zoo]") {
   TempDir dir("zoo_gymnasium");
   Registry registry = make_builtin_registry();
-  const std::string file = write_file(dir, "ppo.yml", "LunarLander-v2:\n  n_timesteps: 1000\n"
-                                                      "  policy: 'MlpPolicy'\n  n_steps: 64\n"
-                                                      "default:\n  n_timesteps: 5\n");
+  const std::string file = write_file(dir, "ppo.yml",
+                                      "LunarLander-v2:\n  n_timesteps: 1000\n"
+                                      "  policy: 'MlpPolicy'\n  n_steps: 64\n"
+                                      "default:\n  n_timesteps: 5\n");
   const ZooEntry lander = read_zoo_entry(file, "gymnasium:LunarLander-v3", "");
   CHECK(lander.entry_name == "LunarLander-v2");
   CHECK(lander.env_id == "gymnasium:LunarLander-v3");

@@ -47,12 +47,34 @@ void check_written(const zoo::ZooImport& imported) {
 
 // Text that would end a comment, start a line, a key, a document, a merge or a flow collection
 // in YAML (plain, or to a reader that breaks lines at \r, NEL or U+2028), or clear a terminal.
-const std::vector<std::string> kHostile{
-    "x\nplugins: [/tmp/evil.so]\n#", "x\rplugins: [/tmp/evil.so]", "x\r\nplugins: [e.so]",
-    "x\xc2\x85plugins: [e.so]", "x\xe2\x80\xa8plugins: [e.so]", "# comment", "---", "...",
-    "--- !!python/object/apply:os.system ['id']", "a: b", "[x]", "{a: 1}", "'", "\"",
-    "\x1b[2J", "<<", "null", "~", "", " lead", "\t", "*alias", "&anchor", "!tag", "%YAML 1.1",
-    "|", ">", "x\x7f"};
+const std::vector<std::string> kHostile{"x\nplugins: [/tmp/evil.so]\n#",
+                                        "x\rplugins: [/tmp/evil.so]",
+                                        "x\r\nplugins: [e.so]",
+                                        "x\xc2\x85plugins: [e.so]",
+                                        "x\xe2\x80\xa8plugins: [e.so]",
+                                        "# comment",
+                                        "---",
+                                        "...",
+                                        "--- !!python/object/apply:os.system ['id']",
+                                        "a: b",
+                                        "[x]",
+                                        "{a: 1}",
+                                        "'",
+                                        "\"",
+                                        "\x1b[2J",
+                                        "<<",
+                                        "null",
+                                        "~",
+                                        "",
+                                        " lead",
+                                        "\t",
+                                        "*alias",
+                                        "&anchor",
+                                        "!tag",
+                                        "%YAML 1.1",
+                                        "|",
+                                        ">",
+                                        "x\x7f"};
 
 }  // namespace
 
@@ -66,21 +88,31 @@ TEST_CASE("zoo import: text from the zoo file cannot add lines or keys to the wr
     // A Python literal's string has no escapes and ends at its quote.
     const std::string replay_buffer_kwargs =
         hostile.find_first_of("'\\") == std::string::npos
-            ? "  replay_buffer_kwargs: " + yaml_double_quoted("{'" + hostile + "': '" + hostile + "'}") + "\n"
+            ? "  replay_buffer_kwargs: " +
+                  yaml_double_quoted("{'" + hostile + "': '" + hostile + "'}") + "\n"
             : "";
     // In class names (they reach the header's notes), entry names, env_kwargs and
     // replay_buffer_kwargs keys and values (they reach the experiment).
-    const std::string file = write_file(dir / "dqn.yml", "CartPole-v1:\n"
-        "  n_timesteps: 1000\n"
-        "  policy: 'MlpPolicy'\n"
-        "  env_wrapper:\n"
-        "    - " + yaml_double_quoted(hostile + ".TimeLimit") + ": {max_episode_steps: 900}\n"
-        "  callback:\n"
-        "    - " + yaml_double_quoted(hostile + ".CheckpointCallback") + ":\n"
-        "        save_freq: 100\n"
-        "        save_path: " + q + "\n"
-        "  env_kwargs: {" + q + ": " + q + ", k: [" + q + "]}\n" + replay_buffer_kwargs +
-        q + ":\n  n_timesteps: 10\n  policy: 'MlpPolicy'\n");
+    const std::string file =
+        write_file(dir / "dqn.yml",
+                   "CartPole-v1:\n"
+                   "  n_timesteps: 1000\n"
+                   "  policy: 'MlpPolicy'\n"
+                   "  env_wrapper:\n"
+                   "    - " +
+                       yaml_double_quoted(hostile + ".TimeLimit") +
+                       ": {max_episode_steps: 900}\n"
+                       "  callback:\n"
+                       "    - " +
+                       yaml_double_quoted(hostile + ".CheckpointCallback") +
+                       ":\n"
+                       "        save_freq: 100\n"
+                       "        save_path: " +
+                       q +
+                       "\n"
+                       "  env_kwargs: {" +
+                       q + ": " + q + ", k: [" + q + "]}\n" + replay_buffer_kwargs + q +
+                       ":\n  n_timesteps: 10\n  policy: 'MlpPolicy'\n");
     const zoo::ZooImport imported =
         zoo::translate_zoo_entry(zoo::read_zoo_entry(file, "CartPole-v1", ""), registry);
     CHECK(imported.notes.size() == 2);  // TimeLimit above the registered limit, save_path
@@ -98,24 +130,30 @@ TEST_CASE("zoo import: a class name cannot add a plugins line that `rlrun train`
           "[zoo][security][cli]") {
   TempDir dir("zoo_injection_cli");
   const std::string marker = dir / "code_ran";
-  write_file(dir / "evil.c", "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
-                             " { FILE* f = fopen(\"" + marker + "\", \"w\"); if (f) fclose(f); }\n");
-  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code == 0);
-  const std::string file = write_file(dir / "dqn.yml", "CartPole-v1:\n"
-      "  n_timesteps: 1000\n"
-      "  policy: 'MlpPolicy'\n"
-      "  callback:\n"
-      "    - \"x\\nplugins: [" + dir / "libevil.so" + "]\\n#.CheckpointCallback\":\n"
-      "        save_freq: 100\n"
-      "        save_path: logs\n");
+  write_file(dir / "evil.c",
+             "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
+             " { FILE* f = fopen(\"" +
+                 marker + "\", \"w\"); if (f) fclose(f); }\n");
+  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code ==
+          0);
+  const std::string file = write_file(dir / "dqn.yml",
+                                      "CartPole-v1:\n"
+                                      "  n_timesteps: 1000\n"
+                                      "  policy: 'MlpPolicy'\n"
+                                      "  callback:\n"
+                                      "    - \"x\\nplugins: [" +
+                                          dir / "libevil.so" +
+                                          "]\\n#.CheckpointCallback\":\n"
+                                          "        save_freq: 100\n"
+                                          "        save_path: logs\n");
   const std::string written = dir / "cartpole_dqn.yaml";
   const auto imported = run_rlrun("zoo import " + file + " CartPole-v1 -o " + written);
   INFO(imported.output);
   REQUIRE(imported.exit_code == 0);
   INFO(read_text(written));
   CHECK(read_text(written).find("\nplugins:") == std::string::npos);
-  const auto trained = run_rlrun("train " + written + " --timesteps 64 --set eval.freq=0 --out " +
-                                 dir.str());
+  const auto trained =
+      run_rlrun("train " + written + " --timesteps 64 --set eval.freq=0 --out " + dir.str());
   INFO(trained.output);
   CHECK(trained.exit_code == 0);
   CHECK_FALSE(fs::exists(marker));
@@ -131,14 +169,19 @@ TEST_CASE("zoo files name no program, output file or scenario without the user's
   const std::string elsewhere = dir / "elsewhere/x.xml";
   fs::create_directories(dir / "elsewhere");
   write_file(dir / "evil.sumocfg", "<configuration/>\n");
-  const std::string entry = "TrafficSignal-v0:\n  n_timesteps: 20\n  policy: 'MlpPolicy'\n"
-                            "  learning_starts: 10\n  env_kwargs:\n";
-  const std::string sumo_binary = write_file(dir / "dqn.yml", entry + "    sumo_binary: " + dir / "evil.sh\n");
+  const std::string entry =
+      "TrafficSignal-v0:\n  n_timesteps: 20\n  policy: 'MlpPolicy'\n"
+      "  learning_starts: 10\n  env_kwargs:\n";
+  const std::string sumo_binary =
+      write_file(dir / "dqn.yml", entry + "    sumo_binary: " + dir / "evil.sh\n");
   fs::create_directories(dir / "tripinfo");
-  const std::string tripinfo = write_file(dir / "tripinfo/dqn.yml", entry + "    tripinfo_output: " + elsewhere + "\n");
+  const std::string tripinfo =
+      write_file(dir / "tripinfo/dqn.yml", entry + "    tripinfo_output: " + elsewhere + "\n");
   fs::create_directories(dir / "scenario");
-  const std::string scenario = write_file(dir / "scenario/dqn.yml", entry + "    scenario: " + dir / "evil.sumocfg\n");
-  const std::string train = "train --set eval.freq=0 --out " + dir / "runs" + " --env TrafficSignal-v0 --zoo ";
+  const std::string scenario =
+      write_file(dir / "scenario/dqn.yml", entry + "    scenario: " + dir / "evil.sumocfg\n");
+  const std::string train =
+      "train --set eval.freq=0 --out " + dir / "runs" + " --env TrafficSignal-v0 --zoo ";
   const std::string import = " TrafficSignal-v0 -o " + dir / "imported.yaml";
   const std::vector<std::pair<std::string, std::string>> cases{
       {sumo_binary, "env.kwargs.sumo_binary: a program to run"},
@@ -151,7 +194,8 @@ TEST_CASE("zoo files name no program, output file or scenario without the user's
       INFO(r.output);
       CHECK(r.exit_code == 2);
       CHECK_THAT(r.output, Catch::Contains(file + ":6:") && Catch::Contains(message) &&
-                               Catch::Contains("zoo files") && Catch::Contains("--set env.kwargs."));
+                               Catch::Contains("zoo files") &&
+                               Catch::Contains("--set env.kwargs."));
     }
   }
   CHECK_FALSE(fs::exists(marker));
@@ -160,16 +204,19 @@ TEST_CASE("zoo files name no program, output file or scenario without the user's
 
   // The user's --set vouches: train runs the named program, import writes the value.
   setenv("SUMO_HOME", "/usr/share/sumo", 0);
-  const auto vouched = run_rlrun(train + sumo_binary + " --set env.kwargs.sumo_binary=" + dir / "evil.sh");
+  const auto vouched =
+      run_rlrun(train + sumo_binary + " --set env.kwargs.sumo_binary=" + dir / "evil.sh");
   INFO(vouched.output);
   CHECK(vouched.exit_code == 0);
   CHECK(fs::exists(marker));
-  const auto written = run_rlrun("zoo import " + tripinfo + import + " --set env.kwargs.tripinfo_output=" + elsewhere);
+  const auto written = run_rlrun("zoo import " + tripinfo + import +
+                                 " --set env.kwargs.tripinfo_output=" + elsewhere);
   INFO(written.output);
   REQUIRE(written.exit_code == 0);
   const std::string text = read_text(dir / "imported.yaml");
-  CHECK_THAT(text, Catch::Contains("tripinfo_output: " + elsewhere) &&
-                       Catch::Contains("# Set on the command line: --set env.kwargs.tripinfo_output="));
+  CHECK_THAT(text,
+             Catch::Contains("tripinfo_output: " + elsewhere) &&
+                 Catch::Contains("# Set on the command line: --set env.kwargs.tripinfo_output="));
 }
 
 TEST_CASE("zoo files: deep nesting and long text give a short error, not a 200 KB line",
@@ -201,7 +248,8 @@ TEST_CASE("zoo files: deep nesting and long text give a short error, not a 200 K
   std::string nested = "1";
   for (int i = 0; i < 100; ++i) nested = "{a: " + nested + "}";
   const std::string deep_yaml = error("  env_kwargs: " + nested + "\n");
-  CHECK_THAT(deep_yaml, Catch::Contains("ppo.yml:") && Catch::Contains("nests deeper than 16 levels"));
+  CHECK_THAT(deep_yaml,
+             Catch::Contains("ppo.yml:") && Catch::Contains("nests deeper than 16 levels"));
   CHECK(deep_yaml.size() < 1000);
   const std::string long_key = error("  ? " + std::string(60000, 'k') + "\n  : 1\n");
   CHECK_THAT(long_key, Catch::Contains("no hyperparameter"));
@@ -211,7 +259,6 @@ TEST_CASE("zoo files: deep nesting and long text give a short error, not a 200 K
   // Aliases that repeat a value many times: the entry's text is bounded with them expanded.
   std::string many = "  env_kwargs: {";
   for (int i = 0; i < 2000; ++i) many += (i ? ", k" : "k") + std::to_string(i) + ": *big";
-  const std::string aliased =
-      error("  big: &big " + std::string(1000, 'b') + "\n" + many + "}\n");
+  const std::string aliased = error("  big: &big " + std::string(1000, 'b') + "\n" + many + "}\n");
   CHECK_THAT(aliased, Catch::Contains("more than 64 KiB"));
 }

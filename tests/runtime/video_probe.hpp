@@ -9,8 +9,10 @@
 namespace rlrun::testing {
 
 inline std::string probe_video(const std::string& path) {
-  return run_command("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                     "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" + path + "'")
+  return run_command(
+             "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+             "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
+             path + "'")
       .output;
 }
 

@@ -2,9 +2,9 @@
 // Studies whose parameter importances are known, for the fANOVA and report tests: the trials
 // of tests/tune/optuna_importances.py, drawn with the same generator, so that Optuna's numbers
 // for them (which that script prints) can stand in the tests as constants.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <algorithm>
 #include <functional>
 #include <map>
 #include <string>
@@ -101,8 +101,8 @@ inline SyntheticTrial log_raw_space(SplitMix64& rng) {
 }
 
 // `n` COMPLETE trials numbered from 0 (the script's build(): SplitMix64(12345), 100 trials).
-inline std::vector<FrozenTrial> synthetic_study(const std::function<SyntheticTrial(SplitMix64&)>& draw,
-                                                int n = 100, uint64_t seed = 12345) {
+inline std::vector<FrozenTrial> synthetic_study(
+    const std::function<SyntheticTrial(SplitMix64&)>& draw, int n = 100, uint64_t seed = 12345) {
   SplitMix64 rng(seed);
   std::vector<FrozenTrial> trials;
   for (int i = 0; i < n; ++i) {

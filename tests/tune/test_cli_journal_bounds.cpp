@@ -22,10 +22,12 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 const std::string kCreate =
-    R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})" "\n";
+    R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})"
+    "\n";
 
 CommandResult report(const std::string& journal) {
-  return run_command_measured("timeout -s KILL 120 " + std::string(RLRUN_BINARY) + " tune report " + journal);
+  return run_command_measured("timeout -s KILL 120 " + std::string(RLRUN_BINARY) + " tune report " +
+                              journal);
 }
 
 }  // namespace
@@ -42,8 +44,8 @@ TEST_CASE("journal bounds: 200 000 nested brackets and an over-long line are ref
   CHECK(r.exit_code == 1);  // was a SIGSEGV
   CHECK(contains(r.output, journal + ":2: JSON nested deeper than 128 levels"));
 
-  std::ofstream(journal, std::ios::trunc) << kCreate << "{\"x\": \"" << std::string(2 << 20, 'a')
-                                          << "\"}\n";
+  std::ofstream(journal, std::ios::trunc)
+      << kCreate << "{\"x\": \"" << std::string(2 << 20, 'a') << "\"}\n";
   r = report(journal);
   INFO(r.output);
   CHECK(r.exit_code == 1);
@@ -54,11 +56,12 @@ TEST_CASE("journal bounds: a half-written last line is read by tune report and c
           "[cli][tune]") {
   TempDir dir("journal_half_line");
   const std::string study = dir / "study.yaml";
-  std::ofstream(study) << "name: small\nbase: " << RLRUN_SOURCE_DIR
-                       << "/configs/cartpole_ppo.yaml\nout_dir: " << dir / "out"
-                       << "\nn_trials: 1\nseeds_per_trial: 1\nn_timesteps: 256\nn_evaluations: 1\n"
-                          "eval_episodes: 1\nsampler: {type: random, seed: 1}\npruner: {type: none}\n"
-                          "space:\n  algo.n_epochs: {int: [1, 2]}\n";
+  std::ofstream(study)
+      << "name: small\nbase: " << RLRUN_SOURCE_DIR
+      << "/configs/cartpole_ppo.yaml\nout_dir: " << dir / "out"
+      << "\nn_trials: 1\nseeds_per_trial: 1\nn_timesteps: 256\nn_evaluations: 1\n"
+         "eval_episodes: 1\nsampler: {type: random, seed: 1}\npruner: {type: none}\n"
+         "space:\n  algo.n_epochs: {int: [1, 2]}\n";
   auto r = run_rlrun("--threads 1 tune " + study);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);

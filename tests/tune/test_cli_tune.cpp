@@ -7,7 +7,6 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +18,9 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string optuna_script() { return std::string("/usr/bin/python3 ") + RLRUN_SOURCE_DIR + "/tests/tune/optuna_study.py"; }
+std::string optuna_script() {
+  return std::string("/usr/bin/python3 ") + RLRUN_SOURCE_DIR + "/tests/tune/optuna_study.py";
+}
 
 json optuna_dump(const std::string& journal, const std::string& name) {
   const auto r = run_command(optuna_script() + " dump '" + journal + "' " + name);
@@ -32,22 +33,35 @@ json optuna_dump(const std::string& journal, const std::string& name) {
 std::string write_study(const TempDir& dir, const std::string& extra, int n_trials = 6,
                         int64_t n_timesteps = 4096, int seeds = 2, int evaluations = 4) {
   const std::string path = dir / "study.yaml";
-  std::ofstream(path) << "name: small\n"
-                         "base: " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml\n"
-                         "out_dir: " << dir.str() << "/out\n"
-                         "n_trials: " << n_trials << "\n"
-                         "seeds_per_trial: " << seeds << "\n"
-                         "n_timesteps: " << n_timesteps << "\n"
-                         "n_evaluations: " << evaluations << "\n"
-                         "eval_episodes: 2\n"
-                         "sampler: {type: tpe, seed: 3, n_startup_trials: 3}\n"
-                         "pruner: {type: median, n_startup_trials: 2}\n"
-                         "space:\n"
-                         "  algo.learning_rate: {float: [1.0e-4, 3.0e-3], log: true}\n"
-                         "  algo.n_epochs: {int: [1, 10]}\n"
-                         "  algo.policy.net_arch: {categorical: [[32], [64, 64]]}\n"
-                         "  algo.clip_range: {float: [0.1, 0.3], step: 0.1, if: {algo.n_epochs: [8, 9, 10]}}\n"
-                      << extra;
+  std::ofstream(path)
+      << "name: small\n"
+         "base: "
+      << RLRUN_SOURCE_DIR
+      << "/configs/cartpole_ppo.yaml\n"
+         "out_dir: "
+      << dir.str()
+      << "/out\n"
+         "n_trials: "
+      << n_trials
+      << "\n"
+         "seeds_per_trial: "
+      << seeds
+      << "\n"
+         "n_timesteps: "
+      << n_timesteps
+      << "\n"
+         "n_evaluations: "
+      << evaluations
+      << "\n"
+         "eval_episodes: 2\n"
+         "sampler: {type: tpe, seed: 3, n_startup_trials: 3}\n"
+         "pruner: {type: median, n_startup_trials: 2}\n"
+         "space:\n"
+         "  algo.learning_rate: {float: [1.0e-4, 3.0e-3], log: true}\n"
+         "  algo.n_epochs: {int: [1, 10]}\n"
+         "  algo.policy.net_arch: {categorical: [[32], [64, 64]]}\n"
+         "  algo.clip_range: {float: [0.1, 0.3], step: 0.1, if: {algo.n_epochs: [8, 9, 10]}}\n"
+      << extra;
   return path;
 }
 
@@ -71,11 +85,13 @@ std::string tune_then_signal(const std::string& study, const std::string& journa
 
 }  // namespace
 
-TEST_CASE("tune: two workers run a study Optuna reads, the report and the best config", "[cli][tune]") {
+TEST_CASE("tune: two workers run a study Optuna reads, the report and the best config",
+          "[cli][tune]") {
   TempDir dir("tune_small");
   const std::string study = write_study(dir, "");
   const auto r = run_rlrun("tune " + study + " -j 2");
-  INFO(r.output << read_text(dir / "out/logs/worker_0.txt") << read_text(dir / "out/logs/worker_1.txt"));
+  INFO(r.output << read_text(dir / "out/logs/worker_0.txt")
+                << read_text(dir / "out/logs/worker_1.txt"));
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Catch::Contains("6 of 6 trials counted"));
   const json dump = optuna_dump(dir / "out/study.journal", "small");
@@ -86,13 +102,16 @@ TEST_CASE("tune: two workers run a study Optuna reads, the report and the best c
     CHECK(t["params"].contains("algo.learning_rate"));
     CHECK(t["params"].contains("algo.policy.net_arch"));
     // The conditional parameter exists exactly when its condition held.
-    CHECK(t["params"].contains("algo.clip_range") == (t["params"]["algo.n_epochs"].get<int>() >= 8));
+    CHECK(t["params"].contains("algo.clip_range") ==
+          (t["params"]["algo.n_epochs"].get<int>() >= 8));
     CHECK_FALSE(t["intermediate_values"].empty());
     workers.insert(t["system_attrs"]["rlrun:worker"]["id"].get<std::string>());
     if (t["state"] == "COMPLETE") {
       // Two seeds, each 4 evaluations: steps 1-8; the value is the mean of the seeds' last ones.
       CHECK(t["intermediate_values"].size() == 8);
-      const double mean = (t["intermediate_values"]["4"].get<double>() + t["intermediate_values"]["8"].get<double>()) / 2;
+      const double mean = (t["intermediate_values"]["4"].get<double>() +
+                           t["intermediate_values"]["8"].get<double>()) /
+                          2;
       CHECK(t["values"][0].get<double>() == Approx(mean));
     }
   }
@@ -117,7 +136,8 @@ TEST_CASE("tune: two workers run a study Optuna reads, the report and the best c
   const std::string best = read_text(dir / "best.yaml");
   CHECK_THAT(best, Catch::Contains("of study small") && Catch::Contains("n_epochs"));
   // The best config is a ready experiment file.
-  const auto train = run_rlrun("train " + (dir / "best.yaml") + " --timesteps 512 --set run.out_dir=" + (dir / "best_runs"));
+  const auto train = run_rlrun("train " + (dir / "best.yaml") +
+                               " --timesteps 512 --set run.out_dir=" + (dir / "best_runs"));
   INFO(train.output);
   CHECK(train.exit_code == 0);
   // Running the study again adds nothing: it has its 6 trials.
@@ -126,7 +146,8 @@ TEST_CASE("tune: two workers run a study Optuna reads, the report and the best c
   CHECK(optuna_dump(dir / "out/study.journal", "small")["trials"].size() == 6);
 }
 
-TEST_CASE("tune: kill -9 of a worker mid-trial, then the study resumes with every trial intact", "[cli][tune]") {
+TEST_CASE("tune: kill -9 of a worker mid-trial, then the study resumes with every trial intact",
+          "[cli][tune]") {
   TempDir dir("tune_kill");
   // Trials long enough to be killed in the middle: one seed of 200 000 steps, 40 evaluations.
   const std::string study = write_study(dir, "", 3, 200000, 1, 40);
@@ -217,7 +238,8 @@ s.enqueue_trial({"algo.learning_rate": 0.001, "algo.n_epochs": 4, "algo.policy.n
   for (size_t i = 2; i < 5; ++i) CHECK(after["trials"][i]["state"] != "WAITING");
 }
 
-TEST_CASE("tune: a trial whose configuration fails is recorded as failed and the study goes on", "[cli][tune]") {
+TEST_CASE("tune: a trial whose configuration fails is recorded as failed and the study goes on",
+          "[cli][tune]") {
   TempDir dir("tune_fail");
   // n_steps 1 with 8 envs and batch 256: PPO needs batch_size > 1 per minibatch of the rollout;
   // an activation rlrun does not know makes the configuration invalid.
@@ -234,7 +256,9 @@ TEST_CASE("tune: a trial whose configuration fails is recorded as failed and the
   for (const auto& t : dump["trials"]) {
     const bool bad = t["params"]["algo.policy.activation_fn"] == "no_such_activation";
     CHECK((t["state"] == "FAIL") == bad);
-    if (bad) CHECK_THAT(t["system_attrs"]["fail_reason"].get<std::string>(), Catch::Contains("activation"));
+    if (bad)
+      CHECK_THAT(t["system_attrs"]["fail_reason"].get<std::string>(),
+                 Catch::Contains("activation"));
     failed += bad;
   }
   CHECK(failed >= 1);
@@ -245,7 +269,8 @@ TEST_CASE("tune: errors in a study file name the line and suggest the key", "[cl
   const std::string study = write_study(dir, "n_trails: 3\n");
   auto r = run_rlrun("tune " + study);
   CHECK(r.exit_code == 2);
-  CHECK_THAT(r.output, Catch::Contains("study.yaml:") && Catch::Contains("did you mean 'n_trials'"));
+  CHECK_THAT(r.output,
+             Catch::Contains("study.yaml:") && Catch::Contains("did you mean 'n_trials'"));
   std::ofstream(study) << "base: " << RLRUN_SOURCE_DIR << "/configs/cartpole_ppo.yaml\n"
                        << "space:\n  algo.learning_rate: {float: [1.0e-3, 1.0e-4], logg: true}\n";
   r = run_rlrun("tune " + study);
@@ -265,7 +290,8 @@ TEST_CASE("tune: errors in a study file name the line and suggest the key", "[cl
   CHECK(r.exit_code == 2);
 }
 
-TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial re-trains", "[cli][tune]") {
+TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial re-trains",
+          "[cli][tune]") {
   TempDir dir("tune_progress");
   std::string text = read_text(write_study(dir, "", 4, 4096, 1, 4));
   // The file's objective and pruner replaced (later keys would be duplicates).
@@ -285,7 +311,9 @@ TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial
     pruned += t["state"] == "PRUNED";
     if (t["state"] != "COMPLETE") continue;
     // The value is the mean of the seed's progress.csv column train/value_loss.
-    const std::string progress = read_text(dir / ("out/trials/trial_" + std::to_string(t["number"].get<int>()) + "/seed1/progress.csv"));
+    const std::string progress =
+        read_text(dir / ("out/trials/trial_" + std::to_string(t["number"].get<int>()) +
+                         "/seed1/progress.csv"));
     std::istringstream lines(progress);
     std::string header;
     std::getline(lines, header);
@@ -324,7 +352,8 @@ TEST_CASE("tune: a progress.csv objective minimised, successive halving, --trial
 // Issue 41: `--set run.total_timesteps=512` ran every trial for the study's n_timesteps,
 // silently. The keys a study sets for every trial itself are refused as fixed overrides, naming
 // the study's own option; --n-timesteps replaces n_timesteps (workers and report included).
-TEST_CASE("tune: --set of a key the study sets per trial is refused, and --n-timesteps", "[cli][tune]") {
+TEST_CASE("tune: --set of a key the study sets per trial is refused, and --n-timesteps",
+          "[cli][tune]") {
   TempDir dir("tune_steps");
   const std::string study = write_study(dir, "", 1, 4096, 1, 1);
   auto r = run_rlrun("tune " + study + " --set run.total_timesteps=512");

@@ -82,7 +82,8 @@ GridVariances grid_variances(const std::vector<TreeNode>& tree,
 
 TEST_CASE("fANOVA's tree variances on a hand-made tree", "[tune]") {
   // x0 <= 0.5: 0; else x1 <= 1: 2, else 4. x0 in [0, 1], x1 in [0, 2].
-  const std::vector<TreeNode> tree = {split(0, 0.5, 1, 2), leaf(0), split(1, 1.0, 3, 4), leaf(2), leaf(4)};
+  const std::vector<TreeNode> tree = {split(0, 0.5, 1, 2), leaf(0), split(1, 1.0, 3, 4), leaf(2),
+                                      leaf(4)};
   const TreePartition partition(tree, {{0, 1}, {0, 2}});
   // Volumes 1/2, 1/4, 1/4; mean 1.5.
   CHECK(partition.variance() == Approx(0.5 * 2.25 + 0.25 * 0.25 + 0.25 * 6.25));
@@ -112,12 +113,14 @@ TEST_CASE("fANOVA's marginal variances equal Optuna's grid of cells on fitted tr
     }
     const std::vector<std::pair<double, double>> bounds = {{0, 1}, {2, 5}, {0, 1}, {0, 1}};
     std::mt19937_64 tree_rng(static_cast<uint64_t>(round));
-    const auto tree = rlrun::tune::fit_regression_tree(x, y, Eigen::VectorXd::Ones(n), {}, tree_rng);
+    const auto tree =
+        rlrun::tune::fit_regression_tree(x, y, Eigen::VectorXd::Ones(n), {}, tree_rng);
     const TreePartition partition(tree, bounds);
     for (const std::vector<int>& group : {std::vector<int>{0}, {1}, {2, 3}, {0, 1}}) {
       const GridVariances grid = grid_variances(tree, bounds, group);
       CHECK(partition.variance() == Approx(grid.total).epsilon(1e-9));
-      CHECK(partition.marginal_variance(group) == Approx(grid.marginal).epsilon(1e-9).margin(1e-12));
+      CHECK(partition.marginal_variance(group) ==
+            Approx(grid.marginal).epsilon(1e-9).margin(1e-12));
     }
   }
 }
@@ -138,5 +141,6 @@ TEST_CASE("fANOVA importances: the mean share over the trees", "[tune]") {
   // The same seed, the same forest.
   CHECK(fanova_importances(x, y, {{0, 1}, {0, 1}}, {{0}, {1}}, config) == importances);
   // Equal values: no tree has variance (Optuna raises).
-  CHECK(!fanova_importances(x, Eigen::VectorXd::Constant(n, 2.0), {{0, 1}, {0, 1}}, {{0}, {1}}, config));
+  CHECK(!fanova_importances(x, Eigen::VectorXd::Constant(n, 2.0), {{0, 1}, {0, 1}}, {{0}, {1}},
+                            config));
 }

@@ -29,7 +29,9 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string optuna_script() { return std::string("/usr/bin/python3 ") + RLRUN_SOURCE_DIR + "/tests/tune/optuna_study.py"; }
+std::string optuna_script() {
+  return std::string("/usr/bin/python3 ") + RLRUN_SOURCE_DIR + "/tests/tune/optuna_study.py";
+}
 
 json plain(double v) {
   if (std::isfinite(v)) return v;
@@ -49,7 +51,8 @@ json rlrun_dump(const JournalReplay& state, const std::string& name) {
       params[k] = external.is_number_float() ? plain(external.get<double>()) : external;
       distributions[k] = distribution_to_json(t.distributions.at(k));
     }
-    for (const auto& [step, v] : t.intermediate_values) intermediate[std::to_string(step)] = plain(v);
+    for (const auto& [step, v] : t.intermediate_values)
+      intermediate[std::to_string(step)] = plain(v);
     json values = nullptr;
     if (t.values) {
       values = json::array();
@@ -251,7 +254,8 @@ TEST_CASE("journal: workers started together on a fresh journal share one study"
     std::ifstream journal(path);
     int creates = 0;
     for (std::string line; std::getline(journal, line);)
-      if (json::parse(line)["op_code"] == static_cast<int>(JournalOperation::kCreateStudy)) ++creates;
+      if (json::parse(line)["op_code"] == static_cast<int>(JournalOperation::kCreateStudy))
+        ++creates;
     CHECK(creates == 1);
   }
 }
@@ -300,14 +304,17 @@ TEST_CASE("journal: a damaged file is refused with its name, never a crash", "[t
     }
     return "";
   };
-  const std::string create = R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})";
+  const std::string create =
+      R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})";
   write(create + "\n{not json\n" + create + "\n");
   CHECK_THAT(message(), Catch::Contains(path) && Catch::Contains("damaged"));
   write(create + "\n{\"op_code\": 4, \"worker_id\": \"w\", \"study_id\": 0, \"state\": 9}\n");
   CHECK_THAT(message(), Catch::Contains("trial state"));
-  write(create + "\n{\"op_code\": 4, \"worker_id\": \"w\", \"study_id\": 0, \"distributions\": "
-                 "{\"x\": \"{\\\"name\\\": \\\"FloatDistribution\\\", \\\"attributes\\\": {\\\"low\\\": 1, "
-                 "\\\"high\\\": 0, \\\"log\\\": false, \\\"step\\\": null}}\"}, \"params\": {\"x\": 0.5}}\n");
+  write(
+      create +
+      "\n{\"op_code\": 4, \"worker_id\": \"w\", \"study_id\": 0, \"distributions\": "
+      "{\"x\": \"{\\\"name\\\": \\\"FloatDistribution\\\", \\\"attributes\\\": {\\\"low\\\": 1, "
+      "\\\"high\\\": 0, \\\"log\\\": false, \\\"step\\\": null}}\"}, \"params\": {\"x\": 0.5}}\n");
   CHECK_THAT(message(), Catch::Contains("low must be <= high"));
   write(create + "\n{\"op_code\": 77, \"worker_id\": \"w\"}\n");
   CHECK_THAT(message(), Catch::Contains("op_code"));
@@ -328,9 +335,12 @@ TEST_CASE("journal: a damaged file is refused with its name, never a crash", "[t
   write(create + "\n{\"op_code\": 4, \"worker_id\": \"w\", \"stu");
   CHECK(message().empty());
   // Python's NaN and Infinity tokens are numbers (Optuna writes them for NaN reports).
-  write(create + "\n{\"op_code\": 4, \"worker_id\": \"w\", \"study_id\": 0, \"datetime_start\": null}\n"
-                 "{\"op_code\": 7, \"worker_id\": \"w\", \"trial_id\": 0, \"step\": 1, \"intermediate_value\": NaN}\n"
-                 "{\"op_code\": 7, \"worker_id\": \"w\", \"trial_id\": 0, \"step\": 2, \"intermediate_value\": -Infinity}\n");
+  write(create +
+        "\n{\"op_code\": 4, \"worker_id\": \"w\", \"study_id\": 0, \"datetime_start\": null}\n"
+        "{\"op_code\": 7, \"worker_id\": \"w\", \"trial_id\": 0, \"step\": 1, "
+        "\"intermediate_value\": NaN}\n"
+        "{\"op_code\": 7, \"worker_id\": \"w\", \"trial_id\": 0, \"step\": 2, "
+        "\"intermediate_value\": -Infinity}\n");
   JournalStorage storage(path);
   const FrozenTrial& t = storage.state().trial(0);
   CHECK(std::isnan(t.intermediate_values.at(1)));
@@ -341,7 +351,8 @@ TEST_CASE("journal: a half-written last line is left by readers and repaired by 
           "[tune]") {
   TempDir dir("journal_half_line");
   const std::string path = dir.str() + "/study.journal";
-  const std::string create = R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})";
+  const std::string create =
+      R"({"op_code": 0, "worker_id": "w", "study_name": "s", "directions": [1]})";
   const auto text = [&] { return read_text(path); };
   // A fragment (a writer killed mid-append): readers leave it, the next append cuts it first.
   std::ofstream(path) << create << "\n{\"op_code\": 4, \"worker_id\": \"dead\", \"stu";
@@ -364,7 +375,8 @@ TEST_CASE("journal: a half-written last line is left by readers and repaired by 
   CHECK(text().rfind(create + "\n", 0) == 0);
 }
 
-TEST_CASE("journal: nesting deeper than the bound, a link or a FIFO is refused", "[tune][security]") {
+TEST_CASE("journal: nesting deeper than the bound, a link or a FIFO is refused",
+          "[tune][security]") {
   TempDir dir("journal_refused");
   const std::string path = dir.str() + "/study.journal";
   const auto message = [&]() -> std::string {

@@ -21,7 +21,8 @@ std::vector<std::string> ranking(const std::vector<std::pair<std::string, double
   return names;
 }
 
-std::map<std::string, double> as_map(const std::vector<std::pair<std::string, double>>& importances) {
+std::map<std::string, double> as_map(
+    const std::vector<std::pair<std::string, double>>& importances) {
   return {importances.begin(), importances.end()};
 }
 
@@ -72,12 +73,13 @@ TEST_CASE("Importances: a categorical parameter that matters, as Optuna", "[tune
 }
 
 TEST_CASE("Importances: log parameters, as Optuna", "[tune]") {
-  check_against_optuna(synthetic::synthetic_study(synthetic::log_params),
-                       {"learning_rate", "gamma", "n_epochs"},
-                       {{{"learning_rate", 0.95991}, {"gamma", 0.03740}, {"n_epochs", 0.00269}}, 0.03});
+  check_against_optuna(
+      synthetic::synthetic_study(synthetic::log_params), {"learning_rate", "gamma", "n_epochs"},
+      {{{"learning_rate", 0.95991}, {"gamma", 0.03740}, {"n_epochs", 0.00269}}, 0.03});
 }
 
-TEST_CASE("Importances: a log parameter's volume is measured in its own units, as Optuna", "[tune]") {
+TEST_CASE("Importances: a log parameter's volume is measured in its own units, as Optuna",
+          "[tune]") {
   // Most trials have learning rates below 3e-4, where y is 1 higher; in Optuna's measure that is
   // 0.3 % of the range, so x's slope matters more (log space would say the opposite).
   check_against_optuna(synthetic::synthetic_study(synthetic::log_raw_space), {"x", "learning_rate"},

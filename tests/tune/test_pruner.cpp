@@ -62,10 +62,13 @@ TEST_CASE("median pruner: Optuna's startup, warm-up, interval and median rules",
   config.interval_steps = 2;
   auto interval = make_pruner(config, 0);
   for (auto [reports, expected] : std::vector<std::pair<std::map<int64_t, double>, bool>>{
-           {{{3, -100.0}}, true}, {{{2, -100.0}, {3, -100.0}}, false}, {{{1, -100.0}, {3, -100.0}}, true}}) {
+           {{{3, -100.0}}, true},
+           {{{2, -100.0}, {3, -100.0}}, false},
+           {{{1, -100.0}, {3, -100.0}}, true}}) {
     std::vector<FrozenTrial> all = trials;
     all.push_back(trial(5, TrialState::kRunning, reports));
-    CHECK(interval->prune(StudyView{StudyDirection::kMaximize, all}, all.back(), kNoAttr) == expected);
+    CHECK(interval->prune(StudyView{StudyDirection::kMaximize, all}, all.back(), kNoAttr) ==
+          expected);
   }
 }
 
@@ -80,11 +83,13 @@ TEST_CASE("percentile pruner: numpy's interpolated percentile", "[tune]") {
   for (auto [value, expected] : std::vector<std::pair<double, bool>>{{29.9, true}, {30.0, false}}) {
     std::vector<FrozenTrial> all = trials;
     all.push_back(trial(5, TrialState::kRunning, {{1, value}}));
-    CHECK(pruner->prune(StudyView{StudyDirection::kMaximize, all}, all.back(), kNoAttr) == expected);
+    CHECK(pruner->prune(StudyView{StudyDirection::kMaximize, all}, all.back(), kNoAttr) ==
+          expected);
   }
 }
 
-TEST_CASE("successive halving: rungs, promotion of the top quarter, recorded rung values", "[tune]") {
+TEST_CASE("successive halving: rungs, promotion of the top quarter, recorded rung values",
+          "[tune]") {
   PrunerConfig config;
   config.type = "successive_halving";
   config.min_resource = 1;
@@ -96,11 +101,13 @@ TEST_CASE("successive halving: rungs, promotion of the top quarter, recorded run
     t.system_attrs["completed_rung_0"] = i + 1.0;
     trials.push_back(t);
   }
-  const auto judge = [&](double value, StudyDirection direction, std::vector<std::string>& written) {
+  const auto judge = [&](double value, StudyDirection direction,
+                         std::vector<std::string>& written) {
     std::vector<FrozenTrial> all = trials;
     all.push_back(trial(7, TrialState::kRunning, {{1, value}}));
-    return pruner->prune(StudyView{direction, all}, all.back(),
-                         [&](const std::string& key, const nlohmann::json&) { written.push_back(key); });
+    return pruner->prune(
+        StudyView{direction, all}, all.back(),
+        [&](const std::string& key, const nlohmann::json&) { written.push_back(key); });
   };
   // 8 competitors, 8 // 4 - 1 = index 1: maximise needs >= the second largest of 1..7 and v
   // (the top quarter: 7 and 6.5 would both go on; 5.5 is below 6).
@@ -120,8 +127,9 @@ TEST_CASE("successive halving: rungs, promotion of the top quarter, recorded run
   std::vector<FrozenTrial> all = trials;
   all.push_back(trial(7, TrialState::kRunning, {{1, -100.0}}));
   written.clear();
-  CHECK_FALSE(late->prune(StudyView{StudyDirection::kMaximize, all}, all.back(),
-                          [&](const std::string& key, const nlohmann::json&) { written.push_back(key); }));
+  CHECK_FALSE(
+      late->prune(StudyView{StudyDirection::kMaximize, all}, all.back(),
+                  [&](const std::string& key, const nlohmann::json&) { written.push_back(key); }));
   CHECK(written.empty());
 }
 

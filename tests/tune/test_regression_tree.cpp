@@ -13,9 +13,11 @@ namespace {
 
 // One feature per row of `rows`, one sample per column.
 Eigen::MatrixXd features(const std::vector<std::vector<double>>& rows) {
-  Eigen::MatrixXd x(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows[0].size()));
+  Eigen::MatrixXd x(static_cast<Eigen::Index>(rows.size()),
+                    static_cast<Eigen::Index>(rows[0].size()));
   for (size_t f = 0; f < rows.size(); ++f)
-    for (size_t s = 0; s < rows[f].size(); ++s) x(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(s)) = rows[f][s];
+    for (size_t s = 0; s < rows[f].size(); ++s)
+      x(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(s)) = rows[f][s];
   return x;
 }
 
@@ -32,7 +34,8 @@ std::vector<TreeNode> fit(const std::vector<std::vector<double>>& x, const std::
 
 }  // namespace
 
-TEST_CASE("A regression tree splits halfway between the values that separate the targets", "[tune]") {
+TEST_CASE("A regression tree splits halfway between the values that separate the targets",
+          "[tune]") {
   const auto tree = fit({{1, 2, 3, 4, 5, 6}}, {1, 1, 1, 5, 5, 5});
   REQUIRE(tree.size() == 3);
   CHECK(tree[0].feature == 0);

@@ -33,7 +33,9 @@ class RandomSuggest : public TrialSuggest {
     params[name] = to_external(d, internal);
     return params[name];
   }
-  void set_user_attr(const std::string& key, const json& value) override { user_attrs[key] = value; }
+  void set_user_attr(const std::string& key, const json& value) override {
+    user_attrs[key] = value;
+  }
   std::vector<std::string> asked;
   json params = json::object();
   json user_attrs = json::object();
@@ -67,7 +69,9 @@ std::vector<std::string> assignments(const std::vector<Override>& overrides) {
   return out;
 }
 
-std::string config(const std::string& name) { return std::string(RLRUN_SOURCE_DIR) + "/configs/" + name; }
+std::string config(const std::string& name) {
+  return std::string(RLRUN_SOURCE_DIR) + "/configs/" + name;
+}
 
 }  // namespace
 
@@ -79,8 +83,10 @@ TEST_CASE("search space: a study file's parameters, conditions and list-valued c
       "  algo.policy.net_arch: {categorical: [[64], [64, 64]]}\n"
       "  algo.policy.activation_fn: {categorical: [tanh, relu]}\n"
       "  algo.ent_coef: {float: [0.0, 0.1], step: 0.01, if: {algo.policy.activation_fn: relu}}\n");
-  ScriptedSuggest tanh({{"algo.learning_rate", 3e-4}, {"algo.n_epochs", 5},
-                        {"algo.policy.net_arch", "[64, 64]"}, {"algo.policy.activation_fn", "tanh"},
+  ScriptedSuggest tanh({{"algo.learning_rate", 3e-4},
+                        {"algo.n_epochs", 5},
+                        {"algo.policy.net_arch", "[64, 64]"},
+                        {"algo.policy.activation_fn", "tanh"},
                         {"algo.ent_coef", 0.02}});
   const auto overrides = space->sample(tanh);
   CHECK(tanh.asked.size() == 4);  // the condition did not hold: ent_coef is not asked
@@ -89,12 +95,16 @@ TEST_CASE("search space: a study file's parameters, conditions and list-valued c
                                  "algo.policy.net_arch=[64, 64]",
                                  "algo.policy.activation_fn=\"tanh\""});
   Registry registry = make_builtin_registry();
-  const Experiment e = load_experiment(config("cartpole_ppo.yaml"), assignments(overrides), registry);
+  const Experiment e =
+      load_experiment(config("cartpole_ppo.yaml"), assignments(overrides), registry);
   CHECK(e.resolved["algo"]["n_epochs"].as<int>() == 5);
   CHECK(e.resolved["algo"]["policy"]["net_arch"].size() == 2);
 
-  ScriptedSuggest relu({{"algo.learning_rate", 1e-3}, {"algo.n_epochs", 1}, {"algo.policy.net_arch", "[64]"},
-                        {"algo.policy.activation_fn", "relu"}, {"algo.ent_coef", 0.02}});
+  ScriptedSuggest relu({{"algo.learning_rate", 1e-3},
+                        {"algo.n_epochs", 1},
+                        {"algo.policy.net_arch", "[64]"},
+                        {"algo.policy.activation_fn", "relu"},
+                        {"algo.ent_coef", 0.02}});
   CHECK(space->sample(relu).size() == 5);
   // Random draws stay inside their distributions (RandomSuggest checks), for many seeds.
   for (uint64_t seed = 0; seed < 50; ++seed) {
@@ -102,7 +112,8 @@ TEST_CASE("search space: a study file's parameters, conditions and list-valued c
     for (const auto& o : space->sample(random)) CHECK_FALSE(o.yaml.empty());
   }
   // overrides_for: a finished trial's parameters give the same overrides.
-  CHECK(assignments(space->overrides_for({{"algo.learning_rate", 3e-4}, {"algo.n_epochs", 5},
+  CHECK(assignments(space->overrides_for({{"algo.learning_rate", 3e-4},
+                                          {"algo.n_epochs", 5},
                                           {"algo.policy.net_arch", "[64, 64]"},
                                           {"algo.policy.activation_fn", "tanh"}})) ==
         assignments(overrides));
@@ -117,13 +128,16 @@ TEST_CASE("search space: bad parameters are errors at their line", "[tune]") {
     }
     return "";
   };
-  CHECK_THAT(error("space:\n  a: {float: [1, 2], lgo: true}\n"), Catch::Contains("study.yaml:2") && Catch::Contains("did you mean 'log'"));
+  CHECK_THAT(error("space:\n  a: {float: [1, 2], lgo: true}\n"),
+             Catch::Contains("study.yaml:2") && Catch::Contains("did you mean 'log'"));
   CHECK_THAT(error("space:\n  a: {float: [2, 1]}\n"), Catch::Contains("low must be <= high"));
   CHECK_THAT(error("space:\n  a: {float: [0, 1], log: true}\n"), Catch::Contains("low > 0"));
   CHECK_THAT(error("space:\n  a: {int: [1, 4], float: [0, 1]}\n"), Catch::Contains("exactly one"));
   CHECK_THAT(error("space:\n  a: {categorical: []}\n"), Catch::Contains("non-empty"));
-  CHECK_THAT(error("space:\n  a: {int: [1, 4], if: {b: 1}}\n"), Catch::Contains("'b' is not a parameter listed before"));
-  CHECK_THAT(error("space: zoo\n").empty() ? std::string("ok") : error("space: zoo\n"), Catch::Contains("ok"));
+  CHECK_THAT(error("space:\n  a: {int: [1, 4], if: {b: 1}}\n"),
+             Catch::Contains("'b' is not a parameter listed before"));
+  CHECK_THAT(error("space: zoo\n").empty() ? std::string("ok") : error("space: zoo\n"),
+             Catch::Contains("ok"));
   CHECK_THAT(error("space: grid\n"), Catch::Contains("zoo or a map"));
   try {
     parse_space(ConfigNode::load_string("space: zoo\n", "study.yaml").child("space"), "ARS", false);
@@ -136,10 +150,10 @@ TEST_CASE("search space: bad parameters are errors at their line", "[tune]") {
 TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped configs", "[tune]") {
   Registry registry = make_builtin_registry();
   const std::vector<std::tuple<std::string, std::string, bool>> cases{
-      {"PPO", "cartpole_ppo.yaml", false},     {"A2C", "cartpole_a2c.yaml", false},
-      {"DQN", "cartpole_dqn.yaml", false},     {"SAC", "pendulum_sac.yaml", false},
-      {"TD3", "pendulum_td3.yaml", false},     {"DDPG", "pendulum_ddpg.yaml", false},
-      {"TQC", "pendulum_tqc.yaml", false},     {"DQN", "bitflipping_dqn_her.yaml", true},
+      {"PPO", "cartpole_ppo.yaml", false},        {"A2C", "cartpole_a2c.yaml", false},
+      {"DQN", "cartpole_dqn.yaml", false},        {"SAC", "pendulum_sac.yaml", false},
+      {"TD3", "pendulum_td3.yaml", false},        {"DDPG", "pendulum_ddpg.yaml", false},
+      {"TQC", "pendulum_tqc.yaml", false},        {"DQN", "bitflipping_dqn_her.yaml", true},
       {"SAC", "gripper_reach_sac_her.yaml", true}};
   for (const auto& [algo, file, her] : cases) {
     INFO(algo << " " << file);
@@ -158,10 +172,10 @@ TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped con
       if (her) CHECK(trial.params.contains("goal_selection_strategy"));
       // The space is the zoo's: the names Optuna shows are the zoo's.
       if (algo == "PPO") {
-        CHECK(trial.asked == std::vector<std::string>{"batch_size", "n_steps", "one_minus_gamma",
-                                                      "one_minus_gae_lambda", "learning_rate",
-                                                      "ent_coef", "clip_range", "n_epochs",
-                                                      "max_grad_norm", "net_arch", "activation_fn"});
+        CHECK(trial.asked == std::vector<std::string>{
+                                 "batch_size", "n_steps", "one_minus_gamma", "one_minus_gae_lambda",
+                                 "learning_rate", "ent_coef", "clip_range", "n_epochs",
+                                 "max_grad_norm", "net_arch", "activation_fn"});
         CHECK(trial.user_attrs["gamma"].get<double>() ==
               Approx(1 - trial.params["one_minus_gamma"].get<double>()));
       }
@@ -177,16 +191,21 @@ TEST_CASE("distributions: Optuna's JSON form and its checks", "[tune]") {
   CHECK(f.high == 1.0);  // a whole number of steps in decimal, as Optuna's Decimal arithmetic
   CHECK(make_float_distribution("x", 0.0, 1.0, false, 0.3).high == Approx(0.9));
   CHECK(make_int_distribution("n", 1, 10, false, 4).high == 9);
-  CHECK(distribution_to_json(f) ==
-        R"({"name":"FloatDistribution","attributes":{"step":0.1,"low":0.1,"high":1.0,"log":false}})");
+  CHECK(
+      distribution_to_json(f) ==
+      R"({"name":"FloatDistribution","attributes":{"step":0.1,"low":0.1,"high":1.0,"log":false}})");
   const auto back = distribution_from_json(distribution_to_json(f), "here");
   CHECK(std::get<FloatDistribution>(back) == f);
-  const auto c = distribution_from_json(R"({"type": "categorical", "choices": ["a", null, 2]})", "here");
+  const auto c =
+      distribution_from_json(R"({"type": "categorical", "choices": ["a", null, 2]})", "here");
   CHECK(to_external(c, 1).is_null());
   CHECK(to_internal(c, 2.0) == 2);  // 2 == 2.0, as Python compares
   CHECK_THROWS_AS(to_internal(c, "b"), ConfigError);
-  CHECK_THROWS_AS(distribution_from_json(R"({"name": "FloatDistribution", "attributes": {"low": "x"}})", "here"), ConfigError);
-  CHECK_THROWS_AS(distribution_from_json(R"({"name": "Evil", "attributes": {}})", "here"), ConfigError);
+  CHECK_THROWS_AS(distribution_from_json(
+                      R"({"name": "FloatDistribution", "attributes": {"low": "x"}})", "here"),
+                  ConfigError);
+  CHECK_THROWS_AS(distribution_from_json(R"({"name": "Evil", "attributes": {}})", "here"),
+                  ConfigError);
   CHECK(single(make_int_distribution("n", 3, 4, false, 2)));
   CHECK_FALSE(contains(make_int_distribution("n", 1, 9, false, 2), 4));
 }

@@ -44,7 +44,8 @@ std::string file_head(const std::string& path, size_t n) {
 int best_number(const std::vector<FrozenTrial>& trials) {
   int best = -1;
   for (const FrozenTrial& t : trials)
-    if (t.state == TrialState::kComplete && (best < 0 || *t.value() > *trials[static_cast<size_t>(best)].value()))
+    if (t.state == TrialState::kComplete &&
+        (best < 0 || *t.value() > *trials[static_cast<size_t>(best)].value()))
       best = t.number;
   return best;
 }
@@ -62,7 +63,8 @@ TEST_CASE("The study report names the best trial and counts trials by state", "[
   const std::string text = out.str();
   INFO(text);
   CHECK(text.find("study ppo_cartpole (maximize)") != std::string::npos);
-  CHECK(text.find("33 trials: COMPLETE 30, PRUNED 1, FAIL 1, RUNNING 1, WAITING 0") != std::string::npos);
+  CHECK(text.find("33 trials: COMPLETE 30, PRUNED 1, FAIL 1, RUNNING 1, WAITING 0") !=
+        std::string::npos);
   const int best = best_number(trials);
   const FrozenTrial& b = trials[static_cast<size_t>(best)];
   CHECK(text.find("best trial: " + std::to_string(best) + ", value ") != std::string::npos);
@@ -85,7 +87,8 @@ TEST_CASE("The study report names the best trial and counts trials by state", "[
   CHECK(file_head(options.plot_path, 8) == "\x89PNG\r\n\x1a\n");
 }
 
-TEST_CASE("The study report shows the best trial's user attrs and wraps long parameter lists", "[tune]") {
+TEST_CASE("The study report shows the best trial's user attrs and wraps long parameter lists",
+          "[tune]") {
   std::vector<FrozenTrial> trials = synthetic::synthetic_study(synthetic::x1_only, 3);
   for (FrozenTrial& t : trials)
     for (int i = 0; i < 12; ++i) {
@@ -134,7 +137,7 @@ TEST_CASE("The history plot is a PNG or an SVG by its extension", "[tune]") {
   CHECK(svg.find("<svg") != std::string::npos);
   CHECK_THROWS_AS(write_history_plot("study", StudyDirection::kMaximize, trials, dir.file("c.jpg")),
                   rlrun::UsageError);
-  CHECK_THROWS_AS(write_history_plot("study", StudyDirection::kMaximize, trials,
-                                     dir.path() + "/missing/d.png"),
-                  rlrun::RuntimeFailure);
+  CHECK_THROWS_AS(
+      write_history_plot("study", StudyDirection::kMaximize, trials, dir.path() + "/missing/d.png"),
+      rlrun::RuntimeFailure);
 }

@@ -1,7 +1,7 @@
 // FrameStack and NormalizeObservation on Dict observations: key by key, as SB3's
 // StackedObservations and VecNormalize(norm_obs_keys) treat Dict spaces.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -54,7 +54,8 @@ TEST_CASE("NormalizeObservation normalises the Box keys of a Dict", "[wrappers][
   RunningMeanStd expected(5);
   expected.update(original.subspan(5, 5));
   CHECK(env.statistics().mean() == expected.mean());
-  for (int i = 0; i < 5; ++i) CHECK(obs[static_cast<size_t>(i)] == original[static_cast<size_t>(i)]);
+  for (int i = 0; i < 5; ++i)
+    CHECK(obs[static_cast<size_t>(i)] == original[static_cast<size_t>(i)]);
   for (int k = 0; k < 5; ++k) {
     const double z = (original[5 + k] - expected.mean()[k]) / std::sqrt(expected.var()[k] + 1e-8);
     CHECK(obs[static_cast<size_t>(5 + k)] == static_cast<float>(std::clamp(z, -10.0, 10.0)));

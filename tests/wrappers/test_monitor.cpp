@@ -1,18 +1,18 @@
 #include <catch2/catch.hpp>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "rlrun/core/float_format.hpp"
+#include "rlrun/envs/classic/cartpole.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
-#include "rlrun/envs/classic/cartpole.hpp"
 
 using namespace rlrun;
 
@@ -31,7 +31,8 @@ TEST_CASE("python_float_repr matches Python's repr", "[wrappers][monitor]") {
   CHECK(python_float_repr(1732243200.123456) == "1732243200.123456");
 }
 
-TEST_CASE("python_float_repr: the fewest digits that read back, for any double", "[wrappers][monitor]") {
+TEST_CASE("python_float_repr: the fewest digits that read back, for any double",
+          "[wrappers][monitor]") {
   // The reference is the definition: the first number of significant digits at which the
   // correctly rounded "%.*e" text reads back to the same double (what rlrun did before it used
   // std::to_chars). Random bit patterns cover every exponent; rounded numbers of every scale

@@ -18,8 +18,13 @@ namespace {
 std::unique_ptr<ScriptedEnv> scripted() {
   return std::make_unique<ScriptedEnv>(
       std::vector<std::vector<float>>{{1.0f, -2.0f}, {2.0f, 2.0f}, {-0.5f, 0.75f}},
-      std::vector<std::vector<float>>{
-          {1.5f, 0.5f}, {3.0f, -1.0f}, {0.25f, 4.0f}, {-1.0f, 1.0f}, {0.5f, 0.5f}, {2.5f, -3.0f}, {1.0f, 1.0f}},
+      std::vector<std::vector<float>>{{1.5f, 0.5f},
+                                      {3.0f, -1.0f},
+                                      {0.25f, 4.0f},
+                                      {-1.0f, 1.0f},
+                                      {0.5f, 0.5f},
+                                      {2.5f, -3.0f},
+                                      {1.0f, 1.0f}},
       std::vector<double>{1.0, 0.5, 2.0, -1.0, 3.0, 0.0, 1.5}, 3);
 }
 
@@ -35,8 +40,8 @@ TEST_CASE("NormalizeObservation + NormalizeReward match SB3 VecNormalize with on
   NormalizeReward::Config reward_config;
   reward_config.gamma = 0.9;
   std::vector<EnvPtr> envs;
-  envs.push_back(std::make_unique<NormalizeReward>(std::make_unique<NormalizeObservation>(scripted()),
-                                                   reward_config));
+  envs.push_back(std::make_unique<NormalizeReward>(
+      std::make_unique<NormalizeObservation>(scripted()), reward_config));
   VecEnv vec(std::move(envs));
   auto* obs_norm = find_wrapper<NormalizeObservation>(vec.env(0));
   auto* rew_norm = find_wrapper<NormalizeReward>(vec.env(0));
@@ -47,16 +52,14 @@ TEST_CASE("NormalizeObservation + NormalizeReward match SB3 VecNormalize with on
   vec.reset();
   check_obs(vec.obs().col(0), 0.007070714142173529, -0.008944093249738216);
   // Per step: normalised observation (after the auto-reset), normalised reward.
-  const double expected_obs[7][2] = {{0.9992512464523315, 0.999970018863678},
-                                     {1.3727695941925049, -0.16224682331085205},
-                                     {0.16907890141010284, 1.4021440744400024},
-                                     {-1.733661413192749, 0.6301305890083313},
-                                     {-0.5345045924186707, 0.25400322675704956},
-                                     {-1.1043040752410889, 0.40584349632263184},
-                                     {0.051649369299411774, 0.556698739528656}};
-  const double expected_reward[7] = {10.0, 2.496258403996981, 2.030892758195361,
-                                     -0.6608652525713191, 2.1365260904950847, 0.0,
-                                     1.24861552293566};
+  const double expected_obs[7][2] = {
+      {0.9992512464523315, 0.999970018863678},    {1.3727695941925049, -0.16224682331085205},
+      {0.16907890141010284, 1.4021440744400024},  {-1.733661413192749, 0.6301305890083313},
+      {-0.5345045924186707, 0.25400322675704956}, {-1.1043040752410889, 0.40584349632263184},
+      {0.051649369299411774, 0.556698739528656}};
+  const double expected_reward[7] = {
+      10.0, 2.496258403996981, 2.030892758195361, -0.6608652525713191, 2.1365260904950847,
+      0.0,  1.24861552293566};
   const Eigen::MatrixXf action = Eigen::MatrixXf::Zero(1, 1);
   for (int t = 0; t < 7; ++t) {
     INFO("step " << t);
@@ -95,7 +98,8 @@ TEST_CASE("NormalizeObservation: the final observation uses the statistics befor
   check_obs(vec.final_obs().col(0), 1.0690559148788452, -2.413008451461792);
 }
 
-TEST_CASE("NormalizeObservation: clipping, frozen statistics and their round trip", "[wrappers][normalize]") {
+TEST_CASE("NormalizeObservation: clipping, frozen statistics and their round trip",
+          "[wrappers][normalize]") {
   NormalizeObservation::Config config;
   config.clip_obs = 0.5;
   NormalizeObservation env(scripted(), config);
@@ -135,16 +139,18 @@ TEST_CASE("NormalizeObservation: clipping, frozen statistics and their round tri
   NormalizeObservation third(scripted(), config);
   CHECK_THROWS_WITH(load_model_statistics(third, TensorMap{}, false),
                     Catch::Contains("wrappers/NormalizeObservation/mean"));
-  CHECK_THROWS_AS(NormalizeObservation(std::make_unique<ScriptedEnv>(
-                                           std::vector<std::vector<float>>{{0.0f}},
-                                           std::vector<std::vector<float>>{{0.0f}},
-                                           std::vector<double>{0.0}, 1),
-                                       NormalizeObservation::Config{-1.0, 1e-8, {}, {}}),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(
+      NormalizeObservation(std::make_unique<ScriptedEnv>(std::vector<std::vector<float>>{{0.0f}},
+                                                         std::vector<std::vector<float>>{{0.0f}},
+                                                         std::vector<double>{0.0}, 1),
+                           NormalizeObservation::Config{-1.0, 1e-8, {}, {}}),
+      std::invalid_argument);
 }
 
-TEST_CASE("NormalizeObservation: freeze_after stops the updates after N observations, also "
-          "after a save and load", "[wrappers][normalize]") {
+TEST_CASE(
+    "NormalizeObservation: freeze_after stops the updates after N observations, also "
+    "after a save and load",
+    "[wrappers][normalize]") {
   NormalizeObservation::Config frozen_config;
   frozen_config.freeze_after = 4;
   NormalizeObservation frozen(scripted(), frozen_config);
@@ -191,7 +197,8 @@ TEST_CASE("Normalize wrappers: the n envs of a VecEnv share one set of statistic
           "[wrappers][normalize]") {
   std::vector<EnvPtr> envs;
   for (int i = 0; i < 3; ++i)
-    envs.push_back(std::make_unique<NormalizeReward>(std::make_unique<NormalizeObservation>(scripted())));
+    envs.push_back(
+        std::make_unique<NormalizeReward>(std::make_unique<NormalizeObservation>(scripted())));
   VecEnv vec(std::move(envs));
   share_model_statistics(vec);
   vec.reset();

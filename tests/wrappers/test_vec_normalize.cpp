@@ -35,10 +35,11 @@ std::unique_ptr<ScriptedEnv> scripted(int c) {
   std::vector<std::vector<float>> resets, steps;
   std::vector<double> rewards;
   for (int k = 0; k < 3; ++k)
-    resets.push_back({0.5f * static_cast<float>(c) - static_cast<float>(k), 1.25f * static_cast<float>(k),
-                      3.0f - static_cast<float>(c)});
+    resets.push_back({0.5f * static_cast<float>(c) - static_cast<float>(k),
+                      1.25f * static_cast<float>(k), 3.0f - static_cast<float>(c)});
   for (int t = 0; t < 7; ++t) {
-    steps.push_back({0.1f * static_cast<float>(t * (c + 1)), static_cast<float>(c) - 0.7f * static_cast<float>(t),
+    steps.push_back({0.1f * static_cast<float>(t * (c + 1)),
+                     static_cast<float>(c) - 0.7f * static_cast<float>(t),
                      static_cast<float>((t * 37 + c * 11) % 13) / 3.0f});
     rewards.push_back(static_cast<double>((t * 5 + c * 3) % 7) - 2.5);
   }
@@ -116,7 +117,7 @@ TEST_CASE("env.normalize matches SB3 VecNormalize's batch update with several en
   const std::string path = dir / "batches.txt";
   std::ofstream(path) << input.str();
   const auto r = rlrun::testing::run_command("/usr/bin/python3 " + kSource +
-                             "/tests/data/vec_normalize_reference.py " + path);
+                                             "/tests/data/vec_normalize_reference.py " + path);
   REQUIRE(r.exit_code == 0);
   std::istringstream expected(r.output);
   std::string line;
@@ -161,7 +162,8 @@ TEST_CASE("env.normalize with a replay buffer: originals stored, batches normali
     for (int c = 0; c < kCopies; ++c) stored.push_back(last_original.col(c));
     vec.step(actions);
     buffer.add(last_original, actions, vec);
-    for (int c = 0; c < kCopies; ++c) stored_rewards.push_back(static_cast<float>(vec.original_rewards()(c)));
+    for (int c = 0; c < kCopies; ++c)
+      stored_rewards.push_back(static_cast<float>(vec.original_rewards()(c)));
     last_original = vec.original_obs();
   }
   Rng rng(5);
@@ -178,7 +180,8 @@ TEST_CASE("env.normalize with a replay buffer: originals stored, batches normali
     bool found = false;
     for (const Eigen::VectorXf& o : stored) found = found || o == batch.obs.col(j);
     CHECK(found);
-    CHECK(std::find(stored_rewards.begin(), stored_rewards.end(), batch.rewards(j)) != stored_rewards.end());
+    CHECK(std::find(stored_rewards.begin(), stored_rewards.end(), batch.rewards(j)) !=
+          stored_rewards.end());
     // ... and normalising it uses the current statistics.
     Eigen::VectorXf expected = batch.obs.col(j);
     stats.normalize(std::span<float>(expected.data(), static_cast<size_t>(kDim)));

@@ -26,7 +26,8 @@ std::unique_ptr<ScriptedEnv> script(std::vector<std::vector<float>> steps, int l
 // Builds a wrapper from YAML text the way make_env does.
 EnvPtr from_yaml(const std::string& yaml, EnvPtr inner) {
   const ConfigNode node = ConfigNode::load_string(yaml, "test.yaml");
-  const WrapperEntry& entry = builtin_registry().wrapper(node.child("id").as_string(), node.child("id"));
+  const WrapperEntry& entry =
+      builtin_registry().wrapper(node.child("id").as_string(), node.child("id"));
   return entry.make(std::move(inner), entry.parse(node));
 }
 
@@ -46,7 +47,8 @@ TEST_CASE("ClipAction: clips to the inner bounds, exposes an unbounded Box", "[w
   CHECK(raw->last_action() == std::vector<float>{-2.0f, 1.5f});
 }
 
-TEST_CASE("RescaleAction: [min_action, max_action] maps affinely onto the env's bounds", "[wrappers]") {
+TEST_CASE("RescaleAction: [min_action, max_action] maps affinely onto the env's bounds",
+          "[wrappers]") {
   auto inner = script({{0.0f, 0.0f}}, 100, 2);
   ScriptedEnv* raw = inner.get();
   RescaleAction::Config config;
@@ -64,16 +66,20 @@ TEST_CASE("RescaleAction: [min_action, max_action] maps affinely onto the env's 
   env.step(action, obs);
   CHECK(raw->last_action() == std::vector<float>{2.0f, 2.0f});
 
-  CHECK_THROWS_AS(from_yaml("{id: RescaleAction, min_action: [0, 0, 0]}", script({{0.0f, 0.0f}}, 100, 2)),
-                  std::invalid_argument);
-  CHECK_THROWS_AS(from_yaml("{id: RescaleAction, min_action: 1, max_action: 1}", script({{0.0f, 0.0f}})),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(
+      from_yaml("{id: RescaleAction, min_action: [0, 0, 0]}", script({{0.0f, 0.0f}}, 100, 2)),
+      std::invalid_argument);
+  CHECK_THROWS_AS(
+      from_yaml("{id: RescaleAction, min_action: 1, max_action: 1}", script({{0.0f, 0.0f}})),
+      std::invalid_argument);
   // YAML scalars and lists both parse.
-  EnvPtr scalar = from_yaml("{id: RescaleAction, min_action: -3, max_action: 3}", script({{0.0f, 0.0f}}));
+  EnvPtr scalar =
+      from_yaml("{id: RescaleAction, min_action: -3, max_action: 3}", script({{0.0f, 0.0f}}));
   CHECK(scalar->action_space().describe() == "Box(-3.0, 3.0, (1,), float32)");
 }
 
-TEST_CASE("FrameStack: oldest first, zero or reset padding, a fresh stack after reset", "[wrappers]") {
+TEST_CASE("FrameStack: oldest first, zero or reset padding, a fresh stack after reset",
+          "[wrappers]") {
   FrameStack::Config config;
   config.n_stack = 3;
   FrameStack env(script({{1.5f, 0.5f}, {3.0f, -1.0f}}), config);
@@ -103,10 +109,10 @@ TEST_CASE("FrameStack: oldest first, zero or reset padding, a fresh stack after 
 
 TEST_CASE("TransformReward: scale, then offset, then clip", "[wrappers]") {
   auto make = [](double reward, const std::string& yaml) {
-    EnvPtr env = from_yaml(yaml, std::make_unique<ScriptedEnv>(
-                                     std::vector<std::vector<float>>{{0.0f, 0.0f}},
-                                     std::vector<std::vector<float>>{{0.0f, 0.0f}},
-                                     std::vector<double>{reward}, 100));
+    EnvPtr env =
+        from_yaml(yaml, std::make_unique<ScriptedEnv>(std::vector<std::vector<float>>{{0.0f, 0.0f}},
+                                                      std::vector<std::vector<float>>{{0.0f, 0.0f}},
+                                                      std::vector<double>{reward}, 100));
     std::vector<float> obs(2), action{0.0f};
     env->reset(std::nullopt, obs);
     return env->step(action, obs).reward;
@@ -115,12 +121,14 @@ TEST_CASE("TransformReward: scale, then offset, then clip", "[wrappers]") {
   CHECK(make(2.0, "{id: TransformReward, scale: 2, offset: 1, clip_max: 4}") == 4.0);
   CHECK(make(-3.0, "{id: TransformReward, scale: 0.5, clip_min: -1, clip_max: 1}") == -1.0);
   CHECK(make(0.25, "{id: TransformReward, clip_min: -1, clip_max: 1}") == 0.25);
-  CHECK_THROWS_AS(make(0.0, "{id: TransformReward, clip_min: 1, clip_max: -1}"), std::invalid_argument);
+  CHECK_THROWS_AS(make(0.0, "{id: TransformReward, clip_min: 1, clip_max: -1}"),
+                  std::invalid_argument);
   CHECK_THROWS_WITH(make(0.0, "{id: TransformReward, scal: 2}"),
                     Catch::Contains("did you mean 'scale'"));
 }
 
-TEST_CASE("RewardShaping: obs_above_for penalises a streak of k steps above a threshold", "[wrappers]") {
+TEST_CASE("RewardShaping: obs_above_for penalises a streak of k steps above a threshold",
+          "[wrappers]") {
   // x over the steps: 0.6 0.7 0.8 0.4 0.9 0.9 -> streak above 0.5: 1 2 3 0 1 2.
   const std::vector<std::vector<float>> xs{{0.6f, 0.0f}, {0.7f, 0.0f}, {0.8f, 0.0f},
                                            {0.4f, 0.0f}, {0.9f, 0.0f}, {0.9f, 0.0f}};
@@ -136,13 +144,15 @@ TEST_CASE("RewardShaping: obs_above_for penalises a streak of k steps above a th
   CHECK(rewards("{id: RewardShaping, terms: [{type: obs_above_for, index: 0, threshold: 0.5, "
                 "steps: 2, penalty: -1.0}]}") == std::vector<double>{1, 0, 0, 1, 1, 0});
   CHECK(rewards("{id: RewardShaping, terms: [{type: obs_above_for, index: 0, threshold: 0.5, "
-                "steps: 2, penalty: -1.0, repeat: false}]}") == std::vector<double>{1, 0, 1, 1, 1, 0});
+                "steps: 2, penalty: -1.0, repeat: false}]}") ==
+        std::vector<double>{1, 0, 1, 1, 1, 0});
   CHECK(rewards("{id: RewardShaping, terms: [{type: obs_below_for, index: 0, threshold: 0.5, "
                 "steps: 1, penalty: -2}]}") == std::vector<double>{1, 1, 1, -1, 1, 1});
 
   // A reset clears the streak: episodes of 2 steps never reach a streak of 3.
   EnvPtr short_episodes = from_yaml(
-      "{id: RewardShaping, terms: [{type: obs_above_for, index: 0, threshold: 0.5, steps: 3, penalty: -1}]}",
+      "{id: RewardShaping, terms: [{type: obs_above_for, index: 0, threshold: 0.5, steps: 3, "
+      "penalty: -1}]}",
       script(xs, 2));
   std::vector<float> obs(2), action{0.0f};
   for (int episode = 0; episode < 3; ++episode) {
@@ -172,7 +182,8 @@ TEST_CASE("RewardShaping: strict parsing of terms", "[wrappers]") {
   // A key of another term type is not silently ignored.
   CHECK_THROWS_WITH(build("{id: RewardShaping, terms: [{type: constant, coef: 1}]}"),
                     Catch::Contains("unknown key 'coef'"));
-  CHECK_THROWS_WITH(build("{id: RewardShaping, terms: [{index: 0}]}"), Catch::Contains("missing `type`"));
+  CHECK_THROWS_WITH(build("{id: RewardShaping, terms: [{index: 0}]}"),
+                    Catch::Contains("missing `type`"));
   CHECK_THROWS_WITH(build("{id: RewardShaping, terms: [{type: obs_abs, index: 2, coef: -1}]}"),
                     Catch::Contains("index 2 is outside the observation"));
   CHECK_THROWS_WITH(build("{id: RewardShaping, terms: [{type: obs_above_for, steps: 0}]}"),
@@ -180,7 +191,8 @@ TEST_CASE("RewardShaping: strict parsing of terms", "[wrappers]") {
   // The resolved form lists each term with its type's defaults.
   const ConfigNode node = ConfigNode::load_string(
       "{id: RewardShaping, terms: [{type: obs_above_for, index: 0, threshold: 0.5}]}", "test.yaml");
-  const YAML::Node resolved = builtin_registry().wrapper("RewardShaping", node.child("id")).parse(node).resolved();
+  const YAML::Node resolved =
+      builtin_registry().wrapper("RewardShaping", node.child("id")).parse(node).resolved();
   CHECK(resolved["terms"][0]["type"].as<std::string>() == "obs_above_for");
   CHECK(resolved["terms"][0]["steps"].as<int>() == 1);
   CHECK(resolved["terms"][0]["penalty"].as<double>() == -1.0);

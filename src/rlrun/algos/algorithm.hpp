@@ -10,9 +10,9 @@
 #include <string>
 
 #include "rlrun/core/logger.hpp"
-#include "rlrun/space.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 

@@ -40,8 +40,8 @@ class AnyConfig {
   template <class C>
   const C& get() const {
     if (!type_ || *type_ != typeid(C))
-      throw std::logic_error(std::string("AnyConfig: holds ") + (type_ ? type_->name() : "nothing") +
-                             ", not " + typeid(C).name());
+      throw std::logic_error(std::string("AnyConfig: holds ") +
+                             (type_ ? type_->name() : "nothing") + ", not " + typeid(C).name());
     return *static_cast<const C*>(value_.get());
   }
   bool empty() const { return !value_; }

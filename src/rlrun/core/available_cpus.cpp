@@ -83,8 +83,9 @@ std::optional<int> cgroup_quota() {
     v1 = tightest_quota(*own.v1_cpu, [](const std::string& path) {
       for (const char* mount : {"/sys/fs/cgroup/cpu", "/sys/fs/cgroup/cpu,cpuacct"}) {
         const std::string dir = std::string(mount) + path;
-        if (const std::optional<int> cpus = cpus_of_cgroup_v1(
-                read_small_file(dir + "/cpu.cfs_quota_us"), read_small_file(dir + "/cpu.cfs_period_us")))
+        if (const std::optional<int> cpus =
+                cpus_of_cgroup_v1(read_small_file(dir + "/cpu.cfs_quota_us"),
+                                  read_small_file(dir + "/cpu.cfs_period_us")))
           return cpus;
       }
       return std::optional<int>();
@@ -109,7 +110,8 @@ std::optional<int> cpus_of_cgroup_v2_max(const std::string& text) {
   return q && p ? whole_cpus(*q, *p) : std::nullopt;
 }
 
-std::optional<int> cpus_of_cgroup_v1(const std::string& quota_text, const std::string& period_text) {
+std::optional<int> cpus_of_cgroup_v1(const std::string& quota_text,
+                                     const std::string& period_text) {
   const std::optional<double> q = number(quota_text), p = number(period_text);
   return q && p ? whole_cpus(*q, *p) : std::nullopt;  // a quota of -1 means no limit
 }

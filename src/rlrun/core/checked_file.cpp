@@ -27,7 +27,8 @@ void check_writable_file(const std::string& path) {
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // as write_csv does
   struct stat st {};
   const bool exists = ::stat(path.c_str(), &st) == 0;
-  if (exists && S_ISDIR(st.st_mode)) throw RuntimeFailure("cannot write " + path + ": it is a directory");
+  if (exists && S_ISDIR(st.st_mode))
+    throw RuntimeFailure("cannot write " + path + ": it is a directory");
   if (exists && !S_ISREG(st.st_mode)) return;
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | (exists ? 0 : O_CREAT | O_EXCL), 0666);
   if (fd < 0) throw RuntimeFailure("cannot write " + path + ": " + describe_errno(errno));
@@ -65,7 +66,8 @@ CheckedFile::~CheckedFile() {
 }
 
 CheckedFile::CheckedFile(CheckedFile&& other) noexcept
-    : path_(std::move(other.path_)), fd_(std::exchange(other.fd_, -1)),
+    : path_(std::move(other.path_)),
+      fd_(std::exchange(other.fd_, -1)),
       buffer_(std::move(other.buffer_)) {}
 
 CheckedFile& CheckedFile::operator=(CheckedFile&& other) noexcept {

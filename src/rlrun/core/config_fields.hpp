@@ -82,7 +82,7 @@ void decode(const ConfigNode& n, std::optional<T>& out) {
 
 class ConfigReader;
 template <class T>
-  requires requires(T t, ConfigReader& r) { t.visit(r); }
+requires requires(T t, ConfigReader& r) { t.visit(r); }
 void decode(const ConfigNode& n, T& out);
 
 // --- encoding one value -------------------------------------------------------------------
@@ -110,20 +110,18 @@ YAML::Node encode(const std::optional<T>& v) {
 }
 class ConfigWriter;
 template <class T>
-  requires requires(T t, ConfigWriter& w) { t.visit(w); }
+requires requires(T t, ConfigWriter& w) { t.visit(w); }
 YAML::Node encode(const T& v);
 
 // --- checking one value against its constraint ---------------------------------------------
 inline std::string describe_check(const Bounds& b) { return b.describe(); }
 inline std::string describe_check(const OneOf& o) { return o.describe(); }
 template <class C>
-  requires requires(const C& c, const std::string& s) { c.problem(s); }
-std::string describe_check(const C& c) {
-  return c.describe();
-}
+requires requires(const C& c, const std::string& s) { c.problem(s); }
+std::string describe_check(const C& c) { return c.describe(); }
 
 template <class T>
-  requires std::is_arithmetic_v<T>
+requires std::is_arithmetic_v<T>
 void check_value(const ConfigNode& n, const T& value, const Bounds& bounds) {
   const std::string problem = bounds.problem(static_cast<double>(value));
   if (!problem.empty()) n.fail(problem);
@@ -139,7 +137,7 @@ inline void check_value(const ConfigNode& n, const std::string& value, const One
          allowed.describe());
 }
 template <class C>
-  requires requires(const C& c, const std::string& s) { c.problem(s); }
+requires requires(const C& c, const std::string& s) { c.problem(s); }
 void check_value(const ConfigNode& n, const std::string& value, const C& check) {
   const std::string problem = check.problem(value);
   if (!problem.empty()) n.fail(problem);
@@ -172,7 +170,8 @@ class ConfigReader {
   }
   template <class T, class C>
   void operator()(const char* key, T& field, const char* /*doc*/, const C& check) {
-    read(key, field, [&check](const ConfigNode& n, const T& value) { check_value(n, value, check); });
+    read(key, field,
+         [&check](const ConfigNode& n, const T& value) { check_value(n, value, check); });
   }
 
   // Unknown keys join the problems found so far; throws them all, if any.
@@ -253,7 +252,7 @@ class ConfigDocumenter {
  public:
   template <class T>
   void operator()(const char* key, T& field, const char* doc) {
-    if constexpr (requires(ConfigDocumenter& d) { field.visit(d); }) {
+    if constexpr (requires(ConfigDocumenter & d) { field.visit(d); }) {
       ConfigDocumenter nested;
       field.visit(nested);
       for (FieldDoc row : nested.rows()) {
@@ -282,7 +281,7 @@ class ConfigDocumenter {
 };
 
 template <class T>
-  requires requires(T t, ConfigReader& r) { t.visit(r); }
+requires requires(T t, ConfigReader& r) { t.visit(r); }
 void decode(const ConfigNode& n, T& out) {
   ConfigReader reader(n);
   out.visit(reader);
@@ -290,7 +289,7 @@ void decode(const ConfigNode& n, T& out) {
 }
 
 template <class T>
-  requires requires(T t, ConfigWriter& w) { t.visit(w); }
+requires requires(T t, ConfigWriter& w) { t.visit(w); }
 YAML::Node encode(const T& v) {
   T copy = v;
   ConfigWriter writer;

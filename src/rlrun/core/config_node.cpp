@@ -81,8 +81,8 @@ std::string strip_digit_separators(std::string s) {
   if (s.find('_') == std::string::npos) return s;
   std::string out;
   for (size_t i = 0; i < s.size(); ++i) {
-    const bool between_digits = i > 0 && i + 1 < s.size() && std::isdigit(s[i - 1]) &&
-                                std::isdigit(s[i + 1]);
+    const bool between_digits =
+        i > 0 && i + 1 < s.size() && std::isdigit(s[i - 1]) && std::isdigit(s[i + 1]);
     if (s[i] == '_' && between_digits) continue;
     out += s[i];
   }
@@ -182,8 +182,8 @@ void merge_into(YAML::Node map, const std::string& origin, int depth) {
   if (sources.IsMap()) merged.push_back(sources);
   if (sources.IsSequence())
     for (const YAML::Node& item : sources) merged.push_back(item);
-  if (merged.empty() || std::any_of(merged.begin(), merged.end(),
-                                    [](const YAML::Node& m) { return !m.IsMap(); }))
+  if (merged.empty() ||
+      std::any_of(merged.begin(), merged.end(), [](const YAML::Node& m) { return !m.IsMap(); }))
     throw ConfigError(position(origin, merge_key.Mark()) +
                       ": a merge key (<<) takes a map or a list of maps, e.g. <<: *defaults or "
                       "<<: [*a, *b]");
@@ -395,7 +395,8 @@ void ConfigNode::fail_at_key(const std::string& key, const std::string& message)
   std::string where = value.where();
   if (!value.from_command_line() && is_map()) {
     for (const auto& kv : node_)
-      if (kv.first.IsScalar() && kv.first.Scalar() == key) where = position(context_->origin, kv.first.Mark());
+      if (kv.first.IsScalar() && kv.first.Scalar() == key)
+        where = position(context_->origin, kv.first.Mark());
   }
   throw ConfigError(where + ": " + quoted_text(value.path()) + ": " + message);
 }
@@ -440,7 +441,8 @@ int64_t ConfigNode::as_int() const {
   if (end == text.data() + text.size() && begin != end) {
     if (error == std::errc()) return exact;
     if (error == std::errc::result_out_of_range)
-      fail("integer " + node_.Scalar() + " is out of range (at most 9223372036854775807 = 2^63 - 1)");
+      fail("integer " + node_.Scalar() +
+           " is out of range (at most 9223372036854775807 = 2^63 - 1)");
   }
   // Accept 1e5 and 100_000: rl-zoo files write timesteps that way.
   double v = std::numeric_limits<double>::quiet_NaN();
@@ -465,8 +467,7 @@ bool ConfigNode::as_bool() const {
     if (s == "true" || s == "yes" || s == "on") return true;
     if (s == "false" || s == "no" || s == "off") return false;
   }
-  fail("expected true or false, got '" + (is_scalar() ? node_.Scalar() : "a non-scalar") +
-       "'");
+  fail("expected true or false, got '" + (is_scalar() ? node_.Scalar() : "a non-scalar") + "'");
 }
 
 std::string yaml_override_text(const YAML::Node& node) {

@@ -114,9 +114,9 @@ class ConfigNode {
 
  private:
   struct Context {
-    std::string origin;                        // file name or description
+    std::string origin;  // file name or description
     ConfigTrust trust = ConfigTrust::kUser;
-    std::string trust_option;                  // e.g. "--trust" (see trust_option())
+    std::string trust_option;                 // e.g. "--trust" (see trust_option())
     std::vector<std::string> override_paths;  // paths set from the command line
     std::vector<std::string> override_shown;  // where each came from: "--set path=value"
   };

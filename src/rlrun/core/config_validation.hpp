@@ -19,8 +19,7 @@ namespace rlrun {
 // node to point at. A field whose type has no overload here (a net_arch, checked where its
 // networks are built) is left to its component.
 template <class T>
-  requires std::is_arithmetic_v<T>
-std::string value_problem(const T& value, const Bounds& bounds) {
+requires std::is_arithmetic_v<T> std::string value_problem(const T& value, const Bounds& bounds) {
   return bounds.problem(static_cast<double>(value));
 }
 // A linear schedule starts at its initial value and ends at 0 (rl-zoo's linear_schedule).
@@ -33,17 +32,15 @@ inline std::string value_problem(const std::string& value, const OneOf& allowed)
   return "unknown value '" + value + "'; " + allowed.describe();
 }
 template <class C>
-  requires requires(const C& c, const std::string& s) { c.problem(s); }
-std::string value_problem(const std::string& value, const C& check) {
-  return check.problem(value);
-}
+requires requires(const C& c, const std::string& s) { c.problem(s); }
+std::string value_problem(const std::string& value, const C& check) { return check.problem(value); }
 template <class T, class C>
-  requires requires(const T& t, const C& c) { value_problem(t, c); }
+requires requires(const T& t, const C& c) { value_problem(t, c); }
 std::string value_problem(const std::optional<T>& value, const C& check) {
   return value ? value_problem(*value, check) : "";
 }
 template <class T, class C>
-  requires requires(const T& t, const C& c) { value_problem(t, c); }
+requires requires(const T& t, const C& c) { value_problem(t, c); }
 std::string value_problem(const std::vector<T>& values, const C& check) {
   for (std::size_t i = 0; i < values.size(); ++i)
     if (std::string p = value_problem(values[i], check); !p.empty())
@@ -59,7 +56,7 @@ class ConfigValidator {
 
   template <class T>
   void operator()(const char* key, T& field, const char* /*doc*/) {
-    if constexpr (requires(ConfigValidator& nested) { field.visit(nested); }) {
+    if constexpr (requires(ConfigValidator & nested) { field.visit(nested); }) {
       ConfigValidator nested(prefix_ + key + ".");
       field.visit(nested);
       problems_.insert(problems_.end(), nested.problems_.begin(), nested.problems_.end());

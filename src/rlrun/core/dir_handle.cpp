@@ -25,9 +25,10 @@ void check_plain_name(const std::string& name, const std::string& dir) {
 }
 
 [[noreturn]] void refuse_link(const std::string& shown) {
-  throw RuntimeFailure(shown + " is a symbolic link: rlrun does not follow links to or inside run "
-                               "directories and studies (they may come from anyone; "
-                               "docs/security.md); name the directory it points to if you trust it");
+  throw RuntimeFailure(shown +
+                       " is a symbolic link: rlrun does not follow links to or inside run "
+                       "directories and studies (they may come from anyone; "
+                       "docs/security.md); name the directory it points to if you trust it");
 }
 
 EntryKind kind_of(mode_t mode) {
@@ -56,7 +57,8 @@ std::string without_trailing_slashes(std::string path) {
 DirHandle DirHandle::open(const std::string& given, LastLink last) {
   // "run/" is "run": a trailing slash would make the kernel follow a link at the end.
   const std::string path = without_trailing_slashes(given);
-  const int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC | (last == LastLink::kRefuse ? O_NOFOLLOW : 0);
+  const int flags =
+      O_RDONLY | O_DIRECTORY | O_CLOEXEC | (last == LastLink::kRefuse ? O_NOFOLLOW : 0);
   FileDescriptor fd(::open(path.empty() ? "." : path.c_str(), flags));
   if (!fd) {
     const int error = errno;
@@ -114,16 +116,23 @@ std::vector<DirHandle::Entry> DirHandle::list() const {
     }
     EntryKind kind = EntryKind::kOther;
     switch (e->d_type) {
-      case DT_REG: kind = EntryKind::kRegular; break;
-      case DT_DIR: kind = EntryKind::kDirectory; break;
-      case DT_LNK: kind = EntryKind::kSymlink; break;
+      case DT_REG:
+        kind = EntryKind::kRegular;
+        break;
+      case DT_DIR:
+        kind = EntryKind::kDirectory;
+        break;
+      case DT_LNK:
+        kind = EntryKind::kSymlink;
+        break;
       case DT_UNKNOWN: {  // some file systems do not say: ask
         struct stat st {};
         kind = ::fstatat(fd_.get(), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 ? kind_of(st.st_mode)
                                                                               : EntryKind::kMissing;
         break;
       }
-      default: break;
+      default:
+        break;
     }
     if (kind != EntryKind::kMissing) entries.push_back({name, kind});
   }

@@ -67,10 +67,9 @@ class DirHandle {
   std::optional<std::string> read(const std::string& name, uint64_t max_bytes) const;
   // `name` line by line within the bounds of core/line_reader.hpp; nullopt when it does not
   // exist.
-  std::optional<LineReader> read_lines(const std::string& name, uint64_t max_bytes,
-                                       size_t max_line_bytes,
-                                       LineReader::LongLines long_lines =
-                                           LineReader::LongLines::kRefuse) const;
+  std::optional<LineReader> read_lines(
+      const std::string& name, uint64_t max_bytes, size_t max_line_bytes,
+      LineReader::LongLines long_lines = LineReader::LongLines::kRefuse) const;
 
   // The regular file `name` for writing, created when missing.
   CheckedFile open_for_writing(const std::string& name, CheckedFile::Mode mode) const;

@@ -17,8 +17,12 @@ constexpr size_t kBufferBytes = 1 << 16;
 
 LineReader::LineReader(FileDescriptor fd, std::string shown, uint64_t max_bytes,
                        size_t max_line_bytes, LongLines long_lines)
-    : fd_(std::move(fd)), shown_(std::move(shown)), max_bytes_(max_bytes),
-      max_line_bytes_(max_line_bytes), long_lines_(long_lines), buffer_(kBufferBytes) {}
+    : fd_(std::move(fd)),
+      shown_(std::move(shown)),
+      max_bytes_(max_bytes),
+      max_line_bytes_(max_line_bytes),
+      long_lines_(long_lines),
+      buffer_(kBufferBytes) {}
 
 bool LineReader::fill() {
   if (at_end_) return false;
@@ -46,12 +50,13 @@ bool LineReader::next(std::string& line) {
     any = true;
     const char* start = buffer_.data() + begin_;
     const void* newline = std::memchr(start, '\n', end_ - begin_);
-    const size_t chunk = newline ? static_cast<size_t>(static_cast<const char*>(newline) - start)
-                                 : end_ - begin_;
+    const size_t chunk =
+        newline ? static_cast<size_t>(static_cast<const char*>(newline) - start) : end_ - begin_;
     if (line.size() + chunk > max_line_bytes_) {
       if (long_lines_ == LongLines::kRefuse)
         throw RuntimeFailure(shown_ + ":" + std::to_string(lines_ + 1) + ": a line longer than " +
-                             describe_bytes(max_line_bytes_) + ", the most rlrun reads of one "
+                             describe_bytes(max_line_bytes_) +
+                             ", the most rlrun reads of one "
                              "(docs/security.md, \"Bounds\")");
       line.append(start, max_line_bytes_ - std::min(line.size(), max_line_bytes_));
     } else {

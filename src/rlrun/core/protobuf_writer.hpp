@@ -20,7 +20,9 @@ class ProtoWriter {
     return *this;
   }
   // int32/int64/enum fields: negative values are sign-extended to 64 bits, as protobuf does.
-  ProtoWriter& int64(int field, int64_t value) { return varint(field, static_cast<uint64_t>(value)); }
+  ProtoWriter& int64(int field, int64_t value) {
+    return varint(field, static_cast<uint64_t>(value));
+  }
   ProtoWriter& boolean(int field, bool value) { return varint(field, value ? 1 : 0); }
   ProtoWriter& float64(int field, double value) {
     key(field, 1);

@@ -27,9 +27,10 @@ const char* kind_of(mode_t mode) {
 
 [[noreturn]] void refuse_kind(const std::string& shown, mode_t mode) {
   if (S_ISLNK(mode))
-    throw RuntimeFailure(shown + " is a symbolic link: rlrun does not follow links inside run "
-                                 "directories and studies (they may come from anyone; "
-                                 "docs/security.md)");
+    throw RuntimeFailure(shown +
+                         " is a symbolic link: rlrun does not follow links inside run "
+                         "directories and studies (they may come from anyone; "
+                         "docs/security.md)");
   throw RuntimeFailure(shown + " is " + kind_of(mode) +
                        ", not a regular file: rlrun reads and writes only regular files inside run "
                        "directories and studies (docs/security.md)");
@@ -87,7 +88,8 @@ std::string read_bounded(int fd, uint64_t max_bytes, const std::string& shown) {
   std::string text;
   struct stat st {};
   if (::fstat(fd, &st) == 0 && st.st_size > 0)  // a hint only: the file may grow meanwhile
-    text.reserve(static_cast<size_t>(std::min<uint64_t>(static_cast<uint64_t>(st.st_size), max_bytes) + 1));
+    text.reserve(
+        static_cast<size_t>(std::min<uint64_t>(static_cast<uint64_t>(st.st_size), max_bytes) + 1));
   char buffer[1 << 16];
   for (;;) {
     const ssize_t n = ::read(fd, buffer, sizeof buffer);

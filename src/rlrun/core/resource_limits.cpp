@@ -47,8 +47,8 @@ void check_open_files(int n_envs, const ConfigNode& node) {
   }
   node.fail("with " + count_of(n_envs, "env") + ", rlrun needs up to " + std::to_string(needed) +
             " open files (a monitor file per env, plus a simulator's socket), but this process may "
-            "open " + std::to_string(limit.rlim_max) +
-            " (`ulimit -n`): use fewer envs or raise the limit");
+            "open " +
+            std::to_string(limit.rlim_max) + " (`ulimit -n`): use fewer envs or raise the limit");
 }
 
 }  // namespace rlrun

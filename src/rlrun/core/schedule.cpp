@@ -1,8 +1,8 @@
 #include "rlrun/core/schedule.hpp"
 
-#include "rlrun/core/float_format.hpp"
 #include <cmath>
 #include <stdexcept>
+#include "rlrun/core/float_format.hpp"
 
 namespace rlrun {
 
@@ -29,8 +29,6 @@ Schedule Schedule::parse(const std::string& text) {
   return constant(parse_number(text));
 }
 
-std::string Schedule::str() const {
-  return (linear_ ? "lin_" : "") + python_float_repr(initial_);
-}
+std::string Schedule::str() const { return (linear_ ? "lin_" : "") + python_float_repr(initial_); }
 
 }  // namespace rlrun

@@ -64,8 +64,9 @@ fs::path running_binary_dir() {
   static const fs::path dir = [] {
     const fs::path file = mapped_file(reinterpret_cast<std::uintptr_t>(&mapped_file));
     if (file.empty())
-      throw RuntimeFailure("cannot tell where the rlrun binary is (/proc/self/maps names no file "
-                           "for its code); set RLRUN_DATA_DIR to rlrun's data directory");
+      throw RuntimeFailure(
+          "cannot tell where the rlrun binary is (/proc/self/maps names no file "
+          "for its code); set RLRUN_DATA_DIR to rlrun's data directory");
     return file.parent_path();
   }();
   return dir;
@@ -92,7 +93,8 @@ std::string shipped_data_dir() {
   for (const fs::path& place : candidates(override_set)) searched += "  " + place.string() + "\n";
   throw RuntimeFailure(
       "rlrun's shipped data (configs/, scenarios/, sumo_data/) was not found. Searched, beside "
-      "the rlrun binary:\n" + searched +
+      "the rlrun binary:\n" +
+      searched +
       "and RLRUN_DATA_DIR is not set. Reinstall rlrun (cmake --install puts the data in "
       "<prefix>/share/rlrun) or set RLRUN_DATA_DIR to a directory holding scenarios/");
 }

@@ -23,7 +23,8 @@ namespace {
 mode_t current_umask() {
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);)
-    if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
+    if (line.rfind("Umask:", 0) == 0)
+      return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
   return 022;
 }
 
@@ -56,7 +57,8 @@ TempBeside create_temp_beside(const std::string& target, const std::string& suff
   return temp;
 }
 
-TempBeside create_temp_in(const DirHandle& dir, const std::string& name, const std::string& suffix) {
+TempBeside create_temp_in(const DirHandle& dir, const std::string& name,
+                          const std::string& suffix) {
   // Fresh names until one is new (O_EXCL): a file or link already there is never reused.
   for (int attempt = 0; attempt < 100; ++attempt) {
     TempBeside temp;

@@ -66,8 +66,7 @@ void from_tensor(const TensorMap& tensors, const std::string& name,
       t.data<Scalar>(), m.rows(), m.cols());
 }
 template <class Derived>
-void from_tensor(const TensorMap& tensors, const std::string& name,
-                 Eigen::MatrixBase<Derived>& m) {
+void from_tensor(const TensorMap& tensors, const std::string& name, Eigen::MatrixBase<Derived>& m) {
   from_tensor(tensors, name, std::move(m));
 }
 

@@ -39,7 +39,8 @@ void ThreadPool::run_part(int part) {
   } catch (...) {
     errors_[static_cast<size_t>(part)] = std::current_exception();
   }
-  if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == parts_of(claim_.load(std::memory_order_acquire)))
+  if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 ==
+      parts_of(claim_.load(std::memory_order_acquire)))
     done_.notify_one();
 }
 

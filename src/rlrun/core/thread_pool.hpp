@@ -39,8 +39,9 @@ class ThreadPool {
   template <class F>
   void run(int parts, F&& fn) {
     using Fn = std::remove_reference_t<F>;
-    run_job(parts, [](void* f, int part) { (*static_cast<Fn*>(f))(part); },
-            const_cast<void*>(static_cast<const void*>(&fn)));
+    run_job(
+        parts, [](void* f, int part) { (*static_cast<Fn*>(f))(part); },
+        const_cast<void*>(static_cast<const void*>(&fn)));
   }
 
   static constexpr int kMaxParts = 1 << 15;

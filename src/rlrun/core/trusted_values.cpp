@@ -43,13 +43,14 @@ void require_vouched(const ConfigNode& n, const std::string& what, const std::st
   if (!n.trusted())
     n.fail(what + ", '" + value + "' named in " + n.origin() +
            ", which rlrun does not trust (model files, checkpoints, run directories, sweep "
-           "manifests and zoo files may come from anyone; docs/security.md). If you trust it, pass --set " +
+           "manifests and zoo files may come from anyone; docs/security.md). If you trust it, pass "
+           "--set " +
            n.path() + "=" + value + " (or another value) on the command line." +
            trust_alternative(n));
   if (n.accepted_as_a_whole())
     std::fprintf(stderr, "trusting %s (%s): %s = %s: %s\n", printable(n.origin()).c_str(),
-                 n.trust_option().empty() ? "accepted" : n.trust_option().c_str(),
-                 n.path().c_str(), printable(value).c_str(), what.c_str());
+                 n.trust_option().empty() ? "accepted" : n.trust_option().c_str(), n.path().c_str(),
+                 printable(value).c_str(), what.c_str());
 }
 
 namespace {
@@ -80,8 +81,8 @@ std::string shipped_file(const std::string& path) {
   const std::vector<fs::path> roots = shipped_roots();
   if (roots.empty()) return "";
   std::error_code ec;
-  const fs::path file = fs::canonical(fs::path(path).is_absolute() ? fs::path(path)
-                                                                   : roots.front() / path, ec);
+  const fs::path file =
+      fs::canonical(fs::path(path).is_absolute() ? fs::path(path) : roots.front() / path, ec);
   if (ec || !fs::is_regular_file(file, ec)) return "";
   for (const fs::path& root : roots)
     if (!root.empty() && inside(root, file)) return file.string();

@@ -36,7 +36,7 @@ SpawnedWorker spawn_worker(std::vector<std::string> args, int child_fd, const st
     throw RuntimeFailure("cannot start " + what + " (fork): " + std::strerror(error));
   }
   if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with rlrun, whatever kills rlrun
+    prctl(PR_SET_PDEATHSIG, SIGKILL);   // dies with rlrun, whatever kills rlrun
     if (getppid() != parent) _exit(1);  // rlrun died before the line above
     signal(SIGINT, SIG_IGN);            // kept across exec
     sigset_t none;
@@ -46,7 +46,7 @@ SpawnedWorker spawn_worker(std::vector<std::string> args, int child_fd, const st
     if (fds[1] == child_fd)
       fcntl(child_fd, F_SETFD, 0);  // keep it across exec
     else
-      dup2(fds[1], child_fd);       // the copy is not close-on-exec
+      dup2(fds[1], child_fd);  // the copy is not close-on-exec
     execv(argv[0], argv.data());
     _exit(127);
   }

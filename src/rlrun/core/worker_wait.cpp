@@ -18,14 +18,15 @@ void check_worker_wait(const WorkerWait& wait) {
                       interrupt_signal());
   if (count == 1) {
     if (wait.starting)
-      throw Interrupted("stopped (" + interrupt_name() + ") while waiting for " + wait.who + " " +
-                            wait.what,
-                        interrupt_signal());
+      throw Interrupted(
+          "stopped (" + interrupt_name() + ") while waiting for " + wait.who + " " + wait.what,
+          interrupt_signal());
     const clock::time_point from = std::max(wait.since, interrupt_time());
     if (clock::now() - from > std::chrono::duration<double>(kInterruptGraceSeconds))
       throw Interrupted(wait.who + " has not answered " + wait.what + " " +
                             std::to_string(static_cast<int>(kInterruptGraceSeconds)) + " s after " +
-                            interrupt_name() + ": it hangs, so rlrun stopped without reaching a "
+                            interrupt_name() +
+                            ": it hangs, so rlrun stopped without reaching a "
                             "safe point (no checkpoint was written)",
                         interrupt_signal());
   }

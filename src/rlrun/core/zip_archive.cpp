@@ -4,8 +4,8 @@
 #include <unistd.h>
 #include <zip.h>
 
-#include <cstdio>
 #include <cerrno>
+#include <cstdio>
 
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/dir_handle.hpp"
@@ -35,7 +35,8 @@ void write_zip_at(const DirHandle& dir, const std::string& name, const std::stri
   for (const auto& [member, data] : members) {
     // libzip reads the buffer at zip_close time; `members` outlives that call.
     zip_source_t* source = zip_source_buffer(zip, data.data(), data.size(), 0);
-    if (!source || zip_file_add(zip, member.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
+    if (!source ||
+        zip_file_add(zip, member.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
       if (source) zip_source_free(source);
       const std::string why = zip_strerror(zip);
       zip_discard(zip);

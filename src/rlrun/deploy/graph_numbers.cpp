@@ -16,8 +16,9 @@ void check(const Eigen::Ref<const Eigen::MatrixXf>& m, Kind kind, const std::str
     for (Eigen::Index i = 0; i < m.rows(); ++i) {
       const float v = m(i, j);
       if (kind == Kind::kBound ? !std::isnan(v) : std::isfinite(v)) continue;
-      const std::string where = m.cols() == 1 ? "index " + std::to_string(i)
-                                              : "row " + std::to_string(i) + ", column " + std::to_string(j);
+      const std::string where = m.cols() == 1
+                                    ? "index " + std::to_string(i)
+                                    : "row " + std::to_string(i) + ", column " + std::to_string(j);
       throw ExportError("the policy's " + what + " holds " +
                         (std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf")) + " at " + where +
                         (kind == Kind::kBound ? "" : " (only bounds may be infinite)") +

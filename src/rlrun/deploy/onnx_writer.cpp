@@ -14,8 +14,8 @@ namespace {
 
 // Field numbers and enum values of onnx/onnx.proto.
 namespace model_proto {
-constexpr int kIrVersion = 1, kProducerName = 2, kProducerVersion = 3, kDocString = 6,
-              kGraph = 7, kOpsetImport = 8, kMetadataProps = 14;
+constexpr int kIrVersion = 1, kProducerName = 2, kProducerVersion = 3, kDocString = 6, kGraph = 7,
+              kOpsetImport = 8, kMetadataProps = 14;
 }
 namespace graph_proto {
 constexpr int kNode = 1, kName = 2, kInitializer = 5, kInput = 11, kOutput = 12;
@@ -26,11 +26,11 @@ constexpr int kInput = 1, kOutput = 2, kName = 3, kOpType = 4, kAttribute = 5;
 namespace attribute_proto {
 constexpr int kName = 1, kF = 2, kI = 3, kType = 20;
 constexpr int kTypeFloat = 1, kTypeInt = 2;
-}
+}  // namespace attribute_proto
 namespace tensor_proto {
 constexpr int kDims = 1, kDataType = 2, kName = 8, kRawData = 9;
 constexpr int kFloat = 1, kInt64 = 7;
-}
+}  // namespace tensor_proto
 
 class OnnxGraphWriter {
  public:
@@ -39,7 +39,8 @@ class OnnxGraphWriter {
   std::string model() {
     ProtoWriter g;
     g.bytes(graph_proto::kName, "rlrun_policy");
-    for (const GraphInput& in : graph_.inputs()) g.message(graph_proto::kInput, value_info(in.name, in.width));
+    for (const GraphInput& in : graph_.inputs())
+      g.message(graph_proto::kInput, value_info(in.name, in.width));
     for (const GraphNode& n : graph_.nodes()) emit(n);
     output("action", graph_.action());
     if (!graph_.value().empty()) output("value", graph_.value());
@@ -77,17 +78,19 @@ class OnnxGraphWriter {
     columns.int64(1, width);  // dim_value
     shape.message(1, batch).message(1, columns);
     tensor.int64(1, tensor_proto::kFloat).message(2, shape);  // elem_type, shape
-    type.message(1, tensor);                                   // tensor_type
+    type.message(1, tensor);                                  // tensor_type
     info.bytes(1, name).message(2, type);
     return info;
   }
 
   // Names of the ONNX-only tensors; the "rlrun/" prefix keeps them apart from the graph's own.
-  std::string fresh(const std::string& base) { return "rlrun/" + base + "_" + std::to_string(counter_++); }
+  std::string fresh(const std::string& base) {
+    return "rlrun/" + base + "_" + std::to_string(counter_++);
+  }
 
   // A constant tensor (initializer); returns its name.
-  std::string constant(const std::string& base, const std::vector<int64_t>& dims,
-                       const float* data, size_t count) {
+  std::string constant(const std::string& base, const std::vector<int64_t>& dims, const float* data,
+                       size_t count) {
     const std::string name = fresh(base);
     ProtoWriter t;
     for (int64_t d : dims) t.int64(tensor_proto::kDims, d);
@@ -95,7 +98,8 @@ class OnnxGraphWriter {
     t.bytes(tensor_proto::kName, name);
     // raw_data: little-endian float32, which this machine's memory already is.
     static_assert(std::endian::native == std::endian::little, "raw_data is little-endian");
-    t.bytes(tensor_proto::kRawData, std::string_view(reinterpret_cast<const char*>(data), count * sizeof(float)));
+    t.bytes(tensor_proto::kRawData,
+            std::string_view(reinterpret_cast<const char*>(data), count * sizeof(float)));
     initializers_.push_back(std::move(t));
     return name;
   }
@@ -108,7 +112,8 @@ class OnnxGraphWriter {
     t.int64(tensor_proto::kDims, 1);
     t.int64(tensor_proto::kDataType, tensor_proto::kInt64);
     t.bytes(tensor_proto::kName, name);
-    t.bytes(tensor_proto::kRawData, std::string_view(reinterpret_cast<const char*>(&value), sizeof value));
+    t.bytes(tensor_proto::kRawData,
+            std::string_view(reinterpret_cast<const char*>(&value), sizeof value));
     initializers_.push_back(std::move(t));
     return name;
   }
@@ -135,9 +140,11 @@ class OnnxGraphWriter {
       ProtoWriter attr;
       attr.bytes(attribute_proto::kName, a.name);
       if (a.is_float)
-        attr.float32(attribute_proto::kF, a.f).int64(attribute_proto::kType, attribute_proto::kTypeFloat);
+        attr.float32(attribute_proto::kF, a.f)
+            .int64(attribute_proto::kType, attribute_proto::kTypeFloat);
       else
-        attr.int64(attribute_proto::kI, a.i).int64(attribute_proto::kType, attribute_proto::kTypeInt);
+        attr.int64(attribute_proto::kI, a.i)
+            .int64(attribute_proto::kType, attribute_proto::kTypeInt);
       n.message(node_proto::kAttribute, attr);
     }
     nodes_.push_back(std::move(n));
@@ -154,8 +161,10 @@ class OnnxGraphWriter {
         node("Concat", n.inputs, out, {int_attr("axis", 1)});
         return;
       case GraphOp::kSlice:
-        node("Slice", {x, int64_constant("starts", n.begin), int64_constant("ends", n.begin + n.width),
-                       int64_constant("axes", 1)}, out);
+        node("Slice",
+             {x, int64_constant("starts", n.begin), int64_constant("ends", n.begin + n.width),
+              int64_constant("axes", 1)},
+             out);
         return;
       case GraphOp::kDense: {
         // torch's Linear layout, [out, in] row-major: the Eigen (column-major) transpose.
@@ -167,9 +176,15 @@ class OnnxGraphWriter {
       }
       case GraphOp::kActivation:
         switch (n.activation) {
-          case Activation::kTanh: node("Tanh", {x}, out); return;
-          case Activation::kReLU: node("Relu", {x}, out); return;
-          case Activation::kELU: node("Elu", {x}, out, {float_attr("alpha", 1.0f)}); return;
+          case Activation::kTanh:
+            node("Tanh", {x}, out);
+            return;
+          case Activation::kReLU:
+            node("Relu", {x}, out);
+            return;
+          case Activation::kELU:
+            node("Elu", {x}, out, {float_attr("alpha", 1.0f)});
+            return;
           case Activation::kLeakyReLU:
             node("LeakyRelu", {x}, out, {float_attr("alpha", kLeakyReLUSlope)});
             return;

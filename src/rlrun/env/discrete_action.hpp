@@ -14,8 +14,9 @@ inline int checked_discrete_action(const Space& space, std::span<const float> ac
                                    const std::string& env_id) {
   if (!space.contains(action))
     throw std::invalid_argument(
-        env_id + ": action " + (action.empty() ? std::string("<empty>") : std::to_string(action[0])) +
-        " is not in " + space.describe());
+        env_id + ": action " +
+        (action.empty() ? std::string("<empty>") : std::to_string(action[0])) + " is not in " +
+        space.describe());
   return static_cast<int>(action[0]);
 }
 

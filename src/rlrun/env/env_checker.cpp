@@ -75,7 +75,8 @@ class Checker {
         if (part->is_box())
           for (size_t i = 0; i < part->low().size(); ++i)
             if (!(part->low()[i] <= part->high()[i]))
-              problem("space " + part->describe() + " has low > high at index " + std::to_string(i));
+              problem("space " + part->describe() + " has low > high at index " +
+                      std::to_string(i));
     }
     return problems_.empty();
   }
@@ -93,7 +94,9 @@ class Checker {
   // Several agents (include/rlrun/env.hpp): observations and actions hold every agent's,
   // agent-major; each agent's part must be inside the space.
   int agents() const { return std::max(1, env_.num_agents()); }
-  size_t obs_size() const { return static_cast<size_t>(env_.observation_space().flat_dim()) * agents(); }
+  size_t obs_size() const {
+    return static_cast<size_t>(env_.observation_space().flat_dim()) * agents();
+  }
   void check_inside(const Obs& obs, const std::string& what) {
     const size_t dim = static_cast<size_t>(env_.observation_space().flat_dim());
     for (int a = 0; a < agents(); ++a) {

@@ -25,6 +25,8 @@ class GoalEnv {
 };
 
 // The env's GoalEnv (its innermost env's), or nullptr.
-inline const GoalEnv* goal_env_of(Env& env) { return dynamic_cast<const GoalEnv*>(&env.unwrapped()); }
+inline const GoalEnv* goal_env_of(Env& env) {
+  return dynamic_cast<const GoalEnv*>(&env.unwrapped());
+}
 
 }  // namespace rlrun

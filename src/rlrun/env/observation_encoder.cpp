@@ -29,8 +29,9 @@ void ObservationEncoder::add_space(const Space& space, const std::string& key) {
   spaces_.emplace_back(key, space.describe());
   const auto add = [&](int width, bool one_hot, int64_t start, int entry) {
     if (features_dim_ + static_cast<int64_t>(width) > kMaxFeatures)
-      throw std::invalid_argument("observation space " + space.describe() + " encodes to more than " +
-                                  std::to_string(kMaxFeatures) + " network inputs");
+      throw std::invalid_argument("observation space " + space.describe() +
+                                  " encodes to more than " + std::to_string(kMaxFeatures) +
+                                  " network inputs");
     // Consecutive copied floats form one run.
     if (!one_hot && !pieces_.empty() && !pieces_.back().one_hot &&
         pieces_.back().in + pieces_.back().width == input_dim_) {
@@ -69,15 +70,15 @@ void ObservationEncoder::add_space(const Space& space, const std::string& key) {
 void ObservationEncoder::fail(const Piece& piece, float value) const {
   const auto& [key, text] = spaces_[static_cast<size_t>(piece.space)];
   std::string where = key.empty() ? "" : "key '" + key + "' ";
-  throw std::out_of_range("observation " + where + "entry " + std::to_string(piece.entry) +
-                          " is " + std::to_string(value) + ", not a value of " + text);
+  throw std::out_of_range("observation " + where + "entry " + std::to_string(piece.entry) + " is " +
+                          std::to_string(value) + ", not a value of " + text);
 }
 
 void ObservationEncoder::encode_sample(std::span<const float> obs, std::span<float> out) const {
   if (static_cast<int>(obs.size()) != input_dim_ || static_cast<int>(out.size()) != features_dim_)
-    throw std::invalid_argument("ObservationEncoder: " + std::to_string(obs.size()) + " -> " +
-                                std::to_string(out.size()) + " floats, expected " +
-                                std::to_string(input_dim_) + " -> " + std::to_string(features_dim_));
+    throw std::invalid_argument(
+        "ObservationEncoder: " + std::to_string(obs.size()) + " -> " + std::to_string(out.size()) +
+        " floats, expected " + std::to_string(input_dim_) + " -> " + std::to_string(features_dim_));
   for (const Piece& p : pieces_) {
     float* dst = out.data() + p.out;
     if (!p.one_hot) {
@@ -106,7 +107,8 @@ std::string ObservationEncoder::export_to(PolicyGraph& graph, const std::string&
   return graph.concat(parts);
 }
 
-void ObservationEncoder::decode_sample(std::span<const float> features, std::span<float> obs) const {
+void ObservationEncoder::decode_sample(std::span<const float> features,
+                                       std::span<float> obs) const {
   for (const Piece& p : pieces_) {
     const float* src = features.data() + p.out;
     if (!p.one_hot) {
@@ -127,11 +129,10 @@ void ObservationEncoder::encode(const Eigen::Ref<const Eigen::MatrixXf>& obs,
 void ObservationEncoder::encode_into(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                      Eigen::Ref<Eigen::MatrixXf> out) const {
   if (obs.rows() != input_dim_ || out.rows() != features_dim_ || out.cols() != obs.cols())
-    throw std::invalid_argument("ObservationEncoder: " + std::to_string(obs.rows()) + " x " +
-                                std::to_string(obs.cols()) + " observations into " +
-                                std::to_string(out.rows()) + " x " + std::to_string(out.cols()) +
-                                ", expected " + std::to_string(input_dim_) + " rows into " +
-                                std::to_string(features_dim_));
+    throw std::invalid_argument(
+        "ObservationEncoder: " + std::to_string(obs.rows()) + " x " + std::to_string(obs.cols()) +
+        " observations into " + std::to_string(out.rows()) + " x " + std::to_string(out.cols()) +
+        ", expected " + std::to_string(input_dim_) + " rows into " + std::to_string(features_dim_));
   for (Eigen::Index j = 0; j < obs.cols(); ++j)
     encode_sample({obs.col(j).data(), static_cast<size_t>(input_dim_)},
                   {out.col(j).data(), static_cast<size_t>(features_dim_)});

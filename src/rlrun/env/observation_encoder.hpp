@@ -53,7 +53,8 @@ class ObservationEncoder {
   void encode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& out) const;
   // The same into a block of the right size (features_dim x obs.cols()), e.g. the top rows of
   // a critic's (features; action) input. Copies even when identity(). Thread-safe (const).
-  void encode_into(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::Ref<Eigen::MatrixXf> out) const;
+  void encode_into(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                   Eigen::Ref<Eigen::MatrixXf> out) const;
 
   // The network input for a batch of observations (input_dim x batch): `obs` itself when
   // identity(), else the encoding in a workspace that grows to the largest batch seen and is
@@ -67,9 +68,9 @@ class ObservationEncoder {
  private:
   // A run of floats copied as they are, or one categorical value turned into a one-hot.
   struct Piece {
-    int in = 0;      // first float in the observation
-    int out = 0;     // first float in the network input
-    int width = 0;   // floats copied, or one-hot width (the category count)
+    int in = 0;     // first float in the observation
+    int out = 0;    // first float in the network input
+    int width = 0;  // floats copied, or one-hot width (the category count)
     bool one_hot = false;
     int64_t start = 0;  // Discrete's start (the value of one-hot slot 0)
     int entry = 0;      // index of the value inside its space, for messages

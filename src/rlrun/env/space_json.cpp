@@ -55,9 +55,8 @@ std::vector<float> bounds_from_json(const json& v, int64_t size, const char* whi
 // A count of a Discrete or MultiDiscrete space. Python's ints have no bound: one beyond int64
 // arrives as a float or an unsigned number, and is refused as written.
 int64_t count_from_json(const json& v, const std::string& what) {
-  if (v.is_number_integer() &&
-      !(v.is_number_unsigned() &&
-        v.get<uint64_t>() > uint64_t{std::numeric_limits<int64_t>::max()}))
+  if (v.is_number_integer() && !(v.is_number_unsigned() &&
+                                 v.get<uint64_t>() > uint64_t{std::numeric_limits<int64_t>::max()}))
     return v.get<int64_t>();
   if (!v.is_number() || (v.is_number_float() && std::isfinite(v.get<double>()) &&
                          v.get<double>() != std::floor(v.get<double>())))
@@ -117,7 +116,8 @@ Space decode(const json& j, bool inside_dict) {
     return Space::multi_discrete(std::move(nvec));
   }
   if (kind == "MultiBinary")
-    return Space::multi_binary(static_cast<int>(floats_from_json(member(j, "n", kind), "a MultiBinary size")));
+    return Space::multi_binary(
+        static_cast<int>(floats_from_json(member(j, "n", kind), "a MultiBinary size")));
   if (kind == "Dict") {
     if (inside_dict)
       throw std::invalid_argument("a Dict inside a Dict; one level of keys is supported (as SB3)");

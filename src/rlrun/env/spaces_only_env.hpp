@@ -14,7 +14,8 @@ namespace rlrun {
 
 class SpacesOnlyEnv : public Env {
  public:
-  SpacesOnlyEnv(std::string id, EnvSpaces spaces) : id_(std::move(id)), spaces_(std::move(spaces)) {}
+  SpacesOnlyEnv(std::string id, EnvSpaces spaces)
+      : id_(std::move(id)), spaces_(std::move(spaces)) {}
 
   const Space& observation_space() const override { return spaces_.observation; }
   const Space& action_space() const override { return spaces_.action; }
@@ -22,7 +23,9 @@ class SpacesOnlyEnv : public Env {
   std::string id() const override { return id_; }
   const Info& info() const override { return info_; }
 
-  void reset(std::optional<uint64_t> /*seed*/, std::span<float> /*obs*/) override { not_runnable(); }
+  void reset(std::optional<uint64_t> /*seed*/, std::span<float> /*obs*/) override {
+    not_runnable();
+  }
   StepResult step(std::span<const float> /*action*/, std::span<float> /*obs*/) override {
     not_runnable();
   }

@@ -137,7 +137,8 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
               std::span<StepResult>(agent_results_.data(), static_cast<size_t>(agents)));
           if (!error) finish_agents(c);
         } else {
-          const StepResult r = split_[c]->finish_step(std::span<float>(obs_.col(first).data(), obs_dim_));
+          const StepResult r =
+              split_[c]->finish_step(std::span<float>(obs_.col(first).data(), obs_dim_));
           if (!error) finish_copy(c, r);
         }
       } catch (const Interrupted&) {
@@ -205,9 +206,9 @@ void VecEnv::step_agents(int c, const Eigen::Ref<const Eigen::MatrixXf>& actions
   const int agents = agents_[c];
   const std::span<float> obs(obs_.col(first).data(), static_cast<size_t>(obs_dim_) * agents);
   const std::span<StepResult> results(agent_results_.data(), static_cast<size_t>(agents));
-  envs_[c]->step_agents(std::span<const float>(actions.col(first).data(),
-                                               static_cast<size_t>(act_dim_) * agents),
-                        obs, results);
+  envs_[c]->step_agents(
+      std::span<const float>(actions.col(first).data(), static_cast<size_t>(act_dim_) * agents),
+      obs, results);
   finish_agents(c);
 }
 

@@ -94,7 +94,9 @@ class VecEnv {
   // rewards() themselves without a hook. (After read_state they are not restored: callers
   // that need them across a resume keep their own.)
   const Eigen::MatrixXf& original_obs() const { return hook_ ? original_obs_ : obs_; }
-  const Eigen::MatrixXf& original_final_obs() const { return hook_ ? original_final_obs_ : final_obs_; }
+  const Eigen::MatrixXf& original_final_obs() const {
+    return hook_ ? original_final_obs_ : final_obs_;
+  }
   const Eigen::VectorXd& original_rewards() const { return hook_ ? original_rewards_ : rewards_; }
   // Column i's info of the last step (or of the last reset(), before any step): its env
   // copy's info.
@@ -149,7 +151,7 @@ class VecEnv {
   // Env copy c's agents, asked once: num_agents() is fixed for an env's life, and asking it
   // every step walks the whole wrapper chain (2 % of a PPO Pendulum run).
   std::vector<int> agents_;
-  std::vector<int> slot_env_;    // column -> env copy
+  std::vector<int> slot_env_;              // column -> env copy
   std::vector<StepResult> agent_results_;  // step_agents() scratch, the most agents of a copy
   std::vector<std::optional<uint64_t>> seeds_;
   int obs_dim_ = 0;
@@ -169,8 +171,8 @@ class VecEnv {
   std::vector<uint8_t> done_;  // terminated || truncated, for the hook
   bool independent_copies_ = false;
   ThreadPool* pool_ = nullptr;
-  int timed_steps_ = 0;          // serial steps measured so far (up to kTimedSteps)
-  double timed_seconds_ = 0.0;   // ... and their total time
+  int timed_steps_ = 0;         // serial steps measured so far (up to kTimedSteps)
+  double timed_seconds_ = 0.0;  // ... and their total time
   bool parallel_ = false;
   double parallel_step_seconds_ = kParallelStepSeconds;
 };

@@ -32,13 +32,13 @@ inline constexpr std::array<ActivationSpelling, 4> kActivationSpellings = {{
 
 // The activation a name or torch spelling means (exact case), or nothing.
 inline std::optional<Activation> find_activation(std::string_view name) {
-  for (const auto &s : kActivationSpellings)
+  for (const auto& s : kActivationSpellings)
     if (name == s.name || name == s.torch_name) return s.act;
   return std::nullopt;
 }
 
 inline std::string_view activation_name(Activation act) {
-  for (const auto &s : kActivationSpellings)
+  for (const auto& s : kActivationSpellings)
     if (s.act == act) return s.name;
   return "unknown";
 }

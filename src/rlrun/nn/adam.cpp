@@ -8,7 +8,9 @@
 namespace rlrun {
 
 Adam::Adam(std::vector<ParamBlock> blocks, AdamConfig cfg)
-    : BlockOptimizer(std::move(blocks), "Adam"), cfg_(cfg), exp_avg_(zero_state()),
+    : BlockOptimizer(std::move(blocks), "Adam"),
+      cfg_(cfg),
+      exp_avg_(zero_state()),
       exp_avg_sq_(zero_state()) {}
 
 void Adam::step(float lr) {

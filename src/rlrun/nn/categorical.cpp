@@ -33,8 +33,7 @@ Eigen::Index Categorical::action_index(float action) const {
   const auto index = static_cast<Eigen::Index>(action);
   if (!(action >= 0.0f) || index >= log_probs_.rows() || static_cast<float>(index) != action) {
     throw std::out_of_range("Categorical: action " + std::to_string(action) +
-                            " is not an integer in [0, " + std::to_string(log_probs_.rows()) +
-                            ")");
+                            " is not an integer in [0, " + std::to_string(log_probs_.rows()) + ")");
   }
   return index;
 }

@@ -101,8 +101,7 @@ struct KernelSet {
   static V activate(V v) {
     if constexpr (kAct == Act::kTanh) return tanh(v);
     if constexpr (kAct == Act::kReLU) return max(V::zero(), v);  // NaN stays NaN, as in torch
-    if constexpr (kAct == Act::kELU)
-      return select_greater(v, V::zero(), v, exp(v) - V::set1(1.0f));
+    if constexpr (kAct == Act::kELU) return select_greater(v, V::zero(), v, exp(v) - V::set1(1.0f));
     if constexpr (kAct == Act::kLeakyReLU) return max(v, v * V::set1(kLeakyReLUSlope));
     return v;
   }
@@ -196,8 +195,7 @@ struct KernelSet {
     // c never aliases act (Mlp writes the deltas to their own buffer), so rewriting is exact.
     void tail(V s, Index i, Index j, int /*skip*/) const { packet(s, i, j); }
     void scalar(float s, Index i, Index j) const {
-      c[i + j * ldc] =
-          first_lane(activation_grad<kAct>(V::set1(s), V::set1(act[i + j * ld_act])));
+      c[i + j * ldc] = first_lane(activation_grad<kAct>(V::set1(s), V::set1(act[i + j * ld_act])));
     }
   };
 
@@ -261,8 +259,8 @@ struct KernelSet {
 
   // rows_rest_tile with kP = `packets` (at most kMaxP).
   template <int kMaxP, int kNr, class Epi>
-  static void rows_rest(int packets, Index k, const float* a, Index lda, const float* b,
-                        Index b_k, Index b_j, Index i0, Index m, Index j0, const Epi& epi) {
+  static void rows_rest(int packets, Index k, const float* a, Index lda, const float* b, Index b_k,
+                        Index b_j, Index i0, Index m, Index j0, const Epi& epi) {
     if (packets == kMaxP) {
       rows_rest_tile<kMaxP, kNr>(k, a, lda, b, b_k, b_j, i0, m, j0, epi);
     } else if constexpr (kMaxP > 1) {
@@ -310,8 +308,8 @@ struct KernelSet {
   template <int kNr, class Epi>
   static void rows_columns(Index i0, Index m, Index k, const float* a, Index lda, const float* b,
                            Index b_k, Index b_j, Index j0, const Epi& epi) {
-    rows_column_block<rows_tile_packets<kNr>(), kNr>(i0, m, k, a, lda, b + j0 * b_j, b_k, b_j,
-                                                     j0, epi);
+    rows_column_block<rows_tile_packets<kNr>(), kNr>(i0, m, k, a, lda, b + j0 * b_j, b_k, b_j, j0,
+                                                     epi);
   }
 
   // Rows of A per block: a block's slice of A (rows x k floats) should stay in L1/L2 while
@@ -337,12 +335,23 @@ struct KernelSet {
       for (; j + kColumns <= n; j += kColumns)
         rows_columns<kColumns>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
       switch (n - j) {
-        case 5: rows_columns<5>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
-        case 4: rows_columns<4>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
-        case 3: rows_columns<3>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
-        case 2: rows_columns<2>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
-        case 1: rows_columns<1>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
-        default: break;
+        case 5:
+          rows_columns<5>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
+          break;
+        case 4:
+          rows_columns<4>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
+          break;
+        case 3:
+          rows_columns<3>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
+          break;
+        case 2:
+          rows_columns<2>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
+          break;
+        case 1:
+          rows_columns<1>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
+          break;
+        default:
+          break;
       }
     }
   }
@@ -406,8 +415,8 @@ struct KernelSet {
   static constexpr int kDotColumnsOneRow = kDotBudget >= 8 ? 8 : kDotBudget;
 
   template <int kMi, int kNj, class Epi>
-  static void dot_row_block(Index n, Index p, const float* x, Index ldx, const float* y,
-                            Index ldy, Index i0, const Epi& epi) {
+  static void dot_row_block(Index n, Index p, const float* x, Index ldx, const float* y, Index ldy,
+                            Index i0, const Epi& epi) {
     Index j = 0;
     for (; j + kNj <= n; j += kNj) dot_tile<kMi, kNj>(p, x, ldx, y, ldy, i0, j, epi);
     for (; j < n; ++j) dot_tile<kMi, 1>(p, x, ldx, y, ldy, i0, j, epi);
@@ -426,17 +435,28 @@ struct KernelSet {
   template <class Run>
   static void with_epilogue(Epilogue epilogue, const EpilogueArgs& g, Run&& run) {
     switch (epilogue) {
-      case Epilogue::kStore: return run(StoreEpi{g.c, g.ldc});
-      case Epilogue::kAdd: return run(AddEpi{g.c, g.ldc});
-      case Epilogue::kAddTransposed: return run(AddTransposedEpi{g.c, g.ldc});
-      case Epilogue::kBias: return run(BiasEpi<Act::kNone>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasTanh: return run(BiasEpi<Act::kTanh>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasReLU: return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasELU: return run(BiasEpi<Act::kELU>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasLeakyReLU: return run(BiasEpi<Act::kLeakyReLU>{g.c, g.ldc, g.bias});
-      case Epilogue::kTanhGrad: return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
-      case Epilogue::kReLUGrad: return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
-      case Epilogue::kELUGrad: return run(ActGradEpi<Act::kELU>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kStore:
+        return run(StoreEpi{g.c, g.ldc});
+      case Epilogue::kAdd:
+        return run(AddEpi{g.c, g.ldc});
+      case Epilogue::kAddTransposed:
+        return run(AddTransposedEpi{g.c, g.ldc});
+      case Epilogue::kBias:
+        return run(BiasEpi<Act::kNone>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasTanh:
+        return run(BiasEpi<Act::kTanh>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasReLU:
+        return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasELU:
+        return run(BiasEpi<Act::kELU>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasLeakyReLU:
+        return run(BiasEpi<Act::kLeakyReLU>{g.c, g.ldc, g.bias});
+      case Epilogue::kTanhGrad:
+        return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kReLUGrad:
+        return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kELUGrad:
+        return run(ActGradEpi<Act::kELU>{g.c, g.ldc, g.act, g.ld_act});
       case Epilogue::kLeakyReLUGrad:
         return run(ActGradEpi<Act::kLeakyReLU>{g.c, g.ldc, g.act, g.ld_act});
     }
@@ -452,8 +472,7 @@ struct KernelSet {
 
   static void gemm_dot(Index m, Index n, Index p, const float* x, Index ldx, const float* y,
                        Index ldy, Epilogue epilogue, const EpilogueArgs& args) {
-    with_epilogue(epilogue, args,
-                  [&](const auto& epi) { dot_run(m, n, p, x, ldx, y, ldy, epi); });
+    with_epilogue(epilogue, args, [&](const auto& epi) { dot_run(m, n, p, x, ldx, y, ldy, epi); });
   }
 
   static void transpose(Index rows, Index cols, const float* a, Index lda, float* b, Index ldb) {
@@ -567,9 +586,8 @@ struct KernelSet {
   }
 
   static const KernelTable& table(KernelPath path) {
-    static const KernelTable kTable{path,         &gemm_rows,      &gemm_dot,
-                                    &transpose,   &row_sum_add,    &adam_update,
-                                    &rmsprop_update, &sum_of_squares};
+    static const KernelTable kTable{path,         &gemm_rows,   &gemm_dot,       &transpose,
+                                    &row_sum_add, &adam_update, &rmsprop_update, &sum_of_squares};
     return kTable;
   }
 };

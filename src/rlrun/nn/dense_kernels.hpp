@@ -30,18 +30,18 @@ inline constexpr int kLogicalLanes = 16;
 
 // What happens to each computed element s = C(i, j) before it is written.
 enum class Epilogue {
-  kStore,           // c(i, j) = s
-  kAdd,             // c(i, j) += s
-  kAddTransposed,   // c(j, i) += s   (ldc is the leading dimension of the transposed target)
-  kBias,            // c(i, j) = s + bias(i)
-  kBiasTanh,        // c(i, j) = tanh(s + bias(i))
-  kBiasReLU,        // c(i, j) = max(s + bias(i), 0)
-  kBiasELU,         // c(i, j) = v > 0 ? v : exp(v) - 1, v = s + bias(i)   (nn.ELU, alpha 1)
-  kBiasLeakyReLU,   // c(i, j) = max(v, 0.01 v), v = s + bias(i)   (nn.LeakyReLU, slope 0.01)
-  kTanhGrad,        // c(i, j) = s * (1 - act(i, j)^2)   (act = the layer's tanh output)
-  kReLUGrad,        // c(i, j) = act(i, j) > 0 ? s : 0   (act = the layer's relu output)
-  kELUGrad,         // c(i, j) = act(i, j) > 0 ? s : s * (act(i, j) + 1)   (elu output)
-  kLeakyReLUGrad,   // c(i, j) = act(i, j) > 0 ? s : 0.01 s   (leaky_relu output)
+  kStore,          // c(i, j) = s
+  kAdd,            // c(i, j) += s
+  kAddTransposed,  // c(j, i) += s   (ldc is the leading dimension of the transposed target)
+  kBias,           // c(i, j) = s + bias(i)
+  kBiasTanh,       // c(i, j) = tanh(s + bias(i))
+  kBiasReLU,       // c(i, j) = max(s + bias(i), 0)
+  kBiasELU,        // c(i, j) = v > 0 ? v : exp(v) - 1, v = s + bias(i)   (nn.ELU, alpha 1)
+  kBiasLeakyReLU,  // c(i, j) = max(v, 0.01 v), v = s + bias(i)   (nn.LeakyReLU, slope 0.01)
+  kTanhGrad,       // c(i, j) = s * (1 - act(i, j)^2)   (act = the layer's tanh output)
+  kReLUGrad,       // c(i, j) = act(i, j) > 0 ? s : 0   (act = the layer's relu output)
+  kELUGrad,        // c(i, j) = act(i, j) > 0 ? s : s * (act(i, j) + 1)   (elu output)
+  kLeakyReLUGrad,  // c(i, j) = act(i, j) > 0 ? s : 0.01 s   (leaky_relu output)
 };
 
 struct EpilogueArgs {
@@ -72,7 +72,7 @@ void row_sum_add(Index m, Index n, const float* d, Index ldd, float* out);
 
 // One Adam step over n parameters (nn/adam.cpp computes the coefficients once per step).
 struct AdamCoefficients {
-  float w1;                // 1 - beta1
+  float w1;  // 1 - beta1
   float beta2;
   float w2;                // 1 - beta2
   float step_size;         // lr / (1 - beta1^t)
@@ -95,8 +95,8 @@ enum class KernelPath { kBaseline, kAvx2, kAvx512 };
 // The functions above for one instruction set.
 struct KernelTable {
   KernelPath path;
-  void (*gemm_rows)(Index, Index, Index, const float*, Index, const float*, Index, Index,
-                    Epilogue, const EpilogueArgs&);
+  void (*gemm_rows)(Index, Index, Index, const float*, Index, const float*, Index, Index, Epilogue,
+                    const EpilogueArgs&);
   void (*gemm_dot)(Index, Index, Index, const float*, Index, const float*, Index, Epilogue,
                    const EpilogueArgs&);
   void (*transpose)(Index, Index, const float*, Index, float*, Index);

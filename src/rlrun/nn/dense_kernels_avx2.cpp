@@ -4,8 +4,8 @@
 #include "rlrun/nn/dense_kernels_paths.hpp"
 
 #if defined(RLRUN_KERNELS_X86)
-#include "rlrun/nn/simd/vec_avx2.hpp"
 #include "rlrun/nn/dense_kernel_set.hpp"
+#include "rlrun/nn/simd/vec_avx2.hpp"
 
 namespace rlrun::dense {
 

@@ -19,10 +19,14 @@ constexpr Eigen::Index kMinBatchForTranspose = 3;
 // The fused epilogue of a hidden layer's forward product: bias + activation.
 dense::Epilogue forward_epilogue(Activation act) {
   switch (act) {
-    case Activation::kTanh: return dense::Epilogue::kBiasTanh;
-    case Activation::kReLU: return dense::Epilogue::kBiasReLU;
-    case Activation::kELU: return dense::Epilogue::kBiasELU;
-    case Activation::kLeakyReLU: return dense::Epilogue::kBiasLeakyReLU;
+    case Activation::kTanh:
+      return dense::Epilogue::kBiasTanh;
+    case Activation::kReLU:
+      return dense::Epilogue::kBiasReLU;
+    case Activation::kELU:
+      return dense::Epilogue::kBiasELU;
+    case Activation::kLeakyReLU:
+      return dense::Epilogue::kBiasLeakyReLU;
   }
   throw std::logic_error("Mlp: unknown activation");
 }
@@ -31,10 +35,14 @@ dense::Epilogue forward_epilogue(Activation act) {
 // layer's activation (its derivative read off the stored output).
 dense::Epilogue backward_epilogue(Activation act) {
   switch (act) {
-    case Activation::kTanh: return dense::Epilogue::kTanhGrad;
-    case Activation::kReLU: return dense::Epilogue::kReLUGrad;
-    case Activation::kELU: return dense::Epilogue::kELUGrad;
-    case Activation::kLeakyReLU: return dense::Epilogue::kLeakyReLUGrad;
+    case Activation::kTanh:
+      return dense::Epilogue::kTanhGrad;
+    case Activation::kReLU:
+      return dense::Epilogue::kReLUGrad;
+    case Activation::kELU:
+      return dense::Epilogue::kELUGrad;
+    case Activation::kLeakyReLU:
+      return dense::Epilogue::kLeakyReLUGrad;
   }
   throw std::logic_error("Mlp: unknown activation");
 }
@@ -47,8 +55,8 @@ Mlp::Mlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act)
   for (int h : hidden_) dims_.push_back(h);
   dims_.push_back(out_dim);
   for (int d : dims_) {
-    if (d <= 0) throw std::invalid_argument("Mlp: layer sizes must be positive, got " +
-                                            std::to_string(d));
+    if (d <= 0)
+      throw std::invalid_argument("Mlp: layer sizes must be positive, got " + std::to_string(d));
   }
   const int layers = static_cast<int>(dims_.size()) - 1;
   Eigen::Index offset = 0;
@@ -108,7 +116,8 @@ void Mlp::init_torch_default(Rng& rng) {
       w.data()[k] = static_cast<float>(rng.uniform(-bound, bound));
     }
     auto b = bias(l);
-    for (Eigen::Index k = 0; k < b.size(); ++k) b(k) = static_cast<float>(rng.uniform(-bound, bound));
+    for (Eigen::Index k = 0; k < b.size(); ++k)
+      b(k) = static_cast<float>(rng.uniform(-bound, bound));
   }
 }
 
@@ -159,9 +168,8 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
 void Mlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                    Eigen::MatrixXf* grad_input, const Eigen::MatrixXf* grad_last_hidden) {
   if (grad_input != nullptr) grad_input->resize(in_dim(), acts_[0].cols());
-  if (grad_last_hidden != nullptr &&
-      (grad_last_hidden->rows() != last_hidden().rows() ||
-       grad_last_hidden->cols() != last_hidden().cols()))
+  if (grad_last_hidden != nullptr && (grad_last_hidden->rows() != last_hidden().rows() ||
+                                      grad_last_hidden->cols() != last_hidden().cols()))
     throw std::invalid_argument("Mlp::backward: grad_last_hidden does not match last_hidden()");
   backward_pass(params_.data(), grad_output, true, grad_input ? grad_input->data() : nullptr, 0,
                 grad_last_hidden ? grad_last_hidden->data() : nullptr,
@@ -218,8 +226,7 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
                          {.c = weight_grad(l).data(), .ldc = out});
       } else {
         dense::gemm_rows(in, out, batch, input, in, delta, ld_delta, 1,
-                         dense::Epilogue::kAddTransposed,
-                         {.c = weight_grad(l).data(), .ldc = out});
+                         dense::Epilogue::kAddTransposed, {.c = weight_grad(l).data(), .ldc = out});
       }
       // db += delta 1, summed over the batch in order.
       dense::row_sum_add(out, batch, delta, ld_delta, bias_grad(l).data());

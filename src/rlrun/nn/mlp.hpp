@@ -22,9 +22,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/nn/activation.hpp"
 #include "rlrun/nn/param_block.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

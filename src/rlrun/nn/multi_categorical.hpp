@@ -30,7 +30,8 @@ class MultiCategorical {
 
   // out(j) = sum_i log p_i(actions(i, j) | column j). Throws std::out_of_range for an entry
   // outside [0, nvec_i).
-  void log_prob(const Eigen::Ref<const Eigen::MatrixXf>& actions, Eigen::Ref<Eigen::RowVectorXf> out);
+  void log_prob(const Eigen::Ref<const Eigen::MatrixXf>& actions,
+                Eigen::Ref<Eigen::RowVectorXf> out);
   // out(j) = sum_i H_i(column j).
   void entropy(Eigen::Ref<Eigen::RowVectorXf> out);
   // One draw per entry and column (entry 0 for the whole batch first, then entry 1, ...).

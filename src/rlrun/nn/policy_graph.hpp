@@ -49,12 +49,12 @@ struct GraphNode {
   GraphOp op = GraphOp::kConcat;
   std::vector<std::string> inputs;
   std::string output;
-  int width = 0;                // columns of the output
-  Eigen::MatrixXf weight;       // kDense
-  Eigen::VectorXf a, b, c;      // kDense: b = bias; kAffine: see above; kClamp: a low, b high
+  int width = 0;            // columns of the output
+  Eigen::MatrixXf weight;   // kDense
+  Eigen::VectorXf a, b, c;  // kDense: b = bias; kAffine: see above; kClamp: a low, b high
   Activation activation = Activation::kTanh;  // kActivation
-  int begin = 0;                // kSlice
-  float start = 0.0f;           // kOneHot: the value of column 0
+  int begin = 0;                              // kSlice
+  float start = 0.0f;                         // kOneHot: the value of column 0
 };
 
 struct GraphInput {

@@ -68,8 +68,8 @@ const Eigen::MatrixXf& SplitMlp::last_hidden() {
   return last_hidden_;
 }
 
-void SplitMlp::backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                              bool zero_first, const Eigen::MatrixXf* grad_last_hidden) {
+void SplitMlp::backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
+                              const Eigen::MatrixXf* grad_last_hidden) {
   if (parts_ == 1) {
     if (zero_first) net_.zero_grad();
     net_.backward(grad_output, nullptr, grad_last_hidden);

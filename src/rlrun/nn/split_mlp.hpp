@@ -65,7 +65,7 @@ class SplitMlp {
   // on first use).
   Mlp& part_net(int k);
   void backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
-                       const Eigen::MatrixXf* grad_last_hidden = nullptr);
+                      const Eigen::MatrixXf* grad_last_hidden = nullptr);
   // Before a split backward of n columns: W^T of every layer the parts carry the input
   // gradient through, transposed once into net_ (two threads a part of the rows each) for all
   // parts to read, rather than once per part (DQN's 4-256-256-2 update at batch 64 on a Zen 5:
@@ -76,8 +76,8 @@ class SplitMlp {
   Mlp net_;
   std::vector<Mlp> replicas_;  // parts 1, 2, ... of the largest split so far
   ThreadPool* pool_ = nullptr;
-  int parts_ = 1;           // of the last forward
-  Eigen::MatrixXf output_;  // the last split forward's output, all parts
+  int parts_ = 1;                // of the last forward
+  Eigen::MatrixXf output_;       // the last split forward's output, all parts
   Eigen::MatrixXf last_hidden_;  // last_hidden() of a split forward, all parts
 };
 

@@ -15,9 +15,8 @@ void SquashedGaussian::clamp_log_std(const Eigen::Ref<const Eigen::MatrixXf>& ra
 
 void SquashedGaussian::clamp_log_std_backward(const Eigen::Ref<const Eigen::MatrixXf>& raw,
                                               Eigen::Ref<Eigen::MatrixXf> grad) {
-  grad = (raw.array() >= kLogStdMin && raw.array() <= kLogStdMax)
-             .select(grad.array(), 0.0f)
-             .matrix();
+  grad =
+      (raw.array() >= kLogStdMin && raw.array() <= kLogStdMax).select(grad.array(), 0.0f).matrix();
 }
 
 void SquashedGaussian::set(const Eigen::Ref<const Eigen::MatrixXf>& mean,
@@ -80,12 +79,12 @@ void SquashedGaussian::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_ac
   const auto a = actions_.array();
   const auto one_minus_a2 = 1.0f - a.square();
   // dlogp/du per element, then scaled per column by dL/dlogp.
-  grad_mean = (grad_actions.array() * one_minus_a2 +
-               (2.0f * a * one_minus_a2 / (one_minus_a2 + kEpsilon)).rowwise() *
-                   grad_log_prob.array())
-                  .matrix();
-  grad_log_std = (grad_mean.array() * std_.array() * noise_.array()).rowwise() -
-                 grad_log_prob.array();
+  grad_mean =
+      (grad_actions.array() * one_minus_a2 +
+       (2.0f * a * one_minus_a2 / (one_minus_a2 + kEpsilon)).rowwise() * grad_log_prob.array())
+          .matrix();
+  grad_log_std =
+      (grad_mean.array() * std_.array() * noise_.array()).rowwise() - grad_log_prob.array();
 }
 
 }  // namespace rlrun

@@ -127,9 +127,9 @@ bool StateDependentNoise::batched_noise(Eigen::Index n) const {
 void StateDependentNoise::set(const Eigen::Ref<const Eigen::MatrixXf>& mean,
                               const Eigen::Ref<const Eigen::MatrixXf>& latent) {
   if (mean.rows() != action_dim_ || latent.rows() != latent_dim() || mean.cols() != latent.cols())
-    throw std::invalid_argument("StateDependentNoise::set: mean is " +
-                                std::to_string(mean.rows()) + "x" + std::to_string(mean.cols()) +
-                                ", latent " + std::to_string(latent.rows()) + "x" +
+    throw std::invalid_argument("StateDependentNoise::set: mean is " + std::to_string(mean.rows()) +
+                                "x" + std::to_string(mean.cols()) + ", latent " +
+                                std::to_string(latent.rows()) + "x" +
                                 std::to_string(latent.cols()));
   mean_ = mean;
   latent_ = latent;
@@ -200,8 +200,8 @@ void StateDependentNoise::entropy(Eigen::Ref<Eigen::RowVectorXf> out) const {
   if (options_.squash_output)
     throw std::logic_error("StateDependentNoise: no analytic entropy with squash_output");
   for (Eigen::Index j = 0; j < batch(); ++j)
-    out(j) = static_cast<float>(action_dim_) * (0.5f + kLogSqrt2Pi) +
-             sigma_.col(j).array().log().sum();
+    out(j) =
+        static_cast<float>(action_dim_) * (0.5f + kLogSqrt2Pi) + sigma_.col(j).array().log().sum();
 }
 
 void StateDependentNoise::backward_scored(const Eigen::Ref<const Eigen::MatrixXf>& actions,
@@ -228,10 +228,10 @@ void StateDependentNoise::backward_scored(const Eigen::Ref<const Eigen::MatrixXf
   backward_std(grad_var_, nullptr, grad_latent);
 }
 
-void StateDependentNoise::backward_sampled(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
-                                           const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
-                                           Eigen::MatrixXf& grad_mean,
-                                           Eigen::MatrixXf* grad_latent) {
+void StateDependentNoise::backward_sampled(
+    const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
+    const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob, Eigen::MatrixXf& grad_mean,
+    Eigen::MatrixXf* grad_latent) {
   const Eigen::Index n = batch();
   if (sampled_.cols() != n || grad_actions.cols() != n)
     throw std::logic_error("StateDependentNoise::backward_sampled: no matching sample()");
@@ -296,8 +296,8 @@ void StateDependentNoise::backward_std(const Eigen::MatrixXf& grad_var,
       for (Eigen::Index j = 0; j < n; ++j) {
         const Eigen::Index first = j * action_dim_;
         for (Eigen::Index i = 0; i < action_dim_; ++i)
-          grad_std_.col(i).array() += latent_.col(j).array() * (*grad_noise)(i, j) *
-                                      eps_matrices_.col(first + i).array();
+          grad_std_.col(i).array() +=
+              latent_.col(j).array() * (*grad_noise)(i, j) * eps_matrices_.col(first + i).array();
         if (to_latent)
           grad_latent->col(j).noalias() +=
               exploration_matrices_.middleCols(j * action_dim_, action_dim_) * grad_noise->col(j);

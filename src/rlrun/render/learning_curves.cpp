@@ -33,16 +33,19 @@ double interpolate(const std::vector<std::pair<double, double>>& curve, double x
 Band band_of(const CurveGroup& group) {
   std::vector<std::vector<std::pair<double, double>>> seeds;
   for (auto s : group.seeds) {
-    s.erase(std::remove_if(s.begin(), s.end(),
-                           [](const auto& p) { return !std::isfinite(p.first) || !std::isfinite(p.second); }),
+    s.erase(std::remove_if(
+                s.begin(), s.end(),
+                [](const auto& p) { return !std::isfinite(p.first) || !std::isfinite(p.second); }),
             s.end());
     std::sort(s.begin(), s.end());
     if (!s.empty()) seeds.push_back(s);
   }
   Band band;
   if (seeds.empty()) return band;
-  double from = -std::numeric_limits<double>::infinity(), to = std::numeric_limits<double>::infinity();
-  for (const auto& s : seeds) from = std::max(from, s.front().first), to = std::min(to, s.back().first);
+  double from = -std::numeric_limits<double>::infinity(),
+         to = std::numeric_limits<double>::infinity();
+  for (const auto& s : seeds)
+    from = std::max(from, s.front().first), to = std::min(to, s.back().first);
   if (!(to > from)) return band;  // seeds without a common span
   for (int i = 0; i < kGridPoints; ++i) {
     const double x = from + (to - from) * i / (kGridPoints - 1);
@@ -137,21 +140,26 @@ void plot_learning_curves(const std::vector<CurveGroup>& groups, const std::stri
       y_max = std::max(y_max, b.high[i]);
     }
   }
-  if (!std::isfinite(y_min)) throw RuntimeFailure("nothing to plot: no run has two points of " + y_label);
+  if (!std::isfinite(y_min))
+    throw RuntimeFailure("nothing to plot: no run has two points of " + y_label);
   if (y_max - y_min < 1e-12) y_min -= 1, y_max += 1;
   const double pad = 0.05 * (y_max - y_min);
-  const std::vector<double> x_ticks = nice_ticks(0, x_max), y_ticks = nice_ticks(y_min - pad, y_max + pad);
+  const std::vector<double> x_ticks = nice_ticks(0, x_max),
+                            y_ticks = nice_ticks(y_min - pad, y_max + pad);
   PlotArea area;
-  area.left = kLeft, area.top = kTop, area.width = kPlotWidth, area.height = kHeight - kTop - kBottom;
+  area.left = kLeft, area.top = kTop, area.width = kPlotWidth,
+  area.height = kHeight - kTop - kBottom;
   area.x_lo = 0, area.x_hi = std::max(x_ticks.back(), x_max);
-  area.y_lo = std::min(y_ticks.front(), y_min - pad), area.y_hi = std::max(y_ticks.back(), y_max + pad);
+  area.y_lo = std::min(y_ticks.front(), y_min - pad),
+  area.y_hi = std::max(y_ticks.back(), y_max + pad);
   // The legend's entries, measured first: the image grows to fit them.
   std::vector<std::string> entries;
   for (const CurveGroup& g : groups)
     entries.push_back(g.label + " (" + std::to_string(g.seeds.size()) +
                       (g.seeds.size() == 1 ? " seed)" : " seeds)"));
   double legend_width = 0;
-  for (const std::string& e : entries) legend_width = std::max(legend_width, 34 + text_width(e, 12));
+  for (const std::string& e : entries)
+    legend_width = std::max(legend_width, 34 + text_width(e, 12));
   for (const char* line : kCaption) legend_width = std::max(legend_width, text_width(line, 11));
   const int width = static_cast<int>(kLeft + kPlotWidth + 18 + legend_width + 16);
 

@@ -123,16 +123,20 @@ std::vector<double> nice_ticks(double low, double high, int target) {
       break;
     }
   std::vector<double> ticks;
-  for (double t = std::ceil(low / step - 1e-9) * step; t <= high + step * 1e-9; t += step) ticks.push_back(t);
+  for (double t = std::ceil(low / step - 1e-9) * step; t <= high + step * 1e-9; t += step)
+    ticks.push_back(t);
   return ticks;
 }
 
 std::string tick_label(double value, double step) {
   char buffer[32];
   const double a = std::abs(value);
-  if (a >= 1e6 && step >= 1e5) std::snprintf(buffer, sizeof buffer, "%gM", value / 1e6);
-  else if (a >= 1e3 && step >= 100) std::snprintf(buffer, sizeof buffer, "%gk", value / 1e3);
-  else std::snprintf(buffer, sizeof buffer, "%g", std::abs(value) < step * 1e-6 ? 0.0 : value);
+  if (a >= 1e6 && step >= 1e5)
+    std::snprintf(buffer, sizeof buffer, "%gM", value / 1e6);
+  else if (a >= 1e3 && step >= 100)
+    std::snprintf(buffer, sizeof buffer, "%gk", value / 1e3);
+  else
+    std::snprintf(buffer, sizeof buffer, "%g", std::abs(value) < step * 1e-6 ? 0.0 : value);
   return buffer;
 }
 

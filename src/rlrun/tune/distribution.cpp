@@ -56,9 +56,12 @@ bool is_choice_type(const nlohmann::json& v) {
 // Optuna compares choices with ==, where True == 1 and 1 == 1.0.
 bool same_choice(const nlohmann::json& a, const nlohmann::json& b) {
   auto numeric = [](const nlohmann::json& v, double& out) {
-    if (v.is_boolean()) out = v.get<bool>() ? 1.0 : 0.0;
-    else if (v.is_number()) out = v.get<double>();
-    else return false;
+    if (v.is_boolean())
+      out = v.get<bool>() ? 1.0 : 0.0;
+    else if (v.is_number())
+      out = v.get<double>();
+    else
+      return false;
     return true;
   };
   double x = 0, y = 0;
@@ -71,7 +74,9 @@ bool same_choice(const nlohmann::json& a, const nlohmann::json& b) {
 FloatDistribution make_float_distribution(const std::string& what, double low, double high,
                                           bool log, std::optional<double> step) {
   if (!std::isfinite(low) || !std::isfinite(high)) fail(what, "low and high must be finite");
-  if (low > high) fail(what, "low must be <= high (low=" + std::to_string(low) + ", high=" + std::to_string(high) + ")");
+  if (low > high)
+    fail(what, "low must be <= high (low=" + std::to_string(low) +
+                   ", high=" + std::to_string(high) + ")");
   if (log && step) fail(what, "`step` and `log` cannot be used together (as in Optuna)");
   if (log && low <= 0) fail(what, "a log distribution needs low > 0");
   if (step && !(*step > 0 && std::isfinite(*step))) fail(what, "step must be > 0");
@@ -80,9 +85,11 @@ FloatDistribution make_float_distribution(const std::string& what, double low, d
   return d;
 }
 
-IntDistribution make_int_distribution(const std::string& what, int64_t low, int64_t high,
-                                      bool log, int64_t step) {
-  if (low > high) fail(what, "low must be <= high (low=" + std::to_string(low) + ", high=" + std::to_string(high) + ")");
+IntDistribution make_int_distribution(const std::string& what, int64_t low, int64_t high, bool log,
+                                      int64_t step) {
+  if (low > high)
+    fail(what, "low must be <= high (low=" + std::to_string(low) +
+                   ", high=" + std::to_string(high) + ")");
   if (log && low < 1) fail(what, "a log distribution needs low >= 1");
   if (step <= 0) fail(what, "step must be >= 1");
   if (log && step != 1) fail(what, "`step` and `log` cannot be used together (as in Optuna)");
@@ -96,8 +103,8 @@ CategoricalDistribution make_categorical_distribution(const std::string& what,
   if (choices.empty()) fail(what, "a categorical parameter needs at least one choice");
   for (const auto& c : choices)
     if (!is_choice_type(c))
-      fail(what, "a choice must be null, a bool, a number or a string (as Optuna's), not " +
-                     c.dump());
+      fail(what,
+           "a choice must be null, a bool, a number or a string (as Optuna's), not " + c.dump());
   return CategoricalDistribution{std::move(choices)};
 }
 
@@ -125,7 +132,8 @@ std::string distribution_to_json(const Distribution& distribution) {
     const auto& c = std::get<CategoricalDistribution>(distribution);
     out["name"] = "CategoricalDistribution";
     nlohmann::ordered_json choices = nlohmann::ordered_json::array();
-    for (const auto& choice : c.choices) choices.push_back(nlohmann::ordered_json::parse(choice.dump()));
+    for (const auto& choice : c.choices)
+      choices.push_back(nlohmann::ordered_json::parse(choice.dump()));
     out["attributes"] = {{"choices", choices}};
   }
   return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
@@ -148,7 +156,9 @@ int64_t integer(const nlohmann::json& j, const char* key, const std::string& ori
 
 bool flag(const nlohmann::json& j, const char* key, const std::string& origin) {
   if (!j.contains(key) || j[key].is_null()) return false;
-  if (!j[key].is_boolean()) throw ConfigError(origin + ": distribution field '" + std::string(key) + "' must be true or false");
+  if (!j[key].is_boolean())
+    throw ConfigError(origin + ": distribution field '" + std::string(key) +
+                      "' must be true or false");
   return j[key].get<bool>();
 }
 
@@ -178,8 +188,9 @@ Distribution distribution_from_json(const std::string& text, const std::string& 
         throw ConfigError(origin + ": a categorical distribution needs a list of choices");
       return make_categorical_distribution(origin, a["choices"].get<std::vector<nlohmann::json>>());
     }
-    throw ConfigError(origin + ": unknown distribution class '" + name +
-                      "' (rlrun reads FloatDistribution, IntDistribution, CategoricalDistribution)");
+    throw ConfigError(
+        origin + ": unknown distribution class '" + name +
+        "' (rlrun reads FloatDistribution, IntDistribution, CategoricalDistribution)");
   }
   // The abbreviated form: {"type": "float"|"int"|"categorical", ...}.
   if (!j.contains("type") || !j["type"].is_string())
@@ -236,8 +247,7 @@ bool contains(const Distribution& distribution, double value) {
 
 nlohmann::json to_external(const Distribution& distribution, double internal) {
   if (std::holds_alternative<FloatDistribution>(distribution)) return internal;
-  if (std::holds_alternative<IntDistribution>(distribution))
-    return static_cast<int64_t>(internal);
+  if (std::holds_alternative<IntDistribution>(distribution)) return static_cast<int64_t>(internal);
   const auto& c = std::get<CategoricalDistribution>(distribution);
   auto index = static_cast<size_t>(internal);
   if (!(internal >= 0) || index >= c.choices.size())
@@ -252,9 +262,12 @@ double to_internal(const Distribution& distribution, const nlohmann::json& exter
     throw ConfigError("'" + external.dump() + "' is not one of the choices");
   }
   double v = 0;
-  if (external.is_number()) v = external.get<double>();
-  else if (external.is_boolean()) v = external.get<bool>() ? 1 : 0;
-  else throw ConfigError("'" + external.dump() + "' is not a number");
+  if (external.is_number())
+    v = external.get<double>();
+  else if (external.is_boolean())
+    v = external.get<bool>() ? 1 : 0;
+  else
+    throw ConfigError("'" + external.dump() + "' is not a number");
   if (std::isnan(v)) throw ConfigError("NaN is not a parameter value");
   return v;
 }
@@ -265,6 +278,5 @@ bool compatible(const Distribution& a, const Distribution& b) {
     return ca->choices == std::get<CategoricalDistribution>(b).choices;
   return true;
 }
-
 
 }  // namespace rlrun::tune

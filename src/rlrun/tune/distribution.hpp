@@ -55,8 +55,8 @@ inline bool is_log_scale(const Distribution& d) {
 // in the caller's words). Throw ConfigError with `what` (the parameter's name) in the message.
 FloatDistribution make_float_distribution(const std::string& what, double low, double high,
                                           bool log, std::optional<double> step);
-IntDistribution make_int_distribution(const std::string& what, int64_t low, int64_t high,
-                                      bool log, int64_t step);
+IntDistribution make_int_distribution(const std::string& what, int64_t low, int64_t high, bool log,
+                                      int64_t step);
 CategoricalDistribution make_categorical_distribution(const std::string& what,
                                                       std::vector<nlohmann::json> choices);
 

@@ -18,7 +18,8 @@ TreePartition::TreePartition(const std::vector<TreeNode>& tree,
     int node;
     std::vector<double> lower, upper;
   };
-  std::vector<Pending> stack{{0, std::vector<double>(columns, 0.0), std::vector<double>(columns, 1.0)}};
+  std::vector<Pending> stack{
+      {0, std::vector<double>(columns, 0.0), std::vector<double>(columns, 1.0)}};
   std::vector<double> values;
   while (!stack.empty()) {
     Pending p = std::move(stack.back());

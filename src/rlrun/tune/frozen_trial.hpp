@@ -33,7 +33,7 @@ struct FrozenTrial {
   std::optional<std::vector<double>> values;      // one per objective once complete
   nlohmann::json user_attrs = nlohmann::json::object();
   nlohmann::json system_attrs = nlohmann::json::object();
-  std::string datetime_start;     // ISO 8601 as Optuna writes it; empty when not set
+  std::string datetime_start;  // ISO 8601 as Optuna writes it; empty when not set
   std::string datetime_complete;
 
   // Optuna's FrozenTrial.last_step: the largest reported step.
@@ -53,13 +53,15 @@ struct FrozenTrial {
   // Every parameter's external value ({name: value}, Optuna's trial.params).
   nlohmann::json external_params() const {
     nlohmann::json out = nlohmann::json::object();
-    for (const auto& [name, internal] : params) out[name] = to_external(distributions.at(name), internal);
+    for (const auto& [name, internal] : params)
+      out[name] = to_external(distributions.at(name), internal);
     return out;
   }
 };
 
 // Optuna's study.best_trial: the first COMPLETE trial with the best value; null when none.
-inline const FrozenTrial* best_trial(const std::vector<FrozenTrial>& trials, StudyDirection direction) {
+inline const FrozenTrial* best_trial(const std::vector<FrozenTrial>& trials,
+                                     StudyDirection direction) {
   const FrozenTrial* best = nullptr;
   for (const FrozenTrial& t : trials) {
     if (t.state != TrialState::kComplete || !t.value()) continue;

@@ -41,8 +41,10 @@ void legend_row(cairo_t* cr, Mark mark, const std::string& label, double x, doub
     cairo_line_to(cr, x + 26, y);
     cairo_stroke(cr);
   } else {
-    if (mark == Mark::kPoint) cairo_set_source_rgb(cr, kPointColour[0], kPointColour[1], kPointColour[2]);
-    else cairo_set_source_rgb(cr, kPrunedGrey, kPrunedGrey, kPrunedGrey);
+    if (mark == Mark::kPoint)
+      cairo_set_source_rgb(cr, kPointColour[0], kPointColour[1], kPointColour[2]);
+    else
+      cairo_set_source_rgb(cr, kPrunedGrey, kPrunedGrey, kPrunedGrey);
     marker(cr, x + 13, y);
     cairo_fill(cr);
   }
@@ -64,8 +66,9 @@ void write_history_plot(const std::string& name, StudyDirection direction,
     if (t.state == TrialState::kComplete && t.value() && std::isfinite(*t.value())) {
       complete.push_back({number, *t.value()});
       const double v = *t.value();
-      const bool better = best.empty() || (direction == StudyDirection::kMaximize ? v > best.back().y
-                                                                                   : v < best.back().y);
+      const bool better =
+          best.empty() ||
+          (direction == StudyDirection::kMaximize ? v > best.back().y : v < best.back().y);
       best.push_back({number, better ? v : best.back().y});
     } else if (show_pruned && t.state == TrialState::kPruned && t.last_step()) {
       const double v = t.intermediate_values.rbegin()->second;
@@ -86,7 +89,8 @@ void write_history_plot(const std::string& name, StudyDirection direction,
     if (std::abs(t - std::round(t)) < 1e-9) x_ticks.push_back(std::round(t));
   const std::vector<double> y_ticks = nice_ticks(y_min - y_pad, y_max + y_pad);
   PlotArea area;
-  area.left = kLeft, area.top = kTop, area.width = kPlotWidth, area.height = kHeight - kTop - kBottom;
+  area.left = kLeft, area.top = kTop, area.width = kPlotWidth,
+  area.height = kHeight - kTop - kBottom;
   area.x_lo = -x_pad, area.x_hi = x_max + x_pad;
   area.y_lo = std::min(y_ticks.front(), y_min - y_pad);
   area.y_hi = std::max(y_ticks.back(), y_max + y_pad);
@@ -95,7 +99,8 @@ void write_history_plot(const std::string& name, StudyDirection direction,
                                                       {Mark::kLine, "best value"}};
   if (show_pruned) legend.emplace_back(Mark::kPruned, "pruned trial (last report)");
   double legend_width = 0;
-  for (const auto& [mark, label] : legend) legend_width = std::max(legend_width, 34 + text_width(label, 12));
+  for (const auto& [mark, label] : legend)
+    legend_width = std::max(legend_width, 34 + text_width(label, 12));
   PlotCanvas canvas(path, static_cast<int>(kLeft + kPlotWidth + 18 + legend_width + 16), kHeight);
   cairo_t* cr = canvas.cr();
   draw_grid(cr, area, x_ticks, y_ticks);

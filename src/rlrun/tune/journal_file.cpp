@@ -22,8 +22,8 @@ std::string errno_text() { return std::strerror(errno); }
 
 // A fresh name beside the lock for its release (Optuna: <file>.lock<uuid4>.rename).
 std::string unique_suffix() {
-  static thread_local std::mt19937_64 rng(std::random_device{}() ^
-                                          static_cast<uint64_t>(::getpid()) << 32);
+  static thread_local std::mt19937_64 rng(std::random_device{}() ^ static_cast<uint64_t>(::getpid())
+                                                                       << 32);
   char text[40];
   std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(rng()),
                 static_cast<unsigned long long>(rng()));
@@ -36,7 +36,8 @@ double lock_age(int dirfd, const std::string& lock_name) {
   if (::fstatat(dirfd, lock_name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return -1;
   const auto now = std::chrono::system_clock::now().time_since_epoch();
   const double now_s = std::chrono::duration<double>(now).count();
-  return now_s - (static_cast<double>(st.st_mtim.tv_sec) + 1e-9 * static_cast<double>(st.st_mtim.tv_nsec));
+  return now_s -
+         (static_cast<double>(st.st_mtim.tv_sec) + 1e-9 * static_cast<double>(st.st_mtim.tv_nsec));
 }
 
 // Removes a lock by renaming it to a fresh name first (as Optuna's release), so that two
@@ -68,7 +69,8 @@ void python_text(const nlohmann::json& v, std::string& out) {
       for (auto it = v.begin(); it != v.end(); ++it) {
         if (!first) out += ", ";
         first = false;
-        out += nlohmann::json(it.key()).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
+        out +=
+            nlohmann::json(it.key()).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
         out += ": ";
         python_text(it.value(), out);
       }
@@ -86,9 +88,12 @@ void python_text(const nlohmann::json& v, std::string& out) {
     }
     case nlohmann::json::value_t::number_float: {
       const double x = v.get<double>();
-      if (std::isnan(x)) out += "NaN";
-      else if (std::isinf(x)) out += x > 0 ? "Infinity" : "-Infinity";
-      else out += v.dump();
+      if (std::isnan(x))
+        out += "NaN";
+      else if (std::isinf(x))
+        out += x > 0 ? "Infinity" : "-Infinity";
+      else
+        out += v.dump();
       return;
     }
     default:
@@ -112,13 +117,16 @@ std::string mark_non_finite(const std::string& line, const std::string& where) {
     const char c = line[i];
     if (in_string) {
       out += c;
-      if (c == '\\' && i + 1 < line.size()) out += line[++i];
-      else if (c == '"') in_string = false;
+      if (c == '\\' && i + 1 < line.size())
+        out += line[++i];
+      else if (c == '"')
+        in_string = false;
       continue;
     }
     if (c == '[' || c == '{') {
       if (++depth > kMaxJournalDepth)
-        throw RuntimeFailure(where + ": JSON nested deeper than " + std::to_string(kMaxJournalDepth) +
+        throw RuntimeFailure(where + ": JSON nested deeper than " +
+                             std::to_string(kMaxJournalDepth) +
                              " levels (the journal is damaged; an operation is a few levels deep)");
     } else if (c == ']' || c == '}') {
       --depth;
@@ -145,9 +153,12 @@ std::string mark_non_finite(const std::string& line, const std::string& where) {
 void restore_non_finite(nlohmann::json& v) {
   if (v.is_string()) {
     const auto& s = v.get_ref<const std::string&>();
-    if (s == kNanMarker) v = std::nan("");
-    else if (s == kInfMarker) v = HUGE_VAL;
-    else if (s == kNegInfMarker) v = -HUGE_VAL;
+    if (s == kNanMarker)
+      v = std::nan("");
+    else if (s == kInfMarker)
+      v = HUGE_VAL;
+    else if (s == kNegInfMarker)
+      v = -HUGE_VAL;
   } else if (v.is_structured()) {
     for (auto& child : v) restore_non_finite(child);
   }
@@ -203,7 +214,8 @@ void JournalFile::read(uint64_t& lines_read,
   char buffer[1 << 16];
   // Only what the file held when this read began: one appended meanwhile waits for the next.
   while (position + pending.size() < static_cast<uint64_t>(st.st_size)) {
-    const ssize_t n = ::pread(fd, buffer, sizeof buffer, static_cast<off_t>(position + pending.size()));
+    const ssize_t n =
+        ::pread(fd, buffer, sizeof buffer, static_cast<off_t>(position + pending.size()));
     if (n < 0) {
       if (errno == EINTR) continue;
       throw RuntimeFailure("cannot read " + path_ + ": " + errno_text());
@@ -261,7 +273,8 @@ void JournalFile::repair_tail(int fd) const {
   // The last line, looked for within one line's bound (a longer one the readers refuse).
   const uint64_t window = std::min<uint64_t>(size, kMaxJournalLineBytes + 1);
   std::string tail(window, '\0');
-  if (::pread(fd, tail.data(), window, static_cast<off_t>(size - window)) != static_cast<ssize_t>(window))
+  if (::pread(fd, tail.data(), window, static_cast<off_t>(size - window)) !=
+      static_cast<ssize_t>(window))
     throw RuntimeFailure("cannot read " + path_ + ": " + errno_text());
   if (tail.back() == '\n') return;
   const size_t newline = tail.rfind('\n');
@@ -274,7 +287,8 @@ void JournalFile::repair_tail(int fd) const {
     whole = parse_python_json(fragment, path_).is_object();
   } catch (const RuntimeFailure&) {
   }
-  if (whole) write_all(fd, "\n", path_);
+  if (whole)
+    write_all(fd, "\n", path_);
   else if (::ftruncate(fd, static_cast<off_t>(size - fragment.size())) != 0)
     throw RuntimeFailure("cannot cut the half-written last line of " + path_ + ": " + errno_text());
 }

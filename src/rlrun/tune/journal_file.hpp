@@ -33,8 +33,8 @@
 
 namespace rlrun::tune {
 
-inline constexpr double kLockGracePeriod = 30.0;                 // seconds
-inline constexpr size_t kMaxJournalLineBytes = 1 << 20;          // one operation
+inline constexpr double kLockGracePeriod = 30.0;                   // seconds
+inline constexpr size_t kMaxJournalLineBytes = 1 << 20;            // one operation
 inline constexpr uint64_t kMaxJournalBytes = uint64_t{128} << 20;  // the whole study
 // Brackets open at once in one operation (Optuna's are at most 4 deep; a user attribute may
 // nest further). Deeper JSON is refused before it is parsed: the recursive walks over a parsed
@@ -81,7 +81,7 @@ class JournalFile {
   DirHandle dir_;     // the directory holding the journal
   std::string name_;  // the journal's name in it
   std::string path_;
-  uint64_t offset_ = 0;      // byte offset of line `offset_line_`
+  uint64_t offset_ = 0;  // byte offset of line `offset_line_`
   uint64_t offset_line_ = 0;
 };
 

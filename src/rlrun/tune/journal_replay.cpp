@@ -59,9 +59,11 @@ std::optional<std::vector<double>> values_value(const nlohmann::json& v, const s
 }
 
 // A one-key attribute map ({"key": value}), as every SET_*_ATTR operation holds.
-const nlohmann::json& one_attribute(const nlohmann::json& op, const char* key, const std::string& where) {
+const nlohmann::json& one_attribute(const nlohmann::json& op, const char* key,
+                                    const std::string& where) {
   const auto& v = field(op, key, where);
-  if (!v.is_object() || v.size() != 1) damaged(where, std::string("'") + key + "' is not one attribute");
+  if (!v.is_object() || v.size() != 1)
+    damaged(where, std::string("'") + key + "' is not one attribute");
   return v;
 }
 
@@ -73,7 +75,8 @@ uint64_t json_charge(const nlohmann::json& v) {
   if (v.is_string()) {
     bytes += v.get_ref<const std::string&>().size();
   } else if (v.is_object()) {
-    for (auto it = v.begin(); it != v.end(); ++it) bytes += 128 + it.key().size() + json_charge(it.value());
+    for (auto it = v.begin(); it != v.end(); ++it)
+      bytes += 128 + it.key().size() + json_charge(it.value());
   } else if (v.is_array()) {
     for (const auto& x : v) bytes += json_charge(x);
   }
@@ -98,9 +101,11 @@ void read_trial_fields(const nlohmann::json& op, FrozenTrial& t, const std::stri
     if (!op["params"].is_object()) damaged(where, "'params' is not a map");
     for (auto it = op["params"].begin(); it != op["params"].end(); ++it) {
       auto d = t.distributions.find(it.key());
-      if (d == t.distributions.end()) damaged(where, "parameter '" + it.key() + "' has no distribution");
+      if (d == t.distributions.end())
+        damaged(where, "parameter '" + it.key() + "' has no distribution");
       const double internal = number_value(it.value(), where, "a parameter");
-      if (!contains(d->second, internal)) damaged(where, "parameter '" + it.key() + "' is outside its distribution");
+      if (!contains(d->second, internal))
+        damaged(where, "parameter '" + it.key() + "' is outside its distribution");
       t.params[it.key()] = internal;
     }
   }
@@ -115,15 +120,18 @@ void read_trial_fields(const nlohmann::json& op, FrozenTrial& t, const std::stri
     t.system_attrs = op["system_attrs"];
   }
   if (op.contains("intermediate_values")) {
-    if (!op["intermediate_values"].is_object()) damaged(where, "'intermediate_values' is not a map");
+    if (!op["intermediate_values"].is_object())
+      damaged(where, "'intermediate_values' is not a map");
     for (auto it = op["intermediate_values"].begin(); it != op["intermediate_values"].end(); ++it) {
       char* end = nullptr;
       const long long step = std::strtoll(it.key().c_str(), &end, 10);
-      if (it.key().empty() || *end != '\0') damaged(where, "an intermediate step is not an integer");
+      if (it.key().empty() || *end != '\0')
+        damaged(where, "an intermediate step is not an integer");
       t.intermediate_values[step] = number_value(it.value(), where, "an intermediate value");
     }
   }
-  if (op.contains("values")) t.values = values_value(op["values"], where);
+  if (op.contains("values"))
+    t.values = values_value(op["values"], where);
   else if (op.contains("value") && !op["value"].is_null())
     t.values = std::vector<double>{number_value(op["value"], where, "'value'")};
 }
@@ -138,7 +146,8 @@ void JournalReplay::charge(uint64_t bytes, const std::string& where) {
                        " MiB of memory, the most rlrun keeps of a journal (docs/security.md)");
 }
 
-void JournalReplay::apply(const std::vector<nlohmann::json>& operations, const std::string& origin) {
+void JournalReplay::apply(const std::vector<nlohmann::json>& operations,
+                          const std::string& origin) {
   for (const auto& op : operations) apply_one(op, origin);
 }
 
@@ -147,20 +156,25 @@ bool JournalReplay::mine(const nlohmann::json& op) const {
   return it != op.end() && it->is_string() && it->get_ref<const std::string&>() == worker_id_;
 }
 
-bool JournalReplay::study_exists(int64_t study_id, const nlohmann::json& op, const std::string& where) const {
+bool JournalReplay::study_exists(int64_t study_id, const nlohmann::json& op,
+                                 const std::string& where) const {
   if (studies_.count(study_id)) return true;
-  if (mine(op)) throw RuntimeFailure(where + ": study " + std::to_string(study_id) + " does not exist");
+  if (mine(op))
+    throw RuntimeFailure(where + ": study " + std::to_string(study_id) + " does not exist");
   return false;
 }
 
-bool JournalReplay::trial_updatable(int64_t trial_id, const nlohmann::json& op, const std::string& where) const {
+bool JournalReplay::trial_updatable(int64_t trial_id, const nlohmann::json& op,
+                                    const std::string& where) const {
   if (trial_id < 0 || static_cast<size_t>(trial_id) >= trials_.size()) {
-    if (mine(op)) throw RuntimeFailure(where + ": trial " + std::to_string(trial_id) + " does not exist");
+    if (mine(op))
+      throw RuntimeFailure(where + ": trial " + std::to_string(trial_id) + " does not exist");
     return false;
   }
   if (is_finished(trials_[static_cast<size_t>(trial_id)].state)) {
     if (mine(op))
-      throw RuntimeFailure(where + ": trial #" + std::to_string(trials_[static_cast<size_t>(trial_id)].number) +
+      throw RuntimeFailure(where + ": trial #" +
+                           std::to_string(trials_[static_cast<size_t>(trial_id)].number) +
                            " has already finished and can not be updated");
     return false;
   }
@@ -202,7 +216,8 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
 void JournalReplay::create_study(const nlohmann::json& op, const std::string& where) {
   const std::string name = string_field(op, "study_name", where);
   const auto& dirs = field(op, "directions", where);
-  if (!dirs.is_array() || dirs.empty() || dirs.size() > 64) damaged(where, "'directions' is not a list");
+  if (!dirs.is_array() || dirs.empty() || dirs.size() > 64)
+    damaged(where, "'directions' is not a list");
   std::vector<StudyDirection> directions;
   for (const auto& d : dirs) {
     if (!d.is_number_integer() || d.get<int>() < 0 || d.get<int>() > 2)
@@ -257,20 +272,24 @@ void JournalReplay::set_trial_param(const nlohmann::json& op, const std::string&
   const int64_t id = id_field(op, "trial_id", where);
   if (!trial_updatable(id, op, where)) return;
   const std::string name = string_field(op, "param_name", where);
-  const double internal = number_value(field(op, "param_value_internal", where), where, "'param_value_internal'");
+  const double internal =
+      number_value(field(op, "param_value_internal", where), where, "'param_value_internal'");
   Distribution distribution;
   try {
     distribution = distribution_from_json(string_field(op, "distribution", where), where);
   } catch (const ConfigError& e) {
     damaged(where, e.what());
   }
-  if (!contains(distribution, internal)) damaged(where, "parameter '" + name + "' is outside its distribution");
+  if (!contains(distribution, internal))
+    damaged(where, "parameter '" + name + "' is outside its distribution");
   // Optuna: the first trial (lowest number) with this parameter decides whether it fits.
   StudyRecord& study = studies_.at(trial_study_[static_cast<size_t>(id)]);
   const auto first = study.first_trial_with_param.find(name);
   if (first != study.first_trial_with_param.end() &&
-      !compatible(trials_[static_cast<size_t>(first->second)].distributions.at(name), distribution)) {
-    if (mine(op)) throw RuntimeFailure(where + ": parameter '" + name + "' changed its distribution");
+      !compatible(trials_[static_cast<size_t>(first->second)].distributions.at(name),
+                  distribution)) {
+    if (mine(op))
+      throw RuntimeFailure(where + ": parameter '" + name + "' changed its distribution");
     return;
   }
   charge(256 + name.size(), where);
@@ -295,14 +314,17 @@ void JournalReplay::set_trial_state_values(const nlohmann::json& op, const std::
   }
   if (is_finished(state)) t.datetime_complete = datetime_field(op, "datetime_complete", where);
   t.state = state;
-  if (op.contains("values") && !op["values"].is_null()) t.values = values_value(op["values"], where);
+  if (op.contains("values") && !op["values"].is_null())
+    t.values = values_value(op["values"], where);
 }
 
-void JournalReplay::set_trial_intermediate_value(const nlohmann::json& op, const std::string& where) {
+void JournalReplay::set_trial_intermediate_value(const nlohmann::json& op,
+                                                 const std::string& where) {
   const int64_t id = id_field(op, "trial_id", where);
   const auto& step = field(op, "step", where);
   if (!step.is_number_integer()) damaged(where, "'step' is not an integer");
-  const double value = number_value(field(op, "intermediate_value", where), where, "'intermediate_value'");
+  const double value =
+      number_value(field(op, "intermediate_value", where), where, "'intermediate_value'");
   if (!trial_updatable(id, op, where)) return;
   charge(64, where);
   trials_[static_cast<size_t>(id)].intermediate_values[step.get<int64_t>()] = value;
@@ -332,7 +354,8 @@ std::vector<std::string> JournalReplay::study_names() const {
 
 const StudyRecord& JournalReplay::study(int64_t study_id) const {
   auto it = studies_.find(study_id);
-  if (it == studies_.end()) throw RuntimeFailure("study " + std::to_string(study_id) + " does not exist");
+  if (it == studies_.end())
+    throw RuntimeFailure("study " + std::to_string(study_id) + " does not exist");
   return it->second;
 }
 

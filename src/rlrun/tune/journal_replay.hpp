@@ -64,7 +64,9 @@ class JournalReplay {
   // operation, and for a rejected operation this worker wrote (its own mistake).
   void apply(const std::vector<nlohmann::json>& operations, const std::string& origin);
   // One operation, as read (a journal is replayed line by line: journal_file.hpp).
-  void apply(const nlohmann::json& operation, const std::string& origin) { apply_one(operation, origin); }
+  void apply(const nlohmann::json& operation, const std::string& origin) {
+    apply_one(operation, origin);
+  }
 
   const std::string& worker_id() const { return worker_id_; }
   std::optional<int64_t> find_study(const std::string& name) const;
@@ -95,8 +97,8 @@ class JournalReplay {
   std::string worker_id_;
   std::map<int64_t, StudyRecord> studies_;
   int64_t next_study_id_ = 0;
-  std::vector<FrozenTrial> trials_;            // index = trial id
-  std::vector<int64_t> trial_study_;           // trial id -> study id
+  std::vector<FrozenTrial> trials_;   // index = trial id
+  std::vector<int64_t> trial_study_;  // trial id -> study id
   std::optional<int64_t> owned_trial_;
   std::optional<int64_t> last_created_trial_;
   uint64_t state_bytes_ = 0;  // kMaxJournalStateBytes

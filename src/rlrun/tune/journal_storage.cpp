@@ -12,9 +12,9 @@
 namespace rlrun::tune {
 
 std::string now_iso() {
-  timeval tv {};
+  timeval tv{};
   ::gettimeofday(&tv, nullptr);
-  std::tm local {};
+  std::tm local{};
   const time_t seconds = tv.tv_sec;
   ::localtime_r(&seconds, &local);
   char text[64];
@@ -29,15 +29,15 @@ std::string new_worker_id() {
   std::mt19937_64 rng((static_cast<uint64_t>(device()) << 32) ^ device() ^
                       static_cast<uint64_t>(::getpid()));
   uint64_t hi = rng(), lo = rng();
-  hi = (hi & ~0xF000ull) | 0x4000ull;                      // version 4
+  hi = (hi & ~0xF000ull) | 0x4000ull;                         // version 4
   lo = (lo & 0x3FFFFFFFFFFFFFFFull) | 0x8000000000000000ull;  // variant 10
   char text[64];
-  std::snprintf(text, sizeof text, "%08llx-%04llx-%04llx-%04llx-%012llx-%d",
-                static_cast<unsigned long long>(hi >> 32),
-                static_cast<unsigned long long>((hi >> 16) & 0xFFFF),
-                static_cast<unsigned long long>(hi & 0xFFFF),
-                static_cast<unsigned long long>(lo >> 48),
-                static_cast<unsigned long long>(lo & 0xFFFFFFFFFFFFull), static_cast<int>(::getpid()));
+  std::snprintf(
+      text, sizeof text, "%08llx-%04llx-%04llx-%04llx-%012llx-%d",
+      static_cast<unsigned long long>(hi >> 32),
+      static_cast<unsigned long long>((hi >> 16) & 0xFFFF),
+      static_cast<unsigned long long>(hi & 0xFFFF), static_cast<unsigned long long>(lo >> 48),
+      static_cast<unsigned long long>(lo & 0xFFFFFFFFFFFFull), static_cast<int>(::getpid()));
   return text;
 }
 
@@ -59,7 +59,8 @@ JournalStorage::JournalStorage(const std::string& path, std::string worker_id)
 
 void JournalStorage::sync() {
   // One operation at a time: the replay's state is what stays, not the file's parsed lines.
-  file_.read(lines_read_, [this](nlohmann::json&& op, const std::string& where) { replay_.apply(op, where); });
+  file_.read(lines_read_,
+             [this](nlohmann::json&& op, const std::string& where) { replay_.apply(op, where); });
 }
 
 JournalStorage::Transaction::Transaction(JournalStorage& storage)
@@ -72,8 +73,10 @@ JournalStorage::Transaction::~Transaction() { --storage_.lock_depth_; }
 
 void JournalStorage::write(nlohmann::json op) {
   op["worker_id"] = replay_.worker_id();
-  if (lock_depth_ > 0) file_.append_locked({op});
-  else file_.append({op});
+  if (lock_depth_ > 0)
+    file_.append_locked({op});
+  else
+    file_.append({op});
   sync();
 }
 
@@ -101,14 +104,14 @@ int64_t JournalStorage::create_or_load_study(const std::string& name, StudyDirec
 
 void JournalStorage::set_study_user_attr(int64_t study_id, const std::string& key,
                                          const nlohmann::json& value) {
-  write(attribute_operation(JournalOperation::kSetStudyUserAttr,
-                            "study_id", study_id, "user_attr", key, value));
+  write(attribute_operation(JournalOperation::kSetStudyUserAttr, "study_id", study_id, "user_attr",
+                            key, value));
 }
 
 void JournalStorage::set_study_system_attr(int64_t study_id, const std::string& key,
                                            const nlohmann::json& value) {
-  write(attribute_operation(JournalOperation::kSetStudySystemAttr,
-                            "study_id", study_id, "system_attr", key, value));
+  write(attribute_operation(JournalOperation::kSetStudySystemAttr, "study_id", study_id,
+                            "system_attr", key, value));
 }
 
 int64_t JournalStorage::create_running_trial(int64_t study_id) {
@@ -158,13 +161,17 @@ void JournalStorage::set_trial_param(int64_t trial_id, const std::string& name, 
          {"distribution", distribution_to_json(distribution)}});
 }
 
-void JournalStorage::set_trial_state(int64_t trial_id, TrialState state, std::optional<double> value) {
-  nlohmann::json op = {{"op_code", static_cast<int>(JournalOperation::kSetTrialStateValues)},
-                       {"trial_id", trial_id},
-                       {"state", static_cast<int>(state)},
-                       {"values", value ? nlohmann::json::array({*value}) : nlohmann::json(nullptr)}};
-  if (state == TrialState::kRunning) op["datetime_start"] = now_iso();
-  else if (is_finished(state)) op["datetime_complete"] = now_iso();
+void JournalStorage::set_trial_state(int64_t trial_id, TrialState state,
+                                     std::optional<double> value) {
+  nlohmann::json op = {
+      {"op_code", static_cast<int>(JournalOperation::kSetTrialStateValues)},
+      {"trial_id", trial_id},
+      {"state", static_cast<int>(state)},
+      {"values", value ? nlohmann::json::array({*value}) : nlohmann::json(nullptr)}};
+  if (state == TrialState::kRunning)
+    op["datetime_start"] = now_iso();
+  else if (is_finished(state))
+    op["datetime_complete"] = now_iso();
   write(std::move(op));
 }
 
@@ -177,14 +184,14 @@ void JournalStorage::report(int64_t trial_id, int64_t step, double value) {
 
 void JournalStorage::set_trial_user_attr(int64_t trial_id, const std::string& key,
                                          const nlohmann::json& value) {
-  write(attribute_operation(JournalOperation::kSetTrialUserAttr,
-                            "trial_id", trial_id, "user_attr", key, value));
+  write(attribute_operation(JournalOperation::kSetTrialUserAttr, "trial_id", trial_id, "user_attr",
+                            key, value));
 }
 
 void JournalStorage::set_trial_system_attr(int64_t trial_id, const std::string& key,
                                            const nlohmann::json& value) {
-  write(attribute_operation(JournalOperation::kSetTrialSystemAttr,
-                            "trial_id", trial_id, "system_attr", key, value));
+  write(attribute_operation(JournalOperation::kSetTrialSystemAttr, "trial_id", trial_id,
+                            "system_attr", key, value));
 }
 
 }  // namespace rlrun::tune

@@ -26,8 +26,8 @@ std::map<std::string, Distribution> intersection_search_space(
 
 }  // namespace
 
-std::vector<std::pair<std::string, double>> param_importances(const std::vector<FrozenTrial>& trials,
-                                                              uint64_t seed) {
+std::vector<std::pair<std::string, double>> param_importances(
+    const std::vector<FrozenTrial>& trials, uint64_t seed) {
   std::vector<const FrozenTrial*> complete;
   for (const FrozenTrial& t : trials)
     if (t.state == TrialState::kComplete) complete.push_back(&t);
@@ -95,10 +95,12 @@ std::vector<std::pair<std::string, double>> param_importances(const std::vector<
   // Optuna's evaluator divides by it first and returns NaNs.
   std::vector<std::pair<std::string, double>> out;
   for (size_t p = 0; p < varying.size(); ++p)
-    out.emplace_back(varying[p], sum > 0 ? (*raw)[p] / sum : 1.0 / static_cast<double>(varying.size()));
+    out.emplace_back(varying[p],
+                     sum > 0 ? (*raw)[p] / sum : 1.0 / static_cast<double>(varying.size()));
   for (const std::string& name : fixed) out.emplace_back(name, 0.0);
   // _sort_dict_by_importance: reversed(sorted(..., key=importance)), ties in reverse order.
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const auto& a, const auto& b) { return a.second < b.second; });
   std::reverse(out.begin(), out.end());
   return out;
 }

@@ -14,7 +14,9 @@ constexpr double kEps = 1e-12;            // parzen_estimator.py EPS: the smalle
 constexpr double kSigma0Magnitude = 0.2;  // SIGMA0_MAGNITUDE, Scott's-rule factor
 
 // _transform_to_uniform: the kernels of log parameters live in log space.
-double to_kernel_space(const Distribution& d, double x) { return is_log_scale(d) ? std::log(x) : x; }
+double to_kernel_space(const Distribution& d, double x) {
+  return is_log_scale(d) ? std::log(x) : x;
+}
 
 // _transform_from_uniform: back to a value of the distribution, rounded onto its grid.
 double from_kernel_space(const Distribution& d, double x) {

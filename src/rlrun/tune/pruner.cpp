@@ -36,8 +36,11 @@ bool first_in_interval(int64_t step, const FrozenTrial& trial, int64_t warmup, i
 class PercentilePruner : public Pruner {
  public:
   PercentilePruner(const PrunerConfig& c, int64_t warmup)
-      : percentile_(c.percentile), n_startup_trials_(c.n_startup_trials), n_warmup_steps_(warmup),
-        interval_steps_(c.interval_steps), n_min_trials_(c.n_min_trials) {}
+      : percentile_(c.percentile),
+        n_startup_trials_(c.n_startup_trials),
+        n_warmup_steps_(warmup),
+        interval_steps_(c.interval_steps),
+        n_min_trials_(c.n_min_trials) {}
 
   bool prune(const StudyView& study, const FrozenTrial& trial, const SetSystemAttr&) override {
     std::vector<const FrozenTrial*> completed;
@@ -78,7 +81,8 @@ std::string rung_key(int rung) { return "completed_rung_" + std::to_string(rung)
 class SuccessiveHalvingPruner : public Pruner {
  public:
   explicit SuccessiveHalvingPruner(const PrunerConfig& c)
-      : min_resource_(c.min_resource), reduction_factor_(c.reduction_factor),
+      : min_resource_(c.min_resource),
+        reduction_factor_(c.reduction_factor),
         min_early_stopping_rate_(c.min_early_stopping_rate) {}
 
   bool prune(const StudyView& study, const FrozenTrial& trial,

@@ -26,16 +26,16 @@ namespace rlrun::tune {
 
 // The study file's `pruner:` section.
 struct PrunerConfig {
-  std::string type = "median";     // median | percentile | successive_halving | none
-  double percentile = 50;          // percentile: keep trials above this percentile
-  int n_startup_trials = 5;        // median/percentile: completed trials before pruning
+  std::string type = "median";            // median | percentile | successive_halving | none
+  double percentile = 50;                 // percentile: keep trials above this percentile
+  int n_startup_trials = 5;               // median/percentile: completed trials before pruning
   std::optional<int64_t> n_warmup_steps;  // median/percentile: steps before pruning (null: the
                                           // zoo's n_evaluations / 3 per seed)
-  int64_t interval_steps = 1;      // median/percentile: prune at most once per interval
-  int n_min_trials = 1;            // median/percentile: values needed at a step to compare
-  std::optional<int64_t> min_resource;  // successive_halving: null = Optuna's "auto"
-  int reduction_factor = 4;             // successive_halving
-  int min_early_stopping_rate = 0;      // successive_halving
+  int64_t interval_steps = 1;             // median/percentile: prune at most once per interval
+  int n_min_trials = 1;                   // median/percentile: values needed at a step to compare
+  std::optional<int64_t> min_resource;    // successive_halving: null = Optuna's "auto"
+  int reduction_factor = 4;               // successive_halving
+  int min_early_stopping_rate = 0;        // successive_halving
 
   template <class V>
   void visit(V& v) {

@@ -114,7 +114,8 @@ class TreeBuilder {
         if (next <= here + kFeatureThreshold) continue;  // not a boundary
         if (i + 1 < min_leaf || n - (i + 1) < min_leaf) continue;
         const double right_sum = total_sum - left_sum, right_weight = total_weight - left_weight;
-        const double proxy = left_sum * left_sum / left_weight + right_sum * right_sum / right_weight;
+        const double proxy =
+            left_sum * left_sum / left_weight + right_sum * right_sum / right_weight;
         if (proxy > best.proxy) {
           best.proxy = proxy;
           best.feature = f;
@@ -166,7 +167,8 @@ class TreeBuilder {
 
 std::vector<TreeNode> fit_regression_tree(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
                                           const Eigen::VectorXd& weight,
-                                          const RegressionTreeConfig& config, std::mt19937_64& rng) {
+                                          const RegressionTreeConfig& config,
+                                          std::mt19937_64& rng) {
   return TreeBuilder(x, y, weight, config, rng).build();
 }
 
@@ -174,7 +176,7 @@ double predict(const std::vector<TreeNode>& tree, const Eigen::VectorXd& sample)
   size_t i = 0;
   while (!tree[i].is_leaf())
     i = static_cast<size_t>(sample(tree[i].feature) <= tree[i].threshold ? tree[i].left
-                                                                          : tree[i].right);
+                                                                         : tree[i].right);
   return tree[i].value;
 }
 

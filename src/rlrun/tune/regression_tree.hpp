@@ -22,12 +22,12 @@ struct RegressionTreeConfig {
 // A node of the tree; children come after their parent (preorder, left subtree first, as
 // sklearn numbers them).
 struct TreeNode {
-  int feature = -1;        // -1: a leaf
-  double threshold = 0;    // x[feature] <= threshold goes left
+  int feature = -1;      // -1: a leaf
+  double threshold = 0;  // x[feature] <= threshold goes left
   int left = -1, right = -1;
-  double value = 0;        // the weighted mean of the node's targets
-  double weight = 0;       // the sum of its samples' weights
-  int n_samples = 0;       // its samples with a non-zero weight
+  double value = 0;   // the weighted mean of the node's targets
+  double weight = 0;  // the sum of its samples' weights
+  int n_samples = 0;  // its samples with a non-zero weight
   bool is_leaf() const { return feature < 0; }
 };
 

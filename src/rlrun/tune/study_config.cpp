@@ -39,7 +39,8 @@ struct StudyFile {
     v("name", name, "the study's name in the journal (default: the file's stem)");
     v("base", base, "the experiment file every trial starts from (relative to this file)");
     v("out_dir", out_dir, "where study.journal and trials/ go (default runs/tune/<name>)");
-    v("storage", storage, "the study journal (Optuna's JournalFileStorage; default <out_dir>/study.journal)");
+    v("storage", storage,
+      "the study journal (Optuna's JournalFileStorage; default <out_dir>/study.journal)");
     v("n_trials", n_trials, "trials in total, over all workers and restarts", in_range(1, 1000000));
     v("seeds_per_trial", seeds_per_trial, "seeds each trial trains (run.seed, run.seed + 1, ...)",
       in_range(1, 100));
@@ -117,8 +118,9 @@ std::string StudyConfig::trial_dir(int trial_number) const {
   return (fs::path(out_dir) / "trials" / ("trial_" + std::to_string(trial_number))).string();
 }
 
-StudyConfig load_study(const std::string& path, Registry& registry, const std::vector<std::string>& set,
-                       const std::string& out_dir, std::optional<int64_t> n_timesteps) {
+StudyConfig load_study(const std::string& path, Registry& registry,
+                       const std::vector<std::string>& set, const std::string& out_dir,
+                       std::optional<int64_t> n_timesteps) {
   if (!fs::exists(path)) throw UsageError(path + " does not exist");
   const ConfigNode root = ConfigNode::load_file(path);
   StudyFile file;
@@ -129,19 +131,20 @@ StudyConfig load_study(const std::string& path, Registry& registry, const std::v
   StudyConfig study;
   study.source = fs::absolute(path).lexically_normal().string();
   const fs::path here = fs::path(path).parent_path();
-  study.base = fs::absolute(fs::path(file.base).is_absolute() ? fs::path(file.base) : here / file.base)
-                   .lexically_normal()
-                   .string();
+  study.base =
+      fs::absolute(fs::path(file.base).is_absolute() ? fs::path(file.base) : here / file.base)
+          .lexically_normal()
+          .string();
   if (!fs::exists(study.base)) root.child("base").fail(study.base + " does not exist");
   study.name = file.name.empty() ? fs::path(path).stem().string() : file.name;
   const std::string chosen_out = out_dir.empty() ? file.out_dir : out_dir;
-  study.out_dir = fs::absolute(chosen_out.empty() ? fs::path("runs/tune") / study.name
-                                                  : fs::path(chosen_out))
-                      .lexically_normal()
-                      .string();
+  study.out_dir =
+      fs::absolute(chosen_out.empty() ? fs::path("runs/tune") / study.name : fs::path(chosen_out))
+          .lexically_normal()
+          .string();
   study.storage = file.storage.empty() || !out_dir.empty()
                       ? (fs::path(study.out_dir) / "study.journal").string()
-                                       : fs::absolute(file.storage).lexically_normal().string();
+                      : fs::absolute(file.storage).lexically_normal().string();
   study.n_trials = file.n_trials;
   study.seeds_per_trial = file.seeds_per_trial;
   study.eval_episodes = file.eval_episodes;
@@ -184,8 +187,8 @@ StudyConfig load_study(const std::string& path, Registry& registry, const std::v
   study.base_seed = base.run.seed;
   study.algo_id = base.algo.id;
   study.n_timesteps = n_timesteps.value_or(file.n_timesteps.value_or(base.run.total_timesteps));
-  study.n_evaluations =
-      file.n_evaluations.value_or(static_cast<int>(std::max<int64_t>(1, study.n_timesteps / 100000)));
+  study.n_evaluations = file.n_evaluations.value_or(
+      static_cast<int>(std::max<int64_t>(1, study.n_timesteps / 100000)));
   if (study.n_evaluations > study.n_timesteps)
     root.child("n_evaluations").fail("more evaluations than env steps per seed");
   if (!study.sampler.seed) study.sampler.seed = base.run.seed;

@@ -37,7 +37,7 @@ namespace rlrun::tune {
 struct ObjectiveConfig {
   std::string metric = "mean_reward";  // a column of evaluations.csv or progress.csv
   std::string direction = "maximize";
-  std::string reduce = "last";         // per seed: last, best or mean of the column's rows
+  std::string reduce = "last";  // per seed: last, best or mean of the column's rows
   template <class V>
   void visit(V& v) {
     v("metric", metric,
@@ -68,15 +68,15 @@ struct SamplerConfig {
 };
 
 struct StudyConfig {
-  std::string source;      // the study file, absolute
+  std::string source;  // the study file, absolute
   std::string name;
-  std::string base;        // the base experiment file, absolute
-  std::string out_dir;     // absolute
-  std::string storage;     // the journal file, absolute
+  std::string base;     // the base experiment file, absolute
+  std::string out_dir;  // absolute
+  std::string storage;  // the journal file, absolute
   int n_trials = 100;
   int seeds_per_trial = 1;
-  int64_t n_timesteps = 0;   // resolved
-  int n_evaluations = 1;     // resolved
+  int64_t n_timesteps = 0;  // resolved
+  int n_evaluations = 1;    // resolved
   int eval_episodes = 5;
   std::optional<double> timeout;
   ObjectiveConfig objective;
@@ -85,7 +85,7 @@ struct StudyConfig {
   std::shared_ptr<const StudySpace> space;
   std::vector<Override> set;  // the file's `set:` then the command line's --set
   SlurmOptions slurm;
-  uint64_t base_seed = 0;     // the base experiment's run.seed
+  uint64_t base_seed = 0;  // the base experiment's run.seed
   std::string algo_id;
 
   bool maximize() const { return objective.direction == "maximize"; }

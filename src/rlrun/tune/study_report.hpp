@@ -30,8 +30,8 @@ void print_study_report(const std::string& name, StudyDirection direction,
 // COMPLETE trials, the parameters all of them share; normalised to sum to 1, largest first.
 // Empty when fewer than two such trials have a finite value, no parameter varies or every value
 // is the same (where Optuna raises).
-std::vector<std::pair<std::string, double>> param_importances(const std::vector<FrozenTrial>& trials,
-                                                              uint64_t seed = 0);
+std::vector<std::pair<std::string, double>> param_importances(
+    const std::vector<FrozenTrial>& trials, uint64_t seed = 0);
 
 // Optuna's plot_optimization_history: objective value per trial number (COMPLETE trials) and the
 // best value so far, as a PNG or SVG (by the extension). Optuna shows COMPLETE trials only;

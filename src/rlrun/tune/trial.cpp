@@ -6,7 +6,10 @@ namespace rlrun::tune {
 
 Trial::Trial(JournalStorage& storage, int64_t study_id, int64_t trial_id, Sampler& sampler,
              StudyDirection direction, uint64_t seed)
-    : storage_(storage), study_id_(study_id), trial_id_(trial_id), sampler_(sampler),
+    : storage_(storage),
+      study_id_(study_id),
+      trial_id_(trial_id),
+      sampler_(sampler),
       direction_(direction) {
   storage_.sync();
   const FrozenTrial& self = storage_.state().trial(trial_id_);
@@ -37,21 +40,25 @@ nlohmann::json Trial::suggest(const std::string& name, const Distribution& distr
       internal = to_internal(distribution, fixed_params_[name]);
     } catch (const ConfigError& e) {
       throw RuntimeFailure("trial " + std::to_string(number_) + ": fixed parameter '" + name +
-                           "' = " + fixed_params_[name].dump() + " does not fit its distribution: " +
-                           e.what());
+                           "' = " + fixed_params_[name].dump() +
+                           " does not fit its distribution: " + e.what());
     }
     if (!contains(distribution, internal))
       throw RuntimeFailure("trial " + std::to_string(number_) + ": fixed parameter '" + name +
                            "' = " + fixed_params_[name].dump() + " is outside its range");
   } else if (single(distribution)) {
-    internal = std::visit([](const auto& d) -> double {
-      using D = std::decay_t<decltype(d)>;
-      if constexpr (std::is_same_v<D, CategoricalDistribution>) return 0.0;
-      else return static_cast<double>(d.low);
-    }, distribution);
-  } else if (auto r = relative_params_.find(name);
-             r != relative_params_.end() && relative_space_.count(name) &&
-             relative_space_.at(name) == distribution) {
+    internal = std::visit(
+        [](const auto& d) -> double {
+          using D = std::decay_t<decltype(d)>;
+          if constexpr (std::is_same_v<D, CategoricalDistribution>)
+            return 0.0;
+          else
+            return static_cast<double>(d.low);
+        },
+        distribution);
+  } else if (auto r = relative_params_.find(name); r != relative_params_.end() &&
+                                                   relative_space_.count(name) &&
+                                                   relative_space_.at(name) == distribution) {
     internal = r->second;
   } else {
     const std::vector<FrozenTrial> trials = storage_.state().trials(study_id_);

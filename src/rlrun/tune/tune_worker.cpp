@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <numeric>
@@ -72,7 +72,8 @@ class QuietTraining {
 
 // Marks a RUNNING trial failed and enqueues its parameters again (its fixed parameters, if it
 // was itself a re-queued one, are kept: the parameters it had not reached yet).
-void requeue(JournalStorage& storage, int64_t study_id, const FrozenTrial& t, const std::string& why) {
+void requeue(JournalStorage& storage, int64_t study_id, const FrozenTrial& t,
+             const std::string& why) {
   json fixed = t.external_params();
   if (auto f = t.system_attrs.find("fixed_params"); f != t.system_attrs.end() && f->is_object())
     for (auto it = f->begin(); it != f->end(); ++it)
@@ -101,7 +102,8 @@ int64_t take_trial(JournalStorage& storage, int64_t study_id, const StudyConfig&
     }
   if (taken < 0 && counted_trials(storage.state().trials(study_id)) < study.n_trials)
     taken = storage.create_running_trial(study_id);
-  if (taken >= 0) storage.set_trial_system_attr(taken, "rlrun:worker", this_worker(storage.worker_id()));
+  if (taken >= 0)
+    storage.set_trial_system_attr(taken, "rlrun:worker", this_worker(storage.worker_id()));
   return taken;
 }
 
@@ -111,8 +113,9 @@ double reduce(const std::vector<double>& values, const std::string& how, bool ma
     if (std::isfinite(v)) finite.push_back(v);
   if (finite.empty()) return std::nan("");
   if (how == "last") return finite.back();
-  if (how == "best") return maximize ? *std::max_element(finite.begin(), finite.end())
-                                     : *std::min_element(finite.begin(), finite.end());
+  if (how == "best")
+    return maximize ? *std::max_element(finite.begin(), finite.end())
+                    : *std::min_element(finite.begin(), finite.end());
   return std::accumulate(finite.begin(), finite.end(), 0.0) / static_cast<double>(finite.size());
 }
 
@@ -127,8 +130,13 @@ class TrialRunner {
  public:
   TrialRunner(const StudyConfig& study, Registry& registry, const ExecutionContext& execution,
               JournalStorage& storage, int64_t study_id, Pruner& pruner, bool verbose)
-      : study_(study), registry_(registry), execution_(execution), storage_(storage),
-        study_id_(study_id), pruner_(pruner), verbose_(verbose) {}
+      : study_(study),
+        registry_(registry),
+        execution_(execution),
+        storage_(storage),
+        study_id_(study_id),
+        pruner_(pruner),
+        verbose_(verbose) {}
 
   TrialResult run(Trial& trial) {
     TrialResult result;
@@ -147,11 +155,12 @@ class TrialRunner {
     for (int s = 0; s < study_.seeds_per_trial; ++s) {
       Experiment experiment;
       try {
-        experiment = load_experiment(study_.base, study_.seed_overrides(params, trial.number(), s), registry_);
+        experiment = load_experiment(study_.base, study_.seed_overrides(params, trial.number(), s),
+                                     registry_);
       } catch (const ConfigError& e) {
         return fail(std::string("the sampled configuration is not valid: ") + e.what());
       }
-      std::vector<double> column;  // the objective's column, from this seed's evaluations
+      std::vector<double> column;      // the objective's column, from this seed's evaluations
       bool evaluation_metric = false;  // the metric is an evaluations.csv column
       int64_t k = 0;
       bool pruned = false;
@@ -167,14 +176,7 @@ class TrialRunner {
         column.push_back(value);
         if (k > evals_per_seed || !std::isfinite(value)) return "";
         const int64_t step = s * evals_per_seed + k;
-        storage_.report(trial.id(), step, value);
-        const std::vector<FrozenTrial> trials = storage_.state().trials(study_id_);
-        const FrozenTrial& self = storage_.state().trial(trial.id());
-        const bool prune = pruner_.prune(StudyView{direction(), trials}, self,
-                                         [&](const std::string& key, const json& v) {
-                                           storage_.set_trial_system_attr(trial.id(), key, v);
-                                         });
-        if (!prune) return "";
+        if (!report_and_ask_pruner(trial, step, value)) return "";
         pruned = true;
         return "pruned by the " + study_.pruner.type + " pruner at step " + std::to_string(step);
       };
@@ -201,7 +203,8 @@ class TrialRunner {
       const double value = reduce(column, study_.objective.reduce, study_.maximize());
       if (!std::isfinite(value))
         return fail("seed " + std::to_string(experiment.run.seed) + " gave no finite " +
-                    study_.objective.metric + " (is it a column of evaluations.csv or progress.csv?)");
+                    study_.objective.metric +
+                    " (is it a column of evaluations.csv or progress.csv?)");
       seed_values.push_back(value);
       storage_.set_trial_user_attr(trial.id(), "rlrun:seed_values", seed_values);
     }
@@ -211,6 +214,16 @@ class TrialRunner {
   }
 
  private:
+  // Reports an intermediate value to the journal; true when the pruner stops the trial there.
+  bool report_and_ask_pruner(const Trial& trial, int64_t step, double value) {
+    storage_.report(trial.id(), step, value);
+    const std::vector<FrozenTrial> trials = storage_.state().trials(study_id_);
+    const FrozenTrial& self = storage_.state().trial(trial.id());
+    return pruner_.prune(StudyView{direction(), trials}, self,
+                         [&](const std::string& key, const json& v) {
+                           storage_.set_trial_system_attr(trial.id(), key, v);
+                         });
+  }
   StudyDirection direction() const {
     return study_.maximize() ? StudyDirection::kMaximize : StudyDirection::kMinimize;
   }
@@ -259,7 +272,8 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
   fs::create_directories(study.out_dir);
   DirHandle::open(study.out_dir, DirHandle::LastLink::kFollow).make_subdir("trials");
   JournalStorage storage(study.storage);
-  const StudyDirection direction = study.maximize() ? StudyDirection::kMaximize : StudyDirection::kMinimize;
+  const StudyDirection direction =
+      study.maximize() ? StudyDirection::kMaximize : StudyDirection::kMinimize;
   const int64_t study_id = storage.create_or_load_study(study.name, direction);
   {
     JournalStorage::Transaction transaction(storage);
@@ -280,7 +294,8 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
       summary.interrupted = true;
       break;
     }
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (study.timeout && elapsed >= *study.timeout) break;
     const int64_t trial_id = take_trial(storage, study_id, study);
     if (trial_id < 0) break;
@@ -290,7 +305,8 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
     try {
       Trial trial(storage, study_id, trial_id, *sampler, direction, *study.sampler.seed);
       number = trial.number();
-      std::cout << "rlrun tune: trial " << number << " of study '" << study.name << "'" << std::endl;
+      std::cout << "rlrun tune: trial " << number << " of study '" << study.name << "'"
+                << std::endl;
       result = runner.run(trial);
     } catch (const std::exception& e) {
       result.state = TrialState::kFail;
@@ -298,7 +314,8 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
     }
     if (result.interrupted || interrupt_requested()) {
       storage.sync();
-      requeue(storage, study_id, storage.state().trial(trial_id), "interrupted (Ctrl-C); re-queued");
+      requeue(storage, study_id, storage.state().trial(trial_id),
+              "interrupted (Ctrl-C); re-queued");
       std::cout << "rlrun tune: trial " << number << " interrupted and re-queued" << std::endl;
       summary.interrupted = true;
       break;
@@ -313,12 +330,13 @@ WorkerSummary run_worker(const StudyConfig& study, Registry& registry,
       ++(result.state == TrialState::kPruned ? summary.pruned : summary.complete);
       const FrozenTrial& done = storage.state().trial(trial_id);
       char line[160];
-      std::snprintf(line, sizeof line, "rlrun tune: trial %d %s: %s = %.6g (%.1f s)", number,
-                    result.state == TrialState::kPruned
-                        ? ("pruned at step " + std::to_string(done.last_step().value_or(0))).c_str()
-                        : "complete",
-                    study.objective.metric.c_str(), result.value.value_or(std::nan("")),
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - trial_start).count());
+      std::snprintf(
+          line, sizeof line, "rlrun tune: trial %d %s: %s = %.6g (%.1f s)", number,
+          result.state == TrialState::kPruned
+              ? ("pruned at step " + std::to_string(done.last_step().value_or(0))).c_str()
+              : "complete",
+          study.objective.metric.c_str(), result.value.value_or(std::nan("")),
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - trial_start).count());
       std::cout << line << std::endl;
     }
   }

@@ -39,15 +39,18 @@ std::string heartbeat_path(const std::string& journal, const std::string& worker
 double seconds_since_modified(const std::string& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) return 1e30;  // a link's own time: never followed
-  const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  return now - (static_cast<double>(st.st_mtim.tv_sec) + 1e-9 * static_cast<double>(st.st_mtim.tv_nsec));
+  const double now =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  return now -
+         (static_cast<double>(st.st_mtim.tv_sec) + 1e-9 * static_cast<double>(st.st_mtim.tv_nsec));
 }
 
 }  // namespace
 
 nlohmann::json this_worker(const std::string& worker_id) {
   const long pid = static_cast<long>(::getpid());
-  return {{"id", worker_id}, {"host", host_name()}, {"pid", pid}, {"start", process_start_time(pid)}};
+  return {
+      {"id", worker_id}, {"host", host_name()}, {"pid", pid}, {"start", process_start_time(pid)}};
 }
 
 bool worker_alive(const nlohmann::json& record, const std::string& journal) {
@@ -67,8 +70,7 @@ bool worker_alive(const nlohmann::json& record, const std::string& journal) {
   return seconds_since_modified(heartbeat_path(journal, name)) < kHeartbeatTimeout;
 }
 
-Heartbeat::Heartbeat(const std::string& journal, const std::string& worker_id)
-    : name_(worker_id) {
+Heartbeat::Heartbeat(const std::string& journal, const std::string& worker_id) : name_(worker_id) {
   // <journal>.workers/ beside the journal, not a link to elsewhere, and the heartbeat a regular
   // file in it (core/dir_handle.hpp): a study may come from anyone.
   const auto [dir, journal_name] = DirHandle::open_parent(journal);

@@ -14,7 +14,8 @@ using json = nlohmann::json;
 struct Zoo {
   TrialSuggest& trial;
   double float_(const std::string& name, double low, double high, bool log = false) {
-    return trial.suggest(name, make_float_distribution(name, low, high, log, std::nullopt)).get<double>();
+    return trial.suggest(name, make_float_distribution(name, low, high, log, std::nullopt))
+        .get<double>();
   }
   int64_t int_(const std::string& name, int64_t low, int64_t high) {
     return trial.suggest(name, make_int_distribution(name, low, high, false, 1)).get<int64_t>();
@@ -57,7 +58,7 @@ std::vector<Override> ppo(Zoo z) {
   set(out, "algo.n_epochs", n_epochs);
   set(out, "algo.max_grad_norm", max_grad_norm);
   set_yaml(out, "algo.policy.net_arch",
-           net_arch == "tiny" ? "{pi: [64], vf: [64]}"
+           net_arch == "tiny"    ? "{pi: [64], vf: [64]}"
            : net_arch == "small" ? "{pi: [64, 64], vf: [64, 64]}"
                                  : "{pi: [256, 256], vf: [256, 256]}");
   set(out, "algo.policy.activation_fn", activation_fn);
@@ -82,8 +83,9 @@ std::vector<Override> a2c(Zoo z) {
   set(out, "algo.learning_rate", learning_rate);
   set(out, "algo.ent_coef", ent_coef);
   set(out, "algo.max_grad_norm", max_grad_norm);
-  set_yaml(out, "algo.policy.net_arch",
-           net_arch == "small" ? "{pi: [64, 64], vf: [64, 64]}" : "{pi: [256, 256], vf: [256, 256]}");
+  set_yaml(
+      out, "algo.policy.net_arch",
+      net_arch == "small" ? "{pi: [64, 64], vf: [64, 64]}" : "{pi: [256, 256], vf: [256, 256]}");
   set(out, "algo.policy.activation_fn", activation_fn);
   return out;
 }
@@ -117,7 +119,8 @@ std::vector<Override> dqn(Zoo z, bool uses_her) {
   const json learning_starts = z.categorical("learning_starts", {0, 1000, 5000, 10000, 20000});
   const json train_freq = z.categorical("train_freq", {1, 4, 8, 16, 128, 256, 1000});
   const json subsample_steps = z.categorical("subsample_steps", {1, 2, 4, 8});
-  const int64_t gradient_steps = std::max<int64_t>(train_freq.get<int64_t>() / subsample_steps.get<int64_t>(), 1);
+  const int64_t gradient_steps =
+      std::max<int64_t>(train_freq.get<int64_t>() / subsample_steps.get<int64_t>(), 1);
   const std::string net_arch = z.categorical("net_arch", {"tiny", "small", "medium"});
   set(out, "algo.gamma", gamma);
   set(out, "algo.learning_rate", learning_rate);
@@ -130,7 +133,9 @@ std::vector<Override> dqn(Zoo z, bool uses_her) {
   set(out, "algo.target_update_interval", target_update_interval);
   set(out, "algo.learning_starts", learning_starts);
   set_yaml(out, "algo.policy.net_arch",
-           net_arch == "tiny" ? "[64]" : net_arch == "small" ? "[64, 64]" : "[256, 256]");
+           net_arch == "tiny"    ? "[64]"
+           : net_arch == "small" ? "[64, 64]"
+                                 : "[256, 256]");
   if (uses_her) her(z, out);
   return out;
 }
@@ -219,13 +224,16 @@ class FixedSuggest : public TrialSuggest {
 
 class ZooSpace : public StudySpace {
  public:
-  ZooSpace(std::string name, SpaceFunction function) : name_(std::move(name)), function_(std::move(function)) {}
+  ZooSpace(std::string name, SpaceFunction function)
+      : name_(std::move(name)), function_(std::move(function)) {}
   std::vector<Override> sample(TrialSuggest& trial) const override { return function_(Zoo{trial}); }
   std::vector<Override> overrides_for(const json& params) const override {
     FixedSuggest fixed(params);
     return function_(Zoo{fixed});
   }
-  std::string describe() const override { return "rl-zoo's " + name_ + " (rl_zoo3/hyperparams_opt.py)"; }
+  std::string describe() const override {
+    return "rl-zoo's " + name_ + " (rl_zoo3/hyperparams_opt.py)";
+  }
 
  private:
   std::string name_;
@@ -239,14 +247,18 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
   if (algo_id == "A2C") return std::make_unique<ZooSpace>("sample_a2c_params", a2c);
   const std::string suffix = uses_her ? " + sample_her_params" : "";
   if (algo_id == "DQN")
-    return std::make_unique<ZooSpace>("sample_dqn_params" + suffix, [uses_her](Zoo z) { return dqn(z, uses_her); });
+    return std::make_unique<ZooSpace>("sample_dqn_params" + suffix,
+                                      [uses_her](Zoo z) { return dqn(z, uses_her); });
   if (algo_id == "SAC")
-    return std::make_unique<ZooSpace>("sample_sac_params" + suffix, [uses_her](Zoo z) { return sac(z, uses_her); });
+    return std::make_unique<ZooSpace>("sample_sac_params" + suffix,
+                                      [uses_her](Zoo z) { return sac(z, uses_her); });
   if (algo_id == "TD3" || algo_id == "DDPG")
-    return std::make_unique<ZooSpace>((algo_id == "TD3" ? "sample_td3_params" : "sample_ddpg_params") + suffix,
-                                      [uses_her](Zoo z) { return td3(z, uses_her); });
+    return std::make_unique<ZooSpace>(
+        (algo_id == "TD3" ? "sample_td3_params" : "sample_ddpg_params") + suffix,
+        [uses_her](Zoo z) { return td3(z, uses_her); });
   if (algo_id == "TQC")
-    return std::make_unique<ZooSpace>("sample_tqc_params" + suffix, [uses_her](Zoo z) { return tqc(z, uses_her); });
+    return std::make_unique<ZooSpace>("sample_tqc_params" + suffix,
+                                      [uses_her](Zoo z) { return tqc(z, uses_her); });
   throw UsageError("rl-zoo has no search space for " + algo_id +
                    " (PPO, A2C, DQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
 }

@@ -26,7 +26,8 @@ StepResult DiscreteAsBox::step(std::span<const float> action, std::span<float> o
   size_t best = 0;
   for (size_t i = 1; i < action.size(); ++i)
     if (action[i] > action[best]) best = i;
-  discrete_action_ = static_cast<float>(inner_->action_space().start() + static_cast<int64_t>(best));
+  discrete_action_ =
+      static_cast<float>(inner_->action_space().start() + static_cast<int64_t>(best));
   return inner_->step({&discrete_action_, 1}, obs);
 }
 

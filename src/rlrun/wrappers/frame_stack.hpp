@@ -28,7 +28,8 @@ class FrameStack : public Wrapper {
       v("n_stack", n_stack, "number of consecutive observations stacked (oldest first)",
         in_range(1, 1000));
       v("padding", padding,
-        "frames before the first one after reset: zero (SB3 VecFrameStack) or reset (copies, Gymnasium)");
+        "frames before the first one after reset: zero (SB3 VecFrameStack) or reset (copies, "
+        "Gymnasium)");
     }
   };
   // Throws std::invalid_argument for an observation space that is not a Box or a Dict of
@@ -41,7 +42,9 @@ class FrameStack : public Wrapper {
   StepResult step(std::span<const float> action, std::span<float> obs) override;
 
  protected:
-  void write_own_state(StateWriter& out) const override { out.put_vector("frame_stack/frames", stack_); }
+  void write_own_state(StateWriter& out) const override {
+    out.put_vector("frame_stack/frames", stack_);
+  }
   void read_own_state(const StateReader& in) override {
     in.get_into<float>("frame_stack/frames", stack_);
   }

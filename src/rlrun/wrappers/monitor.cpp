@@ -31,7 +31,8 @@ Monitor::Monitor(EnvPtr inner, const std::string& path, double t_start,
   }
   if (path.empty()) return;
   // A run directory's file: not through a link, a regular file (core/checked_file.hpp).
-  file_ = CheckedFile::run_file(path, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
+  file_ = CheckedFile::run_file(path,
+                                append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
   if (append) return;
   char t_start_text[64];
   std::snprintf(t_start_text, sizeof t_start_text, "%.6f", t_start_);
@@ -199,7 +200,9 @@ void Monitor::account(double reward, bool episode_ended) {
           file_ << ',' << python_float_repr(v);
       }
       for (int a = 0; a < agent_columns(); ++a)
-        file_ << ',' << python_float_repr(round6(a < static_cast<int>(agent_returns_.size()) ? agent_returns_[a] : 0.0));
+        file_ << ','
+              << python_float_repr(
+                     round6(a < static_cast<int>(agent_returns_.size()) ? agent_returns_[a] : 0.0));
       file_ << '\n';
       file_.flush();  // a full disk stops the run here: RuntimeFailure naming the file and errno
     }

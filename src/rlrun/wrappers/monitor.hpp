@@ -71,7 +71,7 @@ class Monitor : public Wrapper, public SplitStep {
   double t_start_;
   std::chrono::steady_clock::time_point clock_start_;
   Info info_;
-  std::vector<int> inner_to_own_;        // inner info index -> own index
+  std::vector<int> inner_to_own_;         // inner info index -> own index
   std::vector<std::string> keywords_;     // info_keywords: monitor.csv columns after r,l,t
   std::vector<int> keyword_inner_index_;  // their inner info index (-1: not declared yet)
   std::vector<int> keyword_own_index_;    // their `episode.<key>` index in info_

@@ -19,11 +19,14 @@ NormalizeObservation::NormalizeObservation(EnvPtr inner, const Config& config)
   if (!inner_space.is_box() && !inner_space.is_dict())
     throw std::invalid_argument("NormalizeObservation needs a Box or Dict observation space, " +
                                 inner_->id() + " has " + inner_space.describe());
-  if (!(config_.clip_obs > 0)) throw std::invalid_argument("NormalizeObservation: clip_obs must be > 0");
-  if (!(config_.epsilon >= 0)) throw std::invalid_argument("NormalizeObservation: epsilon must be >= 0");
+  if (!(config_.clip_obs > 0))
+    throw std::invalid_argument("NormalizeObservation: clip_obs must be > 0");
+  if (!(config_.epsilon >= 0))
+    throw std::invalid_argument("NormalizeObservation: epsilon must be >= 0");
   if (!inner_space.is_dict() && !config_.norm_obs_keys.empty())
-    throw std::invalid_argument("NormalizeObservation: norm_obs_keys needs a Dict observation space, " +
-                                inner_->id() + " has " + inner_space.describe());
+    throw std::invalid_argument(
+        "NormalizeObservation: norm_obs_keys needs a Dict observation space, " + inner_->id() +
+        " has " + inner_space.describe());
   const float clip = static_cast<float>(config_.clip_obs);
   if (inner_space.is_box()) {
     space_ = Space::box(-clip, clip, inner_space.shape());
@@ -37,12 +40,16 @@ NormalizeObservation::NormalizeObservation(EnvPtr inner, const Config& config)
     for (size_t i = 0; i < keys.size(); ++i) {
       const Space& key_space = inner_space.subspaces()[i];
       const auto& listed = config_.norm_obs_keys;
-      const bool chosen = listed.empty() ? key_space.is_box()
-                                         : std::find(listed.begin(), listed.end(), keys[i]) != listed.end();
+      const bool chosen = listed.empty()
+                              ? key_space.is_box()
+                              : std::find(listed.begin(), listed.end(), keys[i]) != listed.end();
       if (chosen && !key_space.is_box())
-        throw std::invalid_argument("NormalizeObservation normalises Box keys only (SB3 "
-                                    "VecNormalize), key '" + keys[i] + "' is " + key_space.describe());
-      entries.emplace_back(keys[i], chosen ? Space::box(-clip, clip, key_space.shape()) : key_space);
+        throw std::invalid_argument(
+            "NormalizeObservation normalises Box keys only (SB3 "
+            "VecNormalize), key '" +
+            keys[i] + "' is " + key_space.describe());
+      entries.emplace_back(keys[i],
+                           chosen ? Space::box(-clip, clip, key_space.shape()) : key_space);
       if (!chosen) continue;
       for (int k = 0; k < key_space.flat_dim(); ++k) indices_.push_back(inner_space.offset(i) + k);
     }
@@ -102,7 +109,8 @@ std::string NormalizeObservation::export_observation(PolicyGraph& graph,
   const int n = inner_->observation_space().flat_dim();
   constexpr float kInf = std::numeric_limits<float>::infinity();
   Eigen::VectorXf shift = Eigen::VectorXf::Zero(n), scale = Eigen::VectorXf::Ones(n);
-  Eigen::VectorXf low = Eigen::VectorXf::Constant(n, -kInf), high = Eigen::VectorXf::Constant(n, kInf);
+  Eigen::VectorXf low = Eigen::VectorXf::Constant(n, -kInf),
+                  high = Eigen::VectorXf::Constant(n, kInf);
   const Eigen::VectorXd& mean = rms_->mean();
   const Eigen::VectorXd& var = rms_->var();
   const float clip = static_cast<float>(config_.clip_obs);

@@ -45,8 +45,8 @@ namespace rlrun {
 class NormalizeObservation : public RunningStatisticsWrapper {
  public:
   struct Config {
-    double clip_obs = 10.0;  // SB3 VecNormalize clip_obs
-    double epsilon = 1e-8;   // SB3 VecNormalize epsilon
+    double clip_obs = 10.0;                  // SB3 VecNormalize clip_obs
+    double epsilon = 1e-8;                   // SB3 VecNormalize epsilon
     std::vector<std::string> norm_obs_keys;  // Dict keys normalised; [] = every Box key
     std::optional<int64_t> freeze_after;     // observations before the statistics freeze
     template <class V>
@@ -91,7 +91,9 @@ class NormalizeObservation : public RunningStatisticsWrapper {
     StateWriter own = out.sub("normalize_observation");
     rms_->write(own);
   }
-  void read_own_state(const StateReader& in) override { rms_->read(in.sub("normalize_observation")); }
+  void read_own_state(const StateReader& in) override {
+    rms_->read(in.sub("normalize_observation"));
+  }
 
  private:
   StepResult after_step(StepResult result, std::span<float> obs) override;
@@ -105,8 +107,8 @@ class NormalizeObservation : public RunningStatisticsWrapper {
   Space space_;
   // Whether this observation goes into the statistics: while training, until freeze_after.
   bool updating() const {
-    return training_ && (!config_.freeze_after ||
-                         rms_->count() < static_cast<double>(*config_.freeze_after));
+    return training_ &&
+           (!config_.freeze_after || rms_->count() < static_cast<double>(*config_.freeze_after));
   }
   std::vector<float> batch_scratch_;  // update_batch()'s float32 moments
   std::vector<float> original_;

@@ -11,7 +11,8 @@ NormalizeReward::NormalizeReward(EnvPtr inner, const Config& config)
   rms_ = std::make_shared<RunningMeanStd>(1);
   if (!(config_.gamma >= 0 && config_.gamma <= 1))
     throw std::invalid_argument("NormalizeReward: gamma must be in [0, 1]");
-  if (!(config_.clip_reward > 0)) throw std::invalid_argument("NormalizeReward: clip_reward must be > 0");
+  if (!(config_.clip_reward > 0))
+    throw std::invalid_argument("NormalizeReward: clip_reward must be > 0");
   if (!(config_.epsilon >= 0)) throw std::invalid_argument("NormalizeReward: epsilon must be >= 0");
 }
 

@@ -24,9 +24,7 @@ class ObservationTap : public Wrapper, public SplitStep {
     return result;
   }
 
-  bool steps_asynchronously() const override {
-    return asynchronous_steps(*inner_) != nullptr;
-  }
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
   void start_step(std::span<const float> action) override {
     asynchronous_steps(*inner_)->start_step(action);
   }

@@ -2,8 +2,8 @@
 
 #include <Eigen/Core>
 
-#include "rlrun/nn/policy_graph.hpp"
 #include "rlrun/core/plural.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -55,9 +55,11 @@ RescaleAction::RescaleAction(EnvPtr inner, const Config& config) : ActionWrapper
 std::string RescaleAction::export_action(PolicyGraph& graph, const std::string& action) const {
   const Space& inner_space = inner_->action_space();
   const int n = inner_space.flat_dim();
-  const Eigen::Map<const Eigen::VectorXf> gradient(gradient_.data(), n), intercept(intercept_.data(), n),
-      low(inner_space.low().data(), n), high(inner_space.high().data(), n);
-  return graph.clamp(graph.affine(action, Eigen::VectorXf::Zero(n), gradient, intercept), low, high);
+  const Eigen::Map<const Eigen::VectorXf> gradient(gradient_.data(), n),
+      intercept(intercept_.data(), n), low(inner_space.low().data(), n),
+      high(inner_space.high().data(), n);
+  return graph.clamp(graph.affine(action, Eigen::VectorXf::Zero(n), gradient, intercept), low,
+                     high);
 }
 
 std::span<const float> RescaleAction::map_action(std::span<const float> action) {

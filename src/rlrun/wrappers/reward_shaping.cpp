@@ -25,12 +25,18 @@ RewardShaping::RewardShaping(EnvPtr inner, const Config& config)
                                   inner_->action_space().describe());
     if ((t.type == "obs_above_for" || t.type == "obs_below_for") && t.steps < 1)
       throw std::invalid_argument(where + ": steps must be >= 1");
-    if (t.type == "obs_above_for") kinds_.push_back(Kind::kObsAboveFor);
-    else if (t.type == "obs_below_for") kinds_.push_back(Kind::kObsBelowFor);
-    else if (t.type == "obs_abs") kinds_.push_back(Kind::kObsAbs);
-    else if (t.type == "action_sq") kinds_.push_back(Kind::kActionSq);
-    else if (t.type == "constant") kinds_.push_back(Kind::kConstant);
-    else throw std::invalid_argument(where + ": unknown term type");
+    if (t.type == "obs_above_for")
+      kinds_.push_back(Kind::kObsAboveFor);
+    else if (t.type == "obs_below_for")
+      kinds_.push_back(Kind::kObsBelowFor);
+    else if (t.type == "obs_abs")
+      kinds_.push_back(Kind::kObsAbs);
+    else if (t.type == "action_sq")
+      kinds_.push_back(Kind::kActionSq);
+    else if (t.type == "constant")
+      kinds_.push_back(Kind::kConstant);
+    else
+      throw std::invalid_argument(where + ": unknown term type");
   }
 }
 

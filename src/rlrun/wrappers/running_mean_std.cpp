@@ -50,7 +50,8 @@ void RunningMeanStd::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& sampl
   const Eigen::Index n = samples.cols();
   const float n_float = static_cast<float>(n);
   std::span<float> sum = scratch.first(static_cast<size_t>(dim()));
-  std::span<float> square_sum = scratch.subspan(static_cast<size_t>(dim()), static_cast<size_t>(dim()));
+  std::span<float> square_sum =
+      scratch.subspan(static_cast<size_t>(dim()), static_cast<size_t>(dim()));
   auto row = [&](int k) { return rows.empty() ? k : rows[static_cast<size_t>(k)]; };
   // numpy reduces axis 0 of an (n, dim) float32 array sample by sample, in float32.
   for (int k = 0; k < dim(); ++k) {
@@ -104,7 +105,8 @@ void RunningMeanStd::update_batch(std::span<const double> values, std::span<doub
   const double n = static_cast<double>(values.size());
   const double mean = pairwise_sum(values) / n;  // np.mean
   for (size_t i = 0; i < values.size(); ++i) scratch[i] = (values[i] - mean) * (values[i] - mean);
-  merge_moments(mean_[0], var_[0], count_, mean, pairwise_sum(scratch.first(values.size())) / n * n, n);
+  merge_moments(mean_[0], var_[0], count_, mean, pairwise_sum(scratch.first(values.size())) / n * n,
+                n);
   count_ += n;
 }
 

@@ -11,9 +11,11 @@ const std::vector<std::string>& shaping_term_types() {
 }
 
 void decode(const ConfigNode& n, ShapingTerm& out) {
-  if (!n.is_map()) n.fail("expected a term {type: ..., <params>}, e.g. {type: constant, value: -0.01}");
+  if (!n.is_map())
+    n.fail("expected a term {type: ..., <params>}, e.g. {type: constant, value: -0.01}");
   const ConfigNode type = n.child("type");
-  if (!type.defined()) n.fail("missing `type` (one of obs_above_for, obs_below_for, obs_abs, action_sq, constant)");
+  if (!type.defined())
+    n.fail("missing `type` (one of obs_above_for, obs_below_for, obs_abs, action_sq, constant)");
   out = ShapingTerm{};
   out.type = type.as_string();
   const auto& types = shaping_term_types();

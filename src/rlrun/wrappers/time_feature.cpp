@@ -42,7 +42,8 @@ StepResult TimeFeature::step(std::span<const float> action, std::span<float> obs
 void TimeFeature::append_feature(std::span<float> obs) {
   std::copy(inner_obs_.begin(), inner_obs_.end(), obs.begin());
   // float64 arithmetic, then the observation dtype (np.array(time_feature, dtype=self.dtype)).
-  const double feature = config_.test_mode ? 1.0 : 1.0 - static_cast<double>(current_step_) / max_steps_;
+  const double feature =
+      config_.test_mode ? 1.0 : 1.0 - static_cast<double>(current_step_) / max_steps_;
   obs[inner_obs_.size()] = static_cast<float>(feature);
 }
 

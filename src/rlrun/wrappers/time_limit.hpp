@@ -23,9 +23,7 @@ class TimeLimit : public Wrapper, public SplitStep {
                    std::span<StepResult> results) override;
 
   // The two halves of step() (env/split_step.hpp), forwarded to the inner env.
-  bool steps_asynchronously() const override {
-    return asynchronous_steps(*inner_) != nullptr;
-  }
+  bool steps_asynchronously() const override { return asynchronous_steps(*inner_) != nullptr; }
   void start_step(std::span<const float> action) override {
     asynchronous_steps(*inner_)->start_step(action);
   }

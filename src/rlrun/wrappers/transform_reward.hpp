@@ -16,10 +16,10 @@ class TransformReward : public Wrapper, public SplitStep {
   // Observations and actions pass unchanged (rlrun export).
   bool exports_unchanged() const override { return true; }
   struct Config {
-    double scale = 1.0;               // multiplies the reward first
-    double offset = 0.0;              // then is added
-    std::optional<double> clip_min;   // then the result is clipped from below (null: no bound)
-    std::optional<double> clip_max;   // and from above (null: no bound)
+    double scale = 1.0;              // multiplies the reward first
+    double offset = 0.0;             // then is added
+    std::optional<double> clip_min;  // then the result is clipped from below (null: no bound)
+    std::optional<double> clip_max;  // and from above (null: no bound)
     template <class V>
     void visit(V& v) {
       v("scale", scale, "factor applied to the reward first");

@@ -15,8 +15,9 @@ void decode(const ConfigNode& n, NormalizeSetting& out) {
     return;
   }
   if (!n.is_map())
-    n.fail("expected true, false or a map {norm_obs, norm_reward, clip_obs, clip_reward, gamma, "
-           "epsilon}");
+    n.fail(
+        "expected true, false or a map {norm_obs, norm_reward, clip_obs, clip_reward, gamma, "
+        "epsilon}");
   out = read_config<NormalizeSetting>(n);
   out.enabled = true;
 }
@@ -59,8 +60,10 @@ namespace {
 class BatchNormalization : public VecStepHook {
  public:
   BatchNormalization(std::vector<NormalizeObservation*> obs, std::vector<NormalizeReward*> rewards)
-      : obs_(std::move(obs)), rewards_(std::move(rewards)),
-        returns_(rewards_.size()), scratch_(rewards_.size()) {}
+      : obs_(std::move(obs)),
+        rewards_(std::move(rewards)),
+        returns_(rewards_.size()),
+        scratch_(rewards_.size()) {}
 
   void after_reset(Eigen::MatrixXf& obs) override {
     if (!obs_.empty()) {
@@ -124,14 +127,16 @@ void install_batch_normalization(VecEnv& env, const NormalizeSetting& setting) {
     Env* top = &env.env(c);
     if (setting.norm_reward) {
       auto* r = dynamic_cast<NormalizeReward*>(top);
-      if (!r) throw std::logic_error("env.normalize: copy's outermost wrapper is not NormalizeReward");
+      if (!r)
+        throw std::logic_error("env.normalize: copy's outermost wrapper is not NormalizeReward");
       r->set_batched(true);
       rewards.push_back(r);
       top = &r->inner();
     }
     if (setting.norm_obs) {
       auto* o = dynamic_cast<NormalizeObservation*>(top);
-      if (!o) throw std::logic_error("env.normalize: no NormalizeObservation at the top of the stack");
+      if (!o)
+        throw std::logic_error("env.normalize: no NormalizeObservation at the top of the stack");
       o->set_batched(true);
       obs.push_back(o);
     }

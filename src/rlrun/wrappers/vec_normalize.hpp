@@ -25,13 +25,13 @@
 namespace rlrun {
 
 struct NormalizeSetting {
-  bool enabled = false;          // false: no normalisation (the key's default)
-  bool norm_obs = true;          // SB3 VecNormalize norm_obs
-  bool norm_reward = true;       // SB3 VecNormalize norm_reward
-  double clip_obs = 10.0;        // SB3 VecNormalize clip_obs
-  double clip_reward = 10.0;     // SB3 VecNormalize clip_reward
-  std::optional<double> gamma;   // null: the algorithm's gamma
-  double epsilon = 1e-8;         // SB3 VecNormalize epsilon
+  bool enabled = false;         // false: no normalisation (the key's default)
+  bool norm_obs = true;         // SB3 VecNormalize norm_obs
+  bool norm_reward = true;      // SB3 VecNormalize norm_reward
+  double clip_obs = 10.0;       // SB3 VecNormalize clip_obs
+  double clip_reward = 10.0;    // SB3 VecNormalize clip_reward
+  std::optional<double> gamma;  // null: the algorithm's gamma
+  double epsilon = 1e-8;        // SB3 VecNormalize epsilon
   template <class V>
   void visit(V& v) {
     v("norm_obs", norm_obs, "normalise observations with their running mean and std");

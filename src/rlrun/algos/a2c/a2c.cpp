@@ -34,7 +34,8 @@ A2C::A2C(const Config& config, const AlgorithmSetup& setup)
     checkpoint("optimizer", adam_.emplace(policy_.param_blocks(), adam));
   }
   const int size = config_.n_steps * setup.n_envs;
-  for (Eigen::RowVectorXf* v : {&advantages_, &returns_, &grad_values_, &grad_log_prob_, &grad_entropy_})
+  for (Eigen::RowVectorXf* v :
+       {&advantages_, &returns_, &grad_values_, &grad_log_prob_, &grad_entropy_})
     v->resize(size);
 }
 

@@ -6,8 +6,8 @@
 // returns).
 #include <optional>
 
-#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"

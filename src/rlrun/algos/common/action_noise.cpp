@@ -6,7 +6,8 @@
 namespace rlrun {
 
 ActionNoise::ActionNoise(const ActionNoiseConfig& config, int action_dim, int n_envs)
-    : sigma_(static_cast<float>(config.noise_std)), previous_(Eigen::MatrixXf::Zero(action_dim, n_envs)) {
+    : sigma_(static_cast<float>(config.noise_std)),
+      previous_(Eigen::MatrixXf::Zero(action_dim, n_envs)) {
   if (config.noise_type.empty() || config.noise_type == "none")
     kind_ = Kind::kNone;
   else if (config.noise_type == "normal")

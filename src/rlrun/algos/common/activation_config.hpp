@@ -13,20 +13,20 @@
 namespace rlrun {
 
 // The `rlrun list` line of every algorithm's activation_fn.
-inline constexpr const char *kActivationFnDoc =
+inline constexpr const char* kActivationFnDoc =
     "activation between hidden layers: tanh, relu, elu, leaky_relu (or torch's "
     "nn.Tanh, "
     "nn.ReLU, nn.ELU, nn.LeakyReLU)";
 
-inline void decode(const ConfigNode &n, Activation &out) {
+inline void decode(const ConfigNode& n, Activation& out) {
   const std::string name = n.as_string();
   if (const auto act = find_activation(name)) {
     out = *act;
     return;
   }
   std::vector<std::string> valid;
-  for (const auto &s : kActivationSpellings) valid.emplace_back(s.name);
-  for (const auto &s : kActivationSpellings) valid.emplace_back(s.torch_name);
+  for (const auto& s : kActivationSpellings) valid.emplace_back(s.name);
+  for (const auto& s : kActivationSpellings) valid.emplace_back(s.torch_name);
   n.fail("unknown activation '" + name + "'" + did_you_mean(name, valid) +
          "; valid: tanh, relu, elu, leaky_relu (or torch's nn.Tanh, nn.ReLU, "
          "nn.ELU, "

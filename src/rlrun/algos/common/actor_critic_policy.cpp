@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "rlrun/core/resource_limits.hpp"
 #include <stdexcept>
+#include "rlrun/core/resource_limits.hpp"
 
 namespace rlrun {
 
@@ -75,14 +75,17 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
 int action_net_size(const Space& action_space) {
   switch (action_space.kind()) {
     case SpaceKind::kDiscrete:
-    case SpaceKind::kMultiBinary: return static_cast<int>(action_space.n());
+    case SpaceKind::kMultiBinary:
+      return static_cast<int>(action_space.n());
     case SpaceKind::kMultiDiscrete: {
       int64_t total = 0;
       for (int64_t n : action_space.nvec()) total += n;
       return static_cast<int>(total);
     }
-    case SpaceKind::kBox: return action_space.flat_dim();
-    case SpaceKind::kDict: break;
+    case SpaceKind::kBox:
+      return action_space.flat_dim();
+    case SpaceKind::kDict:
+      break;
   }
   throw std::invalid_argument("action space " + action_space.describe() +
                               " is not supported (SB3 has no distribution for Dict actions)");

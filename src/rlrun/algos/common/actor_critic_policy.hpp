@@ -15,8 +15,6 @@
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
-#include "rlrun/rng.hpp"
-#include "rlrun/space.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/core/thread_pool.hpp"
 #include "rlrun/env/observation_encoder.hpp"
@@ -27,6 +25,8 @@
 #include "rlrun/nn/multi_categorical.hpp"
 #include "rlrun/nn/param_block.hpp"
 #include "rlrun/nn/state_dependent_noise.hpp"
+#include "rlrun/rng.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 
@@ -42,12 +42,12 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
 int action_net_size(const Space& action_space);
 
 struct ActorCriticPolicyConfig {
-  NetArchPiVf net_arch = {{64, 64}, {64, 64}};  // actor (pi) and critic (vf) hidden sizes
+  NetArchPiVf net_arch = {{64, 64}, {64, 64}};   // actor (pi) and critic (vf) hidden sizes
   Activation activation_fn = Activation::kTanh;  // SB3 default nn.Tanh
-  bool ortho_init = true;  // orthogonal init with SB3's gains; false: torch's default init
-  double log_std_init = 0.0;            // initial log std of Gaussian actions
-  bool full_std = true;                 // gSDE: a std per (latent feature, action)
-  bool use_expln = false;               // gSDE: expln instead of exp for the std
+  bool ortho_init = true;     // orthogonal init with SB3's gains; false: torch's default init
+  double log_std_init = 0.0;  // initial log std of Gaussian actions
+  bool full_std = true;       // gSDE: a std per (latent feature, action)
+  bool use_expln = false;     // gSDE: expln instead of exp for the std
 
   template <class V>
   void visit(V& v) {
@@ -104,8 +104,9 @@ class ActorCriticPolicy {
 
   // Training forward pass (SB3 evaluate_actions); keeps what backward() needs.
   void evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
-                        const Eigen::Ref<const Eigen::MatrixXf>& actions, Eigen::RowVectorXf& values,
-                        Eigen::RowVectorXf& log_prob, Eigen::RowVectorXf& entropy);
+                        const Eigen::Ref<const Eigen::MatrixXf>& actions,
+                        Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
+                        Eigen::RowVectorXf& entropy);
   // Adds the gradients of a loss with the given partial derivatives w.r.t. the outputs of the
   // last evaluate_actions() to every parameter's gradient.
   void backward(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,

@@ -26,8 +26,7 @@ int BoxActionSelection::checked_action_dim(const AlgorithmSetup& setup, const st
   return a.flat_dim();
 }
 
-BoxActionSelection::BoxActionSelection(const AlgorithmSetup& setup,
-                                       const ActionNoiseConfig& noise)
+BoxActionSelection::BoxActionSelection(const AlgorithmSetup& setup, const ActionNoiseConfig& noise)
     : space_(setup.action_space),
       action_rng_(setup.seed ^ kActionStream),
       noise_rng_(setup.seed ^ kNoiseStream),
@@ -61,7 +60,8 @@ std::string BoxActionSelection::export_env_actions(PolicyGraph& graph,
   // low + 0.5 (a + 1) (high - low) = (a + 1) * (0.5 (high - low)) + low: the same float
   // (a product with 0.5 is exact).
   const int n = space_.flat_dim();
-  const Eigen::Map<const Eigen::VectorXf> low(space_.low().data(), n), high(space_.high().data(), n);
+  const Eigen::Map<const Eigen::VectorXf> low(space_.low().data(), n),
+      high(space_.high().data(), n);
   const Eigen::VectorXf half_range = 0.5f * (high - low);
   return graph.clamp(graph.affine(scaled, Eigen::VectorXf::Ones(n), half_range, low), low, high);
 }

@@ -84,7 +84,7 @@ class ActingCopy {
     if (stale_) {
       // Same sizes: copies, no allocation. An actor with more parameters than its network
       // (SAC's gSDE log_std) says how to copy them.
-      if constexpr (requires(Actor& to, const Actor& from) { to.copy_parameters_from(from); })
+      if constexpr (requires(Actor & to, const Actor& from) { to.copy_parameters_from(from); })
         copy_.copy_parameters_from(*trained_);
       else
         copy_.net().params() = trained_->net().params();

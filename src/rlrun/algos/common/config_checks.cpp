@@ -35,8 +35,7 @@ double mlp_parameter_count(int in, const std::vector<int>& hidden, int out) {
 }
 
 void check_network_memory(ConfigProblems& out, const std::string& key, int in,
-                          const std::vector<int>& hidden, int outputs, int networks,
-                          double batch) {
+                          const std::vector<int>& hidden, int outputs, int networks, double batch) {
   // Weights, gradients, Adam's two moments and a target or replica copy: 5 floats each; a
   // minibatch cut into more than two parts (nn/batch_split.hpp) keeps one more gradient per
   // further replica.
@@ -55,17 +54,16 @@ void check_network_memory(ConfigProblems& out, const std::string& key, int in,
 
 void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const AlgorithmSetup& setup) {
   const double row = 2.0 * setup.observation_space.flat_dim() + setup.action_space.flat_dim() + 2;
-  const std::string problem = memory_problem(static_cast<double>(buffer_size) * row * sizeof(float),
-                                             "a replay buffer of " + std::to_string(buffer_size) +
-                                                 " transitions");
+  const std::string problem =
+      memory_problem(static_cast<double>(buffer_size) * row * sizeof(float),
+                     "a replay buffer of " + std::to_string(buffer_size) + " transitions");
   if (!problem.empty()) out.push_back({"buffer_size", problem});
 }
 
 void check_gradient_steps(ConfigProblems& out, int gradient_steps) {
   if (gradient_steps == 0 || gradient_steps < -1)
-    out.push_back({"gradient_steps",
-                   "must be >= 1, or -1 (as many as env steps collected), got " +
-                       std::to_string(gradient_steps)});
+    out.push_back({"gradient_steps", "must be >= 1, or -1 (as many as env steps collected), got " +
+                                         std::to_string(gradient_steps)});
 }
 
 void check_box_actor_spaces(ConfigProblems& out, const AlgorithmSetup& setup) {

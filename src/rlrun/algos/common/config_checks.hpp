@@ -27,8 +27,7 @@ double mlp_parameter_count(int in, const std::vector<int>& hidden, int out);
 // a target copy) and their activations for `batch` samples; a problem at `key` when it cannot
 // fit this machine.
 void check_network_memory(ConfigProblems& out, const std::string& key, int in,
-                          const std::vector<int>& hidden, int outputs, int networks,
-                          double batch);
+                          const std::vector<int>& hidden, int outputs, int networks, double batch);
 
 // A replay buffer of `buffer_size` transitions (obs, next obs, action, reward, done in float32).
 void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const AlgorithmSetup& setup);

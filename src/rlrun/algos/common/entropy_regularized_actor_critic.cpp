@@ -106,8 +106,8 @@ void EntropyRegularizedActorCritic::sample_policy_actions(
 }
 
 double EntropyRegularizedActorCritic::update_actor(const Eigen::RowVectorXf& q_pi,
-                                                   const Eigen::MatrixXf& grad_actions,
-                                                   float alpha, float lr) {
+                                                   const Eigen::MatrixXf& grad_actions, float alpha,
+                                                   float lr) {
   const Eigen::Index n = q_pi.size();
   const float inv_n = 1.0f / static_cast<float>(n);
   double loss = 0.0;

@@ -104,7 +104,7 @@ struct EntropyRegularizedStepStats {
   double ent_coef = 0.0;       // alpha used in this step (before its update)
   double ent_coef_loss = 0.0;  // 0 when alpha is fixed
   double actor_loss = 0.0;
-  double critic_loss = 0.0;    // SAC: 0.5 * sum over critics of mse; TQC: quantile Huber loss
+  double critic_loss = 0.0;  // SAC: 0.5 * sum over critics of mse; TQC: quantile Huber loss
 };
 
 class EntropyRegularizedActorCritic : public OffPolicyAlgorithm {

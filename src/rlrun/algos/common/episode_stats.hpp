@@ -57,7 +57,8 @@ class EpisodeStats {
     int i = 0;
     for (const auto& [name, values] : metrics_) {
       names += name + '\n';
-      out.put_vector("metric_" + std::to_string(i++), std::vector<double>(values.begin(), values.end()));
+      out.put_vector("metric_" + std::to_string(i++),
+                     std::vector<double>(values.begin(), values.end()));
     }
     out.put_string("metric_names", names);
   }
@@ -80,7 +81,8 @@ class EpisodeStats {
     if (!in.has("metric_names")) return;  // a checkpoint of an older rlrun: none
     const std::string names = in.get_string("metric_names");
     int i = 0;
-    for (size_t start = 0, end; (end = names.find('\n', start)) != std::string::npos; start = end + 1)
+    for (size_t start = 0, end; (end = names.find('\n', start)) != std::string::npos;
+         start = end + 1)
       load(("metric_" + std::to_string(i++)).c_str(), metrics_[names.substr(start, end - start)]);
   }
 

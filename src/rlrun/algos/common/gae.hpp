@@ -22,8 +22,7 @@ inline void compute_gae(const StepEnvMatrix& rewards, const StepEnvMatrix& value
       const bool last = t == n_steps - 1;
       const float next_non_terminal = 1.0f - (last ? last_dones(env) : episode_starts(t + 1, env));
       const float next_value = last ? last_values(env) : values(t + 1, env);
-      const float delta =
-          rewards(t, env) + gamma * next_value * next_non_terminal - values(t, env);
+      const float delta = rewards(t, env) + gamma * next_value * next_non_terminal - values(t, env);
       last_gae = delta + gamma * gae_lambda * next_non_terminal * last_gae;
       advantages(t, env) = last_gae;
     }

@@ -24,7 +24,8 @@ int key_index(const Space& space, const std::string& key) {
   if (it == keys.end())
     throw std::invalid_argument("HerReplayBuffer needs a Dict observation with '" + key +
                                 "' (a goal-conditioned env: observation, achieved_goal, "
-                                "desired_goal); this one is " + space.describe());
+                                "desired_goal); this one is " +
+                                space.describe());
   return static_cast<int>(it - keys.begin());
 }
 
@@ -39,9 +40,10 @@ HerReplayBuffer::HerReplayBuffer(int64_t buffer_size, int n_envs, const Space& o
       selection_(selection),
       her_ratio_(1.0 - 1.0 / (n_sampled_goal + 1.0)) {
   if (!observation_space.is_dict())
-    throw std::invalid_argument("HerReplayBuffer needs a Dict observation (observation, "
-                                "achieved_goal, desired_goal); this one is " +
-                                observation_space.describe());
+    throw std::invalid_argument(
+        "HerReplayBuffer needs a Dict observation (observation, "
+        "achieved_goal, desired_goal); this one is " +
+        observation_space.describe());
   if (n_sampled_goal < 0) throw std::invalid_argument("n_sampled_goal must be >= 0");
   key_index(observation_space, "observation");
   const int achieved = key_index(observation_space, "achieved_goal");
@@ -95,7 +97,8 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
     throw std::logic_error(
         "HerReplayBuffer: no finished episode to sample from yet; choose learning_starts "
         "greater than the longest episode (SB3 says the same)");
-  if (!rewards_of_) throw std::logic_error("HerReplayBuffer: no goal env to recompute rewards with");
+  if (!rewards_of_)
+    throw std::logic_error("HerReplayBuffer: no goal env to recompute rewards with");
   size_batch(batch_size, batch);
   const int n_virtual = static_cast<int>(her_ratio_ * batch_size);
   achieved_scratch_.resize(goal_dim_, n_virtual);
@@ -116,7 +119,8 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
     if (j >= n_virtual) continue;
     // A virtual transition: a new desired goal from the same episode (SB3 _sample_goals).
     const int64_t slot = k / n_envs_, e = k % n_envs_;
-    const int64_t start = ep_start_[static_cast<size_t>(k)], length = ep_length_[static_cast<size_t>(k)];
+    const int64_t start = ep_start_[static_cast<size_t>(k)],
+                  length = ep_length_[static_cast<size_t>(k)];
     int64_t index = 0;  // within the episode
     switch (selection_) {
       case GoalSelection::kFinal:

@@ -7,15 +7,15 @@ namespace rlrun::net_arch_detail {
 
 namespace {
 
-void decode_sizes(const ConfigNode &n, std::vector<int> &out) {
+void decode_sizes(const ConfigNode& n, std::vector<int>& out) {
   if (!n.is_sequence()) n.fail("expected a list of layer sizes, e.g. [64, 64] ([] for none)");
   rlrun::decode(n, out);
 }
 
 }  // namespace
 
-void decode(const ConfigNode &n, const char *critic_key, bool critic_required, std::vector<int> &pi,
-            std::vector<int> &critic) {
+void decode(const ConfigNode& n, const char* critic_key, bool critic_required, std::vector<int>& pi,
+            std::vector<int>& critic) {
   if (n.is_sequence()) {
     decode_sizes(n, pi);
     critic = pi;
@@ -27,14 +27,14 @@ void decode(const ConfigNode &n, const char *critic_key, bool critic_required, s
                               critic_key + ": [64, 64]}";
   if (!n.is_map()) n.fail("expected " + example);
   const std::vector<std::string> valid = {"pi", critic_key};
-  for (const std::string &key : n.keys()) {
+  for (const std::string& key : n.keys()) {
     if (key == valid[0] || key == valid[1]) continue;
     // SB3's MlpExtractor would silently ignore the key (e.g. a `qf` in a PPO entry): refuse.
     n.fail_at_key(key, "unknown key '" + key + "'" + did_you_mean(key, valid) +
                            "; valid keys: pi, " + critic_key);
   }
   if (critic_required) {
-    for (const std::string &key : valid)
+    for (const std::string& key : valid)
       if (!n.has(key))
         n.fail("needs both pi and " + std::string(critic_key) +
                " (SB3's get_actor_critic_arch); '" + key + "' is missing");
@@ -46,8 +46,8 @@ void decode(const ConfigNode &n, const char *critic_key, bool critic_required, s
   if (n.has(critic_key)) decode_sizes(n.child(critic_key), critic);
 }
 
-YAML::Node encode(const char *critic_key, const std::vector<int> &pi,
-                  const std::vector<int> &critic) {
+YAML::Node encode(const char* critic_key, const std::vector<int>& pi,
+                  const std::vector<int>& critic) {
   if (pi == critic) return rlrun::encode(pi);
   YAML::Node map(YAML::NodeType::Map);
   map["pi"] = rlrun::encode(pi);
@@ -56,8 +56,8 @@ YAML::Node encode(const char *critic_key, const std::vector<int> &pi,
   return map;
 }
 
-void check(const ConfigNode &n, const char *critic_key, const std::vector<int> &pi,
-           const std::vector<int> &critic, const Bounds &bounds) {
+void check(const ConfigNode& n, const char* critic_key, const std::vector<int>& pi,
+           const std::vector<int>& critic, const Bounds& bounds) {
   if (n.is_sequence()) {
     check_value(n, pi, bounds);
     return;

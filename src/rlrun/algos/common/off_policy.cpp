@@ -48,8 +48,9 @@ OffPolicyState::OffPolicyState(const OffPolicyConfig& config, int n_envs,
     her = her_buffer.get();
     buffer = std::move(her_buffer);
   } else {
-    buffer = std::make_unique<ReplayBuffer>(config.buffer_size, n_envs, observation_space.flat_dim(),
-                                            act_dim, config.handle_timeout_termination);
+    buffer =
+        std::make_unique<ReplayBuffer>(config.buffer_size, n_envs, observation_space.flat_dim(),
+                                       act_dim, config.handle_timeout_termination);
   }
 }
 
@@ -90,7 +91,8 @@ void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
     out.push_back({"replay_buffer_class",
                    "HerReplayBuffer needs a goal-conditioned env (a Dict observation with "
                    "observation, achieved_goal and desired_goal, and compute_reward); this one "
-                   "observes " + obs.describe()});
+                   "observes " +
+                       obs.describe()});
     return;
   }
   // The HER bookkeeping: two int64 per transition.
@@ -146,8 +148,7 @@ OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& co
 }
 
 OffPolicyState& OffPolicyAlgorithm::state() {
-  if (!state_)
-    state_.emplace(config_, setup_.n_envs, setup_.observation_space, buffer_action_dim_);
+  if (!state_) state_.emplace(config_, setup_.n_envs, setup_.observation_space, buffer_action_dim_);
   return *state_;
 }
 
@@ -186,9 +187,12 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
     const GoalEnv* goals = goal_env_of(env.env(0));
     if (!goals)
       throw std::invalid_argument(
-          id_ + ": replay_buffer_class HerReplayBuffer needs a goal-conditioned env with "
-                "compute_reward; " + env.env(0).id() + " has none (rlrun's goal envs: "
-                "BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0)");
+          id_ +
+          ": replay_buffer_class HerReplayBuffer needs a goal-conditioned env with "
+          "compute_reward; " +
+          env.env(0).id() +
+          " has none (rlrun's goal envs: "
+          "BitFlippingEnv-v0, GripperReach-v0, GripperPush-v0, GripperPickAndPlace-v0)");
     her->set_goal_env(goals);
   }
   // Batches are normalised as the env's VecNormalize says while this learn() runs.
@@ -198,8 +202,15 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
     ~Forget() { hook = nullptr; }
   } forget{step_hook_};
 
-  LearnCall call{env, hooks, total_timesteps, hooks.log_interval > 0 ? hooks.log_interval : 4,
-                 std::chrono::steady_clock::now(), num_timesteps_, {}, {}, {}};
+  LearnCall call{env,
+                 hooks,
+                 total_timesteps,
+                 hooks.log_interval > 0 ? hooks.log_interval : 4,
+                 std::chrono::steady_clock::now(),
+                 num_timesteps_,
+                 {},
+                 {},
+                 {}};
   // A restored state continues the envs where the checkpoint left them; the last
   // observations are the VecEnv's (the loop below keeps last_obs == env.obs() at safe points).
   call.last_obs = s.restored ? env.obs() : env.reset();

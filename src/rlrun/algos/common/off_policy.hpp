@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
-#include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/her_replay_buffer.hpp"
+#include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/algos/common/resumable_algorithm.hpp"
 #include "rlrun/algos/common/training_state.hpp"
@@ -38,7 +38,8 @@ YAML::Node encode(const TrainFreq& value);
 struct ReplayBufferKwargs {
   int n_sampled_goal = 4;                          // virtual transitions per real one
   std::string goal_selection_strategy = "future";  // future, final or episode
-  bool copy_info_dict = false;  // SB3's option to pass infos to compute_reward; rlrun's don't read them
+  bool copy_info_dict =
+      false;  // SB3's option to pass infos to compute_reward; rlrun's don't read them
 
   template <class V>
   void visit(V& v) {
@@ -54,13 +55,13 @@ struct ReplayBufferKwargs {
 };
 
 struct OffPolicyConfig {
-  int64_t buffer_size = 1000000;   // transitions kept (all envs together)
-  int64_t learning_starts = 100;   // env steps of random actions before learning
-  int batch_size = 256;            // minibatch size
-  double tau = 0.005;              // target network soft-update coefficient (1 = hard copy)
-  double gamma = 0.99;             // discount factor
-  TrainFreq train_freq;            // collect this many steps/episodes between updates
-  int gradient_steps = 1;          // updates after each collection; -1 = as many as env steps
+  int64_t buffer_size = 1000000;  // transitions kept (all envs together)
+  int64_t learning_starts = 100;  // env steps of random actions before learning
+  int batch_size = 256;           // minibatch size
+  double tau = 0.005;             // target network soft-update coefficient (1 = hard copy)
+  double gamma = 0.99;            // discount factor
+  TrainFreq train_freq;           // collect this many steps/episodes between updates
+  int gradient_steps = 1;         // updates after each collection; -1 = as many as env steps
   bool handle_timeout_termination = true;  // bootstrap truncated (time-limit) transitions
   // SB3 replay_buffer_class: ReplayBuffer, or HerReplayBuffer for goal-conditioned envs.
   std::string replay_buffer_class = "ReplayBuffer";
@@ -77,8 +78,8 @@ struct OffPolicyConfig {
     v("tau", tau, "soft update coefficient for target networks (1 = hard copy)", unit_interval());
     v("gamma", gamma, "discount factor", unit_interval());
     v("train_freq", train_freq, "update every N steps, or [N, episode]");
-    v("gradient_steps", gradient_steps, "gradient steps per update (-1: as many as steps collected)",
-      at_least(-1));
+    v("gradient_steps", gradient_steps,
+      "gradient steps per update (-1: as many as steps collected)", at_least(-1));
     v("handle_timeout_termination", handle_timeout_termination,
       "treat time-limit truncation as not done (bootstrap), as SB3");
     v("replay_buffer_class", replay_buffer_class,

@@ -10,8 +10,8 @@
 #include <utility>
 
 #include "rlrun/algos/common/rng_streams.hpp"
-#include "rlrun/env/vec_env.hpp"
 #include "rlrun/core/state_dict.hpp"
+#include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
 

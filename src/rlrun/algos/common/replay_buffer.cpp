@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "rlrun/env/vec_env.hpp"
 #include "rlrun/core/state_dict.hpp"
+#include "rlrun/env/vec_env.hpp"
 
 namespace rlrun {
 

@@ -7,9 +7,9 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

@@ -22,8 +22,8 @@ SacActor::SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch
     options.squash_output = true;
     options.learn_features = true;
     const Mlp& m = net_.net();
-    sde_ = StateDependentNoise(m.layer_in(m.num_layers() - 1), action_dim, sde.log_std_init,
-                               options);
+    sde_ =
+        StateDependentNoise(m.layer_in(m.num_layers() - 1), action_dim, sde.log_std_init, options);
   }
 }
 

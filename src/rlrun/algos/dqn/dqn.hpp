@@ -50,7 +50,8 @@ class DQN : public OffPolicyAlgorithm {
 
     template <class V>
     void visit(V& v) {
-      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>", non_negative());
+      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>",
+        non_negative());
       off_policy.visit(v);  // buffer_size ... handle_timeout_termination, flattened as in SB3
       v("target_update_interval", target_update_interval,
         "env steps between target network updates", at_least(1));

@@ -9,9 +9,9 @@
 
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/rng.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/mlp.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

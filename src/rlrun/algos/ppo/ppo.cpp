@@ -98,10 +98,10 @@ void PPO::train(double progress_remaining, Logger* logger) {
       policy_.evaluate_actions(mb_obs_, mb_act_, values_pred_, log_prob_, entropy_);
 
       if (config_.normalize_advantage) normalize_advantages(mb_adv_);
-      const PpoLossTerms t = ppo_loss({values_pred_, log_prob_, entropy_, mb_old_logp_,
-                                       mb_old_val_, mb_adv_, mb_ret_},
-                                      clip_range, clip_range_vf, ent_coef, vf_coef, grad_values_,
-                                      grad_log_prob_, grad_entropy_);
+      const PpoLossTerms t =
+          ppo_loss({values_pred_, log_prob_, entropy_, mb_old_logp_, mb_old_val_, mb_adv_, mb_ret_},
+                   clip_range, clip_range_vf, ent_coef, vf_coef, grad_values_, grad_log_prob_,
+                   grad_entropy_);
       statistics.add(t);
 
       if (config_.target_kl && t.approx_kl > 1.5 * *config_.target_kl) {
@@ -124,8 +124,8 @@ void PPO::gather_minibatch(int start, int batch) {
   if (mb_obs_.cols() != batch) {
     mb_obs_.resize(Eigen::NoChange, batch);
     mb_act_.resize(Eigen::NoChange, batch);
-    for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_,
-                                  &values_pred_, &grad_values_, &grad_log_prob_, &grad_entropy_})
+    for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_, &values_pred_,
+                                  &grad_values_, &grad_log_prob_, &grad_entropy_})
       v->resize(batch);
   }
   // Columns copied as raw blocks: Eigen's per-column assignment of a run-time size (3 floats

@@ -6,8 +6,8 @@
 // global gradient-norm clipping, Adam (eps 1e-5 as SB3's ActorCriticPolicy sets it).
 #include <optional>
 
-#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
+#include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
@@ -36,7 +36,8 @@ class PPO : public OnPolicyAlgorithm {
 
     template <class V>
     void visit(V& v) {
-      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>", non_negative());
+      v("learning_rate", learning_rate, "Adam step size: a number or lin_<initial>",
+        non_negative());
       v("n_steps", n_steps, "steps per env per rollout (rollout size = n_steps * n_envs)",
         in_range(1, 1e8));
       // SB3 ppo.py: "batch_size > 1 ... required for advantage normalization".
@@ -88,8 +89,7 @@ class PPO : public OnPolicyAlgorithm {
   std::vector<int> indices_;
   Eigen::MatrixXf mb_obs_, mb_act_;
   Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;
-  Eigen::RowVectorXf values_pred_, log_prob_, entropy_, grad_values_, grad_log_prob_,
-      grad_entropy_;
+  Eigen::RowVectorXf values_pred_, log_prob_, entropy_, grad_values_, grad_log_prob_, grad_entropy_;
 };
 
 }  // namespace rlrun

@@ -27,7 +27,8 @@ SAC::SAC(const Config& config, const AlgorithmSetup& setup)
 // (arXiv:1812.05905), Algorithm 1: the critics, the policy, the temperature, the target
 // networks. SB3 steps the temperature first; the step uses alpha as it was before that update
 // (detached), so the numbers are the same.
-EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
+EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr,
+                                                bool update_target) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
@@ -79,9 +80,8 @@ EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr, 
     q_pi_(j) = critic_.q(i).output()(0, j);
     grad_min_q_[i](0, j) = -inv_n;
   }
-  critic_.for_each_critic(n, [&](int i) {
-    critic_.action_gradient(i, grad_min_q_[i], grad_critic_actions_[i]);
-  });
+  critic_.for_each_critic(
+      n, [&](int i) { critic_.action_gradient(i, grad_min_q_[i], grad_critic_actions_[i]); });
   grad_actions_ = grad_critic_actions_[0];
   for (int i = 1; i < critic_.n_critics(); ++i) grad_actions_ += grad_critic_actions_[i];
   stats.actor_loss = update_actor(q_pi_, grad_actions_, alpha, lr);

@@ -29,8 +29,8 @@ namespace rlrun {
 // SB3 TD3Policy keyword arguments (policy_kwargs in rl-zoo).
 struct Td3PolicyConfig {
   NetArchPiQf net_arch = {{400, 300}, {400, 300}};  // actor (pi), each critic (qf)
-  Activation activation_fn = Activation::kReLU;          // SB3 default nn.ReLU
-  int n_critics = 2;                       // number of Q-networks; targets use their minimum
+  Activation activation_fn = Activation::kReLU;     // SB3 default nn.ReLU
+  int n_critics = 2;  // number of Q-networks; targets use their minimum
 
   template <class V>
   void visit(V& v) {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/rng.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/split_mlp.hpp"
+#include "rlrun/rng.hpp"
 
 namespace rlrun {
 

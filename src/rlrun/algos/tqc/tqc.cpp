@@ -48,7 +48,8 @@ int TQC::n_target_quantiles() const {
 // policy through the critics as just stepped, the temperature, the target networks.
 // sb3-contrib steps the temperature first; the step uses alpha as it was before that update
 // (detached), so the numbers are the same.
-EntropyRegularizedStepStats TQC::train_on_batch(const ReplayBatch& b, float lr, bool update_target) {
+EntropyRegularizedStepStats TQC::train_on_batch(const ReplayBatch& b, float lr,
+                                                bool update_target) {
   const Eigen::Index n = b.obs.cols();
   const float inv_n = 1.0f / static_cast<float>(n);
   const auto gamma = static_cast<float>(config_.off_policy.gamma);
@@ -91,9 +92,8 @@ EntropyRegularizedStepStats TQC::train_on_batch(const ReplayBatch& b, float lr, 
   const float scale = inv_n / static_cast<float>(n_critics * n_quantiles *
                                                  static_cast<int>(target_quantiles_.rows()));
   for (int i = 0; i < n_critics; ++i) {
-    stats.critic_loss +=
-        quantile_huber_loss(critic_.q(i).output(), target_quantiles_, scale, grad_quantiles_,
-                            pair_loss_);
+    stats.critic_loss += quantile_huber_loss(critic_.q(i).output(), target_quantiles_, scale,
+                                             grad_quantiles_, pair_loss_);
     critic_.q(i).zero_grad_and_backward(grad_quantiles_);
   }
   for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
@@ -130,7 +130,8 @@ void TQC::export_policy(PolicyGraph& graph, const std::string& obs, bool with_va
   if (!with_value) return;
   const std::string input = graph.concat({action.features, action.scaled});
   std::vector<std::string> atoms;
-  for (int i = 0; i < critic_.n_critics(); ++i) atoms.push_back(graph.mlp(input, critic_.q(i).net()));
+  for (int i = 0; i < critic_.n_critics(); ++i)
+    atoms.push_back(graph.mlp(input, critic_.q(i).net()));
   const int total = critic_.n_critics() * critic_.n_outputs();
   graph.set_value(graph.dense(graph.concat(atoms),
                               Eigen::MatrixXf::Constant(1, total, 1.0f / static_cast<float>(total)),

@@ -50,7 +50,8 @@ class TQC : public EntropyRegularizedActorCritic {
           "policy.n_quantiles",
           non_negative());
       });
-      v("policy", policy, "networks: net_arch, activation_fn, n_quantiles, n_critics, gSDE options");
+      v("policy", policy,
+        "networks: net_arch, activation_fn, n_quantiles, n_critics, gSDE options");
     }
   };
 

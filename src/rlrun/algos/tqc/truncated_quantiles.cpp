@@ -8,8 +8,7 @@ namespace rlrun {
 
 void truncated_quantiles(const std::vector<const Eigen::MatrixXf*>& next_quantiles, int n_target,
                          Eigen::MatrixXf& out, std::vector<float>& pooled) {
-  if (next_quantiles.empty())
-    throw std::invalid_argument("truncated_quantiles: no critics");
+  if (next_quantiles.empty()) throw std::invalid_argument("truncated_quantiles: no critics");
   const Eigen::Index n_quantiles = next_quantiles.front()->rows();
   const Eigen::Index n = next_quantiles.front()->cols();
   for (const Eigen::MatrixXf* q : next_quantiles)

@@ -116,9 +116,9 @@ void BipedalWalker::build_world() {
     b2BodyDef def;
     b2Body* body = world_->CreateBody(&def);
     b2EdgeShape edge;  // pybox2d 2.3's edges collide on both sides
-    edge.SetTwoSided(b2Vec2(static_cast<float>(terrain_.x[i]), static_cast<float>(terrain_.y[i])),
-                     b2Vec2(static_cast<float>(terrain_.x[i + 1]),
-                            static_cast<float>(terrain_.y[i + 1])));
+    edge.SetTwoSided(
+        b2Vec2(static_cast<float>(terrain_.x[i]), static_cast<float>(terrain_.y[i])),
+        b2Vec2(static_cast<float>(terrain_.x[i + 1]), static_cast<float>(terrain_.y[i + 1])));
     b2FixtureDef fd;  // fd_edge
     fd.shape = &edge;
     fd.friction = static_cast<float>(kFriction);

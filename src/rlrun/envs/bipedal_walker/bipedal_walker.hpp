@@ -16,8 +16,8 @@
 //   terminated   hull contact (game over), hull x < 0, or hull x past the end of the terrain
 //   time limit   1600 steps (BipedalWalker-v3), 2000 (BipedalWalkerHardcore-v3), by TimeLimit
 // The Box2D world is rebuilt at every reset (terrain from the env's RNG); step() only steps it.
-#include <array>
 #include <box2d/box2d.h>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -96,9 +96,9 @@ class BipedalWalker : public Env {
   std::unique_ptr<b2World> world_;
   std::unique_ptr<ContactDetector> contacts_;
   b2Body* hull_ = nullptr;
-  std::array<b2Body*, 4> legs_{};                // upper 0, lower 0, upper 1, lower 1
-  std::array<b2RevoluteJoint*, 4> joints_{};     // hip 0, knee 0, hip 1, knee 1
-  std::array<bool, 4> ground_contact_{};         // per legs_ entry (lower legs report)
+  std::array<b2Body*, 4> legs_{};             // upper 0, lower 0, upper 1, lower 1
+  std::array<b2RevoluteJoint*, 4> joints_{};  // hip 0, knee 0, hip 1, knee 1
+  std::array<bool, 4> ground_contact_{};      // per legs_ entry (lower legs report)
   std::array<float, walker::kLidarRays> lidar_fraction_{};
   std::array<b2Vec2, walker::kLidarRays> lidar_end_{};
   b2Vec2 lidar_start_{0, 0};

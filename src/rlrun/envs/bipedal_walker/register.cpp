@@ -20,8 +20,7 @@ struct HardcoreConfig : BipedalWalker::Config {
 void register_bipedal_walker(EnvEntries& out) {
   const size_t first = out.size();
   const PolicyEntry heuristic{
-      "heuristic",
-      "Gymnasium's scripted gait (BipedalWalkerHeuristics): walks on normal terrain",
+      "heuristic", "Gymnasium's scripted gait (BipedalWalkerHeuristics): walks on normal terrain",
       [](Env& env, const PolicyOptions&) { return walking_heuristic_actions(env); }};
 
   EnvEntry walker = make_env_entry<BipedalWalker>(

@@ -81,7 +81,8 @@ Terrain generate_terrain(Rng& rng, bool hardcore) {
       counter = integers(rng, 1, 3);
       const double side = counter * kS;
       terrain.obstacles.push_back(
-          {ObstacleKind::kStump, Quad{{{x, y}, {x + side, y}, {x + side, y + side}, {x, y + side}}}});
+          {ObstacleKind::kStump,
+           Quad{{{x, y}, {x + side, y}, {x + side, y + side}, {x, y + side}}}});
     } else if (state == kStairs && oneshot) {
       stair_height = rng.uniform() > 0.5 ? +1 : -1;  // np_random.random() > 0.5
       stair_width = integers(rng, 4, 5);

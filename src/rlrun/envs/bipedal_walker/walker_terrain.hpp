@@ -35,9 +35,9 @@ struct Cloud {
 };
 
 struct Terrain {
-  std::vector<double> x, y;          // TERRAIN_LENGTH ground points (terrain_x, terrain_y)
-  std::vector<Obstacle> obstacles;   // in creation order
-  std::vector<Cloud> clouds;         // TERRAIN_LENGTH / 20 of them
+  std::vector<double> x, y;         // TERRAIN_LENGTH ground points (terrain_x, terrain_y)
+  std::vector<Obstacle> obstacles;  // in creation order
+  std::vector<Cloud> clouds;        // TERRAIN_LENGTH / 20 of them
 };
 
 // Draws the terrain and then the clouds from `rng` (in that order, as BipedalWalker.reset

@@ -71,8 +71,10 @@ std::array<float, 4> WalkingHeuristic::act(std::span<const float> s) {
 PolicyFn walking_heuristic_actions(Env& env) {
   const auto* walker = dynamic_cast<const BipedalWalker*>(&env.unwrapped());
   if (!walker)
-    throw UsageError("the heuristic policy is BipedalWalker's (BipedalWalker-v3, "
-                     "BipedalWalkerHardcore-v3); this env is " + env.unwrapped().id());
+    throw UsageError(
+        "the heuristic policy is BipedalWalker's (BipedalWalker-v3, "
+        "BipedalWalkerHardcore-v3); this env is " +
+        env.unwrapped().id());
   auto heuristic = std::make_shared<WalkingHeuristic>();
   return [walker, heuristic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
     action.resize(4, 1);
@@ -83,7 +85,8 @@ PolicyFn walking_heuristic_actions(Env& env) {
       action.setZero();
       return;
     }
-    const auto a = heuristic->act(std::span<const float>(obs.data(), static_cast<size_t>(obs.rows())));
+    const auto a =
+        heuristic->act(std::span<const float>(obs.data(), static_cast<size_t>(obs.rows())));
     for (int i = 0; i < 4; ++i) action(i, 0) = a[static_cast<size_t>(i)];
   };
 }

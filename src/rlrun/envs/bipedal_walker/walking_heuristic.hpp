@@ -23,7 +23,7 @@ class WalkingHeuristic {
 
  private:
   enum GaitState { kStayOnOneLeg = 1, kPutOtherDown = 2, kPushOff = 3 };
-  static constexpr double kSpeed = 0.29;  // SPEED: "will fall forward on higher speed"
+  static constexpr double kSpeed = 0.29;             // SPEED: "will fall forward on higher speed"
   static constexpr double kSupportKneeAngle = +0.1;  // SUPPORT_KNEE_ANGLE
 
   GaitState state_ = kStayOnOneLeg;

@@ -94,11 +94,18 @@ void observation(std::span<const double> state, std::span<float> obs) {
 }  // namespace
 
 // acrobot.py: SCREEN_DIM 500, render_fps 15; the picture is in acrobot_render.cpp.
-const ClassicSpec kAcrobot{"Acrobot-v1",  {500, 500, 15}, 4,            true,
-                           initial_state, observation,    draw_acrobot, acrobot_state_from_observation};
+const ClassicSpec kAcrobot{"Acrobot-v1",
+                           {500, 500, 15},
+                           4,
+                           true,
+                           initial_state,
+                           observation,
+                           draw_acrobot,
+                           acrobot_state_from_observation};
 
 Acrobot::Acrobot(const Config&)
-    : ClassicControlEnv(kAcrobot, Space::box({-1.0f, -1.0f, -1.0f, -1.0f, static_cast<float>(-kMaxVel1),
+    : ClassicControlEnv(kAcrobot,
+                        Space::box({-1.0f, -1.0f, -1.0f, -1.0f, static_cast<float>(-kMaxVel1),
                                     static_cast<float>(-kMaxVel2)},
                                    {1.0f, 1.0f, 1.0f, 1.0f, static_cast<float>(kMaxVel1),
                                     static_cast<float>(kMaxVel2)}),
@@ -122,7 +129,5 @@ StepResult Acrobot::step(std::span<const float> action, std::span<float> obs) {
   write_observation(obs);
   return {terminated ? 0.0 : -1.0, terminated, false};
 }
-
-
 
 }  // namespace rlrun

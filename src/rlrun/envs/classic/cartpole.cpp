@@ -45,12 +45,17 @@ void observation(std::span<const double> state, std::span<float> obs) {
 }  // namespace
 
 // cartpole.py: screen 600x400, render_fps 50; the picture is in cartpole_render.cpp.
-const ClassicSpec kCartPole{"CartPole-v1", {600, 400, 50}, 4,           false,
-                            initial_state, observation,    draw_cartpole, cartpole_state_from_observation};
+const ClassicSpec kCartPole{"CartPole-v1",
+                            {600, 400, 50},
+                            4,
+                            false,
+                            initial_state,
+                            observation,
+                            draw_cartpole,
+                            cartpole_state_from_observation};
 
 CartPole::CartPole(const Config& config)
-    : ClassicControlEnv(kCartPole, make_observation_space(), Space::discrete(2)),
-      config_(config) {}
+    : ClassicControlEnv(kCartPole, make_observation_space(), Space::discrete(2)), config_(config) {}
 
 StepResult CartPole::step(std::span<const float> action, std::span<float> obs) {
   require_reset();
@@ -93,7 +98,5 @@ StepResult CartPole::step(std::span<const float> action, std::span<float> obs) {
   write_observation(obs);
   return {reward, terminated, false};
 }
-
-
 
 }  // namespace rlrun

@@ -24,9 +24,9 @@ namespace rlrun {
 
 // What tells one classic env from another besides its physics.
 struct ClassicSpec {
-  const char* id;       // e.g. "CartPole-v1"
-  RenderSpec render;    // Gymnasium's screen size and render_fps
-  int state_dim;        // values in the physical state (CartPole 4, Pendulum 2, ...)
+  const char* id;     // e.g. "CartPole-v1"
+  RenderSpec render;  // Gymnasium's screen size and render_fps
+  int state_dim;      // values in the physical state (CartPole 4, Pendulum 2, ...)
   // Gymnasium's state array is float32 at times (Acrobot right after reset(),
   // MountainCarContinuous after a step): such envs track the dtype, saved with the state.
   bool tracks_float32_state;

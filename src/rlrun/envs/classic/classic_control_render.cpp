@@ -4,16 +4,16 @@
 #include <stdexcept>
 #include <string>
 
-#include "rlrun/envs/classic/classic_control_env.hpp"
 #include "rlrun/core/plural.hpp"
+#include "rlrun/envs/classic/classic_control_env.hpp"
 
 namespace rlrun {
 
 bool ClassicControlEnv::render(Frame& frame) const {
   // Gymnasium's render() draws nothing before the first reset (state is None).
   if (!has_state_) throw std::logic_error(id() + ": call reset() before render()");
-  spec_.draw(std::span<const double>(state_.data(), static_cast<size_t>(state_dim())),
-             last_action_, frame);
+  spec_.draw(std::span<const double>(state_.data(), static_cast<size_t>(state_dim())), last_action_,
+             frame);
   return true;
 }
 

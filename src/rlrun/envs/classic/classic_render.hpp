@@ -20,8 +20,7 @@ void acrobot_state_from_observation(std::span<const float> obs, std::span<double
 
 // MountainCar-v0 (flag at 0.5) and MountainCarContinuous-v0 (flag at 0.45): one scene.
 void draw_mountain_car(std::span<const double> state, double last_action, Frame& frame);
-void draw_mountain_car_continuous(std::span<const double> state, double last_action,
-                                  Frame& frame);
+void draw_mountain_car_continuous(std::span<const double> state, double last_action, Frame& frame);
 // Both observations are the state (position, velocity).
 void mountain_car_state_from_observation(std::span<const float> obs, std::span<double> state);
 

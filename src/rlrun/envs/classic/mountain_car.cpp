@@ -27,17 +27,20 @@ void mountain_car_observation(std::span<const double> state, std::span<float> ob
 }
 
 Space mountain_car_observation_space() {
-  return Space::box({static_cast<float>(kMountainCarMinPosition),
-                     static_cast<float>(-kMountainCarMaxSpeed)},
-                    {static_cast<float>(kMountainCarMaxPosition),
-                     static_cast<float>(kMountainCarMaxSpeed)});
+  return Space::box(
+      {static_cast<float>(kMountainCarMinPosition), static_cast<float>(-kMountainCarMaxSpeed)},
+      {static_cast<float>(kMountainCarMaxPosition), static_cast<float>(kMountainCarMaxSpeed)});
 }
 
 // mountain_car.py: screen 600x400, render_fps 30; the picture is in mountain_car_render.cpp.
-const ClassicSpec kMountainCar{"MountainCar-v0",           {600, 400, 30},
-                               2,                          false,
-                               mountain_car_initial_state, mountain_car_observation,
-                               draw_mountain_car,          mountain_car_state_from_observation};
+const ClassicSpec kMountainCar{"MountainCar-v0",
+                               {600, 400, 30},
+                               2,
+                               false,
+                               mountain_car_initial_state,
+                               mountain_car_observation,
+                               draw_mountain_car,
+                               mountain_car_state_from_observation};
 
 MountainCar::MountainCar(const Config& config)
     : ClassicControlEnv(kMountainCar, mountain_car_observation_space(), Space::discrete(3)),
@@ -61,7 +64,5 @@ StepResult MountainCar::step(std::span<const float> action, std::span<float> obs
   write_observation(obs);
   return {-1.0, terminated, false};
 }
-
-
 
 }  // namespace rlrun

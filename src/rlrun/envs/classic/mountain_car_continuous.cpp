@@ -67,6 +67,4 @@ StepResult MountainCarContinuous::step(std::span<const float> action, std::span<
   return {reward, terminated, false};
 }
 
-
-
 }  // namespace rlrun

@@ -54,11 +54,18 @@ void observation(std::span<const double> state, std::span<float> obs) { observe(
 }  // namespace
 
 // pendulum.py: screen_dim 500, render_fps 30; the picture is in pendulum_render.cpp.
-const ClassicSpec kPendulum{"Pendulum-v1", {500, 500, 30}, 2,           false,
-                            initial_state, observation,    draw_pendulum, pendulum_state_from_observation};
+const ClassicSpec kPendulum{"Pendulum-v1",
+                            {500, 500, 30},
+                            2,
+                            false,
+                            initial_state,
+                            observation,
+                            draw_pendulum,
+                            pendulum_state_from_observation};
 
 Pendulum::Pendulum(const Config& config)
-    : ClassicControlEnv(kPendulum, Space::box({-1.0f, -1.0f, static_cast<float>(-kMaxSpeed)},
+    : ClassicControlEnv(kPendulum,
+                        Space::box({-1.0f, -1.0f, static_cast<float>(-kMaxSpeed)},
                                    {1.0f, 1.0f, static_cast<float>(kMaxSpeed)}),
                         Space::box(-kMaxTorque, kMaxTorque, {1})),
       config_(config) {}
@@ -81,8 +88,7 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   const double sin_theta =
       std::bit_cast<uint64_t>(theta) == last_theta_bits_ ? last_sin_theta_ : std::sin(theta);
   double new_theta_dot =
-      theta_dot +
-      (3 * g / (2 * kLength) * sin_theta + 3.0 / (kMass * kLength * kLength) * u) * kDt;
+      theta_dot + (3 * g / (2 * kLength) * sin_theta + 3.0 / (kMass * kLength * kLength) * u) * kDt;
   new_theta_dot = std::clamp(new_theta_dot, -kMaxSpeed, kMaxSpeed);
   theta = theta + new_theta_dot * kDt;
   theta_dot = new_theta_dot;
@@ -92,7 +98,5 @@ StepResult Pendulum::step(std::span<const float> action, std::span<float> obs) {
   last_theta_bits_ = std::bit_cast<uint64_t>(theta);
   return {-costs, false, false};
 }
-
-
 
 }  // namespace rlrun

@@ -1,5 +1,5 @@
-#include "rlrun/env/discrete_action.hpp"
 #include "rlrun/envs/grasp2d/grasp2d.hpp"
+#include "rlrun/env/discrete_action.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/space.hpp"
 #include "rlrun/env.hpp"
 #include "rlrun/env_seeding.hpp"
 #include "rlrun/info.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 

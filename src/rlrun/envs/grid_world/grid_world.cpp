@@ -1,5 +1,5 @@
-#include "rlrun/env/discrete_action.hpp"
 #include "rlrun/envs/grid_world/grid_world.hpp"
+#include "rlrun/env/discrete_action.hpp"
 
 #include <limits>
 #include <stdexcept>

@@ -20,10 +20,10 @@
 #include <string>
 
 #include "rlrun/core/config_checks.hpp"
-#include "rlrun/space.hpp"
 #include "rlrun/env.hpp"
 #include "rlrun/env_seeding.hpp"
 #include "rlrun/info.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 
@@ -42,8 +42,7 @@ class GridWorld : public Env {
     void visit(V& v) {
       v("size", size, "grid side; the goal is the far corner (size-1, size-1)", in_range(2, 1000));
       v("random_start", random_start, "start in a random non-goal cell instead of (0, 0)");
-      v("max_steps", max_steps, "the env truncates the episode after this many steps",
-        at_least(1));
+      v("max_steps", max_steps, "the env truncates the episode after this many steps", at_least(1));
       v("move_reward", move_reward, "reward of a move to a neighbouring cell");
       v("wall_reward", wall_reward, "reward of a move into the wall (the agent stays)");
       v("goal_reward", goal_reward, "added on the step that reaches the goal");

@@ -6,9 +6,10 @@
 namespace rlrun {
 
 struct GoalWorkspace {
-  static constexpr double kXY = 0.25;       // m: |x|, |y| of the grasp point (the drawn table)
-  static constexpr double kBottom = 0.018;  // m: the finger tips (1.5 cm below) 3 mm above the table
-  static constexpr double kTop = 0.35;      // m: above Reach's highest goal (0.3)
+  static constexpr double kXY = 0.25;  // m: |x|, |y| of the grasp point (the drawn table)
+  static constexpr double kBottom =
+      0.018;                            // m: the finger tips (1.5 cm below) 3 mm above the table
+  static constexpr double kTop = 0.35;  // m: above Reach's highest goal (0.3)
 };
 
 }  // namespace rlrun

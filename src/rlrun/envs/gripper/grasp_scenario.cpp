@@ -22,8 +22,7 @@ GraspScenario load_grasp_scenario(const std::string& path) {
   GraspScenario s;
   decode(root, s);
   const auto range = [&](const char* key, const std::vector<double>& r, bool positive) {
-    if (r.size() != 2 || r[0] > r[1])
-      root.child(key).fail("expected [low, high] with low <= high");
+    if (r.size() != 2 || r[0] > r[1]) root.child(key).fail("expected [low, high] with low <= high");
     if (positive && r[0] <= 0) root.child(key).fail("must be > 0");
   };
   range("cube_size", s.cube.size, true);
@@ -35,7 +34,8 @@ GraspScenario load_grasp_scenario(const std::string& path) {
   range("palm_x", s.palm.x, false);
   range("palm_y", s.palm.y, false);
   range("palm_z", s.palm.z, false);
-  if (s.cube.size[1] > 0.08) root.child("cube_size").fail("the open gripper holds cubes up to 0.08 m");
+  if (s.cube.size[1] > 0.08)
+    root.child("cube_size").fail("the open gripper holds cubes up to 0.08 m");
   if (s.episode_steps < 1) root.child("episode_steps").fail("must be >= 1");
   return s;
 }

@@ -25,7 +25,7 @@ struct GraspScenario {
   // palm x and y are relative to the cube and z is the height above its top.
   bool palm_above_cube = false;
   PalmRanges palm{.x = {-0.1, 0.1}, .y = {-0.1, 0.1}, .z = {0.12, 0.18}};
-  int episode_steps = 50;                         // decisions per episode (then truncated)
+  int episode_steps = 50;  // decisions per episode (then truncated)
 
   template <class V>
   void visit(V& v) {

@@ -19,9 +19,12 @@ double draw(Rng& rng, const std::vector<double>& range) { return rng.uniform(ran
 
 const char* scenario_name(GoalTask task) {
   switch (task) {
-    case GoalTask::kReach: return "reach";
-    case GoalTask::kPush: return "push";
-    case GoalTask::kPickAndPlace: return "pick_and_place";
+    case GoalTask::kReach:
+      return "reach";
+    case GoalTask::kPush:
+      return "push";
+    case GoalTask::kPickAndPlace:
+      return "pick_and_place";
   }
   return "";
 }
@@ -30,9 +33,12 @@ const char* scenario_name(GoalTask task) {
 // blocked) and task (object position, Euler angles, velocity, angular velocity).
 int observation_size_of(GoalTask task) {
   switch (task) {
-    case GoalTask::kReach: return 6;
-    case GoalTask::kPush: return 6 + 12;
-    case GoalTask::kPickAndPlace: return 7 + 12;
+    case GoalTask::kReach:
+      return 6;
+    case GoalTask::kPush:
+      return 6 + 12;
+    case GoalTask::kPickAndPlace:
+      return 7 + 12;
   }
   return 0;
 }
@@ -57,9 +63,8 @@ GripperGoalEnv::GripperGoalEnv(GoalTask task, const Config& config)
     : task_(task),
       config_(config),
       dense_(config.reward_type == "dense"),
-      scenario_(load_goal_task_scenario(config.scenario.empty()
-                                            ? shipped_grasp_scenario(scenario_name(task))
-                                            : config.scenario)),
+      scenario_(load_goal_task_scenario(
+          config.scenario.empty() ? shipped_grasp_scenario(scenario_name(task)) : config.scenario)),
       observation_size_(observation_size_of(task)),
       action_space_(Space::box(-1.0f, 1.0f, {task == GoalTask::kPickAndPlace ? 4 : 3})) {
   if (config_.reward_type != "sparse" && config_.reward_type != "dense")
@@ -67,8 +72,9 @@ GripperGoalEnv::GripperGoalEnv(GoalTask task, const Config& config)
                                 config_.reward_type + "'");
   if (!(config_.distance_threshold > 0) || !(config_.palm_force > 0) ||
       !(config_.finger_force > 0) || config_.substeps < 1 || config_.solver_iterations < 1)
-    throw std::invalid_argument(id() + ": distance_threshold, palm_force, finger_force, "
-                                       "substeps and solver_iterations must be positive");
+    throw std::invalid_argument(id() +
+                                ": distance_threshold, palm_force, finger_force, "
+                                "substeps and solver_iterations must be positive");
   constexpr float kInf = std::numeric_limits<float>::infinity();
   observation_space_ = Space::dict({{"observation", Space::box(-kInf, kInf, {observation_size_})},
                                     {"achieved_goal", Space::box(-kInf, kInf, {3})},
@@ -76,7 +82,9 @@ GripperGoalEnv::GripperGoalEnv(GoalTask task, const Config& config)
   for (size_t i = 0; i < observation_space_.keys().size(); ++i) {
     const std::string& key = observation_space_.keys()[i];
     const size_t at = static_cast<size_t>(observation_space_.offset(i));
-    (key == "achieved_goal" ? at_achieved_ : key == "desired_goal" ? at_desired_ : at_observation_) = at;
+    (key == "achieved_goal"  ? at_achieved_
+     : key == "desired_goal" ? at_desired_
+                             : at_observation_) = at;
   }
   key_success_ = info_.add_key("is_success");
   key_distance_ = info_.add_key("distance");
@@ -86,9 +94,12 @@ GripperGoalEnv::~GripperGoalEnv() = default;
 
 std::string GripperGoalEnv::id() const {
   switch (task_) {
-    case GoalTask::kReach: return "GripperReach-v0";
-    case GoalTask::kPush: return "GripperPush-v0";
-    case GoalTask::kPickAndPlace: return "GripperPickAndPlace-v0";
+    case GoalTask::kReach:
+      return "GripperReach-v0";
+    case GoalTask::kPush:
+      return "GripperPush-v0";
+    case GoalTask::kPickAndPlace:
+      return "GripperPickAndPlace-v0";
   }
   return "";
 }
@@ -158,7 +169,8 @@ void GripperGoalEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
                              static_cast<float>(goal_[2])};
     if (!s.goal_apart || distance(start_f, goal_f) >= config_.distance_threshold) break;
     if (attempt + 1 == kMaxGoalDraws)
-      throw RuntimeFailure(id() + ": scenario '" + s.name + "' draws no goal farther than "
+      throw RuntimeFailure(id() + ": scenario '" + s.name +
+                           "' draws no goal farther than "
                            "distance_threshold from the start in " +
                            std::to_string(kMaxGoalDraws) + " tries");
   }

@@ -13,7 +13,7 @@ namespace {
 // and a margin), the finger tips above the table top.
 constexpr double kWorkspaceXY = 0.15;
 constexpr double kMinGraspHeight = 0.012;  // m: the finger tips 3 mm above the table
-constexpr double kMaxGraspHeight = 0.2;   // m: within the camera's view
+constexpr double kMaxGraspHeight = 0.2;    // m: within the camera's view
 
 double draw(Rng& rng, const std::vector<double>& range) { return rng.uniform(range[0], range[1]); }
 
@@ -30,8 +30,9 @@ GripperLift::GripperLift(const Config& config, bool easy)
       action_space_(Space::box(-1.0f, 1.0f, {4})) {
   if (!(config_.palm_force > 0) || !(config_.finger_force > 0) || config_.substeps < 1 ||
       config_.solver_iterations < 1)
-    throw std::invalid_argument(id() + ": palm_force, finger_force, substeps and "
-                                       "solver_iterations must be positive");
+    throw std::invalid_argument(id() +
+                                ": palm_force, finger_force, substeps and "
+                                "solver_iterations must be positive");
   key_success_ = info_.add_key("is_success");
   key_grasped_ = info_.add_key("grasped");
   key_lift_ = info_.add_key("lift");

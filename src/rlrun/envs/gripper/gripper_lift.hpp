@@ -27,22 +27,22 @@
 #include <string>
 
 #include "rlrun/core/config_checks.hpp"
-#include "rlrun/space.hpp"
 #include "rlrun/env.hpp"
 #include "rlrun/env_seeding.hpp"
-#include "rlrun/info.hpp"
 #include "rlrun/envs/gripper/grasp_scenario.hpp"
 #include "rlrun/envs/gripper/gripper_world.hpp"
+#include "rlrun/info.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 
 class GripperLift : public Env {
  public:
   struct Config {
-    std::string scenario;  // empty = the variant's: scenarios/grasp/lift.yaml or lift_easy.yaml
-    double palm_force = 30.0;   // N per axis of the palm servo
-    double finger_force = 10.0; // N per finger
-    int substeps = 10;          // physics steps of 1/240 s per action
+    std::string scenario;      // empty = the variant's: scenarios/grasp/lift.yaml or lift_easy.yaml
+    double palm_force = 30.0;  // N per axis of the palm servo
+    double finger_force = 10.0;  // N per finger
+    int substeps = 10;           // physics steps of 1/240 s per action
     int solver_iterations = 20;
 
     template <class V>

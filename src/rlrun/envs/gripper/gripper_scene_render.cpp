@@ -35,7 +35,8 @@ std::vector<Eigen::Vector2f> hull(std::vector<Eigen::Vector2f> p) {
   std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
-  const auto cross = [](const Eigen::Vector2f& o, const Eigen::Vector2f& a, const Eigen::Vector2f& b) {
+  const auto cross = [](const Eigen::Vector2f& o, const Eigen::Vector2f& a,
+                        const Eigen::Vector2f& b) {
     return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
   };
   std::vector<Eigen::Vector2f> h(2 * p.size());
@@ -137,9 +138,9 @@ void draw_sphere_shadow(Rasterizer& raster, const Vec3& centre, double radius) {
 
 void draw_gripper_scene(Rasterizer& raster, const Frame& frame, const GripperWorld& world,
                         const GripperCamera& camera, Rgb cube_color) {
-  raster.set_camera(look_at(camera.eye, camera.target, {0, 0, 1}),
-                    perspective(camera.fov_y, static_cast<float>(frame.width()) / frame.height(),
-                                0.05f, 5.0f));
+  raster.set_camera(
+      look_at(camera.eye, camera.target, {0, 0, 1}),
+      perspective(camera.fov_y, static_cast<float>(frame.width()) / frame.height(), 0.05f, 5.0f));
   raster.set_light(kTowardsLight, 0.35f);
   raster.clear({205, 222, 238});  // pale sky
   // The table top, checkered.

@@ -1,7 +1,7 @@
 #include "rlrun/envs/gripper/gripper_world.hpp"
 
-#include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
+#include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -10,11 +10,11 @@ namespace rlrun {
 
 namespace {
 
-constexpr double kShapeMargin = 0.001;   // m: Bullet's default 0.04 is near a finger's size
-constexpr double kPalmMass = 1.0;         // kg; gravity-compensated like a robot arm's flange
+constexpr double kShapeMargin = 0.001;  // m: Bullet's default 0.04 is near a finger's size
+constexpr double kPalmMass = 1.0;       // kg; gravity-compensated like a robot arm's flange
 constexpr double kFingerMass = 0.1;
-constexpr double kPalmSpeed = 1.0;        // m/s the palm servo may reach (2 cm per 1/24 s step)
-constexpr double kFingerSpeed = 0.25;     // m/s the fingers close at
+constexpr double kPalmSpeed = 1.0;          // m/s the palm servo may reach (2 cm per 1/24 s step)
+constexpr double kFingerSpeed = 0.25;       // m/s the fingers close at
 constexpr double kContactDistance = 0.002;  // m: closer than this counts as touching
 
 btVector3 bt(const Vec3& v) { return btVector3(v[0], v[1], v[2]); }
@@ -73,7 +73,8 @@ GripperWorld::GripperWorld(const Layout& layout) : layout_(layout) {
   // The palm, its centre kGraspBelowPalm above the grasp point, on a servo to the world.
   palm_start_ = {layout.grasp_point[0], layout.grasp_point[1],
                  layout.grasp_point[2] + kGraspBelowPalm};
-  palm_ = add_box({kPalmHalf[0], kPalmHalf[1], kPalmHalf[2]}, kPalmMass, palm_start_, 0, 1.0, false);
+  palm_ =
+      add_box({kPalmHalf[0], kPalmHalf[1], kPalmHalf[2]}, kPalmMass, palm_start_, 0, 1.0, false);
   btTransform at_palm;
   at_palm.setIdentity();
   constraints_.push_back(std::make_unique<btGeneric6DofSpring2Constraint>(*palm_, at_palm));
@@ -97,9 +98,9 @@ GripperWorld::GripperWorld(const Layout& layout) : layout_(layout) {
   for (int f = 0; f < 2; ++f) {
     const double side = f == 0 ? -1.0 : 1.0;
     const double x = side * (layout.opening / 2 + kFingerHalf[0]);
-    fingers_[f] = add_box({kFingerHalf[0], kFingerHalf[1], kFingerHalf[2]}, kFingerMass,
-                          {palm_start_[0] + x, palm_start_[1], palm_start_[2] - finger_drop}, 0,
-                          1.0, false);
+    fingers_[f] =
+        add_box({kFingerHalf[0], kFingerHalf[1], kFingerHalf[2]}, kFingerMass,
+                {palm_start_[0] + x, palm_start_[1], palm_start_[2] - finger_drop}, 0, 1.0, false);
     btTransform in_palm, in_finger;
     in_palm.setIdentity();
     in_palm.setOrigin(btVector3(0, 0, -finger_drop));
@@ -149,7 +150,8 @@ Vec3 GripperWorld::grasp_point() const {
 Vec3 GripperWorld::palm_velocity() const { return vec(palm_->getLinearVelocity()); }
 
 double GripperWorld::opening() const {
-  const btVector3 across = fingers_[1]->getCenterOfMassPosition() - fingers_[0]->getCenterOfMassPosition();
+  const btVector3 across =
+      fingers_[1]->getCenterOfMassPosition() - fingers_[0]->getCenterOfMassPosition();
   const btVector3 palm_x = palm_->getCenterOfMassTransform().getBasis().getColumn(0);
   return across.dot(palm_x) - 2 * kFingerHalf[0];
 }

@@ -24,15 +24,13 @@ EnvEntry goal_task(const char* id, const char* description, const char* scripted
 
 void register_gripper(EnvEntries& out) {
   const size_t first = out.size();
-  const PolicyEntry scripted{"scripted",
-                             "moves above the cube, descends, closes and lifts (solves the task)",
-                             [](Env& env, const PolicyOptions&) {
-                               return scripted_grasp_actions(env);
-                             }};
-  EnvEntry lift = make_env_entry<GripperLift>(
-      "GripperLift-v0",
-      "3D parallel-jaw gripper (Bullet): reach a cube, grasp it, lift it 5 cm; Box(4) dx dy dz grip",
-      0);
+  const PolicyEntry scripted{
+      "scripted", "moves above the cube, descends, closes and lifts (solves the task)",
+      [](Env& env, const PolicyOptions&) { return scripted_grasp_actions(env); }};
+  EnvEntry lift = make_env_entry<GripperLift>("GripperLift-v0",
+                                              "3D parallel-jaw gripper (Bullet): reach a cube, "
+                                              "grasp it, lift it 5 cm; Box(4) dx dy dz grip",
+                                              0);
   lift.policies.push_back(scripted);
   lift.metrics = {"is_success", "lift"};
   EnvEntry easy = make_env_entry<GripperLiftEasy>(

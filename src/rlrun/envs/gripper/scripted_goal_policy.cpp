@@ -11,16 +11,16 @@ namespace rlrun {
 namespace {
 
 // Push.
-constexpr double kPushHeight = 0.022;   // m: grasp point while pushing (finger tips 7 mm up)
-constexpr double kBehindGap = 0.012;    // m between the fingers and the cube before a push
-constexpr double kOnLine = 0.012;       // m off the push line still counted as behind it
-constexpr double kPushStep = 0.02;      // m per step at most while pushing
+constexpr double kPushHeight = 0.022;  // m: grasp point while pushing (finger tips 7 mm up)
+constexpr double kBehindGap = 0.012;   // m between the fingers and the cube before a push
+constexpr double kOnLine = 0.012;      // m off the push line still counted as behind it
+constexpr double kPushStep = 0.02;     // m per step at most while pushing
 // PickAndPlace.
-constexpr double kAlignedXY = 0.006;    // m: close enough above the cube to descend
-constexpr double kAtCube = 0.008;       // m: close enough to the cube's centre to close
-constexpr double kCarryLift = 0.03;     // m above the table the cube is carried at, at least
+constexpr double kAlignedXY = 0.006;  // m: close enough above the cube to descend
+constexpr double kAtCube = 0.008;     // m: close enough to the cube's centre to close
+constexpr double kCarryLift = 0.03;   // m above the table the cube is carried at, at least
 // Both.
-constexpr double kClearance = 0.04;     // m above the cube's top while travelling
+constexpr double kClearance = 0.04;  // m above the cube's top while travelling
 
 float toward(double target, double at, double max_step = GripperGoalEnv::kMovePerStep) {
   const double move = std::clamp(target - at, -max_step, max_step);
@@ -80,8 +80,7 @@ std::array<float, 4> pick_and_place(const GripperGoalEnv& env) {
     // Holding it: lift clear of the table, then carry; the grasp point keeps the cube's offset.
     const Vec3 offset{at[0] - cube[0], at[1] - cube[1], at[2] - cube[2]};
     const bool far = std::hypot(goal[0] - cube[0], goal[1] - cube[1]) > 0.02;
-    const double height =
-        far ? std::max(goal[2], env.resting_height() + kCarryLift) : goal[2];
+    const double height = far ? std::max(goal[2], env.resting_height() + kCarryLift) : goal[2];
     const bool lifted = cube[2] > env.resting_height() + kCarryLift - 0.01 || !far;
     const Vec3 target{lifted ? goal[0] : cube[0], lifted ? goal[1] : cube[1], height};
     return move_to({target[0] + offset[0], target[1] + offset[1], target[2] + offset[2]}, at,
@@ -90,7 +89,7 @@ std::array<float, 4> pick_and_place(const GripperGoalEnv& env) {
   const double dx = cube[0] - at[0], dy = cube[1] - at[1], dz = cube[2] - at[2];
   const bool near = std::hypot(dx, dy) < kAlignedXY;
   if (near && std::sqrt(dx * dx + dy * dy + dz * dz) < kAtCube && w.opening() > size * 0.7)
-    return {0.0f, 0.0f, 0.0f, kClose};  // around it: close
+    return {0.0f, 0.0f, 0.0f, kClose};   // around it: close
   if (near && w.opening() < size * 0.7)  // closed on nothing (or not yet open): open, rise
     return {0.0f, 0.0f, toward(cube[2] + size, at[2]), kOpen};
   if (near)  // above it, open: descend
@@ -106,9 +105,12 @@ std::array<float, 4> pick_and_place(const GripperGoalEnv& env) {
 
 std::array<float, 4> scripted_goal_action(const GripperGoalEnv& env) {
   switch (env.task()) {
-    case GoalTask::kReach: return reach(env);
-    case GoalTask::kPush: return push(env);
-    case GoalTask::kPickAndPlace: return pick_and_place(env);
+    case GoalTask::kReach:
+      return reach(env);
+    case GoalTask::kPush:
+      return push(env);
+    case GoalTask::kPickAndPlace:
+      return pick_and_place(env);
   }
   return {0, 0, 0, 0};
 }
@@ -116,8 +118,10 @@ std::array<float, 4> scripted_goal_action(const GripperGoalEnv& env) {
 std::function<void(const Eigen::MatrixXf&, Eigen::MatrixXf&)> scripted_goal_actions(Env& env) {
   const auto* task = dynamic_cast<const GripperGoalEnv*>(&env.unwrapped());
   if (!task)
-    throw UsageError("the scripted policy is the goal tasks' (GripperReach-v0, GripperPush-v0, "
-                     "GripperPickAndPlace-v0); this env is " + env.unwrapped().id());
+    throw UsageError(
+        "the scripted policy is the goal tasks' (GripperReach-v0, GripperPush-v0, "
+        "GripperPickAndPlace-v0); this env is " +
+        env.unwrapped().id());
   return [task](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
     const auto a = scripted_goal_action(*task);
     const int n = task->action_space().flat_dim();

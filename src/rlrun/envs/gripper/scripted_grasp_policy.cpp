@@ -9,10 +9,10 @@ namespace rlrun {
 
 namespace {
 
-constexpr double kAlignedXY = 0.006;   // m: close enough above the cube to descend
-constexpr double kAtCube = 0.008;      // m: close enough to the cube's centre to close
-constexpr double kClearance = 0.04;    // m above the cube's top while travelling
-constexpr double kLiftTo = 0.08;       // m above the resting height (success needs 0.05)
+constexpr double kAlignedXY = 0.006;  // m: close enough above the cube to descend
+constexpr double kAtCube = 0.008;     // m: close enough to the cube's centre to close
+constexpr double kClearance = 0.04;   // m above the cube's top while travelling
+constexpr double kLiftTo = 0.08;      // m above the resting height (success needs 0.05)
 
 float toward(double target, double at) {
   return static_cast<float>(std::clamp((target - at) / GripperLift::kMovePerStep, -1.0, 1.0));
@@ -32,7 +32,7 @@ std::array<float, 4> scripted_grasp_action(const GripperLift& env) {
             toward(env.resting_height() + kLiftTo, at[2]), kClose};
   if (std::sqrt(dx * dx + dy * dy + dz * dz) < kAtCube && w.opening() > size * 0.5)
     return {0.0f, 0.0f, 0.0f, kClose};  // around it: close
-  if (w.opening() < size * 0.5)  // closed on nothing: open again, rise a little
+  if (w.opening() < size * 0.5)         // closed on nothing: open again, rise a little
     return {0.0f, 0.0f, 0.5f, kOpen};
   if (std::hypot(dx, dy) < kAlignedXY)  // above it: descend, open
     return {toward(cube[0], at[0]), toward(cube[1], at[1]), toward(cube[2], at[2]), kOpen};
@@ -46,8 +46,10 @@ std::array<float, 4> scripted_grasp_action(const GripperLift& env) {
 std::function<void(const Eigen::MatrixXf&, Eigen::MatrixXf&)> scripted_grasp_actions(Env& env) {
   const auto* gripper = dynamic_cast<const GripperLift*>(&env.unwrapped());
   if (!gripper)
-    throw UsageError("the scripted policy is the grasp task's (GripperLift-v0, "
-                     "GripperLiftEasy-v0); this env is " + env.unwrapped().id());
+    throw UsageError(
+        "the scripted policy is the grasp task's (GripperLift-v0, "
+        "GripperLiftEasy-v0); this env is " +
+        env.unwrapped().id());
   return [gripper](const Eigen::MatrixXf&, Eigen::MatrixXf& action) {
     const auto a = scripted_grasp_action(*gripper);
     action.resize(4, 1);

@@ -17,6 +17,7 @@ namespace rlrun {
 std::array<float, 4> scripted_grasp_action(const GripperLift& env);
 
 // As a policy acting on `env`. Throws UsageError unless the innermost env is a GripperLift.
-std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf& action)> scripted_grasp_actions(Env& env);
+std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf& action)> scripted_grasp_actions(
+    Env& env);
 
 }  // namespace rlrun

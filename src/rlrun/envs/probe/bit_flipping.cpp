@@ -25,7 +25,8 @@ void BitFlipping::write_observation(std::span<float> obs) const {
   // Flat order: achieved_goal, desired_goal, observation (keys sorted, rlrun/space.hpp).
   const size_t n = state_.size();
   std::copy(state_.begin(), state_.end(), obs.begin());
-  std::fill(obs.begin() + static_cast<std::ptrdiff_t>(n), obs.begin() + static_cast<std::ptrdiff_t>(2 * n), 1.0f);
+  std::fill(obs.begin() + static_cast<std::ptrdiff_t>(n),
+            obs.begin() + static_cast<std::ptrdiff_t>(2 * n), 1.0f);
   std::copy(state_.begin(), state_.end(), obs.begin() + static_cast<std::ptrdiff_t>(2 * n));
 }
 
@@ -85,7 +86,8 @@ void BitFlipping::read_state(const StateReader& in) {
   seeding_.read_state(in);
   has_state_ = in.get_bool("has_state");
   const int64_t steps = in.get_int("steps");
-  if (steps < 0 || steps > config_.max_steps) throw StateMismatch("BitFlippingEnv-v0: bad step count");
+  if (steps < 0 || steps > config_.max_steps)
+    throw StateMismatch("BitFlippingEnv-v0: bad step count");
   steps_ = static_cast<int>(steps);
   in.get_into<float>("state", state_);
   for (float b : state_)

@@ -34,8 +34,7 @@ class BitFlipping : public EnvBase, public GoalEnv {
       v("n_bits", n_bits, "number of bits to flip to ones", in_range(1, 64));
       v("continuous", continuous,
         "Box(-1, 1, (n_bits,)) actions, flipping each bit whose component is > 0");
-      v("max_steps", max_steps, "steps per episode, then truncated (0: n_bits)",
-        in_range(0, 1e6));
+      v("max_steps", max_steps, "steps per episode, then truncated (0: n_bits)", in_range(0, 1e6));
     }
   };
 

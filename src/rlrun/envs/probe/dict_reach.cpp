@@ -15,8 +15,8 @@ constexpr size_t kGoal = 0, kPosition = 2;
 DictReach::DictReach(const Config& config) : config_(config) {
   if (!(config_.step_size > 0) || !(config_.goal_tolerance > 0))
     throw std::invalid_argument("DictReach-v0: step_size and goal_tolerance must be > 0");
-  observation_space_ = Space::dict({{"position", Space::box(-1.0f, 1.0f, {2})},
-                                    {"goal", Space::box(-1.0f, 1.0f, {2})}});
+  observation_space_ = Space::dict(
+      {{"position", Space::box(-1.0f, 1.0f, {2})}, {"goal", Space::box(-1.0f, 1.0f, {2})}});
   action_space_ = Space::box(-1.0f, 1.0f, {2});
   id_ = "DictReach-v0";
   key_success_ = info_.add_key("is_success");

@@ -29,8 +29,9 @@ void IdentityEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
 bool IdentityEnv::matches(std::span<const float> action, std::span<const float> state) const {
   for (size_t i = 0; i < state.size(); ++i) {
     // SB3: np.all(state == action); IdentityEnvBox: state - eps <= action <= state + eps.
-    const bool hit = action_space_.is_box() ? std::abs(static_cast<double>(action[i]) - state[i]) <= eps_
-                                            : action[i] == state[i];
+    const bool hit = action_space_.is_box()
+                         ? std::abs(static_cast<double>(action[i]) - state[i]) <= eps_
+                         : action[i] == state[i];
     if (!hit) return false;
   }
   return true;
@@ -38,7 +39,8 @@ bool IdentityEnv::matches(std::span<const float> action, std::span<const float> 
 
 StepResult IdentityEnv::step(std::span<const float> action, std::span<float> obs) {
   if (!has_state_) throw std::logic_error(id_ + ": call reset() before step()");
-  if (action.size() != state_.size() || (!action_space_.is_box() && !action_space_.contains(action)))
+  if (action.size() != state_.size() ||
+      (!action_space_.is_box() && !action_space_.contains(action)))
     throw std::invalid_argument(id_ + ": the action is not in " + action_space_.describe());
   StepResult result;
   const bool hit = matches(action, state_);

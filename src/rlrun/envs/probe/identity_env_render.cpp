@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "rlrun/core/plural.hpp"
 #include "rlrun/envs/probe/identity_env.hpp"
 #include "rlrun/frame.hpp"
-#include "rlrun/core/plural.hpp"
 
 namespace rlrun {
 
@@ -25,10 +25,14 @@ std::array<Point, 4> rect(double x0, double y0, double x1, double y1) {
 // Values of entry i: its category count (0 for a Box entry) and the value of category 0.
 std::pair<int64_t, int64_t> categories(const Space& space, size_t i) {
   switch (space.kind()) {
-    case SpaceKind::kDiscrete: return {space.n(), space.start()};
-    case SpaceKind::kMultiDiscrete: return {space.nvec()[i], 0};
-    case SpaceKind::kMultiBinary: return {2, 0};
-    default: return {0, 0};
+    case SpaceKind::kDiscrete:
+      return {space.n(), space.start()};
+    case SpaceKind::kMultiDiscrete:
+      return {space.nvec()[i], 0};
+    case SpaceKind::kMultiBinary:
+      return {2, 0};
+    default:
+      return {0, 0};
   }
 }
 
@@ -52,7 +56,8 @@ void IdentityEnv::draw(std::span<const float> state, std::span<const float> acti
       const double w = kSceneWidth / static_cast<double>(n);
       for (int64_t k = 0; k < n; ++k) {
         const bool on = static_cast<int64_t>(state[i]) - start == k;
-        frame.polygon(rect(k * w + 0.02, y + 0.1, (k + 1) * w - 0.02, y + 0.9), on ? kState : kCell);
+        frame.polygon(rect(k * w + 0.02, y + 0.1, (k + 1) * w - 0.02, y + 0.9),
+                      on ? kState : kCell);
       }
       if (!action.empty()) {
         const double k = static_cast<double>(static_cast<int64_t>(action[i]) - start);

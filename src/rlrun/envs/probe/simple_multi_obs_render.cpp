@@ -1,7 +1,7 @@
 // SimpleMultiObsEnv-v0's picture: the 4x4 grid from above, row 0 at the top, walls dark, the
 // goal green, the agent a blue disc.
-#include <array>
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include "rlrun/envs/probe/simple_multi_obs.hpp"
@@ -15,7 +15,9 @@ void SimpleMultiObs::draw(int cell, Frame& frame) const {
     const double x = c % kSide, y = c / kSide;
     const std::array<Point, 4> square{Point{x + 0.03, y + 0.03}, Point{x + 0.97, y + 0.03},
                                       Point{x + 0.97, y + 0.97}, Point{x + 0.03, y + 0.97}};
-    const Rgb color = is_wall(c) ? Rgb{70, 70, 70} : c == kGoal ? Rgb{120, 200, 120} : Rgb{235, 235, 235};
+    const Rgb color = is_wall(c)   ? Rgb{70, 70, 70}
+                      : c == kGoal ? Rgb{120, 200, 120}
+                                   : Rgb{235, 235, 235};
     frame.polygon(square, color);
   }
   frame.circle({cell % kSide + 0.5, cell / kSide + 0.5}, 0.3, {40, 90, 200});

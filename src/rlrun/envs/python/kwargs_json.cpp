@@ -20,7 +20,8 @@ json scalar(const YAML::Node& node) {
   static const std::regex false_re("false|False|FALSE");
   static const std::regex int_re("[-+]?[0-9]+");
   static const std::regex float_re(
-      "[-+]?(\\.[0-9]+|[0-9]+(\\.[0-9]*)?)([eE][-+]?[0-9]+)?|[-+]?\\.(inf|Inf|INF)|\\.(nan|NaN|NAN)");
+      "[-+]?(\\.[0-9]+|[0-9]+(\\.[0-9]*)?)([eE][-+]?[0-9]+)?|[-+]?\\.(inf|Inf|INF)|\\.(nan|NaN|"
+      "NAN)");
   if (std::regex_match(text, null_re)) return nullptr;
   if (std::regex_match(text, true_re)) return true;
   if (std::regex_match(text, false_re)) return false;
@@ -42,8 +43,10 @@ json scalar(const YAML::Node& node) {
 json convert(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Null:
-    case YAML::NodeType::Undefined: return nullptr;
-    case YAML::NodeType::Scalar: return scalar(node);
+    case YAML::NodeType::Undefined:
+      return nullptr;
+    case YAML::NodeType::Scalar:
+      return scalar(node);
     case YAML::NodeType::Sequence: {
       json out = json::array();
       for (const auto& item : node) out.push_back(convert(item));

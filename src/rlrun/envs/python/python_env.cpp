@@ -42,8 +42,7 @@ struct PythonEnv::Handshake {
 
 PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
                      double startup_timeout)
-    : target_(std::move(target)),
-      startup_timeout_(startup_timeout) {
+    : target_(std::move(target)), startup_timeout_(startup_timeout) {
   // Keys every Python env declares up front: the Monitor writes is_success into
   // <i>.monitor.csv only for keys known when it is built (empty when the env never reports it).
   is_success_ = info_.add_key("is_success");
@@ -84,7 +83,8 @@ void PythonEnv::ready() const {
   uint32_t length = 0;
   if (!worker_->read(std::as_writable_bytes(std::span(&length, 1)), starting))
     worker_gone("while starting");
-  if (length > protocol::kMaxHandshakeBytes) fail("its worker sent a handshake of " + std::to_string(length) + " bytes");
+  if (length > protocol::kMaxHandshakeBytes)
+    fail("its worker sent a handshake of " + std::to_string(length) + " bytes");
   std::string text(length, '\0');
   if (!worker_->read(std::as_writable_bytes(std::span(text.data(), text.size())), starting))
     worker_gone("while starting");
@@ -134,8 +134,8 @@ void PythonEnv::ready() const {
 }
 
 void PythonEnv::fail(const std::string& what) const {
-  throw RuntimeFailure(target_ + " (Python worker pid " + std::to_string(worker_->pid()) + "): " +
-                       what);
+  throw RuntimeFailure(target_ + " (Python worker pid " + std::to_string(worker_->pid()) +
+                       "): " + what);
 }
 
 void PythonEnv::worker_gone(const char* during) const {
@@ -150,7 +150,8 @@ void PythonEnv::worker_gone(const char* during) const {
 
 void PythonEnv::send_request() const {
   worker_->set_awaiting_reply(true);
-  if (!worker_->write(request_, waiting("to take a request"))) worker_gone("while sending a request");
+  if (!worker_->write(request_, waiting("to take a request")))
+    worker_gone("while sending a request");
 }
 
 const std::vector<std::byte>& PythonEnv::receive(const char* during) const {
@@ -160,7 +161,8 @@ const std::vector<std::byte>& PythonEnv::receive(const char* during) const {
   uint32_t length = 0;
   std::memcpy(&length, header + 1, 4);
   const char status = static_cast<char>(header[0]);
-  const uint32_t limit = status == protocol::kError ? protocol::kMaxErrorBytes : protocol::kMaxReplyBytes;
+  const uint32_t limit =
+      status == protocol::kError ? protocol::kMaxErrorBytes : protocol::kMaxReplyBytes;
   if ((status != protocol::kOk && status != protocol::kError) || length > limit)
     fail(std::string("its worker sent a malformed reply ") + during);
   reply_.resize(length);
@@ -221,7 +223,9 @@ void PythonEnv::start_step(std::span<const float> action) {
   ++step_;
 }
 
-StepResult PythonEnv::finish_step(std::span<float> obs) { return read_step_reply(obs, "in step()"); }
+StepResult PythonEnv::finish_step(std::span<float> obs) {
+  return read_step_reply(obs, "in step()");
+}
 
 StepResult PythonEnv::read_step_reply(std::span<float> obs, const char* during) {
   const std::vector<std::byte>& body = receive(during);

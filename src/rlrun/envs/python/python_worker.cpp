@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <thread>
 #include <vector>
@@ -31,15 +31,13 @@ constexpr int kWorkerFd = 3;  // worker.py reads sys.argv[1]; rlrun always passe
 PythonWorker::PythonWorker(const std::string& python, const std::string& script) {
   python_ = find_executable(python);
   if (python_.empty())
-    throw RuntimeFailure("cannot run the Python interpreter '" + python +
-                         "': not an executable" +
+    throw RuntimeFailure("cannot run the Python interpreter '" + python + "': not an executable" +
                          (python.find('/') == std::string::npos ? " on PATH" : "") +
                          ". Install python3 and numpy (Debian: apt install python3 "
                          "python3-numpy) or set env.python to your virtualenv's python");
   started_ = std::chrono::steady_clock::now();
-  const SpawnedWorker worker =
-      spawn_worker({python_, "-c", script, std::to_string(kWorkerFd)}, kWorkerFd,
-                   "a Python worker");
+  const SpawnedWorker worker = spawn_worker({python_, "-c", script, std::to_string(kWorkerFd)},
+                                            kWorkerFd, "a Python worker");
   pid_ = worker.pid;
   fd_ = worker.fd;
 }
@@ -58,7 +56,8 @@ void PythonWorker::await(short events, const WorkerWait& wait) {
 bool PythonWorker::write(std::span<const std::byte> data, const WorkerWait& wait) {
   size_t done = 0;
   while (done < data.size()) {
-    const ssize_t n = send(fd_, data.data() + done, data.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT);
+    const ssize_t n =
+        send(fd_, data.data() + done, data.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT);
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
       await(POLLOUT, wait);  // the socket's buffer is full: the worker is not reading
       continue;

@@ -35,7 +35,8 @@ EnvEntry python_entry(const std::string& id, std::string description) {
     } catch (const std::invalid_argument& e) {
       kwargs.fail(std::string("cannot pass these kwargs to Python: ") + e.what());
     }
-    YAML::Node copy = kwargs.defined() ? YAML::Clone(kwargs.yaml()) : YAML::Node(YAML::NodeType::Map);
+    YAML::Node copy =
+        kwargs.defined() ? YAML::Clone(kwargs.yaml()) : YAML::Node(YAML::NodeType::Map);
     return AnyConfig::of_yaml(copy, copy);
   };
   entry.make_in_context = [id](const AnyConfig& kwargs, const EnvContext& context) -> EnvPtr {
@@ -58,7 +59,8 @@ EnvEntry python_family() {
         "python:([A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)*):"
         "([A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)*)");
     if (!std::regex_match(id, form))
-      throw std::invalid_argument("'" + id + "' is not a Python env id: write "
+      throw std::invalid_argument("'" + id +
+                                  "' is not a Python env id: write "
                                   "python:<module>:<Class>, e.g. python:my_pkg.my_envs:MyEnv");
     return python_entry(id, "Python env " + id.substr(7));
   };
@@ -75,7 +77,8 @@ EnvEntry gymnasium_family() {
   family.expand = [](const std::string& id) {
     static const std::regex form("gymnasium:[A-Za-z0-9_./:-]+");
     if (!std::regex_match(id, form))
-      throw std::invalid_argument("'" + id + "' is not a Gymnasium env id: write "
+      throw std::invalid_argument("'" + id +
+                                  "' is not a Gymnasium env id: write "
                                   "gymnasium:<ID>, e.g. gymnasium:CartPole-v1");
     return python_entry(id, "gymnasium.make('" + id.substr(10) + "')");
   };

@@ -23,7 +23,7 @@ int FixedTimePolicy::next_action(bool episode_start) {
 }
 
 std::function<void(const Eigen::MatrixXf&, Eigen::MatrixXf&)> fixed_time_actions(Env& env,
-                                                                                int green_time) {
+                                                                                 int green_time) {
   auto* traffic = dynamic_cast<TrafficSignal*>(&env.unwrapped());
   if (!traffic)
     throw UsageError("the fixed-time plan is the traffic-signal baseline; this env is " +

@@ -46,7 +46,8 @@ struct SumoClient {
     layout.centre_y = centre.y;
     for (const auto& link_group : Api::TrafficLight::getControlledLinks(layout.tls)) {
       auto& links = layout.links.emplace_back();
-      for (const libsumo::TraCILink& link : link_group) links.emplace_back(link.fromLane, link.toLane);
+      for (const libsumo::TraCILink& link : link_group)
+        links.emplace_back(link.fromLane, link.toLane);
     }
     return layout;
   }
@@ -65,17 +66,18 @@ struct SumoClient {
   static void subscribe(const std::vector<std::string>& incoming,
                         const std::vector<std::string>& outgoing) {
     for (const std::string& edge : incoming)
-      Api::Edge::subscribe(edge, {libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER,
-                                  libsumo::LAST_STEP_MEAN_SPEED, libsumo::LAST_STEP_VEHICLE_NUMBER});
+      Api::Edge::subscribe(
+          edge, {libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER, libsumo::LAST_STEP_MEAN_SPEED,
+                 libsumo::LAST_STEP_VEHICLE_NUMBER});
     for (const std::string& edge : outgoing)
       Api::Edge::subscribe(edge, {libsumo::LAST_STEP_VEHICLE_NUMBER});
   }
 
   static void subscribe_vehicles(const std::string& tls) {
-    Api::Junction::subscribeContext(tls, libsumo::CMD_GET_VEHICLE_VARIABLE, kContextRange,
-                                    {libsumo::VAR_SPEED, libsumo::VAR_LANE_ID,
-                                     libsumo::VAR_POSITION, libsumo::VAR_ANGLE,
-                                     libsumo::VAR_ACCUMULATED_WAITING_TIME});
+    Api::Junction::subscribeContext(
+        tls, libsumo::CMD_GET_VEHICLE_VARIABLE, kContextRange,
+        {libsumo::VAR_SPEED, libsumo::VAR_LANE_ID, libsumo::VAR_POSITION, libsumo::VAR_ANGLE,
+         libsumo::VAR_ACCUMULATED_WAITING_TIME});
   }
 
   static void read_vehicles(const std::string& tls, SumoState& out) {
@@ -86,7 +88,8 @@ struct SumoClient {
       v.speed = number(values, libsumo::VAR_SPEED);
       v.angle = number(values, libsumo::VAR_ANGLE);
       v.accumulated_waiting = number(values, libsumo::VAR_ACCUMULATED_WAITING_TIME);
-      v.lane = std::dynamic_pointer_cast<libsumo::TraCIString>(values.at(libsumo::VAR_LANE_ID))->value;
+      v.lane =
+          std::dynamic_pointer_cast<libsumo::TraCIString>(values.at(libsumo::VAR_LANE_ID))->value;
       const auto position =
           std::dynamic_pointer_cast<libsumo::TraCIPosition>(values.at(libsumo::VAR_POSITION));
       v.x = position->x;
@@ -104,7 +107,8 @@ struct SumoClient {
     out.incoming.resize(incoming.size());
     for (size_t i = 0; i < incoming.size(); ++i) {
       const libsumo::TraCIResults& r = roads.at(incoming[i]);
-      out.incoming[i].halting = static_cast<int>(number(r, libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER));
+      out.incoming[i].halting =
+          static_cast<int>(number(r, libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER));
       out.incoming[i].mean_speed = number(r, libsumo::LAST_STEP_MEAN_SPEED);
       out.incoming[i].vehicles = static_cast<int>(number(r, libsumo::LAST_STEP_VEHICLE_NUMBER));
     }
@@ -119,11 +123,11 @@ struct SumoClient {
   }
 
   static void switch_light(const std::string& tls, const std::string& program,
-                           const std::string& yellow, int yellow_seconds, const std::string& green) {
-    const libsumo::TraCILogic logic(
-        program, 0, 0,
-        {std::make_shared<libsumo::TraCIPhase>(yellow_seconds, yellow),
-         std::make_shared<libsumo::TraCIPhase>(kForever, green)});
+                           const std::string& yellow, int yellow_seconds,
+                           const std::string& green) {
+    const libsumo::TraCILogic logic(program, 0, 0,
+                                    {std::make_shared<libsumo::TraCIPhase>(yellow_seconds, yellow),
+                                     std::make_shared<libsumo::TraCIPhase>(kForever, green)});
     Api::TrafficLight::setProgramLogic(tls, logic);
   }
   static constexpr double kForever = 1e9;  // s: the green lasts until the next switch

@@ -16,11 +16,9 @@ namespace rlrun {
 std::vector<std::string> sumo_arguments(const SumoLaunch& launch) {
   std::vector<std::string> args = launch.inputs;
   if (args.empty()) args = {"-c", launch.config, "--end", std::to_string(launch.end_time)};
-  args.insert(args.end(), {"--seed", std::to_string(launch.seed % 2147483647ULL),
-                                "--scale", std::to_string(launch.scale),
-                                "--no-step-log", "true",
-                                "--no-warnings", "true",
-                                "--duration-log.disable", "true"});
+  args.insert(args.end(), {"--seed", std::to_string(launch.seed % 2147483647ULL), "--scale",
+                           std::to_string(launch.scale), "--no-step-log", "true", "--no-warnings",
+                           "true", "--duration-log.disable", "true"});
   // No XML Schema is loaded: a scenario file may name any local .xsd, which Xerces reads with
   // its entities (docs/security.md, "SUMO scenarios"); the command line outranks the .sumocfg.
   // Nor is SUMO_HOME needed then (SUMO looks for its own schemas there, or on the web).
@@ -86,7 +84,8 @@ void* libsumo_module() {
 void* libsumo_module_symbol(const char* name) {
   void* symbol = dlsym(libsumo_module(), name);
   if (!symbol)
-    throw RuntimeFailure(libsumo_module_path() + " has no " + name + ": not rlrun's libsumo module");
+    throw RuntimeFailure(libsumo_module_path() + " has no " + name +
+                         ": not rlrun's libsumo module");
   return symbol;
 }
 

@@ -30,8 +30,8 @@ struct SumoLaunch {
   std::string binary = "sumo";  // `sumo-gui` for gui: true (traci only)
   std::string config;           // the .sumocfg file
   uint64_t seed = 0;
-  double scale = 1.0;           // demand multiplier (SUMO --scale)
-  double end_time = 3600.0;     // simulated seconds (SUMO --end)
+  double scale = 1.0;                   // demand multiplier (SUMO --scale)
+  double end_time = 3600.0;             // simulated seconds (SUMO --end)
   std::vector<std::string> extra_args;  // e.g. --tripinfo-output FILE
   // Instead of `-c config --end end_time`: SUMO's input arguments as given (TrafficNetwork-v0's
   // `-n NET -r ROUTES --begin B --end E`, traffic_network/network_scenario.hpp).
@@ -53,8 +53,8 @@ struct SumoLaneShape {
 
 // The signal's links in SUMO's link-index order: each link's incoming and outgoing lanes.
 struct SumoSignalLayout {
-  std::string tls;                        // the traffic light's id (the scenario's first)
-  double centre_x = 0, centre_y = 0;      // its junction's position
+  std::string tls;                    // the traffic light's id (the scenario's first)
+  double centre_x = 0, centre_y = 0;  // its junction's position
   std::vector<std::vector<std::pair<std::string, std::string>>> links;  // [from, to] per index
 };
 
@@ -62,7 +62,7 @@ struct SumoVehicle {
   std::string id;
   std::string lane;
   double speed = 0, x = 0, y = 0, angle = 0;  // angle: degrees clockwise from north
-  double accumulated_waiting = 0;  // s below 0.1 m/s within SUMO's --waiting-time-memory
+  double accumulated_waiting = 0;             // s below 0.1 m/s within SUMO's --waiting-time-memory
 };
 
 struct SumoLaneCounts {
@@ -73,7 +73,7 @@ struct SumoLaneCounts {
 // The state after an advance: subscriptions report the last simulated second of the call.
 struct SumoState {
   double time = 0;
-  std::vector<SumoVehicle> vehicles;         // around the junction (when subscribed)
+  std::vector<SumoVehicle> vehicles;               // around the junction (when subscribed)
   std::vector<SumoLaneCounts> incoming, outgoing;  // per road, in the order subscribed
 };
 

@@ -97,7 +97,7 @@ SumoProcess::SumoProcess(const Options& options)
     // SUMO dies with rlrun, whatever kills rlrun.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(1);
-    setpgid(0, 0);  // Ctrl-C at the terminal is rlrun's to handle, not SUMO's
+    setpgid(0, 0);                // Ctrl-C at the terminal is rlrun's to handle, not SUMO's
     dup2(log_fd, STDOUT_FILENO);  // the copies are not close-on-exec; log_fd itself is
     dup2(log_fd, STDERR_FILENO);
     execv(argv[0], argv.data());
@@ -178,7 +178,8 @@ std::string SumoProcess::output_tail(int lines) const {
   for (std::string line; std::getline(stream, line);) all.push_back(line);
   if (size > kTailBytes && !all.empty()) all.front().insert(0, "...");  // a line's end
   std::string tail;
-  for (size_t i = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0; i < all.size(); ++i)
+  for (size_t i = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0; i < all.size();
+       ++i)
     tail += "  " + quoted_text(all[i]) + "\n";
   return tail.empty() ? "  (no output)\n" : tail;
 }

@@ -43,7 +43,7 @@ class XmlBytes {
     // O_NONBLOCK: a FIFO must not block the open; it is refused below.
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) refuse(path, "cannot read this SUMO input: " + describe_errno(errno));
-    struct stat st{};
+    struct stat st {};
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
       ::close(fd);
       refuse(path, "is not a regular file (a SUMO input must be one)");
@@ -65,9 +65,10 @@ class XmlBytes {
     if (n < 0) {
       int code = 0;
       const char* message = gzerror(file_, &code);
-      refuse(path_, std::string("cannot read this SUMO input (") +
-                        (code == Z_ERRNO ? describe_errno(errno) : quoted_text(message ? message : "?")) +
-                        ")");
+      refuse(path_,
+             std::string("cannot read this SUMO input (") +
+                 (code == Z_ERRNO ? describe_errno(errno) : quoted_text(message ? message : "?")) +
+                 ")");
     }
     total_ += static_cast<uint64_t>(n);
     if (total_ > kMaxInputBytes)
@@ -86,9 +87,10 @@ class XmlBytes {
 // The encodings whose bytes the scanner below reads correctly (ASCII-compatible, one byte per
 // ASCII character); others could hide a declaration from it.
 bool ascii_compatible(std::string name) {
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-  static const char* const known[] = {"utf-8", "utf8", "us-ascii", "ascii", "latin1",
-                                      "iso-latin-1", "windows-1252", "cp1252"};
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  static const char* const known[] = {"utf-8",  "utf8",        "us-ascii",     "ascii",
+                                      "latin1", "iso-latin-1", "windows-1252", "cp1252"};
   if (std::find(std::begin(known), std::end(known), name) != std::end(known)) return true;
   return name.rfind("iso-8859-", 0) == 0 || name.rfind("iso8859-", 0) == 0;
 }
@@ -106,11 +108,16 @@ std::string decode_attribute(std::string_view raw) {
     if (end == std::string_view::npos) break;
     const std::string_view name = raw.substr(i + 1, end - i - 1);
     i = end;
-    if (name == "amp") out.push_back('&');
-    else if (name == "lt") out.push_back('<');
-    else if (name == "gt") out.push_back('>');
-    else if (name == "quot") out.push_back('"');
-    else if (name == "apos") out.push_back('\'');
+    if (name == "amp")
+      out.push_back('&');
+    else if (name == "lt")
+      out.push_back('<');
+    else if (name == "gt")
+      out.push_back('>');
+    else if (name == "quot")
+      out.push_back('"');
+    else if (name == "apos")
+      out.push_back('\'');
     else if (name.size() > 1 && name[0] == '#') {
       const bool hex = name[1] == 'x' || name[1] == 'X';
       const std::string digits(name.substr(hex ? 2 : 1));
@@ -166,8 +173,8 @@ class Scanner {
       const char c = chunk[i];
       if (state_ == State::kText) {
         const void* lt = std::memchr(chunk.data() + i, '<', chunk.size() - i);
-        const size_t stop = lt ? static_cast<size_t>(static_cast<const char*>(lt) - chunk.data())
-                               : chunk.size();
+        const size_t stop =
+            lt ? static_cast<size_t>(static_cast<const char*>(lt) - chunk.data()) : chunk.size();
         line_ += static_cast<int>(std::count(chunk.begin() + i, chunk.begin() + stop, '\n'));
         i = stop;
         if (lt) state_ = State::kOpen;
@@ -186,12 +193,15 @@ class Scanner {
   // The first bytes: a UTF-8 byte order mark is skipped; UTF-16/32 and EBCDIC are refused.
   size_t check_start(std::string_view chunk) {
     started_ = true;
-    const auto byte = [&](size_t k) { return k < chunk.size() ? static_cast<unsigned char>(chunk[k]) : 0x100u; };
+    const auto byte = [&](size_t k) {
+      return k < chunk.size() ? static_cast<unsigned char>(chunk[k]) : 0x100u;
+    };
     if (byte(0) == 0xEF && byte(1) == 0xBB && byte(2) == 0xBF) return 3;
     if ((byte(0) == 0xFE && byte(1) == 0xFF) || (byte(0) == 0xFF && byte(1) == 0xFE) ||
         std::memchr(chunk.data(), '\0', std::min<size_t>(chunk.size(), 4)))
-      refuse(path_, "is UTF-16 or UTF-32 encoded; rlrun checks SUMO inputs byte by byte and takes "
-                    "them in UTF-8 (or another ASCII-compatible encoding)");
+      refuse(path_,
+             "is UTF-16 or UTF-32 encoded; rlrun checks SUMO inputs byte by byte and takes "
+             "them in UTF-8 (or another ASCII-compatible encoding)");
     if (byte(0) == 0x4C && byte(1) == 0x6F && byte(2) == 0xA7 && byte(3) == 0x94)
       refuse(path_, "is EBCDIC encoded; rlrun takes SUMO inputs in UTF-8");
     return 0;
@@ -207,7 +217,8 @@ class Scanner {
 
   void step(char c) {
     switch (state_) {
-      case State::kText: break;  // handled in feed()
+      case State::kText:
+        break;  // handled in feed()
       case State::kOpen:
         if (c == '!') {
           bang_.clear();
@@ -233,8 +244,12 @@ class Scanner {
           refuse_declaration();
         }
         break;
-      case State::kComment: end_after(c, "-->"); break;
-      case State::kCdata: end_after(c, "]]>"); break;
+      case State::kComment:
+        end_after(c, "-->");
+        break;
+      case State::kCdata:
+        end_after(c, "]]>");
+        break;
       case State::kPi:
         if (c == '>' && before_[1] == '?') {
           check_xml_declaration();
@@ -245,8 +260,9 @@ class Scanner {
         break;
       case State::kName:
         if (std::isspace(static_cast<unsigned char>(c)) || c == '/' || c == '>') {
-          const bool include = name_ == "include" ||
-                               (name_.size() > 8 && name_.compare(name_.size() - 8, 8, ":include") == 0);
+          const bool include =
+              name_ == "include" ||
+              (name_.size() > 8 && name_.compare(name_.size() - 8, 8, ":include") == 0);
           tag_.clear();
           quote_ = 0;
           state_ = include ? State::kInclude : State::kTag;
@@ -289,14 +305,16 @@ class Scanner {
 
   // <?xml version="1.0" encoding="..."?>: the encoding must be one whose bytes the scanner reads.
   void check_xml_declaration() {
-    if (pi_.rfind("xml", 0) != 0 || pi_.size() < 4 || !std::isspace(static_cast<unsigned char>(pi_[3])))
+    if (pi_.rfind("xml", 0) != 0 || pi_.size() < 4 ||
+        !std::isspace(static_cast<unsigned char>(pi_[3])))
       return;
     std::string attributes(1, ' ');  // appended, not " " + ...: GCC 12 warns -Wrestrict, falsely
     attributes.append(pi_, 3);
     const std::string encoding = attribute_value(attributes, "encoding");
     if (!encoding.empty() && !ascii_compatible(encoding))
-      refuse(path_, "declares encoding '" + quoted_text(encoding, 40) +
-                        "'; rlrun takes SUMO inputs in UTF-8, US-ASCII, ISO-8859-* or windows-1252");
+      refuse(path_,
+             "declares encoding '" + quoted_text(encoding, 40) +
+                 "'; rlrun takes SUMO inputs in UTF-8, US-ASCII, ISO-8859-* or windows-1252");
   }
 
   std::string path_;
@@ -304,14 +322,15 @@ class Scanner {
   bool started_ = false;
   int line_ = 1;
   char before_[2] = {0, 0};  // the two characters before, inside a comment, CDATA, PI
-  char quote_ = 0;  // inside an attribute value delimited by this quote
+  char quote_ = 0;           // inside an attribute value delimited by this quote
   std::string bang_, pi_, name_, tag_;
   std::vector<std::string> includes_;
 };
 
 // Checks `path` and, recursively, what it includes. `chain` holds the including files (for
 // cycles and messages), `done` the files checked already.
-void check_file(const std::string& path, std::vector<std::string>& chain, std::set<std::string>& done) {
+void check_file(const std::string& path, std::vector<std::string>& chain,
+                std::set<std::string>& done) {
   std::error_code ec;
   const std::string key = fs::weakly_canonical(path, ec).string();
   if (std::find(chain.begin(), chain.end(), key) != chain.end())
@@ -321,7 +340,8 @@ void check_file(const std::string& path, std::vector<std::string>& chain, std::s
     refuse(path, "is included more than 16 levels deep (from " + chain.front() + ")");
   Scanner scanner(path);
   XmlBytes bytes(path);
-  for (std::string_view chunk = bytes.next(); !chunk.empty(); chunk = bytes.next()) scanner.feed(chunk);
+  for (std::string_view chunk = bytes.next(); !chunk.empty(); chunk = bytes.next())
+    scanner.feed(chunk);
   chain.push_back(key);
   const fs::path base = fs::path(path).parent_path();
   for (const std::string& href : scanner.includes()) {
@@ -410,7 +430,8 @@ void check_sumo_config(const std::string& sumocfg) {
   pugi::xml_document doc;
   const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size());
   if (!parsed)
-    refuse(sumocfg, std::string("not a readable SUMO configuration (") + parsed.description() + ")");
+    refuse(sumocfg,
+           std::string("not a readable SUMO configuration (") + parsed.description() + ")");
   // Every option's value (SUMO's OptionsLoader reads `value` or `v` of any element).
   struct Option {
     std::string name, section, value;
@@ -429,11 +450,13 @@ void check_sumo_config(const std::string& sumocfg) {
   for (const Option& option : walker.options) {
     if (names_an_output(option.name, option.section)) continue;
     for (const std::string& candidate : candidate_files(option.value)) {
-      const fs::path file = fs::path(candidate).is_absolute() ? fs::path(candidate) : base / candidate;
+      const fs::path file =
+          fs::path(candidate).is_absolute() ? fs::path(candidate) : base / candidate;
       std::error_code ec;
       const fs::file_status status = fs::status(file, ec);
       if (ec || !fs::exists(status) || fs::is_directory(status)) continue;
-      const std::string where = " (named by " + sumocfg + ", <" + quoted_text(option.name, 60) + ">)";
+      const std::string where =
+          " (named by " + sumocfg + ", <" + quoted_text(option.name, 60) + ">)";
       if (!fs::is_regular_file(status))
         refuse(file.string(), "is not a regular file (a SUMO input must be one)" + where);
       try {
@@ -446,13 +469,14 @@ void check_sumo_config(const std::string& sumocfg) {
 }
 
 void check_sumo_command_inputs(const std::vector<std::string>& args) {
-  static const char* const file_lists[] = {"-n", "--net-file", "-r", "--route-files", "-a",
-                                           "--additional-files", "-w", "--weight-files"};
+  static const char* const file_lists[] = {"-n", "--net-file",         "-r", "--route-files",
+                                           "-a", "--additional-files", "-w", "--weight-files"};
   for (size_t i = 0; i + 1 < args.size(); ++i) {
     const std::string& option = args[i];
     if (option == "-c" || option == "--configuration-file") {
       check_sumo_config(args[i + 1]);
-    } else if (std::find(std::begin(file_lists), std::end(file_lists), option) != std::end(file_lists)) {
+    } else if (std::find(std::begin(file_lists), std::end(file_lists), option) !=
+               std::end(file_lists)) {
       std::error_code ec;
       for (const std::string& file : candidate_files(args[i + 1]))
         if (fs::exists(file, ec)) check_sumo_xml(file);

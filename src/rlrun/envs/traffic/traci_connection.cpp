@@ -1,7 +1,9 @@
 // backend: traci for TrafficSignal-v0 — a `sumo` process of its own driven over its socket by
 // SUMO's libtracicpp (sumo_over_traci.hpp).
-// libtraci.h first: it selects the libtraci namespace for the client headers below.
+// libtraci.h first (its own include block, so that clang-format keeps it first): it selects
+// the libtraci namespace for the client headers below.
 #include "rlrun/envs/traffic/sumo_over_traci.hpp"
+
 #include "rlrun/envs/traffic/sumo_client.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
 

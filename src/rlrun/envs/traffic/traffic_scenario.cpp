@@ -20,7 +20,8 @@ namespace {
 std::string existing(const std::string& path) {
   const std::string file = find_data_file(path);
   if (fs::exists(file)) return file;
-  throw RuntimeFailure("traffic scenario " + path + " does not exist (a scenarios/*.yaml file "
+  throw RuntimeFailure("traffic scenario " + path +
+                       " does not exist (a scenarios/*.yaml file "
                        "or a SUMO .sumocfg)");
 }
 
@@ -41,8 +42,7 @@ TrafficScenario load_traffic_scenario(const std::string& path) {
   if (scenario.sumocfg.empty()) root.fail("sumocfg: missing (the SUMO configuration to run)");
   if (!(scenario.scale > 0)) root.child("scale").fail("must be > 0");
   const fs::path sumocfg = fs::path(file).parent_path() / scenario.sumocfg;
-  if (!fs::exists(sumocfg))
-    root.child("sumocfg").fail(sumocfg.string() + " does not exist");
+  if (!fs::exists(sumocfg)) root.child("sumocfg").fail(sumocfg.string() + " does not exist");
   scenario.sumocfg_path = sumocfg.lexically_normal().string();
   check_sumo_config(scenario.sumocfg_path);
   return scenario;

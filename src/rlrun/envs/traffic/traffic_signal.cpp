@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
@@ -55,8 +55,9 @@ TrafficSignal::TrafficSignal(const Config& config)
     throw std::invalid_argument("TrafficSignal-v0: unknown backend '" + config_.backend +
                                 "' (traci or libsumo)");
   if (config_.gui && config_.backend == "libsumo")
-    throw std::invalid_argument("TrafficSignal-v0: gui: true needs backend: traci (sumo-gui is a "
-                                "program of its own)");
+    throw std::invalid_argument(
+        "TrafficSignal-v0: gui: true needs backend: traci (sumo-gui is a "
+        "program of its own)");
   // The episode metrics come from SUMO's tripinfo output: the user's file, else one of ours in
   // a private directory (SUMO opens the file with O_TRUNC, following links: no shared /tmp).
   if (config_.tripinfo_output.value.empty()) {
@@ -127,7 +128,8 @@ void TrafficSignal::start_simulation(uint64_t sumo_seed) {
       }
       // The roads (SUMO edges) the lanes belong to: what the subscriptions count.
       const auto add_road = [](std::vector<Road>& roads, const Lane& lane) {
-        if (std::none_of(roads.begin(), roads.end(), [&](const Road& r) { return r.edge == lane.edge; }))
+        if (std::none_of(roads.begin(), roads.end(),
+                         [&](const Road& r) { return r.edge == lane.edge; }))
           roads.push_back(Road{lane.edge, lane.approach, {}});
       };
       for (const Lane& lane : incoming_) {
@@ -160,8 +162,10 @@ void TrafficSignal::advance(int seconds) {
   sumo_->advance(sim_time_ + seconds, state_);
   sim_time_ = state_.time;
   since_change_ += seconds;
-  for (size_t i = 0; i < incoming_roads_.size(); ++i) incoming_roads_[i].counts = state_.incoming[i];
-  for (size_t i = 0; i < outgoing_roads_.size(); ++i) outgoing_roads_[i].counts = state_.outgoing[i];
+  for (size_t i = 0; i < incoming_roads_.size(); ++i)
+    incoming_roads_[i].counts = state_.incoming[i];
+  for (size_t i = 0; i < outgoing_roads_.size(); ++i)
+    outgoing_roads_[i].counts = state_.outgoing[i];
 }
 
 void TrafficSignal::finish_episode() {
@@ -279,7 +283,8 @@ void TrafficSignal::write_observation(std::span<float> obs) const {
         vehicles[a] > 0 ? std::min(1.0, speed_weighted[a] / vehicles[a] / limit_[a]) : 1.0);
   }
   obs[8] = static_cast<float>(green_ / 3.0);
-  obs[9] = static_cast<float>(std::min(1.0, static_cast<double>(since_change_) / config_.max_green));
+  obs[9] =
+      static_cast<float>(std::min(1.0, static_cast<double>(since_change_) / config_.max_green));
 }
 
 void TrafficSignal::update_info() {

@@ -32,32 +32,32 @@
 #include <vector>
 
 #include "rlrun/core/config_checks.hpp"
+#include "rlrun/core/private_temp_dir.hpp"
 #include "rlrun/core/trusted_values.hpp"
-#include "rlrun/env_seeding.hpp"
-#include "rlrun/space.hpp"
 #include "rlrun/env.hpp"
-#include "rlrun/info.hpp"
+#include "rlrun/env_seeding.hpp"
 #include "rlrun/envs/traffic/sumo_connection.hpp"
 #include "rlrun/envs/traffic/traffic_scenario.hpp"
-#include "rlrun/core/private_temp_dir.hpp"
+#include "rlrun/info.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 
 class TrafficSignal : public Env {
  public:
   struct Config {
-    SimulatorInput scenario;      // scenarios/*.yaml or a .sumocfg; empty = the shipped one
+    SimulatorInput scenario;        // scenarios/*.yaml or a .sumocfg; empty = the shipped one
     std::string backend = "traci";  // traci (a sumo process, socket) or libsumo (in-process)
     ProgramPath sumo_binary{"sumo"};
-    bool gui = false;             // run sumo-gui instead
-    double scale = 1.0;           // demand multiplier
-    int delta_time = 5;           // simulated seconds per action
-    int yellow_time = 3;          // seconds of yellow on every switch
-    int min_green = 5;            // a green lasts at least this long
-    int max_green = 60;           // normalisation of the phase time in the observation
-    int num_seconds = 3600;       // episode length in simulated seconds
+    bool gui = false;                 // run sumo-gui instead
+    double scale = 1.0;               // demand multiplier
+    int delta_time = 5;               // simulated seconds per action
+    int yellow_time = 3;              // seconds of yellow on every switch
+    int min_green = 5;                // a green lasts at least this long
+    int max_green = 60;               // normalisation of the phase time in the observation
+    int num_seconds = 3600;           // episode length in simulated seconds
     std::string reward_fn = "queue";  // queue, diff-waiting-time, average-speed, pressure
-    OutputPath tripinfo_output;   // also write SUMO's tripinfo XML here (tests, analysis)
+    OutputPath tripinfo_output;       // also write SUMO's tripinfo XML here (tests, analysis)
 
     template <class V>
     void visit(V& v) {
@@ -76,8 +76,7 @@ class TrafficSignal : public Env {
       v("yellow_time", yellow_time, "seconds of yellow inserted on every switch",
         in_range(0, 86400));
       v("min_green", min_green, "minimum green time in seconds", in_range(0, 86400));
-      v("max_green", max_green, "phase time that maps to 1 in the observation",
-        in_range(1, 86400));
+      v("max_green", max_green, "phase time that maps to 1 in the observation", in_range(1, 86400));
       v("num_seconds", num_seconds, "episode length in simulated seconds",
         in_range(1, 365 * 86400));
       v("reward_fn", reward_fn, "queue | diff-waiting-time | average-speed | pressure",
@@ -154,7 +153,7 @@ class TrafficSignal : public Env {
 
   std::vector<Lane> incoming_, outgoing_;
   std::vector<Road> incoming_roads_, outgoing_roads_;  // outgoing: for the pressure reward
-  std::vector<int> link_approach_;    // approach of each signal link (by link index)
+  std::vector<int> link_approach_;        // approach of each signal link (by link index)
   double capacity_[kNumApproaches] = {};  // vehicles that fit on an approach's lanes
   double limit_[kNumApproaches] = {};     // an approach's speed limit
   int green_ = kNorth;
@@ -165,13 +164,13 @@ class TrafficSignal : public Env {
   // changed by it).
   mutable SumoState state_;
   mutable bool vehicles_subscribed_ = false;
-  bool finished_ = false;         // SUMO closed at the episode's end
+  bool finished_ = false;  // SUMO closed at the episode's end
   // SUMO's tripinfo at the episode's end: vehicles arrived, their mean waiting and travel time.
   int throughput_ = 0;
   double avg_waiting_ = 0, avg_travel_ = 0;
-  std::string tripinfo_path_;     // config.tripinfo_output, else a file in tripinfo_dir_
+  std::string tripinfo_path_;  // config.tripinfo_output, else a file in tripinfo_dir_
   std::unique_ptr<PrivateTempDir> tripinfo_dir_;  // private; goes with the env
-  double last_waiting_sum_ = 0;  // diff-waiting-time
+  double last_waiting_sum_ = 0;                   // diff-waiting-time
   int key_waiting_, key_travel_, key_queue_, key_throughput_, key_time_;
   bool has_state_ = false;
 };

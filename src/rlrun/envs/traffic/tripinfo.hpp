@@ -11,8 +11,8 @@ namespace rlrun {
 
 struct TripinfoSummary {
   int trips = 0;
-  double mean_duration = 0;  // s
-  double mean_waiting = 0;   // s
+  double mean_duration = 0;   // s
+  double mean_waiting = 0;    // s
   double mean_time_loss = 0;  // s
 };
 

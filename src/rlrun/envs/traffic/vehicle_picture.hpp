@@ -15,7 +15,7 @@ void draw_vehicle(Frame& frame, const At& at, double x, double y, double angle_d
   constexpr double kLength = 5.0, kHalfWidth = 0.9;
   const double heading = angle_degrees * M_PI / 180.0;
   const double fx = std::sin(heading), fy = std::cos(heading);  // forward
-  const double sx = fy, sy = -fx;                              // to the right
+  const double sx = fy, sy = -fx;                               // to the right
   const Point box[] = {at(x + sx * kHalfWidth, y + sy * kHalfWidth),
                        at(x - sx * kHalfWidth, y - sy * kHalfWidth),
                        at(x - sx * kHalfWidth - fx * kLength, y - sy * kHalfWidth - fy * kLength),

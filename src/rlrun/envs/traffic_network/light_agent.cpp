@@ -41,7 +41,8 @@ LightAgent::LightAgent(const TrafficLightProgram& light, SignalControl control,
       if (i >= green.size() || (green[i] != 'G' && green[i] != 'g')) continue;
       const std::pair<int, int> m{slot_of(light.incoming_lanes, in_slots_, link.from),
                                   slot_of(light.outgoing_lanes, out_slots_, link.to)};
-      if (std::find(movements.begin(), movements.end(), m) == movements.end()) movements.push_back(m);
+      if (std::find(movements.begin(), movements.end(), m) == movements.end())
+        movements.push_back(m);
     }
   }
 }
@@ -131,7 +132,8 @@ int LightAgent::max_pressure_action(const std::vector<LaneReading>& lanes) const
   double best_pressure = 0;
   for (size_t p = 0; p < phase_movements_.size(); ++p) {
     double pressure = 0;
-    for (const auto& [in, out] : phase_movements_[p]) pressure += lanes[in].halting - lanes[out].halting;
+    for (const auto& [in, out] : phase_movements_[p])
+      pressure += lanes[in].halting - lanes[out].halting;
     if (p == 0 || pressure > best_pressure) best = static_cast<int>(p), best_pressure = pressure;
   }
   return best;

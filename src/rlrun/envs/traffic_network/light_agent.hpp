@@ -42,8 +42,8 @@ RewardFunction parse_reward_function(const std::string& name);  // throws std::i
 
 // What a decision does to the light.
 struct LightCommand {
-  bool change = false;      // false: the current green goes on
-  std::string yellow;       // shown for yellow_time first (empty when yellow_time is 0)
+  bool change = false;  // false: the current green goes on
+  std::string yellow;   // shown for yellow_time first (empty when yellow_time is 0)
   std::string green;
 };
 

@@ -28,20 +28,19 @@ class NetworkClient : public NetworkConnection {
     lanes_ = lanes;
     if constexpr (Api::kReadsDirectly) return;
     for (const std::string& lane : lanes)
-      Api::Lane::subscribe(lane, {libsumo::LAST_STEP_VEHICLE_NUMBER,
-                                  libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER,
-                                  libsumo::LAST_STEP_LENGTH});
+      Api::Lane::subscribe(
+          lane, {libsumo::LAST_STEP_VEHICLE_NUMBER, libsumo::LAST_STEP_VEHICLE_HALTING_NUMBER,
+                 libsumo::LAST_STEP_LENGTH});
   }
 
   void subscribe_vehicles(const std::string& junction, NetworkReading& out) override {
     activate();
     junction_ = junction;
     if constexpr (Api::kReadsDirectly) return read_vehicles(out);
-    Api::Junction::subscribeContext(junction, libsumo::CMD_GET_VEHICLE_VARIABLE, kWholeNetwork,
-                                    {libsumo::VAR_LANE_ID, libsumo::VAR_SPEED,
-                                     libsumo::VAR_ALLOWED_SPEED,
-                                     libsumo::VAR_ACCUMULATED_WAITING_TIME,
-                                     libsumo::VAR_POSITION, libsumo::VAR_ANGLE});
+    Api::Junction::subscribeContext(
+        junction, libsumo::CMD_GET_VEHICLE_VARIABLE, kWholeNetwork,
+        {libsumo::VAR_LANE_ID, libsumo::VAR_SPEED, libsumo::VAR_ALLOWED_SPEED,
+         libsumo::VAR_ACCUMULATED_WAITING_TIME, libsumo::VAR_POSITION, libsumo::VAR_ANGLE});
     read_vehicles(out);
   }
 
@@ -118,12 +117,14 @@ class NetworkClient : public NetworkConnection {
     for (const auto& [id, values] : Api::Junction::getContextSubscriptionResults(junction_)) {
       VehicleReading& v = out.vehicles.emplace_back();
       v.id = id;
-      v.lane = std::dynamic_pointer_cast<libsumo::TraCIString>(values.at(libsumo::VAR_LANE_ID))->value;
+      v.lane =
+          std::dynamic_pointer_cast<libsumo::TraCIString>(values.at(libsumo::VAR_LANE_ID))->value;
       v.speed = sumo_client::number(values, libsumo::VAR_SPEED);
       v.allowed_speed = sumo_client::number(values, libsumo::VAR_ALLOWED_SPEED);
       v.accumulated_waiting = sumo_client::number(values, libsumo::VAR_ACCUMULATED_WAITING_TIME);
       v.angle = sumo_client::number(values, libsumo::VAR_ANGLE);
-      const auto p = std::dynamic_pointer_cast<libsumo::TraCIPosition>(values.at(libsumo::VAR_POSITION));
+      const auto p =
+          std::dynamic_pointer_cast<libsumo::TraCIPosition>(values.at(libsumo::VAR_POSITION));
       v.x = p->x;
       v.y = p->y;
     }

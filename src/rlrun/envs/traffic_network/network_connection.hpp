@@ -19,9 +19,9 @@
 namespace rlrun::traffic {
 
 struct LaneReading {
-  int vehicles = 0;            // on the lane in the last simulated second
-  int halting = 0;             // of those, below 0.1 m/s
-  double vehicle_length = 0;   // their mean length, m (0 when none)
+  int vehicles = 0;           // on the lane in the last simulated second
+  int halting = 0;            // of those, below 0.1 m/s
+  double vehicle_length = 0;  // their mean length, m (0 when none)
 };
 
 struct VehicleReading {
@@ -33,8 +33,8 @@ struct VehicleReading {
 
 struct NetworkReading {
   double time = 0;
-  std::vector<LaneReading> lanes;         // in subscribe_lanes() order
-  std::vector<VehicleReading> vehicles;   // every vehicle, when subscribed
+  std::vector<LaneReading> lanes;        // in subscribe_lanes() order
+  std::vector<VehicleReading> vehicles;  // every vehicle, when subscribed
 };
 
 class NetworkConnection {

@@ -20,7 +20,8 @@ std::vector<std::array<double, 2>> parse_shape(const char* text) {
   while (in >> point) {
     const size_t comma = point.find(',');
     if (comma == std::string::npos) continue;
-    shape.push_back({std::strtod(point.c_str(), nullptr), std::strtod(point.c_str() + comma + 1, nullptr)});
+    shape.push_back(
+        {std::strtod(point.c_str(), nullptr), std::strtod(point.c_str() + comma + 1, nullptr)});
   }
   return shape;
 }
@@ -29,7 +30,8 @@ std::vector<std::array<double, 2>> parse_shape(const char* text) {
 
 const LaneGeometry& NetworkGeometry::lane(const std::string& id) const {
   const auto it = lane_index.find(id);
-  if (it == lane_index.end()) throw ConfigError("the network has no lane '" + quoted_text(id) + "'");
+  if (it == lane_index.end())
+    throw ConfigError("the network has no lane '" + quoted_text(id) + "'");
   return lanes[it->second];
 }
 
@@ -61,7 +63,8 @@ NetworkGeometry read_network_geometry(const std::string& net_file) {
   }
   for (const pugi::xml_node j : net.children("junction"))
     if (std::string(j.attribute("type").as_string()) != "internal")
-      g.junctions[j.attribute("id").as_string()] = {j.attribute("x").as_double(), j.attribute("y").as_double()};
+      g.junctions[j.attribute("id").as_string()] = {j.attribute("x").as_double(),
+                                                    j.attribute("y").as_double()};
   for (const pugi::xml_node c : net.children("connection")) {
     const std::string from = c.attribute("from").as_string(), to = c.attribute("to").as_string();
     if (from.empty() || to.empty() || from[0] == ':' || to[0] == ':') continue;

@@ -18,15 +18,15 @@ struct LaneGeometry {
 };
 
 struct NetworkGeometry {
-  std::vector<LaneGeometry> lanes;                          // file order
-  std::map<std::string, size_t> lane_index;                 // id -> position in `lanes`
-  std::vector<std::string> edges;                           // the non-internal edges
-  std::map<std::string, std::array<double, 2>> junctions;   // id -> position
-  std::array<double, 4> bounds{0, 0, 1, 1};                 // x0, y0, x1, y1 of the lanes
+  std::vector<LaneGeometry> lanes;                         // file order
+  std::map<std::string, size_t> lane_index;                // id -> position in `lanes`
+  std::vector<std::string> edges;                          // the non-internal edges
+  std::map<std::string, std::array<double, 2>> junctions;  // id -> position
+  std::array<double, 4> bounds{0, 0, 1, 1};                // x0, y0, x1, y1 of the lanes
   // Where each edge's traffic can go next (the net's <connection>s between normal edges).
   std::map<std::string, std::vector<std::string>> edge_successors;
 
-  const LaneGeometry& lane(const std::string& id) const;    // throws ConfigError if absent
+  const LaneGeometry& lane(const std::string& id) const;  // throws ConfigError if absent
 };
 
 // Throws ConfigError naming the file for a file that is not a SUMO network.

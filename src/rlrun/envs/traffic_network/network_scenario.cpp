@@ -103,7 +103,10 @@ void require_file(const std::string& path, const std::string& what) {
 }
 
 int line_of(const std::string& text, ptrdiff_t offset) {
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + std::min<ptrdiff_t>(offset, static_cast<ptrdiff_t>(text.size())), '\n'));
+  return 1 + static_cast<int>(std::count(
+                 text.begin(),
+                 text.begin() + std::min<ptrdiff_t>(offset, static_cast<ptrdiff_t>(text.size())),
+                 '\n'));
 }
 
 }  // namespace
@@ -111,7 +114,8 @@ int line_of(const std::string& text, ptrdiff_t offset) {
 NetworkScenario load_network_scenario(const std::string& path) {
   std::string file = find_data_file(path);
   if (!fs::exists(file))
-    throw RuntimeFailure("traffic scenario " + path + " does not exist (a scenarios/*.yaml file "
+    throw RuntimeFailure("traffic scenario " + path +
+                         " does not exist (a scenarios/*.yaml file "
                          "or a SUMO .sumocfg)");
   NetworkScenario s;
   if (fs::path(file).extension() == ".sumocfg") {
@@ -121,7 +125,8 @@ NetworkScenario load_network_scenario(const std::string& path) {
   } else {
     const ConfigNode root = ConfigNode::load_file(file);
     if (!root.is_map())
-      root.fail("a traffic scenario is a map: name, net_file, route_files, begin, end (or sumocfg)");
+      root.fail(
+          "a traffic scenario is a map: name, net_file, route_files, begin, end (or sumocfg)");
     decode(root, s);
     const fs::path base = fs::path(file).parent_path();
     if (!s.sumocfg.empty()) {
@@ -135,7 +140,8 @@ NetworkScenario load_network_scenario(const std::string& path) {
       if (s.net_file.empty())
         root.fail("net_file: missing (the SUMO network), or sumocfg: a SUMO configuration");
       s.files.net = resolved(base, s.net_file);
-      if (!fs::is_regular_file(s.files.net)) root.child("net_file").fail(s.files.net + " does not exist");
+      if (!fs::is_regular_file(s.files.net))
+        root.child("net_file").fail(s.files.net + " does not exist");
       check_sumo_xml(s.files.net);
       for (size_t i = 0; i < s.route_files.size(); ++i) {
         s.files.routes.push_back(resolved(base, s.route_files[i]));
@@ -154,8 +160,8 @@ NetworkScenario load_network_scenario(const std::string& path) {
     if (s.begin < 0 && root.has("begin")) root.child("begin").fail("must be >= 0");
     if (s.end >= 0 && s.begin >= 0 && s.begin >= s.end)
       root.child(root.has("end") ? "end" : "begin")
-          .fail("begin (" + number_text(s.begin) + " s) must be before end (" +
-                number_text(s.end) + " s)");
+          .fail("begin (" + number_text(s.begin) + " s) must be before end (" + number_text(s.end) +
+                " s)");
   }
   if (s.begin < 0) s.begin = 0;
   if (s.end < 0) s.end = s.begin + 3600;
@@ -212,8 +218,8 @@ void check_routes_fit(const std::vector<std::string>& route_files,
       bool check(const pugi::xml_node& node, const char* attribute, bool list) {
         const pugi::xml_attribute a = node.attribute(attribute);
         if (!a) return true;
-        const std::vector<std::string> ids = list ? split_list(a.as_string())
-                                                  : std::vector<std::string>{a.as_string()};
+        const std::vector<std::string> ids =
+            list ? split_list(a.as_string()) : std::vector<std::string>{a.as_string()};
         for (const std::string& id : ids)
           if (!known->count(id)) {
             unknown = id;
@@ -256,7 +262,8 @@ void check_routes_fit(const std::vector<std::string>& route_files,
       throw ConfigError(file + ":" + std::to_string(line_of(text, walker.offset)) + ": " +
                         walker.where + " names edge '" + quoted_text(walker.unknown) +
                         "', which the network does not have: the route file does not fit the "
-                        "network" + quoted_text(did_you_mean(walker.unknown, edges), 300));
+                        "network" +
+                        quoted_text(did_you_mean(walker.unknown, edges), 300));
   }
 }
 

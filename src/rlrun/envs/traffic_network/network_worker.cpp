@@ -7,8 +7,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <thread>
@@ -25,9 +25,7 @@ namespace {
 
 constexpr int kWorkerFd = 3;
 
-std::string worker_path() {
-  return rlrun_helper_path("rlrun-sumo-worker", "RLRUN_SUMO_WORKER");
-}
+std::string worker_path() { return rlrun_helper_path("rlrun-sumo-worker", "RLRUN_SUMO_WORKER"); }
 
 }  // namespace
 
@@ -37,13 +35,17 @@ NetworkWorker::NetworkWorker(const std::string& backend, const SumoLaunch& launc
     throw RuntimeFailure("TrafficNetwork-v0 needs " + path +
                          " (rlrun's SUMO worker, built and installed with rlrun); it is missing "
                          "or not executable");
-  const SpawnedWorker worker = spawn_worker({path, std::to_string(kWorkerFd)}, kWorkerFd,
-                                            "the SUMO worker");
+  const SpawnedWorker worker =
+      spawn_worker({path, std::to_string(kWorkerFd)}, kWorkerFd, "the SUMO worker");
   worker_ = worker.pid;
   fd_ = worker.fd;
   wire::Writer start(wire::kStart);
-  start.str(backend).str(launch.binary).strings(launch.inputs).str(std::to_string(launch.seed))
-      .f64(launch.scale).strings(launch.extra_args);
+  start.str(backend)
+      .str(launch.binary)
+      .strings(launch.inputs)
+      .str(std::to_string(launch.seed))
+      .f64(launch.scale)
+      .strings(launch.extra_args);
   send(start.framed());
   wire::Reader reply(answer(true));
   sumo_pid_ = reply.i32();
@@ -109,7 +111,8 @@ wire::Reader NetworkWorker::answer(bool starting) {
   const std::string message = reader.str();
   const size_t line = message.find('\n');
   tail_ = line == std::string::npos ? std::string() : message.substr(line + 1);
-  throw RuntimeFailure(quoted_text(line == std::string::npos ? message : message.substr(0, line), 500));
+  throw RuntimeFailure(
+      quoted_text(line == std::string::npos ? message : message.substr(0, line), 500));
 }
 
 void NetworkWorker::subscribe_lanes(const std::vector<std::string>& lanes) {

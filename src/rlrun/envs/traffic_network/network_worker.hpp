@@ -57,7 +57,7 @@ class NetworkWorker : public NetworkConnection {
   pid_t sumo_pid_ = -1;
   bool finished_ = false;
   bool hung_ = false;  // a wait for it was interrupted: killed at once, not given 2 s
-  std::string tail_;  // SUMO's last output, from the worker's last error
+  std::string tail_;   // SUMO's last output, from the worker's last error
 };
 
 }  // namespace rlrun::traffic

@@ -38,7 +38,8 @@ std::vector<TrafficLightProgram> read_signal_programs(const std::string& net_fil
     light.id = id;
     light.program_id = logic.attribute("programID").as_string();
     for (const pugi::xml_node phase : logic.children("phase"))
-      light.phases.push_back({phase.attribute("duration").as_double(), phase.attribute("state").as_string()});
+      light.phases.push_back(
+          {phase.attribute("duration").as_double(), phase.attribute("state").as_string()});
     index[id] = lights.size();
     lights.push_back(std::move(light));
   }
@@ -48,8 +49,10 @@ std::vector<TrafficLightProgram> read_signal_programs(const std::string& net_fil
   for (const pugi::xml_node c : net.children("connection")) {
     const pugi::xml_attribute tl = c.attribute("tl");
     if (!tl) continue;
-    const std::string lane_in = std::string(c.attribute("from").as_string()) + "_" + c.attribute("fromLane").as_string();
-    const std::string lane_out = std::string(c.attribute("to").as_string()) + "_" + c.attribute("toLane").as_string();
+    const std::string lane_in =
+        std::string(c.attribute("from").as_string()) + "_" + c.attribute("fromLane").as_string();
+    const std::string lane_out =
+        std::string(c.attribute("to").as_string()) + "_" + c.attribute("toLane").as_string();
     links[tl.as_string()][c.attribute("linkIndex").as_int(-1)] = {lane_in, lane_out};
   }
   for (TrafficLightProgram& light : lights) {
@@ -75,7 +78,8 @@ std::vector<TrafficLightProgram> select_lights(const std::vector<TrafficLightPro
                                                const std::vector<std::string>& ts_ids,
                                                const std::string& net_file) {
   if (lights.empty())
-    throw ConfigError(net_file + ": the network has no traffic light, so there is no agent (add "
+    throw ConfigError(net_file +
+                      ": the network has no traffic light, so there is no agent (add "
                       "lights with netconvert --tls.guess or --tls.set)");
   if (ts_ids.empty()) return lights;
   std::vector<std::string> ids;
@@ -85,7 +89,8 @@ std::vector<TrafficLightProgram> select_lights(const std::vector<TrafficLightPro
     const auto it = std::find(ids.begin(), ids.end(), id);
     if (it == ids.end()) {
       std::string all;
-      for (size_t k = 0; k < ids.size() && k < 20; ++k) all += (k ? ", " : "") + quoted_text(ids[k], 60);
+      for (size_t k = 0; k < ids.size() && k < 20; ++k)
+        all += (k ? ", " : "") + quoted_text(ids[k], 60);
       if (ids.size() > 20) all += ", ...";
       throw ConfigError("ts_ids: '" + id + "' is not a traffic light of " + net_file +
                         quoted_text(did_you_mean(id, ids), 300) + " (its lights: " + all + ")");
@@ -100,7 +105,8 @@ SignalControl derive_signal_control(const TrafficLightProgram& light) {
   for (const SignalPhase& phase : light.phases)
     if (is_green(phase.state)) control.green_states.push_back(phase.state);
   if (control.green_states.empty())
-    throw ConfigError("traffic light " + quoted_text(light.id) + ": its program has no green phase, so an agent "
+    throw ConfigError("traffic light " + quoted_text(light.id) +
+                      ": its program has no green phase, so an agent "
                       "has nothing to choose (leave it out of ts_ids)");
   const size_t n = control.green_states.size();
   control.yellow_states.assign(n, std::vector<std::string>(n));

@@ -26,18 +26,18 @@ struct SignalPhase {
 };
 
 struct SignalLink {
-  int index = 0;        // position in the phase states
+  int index = 0;         // position in the phase states
   std::string from, to;  // incoming and outgoing lane
 };
 
 struct TrafficLightProgram {
   std::string id;
   std::string program_id;
-  std::vector<SignalPhase> phases;           // the first program of this light in the file
-  std::vector<std::string> incoming_lanes;   // controlled lanes, link-index order, unique
-  std::vector<std::string> outgoing_lanes;   // lanes they lead to, link-index order, unique
-  int num_links = 0;                         // controlled link indices (state length)
-  std::vector<SignalLink> links;             // by link index
+  std::vector<SignalPhase> phases;          // the first program of this light in the file
+  std::vector<std::string> incoming_lanes;  // controlled lanes, link-index order, unique
+  std::vector<std::string> outgoing_lanes;  // lanes they lead to, link-index order, unique
+  int num_links = 0;                        // controlled link indices (state length)
+  std::vector<SignalLink> links;            // by link index
 };
 
 // Every light of a network file (tlLogic elements joined with the connections they control),
@@ -54,7 +54,7 @@ std::vector<TrafficLightProgram> select_lights(const std::vector<TrafficLightPro
                                                const std::string& net_file);
 
 struct SignalControl {
-  std::vector<std::string> green_states;               // the agent's actions
+  std::vector<std::string> green_states;                // the agent's actions
   std::vector<std::vector<std::string>> yellow_states;  // [from][to], empty on the diagonal
 };
 

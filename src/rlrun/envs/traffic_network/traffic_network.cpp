@@ -39,13 +39,15 @@ TrafficNetwork::TrafficNetwork(const Config& config)
     throw std::invalid_argument("TrafficNetwork-v0: unknown backend '" + config_.backend +
                                 "' (traci or libsumo)");
   if (config_.gui && config_.backend != "traci")
-    throw std::invalid_argument("TrafficNetwork-v0: gui: true needs backend: traci (sumo-gui is "
-                                "a program of its own)");
+    throw std::invalid_argument(
+        "TrafficNetwork-v0: gui: true needs backend: traci (sumo-gui is "
+        "a program of its own)");
   if (config_.reward_scope != "local" && config_.reward_scope != "neighbourhood")
     throw std::invalid_argument("TrafficNetwork-v0: reward_scope is local or neighbourhood");
   if (config_.delta_time <= config_.yellow_time)
-    throw std::invalid_argument("TrafficNetwork-v0: delta_time must exceed yellow_time (sumo-rl: "
-                                "the yellow fits within one decision)");
+    throw std::invalid_argument(
+        "TrafficNetwork-v0: delta_time must exceed yellow_time (sumo-rl: "
+        "the yellow fits within one decision)");
   timing_ = {config_.delta_time, config_.yellow_time, config_.min_green, config_.max_green};
   end_time_ = config_.num_seconds > 0 ? scenario_.begin + config_.num_seconds : scenario_.end;
   if (end_time_ - scenario_.begin < config_.delta_time)
@@ -66,7 +68,8 @@ TrafficNetwork::TrafficNetwork(const Config& config)
       });
     });
     if (lights.empty())
-      throw ConfigError(scenario_.files.net + ": no traffic light has a green phase, so there is "
+      throw ConfigError(scenario_.files.net +
+                        ": no traffic light has a green phase, so there is "
                         "no agent");
   }
   build_agents(lights);
@@ -84,7 +87,7 @@ TrafficNetwork::TrafficNetwork(const Config& config)
 
   work_dir_ = std::make_unique<PrivateTempDir>("rlrun-traffic-", PrivateTempDir::RemoveStale::kYes);
   tripinfo_path_ = config_.tripinfo_output.value.empty() ? work_dir_->file("tripinfo.xml")
-                                                          : config_.tripinfo_output.value;
+                                                         : config_.tripinfo_output.value;
   key_time_ = info_.add_key("sim_time");
   key_queue_ = info_.add_key("total_queue_length");
   key_delay_ = info_.add_key("mean_delay");
@@ -132,7 +135,8 @@ void TrafficNetwork::find_neighbours(const std::vector<TrafficLightProgram>& lig
   const auto edge_of = [&](const std::string& lane) { return geometry_.lane(lane).edge; };
   std::map<std::string, std::set<int>> entering;  // edge -> agents it leads into
   for (size_t a = 0; a < lights.size(); ++a)
-    for (const std::string& lane : lights[a].incoming_lanes) entering[edge_of(lane)].insert(static_cast<int>(a));
+    for (const std::string& lane : lights[a].incoming_lanes)
+      entering[edge_of(lane)].insert(static_cast<int>(a));
   std::vector<std::set<int>> near(lights.size());
   for (size_t a = 0; a < lights.size(); ++a) {
     std::deque<std::pair<std::string, int>> queue;
@@ -148,7 +152,8 @@ void TrafficNetwork::find_neighbours(const std::vector<TrafficLightProgram>& lig
         continue;  // traffic stops at that light
       }
       if (depth >= kNeighbourSearchDepth) continue;
-      if (const auto next = geometry_.edge_successors.find(edge); next != geometry_.edge_successors.end())
+      if (const auto next = geometry_.edge_successors.find(edge);
+          next != geometry_.edge_successors.end())
         for (const std::string& e : next->second)
           if (seen.insert(e).second) queue.emplace_back(e, depth + 1);
     }
@@ -174,8 +179,8 @@ std::string TrafficNetwork::actuated_programs_file() const {
   out << "<additional>\n";
   const std::vector<TrafficLightProgram> all = read_signal_programs(scenario_.files.net);
   for (const LightAgent& agent : agents_) {
-    const auto light = std::find_if(all.begin(), all.end(),
-                                    [&](const TrafficLightProgram& l) { return l.id == agent.id(); });
+    const auto light = std::find_if(
+        all.begin(), all.end(), [&](const TrafficLightProgram& l) { return l.id == agent.id(); });
     out << "  <tlLogic id=\"" << agent.id() << "\" type=\"actuated\" programID=\"rlrun_actuated\" "
         << "offset=\"0\">\n";
     for (const SignalPhase& phase : light->phases) {
@@ -184,7 +189,8 @@ std::string TrafficNetwork::actuated_programs_file() const {
       out << "    <phase duration=\"" << phase.duration << "\" state=\"" << phase.state << "\"";
       if (green)
         out << " minDur=\"" << std::max(1, config_.min_green) << "\" maxDur=\""
-            << std::max({config_.min_green, config_.max_green > 0 ? config_.max_green : 50, 1}) << "\"";
+            << std::max({config_.min_green, config_.max_green > 0 ? config_.max_green : 50, 1})
+            << "\"";
       out << "/>\n";
     }
     out << "  </tlLogic>\n";
@@ -219,9 +225,10 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   }
   try {
     outgoing_subscribed_ = reward_ == RewardFunction::kPressure || watch_outgoing_;
-    sumo_->subscribe_lanes(outgoing_subscribed_ ? lanes_
-                                    : std::vector<std::string>(lanes_.begin(),
-                                                               lanes_.begin() + incoming_lanes_));
+    sumo_->subscribe_lanes(
+        outgoing_subscribed_
+            ? lanes_
+            : std::vector<std::string>(lanes_.begin(), lanes_.begin() + incoming_lanes_));
     // The rewards that read vehicles need them under every control: a baseline's episodes
     // (the lights' own programs, SUMO's actuated control) get the env's reward too, so `eval
     // --baseline` compares returns, not the model's against 0 (issue 41). Subscribing only
@@ -284,12 +291,11 @@ void TrafficNetwork::check_sizes(size_t obs_size, size_t actions_size) const {
   // buffer gets an error, not an overrun.
   const size_t agents = agents_.size();
   if (obs_size != agents * static_cast<size_t>(obs_width_) || actions_size > agents)
-    throw std::invalid_argument("TrafficNetwork-v0 has " + std::to_string(agents) +
-                                " agents: observations take " + std::to_string(agents) + " x " +
-                                std::to_string(obs_width_) + " floats (got " +
-                                std::to_string(obs_size) + ") and actions " +
-                                std::to_string(agents) + " (got " +
-                                std::to_string(actions_size) + ")");
+    throw std::invalid_argument(
+        "TrafficNetwork-v0 has " + std::to_string(agents) + " agents: observations take " +
+        std::to_string(agents) + " x " + std::to_string(obs_width_) + " floats (got " +
+        std::to_string(obs_size) + ") and actions " + std::to_string(agents) + " (got " +
+        std::to_string(actions_size) + ")");
 }
 
 void TrafficNetwork::reset(std::optional<uint64_t> seed, std::span<float> obs) {
@@ -356,8 +362,8 @@ void TrafficNetwork::start_step_agents(std::span<const float> actions) {
                                   agents_[a].id() + ") got action " + std::to_string(x) +
                                   ", not in " + action_space_.describe());
   }
-  pending_seconds_ = std::max(1, static_cast<int>(std::min<double>(config_.delta_time,
-                                                                   end_time_ - reading_.time)));
+  pending_seconds_ = std::max(
+      1, static_cast<int>(std::min<double>(config_.delta_time, end_time_ - reading_.time)));
   try {
     if (running_control_ == Control::kAgents)
       for (size_t a = 0; a < agents_.size(); ++a) {
@@ -382,8 +388,8 @@ void TrafficNetwork::finish_step_agents(std::span<float> obs, std::span<StepResu
   }
   attribute_waiting();
   for (size_t a = 0; a < agents_.size(); ++a)
-    local_rewards_[a] = agents_[a].reward(reward_, reading_.lanes, lane_waiting_, lane_speed_,
-                                          lane_speed_count_);
+    local_rewards_[a] =
+        agents_[a].reward(reward_, reading_.lanes, lane_waiting_, lane_speed_, lane_speed_count_);
   int halting = 0;
   for (const LightAgent& agent : agents_) halting += agent.queue(reading_.lanes);
   queue_sum_ += static_cast<double>(halting) / num_agents();
@@ -438,8 +444,9 @@ void TrafficNetwork::write_observations(std::span<float> obs) const {
 void TrafficNetwork::max_pressure_actions(std::span<float> actions) const {
   if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before acting");
   if (!outgoing_subscribed_)
-    throw std::logic_error("TrafficNetwork-v0: max-pressure needs the outgoing lanes: call "
-                           "watch_outgoing_lanes() before the episode starts");
+    throw std::logic_error(
+        "TrafficNetwork-v0: max-pressure needs the outgoing lanes: call "
+        "watch_outgoing_lanes() before the episode starts");
   for (size_t a = 0; a < agents_.size(); ++a)
     actions[a] = static_cast<float>(agents_[a].max_pressure_action(reading_.lanes));
 }

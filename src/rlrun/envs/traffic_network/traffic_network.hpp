@@ -68,7 +68,7 @@ class TrafficNetwork : public Env, public SplitStep {
     double neighbour_weight = 1.0;
     bool agent_id = false;
     OutputPath tripinfo_output;
-    std::string render_focus;   // a light or junction id: render zooms to it
+    std::string render_focus;  // a light or junction id: render zooms to it
     double render_radius = 120;
 
     template <class V>
@@ -84,7 +84,8 @@ class TrafficNetwork : public Env, public SplitStep {
         "drive SUMO from a worker process of its own (rlrun-sumo-worker): several envs step "
         "their SUMOs in parallel, and libsumo runs one simulation per env; false: in rlrun "
         "itself (libsumo: one simulation per rlrun process)");
-      v("sumo_binary", sumo_binary, "the sumo program to run with backend: traci (Debian package 'sumo')");
+      v("sumo_binary", sumo_binary,
+        "the sumo program to run with backend: traci (Debian package 'sumo')");
       v("gui", gui, "run sumo-gui to watch the simulation (backend: traci)");
       v("scale", scale, "demand multiplier (SUMO --scale, times the scenario's scale)",
         in_range(0.0, 1000.0).open_low());
@@ -93,10 +94,9 @@ class TrafficNetwork : public Env, public SplitStep {
       v("yellow_time", yellow_time, "seconds of yellow on every switch", in_range(0, 86400));
       v("min_green", min_green, "a green lasts at least this long (seconds)", in_range(0, 86400));
       v("max_green", max_green,
-        "a green this long is switched to the program's next green (0: never)",
-        in_range(0, 86400));
-      v("num_seconds", num_seconds, "episode length in simulated seconds (0: to the scenario's end)",
-        in_range(0, 365 * 86400));
+        "a green this long is switched to the program's next green (0: never)", in_range(0, 86400));
+      v("num_seconds", num_seconds,
+        "episode length in simulated seconds (0: to the scenario's end)", in_range(0, 365 * 86400));
       v("reward_fn", reward_fn, "diff-waiting-time | queue | pressure | average-speed",
         OneOf{{"diff-waiting-time", "queue", "pressure", "average-speed"}});
       v("reward_scope", reward_scope,
@@ -218,7 +218,8 @@ class TrafficNetwork : public Env, public SplitStep {
   long decisions_ = 0;
   std::string tripinfo_path_;
   std::unique_ptr<PrivateTempDir> work_dir_;  // tripinfo and actuated programs; goes with the env
-  int key_time_, key_queue_, key_delay_, key_waiting_, key_travel_, key_throughput_, key_mean_queue_;
+  int key_time_, key_queue_, key_delay_, key_waiting_, key_travel_, key_throughput_,
+      key_mean_queue_;
 };
 
 }  // namespace rlrun

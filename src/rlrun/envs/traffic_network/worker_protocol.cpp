@@ -11,8 +11,14 @@ void write_reading(Writer& w, const NetworkReading& r) {
   for (const LaneReading& l : r.lanes) w.i32(l.vehicles).i32(l.halting).f64(l.vehicle_length);
   w.i32(static_cast<int32_t>(r.vehicles.size()));
   for (const VehicleReading& v : r.vehicles)
-    w.str(v.id).str(v.lane).f64(v.speed).f64(v.allowed_speed).f64(v.accumulated_waiting)
-        .f64(v.x).f64(v.y).f64(v.angle);
+    w.str(v.id)
+        .str(v.lane)
+        .f64(v.speed)
+        .f64(v.allowed_speed)
+        .f64(v.accumulated_waiting)
+        .f64(v.x)
+        .f64(v.y)
+        .f64(v.angle);
 }
 
 void read_reading(Reader& r, NetworkReading& out) {

@@ -75,19 +75,33 @@ class Writer {
 class Reader {
  public:
   explicit Reader(std::vector<char> body) : body_(std::move(body)) {}
-  uint8_t u8() { uint8_t v; raw(&v, 1); return v; }
-  int32_t i32() { int32_t v; raw(&v, 4); return v; }
-  double f64() { double v; raw(&v, 8); return v; }
+  uint8_t u8() {
+    uint8_t v;
+    raw(&v, 1);
+    return v;
+  }
+  int32_t i32() {
+    int32_t v;
+    raw(&v, 4);
+    return v;
+  }
+  double f64() {
+    double v;
+    raw(&v, 8);
+    return v;
+  }
   std::string str() {
     const int32_t n = i32();
-    if (n < 0 || static_cast<size_t>(n) > body_.size() - at_) throw std::runtime_error("SUMO worker: bad message");
+    if (n < 0 || static_cast<size_t>(n) > body_.size() - at_)
+      throw std::runtime_error("SUMO worker: bad message");
     std::string s(body_.data() + at_, static_cast<size_t>(n));
     at_ += static_cast<size_t>(n);
     return s;
   }
   std::vector<std::string> strings() {
     const int32_t n = i32();
-    if (n < 0 || static_cast<size_t>(n) > body_.size()) throw std::runtime_error("SUMO worker: bad message");
+    if (n < 0 || static_cast<size_t>(n) > body_.size())
+      throw std::runtime_error("SUMO worker: bad message");
     std::vector<std::string> out(static_cast<size_t>(n));
     for (std::string& s : out) s = str();
     return out;

@@ -75,8 +75,8 @@ inline VecAvx2 select_greater(VecAvx2 a, VecAvx2 b, VecAvx2 x, VecAvx2 y) {
 inline VecAvx2 sqrt(VecAvx2 a) { return {_mm256_sqrt_ps(a.r)}; }
 inline VecAvx2 floor(VecAvx2 a) { return {_mm256_floor_ps(a.r)}; }
 inline VecAvx2 exp2_integer(VecAvx2 n) {
-  const __m256i bits = _mm256_slli_epi32(
-      _mm256_add_epi32(_mm256_cvttps_epi32(n.r), _mm256_set1_epi32(127)), 23);
+  const __m256i bits =
+      _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvttps_epi32(n.r), _mm256_set1_epi32(127)), 23);
   return {_mm256_castsi256_ps(bits)};
 }
 

@@ -60,10 +60,10 @@ struct VecAvx512 {
       const __m512 v1 = _mm512_shuffle_f32x4(u[j], u[4 + j], 0xDD);
       const __m512 w0 = _mm512_shuffle_f32x4(u[8 + j], u[12 + j], 0x88);
       const __m512 w1 = _mm512_shuffle_f32x4(u[8 + j], u[12 + j], 0xDD);
-      _mm512_storeu_ps(b + j * ldb, _mm512_shuffle_f32x4(v0, w0, 0x88));        // column j
-      _mm512_storeu_ps(b + (4 + j) * ldb, _mm512_shuffle_f32x4(v1, w1, 0x88));  // 4 + j
-      _mm512_storeu_ps(b + (8 + j) * ldb, _mm512_shuffle_f32x4(v0, w0, 0xDD));  // 8 + j
-      _mm512_storeu_ps(b + (12 + j) * ldb, _mm512_shuffle_f32x4(v1, w1, 0xDD)); // 12 + j
+      _mm512_storeu_ps(b + j * ldb, _mm512_shuffle_f32x4(v0, w0, 0x88));         // column j
+      _mm512_storeu_ps(b + (4 + j) * ldb, _mm512_shuffle_f32x4(v1, w1, 0x88));   // 4 + j
+      _mm512_storeu_ps(b + (8 + j) * ldb, _mm512_shuffle_f32x4(v0, w0, 0xDD));   // 8 + j
+      _mm512_storeu_ps(b + (12 + j) * ldb, _mm512_shuffle_f32x4(v1, w1, 0xDD));  // 12 + j
     }
   }
 };
@@ -88,8 +88,8 @@ inline VecAvx512 floor(VecAvx512 a) {
 }
 // 2^n for integral n in [-126, 127], built in the exponent bits.
 inline VecAvx512 exp2_integer(VecAvx512 n) {
-  const __m512i bits = _mm512_slli_epi32(
-      _mm512_add_epi32(_mm512_cvttps_epi32(n.r), _mm512_set1_epi32(127)), 23);
+  const __m512i bits =
+      _mm512_slli_epi32(_mm512_add_epi32(_mm512_cvttps_epi32(n.r), _mm512_set1_epi32(127)), 23);
   return {_mm512_castsi512_ps(bits)};
 }
 

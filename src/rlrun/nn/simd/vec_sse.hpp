@@ -31,7 +31,8 @@ struct VecSse {
   // The fixed 16-lane tree of dense_kernel_set.hpp: lanes 0-3 of t8 are parts 0 + 2, lanes 4-7
   // parts 1 + 3, then t4 = t8[0..3] + t8[4..7], then + 2 lanes, then + 1.
   static float reduce16(const VecSse (&parts)[4]) {
-    const __m128 t4 = _mm_add_ps(_mm_add_ps(parts[0].r, parts[2].r), _mm_add_ps(parts[1].r, parts[3].r));
+    const __m128 t4 =
+        _mm_add_ps(_mm_add_ps(parts[0].r, parts[2].r), _mm_add_ps(parts[1].r, parts[3].r));
     const __m128 t2 = _mm_add_ps(t4, _mm_movehl_ps(t4, t4));
     return _mm_cvtss_f32(_mm_add_ss(t2, _mm_shuffle_ps(t2, t2, 1)));
   }

@@ -25,8 +25,8 @@ const OptionalComponent* unbuilt_component_of(const std::string& id) {
 
 std::string unbuilt_env_message(const std::string& id, const OptionalComponent& component) {
   return id + " is not built into this rlrun (" + component.description +
-         " were left out): install Debian's " + component.packages +
-         ", then configure with -D" + component.option + "=ON and build again (docs/install.md)";
+         " were left out): install Debian's " + component.packages + ", then configure with -D" +
+         component.option + "=ON and build again (docs/install.md)";
 }
 
 // The entry is a family of one id (or of the family's ids): Registry::env expands it when a
@@ -37,8 +37,8 @@ void add_unbuilt_env_entries(EnvEntries& out) {
     for (const std::string& id : component.env_ids) {
       EnvEntry entry;
       entry.id = id;
-      entry.description = "(not built: -D" + component.option + "=ON, Debian's " +
-                          component.packages + ")";
+      entry.description =
+          "(not built: -D" + component.option + "=ON, Debian's " + component.packages + ")";
       entry.params = [] { return std::vector<FieldDoc>{}; };
       entry.expand = [&component](const std::string& named) -> EnvEntry {
         throw std::invalid_argument(unbuilt_env_message(named, component));

@@ -137,8 +137,10 @@ void register_plugin(PluginEntry entry, const std::string& name, Registry& regis
   }
   if (plugin_version == 1)
     throw UsageError(
-        "plugin " + name + " was built for rlrun plugin API version 1; this rlrun (" RLRUN_VERSION
-        ") implements version " + std::to_string(api::kApiVersion) +
+        "plugin " + name +
+        " was built for rlrun plugin API version 1; this rlrun (" RLRUN_VERSION
+        ") implements version " +
+        std::to_string(api::kApiVersion) +
         ". Version 2 has one env interface for built-in and plugin envs: derive from rlrun::Env "
         "(#include <rlrun/plugin.hpp>) instead of rlrun::api::Env; use rlrun::Space and "
         "rlrun::StepResult; add `std::string id() const override`, `const Space& "
@@ -194,8 +196,7 @@ std::vector<std::string> load_plugins_section(const ConfigNode& plugins, Registr
     } catch (const UsageError& e) {
       // A config records where its plugin was; when the library has moved since, a --plugin
       // naming the same file at its new place stands in for it.
-      const std::string moved =
-          loaded_with_file_name(registry, fs::path(path).filename().string());
+      const std::string moved = loaded_with_file_name(registry, fs::path(path).filename().string());
       if (moved.empty()) item.fail(e.what());
       loaded.push_back(moved);
     }

@@ -27,39 +27,56 @@ namespace rlrun {
 
 void add_builtin_wrappers(Registry& r) {
   r.add(make_wrapper_entry<DiscreteAsBox>(
-      "DiscreteAsBox", "Box(-1, 1, (n,)) scores -> argmax action of a Discrete(n) env (SAC/TD3 on CartPole)"));
+      "DiscreteAsBox",
+      "Box(-1, 1, (n,)) scores -> argmax action of a Discrete(n) env (SAC/TD3 on CartPole)"));
   r.add(make_wrapper_entry<BoxAsDiscrete>(
       "BoxAsDiscrete", "Discrete(bins^dims) grid over a Box action space (DQN on Pendulum)"));
   // Workflow wrappers (issue 4): SB3 VecNormalize halves (statistics stored in the model file),
   // Gymnasium's action/observation/reward wrappers, reward shaping from YAML.
   r.add(make_wrapper_entry<NormalizeObservation>(
-      "NormalizeObservation", "running mean/std observation normalisation (SB3 VecNormalize norm_obs)"));
+      "NormalizeObservation",
+      "running mean/std observation normalisation (SB3 VecNormalize norm_obs)"));
   r.add(make_wrapper_entry<NormalizeReward>(
-      "NormalizeReward", "reward / running std of the discounted return (SB3 VecNormalize norm_reward)"));
+      "NormalizeReward",
+      "reward / running std of the discounted return (SB3 VecNormalize norm_reward)"));
   r.add(make_wrapper_entry<ClipAction>(
       "ClipAction", "clip actions to the env's Box bounds; agent sees Box(-inf, inf) (Gymnasium)"));
   r.add(make_wrapper_entry<RescaleAction>(
-      "RescaleAction", "agent acts in Box(min_action, max_action), mapped onto the env's bounds (Gymnasium)"));
+      "RescaleAction",
+      "agent acts in Box(min_action, max_action), mapped onto the env's bounds (Gymnasium)"));
   r.add(make_wrapper_entry<FrameStack>(
       "FrameStack", "the last n_stack observations stacked, oldest first (SB3 VecFrameStack)"));
   r.add(make_wrapper_entry<TransformReward>(
       "TransformReward", "reward' = clip(scale * reward + offset, clip_min, clip_max)"));
   r.add(make_wrapper_entry<RewardShaping>(
-      "RewardShaping", "adds YAML-configured terms to the reward (obs_above_for, obs_abs, action_sq, ...)"));
-  r.add(make_wrapper_entry<TimeFeature>(
-      "TimeFeature", "appends the remaining episode time 1 - t/max_steps to the observation (sb3_contrib TimeFeatureWrapper)"));
+      "RewardShaping",
+      "adds YAML-configured terms to the reward (obs_above_for, obs_abs, action_sq, ...)"));
+  r.add(make_wrapper_entry<TimeFeature>("TimeFeature",
+                                        "appends the remaining episode time 1 - t/max_steps to the "
+                                        "observation (sb3_contrib TimeFeatureWrapper)"));
   r.add(make_wrapper_entry<OneHotObservation>(
       "OneHotObservation", "Discrete/MultiDiscrete/MultiBinary observations as SB3's one-hot Box"));
 }
 
 void add_builtin_algorithms(Registry& r) {
-  r.add(make_algorithm_entry<PPO>("PPO", "Proximal Policy Optimization (SB3 semantics); Box/Discrete/MultiDiscrete/MultiBinary actions"));
-  r.add(make_algorithm_entry<A2C>("A2C", "Advantage Actor-Critic (SB3 semantics, RMSprop); Box/Discrete/MultiDiscrete/MultiBinary actions"));
-  r.add(make_algorithm_entry<SAC>("SAC", "Soft Actor-Critic (SB3 semantics, learned entropy coefficient); Box actions"));
-  r.add(make_algorithm_entry<DQN>("DQN", "Deep Q-Network (SB3 semantics, epsilon-greedy, Huber loss); Discrete actions"));
-  r.add(make_algorithm_entry<TD3>("TD3", "Twin Delayed DDPG (SB3 semantics, clipped double-Q, delayed actor); Box actions"));
-  r.add(make_algorithm_entry<DDPG>("DDPG", "Deep Deterministic Policy Gradient (SB3 semantics: TD3 without its tricks); Box actions"));
-  r.add(make_algorithm_entry<TQC>("TQC", "Truncated Quantile Critics (sb3-contrib semantics: SAC with truncated distributional critics); Box actions"));
+  r.add(make_algorithm_entry<PPO>("PPO",
+                                  "Proximal Policy Optimization (SB3 semantics); "
+                                  "Box/Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<A2C>("A2C",
+                                  "Advantage Actor-Critic (SB3 semantics, RMSprop); "
+                                  "Box/Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<SAC>(
+      "SAC", "Soft Actor-Critic (SB3 semantics, learned entropy coefficient); Box actions"));
+  r.add(make_algorithm_entry<DQN>(
+      "DQN", "Deep Q-Network (SB3 semantics, epsilon-greedy, Huber loss); Discrete actions"));
+  r.add(make_algorithm_entry<TD3>(
+      "TD3", "Twin Delayed DDPG (SB3 semantics, clipped double-Q, delayed actor); Box actions"));
+  r.add(make_algorithm_entry<DDPG>(
+      "DDPG",
+      "Deep Deterministic Policy Gradient (SB3 semantics: TD3 without its tricks); Box actions"));
+  r.add(make_algorithm_entry<TQC>("TQC",
+                                  "Truncated Quantile Critics (sb3-contrib semantics: SAC with "
+                                  "truncated distributional critics); Box actions"));
 }
 
 const Registry& policy_registry() {

@@ -5,9 +5,9 @@
 // prints it.
 // Lookups of unknown ids fail with the YAML position and the closest registered id.
 #include <deque>
-#include <mutex>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -70,7 +70,8 @@ class Registry {
     const std::lock_guard<std::mutex> lock(*expanded_mutex_);
     if (const EnvEntry* e = find_or_null(expanded_, id)) return e;
     for (const EnvEntry& family : envs_) {
-      if (!family.expand || id.size() < family.id.size() || id.compare(0, family.id.size(), family.id) != 0)
+      if (!family.expand || id.size() < family.id.size() ||
+          id.compare(0, family.id.size(), family.id) != 0)
         continue;
       try {
         expanded_.push_back(family.expand(id));

@@ -115,7 +115,9 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
   const SpaceKind kind = env->action_space().kind();
   if (accepted.empty() || std::find(accepted.begin(), accepted.end(), kind) != accepted.end())
     return env;
-  auto accepts = [&](SpaceKind k) { return std::find(accepted.begin(), accepted.end(), k) != accepted.end(); };
+  auto accepts = [&](SpaceKind k) {
+    return std::find(accepted.begin(), accepted.end(), k) != accepted.end();
+  };
   std::string fix;
   if (kind == SpaceKind::kDiscrete && accepts(SpaceKind::kBox)) fix = "DiscreteAsBox";
   if (kind == SpaceKind::kBox && accepts(SpaceKind::kDiscrete)) fix = "BoxAsDiscrete";
@@ -124,7 +126,12 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
     if (wrapper) return wrapper->make(std::move(env), wrapper->parse(ConfigNode()));
   }
   std::string names;
-  for (SpaceKind k : accepted) names += std::string(names.empty() ? "" : " or ") + (k == SpaceKind::kBox ? "Box" : k == SpaceKind::kDiscrete ? "Discrete" : k == SpaceKind::kMultiDiscrete ? "MultiDiscrete" : "MultiBinary");
+  for (SpaceKind k : accepted)
+    names += std::string(names.empty() ? "" : " or ") + (k == SpaceKind::kBox        ? "Box"
+                                                         : k == SpaceKind::kDiscrete ? "Discrete"
+                                                         : k == SpaceKind::kMultiDiscrete
+                                                             ? "MultiDiscrete"
+                                                             : "MultiBinary");
   std::string message = spec.algorithm_id + " supports " + names + " actions, but " + spec.id +
                         " has " + env->action_space().describe();
   if (!fix.empty())

@@ -19,14 +19,14 @@ namespace rlrun {
 inline constexpr int kMaxEnvs = 4096;
 
 struct EnvSectionConfig {
-  int n_envs = 1;                          // parallel env copies (SB3 n_envs)
-  std::optional<int> max_episode_steps;    // override the registered time limit
-  bool auto_wrap = false;                  // add the action-space wrapper the algorithm needs
-  ProgramPath python{"python3"};           // interpreter of python:/gymnasium: envs
-  double startup_timeout = 60.0;           // seconds their worker may take to build the env
+  int n_envs = 1;                        // parallel env copies (SB3 n_envs)
+  std::optional<int> max_episode_steps;  // override the registered time limit
+  bool auto_wrap = false;                // add the action-space wrapper the algorithm needs
+  ProgramPath python{"python3"};         // interpreter of python:/gymnasium: envs
+  double startup_timeout = 60.0;         // seconds their worker may take to build the env
   // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
   std::optional<std::vector<std::string>> info_keywords;
-  NormalizeSetting normalize;              // SB3 VecNormalize (wrappers/vec_normalize.hpp)
+  NormalizeSetting normalize;  // SB3 VecNormalize (wrappers/vec_normalize.hpp)
   template <class V>
   void visit(V& v) {
     v("n_envs", n_envs, "number of env copies stepped together", in_range(1, kMaxEnvs));
@@ -34,7 +34,8 @@ struct EnvSectionConfig {
       "time limit override (null = registered limit; to remove a limit, use a large number)",
       at_least(1));
     v("auto_wrap", auto_wrap,
-      "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm needs it");
+      "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm "
+      "needs it");
     v("python", python,
       "Python interpreter for python:/gymnasium: envs (a name on PATH or a path, e.g. a "
       "virtualenv's bin/python); the default python3 gives way to $RLRUN_PYTHON when set");
@@ -60,7 +61,7 @@ struct EnvSpec {
   std::string id;
   std::string where;  // "file:line:col" of env.id, for messages after parsing
   EnvSectionConfig section;
-  AnyConfig kwargs;   // the env's Config (empty: its defaults)
+  AnyConfig kwargs;  // the env's Config (empty: its defaults)
   std::vector<WrapperSpec> wrappers;
   // Set from the algorithm: the action spaces it supports and its id, for the check (and
   // auto_wrap) at the end of the env stack. Empty: no check.

@@ -11,13 +11,15 @@ namespace rlrun {
 
 // The `section:` of the experiment file: SB3 EvalCallback + its two stop callbacks.
 struct EvalConfig {
-  int64_t freq = 0;         // total env steps between evaluations (0 = off)
-  int n_episodes = 10;      // episodes per evaluation
+  int64_t freq = 0;     // total env steps between evaluations (0 = off)
+  int n_episodes = 10;  // episodes per evaluation
   bool deterministic = true;
-  std::optional<double> reward_threshold;       // stop once best mean reward >= this
-  std::optional<int> max_no_improvement_evals;  // stop after more evals than this without a new best
-  int min_evals = 0;                            // evaluations before counting no-improvement
-  std::string best_metric = "mean_reward";      // the evaluations.csv column best_model.zip is chosen by
+  std::optional<double> reward_threshold;  // stop once best mean reward >= this
+  std::optional<int>
+      max_no_improvement_evals;  // stop after more evals than this without a new best
+  int min_evals = 0;             // evaluations before counting no-improvement
+  std::string best_metric =
+      "mean_reward";  // the evaluations.csv column best_model.zip is chosen by
   std::string best_direction = "maximize";
   // "file:line:col" of eval.best_metric, set by the experiment reader: the metric is checked
   // against the env's columns only once the evaluation env exists (not a visited field).
@@ -29,7 +31,8 @@ struct EvalConfig {
     v("n_episodes", n_episodes, "episodes per evaluation", in_range(1, 1000000));
     v("deterministic", deterministic, "use the deterministic policy");
     v("reward_threshold", reward_threshold,
-      "stop training once the best mean eval reward >= this (SB3 StopTrainingOnRewardThreshold; null = never)");
+      "stop training once the best mean eval reward >= this (SB3 StopTrainingOnRewardThreshold; "
+      "null = never)");
     v("max_no_improvement_evals", max_no_improvement_evals,
       "stop when more than this many evaluations in a row bring no new best (SB3 "
       "StopTrainingOnNoModelImprovement; null = never)",

@@ -14,8 +14,8 @@ namespace rlrun {
 
 namespace {
 
-const std::vector<std::string> kSections{"run",     "env",   "algo",   "eval",   "checkpoint",
-                                         "obs_log", "video", "plugins"};
+const std::vector<std::string> kSections{"run",        "env",     "algo",  "eval",
+                                         "checkpoint", "obs_log", "video", "plugins"};
 
 // Problems found so far, one line each; a step that throws ConfigError adds its lines and
 // parsing goes on, so one run of `rlrun train` shows every problem of every file.
@@ -46,7 +46,8 @@ class Problems {
 
 std::string required_id(const ConfigNode& section, const char* what) {
   if (!section.defined()) section.fail(std::string("missing section (needs at least `id`)"));
-  if (!section.is_map()) section.fail("expected a map with `id` and " + std::string(what) + " settings");
+  if (!section.is_map())
+    section.fail("expected a map with `id` and " + std::string(what) + " settings");
   const ConfigNode id = section.child("id");
   if (!id.defined()) section.fail(std::string("missing `id` (the ") + what + " to use)");
   return id.as_string();
@@ -84,8 +85,8 @@ void parse_env(const ConfigNode& env, const Registry& registry, const ParseOptio
   // means "none" there, and is refused everywhere else (0 would silently remove a limit).
   const EnvEntry* registered = registry.find_env(exp.env.id);
   const ConfigNode limit = env.child("max_episode_steps");
-  const bool legacy_zero = registered && registered->max_episode_steps == 0 &&
-                           limit.is_scalar() && limit.yaml().Scalar() == "0";
+  const bool legacy_zero = registered && registered->max_episode_steps == 0 && limit.is_scalar() &&
+                           limit.yaml().Scalar() == "0";
   problems.attempt([&] {
     ConfigNode section = legacy_zero ? env.without("max_episode_steps") : env;
     // The interpreter of an env never built runs nothing: not read, so not vouched for.
@@ -97,14 +98,16 @@ void parse_env(const ConfigNode& env, const Registry& registry, const ParseOptio
       // Kept as written: nothing is built from them (ParseOptions).
       const ConfigNode kwargs = env.child("kwargs");
       if (kwargs.defined() && !kwargs.is_map()) kwargs.fail("expected a map of the env's settings");
-      YAML::Node copy = kwargs.defined() ? YAML::Clone(kwargs.yaml()) : YAML::Node(YAML::NodeType::Map);
+      YAML::Node copy =
+          kwargs.defined() ? YAML::Clone(kwargs.yaml()) : YAML::Node(YAML::NodeType::Map);
       exp.env.kwargs = AnyConfig::of_yaml(copy, copy);
       return;
     }
     const EnvEntry* entry = registry.find_env(exp.env.id);
     if (!entry && !exp.plugins.empty() && !env.trusted())
       env.child("id").fail("env '" + exp.env.id + "' comes from a plugin library named in " +
-                           env.origin() + "; rlrun loads no library named in a file it does "
+                           env.origin() +
+                           "; rlrun loads no library named in a file it does "
                            "not trust (docs/security.md). If you trust it, pass --plugin " +
                            exp.plugins.front() + "." + trust_alternative(env));
     const EnvEntry& found = registry.env(exp.env.id, env.child("id"));
@@ -141,7 +144,8 @@ void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems
                                 " acts after evaluations: set eval.freq > 0 too");
         });
   }
-  problems.attempt([&] { exp.checkpoint = read_config<CheckpointConfig>(root.child("checkpoint")); });
+  problems.attempt(
+      [&] { exp.checkpoint = read_config<CheckpointConfig>(root.child("checkpoint")); });
   const ConfigNode obs_log = root.child("obs_log");
   if (problems.attempt([&] { exp.obs_log = read_config<ObsLogConfig>(obs_log); }) &&
       exp.obs_log.env >= exp.env.section.n_envs)
@@ -152,7 +156,8 @@ void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems
   const ConfigNode video = root.child("video");
   if (problems.attempt([&] { exp.video = read_config<VideoConfig>(video); })) {
     if ((exp.video.width == 0) != (exp.video.height == 0))
-      problems.attempt([&] { video.fail("set both width and height, or neither (the env's own size)"); });
+      problems.attempt(
+          [&] { video.fail("set both width and height, or neither (the env's own size)"); });
     else if (exp.video.width != 0)
       if (const std::string problem = check_video_size(exp.video.width, exp.video.height);
           !problem.empty())
@@ -229,7 +234,8 @@ YAML::Node resolve(const Experiment& exp, const Registry& registry) {
 
 Experiment parse_experiment(const ConfigNode& root, const Registry& registry,
                             const ParseOptions& options) {
-  if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
+  if (!root.is_map())
+    root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
   Problems problems;
   std::string section_list;
   for (const auto& s : kSections) section_list += (section_list.empty() ? "" : ", ") + s;
@@ -252,7 +258,8 @@ Experiment parse_experiment(const ConfigNode& root, const Registry& registry,
     // The user's own list, relative to the user's file (an accepted model's list was loaded,
     // as written, by load_accepted_plugins: runtime/io/model_trust.hpp).
     if (plugins.trusted() && !plugins.accepted_as_a_whole())
-      for (std::string& path : exp.plugins) path = resolve_plugin_path(path, plugin_base_dir(plugins));
+      for (std::string& path : exp.plugins)
+        path = resolve_plugin_path(path, plugin_base_dir(plugins));
   });
   problems.attempt([&] { exp.run = read_config<RunConfig>(root.child("run")); });
   parse_env(root.child("env"), registry, options, exp, problems);
@@ -287,7 +294,8 @@ namespace {
 
 Experiment load_experiment_root(ConfigNode root, const std::string& default_name,
                                 const std::vector<std::string>& overrides, Registry& registry) {
-  if (!root.is_map()) root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
+  if (!root.is_map())
+    root.fail("an experiment file is a map with sections run, env, algo, eval, ...");
   for (const auto& o : overrides) root.apply_override(o);
   // The user's own file may name plugin libraries: they are loaded before any env id is looked
   // up (never those of an untrusted file; docs/security.md).
@@ -317,8 +325,8 @@ Experiment load_experiment_text(const std::string& text, const std::string& orig
                               registry);
 }
 
-EnvSpec default_env_spec(const std::string& id, const Registry& registry,
-                         const std::string& origin, const std::vector<std::string>& overrides) {
+EnvSpec default_env_spec(const std::string& id, const Registry& registry, const std::string& origin,
+                         const std::vector<std::string>& overrides) {
   if (overrides.empty()) {
     EnvSpec spec;
     spec.id = id;
@@ -353,7 +361,8 @@ std::string dump_yaml(const YAML::Node& node) {
 std::unique_ptr<Algorithm> make_algorithm(const Experiment& experiment, const Registry& registry,
                                           const AlgorithmSetup& setup) {
   const AlgorithmEntry* entry = registry.find_algorithm(experiment.algo.id);
-  if (!entry) throw ConfigError(experiment.algo.where + ": unknown algorithm " + experiment.algo.id);
+  if (!entry)
+    throw ConfigError(experiment.algo.where + ": unknown algorithm " + experiment.algo.id);
   // The checks parsing made, again: for an env whose spaces were unknown then (python:),
   // this is their first run.
   const ConfigProblems problems = entry->check(experiment.algo.params, setup);

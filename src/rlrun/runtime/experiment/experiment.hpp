@@ -84,8 +84,7 @@ Experiment load_experiment_text(const std::string& text, const std::string& orig
 // The spec of env `id` with its default parameters (env_by_id, tests), or with `env.*`
 // overrides from the command line (`--set env.python=...`). `origin` names it in messages.
 // Throws ConfigError for an unknown id or a bad override.
-EnvSpec default_env_spec(const std::string& id, const Registry& registry,
-                         const std::string& origin,
+EnvSpec default_env_spec(const std::string& id, const Registry& registry, const std::string& origin,
                          const std::vector<std::string>& overrides = {});
 
 // The experiment's algorithm, fresh, for envs of `setup`'s spaces (the trainer's, and the probes

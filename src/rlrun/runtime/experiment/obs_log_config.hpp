@@ -14,7 +14,8 @@ struct ObsLogConfig {
   template <class V>
   void visit(V& v) {
     v("freq", freq,
-      "save the observations of training env `env` to obs_log/obs_<N>.npy every `freq` TOTAL env steps (0 = off)",
+      "save the observations of training env `env` to obs_log/obs_<N>.npy every `freq` TOTAL env "
+      "steps (0 = off)",
       non_negative());
     v("env", env, "index of the training env whose observations are logged", non_negative());
   }

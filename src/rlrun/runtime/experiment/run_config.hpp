@@ -10,17 +10,17 @@
 namespace rlrun {
 
 struct RunConfig {
-  std::string name;                 // default: the config file's stem
-  uint64_t seed = 0;                // env i is seeded seed + i; all RNGs derive from it
-  int64_t total_timesteps = 100000; // env steps over all envs, as SB3's learn(total_timesteps)
-  std::string out_dir = "runs";     // run directory = <out_dir>/<name>/seed<seed>
-  std::optional<int> log_interval;  // progress.csv rows every N iterations (on-policy) or
-                                    // episodes (off-policy); null = SB3's default (1 / 4)
-  double console_interval = 2.0;    // min seconds between console tables
-  std::string init_from;            // model file whose weights start the run (empty: none)
-  OutputPath tensorboard_log;       // SB3's tensorboard_log: DIR for TensorBoard event files
+  std::string name;                  // default: the config file's stem
+  uint64_t seed = 0;                 // env i is seeded seed + i; all RNGs derive from it
+  int64_t total_timesteps = 100000;  // env steps over all envs, as SB3's learn(total_timesteps)
+  std::string out_dir = "runs";      // run directory = <out_dir>/<name>/seed<seed>
+  std::optional<int> log_interval;   // progress.csv rows every N iterations (on-policy) or
+                                     // episodes (off-policy); null = SB3's default (1 / 4)
+  double console_interval = 2.0;     // min seconds between console tables
+  std::string init_from;             // model file whose weights start the run (empty: none)
+  OutputPath tensorboard_log;        // SB3's tensorboard_log: DIR for TensorBoard event files
   std::optional<std::string> tb_log_name;  // SB3's tb_log_name; null = the run name
-  bool tensorboard_images = false;  // the learning curve as a TensorBoard image at the end
+  bool tensorboard_images = false;         // the learning curve as a TensorBoard image at the end
 
   template <class V>
   void visit(V& v) {

@@ -14,15 +14,16 @@ inline constexpr int kMaxVideoSide = kMaxFrameSide;
 
 // The `section:` of the experiment file: an mp4 of evaluation episodes every `freq` steps.
 struct VideoConfig {
-  int64_t freq = 0;            // total env steps between videos (0 = off)
-  int n_episodes = 1;          // episodes per video
+  int64_t freq = 0;    // total env steps between videos (0 = off)
+  int n_episodes = 1;  // episodes per video
   bool deterministic = true;
-  std::optional<double> fps;   // null = the env's render fps
-  int width = 0, height = 0;   // 0 = the env's frame size
-  bool overlay = true;         // env id, episode, step, return
+  std::optional<double> fps;  // null = the env's render fps
+  int width = 0, height = 0;  // 0 = the env's frame size
+  bool overlay = true;        // env id, episode, step, return
   template <class V>
   void visit(V& v) {
-    v("freq", freq, "record videos/step_<N>.mp4 every `freq` TOTAL env steps (0 = never; needs ffmpeg)",
+    v("freq", freq,
+      "record videos/step_<N>.mp4 every `freq` TOTAL env steps (0 = never; needs ffmpeg)",
       non_negative());
     v("n_episodes", n_episodes, "evaluation episodes per video", in_range(1, 10000));
     v("deterministic", deterministic, "use the deterministic policy");

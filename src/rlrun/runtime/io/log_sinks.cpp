@@ -54,7 +54,8 @@ CsvSink::CsvSink(std::string path, bool append) : path_(std::move(path)) {
     std::string header;
     if (in && in->next(header)) keys_ = split_csv_line(header);
   }
-  file_ = CheckedFile::run_file(path_, append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
+  file_ = CheckedFile::run_file(path_,
+                                append ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
 }
 
 void CsvSink::rewrite_with_header() {

@@ -58,9 +58,9 @@ struct ModelFile {
   std::string path;
   ModelMeta meta;
   std::string config_yaml;
-  TensorMap tensors;              // the algorithm's
-  TensorMap wrapper_statistics;   // `wrappers/...` members (see env_statistics.hpp)
-  TensorMap training_state;       // `training/...` members (checkpoints only)
+  TensorMap tensors;                  // the algorithm's
+  TensorMap wrapper_statistics;       // `wrappers/...` members (see env_statistics.hpp)
+  TensorMap training_state;           // `training/...` members (checkpoints only)
   bool holds_training_state = false;  // phase 1: the file has `training/...` members
 };
 
@@ -88,8 +88,8 @@ void save_model(const std::string& path, const Algorithm& algorithm, const Exper
                 Env& env, const TensorMap& env_tensors = {});
 // The members save_model writes (for writers into a run directory: core/zip_archive.hpp's
 // write_zip_atomic into a DirHandle).
-ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment,
-                         Env& env, const TensorMap& env_tensors = {});
+ZipMembers model_members(const Algorithm& algorithm, const Experiment& experiment, Env& env,
+                         const TensorMap& env_tensors = {});
 
 // Phase 1 (see the top of this file). Throws RuntimeFailure naming the file and the reason.
 ModelFile read_model_header(const std::string& path);

@@ -34,7 +34,8 @@ PolicyGraph build_model_graph(const LoadedModel& model, bool with_value) {
     obs = "obs";
   }
   // Up the stack: the innermost wrapper sees the env's observation first.
-  for (auto it = stack.rbegin(); it != stack.rend(); ++it) obs = (*it)->export_observation(graph, obs);
+  for (auto it = stack.rbegin(); it != stack.rend(); ++it)
+    obs = (*it)->export_observation(graph, obs);
   model.algorithm->export_policy(graph, obs, with_value);
   // Down the stack: the outermost wrapper receives the agent's action first.
   std::string action = graph.action();

@@ -8,13 +8,13 @@
 namespace rlrun {
 
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
-                                 const std::vector<std::string>& overrides,
-                                 const ModelTrust& trust, ModelEnv use) {
+                                 const std::vector<std::string>& overrides, const ModelTrust& trust,
+                                 ModelEnv use) {
   // The model's config is data from anyone (docs/security.md): parsed untrusted, so it can
   // name no plugin library, program or output file; the user's --set values can, and so can
   // the whole file when the user accepts it (--trust), each value printed first.
-  ConfigNode root = ConfigNode::load_string(model.config_yaml, model.path + ":config.yaml",
-                                            trust.config_trust());
+  ConfigNode root =
+      ConfigNode::load_string(model.config_yaml, model.path + ":config.yaml", trust.config_trust());
   root.set_trust_option(trust.option);
   // Where training wrote TensorBoard files: nothing that loads a model writes any, so the
   // run's directory is not the user's to vouch for (it refused every model of a run with
@@ -67,15 +67,16 @@ void load_frozen_statistics(const ModelFile& model, Env& env) {
   try {
     load_model_statistics(env, model.wrapper_statistics, /*training=*/false);
   } catch (const StateMismatch& e) {
-    throw RuntimeFailure(model.path +
-                         ": the model's env normalises with statistics the file does not hold: " +
-                         e.what());
+    throw RuntimeFailure(
+        model.path +
+        ": the model's env normalises with statistics the file does not hold: " + e.what());
   }
 }
 
 }  // namespace
 
-std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
+std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model,
+                                                const Experiment& experiment,
                                                 const Registry& registry,
                                                 const Space& observation_space,
                                                 const Space& action_space) {
@@ -106,25 +107,28 @@ EnvPtr model_env(const ModelFile& model, const Experiment& experiment, const Reg
 }
 
 LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
-                                 const std::vector<std::string>& overrides,
-                                 const ModelTrust& trust, ModelEnv use) {
+                                 const std::vector<std::string>& overrides, const ModelTrust& trust,
+                                 ModelEnv use) {
   LoadedModel loaded;
   loaded.file = read_model_header(path);
   const ModelFile& model = loaded.file;
   // Without recorded spaces the env must say them, so this program must have it (the deploy
   // library's registry holds no env).
-  if (use == ModelEnv::kSpacesOnly && !model.meta.env_spaces && !registry.find_env(model.meta.env_id))
-    throw RuntimeFailure(path + ": written by an rlrun that did not record the env's spaces in "
-                                "meta.json (env_spaces), and this program does not have " +
-                         model.meta.env_id + " to learn them from; `rlrun export`, `rlrun eval` "
+  if (use == ModelEnv::kSpacesOnly && !model.meta.env_spaces &&
+      !registry.find_env(model.meta.env_id))
+    throw RuntimeFailure(path +
+                         ": written by an rlrun that did not record the env's spaces in "
+                         "meta.json (env_spaces), and this program does not have " +
+                         model.meta.env_id +
+                         " to learn them from; `rlrun export`, `rlrun eval` "
                          "and the Python package's rlrun.load read it, and a model trained again "
                          "records them");
   loaded.experiment = experiment_from_model(model, registry, overrides, trust, use);
   // make_model_env's env, before its statistics are read.
   loaded.env = model_env(model, loaded.experiment, registry, use);
-  loaded.algorithm = make_model_algorithm(model, loaded.experiment, registry,
-                                          loaded.env->observation_space(),
-                                          loaded.env->action_space());
+  loaded.algorithm =
+      make_model_algorithm(model, loaded.experiment, registry, loaded.env->observation_space(),
+                           loaded.env->action_space());
   read_model_tensors(loaded.file, ModelParts::kModel,
                      model_tensor_budget(*loaded.algorithm, *loaded.env));
   load_weights(model, *loaded.algorithm);
@@ -142,8 +146,9 @@ LoadedModel load_model(const std::string& path, const Registry& registry,
   try {
     return load_model_unguarded(path, registry, overrides, trust, use);
   } catch (const std::bad_alloc&) {
-    throw RuntimeFailure(path + ": its config.yaml describes an env or networks larger than this "
-                                "machine's memory (std::bad_alloc while building them)");
+    throw RuntimeFailure(path +
+                         ": its config.yaml describes an env or networks larger than this "
+                         "machine's memory (std::bad_alloc while building them)");
   }
 }
 

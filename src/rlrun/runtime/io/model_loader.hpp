@@ -30,7 +30,8 @@ enum class ModelEnv { kRun, kSpacesOnly };
 Experiment experiment_from_model(const ModelFile& model, const Registry& registry,
                                  const std::vector<std::string>& overrides = {},
                                  const ModelTrust& trust = {}, ModelEnv use = ModelEnv::kRun);
-std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model, const Experiment& experiment,
+std::unique_ptr<Algorithm> algorithm_from_model(const ModelFile& model,
+                                                const Experiment& experiment,
                                                 const Registry& registry,
                                                 const Space& observation_space,
                                                 const Space& action_space);
@@ -55,7 +56,7 @@ struct LoadedModel {
 // `overrides`, `trust` and `use` as for experiment_from_model; with kSpacesOnly, `env` cannot
 // be stepped.
 LoadedModel load_model(const std::string& path, const Registry& registry,
-                       const std::vector<std::string>& overrides = {},
-                       const ModelTrust& trust = {}, ModelEnv use = ModelEnv::kRun);
+                       const std::vector<std::string>& overrides = {}, const ModelTrust& trust = {},
+                       ModelEnv use = ModelEnv::kRun);
 
 }  // namespace rlrun

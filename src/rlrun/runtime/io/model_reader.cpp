@@ -88,7 +88,8 @@ ModelMeta parse_meta(const std::vector<uint8_t>& bytes, const std::string& path)
     m.observation_space = text_field(meta, "observation_space");
     m.action_space = text_field(meta, "action_space");
     m.num_timesteps = integer_field(meta, "num_timesteps");
-    if (const auto env = meta.find("env_spaces"); env != meta.end()) m.env_spaces = env_spaces_field(*env);
+    if (const auto env = meta.find("env_spaces"); env != meta.end())
+      m.env_spaces = env_spaces_field(*env);
   } catch (const nlohmann::json::exception& e) {
     throw RuntimeFailure(path + ": meta.json is malformed: " + e.what());
   } catch (const RuntimeFailure& e) {
@@ -127,8 +128,7 @@ Tensor read_npy_member(const ZipReader& archive, const ZipEntry& entry) {
   if (h.data_bytes != member.remaining())
     throw RuntimeFailure(what + ": not a supported .npy array (its shape needs " +
                          count_of(static_cast<int64_t>(h.data_bytes), "byte") +
-                         " of data, the zip declares " +
-                         std::to_string(member.remaining()) + ")");
+                         " of data, the zip declares " + std::to_string(member.remaining()) + ")");
   Tensor t;
   t.dtype = h.dtype;
   t.shape = std::move(h.shape);

@@ -4,7 +4,6 @@
 #include <cstring>
 #include <vector>
 
-
 namespace rlrun {
 
 namespace {
@@ -32,7 +31,8 @@ std::string describe_non_finite(const LogRow& row) {
   // Losses only: other diagnostics are legitimately nan at times (SB3's explained_variance is
   // nan when the returns have zero variance).
   for (const auto& [key, value] : row)
-    if (key.rfind("train/", 0) == 0 && key.find("loss") != std::string::npos && !std::isfinite(value))
+    if (key.rfind("train/", 0) == 0 && key.find("loss") != std::string::npos &&
+        !std::isfinite(value))
       return key + " is " + name_value(value);
   return "";
 }

@@ -22,7 +22,7 @@ namespace {
 // width x batch block of the scratch buffer.
 struct Slot {
   bool observation = false;
-  int row = 0;     // observation: first row; scratch: first float per column (x batch)
+  int row = 0;  // observation: first row; scratch: first float per column (x batch)
   int width = 0;
 };
 
@@ -55,9 +55,11 @@ struct Policy::Impl {
     action_size = action.width;
   }
 
-  ConstGraphBlock view(const Slot& s, const float* obs, const float* scratch, Eigen::Index n) const {
+  ConstGraphBlock view(const Slot& s, const float* obs, const float* scratch,
+                       Eigen::Index n) const {
     if (s.observation) return {obs + s.row, s.width, n, Eigen::OuterStride<>(observation_size)};
-    return {scratch + static_cast<Eigen::Index>(s.row) * n, s.width, n, Eigen::OuterStride<>(s.width)};
+    return {scratch + static_cast<Eigen::Index>(s.row) * n, s.width, n,
+            Eigen::OuterStride<>(s.width)};
   }
 
   void run(const float* obs, float* actions, Eigen::Index n) const {
@@ -101,7 +103,9 @@ Policy Policy::load(const std::string& model_path) {
   return Policy(std::move(impl));
 }
 
-std::size_t Policy::observation_size() const { return static_cast<std::size_t>(impl_->observation_size); }
+std::size_t Policy::observation_size() const {
+  return static_cast<std::size_t>(impl_->observation_size);
+}
 std::size_t Policy::action_size() const { return static_cast<std::size_t>(impl_->action_size); }
 const std::string& Policy::env_id() const { return impl_->env_id; }
 const std::string& Policy::algorithm() const { return impl_->algorithm; }

@@ -9,15 +9,17 @@ namespace rlrun {
 
 namespace fs = std::filesystem;
 
-std::string create_run_directory(const std::string& out_dir, const std::string& name, uint64_t seed) {
+std::string create_run_directory(const std::string& out_dir, const std::string& name,
+                                 uint64_t seed) {
   // out_dir is the user's (created as needed, their links followed); `name` below it and the
   // seed directory are opened without following links (core/dir_handle.hpp): a planted
   // `<out_dir>/<name> -> elsewhere` (a study's trials/trial_3, say) is refused.
   std::error_code ec;
   fs::create_directories(out_dir.empty() ? "." : out_dir, ec);
   if (ec) throw RuntimeFailure("cannot create " + out_dir + ": " + ec.message());
-  const DirHandle base = DirHandle::open(out_dir.empty() ? "." : out_dir, DirHandle::LastLink::kFollow)
-                             .make_subdir(name);
+  const DirHandle base =
+      DirHandle::open(out_dir.empty() ? "." : out_dir, DirHandle::LastLink::kFollow)
+          .make_subdir(name);
   const std::string stem = "seed" + std::to_string(seed);
   // A bounded search: a path that "exists" whatever the suffix (a name the file system cuts
   // short, say) must end in an error, not spin (run names are checked when parsed).
@@ -28,8 +30,8 @@ std::string create_run_directory(const std::string& out_dir, const std::string& 
     // the next one.
     if (base.create_subdir(dir)) return (fs::path(out_dir) / name / dir).string();
   }
-  throw RuntimeFailure("cannot create a run directory under " + base.path() + ": " + stem +
-                       " to " + stem + "_" + std::to_string(kMaxAttempts) +
+  throw RuntimeFailure("cannot create a run directory under " + base.path() + ": " + stem + " to " +
+                       stem + "_" + std::to_string(kMaxAttempts) +
                        " all exist; choose another run.name or out_dir");
 }
 

@@ -12,7 +12,8 @@ namespace rlrun {
 inline constexpr const char* kFinishedMarker = "finished";
 
 // Creates and returns a fresh run directory. Throws RuntimeFailure if it cannot.
-std::string create_run_directory(const std::string& out_dir, const std::string& name, uint64_t seed);
+std::string create_run_directory(const std::string& out_dir, const std::string& name,
+                                 uint64_t seed);
 
 // Writes a text file atomically: a fresh temporary beside it (O_EXCL), every write checked,
 // fsync, rename. Throws RuntimeFailure naming the file and errno (e.g. ENOSPC); the target then

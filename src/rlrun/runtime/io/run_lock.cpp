@@ -24,10 +24,10 @@ RunLock::RunLock(const DirHandle& run_dir) {
     close(fd_);
     fd_ = -1;
     if (error == EWOULDBLOCK)
-      throw RuntimeFailure("another rlrun process" +
-                           (n > 0 ? " (pid " + std::string(holder, strcspn(holder, "\n")) + ")"
-                                  : std::string()) +
-                           " is training " + run_dir.path() + "; wait for it to finish or stop it first");
+      throw RuntimeFailure(
+          "another rlrun process" +
+          (n > 0 ? " (pid " + std::string(holder, strcspn(holder, "\n")) + ")" : std::string()) +
+          " is training " + run_dir.path() + "; wait for it to finish or stop it first");
     throw RuntimeFailure("cannot lock " + path + ": " + std::strerror(error));
   }
   // The holder's pid, for the message above (informational only).

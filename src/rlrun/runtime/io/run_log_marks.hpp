@@ -13,7 +13,6 @@
 
 #include "rlrun/core/state_dict.hpp"
 
-
 namespace rlrun {
 
 class DirHandle;  // core/dir_handle.hpp

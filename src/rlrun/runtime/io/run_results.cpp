@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kLastEpisodes = 100;   // SB3's ep_info_buffer: rollout/ep_rew_mean's window
+constexpr int kLastEpisodes = 100;  // SB3's ep_info_buffer: rollout/ep_rew_mean's window
 constexpr int kBootstrapSamples = 2000;
 constexpr uint64_t kBootstrapSeed = 0;
 
@@ -42,12 +42,14 @@ double number(const std::string& cell) {
 
 // A CSV file of the run as columns (empty when it does not exist); a first line starting with
 // '#' is skipped (Monitor files). Read within the bounds of runtime/io/run_file_bounds.hpp.
-std::map<std::string, std::vector<double>> read_columns(const DirHandle& run, const std::string& name) {
+std::map<std::string, std::vector<double>> read_columns(const DirHandle& run,
+                                                        const std::string& name) {
   std::map<std::string, std::vector<double>> columns;
   std::optional<LineReader> in = run.read_lines(name, kMaxRunCsvBytes, kMaxRunCsvLineBytes);
   if (!in) return columns;
   std::string line;
-  while (in->next(line) && !line.empty() && line[0] == '#') {}
+  while (in->next(line) && !line.empty() && line[0] == '#') {
+  }
   if (line.empty()) return columns;
   const std::vector<std::string> header = split_csv_line(line);
   std::vector<std::vector<double>*> column_of;
@@ -104,7 +106,8 @@ std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths) {
             exists_here(entry.path() / "progress.csv"))
           dirs.push_back(entry.path().string());
     }
-    if (dirs.size() == before) throw UsageError(path + " holds no run directory (config.yaml + progress.csv)");
+    if (dirs.size() == before)
+      throw UsageError(path + " holds no run directory (config.yaml + progress.csv)");
   }
   std::sort(dirs.begin(), dirs.end());
   dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
@@ -201,7 +204,8 @@ void monitor_return(const DirHandle& run, RunResult& r) {
     return;
   }
   const auto mean_of_last = [](std::vector<std::pair<double, double>> v) {
-    std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(v.begin(), v.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     const size_t from = v.size() > kLastEpisodes ? v.size() - kLastEpisodes : 0;
     double sum = 0;
     for (size_t i = from; i < v.size(); ++i) sum += v[i].second;
@@ -223,7 +227,8 @@ RunResult read_run(const std::string& dir) {
   // Wall time from log.txt, else progress.csv's whole seconds.
   r.wall_seconds = logged_wall_seconds(run);
   if (std::isnan(r.wall_seconds))
-    r.wall_seconds = r.progress.count("time/time_elapsed") ? last_finite(r.progress["time/time_elapsed"]) : 0.0;
+    r.wall_seconds =
+        r.progress.count("time/time_elapsed") ? last_finite(r.progress["time/time_elapsed"]) : 0.0;
   const auto logged = r.progress.find("time/total_timesteps");
   r.timesteps =
       true_timesteps(run, logged != r.progress.end() ? last_finite(logged->second) : kNaN);
@@ -253,7 +258,8 @@ std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs) {
     const auto it = std::find(keys.begin(), keys.end(), run.config_key);
     if (it == keys.end()) {
       keys.push_back(run.config_key);
-      groups.push_back({run.name.empty() ? fs::path(run.dir).filename().string() : run.name, {run}});
+      groups.push_back(
+          {run.name.empty() ? fs::path(run.dir).filename().string() : run.name, {run}});
     } else {
       groups[it - keys.begin()].runs.push_back(run);
     }
@@ -263,7 +269,8 @@ std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs) {
   std::map<std::string, int> numbered;
   for (RunGroup& g : groups) {
     if (uses[g.label] > 1) g.label += " #" + std::to_string(++numbered[g.label]);
-    std::sort(g.runs.begin(), g.runs.end(), [](const auto& a, const auto& b) { return a.seed < b.seed; });
+    std::sort(g.runs.begin(), g.runs.end(),
+              [](const auto& a, const auto& b) { return a.seed < b.seed; });
   }
   return groups;
 }

@@ -50,8 +50,8 @@ std::string format_session_summary(const SessionSummary& s) {
   std::string text = s.interrupted ? kInterrupted : kTrained;
   text += count_of(s.steps(), "step");
   if (s.start_timesteps != 0)
-    text += " (" + std::to_string(s.start_timesteps) + " -> " +
-            std::to_string(s.end_timesteps) + ")";
+    text +=
+        " (" + std::to_string(s.start_timesteps) + " -> " + std::to_string(s.end_timesteps) + ")";
   char rest[96];
   std::snprintf(rest, sizeof rest, " in %.2f s (%.0f steps/s)", s.wall_seconds,
                 static_cast<double>(s.steps()) / std::max(s.wall_seconds, 1e-9));
@@ -61,8 +61,10 @@ std::string format_session_summary(const SessionSummary& s) {
 std::optional<SessionSummary> parse_session_summary(const std::string& line) {
   SessionSummary s;
   size_t at = 0;
-  if (skip(line, at, kInterrupted)) s.interrupted = true;
-  else if (!skip(line, at, kTrained)) return std::nullopt;
+  if (skip(line, at, kInterrupted))
+    s.interrupted = true;
+  else if (!skip(line, at, kTrained))
+    return std::nullopt;
   int64_t steps = 0;
   if (!read_int(line, at, steps) || !(skip(line, at, " steps") || skip(line, at, " step")))
     return std::nullopt;

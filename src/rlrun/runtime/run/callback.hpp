@@ -20,7 +20,6 @@
 
 namespace rlrun {
 
-
 // One evaluation as evaluations.csv holds it (timesteps, then column -> value; a column left
 // empty in the file is absent here). `rlrun tune` reports these to its pruner.
 struct EvaluationRow {
@@ -39,9 +38,9 @@ struct TrainingContext {
   const Registry& registry;
   std::string run_dir;
   Algorithm& algorithm;
-  VecEnv& env;                                          // the training envs
-  Logger* logger = nullptr;                             // records land in the next progress.csv row
-  std::function<void(const std::string&)> message;      // a line on the console and in log.txt
+  VecEnv& env;                                      // the training envs
+  Logger* logger = nullptr;                         // records land in the next progress.csv row
+  std::function<void(const std::string&)> message;  // a line on the console and in log.txt
   // A model file (with wrapper statistics) of that name in the run directory (best_model.zip).
   std::function<void(const std::string&)> save_model;
   // A checkpoint of that name in <run_dir>/checkpoints (step_<N>.zip).

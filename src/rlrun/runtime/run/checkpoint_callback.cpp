@@ -1,6 +1,5 @@
 #include "rlrun/runtime/run/checkpoint_callback.hpp"
 
-
 #include <algorithm>
 #include <regex>
 
@@ -8,8 +7,7 @@
 
 namespace rlrun {
 
-CheckpointCallback::CheckpointCallback(TrainingContext& context,
-                                       const CheckpointConfig& config)
+CheckpointCallback::CheckpointCallback(TrainingContext& context, const CheckpointConfig& config)
     : context_(context),
       config_(config),
       dir_(DirHandle::open(context.run_dir).make_subdir("checkpoints")),

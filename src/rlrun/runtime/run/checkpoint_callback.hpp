@@ -36,7 +36,7 @@ class CheckpointCallback : public Callback {
   const CheckpointConfig& config_;
   DirHandle dir_;  // <run_dir>/checkpoints
   int64_t next_;
-  bool due_ = false;  // freq steps passed; write at the next safe point
+  bool due_ = false;               // freq steps passed; write at the next safe point
   std::vector<std::string> kept_;  // names in dir_, oldest first
 };
 

@@ -1,6 +1,5 @@
 #include "rlrun/runtime/run/eval_callback.hpp"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,14 +33,15 @@ EvalCallback::EvalCallback(TrainingContext& context, const EvalConfig& config)
   if (std::find(columns.begin(), columns.end(), config_.best_metric) == columns.end()) {
     std::string known;
     for (const std::string& c : columns) known += (known.empty() ? "" : ", ") + c;
-    const std::string where = config_.best_metric_where.empty() ? "" : config_.best_metric_where + ": ";
-    throw ConfigError(where + "eval.best_metric: '" + config_.best_metric + "' is not a column of " +
-                      "evaluations.csv for this env" + did_you_mean(config_.best_metric, columns) +
-                      "; its columns: " + known);
+    const std::string where =
+        config_.best_metric_where.empty() ? "" : config_.best_metric_where + ": ";
+    throw ConfigError(where + "eval.best_metric: '" + config_.best_metric +
+                      "' is not a column of " + "evaluations.csv for this env" +
+                      did_you_mean(config_.best_metric, columns) + "; its columns: " + known);
   }
   const std::string path = context.run_dir + "/evaluations.csv";
-  csv_ = CheckedFile::run_file(path, context.resuming ? CheckedFile::Mode::kAppend
-                                                      : CheckedFile::Mode::kTruncate);
+  csv_ = CheckedFile::run_file(
+      path, context.resuming ? CheckedFile::Mode::kAppend : CheckedFile::Mode::kTruncate);
   if (!context.resuming) {
     csv_ << "timesteps,mean_reward,std_reward,mean_ep_length,success_rate";
     for (const std::string& key : metric_keys_) csv_ << ',' << key;
@@ -97,8 +97,7 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
   save_model_statistics(context_.env.env(0), statistics);
   load_model_statistics(*env_, statistics, /*training=*/false);
   // A separate seed stream: the training envs use seed .. seed + n_envs - 1.
-  const uint64_t seed = context_.seed +
-                        static_cast<uint64_t>(context_.env_spec.section.n_envs) +
+  const uint64_t seed = context_.seed + static_cast<uint64_t>(context_.env_spec.section.n_envs) +
                         static_cast<uint64_t>(evaluations_++);
   const EvalResult r =
       evaluate_policy(context_.algorithm, *env_, config_.n_episodes, config_.deterministic, seed);
@@ -128,9 +127,10 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
   csv_ << '\n';
   csv_.flush();  // a full disk stops the run: RuntimeFailure naming the file and errno
   // The row's reported columns by name: what best_metric and the evaluation listener read.
-  EvaluationRow row{num_timesteps, {{"mean_reward", r.mean_return()},
-                                    {"std_reward", r.std_return()},
-                                    {"mean_ep_length", r.mean_length()}}};
+  EvaluationRow row{num_timesteps,
+                    {{"mean_reward", r.mean_return()},
+                     {"std_reward", r.std_return()},
+                     {"mean_ep_length", r.mean_length()}}};
   if (!std::isnan(success)) row.values["success_rate"] = success;
   for (size_t k = 0; k < metric_keys_.size(); ++k)
     if (!std::isnan(metric_means[k])) row.values[metric_keys_[k]] = metric_means[k];
@@ -139,7 +139,8 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
     context_.logger->record("eval/mean_ep_length", r.mean_length());
     if (!std::isnan(success)) context_.logger->record("eval/success_rate", success);
     for (size_t k = 0; k < metric_keys_.size(); ++k)
-      if (!std::isnan(metric_means[k])) context_.logger->record("eval/" + metric_keys_[k], metric_means[k]);
+      if (!std::isnan(metric_means[k]))
+        context_.logger->record("eval/" + metric_keys_[k], metric_means[k]);
   }
 
   std::string message = "eval at " + count_of(num_timesteps, "step") + ": return " +
@@ -171,8 +172,8 @@ bool EvalCallback::on_step(int64_t num_timesteps) {
 bool EvalCallback::check_stop_rules() {
   // StopTrainingOnRewardThreshold: continue while best_mean_reward < reward_threshold.
   if (config_.reward_threshold && !(best_ < *config_.reward_threshold)) {
-    stop_reason_ = "best mean reward " + format_log_value(best_) + " reached eval.reward_threshold " +
-                   format_log_value(*config_.reward_threshold);
+    stop_reason_ = "best mean reward " + format_log_value(best_) +
+                   " reached eval.reward_threshold " + format_log_value(*config_.reward_threshold);
     return false;
   }
   // StopTrainingOnNoModelImprovement: its n_calls is the number of evaluations so far.

@@ -55,7 +55,8 @@ EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
   std::vector<int> metric_indices;
   const std::vector<std::string>& keys = env.unwrapped().info().keys();
   for (const std::string& key : keys) {
-    if (key == "is_success" || key.rfind("episode.", 0) == 0 || key == "TimeLimit.truncated") continue;
+    if (key == "is_success" || key.rfind("episode.", 0) == 0 || key == "TimeLimit.truncated")
+      continue;
     const int index = env.info().find(key);
     if (index < 0) continue;
     result.metric_keys.push_back(key);
@@ -67,8 +68,9 @@ EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
     int64_t length = 0;
     while (true) {
       policy(obs, actions);
-      const StepResult step = step_all_agents(
-          env, {actions.data(), static_cast<size_t>(actions.size())}, {obs.data(), obs_size}, steps);
+      const StepResult step =
+          step_all_agents(env, {actions.data(), static_cast<size_t>(actions.size())},
+                          {obs.data(), obs_size}, steps);
       episode_return += step.reward;
       const bool done = step.terminated || step.truncated;
       ++length;

@@ -39,8 +39,9 @@ std::string initialize_from_model(const std::string& path, Algorithm& algorithm,
       line += "; its normalisation statistics do not fit this run's wrappers: starting them anew";
     }
   } else if (!model.wrapper_statistics.empty()) {
-    line += "; note: the model was trained with normalised observations or rewards, this run "
-            "has no Normalize wrapper";
+    line +=
+        "; note: the model was trained with normalised observations or rewards, this run "
+        "has no Normalize wrapper";
   }
   return line;
 }

@@ -1,6 +1,5 @@
 #include "rlrun/runtime/run/obs_log_callback.hpp"
 
-
 #include <cstdio>
 #include <cstring>
 #include <regex>
@@ -73,7 +72,8 @@ void ObsLogCallback::save_chunk(int64_t num_timesteps) {
   char name[64];
   std::snprintf(name, sizeof name, "obs_%010lld.npy", static_cast<long long>(num_timesteps));
   // Atomic and checked (a full disk is an error naming the file, not a short chunk).
-  dir_.write_atomic(name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  dir_.write_atomic(name,
+                    std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   rows_.clear();  // keeps its capacity
 }
 

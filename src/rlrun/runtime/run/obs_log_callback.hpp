@@ -43,7 +43,7 @@ class ObsLogCallback : public Callback {
   int obs_dim_;
   int64_t next_;
   int64_t last_chunk_step_ = 0;  // N of the last full chunk written
-  std::vector<float> rows_;  // obs_dim floats per row
+  std::vector<float> rows_;      // obs_dim floats per row
 };
 
 }  // namespace rlrun

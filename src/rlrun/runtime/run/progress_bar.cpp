@@ -6,7 +6,9 @@
 namespace rlrun {
 
 ProgressBar::ProgressBar(int64_t total, bool enabled)
-    : total_(std::max<int64_t>(total, 1)), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+    : total_(std::max<int64_t>(total, 1)),
+      enabled_(enabled),
+      start_(std::chrono::steady_clock::now()) {}
 
 void ProgressBar::update(int64_t done) {
   if (!enabled_) return;

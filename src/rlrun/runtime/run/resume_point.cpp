@@ -119,7 +119,8 @@ void remove_stale_temporaries(const DirHandle& run_dir) {
         dir.remove(entry.name);
   };
   clean(run_dir);
-  if (const std::optional<DirHandle> checkpoints = run_dir.subdir("checkpoints")) clean(*checkpoints);
+  if (const std::optional<DirHandle> checkpoints = run_dir.subdir("checkpoints"))
+    clean(*checkpoints);
 }
 
 }  // namespace rlrun

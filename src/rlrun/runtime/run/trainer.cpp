@@ -78,7 +78,9 @@ class TrainingRun {
   TrainingRun(const Experiment& experiment, const Registry& registry,
               const ExecutionContext& execution, const std::vector<std::string>& resume_from,
               EvaluationListener on_evaluation)
-      : experiment_(experiment), registry_(registry), execution_(execution),
+      : experiment_(experiment),
+        registry_(registry),
+        execution_(execution),
         resuming_(!resume_from.empty()),
         on_evaluation_(std::move(on_evaluation)) {
     open_run_directory(resume_from);
@@ -161,10 +163,9 @@ void TrainingRun::announce() {
   const RunConfig& run = experiment_.run;
   if (!resuming_) {
     log_->line("rlrun " RLRUN_VERSION ": training " + experiment_.algo.id + " on " +
-               experiment_.env.id + " for " + count_of(run.total_timesteps, "step") +
-               " (seed " + std::to_string(run.seed) + ", " +
-               count_of(experiment_.env.section.n_envs, "env") + ", " +
-               count_of(execution_.threads(), "thread") + ") -> " + outcome_.run_dir);
+               experiment_.env.id + " for " + count_of(run.total_timesteps, "step") + " (seed " +
+               std::to_string(run.seed) + ", " + count_of(experiment_.env.section.n_envs, "env") +
+               ", " + count_of(execution_.threads(), "thread") + ") -> " + outcome_.run_dir);
     return;
   }
   for (const std::string& skipped : resume_->skipped)
@@ -209,8 +210,11 @@ void TrainingRun::announce_agents() {
   log_->line("note: " + experiment_.env.id + " has " + k +
              " agents sharing one policy: each env step counts as " + k +
              " timesteps (total_timesteps, time/total_timesteps, time/fps, every freq; a rollout "
-             "of n_steps is n_steps x " + k + " samples per env), while ep_len_mean counts env "
-             "steps and ep_rew_mean sums the " + k + " agents' rewards");
+             "of n_steps is n_steps x " +
+             k +
+             " samples per env), while ep_len_mean counts env "
+             "steps and ep_rew_mean sums the " +
+             k + " agents' rewards");
 }
 
 void TrainingRun::build_logging() {
@@ -222,8 +226,8 @@ void TrainingRun::build_logging() {
                                                       [this] { bar_->clear(); }));
   logger_.add_sink(std::make_unique<ConsoleTableSink>(log_->table(), 0.0));
   if (!experiment_.run.tensorboard_log.value.empty()) build_tensorboard_log();
-  context_.emplace(TrainingContext{experiment_.env, experiment_.run.seed, registry_, outcome_.run_dir, *algorithm_, *env_,
-                                   &logger_,
+  context_.emplace(TrainingContext{experiment_.env, experiment_.run.seed, registry_,
+                                   outcome_.run_dir, *algorithm_, *env_, &logger_,
                                    [this](const std::string& message) {
                                      bar_->clear();
                                      log_->line(message);
@@ -240,13 +244,13 @@ void TrainingRun::build_tensorboard_log() {
   const RunConfig& run = experiment_.run;
   const std::string& dir = run.tensorboard_log.value;
   const std::string name = run.tb_log_name.value_or(run.name);
-  const bool continues = resuming_ && resume_->checkpoint.training_state.count(
-                                          std::string(kTrainingStatePrefix) + kTensorBoardState +
-                                          "/run") != 0;
+  const bool continues =
+      resuming_ && resume_->checkpoint.training_state.count(std::string(kTrainingStatePrefix) +
+                                                            kTensorBoardState + "/run") != 0;
   auto log = std::make_unique<TensorBoardLog>(
-      continues ? TensorBoardLog::resume(dir, name,
-                                         training_state_reader(resume_->checkpoint, kTensorBoardState),
-                                         [this](const std::string& line) { log_->line(line); })
+      continues ? TensorBoardLog::resume(
+                      dir, name, training_state_reader(resume_->checkpoint, kTensorBoardState),
+                      [this](const std::string& line) { log_->line(line); })
                 : TensorBoardLog::start(dir, name, experiment_.resolved));
   tensorboard_ = log.get();
   logger_.add_sink(std::move(log));
@@ -275,8 +279,8 @@ void TrainingRun::restore() {
 
 [[noreturn]] void TrainingRun::stop_diverged(const std::string& problem) {
   // A NaN or inf stops the run, naming the step and the quantity (non_finite_check.hpp).
-  std::string message = "training diverged at step " +
-                        std::to_string(algorithm_->num_timesteps()) + ": " + problem + ".";
+  std::string message = "training diverged at step " + std::to_string(algorithm_->num_timesteps()) +
+                        ": " + problem + ".";
   message += last_checkpoint_.empty()
                  ? " No checkpoint was written (set checkpoint.freq to keep one)."
                  : " The last good checkpoint is " + last_checkpoint_ + ".";
@@ -300,8 +304,7 @@ void TrainingRun::save_model(const std::string& name) {
   finite_model_tensors();
   TensorMap statistics;
   save_model_statistics(env_->env(0), statistics);
-  write_zip_atomic(*dir_, name,
-                   model_members(*algorithm_, experiment_, env_->env(0), statistics));
+  write_zip_atomic(*dir_, name, model_members(*algorithm_, experiment_, env_->env(0), statistics));
 }
 
 // `name`: checkpoints/<name>, a step_<N>.zip.
@@ -322,8 +325,7 @@ void TrainingRun::save_checkpoint(const std::string& name) {
     write_log_marks(state.part(kFileMarks), *dir_, appended_files(experiment_));
   }
   const DirHandle checkpoints = dir_->make_subdir("checkpoints");
-  write_zip_atomic(checkpoints, name,
-                   model_members(*algorithm_, experiment_, env_->env(0), extra));
+  write_zip_atomic(checkpoints, name, model_members(*algorithm_, experiment_, env_->env(0), extra));
   if (resumable_) last_checkpoint_ = checkpoints.child(name);
 }
 
@@ -382,8 +384,8 @@ void TrainingRun::finish() {
     std::string curve;
     if (experiment_.run.tensorboard_images) {
       try {  // a picture is no reason to fail a run that has trained
-        curve = learning_curve_png(outcome_.run_dir,
-                                   experiment_.algo.id + " on " + experiment_.env.id);
+        curve =
+            learning_curve_png(outcome_.run_dir, experiment_.algo.id + " on " + experiment_.env.id);
       } catch (const std::exception& e) {
         log_->line(std::string("note: no learning-curve image for TensorBoard: ") + e.what());
       }

@@ -13,8 +13,7 @@ std::vector<std::unique_ptr<Callback>> make_callbacks(const Experiment& e,
   if (e.eval.freq > 0) callbacks.push_back(std::make_unique<EvalCallback>(context, e.eval));
   if (e.checkpoint.freq > 0)
     callbacks.push_back(std::make_unique<CheckpointCallback>(context, e.checkpoint));
-  if (e.obs_log.freq > 0)
-    callbacks.push_back(std::make_unique<ObsLogCallback>(context, e.obs_log));
+  if (e.obs_log.freq > 0) callbacks.push_back(std::make_unique<ObsLogCallback>(context, e.obs_log));
   if (e.video.freq > 0) callbacks.push_back(std::make_unique<VideoCallback>(context, e.video));
   return callbacks;
 }

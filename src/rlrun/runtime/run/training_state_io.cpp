@@ -20,8 +20,7 @@ void read_callback_states(const StateReader& in,
     throw StateMismatch(
         "it was written with other callbacks (eval/checkpoint/obs_log/video sections) than the "
         "run's config.yaml turns on");
-  for (size_t i = 0; i < callbacks.size(); ++i)
-    callbacks[i]->read_state(in.sub(std::to_string(i)));
+  for (size_t i = 0; i < callbacks.size(); ++i) callbacks[i]->read_state(in.sub(std::to_string(i)));
 }
 
 void write_pending_log(StateWriter out, const LogRow& row) {

@@ -35,7 +35,8 @@ inline StateReader training_state_reader(const ModelFile& checkpoint, const char
   return StateReader(checkpoint.training_state, std::string(kTrainingStatePrefix) + part + "/");
 }
 
-void write_callback_states(StateWriter out, const std::vector<std::unique_ptr<Callback>>& callbacks);
+void write_callback_states(StateWriter out,
+                           const std::vector<std::unique_ptr<Callback>>& callbacks);
 // Throws StateMismatch when the checkpoint was written with other callbacks than `callbacks`.
 void read_callback_states(const StateReader& in, std::vector<std::unique_ptr<Callback>>& callbacks);
 

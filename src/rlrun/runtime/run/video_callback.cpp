@@ -1,6 +1,5 @@
 #include "rlrun/runtime/run/video_callback.hpp"
 
-
 #include <cstdio>
 
 #include "rlrun/core/dir_handle.hpp"
@@ -38,8 +37,7 @@ bool VideoCallback::on_step(int64_t num_timesteps) {
   RecordOptions options;
   options.video_path = context_.run_dir + "/videos/step_" + std::to_string(num_timesteps) + ".mp4";
   options.episodes = config_.n_episodes;
-  options.seed = context_.seed +
-                 static_cast<uint64_t>(context_.env_spec.section.n_envs) +
+  options.seed = context_.seed + static_cast<uint64_t>(context_.env_spec.section.n_envs) +
                  static_cast<uint64_t>(videos_++);
   options.fps = config_.fps;
   options.width = config_.width;

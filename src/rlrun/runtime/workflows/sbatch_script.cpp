@@ -72,13 +72,14 @@ std::string slurm_array_script(const SlurmArrayJob& job) {
   // The job name reduced to [A-Za-z0-9._+-].
   std::string job_name;
   for (char c : job.name)
-    job_name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
-                        c == '-'
-                    ? c
-                    : '-';
+    job_name +=
+        std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' || c == '-'
+            ? c
+            : '-';
   std::string text = "#!/bin/bash\n";
   for (const std::string& line : job.comment) {
-    if (!script_path_problem(line).empty()) throw UsageError("cannot write the sbatch script: a control character in its comment");
+    if (!script_path_problem(line).empty())
+      throw UsageError("cannot write the sbatch script: a control character in its comment");
     text += "# " + line + "\n";
   }
   text += "# Submit with: sbatch " + shell_quote(job.script) + "\n";

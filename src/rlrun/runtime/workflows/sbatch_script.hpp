@@ -29,10 +29,10 @@ std::string script_path_problem(const std::string& path);
 // An sbatch array job: every task runs `command` ("$SLURM_ARRAY_TASK_ID" tells it which it
 // is), output in output_dir/%A_%a.out.
 struct SlurmArrayJob {
-  std::string name;                  // the job name (reduced to [A-Za-z0-9._+-])
-  std::string script;                // where the script will be (named in its comment)
-  std::string output_dir;            // the tasks' console output
-  int tasks = 1;                     // --array=0-(tasks-1)
+  std::string name;        // the job name (reduced to [A-Za-z0-9._+-])
+  std::string script;      // where the script will be (named in its comment)
+  std::string output_dir;  // the tasks' console output
+  int tasks = 1;           // --array=0-(tasks-1)
   SlurmOptions options;
   std::vector<std::string> comment;  // lines after #!/bin/bash
   std::string command;               // the shell command line, every value shell_quote()d

@@ -34,7 +34,8 @@ std::string slurm_value_problem(const std::string& key, const std::string& value
   // What sbatch accepts for each option (sbatch(1)), narrowed to characters that mean the same
   // on a `#SBATCH` line as on a command line: no blanks, quotes, backslashes, '#' or control
   // characters, which sbatch's tokenizer would split, unquote or cut.
-  static const std::regex time(R"(([0-9]+-)?[0-9]+(:[0-9]+){0,2}|[Uu][Nn][Ll][Ii][Mm][Ii][Tt][Ee][Dd]|[Ii][Nn][Ff][Ii][Nn][Ii][Tt][Ee])");
+  static const std::regex time(
+      R"(([0-9]+-)?[0-9]+(:[0-9]+){0,2}|[Uu][Nn][Ll][Ii][Mm][Ii][Tt][Ee][Dd]|[Ii][Nn][Ff][Ii][Nn][Ii][Tt][Ee])");
   static const std::regex mem(R"([0-9]+[KMGTkmgt]?)");
   static const std::regex partition(R"([A-Za-z0-9_.,-]+)");
   static const std::regex extra(R"(--[A-Za-z][A-Za-z0-9-]*(=[^\s'"\\#]+)?)");
@@ -46,8 +47,7 @@ std::string slurm_value_problem(const std::string& key, const std::string& value
               : "";
   if (key == "time") {
     if (value.empty() || (!control && std::regex_match(value, time))) return "";
-    return "time " + printable_value(value) +
-           " is not a Slurm time limit" + why +
+    return "time " + printable_value(value) + " is not a Slurm time limit" + why +
            "; write MM, HH:MM:SS or D-HH:MM:SS, e.g. \"01:30:00\" or \"2-00:00:00\"";
   }
   if (key == "mem") {

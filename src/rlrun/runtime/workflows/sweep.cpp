@@ -31,7 +31,8 @@ struct SweepFile {
   void visit(V& v) {
     v("name", name, "the sweep's name (default: the file's stem)");
     v("base", base, "the experiment file every run starts from (relative to this file)");
-    v("out_dir", out_dir, "where manifest.yaml, configs/ and runs/ go (default runs/sweeps/<name>)");
+    v("out_dir", out_dir,
+      "where manifest.yaml, configs/ and runs/ go (default runs/sweeps/<name>)");
     v("seeds", seeds, "run.seed values; every configuration runs once per seed");
     v("grid", grid, "key: [values...] per overridden key; runs the cartesian product");
     v("list", list, "a list of {key: value} maps, one configuration each (instead of grid)");
@@ -49,7 +50,11 @@ struct Override {
 // File-name-safe: letters, digits and . _ + - stay, anything else becomes '-'.
 std::string safe(const std::string& text) {
   std::string out;
-  for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' || c == '-') ? c : '-';
+  for (char c : text)
+    out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
+            c == '-')
+               ? c
+               : '-';
   return out;
 }
 
@@ -76,7 +81,7 @@ void check_sweep_file(const ConfigNode& root, const SweepFile& file) {
   for (size_t i = 0; i < file.seeds.size(); ++i)  // run.seed's range (a uint64 read as int64)
     if (file.seeds[i] < 0)
       root.child("seeds").at(i).fail("seeds are integers from 0 to 2^63 - 1, got " +
-                                      std::to_string(file.seeds[i]));
+                                     std::to_string(file.seeds[i]));
   if (file.grid.defined() && file.list.defined())
     root.child("list").fail("a sweep has a grid or a list of configurations, not both");
 }
@@ -102,7 +107,8 @@ std::vector<Combination> grid_combinations(const SweepFile& file) {
     for (const auto& combo : combos)
       for (size_t i = 0; i < axis.node.size(); ++i) {
         auto extended = combo;
-        extended.push_back({axis.key, yaml_override_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
+        extended.push_back(
+            {axis.key, yaml_override_text(axis.node.at(i).yaml()), axis.node.at(i), axis.map});
         next.push_back(extended);
       }
     combos = next;
@@ -116,7 +122,8 @@ std::vector<Combination> combinations(const SweepFile& file) {
   if (!file.list.defined()) return {{}};
   if (!file.list.is_sequence() || file.list.size() == 0)
     file.list.fail("expected a non-empty list of {key: value} maps");
-  if (static_cast<double>(file.list.size()) * static_cast<double>(file.seeds.size()) > kMaxSweepRuns)
+  if (static_cast<double>(file.list.size()) * static_cast<double>(file.seeds.size()) >
+      kMaxSweepRuns)
     file.list.fail("the list times the seeds gives more than " + std::to_string(kMaxSweepRuns) +
                    " runs");
   std::vector<Combination> combos;
@@ -191,7 +198,8 @@ SweepRun expand_run(const Sweep& sweep, const fs::path& out_dir, const std::stri
   // TensorBoard: every run of the sweep under one log directory (the sweep's own unless the
   // experiment names one), each run named by its id, so TensorBoard compares them side by side.
   if (!sets_tensorboard_log(base, overrides))
-    all.push_back("run.tensorboard_log=" + yaml_double_quoted(sweep_tensorboard_dir(out_dir.string())));
+    all.push_back("run.tensorboard_log=" +
+                  yaml_double_quoted(sweep_tensorboard_dir(out_dir.string())));
   all.push_back("run.tb_log_name=" + yaml_double_quoted(label + "_seed" + std::to_string(seed)));
   const Experiment experiment = load_experiment(base, all, registry);
   run.config = (out_dir / "configs" / (label + "_seed" + std::to_string(seed) + ".yaml")).string();
@@ -203,13 +211,13 @@ SweepRun expand_run(const Sweep& sweep, const fs::path& out_dir, const std::stri
 
 void write_manifest(const Sweep& sweep, const fs::path& out_dir) {
   YAML::Emitter out;
-  out << YAML::BeginMap << YAML::Key << "sweep" << YAML::Value << sweep.source << YAML::Key << "name"
-      << YAML::Value << sweep.name << YAML::Key << "slurm" << YAML::Value << encode(sweep.slurm)
-      << YAML::Key << "runs" << YAML::Value << YAML::BeginSeq;
+  out << YAML::BeginMap << YAML::Key << "sweep" << YAML::Value << sweep.source << YAML::Key
+      << "name" << YAML::Value << sweep.name << YAML::Key << "slurm" << YAML::Value
+      << encode(sweep.slurm) << YAML::Key << "runs" << YAML::Value << YAML::BeginSeq;
   for (const SweepRun& run : sweep.runs) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "index" << YAML::Value << run.index
-        << YAML::Key << "id" << YAML::Value << run.id << YAML::Key << "seed" << YAML::Value << run.seed
-        << YAML::Key << "config" << YAML::Value
+        << YAML::Key << "id" << YAML::Value << run.id << YAML::Key << "seed" << YAML::Value
+        << run.seed << YAML::Key << "config" << YAML::Value
         << fs::relative(run.config, out_dir).string() << YAML::Key << "run_dir" << YAML::Value
         << fs::relative(run.run_dir, out_dir).string() << YAML::EndMap;
   }
@@ -254,7 +262,8 @@ Sweep expand_sweep(const std::string& sweep_file, Registry& registry, const Swee
   decode(root, file);
   check_sweep_file(root, file);
   const fs::path here = fs::path(sweep_file).parent_path();
-  const std::string base = fs::path(file.base).is_absolute() ? file.base : (here / file.base).string();
+  const std::string base =
+      fs::path(file.base).is_absolute() ? file.base : (here / file.base).string();
   if (!fs::exists(base)) root.child("base").fail(base + " does not exist");
   const std::vector<Combination> combos = combinations(file);
   Combination common = file.set.defined() ? map_overrides(file.set) : Combination{};
@@ -325,7 +334,8 @@ Sweep read_manifest(const std::string& manifest) {
     // `sweep run` writes (and for a run restarted from scratch, deletes) the run directory.
     run.config = inside(dir, r.child("config"));
     run.run_dir = inside(dir, r.child("run_dir"));
-    if (run.index != static_cast<int>(i)) r.child("index").fail("expected index " + std::to_string(i));
+    if (run.index != static_cast<int>(i))
+      r.child("index").fail("expected index " + std::to_string(i));
     sweep.runs.push_back(run);
   }
   return sweep;
@@ -380,15 +390,20 @@ std::string run_console_log(const Sweep& sweep, const SweepRun& run) {
   const fs::path below = fs::path(run.run_dir).lexically_relative(out_dir / "runs");
   const bool inside = !below.empty() && *below.begin() != ".." && below != ".";
   return (out_dir / "logs" / (inside ? below : fs::path("run" + std::to_string(run.index))))
-             .string() + ".txt";
+             .string() +
+         ".txt";
 }
 
 const char* to_string(RunState state) {
   switch (state) {
-    case RunState::kNew: return "new";
-    case RunState::kFinished: return "finished";
-    case RunState::kResumable: return "resumable";
-    case RunState::kPartial: return "partial";
+    case RunState::kNew:
+      return "new";
+    case RunState::kFinished:
+      return "finished";
+    case RunState::kResumable:
+      return "resumable";
+    case RunState::kPartial:
+      return "partial";
   }
   return "?";
 }

@@ -32,11 +32,10 @@ inline constexpr int kMaxSweepRuns = 100000;
 inline void decode(const ConfigNode& n, ConfigNode& out) { out = n; }
 inline YAML::Node encode(const ConfigNode& n) { return n.yaml(); }
 
-
 struct SweepRun {
   int index = 0;
-  std::string id;      // <label>/seed<N>
-  std::string label;   // the overrides, readable
+  std::string id;     // <label>/seed<N>
+  std::string label;  // the overrides, readable
   uint64_t seed = 0;
   std::string config;  // the run's resolved experiment file
   std::string run_dir;
@@ -52,8 +51,8 @@ struct Sweep {
 
 // What the command line adds to a sweep file (`rlrun sweep SWEEP.yaml --out DIR --set k=v`).
 struct SweepOptions {
-  std::string out_dir;             // instead of the file's out_dir
-  std::vector<std::string> set;    // "key=value" for every run, after the file's `set:`
+  std::string out_dir;           // instead of the file's out_dir
+  std::vector<std::string> set;  // "key=value" for every run, after the file's `set:`
 };
 
 // Reads a sweep file, checks every override against the base experiment, writes

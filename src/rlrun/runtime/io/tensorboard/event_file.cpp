@@ -66,9 +66,11 @@ EventFile EventFile::reopen(const DirHandle& dir, const std::string& name, uint6
     throw RuntimeFailure("cannot open " + path + ": " + describe_errno(errno));
   if (static_cast<uint64_t>(st.st_size) < bytes)
     throw RuntimeFailure(path + " holds " + std::to_string(st.st_size) + " bytes, fewer than the " +
-                         std::to_string(bytes) + " the checkpoint recorded (cut or replaced since)");
+                         std::to_string(bytes) +
+                         " the checkpoint recorded (cut or replaced since)");
   if (::ftruncate(fd.get(), static_cast<off_t>(bytes)) != 0)
-    throw RuntimeFailure("cannot cut " + path + " back to the checkpoint: " + describe_errno(errno));
+    throw RuntimeFailure("cannot cut " + path +
+                         " back to the checkpoint: " + describe_errno(errno));
   return EventFile(CheckedFile::adopt(std::move(fd), path), bytes);
 }
 

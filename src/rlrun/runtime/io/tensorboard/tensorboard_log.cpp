@@ -35,7 +35,7 @@ int64_t run_number(const std::string& entry, const std::string& stem) {
 // Creates DIR/<name>_<N> with N above every existing one (mkdir is atomic: two runs starting
 // at once in one log directory, as a sweep's do, get different numbers).
 std::string create_tensorboard_run_directory(const std::string& dir, const std::string& name,
-                                 std::string& run_name) {
+                                             std::string& run_name) {
   const fs::path full = fs::path(dir) / name;
   const fs::path parent = full.parent_path();
   const std::string stem = full.filename().string();
@@ -61,8 +61,8 @@ std::string create_tensorboard_run_directory(const std::string& dir, const std::
 }  // namespace
 
 bool excluded_from_tensorboard(const std::string& key) {
-  return key == "time/iterations" || key == "time/time_elapsed" ||
-         key == "time/total_timesteps" || key == "time/episodes" || key == "train/n_updates";
+  return key == "time/iterations" || key == "time/time_elapsed" || key == "time/total_timesteps" ||
+         key == "time/episodes" || key == "train/n_updates";
 }
 
 TensorBoardLog TensorBoardLog::start(const std::string& dir, const std::string& name,
@@ -102,8 +102,8 @@ TensorBoardLog TensorBoardLog::resume(const std::string& dir, const std::string&
       run_number(run_path.filename().string(), fs::path(name).filename().string()) == 0)
     throw StateMismatch("checkpoint names the TensorBoard run '" + run_name + "', not " + name +
                         "_<N>");
-  if (file_name.rfind("events.out.tfevents.", 0) != 0 ||
-      file_name.find('/') != std::string::npos || file_name.find('\0') != std::string::npos)
+  if (file_name.rfind("events.out.tfevents.", 0) != 0 || file_name.find('/') != std::string::npos ||
+      file_name.find('\0') != std::string::npos)
     throw StateMismatch("checkpoint names the TensorBoard event file '" + file_name +
                         "', not events.out.tfevents.*");
   const DirHandle run_dir = open_tensorboard_run(dir, run_path);

@@ -136,7 +136,9 @@ std::string experiment_text(const ZooImport& imported) {
     out << YAML::Comment(quoted_text(header[i], kMaxCommentBytes));
   }
   emit(out, experiment_tree(imported));
-  if (!out.good()) throw ConfigError(imported.source.file + ": cannot write the experiment: " + out.GetLastError());
+  if (!out.good())
+    throw ConfigError(imported.source.file +
+                      ": cannot write the experiment: " + out.GetLastError());
   std::string text = std::string(out.c_str()) + "\n";
   if (text.size() > kMaxConfigBytes)
     throw ConfigError(imported.source.file + ": the experiment would be larger than " +

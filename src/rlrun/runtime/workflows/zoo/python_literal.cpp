@@ -16,13 +16,20 @@ PyValue::~PyValue() = default;
 
 std::string PyValue::describe() const {
   switch (kind) {
-    case Kind::kNone: return "None";
-    case Kind::kBool: return boolean ? "True" : "False";
-    case Kind::kNumber: return "the number " + quoted_text(text);
-    case Kind::kString: return "the string '" + quoted_text(text) + "'";
-    case Kind::kList: return "a list";
-    case Kind::kDict: return "a dict";
-    case Kind::kName: return "the name " + quoted_text(text);
+    case Kind::kNone:
+      return "None";
+    case Kind::kBool:
+      return boolean ? "True" : "False";
+    case Kind::kNumber:
+      return "the number " + quoted_text(text);
+    case Kind::kString:
+      return "the string '" + quoted_text(text) + "'";
+    case Kind::kList:
+      return "a list";
+    case Kind::kDict:
+      return "a dict";
+    case Kind::kName:
+      return "the name " + quoted_text(text);
   }
   return "a value";
 }
@@ -39,12 +46,15 @@ class Parser {
   PyValue whole() {
     PyValue v = value(0);
     skip_space();
-    if (pos_ != s_.size()) fail("unexpected '" + quoted_text(s_.substr(pos_, 1)) + "' after the expression");
+    if (pos_ != s_.size())
+      fail("unexpected '" + quoted_text(s_.substr(pos_, 1)) + "' after the expression");
     return v;
   }
 
  private:
-  [[noreturn]] void fail(const std::string& message) const { throw PythonLiteralError(message, pos_); }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw PythonLiteralError(message, pos_);
+  }
 
   void skip_space() {
     while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
@@ -61,14 +71,16 @@ class Parser {
   static bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
   PyValue value(int depth) {
-    if (depth > kMaxDepth) fail("nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
+    if (depth > kMaxDepth)
+      fail("nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
     skip_space();
     if (pos_ >= s_.size()) fail("expected a value, found the end of the text");
     const char c = s_[pos_];
     if (c == '[' || c == '(') return sequence(depth, c == '[' ? ']' : ')');
     if (c == '{') return braces(depth);
     if (c == '\'' || c == '"') return string();
-    if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') return number();
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.')
+      return number();
     if (name_start(c)) return named(depth);
     // (built with append, not "'" + std::string: GCC 12 warns -Wrestrict on that spelling)
     std::string message = "'";
@@ -137,9 +149,10 @@ class Parser {
     std::size_t end = pos_;
     if (s_[end] == '-' || s_[end] == '+') ++end;
     bool integral = true;
-    while (end < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[end])) || s_[end] == '.' ||
-                               s_[end] == 'e' || s_[end] == 'E' || s_[end] == '_' ||
-                               ((s_[end] == '-' || s_[end] == '+') && (s_[end - 1] == 'e' || s_[end - 1] == 'E')))) {
+    while (end < s_.size() &&
+           (std::isdigit(static_cast<unsigned char>(s_[end])) || s_[end] == '.' || s_[end] == 'e' ||
+            s_[end] == 'E' || s_[end] == '_' ||
+            ((s_[end] == '-' || s_[end] == '+') && (s_[end - 1] == 'e' || s_[end - 1] == 'E')))) {
       if (s_[end] == '.' || s_[end] == 'e' || s_[end] == 'E') integral = false;
       ++end;
     }
@@ -148,7 +161,8 @@ class Parser {
       if (s_[i] != '_') text += s_[i];
     char* parsed_end = nullptr;
     const double number = std::strtod(text.c_str(), &parsed_end);
-    if (text.empty() || parsed_end != text.c_str() + text.size()) fail("'" + text + "' is not a number");
+    if (text.empty() || parsed_end != text.c_str() + text.size())
+      fail("'" + text + "' is not a number");
     v.number = number;
     v.integral = integral;
     v.text = text;
@@ -180,13 +194,15 @@ class Parser {
     if (peek('(')) {
       if (name != "dict") {
         pos_ = v.offset;
-        fail("calls other than dict(...) are not read (found " + name + "(...)); rlrun never "
+        fail("calls other than dict(...) are not read (found " + name +
+             "(...)); rlrun never "
              "evaluates Python");
       }
       return call_dict(depth, v.offset);
     }
     skip_space();
-    if (pos_ < s_.size() && (s_[pos_] == '[' || s_[pos_] == '.')) fail("subscripts and attributes of values are not read");
+    if (pos_ < s_.size() && (s_[pos_] == '[' || s_[pos_] == '.'))
+      fail("subscripts and attributes of values are not read");
     v.kind = PyValue::Kind::kName;
     v.text = name;
     return v;

@@ -20,11 +20,11 @@ struct PyValue {
   Kind kind = Kind::kNone;
   bool boolean = false;
   double number = 0.0;
-  bool integral = false;  // a number written without '.', 'e' (an int in Python)
-  std::string text;       // kString: the string; kName: the dotted name; kNumber: as written
-  std::vector<PyValue> items;                          // kList
+  bool integral = false;       // a number written without '.', 'e' (an int in Python)
+  std::string text;            // kString: the string; kName: the dotted name; kNumber: as written
+  std::vector<PyValue> items;  // kList
   std::vector<std::pair<std::string, PyValue>> entries;  // kDict, in written order
-  std::size_t offset = 0;                              // where it starts in the source
+  std::size_t offset = 0;                                // where it starts in the source
 
   // Defined in the .cpp, where PyValue is complete: `entries` holds pairs with a PyValue,
   // which clang (before 16) refuses to destroy or copy inside the class's own definition.

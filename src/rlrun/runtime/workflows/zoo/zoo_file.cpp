@@ -1,5 +1,5 @@
-#include "rlrun/core/ascii_lower.hpp"
 #include "rlrun/runtime/workflows/zoo/zoo_file.hpp"
+#include "rlrun/core/ascii_lower.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -16,7 +16,7 @@ namespace {
 
 // rl-zoo's algorithm names (rl_zoo3/utils.py ALGOS) that rlrun implements.
 const std::vector<std::pair<std::string, std::string>> kAlgorithms{
-    {"ppo", "PPO"}, {"a2c", "A2C"}, {"dqn", "DQN"}, {"sac", "SAC"},
+    {"ppo", "PPO"}, {"a2c", "A2C"},   {"dqn", "DQN"}, {"sac", "SAC"},
     {"td3", "TD3"}, {"ddpg", "DDPG"}, {"tqc", "TQC"}};
 
 // The algorithms of rl-zoo 2.4's files (rl_zoo3/utils.py ALGOS, from sb3-contrib) and of
@@ -28,20 +28,21 @@ const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
     {"ars", "rlrun has no ARS (sb3-contrib's ARS) yet"},
     {"crossq", "rlrun has no CrossQ (sb3-contrib's CrossQ) yet"},
     {"ppolstm", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
-    {"recurrentppo", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
+    {"recurrentppo",
+     "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
     {"ppomask", "rlrun has no MaskablePPO (sb3-contrib's MaskablePPO) yet"},
     {"maskableppo", "rlrun has no MaskablePPO (sb3-contrib's MaskablePPO) yet"},
     // rl-zoo keeps its her.yml from before SB3 1.1 for reference (entries with model_class).
-    {"her", "rl-zoo's her.yml predates SB3 1.1, where HER became a replay buffer "
-            "(replay_buffer_class: HerReplayBuffer) in each algorithm's own file: import the "
-            "entry from tqc.yml, sac.yml, ..."}};
+    {"her",
+     "rl-zoo's her.yml predates SB3 1.1, where HER became a replay buffer "
+     "(replay_buffer_class: HerReplayBuffer) in each algorithm's own file: import the "
+     "entry from tqc.yml, sac.yml, ..."}};
 
 const char* const kImported = "rlrun imports zoo files of ppo, a2c, dqn, sac, td3, ddpg and tqc";
 
 // Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}.
 const std::vector<std::pair<std::string, std::string>> kRenamed{
-    {"LunarLander-v2", "LunarLander-v3"},
-    {"LunarLanderContinuous-v2", "LunarLanderContinuous-v3"}};
+    {"LunarLander-v2", "LunarLander-v3"}, {"LunarLanderContinuous-v2", "LunarLanderContinuous-v3"}};
 
 // rlrun's Gymnasium env family: `gymnasium:LunarLander-v3` is gymnasium.make("LunarLander-v3"),
 // and the zoo keys its entries by that id.
@@ -152,9 +153,9 @@ std::string choose_algorithm(const std::string& path, const std::string& algorit
   }
   if (const std::string found = algorithm_of_file(path); !found.empty()) return found;
   const std::string missing = missing_algorithm(std::filesystem::path(path).stem().string());
-  if (!missing.empty())
-    throw ConfigError(path + ": " + missing + "; " + kImported);
-  throw ConfigError(path + ": the file name does not name an algorithm (ppo.yml, a2c.yml, "
+  if (!missing.empty()) throw ConfigError(path + ": " + missing + "; " + kImported);
+  throw ConfigError(path +
+                    ": the file name does not name an algorithm (ppo.yml, a2c.yml, "
                     "dqn.yml, sac.yml, td3.yml, ddpg.yml, tqc.yml): pass --algo");
 }
 
@@ -163,7 +164,8 @@ std::string choose_algorithm(const std::string& path, const std::string& algorit
 ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
                         const std::string& algorithm, const std::string& entry_name) {
   try {
-    if (!valid_utf8(env_id)) throw ConfigError("env id '" + quoted_text(env_id) + "': not UTF-8 text");
+    if (!valid_utf8(env_id))
+      throw ConfigError("env id '" + quoted_text(env_id) + "': not UTF-8 text");
     ZooEntry entry;
     entry.file = path;
     entry.algorithm = choose_algorithm(path, algorithm);
@@ -184,7 +186,8 @@ ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
       return entry;
     }
     root.fail("no entry for " + quoted_text(env_id) + " and no `default` entry" +
-              did_you_mean(env_id, root.keys()) + " (rl-zoo stops here too: \"Hyperparameters "
+              did_you_mean(env_id, root.keys()) +
+              " (rl-zoo stops here too: \"Hyperparameters "
               "not found\")");
   } catch (const ConfigError& e) {
     throw ConfigError(bounded_message(e.what()));

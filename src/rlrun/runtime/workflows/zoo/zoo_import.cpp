@@ -1,5 +1,5 @@
-#include "rlrun/core/ascii_lower.hpp"
 #include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
+#include "rlrun/core/ascii_lower.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -23,8 +23,8 @@ constexpr int64_t kZooEvalFreq = 25000;
 constexpr int kZooEvalEpisodes = 5;
 
 // Keys of the zoo's VecNormalize kwargs that env.normalize has.
-const std::vector<std::string> kNormalizeKeys{"norm_obs", "norm_reward", "clip_obs",
-                                              "clip_reward", "gamma", "epsilon"};
+const std::vector<std::string> kNormalizeKeys{"norm_obs",    "norm_reward", "clip_obs",
+                                              "clip_reward", "gamma",       "epsilon"};
 
 // Collects every problem (one line each) so one import shows them all.
 class Problems {
@@ -75,7 +75,8 @@ class Translation {
     const std::vector<FieldDoc> rows = algo->params();
     algo_keys_ = keys_of(rows);
     policy_keys_ = policy_keys(rows);
-    if (const EnvEntry* env = registry.find_env(entry.env_id)) registered_limit_ = env->max_episode_steps;
+    if (const EnvEntry* env = registry.find_env(entry.env_id))
+      registered_limit_ = env->max_episode_steps;
   }
 
   ZooImport run() {
@@ -118,7 +119,8 @@ class Translation {
       check_policy_name(value);
     } else if (key == "policy_kwargs") {
       if (!value.defined()) return;
-      const YAML::Node policy = translate_policy_kwargs(value, policy_keys_, entry_.algorithm, notes);
+      const YAML::Node policy =
+          translate_policy_kwargs(value, policy_keys_, entry_.algorithm, notes);
       for (const auto& kv : policy) policy_[kv.first.Scalar()] = kv.second;
     } else if (key == "replay_buffer_kwargs") {
       // rl-zoo writes HerReplayBuffer's options as a Python dict string.
@@ -132,9 +134,10 @@ class Translation {
       x["env"]["normalize"] = normalize(value);
     } else if (key == "frame_stack") {
       if (e.has("normalize"))
-        value.fail("frame_stack with normalize: rl-zoo stacks normalised observations "
-                   "(VecFrameStack outside VecNormalize) while rlrun's FrameStack wrapper sits "
-                   "inside env.normalize; not translated");
+        value.fail(
+            "frame_stack with normalize: rl-zoo stacks normalised observations "
+            "(VecFrameStack outside VecNormalize) while rlrun's FrameStack wrapper sits "
+            "inside env.normalize; not translated");
       YAML::Node w(YAML::NodeType::Map);
       w["id"] = "FrameStack";
       w["n_stack"] = value.yaml();
@@ -226,7 +229,8 @@ class Translation {
 std::string zoo_run_name(const std::string& algorithm, const std::string& env_id) {
   std::string name = ascii_lower(algorithm) + "_";
   for (const char c : env_id.substr(0, kMaxRunNameEnvChars))
-    name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' ? c : '-';
+    name +=
+        std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' ? c : '-';
   return name;
 }
 
@@ -241,10 +245,10 @@ ZooImport translate_zoo_entry(const ZooEntry& entry, const Registry& registry) {
 Experiment check_zoo_experiment(ZooImport& imported, const std::vector<std::string>& overrides,
                                 const Registry& registry) {
   // The zoo file's values are untrusted; the env id is the one the user named.
-  ConfigNode root = ConfigNode::from_yaml(imported.experiment, imported.source.file, "",
-                                          ConfigTrust::kUntrusted);
-  root.vouch_for("env.id", "the env id " + quoted_text(imported.source.env_id) +
-                               " on the command line");
+  ConfigNode root =
+      ConfigNode::from_yaml(imported.experiment, imported.source.file, "", ConfigTrust::kUntrusted);
+  root.vouch_for("env.id",
+                 "the env id " + quoted_text(imported.source.env_id) + " on the command line");
   for (const std::string& o : overrides) root.apply_override(o);
   imported.overrides = overrides;
   try {

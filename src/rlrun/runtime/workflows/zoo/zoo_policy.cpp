@@ -77,17 +77,20 @@ class PolicyTranslation {
   YAML::Node net_arch(const PyValue& v) const {
     // SB3 < 1.8 wrote separate networks as [dict(pi=..., vf=...)]; SB3 1.8 reads that the same
     // as dict(pi=..., vf=...) (with a deprecation warning).
-    if (v.kind == PyValue::Kind::kList && v.items.size() == 1 && v.items[0].kind == PyValue::Kind::kDict)
+    if (v.kind == PyValue::Kind::kList && v.items.size() == 1 &&
+        v.items[0].kind == PyValue::Kind::kDict)
       return net_arch(v.items[0]);
     if (v.kind == PyValue::Kind::kList) {
       for (const PyValue& item : v.items)
         if (item.kind == PyValue::Kind::kDict)
-          fail("policy_kwargs net_arch: shared layers before dict(pi=..., vf=...) are gone since "
-               "SB3 1.8 and rlrun has none; write net_arch=dict(pi=[...], vf=[...])");
+          fail(
+              "policy_kwargs net_arch: shared layers before dict(pi=..., vf=...) are gone since "
+              "SB3 1.8 and rlrun has none; write net_arch=dict(pi=[...], vf=[...])");
       return layer_list(v, "net_arch");
     }
     if (v.kind != PyValue::Kind::kDict)
-      fail("policy_kwargs net_arch must be a list or dict(pi=..., vf=.../qf=...), found " + v.describe());
+      fail("policy_kwargs net_arch must be a list or dict(pi=..., vf=.../qf=...), found " +
+           v.describe());
     YAML::Node map(YAML::NodeType::Map);
     for (const auto& [key, sizes] : v.entries) {
       if (key != "pi" && key != "vf" && key != "qf")
@@ -135,9 +138,11 @@ void check_policy_name(const ConfigNode& policy) {
   const std::string name = policy.as_string();
   if (name == "MlpPolicy" || name == "MultiInputPolicy") return;
   if (name == "CnnPolicy")
-    policy.fail("CnnPolicy: rlrun has no convolutional policy (image observations); its "
-                "policies are MLPs (MlpPolicy, and MultiInputPolicy for Dict observations)");
-  policy.fail("policy '" + name + "': rlrun imports MlpPolicy and MultiInputPolicy only, not "
+    policy.fail(
+        "CnnPolicy: rlrun has no convolutional policy (image observations); its "
+        "policies are MLPs (MlpPolicy, and MultiInputPolicy for Dict observations)");
+  policy.fail("policy '" + name +
+              "': rlrun imports MlpPolicy and MultiInputPolicy only, not "
               "custom policy classes");
 }
 

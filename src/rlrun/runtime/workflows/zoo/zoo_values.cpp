@@ -16,7 +16,8 @@ PyValue from_yaml_node(const YAML::Node& node) {
   }
   if (node.IsMap()) {
     v.kind = PyValue::Kind::kDict;
-    for (const auto& kv : node) v.entries.emplace_back(kv.first.Scalar(), from_yaml_node(kv.second));
+    for (const auto& kv : node)
+      v.entries.emplace_back(kv.first.Scalar(), from_yaml_node(kv.second));
     return v;
   }
   // A scalar: YAML's own types (true, 1e-3), else a string or a dotted name.
@@ -55,11 +56,15 @@ PyValue python_value(const ConfigNode& node, const std::string& what) {
 
 YAML::Node to_yaml(const PyValue& value) {
   switch (value.kind) {
-    case PyValue::Kind::kNone: return YAML::Node(YAML::NodeType::Null);
-    case PyValue::Kind::kBool: return YAML::Node(value.boolean);
-    case PyValue::Kind::kNumber: return YAML::Node(value.text);
+    case PyValue::Kind::kNone:
+      return YAML::Node(YAML::NodeType::Null);
+    case PyValue::Kind::kBool:
+      return YAML::Node(value.boolean);
+    case PyValue::Kind::kNumber:
+      return YAML::Node(value.text);
     case PyValue::Kind::kString:
-    case PyValue::Kind::kName: return YAML::Node(value.text);
+    case PyValue::Kind::kName:
+      return YAML::Node(value.text);
     case PyValue::Kind::kList: {
       YAML::Node seq(YAML::NodeType::Sequence);
       for (const PyValue& item : value.items) seq.push_back(to_yaml(item));

@@ -22,7 +22,8 @@ std::vector<ClassUse> class_uses(const ConfigNode& node, const std::string& what
     } else if (item.is_map() && item.size() == 1) {
       const std::string name = item.keys().front();
       const ConfigNode kwargs = item.child(name);
-      if (kwargs.defined() && !kwargs.is_map()) kwargs.fail(what + " " + name + ": keyword arguments are a map");
+      if (kwargs.defined() && !kwargs.is_map())
+        kwargs.fail(what + " " + name + ": keyword arguments are a map");
       uses.push_back({name, kwargs, item});
     } else {
       item.fail(what + " entries are a class path or {class path: {keyword: value}}");
@@ -46,8 +47,8 @@ void only_kwargs(const ClassUse& use, const std::vector<std::string>& allowed) {
   if (!use.kwargs.defined()) return;
   for (const std::string& key : use.kwargs.keys())
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      use.kwargs.fail_at_key(key, use.name + ": keyword '" + key + "' is not translated" +
-                                      did_you_mean(key, allowed));
+      use.kwargs.fail_at_key(
+          key, use.name + ": keyword '" + key + "' is not translated" + did_you_mean(key, allowed));
 }
 
 YAML::Node wrapper(const std::string& id) {
@@ -69,7 +70,8 @@ void translate_env_wrappers(const ConfigNode& env_wrapper, YAML::Node env, int r
       if (!use.kwargs.has("max_episode_steps")) use.at.fail(use.name + " needs max_episode_steps");
       const int64_t steps = use.kwargs.child("max_episode_steps").as_int();
       if (steps < 1) use.kwargs.child("max_episode_steps").fail("must be >= 1");
-      const int64_t limit = registered_limit > 0 ? std::min<int64_t>(steps, registered_limit) : steps;
+      const int64_t limit =
+          registered_limit > 0 ? std::min<int64_t>(steps, registered_limit) : steps;
       env["max_episode_steps"] = limit;
       if (limit != steps)
         notes.push_back(use.name + "(max_episode_steps=" + std::to_string(steps) +
@@ -91,7 +93,8 @@ void translate_env_wrappers(const ConfigNode& env_wrapper, YAML::Node env, int r
         if (use.kwargs.has(key)) w[key] = use.kwargs.child(key).yaml();
       env["wrappers"].push_back(w);
     } else {
-      use.at.fail("env_wrapper " + use.name + ": rlrun translates TimeLimit, TimeFeatureWrapper, "
+      use.at.fail("env_wrapper " + use.name +
+                  ": rlrun translates TimeLimit, TimeFeatureWrapper, "
                   "ClipAction and RescaleAction (docs/zoo.md); add an rlrun wrapper to "
                   "env.wrappers by hand for others");
     }
@@ -111,10 +114,12 @@ void translate_callbacks(const ConfigNode& callback, YAML::Node& experiment, int
       experiment["checkpoint"]["freq"] = use.kwargs.child("save_freq").as_int() * n_envs;
       for (const char* ignored : {"save_path", "name_prefix", "verbose"})
         if (use.kwargs.has(ignored))
-          notes.push_back(use.name + " " + ignored + ": rlrun writes checkpoints to the run "
+          notes.push_back(use.name + " " + ignored +
+                          ": rlrun writes checkpoints to the run "
                           "directory's checkpoints/");
     } else {
-      use.at.fail("callback " + use.name + ": rlrun has no such callback (it translates "
+      use.at.fail("callback " + use.name +
+                  ": rlrun has no such callback (it translates "
                   "CheckpointCallback; evaluation is the eval section)");
     }
   }
