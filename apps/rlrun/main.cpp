@@ -11,6 +11,7 @@
 #include "cli_values.hpp"
 #include "commands.hpp"
 #include "parse_errors.hpp"
+#include "process_environment.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/execution_context.hpp"
 #include "rlrun/core/interrupt.hpp"
@@ -92,9 +93,9 @@ int main(int argc, char** argv) {
       execution.pool = &*pool;
     }
     try {
-      rlrun::dense::active_kernels();  // RLRUN_KERNELS is checked once, before any work
+      rlrun::apply_process_environment();  // the RLRUN_* variables, once, before any work
     } catch (const std::runtime_error& e) {
-      throw rlrun::UsageError(e.what());
+      throw rlrun::UsageError(std::string("RLRUN_KERNELS=") + e.what());
     }
     if (app.got_subcommand("train")) return train();
     if (app.got_subcommand("eval")) return eval();

@@ -16,6 +16,7 @@
 #include <memory>
 #include <string>
 
+#include "process_environment.hpp"
 #include "rlrun/envs/traffic_network/network_connection.hpp"
 #include "rlrun/envs/traffic_network/worker_protocol.hpp"
 
@@ -129,6 +130,12 @@ int main(int argc, char** argv) {
   }
   signal(SIGINT, SIG_IGN);
   signal(SIGPIPE, SIG_IGN);
+  try {
+    apply_process_environment();  // RLRUN_LIBSUMO_MODULE, as rlrun passed it on
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rlrun-sumo-worker: RLRUN_KERNELS=%s\n", e.what());
+    return 2;
+  }
   Worker worker{std::atoi(argv[1]), nullptr, {}, {}};
   std::vector<char> body;
   while (wire::receive_message(worker.fd, body)) {

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "process_environment.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/components/plugin_loader.hpp"
@@ -57,6 +58,12 @@ PYBIND11_MODULE(_core, m) {
   namespace py = pybind11;
   using namespace rlrun::python;
   m.doc() = "rlrun's native core: envs, vector envs, models and training (see the rlrun package)";
+  // The RLRUN_* variables, once (the package has set RLRUN_PYTHON to its interpreter by now).
+  try {
+    rlrun::apply_process_environment();
+  } catch (const std::runtime_error& e) {
+    throw rlrun::UsageError(std::string("RLRUN_KERNELS=") + e.what());
+  }
   m.attr("__version__") = RLRUN_VERSION;
   // Subclasses of the standard exceptions, so `except ValueError` catches a bad config.
   py::register_exception<rlrun::ConfigError>(m, "ConfigError", PyExc_ValueError);

@@ -1,12 +1,11 @@
 // Where the shipped data is found at run time (core/shipped_data.hpp), and that untrusted text
 // still names only files inside it (core/trusted_values.hpp) whichever place it was found in.
 // scripts/tests/test_install.sh checks an installed, relocated rlrun.
-#include <stdlib.h>
-
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 
+#include "core/scoped_process_settings.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/shipped_data.hpp"
 #include "rlrun/core/trusted_values.hpp"
@@ -19,11 +18,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Sets RLRUN_DATA_DIR for one scope (each test case runs in its own process under ctest).
+// RLRUN_DATA_DIR for one scope, as rlrun's main() would pass it on (ProcessSettings::data_dir).
 class DataDirOverride {
  public:
-  explicit DataDirOverride(const std::string& dir) { setenv("RLRUN_DATA_DIR", dir.c_str(), 1); }
-  ~DataDirOverride() { unsetenv("RLRUN_DATA_DIR"); }
+  explicit DataDirOverride(const std::string& dir)
+      : scope_([&](ProcessSettings& s) { s.data_dir = dir; }) {}
+
+ private:
+  test::ScopedProcessSettings scope_;
 };
 
 // The value an untrusted model file's config.yaml would give a SimulatorInput ("" = refused).
@@ -48,7 +50,7 @@ void write_file(const fs::path& path, const std::string& text) {
 
 TEST_CASE("shipped data: found beside the test binary, not through a compiled-in path",
           "[shipped_data]") {
-  unsetenv("RLRUN_DATA_DIR");
+  DataDirOverride none("");
   CHECK(running_binary_dir() == fs::canonical("/proc/self/exe").parent_path());
   // build/tests/rlrun_tests -> build/share/rlrun, whose links lead to the checkout's data.
   const fs::path data = shipped_data_dir();

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "core/scoped_process_settings.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/render/video_writer.hpp"
@@ -96,7 +97,7 @@ TEST_CASE("VideoWriter rejects sizes H.264 cannot take and frames of another siz
 TEST_CASE("VideoWriter without ffmpeg on PATH names the Debian package", "[render][video]") {
   TempDir dir("video_writer_missing");
   ScopedEnv path("PATH", dir.str());  // a directory without ffmpeg
-  ScopedEnv none("RLRUN_FFMPEG", "");
+  rlrun::test::ScopedProcessSettings none([](rlrun::ProcessSettings& s) { s.ffmpeg = ""; });
   try {
     VideoWriter video(dir / "clip.mp4", 320, 240);
     FAIL("expected an error");
@@ -117,7 +118,7 @@ TEST_CASE("VideoWriter reports ffmpeg's own error and leaves no file", "[render]
               "echo \"Unknown encoder 'libx264'\" >&2\nexit 1\n";
   }
   fs::permissions(fake, fs::perms::owner_all);
-  ScopedEnv ffmpeg("RLRUN_FFMPEG", fake);
+  rlrun::test::ScopedProcessSettings ffmpeg([&](rlrun::ProcessSettings& s) { s.ffmpeg = fake; });
   const std::string path = dir / "out/clip.mp4";
   Frame frame(320, 240);
   try {

@@ -1,5 +1,6 @@
 #include "rlrun/core/find_executable.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -8,7 +9,11 @@
 namespace rlrun {
 
 std::string find_executable(const std::string& binary) {
-  const auto executable = [](const std::string& path) { return access(path.c_str(), X_OK) == 0; };
+  // A regular file this process may execute (a directory passes access(X_OK) but not exec).
+  const auto executable = [](const std::string& path) {
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(path.c_str(), X_OK) == 0;
+  };
   if (binary.find('/') != std::string::npos) return executable(binary) ? binary : "";
   const char* path = std::getenv("PATH");
   std::stringstream dirs(path ? path : "/usr/bin:/bin");

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/process_settings.hpp"
 
 namespace rlrun {
 
@@ -39,9 +39,9 @@ fs::path mapped_file(std::uintptr_t address) {
 // Where to look, in the header's order; `override_set` tells whether the first is the user's.
 std::vector<fs::path> candidates(bool& override_set) {
   std::vector<fs::path> out;
-  const char* env = std::getenv("RLRUN_DATA_DIR");
-  override_set = env && *env;
-  if (override_set) out.emplace_back(env);
+  const std::string& user_dir = process_settings().data_dir;  // RLRUN_DATA_DIR
+  override_set = !user_dir.empty();
+  if (override_set) out.emplace_back(user_dir);
   const fs::path dir = running_binary_dir();
   // RLRUN_INSTALL_DATA_FROM_BIN: CMake's relative path from the install's bin/ to its data
   // (CMAKE_INSTALL_DATADIR/rlrun; "../share/rlrun" unless changed), not a path of this machine.

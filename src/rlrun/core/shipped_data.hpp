@@ -4,7 +4,7 @@
 // scenarios name). No path is compiled into the binary, so an install can be moved as a whole
 // (`cmake --install build --prefix P`, then `mv P Q`). The places searched, in this order:
 //
-//   1. $RLRUN_DATA_DIR, when set and not empty: the user's override (a relocated or edited copy
+//   1. $RLRUN_DATA_DIR (ProcessSettings::data_dir), when not empty: the user's override (a relocated or edited copy
 //      of the data). It must hold scenarios/, else rlrun stops with an error naming it; it is
 //      never silently skipped.
 //   2. <dir>/../share/rlrun: an install (P/bin/rlrun reads P/share/rlrun; CMake's

@@ -1,9 +1,9 @@
-// Picks the dense kernels for this CPU once per process and forwards every call to them
+// Holds the dense kernels chosen for this CPU (select_kernels) and forwards every call to them
 // (dense_kernels.hpp). The kernels themselves live in dense_kernel_set.hpp, compiled per
 // instruction set by dense_kernels_{avx512,avx2,baseline}.cpp.
 #include "rlrun/nn/dense_kernels.hpp"
 
-#include <cstdlib>
+#include <atomic>
 #include <stdexcept>
 #include <string>
 
@@ -71,29 +71,31 @@ KernelPath best_kernel_path() {
 
 namespace {
 
-const KernelTable& choose_kernels() {
-  const char* forced = std::getenv("RLRUN_KERNELS");
-  if (forced != nullptr && *forced != '\0' && std::string(forced) != "auto") {
-    for (KernelPath path : {KernelPath::kAvx512, KernelPath::kAvx2, KernelPath::kBaseline}) {
-      if (forced == std::string(kernel_path_name(path))) {
-        if (!kernel_path_available(path)) {
-          throw std::runtime_error(std::string("RLRUN_KERNELS=") + forced + ": the " + forced +
-                                   " kernels do not run on this CPU");
-        }
-        return kernels(path);
-      }
-    }
-    throw std::runtime_error(std::string("RLRUN_KERNELS=") + forced +
-                             ": expected auto, avx512, avx2 or baseline");
-  }
-  return kernels(best_kernel_path());
-}
+// The table select_kernels() chose; null: the best available.
+std::atomic<const KernelTable*> selected_table{nullptr};
 
 }  // namespace
 
+void select_kernels(const std::string& name) {
+  if (name.empty() || name == "auto") {
+    selected_table.store(&kernels(best_kernel_path()));
+    return;
+  }
+  for (KernelPath path : {KernelPath::kAvx512, KernelPath::kAvx2, KernelPath::kBaseline}) {
+    if (name == kernel_path_name(path)) {
+      if (!kernel_path_available(path))
+        throw std::runtime_error(name + ": the " + name + " kernels do not run on this CPU");
+      selected_table.store(&kernels(path));
+      return;
+    }
+  }
+  throw std::runtime_error(name + ": expected auto, avx512, avx2 or baseline");
+}
+
 const KernelTable& active_kernels() {
-  static const KernelTable& table = choose_kernels();
-  return table;
+  if (const KernelTable* table = selected_table.load(std::memory_order_relaxed)) return *table;
+  static const KernelTable& best = kernels(best_kernel_path());
+  return best;
 }
 
 void gemm_rows(Index m, Index n, Index k, const float* a, Index lda, const float* b, Index b_k,

@@ -9,8 +9,8 @@
 //
 // One binary, every x86-64 CPU, the same bits (docs/portability.md). The kernels are compiled
 // once per instruction set (dense_kernels_avx512.cpp, _avx2.cpp, _baseline.cpp, all from
-// dense_kernel_set.hpp) and the best one the CPU has is picked at run time; RLRUN_KERNELS=
-// avx512|avx2|baseline forces one. The AVX-512 and AVX2 kernels give bit-identical results
+// dense_kernel_set.hpp) and the best one the CPU has is picked at run time; select_kernels()
+// (RLRUN_KERNELS=avx512|avx2|baseline for the programs) forces one. The AVX-512 and AVX2 kernels give bit-identical results
 // (dense_kernel_set.hpp says how), so a seed trains the same model on every node of a cluster;
 // only the baseline path (CPUs without AVX2 + FMA) rounds a * b + c twice.
 //
@@ -19,6 +19,7 @@
 // kLogicalLanes), gemm_dot over the reduction dimension (outputs with few rows, e.g. a 1- or
 // 2-unit head).
 #include <cstddef>
+#include <string>
 
 namespace rlrun::dense {
 
@@ -111,12 +112,16 @@ struct KernelTable {
 const char* kernel_path_name(KernelPath path);
 // Whether this binary has the path and this CPU (and OS) can run it.
 bool kernel_path_available(KernelPath path);
-// The fastest path available here (what active_kernels() uses without RLRUN_KERNELS).
+// The fastest path available here (what active_kernels() uses unless told otherwise).
 KernelPath best_kernel_path();
 // The kernels of a path; throws std::runtime_error when it is not available.
 const KernelTable& kernels(KernelPath path);
-// The path the functions above use: RLRUN_KERNELS if set (a bad or unavailable value throws
-// std::runtime_error naming it), else the best available. Chosen once per process.
+// Chooses the path the functions above use: "avx512", "avx2", "baseline", or "auto"/"" for
+// the best available. Called once by the programs' entry points before any work (the user's
+// RLRUN_KERNELS, apps/common/process_environment.cpp). Throws std::runtime_error for a name
+// that is no path or a path this CPU cannot run.
+void select_kernels(const std::string& name);
+// The chosen kernels; the best available when select_kernels was not called.
 const KernelTable& active_kernels();
 
 }  // namespace rlrun::dense

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/find_executable.hpp"
+#include "rlrun/core/process_settings.hpp"
 #include "rlrun/core/temp_beside.hpp"
 #include "rlrun/render/video_limits.hpp"
 #include "rlrun/render/yuv420.hpp"
@@ -129,23 +131,12 @@ int spawn_in_own_group(std::vector<std::string> args, int stdin_fd, int stdout_f
 }  // namespace
 
 std::string VideoWriter::find_ffmpeg() {
-  if (const char* override_path = std::getenv("RLRUN_FFMPEG"); override_path && *override_path) {
-    if (!is_executable_file(override_path))
-      throw RuntimeFailure(std::string("RLRUN_FFMPEG=") + override_path +
-                           " is not an executable file");
-    return override_path;
+  if (const std::string& chosen = process_settings().ffmpeg; !chosen.empty()) {
+    if (!is_executable_file(chosen))
+      throw RuntimeFailure("RLRUN_FFMPEG=" + chosen + " is not an executable file");
+    return chosen;
   }
-  const char* path_env = std::getenv("PATH");
-  std::string dirs = path_env ? path_env : "";
-  size_t start = 0;
-  while (start <= dirs.size()) {
-    size_t end = dirs.find(':', start);
-    if (end == std::string::npos) end = dirs.size();
-    const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
-    const std::string candidate = dir + "/ffmpeg";
-    if (is_executable_file(candidate)) return candidate;
-    start = end + 1;
-  }
+  if (const std::string found = find_executable("ffmpeg"); !found.empty()) return found;
   throw RuntimeFailure(
       "cannot record video: the `ffmpeg` program is not on PATH. Install the Debian package "
       "`ffmpeg` (sudo apt-get install ffmpeg; scripts/setup.sh does it) or set RLRUN_FFMPEG to "

@@ -2,10 +2,10 @@
 //   python:<module>:<Attr>   Attr(**env.kwargs), Attr a class or function of the module
 //   gymnasium:<ID>           gymnasium.make(ID, **env.kwargs), with Gymnasium's own TimeLimit
 // env.kwargs is passed through as JSON (kwargs_json.hpp); env.python picks the interpreter.
-#include <cstdlib>
 #include <memory>
 #include <regex>
 
+#include "rlrun/core/process_settings.hpp"
 #include "rlrun/env/env_entry.hpp"
 #include "rlrun/envs/python/kwargs_json.hpp"
 #include "rlrun/envs/python/python_env.hpp"
@@ -14,12 +14,12 @@ namespace rlrun::envs {
 
 namespace {
 
-// env.python, where its default ("python3") gives way to RLRUN_PYTHON when that is set: the
-// `rlrun` Python package sets it to its own interpreter (sys.executable), so training from
-// Python runs Python envs in the same interpreter, virtualenv and all.
+// env.python, where its default ("python3") gives way to RLRUN_PYTHON (ProcessSettings::python)
+// when that is set: the `rlrun` Python package sets it to its own interpreter (sys.executable),
+// so training from Python runs Python envs in the same interpreter, virtualenv and all.
 std::string interpreter(const std::string& configured) {
-  const char* preferred = std::getenv("RLRUN_PYTHON");
-  return configured == "python3" && preferred && *preferred ? preferred : configured;
+  const std::string& preferred = process_settings().python;
+  return configured == "python3" && !preferred.empty() ? preferred : configured;
 }
 
 EnvEntry python_entry(const std::string& id, std::string description) {

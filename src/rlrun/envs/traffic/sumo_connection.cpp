@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/process_settings.hpp"
 #include "rlrun/core/shipped_data.hpp"
 #include "rlrun/envs/traffic/sumo_xml_guard.hpp"
 
@@ -39,13 +40,13 @@ using StartFunction = SumoConnection* (*)(const std::vector<std::string>*, std::
 }  // namespace
 
 // A file built and installed beside rlrun (the libsumo module, the SUMO worker program):
-// `override` (an environment variable) if set, else found relative to the binary holding this
+// `chosen` when not empty, else found relative to the binary holding this
 // code (core/shipped_data.hpp; no build path is compiled in): beside it (build/rlrun), in
 // <prefix>/lib of an install (P/bin/rlrun), or one or two levels up in a build tree
 // (build/tests/rlrun_tests, build/python/rlrun/_core*.so). The last candidate names the file
 // in the error when none exists.
-std::string rlrun_helper_path(const char* name, const char* override) {
-  if (const char* path = std::getenv(override); path && *path) return path;
+std::string rlrun_helper_path(const char* name, const std::string& chosen) {
+  if (!chosen.empty()) return chosen;
   const std::filesystem::path dir = running_binary_dir();
   const std::filesystem::path places[] = {dir, dir.parent_path() / RLRUN_INSTALL_LIBDIR,
                                           dir.parent_path(), dir.parent_path().parent_path()};
@@ -58,7 +59,7 @@ std::string rlrun_helper_path(const char* name, const char* override) {
 namespace {
 
 std::string libsumo_module_path() {
-  return rlrun_helper_path("librlrun_libsumo.so", "RLRUN_LIBSUMO_MODULE");
+  return rlrun_helper_path("librlrun_libsumo.so", process_settings().libsumo_module);
 }
 
 void* libsumo_module() {

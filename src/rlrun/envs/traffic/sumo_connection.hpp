@@ -115,9 +115,10 @@ class SumoConnection {
 // second libsumo simulation is asked for in this process.
 std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const SumoLaunch& launch);
 
-// A file built and installed beside rlrun (librlrun_libsumo.so, rlrun-sumo-worker): the
-// environment variable `override` if set, else found relative to the running binary.
-std::string rlrun_helper_path(const char* name, const char* override);
+// A file built and installed beside rlrun (librlrun_libsumo.so, rlrun-sumo-worker): `chosen`
+// when not empty (the user's RLRUN_LIBSUMO_MODULE / RLRUN_SUMO_WORKER, core/process_settings.hpp),
+// else found relative to the running binary.
+std::string rlrun_helper_path(const char* name, const std::string& chosen);
 
 // A function of the libsumo module (librlrun_libsumo.so), which is loaded on the first call.
 // Throws RuntimeFailure saying what to install when it does not load.

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/process_settings.hpp"
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/worker_spawn.hpp"
 #include "rlrun/core/worker_wait.hpp"
@@ -25,7 +26,9 @@ namespace {
 
 constexpr int kWorkerFd = 3;
 
-std::string worker_path() { return rlrun_helper_path("rlrun-sumo-worker", "RLRUN_SUMO_WORKER"); }
+std::string worker_path() {
+  return rlrun_helper_path("rlrun-sumo-worker", process_settings().sumo_worker);
+}
 
 }  // namespace
 
