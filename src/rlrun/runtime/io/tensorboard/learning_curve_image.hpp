@@ -4,14 +4,10 @@
 // time/total_timesteps from progress.csv, drawn by `rlrun plot`'s code
 // (render/learning_curves.hpp).
 #include <string>
-#include <utility>
 
 namespace rlrun {
 
 // PNG bytes, or "" when progress.csv holds fewer than two points of the training return.
 std::string learning_curve_png(const std::string& run_dir, const std::string& title);
-
-// Width and height from a PNG's IHDR chunk (0, 0 when `png` is not a PNG).
-std::pair<int, int> png_size(const std::string& png);
 
 }  // namespace rlrun

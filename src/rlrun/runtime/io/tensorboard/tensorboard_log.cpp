@@ -9,7 +9,7 @@
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/runtime/io/tensorboard/learning_curve_image.hpp"
+#include "rlrun/runtime/io/tensorboard/png_size.hpp"
 #include "rlrun/runtime/io/tensorboard/summaries.hpp"
 
 namespace rlrun {
