@@ -11,6 +11,7 @@
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/zip_archive.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/marker_library.hpp"
 #include "runtime/peak_memory_bound.hpp"
 #include "test_paths.hpp"
 
@@ -85,12 +86,7 @@ TEST_CASE("untrusted: a model file names no library, program or output file that
   TempDir dir("untrusted_model");
   const std::string marker = dir / "code_ran";
   // A library whose constructor runs on dlopen, and a script: either would leave the marker.
-  write_file(dir / "evil.c",
-             "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
-             " { FILE* f = fopen(\"" +
-                 marker + "\", \"w\"); if (f) fclose(f); }\n");
-  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code ==
-          0);
+  build_marker_library(dir, marker);
   write_file(dir / "evil.sh", "#!/bin/sh\ntouch " + marker + "\n");
   fs::permissions(dir / "evil.sh", fs::perms::owner_all);
   const std::string victim = dir / "victim.txt";
@@ -133,12 +129,7 @@ TEST_CASE("untrusted: a resumed run's config.yaml loads no library", "[cli][secu
   TempDir dir("untrusted_run_dir");
   const std::string run = train_with_checkpoints(dir);
   const std::string marker = dir / "code_ran";
-  write_file(dir / "evil.c",
-             "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
-             " { FILE* f = fopen(\"" +
-                 marker + "\", \"w\"); if (f) fclose(f); }\n");
-  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code ==
-          0);
+  build_marker_library(dir, marker);
   const std::string config = read_text(run + "/config.yaml");
   write_file(run + "/config.yaml", "plugins: [" + dir / "libevil.so" + "]\n" + config);
   const auto r = run_rlrun("train --resume " + run + "/checkpoints/step_256.zip");

@@ -16,6 +16,7 @@
 #include "rlrun/runtime/workflows/zoo/experiment_text.hpp"
 #include "rlrun/runtime/workflows/zoo/zoo_import.hpp"
 #include "runtime/cli_runner.hpp"
+#include "runtime/marker_library.hpp"
 #include "test_paths.hpp"
 
 using namespace rlrun;
@@ -130,12 +131,7 @@ TEST_CASE("zoo import: a class name cannot add a plugins line that `rlrun train`
           "[zoo][security][cli]") {
   TempDir dir("zoo_injection_cli");
   const std::string marker = dir / "code_ran";
-  write_file(dir / "evil.c",
-             "#include <stdio.h>\n__attribute__((constructor)) static void f(void)"
-             " { FILE* f = fopen(\"" +
-                 marker + "\", \"w\"); if (f) fclose(f); }\n");
-  REQUIRE(run_command("cc -shared -fPIC -o " + dir / "libevil.so " + dir / "evil.c").exit_code ==
-          0);
+  build_marker_library(dir, marker);
   const std::string file = write_file(dir / "dqn.yml",
                                       "CartPole-v1:\n"
                                       "  n_timesteps: 1000\n"
