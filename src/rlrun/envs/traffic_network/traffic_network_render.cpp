@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/envs/traffic/vehicle_picture.hpp"
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
+#include "rlrun/envs/traffic_network/vehicle_picture.hpp"
 #include "rlrun/frame.hpp"
 
 namespace rlrun {
@@ -15,7 +15,7 @@ namespace rlrun {
 using namespace traffic;
 
 bool TrafficNetwork::render(Frame& frame) const {
-  if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before render()");
+  if (!has_state_) throw std::logic_error(name_ + ": call reset() before render()");
   // Plain variables, not a structured binding: the lambdas below capture them, which clang
   // before 16 (scripts/fuzz.sh's clang 14) refuses for bindings.
   double x0 = geometry_.bounds[0], y0 = geometry_.bounds[1];
