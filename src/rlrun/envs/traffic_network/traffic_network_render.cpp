@@ -1,6 +1,8 @@
-// TrafficNetwork-v0's picture: the network from above (all of it, or `render_radius` metres
-// around `render_focus`), drawn as TrafficSignal-v0 draws its junction — grey lanes, each
-// agent's stop lines green or red by its current green, the vehicles (vehicle_picture.hpp).
+// The traffic envs' picture (TrafficSignal-v0's too: its one junction is the whole map): the
+// network from above (all of it, or `render_radius` metres around `render_focus`), as sumo-gui
+// shows it in its "standard" scheme, simplified — grass, grey lanes, each agent's stop lines
+// green or red by its current green (a yellow begins and ends within one decision), the
+// vehicles (vehicle_picture.hpp).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
