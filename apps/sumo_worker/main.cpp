@@ -1,5 +1,5 @@
-// rlrun-sumo-worker FD: drives one SUMO for TrafficNetwork-v0 on behalf of an rlrun process
-// (envs/traffic_network/worker_protocol.hpp has the messages; network_worker.cpp starts it).
+// rlrun-sumo-worker FD: drives one SUMO for a traffic env (own_process: true) on behalf of an rlrun process
+// (envs/sumo/worker_protocol.hpp has the messages; sumo_worker.cpp starts it).
 // With backend: libsumo the simulation runs inside this process, so every env of an rlrun run
 // — n_envs copies, the eval env — has a SUMO of its own; with traci this process holds the
 // socket to a `sumo` child. Several workers step their SUMOs at the same time.
@@ -17,8 +17,8 @@
 #include <string>
 
 #include "process_environment.hpp"
-#include "rlrun/envs/traffic_network/network_connection.hpp"
-#include "rlrun/envs/traffic_network/worker_protocol.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
+#include "rlrun/envs/sumo/worker_protocol.hpp"
 
 using namespace rlrun;
 using namespace rlrun::traffic;
@@ -27,7 +27,7 @@ namespace {
 
 struct Worker {
   int fd;
-  std::unique_ptr<NetworkConnection> sumo;
+  std::unique_ptr<SumoConnection> sumo;
   std::string error;  // the first failure not yet reported
   NetworkReading reading;
 
@@ -46,7 +46,7 @@ struct Worker {
     return wire::send_message(fd, w.framed());
   }
 
-  NetworkConnection& running() {
+  SumoConnection& running() {
     if (!sumo) throw std::runtime_error("no simulation (start it first)");
     return *sumo;
   }
@@ -75,13 +75,15 @@ struct Worker {
           launch.seed = std::strtoull(in.str().c_str(), nullptr, 10);
           launch.scale = in.f64();
           launch.extra_args = in.strings();
-          sumo = start_network_sumo(backend, launch);
+          sumo = start_sumo(backend, launch);
           w.i32(sumo->pid() > 0 ? sumo->pid() : static_cast<int32_t>(getpid()));
           break;
         }
-        case wire::kSubscribeLanes:
-          running().subscribe_lanes(in.strings());
+        case wire::kSubscribe: {
+          const std::vector<std::string> lanes = in.strings();
+          running().subscribe(lanes, in.strings());
           return true;
+        }
         case wire::kSubscribeVehicles:
           running().subscribe_vehicles(in.str(), reading);
           wire::write_reading(w, reading);
@@ -124,8 +126,7 @@ struct Worker {
 
 int main(int argc, char** argv) {
   if (argc != 2) {
-    std::fprintf(stderr,
-                 "rlrun-sumo-worker is started by rlrun (TrafficNetwork-v0), not by hand\n");
+    std::fprintf(stderr, "rlrun-sumo-worker is started by rlrun (a traffic env), not by hand\n");
     return 2;
   }
   signal(SIGINT, SIG_IGN);

@@ -24,6 +24,8 @@ LAYERS = [
     ["core"],
     ["nn"],
     ["env", "render"],
+    ["envs/sumo"],            # the SUMO backend: processes, connection, worker, scenario files
+    ["envs/traffic_network"], # the traffic-light rules and TrafficNetwork-v0 (envs/traffic on it)
     ["wrappers", "envs", "algos", "deploy"],
     ["runtime/components"],   # the registry: env, wrapper and algorithm entries, plugins
     ["runtime/experiment"],   # the experiment file's sections and the env stack built from them

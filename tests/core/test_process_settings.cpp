@@ -24,7 +24,7 @@ TEST_CASE("process settings: no file under src/ or include/ reads the environmen
   // The operating system's PATH lookup and SUMO's own ${VAR} substitution (docs/architecture.md,
   // "Process settings") are the only reads left below apps/.
   const std::set<std::string> allowed{"src/rlrun/core/find_executable.cpp",
-                                      "src/rlrun/envs/traffic/sumo_xml_guard.cpp"};
+                                      "src/rlrun/envs/sumo/sumo_xml_guard.cpp"};
   const std::regex call(R"(\b(std::)?(secure_)?getenv\s*\()");
   std::set<std::string> readers;
   int files = 0;

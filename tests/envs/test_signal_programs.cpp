@@ -12,7 +12,7 @@
 #include <libsumo/libtraci.h>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/envs/traffic/sumo_connection.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
 #include "rlrun/envs/traffic_network/signal_programs.hpp"
 #include "runtime/cli_runner.hpp"
 

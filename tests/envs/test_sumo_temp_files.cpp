@@ -18,7 +18,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
-#include "rlrun/envs/traffic/sumo_process.hpp"
+#include "rlrun/envs/sumo/sumo_process.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 #include "runtime/cli_runner.hpp"
 #include "test_paths.hpp"
@@ -141,7 +141,7 @@ TEST_CASE("rlrun killed with SIGKILL: the next rlrun removes its SUMO directorie
       tmp + "'");
   INFO(killed.output);
   CHECK(contains_text(killed.output, "rlrun-sumo-"));
-  CHECK(contains_text(killed.output, "rlrun-tripinfo-"));
+  CHECK(contains_text(killed.output, "rlrun-traffic-"));  // the env's tripinfo directory
   // The next rlrun that starts SUMO sweeps them away, and leaves nothing of its own.
   const auto next = run_command(env + RLRUN_BINARY +
                                 " check-env TrafficSignal-v0 --set num_seconds=60 --episodes 1");
@@ -223,15 +223,13 @@ TEST_CASE("SUMO failing at start-up: its own error quoted, no files left, no pro
   }
   CHECK(entries(tmp).empty());
 
-  // The same through the env: the error names SUMO's complaint; the env's own directory goes
-  // with the env.
+  // The same through the env: it reads the scenario's files before SUMO runs (TrafficSignal-v0
+  // is TrafficNetwork-v0's single-intersection case), so the error names the missing network
+  // at once, and nothing is left.
   {
     TrafficSignal::Config env_config;
     env_config.scenario.value = config;
-    TrafficSignal env(env_config);
-    std::vector<float> obs(10);
-    CHECK_THROWS_WITH(env.reset(1, obs), Catch::Contains("missing.net.xml"));
-    CHECK(entries(tmp).size() == 1);  // the tripinfo directory, until the env goes
+    CHECK_THROWS_WITH(TrafficSignal(env_config), Catch::Contains("missing.net.xml"));
   }
   CHECK(entries(tmp).empty());
 

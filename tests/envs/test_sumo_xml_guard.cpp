@@ -15,7 +15,7 @@
 
 #include "envs/python_env_runner.hpp"
 #include "rlrun/core/errors.hpp"
-#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
+#include "rlrun/envs/sumo/sumo_xml_guard.hpp"
 #include "runtime/peak_memory_bound.hpp"
 
 using namespace rlrun;

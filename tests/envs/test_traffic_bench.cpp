@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/envs/traffic/traffic_scenario.hpp"
+#include "rlrun/envs/sumo/network_scenario.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
 
 namespace {
@@ -57,7 +57,7 @@ double best_of_3(auto&& run) {
 TEST_CASE("bench: TrafficSignal-v0 over traci and libsumo vs plain sumo",
           "[.bench][traffic_bench]") {
   const std::string cfg =
-      rlrun::load_traffic_scenario(rlrun::default_traffic_scenario()).sumocfg_path;
+      rlrun::traffic::load_network_scenario("scenarios/single_intersection.yaml").files.sumocfg;
   // The shipped plan (tls.tll.xml: 30 s green, 3 s yellow) with the env cycle's 27 s greens.
   std::ifstream shipped(std::filesystem::path(cfg).parent_path() / "tls.tll.xml");
   std::stringstream text;

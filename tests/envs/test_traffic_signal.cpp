@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/envs/sumo/network_scenario.hpp"
+#include "rlrun/envs/sumo/tripinfo.hpp"
 #include "rlrun/envs/traffic/fixed_time_policy.hpp"
-#include "rlrun/envs/traffic/traffic_scenario.hpp"
 #include "rlrun/envs/traffic/traffic_signal.hpp"
-#include "rlrun/envs/traffic/tripinfo.hpp"
 #include "runtime/cli_runner.hpp"
 #include "runtime/video_probe.hpp"
 #include "test_paths.hpp"
@@ -74,15 +74,15 @@ TEST_CASE("TrafficSignal: spaces, yellow on every switch, min_green", "[traffic]
   CHECK(env.action_space().describe() == "Discrete(4)");
   std::vector<float> obs(10);
   env.reset(7, obs);
-  CHECK(env.green_approach() == TrafficSignal::kNorth);
+  CHECK(env.green_approach() == traffic::kNorth);
   CHECK(obs[8] == 0.0f);
   // Asking for East before min_green keeps North.
-  act(env, TrafficSignal::kEast, obs);
-  CHECK(env.green_approach() == TrafficSignal::kNorth);
-  act(env, TrafficSignal::kEast, obs);  // 11 s of green now
-  CHECK(env.green_approach() == TrafficSignal::kNorth);
-  act(env, TrafficSignal::kEast, obs);  // switches: 3 s yellow, then East for 2 s
-  CHECK(env.green_approach() == TrafficSignal::kEast);
+  act(env, traffic::kEast, obs);
+  CHECK(env.green_approach() == traffic::kNorth);
+  act(env, traffic::kEast, obs);  // 11 s of green now
+  CHECK(env.green_approach() == traffic::kNorth);
+  act(env, traffic::kEast, obs);  // switches: 3 s yellow, then East for 2 s
+  CHECK(env.green_approach() == traffic::kEast);
   CHECK(obs[8] == Approx(2.0 / 3.0));
   CHECK(obs[9] == Approx(2.0 / 60.0));
   for (float v : obs) {
@@ -93,7 +93,7 @@ TEST_CASE("TrafficSignal: spaces, yellow on every switch, min_green", "[traffic]
   StepResult r;
   int steps = 3;
   do {
-    act(env, TrafficSignal::kEast, obs, &r);
+    act(env, traffic::kEast, obs, &r);
     ++steps;
   } while (!r.truncated && steps < 100);
   CHECK(r.truncated);
@@ -121,7 +121,8 @@ TEST_CASE("TrafficSignal: metrics equal a plain SUMO run of the same signal plan
   std::ofstream(dir / "plan.xml") << "<additional><tlLogic id=\"C\" type=\"static\" "
                                      "programID=\"plan\" offset=\"0\">"
                                   << phases << "</tlLogic></additional>";
-  const std::string cfg = load_traffic_scenario(default_traffic_scenario()).sumocfg_path;
+  const std::string cfg =
+      traffic::load_network_scenario("scenarios/single_intersection.yaml").files.sumocfg;
   const auto plain = run_command("sumo -c " + cfg + " --additional-files " + dir / "plan.xml" +
                                  // the env runs SUMO with --end num_seconds + 1 too: the
                                  // arrivals of the step that reaches 900 s count
@@ -248,16 +249,16 @@ TEST_CASE("TrafficSignal: scenario files", "[traffic]") {
   }
   INFO("default " << arrived[0] << ", rush " << arrived[1]);
   CHECK(arrived[1] > arrived[0] * 1.1);  // 20 s greens cannot clear all of 1.5 x
-  CHECK(load_traffic_scenario("scenarios/single_intersection_rush.yaml").scale == 1.5);
+  CHECK(traffic::load_network_scenario("scenarios/single_intersection_rush.yaml").scale == 1.5);
 
   TempDir dir("traffic_scenario");
   std::ofstream(dir / "typo.yaml") << "name: x\nsumocfg: ../x.sumocfg\nscael: 2\n";
-  CHECK_THROWS_WITH(load_traffic_scenario(dir / "typo.yaml"),
+  CHECK_THROWS_WITH(traffic::load_network_scenario(dir / "typo.yaml"),
                     Catch::Contains("typo.yaml:3:1") && Catch::Contains("did you mean 'scale'"));
   std::ofstream(dir / "nocfg.yaml") << "name: x\nsumocfg: missing.sumocfg\n";
-  CHECK_THROWS_WITH(load_traffic_scenario(dir / "nocfg.yaml"),
+  CHECK_THROWS_WITH(traffic::load_network_scenario(dir / "nocfg.yaml"),
                     Catch::Contains("nocfg.yaml:2") && Catch::Contains("does not exist"));
-  CHECK_THROWS_WITH(load_traffic_scenario("no/such/scenario.yaml"),
+  CHECK_THROWS_WITH(traffic::load_network_scenario("no/such/scenario.yaml"),
                     Catch::Contains("does not exist"));
 }
 

@@ -17,8 +17,8 @@ FixedTimePolicy::FixedTimePolicy(int green_time, int delta_time) {
 
 int FixedTimePolicy::next_action(bool episode_start) {
   if (episode_start) decision_ = 0;
-  static constexpr int kCycle[] = {TrafficSignal::kNorth, TrafficSignal::kSouth,
-                                   TrafficSignal::kEast, TrafficSignal::kWest};
+  static constexpr int kCycle[] = {traffic::kNorth, traffic::kSouth, traffic::kEast,
+                                   traffic::kWest};
   return kCycle[(decision_++ / decisions_per_green_) % 4];
 }
 

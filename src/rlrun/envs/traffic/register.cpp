@@ -12,7 +12,9 @@ namespace rlrun::envs {
 void register_traffic(EnvEntries& out) {
   EnvEntry entry = make_env_entry<TrafficSignal>(
       "TrafficSignal-v0",
-      "one traffic light at a 4-arm intersection in SUMO; Discrete(4): N, S, E or W green", 0);
+      "one traffic light at a 4-arm intersection in SUMO (TrafficNetwork-v0's single-intersection "
+      "case); Discrete(4): N, S, E or W green",
+      0);
   entry.policies.push_back(
       {"fixed-time", "N -> S -> E -> W, green_time seconds each (--green-time, default 30)",
        [](Env& env, const PolicyOptions& options) {

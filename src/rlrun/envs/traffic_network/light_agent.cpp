@@ -12,13 +12,33 @@ constexpr double kMinGap = 2.5;
 
 }  // namespace
 
+const std::vector<std::string>& reward_function_names() {
+  static const std::vector<std::string> names{"diff-waiting-time", "queue", "pressure",
+                                              "average-speed"};
+  return names;
+}
+
 RewardFunction parse_reward_function(const std::string& name) {
-  if (name == "diff-waiting-time") return RewardFunction::kDiffWaitingTime;
-  if (name == "queue") return RewardFunction::kQueue;
-  if (name == "pressure") return RewardFunction::kPressure;
-  if (name == "average-speed") return RewardFunction::kAverageSpeed;
-  throw std::invalid_argument("unknown reward_fn '" + name +
-                              "' (diff-waiting-time, queue, pressure or average-speed)");
+  const auto& names = reward_function_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
+    throw std::invalid_argument("unknown reward_fn '" + name +
+                                "' (diff-waiting-time, queue, pressure or average-speed)");
+  // In the enum's order.
+  return static_cast<RewardFunction>(it - names.begin());
+}
+
+const std::vector<std::string>& observation_function_names() {
+  static const std::vector<std::string> names{"sumo-rl", "approach"};
+  return names;
+}
+
+ObservationFunction parse_observation_function(const std::string& name) {
+  const auto& names = observation_function_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
+    throw std::invalid_argument("unknown observation '" + name + "' (sumo-rl or approach)");
+  return static_cast<ObservationFunction>(it - names.begin());
 }
 
 LightAgent::LightAgent(const TrafficLightProgram& light, SignalControl control,
@@ -47,10 +67,15 @@ LightAgent::LightAgent(const TrafficLightProgram& light, SignalControl control,
   }
 }
 
-void LightAgent::reset() {
+void LightAgent::reset(int since_change) {
   green_ = 0;
-  since_change_ = 0;
+  since_change_ = since_change;
   last_waiting_ = 0;
+}
+
+void LightAgent::set_approaches(ApproachLayout layout, std::vector<int> edge_slots) {
+  approaches_ = std::move(layout);
+  edge_slots_ = std::move(edge_slots);
 }
 
 LightCommand LightAgent::decide(int action, const LightTiming& timing) {
@@ -60,7 +85,7 @@ LightCommand LightAgent::decide(int action, const LightTiming& timing) {
   const bool may_change = since_change_ >= timing.yellow_time + timing.min_green;
   if (!valid || next == green_ || !may_change) {
     // rlrun's max_green: a green that has run its longest goes to the program's next green.
-    if (timing.max_green > 0 && num_greens() > 1 &&
+    if (timing.max_green_switch && timing.max_green > 0 && num_greens() > 1 &&
         since_change_ - timing.yellow_time >= timing.max_green && may_change)
       next = (green_ + 1) % num_greens();
     else
@@ -87,6 +112,32 @@ void LightAgent::observe(const std::vector<LaneReading>& lanes, const LightTimin
     density[k] = static_cast<float>(std::min(1.0, lane.vehicles / capacity));
     queue[k] = static_cast<float>(std::min(1.0, lane.halting / capacity));
   }
+}
+
+void LightAgent::observe_approaches(const std::vector<LaneReading>& edges,
+                                    const LightTiming& timing, std::span<float> obs) const {
+  // Per approach; a road's mean speed is SUMO's vehicle-weighted mean over its lanes.
+  double halting[kNumApproaches] = {}, speed_weighted[kNumApproaches] = {},
+         vehicles[kNumApproaches] = {};
+  for (size_t k = 0; k < edge_slots_.size(); ++k) {
+    const LaneReading& road = edges[edge_slots_[k]];
+    const int a = approaches_.edge_approach[k];
+    halting[a] += road.halting;
+    speed_weighted[a] += road.mean_speed * road.vehicles;
+    vehicles[a] += road.vehicles;
+  }
+  for (int a = 0; a < kNumApproaches; ++a) {
+    obs[a] = static_cast<float>(std::min(1.0, halting[a] / std::max(approaches_.capacity[a], 1.0)));
+    obs[kNumApproaches + a] = static_cast<float>(
+        vehicles[a] > 0 ? std::min(1.0, speed_weighted[a] / vehicles[a] / approaches_.limit[a])
+                        : 1.0);
+  }
+  obs[2 * kNumApproaches] =
+      static_cast<float>(green_ / static_cast<double>(std::max(1, num_greens() - 1)));
+  // Seconds of green: since the switch began, less its yellow.
+  const double green_seconds = std::max(0, since_change_ - timing.yellow_time);
+  obs[2 * kNumApproaches + 1] =
+      static_cast<float>(std::min(1.0, green_seconds / std::max(1, timing.max_green)));
 }
 
 int LightAgent::queue(const std::vector<LaneReading>& lanes) const {

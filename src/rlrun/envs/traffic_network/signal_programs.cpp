@@ -6,7 +6,7 @@
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
-#include "rlrun/envs/traffic_network/net_file.hpp"
+#include "rlrun/envs/sumo/net_file.hpp"
 
 namespace rlrun::traffic {
 

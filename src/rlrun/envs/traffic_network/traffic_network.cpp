@@ -11,7 +11,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/shipped_data.hpp"
-#include "rlrun/envs/traffic/tripinfo.hpp"
+#include "rlrun/envs/sumo/tripinfo.hpp"
 
 namespace rlrun {
 
@@ -29,29 +29,43 @@ constexpr int kNeighbourSearchDepth = 8;
 
 }  // namespace
 
-TrafficNetwork::TrafficNetwork(const Config& config)
-    : config_(config),
+const std::vector<std::string>& TrafficNetwork::network_info_keys() {
+  static const std::vector<std::string> keys{"sim_time",         "total_queue_length", "mean_delay",
+                                             "avg_waiting_time", "avg_travel_time",    "throughput",
+                                             "mean_queue"};
+  return keys;
+}
+
+TrafficNetwork::TrafficNetwork(const Config& config, std::string name,
+                               const std::vector<std::string>& info_keys)
+    : name_(std::move(name)),
+      config_(config),
       reward_(parse_reward_function(config.reward_fn)),
+      observation_(parse_observation_function(config.observation)),
+      approach_phases_(config.phases == "approaches"),
       neighbourhood_(config.reward_scope == "neighbourhood"),
       scenario_(load_network_scenario(config.scenario.value.empty() ? default_scenario()
                                                                     : config.scenario.value)) {
   if (config_.backend != "traci" && config_.backend != "libsumo")
-    throw std::invalid_argument("TrafficNetwork-v0: unknown backend '" + config_.backend +
+    throw std::invalid_argument(name_ + ": unknown backend '" + config_.backend +
                                 "' (traci or libsumo)");
   if (config_.gui && config_.backend != "traci")
-    throw std::invalid_argument(
-        "TrafficNetwork-v0: gui: true needs backend: traci (sumo-gui is "
-        "a program of its own)");
+    throw std::invalid_argument(name_ +
+                                ": gui: true needs backend: traci (sumo-gui is "
+                                "a program of its own)");
   if (config_.reward_scope != "local" && config_.reward_scope != "neighbourhood")
-    throw std::invalid_argument("TrafficNetwork-v0: reward_scope is local or neighbourhood");
+    throw std::invalid_argument(name_ + ": reward_scope is local or neighbourhood");
   if (config_.delta_time <= config_.yellow_time)
-    throw std::invalid_argument(
-        "TrafficNetwork-v0: delta_time must exceed yellow_time (sumo-rl: "
-        "the yellow fits within one decision)");
-  timing_ = {config_.delta_time, config_.yellow_time, config_.min_green, config_.max_green};
+    throw std::invalid_argument(name_ +
+                                ": delta_time must exceed yellow_time (sumo-rl: "
+                                "the yellow fits within one decision)");
+  if (config_.phases != "program" && config_.phases != "approaches")
+    throw std::invalid_argument(name_ + ": phases is program or approaches");
+  timing_ = {config_.delta_time, config_.yellow_time, config_.min_green, config_.max_green,
+             config_.max_green_switch};
   end_time_ = config_.num_seconds > 0 ? scenario_.begin + config_.num_seconds : scenario_.end;
   if (end_time_ - scenario_.begin < config_.delta_time)
-    throw std::invalid_argument("TrafficNetwork-v0: the episode is shorter than one decision");
+    throw std::invalid_argument(name_ + ": the episode is shorter than one decision");
 
   // Everything from the files, before SUMO runs.
   geometry_ = read_network_geometry(scenario_.files.net);
@@ -81,20 +95,25 @@ TrafficNetwork::TrafficNetwork(const Config& config)
     lane_width_ = std::max(lane_width_, a.num_incoming());
   }
   phase_width_ = most_greens;
-  obs_width_ = phase_width_ + 1 + 2 * lane_width_ + (config_.agent_id ? num_agents() : 0);
+  obs_width_ =
+      (observation_ == ObservationFunction::kApproach ? kApproachObservationSize
+                                                      : phase_width_ + 1 + 2 * lane_width_) +
+      (config_.agent_id ? num_agents() : 0);
   observation_space_ = Space::box(0.0f, 1.0f, {obs_width_});
   action_space_ = Space::discrete(most_greens);
 
   work_dir_ = std::make_unique<PrivateTempDir>("rlrun-traffic-", PrivateTempDir::RemoveStale::kYes);
   tripinfo_path_ = config_.tripinfo_output.value.empty() ? work_dir_->file("tripinfo.xml")
                                                          : config_.tripinfo_output.value;
-  key_time_ = info_.add_key("sim_time");
-  key_queue_ = info_.add_key("total_queue_length");
-  key_delay_ = info_.add_key("mean_delay");
-  key_waiting_ = info_.add_key("avg_waiting_time");
-  key_travel_ = info_.add_key("avg_travel_time");
-  key_throughput_ = info_.add_key("throughput");
-  key_mean_queue_ = info_.add_key("mean_queue");
+  // The info keys in `info_keys`' order; the others are not reported (-1).
+  for (const std::string& key : info_keys) info_.add_key(key);
+  key_time_ = info_.find("sim_time");
+  key_queue_ = info_.find("total_queue_length");
+  key_delay_ = info_.find("mean_delay");
+  key_waiting_ = info_.find("avg_waiting_time");
+  key_travel_ = info_.find("avg_travel_time");
+  key_throughput_ = info_.find("throughput");
+  key_mean_queue_ = info_.find("mean_queue");
 }
 
 TrafficNetwork::~TrafficNetwork() {
@@ -122,8 +141,22 @@ void TrafficNetwork::build_agents(const std::vector<TrafficLightProgram>& lights
       lengths.push_back(geometry_.lane(lane).length);
     }
     for (const std::string& lane : light.outgoing_lanes) out.push_back(slot_of(lane));
-    agents_.emplace_back(light, derive_signal_control(light), std::move(in), std::move(out),
-                         std::move(lengths));
+    ApproachLayout approaches;
+    if (approach_phases_ || observation_ == ObservationFunction::kApproach)
+      approaches = read_approaches(light, geometry_);
+    agents_.emplace_back(
+        light,
+        approach_phases_ ? approach_signal_control(approaches) : derive_signal_control(light),
+        std::move(in), std::move(out), std::move(lengths));
+    if (observation_ == ObservationFunction::kApproach) {
+      std::vector<int> edge_slots;
+      for (const std::string& edge : approaches.edges) {
+        const auto at = std::find(edges_.begin(), edges_.end(), edge);
+        edge_slots.push_back(static_cast<int>(at - edges_.begin()));
+        if (at == edges_.end()) edges_.push_back(edge);
+      }
+      agents_.back().set_approaches(std::move(approaches), std::move(edge_slots));
+    }
   }
   lane_waiting_.assign(lanes_.size(), 0.0);
   lane_speed_.assign(lanes_.size(), 0.0);
@@ -164,9 +197,8 @@ void TrafficNetwork::find_neighbours(const std::vector<TrafficLightProgram>& lig
 void TrafficNetwork::sumo_failed(const std::exception& e) const {
   // A Ctrl-C while the SUMO worker did not answer is no SUMO failure (core/worker_wait.hpp).
   if (const auto* interrupted = dynamic_cast<const Interrupted*>(&e)) throw *interrupted;
-  throw RuntimeFailure("TrafficNetwork-v0: SUMO stopped at simulated time " +
-                       std::to_string(reading_.time) + " s (" + e.what() +
-                       "); the last lines of its output:\n" +
+  throw RuntimeFailure(name_ + ": SUMO stopped at simulated time " + std::to_string(reading_.time) +
+                       " s (" + e.what() + "); the last lines of its output:\n" +
                        (sumo_ ? sumo_->output_tail() : std::string("  (no process)\n")));
 }
 
@@ -217,18 +249,18 @@ void TrafficNetwork::start_simulation(uint64_t seed) {
   launch.extra_args = {"--tripinfo-output", tripinfo_path_, "--waiting-time-memory", "1000"};
   worker_ = nullptr;
   if (config_.own_process) {
-    auto worker = std::make_unique<NetworkWorker>(config_.backend, launch);
+    auto worker = std::make_unique<SumoWorker>(config_.backend, launch);
     worker_ = worker.get();
     sumo_ = std::move(worker);
   } else {
-    sumo_ = start_network_sumo(config_.backend, launch);
+    sumo_ = start_sumo(config_.backend, launch);
   }
   try {
     outgoing_subscribed_ = reward_ == RewardFunction::kPressure || watch_outgoing_;
-    sumo_->subscribe_lanes(
-        outgoing_subscribed_
-            ? lanes_
-            : std::vector<std::string>(lanes_.begin(), lanes_.begin() + incoming_lanes_));
+    sumo_->subscribe(outgoing_subscribed_ ? lanes_
+                                          : std::vector<std::string>(
+                                                lanes_.begin(), lanes_.begin() + incoming_lanes_),
+                     edges_);
     // The rewards that read vehicles need them under every control: a baseline's episodes
     // (the lights' own programs, SUMO's actuated control) get the env's reward too, so `eval
     // --baseline` compares returns, not the model's against 0 (issue 41). Subscribing only
@@ -292,7 +324,7 @@ void TrafficNetwork::check_sizes(size_t obs_size, size_t actions_size) const {
   const size_t agents = agents_.size();
   if (obs_size != agents * static_cast<size_t>(obs_width_) || actions_size > agents)
     throw std::invalid_argument(
-        "TrafficNetwork-v0 has " + std::to_string(agents) + " agents: observations take " +
+        name_ + " has " + std::to_string(agents) + " agents: observations take " +
         std::to_string(agents) + " x " + std::to_string(obs_width_) + " floats (got " +
         std::to_string(obs_size) + ") and actions " + std::to_string(agents) + " (got " +
         std::to_string(actions_size) + ")");
@@ -302,7 +334,9 @@ void TrafficNetwork::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   check_sizes(obs.size(), 0);
   seeding_.on_reset(seed);
   const uint64_t sumo_seed = seed ? *seed : seeding_.rng().next_u64();
-  for (LightAgent& agent : agents_) agent.reset();
+  // phases: approaches: no yellow preceded the first green, which may end after min_green.
+  const int first_green_age = approach_phases_ ? config_.yellow_time : 0;
+  for (LightAgent& agent : agents_) agent.reset(first_green_age);
   reading_ = NetworkReading{};
   reading_.time = scenario_.begin;
   waiting_.clear();
@@ -315,10 +349,10 @@ void TrafficNetwork::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   } catch (const std::exception& e) {
     sumo_failed(e);
   }
-  for (LightAgent& agent : agents_) agent.reset();  // the first green starts now
+  for (LightAgent& agent : agents_) agent.reset(first_green_age);  // the first green starts now
   attribute_waiting();
   for (int k : {key_delay_, key_waiting_, key_travel_, key_throughput_, key_mean_queue_})
-    info_.set(k, 0.0);
+    set_info(k, 0.0);
   has_state_ = true;
   update_info();
   write_observations(obs);
@@ -337,7 +371,7 @@ void TrafficNetwork::step_agents(std::span<const float> actions, std::span<float
 
 void TrafficNetwork::start_step(std::span<const float> action) {
   if (num_agents() != 1)
-    throw std::logic_error("TrafficNetwork-v0 has " + std::to_string(num_agents()) +
+    throw std::logic_error(name_ + " has " + std::to_string(num_agents()) +
                            " agents: step them with step_agents()");
   start_step_agents(action);
 }
@@ -350,17 +384,17 @@ StepResult TrafficNetwork::finish_step(std::span<float> obs) {
 
 void TrafficNetwork::start_step_agents(std::span<const float> actions) {
   if (actions.size() != agents_.size())
-    throw std::invalid_argument("TrafficNetwork-v0: step_agents needs one action per agent (" +
+    throw std::invalid_argument(name_ + ": step_agents needs one action per agent (" +
                                 std::to_string(agents_.size()) + "), got " +
                                 std::to_string(actions.size()));
-  if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before step()");
-  if (finished_) throw std::logic_error("TrafficNetwork-v0: the episode ended; call reset()");
+  if (!has_state_) throw std::logic_error(name_ + ": call reset() before step()");
+  if (finished_) throw std::logic_error(name_ + ": the episode ended; call reset()");
   for (size_t a = 0; a < agents_.size(); ++a) {
     const float x = actions[a];
     if (!(x >= 0 && x < static_cast<float>(action_space_.n())) || x != std::floor(x))
-      throw std::invalid_argument("TrafficNetwork-v0: agent " + std::to_string(a) + " (" +
-                                  agents_[a].id() + ") got action " + std::to_string(x) +
-                                  ", not in " + action_space_.describe());
+      throw std::invalid_argument(name_ + ": agent " + std::to_string(a) + " (" + agents_[a].id() +
+                                  ") got action " + std::to_string(x) + ", not in " +
+                                  action_space_.describe());
   }
   pending_seconds_ = std::max(
       1, static_cast<int>(std::min<double>(config_.delta_time, end_time_ - reading_.time)));
@@ -380,7 +414,7 @@ void TrafficNetwork::start_step_agents(std::span<const float> actions) {
 void TrafficNetwork::finish_step_agents(std::span<float> obs, std::span<StepResult> results) {
   check_sizes(obs.size(), results.size());
   if (results.size() != agents_.size())
-    throw std::invalid_argument("TrafficNetwork-v0: step_agents needs one result per agent");
+    throw std::invalid_argument(name_ + ": step_agents needs one result per agent");
   try {
     finish_advance(pending_seconds_);
   } catch (const std::exception& e) {
@@ -414,27 +448,32 @@ void TrafficNetwork::finish_episode() {
   }
   finished_ = true;
   const TripinfoSummary trips = read_tripinfo(tripinfo_path_);
-  info_.set(key_delay_, trips.mean_time_loss);
-  info_.set(key_waiting_, trips.mean_waiting);
-  info_.set(key_travel_, trips.mean_duration);
-  info_.set(key_throughput_, trips.trips);
-  info_.set(key_mean_queue_, decisions_ > 0 ? queue_sum_ / static_cast<double>(decisions_) : 0.0);
+  set_info(key_delay_, trips.mean_time_loss);
+  set_info(key_waiting_, trips.mean_waiting);
+  set_info(key_travel_, trips.mean_duration);
+  set_info(key_throughput_, trips.trips);
+  set_info(key_mean_queue_, decisions_ > 0 ? queue_sum_ / static_cast<double>(decisions_) : 0.0);
 }
 
 void TrafficNetwork::update_info() {
   int halting = 0;
   for (const LightAgent& agent : agents_) halting += agent.queue(reading_.lanes);
-  info_.set(key_time_, reading_.time);
-  info_.set(key_queue_, halting);
+  set_info(key_time_, reading_.time);
+  set_info(key_queue_, halting);
 }
 
 void TrafficNetwork::write_observations(std::span<float> obs) const {
   for (size_t a = 0; a < agents_.size(); ++a) {
     const std::span<float> row = obs.subspan(a * obs_width_, obs_width_);
-    agents_[a].observe(reading_.lanes, timing_, phase_width_, lane_width_,
-                       row.first(phase_width_ + 1 + 2 * lane_width_));
+    const int width = observation_ == ObservationFunction::kApproach
+                          ? kApproachObservationSize
+                          : phase_width_ + 1 + 2 * lane_width_;
+    if (observation_ == ObservationFunction::kApproach)
+      agents_[a].observe_approaches(reading_.edges, timing_, row.first(width));
+    else
+      agents_[a].observe(reading_.lanes, timing_, phase_width_, lane_width_, row.first(width));
     if (config_.agent_id) {
-      const std::span<float> id = row.subspan(phase_width_ + 1 + 2 * lane_width_);
+      const std::span<float> id = row.subspan(width);
       std::fill(id.begin(), id.end(), 0.0f);
       id[a] = 1.0f;
     }
@@ -442,11 +481,11 @@ void TrafficNetwork::write_observations(std::span<float> obs) const {
 }
 
 void TrafficNetwork::max_pressure_actions(std::span<float> actions) const {
-  if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before acting");
+  if (!has_state_) throw std::logic_error(name_ + ": call reset() before acting");
   if (!outgoing_subscribed_)
-    throw std::logic_error(
-        "TrafficNetwork-v0: max-pressure needs the outgoing lanes: call "
-        "watch_outgoing_lanes() before the episode starts");
+    throw std::logic_error(name_ +
+                           ": max-pressure needs the outgoing lanes: call "
+                           "watch_outgoing_lanes() before the episode starts");
   for (size_t a = 0; a < agents_.size(); ++a)
     actions[a] = static_cast<float>(agents_[a].max_pressure_action(reading_.lanes));
 }

@@ -7,7 +7,13 @@
 //   agents       the lights with a green phase in their program (`ts_ids` picks some, in
 //                that order); the others keep their own program.
 //   spaces       Discrete(most greens of any agent); Box(phases + 1 + 2 * most incoming lanes
-//                [+ agents with agent_id: true]) in [0, 1], padded with zeros.
+//                [+ agents with agent_id: true]) in [0, 1], padded with zeros (observation:
+//                sumo-rl), or Box(10 [+ agents]) (observation: approach, light_agent.hpp).
+//   greens       phases: program (sumo-rl's: the green phases of each light's program) or
+//                approaches (one green per approach N, S, E, W, approaches.hpp; the first
+//                green of an episode may end after min_green, as no yellow preceded it).
+//   reward       reward_fn (light_agent.hpp): diff-waiting-time (the default of both traffic
+//                envs, sumo-rl's), queue, pressure or average-speed.
 //   step         `delta_time` simulated seconds for all agents at once (one TraCI round trip,
 //                plus one per light that switches).
 //   episode      the scenario's [begin, end] (or begin + num_seconds); all agents truncated
@@ -38,11 +44,11 @@
 #include "rlrun/env.hpp"
 #include "rlrun/env/split_step.hpp"
 #include "rlrun/env_seeding.hpp"
+#include "rlrun/envs/sumo/network_geometry.hpp"
+#include "rlrun/envs/sumo/network_scenario.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
+#include "rlrun/envs/sumo/sumo_worker.hpp"
 #include "rlrun/envs/traffic_network/light_agent.hpp"
-#include "rlrun/envs/traffic_network/network_connection.hpp"
-#include "rlrun/envs/traffic_network/network_geometry.hpp"
-#include "rlrun/envs/traffic_network/network_scenario.hpp"
-#include "rlrun/envs/traffic_network/network_worker.hpp"
 #include "rlrun/info.hpp"
 #include "rlrun/space.hpp"
 
@@ -62,8 +68,11 @@ class TrafficNetwork : public Env, public SplitStep {
     int yellow_time = 2;
     int min_green = 5;
     int max_green = 50;
-    int num_seconds = 0;  // 0: the scenario's end
-    std::string reward_fn = "diff-waiting-time";
+    bool max_green_switch = true;
+    int num_seconds = 0;                          // 0: the scenario's end
+    std::string reward_fn = "diff-waiting-time";  // the one default (reward_function_names())
+    std::string observation = "sumo-rl";
+    std::string phases = "program";
     std::string reward_scope = "local";
     double neighbour_weight = 1.0;
     bool agent_id = false;
@@ -94,11 +103,25 @@ class TrafficNetwork : public Env, public SplitStep {
       v("yellow_time", yellow_time, "seconds of yellow on every switch", in_range(0, 86400));
       v("min_green", min_green, "a green lasts at least this long (seconds)", in_range(0, 86400));
       v("max_green", max_green,
-        "a green this long is switched to the program's next green (0: never)", in_range(0, 86400));
+        "a green this long is switched to the next green (0: never); observation: approach "
+        "scales the green's age by it",
+        in_range(0, 86400));
+      v("max_green_switch", max_green_switch,
+        "switch a green that has lasted max_green seconds (false: sumo-rl's rule, max_green "
+        "only scales the approach observation)");
       v("num_seconds", num_seconds,
         "episode length in simulated seconds (0: to the scenario's end)", in_range(0, 365 * 86400));
-      v("reward_fn", reward_fn, "diff-waiting-time | queue | pressure | average-speed",
-        OneOf{{"diff-waiting-time", "queue", "pressure", "average-speed"}});
+      v("reward_fn", reward_fn,
+        "diff-waiting-time (sumo-rl's, the default) | queue | pressure | average-speed",
+        OneOf{traffic::reward_function_names()});
+      v("observation", observation,
+        "sumo-rl (green one-hot, min-green flag, lane densities and queues) or approach "
+        "(Box(10): queue and speed per approach N, S, E, W, the green, its age)",
+        OneOf{traffic::observation_function_names()});
+      v("phases", phases,
+        "program (each light's green phases, sumo-rl's) or approaches (one green per approach "
+        "N, S, E, W)",
+        OneOf{{"program", "approaches"}});
       v("reward_scope", reward_scope,
         "local (each light its own reward) or neighbourhood (plus neighbour_weight x its "
         "neighbours')",
@@ -119,13 +142,14 @@ class TrafficNetwork : public Env, public SplitStep {
   TrafficNetwork() : TrafficNetwork(Config{}) {}
   // Reads the scenario and the network; throws ConfigError / RuntimeFailure for bad input
   // before any SUMO runs.
-  explicit TrafficNetwork(const Config& config);
+  explicit TrafficNetwork(const Config& config)
+      : TrafficNetwork(config, "TrafficNetwork-v0", network_info_keys()) {}
   ~TrafficNetwork() override;
 
   const Space& observation_space() const override { return observation_space_; }
   const Space& action_space() const override { return action_space_; }
   const Info& info() const override { return info_; }
-  std::string id() const override { return "TrafficNetwork-v0"; }
+  std::string id() const override { return name_; }
   int num_agents() const override { return static_cast<int>(agents_.size()); }
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
@@ -159,6 +183,12 @@ class TrafficNetwork : public Env, public SplitStep {
   double sim_time() const { return reading_.time; }
   pid_t sumo_pid() const { return sumo_ ? sumo_->pid() : -1; }
 
+ protected:
+  // An env registered under another `name` on the same machinery (TrafficSignal-v0), reporting
+  // `info_keys` (some of network_info_keys(), in its own order).
+  TrafficNetwork(const Config& config, std::string name, const std::vector<std::string>& info_keys);
+  static const std::vector<std::string>& network_info_keys();
+
  private:
   void check_sizes(size_t obs_size, size_t actions_size) const;
   void build_agents(const std::vector<traffic::TrafficLightProgram>& lights);
@@ -172,11 +202,17 @@ class TrafficNetwork : public Env, public SplitStep {
   void write_observations(std::span<float> obs) const;
   void finish_episode();
   void update_info();
+  void set_info(int key, double value) {
+    if (key >= 0) info_.set(key, value);
+  }
   [[noreturn]] void sumo_failed(const std::exception& e) const;
 
+  std::string name_;
   Config config_;
   traffic::LightTiming timing_;
   traffic::RewardFunction reward_;
+  traffic::ObservationFunction observation_;
+  bool approach_phases_ = false;  // phases: approaches
   bool neighbourhood_ = false;
   traffic::NetworkScenario scenario_;
   traffic::NetworkGeometry geometry_;
@@ -184,6 +220,7 @@ class TrafficNetwork : public Env, public SplitStep {
   std::vector<std::vector<int>> neighbours_;  // per agent
   std::vector<std::string> lanes_;            // every agent's incoming, then outgoing lanes
   int incoming_lanes_ = 0;                    // the first lanes_ that are incoming
+  std::vector<std::string> edges_;            // the agents' incoming roads (observation: approach)
   bool watch_outgoing_ = false;               // subscribe the outgoing lanes too
   bool outgoing_subscribed_ = false;          // in the running episode
   std::unordered_map<std::string, int> incoming_slot_;  // controlled incoming lane -> slot
@@ -196,8 +233,8 @@ class TrafficNetwork : public Env, public SplitStep {
   Control control_ = Control::kAgents;
   Control running_control_ = Control::kAgents;
 
-  std::unique_ptr<traffic::NetworkConnection> sumo_;
-  traffic::NetworkWorker* worker_ = nullptr;  // sumo_ when it is a worker (steps in two halves)
+  std::unique_ptr<traffic::SumoConnection> sumo_;
+  traffic::SumoWorker* worker_ = nullptr;  // sumo_ when it is a worker (steps in two halves)
   // The last advance's news. render() may subscribe to the vehicles (it is const, like
   // Gymnasium's render(); the simulation is not changed by it).
   mutable traffic::NetworkReading reading_;

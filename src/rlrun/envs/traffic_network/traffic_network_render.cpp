@@ -1,13 +1,15 @@
-// TrafficNetwork-v0's picture: the network from above (all of it, or `render_radius` metres
-// around `render_focus`), drawn as TrafficSignal-v0 draws its junction — grey lanes, each
-// agent's stop lines green or red by its current green, the vehicles (vehicle_picture.hpp).
+// The traffic envs' picture (TrafficSignal-v0's too: its one junction is the whole map): the
+// network from above (all of it, or `render_radius` metres around `render_focus`), as sumo-gui
+// shows it in its "standard" scheme, simplified — grass, grey lanes, each agent's stop lines
+// green or red by its current green (a yellow begins and ends within one decision), the
+// vehicles (vehicle_picture.hpp).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/envs/traffic/vehicle_picture.hpp"
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
+#include "rlrun/envs/traffic_network/vehicle_picture.hpp"
 #include "rlrun/frame.hpp"
 
 namespace rlrun {
@@ -15,7 +17,7 @@ namespace rlrun {
 using namespace traffic;
 
 bool TrafficNetwork::render(Frame& frame) const {
-  if (!has_state_) throw std::logic_error("TrafficNetwork-v0: call reset() before render()");
+  if (!has_state_) throw std::logic_error(name_ + ": call reset() before render()");
   // Plain variables, not a structured binding: the lambdas below capture them, which clang
   // before 16 (scripts/fuzz.sh's clang 14) refuses for bindings.
   double x0 = geometry_.bounds[0], y0 = geometry_.bounds[1];

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "rlrun/core/errors.hpp"
-#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
+#include "rlrun/envs/sumo/sumo_xml_guard.hpp"
 
 namespace rlrun::traffic {
 

@@ -1,6 +1,6 @@
 #pragma once
-// A multi-intersection traffic scenario (scenarios/*.yaml) for TrafficNetwork-v0: any SUMO
-// network with its demand, named either as SUMO's own input files
+// A traffic scenario (scenarios/*.yaml) for both traffic envs (TrafficSignal-v0's has one
+// light): any SUMO network with its demand, named either as SUMO's own input files
 //
 //   name: grid4x4
 //   description: 16 signalised junctions, one hour of demand

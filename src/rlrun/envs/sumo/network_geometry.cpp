@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic_network/network_geometry.hpp"
+#include "rlrun/envs/sumo/network_geometry.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -6,7 +6,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
-#include "rlrun/envs/traffic_network/net_file.hpp"
+#include "rlrun/envs/sumo/net_file.hpp"
 
 namespace rlrun::traffic {
 

@@ -19,7 +19,7 @@
 
 #include "rlrun/core/find_executable.hpp"
 #include "rlrun/core/private_temp_dir.hpp"
-#include "rlrun/envs/traffic/sumo_connection.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
 
 namespace rlrun {
 

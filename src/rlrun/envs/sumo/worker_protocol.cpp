@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic_network/worker_protocol.hpp"
+#include "rlrun/envs/sumo/worker_protocol.hpp"
 
 #include <sys/socket.h>
 
@@ -9,6 +9,8 @@ namespace rlrun::traffic::wire {
 void write_reading(Writer& w, const NetworkReading& r) {
   w.f64(r.time).i32(static_cast<int32_t>(r.lanes.size()));
   for (const LaneReading& l : r.lanes) w.i32(l.vehicles).i32(l.halting).f64(l.vehicle_length);
+  w.i32(static_cast<int32_t>(r.edges.size()));
+  for (const LaneReading& e : r.edges) w.i32(e.vehicles).i32(e.halting).f64(e.mean_speed);
   w.i32(static_cast<int32_t>(r.vehicles.size()));
   for (const VehicleReading& v : r.vehicles)
     w.str(v.id)
@@ -28,6 +30,12 @@ void read_reading(Reader& r, NetworkReading& out) {
     l.vehicles = r.i32();
     l.halting = r.i32();
     l.vehicle_length = r.f64();
+  }
+  out.edges.resize(static_cast<size_t>(std::max(0, r.i32())));
+  for (LaneReading& e : out.edges) {
+    e.vehicles = r.i32();
+    e.halting = r.i32();
+    e.mean_speed = r.f64();
   }
   out.vehicles.resize(static_cast<size_t>(std::max(0, r.i32())));
   for (VehicleReading& v : out.vehicles) {

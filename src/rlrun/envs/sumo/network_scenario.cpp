@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic_network/network_scenario.hpp"
+#include "rlrun/envs/sumo/network_scenario.hpp"
 
 #include <pugixml.hpp>
 
@@ -13,7 +13,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/shipped_data.hpp"
-#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
+#include "rlrun/envs/sumo/sumo_xml_guard.hpp"
 
 namespace rlrun::traffic {
 

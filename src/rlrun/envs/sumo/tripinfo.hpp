@@ -1,7 +1,7 @@
 #pragma once
 // SUMO's tripinfo output (--tripinfo-output FILE): one <tripinfo .../> element per vehicle that
 // arrived, written by SUMO's tripinfo device (sumo.dlr.de/docs/Simulation/Output/TripInfo.html).
-// TrafficSignal-v0 takes its episode metrics from it, so they are SUMO's own numbers:
+// The traffic envs take their episode metrics from it, so they are SUMO's own numbers:
 //   duration     seconds from departure to arrival (avg_travel_time)
 //   waitingTime  seconds spent below 0.1 m/s (avg_waiting_time)
 //   timeLoss     seconds lost against driving at the allowed speed (mean_delay, RESCO's delay)

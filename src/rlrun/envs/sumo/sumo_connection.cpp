@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic/sumo_connection.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/process_settings.hpp"
 #include "rlrun/core/shipped_data.hpp"
-#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
+#include "rlrun/envs/sumo/sumo_xml_guard.hpp"
 
 namespace rlrun {
 
@@ -35,7 +35,7 @@ void check_sumo_launch(const SumoLaunch& launch) {
 
 namespace {
 
-using StartFunction = SumoConnection* (*)(const std::vector<std::string>*, std::string*);
+using StartFunction = traffic::SumoConnection* (*)(const std::vector<std::string>*, std::string*);
 
 }  // namespace
 
@@ -90,7 +90,8 @@ void* libsumo_module_symbol(const char* name) {
   return symbol;
 }
 
-std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const SumoLaunch& launch) {
+std::unique_ptr<traffic::SumoConnection> start_sumo(const std::string& backend,
+                                                    const SumoLaunch& launch) {
   check_sumo_launch(launch);
   if (backend == "traci") return start_traci_connection(launch);
   if (backend != "libsumo")
@@ -102,9 +103,9 @@ std::unique_ptr<SumoConnection> start_sumo(const std::string& backend, const Sum
   std::string error;
   const auto entry =
       reinterpret_cast<StartFunction>(libsumo_module_symbol("rlrun_start_libsumo_connection"));
-  SumoConnection* connection = entry(&command, &error);
+  traffic::SumoConnection* connection = entry(&command, &error);
   if (!connection) throw RuntimeFailure(error);
-  return std::unique_ptr<SumoConnection>(connection);
+  return std::unique_ptr<traffic::SumoConnection>(connection);
 }
 
 }  // namespace rlrun

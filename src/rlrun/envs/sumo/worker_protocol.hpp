@@ -1,11 +1,11 @@
 #pragma once
-// The messages between TrafficNetwork-v0 and its SUMO worker (rlrun-sumo-worker, a program of
+// The messages between a traffic env and its SUMO worker (rlrun-sumo-worker, a program of
 // rlrun's own that drives one SUMO — over TraCI, or inside itself with libsumo — and answers on
-// a socket). Every NetworkConnection call (network_connection.hpp) is one request:
+// a socket). Every SumoConnection call (sumo_connection.hpp) is one request:
 //
 //   [u32 length][u8 op][fields...]    little-endian; strings as u32 length + bytes
 //
-// Requests that need no answer (subscribe_lanes, set_light_state, switch_light, use_program)
+// Requests that need no answer (subscribe, set_light_state, switch_light, use_program)
 // are only sent; the worker keeps the first error and reports it with the next answer, so a
 // decision costs one round trip however many lights switch. Answers start with a status:
 // kOk, or kError followed by the message and the last lines of SUMO's output.
@@ -20,13 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/envs/traffic_network/network_connection.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
 
 namespace rlrun::traffic::wire {
 
 enum Op : uint8_t {
   kStart = 1,          // backend, SUMO's arguments -> status, pid
-  kSubscribeLanes,     // lanes -> (none)
+  kSubscribe,          // lanes, edges -> (none)
   kSubscribeVehicles,  // junction -> status, reading
   kAdvance,            // time -> status, reading
   kSetLightState,      // tls, state -> (none)

@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic/tripinfo.hpp"
+#include "rlrun/envs/sumo/tripinfo.hpp"
 
 #include <cstdlib>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic/sumo_xml_guard.hpp"
+#include "rlrun/envs/sumo/sumo_xml_guard.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic_network/network_worker.hpp"
+#include "rlrun/envs/sumo/sumo_worker.hpp"
 
 #include <poll.h>
 #include <signal.h>
@@ -18,7 +18,7 @@
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/worker_spawn.hpp"
 #include "rlrun/core/worker_wait.hpp"
-#include "rlrun/envs/traffic_network/worker_protocol.hpp"
+#include "rlrun/envs/sumo/worker_protocol.hpp"
 
 namespace rlrun::traffic {
 
@@ -32,10 +32,10 @@ std::string worker_path() {
 
 }  // namespace
 
-NetworkWorker::NetworkWorker(const std::string& backend, const SumoLaunch& launch) {
+SumoWorker::SumoWorker(const std::string& backend, const SumoLaunch& launch) {
   const std::string path = worker_path();
   if (access(path.c_str(), X_OK) != 0)
-    throw RuntimeFailure("TrafficNetwork-v0 needs " + path +
+    throw RuntimeFailure("own_process: true needs " + path +
                          " (rlrun's SUMO worker, built and installed with rlrun); it is missing "
                          "or not executable");
   const SpawnedWorker worker =
@@ -54,9 +54,9 @@ NetworkWorker::NetworkWorker(const std::string& backend, const SumoLaunch& launc
   sumo_pid_ = reply.i32();
 }
 
-NetworkWorker::~NetworkWorker() { stop(); }
+SumoWorker::~SumoWorker() { stop(); }
 
-void NetworkWorker::stop() {
+void SumoWorker::stop() {
   if (fd_ >= 0) close(fd_);  // the worker reads the end, ends SUMO and exits
   fd_ = -1;
   if (worker_ <= 0) return;
@@ -72,12 +72,12 @@ void NetworkWorker::stop() {
   worker_ = -1;
 }
 
-void NetworkWorker::send(const std::vector<char>& framed) {
+void SumoWorker::send(const std::vector<char>& framed) {
   if (fd_ < 0 || !wire::send_message(fd_, framed))
     throw RuntimeFailure("the SUMO worker (pid " + std::to_string(worker_) + ") has gone");
 }
 
-wire::Reader NetworkWorker::answer(bool starting) {
+wire::Reader SumoWorker::answer(bool starting) {
   WorkerWait wait;
   wait.who = "the SUMO worker (pid " + std::to_string(worker_) + ")";
   wait.what = starting ? "to start SUMO" : "in a simulation step";
@@ -118,50 +118,51 @@ wire::Reader NetworkWorker::answer(bool starting) {
       quoted_text(line == std::string::npos ? message : message.substr(0, line), 500));
 }
 
-void NetworkWorker::subscribe_lanes(const std::vector<std::string>& lanes) {
-  wire::Writer w(wire::kSubscribeLanes);
-  send(w.strings(lanes).framed());
+void SumoWorker::subscribe(const std::vector<std::string>& lanes,
+                           const std::vector<std::string>& edges) {
+  wire::Writer w(wire::kSubscribe);
+  send(w.strings(lanes).strings(edges).framed());
 }
 
-void NetworkWorker::subscribe_vehicles(const std::string& junction, NetworkReading& out) {
+void SumoWorker::subscribe_vehicles(const std::string& junction, NetworkReading& out) {
   wire::Writer w(wire::kSubscribeVehicles);
   send(w.str(junction).framed());
   wire::Reader reply = answer();
   wire::read_reading(reply, out);
 }
 
-void NetworkWorker::start_advance(double time) {
+void SumoWorker::start_advance(double time) {
   wire::Writer w(wire::kAdvance);
   send(w.f64(time).framed());
 }
 
-void NetworkWorker::finish_advance(NetworkReading& out) {
+void SumoWorker::finish_advance(NetworkReading& out) {
   wire::Reader reply = answer();
   wire::read_reading(reply, out);
 }
 
-void NetworkWorker::advance(double time, NetworkReading& out) {
+void SumoWorker::advance(double time, NetworkReading& out) {
   start_advance(time);
   finish_advance(out);
 }
 
-void NetworkWorker::set_light_state(const std::string& tls, const std::string& state) {
+void SumoWorker::set_light_state(const std::string& tls, const std::string& state) {
   wire::Writer w(wire::kSetLightState);
   send(w.str(tls).str(state).framed());
 }
 
-void NetworkWorker::switch_light(const std::string& tls, const std::string& yellow,
-                                 int yellow_seconds, const std::string& green) {
+void SumoWorker::switch_light(const std::string& tls, const std::string& yellow, int yellow_seconds,
+                              const std::string& green) {
   wire::Writer w(wire::kSwitchLight);
   send(w.str(tls).str(yellow).i32(yellow_seconds).str(green).framed());
 }
 
-void NetworkWorker::use_program(const std::string& tls, const std::string& program_id) {
+void SumoWorker::use_program(const std::string& tls, const std::string& program_id) {
   wire::Writer w(wire::kUseProgram);
   send(w.str(tls).str(program_id).framed());
 }
 
-void NetworkWorker::finish() {
+void SumoWorker::finish() {
   if (finished_) return;
   wire::Writer w(wire::kFinish);
   send(w.framed());

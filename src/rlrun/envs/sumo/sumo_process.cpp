@@ -1,4 +1,4 @@
-#include "rlrun/envs/traffic/sumo_process.hpp"
+#include "rlrun/envs/sumo/sumo_process.hpp"
 
 #include <fcntl.h>
 #include <netinet/in.h>

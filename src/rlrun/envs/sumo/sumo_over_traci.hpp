@@ -1,13 +1,12 @@
 #pragma once
-// backend: traci, for both envs' clients: TrafficSignal-v0's (sumo_client.hpp) and
-// TrafficNetwork-v0's (traffic_network/network_client.hpp) run on libtraci's classes, talking
-// to a `sumo` process of their own (SumoProcess: pid known, output kept, no orphan). libtraci
+// backend: traci: the client (sumo_client.hpp) on libtraci's classes, talking to a `sumo`
+// process of its own (SumoProcess: pid known, output kept, no orphan). libtraci
 // keeps a current connection, so each call first makes this one current.
 #include <libsumo/libtraci.h>
 
 #include <string>
 
-#include "rlrun/envs/traffic/sumo_process.hpp"
+#include "rlrun/envs/sumo/sumo_process.hpp"
 
 namespace rlrun {
 

@@ -1,6 +1,6 @@
 #pragma once
 // SUMO's inputs (.sumocfg, .net.xml, .rou.xml, additional files) are XML, read by SUMO's Xerces
-// parser and, for TrafficNetwork-v0, by pugixml in rlrun. Xerces expands the entities a
+// parser and, for the network files, by pugixml in rlrun. Xerces expands the entities a
 // document type declaration defines: a "billion laughs" .sumocfg of 1 KB (ten entities of ten
 // references each) became ~10^9 characters, 34 s, 1.2 GB and a 300 MB error message; an
 // external entity (<!ENTITY x SYSTEM "/etc/...">) reads another file. No SUMO file needs a DTD

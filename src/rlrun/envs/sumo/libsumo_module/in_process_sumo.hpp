@@ -1,13 +1,12 @@
 #pragma once
-// SUMO inside this process (libsumocpp), for both envs' clients: TrafficSignal-v0's
-// (sumo_client.hpp) and TrafficNetwork-v0's (traffic_network/network_client.hpp) run on
-// libsumo's classes, and this adds what is particular to an in-process SUMO: starting and
+// SUMO inside this process (libsumocpp): the client (sumo_client.hpp) runs on libsumo's
+// classes, and this adds what is particular to an in-process SUMO: starting and
 // closing it, and the one-simulation rule.
 //
 // SUMO holds its simulation in globals (MSNet::getInstance()), so a process runs one at a
 // time; a second env asking for one gets an error that says so, rather than two envs quietly
 // stepping the same simulation. sumo-rl documents the same limit for LIBSUMO_AS_TRACI
-// (TrafficNetwork-v0 avoids it with a worker process per SUMO).
+// (own_process: true avoids it with a worker process per SUMO, sumo_worker.hpp).
 #include <libsumo/libsumo.h>
 
 #include <atomic>
@@ -24,7 +23,7 @@ struct LibsumoApi {
   using Junction = libsumo::Junction;
   using TrafficLight = libsumo::TrafficLight;
   using Vehicle = libsumo::Vehicle;
-  // Reading a value in-process is a function call: TrafficNetwork-v0 reads its lanes and
+  // Reading a value in-process is a function call: the client reads its lanes, edges and
   // vehicles at each decision instead of subscribing (SUMO evaluates subscriptions at every
   // simulated second, most of which no one reads).
   static constexpr bool kReadsDirectly = true;
@@ -62,7 +61,7 @@ class InProcessSumo : public Client {
   bool finished_ = false;
 };
 
-// The module's entries: a new simulation, or nullptr with `error` saying why.
+// The module's entry: a new simulation, or nullptr with `error` saying why.
 template <class Connection>
 Connection* start_in_process(const std::vector<std::string>* command, std::string* error) {
   if (simulation_running.exchange(true)) {

@@ -1,6 +1,6 @@
 #pragma once
-// A NetworkConnection whose SUMO is driven by a worker process (rlrun-sumo-worker,
-// apps/sumo_worker/; messages in worker_protocol.hpp): what lets TrafficNetwork-v0 run one SUMO
+// A SumoConnection whose SUMO is driven by a worker process (rlrun-sumo-worker,
+// apps/sumo_worker/; messages in worker_protocol.hpp): what lets a traffic env run one SUMO
 // per env even with backend: libsumo (SUMO keeps one simulation per process), and step several
 // envs' SUMOs at the same time (start_advance() returns at once; finish_advance() collects).
 //
@@ -15,21 +15,22 @@
 #include <string>
 #include <vector>
 
-#include "rlrun/envs/traffic_network/network_connection.hpp"
-#include "rlrun/envs/traffic_network/worker_protocol.hpp"
+#include "rlrun/envs/sumo/sumo_connection.hpp"
+#include "rlrun/envs/sumo/worker_protocol.hpp"
 
 namespace rlrun::traffic {
 
-class NetworkWorker : public NetworkConnection {
+class SumoWorker : public SumoConnection {
  public:
   // Starts the worker and, in it, SUMO with `backend` and `launch`. Throws RuntimeFailure
   // naming what to install when the worker program or SUMO is missing.
-  NetworkWorker(const std::string& backend, const SumoLaunch& launch);
-  ~NetworkWorker() override;
-  NetworkWorker(const NetworkWorker&) = delete;
-  NetworkWorker& operator=(const NetworkWorker&) = delete;
+  SumoWorker(const std::string& backend, const SumoLaunch& launch);
+  ~SumoWorker() override;
+  SumoWorker(const SumoWorker&) = delete;
+  SumoWorker& operator=(const SumoWorker&) = delete;
 
-  void subscribe_lanes(const std::vector<std::string>& lanes) override;
+  void subscribe(const std::vector<std::string>& lanes,
+                 const std::vector<std::string>& edges) override;
   void subscribe_vehicles(const std::string& junction, NetworkReading& out) override;
   void advance(double time, NetworkReading& out) override;
   // advance() in two halves: the worker runs SUMO while the caller starts other workers.
