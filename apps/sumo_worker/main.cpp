@@ -108,11 +108,8 @@ struct Worker {
           running().use_program(tls, in.str());
           return true;
         }
-        case wire::kFinish:
-          running().finish();
-          break;
-        default:
-          throw std::runtime_error("unknown request " + std::to_string(op));
+        case wire::kFinish: running().finish(); break;
+        default: throw std::runtime_error("unknown request " + std::to_string(op));
       }
       return wire::send_message(fd, w.framed());
     } catch (const std::exception& e) {  // TraCI errors, socket errors (tcpip::SocketException)

@@ -33,16 +33,11 @@ enum class SpaceKind : int32_t {
 // "Box", "Discrete", ... as Gymnasium names the classes.
 inline const char* space_kind_name(SpaceKind kind) {
   switch (kind) {
-    case SpaceKind::kBox:
-      return "Box";
-    case SpaceKind::kDiscrete:
-      return "Discrete";
-    case SpaceKind::kMultiDiscrete:
-      return "MultiDiscrete";
-    case SpaceKind::kMultiBinary:
-      return "MultiBinary";
-    case SpaceKind::kDict:
-      return "Dict";
+    case SpaceKind::kBox: return "Box";
+    case SpaceKind::kDiscrete: return "Discrete";
+    case SpaceKind::kMultiDiscrete: return "MultiDiscrete";
+    case SpaceKind::kMultiBinary: return "MultiBinary";
+    case SpaceKind::kDict: return "Dict";
   }
   return "?";
 }
@@ -139,14 +134,10 @@ class Space {
   // Number of floats in one flat sample (Discrete: 1; Dict: its keys' together).
   int flat_dim() const {
     switch (kind_) {
-      case SpaceKind::kBox:
-        return static_cast<int>(product(shape_));
-      case SpaceKind::kDiscrete:
-        return 1;
-      case SpaceKind::kMultiDiscrete:
-        return static_cast<int>(nvec_.size());
-      case SpaceKind::kMultiBinary:
-        return static_cast<int>(n_);
+      case SpaceKind::kBox: return static_cast<int>(product(shape_));
+      case SpaceKind::kDiscrete: return 1;
+      case SpaceKind::kMultiDiscrete: return static_cast<int>(nvec_.size());
+      case SpaceKind::kMultiBinary: return static_cast<int>(n_);
       case SpaceKind::kDict: {
         int total = 0;
         for (const Space& s : subspaces_) total += s.flat_dim();
@@ -270,9 +261,7 @@ class Space {
         for (size_t i = 0; i < nvec_.size(); ++i) out << (i ? " " : "") << nvec_[i];
         out << "])";
         break;
-      case SpaceKind::kMultiBinary:
-        out << "MultiBinary(" << n_ << ")";
-        break;
+      case SpaceKind::kMultiBinary: out << "MultiBinary(" << n_ << ")"; break;
       case SpaceKind::kDict:
         out << "Dict(";
         for (size_t i = 0; i < keys_.size(); ++i)

@@ -35,12 +35,8 @@ py::dict space_dict(const Space& space) {
       d["n"] = space.n();
       d["start"] = space.start();
       break;
-    case SpaceKind::kMultiDiscrete:
-      d["nvec"] = space.nvec();
-      break;
-    case SpaceKind::kMultiBinary:
-      d["n"] = space.n();
-      break;
+    case SpaceKind::kMultiDiscrete: d["nvec"] = space.nvec(); break;
+    case SpaceKind::kMultiBinary: d["n"] = space.n(); break;
     case SpaceKind::kDict: {
       py::list spaces;
       for (const Space& s : space.subspaces()) spaces.append(space_dict(s));

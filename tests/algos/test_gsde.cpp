@@ -167,18 +167,10 @@ ActorOut gsde_actor(const Mlp& net, const Eigen::VectorXd& p, const Eigen::Matri
       a = w * a + b;
       for (Eigen::Index k = 0; k < a.size(); ++k) {
         switch (net.activation()) {
-          case Activation::kReLU:
-            a(k) = std::max(a(k), 0.0);
-            break;
-          case Activation::kTanh:
-            a(k) = std::tanh(a(k));
-            break;
-          case Activation::kELU:
-            a(k) = a(k) > 0.0 ? a(k) : std::expm1(a(k));
-            break;
-          case Activation::kLeakyReLU:
-            a(k) = a(k) > 0.0 ? a(k) : kLeakyReLUSlope * a(k);
-            break;
+          case Activation::kReLU: a(k) = std::max(a(k), 0.0); break;
+          case Activation::kTanh: a(k) = std::tanh(a(k)); break;
+          case Activation::kELU: a(k) = a(k) > 0.0 ? a(k) : std::expm1(a(k)); break;
+          case Activation::kLeakyReLU: a(k) = a(k) > 0.0 ? a(k) : kLeakyReLUSlope * a(k); break;
         }
       }
     } else {

@@ -89,17 +89,14 @@ inline zip_int64_t raw_source_callback(void* state, void* data, zip_uint64_t len
                                        zip_source_cmd_t cmd) {
   auto* s = static_cast<RawSource*>(state);
   switch (cmd) {
-    case ZIP_SOURCE_OPEN:
-      s->position = 0;
-      return 0;
+    case ZIP_SOURCE_OPEN: s->position = 0; return 0;
     case ZIP_SOURCE_READ: {
       const size_t n = std::min<size_t>(len, s->data.size() - s->position);
       std::memcpy(data, s->data.data() + s->position, n);
       s->position += n;
       return static_cast<zip_int64_t>(n);
     }
-    case ZIP_SOURCE_CLOSE:
-      return 0;
+    case ZIP_SOURCE_CLOSE: return 0;
     case ZIP_SOURCE_STAT: {
       auto* st = static_cast<zip_stat_t*>(data);
       zip_stat_init(st);
@@ -113,16 +110,12 @@ inline zip_int64_t raw_source_callback(void* state, void* data, zip_uint64_t len
       st->mtime = 0;
       return sizeof(zip_stat_t);
     }
-    case ZIP_SOURCE_ERROR:
-      return 2 * sizeof(int);
-    case ZIP_SOURCE_FREE:
-      delete s;
-      return 0;
+    case ZIP_SOURCE_ERROR: return 2 * sizeof(int);
+    case ZIP_SOURCE_FREE: delete s; return 0;
     case ZIP_SOURCE_SUPPORTS:
       return zip_source_make_command_bitmap(ZIP_SOURCE_OPEN, ZIP_SOURCE_READ, ZIP_SOURCE_CLOSE,
                                             ZIP_SOURCE_STAT, ZIP_SOURCE_ERROR, ZIP_SOURCE_FREE, -1);
-    default:
-      return -1;
+    default: return -1;
   }
 }
 

@@ -27,18 +27,12 @@ Eigen::MatrixXf random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
 Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixXd& c0,
                       const Eigen::VectorXd& bias, const Eigen::MatrixXd& act) {
   switch (e) {
-    case Epilogue::kStore:
-      return s;
-    case Epilogue::kAdd:
-      return c0 + s;
-    case Epilogue::kAddTransposed:
-      return c0 + s.transpose();
-    case Epilogue::kBias:
-      return s.colwise() + bias;
-    case Epilogue::kBiasTanh:
-      return (s.colwise() + bias).array().tanh().matrix();
-    case Epilogue::kBiasReLU:
-      return (s.colwise() + bias).cwiseMax(0.0);
+    case Epilogue::kStore: return s;
+    case Epilogue::kAdd: return c0 + s;
+    case Epilogue::kAddTransposed: return c0 + s.transpose();
+    case Epilogue::kBias: return s.colwise() + bias;
+    case Epilogue::kBiasTanh: return (s.colwise() + bias).array().tanh().matrix();
+    case Epilogue::kBiasReLU: return (s.colwise() + bias).cwiseMax(0.0);
     case Epilogue::kBiasELU: {  // torch.nn.ELU(alpha=1)
       const Eigen::MatrixXd v = s.colwise() + bias;
       return v.unaryExpr([](double x) { return x > 0.0 ? x : std::expm1(x); });
@@ -47,14 +41,12 @@ Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixX
       const Eigen::MatrixXd v = s.colwise() + bias;
       return v.unaryExpr([](double x) { return x > 0.0 ? x : 0.01 * x; });
     }
-    case Epilogue::kTanhGrad:
-      return s.cwiseProduct((1.0 - act.array().square()).matrix());
+    case Epilogue::kTanhGrad: return s.cwiseProduct((1.0 - act.array().square()).matrix());
     case Epilogue::kReLUGrad:
       return (act.array() > 0.0).select(s, Eigen::MatrixXd::Zero(s.rows(), s.cols()));
     case Epilogue::kELUGrad:  // d/dv expm1(v) = exp(v) = a + 1 below 0
       return (act.array() > 0.0).select(s, s.cwiseProduct((act.array() + 1.0).matrix()));
-    case Epilogue::kLeakyReLUGrad:
-      return (act.array() > 0.0).select(s, 0.01 * s);
+    case Epilogue::kLeakyReLUGrad: return (act.array() > 0.0).select(s, 0.01 * s);
   }
   return s;
 }

@@ -29,12 +29,8 @@ inline Eigen::MatrixXd mlp_forward(const Mlp& net, const Eigen::VectorXd& params
     a = (w * a).colwise() + b;
     if (l + 1 < net.num_layers()) {
       switch (net.activation()) {
-        case Activation::kTanh:
-          a = a.array().tanh().matrix();
-          break;
-        case Activation::kReLU:
-          a = a.cwiseMax(0.0);
-          break;
+        case Activation::kTanh: a = a.array().tanh().matrix(); break;
+        case Activation::kReLU: a = a.cwiseMax(0.0); break;
         case Activation::kELU:  // torch.nn.ELU(alpha=1)
           a = a.unaryExpr([](double v) { return v > 0.0 ? v : std::expm1(v); });
           break;

@@ -116,23 +116,16 @@ std::vector<DirHandle::Entry> DirHandle::list() const {
     }
     EntryKind kind = EntryKind::kOther;
     switch (e->d_type) {
-      case DT_REG:
-        kind = EntryKind::kRegular;
-        break;
-      case DT_DIR:
-        kind = EntryKind::kDirectory;
-        break;
-      case DT_LNK:
-        kind = EntryKind::kSymlink;
-        break;
+      case DT_REG: kind = EntryKind::kRegular; break;
+      case DT_DIR: kind = EntryKind::kDirectory; break;
+      case DT_LNK: kind = EntryKind::kSymlink; break;
       case DT_UNKNOWN: {  // some file systems do not say: ask
         struct stat st {};
         kind = ::fstatat(fd_.get(), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 ? kind_of(st.st_mode)
                                                                               : EntryKind::kMissing;
         break;
       }
-      default:
-        break;
+      default: break;
     }
     if (kind != EntryKind::kMissing) entries.push_back({name, kind});
   }

@@ -12,14 +12,10 @@ namespace {
 
 const char* descr(DType t) {
   switch (t) {
-    case DType::kFloat32:
-      return "<f4";
-    case DType::kFloat64:
-      return "<f8";
-    case DType::kInt64:
-      return "<i8";
-    case DType::kUInt64:
-      return "<u8";
+    case DType::kFloat32: return "<f4";
+    case DType::kFloat64: return "<f8";
+    case DType::kInt64: return "<i8";
+    case DType::kUInt64: return "<u8";
   }
   return "";
 }

@@ -138,15 +138,9 @@ class CWriter {
         const std::string v = ref(x, "i");
         std::string f;
         switch (n.activation) {
-          case Activation::kTanh:
-            f = "tanhf(" + v + ")";
-            break;
-          case Activation::kReLU:
-            f = v + " > 0.0f ? " + v + " : 0.0f";
-            break;
-          case Activation::kELU:
-            f = v + " > 0.0f ? " + v + " : expf(" + v + ") - 1.0f";
-            break;
+          case Activation::kTanh: f = "tanhf(" + v + ")"; break;
+          case Activation::kReLU: f = v + " > 0.0f ? " + v + " : 0.0f"; break;
+          case Activation::kELU: f = v + " > 0.0f ? " + v + " : expf(" + v + ") - 1.0f"; break;
           case Activation::kLeakyReLU:
             f = v + " > 0.0f ? " + v + " : " + literal(kLeakyReLUSlope) + " * " + v;
             break;

@@ -52,8 +52,7 @@ void check_graph_numbers(const PolicyGraph& graph) {
       case GraphOp::kSlice:
       case GraphOp::kActivation:
       case GraphOp::kArgMax:
-      case GraphOp::kPositive:
-        break;
+      case GraphOp::kPositive: break;
     }
   }
 }

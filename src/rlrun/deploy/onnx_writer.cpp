@@ -157,9 +157,7 @@ class OnnxGraphWriter {
     const std::string& x = n.inputs.front();
     const std::string& out = n.output;
     switch (n.op) {
-      case GraphOp::kConcat:
-        node("Concat", n.inputs, out, {int_attr("axis", 1)});
-        return;
+      case GraphOp::kConcat: node("Concat", n.inputs, out, {int_attr("axis", 1)}); return;
       case GraphOp::kSlice:
         node("Slice",
              {x, int64_constant("starts", n.begin), int64_constant("ends", n.begin + n.width),
@@ -176,15 +174,9 @@ class OnnxGraphWriter {
       }
       case GraphOp::kActivation:
         switch (n.activation) {
-          case Activation::kTanh:
-            node("Tanh", {x}, out);
-            return;
-          case Activation::kReLU:
-            node("Relu", {x}, out);
-            return;
-          case Activation::kELU:
-            node("Elu", {x}, out, {float_attr("alpha", 1.0f)});
-            return;
+          case Activation::kTanh: node("Tanh", {x}, out); return;
+          case Activation::kReLU: node("Relu", {x}, out); return;
+          case Activation::kELU: node("Elu", {x}, out, {float_attr("alpha", 1.0f)}); return;
           case Activation::kLeakyReLU:
             node("LeakyRelu", {x}, out, {float_attr("alpha", kLeakyReLUSlope)});
             return;

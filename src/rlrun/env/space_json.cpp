@@ -152,12 +152,8 @@ json space_to_json(const Space& space) {
       j["n"] = space.n();
       j["start"] = space.start();
       break;
-    case SpaceKind::kMultiDiscrete:
-      j["nvec"] = space.nvec();
-      break;
-    case SpaceKind::kMultiBinary:
-      j["n"] = space.n();
-      break;
+    case SpaceKind::kMultiDiscrete: j["nvec"] = space.nvec(); break;
+    case SpaceKind::kMultiBinary: j["n"] = space.n(); break;
     case SpaceKind::kDict: {
       json spaces = json::object();
       for (size_t i = 0; i < space.keys().size(); ++i)

@@ -42,18 +42,13 @@ std::string entry_outside(const Space& space, std::span<const float> x) {
   for (size_t i = 0; i < x.size(); ++i) {
     bool inside = true;
     switch (space.kind()) {
-      case SpaceKind::kBox:
-        inside = x[i] >= space.low()[i] && x[i] <= space.high()[i];
-        break;
+      case SpaceKind::kBox: inside = x[i] >= space.low()[i] && x[i] <= space.high()[i]; break;
       case SpaceKind::kMultiDiscrete:
         inside = x[i] == static_cast<float>(static_cast<int64_t>(x[i])) && x[i] >= 0 &&
                  x[i] < static_cast<float>(space.nvec()[i]);
         break;
-      case SpaceKind::kMultiBinary:
-        inside = x[i] == 0.0f || x[i] == 1.0f;
-        break;
-      default:
-        break;
+      case SpaceKind::kMultiBinary: inside = x[i] == 0.0f || x[i] == 1.0f; break;
+      default: break;
     }
     if (!inside)
       return "entry " + std::to_string(i) + " is " + format_number(x[i]) + ", not in " +

@@ -335,23 +335,12 @@ struct KernelSet {
       for (; j + kColumns <= n; j += kColumns)
         rows_columns<kColumns>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
       switch (n - j) {
-        case 5:
-          rows_columns<5>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
-          break;
-        case 4:
-          rows_columns<4>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
-          break;
-        case 3:
-          rows_columns<3>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
-          break;
-        case 2:
-          rows_columns<2>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
-          break;
-        case 1:
-          rows_columns<1>(i0, i1, k, a, lda, b, b_k, b_j, j, epi);
-          break;
-        default:
-          break;
+        case 5: rows_columns<5>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
+        case 4: rows_columns<4>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
+        case 3: rows_columns<3>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
+        case 2: rows_columns<2>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
+        case 1: rows_columns<1>(i0, i1, k, a, lda, b, b_k, b_j, j, epi); break;
+        default: break;
       }
     }
   }
@@ -435,28 +424,17 @@ struct KernelSet {
   template <class Run>
   static void with_epilogue(Epilogue epilogue, const EpilogueArgs& g, Run&& run) {
     switch (epilogue) {
-      case Epilogue::kStore:
-        return run(StoreEpi{g.c, g.ldc});
-      case Epilogue::kAdd:
-        return run(AddEpi{g.c, g.ldc});
-      case Epilogue::kAddTransposed:
-        return run(AddTransposedEpi{g.c, g.ldc});
-      case Epilogue::kBias:
-        return run(BiasEpi<Act::kNone>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasTanh:
-        return run(BiasEpi<Act::kTanh>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasReLU:
-        return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasELU:
-        return run(BiasEpi<Act::kELU>{g.c, g.ldc, g.bias});
-      case Epilogue::kBiasLeakyReLU:
-        return run(BiasEpi<Act::kLeakyReLU>{g.c, g.ldc, g.bias});
-      case Epilogue::kTanhGrad:
-        return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
-      case Epilogue::kReLUGrad:
-        return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
-      case Epilogue::kELUGrad:
-        return run(ActGradEpi<Act::kELU>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kStore: return run(StoreEpi{g.c, g.ldc});
+      case Epilogue::kAdd: return run(AddEpi{g.c, g.ldc});
+      case Epilogue::kAddTransposed: return run(AddTransposedEpi{g.c, g.ldc});
+      case Epilogue::kBias: return run(BiasEpi<Act::kNone>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasTanh: return run(BiasEpi<Act::kTanh>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasReLU: return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasELU: return run(BiasEpi<Act::kELU>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasLeakyReLU: return run(BiasEpi<Act::kLeakyReLU>{g.c, g.ldc, g.bias});
+      case Epilogue::kTanhGrad: return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kReLUGrad: return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kELUGrad: return run(ActGradEpi<Act::kELU>{g.c, g.ldc, g.act, g.ld_act});
       case Epilogue::kLeakyReLUGrad:
         return run(ActGradEpi<Act::kLeakyReLU>{g.c, g.ldc, g.act, g.ld_act});
     }

@@ -13,33 +13,27 @@ namespace rlrun::dense {
 
 const char* kernel_path_name(KernelPath path) {
   switch (path) {
-    case KernelPath::kAvx512:
-      return "avx512";
-    case KernelPath::kAvx2:
-      return "avx2";
-    case KernelPath::kBaseline:
-      return "baseline";
+    case KernelPath::kAvx512: return "avx512";
+    case KernelPath::kAvx2: return "avx2";
+    case KernelPath::kBaseline: return "baseline";
   }
   return "?";
 }
 
 bool kernel_path_available(KernelPath path) {
   switch (path) {
-    case KernelPath::kBaseline:
-      return true;
+    case KernelPath::kBaseline: return true;
 #if defined(RLRUN_KERNELS_X86)
     // __builtin_cpu_supports reads CPUID and, for AVX and AVX-512, whether the OS saves the
     // wider registers (XGETBV); x86-64-v4's subset (F, VL, DQ, BW) is what the AVX-512 file is
     // compiled for.
-    case KernelPath::kAvx2:
-      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    case KernelPath::kAvx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     case KernelPath::kAvx512:
       return kernel_path_available(KernelPath::kAvx2) && __builtin_cpu_supports("avx512f") &&
              __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") &&
              __builtin_cpu_supports("avx512bw");
 #else
-    default:
-      return false;
+    default: return false;
 #endif
   }
   return false;
@@ -52,13 +46,10 @@ const KernelTable& kernels(KernelPath path) {
   }
   switch (path) {
 #if defined(RLRUN_KERNELS_X86)
-    case KernelPath::kAvx512:
-      return avx512_kernels();
-    case KernelPath::kAvx2:
-      return avx2_kernels();
+    case KernelPath::kAvx512: return avx512_kernels();
+    case KernelPath::kAvx2: return avx2_kernels();
 #endif
-    default:
-      return baseline_kernels();
+    default: return baseline_kernels();
   }
 }
 

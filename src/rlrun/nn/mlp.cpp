@@ -19,14 +19,10 @@ constexpr Eigen::Index kMinBatchForTranspose = 3;
 // The fused epilogue of a hidden layer's forward product: bias + activation.
 dense::Epilogue forward_epilogue(Activation act) {
   switch (act) {
-    case Activation::kTanh:
-      return dense::Epilogue::kBiasTanh;
-    case Activation::kReLU:
-      return dense::Epilogue::kBiasReLU;
-    case Activation::kELU:
-      return dense::Epilogue::kBiasELU;
-    case Activation::kLeakyReLU:
-      return dense::Epilogue::kBiasLeakyReLU;
+    case Activation::kTanh: return dense::Epilogue::kBiasTanh;
+    case Activation::kReLU: return dense::Epilogue::kBiasReLU;
+    case Activation::kELU: return dense::Epilogue::kBiasELU;
+    case Activation::kLeakyReLU: return dense::Epilogue::kBiasLeakyReLU;
   }
   throw std::logic_error("Mlp: unknown activation");
 }
@@ -35,14 +31,10 @@ dense::Epilogue forward_epilogue(Activation act) {
 // layer's activation (its derivative read off the stored output).
 dense::Epilogue backward_epilogue(Activation act) {
   switch (act) {
-    case Activation::kTanh:
-      return dense::Epilogue::kTanhGrad;
-    case Activation::kReLU:
-      return dense::Epilogue::kReLUGrad;
-    case Activation::kELU:
-      return dense::Epilogue::kELUGrad;
-    case Activation::kLeakyReLU:
-      return dense::Epilogue::kLeakyReLUGrad;
+    case Activation::kTanh: return dense::Epilogue::kTanhGrad;
+    case Activation::kReLU: return dense::Epilogue::kReLUGrad;
+    case Activation::kELU: return dense::Epilogue::kELUGrad;
+    case Activation::kLeakyReLU: return dense::Epilogue::kLeakyReLUGrad;
   }
   throw std::logic_error("Mlp: unknown activation");
 }
@@ -276,12 +268,8 @@ void Mlp::add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const flo
                                                                      Eigen::OuterStride<>(ld_grad));
   const Eigen::Map<const Eigen::MatrixXf> a(act, rows, batch);
   switch (act_) {
-    case Activation::kTanh:
-      delta.array() += g.array() * (1.0f - a.array().square());
-      break;
-    case Activation::kReLU:
-      delta.array() += (a.array() > 0.0f).select(g.array(), 0.0f);
-      break;
+    case Activation::kTanh: delta.array() += g.array() * (1.0f - a.array().square()); break;
+    case Activation::kReLU: delta.array() += (a.array() > 0.0f).select(g.array(), 0.0f); break;
     case Activation::kELU:  // d/dz (exp(z) - 1) = exp(z) = a + 1 below zero
       delta.array() += (a.array() > 0.0f).select(g.array(), g.array() * (a.array() + 1.0f));
       break;

@@ -146,14 +146,10 @@ namespace {
 
 float activate(Activation act, float v) {
   switch (act) {
-    case Activation::kTanh:
-      return std::tanh(v);
-    case Activation::kReLU:
-      return v > 0.0f ? v : 0.0f;
-    case Activation::kELU:
-      return v > 0.0f ? v : std::exp(v) - 1.0f;
-    case Activation::kLeakyReLU:
-      return v > 0.0f ? v : kLeakyReLUSlope * v;
+    case Activation::kTanh: return std::tanh(v);
+    case Activation::kReLU: return v > 0.0f ? v : 0.0f;
+    case Activation::kELU: return v > 0.0f ? v : std::exp(v) - 1.0f;
+    case Activation::kLeakyReLU: return v > 0.0f ? v : kLeakyReLUSlope * v;
   }
   return v;
 }
@@ -172,9 +168,7 @@ void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, Graph
       }
       return;
     }
-    case GraphOp::kSlice:
-      y = x.middleRows(n.begin, n.width);
-      return;
+    case GraphOp::kSlice: y = x.middleRows(n.begin, n.width); return;
     case GraphOp::kDense:
       y.noalias() = n.weight * x;
       y.colwise() += n.b;
@@ -203,9 +197,7 @@ void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, Graph
         y(0, j) = static_cast<float>(best);
       }
       return;
-    case GraphOp::kPositive:
-      y = (x.array() > 0.0f).cast<float>();
-      return;
+    case GraphOp::kPositive: y = (x.array() > 0.0f).cast<float>(); return;
   }
 }
 

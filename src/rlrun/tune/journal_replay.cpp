@@ -186,29 +186,21 @@ void JournalReplay::apply_one(const nlohmann::json& op, const std::string& origi
   const auto& code = field(op, "op_code", where);
   if (!code.is_number_integer()) damaged(where, "'op_code' is not an integer");
   switch (static_cast<JournalOperation>(code.get<int>())) {
-    case JournalOperation::kCreateStudy:
-      return create_study(op, where);
+    case JournalOperation::kCreateStudy: return create_study(op, where);
     case JournalOperation::kDeleteStudy: {
       const int64_t id = id_field(op, "study_id", where);
       if (study_exists(id, op, where)) studies_.erase(id);
       return;
     }
-    case JournalOperation::kSetStudyUserAttr:
-      return set_study_attr(op, /*user=*/true, where);
-    case JournalOperation::kSetStudySystemAttr:
-      return set_study_attr(op, /*user=*/false, where);
-    case JournalOperation::kCreateTrial:
-      return create_trial(op, where);
-    case JournalOperation::kSetTrialParam:
-      return set_trial_param(op, where);
-    case JournalOperation::kSetTrialStateValues:
-      return set_trial_state_values(op, where);
+    case JournalOperation::kSetStudyUserAttr: return set_study_attr(op, /*user=*/true, where);
+    case JournalOperation::kSetStudySystemAttr: return set_study_attr(op, /*user=*/false, where);
+    case JournalOperation::kCreateTrial: return create_trial(op, where);
+    case JournalOperation::kSetTrialParam: return set_trial_param(op, where);
+    case JournalOperation::kSetTrialStateValues: return set_trial_state_values(op, where);
     case JournalOperation::kSetTrialIntermediateValue:
       return set_trial_intermediate_value(op, where);
-    case JournalOperation::kSetTrialUserAttr:
-      return set_trial_attr(op, /*user=*/true, where);
-    case JournalOperation::kSetTrialSystemAttr:
-      return set_trial_attr(op, /*user=*/false, where);
+    case JournalOperation::kSetTrialUserAttr: return set_trial_attr(op, /*user=*/true, where);
+    case JournalOperation::kSetTrialSystemAttr: return set_trial_attr(op, /*user=*/false, where);
   }
   damaged(where, "unknown op_code " + code.dump());
 }

@@ -20,12 +20,9 @@ constexpr int kBarWidth = 40;       // '#'s of an importance of 1
 
 const char* direction_name(StudyDirection d) {
   switch (d) {
-    case StudyDirection::kMaximize:
-      return "maximize";
-    case StudyDirection::kMinimize:
-      return "minimize";
-    default:
-      return "direction not set";
+    case StudyDirection::kMaximize: return "maximize";
+    case StudyDirection::kMinimize: return "minimize";
+    default: return "direction not set";
   }
 }
 

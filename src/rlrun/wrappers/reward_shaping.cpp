@@ -60,18 +60,14 @@ StepResult RewardShaping::step(std::span<const float> action, std::span<float> o
         if (streak_[k] >= t.steps && (t.repeat || streak_[k] == t.steps)) shaping += t.penalty;
         break;
       }
-      case Kind::kObsAbs:
-        shaping += t.coef * std::abs(static_cast<double>(obs[t.index]));
-        break;
+      case Kind::kObsAbs: shaping += t.coef * std::abs(static_cast<double>(obs[t.index])); break;
       case Kind::kActionSq: {
         double sq = 0.0;
         for (float a : action) sq += static_cast<double>(a) * a;
         shaping += t.coef * sq;
         break;
       }
-      case Kind::kConstant:
-        shaping += t.value;
-        break;
+      case Kind::kConstant: shaping += t.value; break;
     }
   }
   last_shaping_ = shaping;

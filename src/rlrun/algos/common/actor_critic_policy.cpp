@@ -75,17 +75,14 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
 int action_net_size(const Space& action_space) {
   switch (action_space.kind()) {
     case SpaceKind::kDiscrete:
-    case SpaceKind::kMultiBinary:
-      return static_cast<int>(action_space.n());
+    case SpaceKind::kMultiBinary: return static_cast<int>(action_space.n());
     case SpaceKind::kMultiDiscrete: {
       int64_t total = 0;
       for (int64_t n : action_space.nvec()) total += n;
       return static_cast<int>(total);
     }
-    case SpaceKind::kBox:
-      return action_space.flat_dim();
-    case SpaceKind::kDict:
-      break;
+    case SpaceKind::kBox: return action_space.flat_dim();
+    case SpaceKind::kDict: break;
   }
   throw std::invalid_argument("action space " + action_space.describe() +
                               " is not supported (SB3 has no distribution for Dict actions)");
@@ -206,9 +203,7 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
   const std::string features = encoder_.export_to(graph, obs);
   const std::string head = graph.mlp(features, actor_);
   switch (head_) {
-    case Head::kCategorical:
-      graph.set_action(graph.argmax(head));
-      break;
+    case Head::kCategorical: graph.set_action(graph.argmax(head)); break;
     case Head::kMultiCategorical: {
       std::vector<std::string> parts;
       int begin = 0;
@@ -219,13 +214,9 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
       graph.set_action(graph.concat(parts));
       break;
     }
-    case Head::kBernoulli:
-      graph.set_action(graph.positive(head));
-      break;
+    case Head::kBernoulli: graph.set_action(graph.positive(head)); break;
     case Head::kDiagGaussian:
-    case Head::kStateDependentNoise:
-      graph.set_action(head);
-      break;
+    case Head::kStateDependentNoise: graph.set_action(head); break;
   }
   if (with_value) graph.set_value(graph.mlp(features, critic_));
 }

@@ -123,9 +123,7 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
                   length = ep_length_[static_cast<size_t>(k)];
     int64_t index = 0;  // within the episode
     switch (selection_) {
-      case GoalSelection::kFinal:
-        index = length - 1;
-        break;
+      case GoalSelection::kFinal: index = length - 1; break;
       case GoalSelection::kFuture: {
         const int64_t current = ((slot - start) % slots_ + slots_) % slots_;
         index = current + static_cast<int64_t>(rng.below(static_cast<uint64_t>(length - current)));

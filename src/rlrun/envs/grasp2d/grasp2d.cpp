@@ -91,26 +91,13 @@ StepResult Grasp2D::step(std::span<const float> action, std::span<float> obs) {
   last_action_ = a;
   double dx = 0.0, dy = 0.0;
   switch (a) {
-    case kLeft:
-      dx = -config_.step_size;
-      break;
-    case kRight:
-      dx = config_.step_size;
-      break;
-    case kUp:
-      dy = config_.step_size;
-      break;
-    case kDown:
-      dy = -config_.step_size;
-      break;
-    case kOpen:
-      gripper_closed_ = false;
-      break;
-    case kClose:
-      gripper_closed_ = true;
-      break;
-    default:
-      break;
+    case kLeft: dx = -config_.step_size; break;
+    case kRight: dx = config_.step_size; break;
+    case kUp: dy = config_.step_size; break;
+    case kDown: dy = -config_.step_size; break;
+    case kOpen: gripper_closed_ = false; break;
+    case kClose: gripper_closed_ = true; break;
+    default: break;
   }
   arm_x_ += dx;
   arm_y_ += dy;

@@ -45,20 +45,11 @@ StepResult GridWorld::step(std::span<const float> action, std::span<float> obs) 
   const int chosen = checked_discrete_action(action_space_, action, "GridWorld-v0");
   int row = row_, col = col_;
   switch (chosen) {
-    case kUp:
-      --row;
-      break;
-    case kRight:
-      ++col;
-      break;
-    case kDown:
-      ++row;
-      break;
-    case kLeft:
-      --col;
-      break;
-    default:
-      break;
+    case kUp: --row; break;
+    case kRight: ++col; break;
+    case kDown: ++row; break;
+    case kLeft: --col; break;
+    default: break;
   }
   const bool bumped = row < 0 || row >= config_.size || col < 0 || col >= config_.size;
   if (!bumped) {

@@ -19,12 +19,9 @@ double draw(Rng& rng, const std::vector<double>& range) { return rng.uniform(ran
 
 const char* scenario_name(GoalTask task) {
   switch (task) {
-    case GoalTask::kReach:
-      return "reach";
-    case GoalTask::kPush:
-      return "push";
-    case GoalTask::kPickAndPlace:
-      return "pick_and_place";
+    case GoalTask::kReach: return "reach";
+    case GoalTask::kPush: return "push";
+    case GoalTask::kPickAndPlace: return "pick_and_place";
   }
   return "";
 }
@@ -33,12 +30,9 @@ const char* scenario_name(GoalTask task) {
 // blocked) and task (object position, Euler angles, velocity, angular velocity).
 int observation_size_of(GoalTask task) {
   switch (task) {
-    case GoalTask::kReach:
-      return 6;
-    case GoalTask::kPush:
-      return 6 + 12;
-    case GoalTask::kPickAndPlace:
-      return 7 + 12;
+    case GoalTask::kReach: return 6;
+    case GoalTask::kPush: return 6 + 12;
+    case GoalTask::kPickAndPlace: return 7 + 12;
   }
   return 0;
 }
@@ -94,12 +88,9 @@ GripperGoalEnv::~GripperGoalEnv() = default;
 
 std::string GripperGoalEnv::id() const {
   switch (task_) {
-    case GoalTask::kReach:
-      return "GripperReach-v0";
-    case GoalTask::kPush:
-      return "GripperPush-v0";
-    case GoalTask::kPickAndPlace:
-      return "GripperPickAndPlace-v0";
+    case GoalTask::kReach: return "GripperReach-v0";
+    case GoalTask::kPush: return "GripperPush-v0";
+    case GoalTask::kPickAndPlace: return "GripperPickAndPlace-v0";
   }
   return "";
 }

@@ -105,12 +105,9 @@ std::array<float, 4> pick_and_place(const GripperGoalEnv& env) {
 
 std::array<float, 4> scripted_goal_action(const GripperGoalEnv& env) {
   switch (env.task()) {
-    case GoalTask::kReach:
-      return reach(env);
-    case GoalTask::kPush:
-      return push(env);
-    case GoalTask::kPickAndPlace:
-      return pick_and_place(env);
+    case GoalTask::kReach: return reach(env);
+    case GoalTask::kPush: return push(env);
+    case GoalTask::kPickAndPlace: return pick_and_place(env);
   }
   return {0, 0, 0, 0};
 }

@@ -25,14 +25,10 @@ std::array<Point, 4> rect(double x0, double y0, double x1, double y1) {
 // Values of entry i: its category count (0 for a Box entry) and the value of category 0.
 std::pair<int64_t, int64_t> categories(const Space& space, size_t i) {
   switch (space.kind()) {
-    case SpaceKind::kDiscrete:
-      return {space.n(), space.start()};
-    case SpaceKind::kMultiDiscrete:
-      return {space.nvec()[i], 0};
-    case SpaceKind::kMultiBinary:
-      return {2, 0};
-    default:
-      return {0, 0};
+    case SpaceKind::kDiscrete: return {space.n(), space.start()};
+    case SpaceKind::kMultiDiscrete: return {space.nvec()[i], 0};
+    case SpaceKind::kMultiBinary: return {2, 0};
+    default: return {0, 0};
   }
 }
 

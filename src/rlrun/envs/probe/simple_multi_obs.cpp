@@ -26,14 +26,10 @@ bool possible(int cell, int action) {
 int SimpleMultiObs::next_cell(int cell, int action) {
   if (!possible(cell, action)) return cell;
   switch (action) {
-    case kLeft:
-      return cell - 1;
-    case kDown:
-      return cell + kSide;
-    case kRight:
-      return cell + 1;
-    default:
-      return cell - kSide;
+    case kLeft: return cell - 1;
+    case kDown: return cell + kSide;
+    case kRight: return cell + 1;
+    default: return cell - kSide;
   }
 }
 

@@ -217,8 +217,7 @@ class Scanner {
 
   void step(char c) {
     switch (state_) {
-      case State::kText:
-        break;  // handled in feed()
+      case State::kText: break;  // handled in feed()
       case State::kOpen:
         if (c == '!') {
           bang_.clear();
@@ -244,12 +243,8 @@ class Scanner {
           refuse_declaration();
         }
         break;
-      case State::kComment:
-        end_after(c, "-->");
-        break;
-      case State::kCdata:
-        end_after(c, "]]>");
-        break;
+      case State::kComment: end_after(c, "-->"); break;
+      case State::kCdata: end_after(c, "]]>"); break;
       case State::kPi:
         if (c == '>' && before_[1] == '?') {
           check_xml_declaration();

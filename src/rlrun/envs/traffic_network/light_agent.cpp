@@ -151,8 +151,7 @@ double LightAgent::reward(RewardFunction f, const std::vector<LaneReading>& lane
                           const std::vector<double>& lane_speed,
                           const std::vector<int>& lane_speed_count) {
   switch (f) {
-    case RewardFunction::kQueue:
-      return -static_cast<double>(queue(lanes));
+    case RewardFunction::kQueue: return -static_cast<double>(queue(lanes));
     case RewardFunction::kPressure: {
       // sumo-rl's get_pressure: vehicles on the outgoing lanes minus on the incoming ones.
       int in = 0, out = 0;

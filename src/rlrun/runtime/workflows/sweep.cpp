@@ -396,14 +396,10 @@ std::string run_console_log(const Sweep& sweep, const SweepRun& run) {
 
 const char* to_string(RunState state) {
   switch (state) {
-    case RunState::kNew:
-      return "new";
-    case RunState::kFinished:
-      return "finished";
-    case RunState::kResumable:
-      return "resumable";
-    case RunState::kPartial:
-      return "partial";
+    case RunState::kNew: return "new";
+    case RunState::kFinished: return "finished";
+    case RunState::kResumable: return "resumable";
+    case RunState::kPartial: return "partial";
   }
   return "?";
 }

@@ -16,20 +16,13 @@ PyValue::~PyValue() = default;
 
 std::string PyValue::describe() const {
   switch (kind) {
-    case Kind::kNone:
-      return "None";
-    case Kind::kBool:
-      return boolean ? "True" : "False";
-    case Kind::kNumber:
-      return "the number " + quoted_text(text);
-    case Kind::kString:
-      return "the string '" + quoted_text(text) + "'";
-    case Kind::kList:
-      return "a list";
-    case Kind::kDict:
-      return "a dict";
-    case Kind::kName:
-      return "the name " + quoted_text(text);
+    case Kind::kNone: return "None";
+    case Kind::kBool: return boolean ? "True" : "False";
+    case Kind::kNumber: return "the number " + quoted_text(text);
+    case Kind::kString: return "the string '" + quoted_text(text) + "'";
+    case Kind::kList: return "a list";
+    case Kind::kDict: return "a dict";
+    case Kind::kName: return "the name " + quoted_text(text);
   }
   return "a value";
 }

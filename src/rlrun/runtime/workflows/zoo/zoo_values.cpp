@@ -56,15 +56,11 @@ PyValue python_value(const ConfigNode& node, const std::string& what) {
 
 YAML::Node to_yaml(const PyValue& value) {
   switch (value.kind) {
-    case PyValue::Kind::kNone:
-      return YAML::Node(YAML::NodeType::Null);
-    case PyValue::Kind::kBool:
-      return YAML::Node(value.boolean);
-    case PyValue::Kind::kNumber:
-      return YAML::Node(value.text);
+    case PyValue::Kind::kNone: return YAML::Node(YAML::NodeType::Null);
+    case PyValue::Kind::kBool: return YAML::Node(value.boolean);
+    case PyValue::Kind::kNumber: return YAML::Node(value.text);
     case PyValue::Kind::kString:
-    case PyValue::Kind::kName:
-      return YAML::Node(value.text);
+    case PyValue::Kind::kName: return YAML::Node(value.text);
     case PyValue::Kind::kList: {
       YAML::Node seq(YAML::NodeType::Sequence);
       for (const PyValue& item : value.items) seq.push_back(to_yaml(item));
