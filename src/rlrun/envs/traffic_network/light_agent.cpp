@@ -10,6 +10,14 @@ namespace {
 // sumo-rl's TrafficSignal.MIN_GAP: SUMO's default minimum gap between vehicles (m).
 constexpr double kMinGap = 2.5;
 
+// "a, b or c": the names a message offers, from the one list of them.
+std::string alternatives(const std::vector<std::string>& names) {
+  std::string text;
+  for (size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return text;
+}
+
 }  // namespace
 
 const std::vector<std::string>& reward_function_names() {
@@ -22,8 +30,7 @@ RewardFunction parse_reward_function(const std::string& name) {
   const auto& names = reward_function_names();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end())
-    throw std::invalid_argument("unknown reward_fn '" + name +
-                                "' (diff-waiting-time, queue, pressure or average-speed)");
+    throw std::invalid_argument("unknown reward_fn '" + name + "' (" + alternatives(names) + ")");
   // In the enum's order.
   return static_cast<RewardFunction>(it - names.begin());
 }
@@ -37,7 +44,7 @@ ObservationFunction parse_observation_function(const std::string& name) {
   const auto& names = observation_function_names();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end())
-    throw std::invalid_argument("unknown observation '" + name + "' (sumo-rl or approach)");
+    throw std::invalid_argument("unknown observation '" + name + "' (" + alternatives(names) + ")");
   return static_cast<ObservationFunction>(it - names.begin());
 }
 
