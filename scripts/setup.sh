@@ -19,6 +19,8 @@ PACKAGES=(
   zlib1g-dev                                # gzip SUMO inputs checked (sumo_xml_guard); tests' hostile zips
   libbullet-dev                             # 3D grasp task
   libbox2d-dev                              # LunarLander, BipedalWalker (Gymnasium's Box2D tasks)
+  libmujoco-dev libqhull-dev                # Gymnasium's MuJoCo tasks (MuJoCo 2.2.2; its CMake config names qhull's headers)
+  libosmesa6-dev                            # MuJoCo's renderer on an offscreen context (record, headless)
   libpugixml-dev                            # SUMO network files read before SUMO runs (traffic_network)
   sumo sumo-tools                           # traffic task (SUMO + TraCI)
   libcairo2-dev fonts-dejavu-core ffmpeg    # rendering (frames, overlay text) and video

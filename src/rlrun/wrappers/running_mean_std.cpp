@@ -76,37 +76,12 @@ void RunningMeanStd::update_batch(const Eigen::Ref<const Eigen::MatrixXf>& sampl
   count_ += static_cast<double>(n);
 }
 
-// numpy's pairwise_sum (numpy/core/src/umath/loops_utils.h.src) of a contiguous float64 vector,
-// which np.mean and np.var use: up to 8 values left to right, up to 128 in eight interleaved
-// partial sums, beyond that halves summed recursively.
-double pairwise_sum(std::span<const double> a) {
-  const size_t n = a.size();
-  if (n < 8) {
-    double res = 0.0;
-    for (double v : a) res += v;
-    return res;
-  }
-  if (n <= 128) {
-    double r[8];
-    for (size_t j = 0; j < 8; ++j) r[j] = a[j];
-    size_t i = 8;
-    for (; i < n - (n % 8); i += 8)
-      for (size_t j = 0; j < 8; ++j) r[j] += a[i + j];
-    double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
-    for (; i < n; ++i) res += a[i];
-    return res;
-  }
-  size_t half = n / 2;
-  half -= half % 8;
-  return pairwise_sum(a.first(half)) + pairwise_sum(a.subspan(half));
-}
-
 void RunningMeanStd::update_batch(std::span<const double> values, std::span<double> scratch) {
   const double n = static_cast<double>(values.size());
-  const double mean = pairwise_sum(values) / n;  // np.mean
+  const double mean = pairwise_sum<double>(values) / n;  // np.mean
   for (size_t i = 0; i < values.size(); ++i) scratch[i] = (values[i] - mean) * (values[i] - mean);
-  merge_moments(mean_[0], var_[0], count_, mean, pairwise_sum(scratch.first(values.size())) / n * n,
-                n);
+  merge_moments(mean_[0], var_[0], count_, mean,
+                pairwise_sum<double>(scratch.first(values.size())) / n * n, n);
   count_ += n;
 }
 

@@ -7,12 +7,11 @@
 #include <Eigen/Core>
 #include <span>
 
+#include "rlrun/core/pairwise_sum.hpp"
+
 #include "rlrun/core/state_dict.hpp"
 
 namespace rlrun {
-
-// numpy's pairwise summation of a contiguous float64 vector (np.sum / np.mean / np.var).
-double pairwise_sum(std::span<const double> a);
 
 class RunningMeanStd {
  public:
