@@ -95,6 +95,25 @@ def registered_limit(env_id: str) -> int:
     return 0
 
 
+class _PhysicsData:
+    """``env.unwrapped.data``: the qpos and qvel of a MuJoCo task, read when asked."""
+
+    def __init__(self, core):
+        self._core = core
+
+    @property
+    def qpos(self) -> np.ndarray:
+        return self._core.qpos
+
+    @property
+    def qvel(self) -> np.ndarray:
+        return self._core.qvel
+
+    @property
+    def qacc_warmstart(self) -> np.ndarray:
+        return self._core.qacc_warmstart
+
+
 class RlrunEnv(_EnvBase):
     """One of rlrun's envs. Build it with ``rlrun.make(id, **kwargs)``."""
 
@@ -157,6 +176,53 @@ class RlrunEnv(_EnvBase):
         # Goals of shape (goal_dim,) or (n, goal_dim), rewards of shape () or (n,); ``info`` is
         # not read. SB3's HerReplayBuffer calls it through ``env_method``.
         return self._core.compute_reward(np.asarray(achieved_goal), np.asarray(desired_goal))
+
+    # Gymnasium's MujocoEnv state access (gymnasium/envs/mujoco/mujoco_env.py), on the MuJoCo
+    # tasks only (other envs have none of these attributes): set_state(qpos, qvel), data.qpos and
+    # data.qvel, init_qpos / init_qvel, dt, frame_skip, state_vector(). Arrays are float64
+    # copies: change the state with set_state, as Gymnasium's own tasks do (docs/mujoco.md).
+    def _physics(self):
+        if not self._core.has_physics_state:
+            raise AttributeError(f"{self.id} has no simulator state (qpos, qvel)")
+        return self._core
+
+    @property
+    def set_state(self):
+        """set_state(qpos, qvel, qacc_warmstart=None): MujocoEnv.set_state (then mj_forward);
+        qacc_warmstart, when given, also sets the solver's warm start, which an exact replay of a
+        recorded step needs (Gymnasium: data.qacc_warmstart[:] = ...)."""
+        core = self._physics()
+        return lambda qpos, qvel, qacc_warmstart=None: core.set_state(qpos, qvel, qacc_warmstart)
+
+    @property
+    def data(self):
+        """The simulator state as MjData names it: ``data.qpos``, ``data.qvel`` (copies)."""
+        return _PhysicsData(self._physics())
+
+    @property
+    def init_qpos(self) -> np.ndarray:
+        return self._physics().init_qpos
+
+    @property
+    def init_qvel(self) -> np.ndarray:
+        return self._physics().init_qvel
+
+    @property
+    def dt(self) -> float:
+        return self._physics().dt
+
+    @property
+    def frame_skip(self) -> int:
+        return self._physics().frame_skip
+
+    def state_vector(self) -> np.ndarray:
+        """np.concatenate([qpos, qvel]), as MujocoEnv.state_vector."""
+        core = self._physics()
+        return np.concatenate([core.qpos, core.qvel])
+
+    def _get_obs(self) -> np.ndarray:
+        """The observation of the current state (the task's _get_obs), float32."""
+        return self._physics().observation()
 
     def render(self):
         """An (H, W, 3) uint8 RGB frame of the current state (render_mode "rgb_array")."""

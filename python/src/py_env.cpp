@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/env/goal_env.hpp"
+#include "rlrun/env/physics_state.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
@@ -174,12 +175,82 @@ py::array_t<float> compute_goal_reward(PyEnv& self, const py::object& achieved,
   return out;
 }
 
+// The MuJoCo tasks' simulator state (env/physics_state.hpp), for env.unwrapped.set_state and
+// env.unwrapped.data.qpos / qvel (python/rlrun/_env.py).
+PhysicsState& physics_of(PyEnv& self) {
+  PhysicsState* physics = physics_state_of(self.env());
+  if (!physics) throw py::attribute_error(self.env().id() + " has no simulator state (qpos, qvel)");
+  return *physics;
+}
+
+py::array_t<double> copy_array(std::span<const double> values) {
+  py::array_t<double> out(static_cast<py::ssize_t>(values.size()));
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::span<const double> vector_of(const py::object& values, const char* name, DoubleArray& keep) {
+  keep = DoubleArray::ensure(values);
+  if (!keep) throw py::type_error(std::string("set_state: ") + name + " must be a numeric array");
+  if (keep.ndim() != 1) throw py::value_error(std::string("set_state: ") + name + " must be 1-D");
+  return {keep.data(), static_cast<size_t>(keep.size())};
+}
+
+// set_state(qpos, qvel[, qacc_warmstart]): Gymnasium's, plus the solver's warm start for exact
+// replays (env/physics_state.hpp).
+void set_physics_state(PyEnv& self, const py::object& qpos, const py::object& qvel,
+                       const py::object& qacc_warmstart) {
+  DoubleArray p, v, w;
+  const std::span<const double> positions = vector_of(qpos, "qpos", p);
+  const std::span<const double> velocities = vector_of(qvel, "qvel", v);
+  PhysicsState& physics = physics_of(self);
+  try {
+    physics.set_state(positions, velocities);
+    if (!qacc_warmstart.is_none())
+      physics.set_qacc_warmstart(vector_of(qacc_warmstart, "qacc_warmstart", w));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+py::array_t<float> physics_observation(PyEnv& self) {
+  PhysicsState& physics = physics_of(self);
+  py::array_t<float> out(self.env().observation_space().flat_dim());
+  physics.observe({out.mutable_data(), static_cast<size_t>(out.size())});
+  return out;
+}
+
+void bind_physics_state(py::class_<PyEnv>& env) {
+  env.def_property_readonly("has_physics_state",
+                            [](PyEnv& self) { return physics_state_of(self.env()) != nullptr; })
+      .def_property_readonly("qpos",
+                             [](PyEnv& self) { return copy_array(physics_of(self).qpos()); })
+      .def_property_readonly("qvel",
+                             [](PyEnv& self) { return copy_array(physics_of(self).qvel()); })
+      .def_property_readonly("init_qpos",
+                             [](PyEnv& self) { return copy_array(physics_of(self).init_qpos()); })
+      .def_property_readonly("init_qvel",
+                             [](PyEnv& self) { return copy_array(physics_of(self).init_qvel()); })
+      .def_property_readonly("dt", [](PyEnv& self) { return physics_of(self).dt(); })
+      .def_property_readonly("frame_skip",
+                             [](PyEnv& self) { return physics_of(self).frame_skip(); })
+      .def_property_readonly(
+          "qacc_warmstart",
+          [](PyEnv& self) { return copy_array(physics_of(self).qacc_warmstart()); })
+      .def("set_state", &set_physics_state, py::arg("qpos"), py::arg("qvel"),
+           py::arg("qacc_warmstart") = py::none())
+      .def("observation", &physics_observation);
+}
+
 }  // namespace
 
 void bind_env(py::module_& m) {
-  py::class_<PyEnv>(m, "Env")
-      .def(py::init<const std::string&, const std::string&, int>(), py::arg("id"),
-           py::arg("kwargs_yaml") = "{}", py::arg("max_episode_steps") = -1)
+  py::class_<PyEnv> env(m, "Env");
+  bind_physics_state(env);
+  env.def(py::init<const std::string&, const std::string&, int>(), py::arg("id"),
+          py::arg("kwargs_yaml") = "{}", py::arg("max_episode_steps") = -1)
       .def("reset", &PyEnv::reset, py::arg("seed"))
       .def("step", &PyEnv::step, py::arg("action"))
       .def("info", [](PyEnv& self) { return info_dict(self.env().info()); })

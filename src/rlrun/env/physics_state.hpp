@@ -24,6 +24,11 @@ class PhysicsState {
   virtual std::span<const double> init_qvel() const = 0;
   // Throws std::invalid_argument when the sizes are not nq and nv.
   virtual void set_state(std::span<const double> qpos, std::span<const double> qvel) = 0;
+  // The constraint solver's starting point for the next step (MuJoCo's qacc_warmstart, nv
+  // values): not part of Gymnasium's set_state, but the solver's result depends on it in its last
+  // digits, so replaying a recorded transition bit for bit sets it too (after set_state).
+  virtual std::span<const double> qacc_warmstart() const = 0;
+  virtual void set_qacc_warmstart(std::span<const double> values) = 0;
   // The observation of the current state (the env's _get_obs), observation_space().size() values.
   virtual void observe(std::span<float> obs) const = 0;
   // Simulated seconds per env step (timestep * frame_skip), and the physics steps per env step.

@@ -124,6 +124,17 @@ void MujocoEnv::set_state(std::span<const double> qpos, std::span<const double> 
   derived_from_previous_ = false;
 }
 
+std::span<const double> MujocoEnv::qacc_warmstart() const {
+  return {data_->qacc_warmstart, static_cast<size_t>(model_->nv)};
+}
+
+void MujocoEnv::set_qacc_warmstart(std::span<const double> values) {
+  if (values.size() != static_cast<size_t>(model_->nv))
+    throw std::invalid_argument(id_ + ": qacc_warmstart needs " + std::to_string(model_->nv) +
+                                " values, got " + std::to_string(values.size()));
+  copy_into(values, data_->qacc_warmstart);
+}
+
 int MujocoEnv::unstable_warnings() const {
   return data_->warning[mjWARN_BADQPOS].number + data_->warning[mjWARN_BADQVEL].number +
          data_->warning[mjWARN_BADQACC].number;

@@ -109,6 +109,8 @@ class MujocoEnv : public Env, public PhysicsState {
   std::span<const double> init_qpos() const override { return init_qpos_; }
   std::span<const double> init_qvel() const override { return init_qvel_; }
   void set_state(std::span<const double> qpos, std::span<const double> qvel) override;
+  std::span<const double> qacc_warmstart() const override;
+  void set_qacc_warmstart(std::span<const double> values) override;
   double dt() const override { return model_->opt.timestep * frame_skip_; }
   int frame_skip() const override { return frame_skip_; }
 

@@ -5,6 +5,7 @@
 #include "rlrun/core/checked_file.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/float_format.hpp"
+#include "rlrun/env/physics_state.hpp"
 #include "rlrun/runtime/experiment/base_layer.hpp"
 
 namespace rlrun {
@@ -13,6 +14,12 @@ TrajectoryTap::TrajectoryTap(EnvPtr env)
     : Wrapper(std::move(env)), obs_(static_cast<size_t>(inner_->observation_space().flat_dim())) {
   csv_ = "episode,step";
   for (size_t i = 0; i < obs_.size(); ++i) csv_ += ",obs_" + std::to_string(i);
+  if (const PhysicsState* physics = physics_state_of(*inner_)) {
+    for (size_t i = 0; i < physics->qpos().size(); ++i) csv_ += ",qpos_" + std::to_string(i);
+    for (size_t i = 0; i < physics->qvel().size(); ++i) csv_ += ",qvel_" + std::to_string(i);
+    for (size_t i = 0; i < physics->qacc_warmstart().size(); ++i)
+      csv_ += ",qacc_warmstart_" + std::to_string(i);
+  }
   for (int i = 0; i < inner_->action_space().flat_dim(); ++i)
     csv_ += ",action_" + std::to_string(i);
   csv_ += ",reward,terminated,truncated\n";
@@ -29,6 +36,11 @@ StepResult TrajectoryTap::step(std::span<const float> action, std::span<float> o
   // The row is built before the step: an env that throws leaves the action that broke it.
   csv_ += std::to_string(episode_) + ',' + std::to_string(step_);
   for (float v : obs_) csv_ += ',' + float32_text(v);
+  if (const PhysicsState* physics = physics_state_of(*inner_)) {
+    for (double v : physics->qpos()) csv_ += ',' + python_float_repr(v);
+    for (double v : physics->qvel()) csv_ += ',' + python_float_repr(v);
+    for (double v : physics->qacc_warmstart()) csv_ += ',' + python_float_repr(v);
+  }
   for (float v : action) csv_ += ',' + float32_text(v);
   const StepResult result = inner_->step(action, obs);
   csv_ += ',' + python_float_repr(result.reward) + (result.terminated ? ",1" : ",0") +

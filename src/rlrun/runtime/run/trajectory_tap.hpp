@@ -6,12 +6,16 @@
 // user of the bare env sees, and what the Python package's `model.predict` takes and returns
 // (docs/python.md): the file lets tests check both against each other, bit for bit.
 //
-// One row per step:  episode,step,obs_0,...,obs_{d-1},action_0,...,action_{k-1},reward,
-// terminated,truncated — obs_i/action_i the flat float32 values (a Dict's keys in sorted
+// One row per step:  episode,step,obs_0,...,obs_{d-1},[qpos_*,qvel_*,qacc_warmstart_*,]action_0,...,
+// action_{k-1},reward,terminated,truncated — obs_i/action_i the flat float32 values (a Dict's keys in sorted
 // order, a Discrete value as its integer) with 9 significant digits (core/float_format.hpp:
 // float32 round-trips exactly), the observation being the one the action was chosen on;
 // reward as Python's repr of the double; terminated/truncated 0 or 1 as the env returned them
 // (a time limit's truncation happens above this layer: it shows as the episode's last row).
+// Envs with a PhysicsState (the MuJoCo tasks) add the simulator state the action was applied
+// to, qpos, qvel and the solver's warm start as Python's repr of the doubles: set_state(qpos,
+// qvel), data.qacc_warmstart[:] = ..., then step(action) replays the row bit for bit in another
+// implementation of the task (Gymnasium's, on the same MuJoCo).
 #include <string>
 #include <vector>
 
