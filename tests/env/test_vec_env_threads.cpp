@@ -13,6 +13,7 @@
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/envs/classic/cartpole.hpp"
 #include "rlrun/envs/lunar_lander/lunar_lander.hpp"
+#include "rlrun/envs/mujoco/half_cheetah.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
 using namespace rlrun;
@@ -58,6 +59,9 @@ TEST_CASE("VecEnv on a pool: independent copies step at once, with the serial bi
   SECTION("CartPole") { check_pooled_equals_serial<CartPole>(5, 50, 400); }
   SECTION("LunarLander (a Box2D world per copy)") {
     check_pooled_equals_serial<LunarLander>(4, 60, 300);
+  }
+  SECTION("HalfCheetah (an mjData per copy, one model file each)") {
+    check_pooled_equals_serial<mujoco::HalfCheetah>(4, 40, 120);
   }
 }
 
