@@ -40,9 +40,31 @@ const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
 
 const char* const kImported = "rlrun imports zoo files of ppo, a2c, dqn, sac, td3, ddpg and tqc";
 
-// Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}.
+// Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}. The MuJoCo
+// tasks' v2 and v3 ids run on mujoco-py, which Gymnasium 1.0 still registers but nobody can
+// install any more; v4 is the same task on MuJoCo's own bindings (gymnasium/envs/mujoco/*_v4.py:
+// "v4: all mujoco environments now use the mujoco bindings"), and the zoo keeps some entries
+// (InvertedPendulum, Reacher, HumanoidStandup, ...) under v2 only.
 const std::vector<std::pair<std::string, std::string>> kRenamed{
-    {"LunarLander-v2", "LunarLander-v3"}, {"LunarLanderContinuous-v2", "LunarLanderContinuous-v3"}};
+    {"LunarLander-v2", "LunarLander-v3"},
+    {"LunarLanderContinuous-v2", "LunarLanderContinuous-v3"},
+    {"Ant-v2", "Ant-v4"},
+    {"Ant-v3", "Ant-v4"},
+    {"HalfCheetah-v2", "HalfCheetah-v4"},
+    {"HalfCheetah-v3", "HalfCheetah-v4"},
+    {"Hopper-v2", "Hopper-v4"},
+    {"Hopper-v3", "Hopper-v4"},
+    {"Humanoid-v2", "Humanoid-v4"},
+    {"Humanoid-v3", "Humanoid-v4"},
+    {"HumanoidStandup-v2", "HumanoidStandup-v4"},
+    {"InvertedDoublePendulum-v2", "InvertedDoublePendulum-v4"},
+    {"InvertedPendulum-v2", "InvertedPendulum-v4"},
+    {"Pusher-v2", "Pusher-v4"},
+    {"Reacher-v2", "Reacher-v4"},
+    {"Swimmer-v2", "Swimmer-v4"},
+    {"Swimmer-v3", "Swimmer-v4"},
+    {"Walker2d-v2", "Walker2d-v4"},
+    {"Walker2d-v3", "Walker2d-v4"}};
 
 // rlrun's Gymnasium env family: `gymnasium:LunarLander-v3` is gymnasium.make("LunarLander-v3"),
 // and the zoo keys its entries by that id.
