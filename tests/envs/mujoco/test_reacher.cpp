@@ -59,7 +59,7 @@ TEST_CASE("Reacher-v4: a step equals MuJoCo's C API stepped as Gymnasium does", 
     env.set_state(qpos, qvel);
     sim.set_state(qpos, qvel);
     // Several steps in a row: after the first, the positions the reward reads are those the
-    // last physics step computed (of the state before its integration), as in Gymnasium.
+    // last physics step left in data.xpos (with RK4 not the new state's), as in Gymnasium.
     for (int step = 0; step < 3; ++step) {
       const std::vector<float> action = random_controls(rng, 2, 1.5);
       const double reward_dist = -numpy_norm(fingertip_to_target(sim));
