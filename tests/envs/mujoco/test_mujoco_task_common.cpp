@@ -126,6 +126,17 @@ TEST_CASE("MuJoCo tasks refuse a model whose joint counts their arrays do not fi
   CHECK_THROWS_AS(build_with<Reacher>("swimmer.xml")(), ConfigError);  // no fingertip body
   CHECK_THROWS_AS(build_with<Pusher>("half_cheetah.xml")(), ConfigError);
   CHECK_NOTHROW(build_with<Hopper>("hopper.xml")());
+
+  // InvertedDoublePendulum reads site_xpos[0]: its model without the tip site is refused too.
+  TempDir dir("mujoco_no_site");
+  std::string text = read_text(shipped_model_path("inverted_double_pendulum.xml"));
+  const std::string site = "<site name=\"tip\" pos=\"0 0 .6\" size=\"0.01 0.01\"/>";
+  REQUIRE(text.find(site) != std::string::npos);
+  text.replace(text.find(site), site.size(), "");
+  std::ofstream(dir / "no_site.xml") << text;
+  InvertedDoublePendulum::Config no_site;
+  no_site.xml_file.value = dir / "no_site.xml";
+  CHECK_THROWS_WITH(InvertedDoublePendulum(no_site), Catch::Contains("needs a model with a site"));
 }
 
 namespace {
