@@ -1,10 +1,13 @@
 #include "rlrun/envs/mujoco/half_cheetah.hpp"
 
+#include "rlrun/envs/mujoco/model_shape.hpp"
+
 namespace rlrun::mujoco {
 
 namespace {
 
 constexpr int kFrameSkip = 5;
+constexpr ModelShape kShape{.nq = 9, .nv = 9, .nu = 6};
 
 std::string model_file(const HalfCheetah::Config& config) {
   return config.xml_file.value.empty() ? shipped_model_path("half_cheetah.xml")
@@ -17,6 +20,7 @@ HalfCheetah::HalfCheetah(const Config& config)
     : MujocoEnv("HalfCheetah-v4", model_file(config), kFrameSkip,
                 config.exclude_current_positions_from_observation ? 17 : 18),
       config_(config) {
+  require_shape(model(), kShape, id(), model_file(config));
   set_default_camera({.distance = 4.0});
   Info& info = mutable_info();
   key_x_position_ = info.add_key("x_position");

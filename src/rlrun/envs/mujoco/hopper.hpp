@@ -1,0 +1,74 @@
+#pragma once
+// Hopper-v4: Gymnasium 1.0's gymnasium/envs/mujoco/hopper_v4.py. A planar one-legged hopper
+// (scenarios/mujoco/hopper.xml) hops forward; the episode ends when it falls (is unhealthy).
+//
+//   observation  Box(11,): qpos[1:] (rootz, rooty, thigh, leg, foot angles), clip(qvel, -10, 10)
+//                (6); with exclude_current_positions_from_observation false, Box(12,) with
+//                rootx first
+//   action       Box(-1, 1, (3,)): torques of thigh_joint, leg_joint, foot_joint
+//   reward       (forward_reward_weight * dx/dt + healthy) - ctrl_cost_weight * sum(action^2),
+//                dx the change of rootx over the step (dt = 0.002 * frame_skip 4), healthy =
+//                float(is_healthy or terminate_when_unhealthy) * healthy_reward
+//   healthy      every entry of (qpos[2:], qvel) inside healthy_state_range, rootz inside
+//                healthy_z_range, rooty inside healthy_angle_range (all open intervals)
+//   terminated   not healthy, when terminate_when_unhealthy
+//   reset        qpos = init + U(-scale, scale), qvel = init + U(-scale, scale)
+//   info         x_position, x_velocity
+//   time limit   1000 steps
+#include <limits>
+
+#include "rlrun/core/trusted_values.hpp"
+#include "rlrun/envs/mujoco/mujoco_env.hpp"
+#include "rlrun/envs/mujoco/open_interval.hpp"
+
+namespace rlrun::mujoco {
+
+class Hopper : public MujocoEnv {
+ public:
+  struct Config {
+    double forward_reward_weight = 1.0;
+    double ctrl_cost_weight = 1e-3;
+    double healthy_reward = 1.0;
+    bool terminate_when_unhealthy = true;
+    OpenInterval healthy_state_range{-100.0, 100.0};
+    OpenInterval healthy_z_range{0.7, std::numeric_limits<double>::infinity()};
+    OpenInterval healthy_angle_range{-0.2, 0.2};
+    double reset_noise_scale = 5e-3;
+    bool exclude_current_positions_from_observation = true;
+    SimulatorInput xml_file;  // "" = the shipped hopper.xml
+
+    template <class V>
+    void visit(V& v) {
+      v("forward_reward_weight", forward_reward_weight, "weight of the forward velocity reward");
+      v("ctrl_cost_weight", ctrl_cost_weight, "weight of the sum of squared actions");
+      v("healthy_reward", healthy_reward, "reward per step while healthy");
+      v("terminate_when_unhealthy", terminate_when_unhealthy,
+        "end the episode when unhealthy (else the healthy reward is 0 there)");
+      v("healthy_state_range", healthy_state_range,
+        "[low, high] open range of qpos[2:] and qvel while healthy");
+      v("healthy_z_range", healthy_z_range, "[low, high] open range of rootz while healthy");
+      v("healthy_angle_range", healthy_angle_range,
+        "[low, high] open range of rooty (torso pitch) while healthy");
+      v("reset_noise_scale", reset_noise_scale, "scale of the noise added to the reset state");
+      v("exclude_current_positions_from_observation", exclude_current_positions_from_observation,
+        "leave rootx out of the observation");
+      v("xml_file", xml_file, "another MuJoCo model (MJCF) of the same joints; empty = shipped");
+    }
+  };
+
+  Hopper() : Hopper(Config{}) {}
+  explicit Hopper(const Config& config);
+
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+  void observe(std::span<float> obs) const override;
+
+ private:
+  void reset_model(Rng& rng) override;
+  // Gymnasium's is_healthy of the current state.
+  bool is_healthy() const;
+
+  Config config_;
+  int key_x_position_, key_x_velocity_;
+};
+
+}  // namespace rlrun::mujoco
