@@ -15,6 +15,7 @@
 #include "rlrun/envs/mujoco/ant.hpp"
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/components/registry.hpp"
+#include "rlrun/state.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -270,4 +271,28 @@ TEST_CASE("Ant-v4: a model of other sizes is refused", "[mujoco]") {
   CHECK_THROWS_WITH(Ant(config), Catch::Contains("half_cheetah.xml") &&
                                      Catch::Contains("nq=9, nv=9, nbody=8") &&
                                      Catch::Contains("needs nq=15, nv=14, nbody=14"));
+}
+
+TEST_CASE("Ant-v4: a saved state resumes bit for bit", "[mujoco]") {
+  Ant::Config config;
+  config.use_contact_forces = true;
+  config.terminate_when_unhealthy = false;
+  Ant env(config), copy(config);
+  std::vector<float> obs(111), obs_copy(111);
+  env.reset(1, obs);
+  copy.reset(2, obs_copy);
+  Rng rng(5);
+  for (int i = 0; i < 20; ++i) env.step(random_action(rng, 8, 1.0), obs);
+  TensorMap tensors;
+  StateWriter writer(tensors, "env.");
+  env.write_state(writer);
+  copy.read_state(StateReader(tensors, "env."));
+  for (int i = 0; i < 20; ++i) {
+    const std::vector<float> action = random_action(rng, 8, 1.0);
+    const StepResult a = env.step(action, obs);
+    const StepResult b = copy.step(action, obs_copy);
+    CHECK(a.reward == b.reward);
+    CHECK(obs == obs_copy);
+    CHECK(env.info().values() == copy.info().values());
+  }
 }

@@ -15,6 +15,7 @@
 #include "rlrun/envs/mujoco/humanoid.hpp"
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/components/registry.hpp"
+#include "rlrun/state.hpp"
 
 using namespace rlrun;
 using namespace rlrun::testing;
@@ -211,4 +212,27 @@ TEST_CASE("Humanoid-v4: reset draws uniform noise on qpos, then on qvel", "[mujo
     CHECK(obs[0] == static_cast<float>(sim.qpos()[2]));
   }
   CHECK(env.init_qpos()[2] == 1.4);
+}
+
+TEST_CASE("Humanoid-v4: a saved state resumes bit for bit (the PGS solver's warm start too)",
+          "[mujoco]") {
+  Humanoid env, copy;
+  std::vector<float> obs(376), obs_copy(376);
+  env.reset(1, obs);
+  copy.reset(2, obs_copy);
+  Rng rng(5);
+  for (int i = 0; i < 20; ++i) env.step(random_action(rng, 17, 0.4), obs);
+  TensorMap tensors;
+  StateWriter writer(tensors, "env.");
+  env.write_state(writer);
+  copy.read_state(StateReader(tensors, "env."));
+  for (int i = 0; i < 20; ++i) {
+    const std::vector<float> action = random_action(rng, 17, 0.4);
+    const StepResult a = env.step(action, obs);
+    const StepResult b = copy.step(action, obs_copy);
+    CHECK(a.reward == b.reward);
+    CHECK(a.terminated == b.terminated);
+    CHECK(obs == obs_copy);
+    CHECK(env.info().values() == copy.info().values());
+  }
 }

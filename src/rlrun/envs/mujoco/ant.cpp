@@ -79,8 +79,9 @@ void Ant::observe(std::span<float> obs) const {
                     config_.contact_force_range.high);
 }
 
-// In ant_v4.py's order: the torso's position before and after the physics (data.xpos, which
-// after mj_step is that of the state before the last physics step), the rewards, then the costs.
+// In ant_v4.py's order: the torso's position before and after the physics, then the rewards and
+// costs. data.xpos after mj_step is neither the old nor the new state's: the model integrates
+// with RK4, and MuJoCo leaves the positions of the last step's last stage; Gymnasium reads them so.
 StepResult Ant::step(std::span<const float> action, std::span<float> obs) {
   const double* torso = body_xpos(torso_);
   const double x_before = torso[0], y_before = torso[1];

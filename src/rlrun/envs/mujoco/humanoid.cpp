@@ -85,8 +85,9 @@ void Humanoid::observe(std::span<float> obs) const {
   put_body_dynamics(out, model(), data());
 }
 
-// In humanoid_v4.py's order: the centre of mass before and after the physics (data.xipos, which
-// after mj_step is that of the state before the last physics step), then the costs and rewards.
+// In humanoid_v4.py's order: the centre of mass before and after the physics, then the costs and
+// rewards. data.xipos after mj_step is neither the old nor the new state's: the model integrates
+// with RK4, and MuJoCo leaves the positions of the last step's last stage; Gymnasium reads them so.
 StepResult Humanoid::step(std::span<const float> action, std::span<float> obs) {
   const std::array<double, 2> before = mass_center();
   if (!do_simulation(action)) return end_unstable(obs);

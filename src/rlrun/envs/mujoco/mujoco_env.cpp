@@ -138,8 +138,8 @@ bool MujocoEnv::do_simulation(std::span<const float> action) {
   const int warnings_before = unstable_warnings();
   for (int i = 0; i < frame_skip_; ++i) {
     // After mj_step, the positions MuJoCo computed (xpos, cinert, ...) are those of the state at
-    // the start of the last step; rewards read them. A checkpoint keeps that state to recompute
-    // them (read_state).
+    // the start of the last step (Euler), or of its last Runge-Kutta stage (RK4: Ant, Humanoid);
+    // rewards read them. A checkpoint keeps that step's inputs to replay it (read_state).
     if (i + 1 == frame_skip_) previous_.take_from(*data_);
     mj_step(model_.get(), data_.get());
   }
@@ -170,8 +170,9 @@ RenderSpec MujocoEnv::render_spec() const { return {}; }
 
 // The state is the physics' inputs (qpos, qvel, act, ctrl, the solver's warm start, time), and
 // those before the last physics step when the derived quantities come from there: restoring
-// runs mj_forward on them (then mj_rnePostConstraint), which computes exactly what the last
-// mj_step computed, so the next rewards match an uninterrupted run bit for bit. Nothing else of
+// replays that step (mj_step, then mj_rnePostConstraint), which computes exactly what it computed
+// (mj_forward on them would not do for RK4, whose derived quantities are those of its last stage),
+// so the next rewards match an uninterrupted run bit for bit. Nothing else of
 // mjData is read from the file, so a crafted checkpoint can hand MuJoCo only numbers of the
 // right count (NaN included: MuJoCo resets an unstable state).
 void MujocoEnv::write_state(StateWriter& out) const {
@@ -211,7 +212,7 @@ void MujocoEnv::read_state(const StateReader& in) {
   in.get_into<double>("ctrl", std::span<double>(data_->ctrl, static_cast<size_t>(model_->nu)));
   if (derived_from_previous_) {
     previous_.give_to(*data_);
-    mj_forward(model_.get(), data_.get());
+    mj_step(model_.get(), data_.get());
     mj_rnePostConstraint(model_.get(), data_.get());
   }
   now.give_to(*data_);
