@@ -15,7 +15,7 @@
 using namespace rlrun;
 using namespace rlrun::testing;
 using rlrun::mujoco::Hopper;
-using rlrun::mujoco::OpenInterval;
+using rlrun::mujoco::RangeKwarg;
 
 namespace {
 
@@ -60,9 +60,9 @@ TEST_CASE("Hopper-v4: Gymnasium's spaces, kwargs and time limit", "[mujoco]") {
   CHECK(defaults.ctrl_cost_weight == 1e-3);
   CHECK(defaults.healthy_reward == 1.0);
   CHECK(defaults.terminate_when_unhealthy);
-  CHECK(defaults.healthy_state_range == OpenInterval{-100.0, 100.0});
-  CHECK(defaults.healthy_z_range == OpenInterval{0.7, kInf});
-  CHECK(defaults.healthy_angle_range == OpenInterval{-0.2, 0.2});
+  CHECK(defaults.healthy_state_range == RangeKwarg{-100.0, 100.0});
+  CHECK(defaults.healthy_z_range == RangeKwarg{0.7, kInf});
+  CHECK(defaults.healthy_angle_range == RangeKwarg{-0.2, 0.2});
   CHECK(defaults.reset_noise_scale == 5e-3);
   CHECK(defaults.exclude_current_positions_from_observation);
 
@@ -77,8 +77,8 @@ TEST_CASE("Hopper-v4: Gymnasium's spaces, kwargs and time limit", "[mujoco]") {
                                           "terminate_when_unhealthy: false\n",
                                           "exp.yaml"))
           .get<Hopper::Config>();
-  CHECK(parsed.healthy_z_range == OpenInterval{0.5, kInf});
-  CHECK(parsed.healthy_state_range == OpenInterval{-kInf, 50.0});
+  CHECK(parsed.healthy_z_range == RangeKwarg{0.5, kInf});
+  CHECK(parsed.healthy_state_range == RangeKwarg{-kInf, 50.0});
   CHECK_FALSE(parsed.terminate_when_unhealthy);
 }
 

@@ -176,3 +176,13 @@ TEST_CASE("MuJoCo envs: an unstable simulation ends the episode", "[mujoco]") {
   CHECK_FALSE(r.terminated);
   for (float v : obs) CHECK(std::isfinite(v));
 }
+
+TEST_CASE("MuJoCo envs: xml_file names a shipped model by its file name, as Gymnasium's assets",
+          "[mujoco]") {
+  // Gymnasium's expand_model_path: a bare name is looked up among its assets.
+  HalfCheetah::Config config;
+  config.xml_file.value = "half_cheetah.xml";
+  CHECK(HalfCheetah(config).observation_space().shape() == std::vector<int>{17});
+  config.xml_file.value = "no_such_model.xml";
+  CHECK_THROWS_WITH(HalfCheetah(config), Catch::Contains("no_such_model.xml"));
+}

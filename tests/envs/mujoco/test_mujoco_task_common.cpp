@@ -20,8 +20,8 @@
 #include "rlrun/envs/mujoco/inverted_pendulum.hpp"
 #include "rlrun/envs/mujoco/mujoco_model.hpp"
 #include "rlrun/envs/mujoco/numpy_math.hpp"
-#include "rlrun/envs/mujoco/open_interval.hpp"
 #include "rlrun/envs/mujoco/pusher.hpp"
+#include "rlrun/envs/mujoco/range_kwarg.hpp"
 #include "rlrun/envs/mujoco/reacher.hpp"
 #include "rlrun/envs/mujoco/swimmer.hpp"
 #include "rlrun/envs/mujoco/walker2d.hpp"
@@ -36,13 +36,13 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-OpenInterval parse_interval(const std::string& text) {
-  OpenInterval out;
+RangeKwarg parse_interval(const std::string& text) {
+  RangeKwarg out;
   decode(ConfigNode::load_string("range: " + text, "exp.yaml").child("range"), out);
   return out;
 }
 
-std::string emitted(const OpenInterval& interval) {
+std::string emitted(const RangeKwarg& interval) {
   YAML::Emitter out;
   out << encode(interval);
   return out.c_str();
@@ -61,10 +61,10 @@ std::function<void()> build_with(const std::string& model) {
 }  // namespace
 
 TEST_CASE("MuJoCo range kwargs: [low, high] with .inf, open at both ends", "[mujoco]") {
-  CHECK(parse_interval("[0.7, .inf]") == OpenInterval{0.7, kInf});
-  CHECK(parse_interval("[-.inf, +.INF]") == OpenInterval{-kInf, kInf});
-  CHECK(parse_interval("[-1, 1]") == OpenInterval{-1.0, 1.0});
-  CHECK(parse_interval("[2, 2]") == OpenInterval{2.0, 2.0});  // empty, as Gymnasium allows
+  CHECK(parse_interval("[0.7, .inf]") == RangeKwarg{0.7, kInf});
+  CHECK(parse_interval("[-.inf, +.INF]") == RangeKwarg{-kInf, kInf});
+  CHECK(parse_interval("[-1, 1]") == RangeKwarg{-1.0, 1.0});
+  CHECK(parse_interval("[2, 2]") == RangeKwarg{2.0, 2.0});  // empty, as Gymnasium allows
   CHECK_THROWS_WITH(parse_interval("[1]"),
                     Catch::Contains("exp.yaml:1:8") && Catch::Contains("expected [low, high]"));
   CHECK_THROWS_WITH(parse_interval("0.7"), Catch::Contains("expected [low, high]"));
@@ -76,14 +76,14 @@ TEST_CASE("MuJoCo range kwargs: [low, high] with .inf, open at both ends", "[muj
 
   CHECK(emitted({0.7, kInf}) == "[0.7, .inf]");
   CHECK(emitted({-kInf, 100.0}) == "[-.inf, 100.0]");
-  CHECK(parse_interval(emitted({-kInf, kInf})) == OpenInterval{-kInf, kInf});
+  CHECK(parse_interval(emitted({-kInf, kInf})) == RangeKwarg{-kInf, kInf});
 
-  const OpenInterval z{0.7, kInf};
-  CHECK_FALSE(z.contains(0.7));
-  CHECK(z.contains(std::nextafter(0.7, 1.0)));
-  CHECK(z.contains(1e300));
-  CHECK_FALSE(z.contains(kInf));
-  CHECK_FALSE(z.contains(std::nan("")));
+  const RangeKwarg z{0.7, kInf};
+  CHECK_FALSE(z.strictly_inside(0.7));
+  CHECK(z.strictly_inside(std::nextafter(0.7, 1.0)));
+  CHECK(z.strictly_inside(1e300));
+  CHECK_FALSE(z.strictly_inside(kInf));
+  CHECK_FALSE(z.strictly_inside(std::nan("")));
 
   // A task's whole resolved config reads back to itself (run directories, model files).
   const YAML::Node written = write_config(Hopper::Config{});
@@ -91,8 +91,8 @@ TEST_CASE("MuJoCo range kwargs: [low, high] with .inf, open at both ends", "[muj
   text << written;
   const Hopper::Config read =
       read_config<Hopper::Config>(ConfigNode::load_string(text.c_str(), "config.yaml"));
-  CHECK(read.healthy_z_range == OpenInterval{0.7, kInf});
-  CHECK(read.healthy_state_range == OpenInterval{-100.0, 100.0});
+  CHECK(read.healthy_z_range == RangeKwarg{0.7, kInf});
+  CHECK(read.healthy_state_range == RangeKwarg{-100.0, 100.0});
 }
 
 TEST_CASE("MuJoCo tasks round as NumPy does: norm, and a float64 scalar's x**2", "[mujoco]") {

@@ -14,7 +14,7 @@
 
 using namespace rlrun;
 using namespace rlrun::testing;
-using rlrun::mujoco::OpenInterval;
+using rlrun::mujoco::RangeKwarg;
 using rlrun::mujoco::Walker2d;
 
 namespace {
@@ -47,8 +47,8 @@ TEST_CASE("Walker2d-v4: Gymnasium's spaces, kwargs and time limit", "[mujoco]") 
   CHECK(defaults.ctrl_cost_weight == 1e-3);
   CHECK(defaults.healthy_reward == 1.0);
   CHECK(defaults.terminate_when_unhealthy);
-  CHECK(defaults.healthy_z_range == OpenInterval{0.8, 2.0});
-  CHECK(defaults.healthy_angle_range == OpenInterval{-1.0, 1.0});
+  CHECK(defaults.healthy_z_range == RangeKwarg{0.8, 2.0});
+  CHECK(defaults.healthy_angle_range == RangeKwarg{-1.0, 1.0});
   CHECK(defaults.reset_noise_scale == 5e-3);
   CHECK(defaults.exclude_current_positions_from_observation);
 
@@ -59,7 +59,7 @@ TEST_CASE("Walker2d-v4: Gymnasium's spaces, kwargs and time limit", "[mujoco]") 
   const Walker2d::Config parsed =
       entry->parse(ConfigNode::load_string("healthy_z_range: [0.5, .inf]", "exp.yaml"))
           .get<Walker2d::Config>();
-  CHECK(parsed.healthy_z_range == OpenInterval{0.5, kInf});
+  CHECK(parsed.healthy_z_range == RangeKwarg{0.5, kInf});
 }
 
 TEST_CASE("Walker2d-v4: a step equals MuJoCo's C API stepped as Gymnasium does", "[mujoco]") {

@@ -10,8 +10,7 @@ constexpr int kFrameSkip = 5;
 constexpr ModelShape kShape{.nq = 9, .nv = 9, .nu = 6};
 
 std::string model_file(const HalfCheetah::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("half_cheetah.xml")
-                                       : config.xml_file.value;
+  return model_path(config.xml_file.value, "half_cheetah.xml");
 }
 
 }  // namespace

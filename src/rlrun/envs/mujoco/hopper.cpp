@@ -13,7 +13,7 @@ constexpr ModelShape kShape{.nq = 6, .nv = 6, .nu = 3};
 constexpr double kVelocityClip = 10.0;
 
 std::string model_file(const Hopper::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("hopper.xml") : config.xml_file.value;
+  return model_path(config.xml_file.value, "hopper.xml");
 }
 
 }  // namespace
@@ -39,11 +39,13 @@ void Hopper::reset_model(Rng& rng) {
 
 bool Hopper::is_healthy() const {
   // state_vector()[2:]: qpos from rooty on, then all of qvel.
-  const auto in_state_range = [this](double v) { return config_.healthy_state_range.contains(v); };
+  const auto in_state_range = [this](double v) {
+    return config_.healthy_state_range.strictly_inside(v);
+  };
   const bool healthy_state = std::all_of(qpos().begin() + 2, qpos().end(), in_state_range) &&
                              std::all_of(qvel().begin(), qvel().end(), in_state_range);
-  return healthy_state && config_.healthy_z_range.contains(qpos()[1]) &&
-         config_.healthy_angle_range.contains(qpos()[2]);
+  return healthy_state && config_.healthy_z_range.strictly_inside(qpos()[1]) &&
+         config_.healthy_angle_range.strictly_inside(qpos()[2]);
 }
 
 void Hopper::observe(std::span<float> obs) const {

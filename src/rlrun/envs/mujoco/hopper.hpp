@@ -19,7 +19,7 @@
 
 #include "rlrun/core/trusted_values.hpp"
 #include "rlrun/envs/mujoco/mujoco_env.hpp"
-#include "rlrun/envs/mujoco/open_interval.hpp"
+#include "rlrun/envs/mujoco/range_kwarg.hpp"
 
 namespace rlrun::mujoco {
 
@@ -30,9 +30,9 @@ class Hopper : public MujocoEnv {
     double ctrl_cost_weight = 1e-3;
     double healthy_reward = 1.0;
     bool terminate_when_unhealthy = true;
-    OpenInterval healthy_state_range{-100.0, 100.0};
-    OpenInterval healthy_z_range{0.7, std::numeric_limits<double>::infinity()};
-    OpenInterval healthy_angle_range{-0.2, 0.2};
+    RangeKwarg healthy_state_range{-100.0, 100.0};
+    RangeKwarg healthy_z_range{0.7, std::numeric_limits<double>::infinity()};
+    RangeKwarg healthy_angle_range{-0.2, 0.2};
     double reset_noise_scale = 5e-3;
     bool exclude_current_positions_from_observation = true;
     SimulatorInput xml_file;  // "" = the shipped hopper.xml

@@ -15,8 +15,7 @@ constexpr ModelShape kShape{.nq = 3, .nv = 3, .nu = 1};
 constexpr double kClip = 10.0;
 
 std::string model_file(const InvertedDoublePendulum::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("inverted_double_pendulum.xml")
-                                       : config.xml_file.value;
+  return model_path(config.xml_file.value, "inverted_double_pendulum.xml");
 }
 
 }  // namespace

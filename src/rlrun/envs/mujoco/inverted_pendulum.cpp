@@ -15,8 +15,7 @@ constexpr double kResetNoise = 0.01;
 constexpr double kMaxAngle = 0.2;
 
 std::string model_file(const InvertedPendulum::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("inverted_pendulum.xml")
-                                       : config.xml_file.value;
+  return model_path(config.xml_file.value, "inverted_pendulum.xml");
 }
 
 bool all_finite(std::span<const double> values) {

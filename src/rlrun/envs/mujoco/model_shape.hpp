@@ -13,10 +13,13 @@ struct ModelShape {
   int nq = 0;  // generalised positions (qpos)
   int nv = 0;  // generalised velocities (qvel)
   int nu = 0;  // actuators (the action's size)
+  // Bodies, the world included, for tasks that observe per-body arrays (cinert, cvel, cfrc_ext:
+  // Ant with contact forces, the Humanoids); -1 = not read by the task.
+  int nbody = -1;
 };
 
-// Throws ConfigError "<path>: <id> needs a model with nq=.., nv=.., nu=.. (its own model's);
-// this one has nq=.., nv=.., nu=.." unless `model` has exactly `expected`'s counts.
+// Throws ConfigError "<path>: <id> needs a model with nq=.., nv=.., nu=..[, nbody=..] (its own
+// model's); this one has ..." unless `model` has exactly `expected`'s counts.
 void require_shape(const mjModel& model, const ModelShape& expected, const std::string& id,
                    const std::string& path);
 

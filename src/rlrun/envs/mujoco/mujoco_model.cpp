@@ -34,6 +34,15 @@ std::string shipped_model_path(const std::string& file_name) {
   return (std::filesystem::path(shipped_data_dir()) / "scenarios" / "mujoco" / file_name).string();
 }
 
+std::string model_path(const std::string& xml_file, const std::string& shipped) {
+  if (xml_file.empty()) return shipped_model_path(shipped);
+  if (xml_file.find('/') == std::string::npos && !std::filesystem::exists(xml_file)) {
+    const std::string in_data = shipped_model_path(xml_file);
+    if (std::filesystem::is_regular_file(in_data)) return in_data;
+  }
+  return xml_file;
+}
+
 ModelPtr load_model(const std::string& path) {
   install_error_hooks();
   if (!std::filesystem::is_regular_file(path))

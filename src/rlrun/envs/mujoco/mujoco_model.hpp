@@ -2,7 +2,7 @@
 // A MuJoCo model (mjModel, compiled from an MJCF file) and its simulation state (mjData), owned
 // by smart pointers, and how rlrun finds and loads the model files: the eleven task models ship
 // in scenarios/mujoco/ (rlrun's own text of Gymnasium's assets; each compiles to the same model
-// as Gymnasium's file, tests/envs/mujoco/test_mujoco_models.cpp), and a user's experiment file
+// as Gymnasium's file, tests/envs/mujoco/test_mujoco_env.cpp), and a user's experiment file
 // may name another (`xml_file`, a SimulatorInput: untrusted text may name only shipped files).
 #include <mujoco/mujoco.h>
 
@@ -23,6 +23,12 @@ using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
 // scenarios/mujoco/<file_name> in the shipped data directory.
 std::string shipped_model_path(const std::string& file_name);
+
+// The model file of a task's `xml_file` kwarg: "" is the task's own `shipped` file; a bare file
+// name of a shipped model ("ant.xml") is that model, as in Gymnasium (mujoco_env.py's
+// expand_model_path looks names up in its assets); any other path is taken as given (from the
+// working directory when relative).
+std::string model_path(const std::string& xml_file, const std::string& shipped);
 
 // Compiles an MJCF file. Throws ConfigError "<path>: MuJoCo cannot load this model: <MuJoCo's
 // message>" (MuJoCo names the element, its line and column) for a missing or broken file.

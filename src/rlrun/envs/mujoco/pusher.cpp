@@ -12,7 +12,7 @@ constexpr ModelShape kShape{.nq = 11, .nv = 11, .nu = 7};
 constexpr size_t kArmJoints = 7;
 
 std::string model_file(const Pusher::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("pusher.xml") : config.xml_file.value;
+  return model_path(config.xml_file.value, "pusher.xml");
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ constexpr int kFrameSkip = 2;
 constexpr ModelShape kShape{.nq = 4, .nv = 4, .nu = 2};
 
 std::string model_file(const Reacher::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("reacher.xml") : config.xml_file.value;
+  return model_path(config.xml_file.value, "reacher.xml");
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ constexpr int kFrameSkip = 4;
 constexpr ModelShape kShape{.nq = 5, .nv = 5, .nu = 2};
 
 std::string model_file(const Swimmer::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("swimmer.xml") : config.xml_file.value;
+  return model_path(config.xml_file.value, "swimmer.xml");
 }
 
 }  // namespace

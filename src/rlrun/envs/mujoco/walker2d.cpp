@@ -11,7 +11,7 @@ constexpr ModelShape kShape{.nq = 9, .nv = 9, .nu = 6};
 constexpr double kVelocityClip = 10.0;
 
 std::string model_file(const Walker2d::Config& config) {
-  return config.xml_file.value.empty() ? shipped_model_path("walker2d.xml") : config.xml_file.value;
+  return model_path(config.xml_file.value, "walker2d.xml");
 }
 
 }  // namespace
@@ -36,8 +36,8 @@ void Walker2d::reset_model(Rng& rng) {
 }
 
 bool Walker2d::is_healthy() const {
-  return config_.healthy_z_range.contains(qpos()[1]) &&
-         config_.healthy_angle_range.contains(qpos()[2]);
+  return config_.healthy_z_range.strictly_inside(qpos()[1]) &&
+         config_.healthy_angle_range.strictly_inside(qpos()[2]);
 }
 
 void Walker2d::observe(std::span<float> obs) const {

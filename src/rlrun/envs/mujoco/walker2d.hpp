@@ -17,7 +17,7 @@
 //   time limit   1000 steps
 #include "rlrun/core/trusted_values.hpp"
 #include "rlrun/envs/mujoco/mujoco_env.hpp"
-#include "rlrun/envs/mujoco/open_interval.hpp"
+#include "rlrun/envs/mujoco/range_kwarg.hpp"
 
 namespace rlrun::mujoco {
 
@@ -28,8 +28,8 @@ class Walker2d : public MujocoEnv {
     double ctrl_cost_weight = 1e-3;
     double healthy_reward = 1.0;
     bool terminate_when_unhealthy = true;
-    OpenInterval healthy_z_range{0.8, 2.0};
-    OpenInterval healthy_angle_range{-1.0, 1.0};
+    RangeKwarg healthy_z_range{0.8, 2.0};
+    RangeKwarg healthy_angle_range{-1.0, 1.0};
     double reset_noise_scale = 5e-3;
     bool exclude_current_positions_from_observation = true;
     SimulatorInput xml_file;  // "" = the shipped walker2d.xml

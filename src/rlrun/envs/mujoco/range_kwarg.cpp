@@ -1,4 +1,4 @@
-#include "rlrun/envs/mujoco/open_interval.hpp"
+#include "rlrun/envs/mujoco/range_kwarg.hpp"
 
 #include <limits>
 #include <string>
@@ -32,18 +32,21 @@ YAML::Node encode_bound(double value) {
 
 }  // namespace
 
-void decode(const ConfigNode& n, OpenInterval& out) {
-  if (!n.is_sequence() || n.size() != 2) n.fail("expected [low, high], e.g. [0.7, .inf]");
+void decode(const ConfigNode& n, RangeKwarg& out) {
+  if (!n.is_sequence() || n.size() != 2)
+    n.fail("expected [low, high], a list of two numbers, e.g. [0.7, .inf] (.inf: no bound)");
   const double low = bound(n.at(0));
   const double high = bound(n.at(1));
-  if (!(low <= high)) n.fail("expected [low, high] with low <= high");
+  if (!(low <= high))
+    n.fail("expected [low, high] with low <= high (low must not be above high), got [" +
+           python_float_repr(low) + ", " + python_float_repr(high) + "]");
   out = {low, high};
 }
 
-YAML::Node encode(const OpenInterval& interval) {
+YAML::Node encode(const RangeKwarg& range) {
   YAML::Node seq(YAML::NodeType::Sequence);
-  seq.push_back(encode_bound(interval.low));
-  seq.push_back(encode_bound(interval.high));
+  seq.push_back(encode_bound(range.low));
+  seq.push_back(encode_bound(range.high));
   seq.SetStyle(YAML::EmitterStyle::Flow);
   return seq;
 }
