@@ -253,6 +253,14 @@ TEST_CASE("MuJoCo rendering: MUJOCO_GL and the process's EGL choose the GL platf
   CHECK(refused.output.find("this process has already loaded EGL") != std::string::npos);
   CHECK(refused.output.find("set MUJOCO_GL=egl") != std::string::npos);
 
+  // EGL without a vendor library (as without libegl-mesa0): the packages to install.
+  const auto no_vendor =
+      record_cheetah("MUJOCO_GL=egl __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json", 1, "160x120",
+                     dir / "no_vendor.mp4");
+  CHECK(no_vendor.exit_code == 1);
+  CHECK(no_vendor.output.find("MUJOCO_GL=egl, but EGL does not work: EGL finds no device. "
+                              "Install Debian's libegl1 and libegl-mesa0") != std::string::npos);
+
   // A platform rlrun does not offer headless: a runtime failure that says what to set, and no
   // video.
   const auto glfw = record_cheetah("MUJOCO_GL=glfw", 1, "160x120", dir / "glfw.mp4");

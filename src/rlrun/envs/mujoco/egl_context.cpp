@@ -75,7 +75,7 @@ void open_device_display(void* library, EglApi& api) {
   std::array<EGLDeviceEXT, 16> devices{};
   EGLint count = 0;
   if (!query_devices(static_cast<EGLint>(devices.size()), devices.data(), &count) || count < 1) {
-    api.error = "EGL finds no device (a GPU's driver or Mesa's libegl-mesa0)";
+    api.error = "EGL finds no device";
     return;
   }
   for (EGLint i = 0; i < count; ++i) {

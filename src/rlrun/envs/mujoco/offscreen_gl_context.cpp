@@ -19,8 +19,8 @@ constexpr const char* kEglPackages = "Debian's libegl1 and libegl-mesa0";
 Platform need_egl(const std::string& reason) {
   std::string why_not;
   if (load_egl(why_not)) return Platform::egl;
-  throw RuntimeFailure("MuJoCo rendering: " + reason + ", but EGL does not work (" + why_not +
-                       "; install " + kEglPackages + ")");
+  throw RuntimeFailure("MuJoCo rendering: " + reason + ", but EGL does not work: " + why_not +
+                       ". Install " + kEglPackages + " (or a GPU driver's EGL)");
 }
 
 Platform need_osmesa() {
