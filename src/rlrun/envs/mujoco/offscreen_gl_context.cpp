@@ -1,8 +1,7 @@
 #include "rlrun/envs/mujoco/offscreen_gl_context.hpp"
 
-#include <cstdlib>
-
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/process_settings.hpp"
 #include "rlrun/envs/mujoco/egl_context.hpp"
 #include "rlrun/envs/mujoco/gl_library.hpp"
 #include "rlrun/envs/mujoco/osmesa_context.hpp"
@@ -34,8 +33,7 @@ Platform need_osmesa() {
 // OSMesaGetProcAddress when both are global, so OSMesa is usable only while EGL is not.
 Platform choose_platform() {
   const bool egl_is_global = globally_visible("eglGetProcAddress");
-  const char* requested = std::getenv("MUJOCO_GL");
-  const std::string choice = requested ? requested : "";
+  const std::string& choice = process_settings().mujoco_gl;
   if (choice == "egl") return need_egl("MUJOCO_GL=egl");
   if (choice == "osmesa") {
     if (egl_is_global)

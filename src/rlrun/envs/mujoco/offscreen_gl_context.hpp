@@ -5,13 +5,14 @@
 //
 //   osmesa  Mesa's off-screen rendering (Debian's libosmesa6): software (llvmpipe), needs
 //           nothing else; rlrun's default
-//   egl     EGL on Mesa's surfaceless platform (libegl1 + libegl-mesa0): a GPU's render node
-//           when there is one, else llvmpipe
+//   egl     EGL on an EGL device (libegl1 + libegl-mesa0, or a GPU vendor's EGL): a GPU when
+//           the driver offers one, else Mesa's software device
 //
 // One platform per process: MuJoCo's GL loader (gl_library.hpp) binds GL's functions once, from
 // the platform it finds at the first mjr_makeContext, for the whole process. It is chosen at
-// the first render: MUJOCO_GL=osmesa|egl when set; else EGL when the process already has EGL
-// among its global symbols (MuJoCo's loader would take EGL's functions), else OSMesa, else EGL.
+// the first render: MUJOCO_GL=osmesa|egl when set (ProcessSettings::mujoco_gl, read when the
+// program starts); else EGL when the process already has EGL among its global symbols
+// (MuJoCo's loader would take EGL's functions), else OSMesa, else EGL.
 //
 // A context is current on one thread at a time. Rendering makes it current for the duration of
 // one frame (CurrentGlContext) and leaves no context current, so the next frame may come from
