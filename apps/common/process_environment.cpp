@@ -23,6 +23,7 @@ ProcessSettings process_settings_from_environment() {
   s.libsumo_module = variable("RLRUN_LIBSUMO_MODULE");
   s.sumo_worker = variable("RLRUN_SUMO_WORKER");
   s.kernels = variable("RLRUN_KERNELS");
+  s.mujoco_gl = variable("MUJOCO_GL");
   return s;
 }
 

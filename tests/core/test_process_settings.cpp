@@ -50,12 +50,15 @@ TEST_CASE("process settings: the environment's values, and the settings handed d
           "[process_settings]") {
   setenv("RLRUN_FFMPEG", "/opt/ffmpeg/bin/ffmpeg", 1);
   setenv("RLRUN_KERNELS", "baseline", 1);
+  setenv("MUJOCO_GL", "egl", 1);
   unsetenv("RLRUN_PYTHON");
   const ProcessSettings read = process_settings_from_environment();
   unsetenv("RLRUN_FFMPEG");
   unsetenv("RLRUN_KERNELS");
+  unsetenv("MUJOCO_GL");
   CHECK(read.ffmpeg == "/opt/ffmpeg/bin/ffmpeg");
   CHECK(read.kernels == "baseline");
+  CHECK(read.mujoco_gl == "egl");
   CHECK(read.python.empty());
 
   // What the layers below see is what was handed down, not the environment.

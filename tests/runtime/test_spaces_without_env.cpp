@@ -268,7 +268,7 @@ TEST_CASE("the deploy library links no simulator", "[spaces][deploy]") {
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   for (const char* simulator :
-       {"sumo", "Bullet", "box2d", "pugixml", "python", "cairo", "tracicpp"})
+       {"sumo", "Bullet", "box2d", "pugixml", "python", "cairo", "tracicpp", "mujoco"})
     CHECK(r.output.find(simulator) == std::string::npos);
 }
 

@@ -21,6 +21,8 @@ struct ProcessSettings {
   std::string libsumo_module;  // RLRUN_LIBSUMO_MODULE: librlrun_libsumo.so (beside the binary)
   std::string sumo_worker;     // RLRUN_SUMO_WORKER: rlrun-sumo-worker (beside the binary)
   std::string kernels;         // RLRUN_KERNELS: auto, avx512, avx2 or baseline (auto)
+  std::string mujoco_gl;       // MUJOCO_GL (Gymnasium's name): osmesa or egl, the GL platform
+                               // of MuJoCo's renderer (envs/mujoco/offscreen_gl_context.hpp)
 };
 
 // The settings in force (all empty until set_process_settings is called).

@@ -8,6 +8,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/pairwise_sum.hpp"
+#include "rlrun/envs/mujoco/mujoco_renderer.hpp"
 
 namespace rlrun::mujoco {
 
@@ -178,7 +179,16 @@ int MujocoEnv::body_id(const char* name) const {
   return id;
 }
 
-RenderSpec MujocoEnv::render_spec() const { return {}; }
+// Gymnasium's MujocoEnv: width = height = DEFAULT_SIZE (480); render_fps int(np.round(1.0 / dt)),
+// which rounds halves to even, as nearbyint does in the default rounding mode.
+RenderSpec MujocoEnv::render_spec() const { return {480, 480, std::nearbyint(1.0 / dt())}; }
+
+bool MujocoEnv::render(Frame& frame) const {
+  if (!renderer_) renderer_ = std::make_unique<MujocoRenderer>(*model_, *data_, default_camera_);
+  // MuJoCo's mjv_updateScene takes mjData* to read the state (mujoco_renderer.hpp).
+  renderer_->render(*model_, *data_, frame);
+  return true;
+}
 
 // The state is the physics' inputs (qpos, qvel, act, ctrl, the solver's warm start, time), and
 // those before the last physics step when the derived quantities come from there: restoring

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -30,11 +31,14 @@
 #include "rlrun/env.hpp"
 #include "rlrun/env/physics_state.hpp"
 #include "rlrun/env_seeding.hpp"
+#include "rlrun/envs/mujoco/default_camera.hpp"
 #include "rlrun/envs/mujoco/mujoco_model.hpp"
 #include "rlrun/info.hpp"
 #include "rlrun/space.hpp"
 
 namespace rlrun::mujoco {
+
+class MujocoRenderer;  // mujoco_renderer.hpp
 
 // init + U(low, high) per entry (numpy's uniform(low, high, size=n)), and init + scale * N(0, 1):
 // the reset noise of the tasks' reset_model.
@@ -72,17 +76,6 @@ class ObservationWriter {
   size_t next_ = 0;
 };
 
-// A task's DEFAULT_CAMERA_CONFIG (Gymnasium's *_v4.py): the free camera's settings when the model
-// has no camera named "track" (MujocoRenderer sets the mjvCamera attributes named; unset ones keep
-// MuJoCo's defaults).
-struct DefaultCamera {
-  std::optional<int> trackbodyid = std::nullopt;
-  std::optional<double> distance = std::nullopt;
-  std::optional<std::array<double, 3>> lookat = std::nullopt;
-  std::optional<double> elevation = std::nullopt;
-  std::optional<double> azimuth = std::nullopt;
-};
-
 class MujocoEnv : public Env, public PhysicsState {
  public:
   // `model_path`: the MJCF file (shipped_model_path or the user's); `frame_skip`: physics steps
@@ -101,7 +94,10 @@ class MujocoEnv : public Env, public PhysicsState {
   void write_state(StateWriter& out) const override;
   void read_state(const StateReader& in) override;
 
+  // Gymnasium's rgb_array: 480 x 480 (its DEFAULT_SIZE), metadata["render_fps"] = round(1 / dt);
+  // render() draws with MuJoCo's renderer at the frame's size (mujoco_renderer.hpp).
   RenderSpec render_spec() const override;
+  bool render(Frame& frame) const override;
 
   // PhysicsState
   std::span<const double> qpos() const override;
@@ -165,6 +161,7 @@ class MujocoEnv : public Env, public PhysicsState {
   // cfrc_ext, ...) were computed (true after a step, false after set_state or a reset).
   PhysicsInputs previous_;
   bool derived_from_previous_ = false;
+  mutable std::unique_ptr<MujocoRenderer> renderer_;  // made by the first render()
 };
 
 }  // namespace rlrun::mujoco
