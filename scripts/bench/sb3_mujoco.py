@@ -7,7 +7,10 @@ import sys
 import time
 
 import rlrun
+import torch
 from stable_baselines3 import SAC
+
+torch.set_num_threads(1)
 
 steps, seed = int(sys.argv[1]), int(sys.argv[2])
 start = time.time()

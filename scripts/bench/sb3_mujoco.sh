@@ -6,13 +6,19 @@
 #   SB3_PYTHON=/path/to/venv/bin/python scripts/bench/sb3_mujoco.sh [STEPS] [REPS]
 # STEPS defaults to 20000: 10000 random steps (learning_starts), then 10000 steps with an
 # update each. SB3_PYTHON: an interpreter with stable_baselines3 2.4.1 and torch (not part of
-# rlrun's setup; docs/benchmarks.md says how the one measured here was made).
+# rlrun's setup; docs/benchmarks.md says how the one measured here was made). Debian's torch
+# calls the system BLAS (libblas.so.3): Debian's default for it is OpenBLAS (6 GFLOP/s with the
+# reference BLAS, 79 with OpenBLAS on this machine's 256x256 products), so SB3 runs with
+# OpenBLAS's libblas first on its library path whatever the system's alternative says, and with
+# torch and OpenBLAS on one thread, SB3's fastest setting here (docs/benchmarks.md, "Anchors").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 steps=${1:-20000}
 reps=${2:-3}
 python=${SB3_PYTHON:?set SB3_PYTHON to a Python with stable_baselines3 and torch}
 export PYTHONPATH=$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}
+openblas=/usr/lib/x86_64-linux-gnu/openblas-pthread
+[[ -d $openblas ]] || { echo "sb3_mujoco: no $openblas (apt-get install libopenblas0-pthread)" >&2; exit 2; }
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 now() { date +%s.%N; }
@@ -20,7 +26,8 @@ median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2
 sb3=() rlrun=()
 for ((rep = 1; rep <= reps; rep++)); do
   t0=$(now)
-  "$python" scripts/bench/sb3_mujoco.py "$steps" "$rep" >"$out/sb3.log" 2>&1
+  LD_LIBRARY_PATH=$openblas OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
+    "$python" scripts/bench/sb3_mujoco.py "$steps" "$rep" >"$out/sb3.log" 2>&1
   t1=$(now)
   build/rlrun train configs/zoo/halfcheetah_sac.yaml --timesteps "$steps" --seed "$rep" \
     --out "$out/runs" >"$out/rlrun.log" 2>&1
