@@ -13,10 +13,13 @@ struct EnvSpaces {
   Space observation;
   Space action;
   int num_agents = 1;
+  // How the env draws (its size; 0 when it cannot): what AddRenderObservation's space is made
+  // of.
+  RenderSpec render;
 };
 
 inline EnvSpaces spaces_of(const Env& env) {
-  return {env.observation_space(), env.action_space(), env.num_agents()};
+  return {env.observation_space(), env.action_space(), env.num_agents(), env.render_spec()};
 }
 
 }  // namespace rlrun

@@ -21,6 +21,8 @@ class SpacesOnlyEnv : public Env {
   const Space& action_space() const override { return spaces_.action; }
   int num_agents() const override { return spaces_.num_agents; }
   std::string id() const override { return id_; }
+  // The env's render size (a wrapper's space may depend on it); it draws nothing.
+  RenderSpec render_spec() const override { return spaces_.render; }
   const Info& info() const override { return info_; }
 
   void reset(std::optional<uint64_t> /*seed*/, std::span<float> /*obs*/) override {

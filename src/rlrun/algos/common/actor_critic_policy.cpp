@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include "rlrun/core/resource_limits.hpp"
+#include "rlrun/env/image_space.hpp"
 
 namespace rlrun {
 
@@ -49,6 +50,34 @@ void load_mlp(Mlp& mlp, const std::string& tower, const std::string& head, const
   }
 }
 
+namespace {
+// A CnnPolicy's image, size and memory; returns the heads' input width (features_dim).
+int check_nature_cnn(ConfigProblems& out, const ActorCriticPolicyConfig& policy,
+                     const Space& observation_space) {
+  const char* key = "policy.features_extractor_class";
+  if (!policy.share_features_extractor)
+    out.push_back({"policy.share_features_extractor",
+                   "false (a NatureCNN each for the actor and the critic) is not built yet"});
+  try {
+    const ImageInput image = require_image_input(observation_space, policy.normalize_images);
+    if (image.height < 36 || image.width < 36) {
+      out.push_back({key, "NatureCNN needs images of at least 36x36, got " +
+                              std::to_string(image.height) + "x" + std::to_string(image.width)});
+    } else {
+      // The linear layer dominates: 64 channels of the last convolution times features_dim,
+      // as parameters, gradients and Adam's two moments.
+      const auto side = [](int n) { return ((n - 8) / 4 + 1 - 4) / 2 + 1 - 2; };
+      const double linear = 64.0 * side(image.height) * side(image.width) * policy.features_dim;
+      const std::string problem = memory_problem(linear * 4 * sizeof(float), "NatureCNN's weights");
+      if (!problem.empty()) out.push_back({key, problem});
+    }
+  } catch (const std::invalid_argument& e) {
+    out.push_back({key, e.what()});
+  }
+  return policy.features_dim;
+}
+}  // namespace
+
 ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t rollout_size,
                                   int64_t batch, const AlgorithmSetup& setup) {
   ConfigProblems out;
@@ -57,7 +86,9 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
   check_net_arch(out, "policy.net_arch", policy.net_arch.pi, policy.net_arch.vf);
   const int obs_dim = setup.observation_space.flat_dim();
-  const int features = network_input_dim(out, setup.observation_space);
+  int features = network_input_dim(out, setup.observation_space);
+  if (policy.features_extractor_class == FeaturesExtractor::kNatureCnn)
+    features = check_nature_cnn(out, policy, setup.observation_space);
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
   check_network_memory(out, "policy.net_arch", features, policy.net_arch.pi, head, 1,
                        static_cast<double>(batch));
@@ -121,9 +152,24 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
                                   " is not supported (SB3 has no distribution for Dict actions)");
   }
   const Activation act = config.activation_fn;
-  // SB3 MlpPolicy / MultiInputPolicy: the towers start from the features extractor's output;
+  // SB3 ActorCriticPolicy: the towers start from the features extractor's output;
   // MlpExtractor's policy_net (net_arch.pi) + action_net, value_net (net_arch.vf) + value head.
-  const int obs_dim = encoder_.features_dim();
+  int obs_dim = encoder_.features_dim();
+  if (config.features_extractor_class == FeaturesExtractor::kNatureCnn) {
+    if (!config.share_features_extractor)
+      throw std::invalid_argument(
+          "share_features_extractor: false (a NatureCNN each for the actor and the critic) is "
+          "not built yet; PPO and A2C share one, SB3's default");
+    use_cnn_ = true;
+    cnn_ = NatureCnn(require_image_input(observation_space, config.normalize_images),
+                     config.features_dim, config.normalize_images);
+    obs_dim = config.features_dim;
+    // SB3 module_gains: the features extractor first, with gain sqrt(2).
+    if (config.ortho_init)
+      cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
+    else
+      cnn_.init_torch_default(init_rng);
+  }
   actor_ = Mlp(obs_dim, config.net_arch.pi, action_net_size(action_space), act);
   critic_ = Mlp(obs_dim, config.net_arch.vf, 1, act);
   if (config.ortho_init) {
@@ -163,7 +209,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
   actions.resize(action_dim_, n);
   values.resize(n);
   log_probs.resize(n);
-  const Eigen::Ref<const Eigen::MatrixXf> features = encoder_(obs);
+  const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
   const Eigen::MatrixXf& head = actor_.forward(features);
   switch (head_) {
     case Head::kCategorical:
@@ -200,6 +246,10 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
 
 void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
                                   const Space& action_space, bool with_value) const {
+  if (use_cnn_)
+    throw ExportError(
+        "a NatureCNN policy (CnnPolicy) cannot be exported yet: rlrun's ONNX, C "
+        "and C++ exports have no convolution");
   const std::string features = encoder_.export_to(graph, obs);
   const std::string head = graph.mlp(features, actor_);
   switch (head_) {
@@ -223,7 +273,13 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                        Eigen::RowVectorXf& values) {
-  values = critic_.forward(encoder_(obs));
+  values = critic_.forward(features(obs));
+}
+
+Eigen::Ref<const Eigen::MatrixXf> ActorCriticPolicy::features(
+    const Eigen::Ref<const Eigen::MatrixXf>& obs) {
+  if (!use_cnn_) return encoder_(obs);
+  return cnn_.forward(encoder_(obs));
 }
 
 void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
@@ -237,7 +293,7 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
   actions_ = actions;
   // Actor and critic are independent: the critic runs on the second core (bit-identical
   // results either way).
-  const Eigen::Ref<const Eigen::MatrixXf> features = encoder_(obs);
+  const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
   auto actor_part = [&] {
     const Eigen::MatrixXf& head = actor_.forward(features);
     switch (head_) {
@@ -291,10 +347,17 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
         sde_.backward_scored(actions_, grad_log_prob, grad_entropy, grad_head_);
         break;
     }
-    actor_.backward(grad_head_);
+    actor_.backward(grad_head_, use_cnn_ ? &grad_features_ : nullptr);
   };
-  auto critic_part = [&] { critic_.backward(grad_values); };
+  auto critic_part = [&] {
+    critic_.backward(grad_values, use_cnn_ ? &grad_features_critic_ : nullptr);
+  };
   run_pair(grad_values.size(), actor_part, critic_part);
+  if (use_cnn_) {
+    // The shared extractor gets both losses' gradients, as autograd sums them.
+    grad_features_ += grad_features_critic_;
+    cnn_.backward(grad_features_);
+  }
 }
 
 void ActorCriticPolicy::run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
@@ -309,6 +372,7 @@ void ActorCriticPolicy::run_pair(Eigen::Index batch, const std::function<void()>
 }
 
 void ActorCriticPolicy::zero_grad() {
+  if (use_cnn_) cnn_.zero_grad();
   actor_.zero_grad();
   critic_.zero_grad();
   log_std_grad_.setZero();
@@ -316,7 +380,11 @@ void ActorCriticPolicy::zero_grad() {
 }
 
 std::vector<ParamBlock> ActorCriticPolicy::param_blocks() {
-  std::vector<ParamBlock> blocks{actor_.block(), critic_.block()};
+  // SB3's parameter order: the features extractor, the towers and heads, log_std.
+  std::vector<ParamBlock> blocks;
+  if (use_cnn_) blocks.push_back(cnn_.block());
+  blocks.push_back(actor_.block());
+  blocks.push_back(critic_.block());
   if (head_ == Head::kDiagGaussian)
     blocks.push_back({log_std_.data(), log_std_grad_.data(), log_std_.size()});
   if (use_sde()) blocks.push_back(sde_.block());
@@ -331,6 +399,7 @@ double ActorCriticPolicy::mean_std() const {
 }
 
 void ActorCriticPolicy::save(TensorMap& tensors) const {
+  if (use_cnn_) cnn_.save("features_extractor", tensors);
   save_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   save_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
   if (head_ == Head::kDiagGaussian) tensors["log_std"] = to_tensor(log_std_);
@@ -338,6 +407,7 @@ void ActorCriticPolicy::save(TensorMap& tensors) const {
 }
 
 void ActorCriticPolicy::load(const TensorMap& tensors) {
+  if (use_cnn_) cnn_.load("features_extractor", tensors);
   load_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   load_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
   if (head_ == Head::kDiagGaussian) from_tensor(tensors, "log_std", log_std_);

@@ -14,6 +14,7 @@
 
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
+#include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/core/thread_pool.hpp"
@@ -23,6 +24,7 @@
 #include "rlrun/nn/diag_gaussian.hpp"
 #include "rlrun/nn/mlp.hpp"
 #include "rlrun/nn/multi_categorical.hpp"
+#include "rlrun/nn/nature_cnn.hpp"
 #include "rlrun/nn/param_block.hpp"
 #include "rlrun/nn/state_dependent_noise.hpp"
 #include "rlrun/rng.hpp"
@@ -48,6 +50,12 @@ struct ActorCriticPolicyConfig {
   double log_std_init = 0.0;  // initial log std of Gaussian actions
   bool full_std = true;       // gSDE: a std per (latent feature, action)
   bool use_expln = false;     // gSDE: expln instead of exp for the std
+  // SB3 policy_kwargs: features_extractor_class (and features_extractor_kwargs' features_dim),
+  // normalize_images, share_features_extractor.
+  FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
+  int features_dim = 512;
+  bool normalize_images = true;
+  bool share_features_extractor = true;
 
   template <class V>
   void visit(V& v) {
@@ -61,6 +69,13 @@ struct ActorCriticPolicyConfig {
     v("full_std", full_std,
       "gSDE (use_sde): log_std per latent feature and action (true) or per feature (false)");
     v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
+    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
+    v("features_dim", features_dim,
+      "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
+    v("normalize_images", normalize_images,
+      "divide image observations by 255 before the CNN (SB3 preprocess_obs)");
+    v("share_features_extractor", share_features_extractor,
+      "actor and critic read one features extractor (SB3's default for PPO and A2C)");
   }
 };
 
@@ -133,18 +148,29 @@ class ActorCriticPolicy {
 
   // The threads a training minibatch's actor and critic passes share (null, the default: the
   // calling thread alone). Never changes a result: the two write separate networks.
-  void set_thread_pool(ThreadPool* pool) { pool_ = pool; }
+  void set_thread_pool(ThreadPool* pool) {
+    pool_ = pool;
+    cnn_.set_thread_pool(pool);
+  }
 
   const ObservationEncoder& encoder() const { return encoder_; }
+  // SB3's CnnPolicy: the shared NatureCNN, or null for the flatten extractor.
+  const NatureCnn* cnn() const { return use_cnn_ ? &cnn_ : nullptr; }
   const Mlp& actor() const { return actor_; }
   const Mlp& critic() const { return critic_; }
 
  private:
   void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
                 const std::function<void()>& critic_part);
+  // The heads' input for a batch of observations: the encoding, through the CNN when there
+  // is one (which then keeps what its backward needs).
+  Eigen::Ref<const Eigen::MatrixXf> features(const Eigen::Ref<const Eigen::MatrixXf>& obs);
 
   ThreadPool* pool_ = nullptr;
   ObservationEncoder encoder_;
+  bool use_cnn_ = false;
+  NatureCnn cnn_;
+  Eigen::MatrixXf grad_features_, grad_features_critic_;  // dL/d(CNN features), per head
   Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;
   Eigen::VectorXf low_, high_;

@@ -35,6 +35,9 @@ ZipMembers model_members(const Algorithm& algorithm, const Experiment& experimen
   meta["env_spaces"] = {{"observation_space", space_to_json(own.observation_space())},
                         {"action_space", space_to_json(own.action_space())},
                         {"num_agents", own.num_agents()}};
+  if (const RenderSpec render = own.render_spec(); render.width > 0 && render.height > 0)
+    meta["env_spaces"]["render"] = {
+        {"width", render.width}, {"height", render.height}, {"fps", render.fps}};
   const std::string meta_text = meta.dump(2) + "\n";
   members["meta.json"] = std::vector<uint8_t>(meta_text.begin(), meta_text.end());
   return members;

@@ -62,6 +62,19 @@ EnvSpaces env_spaces_field(const nlohmann::json& env) {
     throw RuntimeFailure("'env_spaces' num_agents is " + std::to_string(agents) + ", not 1 to " +
                          std::to_string(kMaxModelAgents));
   spaces.num_agents = static_cast<int>(agents);
+  if (const auto render = env.find("render"); render != env.end()) {
+    // The env's render size (written since AddRenderObservation needed it), as Frame bounds it.
+    if (!render->is_object()) throw RuntimeFailure("'env_spaces' render is not a JSON object");
+    const int64_t width = integer_field(*render, "width"),
+                  height = integer_field(*render, "height");
+    const auto fps = render->find("fps");
+    if (width < 1 || width > 16384 || height < 1 || height > 16384 || fps == render->end() ||
+        !fps->is_number() || !(fps->get<double>() > 0.0 && fps->get<double>() <= 1000.0))
+      throw RuntimeFailure(
+          "'env_spaces' render needs width and height of 1 to 16384 and fps of "
+          "more than 0 to 1000");
+    spaces.render = {static_cast<int>(width), static_cast<int>(height), fps->get<double>()};
+  }
   return spaces;
 }
 

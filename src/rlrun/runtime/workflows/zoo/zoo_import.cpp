@@ -99,6 +99,9 @@ class Translation {
     x["eval"]["freq"] = kZooEvalFreq;
     x["eval"]["n_episodes"] = kZooEvalEpisodes;
     x["eval"]["deterministic"] = true;
+    // SB3 ActorCriticPolicy: a NatureCNN's heads default to net_arch [] (no hidden layers).
+    if (cnn_policy_ && !policy_["net_arch"].IsDefined())
+      policy_["net_arch"] = YAML::Node(YAML::NodeType::Sequence);
     if (!policy_.IsNull() && policy_.size() > 0) {
       policy_.SetStyle(YAML::EmitterStyle::Flow);
       x["algo"]["policy"] = policy_;
@@ -116,7 +119,10 @@ class Translation {
     } else if (key == "n_envs") {
       x["env"]["n_envs"] = value.yaml();
     } else if (key == "policy") {
-      check_policy_name(value);
+      if (check_policy_name(value, entry_.algorithm)) {
+        policy_["features_extractor_class"] = "NatureCNN";
+        cnn_policy_ = true;
+      }
     } else if (key == "policy_kwargs") {
       if (!value.defined()) return;
       const YAML::Node policy =
@@ -222,6 +228,7 @@ class Translation {
   std::vector<std::string> algo_keys_, policy_keys_;
   int registered_limit_ = 0;
   YAML::Node policy_{YAML::NodeType::Map};
+  bool cnn_policy_ = false;  // policy: CnnPolicy
 };
 
 }  // namespace

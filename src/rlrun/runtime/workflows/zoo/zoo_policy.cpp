@@ -29,6 +29,21 @@ class PolicyTranslation {
         policy[key] = net_arch(value);
       } else if (key == "activation_fn") {
         policy[key] = activation(value);
+      } else if ((key == "share_features_extractor" || key == "normalize_images") &&
+                 listed(keys_, key)) {
+        // The CNN policies' switches (PPO, A2C).
+        if (value.kind != PyValue::Kind::kBool)
+          fail("policy_kwargs " + key + " must be True or False, found " + value.describe());
+        policy[key] = to_yaml(value);
+      } else if (key == "features_extractor_kwargs" && listed(keys_, "features_dim")) {
+        // NatureCNN's one keyword: dict(features_dim=N).
+        if (value.kind != PyValue::Kind::kDict || value.entries.size() != 1 ||
+            value.entries[0].first != "features_dim")
+          fail(
+              "policy_kwargs features_extractor_kwargs: rlrun's NatureCNN reads "
+              "dict(features_dim=N), found " +
+              value.describe());
+        policy["features_dim"] = to_yaml(value.entries[0].second);
       } else if (key == "squash_output" || key == "share_features_extractor" ||
                  key == "normalize_images") {
         no_effect(key, value);
@@ -134,13 +149,16 @@ class PolicyTranslation {
 
 }  // namespace
 
-void check_policy_name(const ConfigNode& policy) {
+bool check_policy_name(const ConfigNode& policy, const std::string& algorithm) {
   const std::string name = policy.as_string();
-  if (name == "MlpPolicy" || name == "MultiInputPolicy") return;
-  if (name == "CnnPolicy")
+  if (name == "MlpPolicy" || name == "MultiInputPolicy") return false;
+  if (name == "CnnPolicy") {
+    if (algorithm == "PPO" || algorithm == "A2C") return true;
     policy.fail(
-        "CnnPolicy: rlrun has no convolutional policy (image observations); its "
-        "policies are MLPs (MlpPolicy, and MultiInputPolicy for Dict observations)");
+        "CnnPolicy: rlrun's convolutional policy (NatureCNN) is built for PPO and A2C "
+        "so far, not yet for " +
+        algorithm);
+  }
   policy.fail("policy '" + name +
               "': rlrun imports MlpPolicy and MultiInputPolicy only, not "
               "custom policy classes");

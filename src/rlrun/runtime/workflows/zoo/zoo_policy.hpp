@@ -3,9 +3,12 @@
 // (stable_baselines3/common/policies.py ActorCriticPolicy, sac/policies.py, td3/policies.py,
 // dqn/policies.py) become the rlrun keys of the same name; torch activation classes become
 // rlrun's names; net_arch as a list, dict(pi=..., vf=.../qf=...) or SB3 < 1.8's
-// [dict(pi=..., vf=...)]. Keywords without effect on an MLP policy (squash_output=False,
-// share_features_extractor, normalize_images) are accepted and noted; any other keyword the
-// algorithm's policy lacks is refused.
+// [dict(pi=..., vf=...)]. CnnPolicy (PPO, A2C) becomes features_extractor_class: NatureCNN with
+// SB3's default net_arch [] unless policy_kwargs sets one; features_extractor_kwargs'
+// features_dim, normalize_images and share_features_extractor carry over. Keywords without
+// effect on an MLP policy (squash_output=False; share_features_extractor and normalize_images
+// where the algorithm has no CNN) are accepted and noted; any other keyword the algorithm's
+// policy lacks is refused.
 #include <string>
 #include <vector>
 
@@ -15,9 +18,10 @@
 
 namespace rlrun::zoo {
 
-// Checks `policy: 'MlpPolicy'` (and MultiInputPolicy). Throws ConfigError at the node for
-// CnnPolicy and custom policies.
-void check_policy_name(const ConfigNode& policy);
+// Checks `policy: 'MlpPolicy'` (and MultiInputPolicy, and CnnPolicy for the algorithms that
+// have it: PPO, A2C); true for CnnPolicy. Throws ConfigError at the node for custom policies
+// and a CnnPolicy of another algorithm.
+bool check_policy_name(const ConfigNode& policy, const std::string& algorithm);
 
 // `policy_kwargs` (a Python string or a YAML map) as the algo.policy map, with
 // `policy_keys` the keys the rlrun algorithm's policy has. Problems throw ConfigError at the

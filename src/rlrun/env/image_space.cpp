@@ -1,0 +1,34 @@
+#include "rlrun/env/image_space.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace rlrun {
+
+std::optional<ImageInput> image_input(const Space& space, bool normalize_images) {
+  if (!space.is_box() || space.shape().size() != 3) return std::nullopt;
+  if (normalize_images) {
+    const auto is = [](float want) { return [want](float v) { return v == want; }; };
+    if (!std::all_of(space.low().begin(), space.low().end(), is(0.0f)) ||
+        !std::all_of(space.high().begin(), space.high().end(), is(255.0f)))
+      return std::nullopt;
+  }
+  const std::vector<int>& s = space.shape();
+  // np.argmin: the first smallest dimension.
+  const auto smallest = std::min_element(s.begin(), s.end()) - s.begin();
+  if (smallest == 0) return ImageInput{s[0], s[1], s[2], false};
+  return ImageInput{s[2], s[0], s[1], true};
+}
+
+ImageInput require_image_input(const Space& space, bool normalize_images) {
+  if (const auto image = image_input(space, normalize_images)) return *image;
+  // SB3 torch_layers.py NatureCNN's assertion, with rlrun's names.
+  throw std::invalid_argument(
+      "you should use NatureCNN only with images, not with " + space.describe() +
+      " (you are probably using features_extractor_class: NatureCNN, SB3's CnnPolicy, instead "
+      "of the default FlattenExtractor, SB3's MlpPolicy / MultiInputPolicy). Images are Boxes of "
+      "three dimensions with values 0-255; for images that are normalized already (VecNormalize, "
+      "or your own scaling) set normalize_images: false");
+}
+
+}  // namespace rlrun

@@ -1,0 +1,26 @@
+#pragma once
+// SB3's rules for image observations (stable_baselines3/common/preprocessing.py): which Box a
+// CNN reads as an image, and which axis holds its channels.
+//  * is_image_space: a Box of three dimensions; unless the images are already normalized
+//    (normalize_images false), its values must be 0-255 (SB3 also asks for dtype uint8; rlrun's
+//    observations are float32 holding those integers, so the bounds decide).
+//  * is_image_space_channels_first: the smallest dimension is the channel axis; first means
+//    channels-first (C, H, W), anything else channels-last (H, W, C) — which SB3 transposes
+//    with VecTransposeImage and rlrun's CNN reads in place (nn/nature_cnn.hpp).
+#include <optional>
+#include <string>
+
+#include "rlrun/nn/nature_cnn.hpp"
+#include "rlrun/space.hpp"
+
+namespace rlrun {
+
+// The image a CNN sees in observations of `space`, or nullopt when SB3 would not call the space
+// an image.
+std::optional<ImageInput> image_input(const Space& space, bool normalize_images);
+
+// The same, or std::invalid_argument with SB3's NatureCNN message (what to use instead, and
+// normalize_images: false for images that are normalized already).
+ImageInput require_image_input(const Space& space, bool normalize_images);
+
+}  // namespace rlrun

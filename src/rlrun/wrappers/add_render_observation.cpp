@@ -1,0 +1,80 @@
+#include "rlrun/wrappers/add_render_observation.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace rlrun {
+
+namespace {
+// The frame's size: the config's, else the env's render size.
+std::pair<int, int> frame_size(const Env& inner, const AddRenderObservation::Config& config) {
+  const RenderSpec spec = inner.render_spec();
+  if (spec.width <= 0 || spec.height <= 0)
+    throw std::invalid_argument("AddRenderObservation: " + inner.id() +
+                                " cannot render, so it has no pixels to observe");
+  return {config.width > 0 ? config.width : spec.width,
+          config.height > 0 ? config.height : spec.height};
+}
+}  // namespace
+
+AddRenderObservation::AddRenderObservation(EnvPtr inner, const Config& config)
+    : Wrapper(std::move(inner)),
+      frame_(frame_size(*inner_, config).first, frame_size(*inner_, config).second) {
+  const Space pixels = Space::box(0.0f, 255.0f, {frame_.height(), frame_.width(), 3});
+  if (config.render_only) {
+    space_ = pixels;
+    state_.resize(static_cast<size_t>(inner_->observation_space().flat_dim()));
+    return;
+  }
+  const Space& state = inner_->observation_space();
+  if (state.is_dict())
+    throw std::invalid_argument("AddRenderObservation: render_only: false puts " + inner_->id() +
+                                "'s observation under a key, and it is a Dict already (one "
+                                "level of keys, as SB3's MultiInputPolicy)");
+  if (config.obs_key == config.render_key || config.obs_key.empty() || config.render_key.empty())
+    throw std::invalid_argument(
+        "AddRenderObservation: obs_key and render_key must be two different, non-empty keys");
+  space_ = Space::dict({{config.obs_key, state}, {config.render_key, pixels}});
+  const bool state_first = space_.keys()[0] == config.obs_key;
+  state_at_ = space_.offset(state_first ? 0 : 1);
+  pixels_at_ = space_.offset(state_first ? 1 : 0);
+  state_dim_ = state.flat_dim();
+}
+
+void AddRenderObservation::observe(std::span<float> obs) {
+  if (!inner_->render(frame_))
+    throw std::runtime_error("AddRenderObservation: " + inner_->id() + " did not draw a frame");
+  frame_.to_rgb(rgb_);
+  std::copy(rgb_.begin(), rgb_.end(), obs.begin() + pixels_at_);
+}
+
+void AddRenderObservation::reset(std::optional<uint64_t> seed, std::span<float> obs) {
+  inner_->reset(seed, state_dim_ ? obs.subspan(state_at_, state_dim_) : std::span<float>(state_));
+  observe(obs);
+}
+
+StepResult AddRenderObservation::step(std::span<const float> action, std::span<float> obs) {
+  const StepResult result = inner_->step(
+      action, state_dim_ ? obs.subspan(state_at_, state_dim_) : std::span<float>(state_));
+  observe(obs);
+  return result;
+}
+
+bool AddRenderObservation::render_observation(std::span<const float> obs, Frame& frame) const {
+  const int w = frame_.width(), h = frame_.height();
+  uint32_t* out = frame.pixels();
+  for (int y = 0; y < frame.height(); ++y) {
+    const int sy = std::min(h - 1, static_cast<int>(static_cast<int64_t>(y) * h / frame.height()));
+    for (int x = 0; x < frame.width(); ++x) {
+      const int sx = std::min(w - 1, static_cast<int>(static_cast<int64_t>(x) * w / frame.width()));
+      const float* p = obs.data() + pixels_at_ + (static_cast<size_t>(sy) * w + sx) * 3;
+      auto channel = [](float v) { return static_cast<uint32_t>(std::clamp(v, 0.0f, 255.0f)); };
+      out[static_cast<size_t>(y) * frame.stride_pixels() + x] =
+          channel(p[0]) << 16 | channel(p[1]) << 8 | channel(p[2]);
+    }
+  }
+  return true;
+}
+
+}  // namespace rlrun

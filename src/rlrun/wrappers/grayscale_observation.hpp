@@ -1,0 +1,45 @@
+#pragma once
+// GrayscaleObservation: an RGB image observation (height, width, 3), values 0-255, to gray
+// (Gymnasium 1.0 gymnasium/wrappers/transform_observation.py GrayscaleObservation): each pixel
+// becomes uint8(0.2125 r + 0.7154 g + 0.0721 b) — the luminance weights of skimage's rgb2gray,
+// summed in double in that order and truncated toward zero, as numpy's
+// np.sum(np.multiply(obs, weights), axis=-1).astype(np.uint8) does (so a white pixel may come
+// out 254, exactly as in Gymnasium). The result is Box(0, 255, (height, width)), or
+// (height, width, 1) with keep_dim (what SB3's CnnPolicy needs to see a channel axis).
+#include "rlrun/env/wrapper.hpp"
+
+namespace rlrun {
+
+class GrayscaleObservation : public Wrapper {
+ public:
+  struct Config {
+    bool keep_dim = false;
+    template <class V>
+    void visit(V& v) {
+      v("keep_dim", keep_dim,
+        "keep a channel axis of 1: (height, width, 1) instead of (height, width)");
+    }
+  };
+  // Throws std::invalid_argument unless the observation is a Box of shape (height, width, 3)
+  // with bounds 0 and 255 (Gymnasium's asserts).
+  GrayscaleObservation(EnvPtr inner, const Config& config);
+  explicit GrayscaleObservation(EnvPtr inner) : GrayscaleObservation(std::move(inner), Config()) {}
+
+  const Space& observation_space() const override { return space_; }
+  void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
+  StepResult step(std::span<const float> action, std::span<float> obs) override;
+  // Draws the gray image itself (the inner env cannot be drawn from it).
+  bool render_observation(std::span<const float> obs, Frame& frame) const override;
+
+  // One pixel's gray value, exactly as Gymnasium computes it.
+  static float gray(float r, float g, float b);
+
+ private:
+  void convert(std::span<float> obs) const;
+
+  Space space_;
+  int height_ = 0, width_ = 0;
+  std::vector<float> rgb_;  // the inner observation
+};
+
+}  // namespace rlrun
