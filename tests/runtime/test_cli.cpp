@@ -46,8 +46,16 @@ TEST_CASE("cli: list shows the registry", "[cli]") {
   CHECK(p.exit_code == 0);
   CHECK(p.output.find("clip_range") != std::string::npos);
   // The policy section's options are rows of their own, each with its default and doc.
-  CHECK(p.output.find("policy.net_arch       [64, 64]") != std::string::npos);
-  CHECK(p.output.find("policy.ortho_init     true") != std::string::npos);
+  // (the column is as wide as the longest name, policy.features_extractor_class)
+  const auto row = [&](const std::string& name) {
+    const size_t at = p.output.find(name + " ");
+    return at == std::string::npos ? std::string()
+                                   : p.output.substr(at, p.output.find('\n', at) - at);
+  };
+  CHECK_THAT(row("policy.net_arch"), Catch::Matches("policy\\.net_arch +\\[64, 64\\] .*"));
+  CHECK_THAT(row("policy.ortho_init"), Catch::Matches("policy\\.ortho_init +true .*"));
+  CHECK_THAT(row("policy.features_extractor_class"),
+             Catch::Matches("policy\\.features_extractor_class +FlattenExtractor .*"));
   CHECK(run_rlrun("list PPOO").exit_code == 2);
 }
 
