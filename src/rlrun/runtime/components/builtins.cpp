@@ -4,6 +4,8 @@
 #include "rlrun/runtime/components/builtins.hpp"
 
 #include "rlrun/runtime/components/policy_components.hpp"
+#include "rlrun/wrappers/add_render_observation.hpp"
+#include "rlrun/wrappers/grayscale_observation.hpp"
 
 namespace rlrun {
 
@@ -14,6 +16,13 @@ Registry make_builtins() {
   // Every env folder's register.cpp (src/rlrun/envs/*/register.cpp), collected by CMake.
   for (EnvEntry& entry : builtin_env_entries()) r.add(std::move(entry));
   add_builtin_wrappers(r);
+  // The pixel wrappers draw (Cairo), so they stay out of policy_registry() and the deploy
+  // library: a policy that reads rendered frames cannot be deployed without its renderer.
+  r.add(make_wrapper_entry<AddRenderObservation>(
+      "AddRenderObservation",
+      "the env's rendered RGB frame as the observation, alone or beside it (Gymnasium)"));
+  r.add(make_wrapper_entry<GrayscaleObservation>(
+      "GrayscaleObservation", "RGB image observations to gray, Gymnasium's weights (keep_dim)"));
   add_builtin_algorithms(r);
   return r;
 }

@@ -11,12 +11,10 @@
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
-#include "rlrun/wrappers/add_render_observation.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/discrete_as_box.hpp"
 #include "rlrun/wrappers/frame_stack.hpp"
-#include "rlrun/wrappers/grayscale_observation.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "rlrun/wrappers/normalize_reward.hpp"
 #include "rlrun/wrappers/one_hot_observation.hpp"
@@ -56,11 +54,6 @@ void add_builtin_wrappers(Registry& r) {
   r.add(make_wrapper_entry<TimeFeature>("TimeFeature",
                                         "appends the remaining episode time 1 - t/max_steps to the "
                                         "observation (sb3_contrib TimeFeatureWrapper)"));
-  r.add(make_wrapper_entry<AddRenderObservation>(
-      "AddRenderObservation",
-      "the env's rendered RGB frame as the observation, alone or beside it (Gymnasium)"));
-  r.add(make_wrapper_entry<GrayscaleObservation>(
-      "GrayscaleObservation", "RGB image observations to gray, Gymnasium's weights (keep_dim)"));
   r.add(make_wrapper_entry<OneHotObservation>(
       "OneHotObservation", "Discrete/MultiDiscrete/MultiBinary observations as SB3's one-hot Box"));
 }
