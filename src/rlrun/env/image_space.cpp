@@ -5,14 +5,14 @@
 
 namespace rlrun {
 
+bool has_pixel_bounds(const Space& box) {
+  return std::all_of(box.low().begin(), box.low().end(), [](float v) { return v == 0.0f; }) &&
+         std::all_of(box.high().begin(), box.high().end(), [](float v) { return v == 255.0f; });
+}
+
 std::optional<ImageInput> image_input(const Space& space, bool normalize_images) {
   if (!space.is_box() || space.shape().size() != 3) return std::nullopt;
-  if (normalize_images) {
-    const auto is = [](float want) { return [want](float v) { return v == want; }; };
-    if (!std::all_of(space.low().begin(), space.low().end(), is(0.0f)) ||
-        !std::all_of(space.high().begin(), space.high().end(), is(255.0f)))
-      return std::nullopt;
-  }
+  if (normalize_images && !has_pixel_bounds(space)) return std::nullopt;
   const std::vector<int>& s = space.shape();
   // np.argmin: the first smallest dimension.
   const auto smallest = std::min_element(s.begin(), s.end()) - s.begin();

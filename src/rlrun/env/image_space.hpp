@@ -15,6 +15,9 @@
 
 namespace rlrun {
 
+// Whether every value of a Box is bounded by 0 and 255 exactly: the bounds of an image.
+bool has_pixel_bounds(const Space& box);
+
 // The image a CNN sees in observations of `space`, or nullopt when SB3 would not call the space
 // an image.
 std::optional<ImageInput> image_input(const Space& space, bool normalize_images);

@@ -36,30 +36,41 @@ Tensor float_tensor(std::vector<int64_t> shape) {
 }
 }  // namespace
 
-NatureCnn::NatureCnn(const ImageInput& input, int features_dim, bool normalize_images)
-    : input_(input), features_dim_(features_dim), normalize_images_(normalize_images) {
-  if (input.channels <= 0 || features_dim <= 0)
-    throw std::invalid_argument("NatureCNN: channels and features_dim must be positive");
+std::array<Conv2dShape, NatureCnn::kConvLayers> NatureCnn::conv_shapes(const ImageInput& input) {
+  if (input.channels <= 0)
+    throw std::invalid_argument("NatureCNN: the image must have at least one channel");
   if (input.height < kMinSide || input.width < kMinSide) {
     throw std::invalid_argument("NatureCNN needs images of at least " + std::to_string(kMinSide) +
                                 "x" + std::to_string(kMinSide) +
                                 " (its 8x8/4, 4x4/2 and 3x3/1 convolutions), got " +
                                 std::to_string(input.height) + "x" + std::to_string(input.width));
   }
+  std::array<Conv2dShape, kConvLayers> shapes{};
   Conv2dShape shape{input.channels, input.height, input.width, input.channels_last, 0, 0, 0};
-  Eigen::Index offset = 0;
   for (int l = 0; l < kConvLayers; ++l) {
     shape.out_channels = kConvSpec[l][0];
     shape.kernel = kConvSpec[l][1];
     shape.stride = kConvSpec[l][2];
     check_conv2d_shape(shape, "NatureCNN");
-    conv_[l] = shape;
-    w_offset_[l] = offset;
-    offset += shape.weight_size();
-    b_offset_[l] = offset;
-    offset += shape.out_channels;
+    shapes[l] = shape;
     // The next layer reads this one's channels-last output.
     shape = Conv2dShape{shape.out_channels, shape.out_height(), shape.out_width(), true, 0, 0, 0};
+  }
+  return shapes;
+}
+
+NatureCnn::NatureCnn(const ImageInput& input, int features_dim, bool normalize_images)
+    : input_(input),
+      features_dim_(features_dim),
+      normalize_images_(normalize_images),
+      conv_(conv_shapes(input)) {
+  if (features_dim <= 0) throw std::invalid_argument("NatureCNN: features_dim must be positive");
+  Eigen::Index offset = 0;
+  for (int l = 0; l < kConvLayers; ++l) {
+    w_offset_[l] = offset;
+    offset += conv_[l].weight_size();
+    b_offset_[l] = offset;
+    offset += conv_[l].out_channels;
   }
   w_offset_[kConvLayers] = offset;
   offset += Eigen::Index{features_dim} * flatten_dim();
@@ -90,21 +101,29 @@ Eigen::Index NatureCnn::linear_weight_offset(int o, int q) const {
   return w_offset_[kConvLayers] + o + (Eigen::Index{pixel} * last.out_channels + c) * features_dim_;
 }
 
-template <class Draw>
-void NatureCnn::fill_weight(int l, Draw&& draw) {
+template <class F>
+void NatureCnn::for_each_weight(int l, F&& f) const {
   if (l < kConvLayers) {
     const Conv2dShape& s = conv_[l];
-    const Eigen::MatrixXf m = draw(s.out_channels, static_cast<int>(s.patch_size()));
     for (int o = 0; o < s.out_channels; ++o)
       for (int c = 0; c < s.in_channels; ++c)
         for (int i = 0; i < s.kernel; ++i)
           for (int j = 0; j < s.kernel; ++j)
-            params_(conv_weight_offset(l, o, c, i, j)) = m(o, (c * s.kernel + i) * s.kernel + j);
+            f(s.torch_index(o, c, i, j), conv_weight_offset(l, o, c, i, j));
     return;
   }
-  const Eigen::MatrixXf m = draw(features_dim_, flatten_dim());
   for (int o = 0; o < features_dim_; ++o)
-    for (int q = 0; q < flatten_dim(); ++q) params_(linear_weight_offset(o, q)) = m(o, q);
+    for (int q = 0; q < flatten_dim(); ++q)
+      f(Eigen::Index{o} * flatten_dim() + q, linear_weight_offset(o, q));
+}
+
+template <class Draw>
+void NatureCnn::fill_weight(int l, Draw&& draw) {
+  const int rows = l < kConvLayers ? conv_[l].out_channels : features_dim_;
+  const int cols = l < kConvLayers ? static_cast<int>(conv_[l].patch_size()) : flatten_dim();
+  using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const RowMajor m = draw(rows, cols);  // torch's layout
+  for_each_weight(l, [&](Eigen::Index torch, Eigen::Index at) { params_(at) = m.data()[torch]; });
 }
 
 void NatureCnn::init_orthogonal(Rng& rng, float gain) {
@@ -248,11 +267,8 @@ void NatureCnn::save(const std::string& prefix, TensorMap& out) const {
   for (int l = 0; l < kConvLayers; ++l) {
     const Conv2dShape& s = conv_[l];
     Tensor w = float_tensor({s.out_channels, s.in_channels, s.kernel, s.kernel});
-    for (int o = 0; o < s.out_channels; ++o)
-      for (int c = 0; c < s.in_channels; ++c)
-        for (int i = 0; i < s.kernel; ++i)
-          for (int j = 0; j < s.kernel; ++j)
-            w.data<float>()[s.torch_index(o, c, i, j)] = params_(conv_weight_offset(l, o, c, i, j));
+    for_each_weight(
+        l, [&](Eigen::Index torch, Eigen::Index at) { w.data<float>()[torch] = params_(at); });
     Tensor b = float_tensor({s.out_channels});
     std::copy_n(bias(l), s.out_channels, b.data<float>());
     const std::string name = prefix + ".cnn." + std::to_string(2 * l);
@@ -260,9 +276,9 @@ void NatureCnn::save(const std::string& prefix, TensorMap& out) const {
     out[name + ".bias"] = std::move(b);
   }
   Tensor w = float_tensor({features_dim_, flatten_dim()});
-  for (int o = 0; o < features_dim_; ++o)
-    for (int q = 0; q < flatten_dim(); ++q)
-      w.data<float>()[Eigen::Index{o} * flatten_dim() + q] = params_(linear_weight_offset(o, q));
+  for_each_weight(kConvLayers, [&](Eigen::Index torch, Eigen::Index at) {
+    w.data<float>()[torch] = params_(at);
+  });
   Tensor b = float_tensor({features_dim_});
   std::copy_n(bias(kConvLayers), features_dim_, b.data<float>());
   out[prefix + ".linear.0.weight"] = std::move(w);
@@ -276,18 +292,15 @@ void NatureCnn::load(const std::string& prefix, const TensorMap& in) {
     const Tensor& w =
         find_tensor(in, name + ".weight", {s.out_channels, s.in_channels, s.kernel, s.kernel});
     const Tensor& b = find_tensor(in, name + ".bias", {s.out_channels});
-    for (int o = 0; o < s.out_channels; ++o)
-      for (int c = 0; c < s.in_channels; ++c)
-        for (int i = 0; i < s.kernel; ++i)
-          for (int j = 0; j < s.kernel; ++j)
-            params_(conv_weight_offset(l, o, c, i, j)) = w.data<float>()[s.torch_index(o, c, i, j)];
+    for_each_weight(
+        l, [&](Eigen::Index torch, Eigen::Index at) { params_(at) = w.data<float>()[torch]; });
     std::copy_n(b.data<float>(), s.out_channels, params_.data() + b_offset_[l]);
   }
   const Tensor& w = find_tensor(in, prefix + ".linear.0.weight", {features_dim_, flatten_dim()});
   const Tensor& b = find_tensor(in, prefix + ".linear.0.bias", {features_dim_});
-  for (int o = 0; o < features_dim_; ++o)
-    for (int q = 0; q < flatten_dim(); ++q)
-      params_(linear_weight_offset(o, q)) = w.data<float>()[Eigen::Index{o} * flatten_dim() + q];
+  for_each_weight(kConvLayers, [&](Eigen::Index torch, Eigen::Index at) {
+    params_(at) = w.data<float>()[torch];
+  });
   std::copy_n(b.data<float>(), features_dim_, params_.data() + b_offset_[kConvLayers]);
 }
 

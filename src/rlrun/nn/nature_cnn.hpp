@@ -51,6 +51,10 @@ class NatureCnn {
   // NatureCNN needs at least 36x36) or a size is not positive. Parameters start at zero.
   NatureCnn(const ImageInput& input, int features_dim = 512, bool normalize_images = true);
 
+  // The three convolutions' shapes for an image; throws std::invalid_argument when it is too
+  // small or has no channel. What the constructor builds, without allocating (config checks).
+  static std::array<Conv2dShape, kConvLayers> conv_shapes(const ImageInput& input);
+
   const ImageInput& input() const { return input_; }
   int in_dim() const { return input_.size(); }
   int features_dim() const { return features_dim_; }
@@ -114,7 +118,11 @@ class NatureCnn {
     Eigen::MatrixXf grad_flatten;           // dL/d(last convolution's output), flatten x count
     Eigen::VectorXf grads;                  // this part's parameter gradient
   };
-  // Fills weight l (torch layout, rows x cols row-major per `draw(rows, cols)`) into params_.
+  // f(torch, at) for every weight of layer l: `torch` its index in torch's row-major tensor
+  // ((O, C, kh, kw) or (out, C*H*W)), `at` its offset in params().
+  template <class F>
+  void for_each_weight(int l, F&& f) const;
+  // Fills weight l from draw(rows, cols), a matrix in torch's (O, C*kh*kw) / (out, in) shape.
   template <class Draw>
   void fill_weight(int l, Draw&& draw);
   void forward_part(Eigen::Index begin, Eigen::Index count, Workspace& w);

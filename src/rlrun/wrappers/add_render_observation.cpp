@@ -4,23 +4,24 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rlrun/render/draw_pixels.hpp"
+
 namespace rlrun {
 
 namespace {
-// The frame's size: the config's, else the env's render size.
-std::pair<int, int> frame_size(const Env& inner, const AddRenderObservation::Config& config) {
+// The frame to draw into: the config's size, else the env's render size.
+Frame observed_frame(const Env& inner, const AddRenderObservation::Config& config) {
   const RenderSpec spec = inner.render_spec();
   if (spec.width <= 0 || spec.height <= 0)
     throw std::invalid_argument("AddRenderObservation: " + inner.id() +
                                 " cannot render, so it has no pixels to observe");
-  return {config.width > 0 ? config.width : spec.width,
-          config.height > 0 ? config.height : spec.height};
+  return Frame(config.width > 0 ? config.width : spec.width,
+               config.height > 0 ? config.height : spec.height);
 }
 }  // namespace
 
 AddRenderObservation::AddRenderObservation(EnvPtr inner, const Config& config)
-    : Wrapper(std::move(inner)),
-      frame_(frame_size(*inner_, config).first, frame_size(*inner_, config).second) {
+    : Wrapper(std::move(inner)), frame_(observed_frame(*inner_, config)) {
   const Space pixels = Space::box(0.0f, 255.0f, {frame_.height(), frame_.width(), 3});
   if (config.render_only) {
     space_ = pixels;
@@ -62,18 +63,7 @@ StepResult AddRenderObservation::step(std::span<const float> action, std::span<f
 }
 
 bool AddRenderObservation::render_observation(std::span<const float> obs, Frame& frame) const {
-  const int w = frame_.width(), h = frame_.height();
-  uint32_t* out = frame.pixels();
-  for (int y = 0; y < frame.height(); ++y) {
-    const int sy = std::min(h - 1, static_cast<int>(static_cast<int64_t>(y) * h / frame.height()));
-    for (int x = 0; x < frame.width(); ++x) {
-      const int sx = std::min(w - 1, static_cast<int>(static_cast<int64_t>(x) * w / frame.width()));
-      const float* p = obs.data() + pixels_at_ + (static_cast<size_t>(sy) * w + sx) * 3;
-      auto channel = [](float v) { return static_cast<uint32_t>(std::clamp(v, 0.0f, 255.0f)); };
-      out[static_cast<size_t>(y) * frame.stride_pixels() + x] =
-          channel(p[0]) << 16 | channel(p[1]) << 8 | channel(p[2]);
-    }
-  }
+  draw_pixels(obs.subspan(pixels_at_), frame_.height(), frame_.width(), 3, frame);
   return true;
 }
 

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "rlrun/frame.hpp"
+#include "rlrun/env/image_space.hpp"
+#include "rlrun/render/draw_pixels.hpp"
 
 namespace rlrun {
 
@@ -12,9 +13,7 @@ GrayscaleObservation::GrayscaleObservation(EnvPtr inner, const Config& config)
     : Wrapper(std::move(inner)) {
   const Space& s = inner_->observation_space();
   const bool image =
-      s.is_box() && s.shape().size() == 3 && s.shape()[2] == 3 &&
-      std::all_of(s.low().begin(), s.low().end(), [](float v) { return v == 0; }) &&
-      std::all_of(s.high().begin(), s.high().end(), [](float v) { return v == 255; });
+      s.is_box() && s.shape().size() == 3 && s.shape()[2] == 3 && has_pixel_bounds(s);
   if (!image)
     throw std::invalid_argument(
         "GrayscaleObservation needs an RGB image observation, Box(0, 255, "
@@ -52,15 +51,7 @@ StepResult GrayscaleObservation::step(std::span<const float> action, std::span<f
 }
 
 bool GrayscaleObservation::render_observation(std::span<const float> obs, Frame& frame) const {
-  uint32_t* out = frame.pixels();
-  for (int y = 0; y < frame.height(); ++y) {
-    const int sy = std::min(height_ - 1, static_cast<int>(int64_t{y} * height_ / frame.height()));
-    for (int x = 0; x < frame.width(); ++x) {
-      const int sx = std::min(width_ - 1, static_cast<int>(int64_t{x} * width_ / frame.width()));
-      const auto v = static_cast<uint32_t>(std::clamp(obs[size_t(sy) * width_ + sx], 0.0f, 255.0f));
-      out[size_t(y) * frame.stride_pixels() + x] = v << 16 | v << 8 | v;
-    }
-  }
+  draw_pixels(obs, height_, width_, 1, frame);
   return true;
 }
 

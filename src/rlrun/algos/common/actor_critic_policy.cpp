@@ -60,17 +60,12 @@ int check_nature_cnn(ConfigProblems& out, const ActorCriticPolicyConfig& policy,
                    "false (a NatureCNN each for the actor and the critic) is not built yet"});
   try {
     const ImageInput image = require_image_input(observation_space, policy.normalize_images);
-    if (image.height < 36 || image.width < 36) {
-      out.push_back({key, "NatureCNN needs images of at least 36x36, got " +
-                              std::to_string(image.height) + "x" + std::to_string(image.width)});
-    } else {
-      // The linear layer dominates: 64 channels of the last convolution times features_dim,
-      // as parameters, gradients and Adam's two moments.
-      const auto side = [](int n) { return ((n - 8) / 4 + 1 - 4) / 2 + 1 - 2; };
-      const double linear = 64.0 * side(image.height) * side(image.width) * policy.features_dim;
-      const std::string problem = memory_problem(linear * 4 * sizeof(float), "NatureCNN's weights");
-      if (!problem.empty()) out.push_back({key, problem});
-    }
+    // The linear layer dominates: the last convolution's output times features_dim, as
+    // parameters, gradients and Adam's two moments.
+    const auto flatten = static_cast<double>(NatureCnn::conv_shapes(image).back().out_size());
+    const std::string problem =
+        memory_problem(flatten * policy.features_dim * 4 * sizeof(float), "NatureCNN's weights");
+    if (!problem.empty()) out.push_back({key, problem});
   } catch (const std::invalid_argument& e) {
     out.push_back({key, e.what()});
   }
