@@ -73,3 +73,39 @@ TEST_CASE("cli: a NatureCNN on a vector observation is refused with SB3's reason
                            Catch::Contains("you should use NatureCNN only with images") &&
                            Catch::Contains("Box([-4.8"));
 }
+
+TEST_CASE("cli: SB3's Atari preprocessing on pixel CartPole, resumed exactly", "[cli][cnn]") {
+  // WarpFrame's pieces (OpenCV gray, INTER_AREA to 44x44), MaxAndSkip, NoopReset, the sign of
+  // the reward, and VecFrameStack's layout: four frames on the channel axis, (44, 44, 4).
+  TempDir dir("cnn_atari_pieces");
+  const std::string wrappers =
+      "[{id: AddRenderObservation, width: 90, height: 60}, "
+      "{id: GrayscaleObservation, keep_dim: true, weights: opencv}, "
+      "{id: ResizeObservation, shape: 44}, {id: MaxAndSkip, skip: 2}, "
+      "{id: NoopReset, noop_max: 4}, {id: TransformReward, sign: true}, "
+      "{id: FrameStack, n_stack: 4, layout: sb3}]";
+  const std::string config = write_config(dir, "atari_pieces", "PPO", wrappers);
+  const auto full = run_rlrun("train " + config);
+  INFO(full.output);
+  REQUIRE(full.exit_code == 0);
+  const std::string run = dir / "runs/atari_pieces/seed3";
+  const ModelFile model = read_model(run + "/model.zip");
+  // Channels last: SB3 would transpose (44, 44, 4) to (4, 44, 44); the first conv sees 4.
+  CHECK(model.tensors.at("features_extractor.cnn.0.weight").shape ==
+        std::vector<int64_t>{32, 4, 8, 8});
+  const std::string uninterrupted = dir / "uninterrupted.zip";
+  std::filesystem::copy_file(run + "/model.zip", uninterrupted);
+  // Stopped after the first rollout and resumed: the wrappers' state (the max-pool buffer, the
+  // no-op generator, the stacks) comes back with the checkpoint.
+  std::filesystem::remove_all(dir / "runs");
+  const auto half =
+      run_rlrun("train " + config + " --set run.total_timesteps=128 --set checkpoint.freq=128");
+  INFO(half.output);
+  REQUIRE(half.exit_code == 0);
+  const auto resumed = run_rlrun("train --resume " + run + " --set run.total_timesteps=256");
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  check_same_tensors(uninterrupted, run + "/model.zip");
+  const auto eval = run_rlrun("eval --model " + run + "/model.zip --episodes 2");
+  CHECK(eval.exit_code == 0);
+}

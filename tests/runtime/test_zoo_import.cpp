@@ -328,6 +328,69 @@ CartPole-v1:
   CHECK(pole["algo"]["policy"]["net_arch"]["pi"][0].as<int>() == 64);
 }
 
+TEST_CASE("zoo import: the image wrappers of the zoo's CarRacing and atari entries", "[zoo]") {
+  TempDir dir("zoo_images");
+  Registry registry = make_builtin_registry();
+  // The current zoo (Gymnasium 1.0) and the zoo of SB3 2.4's time (Gymnasium 0.29 paths).
+  const std::string file = write_file(dir, "ppo.yml", R"zoo(CarRacing-v3:
+  env_wrapper:
+    - rl_zoo3.wrappers.FrameSkip:
+        skip: 2
+    - rl_zoo3.wrappers.YAMLCompatResizeObservation:
+        shape: [64, 64]
+    - gymnasium.wrappers.transform_observation.GrayscaleObservation:
+        keep_dim: true
+  frame_stack: 2
+  normalize: "{'norm_obs': False, 'norm_reward': True}"
+  n_timesteps: !!float 4e6
+  policy: 'CnnPolicy'
+CarRacing-v2:
+  env_wrapper:
+    - rl_zoo3.wrappers.FrameSkip:
+        skip: 2
+    - gymnasium.wrappers.resize_observation.ResizeObservation:
+        shape: 64
+    - gymnasium.wrappers.gray_scale_observation.GrayScaleObservation:
+        keep_dim: true
+  frame_stack: 2
+  n_timesteps: !!float 4e6
+  policy: 'CnnPolicy'
+atari:
+  env_wrapper:
+    - stable_baselines3.common.atari_wrappers.AtariWrapper
+  frame_stack: 4
+  policy: 'CnnPolicy'
+  n_timesteps: !!float 1e7
+)zoo");
+  auto wrappers = [&](const std::string& env) {
+    const ZooImport imported = translate_zoo_entry(read_zoo_entry(file, env, ""), registry);
+    std::vector<std::string> ids;
+    for (const auto& w : imported.experiment["env"]["wrappers"])
+      ids.push_back(w["id"].as<std::string>());
+    return std::make_pair(ids, imported.experiment["env"]["wrappers"]);
+  };
+  const auto [v3, v3_yaml] = wrappers("CarRacing-v3");
+  CHECK(v3 == std::vector<std::string>{"FrameSkip", "ResizeObservation", "GrayscaleObservation",
+                                       "FrameStack"});
+  CHECK(v3_yaml[0]["skip"].as<int>() == 2);
+  CHECK(v3_yaml[1]["shape"][1].as<int>() == 64);
+  CHECK(v3_yaml[2]["weights"].as<std::string>() == "gymnasium");
+  CHECK(v3_yaml[2]["keep_dim"].as<bool>());
+  CHECK(v3_yaml[3]["layout"].as<std::string>() == "sb3");  // (64, 64, 2), as VecFrameStack
+  const auto [v2, v2_yaml] = wrappers("CarRacing-v2");
+  CHECK(v2_yaml[1]["shape"].as<int>() == 64);
+  CHECK(v2_yaml[2]["weights"].as<std::string>() == "opencv");  // Gymnasium 0.29 called cv2
+  // SB3's AtariWrapper, piece by piece (an `atari` entry applies to whatever env is named).
+  const auto [atari, atari_yaml] = wrappers("atari");
+  CHECK(atari == std::vector<std::string>{"NoopReset", "MaxAndSkip", "GrayscaleObservation",
+                                          "ResizeObservation", "TransformReward", "FrameStack"});
+  CHECK(atari_yaml[0]["noop_max"].as<int>() == 30);
+  CHECK(atari_yaml[1]["skip"].as<int>() == 4);
+  CHECK(atari_yaml[3]["shape"][0].as<int>() == 84);
+  CHECK(atari_yaml[4]["sign"].as<bool>());
+  CHECK(atari_yaml[5]["n_stack"].as<int>() == 4);
+}
+
 TEST_CASE("zoo import: what cannot be translated is an error at the zoo file's line", "[zoo]") {
   TempDir dir("zoo_errors");
   const std::string file = write_file(dir, "ppo.yml", R"zoo(CartPole-v1:

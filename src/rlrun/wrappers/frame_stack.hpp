@@ -10,6 +10,12 @@
 // A Dict observation is stacked key by key, as SB3's StackedObservations does for Dict spaces:
 // every key must be a Box, and each becomes the stack of its own last n_stack values (the
 // Dict's flat layout: key after key in sorted order, each key's frames oldest first).
+// `layout: sb3` gives SB3 VecFrameStack's shapes instead (rl-zoo's `frame_stack`): frames are
+// concatenated along an existing axis — the channel axis of an image (SB3's is_image_space: 3
+// dimensions, bounds 0-255; channels first when the first dimension is the smallest), the last
+// axis otherwise, or the one `channels_order` names — so stacked (84, 84, 1) frames are
+// (84, 84, n_stack), an image a CnnPolicy reads. Along the last axis each position holds its
+// n_stack values side by side, as np.concatenate(..., axis=-1) lays them out.
 #include <string>
 #include <vector>
 
@@ -21,8 +27,10 @@ namespace rlrun {
 class FrameStack : public Wrapper {
  public:
   struct Config {
-    int n_stack = 4;               // frames per observation
-    std::string padding = "zero";  // what fills the stack after reset: zero | reset
+    int n_stack = 4;                      // frames per observation
+    std::string padding = "zero";         // what fills the stack after reset: zero | reset
+    std::string layout = "new_axis";      // new_axis (Gymnasium) | sb3 (VecFrameStack)
+    std::string channels_order = "auto";  // sb3 layout: auto | first | last
     template <class V>
     void visit(V& v) {
       v("n_stack", n_stack, "number of consecutive observations stacked (oldest first)",
@@ -30,10 +38,18 @@ class FrameStack : public Wrapper {
       v("padding", padding,
         "frames before the first one after reset: zero (SB3 VecFrameStack) or reset (copies, "
         "Gymnasium)");
+      v("layout", layout,
+        "new_axis: shape (n_stack, *shape) (Gymnasium FrameStackObservation); sb3: along the "
+        "channel or last axis (SB3 VecFrameStack)",
+        OneOf{{"new_axis", "sb3"}});
+      v("channels_order", channels_order,
+        "sb3 layout: the axis frames join, auto (an image's channel axis, else the last), first "
+        "or last (SB3's channels_order)",
+        OneOf{{"auto", "first", "last"}});
     }
   };
   // Throws std::invalid_argument for an observation space that is not a Box or a Dict of
-  // Boxes, n_stack < 1 or an unknown padding.
+  // Boxes, n_stack < 1, or an unknown padding, layout or channels_order.
   FrameStack(EnvPtr inner, const Config& config);
   explicit FrameStack(EnvPtr inner) : FrameStack(std::move(inner), Config()) {}
 
@@ -52,11 +68,16 @@ class FrameStack : public Wrapper {
  private:
   void push(std::span<float> obs);
   // A Box (a Dict key, or the whole observation): `dim` floats at `in` in the inner
-  // observation, stacked as n_stack * dim floats at `out` in ours.
+  // observation, stacked as n_stack * dim floats at `out` in ours. The frame is `dim / block`
+  // blocks of `block` floats, and the stack holds each block's n_stack copies side by side,
+  // oldest first (a new leading axis or axis 0: one block; the last axis: its length).
   struct Part {
-    int in = 0, out = 0, dim = 0;
+    int in = 0, out = 0, dim = 0, block = 0;
   };
-  static Space stacked(const Space& box, int n_stack);
+  // The axis frames are stacked on: -1 for a new leading axis, else an axis of the Box.
+  static int stack_axis(const Space& box, const Config& config);
+  static Space stacked(const Space& box, int n_stack, int axis);
+  static int block_of(const Space& box, int axis);
 
   Space space_;
   std::vector<Part> parts_;

@@ -6,6 +6,7 @@
 
 #include "rlrun/env/image_space.hpp"
 #include "rlrun/render/draw_pixels.hpp"
+#include "rlrun/wrappers/opencv_image_ops.hpp"
 
 namespace rlrun {
 
@@ -19,6 +20,11 @@ GrayscaleObservation::GrayscaleObservation(EnvPtr inner, const Config& config)
         "GrayscaleObservation needs an RGB image observation, Box(0, 255, "
         "(height, width, 3)); " +
         inner_->id() + " has " + s.describe());
+  if (config.weights != "gymnasium" && config.weights != "opencv")
+    throw std::invalid_argument(
+        "GrayscaleObservation: weights must be 'gymnasium' or 'opencv', not '" + config.weights +
+        "'");
+  opencv_weights_ = config.weights == "opencv";
   height_ = s.shape()[0];
   width_ = s.shape()[1];
   space_ = config.keep_dim ? Space::box(0.0f, 255.0f, {height_, width_, 1})
@@ -36,6 +42,12 @@ float GrayscaleObservation::gray(float r, float g, float b) {
 
 void GrayscaleObservation::convert(std::span<float> obs) const {
   const size_t pixels = static_cast<size_t>(height_) * width_;
+  if (opencv_weights_) {
+    for (size_t p = 0; p < pixels; ++p)
+      obs[p] = opencv_rgb_to_gray(opencv_pixel(rgb_[3 * p]), opencv_pixel(rgb_[3 * p + 1]),
+                                  opencv_pixel(rgb_[3 * p + 2]));
+    return;
+  }
   for (size_t p = 0; p < pixels; ++p) obs[p] = gray(rgb_[3 * p], rgb_[3 * p + 1], rgb_[3 * p + 2]);
 }
 

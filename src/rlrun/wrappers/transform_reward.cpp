@@ -16,7 +16,9 @@ StepResult TransformReward::step(std::span<const float> action, std::span<float>
 }
 
 StepResult TransformReward::transform(StepResult result) const {
-  double r = config_.scale * result.reward + config_.offset;
+  double r = result.reward;
+  if (config_.sign) r = r > 0.0 ? 1.0 : r < 0.0 ? -1.0 : r;  // np.sign: 0 (and NaN) stay
+  r = config_.scale * r + config_.offset;
   if (config_.clip_min) r = std::max(r, *config_.clip_min);
   if (config_.clip_max) r = std::min(r, *config_.clip_max);
   result.reward = r;

@@ -2,7 +2,8 @@
 // TransformReward: reward' = clip(scale * reward + offset, clip_min, clip_max), a
 // configurable form of gymnasium/wrappers/transform_reward.py's TransformReward / ClipReward.
 // E.g. `{id: TransformReward, scale: 0.01}` for large rewards, `{id: TransformReward,
-// clip_min: -1, clip_max: 1}` for Atari-style clipping. Applied after the Monitor, so logged
+// clip_min: -1, clip_max: 1}` for clipping, `{id: TransformReward, sign: true}` for SB3's
+// ClipRewardEnv (atari_wrappers.py: np.sign(reward), so 0.3 becomes 1 where clipping keeps 0.3). Applied after the Monitor, so logged
 // episode returns stay the env's own.
 #include <optional>
 
@@ -16,13 +17,15 @@ class TransformReward : public Wrapper, public SplitStep {
   // Observations and actions pass unchanged (rlrun export).
   bool exports_unchanged() const override { return true; }
   struct Config {
+    bool sign = false;               // replaces the reward by its sign (-1, 0, 1) before all else
     double scale = 1.0;              // multiplies the reward first
     double offset = 0.0;             // then is added
     std::optional<double> clip_min;  // then the result is clipped from below (null: no bound)
     std::optional<double> clip_max;  // and from above (null: no bound)
     template <class V>
     void visit(V& v) {
-      v("scale", scale, "factor applied to the reward first");
+      v("sign", sign, "replace the reward by its sign -1, 0 or 1 first (SB3 ClipRewardEnv)");
+      v("scale", scale, "factor applied to the reward (after sign)");
       v("offset", offset, "added after scaling");
       v("clip_min", clip_min, "lower clip of the result (null = none)");
       v("clip_max", clip_max, "upper clip of the result (null = none)");

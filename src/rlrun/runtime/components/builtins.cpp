@@ -6,6 +6,7 @@
 #include "rlrun/runtime/components/policy_components.hpp"
 #include "rlrun/wrappers/add_render_observation.hpp"
 #include "rlrun/wrappers/grayscale_observation.hpp"
+#include "rlrun/wrappers/resize_observation.hpp"
 
 namespace rlrun {
 
@@ -22,7 +23,10 @@ Registry make_builtins() {
       "AddRenderObservation",
       "the env's rendered RGB frame as the observation, alone or beside it (Gymnasium)"));
   r.add(make_wrapper_entry<GrayscaleObservation>(
-      "GrayscaleObservation", "RGB image observations to gray, Gymnasium's weights (keep_dim)"));
+      "GrayscaleObservation",
+      "RGB image observations to gray, Gymnasium's or OpenCV's weights (keep_dim)"));
+  r.add(make_wrapper_entry<ResizeObservation>(
+      "ResizeObservation", "image observations resized to [height, width], OpenCV's INTER_AREA"));
   add_builtin_algorithms(r);
   return r;
 }

@@ -11,10 +11,12 @@
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
+#include "rlrun/wrappers/action_repeat.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
 #include "rlrun/wrappers/discrete_as_box.hpp"
 #include "rlrun/wrappers/frame_stack.hpp"
+#include "rlrun/wrappers/noop_reset.hpp"
 #include "rlrun/wrappers/normalize_observation.hpp"
 #include "rlrun/wrappers/normalize_reward.hpp"
 #include "rlrun/wrappers/one_hot_observation.hpp"
@@ -44,10 +46,18 @@ void add_builtin_wrappers(Registry& r) {
   r.add(make_wrapper_entry<RescaleAction>(
       "RescaleAction",
       "agent acts in Box(min_action, max_action), mapped onto the env's bounds (Gymnasium)"));
-  r.add(make_wrapper_entry<FrameStack>(
-      "FrameStack", "the last n_stack observations stacked, oldest first (SB3 VecFrameStack)"));
+  r.add(make_wrapper_entry<FrameStack>("FrameStack",
+                                       "the last n_stack observations stacked, oldest first "
+                                       "(Gymnasium; layout sb3: SB3 VecFrameStack)"));
   r.add(make_wrapper_entry<TransformReward>(
-      "TransformReward", "reward' = clip(scale * reward + offset, clip_min, clip_max)"));
+      "TransformReward", "reward' = clip(scale * reward + offset, clip_min, clip_max), or sign"));
+  // SB3's Atari pieces that make sense without Atari, and rl-zoo's FrameSkip.
+  r.add(make_wrapper_entry<FrameSkip>(
+      "FrameSkip", "repeat each action `skip` times, rewards summed (rl-zoo FrameSkip)"));
+  r.add(make_wrapper_entry<MaxAndSkip>(
+      "MaxAndSkip", "repeat each action, rewards summed, max of the last two frames (SB3)"));
+  r.add(make_wrapper_entry<NoopReset>(
+      "NoopReset", "1 to noop_max steps of action 0 after each reset (SB3 NoopResetEnv)"));
   r.add(make_wrapper_entry<RewardShaping>(
       "RewardShaping",
       "adds YAML-configured terms to the reward (obs_above_for, obs_abs, action_sq, ...)"));

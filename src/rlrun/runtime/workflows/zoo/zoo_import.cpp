@@ -139,7 +139,9 @@ class Translation {
     } else if (key == "normalize") {
       x["env"]["normalize"] = normalize(value);
     } else if (key == "frame_stack") {
-      if (e.has("normalize"))
+      // Only observation normalisation cares about the order (reward normalisation, as on the
+      // zoo's CarRacing entry, does not).
+      if (e.has("normalize") && normalizes_observations(e.child("normalize")))
         value.fail(
             "frame_stack with normalize: rl-zoo stacks normalised observations "
             "(VecFrameStack outside VecNormalize) while rlrun's FrameStack wrapper sits "
@@ -147,6 +149,7 @@ class Translation {
       YAML::Node w(YAML::NodeType::Map);
       w["id"] = "FrameStack";
       w["n_stack"] = value.yaml();
+      w["layout"] = "sb3";                // VecFrameStack: images stack on their channel axis
       x["env"]["wrappers"].push_back(w);  // rl-zoo's VecFrameStack pads with zeros, as FrameStack
     } else if (key == "env_wrapper") {
       translate_env_wrappers(value, x["env"], registered_limit_, notes);
@@ -216,6 +219,13 @@ class Translation {
     }
     map.SetStyle(YAML::EmitterStyle::Flow);
     return map;
+  }
+
+  // VecNormalize's norm_obs (true unless the zoo's dict says otherwise).
+  bool normalizes_observations(const ConfigNode& value) {
+    const YAML::Node n = normalize(value);
+    if (n.IsScalar()) return n.as<bool>();
+    return !n["norm_obs"] || n["norm_obs"].as<bool>();
   }
 
   static std::string join(const std::vector<std::string>& v) {

@@ -57,6 +57,103 @@ YAML::Node wrapper(const std::string& id) {
   return w;
 }
 
+int64_t int_kwarg(const ClassUse& use, const char* key, int64_t fallback) {
+  return use.kwargs.has(key) ? use.kwargs.child(key).as_int() : fallback;
+}
+
+bool bool_kwarg(const ClassUse& use, const char* key, bool fallback) {
+  return use.kwargs.has(key) ? use.kwargs.child(key).as_bool() : fallback;
+}
+
+// SB3's WarpFrame: cv2 gray, then cv2.resize(INTER_AREA) to height x width, a channel axis of 1.
+void warp_frame(YAML::Node env, int64_t height, int64_t width) {
+  YAML::Node gray = wrapper("GrayscaleObservation");
+  gray["keep_dim"] = true;
+  gray["weights"] = "opencv";
+  env["wrappers"].push_back(gray);
+  YAML::Node resize = wrapper("ResizeObservation");
+  resize["shape"].push_back(height);
+  resize["shape"].push_back(width);
+  env["wrappers"].push_back(resize);
+}
+
+// SB3's AtariWrapper (atari_wrappers.py) in its order: NoopReset, MaxAndSkip, (EpisodicLife,
+// FireReset: Atari's lives and FIRE button, which other envs lack), WarpFrame, ClipReward.
+void atari_wrapper(const ClassUse& use, YAML::Node env, std::vector<std::string>& notes) {
+  only_kwargs(use, {"noop_max", "frame_skip", "screen_size", "terminal_on_life_loss", "clip_reward",
+                    "action_repeat_probability"});
+  if (use.kwargs.has("action_repeat_probability") &&
+      use.kwargs.child("action_repeat_probability").as_double() > 0.0)
+    use.kwargs.child("action_repeat_probability")
+        .fail("sticky actions (StickyActionEnv) are not translated");
+  if (const int64_t noop_max = int_kwarg(use, "noop_max", 30); noop_max > 0) {
+    YAML::Node w = wrapper("NoopReset");
+    w["noop_max"] = noop_max;
+    env["wrappers"].push_back(w);
+  }
+  if (const int64_t skip = int_kwarg(use, "frame_skip", 4); skip > 1) {
+    YAML::Node w = wrapper("MaxAndSkip");
+    w["skip"] = skip;
+    env["wrappers"].push_back(w);
+  }
+  if (bool_kwarg(use, "terminal_on_life_loss", true))
+    notes.push_back(use.name +
+                    " terminal_on_life_loss: only Atari games have lives (EpisodicLifeEnv); "
+                    "rlrun's envs end episodes themselves");
+  const int64_t size = int_kwarg(use, "screen_size", 84);
+  warp_frame(env, size, size);
+  if (bool_kwarg(use, "clip_reward", true)) {
+    YAML::Node w = wrapper("TransformReward");
+    w["sign"] = true;
+    env["wrappers"].push_back(w);
+  }
+}
+
+// The image wrappers and SB3's Atari pieces; false when `name` is none of them.
+bool translate_image_wrapper(const std::string& name, const ClassUse& use, YAML::Node env,
+                             std::vector<std::string>& notes) {
+  if (name == "ResizeObservation" || name == "YAMLCompatResizeObservation") {
+    // Gymnasium 0.29 takes one number or a pair, 1.0 a tuple, which the current zoo passes
+    // through rl_zoo3.wrappers.YAMLCompatResizeObservation as a list.
+    only_kwargs(use, {"shape"});
+    if (!use.kwargs.has("shape")) use.at.fail(use.name + " needs shape");
+    YAML::Node w = wrapper("ResizeObservation");
+    w["shape"] = use.kwargs.child("shape").yaml();
+    env["wrappers"].push_back(w);
+  } else if (name == "GrayScaleObservation" || name == "GrayscaleObservation") {
+    // Gymnasium 0.29's GrayScaleObservation (the zoo's path) calls OpenCV; 1.0's
+    // GrayscaleObservation weighs in float.
+    only_kwargs(use, {"keep_dim"});
+    YAML::Node w = wrapper("GrayscaleObservation");
+    w["keep_dim"] = bool_kwarg(use, "keep_dim", false);
+    w["weights"] = name == "GrayScaleObservation" ? "opencv" : "gymnasium";
+    env["wrappers"].push_back(w);
+  } else if (name == "FrameSkip" || name == "MaxAndSkipEnv") {
+    only_kwargs(use, {"skip"});
+    YAML::Node w = wrapper(name == "FrameSkip" ? "FrameSkip" : "MaxAndSkip");
+    w["skip"] = int_kwarg(use, "skip", 4);
+    env["wrappers"].push_back(w);
+  } else if (name == "NoopResetEnv") {
+    only_kwargs(use, {"noop_max"});
+    YAML::Node w = wrapper("NoopReset");
+    w["noop_max"] = int_kwarg(use, "noop_max", 30);
+    env["wrappers"].push_back(w);
+  } else if (name == "ClipRewardEnv") {
+    only_kwargs(use, {});
+    YAML::Node w = wrapper("TransformReward");
+    w["sign"] = true;
+    env["wrappers"].push_back(w);
+  } else if (name == "WarpFrame") {
+    only_kwargs(use, {"width", "height"});
+    warp_frame(env, int_kwarg(use, "height", 84), int_kwarg(use, "width", 84));
+  } else if (name == "AtariWrapper") {
+    atari_wrapper(use, env, notes);
+  } else {
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void translate_env_wrappers(const ConfigNode& env_wrapper, YAML::Node env, int registered_limit,
@@ -92,11 +189,11 @@ void translate_env_wrappers(const ConfigNode& env_wrapper, YAML::Node env, int r
       for (const char* key : {"min_action", "max_action"})
         if (use.kwargs.has(key)) w[key] = use.kwargs.child(key).yaml();
       env["wrappers"].push_back(w);
-    } else {
+    } else if (!translate_image_wrapper(name, use, env, notes)) {
       use.at.fail("env_wrapper " + use.name +
-                  ": rlrun translates TimeLimit, TimeFeatureWrapper, "
-                  "ClipAction and RescaleAction (docs/zoo.md); add an rlrun wrapper to "
-                  "env.wrappers by hand for others");
+                  ": rlrun translates TimeLimit, TimeFeatureWrapper, ClipAction, RescaleAction, "
+                  "ResizeObservation, GrayScaleObservation, FrameSkip, AtariWrapper and its "
+                  "pieces (docs/zoo.md); add an rlrun wrapper to env.wrappers by hand for others");
     }
   }
   if (env["wrappers"]) env["wrappers"].SetStyle(YAML::EmitterStyle::Flow);
