@@ -14,6 +14,7 @@
 
 #include "fakes/constant_env.hpp"
 #include "nn/grad_check.hpp"
+#include "nn/nature_cnn_reference.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/dqn/exploration_schedule.hpp"
 #include "rlrun/env/vec_env.hpp"
@@ -171,6 +172,74 @@ TEST_CASE("DQN loss gradient w.r.t. every q_net parameter matches finite differe
   CHECK(quadratic > 0);
   CHECK(linear > 0);
   require_grad_close(analytic, numeric_gradient(double_loss, p0));
+}
+
+TEST_CASE("DQN CnnPolicy: the loss gradient reaches q_net's NatureCNN, as central differences say",
+          "[algos][dqn][cnn][gradcheck]") {
+  // SB3's CnnPolicy for DQN: q_net = NatureCNN features -> Linear(features_dim, n_actions)
+  // (net_arch []), the target network with a NatureCNN of its own. A 36x36 gray image, the
+  // smallest NatureCNN takes, channels last as Gymnasium's images.
+  DQN::Config cfg;
+  cfg.policy.features_extractor_class = FeaturesExtractor::kNatureCnn;
+  cfg.policy.features_dim = 8;
+  cfg.policy.net_arch = {};
+  cfg.off_policy.gamma = 0.9;
+  cfg.max_grad_norm = 1e9;
+  const int n_actions = 3, n = 6;
+  const AlgorithmSetup setup{Space::box(0.0f, 255.0f, {36, 36, 1}), Space::discrete(n_actions), 1,
+                             11};
+  DQN dqn(cfg, setup);
+  REQUIRE(dqn.cnn() != nullptr);
+  Rng rng(13);
+  ReplayBatch b = random_batch(rng, 36 * 36, n_actions, n);
+  for (Eigen::Index k = 0; k < b.obs.size(); ++k) {
+    b.obs.data()[k] = static_cast<float>(std::floor(rng.uniform(0.0, 256.0)));
+    b.next_obs.data()[k] = static_cast<float>(std::floor(rng.uniform(0.0, 256.0)));
+  }
+  const double loss = dqn.train_on_batch(b, 0.0f);
+  const NatureCnn cnn = *dqn.cnn();
+  const Eigen::VectorXd head = dqn.q_net().params().cast<double>();
+  // The Huber loss of the online network in double, its features from the reference CNN
+  // (torch's tensors), the targets as DQN computed them from the target network.
+  auto double_loss = [&](const NatureCnn& net) {
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const Eigen::VectorXd q =
+          mlp_forward(dqn.q_net(), head, test::reference_features(net, b.obs.col(j)));
+      const double d = q(static_cast<int>(b.actions(0, j))) - dqn.td_targets()(j);
+      sum += std::abs(d) < 1.0 ? 0.5 * d * d : std::abs(d) - 0.5;
+    }
+    return sum / n;
+  };
+  CHECK(double_loss(cnn) == Approx(loss).epsilon(1e-4));
+  int checked = 0;
+  for (Eigen::Index k = 0; k < cnn.num_params(); k += cnn.num_params() / 61 + 1) {
+    NatureCnn plus = cnn, minus = cnn;
+    const float h = 1e-6f * std::max(1.0f, std::abs(cnn.params()(k)));
+    plus.params()(k) += h;
+    minus.params()(k) -= h;
+    const double numeric = (double_loss(plus) - double_loss(minus)) /
+                           (static_cast<double>(plus.params()(k)) - minus.params()(k));
+    INFO("CNN parameter " << k);
+    CHECK(cnn.grads()(k) == Approx(numeric).margin(1e-5).epsilon(1e-2));
+    ++checked;
+  }
+  CHECK(checked > 60);
+  CHECK(cnn.grads().norm() > 0.0f);
+
+  // SB3's state_dict names: each network's extractor under its own module.
+  TensorMap tensors;
+  dqn.save(tensors);
+  CHECK(tensors.at("q_net.features_extractor.cnn.0.weight").shape ==
+        std::vector<int64_t>{32, 1, 8, 8});
+  CHECK(tensors.count("q_net_target.features_extractor.linear.0.weight") == 1);
+  CHECK(tensors.at("q_net.0.weight").shape == std::vector<int64_t>{n_actions, 8});
+  DQN loaded(cfg, setup);
+  loaded.load(tensors);
+  CHECK(loaded.cnn()->params() == dqn.cnn()->params());
+  // A vector observation is refused with SB3's reason.
+  CHECK_THROWS_WITH(DQN(cfg, discrete_setup(4, 2)),
+                    Catch::Contains("you should use NatureCNN only with images"));
 }
 
 TEST_CASE(

@@ -326,6 +326,18 @@ CartPole-v1:
   const YAML::Node pole =
       translate_zoo_entry(read_zoo_entry(file, "CartPole-v1", ""), registry).experiment;
   CHECK(pole["algo"]["policy"]["net_arch"]["pi"][0].as<int>() == 64);
+  // DQN's CnnPolicy (the zoo's atari entry for dqn.yml).
+  const std::string dqn = write_file(dir, "dqn.yml", R"zoo(atari:
+  policy: 'CnnPolicy'
+  n_timesteps: !!float 1e7
+  buffer_size: 100000
+  policy_kwargs: "dict(features_extractor_kwargs=dict(features_dim=256))"
+)zoo");
+  const YAML::Node q = translate_zoo_entry(read_zoo_entry(dqn, "atari", ""), registry).experiment;
+  CHECK(q["algo"]["id"].as<std::string>() == "DQN");
+  CHECK(q["algo"]["policy"]["features_extractor_class"].as<std::string>() == "NatureCNN");
+  CHECK(q["algo"]["policy"]["net_arch"].size() == 0);
+  CHECK(q["algo"]["policy"]["features_dim"].as<int>() == 256);
 }
 
 TEST_CASE("zoo import: the image wrappers of the zoo's CarRacing and atari entries", "[zoo]") {
@@ -422,8 +434,9 @@ MountainCar-v0:
   CHECK_THAT(pendulum, !Catch::Contains(file + ":8:11"));
   const std::string sac =
       write_file(dir, "sac.yml", "Pendulum-v1:\n  n_timesteps: 1000\n  policy: 'CnnPolicy'\n");
-  CHECK_THAT(import_error(sac, "Pendulum-v1"),
-             Catch::Contains(sac + ":3:11") && Catch::Contains("built for PPO and A2C so far"));
+  CHECK_THAT(
+      import_error(sac, "Pendulum-v1"),
+      Catch::Contains(sac + ":3:11") && Catch::Contains("built for PPO, A2C and DQN so far"));
   CHECK_THAT(pendulum, Catch::Contains(file + ":9:16") &&
                            Catch::Contains("env_wrapper my_package.MyWrapper"));
   const std::string acrobot = import_error(file, "Acrobot-v1");

@@ -21,14 +21,16 @@ SplitAdam::SplitAdam(ParamBlock block, AdamConfig config, ThreadPool* pool)
     parts_[k] = Adam({sub_block(block_, param_part(block_.size, k))}, config);
 }
 
-float SplitAdam::grad_norm() const {
+double SplitAdam::grad_sum_of_squares() const {
   double sum_sq[2] = {0.0, 0.0};
   run_parts(pool_, 2, [&](int k) {
     const Part part = param_part(block_.size, k);
     sum_sq[k] = dense::sum_of_squares(part.count, block_.grad + part.begin);
   });
-  return static_cast<float>(std::sqrt(sum_sq[0] + sum_sq[1]));
+  return sum_sq[0] + sum_sq[1];
 }
+
+float SplitAdam::grad_norm() const { return static_cast<float>(std::sqrt(grad_sum_of_squares())); }
 
 void SplitAdam::step(float lr, float grad_scale) {
   run_parts(pool_, 2, [&](int k) {

@@ -23,6 +23,9 @@ class SplitAdam {
   // The L2 norm of the whole gradient: each part's sum of squares (in double, over float chunks),
   // part 0's plus part 1's.
   float grad_norm() const;
+  // The sum of squares grad_norm() takes the root of, in double: several optimizers' gradients
+  // clipped together (DQN's CNN and head) add theirs.
+  double grad_sum_of_squares() const;
   // Multiplies the gradient by grad_scale unless it is 1 (clip_grad_norm_'s coefficient), then
   // one Adam step with learning rate lr.
   void step(float lr, float grad_scale = 1.0f);

@@ -50,29 +50,6 @@ void load_mlp(Mlp& mlp, const std::string& tower, const std::string& head, const
   }
 }
 
-namespace {
-// A CnnPolicy's image, size and memory; returns the heads' input width (features_dim).
-int check_nature_cnn(ConfigProblems& out, const ActorCriticPolicyConfig& policy,
-                     const Space& observation_space) {
-  const char* key = "policy.features_extractor_class";
-  if (!policy.share_features_extractor)
-    out.push_back({"policy.share_features_extractor",
-                   "false (a NatureCNN each for the actor and the critic) is not built yet"});
-  try {
-    const ImageInput image = require_image_input(observation_space, policy.normalize_images);
-    // The linear layer dominates: the last convolution's output times features_dim, as
-    // parameters, gradients and Adam's two moments.
-    const auto flatten = static_cast<double>(NatureCnn::conv_shapes(image).back().out_size());
-    const std::string problem =
-        memory_problem(flatten * policy.features_dim * 4 * sizeof(float), "NatureCNN's weights");
-    if (!problem.empty()) out.push_back({key, problem});
-  } catch (const std::invalid_argument& e) {
-    out.push_back({key, e.what()});
-  }
-  return policy.features_dim;
-}
-}  // namespace
-
 ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t rollout_size,
                                   int64_t batch, const AlgorithmSetup& setup) {
   ConfigProblems out;
@@ -81,9 +58,13 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
   check_net_arch(out, "policy.net_arch", policy.net_arch.pi, policy.net_arch.vf);
   const int obs_dim = setup.observation_space.flat_dim();
-  int features = network_input_dim(out, setup.observation_space);
-  if (policy.features_extractor_class == FeaturesExtractor::kNatureCnn)
-    features = check_nature_cnn(out, policy, setup.observation_space);
+  if (policy.features_extractor_class == FeaturesExtractor::kNatureCnn &&
+      !policy.share_features_extractor)
+    out.push_back({"policy.share_features_extractor",
+                   "false (a NatureCNN each for the actor and the critic) is not built yet"});
+  const int features = features_extractor_output_dim(
+      out, "policy.features_extractor_class", policy.features_extractor_class, policy.features_dim,
+      policy.normalize_images, setup.observation_space);
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
   check_network_memory(out, "policy.net_arch", features, policy.net_arch.pi, head, 1,
                        static_cast<double>(batch));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "rlrun/env/image_space.hpp"
 #include "rlrun/env/observation_encoder.hpp"
 
 #include <cmath>
@@ -91,6 +92,24 @@ int network_input_dim(ConfigProblems& out, const Space& observation_space) {
     out.push_back({"id", e.what()});
     return observation_space.flat_dim();
   }
+}
+
+int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
+                                  FeaturesExtractor extractor, int features_dim,
+                                  bool normalize_images, const Space& observation_space) {
+  if (extractor == FeaturesExtractor::kFlatten) return network_input_dim(out, observation_space);
+  try {
+    const ImageInput image = require_image_input(observation_space, normalize_images);
+    // The linear layer dominates: the last convolution's output times features_dim, as
+    // parameters, gradients and Adam's two moments.
+    const auto flatten = static_cast<double>(NatureCnn::conv_shapes(image).back().out_size());
+    const std::string problem =
+        memory_problem(flatten * features_dim * 4 * sizeof(float), "NatureCNN's weights");
+    if (!problem.empty()) out.push_back({key, problem});
+  } catch (const std::invalid_argument& e) {
+    out.push_back({key, e.what()});
+  }
+  return features_dim;
 }
 
 }  // namespace rlrun

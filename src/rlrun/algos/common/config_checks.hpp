@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rlrun/algos/algorithm.hpp"
+#include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/core/config_checks.hpp"
 
 namespace rlrun {
@@ -47,5 +48,12 @@ void check_use_sde(ConfigProblems& out, bool use_sde, const AlgorithmSetup& setu
 // Discrete values, Dict keys concatenated); when the space has too many features, the problem
 // is added under `id` and the flat size returned so that later checks can still run.
 int network_input_dim(ConfigProblems& out, const Space& observation_space);
+
+// What the heads read after SB3's features extractor: network_input_dim for FlattenExtractor;
+// for NatureCNN, features_dim, with the image checked (SB3's message under `key`) and the
+// CNN's weights checked against memory.
+int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
+                                  FeaturesExtractor extractor, int features_dim,
+                                  bool normalize_images, const Space& observation_space);
 
 }  // namespace rlrun

@@ -17,5 +17,8 @@ inline constexpr uint64_t kSampleStream = 0x14057b7ef767814fULL;
 // SAC's and TQC's reparameterisation noise in gradient steps, and their predict() samples.
 inline constexpr uint64_t kTrainStream = 0x9e3779b97f4a7c15ULL;
 inline constexpr uint64_t kPredictStream = 0xda942042e4dd58b5ULL;
+// The initial weights of a features extractor an off-policy algorithm adds to its networks
+// (DQN's NatureCNN), so that choosing one leaves the heads' initial weights unchanged.
+inline constexpr uint64_t kFeaturesExtractorInitStream = 0x2b992ddfa23249d7ULL;
 
 }  // namespace rlrun

@@ -18,6 +18,7 @@
 #include "rlrun/algos/dqn/q_network.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/nature_cnn.hpp"
 #include "rlrun/nn/split_adam.hpp"
 #include "rlrun/nn/split_mlp.hpp"
 
@@ -82,7 +83,8 @@ class DQN : public OffPolicyAlgorithm {
                Eigen::MatrixXf& actions) override;
   // Tensors `q_net.<i>.weight/bias`, `q_net_target.<i>.weight/bias` (SB3's policy state_dict
   // without its `q_net.` / `q_net_target.` module prefix) and the scalar `exploration_rate`
-  // (SB3 saves it with the model; optional on load).
+  // (SB3 saves it with the model; optional on load). A CnnPolicy's extractors under SB3's own
+  // names: `q_net.features_extractor.cnn.0.weight`, ..., `q_net_target.features_extractor...`.
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
 
@@ -106,6 +108,8 @@ class DQN : public OffPolicyAlgorithm {
     return q_net_.net();
   }
   const Mlp& q_net() const { return q_net_.net(); }
+  // The online network's NatureCNN (CnnPolicy), or null.
+  const NatureCnn* cnn() const { return use_cnn_ ? &cnn_ : nullptr; }
   Mlp& q_net_target() { return q_net_target_.net(); }
   const Mlp& q_net_target() const { return q_net_target_.net(); }
   double exploration_rate() const { return exploration_rate_; }
@@ -117,6 +121,10 @@ class DQN : public OffPolicyAlgorithm {
   // SB3 DQN._on_step: the target update and the exploration schedule.
   void on_step(Logger* logger) override;
   void random_actions(Eigen::Index n, Eigen::MatrixXf& actions);
+  // What a Q-network's MLP reads of encoded observations: the observations themselves, or the
+  // features of that network's NatureCNN (SB3 QNetwork.extract_features).
+  Eigen::Ref<const Eigen::MatrixXf> features(NatureCnn& cnn,
+                                             const Eigen::Ref<const Eigen::MatrixXf>& obs);
 
   Config config_;
   float action_start_ = 0.0f;  // Discrete(n, start): env action = start + Q-network index
@@ -128,6 +136,13 @@ class DQN : public OffPolicyAlgorithm {
   bool act_net_stale_ = false;
   // SB3 2.x DQNPolicy: Adam over q_net's parameters only, torch defaults (eps 1e-8).
   SplitAdam optimizer_;
+  // CnnPolicy: q_net's and q_net_target's own NatureCNNs (SB3's make_q_net builds an extractor
+  // for each), the acting copy, and Adam over the online CNN — SB3's one optimizer over
+  // q_net.parameters(), kept as two whose gradients are clipped together.
+  bool use_cnn_ = false;
+  NatureCnn cnn_, cnn_target_, act_cnn_;
+  SplitAdam cnn_optimizer_;
+  Eigen::MatrixXf grad_features_;  // dL/d(CNN features), features_dim x batch
   LinearDecay exploration_schedule_;
   double exploration_rate_ = 0.0;  // SB3 starts at 0 and sets it in the first _on_step
   int64_t n_calls_ = 0;

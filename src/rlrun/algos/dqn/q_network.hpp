@@ -1,14 +1,17 @@
 #pragma once
-// SB3's QNetwork for MlpPolicy (stable_baselines3/dqn/policies.py): the flattened observation
-// through create_mlp(features_dim, n_actions, net_arch, activation_fn) -> one Q-value per
-// action. Default net_arch [64, 64] and nn.ReLU. SB3 never calls init_weights on it, so the
-// layers keep torch's default nn.Linear init.
+// SB3's QNetwork (stable_baselines3/dqn/policies.py): the features of the observation through
+// create_mlp(features_dim, n_actions, net_arch, activation_fn) -> one Q-value per action.
+// Default net_arch [64, 64] and nn.ReLU. The features are the flattened observation (MlpPolicy)
+// or a NatureCNN's (CnnPolicy: `features_extractor_class: NatureCNN`, for which SB3's default
+// net_arch is [] — write it, as for PPO). SB3 never calls init_weights on it, so the layers,
+// convolutions included, keep torch's default init.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
+#include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/mlp.hpp"
 #include "rlrun/rng.hpp"
@@ -18,11 +21,21 @@ namespace rlrun {
 struct QNetworkConfig {
   std::vector<int> net_arch = {64, 64};          // hidden layer sizes
   Activation activation_fn = Activation::kReLU;  // SB3 QNetwork default nn.ReLU
+  // SB3 policy_kwargs: features_extractor_class (and features_extractor_kwargs' features_dim),
+  // normalize_images. The online and target networks have a NatureCNN each (make_q_net).
+  FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
+  int features_dim = 512;
+  bool normalize_images = true;
 
   template <class V>
   void visit(V& v) {
     v("net_arch", net_arch, "hidden layer sizes of the Q-network", layer_width());
     v("activation_fn", activation_fn, kActivationFnDoc);
+    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
+    v("features_dim", features_dim,
+      "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
+    v("normalize_images", normalize_images,
+      "divide image observations by 255 before NatureCNN (SB3 normalize_images)");
   }
 };
 

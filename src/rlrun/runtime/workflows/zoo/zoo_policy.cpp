@@ -153,9 +153,9 @@ bool check_policy_name(const ConfigNode& policy, const std::string& algorithm) {
   const std::string name = policy.as_string();
   if (name == "MlpPolicy" || name == "MultiInputPolicy") return false;
   if (name == "CnnPolicy") {
-    if (algorithm == "PPO" || algorithm == "A2C") return true;
+    if (algorithm == "PPO" || algorithm == "A2C" || algorithm == "DQN") return true;
     policy.fail(
-        "CnnPolicy: rlrun's convolutional policy (NatureCNN) is built for PPO and A2C "
+        "CnnPolicy: rlrun's convolutional policy (NatureCNN) is built for PPO, A2C and DQN "
         "so far, not yet for " +
         algorithm);
   }
