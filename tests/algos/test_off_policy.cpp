@@ -130,7 +130,9 @@ struct LoopTrace {
 class LoopProbe : public OffPolicyAlgorithm {
  public:
   LoopProbe(const OffPolicyConfig& config, const AlgorithmSetup& setup, LoopTrace& trace)
-      : OffPolicyAlgorithm("LoopProbe", config, setup, 1, {0, "replay_rng"}), trace_(trace) {}
+      : OffPolicyAlgorithm("LoopProbe", config, setup, 1, {0, "replay_rng"},
+                           /*normalize_images=*/true),
+        trace_(trace) {}
   void select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixXf& env_actions,
                       Eigen::MatrixXf& buffer_actions) override {
     trace_.actions.emplace_back(num_timesteps(), warmup);

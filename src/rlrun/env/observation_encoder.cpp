@@ -1,5 +1,6 @@
 #include "rlrun/env/observation_encoder.hpp"
 
+#include "rlrun/env/image_space.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 
 #include <algorithm>
@@ -15,51 +16,57 @@ namespace {
 constexpr int64_t kMaxFeatures = int64_t{1} << 24;
 }  // namespace
 
-ObservationEncoder::ObservationEncoder(const Space& observation_space) {
+ObservationEncoder::ObservationEncoder(const Space& observation_space, bool normalize_images) {
   if (observation_space.is_dict()) {
     for (size_t i = 0; i < observation_space.keys().size(); ++i)
-      add_space(observation_space.subspaces()[i], observation_space.keys()[i]);
+      add_space(observation_space.subspaces()[i], observation_space.keys()[i], normalize_images);
   } else {
-    add_space(observation_space, "");
+    add_space(observation_space, "", normalize_images);
   }
 }
 
-void ObservationEncoder::add_space(const Space& space, const std::string& key) {
+void ObservationEncoder::add_space(const Space& space, const std::string& key,
+                                   bool normalize_images) {
   const int index = static_cast<int>(spaces_.size());
   spaces_.emplace_back(key, space.describe());
-  const auto add = [&](int width, bool one_hot, int64_t start, int entry) {
+  const auto add = [&](int width, bool one_hot, bool image, int64_t start, int entry) {
     if (features_dim_ + static_cast<int64_t>(width) > kMaxFeatures)
       throw std::invalid_argument("observation space " + space.describe() +
                                   " encodes to more than " + std::to_string(kMaxFeatures) +
                                   " network inputs");
-    // Consecutive copied floats form one run.
-    if (!one_hot && !pieces_.empty() && !pieces_.back().one_hot &&
+    // Consecutive floats copied alike form one run.
+    const bool plain = !one_hot && !image;
+    if (plain && !pieces_.empty() && !pieces_.back().one_hot && !pieces_.back().image &&
         pieces_.back().in + pieces_.back().width == input_dim_) {
       pieces_.back().width += width;
     } else {
-      pieces_.push_back({input_dim_, features_dim_, width, one_hot, start, entry, index});
+      pieces_.push_back({input_dim_, features_dim_, width, one_hot, image, start, entry, index});
     }
     input_dim_ += one_hot ? 1 : width;
     features_dim_ += width;
-    identity_ = identity_ && !one_hot;
+    identity_ = identity_ && plain;
   };
   switch (space.kind()) {
     case SpaceKind::kBox:
+      if (space.flat_dim() > 0)
+        add(space.flat_dim(), false, normalize_images && image_input(space, true).has_value(), 0,
+            0);
+      break;
     case SpaceKind::kMultiBinary:
-      if (space.flat_dim() > 0) add(space.flat_dim(), false, 0, 0);
+      if (space.flat_dim() > 0) add(space.flat_dim(), false, false, 0, 0);
       break;
     case SpaceKind::kDiscrete:
       if (space.n() > kMaxFeatures)
         throw std::invalid_argument("observation space " + space.describe() +
                                     " is too large for a one-hot network input");
-      add(static_cast<int>(space.n()), true, space.start(), 0);
+      add(static_cast<int>(space.n()), true, false, space.start(), 0);
       break;
     case SpaceKind::kMultiDiscrete:
       for (size_t i = 0; i < space.nvec().size(); ++i) {
         if (space.nvec()[i] > kMaxFeatures)
           throw std::invalid_argument("observation space " + space.describe() +
                                       " is too large for a one-hot network input");
-        add(static_cast<int>(space.nvec()[i]), true, 0, static_cast<int>(i));
+        add(static_cast<int>(space.nvec()[i]), true, false, 0, static_cast<int>(i));
       }
       break;
     case SpaceKind::kDict:
@@ -81,6 +88,10 @@ void ObservationEncoder::encode_sample(std::span<const float> obs, std::span<flo
         " floats, expected " + std::to_string(input_dim_) + " -> " + std::to_string(features_dim_));
   for (const Piece& p : pieces_) {
     float* dst = out.data() + p.out;
+    if (p.image) {  // SB3 preprocess_obs: obs.float() / 255.0, a float32 division
+      for (int k = 0; k < p.width; ++k) dst[k] = obs[static_cast<size_t>(p.in + k)] / 255.0f;
+      continue;
+    }
     if (!p.one_hot) {
       std::copy_n(obs.data() + p.in, p.width, dst);
       continue;
@@ -98,6 +109,12 @@ std::string ObservationEncoder::export_to(PolicyGraph& graph, const std::string&
   if (identity_) return obs;
   std::vector<std::string> parts;
   for (const Piece& p : pieces_) {
+    if (p.image) {
+      parts.push_back(graph.affine(graph.slice(obs, p.in, p.width), Eigen::VectorXf::Zero(p.width),
+                                   Eigen::VectorXf::Constant(p.width, 1.0f / 255.0f),
+                                   Eigen::VectorXf::Zero(p.width)));
+      continue;
+    }
     if (!p.one_hot) {
       parts.push_back(graph.slice(obs, p.in, p.width));
       continue;
@@ -111,6 +128,10 @@ void ObservationEncoder::decode_sample(std::span<const float> features,
                                        std::span<float> obs) const {
   for (const Piece& p : pieces_) {
     const float* src = features.data() + p.out;
+    if (p.image) {
+      for (int k = 0; k < p.width; ++k) obs[static_cast<size_t>(p.in + k)] = src[k] * 255.0f;
+      continue;
+    }
     if (!p.one_hot) {
       std::copy_n(src, p.width, obs.data() + p.in);
       continue;

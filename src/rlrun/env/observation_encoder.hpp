@@ -3,7 +3,9 @@
 // by its FlattenExtractor / CombinedExtractor for vector keys (common/torch_layers.py), on
 // rlrun's flat observations (rlrun/space.hpp lays a Dict out as its keys' values in sorted
 // order):
-//   Box              as it is (flattened)
+//   Box              as it is (flattened); an image divided by 255 with normalize_images
+//                    (SB3's is_image_space: 3 dimensions, bounds 0-255 — preprocess_obs does
+//                    it for every policy, MlpPolicy too; a NatureCNN divides its own input)
 //   MultiBinary(n)   its n bits as floats
 //   Discrete(n)      one-hot of n floats (value - start: SB3 has no start, Gymnasium does)
 //   MultiDiscrete    the one-hots of its entries, concatenated (n_0 + n_1 + ... floats)
@@ -32,7 +34,9 @@ class PolicyGraph;
 class ObservationEncoder {
  public:
   ObservationEncoder() = default;
-  explicit ObservationEncoder(const Space& observation_space);
+  // normalize_images: SB3's policy keyword (true by default there); off for wrappers and for a
+  // policy whose NatureCNN reads the pixels.
+  explicit ObservationEncoder(const Space& observation_space, bool normalize_images = false);
 
   // Floats per observation in (the space's flat_dim) and per network input out (SB3's
   // features_dim).
@@ -72,11 +76,12 @@ class ObservationEncoder {
     int out = 0;    // first float in the network input
     int width = 0;  // floats copied, or one-hot width (the category count)
     bool one_hot = false;
-    int64_t start = 0;  // Discrete's start (the value of one-hot slot 0)
-    int entry = 0;      // index of the value inside its space, for messages
-    int space = 0;      // index into spaces_
+    bool image = false;  // copied divided by 255 (normalize_images)
+    int64_t start = 0;   // Discrete's start (the value of one-hot slot 0)
+    int entry = 0;       // index of the value inside its space, for messages
+    int space = 0;       // index into spaces_
   };
-  void add_space(const Space& space, const std::string& key);
+  void add_space(const Space& space, const std::string& key, bool normalize_images);
   [[noreturn]] void fail(const Piece& piece, float value) const;
 
   std::vector<Piece> pieces_;

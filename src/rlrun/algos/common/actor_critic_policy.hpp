@@ -72,8 +72,7 @@ struct ActorCriticPolicyConfig {
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
     v("features_dim", features_dim,
       "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
-    v("normalize_images", normalize_images,
-      "divide image observations by 255 before the CNN (SB3 preprocess_obs)");
+    v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("share_features_extractor", share_features_extractor,
       "actor and critic read one features extractor (SB3's default for PPO and A2C)");
   }

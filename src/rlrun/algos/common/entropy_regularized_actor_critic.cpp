@@ -31,7 +31,7 @@ EntropyRegularizedActorCritic::EntropyRegularizedActorCritic(
     const EntropyRegularizedPolicyConfig& policy, const AlgorithmSetup& setup, int critic_outputs)
     : OffPolicyAlgorithm(id, config.off_policy, setup,
                          BoxActionSelection::checked_action_dim(setup, id),
-                         {kSampleStream, "sample_rng"}),
+                         {kSampleStream, "sample_rng"}, policy.normalize_images),
       config_(config),
       action_dim_(setup.action_space.flat_dim()),
       critic_(features_dim(), action_dim_, policy.net_arch.qf, policy.activation_fn,

@@ -23,6 +23,7 @@
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/entropy_coefficient.hpp"
+#include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/common/sac_actor.hpp"
@@ -38,10 +39,11 @@ struct EntropyRegularizedPolicyConfig {
   NetArchPiQf net_arch = {{256, 256}, {256, 256}};  // actor (pi), each critic (qf)
   Activation activation_fn = Activation::kReLU;     // SB3 default nn.ReLU
   int n_critics = 2;                                // critic networks
-  double log_std_init = -3.0;  // gSDE: initial log std (SB3's SAC Actor default)
-  bool full_std = true;        // gSDE: a std per (latent feature, action)
-  bool use_expln = false;      // gSDE: expln instead of exp for the std
-  double clip_mean = 2.0;      // gSDE: Hardtanh bound on the mean (0 = none)
+  double log_std_init = -3.0;    // gSDE: initial log std (SB3's SAC Actor default)
+  bool full_std = true;          // gSDE: a std per (latent feature, action)
+  bool use_expln = false;        // gSDE: expln instead of exp for the std
+  double clip_mean = 2.0;        // gSDE: Hardtanh bound on the mean (0 = none)
+  bool normalize_images = true;  // SB3: image observations / 255 before the networks
 
   // The actor's gSDE options (SB3 Actor keyword arguments).
   SacActorSde actor_sde(bool use_sde) const;
@@ -59,6 +61,7 @@ struct EntropyRegularizedPolicyConfig {
     v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
     v("clip_mean", clip_mean, "gSDE (use_sde): clip the mean to [-clip_mean, clip_mean] (0: off)",
       in_range(0, 1e6));
+    v("normalize_images", normalize_images, kNormalizeImagesDoc);
   }
 };
 

@@ -21,6 +21,10 @@ inline constexpr const char* kFeaturesExtractorDoc =
     "FlattenExtractor (SB3's MlpPolicy / MultiInputPolicy) or NatureCNN (SB3's CnnPolicy, for "
     "image observations; SB3's default net_arch for it is [])";
 
+inline constexpr const char* kNormalizeImagesDoc =
+    "divide image observations (a 3-D Box of 0-255) by 255 before the networks, NatureCNN or "
+    "flatten (SB3 normalize_images)";
+
 inline const char* features_extractor_name(FeaturesExtractor f) {
   return f == FeaturesExtractor::kNatureCnn ? "NatureCNN" : "FlattenExtractor";
 }

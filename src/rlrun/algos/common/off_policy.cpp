@@ -120,15 +120,15 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
 
 OffPolicyAlgorithm::OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config,
                                        const AlgorithmSetup& setup, int buffer_action_dim,
-                                       const ReplayStream& replay)
+                                       const ReplayStream& replay, bool normalize_images)
     : setup_(setup),
       id_(std::move(id)),
       config_(config),
       buffer_action_dim_(buffer_action_dim),
       replay_rng_(setup.seed ^ replay.stream),
-      batch_obs_(setup.observation_space),
-      batch_next_obs_(setup.observation_space),
-      acting_obs_(setup.observation_space) {
+      batch_obs_(setup.observation_space, normalize_images),
+      batch_next_obs_(setup.observation_space, normalize_images),
+      acting_obs_(setup.observation_space, normalize_images) {
   valid_config(config, id_);
   if (setup.n_envs < 1) throw std::invalid_argument(id_ + ": n_envs must be >= 1");
   checkpoint("num_timesteps", num_timesteps_);

@@ -159,8 +159,10 @@ class OffPolicyAlgorithm : public ResumableAlgorithm {
     std::string key;
   };
   // `config` and `setup` as the algorithm's constructor validated them (valid_config).
+  // normalize_images: the policy's (SB3 preprocess_obs divides image observations by 255 before
+  // a flatten extractor; false when a NatureCNN reads the pixels and divides them itself).
   OffPolicyAlgorithm(std::string id, const OffPolicyConfig& config, const AlgorithmSetup& setup,
-                     int buffer_action_dim, const ReplayStream& replay);
+                     int buffer_action_dim, const ReplayStream& replay, bool normalize_images);
 
   // SB3 train(gradient_steps, batch_size): `gradient_steps` updates, the means logged.
   virtual void train(int gradient_steps, Logger* logger) = 0;

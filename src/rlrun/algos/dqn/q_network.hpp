@@ -34,8 +34,7 @@ struct QNetworkConfig {
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
     v("features_dim", features_dim,
       "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
-    v("normalize_images", normalize_images,
-      "divide image observations by 255 before NatureCNN (SB3 normalize_images)");
+    v("normalize_images", normalize_images, kNormalizeImagesDoc);
   }
 };
 

@@ -36,7 +36,7 @@ ConfigProblems TD3::check(const Config& config, const AlgorithmSetup& setup) {
 TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
     : OffPolicyAlgorithm(id, valid_config(config, id).off_policy, setup,
                          BoxActionSelection::checked_action_dim(setup, id),
-                         {kSampleStream, "sample_rng"}),
+                         {kSampleStream, "sample_rng"}, config.policy.normalize_images),
       config_(config),
       action_dim_(setup.action_space.flat_dim()),
       smoothing_rng_(setup.seed ^ kSmoothingStream),

@@ -18,6 +18,7 @@
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
+#include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/td3/td3_actor.hpp"
@@ -30,13 +31,15 @@ namespace rlrun {
 struct Td3PolicyConfig {
   NetArchPiQf net_arch = {{400, 300}, {400, 300}};  // actor (pi), each critic (qf)
   Activation activation_fn = Activation::kReLU;     // SB3 default nn.ReLU
-  int n_critics = 2;  // number of Q-networks; targets use their minimum
+  int n_critics = 2;             // number of Q-networks; targets use their minimum
+  bool normalize_images = true;  // SB3: image observations / 255 before the networks
 
   template <class V>
   void visit(V& v) {
     v("net_arch", net_arch, kNetArchPiQfDoc, layer_width());
     v("activation_fn", activation_fn, kActivationFnDoc);
     v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
+    v("normalize_images", normalize_images, kNormalizeImagesDoc);
   }
 };
 

@@ -31,7 +31,7 @@ class PolicyTranslation {
         policy[key] = activation(value);
       } else if ((key == "share_features_extractor" || key == "normalize_images") &&
                  listed(keys_, key)) {
-        // The CNN policies' switches (PPO, A2C).
+        // The policies' image switches (share_features_extractor: PPO and A2C).
         if (value.kind != PyValue::Kind::kBool)
           fail("policy_kwargs " + key + " must be True or False, found " + value.describe());
         policy[key] = to_yaml(value);
