@@ -147,3 +147,30 @@ TEST_CASE("cli: DQN trains a NatureCNN on stacked frames, the same on 1 and 2 th
       run_rlrun("export --model " + model + " --format onnx --output " + dir / "m.onnx");
   CHECK(exported.exit_code != 0);
 }
+
+TEST_CASE(
+    "cli: PPO with share_features_extractor false trains two CNNs, the same on 1 and 2 "
+    "threads",
+    "[cli][cnn]") {
+  TempDir dir("cnn_separate");
+  const std::string config = dir / "separate.yaml";
+  std::ofstream(config) << "run: {name: separate, seed: 4, total_timesteps: 256, out_dir: "
+                        << dir.str() << "/runs}\n"
+                        << "env:\n  id: CartPole-v1\n  n_envs: 2\n  wrappers: " << kPixels << "\n"
+                        << "algo: {id: PPO, n_steps: 64, batch_size: 32, policy: "
+                           "{features_extractor_class: NatureCNN, features_dim: 32, net_arch: [], "
+                           "share_features_extractor: false}}\n";
+  const std::string model = dir / "runs/separate/seed4/model.zip";
+  const auto one = run_rlrun("--threads 1 train " + config);
+  INFO(one.output);
+  REQUIRE(one.exit_code == 0);
+  const std::string first = dir / "one.zip";
+  std::filesystem::copy_file(model, first);
+  REQUIRE(run_rlrun("--threads 2 train " + config).exit_code == 0);
+  check_same_tensors(first, model);
+  const ModelFile file = read_model(model);
+  CHECK(file.tensors.at("pi_features_extractor.cnn.0.weight").shape ==
+        std::vector<int64_t>{32, 4, 8, 8});
+  CHECK(file.tensors.count("vf_features_extractor.cnn.0.weight") == 1);
+  CHECK(run_rlrun("eval --model " + model + " --episodes 1").exit_code == 0);
+}

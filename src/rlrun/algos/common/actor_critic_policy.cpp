@@ -58,10 +58,6 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
   check_net_arch(out, "policy.net_arch", policy.net_arch.pi, policy.net_arch.vf);
   const int obs_dim = setup.observation_space.flat_dim();
-  if (policy.features_extractor_class == FeaturesExtractor::kNatureCnn &&
-      !policy.share_features_extractor)
-    out.push_back({"policy.share_features_extractor",
-                   "false (a NatureCNN each for the actor and the critic) is not built yet"});
   const int features = features_extractor_output_dim(
       out, "policy.features_extractor_class", policy.features_extractor_class, policy.features_dim,
       policy.normalize_images, setup.observation_space);
@@ -133,29 +129,33 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
   // MlpExtractor's policy_net (net_arch.pi) + action_net, value_net (net_arch.vf) + value head.
   int obs_dim = encoder_.features_dim();
   if (config.features_extractor_class == FeaturesExtractor::kNatureCnn) {
-    if (!config.share_features_extractor)
-      throw std::invalid_argument(
-          "share_features_extractor: false (a NatureCNN each for the actor and the critic) is "
-          "not built yet; PPO and A2C share one, SB3's default");
     use_cnn_ = true;
+    separate_value_cnn_ = !config.share_features_extractor;
     cnn_ = NatureCnn(require_image_input(observation_space, config.normalize_images),
                      config.features_dim, config.normalize_images);
+    if (separate_value_cnn_) vf_cnn_ = cnn_;
     obs_dim = config.features_dim;
-    // SB3 module_gains: the features extractor first, with gain sqrt(2).
-    if (config.ortho_init)
-      cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
-    else
-      cnn_.init_torch_default(init_rng);
   }
   actor_ = Mlp(obs_dim, config.net_arch.pi, action_net_size(action_space), act);
   critic_ = Mlp(obs_dim, config.net_arch.vf, 1, act);
   if (config.ortho_init) {
-    // SB3 policies.py: module_gains = {mlp_extractor: sqrt(2), action_net: 0.01, value_net: 1}.
+    // SB3 policies.py _build: module_gains = {features_extractor: sqrt(2), mlp_extractor:
+    // sqrt(2), action_net: 0.01, value_net: 1}, in that order; without a shared extractor the
+    // features_extractor entry goes and pi_features_extractor, vf_features_extractor (sqrt(2))
+    // come last.
+    if (use_cnn_ && !separate_value_cnn_) cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
     actor_.init_orthogonal(init_rng, std::sqrt(2.0f), 0.01f);
     critic_.init_orthogonal(init_rng, std::sqrt(2.0f), 1.0f);
+    if (separate_value_cnn_) {
+      cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
+      vf_cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
+    }
   } else {
-    // SB3 ActorCriticPolicy._build skips init_weights: every Linear (towers, action_net,
-    // value_net) keeps torch's default init; log_std is still log_std_init (below).
+    // SB3 ActorCriticPolicy._build skips init_weights: every module keeps torch's default
+    // init, drawn as it is made: the extractors (features/pi, then vf), then the towers,
+    // action_net, value_net; log_std is still log_std_init (below).
+    if (use_cnn_) cnn_.init_torch_default(init_rng);
+    if (separate_value_cnn_) vf_cnn_.init_torch_default(init_rng);
     actor_.init_torch_default(init_rng);
     critic_.init_torch_default(init_rng);
   }
@@ -218,7 +218,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
       sde_.log_prob(actions, log_probs);
       break;
   }
-  values = critic_.forward(features);
+  values = critic_.forward(value_features(obs, features));
 }
 
 void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
@@ -250,6 +250,10 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                        Eigen::RowVectorXf& values) {
+  if (separate_value_cnn_) {
+    values = critic_.forward(vf_cnn_.forward(encoder_(obs)));
+    return;
+  }
   values = critic_.forward(features(obs));
 }
 
@@ -257,6 +261,15 @@ Eigen::Ref<const Eigen::MatrixXf> ActorCriticPolicy::features(
     const Eigen::Ref<const Eigen::MatrixXf>& obs) {
   if (!use_cnn_) return encoder_(obs);
   return cnn_.forward(encoder_(obs));
+}
+
+Eigen::Ref<const Eigen::MatrixXf> ActorCriticPolicy::value_features(
+    const Eigen::Ref<const Eigen::MatrixXf>& obs,
+    const Eigen::Ref<const Eigen::MatrixXf>& actor_features) {
+  if (!separate_value_cnn_) return actor_features;
+  // A CNN's input is the observation itself (the encoder passes images through), so the
+  // actor's encoding is still valid here.
+  return vf_cnn_.forward(encoder_(obs));
 }
 
 void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
@@ -271,6 +284,7 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
   // Actor and critic are independent: the critic runs on the second core (bit-identical
   // results either way).
   const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
+  const Eigen::Ref<const Eigen::MatrixXf> critic_features = value_features(obs, features);
   auto actor_part = [&] {
     const Eigen::MatrixXf& head = actor_.forward(features);
     switch (head_) {
@@ -297,7 +311,7 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
         break;
     }
   };
-  auto critic_part = [&] { values = critic_.forward(features); };
+  auto critic_part = [&] { values = critic_.forward(critic_features); };
   run_pair(n, actor_part, critic_part);
 }
 
@@ -330,7 +344,10 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
     critic_.backward(grad_values, use_cnn_ ? &grad_features_critic_ : nullptr);
   };
   run_pair(grad_values.size(), actor_part, critic_part);
-  if (use_cnn_) {
+  if (separate_value_cnn_) {
+    cnn_.backward(grad_features_);
+    vf_cnn_.backward(grad_features_critic_);
+  } else if (use_cnn_) {
     // The shared extractor gets both losses' gradients, as autograd sums them.
     grad_features_ += grad_features_critic_;
     cnn_.backward(grad_features_);
@@ -350,6 +367,7 @@ void ActorCriticPolicy::run_pair(Eigen::Index batch, const std::function<void()>
 
 void ActorCriticPolicy::zero_grad() {
   if (use_cnn_) cnn_.zero_grad();
+  if (separate_value_cnn_) vf_cnn_.zero_grad();
   actor_.zero_grad();
   critic_.zero_grad();
   log_std_grad_.setZero();
@@ -357,9 +375,10 @@ void ActorCriticPolicy::zero_grad() {
 }
 
 std::vector<ParamBlock> ActorCriticPolicy::param_blocks() {
-  // SB3's parameter order: the features extractor, the towers and heads, log_std.
+  // SB3's parameter order: the features extractor(s), the towers and heads, log_std.
   std::vector<ParamBlock> blocks;
   if (use_cnn_) blocks.push_back(cnn_.block());
+  if (separate_value_cnn_) blocks.push_back(vf_cnn_.block());
   blocks.push_back(actor_.block());
   blocks.push_back(critic_.block());
   if (head_ == Head::kDiagGaussian)
@@ -375,8 +394,16 @@ double ActorCriticPolicy::mean_std() const {
   return log_std_.array().exp().mean();
 }
 
+// SB3's state_dict names: features_extractor.* when shared; pi_features_extractor.* and
+// vf_features_extractor.* when not (SB3 also lists the actor's under features_extractor.*, the
+// same module twice; rlrun writes each network once).
 void ActorCriticPolicy::save(TensorMap& tensors) const {
-  if (use_cnn_) cnn_.save("features_extractor", tensors);
+  if (separate_value_cnn_) {
+    cnn_.save("pi_features_extractor", tensors);
+    vf_cnn_.save("vf_features_extractor", tensors);
+  } else if (use_cnn_) {
+    cnn_.save("features_extractor", tensors);
+  }
   save_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   save_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
   if (head_ == Head::kDiagGaussian) tensors["log_std"] = to_tensor(log_std_);
@@ -384,7 +411,12 @@ void ActorCriticPolicy::save(TensorMap& tensors) const {
 }
 
 void ActorCriticPolicy::load(const TensorMap& tensors) {
-  if (use_cnn_) cnn_.load("features_extractor", tensors);
+  if (separate_value_cnn_) {
+    cnn_.load("pi_features_extractor", tensors);
+    vf_cnn_.load("vf_features_extractor", tensors);
+  } else if (use_cnn_) {
+    cnn_.load("features_extractor", tensors);
+  }
   load_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   load_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
   if (head_ == Head::kDiagGaussian) from_tensor(tensors, "log_std", log_std_);

@@ -74,7 +74,7 @@ struct ActorCriticPolicyConfig {
       "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("share_features_extractor", share_features_extractor,
-      "actor and critic read one features extractor (SB3's default for PPO and A2C)");
+      "actor and critic read one NatureCNN (SB3's default for PPO and A2C); false: one each");
   }
 };
 
@@ -150,11 +150,15 @@ class ActorCriticPolicy {
   void set_thread_pool(ThreadPool* pool) {
     pool_ = pool;
     cnn_.set_thread_pool(pool);
+    vf_cnn_.set_thread_pool(pool);
   }
 
   const ObservationEncoder& encoder() const { return encoder_; }
-  // SB3's CnnPolicy: the shared NatureCNN, or null for the flatten extractor.
+  // SB3's CnnPolicy: the NatureCNN (the actor's, shared with the critic unless
+  // share_features_extractor is false), or null for the flatten extractor.
   const NatureCnn* cnn() const { return use_cnn_ ? &cnn_ : nullptr; }
+  // The critic's own NatureCNN when share_features_extractor is false, else null.
+  const NatureCnn* value_cnn() const { return separate_value_cnn_ ? &vf_cnn_ : nullptr; }
   const Mlp& actor() const { return actor_; }
   const Mlp& critic() const { return critic_; }
 
@@ -164,11 +168,18 @@ class ActorCriticPolicy {
   // The heads' input for a batch of observations: the encoding, through the CNN when there
   // is one (which then keeps what its backward needs).
   Eigen::Ref<const Eigen::MatrixXf> features(const Eigen::Ref<const Eigen::MatrixXf>& obs);
+  // The critic's input: `actor_features` when the extractor is shared, else the observations
+  // through the critic's own CNN (SB3 vf_features_extractor).
+  Eigen::Ref<const Eigen::MatrixXf> value_features(
+      const Eigen::Ref<const Eigen::MatrixXf>& obs,
+      const Eigen::Ref<const Eigen::MatrixXf>& actor_features);
 
   ThreadPool* pool_ = nullptr;
   ObservationEncoder encoder_;
   bool use_cnn_ = false;
   NatureCnn cnn_;
+  bool separate_value_cnn_ = false;  // share_features_extractor: false
+  NatureCnn vf_cnn_;
   Eigen::MatrixXf grad_features_, grad_features_critic_;  // dL/d(CNN features), per head
   Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;
