@@ -247,6 +247,15 @@ TEST_CASE("FrameStack layout sb3: SB3 VecFrameStack's np.concatenate on the chan
     auto [env, top] = wrapped<FrameStack>({4}, 100, config);
     CHECK(top->observation_space().shape() == std::vector<int>{12});
   }
+  SECTION("Gymnasium's FrameStackObservation: a new leading axis, copies of the first frame") {
+    auto [env, top] =
+        wrapped<FrameStackObservation>({2, 3}, 100, FrameStackObservation::Config{3, "reset"});
+    CHECK(top->observation_space().shape() == std::vector<int>{3, 2, 3});
+    std::vector<float> obs(18);
+    top->reset(1, obs);
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 6; ++i) CHECK(obs[k * 6 + i] == PixelEnv::pixel(0, i, 1));
+  }
   SECTION("channels_order last on a channels-first-looking image") {
     config.channels_order = "last";
     auto [env, top] = wrapped<FrameStack>({1, 6, 7}, 100, config);

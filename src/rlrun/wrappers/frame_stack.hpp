@@ -88,4 +88,33 @@ class FrameStack : public Wrapper {
   std::vector<float> stack_;  // n_stack * frame_dim: each part's frames, oldest first
 };
 
+// Gymnasium 1.0's FrameStackObservation under its own name and keywords: `stack_size` frames on
+// a new leading axis, `padding_type` reset (copies of the first frame, Gymnasium's default) or
+// zero.
+class FrameStackObservation : public FrameStack {
+ public:
+  struct Config {
+    int stack_size = 4;
+    std::string padding_type = "reset";
+    template <class V>
+    void visit(V& v) {
+      v("stack_size", stack_size, "number of consecutive observations stacked (oldest first)",
+        in_range(1, 1000));
+      v("padding_type", padding_type,
+        "frames before the first one after reset: reset (copies, Gymnasium's default) or zero",
+        OneOf{{"reset", "zero"}});
+    }
+  };
+  FrameStackObservation(EnvPtr inner, const Config& config)
+      : FrameStack(std::move(inner), as_frame_stack(config)) {}
+
+ private:
+  static FrameStack::Config as_frame_stack(const Config& config) {
+    FrameStack::Config c;
+    c.n_stack = config.stack_size;
+    c.padding = config.padding_type;
+    return c;
+  }
+};
+
 }  // namespace rlrun

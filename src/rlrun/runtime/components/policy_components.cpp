@@ -49,6 +49,9 @@ void add_builtin_wrappers(Registry& r) {
   r.add(make_wrapper_entry<FrameStack>("FrameStack",
                                        "the last n_stack observations stacked, oldest first "
                                        "(Gymnasium; layout sb3: SB3 VecFrameStack)"));
+  r.add(make_wrapper_entry<FrameStackObservation>(
+      "FrameStackObservation",
+      "Gymnasium 1.0's name for FrameStack: stack_size, padding_type (reset | zero)"));
   r.add(make_wrapper_entry<TransformReward>(
       "TransformReward", "reward' = clip(scale * reward + offset, clip_min, clip_max), or sign"));
   // SB3's Atari pieces that make sense without Atari, and rl-zoo's FrameSkip.
