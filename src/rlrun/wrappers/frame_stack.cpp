@@ -21,10 +21,10 @@ int FrameStack::stack_axis(const Space& box, const Config& config) {
 }
 
 int FrameStack::block_of(const Space& box, int axis) {
+  if (axis < 0) return box.flat_dim();  // a new leading axis: the whole frame
   int block = 1;
-  for (size_t d = static_cast<size_t>(std::max(axis, 0)); d < box.shape().size(); ++d)
-    block *= box.shape()[d];
-  return axis < 0 ? box.flat_dim() : block;
+  for (size_t d = static_cast<size_t>(axis); d < box.shape().size(); ++d) block *= box.shape()[d];
+  return block;
 }
 
 Space FrameStack::stacked(const Space& box, int n_stack, int axis) {

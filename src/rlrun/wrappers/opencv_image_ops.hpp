@@ -38,9 +38,42 @@ uint8_t opencv_rgb_to_gray(uint8_t r, uint8_t g, uint8_t b);
 // than 4 channels at a factor that is not an integer (OpenCV asserts cn <= 4 there).
 std::string opencv_area_resize_refusal(const ImageSize& from, int height, int width);
 
-// cv2.resize(src, (width, height), interpolation=cv2.INTER_AREA) of a channels-last uint8 image
-// of size `from` into `dst` (height * width * from.channels values). Throws
-// std::invalid_argument with opencv_area_resize_refusal's reason.
+// cv2.resize(src, (width, height), interpolation=cv2.INTER_AREA) of channels-last uint8 images
+// of size `from`, with OpenCV's path and weight tables chosen once (a wrapper resizes every
+// frame; no allocation per image).
+class OpencvAreaResize {
+ public:
+  OpencvAreaResize() = default;
+  // Throws std::invalid_argument with opencv_area_resize_refusal's reason.
+  OpencvAreaResize(const ImageSize& from, int height, int width);
+
+  // `src` (from.values() bytes) into `dst` (height * width * from.channels bytes). Throws
+  // std::invalid_argument for other sizes.
+  void operator()(std::span<const uint8_t> src, std::span<uint8_t> dst);
+
+ private:
+  // One destination index's share of a source index (OpenCV's DecimateAlpha).
+  struct AreaWeight {
+    int destination;  // times channels for columns
+    int source;       // times channels for columns
+    float alpha;
+  };
+  static std::vector<AreaWeight> area_weights(int source_size, int destination_size, int channels,
+                                              double scale);
+  void halve(std::span<const uint8_t> src, std::span<uint8_t> dst) const;
+  void average_blocks(std::span<const uint8_t> src, std::span<uint8_t> dst) const;
+  void weighted_area(std::span<const uint8_t> src, std::span<uint8_t> dst);
+
+  enum class Path { kCopy, kHalve, kBlocks, kWeighted };
+  ImageSize from_;
+  int height_ = 0, width_ = 0;
+  Path path_ = Path::kCopy;
+  int block_x_ = 1, block_y_ = 1;           // kBlocks: the whole-number factors
+  std::vector<AreaWeight> columns_, rows_;  // kWeighted: OpenCV's xtab and ytab
+  std::vector<float> row_sum_, sum_;        // kWeighted: one destination row each
+};
+
+// One image through OpencvAreaResize (tests, single use).
 void opencv_area_resize(std::span<const uint8_t> src, const ImageSize& from, int height, int width,
                         std::span<uint8_t> dst);
 

@@ -40,9 +40,11 @@ ResizeObservation::ResizeObservation(EnvPtr inner, const Config& config)
         "(height, width, channels); " +
         inner_->id() + " has " + s.describe());
   from_ = {s.shape()[0], s.shape()[1], s.shape().size() == 3 ? s.shape()[2] : 1};
-  if (const std::string refusal = opencv_area_resize_refusal(from_, height_, width_);
-      !refusal.empty())
-    throw std::invalid_argument("ResizeObservation: " + refusal);
+  try {
+    resize_ = OpencvAreaResize(from_, height_, width_);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("ResizeObservation: ") + e.what());
+  }
   std::vector<int> shape{height_, width_};
   if (s.shape().size() == 3) shape.push_back(from_.channels);
   space_ = Space::box(0.0f, 255.0f, shape);
@@ -53,7 +55,7 @@ ResizeObservation::ResizeObservation(EnvPtr inner, const Config& config)
 
 void ResizeObservation::resize(std::span<float> obs) {
   std::transform(image_.begin(), image_.end(), pixels_.begin(), opencv_pixel);
-  opencv_area_resize(pixels_, from_, height_, width_, resized_);
+  resize_(pixels_, resized_);
   std::copy(resized_.begin(), resized_.end(), obs.begin());
 }
 

@@ -48,6 +48,7 @@ class ResizeObservation : public Wrapper {
   Space space_;
   ImageSize from_;
   int height_ = 0, width_ = 0;
+  OpencvAreaResize resize_;
   std::vector<float> image_;     // the inner observation
   std::vector<uint8_t> pixels_;  // as OpenCV reads it
   std::vector<uint8_t> resized_;

@@ -94,8 +94,8 @@ int action_net_size(const Space& action_space) {
 ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,
                                      const ActorCriticPolicyConfig& config, Rng& init_rng,
                                      bool use_sde)
-    : encoder_(observation_space, config.features_extractor_class == FeaturesExtractor::kFlatten &&
-                                      config.normalize_images) {
+    : encoder_(observation_space, encoder_normalizes_images(config.features_extractor_class,
+                                                            config.normalize_images)) {
   if (use_sde && !action_space.is_box())
     throw std::invalid_argument("use_sde: gSDE needs a Box action space, not " +
                                 action_space.describe());

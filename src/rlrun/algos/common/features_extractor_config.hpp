@@ -25,6 +25,12 @@ inline constexpr const char* kNormalizeImagesDoc =
     "divide image observations (a 3-D Box of 0-255) by 255 before the networks, NatureCNN or "
     "flatten (SB3 normalize_images)";
 
+// Whether the observation encoder divides images by 255 (SB3 preprocess_obs): only before a
+// flatten extractor; a NatureCNN divides its own input.
+inline bool encoder_normalizes_images(FeaturesExtractor extractor, bool normalize_images) {
+  return extractor == FeaturesExtractor::kFlatten && normalize_images;
+}
+
 inline const char* features_extractor_name(FeaturesExtractor f) {
   return f == FeaturesExtractor::kNatureCnn ? "NatureCNN" : "FlattenExtractor";
 }

@@ -57,8 +57,8 @@ ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
 DQN::DQN(const Config& config, const AlgorithmSetup& setup)
     : OffPolicyAlgorithm("DQN", checked(config, setup).off_policy, setup,
                          /*buffer_action_dim=*/1, {kReplayStream, "replay_rng"},
-                         config.policy.features_extractor_class == FeaturesExtractor::kFlatten &&
-                             config.policy.normalize_images),
+                         encoder_normalizes_images(config.policy.features_extractor_class,
+                                                   config.policy.normalize_images)),
       config_(config),
       action_start_(static_cast<float>(setup.action_space.start())),
       action_rng_(setup.seed ^ kActionStream),

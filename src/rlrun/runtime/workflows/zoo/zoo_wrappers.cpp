@@ -57,6 +57,14 @@ YAML::Node wrapper(const std::string& id) {
   return w;
 }
 
+// A wrapper with one parameter.
+template <class T>
+YAML::Node wrapper(const std::string& id, const char* key, const T& value) {
+  YAML::Node w = wrapper(id);
+  w[key] = value;
+  return w;
+}
+
 int64_t int_kwarg(const ClassUse& use, const char* key, int64_t fallback) {
   return use.kwargs.has(key) ? use.kwargs.child(key).as_int() : fallback;
 }
@@ -87,14 +95,10 @@ void atari_wrapper(const ClassUse& use, YAML::Node env, std::vector<std::string>
     use.kwargs.child("action_repeat_probability")
         .fail("sticky actions (StickyActionEnv) are not translated");
   if (const int64_t noop_max = int_kwarg(use, "noop_max", 30); noop_max > 0) {
-    YAML::Node w = wrapper("NoopReset");
-    w["noop_max"] = noop_max;
-    env["wrappers"].push_back(w);
+    env["wrappers"].push_back(wrapper("NoopReset", "noop_max", noop_max));
   }
   if (const int64_t skip = int_kwarg(use, "frame_skip", 4); skip > 1) {
-    YAML::Node w = wrapper("MaxAndSkip");
-    w["skip"] = skip;
-    env["wrappers"].push_back(w);
+    env["wrappers"].push_back(wrapper("MaxAndSkip", "skip", skip));
   }
   if (bool_kwarg(use, "terminal_on_life_loss", true))
     notes.push_back(use.name +
@@ -102,11 +106,8 @@ void atari_wrapper(const ClassUse& use, YAML::Node env, std::vector<std::string>
                     "rlrun's envs end episodes themselves");
   const int64_t size = int_kwarg(use, "screen_size", 84);
   warp_frame(env, size, size);
-  if (bool_kwarg(use, "clip_reward", true)) {
-    YAML::Node w = wrapper("TransformReward");
-    w["sign"] = true;
-    env["wrappers"].push_back(w);
-  }
+  if (bool_kwarg(use, "clip_reward", true))
+    env["wrappers"].push_back(wrapper("TransformReward", "sign", true));
 }
 
 // The image wrappers and SB3's Atari pieces; false when `name` is none of them.
@@ -117,9 +118,8 @@ bool translate_image_wrapper(const std::string& name, const ClassUse& use, YAML:
     // through rl_zoo3.wrappers.YAMLCompatResizeObservation as a list.
     only_kwargs(use, {"shape"});
     if (!use.kwargs.has("shape")) use.at.fail(use.name + " needs shape");
-    YAML::Node w = wrapper("ResizeObservation");
-    w["shape"] = use.kwargs.child("shape").yaml();
-    env["wrappers"].push_back(w);
+    env["wrappers"].push_back(
+        wrapper("ResizeObservation", "shape", use.kwargs.child("shape").yaml()));
   } else if (name == "GrayScaleObservation" || name == "GrayscaleObservation") {
     // Gymnasium 0.29's GrayScaleObservation (the zoo's path) calls OpenCV; 1.0's
     // GrayscaleObservation weighs in float.
@@ -130,19 +130,14 @@ bool translate_image_wrapper(const std::string& name, const ClassUse& use, YAML:
     env["wrappers"].push_back(w);
   } else if (name == "FrameSkip" || name == "MaxAndSkipEnv") {
     only_kwargs(use, {"skip"});
-    YAML::Node w = wrapper(name == "FrameSkip" ? "FrameSkip" : "MaxAndSkip");
-    w["skip"] = int_kwarg(use, "skip", 4);
-    env["wrappers"].push_back(w);
+    env["wrappers"].push_back(wrapper(name == "FrameSkip" ? "FrameSkip" : "MaxAndSkip", "skip",
+                                      int_kwarg(use, "skip", 4)));
   } else if (name == "NoopResetEnv") {
     only_kwargs(use, {"noop_max"});
-    YAML::Node w = wrapper("NoopReset");
-    w["noop_max"] = int_kwarg(use, "noop_max", 30);
-    env["wrappers"].push_back(w);
+    env["wrappers"].push_back(wrapper("NoopReset", "noop_max", int_kwarg(use, "noop_max", 30)));
   } else if (name == "ClipRewardEnv") {
     only_kwargs(use, {});
-    YAML::Node w = wrapper("TransformReward");
-    w["sign"] = true;
-    env["wrappers"].push_back(w);
+    env["wrappers"].push_back(wrapper("TransformReward", "sign", true));
   } else if (name == "WarpFrame") {
     only_kwargs(use, {"width", "height"});
     warp_frame(env, int_kwarg(use, "height", 84), int_kwarg(use, "width", 84));
