@@ -401,6 +401,16 @@ atari:
   CHECK(atari_yaml[3]["shape"][0].as<int>() == 84);
   CHECK(atari_yaml[4]["sign"].as<bool>());
   CHECK(atari_yaml[5]["n_stack"].as<int>() == 4);
+  // frame_stack asks whether `normalize` normalises observations: a norm_obs that is not a
+  // boolean is refused at its line (fuzz_zoo found it escaping as a YAML exception).
+  TempDir odd_dir("zoo_images_odd");
+  const std::string odd = write_file(odd_dir, "ppo.yml", R"zoo(CartPole-v1:
+  frame_stack: 2
+  normalize: "{'norm_obs': alse, 'norm_reward': True}"
+  policy: 'MlpPolicy'
+)zoo");
+  CHECK_THAT(import_error(odd, "CartPole-v1"),
+             Catch::Contains(odd + ":3:14") && Catch::Contains("norm_obs must be True or False"));
 }
 
 TEST_CASE("zoo import: what cannot be translated is an error at the zoo file's line", "[zoo]") {

@@ -224,8 +224,12 @@ class Translation {
   // VecNormalize's norm_obs (true unless the zoo's dict says otherwise).
   bool normalizes_observations(const ConfigNode& value) {
     const YAML::Node n = normalize(value);
-    if (n.IsScalar()) return n.as<bool>();
-    return !n["norm_obs"] || n["norm_obs"].as<bool>();
+    if (n.IsScalar()) return n.as<bool>();  // normalize() only returns a decoded bool
+    if (!n["norm_obs"]) return true;
+    bool on = true;
+    if (!YAML::convert<bool>::decode(n["norm_obs"], on))
+      value.fail("normalize norm_obs must be True or False");
+    return on;
   }
 
   static std::string join(const std::vector<std::string>& v) {
