@@ -1,7 +1,8 @@
 #pragma once
 // Gymnasium spaces (gymnasium/spaces/*.py) as one value type: Box, Discrete, MultiDiscrete,
 // MultiBinary, and Dict of those (one level deep, as SB3's MultiInputPolicy takes them).
-// Every sample is a flat float32 vector: a Discrete value is one float holding the integer,
+// A Box holds float32 or uint8 values (Gymnasium's Box dtype; uint8 is what SB3 calls an image
+// and what its replay buffer stores as bytes). Every sample is a flat float32 vector: a Discrete value is one float holding the integer,
 // MultiDiscrete / MultiBinary one float per entry, a Dict its keys' samples one after another
 // in sorted key order (Gymnasium sorts a Dict's keys; SB3's CombinedExtractor concatenates
 // them in that order). That keeps env I/O, buffers and networks on one data type.
@@ -30,6 +31,15 @@ enum class SpaceKind : int32_t {
   kDict = 4
 };
 
+// The element type of a Box (Gymnasium's Box(dtype=...)): float32, or uint8 for images.
+// Samples are float32 either way; a uint8 Box holds whole numbers in its bounds (0-255 at most),
+// which rlrun's buffers keep as bytes (SB3's buffers keep the space's dtype).
+enum class BoxDtype : int32_t { kFloat32 = 0, kUint8 = 1 };
+
+inline const char* box_dtype_name(BoxDtype dtype) {
+  return dtype == BoxDtype::kUint8 ? "uint8" : "float32";
+}
+
 // "Box", "Discrete", ... as Gymnasium names the classes.
 inline const char* space_kind_name(SpaceKind kind) {
   switch (kind) {
@@ -51,26 +61,39 @@ class Space {
  public:
   Space() = default;
 
-  // Box(low, high, shape): bounds per element (flattened, row-major like numpy).
-  static Space box(std::vector<float> low, std::vector<float> high, std::vector<int> shape = {}) {
+  // Box(low, high, shape, dtype): bounds per element (flattened, row-major like numpy). A uint8
+  // Box's bounds are whole numbers from 0 to 255.
+  static Space box(std::vector<float> low, std::vector<float> high, std::vector<int> shape = {},
+                   BoxDtype dtype = BoxDtype::kFloat32) {
     if (shape.empty()) shape = {static_cast<int>(low.size())};
     if (low.size() != high.size() || static_cast<int64_t>(low.size()) != product(shape))
       throw std::invalid_argument("Space::box: low, high and shape sizes differ");
     for (size_t i = 0; i < low.size(); ++i)
       if (!(low[i] <= high[i])) throw std::invalid_argument("Space::box: low > high (or NaN)");
+    if (dtype == BoxDtype::kUint8)
+      for (size_t i = 0; i < low.size(); ++i)
+        if (!is_byte_value(low[i]) || !is_byte_value(high[i]))
+          throw std::invalid_argument(
+              "Space::box: a uint8 Box's bounds are whole numbers from 0 to 255");
     Space s;
     s.kind_ = SpaceKind::kBox;
     s.low_ = std::move(low);
     s.high_ = std::move(high);
     s.shape_ = std::move(shape);
+    s.dtype_ = dtype;
     return s;
   }
   // Box with the same bound for every element.
-  static Space box(float low, float high, std::vector<int> shape) {
+  static Space box(float low, float high, std::vector<int> shape,
+                   BoxDtype dtype = BoxDtype::kFloat32) {
     const int64_t n = product(shape);
     if (n < 0) throw std::invalid_argument("Space::box: negative shape");
     return box(std::vector<float>(static_cast<size_t>(n), low),
-               std::vector<float>(static_cast<size_t>(n), high), std::move(shape));
+               std::vector<float>(static_cast<size_t>(n), high), std::move(shape), dtype);
+  }
+  // An image as SB3's is_image_space wants it: Box(0, 255, shape, uint8).
+  static Space image(std::vector<int> shape) {
+    return box(0.0f, 255.0f, std::move(shape), BoxDtype::kUint8);
   }
   // Discrete(n, start): values start, ..., start + n - 1.
   static Space discrete(int64_t n, int64_t start = 0) {
@@ -130,6 +153,9 @@ class Space {
   bool is_box() const { return kind_ == SpaceKind::kBox; }
   bool is_discrete() const { return kind_ == SpaceKind::kDiscrete; }
   bool is_dict() const { return kind_ == SpaceKind::kDict; }
+  // A Box's element type (float32 for every other kind).
+  BoxDtype dtype() const { return dtype_; }
+  bool is_uint8_box() const { return kind_ == SpaceKind::kBox && dtype_ == BoxDtype::kUint8; }
 
   // Number of floats in one flat sample (Discrete: 1; Dict: its keys' together).
   int flat_dim() const {
@@ -168,6 +194,9 @@ class Space {
       case SpaceKind::kBox:
         for (size_t i = 0; i < x.size(); ++i)
           if (!(x[i] >= low_[i] && x[i] <= high_[i])) return false;
+        if (dtype_ == BoxDtype::kUint8)
+          for (float v : x)
+            if (v != std::floor(v)) return false;
         return true;
       case SpaceKind::kDiscrete: {
         const float v = x[0];
@@ -194,8 +223,9 @@ class Space {
   }
 
   // Uniform sample as gymnasium does (Box: uniform on bounded dims, shifted exponential on
-  // half-bounded ones, normal on unbounded ones, gymnasium/spaces/box.py; Discrete: uniform
-  // integer; Dict: each key in order).
+  // half-bounded ones, normal on unbounded ones, gymnasium/spaces/box.py — a uint8 Box draws
+  // floor(uniform(low, high + 1)), box.py's integer rule; Discrete: uniform integer; Dict: each
+  // key in order).
   // `out` must hold exactly flat_dim() floats (a wrong size is refused: the bounds are read
   // index by index alongside it).
   void sample(Rng& rng, std::span<float> out) const {
@@ -205,6 +235,13 @@ class Space {
                                   std::to_string(flat_dim()));
     switch (kind_) {
       case SpaceKind::kBox:
+        if (dtype_ == BoxDtype::kUint8) {
+          for (size_t i = 0; i < out.size(); ++i)
+            out[i] = std::min(
+                high_[i],
+                static_cast<float>(std::floor(rng.uniform(low_[i], double{high_[i]} + 1.0))));
+          return;
+        }
         for (size_t i = 0; i < out.size(); ++i) {
           const bool lo = std::isfinite(low_[i]), hi = std::isfinite(high_[i]);
           if (lo && hi)
@@ -241,14 +278,14 @@ class Space {
     switch (kind_) {
       case SpaceKind::kBox:
         if (all_equal(low_) && all_equal(high_)) {
-          out << "Box(" << format_bound(low_.front()) << ", " << format_bound(high_.front()) << ", "
-              << shape_text() << ", float32)";
+          out << "Box(" << bound_text(low_.front()) << ", " << bound_text(high_.front()) << ", "
+              << shape_text() << ", " << box_dtype_name(dtype_) << ")";
         } else {
           out << "Box([";
-          for (size_t i = 0; i < low_.size(); ++i) out << (i ? " " : "") << format_bound(low_[i]);
+          for (size_t i = 0; i < low_.size(); ++i) out << (i ? " " : "") << bound_text(low_[i]);
           out << "], [";
-          for (size_t i = 0; i < high_.size(); ++i) out << (i ? " " : "") << format_bound(high_[i]);
-          out << "], " << shape_text() << ", float32)";
+          for (size_t i = 0; i < high_.size(); ++i) out << (i ? " " : "") << bound_text(high_[i]);
+          out << "], " << shape_text() << ", " << box_dtype_name(dtype_) << ")";
         }
         break;
       case SpaceKind::kDiscrete:
@@ -289,6 +326,11 @@ class Space {
     for (int d : shape) n *= d;
     return n;
   }
+  static bool is_byte_value(float v) { return v >= 0.0f && v <= 255.0f && v == std::floor(v); }
+  // numpy prints a uint8 bound as "255", a float32 one as "255.0".
+  std::string bound_text(float v) const {
+    return dtype_ == BoxDtype::kUint8 ? std::to_string(static_cast<int>(v)) : format_bound(v);
+  }
   static std::string format_bound(float v) {
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     std::ostringstream out;
@@ -304,14 +346,16 @@ class Space {
   }
   std::string shape_text() const {
     std::string s = "(";
-    for (size_t i = 0; i < shape_.size(); ++i) s += std::to_string(shape_[i]) + ",";
-    if (shape_.size() > 1) s.pop_back();
+    // Python's tuple repr: (3,) for one dimension, (84, 84, 3) for more.
+    for (size_t i = 0; i < shape_.size(); ++i) s += (i ? ", " : "") + std::to_string(shape_[i]);
+    if (shape_.size() == 1) s += ",";
     return s + ")";
   }
 
   SpaceKind kind_ = SpaceKind::kBox;
   std::vector<int> shape_;
   std::vector<float> low_, high_;
+  BoxDtype dtype_ = BoxDtype::kFloat32;
   int64_t n_ = 0;
   int64_t start_ = 0;
   std::vector<int64_t> nvec_;

@@ -10,9 +10,16 @@
 
 namespace rlrun {
 
-enum class DType : int32_t { kFloat32 = 0, kFloat64 = 1, kInt64 = 2, kUInt64 = 3 };
+// kUInt8: image observations kept as bytes (a replay buffer's stored observations).
+enum class DType : int32_t { kFloat32 = 0, kFloat64 = 1, kInt64 = 2, kUInt64 = 3, kUInt8 = 4 };
 
-inline std::size_t dtype_size(DType t) { return t == DType::kFloat32 ? 4 : 8; }
+inline std::size_t dtype_size(DType t) {
+  switch (t) {
+    case DType::kFloat32: return 4;
+    case DType::kUInt8: return 1;
+    default: return 8;
+  }
+}
 
 struct Tensor {
   DType dtype = DType::kFloat32;
@@ -39,11 +46,13 @@ using TensorMap = std::map<std::string, Tensor>;
 template <class T>
 constexpr DType dtype_of() {
   static_assert(std::is_same_v<T, float> || std::is_same_v<T, double> ||
-                    std::is_same_v<T, int64_t> || std::is_same_v<T, uint64_t>,
-                "tensors hold float, double, int64_t or uint64_t");
+                    std::is_same_v<T, int64_t> || std::is_same_v<T, uint64_t> ||
+                    std::is_same_v<T, uint8_t>,
+                "tensors hold float, double, int64_t, uint64_t or uint8_t");
   if constexpr (std::is_same_v<T, float>) return DType::kFloat32;
   if constexpr (std::is_same_v<T, double>) return DType::kFloat64;
   if constexpr (std::is_same_v<T, int64_t>) return DType::kInt64;
+  if constexpr (std::is_same_v<T, uint8_t>) return DType::kUInt8;
   return DType::kUInt64;
 }
 

@@ -219,7 +219,10 @@ def from_description(d: dict):
     kind = d["kind"]
     if kind == "Box":
         cls = ns.Box if ns else Box
-        return cls(low=d["low"], high=d["high"], shape=tuple(d["shape"]), dtype=np.float32)
+        # float32, or uint8 for images (SB3's is_image_space asks for uint8).
+        dtype = np.dtype(d.get("dtype", "float32"))
+        return cls(low=np.asarray(d["low"]).astype(dtype), high=np.asarray(d["high"]).astype(dtype),
+                   shape=tuple(d["shape"]), dtype=dtype)
     if kind == "Discrete":
         cls = ns.Discrete if ns else Discrete
         return cls(int(d["n"]), start=int(d["start"]))
@@ -252,7 +255,7 @@ def _dtype(space):
     # The numpy type of a space's values as Gymnasium returns them.
     kind = _kind(space)
     if kind == "Box":
-        return np.float32
+        return np.uint8 if np.dtype(space.dtype) == np.uint8 else np.float32
     if kind == "MultiBinary":
         return np.int8
     return np.int64
@@ -262,7 +265,7 @@ def from_flat(space, row: np.ndarray):
     """One flat float32 vector -> the space's value (Discrete: np.int64; Dict: a dict)."""
     kind = _kind(space)
     if kind == "Box":
-        return row.reshape(space.shape)
+        return row.reshape(space.shape).astype(_dtype(space), copy=False)
     if kind == "Discrete":
         return np.int64(row[0])
     if kind == "Dict":
@@ -280,7 +283,7 @@ def batch_from_flat(space, rows: np.ndarray):
     kind = _kind(space)
     n = rows.shape[0]
     if kind == "Box":
-        return rows.reshape((n,) + tuple(space.shape))
+        return rows.reshape((n,) + tuple(space.shape)).astype(_dtype(space), copy=False)
     if kind == "Discrete":
         return rows[:, 0].astype(np.int64)
     if kind == "Dict":

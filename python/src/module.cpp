@@ -29,6 +29,7 @@ py::dict space_dict(const Space& space) {
       d["low"] = low;
       d["high"] = high;
       d["shape"] = py::tuple(py::cast(shape));
+      d["dtype"] = box_dtype_name(space.dtype());
       break;
     }
     case SpaceKind::kDiscrete:

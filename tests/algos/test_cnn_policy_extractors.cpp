@@ -19,7 +19,7 @@ TEST_CASE("ActorCriticPolicy: share_features_extractor false gives the critic it
   config.features_dim = 8;
   config.share_features_extractor = false;
   config.net_arch = {{}, {}};
-  const Space image = Space::box(0.0f, 255.0f, {36, 36, 1});
+  const Space image = Space::image({36, 36, 1});
   Rng init(3);
   ActorCriticPolicy policy(image, Space::discrete(3), config, init, false);
   REQUIRE(policy.cnn() != nullptr);

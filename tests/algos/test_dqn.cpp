@@ -186,8 +186,7 @@ TEST_CASE("DQN CnnPolicy: the loss gradient reaches q_net's NatureCNN, as centra
   cfg.off_policy.gamma = 0.9;
   cfg.max_grad_norm = 1e9;
   const int n_actions = 3, n = 6;
-  const AlgorithmSetup setup{Space::box(0.0f, 255.0f, {36, 36, 1}), Space::discrete(n_actions), 1,
-                             11};
+  const AlgorithmSetup setup{Space::image({36, 36, 1}), Space::discrete(n_actions), 1, 11};
   DQN dqn(cfg, setup);
   REQUIRE(dqn.cnn() != nullptr);
   Rng rng(13);

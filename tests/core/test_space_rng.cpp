@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "rlrun/rng.hpp"
 #include "rlrun/space.hpp"
@@ -100,4 +101,29 @@ TEST_CASE("spaces: sample refuses a span of the wrong size", "[core][space]") {
   std::vector<float> exact(3);
   dict.sample(rng, exact);
   CHECK(dict.contains(exact));
+}
+
+TEST_CASE("spaces: a uint8 Box holds whole numbers in 0-255 (Gymnasium's Box(dtype=np.uint8))",
+          "[core][space][image]") {
+  const Space image = Space::image({2, 3});
+  CHECK(image.is_uint8_box());
+  CHECK(image.describe() == "Box(0, 255, (2, 3), uint8)");
+  CHECK(Space::box(0.0f, 255.0f, {2}).describe() == "Box(0.0, 255.0, (2,), float32)");
+  CHECK(image.contains(std::vector<float>{0, 1, 2, 128, 254, 255}));
+  CHECK_FALSE(image.contains(std::vector<float>{0, 1, 2, 128, 254, 255.5f}));
+  CHECK_FALSE(image.contains(std::vector<float>{0, 1.5f, 2, 128, 254, 255}));
+  CHECK_FALSE(image == Space::box(0.0f, 255.0f, {2, 3}));
+  // box.py's integer rule: floor(uniform(low, high + 1)), so both bounds come out.
+  const Space narrow = Space::box(3.0f, 5.0f, {1}, BoxDtype::kUint8);
+  Rng rng(7);
+  std::vector<float> x(1);
+  int seen[3] = {0, 0, 0};
+  for (int i = 0; i < 3000; ++i) {
+    narrow.sample(rng, x);
+    REQUIRE(narrow.contains(x));
+    ++seen[static_cast<int>(x[0]) - 3];
+  }
+  for (int count : seen) CHECK(count > 800);
+  CHECK_THROWS_WITH(Space::box(0.0f, 256.0f, {1}, BoxDtype::kUint8), Catch::Contains("0 to 255"));
+  CHECK_THROWS_WITH(Space::box(0.5f, 2.0f, {1}, BoxDtype::kUint8), Catch::Contains("whole"));
 }

@@ -108,9 +108,9 @@ TEST_CASE("observation encoder: a Dict is each key encoded, in sorted key order,
 
 TEST_CASE("observation encoder: normalize_images divides images by 255 (SB3 preprocess_obs)",
           "[env][space][image]") {
-  // SB3: `obs.float() / 255.0` for a Box that is_image_space (3 dimensions, bounds 0-255), for
+  // SB3: `obs.float() / 255.0` for a Box that is_image_space (3 dimensions, uint8, bounds 0-255), for
   // every policy; other Boxes, and every Box without normalize_images, pass as they are.
-  const Space image = Space::box(0.0f, 255.0f, {2, 3, 1});
+  const Space image = Space::image({2, 3, 1});
   ObservationEncoder encoder(image, true);
   CHECK_FALSE(encoder.identity());
   const std::vector<float> pixels{0, 1, 17, 128, 254, 255};
@@ -120,9 +120,12 @@ TEST_CASE("observation encoder: normalize_images divides images by 255 (SB3 prep
   encoder.decode_sample(features, back);
   for (size_t k = 0; k < pixels.size(); ++k) CHECK(back[k] == Approx(pixels[k]));
   CHECK(ObservationEncoder(image, false).identity());
-  // Not images: two dimensions (a gray frame without keep_dim), other bounds.
-  CHECK(ObservationEncoder(Space::box(0.0f, 255.0f, {4, 4}), true).identity());
+  // Not images: two dimensions (a gray frame without keep_dim), other bounds, float32 pixels
+  // (SB3 asks for dtype uint8).
+  CHECK(ObservationEncoder(Space::image({4, 4}), true).identity());
   CHECK(ObservationEncoder(Space::box(0.0f, 1.0f, {2, 3, 1}), true).identity());
+  CHECK(ObservationEncoder(Space::box(0.0f, 1.0f, {2, 3, 1}, BoxDtype::kUint8), true).identity());
+  CHECK(ObservationEncoder(Space::box(0.0f, 255.0f, {2, 3, 1}), true).identity());
   // A Dict: the image key divided, the vector key (sorted after it) as it is.
   const Space dict = Space::dict({{"state", Space::box(-5.0f, 5.0f, {2})}, {"pixels", image}});
   const std::vector<float> both =

@@ -3,6 +3,7 @@
 // a CartPole port, a continuous task, a Dict-observation task and envs that go wrong.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <sstream>
 #include <vector>
 
@@ -17,6 +18,7 @@ namespace {
 const std::string kCartPolePort = "python:rlrun_test_envs.cartpole:CartPolePort";
 const std::string kReach = "python:rlrun_test_envs.continuous:Reach1D";
 const std::string kDictGoal = "python:rlrun_test_envs.continuous:DictGoal";
+const std::string kBrightSide = "python:rlrun_test_envs.pixels:BrightSide";
 const std::string kPpoZoo =
     "id: PPO, n_steps: 32, batch_size: 256, n_epochs: 20, gamma: 0.98, gae_lambda: 0.8, "
     "learning_rate: lin_0.001, clip_range: lin_0.2, ent_coef: 0.0";
@@ -139,6 +141,30 @@ TEST_CASE("A Dict-observation Python env trains and its is_success reaches monit
   CHECK(monitor.find(",True") != std::string::npos);
   const std::string resolved = read_text(dir / "runs/dict_goal/seed1/config.yaml");
   CHECK(resolved.find("python: " + kPython) != std::string::npos);
+}
+
+TEST_CASE("A Python env's uint8 Box is an image: CnnPolicy takes it, the replay buffer keeps bytes",
+          "[python][image]") {
+  TempDir dir("python_pixels");
+  // SB3's CnnPolicy for DQN on Box(0, 255, (36, 36, 1), uint8), buffer in bytes, stored once.
+  const std::string config = python_experiment(
+      dir.str(), "bright", kBrightSide,
+      "id: DQN, buffer_size: 400, learning_starts: 100, train_freq: 4, batch_size: 16, "
+      "optimize_memory_usage: true, handle_timeout_termination: false, "
+      "policy: {features_extractor_class: NatureCNN, features_dim: 16, net_arch: []}",
+      400, 1, "", "checkpoint: {freq: 200}\n");
+  const auto r = run_rlrun_python("train " + config);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const std::string resolved = read_text(dir / "runs/bright/seed1/config.yaml");
+  CHECK(resolved.find("optimize_memory_usage: true") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "runs/bright/seed1/checkpoints/step_200.zip"));
+  const auto check =
+      run_command("cd " + kSourceDir + " && PATH=/usr/bin:$PATH PYTHONPATH=" + kSourceDir +
+                  "/tests/python_envs " + RLRUN_BINARY + " check-env " + kBrightSide);
+  INFO(check.output);
+  CHECK(check.exit_code == 0);
+  CHECK(check.output.find("Box(0, 255, (36, 36, 1), uint8)") != std::string::npos);
 }
 
 TEST_CASE("rlrun record films a Python env through its render()", "[python]") {

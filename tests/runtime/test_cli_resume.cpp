@@ -210,6 +210,27 @@ TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][re
   check_resume_equals_uninterrupted(td3, "KILL");
 }
 
+TEST_CASE(
+    "resume: DQN on pixels with optimize_memory_usage resumes exactly (uint8 observations in the "
+    "checkpoint, the buffer wrapped)",
+    "[cli][resume][image]") {
+  // CartPole's 36x36 gray frames (Box(0, 255, (36, 36, 1), uint8)), SB3's CnnPolicy, each
+  // observation stored once, as bytes; 1 500 steps into 1 000 slots.
+  const ResumeCase pixels{
+      "cartpole_dqn.yaml",
+      "cartpole_dqn",
+      " --set run.total_timesteps=1500 --set algo.learning_starts=300 --set checkpoint.freq=500"
+      " --set algo.buffer_size=1000 --set algo.optimize_memory_usage=true"
+      " --set algo.handle_timeout_termination=false --set eval.freq=0"
+      " --set 'env.wrappers=[{id: AddRenderObservation, width: 36, height: 36},"
+      " {id: GrayscaleObservation, keep_dim: true}]'"
+      " --set 'algo.policy={features_extractor_class: NatureCNN, features_dim: 32, net_arch: []}'",
+      "step_512.zip",
+      1,
+      false};
+  check_resume_equals_uninterrupted(pixels, "KILL");
+}
+
 TEST_CASE("resume: SAC with env.normalize resumes exactly (original observations in the buffer)",
           "[cli][resume][normalize]") {
   ResumeCase sac = kSac;

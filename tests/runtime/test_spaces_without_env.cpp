@@ -67,7 +67,8 @@ TEST_CASE("space JSON: every kind round-trips exactly", "[spaces]") {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   const std::vector<Space> spaces = {
       Space::box({-4.8f, -kInf, -0.41887903f, 0.1f}, {4.8f, kInf, 0.41887903f, 1e30f}),
-      Space::box(0.0f, 255.0f, {4, 84, 84}),
+      Space::image({4, 84, 84}),
+      Space::box(0.0f, 255.0f, {4, 84, 84}),  // float32 pixels stay float32
       Space::discrete(7, -3),
       Space::multi_discrete({3, 2, 5}),
       Space::multi_binary(6),
@@ -80,9 +81,17 @@ TEST_CASE("space JSON: every kind round-trips exactly", "[spaces]") {
     CHECK(back.low() == s.low());
     CHECK(back.high() == s.high());
     CHECK(back.shape() == s.shape());
+    CHECK(back.dtype() == s.dtype());
   }
+  // A Python env's other numpy dtypes are float32 to rlrun; uint8 is kept.
+  CHECK(space_from_json(
+            json::parse(R"({"kind": "Box", "shape": [2], "low": 0, "high": 9, "dtype": "int64"})"))
+            .dtype() == BoxDtype::kFloat32);
+  CHECK(space_from_json(
+            json::parse(R"({"kind": "Box", "shape": [2], "low": 0, "high": 9, "dtype": "uint8"})"))
+            .is_uint8_box());
   // An image's bounds are one number each, not 28 224.
-  CHECK(space_to_json(Space::box(0.0f, 255.0f, {4, 84, 84})).dump().size() < 100);
+  CHECK(space_to_json(Space::image({4, 84, 84})).dump().size() < 100);
 }
 
 TEST_CASE("space JSON: malformed or oversized spaces are refused before anything is built",

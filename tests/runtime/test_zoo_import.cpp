@@ -550,6 +550,37 @@ TEST_CASE("zoo import: a HER entry (replay_buffer_class, replay_buffer_kwargs as
              Catch::Contains("n_sampled_goal"));
 }
 
+TEST_CASE("zoo import: optimize_memory_usage with replay_buffer_kwargs' handle_timeout_termination",
+          "[zoo][replay]") {
+  TempDir dir("zoo_optimize_memory");
+  Registry registry = make_builtin_registry();
+  // What the zoo's atari entry's comment asks for, on CartPole.
+  const std::string file = write_file(dir, "dqn.yml", R"zoo(CartPole-v1:
+  n_timesteps: 600
+  policy: 'MlpPolicy'
+  buffer_size: 500
+  learning_starts: 100
+  optimize_memory_usage: True
+  replay_buffer_kwargs: "dict(handle_timeout_termination=False)"
+)zoo");
+  const ZooImport imported = translate_zoo_entry(read_zoo_entry(file, "CartPole-v1", ""), registry);
+  const YAML::Node& a = imported.experiment["algo"];
+  CHECK(a["optimize_memory_usage"].as<bool>());
+  CHECK_FALSE(a["handle_timeout_termination"].as<bool>());
+  CHECK_FALSE(a["replay_buffer_kwargs"].IsDefined());
+  CHECK(import_and_train(file, "dqn", "CartPole-v1", dir / "runs", true) == "");
+  // Without it, SB3's ValueError, at the key.
+  TempDir bad_dir("zoo_optimize_memory_bad");
+  const std::string bad = write_file(bad_dir, "dqn.yml", R"zoo(CartPole-v1:
+  n_timesteps: 600
+  policy: 'MlpPolicy'
+  optimize_memory_usage: True
+)zoo");
+  CHECK_THAT(import_and_train(bad, "dqn", "CartPole-v1", dir / "runs_bad", false),
+             Catch::Contains("optimize_memory_usage") &&
+                 Catch::Contains("handle_timeout_termination: false"));
+}
+
 TEST_CASE(
     "zoo import: --entry uses another env's entry (the zoo's PandaReach TQC + HER entry for "
     "GripperReach)",

@@ -29,7 +29,7 @@ namespace {
 class PixelEnv : public Env {
  public:
   PixelEnv(std::vector<int> shape, int length)
-      : space_(Space::box(0.0f, 255.0f, shape)), actions_(Space::discrete(3)), length_(length) {}
+      : space_(Space::image(shape)), actions_(Space::discrete(3)), length_(length) {}
   const Space& observation_space() const override { return space_; }
   const Space& action_space() const override { return actions_; }
   void reset(std::optional<uint64_t>, std::span<float> obs) override {

@@ -83,7 +83,7 @@ TEST_CASE("FrameStack: oldest first, zero or reset padding, a fresh stack after 
   FrameStack::Config config;
   config.n_stack = 3;
   FrameStack env(script({{1.5f, 0.5f}, {3.0f, -1.0f}}), config);
-  CHECK(env.observation_space().describe() == "Box(-100.0, 100.0, (3,2), float32)");
+  CHECK(env.observation_space().describe() == "Box(-100.0, 100.0, (3, 2), float32)");
   std::vector<float> obs(6), action{0.0f};
   env.reset(std::nullopt, obs);
   CHECK(obs == std::vector<float>{0, 0, 0, 0, 1.0f, -2.0f});

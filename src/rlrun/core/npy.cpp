@@ -16,6 +16,7 @@ const char* descr(DType t) {
     case DType::kFloat64: return "<f8";
     case DType::kInt64: return "<i8";
     case DType::kUInt64: return "<u8";
+    case DType::kUInt8: return "|u1";
   }
   return "";
 }
@@ -107,7 +108,8 @@ class HeaderDict {
     if (d == "<f8") return DType::kFloat64;
     if (d == "<i8") return DType::kInt64;
     if (d == "<u8") return DType::kUInt64;
-    fail("unsupported dtype '" + printable(d) + "' (rlrun reads <f4, <f8, <i8 and <u8)");
+    if (d == "|u1") return DType::kUInt8;  // numpy's descr for uint8 (no byte order)
+    fail("unsupported dtype '" + printable(d) + "' (rlrun reads <f4, <f8, <i8, <u8 and |u1)");
   }
   // "(" [dim ("," dim)* [","]] ")": Python's tuple repr; one dimension is written (n,),
   // since (n) is not a tuple.

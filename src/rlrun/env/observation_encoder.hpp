@@ -4,7 +4,7 @@
 // rlrun's flat observations (rlrun/space.hpp lays a Dict out as its keys' values in sorted
 // order):
 //   Box              as it is (flattened); an image divided by 255 with normalize_images
-//                    (SB3's is_image_space: 3 dimensions, bounds 0-255 — preprocess_obs does
+//                    (SB3's is_image_space: 3 dimensions, uint8, bounds 0-255 — preprocess_obs does
 //                    it for every policy, MlpPolicy too; a NatureCNN divides its own input)
 //   MultiBinary(n)   its n bits as floats
 //   Discrete(n)      one-hot of n floats (value - start: SB3 has no start, Gymnasium does)

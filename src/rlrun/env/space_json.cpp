@@ -79,6 +79,15 @@ const json& member(const json& j, const char* key, const std::string& kind) {
   return *it;
 }
 
+// A Box's "dtype": "uint8" keeps its images as bytes; any other numpy dtype name (a Python env
+// sends its space's, e.g. "float64") and none at all are float32, rlrun's one number type.
+BoxDtype box_dtype_from_json(const json& j) {
+  const auto dtype = j.find("dtype");
+  if (dtype == j.end()) return BoxDtype::kFloat32;
+  if (!dtype->is_string()) throw std::invalid_argument("a Box's dtype is not a string");
+  return dtype->get<std::string>() == "uint8" ? BoxDtype::kUint8 : BoxDtype::kFloat32;
+}
+
 Space decode(const json& j, bool inside_dict) {
   if (!j.is_object()) throw std::invalid_argument("a space is a JSON object with a \"kind\"");
   const json& kind_json = member(j, "kind", "");
@@ -99,7 +108,8 @@ Space decode(const json& j, bool inside_dict) {
       shape.push_back(static_cast<int>(n));
     }
     return Space::box(bounds_from_json(member(j, "low", kind), size, "low"),
-                      bounds_from_json(member(j, "high", kind), size, "high"), std::move(shape));
+                      bounds_from_json(member(j, "high", kind), size, "high"), std::move(shape),
+                      box_dtype_from_json(j));
   }
   if (kind == "Discrete") {
     const int64_t n = count_from_json(member(j, "n", kind), "a Discrete space");
@@ -147,6 +157,8 @@ json space_to_json(const Space& space) {
       j["shape"] = space.shape();
       j["low"] = bounds_to_json(space.low());
       j["high"] = bounds_to_json(space.high());
+      // Only uint8 is written: float32 Boxes read the same by rlrun versions before dtypes.
+      if (space.is_uint8_box()) j["dtype"] = box_dtype_name(space.dtype());
       break;
     case SpaceKind::kDiscrete:
       j["n"] = space.n();

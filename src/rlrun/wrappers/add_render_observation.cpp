@@ -22,7 +22,7 @@ Frame observed_frame(const Env& inner, const AddRenderObservation::Config& confi
 
 AddRenderObservation::AddRenderObservation(EnvPtr inner, const Config& config)
     : Wrapper(std::move(inner)), frame_(observed_frame(*inner_, config)) {
-  const Space pixels = Space::box(0.0f, 255.0f, {frame_.height(), frame_.width(), 3});
+  const Space pixels = Space::image({frame_.height(), frame_.width(), 3});
   if (config.render_only) {
     space_ = pixels;
     state_.resize(static_cast<size_t>(inner_->observation_space().flat_dim()));

@@ -1,15 +1,15 @@
 #pragma once
 // AddRenderObservation: the env's rendered picture as the observation (Gymnasium 1.0
 // gymnasium/wrappers/rendering.py AddRenderObservation, formerly PixelObservationWrapper):
-//   render_only: true    Box(0, 255, (height, width, 3)), the RGB frame (channels-last, row 0
+//   render_only: true    Box(0, 255, (height, width, 3), uint8), the RGB frame (channels-last, row 0
 //                        at the top, as env.render() returns it)
 //   render_only: false   Dict{obs_key: the env's observation, render_key: that frame}
 // Gymnasium renders at the env's own size (CartPole 600x400); `width` / `height` (rlrun's
 // addition, 0 = the env's size) draw the frame directly at another size, e.g. 84x84 for a CNN,
 // with the scene letterboxed as `rlrun record` draws it. The frame is drawn after every reset
 // and step, from the state the env is in then.
-// Pixels are integers 0-255 held in floats (rlrun's observations are float32); a CNN policy
-// divides them by 255 as SB3 does for uint8 images.
+// The pixel Box is uint8 like Gymnasium's: SB3's is_image_space accepts it, a CNN policy divides
+// it by 255, and replay buffers keep it as bytes.
 #include <string>
 #include <vector>
 

@@ -40,7 +40,7 @@ Space FrameStack::stacked(const Space& box, int n_stack, int axis) {
     shape.insert(shape.begin(), n_stack);
   else
     shape[static_cast<size_t>(axis)] *= n_stack;
-  return Space::box(std::move(low), std::move(high), std::move(shape));
+  return Space::box(std::move(low), std::move(high), std::move(shape), box.dtype());
 }
 
 FrameStack::FrameStack(EnvPtr inner, const Config& config)

@@ -13,12 +13,12 @@ namespace rlrun {
 GrayscaleObservation::GrayscaleObservation(EnvPtr inner, const Config& config)
     : Wrapper(std::move(inner)) {
   const Space& s = inner_->observation_space();
-  const bool image =
-      s.is_box() && s.shape().size() == 3 && s.shape()[2] == 3 && has_pixel_bounds(s);
+  // gymnasium/wrappers/transform_observation.py GrayscaleObservation's assertions.
+  const bool image = s.shape().size() == 3 && s.shape()[2] == 3 && is_pixel_box(s);
   if (!image)
     throw std::invalid_argument(
         "GrayscaleObservation needs an RGB image observation, Box(0, 255, "
-        "(height, width, 3)); " +
+        "(height, width, 3), uint8); " +
         inner_->id() + " has " + s.describe());
   if (config.weights != "gymnasium" && config.weights != "opencv")
     throw std::invalid_argument(
@@ -27,8 +27,7 @@ GrayscaleObservation::GrayscaleObservation(EnvPtr inner, const Config& config)
   opencv_weights_ = config.weights == "opencv";
   height_ = s.shape()[0];
   width_ = s.shape()[1];
-  space_ = config.keep_dim ? Space::box(0.0f, 255.0f, {height_, width_, 1})
-                           : Space::box(0.0f, 255.0f, {height_, width_});
+  space_ = config.keep_dim ? Space::image({height_, width_, 1}) : Space::image({height_, width_});
   rgb_.resize(static_cast<size_t>(s.flat_dim()));
 }
 

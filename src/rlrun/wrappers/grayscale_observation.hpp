@@ -6,7 +6,7 @@
 // np.sum(np.multiply(obs, weights), axis=-1).astype(np.uint8) does (so a white pixel may come
 // out 254, exactly as in Gymnasium). With `weights: opencv` it is OpenCV's COLOR_RGB2GRAY instead
 // (wrappers/opencv_image_ops.hpp), as Gymnasium 0.29's GrayScaleObservation — the class rl-zoo's
-// files name — and SB3's WarpFrame compute it. The result is Box(0, 255, (height, width)), or
+// files name — and SB3's WarpFrame compute it. The result is Box(0, 255, (height, width), uint8), or
 // (height, width, 1) with keep_dim (what SB3's CnnPolicy needs to see a channel axis).
 #include <string>
 

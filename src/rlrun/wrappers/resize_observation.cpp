@@ -32,11 +32,10 @@ YAML::Node encode(const ResizeShape& shape) {
 ResizeObservation::ResizeObservation(EnvPtr inner, const Config& config)
     : Wrapper(std::move(inner)), height_(config.shape.height), width_(config.shape.width) {
   const Space& s = inner_->observation_space();
-  const bool image =
-      s.is_box() && (s.shape().size() == 2 || s.shape().size() == 3) && has_pixel_bounds(s);
+  const bool image = (s.shape().size() == 2 || s.shape().size() == 3) && is_pixel_box(s);
   if (!image)
     throw std::invalid_argument(
-        "ResizeObservation needs an image observation, Box(0, 255, (height, width)) or "
+        "ResizeObservation needs an image observation, Box(0, 255, (height, width), uint8) or "
         "(height, width, channels); " +
         inner_->id() + " has " + s.describe());
   from_ = {s.shape()[0], s.shape()[1], s.shape().size() == 3 ? s.shape()[2] : 1};
@@ -47,7 +46,7 @@ ResizeObservation::ResizeObservation(EnvPtr inner, const Config& config)
   }
   std::vector<int> shape{height_, width_};
   if (s.shape().size() == 3) shape.push_back(from_.channels);
-  space_ = Space::box(0.0f, 255.0f, shape);
+  space_ = Space::image(shape);
   image_.resize(static_cast<size_t>(from_.values()));
   pixels_.resize(image_.size());
   resized_.resize(static_cast<size_t>(space_.flat_dim()));

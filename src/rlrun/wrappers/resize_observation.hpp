@@ -2,7 +2,7 @@
 // ResizeObservation: an image observation (height, width) or (height, width, channels), values
 // 0-255, resized to `shape` [height, width] as Gymnasium's ResizeObservation does —
 // cv2.resize(obs, (width, height), interpolation=cv2.INTER_AREA), bit for bit
-// (wrappers/opencv_image_ops.hpp) — keeping the channel axis: Box(0, 255, shape + channels).
+// (wrappers/opencv_image_ops.hpp) — keeping the channel axis: Box(0, 255, shape + channels, uint8).
 // `shape` is [height, width] (Gymnasium 1.0) or one number for a square (Gymnasium 0.29, which
 // rl-zoo's CarRacing entry uses: `shape: 64`). Only shrinking is implemented (OpenCV's area
 // path); a growing side is refused when the wrapper is built.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/env/image_space.hpp"
 #include "rlrun/env/observation_encoder.hpp"
 
@@ -53,10 +54,13 @@ void check_network_memory(ConfigProblems& out, const std::string& key, int in,
   if (!problem.empty()) out.push_back({key, problem});
 }
 
-void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const AlgorithmSetup& setup) {
-  const double row = 2.0 * setup.observation_space.flat_dim() + setup.action_space.flat_dim() + 2;
+void check_replay_memory(ConfigProblems& out, int64_t buffer_size, bool optimize_memory_usage,
+                         const AlgorithmSetup& setup) {
+  const double observations = (optimize_memory_usage ? 1.0 : 2.0) *
+                              ObservationColumns::bytes_per_observation(setup.observation_space);
+  const double row = observations + (setup.action_space.flat_dim() + 2.0) * sizeof(float);
   const std::string problem =
-      memory_problem(static_cast<double>(buffer_size) * row * sizeof(float),
+      memory_problem(static_cast<double>(buffer_size) * row,
                      "a replay buffer of " + std::to_string(buffer_size) + " transitions");
   if (!problem.empty()) out.push_back({"buffer_size", problem});
 }

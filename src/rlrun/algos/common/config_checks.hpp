@@ -30,8 +30,10 @@ double mlp_parameter_count(int in, const std::vector<int>& hidden, int out);
 void check_network_memory(ConfigProblems& out, const std::string& key, int in,
                           const std::vector<int>& hidden, int outputs, int networks, double batch);
 
-// A replay buffer of `buffer_size` transitions (obs, next obs, action, reward, done in float32).
-void check_replay_memory(ConfigProblems& out, int64_t buffer_size, const AlgorithmSetup& setup);
+// A replay buffer of `buffer_size` transitions: obs and (unless `optimize_memory_usage`) next
+// obs in their spaces' dtypes (observation_columns.hpp), action, reward and done in float32.
+void check_replay_memory(ConfigProblems& out, int64_t buffer_size, bool optimize_memory_usage,
+                         const AlgorithmSetup& setup);
 
 // SB3's gradient_steps: >= 1, or -1 (as many as env steps collected).
 void check_gradient_steps(ConfigProblems& out, int gradient_steps);

@@ -22,7 +22,7 @@ inline constexpr const char* kFeaturesExtractorDoc =
     "image observations; SB3's default net_arch for it is [])";
 
 inline constexpr const char* kNormalizeImagesDoc =
-    "divide image observations (a 3-D Box of 0-255) by 255 before the networks, NatureCNN or "
+    "divide image observations (a 3-D uint8 Box of 0-255) by 255 before the networks, NatureCNN or "
     "flatten (SB3 normalize_images)";
 
 // Whether the observation encoder divides images by 255 (SB3 preprocess_obs): only before a

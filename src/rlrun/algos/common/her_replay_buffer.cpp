@@ -34,8 +34,7 @@ int key_index(const Space& space, const std::string& key) {
 HerReplayBuffer::HerReplayBuffer(int64_t buffer_size, int n_envs, const Space& observation_space,
                                  int act_dim, const GoalEnv* rewards_of, int n_sampled_goal,
                                  GoalSelection selection, bool handle_timeout_termination)
-    : ReplayBuffer(buffer_size, n_envs, observation_space.flat_dim(), act_dim,
-                   handle_timeout_termination),
+    : ReplayBuffer(buffer_size, n_envs, observation_space, act_dim, handle_timeout_termination),
       rewards_of_(rewards_of),
       selection_(selection),
       her_ratio_(1.0 - 1.0 / (n_sampled_goal + 1.0)) {
@@ -111,11 +110,7 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
     do {
       k = static_cast<int64_t>(rng.below(static_cast<uint64_t>(filled)));
     } while (ep_length_[static_cast<size_t>(k)] == 0);
-    batch.obs.col(j) = obs_.col(k);
-    batch.next_obs.col(j) = next_obs_.col(k);
-    batch.actions.col(j) = actions_.col(k);
-    batch.rewards(j) = rewards_(k);
-    batch.dones(j) = dones_(k);
+    copy_transition(k, j, batch);
     if (j >= n_virtual) continue;
     // A virtual transition: a new desired goal from the same episode (SB3 _sample_goals).
     const int64_t slot = k / n_envs_, e = k % n_envs_;
@@ -134,10 +129,10 @@ void HerReplayBuffer::sample(int batch_size, Rng& rng, ReplayBatch& batch) const
         break;
     }
     const int64_t goal_column = ((start + index) % slots_) * n_envs_ + e;
-    const auto new_goal = next_obs_.col(goal_column).segment(achieved_offset_, goal_dim_);
+    next_obs_.get(goal_column, achieved_offset_, goal_dim_, goal_scratch_.col(j).data());
+    const auto new_goal = goal_scratch_.col(j);
     batch.obs.col(j).segment(desired_offset_, goal_dim_) = new_goal;
     batch.next_obs.col(j).segment(desired_offset_, goal_dim_) = new_goal;
-    goal_scratch_.col(j) = new_goal;
     // r_t = reward(next achieved goal, desired goal): s_{t+1} holds what a_t achieved.
     achieved_scratch_.col(j) = batch.next_obs.col(j).segment(achieved_offset_, goal_dim_);
   }

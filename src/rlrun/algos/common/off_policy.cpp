@@ -48,9 +48,9 @@ OffPolicyState::OffPolicyState(const OffPolicyConfig& config, int n_envs,
     her = her_buffer.get();
     buffer = std::move(her_buffer);
   } else {
-    buffer =
-        std::make_unique<ReplayBuffer>(config.buffer_size, n_envs, observation_space.flat_dim(),
-                                       act_dim, config.handle_timeout_termination);
+    buffer = std::make_unique<ReplayBuffer>(config.buffer_size, n_envs, observation_space, act_dim,
+                                            config.handle_timeout_termination,
+                                            config.optimize_memory_usage);
   }
 }
 
@@ -80,7 +80,20 @@ void OffPolicyState::read_state(const StateReader& in) {
 
 void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
                          const AlgorithmSetup& setup) {
-  check_replay_memory(out, config.buffer_size, setup);
+  check_replay_memory(out, config.buffer_size, config.optimize_memory_usage, setup);
+  if (config.optimize_memory_usage) {
+    // SB3 ReplayBuffer.__init__ refuses the pair; HerReplayBuffer has no such option.
+    if (config.handle_timeout_termination)
+      out.push_back({"optimize_memory_usage",
+                     "cannot be used with handle_timeout_termination: true (the buffer keeps no "
+                     "final observation for a time-limit truncation to bootstrap from, as SB3); "
+                     "set handle_timeout_termination: false"});
+    if (config.her())
+      out.push_back({"optimize_memory_usage", "HerReplayBuffer does not support it (as SB3)"});
+    if (config.buffer_size / setup.n_envs < 2)
+      out.push_back(
+          {"optimize_memory_usage", "needs buffer_size of at least two transitions per env"});
+  }
   if (!config.her()) return;
   const Space& obs = setup.observation_space;
   const auto has = [&](const char* key) {

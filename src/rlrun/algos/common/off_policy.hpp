@@ -63,6 +63,7 @@ struct OffPolicyConfig {
   TrainFreq train_freq;           // collect this many steps/episodes between updates
   int gradient_steps = 1;         // updates after each collection; -1 = as many as env steps
   bool handle_timeout_termination = true;  // bootstrap truncated (time-limit) transitions
+  bool optimize_memory_usage = false;      // next observations not stored twice (SB3)
   // SB3 replay_buffer_class: ReplayBuffer, or HerReplayBuffer for goal-conditioned envs.
   std::string replay_buffer_class = "ReplayBuffer";
   ReplayBufferKwargs replay_buffer_kwargs;
@@ -82,6 +83,9 @@ struct OffPolicyConfig {
       "gradient steps per update (-1: as many as steps collected)", at_least(-1));
     v("handle_timeout_termination", handle_timeout_termination,
       "treat time-limit truncation as not done (bootstrap), as SB3");
+    v("optimize_memory_usage", optimize_memory_usage,
+      "keep each observation once in the replay buffer (half the memory; SB3's option: needs "
+      "handle_timeout_termination: false, not with HerReplayBuffer)");
     v("replay_buffer_class", replay_buffer_class,
       "ReplayBuffer, or HerReplayBuffer (Hindsight Experience Replay) for a goal-conditioned env",
       OneOf{{"ReplayBuffer", "HerReplayBuffer"}});

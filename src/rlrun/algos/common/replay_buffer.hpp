@@ -1,15 +1,23 @@
 #pragma once
-// SB3's ReplayBuffer (stable_baselines3/common/buffers.py): preallocated float32 storage of
+// SB3's ReplayBuffer (stable_baselines3/common/buffers.py): preallocated storage of
 // `buffer_size` transitions in total, split over the envs (buffer_size / n_envs slots each),
 // a circular write position, uniform sampling with replacement using the run's RNG.
+// Observations keep their space's dtype (uint8 images as bytes, observation_columns.hpp).
 // Timeouts as SB3's handle_timeout_termination: a transition that ended by truncation only
 // is stored as not-done, so its target bootstraps from next_obs (= the final observation).
+// optimize_memory_usage as SB3's: no next_obs copy; a transition's next observation is the
+// following slot's observation (add() writes it there until the next add() overwrites it with
+// the observation after a reset), so the transition being written is never sampled, and an
+// episode's final observation is lost — which only a done transition has, and a done one does
+// not bootstrap; SB3 therefore refuses it with handle_timeout_termination, and so does rlrun.
 #include <Eigen/Core>
 #include <cstdint>
 
+#include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/rng.hpp"
+#include "rlrun/space.hpp"
 
 namespace rlrun {
 
@@ -23,6 +31,11 @@ struct ReplayBatch {
 class ReplayBuffer {
  public:
   virtual ~ReplayBuffer() = default;
+  // Throws std::invalid_argument for optimize_memory_usage with handle_timeout_termination, or
+  // with fewer than two slots per env.
+  ReplayBuffer(int64_t buffer_size, int n_envs, const Space& observation_space, int act_dim,
+               bool handle_timeout_termination = true, bool optimize_memory_usage = false);
+  // Float32 observations of obs_dim values.
   ReplayBuffer(int64_t buffer_size, int n_envs, int obs_dim, int act_dim,
                bool handle_timeout_termination = true);
 
@@ -37,7 +50,7 @@ class ReplayBuffer {
 
   int64_t size() const { return (full_ ? slots_ : pos_) * n_envs_; }
   int64_t capacity() const { return slots_ * n_envs_; }
-  int obs_dim() const { return static_cast<int>(obs_.rows()); }
+  int obs_dim() const { return obs_.rows(); }
   int n_envs() const { return n_envs_; }
 
   // Exact resume (checkpoints): the filled transitions and the write position. Reading
@@ -49,13 +62,22 @@ class ReplayBuffer {
   // Sizes `batch` for `batch_size` samples (a no-op when it already has that size).
   void size_batch(int batch_size, ReplayBatch& batch) const;
 
+  // The column of the transition after column k's in the same env (optimize_memory_usage).
+  int64_t following(int64_t k) const { return (k / n_envs_ + 1) % slots_ * n_envs_ + k % n_envs_; }
+  // Columns of obs_ holding observations (with optimize_memory_usage, one slot past size()).
+  int64_t stored_observations() const;
+  // Copies transition column k into column j of `batch`.
+  void copy_transition(int64_t k, int j, ReplayBatch& batch) const;
+
   int64_t slots_;  // per env
   int n_envs_;
   bool handle_timeout_termination_;
+  bool optimize_memory_usage_;
   int64_t pos_ = 0;
   bool full_ = false;
-  // Column k = slot * n_envs + env.
-  Eigen::MatrixXf obs_, next_obs_, actions_;
+  // Column k = slot * n_envs + env. next_obs_ has no columns with optimize_memory_usage.
+  ObservationColumns obs_, next_obs_;
+  Eigen::MatrixXf actions_;
   Eigen::RowVectorXf rewards_, dones_;
 };
 

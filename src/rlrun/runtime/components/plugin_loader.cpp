@@ -141,7 +141,8 @@ void register_plugin(PluginEntry entry, const std::string& name, Registry& regis
         " was built for rlrun plugin API version 1; this rlrun (" RLRUN_VERSION
         ") implements version " +
         std::to_string(api::kApiVersion) +
-        ". Version 2 has one env interface for built-in and plugin envs: derive from rlrun::Env "
+        ". Since version 2 there is one env interface for built-in and plugin envs: derive from "
+        "rlrun::Env "
         "(#include <rlrun/plugin.hpp>) instead of rlrun::api::Env; use rlrun::Space and "
         "rlrun::StepResult; add `std::string id() const override`, `const Space& "
         "observation_space() const override`, `const Space& action_space() const override` and "

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <functional>
+#include <utility>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
@@ -129,13 +130,7 @@ class Translation {
           translate_policy_kwargs(value, policy_keys_, entry_.algorithm, notes);
       for (const auto& kv : policy) policy_[kv.first.Scalar()] = kv.second;
     } else if (key == "replay_buffer_kwargs") {
-      // rl-zoo writes HerReplayBuffer's options as a Python dict string.
-      if (!value.defined()) return;
-      const PyValue kwargs = python_value(value, "replay_buffer_kwargs");
-      if (kwargs.kind != PyValue::Kind::kDict)
-        value.fail("replay_buffer_kwargs must be a dict, found " + kwargs.describe());
-      algo_param(key, value, x);
-      x["algo"][key] = to_yaml(kwargs);
+      replay_buffer_kwargs(key, value, x);
     } else if (key == "normalize") {
       x["env"]["normalize"] = normalize(value);
     } else if (key == "frame_stack") {
@@ -186,6 +181,27 @@ class Translation {
     } else {
       algo_param(key, value, x);
     }
+  }
+
+  // rl-zoo writes the replay buffer's options as a Python dict string.
+  void replay_buffer_kwargs(const std::string& key, const ConfigNode& value, YAML::Node& x) {
+    if (!value.defined()) return;
+    const PyValue kwargs = python_value(value, "replay_buffer_kwargs");
+    if (kwargs.kind != PyValue::Kind::kDict)
+      value.fail("replay_buffer_kwargs must be a dict, found " + kwargs.describe());
+    algo_param(key, value, x);
+    // SB3's ReplayBuffer takes handle_timeout_termination among these kwargs (the zoo's atari
+    // entries say to turn it off for optimize_memory_usage); rlrun has it on the algorithm.
+    YAML::Node translated = to_yaml(kwargs);
+    const std::string timeouts = "handle_timeout_termination";
+    if (const YAML::Node found = std::as_const(translated)[timeouts]) {
+      x["algo"][timeouts] = YAML::Clone(found);
+      translated.remove(timeouts);
+    }
+    if (translated.size() > 0)
+      x["algo"][key] = translated;
+    else
+      x["algo"].remove(key);
   }
 
   void algo_param(const std::string& key, const ConfigNode& value, YAML::Node& x) {

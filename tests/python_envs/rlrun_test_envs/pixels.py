@@ -1,0 +1,31 @@
+"""An image-observation task for the CNN path from Python: Box(0, 255, (36, 36, 1), np.uint8),
+SB3's idea of an image (is_image_space asks for uint8). A bright square sits on the left or the
+right half; action 0 says left, 1 says right; reward 1 when right, 0 otherwise; 8 steps."""
+import numpy as np
+
+from .spaces import Box, Discrete
+
+
+class BrightSide:
+    def __init__(self):
+        self.observation_space = Box(0, 255, shape=(36, 36, 1), dtype=np.uint8)
+        self.action_space = Discrete(2)
+        self.rng = np.random.default_rng()
+
+    def reset(self, *, seed=None, options=None):
+        if seed is not None:
+            self.rng = np.random.default_rng(seed)
+        self.steps = 0
+        return self._draw(), {}
+
+    def _draw(self):
+        self.side = int(self.rng.integers(2))
+        image = np.full((36, 36, 1), 20, dtype=np.uint8)
+        left = 4 if self.side == 0 else 22
+        image[10:20, left:left + 10, 0] = 230
+        return image
+
+    def step(self, action):
+        reward = 1.0 if int(action) == self.side else 0.0
+        self.steps += 1
+        return self._draw(), reward, False, self.steps >= 8, {}
