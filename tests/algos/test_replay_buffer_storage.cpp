@@ -9,6 +9,7 @@
 
 #include "fakes/counter_env.hpp"
 #include "rlrun/algos/common/observation_columns.hpp"
+#include "rlrun/algos/common/on_policy.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
 #include "rlrun/env/vec_env.hpp"
 
@@ -157,4 +158,13 @@ TEST_CASE("ReplayBuffer checkpoints keep uint8 observations as bytes and resume 
     CHECK(a.next_obs == b.next_obs);
     CHECK(a.actions == b.actions);
   }
+}
+
+TEST_CASE("RolloutBuffer keeps uint8 observations as bytes too", "[algos][image][ppo]") {
+  // 4 steps x 2 envs of 84x84x4 frames: 225 KB as bytes, where SB3's float32 rollout takes 903 KB.
+  const RolloutBuffer images(4, 2, Space::image({84, 84, 4}), 1);
+  CHECK(images.obs.bytes() == 8 * 28224);
+  CHECK(images.size() == 8);
+  const RolloutBuffer vectors(4, 2, Space::box(-1.0f, 1.0f, {3}), 1);
+  CHECK(vectors.obs.bytes() == 8 * 3 * 4);
 }

@@ -44,7 +44,9 @@ void A2C::train(double progress_remaining, Logger* logger) {
   const RolloutBuffer& rollout = collector_.buffer();
   // One step on the whole rollout (SB3 rollout_buffer.get(batch_size=None)); the sample order
   // does not matter for a full-batch mean.
-  policy_.evaluate_actions(rollout.obs, rollout.actions, values_, log_prob_, entropy_);
+  obs_.resize(rollout.obs.rows(), rollout.size());
+  for (int k = 0; k < rollout.size(); ++k) rollout.obs.get(k, obs_.col(k).data());
+  policy_.evaluate_actions(obs_, rollout.actions, values_, log_prob_, entropy_);
   advantages_ = rollout.advantages.reshaped<Eigen::RowMajor>().transpose();
   returns_ = rollout.returns.reshaped<Eigen::RowMajor>().transpose();
   if (config_.normalize_advantage) normalize_advantages(advantages_);

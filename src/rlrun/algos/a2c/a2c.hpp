@@ -69,6 +69,7 @@ class A2C : public OnPolicyAlgorithm {
   std::optional<RmsProp> rmsprop_;
   std::optional<Adam> adam_;
 
+  Eigen::MatrixXf obs_;  // the rollout's observations as floats (uint8 images are bytes there)
   Eigen::RowVectorXf advantages_, returns_, values_, log_prob_, entropy_, grad_values_,
       grad_log_prob_, grad_entropy_;
 };

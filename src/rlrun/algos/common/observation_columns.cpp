@@ -43,7 +43,7 @@ double ObservationColumns::bytes_per_observation(const Space& space) {
   return total;
 }
 
-void ObservationColumns::set(int64_t column, const float* obs) {
+void ObservationColumns::set_mixed(int64_t column, const float* obs) {
   for (const Run& r : runs_) {
     if (!r.bytes) {
       std::copy_n(obs + r.begin, r.count, floats_.col(column).data() + r.at);

@@ -6,6 +6,7 @@
 // out as float32 (rlrun's one observation type); a uint8 Box holds whole numbers 0-255, which
 // a byte keeps exactly. A Dict stores each key by its own dtype.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,12 +26,26 @@ class ObservationColumns {
 
   int rows() const { return rows_; }
   int64_t cols() const { return cols_; }
+  // The memory the columns take.
+  int64_t bytes() const {
+    return floats_.size() * static_cast<int64_t>(sizeof(float)) + bytes_.size();
+  }
 
   // Column `column` = `obs` (rows() floats).
-  void set(int64_t column, const float* obs);
+  void set(int64_t column, const float* obs) {
+    if (bytes_.rows() == 0)  // all float32: a plain copy (PPO's minibatches gather many)
+      std::copy_n(obs, rows_, floats_.data() + column * rows_);
+    else
+      set_mixed(column, obs);
+  }
   // rows [begin, begin + count) of column `column` into `out`.
   void get(int64_t column, int begin, int count, float* out) const;
-  void get(int64_t column, float* out) const { get(column, 0, rows_, out); }
+  void get(int64_t column, float* out) const {
+    if (bytes_.rows() == 0)
+      std::copy_n(floats_.data() + column * rows_, rows_, out);
+    else
+      get(column, 0, rows_, out);
+  }
 
   // The first `used` columns, as `name` (float rows) and `name`_uint8 (byte rows); a space
   // without uint8 Boxes writes exactly what a float32 matrix of observations did.
@@ -45,6 +60,7 @@ class ObservationColumns {
     bool bytes = false;
   };
   void add_run(int count, bool bytes);
+  void set_mixed(int64_t column, const float* obs);
 
   std::vector<Run> runs_;
   int rows_ = 0;

@@ -15,8 +15,8 @@
 
 namespace rlrun {
 
-RolloutBuffer::RolloutBuffer(int n_steps, int n_envs, int obs_dim, int act_dim)
-    : obs(obs_dim, n_steps * n_envs), actions(act_dim, n_steps * n_envs) {
+RolloutBuffer::RolloutBuffer(int n_steps, int n_envs, const Space& observation_space, int act_dim)
+    : obs(observation_space, int64_t{n_steps} * n_envs), actions(act_dim, n_steps * n_envs) {
   for (StepEnvMatrix* m : {&rewards, &values, &episode_starts, &log_probs, &advantages, &returns})
     m->resize(n_steps, n_envs);
 }
@@ -38,7 +38,7 @@ std::string export_clip_to_box(PolicyGraph& graph, const Space& space, const std
 OnPolicyCollector::OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim,
                                      int sde_sample_freq)
     : action_space_(setup.action_space),
-      buffer_(n_steps, setup.n_envs, setup.observation_space.flat_dim(), act_dim),
+      buffer_(n_steps, setup.n_envs, setup.observation_space, act_dim),
       last_obs_(setup.observation_space.flat_dim(), setup.n_envs),
       env_actions_(setup.action_space.flat_dim(), setup.n_envs),
       final_obs_(setup.observation_space.flat_dim(), 1),
@@ -103,7 +103,7 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
         reward += gamma * terminal_value_(0);
       }
       const int k = step * n_envs + e;
-      buffer_.obs.col(k) = last_obs_.col(e);
+      buffer_.obs.set(k, last_obs_.col(e).data());
       buffer_.actions.col(k) = step_actions_.col(e);
       buffer_.rewards(step, e) = reward;
       buffer_.episode_starts(step, e) = last_episode_starts_(e);

@@ -10,6 +10,7 @@
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
 #include "rlrun/algos/common/gae.hpp"
+#include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/algos/common/resumable_algorithm.hpp"
 
 namespace rlrun {
@@ -18,11 +19,14 @@ class PolicyGraph;
 
 // n_steps x n_envs transitions; sample k = step * n_envs + env in the column-major matrices,
 // which is also the flat index of the row-major StepEnvMatrix arrays.
+// Observations keep their space's dtype (uint8 images as bytes; SB3's RolloutBuffer holds
+// float32, so an image rollout here takes a quarter of its memory).
 struct RolloutBuffer {
-  RolloutBuffer(int n_steps, int n_envs, int obs_dim, int act_dim);
-  int size() const { return static_cast<int>(obs.cols()); }
+  RolloutBuffer(int n_steps, int n_envs, const Space& observation_space, int act_dim);
+  int size() const { return static_cast<int>(actions.cols()); }
 
-  Eigen::MatrixXf obs, actions;  // actions as sampled (before clipping to the Box bounds)
+  ObservationColumns obs;
+  Eigen::MatrixXf actions;  // actions as sampled (before clipping to the Box bounds)
   StepEnvMatrix rewards, values, episode_starts, log_probs, advantages, returns;
 };
 

@@ -129,11 +129,11 @@ void PPO::gather_minibatch(int start, int batch) {
       v->resize(batch);
   }
   // Columns copied as raw blocks: Eigen's per-column assignment of a run-time size (3 floats
-  // for Pendulum) costs more than the copy.
+  // for Pendulum) costs more than the copy. Observations come out of their storage as floats.
   const Eigen::Index obs_rows = rollout.obs.rows(), act_rows = rollout.actions.rows();
   for (int j = 0; j < batch; ++j) {
     const int k = indices_[start + j];
-    std::copy_n(rollout.obs.data() + k * obs_rows, obs_rows, mb_obs_.data() + j * obs_rows);
+    rollout.obs.get(k, mb_obs_.data() + j * obs_rows);
     std::copy_n(rollout.actions.data() + k * act_rows, act_rows, mb_act_.data() + j * act_rows);
     mb_adv_(j) = rollout.advantages.data()[k];
     mb_ret_(j) = rollout.returns.data()[k];
