@@ -29,3 +29,15 @@ class BrightSide:
         reward = 1.0 if int(action) == self.side else 0.0
         self.steps += 1
         return self._draw(), reward, False, self.steps >= 8, {}
+
+
+class FloatBrightSide(BrightSide):
+    """The same pictures in a float32 Box of 0-255: not an image to SB3 (is_image_space asks
+    for uint8), so CnnPolicy refuses it."""
+
+    def __init__(self):
+        super().__init__()
+        self.observation_space = Box(0, 255, shape=(36, 36, 1), dtype=np.float32)
+
+    def _draw(self):
+        return super()._draw().astype(np.float32)
