@@ -166,9 +166,9 @@ TEST_CASE("A Python env's uint8 Box is an image: CnnPolicy takes it, the replay 
   CHECK(check.exit_code == 0);
   CHECK(check.output.find("Box(0, 255, (36, 36, 1), uint8)") != std::string::npos);
   // The same pictures as float32: SB3's NatureCNN assertion, saying what an image is.
-  const std::string floats = python_experiment(
-      dir.str(), "floats", "python:rlrun_test_envs.pixels:FloatBrightSide",
-      "id: DQN, policy: {features_extractor_class: NatureCNN}", 400);
+  const std::string floats =
+      python_experiment(dir.str(), "floats", "python:rlrun_test_envs.pixels:FloatBrightSide",
+                        "id: DQN, policy: {features_extractor_class: NatureCNN}", 400);
   const auto refused = run_rlrun_python("train " + floats);
   INFO(refused.output);
   CHECK(refused.exit_code != 0);
