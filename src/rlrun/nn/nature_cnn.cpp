@@ -112,9 +112,18 @@ void NatureCnn::for_each_weight(int l, F&& f) const {
             f(s.torch_index(o, c, i, j), conv_weight_offset(l, o, c, i, j));
     return;
   }
-  for (int o = 0; o < features_dim_; ++o)
-    for (int q = 0; q < flatten_dim(); ++q)
-      f(Eigen::Index{o} * flatten_dim() + q, linear_weight_offset(o, q));
+  // The linear weight is a transposition with a permutation (torch: o x (c, y, x); rlrun:
+  // ((y, x), c) x o): o innermost reads rlrun's side in order and writes torch's with a stride
+  // that touches the same features_dim cache lines for consecutive pixels, so the 512 x 3136
+  // matrix moves at memory speed (o outermost missed the cache on every element).
+  const Conv2dShape& last = conv_[kConvLayers - 1];
+  const int hw = last.out_height() * last.out_width();
+  for (int c = 0; c < last.out_channels; ++c)
+    for (int pixel = 0; pixel < hw; ++pixel) {
+      const int q = c * hw + pixel;
+      const Eigen::Index at = linear_weight_offset(0, q);
+      for (int o = 0; o < features_dim_; ++o) f(Eigen::Index{o} * flatten_dim() + q, at + o);
+    }
 }
 
 template <class Draw>
