@@ -74,6 +74,25 @@ TEST_CASE("cli: a NatureCNN on a vector observation is refused with SB3's reason
                            Catch::Contains("Box([-4.8"));
 }
 
+TEST_CASE("cli: a NatureCNN whose batch of activations cannot fit is refused before allocating",
+          "[cli][cnn]") {
+  // 2048x2048 RGB frames: the CNN's weights (features_dim 8) fit, but a batch of 1 024 images
+  // keeps ~29 M floats of layer outputs each, twice (forward and backward): ~240 GB.
+  TempDir dir("cnn_too_big");
+  const std::string config = dir / "big.yaml";
+  std::ofstream(config) << "run: {name: big, seed: 1, total_timesteps: 2000, out_dir: "
+                        << dir.str() << "/runs}\n"
+                        << "env:\n  id: CartPole-v1\n  wrappers: [{id: AddRenderObservation, "
+                           "width: 2048, height: 2048}]\n"
+                        << "algo: {id: DQN, batch_size: 1024, policy: "
+                           "{features_extractor_class: NatureCNN, features_dim: 8, net_arch: []}}\n";
+  const auto r = run_rlrun("train " + config);
+  INFO(r.output);
+  CHECK(r.exit_code != 0);
+  CHECK_THAT(r.output, Catch::Contains("big.yaml:5") &&
+                           Catch::Contains("activations of a batch of 1024 images"));
+}
+
 TEST_CASE("cli: SB3's Atari preprocessing on pixel CartPole, resumed exactly", "[cli][cnn]") {
   // WarpFrame's pieces (OpenCV gray, INTER_AREA to 44x44), MaxAndSkip, NoopReset, the sign of
   // the reward, and VecFrameStack's layout: four frames on the channel axis, (44, 44, 4).

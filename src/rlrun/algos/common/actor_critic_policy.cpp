@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <stdexcept>
+#include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/env/image_space.hpp"
 
@@ -57,19 +58,20 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
     out.push_back({"n_steps", "n_steps * n_envs = " + std::to_string(rollout_size) +
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
   check_net_arch(out, "policy.net_arch", policy.net_arch.pi, policy.net_arch.vf);
-  const int obs_dim = setup.observation_space.flat_dim();
   const int features = features_extractor_output_dim(
       out, "policy.features_extractor_class", policy.features_extractor_class, policy.features_dim,
-      policy.normalize_images, setup.observation_space);
+      policy.normalize_images, setup.observation_space, policy.share_features_extractor ? 1 : 2,
+      static_cast<double>(batch));
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
   check_network_memory(out, "policy.net_arch", features, policy.net_arch.pi, head, 1,
                        static_cast<double>(batch));
   check_network_memory(out, "policy.net_arch", features, policy.net_arch.vf, 1, 1,
                        static_cast<double>(batch));
-  // The rollout: observations, actions and six per-step numbers (reward, value, log-prob,
-  // advantage, return, episode start) in float32.
+  // The rollout: observations (uint8 images as bytes), actions and six per-step numbers
+  // (reward, value, log-prob, advantage, return, episode start) in float32.
   const double rollout_bytes = static_cast<double>(rollout_size) *
-                               (obs_dim + setup.action_space.flat_dim() + 6) * sizeof(float);
+                               (ObservationColumns::bytes_per_observation(setup.observation_space) +
+                                (setup.action_space.flat_dim() + 6.0) * sizeof(float));
   const std::string problem = memory_problem(rollout_bytes, "a rollout of n_steps * n_envs steps");
   if (!problem.empty()) out.push_back({"n_steps", problem});
   return out;

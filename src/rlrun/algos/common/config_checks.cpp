@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "rlrun/core/available_cpus.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/nn/batch_split.hpp"
 
@@ -100,15 +101,29 @@ int network_input_dim(ConfigProblems& out, const Space& observation_space) {
 
 int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
                                   FeaturesExtractor extractor, int features_dim,
-                                  bool normalize_images, const Space& observation_space) {
+                                  bool normalize_images, const Space& observation_space,
+                                  int networks, double batch) {
   if (extractor == FeaturesExtractor::kFlatten) return network_input_dim(out, observation_space);
   try {
     const ImageInput image = require_image_input(observation_space, normalize_images);
-    // The linear layer dominates: the last convolution's output times features_dim, as
-    // parameters, gradients and Adam's two moments.
-    const auto flatten = static_cast<double>(NatureCnn::conv_shapes(image).back().out_size());
+    // The linear layer dominates the weights: the last convolution's output times
+    // features_dim, as parameters, gradients and Adam's two moments. A batch keeps every
+    // layer's output and its gradient (nn/nature_cnn.cpp); each worker im2cols one image at a
+    // time (the first layer's patches are the largest: ~4x the image).
+    const auto shapes = NatureCnn::conv_shapes(image);
+    const auto flatten = static_cast<double>(shapes.back().out_size());
+    double per_image = image.size() + features_dim, patches = 0;
+    for (const Conv2dShape& s : shapes) {
+      per_image += static_cast<double>(s.out_size());
+      patches = std::max(patches, static_cast<double>(s.patch_size() * s.out_pixels()));
+    }
+    const double floats =
+        networks * (flatten * features_dim * 4 + per_image * 2 * std::max(batch, 1.0) +
+                    patches * 2 * available_cpus());
     const std::string problem =
-        memory_problem(flatten * features_dim * 4 * sizeof(float), "NatureCNN's weights");
+        memory_problem(floats * sizeof(float),
+                       "NatureCNN's weights and the activations of a batch of " +
+                           std::to_string(static_cast<int64_t>(std::max(batch, 1.0))) + " images");
     if (!problem.empty()) out.push_back({key, problem});
   } catch (const std::invalid_argument& e) {
     out.push_back({key, e.what()});

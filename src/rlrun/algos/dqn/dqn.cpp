@@ -44,9 +44,10 @@ ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
   const int actions =
       setup.action_space.is_discrete() ? static_cast<int>(setup.action_space.n()) : 1;
   const QNetworkConfig& p = config.policy;
-  const int features = features_extractor_output_dim(out, "policy.features_extractor_class",
-                                                     p.features_extractor_class, p.features_dim,
-                                                     p.normalize_images, setup.observation_space);
+  // q_net's CNN and q_net_target's.
+  const int features = features_extractor_output_dim(
+      out, "policy.features_extractor_class", p.features_extractor_class, p.features_dim,
+      p.normalize_images, setup.observation_space, 2, config.off_policy.batch_size);
   // The Q-network, its target and the second core's activations of both.
   check_network_memory(out, "policy.net_arch", features, config.policy.net_arch, actions, 4,
                        config.off_policy.batch_size);
