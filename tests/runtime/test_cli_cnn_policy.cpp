@@ -80,12 +80,12 @@ TEST_CASE("cli: a NatureCNN whose batch of activations cannot fit is refused bef
   // keeps ~29 M floats of layer outputs each, twice (forward and backward): ~240 GB.
   TempDir dir("cnn_too_big");
   const std::string config = dir / "big.yaml";
-  std::ofstream(config) << "run: {name: big, seed: 1, total_timesteps: 2000, out_dir: "
-                        << dir.str() << "/runs}\n"
-                        << "env:\n  id: CartPole-v1\n  wrappers: [{id: AddRenderObservation, "
-                           "width: 2048, height: 2048}]\n"
-                        << "algo: {id: DQN, batch_size: 1024, policy: "
-                           "{features_extractor_class: NatureCNN, features_dim: 8, net_arch: []}}\n";
+  std::ofstream(config)
+      << "run: {name: big, seed: 1, total_timesteps: 2000, out_dir: " << dir.str() << "/runs}\n"
+      << "env:\n  id: CartPole-v1\n  wrappers: [{id: AddRenderObservation, "
+         "width: 2048, height: 2048}]\n"
+      << "algo: {id: DQN, batch_size: 1024, policy: "
+         "{features_extractor_class: NatureCNN, features_dim: 8, net_arch: []}}\n";
   const auto r = run_rlrun("train " + config);
   INFO(r.output);
   CHECK(r.exit_code != 0);
