@@ -2,6 +2,7 @@
 // OpenCV 4.6 printed for the same deterministic images (tests/data/opencv/golden.txt, made by
 // scripts/tests/make_opencv_golden.py with cv2 itself).
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -102,6 +103,9 @@ TEST_CASE("INTER_AREA refuses what OpenCV's area path does not do", "[wrappers][
   CHECK(opencv_pixel(254.6f) == 255);
   CHECK(opencv_pixel(300.f) == 255);
   CHECK(opencv_pixel(17.f) == 17);
+  CHECK(opencv_pixel(2.5f) == 2);  // ties to even, as lrint
+  CHECK(opencv_pixel(3.5f) == 4);
+  CHECK(opencv_pixel(std::nanf("")) == 0);
 }
 
 }  // namespace rlrun

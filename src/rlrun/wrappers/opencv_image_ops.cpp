@@ -36,11 +36,6 @@ AreaScales area_scales(const ImageSize& from, int height, int width) {
 
 }  // namespace
 
-uint8_t opencv_pixel(float value) {
-  if (!(value > 0.f)) return 0;  // NaN too
-  return value >= 255.f ? 255 : static_cast<uint8_t>(std::lrint(value));
-}
-
 uint8_t opencv_rgb_to_gray(uint8_t r, uint8_t g, uint8_t b) {
   return static_cast<uint8_t>((9798 * r + 19235 * g + 3735 * b + (1 << 14)) >> 15);
 }
