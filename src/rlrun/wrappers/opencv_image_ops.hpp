@@ -15,12 +15,12 @@
 //    to even.
 // Pixels are floats holding 0-255 (rlrun's observations); each is first taken as OpenCV would
 // see the uint8 array Gymnasium's Box holds (rounded, clamped to 0-255).
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "rlrun/core/pixel_byte.hpp"
 
 namespace rlrun {
 
@@ -29,13 +29,9 @@ struct ImageSize {
   int64_t values() const { return int64_t{height} * width * channels; }
 };
 
-// The uint8 value OpenCV reads for a float pixel of an rlrun observation: rounded to nearest
-// (even on ties, as lrint), clamped to 0-255, NaN 0. Inline and branch-free, so a frame's
-// conversion vectorises (it was 15 % of a pixel pipeline's step as a call with lrint).
-inline uint8_t opencv_pixel(float value) {
-  const float v = value > 0.f ? std::min(value, 255.f) : 0.f;
-  return static_cast<uint8_t>(static_cast<int>(std::nearbyint(v)));
-}
+// The uint8 value OpenCV reads for a float pixel of an rlrun observation (core/pixel_byte.hpp;
+// inline so a frame's conversion vectorises: it was 15 % of a pixel pipeline's step as a call).
+inline uint8_t opencv_pixel(float value) { return pixel_byte(value); }
 
 // cv2.COLOR_RGB2GRAY of one pixel.
 uint8_t opencv_rgb_to_gray(uint8_t r, uint8_t g, uint8_t b);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rlrun/core/pixel_byte.hpp"
+
 namespace rlrun {
 
 namespace {
@@ -24,7 +26,7 @@ void ObservationColumns::add_run(int count, bool bytes) {
   rows_ += count;
 }
 
-ObservationColumns::ObservationColumns(const Space& space, int64_t columns) : cols_(columns) {
+ObservationColumns::ObservationColumns(const Space& space, int64_t columns) {
   if (space.is_dict()) {
     for (const Space& key : space.subspaces()) add_run(key.flat_dim(), stored_as_bytes(key));
   } else {
@@ -49,14 +51,8 @@ void ObservationColumns::set_mixed(int64_t column, const float* obs) {
       std::copy_n(obs + r.begin, r.count, floats_.col(column).data() + r.at);
       continue;
     }
-    uint8_t* out = bytes_.col(column).data() + r.at;
-    const float* in = obs + r.begin;
-    // A uint8 Box's values are whole numbers 0-255 (Space::contains); the bounds keep a value
-    // an env got wrong (NaN included) from wrapping around. Written to vectorise.
-    for (int i = 0; i < r.count; ++i) {
-      const float v = in[i] > 0.0f ? std::min(in[i], 255.0f) : 0.0f;
-      out[i] = static_cast<uint8_t>(static_cast<int>(v + 0.5f));
-    }
+    std::transform(obs + r.begin, obs + r.begin + r.count, bytes_.col(column).data() + r.at,
+                   pixel_byte);
   }
 }
 

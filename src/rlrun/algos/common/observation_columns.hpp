@@ -25,7 +25,6 @@ class ObservationColumns {
   static double bytes_per_observation(const Space& space);
 
   int rows() const { return rows_; }
-  int64_t cols() const { return cols_; }
   // The memory the columns take.
   int64_t bytes() const {
     return floats_.size() * static_cast<int64_t>(sizeof(float)) + bytes_.size();
@@ -64,7 +63,6 @@ class ObservationColumns {
 
   std::vector<Run> runs_;
   int rows_ = 0;
-  int64_t cols_ = 0;
   Eigen::MatrixXf floats_;
   Eigen::Matrix<uint8_t, Eigen::Dynamic, Eigen::Dynamic> bytes_;
 };
