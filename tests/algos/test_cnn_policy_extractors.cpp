@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nn/grad_check.hpp"
+#include "nn/nature_cnn_gradient_check.hpp"
 #include "nn/nature_cnn_reference.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 
@@ -56,19 +57,7 @@ TEST_CASE("ActorCriticPolicy: share_features_extractor false gives the critic it
         test::mlp_forward(policy.critic(), critic, test::reference_features(vf, obs.col(j)))(0, 0);
     CHECK(values(j) == Approx(v).epsilon(1e-4).margin(1e-5));
   }
-  int checked = 0;
-  for (Eigen::Index k = 0; k < vf.num_params(); k += vf.num_params() / 53 + 1) {
-    NatureCnn plus = vf, minus = vf;
-    const float h = 1e-6f * std::max(1.0f, std::abs(vf.params()(k)));
-    plus.params()(k) += h;
-    minus.params()(k) -= h;
-    const double numeric = (value_loss(plus) - value_loss(minus)) /
-                           (static_cast<double>(plus.params()(k)) - minus.params()(k));
-    INFO("critic CNN parameter " << k);
-    CHECK(vf.grads()(k) == Approx(numeric).margin(1e-5).epsilon(1e-2));
-    ++checked;
-  }
-  CHECK(checked > 50);
+  CHECK(test::check_cnn_gradient(vf, value_loss, "critic CNN", 53, 1e-5, 1e-2) > 50);
 
   // SB3's state_dict names; a reload gives the same networks.
   TensorMap tensors;

@@ -14,6 +14,7 @@
 
 #include "fakes/constant_env.hpp"
 #include "nn/grad_check.hpp"
+#include "nn/nature_cnn_gradient_check.hpp"
 #include "nn/nature_cnn_reference.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/dqn/exploration_schedule.hpp"
@@ -211,19 +212,7 @@ TEST_CASE("DQN CnnPolicy: the loss gradient reaches q_net's NatureCNN, as centra
     return sum / n;
   };
   CHECK(double_loss(cnn) == Approx(loss).epsilon(1e-4));
-  int checked = 0;
-  for (Eigen::Index k = 0; k < cnn.num_params(); k += cnn.num_params() / 61 + 1) {
-    NatureCnn plus = cnn, minus = cnn;
-    const float h = 1e-6f * std::max(1.0f, std::abs(cnn.params()(k)));
-    plus.params()(k) += h;
-    minus.params()(k) -= h;
-    const double numeric = (double_loss(plus) - double_loss(minus)) /
-                           (static_cast<double>(plus.params()(k)) - minus.params()(k));
-    INFO("CNN parameter " << k);
-    CHECK(cnn.grads()(k) == Approx(numeric).margin(1e-5).epsilon(1e-2));
-    ++checked;
-  }
-  CHECK(checked > 60);
+  CHECK(test::check_cnn_gradient(cnn, double_loss, "CNN", 61, 1e-5, 1e-2) > 60);
   CHECK(cnn.grads().norm() > 0.0f);
 
   // SB3's state_dict names: each network's extractor under its own module.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "nn/nature_cnn_gradient_check.hpp"
 #include "nn/nature_cnn_reference.hpp"
 #include "rlrun/core/thread_pool.hpp"
 #include "rlrun/nn/conv2d.hpp"
@@ -192,23 +193,8 @@ TEST_CASE("NatureCNN's gradients match central differences", "[nn][cnn]") {
         l += g.col(s).cast<double>().dot(reference_features(n, x.col(s)));
       return l;
     };
-    // Parameters spread over every layer. The features are piecewise linear in any one
-    // parameter, so a small step gives the exact slope unless it crosses a ReLU's kink; the
-    // step is taken on the float parameter and divided by the float difference, which the
-    // reference in double then differentiates exactly.
-    int checked = 0;
-    for (Eigen::Index k = 0; k < net.num_params(); k += net.num_params() / 97 + 1) {
-      NatureCnn plus = net, minus = net;
-      const float h = 1e-6f * std::max(1.0f, std::abs(net.params()(k)));
-      plus.params()(k) += h;
-      minus.params()(k) -= h;
-      const double numeric =
-          (loss(plus) - loss(minus)) / (static_cast<double>(plus.params()(k)) - minus.params()(k));
-      INFO("parameter " << k);
-      CHECK(net.grads()(k) == Approx(numeric).margin(1e-4).epsilon(1e-3));
-      ++checked;
-    }
-    CHECK(checked > 90);
+    // Parameters spread over every layer.
+    CHECK(test::check_cnn_gradient(net, loss, "NatureCNN", 97, 1e-4, 1e-3) > 90);
   }
 }
 

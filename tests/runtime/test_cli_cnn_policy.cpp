@@ -168,6 +168,48 @@ TEST_CASE("cli: DQN trains a NatureCNN on stacked frames, the same on 1 and 2 th
 }
 
 TEST_CASE(
+    "cli: SAC, TQC, TD3 and DDPG train their actor's and critic's NatureCNN on pixels, the same "
+    "on 1 and 2 threads",
+    "[cli][cnn]") {
+  TempDir dir("cnn_off_policy");
+  for (const std::string algo : {"SAC", "TQC", "TD3", "DDPG"}) {
+    INFO(algo);
+    const std::string config = dir / (algo + ".yaml");
+    std::ofstream(config)
+        << "run: {name: " << algo << ", seed: 5, total_timesteps: 500, out_dir: " << dir.str()
+        << "/runs}\n"
+        << "env:\n  id: Pendulum-v1\n  n_envs: 2\n  wrappers: "
+        << "[{id: AddRenderObservation, width: 36, height: 36}, "
+           "{id: GrayscaleObservation, keep_dim: true}, {id: FrameStack, n_stack: 2, layout: "
+           "sb3}]\n"
+        << "algo: {id: " << algo
+        << ", learning_starts: 200, buffer_size: 1000, batch_size: 16, "
+           "policy: {features_extractor_class: NatureCNN, features_dim: 16, net_arch: [32]}}\n";
+    const std::string model = dir / ("runs/" + algo + "/seed5/model.zip");
+    const auto one = run_rlrun("--threads 1 train " + config);
+    INFO(one.output);
+    REQUIRE(one.exit_code == 0);
+    const std::string first = dir / (algo + "_one_thread.zip");
+    std::filesystem::copy_file(model, first);
+    const auto two = run_rlrun("--threads 2 train " + config);
+    REQUIRE(two.exit_code == 0);
+    check_same_tensors(first, model);
+    // SB3's names: one NatureCNN each for the actor and the critic (and their targets), the
+    // frames (36, 36, 2) read channels-last.
+    const ModelFile file = read_model(model);
+    for (const std::string module : {"actor", "critic", "critic_target"})
+      CHECK(file.tensors.at(module + ".features_extractor.cnn.0.weight").shape ==
+            std::vector<int64_t>{32, 2, 8, 8});
+    CHECK(file.tensors.count("actor_target.features_extractor.linear.0.bias") ==
+          (algo == "TD3" || algo == "DDPG" ? 1u : 0u));
+    CHECK(file.tensors.at("critic.qf0.0.weight").shape == std::vector<int64_t>{32, 16 + 1});
+    const auto eval = run_rlrun("eval --model " + model + " --episodes 1");
+    INFO(eval.output);
+    CHECK(eval.exit_code == 0);
+  }
+}
+
+TEST_CASE(
     "cli: PPO with share_features_extractor false trains two CNNs, the same on 1 and 2 "
     "threads",
     "[cli][cnn]") {

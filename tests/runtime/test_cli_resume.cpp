@@ -231,6 +231,29 @@ TEST_CASE(
   check_resume_equals_uninterrupted(pixels, "KILL");
 }
 
+TEST_CASE(
+    "resume: SAC and TD3 with CnnPolicy resume exactly (each extractor, its target and its Adam "
+    "in the checkpoint)",
+    "[cli][resume][image][cnn]") {
+  // Pendulum's 36x36 gray frames, the actor's and the critic's NatureCNN (SB3's off-policy
+  // CnnPolicy), 900 steps with a checkpoint at 400.
+  const std::string pixels =
+      " --set run.total_timesteps=900 --set algo.learning_starts=200 --set algo.batch_size=16"
+      " --set checkpoint.freq=400 --set run.log_interval=1 --set eval.freq=0"
+      " --set 'env.wrappers=[{id: AddRenderObservation, width: 36, height: 36},"
+      " {id: GrayscaleObservation, keep_dim: true}]'"
+      " --set 'algo.policy={features_extractor_class: NatureCNN, features_dim: 16, net_arch: "
+      "[32]}'";
+  SECTION("SAC") {
+    check_resume_equals_uninterrupted(
+        {"pendulum_sac.yaml", "pendulum_sac", pixels, "step_400.zip", 1, false}, "KILL");
+  }
+  SECTION("TD3") {
+    check_resume_equals_uninterrupted(
+        {"pendulum_td3.yaml", "pendulum_td3", pixels, "step_400.zip", 1, false}, "KILL");
+  }
+}
+
 TEST_CASE("resume: SAC with env.normalize resumes exactly (original observations in the buffer)",
           "[cli][resume][normalize]") {
   ResumeCase sac = kSac;

@@ -338,6 +338,33 @@ CartPole-v1:
   CHECK(q["algo"]["policy"]["features_extractor_class"].as<std::string>() == "NatureCNN");
   CHECK(q["algo"]["policy"]["net_arch"].size() == 0);
   CHECK(q["algo"]["policy"]["features_dim"].as<int>() == 256);
+  // The off-policy CnnPolicy: SB3's net_arch for it is [256, 256] (TD3Policy's MLP default is
+  // [400, 300]; SACPolicy's and TQCPolicy's is [256, 256] either way), unless set.
+  const std::string td3 = write_file(dir, "td3.yml", R"zoo(CarRacing-v3:
+  policy: 'CnnPolicy'
+  n_timesteps: 1000
+CarRacing-v2:
+  policy: 'CnnPolicy'
+  n_timesteps: 1000
+  policy_kwargs: "dict(net_arch=[64], share_features_extractor=False)"
+)zoo");
+  const YAML::Node t = translate_zoo_entry(read_zoo_entry(td3, "CarRacing-v3", ""), registry)
+                           .experiment["algo"]["policy"];
+  CHECK(t["features_extractor_class"].as<std::string>() == "NatureCNN");
+  CHECK(t["net_arch"].as<std::vector<int>>() == std::vector<int>{256, 256});
+  const YAML::Node t2 = translate_zoo_entry(read_zoo_entry(td3, "CarRacing-v2", ""), registry)
+                            .experiment["algo"]["policy"];
+  CHECK(t2["net_arch"].as<std::vector<int>>() == std::vector<int>{64});
+  CHECK(t2["share_features_extractor"].as<bool>() == false);
+  for (const std::string algo : {"sac", "tqc", "ddpg"}) {
+    const std::string f = write_file(dir, algo + ".yml",
+                                     "CarRacing-v3:\n  n_timesteps: 1000\n  policy: 'CnnPolicy'\n");
+    const YAML::Node p =
+        translate_zoo_entry(read_zoo_entry(f, "CarRacing-v3", ""), registry).experiment["algo"];
+    INFO(algo);
+    CHECK(p["policy"]["features_extractor_class"].as<std::string>() == "NatureCNN");
+    CHECK(p["policy"]["net_arch"].IsDefined() == (algo == "ddpg"));
+  }
 }
 
 TEST_CASE("zoo import: the image wrappers of the zoo's CarRacing and atari entries", "[zoo]") {
@@ -440,13 +467,9 @@ MountainCar-v0:
                            Catch::Contains("did you mean 'n_steps'"));
   CHECK_THAT(cartpole, Catch::Contains(file + ":5:18") && Catch::Contains("calls other than dict"));
   const std::string pendulum = import_error(file, "Pendulum-v1");
-  // PPO has CnnPolicy (NatureCNN); SAC has not yet.
+  // PPO has CnnPolicy (NatureCNN); whether the env's observations are images is checked when
+  // the run starts (test_cli_cnn_policy.cpp).
   CHECK_THAT(pendulum, !Catch::Contains(file + ":8:11"));
-  const std::string sac =
-      write_file(dir, "sac.yml", "Pendulum-v1:\n  n_timesteps: 1000\n  policy: 'CnnPolicy'\n");
-  CHECK_THAT(
-      import_error(sac, "Pendulum-v1"),
-      Catch::Contains(sac + ":3:11") && Catch::Contains("built for PPO, A2C and DQN so far"));
   CHECK_THAT(pendulum, Catch::Contains(file + ":9:16") &&
                            Catch::Contains("env_wrapper my_package.MyWrapper"));
   const std::string acrobot = import_error(file, "Acrobot-v1");

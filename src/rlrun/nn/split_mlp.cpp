@@ -53,8 +53,9 @@ void SplitMlp::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output) {
 }
 
 void SplitMlp::zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                                      const Eigen::MatrixXf* grad_last_hidden) {
-  backward_parts(grad_output, true, grad_last_hidden);
+                                      const Eigen::MatrixXf* grad_last_hidden,
+                                      Eigen::MatrixXf* grad_input) {
+  backward_parts(grad_output, true, grad_last_hidden, grad_input);
 }
 
 const Eigen::MatrixXf& SplitMlp::last_hidden() {
@@ -69,17 +70,19 @@ const Eigen::MatrixXf& SplitMlp::last_hidden() {
 }
 
 void SplitMlp::backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
-                              const Eigen::MatrixXf* grad_last_hidden) {
+                              const Eigen::MatrixXf* grad_last_hidden,
+                              Eigen::MatrixXf* grad_input) {
   if (parts_ == 1) {
     if (zero_first) net_.zero_grad();
-    net_.backward(grad_output, nullptr, grad_last_hidden);
+    net_.backward(grad_output, grad_input, grad_last_hidden);
     return;
   }
   if (grad_last_hidden != nullptr && grad_last_hidden->cols() != grad_output.cols())
     throw std::invalid_argument("SplitMlp::backward: grad_last_hidden has the wrong batch");
   const Eigen::Index n = grad_output.cols();
   const float* p = net_.params_.data();
-  transpose_for_parts(n, false);
+  if (grad_input) grad_input->resize(net_.in_dim(), n);
+  transpose_for_parts(n, grad_input != nullptr);
   run_parts(pool_, parts_, [&](int k) {
     const Part cols = column_part(n, parts_, k);
     Mlp& part = part_net(k);
@@ -87,7 +90,8 @@ void SplitMlp::backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_outp
     const float* grad_hidden =
         grad_last_hidden ? grad_last_hidden->data() + cols.begin * grad_last_hidden->rows()
                          : nullptr;
-    part.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, nullptr, 0,
+    float* grad_x = grad_input ? grad_input->data() + cols.begin * grad_input->rows() : nullptr;
+    part.backward_pass(p, grad_output.middleCols(cols.begin, cols.count), true, grad_x, 0,
                        grad_hidden, grad_last_hidden ? grad_last_hidden->rows() : 0, &net_);
   });
   // grads += part 1's, then part 2's, ...: the same order for every element, each of two

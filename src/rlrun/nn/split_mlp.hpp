@@ -53,8 +53,11 @@ class SplitMlp {
   // torch's optimizer.zero_grad(); loss.backward(): grads() becomes the whole batch's gradient
   // (the same bits as zero_grad() then backward(), the zeroing done by each part's thread).
   // grad_last_hidden (optional): a further dL/d(last_hidden()), as in Mlp::backward.
+  // grad_input (optional): resized to in_dim x n, receives dL/dx of the same pass (a features
+  // extractor in front of the network learns from it).
   void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
-                              const Eigen::MatrixXf* grad_last_hidden = nullptr);
+                              const Eigen::MatrixXf* grad_last_hidden = nullptr,
+                              Eigen::MatrixXf* grad_input = nullptr);
   // Mlp::backward_input of the last forward: rows [first_input_row, in_dim) of dL/dx, for the
   // whole batch, into grad_input; grads() is left unchanged.
   void backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
@@ -65,7 +68,8 @@ class SplitMlp {
   // on first use).
   Mlp& part_net(int k);
   void backward_parts(const Eigen::Ref<const Eigen::MatrixXf>& grad_output, bool zero_first,
-                      const Eigen::MatrixXf* grad_last_hidden = nullptr);
+                      const Eigen::MatrixXf* grad_last_hidden = nullptr,
+                      Eigen::MatrixXf* grad_input = nullptr);
   // Before a split backward of n columns: W^T of every layer the parts carry the input
   // gradient through, transposed once into net_ (two threads a part of the rows each) for all
   // parts to read, rather than once per part (DQN's 4-256-256-2 update at batch 64 on a Zen 5:

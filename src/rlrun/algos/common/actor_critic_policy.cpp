@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <stdexcept>
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/core/resource_limits.hpp"
 #include "rlrun/env/image_space.hpp"
@@ -225,10 +226,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
 
 void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
                                   const Space& action_space, bool with_value) const {
-  if (use_cnn_)
-    throw ExportError(
-        "a NatureCNN policy (CnnPolicy) cannot be exported yet: rlrun's ONNX, C "
-        "and C++ exports have no convolution");
+  if (use_cnn_) require_exportable(FeaturesExtractor::kNatureCnn);
   const std::string features = encoder_.export_to(graph, obs);
   const std::string head = graph.mlp(features, actor_);
   switch (head_) {

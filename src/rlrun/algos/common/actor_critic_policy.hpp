@@ -70,8 +70,7 @@ struct ActorCriticPolicyConfig {
       "gSDE (use_sde): log_std per latent feature and action (true) or per feature (false)");
     v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
-    v("features_dim", features_dim,
-      "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
+    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("share_features_extractor", share_features_extractor,
       "actor and critic read one NatureCNN (SB3's default for PPO and A2C); false: one each");

@@ -5,6 +5,12 @@
 // copy (load_state_dict) that then only moves by Polyak averaging. Each Q-network is a SplitMlp,
 // so a training minibatch runs on both cores; the losses are the algorithms'.
 //
+// The Q-networks read the output of the critic's features extractor (features_extractor_net.hpp):
+// the observation itself (FlattenExtractor) or a NatureCNN's features. SB3's off-policy
+// CnnPolicy gives the critic its own CNN (share_features_extractor=False), read by every
+// Q-network and trained by their summed loss, and a copy in critic_target averaged with the
+// rest of it; so does this class (the extractor is saved as <prefix>.features_extractor.*).
+//
 // With n_outputs > 1 it is sb3-contrib tqc/policies.py Critic: each network ends in
 // n_quantiles outputs (create_mlp(features_dim + action_dim, n_quantiles, net_arch)), with the
 // same module names qf<i>, so the same class, save names and Polyak update serve TQC.
@@ -12,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/batch_split.hpp"
 #include "rlrun/nn/split_mlp.hpp"
@@ -27,10 +34,17 @@ class ContinuousCritic {
   ContinuousCritic(int obs_dim, int action_dim, const std::vector<int>& net_arch,
                    Activation activation, int n_critics, int n_outputs = 1,
                    ThreadPool* pool = nullptr);
+  // The same behind a features extractor: the Q-networks read extractor.out_dim() features.
+  ContinuousCritic(FeaturesExtractorNet extractor, int action_dim, const std::vector<int>& net_arch,
+                   Activation activation, int n_critics, int n_outputs = 1,
+                   ThreadPool* pool = nullptr);
 
   // torch's default Linear init, Q-network by Q-network (SB3 never calls init_weights for
-  // off-policy critics).
+  // off-policy critics). A learned extractor is initialised apart (features_extractor()).
   void init(Rng& rng);
+
+  FeaturesExtractorNet& features_extractor() { return extractor_; }
+  const FeaturesExtractorNet& features_extractor() const { return extractor_; }
 
   int n_critics() const { return static_cast<int>(q_.size()); }
   int n_outputs() const { return q_.front().net().out_dim(); }
@@ -53,7 +67,7 @@ class ContinuousCritic {
     });
   }
 
-  // SB3 forward(obs, actions): Q_i(obs, actions) of every critic, each q(i).output()
+  // SB3 forward(obs, actions): Q_i(features(obs), actions) of every critic, each q(i).output()
   // (n_outputs x n), kept for backward (the actions: action_dim x n).
   void forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                const Eigen::Ref<const Eigen::MatrixXf>& actions);
@@ -64,6 +78,15 @@ class ContinuousCritic {
   // SB3 q1_forward: the first critic only (TD3's actor loss).
   const Eigen::MatrixXf& q1_forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                     const Eigen::Ref<const Eigen::MatrixXf>& actions);
+  // The critic loss's backward through critic i's last forward for dL/dQ_i = grad_q:
+  // q(i).grads() becomes its gradient; with a learned extractor dL/d(features) is kept for
+  // backward_features_extractor. Critics may run this side by side (for_each_critic).
+  void zero_grad_and_backward(int i, const Eigen::Ref<const Eigen::MatrixXf>& grad_q);
+  // After zero_grad_and_backward of every critic: the extractor's gradient from the sum of the
+  // critics' dL/d(features), added in critic order (torch sums them in the autograd graph).
+  // Nothing for a flatten extractor.
+  void backward_features_extractor();
+
   // dL/d(actions) through critic i's last forward for dL/dQ_i = grad_q (n_outputs x n):
   // action_dim x n.
   // Input gradient only: an actor loss's backward also fills the critic's .grad in torch, but
@@ -72,18 +95,28 @@ class ContinuousCritic {
                        Eigen::MatrixXf& grad_actions);
 
   // SB3 state_dict names: <prefix>.qf<i>.<2l>.weight/bias, e.g. critic.qf0.0.weight and
-  // critic.qf0.4.weight for net_arch [256, 256] (torch Sequential indices skip activations).
+  // critic.qf0.4.weight for net_arch [256, 256] (torch Sequential indices skip activations),
+  // and <prefix>.features_extractor.* for a learned extractor.
   void save(const std::string& prefix, TensorMap& tensors) const;
   void load(const std::string& prefix, const TensorMap& tensors);
 
  private:
-  int obs_dim_ = 0;
+  // th.cat([features_extractor(obs), actions], dim=1) into obs_action_.
+  void concat_input(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                    const Eigen::Ref<const Eigen::MatrixXf>& actions);
+
+  int obs_dim_ = 0;  // features per observation
   ThreadPool* pool_ = nullptr;
+  FeaturesExtractorNet extractor_;
   std::vector<SplitMlp> q_;
   Eigen::MatrixXf obs_action_;
+  // Learned extractor: each critic's dL/d(input) of its last backward, and their sum over the
+  // feature rows.
+  std::vector<Eigen::MatrixXf> grad_inputs_;
+  Eigen::MatrixXf grad_features_;
 };
 
-// SB3 polyak_update(critic.parameters(), critic_target.parameters(), tau).
+// SB3 polyak_update(critic.parameters(), critic_target.parameters(), tau), the extractor's too.
 void polyak_update(const ContinuousCritic& critic, ContinuousCritic& target, float tau);
 
 }  // namespace rlrun

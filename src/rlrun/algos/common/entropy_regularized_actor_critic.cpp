@@ -29,18 +29,23 @@ SacActorSde EntropyRegularizedPolicyConfig::actor_sde(bool use_sde) const {
 EntropyRegularizedActorCritic::EntropyRegularizedActorCritic(
     const std::string& id, const EntropyRegularizedConfig& config,
     const EntropyRegularizedPolicyConfig& policy, const AlgorithmSetup& setup, int critic_outputs)
-    : OffPolicyAlgorithm(id, config.off_policy, setup,
-                         BoxActionSelection::checked_action_dim(setup, id),
-                         {kSampleStream, "sample_rng"}, policy.normalize_images),
+    : OffPolicyAlgorithm(
+          id, config.off_policy, setup, BoxActionSelection::checked_action_dim(setup, id),
+          {kSampleStream, "sample_rng"},
+          encoder_normalizes_images(policy.features_extractor_class, policy.normalize_images)),
       config_(config),
       action_dim_(setup.action_space.flat_dim()),
-      critic_(features_dim(), action_dim_, policy.net_arch.qf, policy.activation_fn,
-              policy.n_critics, critic_outputs, setup.pool),
+      critic_(FeaturesExtractorNet(policy.extractor(), setup.observation_space, features_dim(),
+                                   setup.pool),
+              action_dim_, policy.net_arch.qf, policy.activation_fn, policy.n_critics,
+              critic_outputs, setup.pool),
       critic_target_(critic_),
       ent_coef_(config.ent_coef, config.target_entropy, action_dim_),
       train_rng_(setup.seed ^ kTrainStream),
       predict_rng_(setup.seed ^ kPredictStream),
-      actor_(features_dim(), action_dim_, policy.net_arch.pi, policy.activation_fn,
+      actor_(FeaturesExtractorNet(policy.extractor(), setup.observation_space, features_dim(),
+                                  setup.pool),
+             action_dim_, policy.net_arch.pi, policy.activation_fn,
              policy.actor_sde(config.use_sde), setup.pool),
       acting_(setup, config.action_noise) {
   // SB3 SACPolicy._build (sb3-contrib TQCPolicy._build alike): the actor, then the critics (the
@@ -53,6 +58,12 @@ EntropyRegularizedActorCritic::EntropyRegularizedActorCritic(
     acting_actor_.get().reset_noise(init_rng, 1);
   }
   critic_.init(init_rng);
+  // CnnPolicy: make_features_extractor for the actor, then for the critic (torch's default
+  // init), from a stream of their own so that the heads' initial weights stay those of the
+  // same run without a CNN; critic_target copies the critic, its CNN included.
+  Rng extractor_rng(setup.seed ^ kFeaturesExtractorInitStream);
+  actor_.features_extractor().init_torch_default(extractor_rng);
+  critic_.features_extractor().init_torch_default(extractor_rng);
   critic_target_ = critic_;
   if (config.use_sde)
     actor_optimizer_ = Adam({actor_.net().block(), actor_.sde().block()});
@@ -60,6 +71,9 @@ EntropyRegularizedActorCritic::EntropyRegularizedActorCritic(
     actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
+  extractor_optimizers_ =
+      ExtractorOptimizers(actor_.features_extractor(), critic_.features_extractor(), setup.pool);
+  if (extractor_optimizers_.active()) checkpoint("extractor_optimizers", extractor_optimizers_);
   // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
   // included, are in the model tensors).
   checkpoint("train_rng", train_rng_);
@@ -115,8 +129,14 @@ double EntropyRegularizedActorCritic::update_actor(const Eigen::RowVectorXf& q_p
   grad_log_prob_.setConstant(n, alpha * inv_n);  // d actor_loss / d log_prob
   actor_.backward(grad_actions, grad_log_prob_);
   actor_optimizer_.step(lr);
+  extractor_optimizers_.step_actor(lr);
   acting_actor_.invalidate();
   return loss * static_cast<double>(inv_n);
+}
+
+void EntropyRegularizedActorCritic::update_critic_features_extractor(float lr) {
+  critic_.backward_features_extractor();
+  extractor_optimizers_.step_critic(lr);
 }
 
 void EntropyRegularizedActorCritic::update_target_critics() {
@@ -176,6 +196,7 @@ void EntropyRegularizedActorCritic::select_actions(const Eigen::MatrixXf& obs, b
 
 EntropyRegularizedActorCritic::ExportedAction EntropyRegularizedActorCritic::export_action(
     PolicyGraph& graph, const std::string& obs) const {
+  require_exportable(actor_.features_extractor());
   const std::string features = acting_encoder().export_to(graph, obs);
   const std::string scaled = actor_.export_mode(graph, features);
   graph.set_action(acting_.export_env_actions(graph, scaled));

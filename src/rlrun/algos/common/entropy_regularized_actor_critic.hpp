@@ -23,6 +23,7 @@
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
 #include "rlrun/algos/common/entropy_coefficient.hpp"
+#include "rlrun/algos/common/extractor_optimizers.hpp"
 #include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
@@ -44,9 +45,17 @@ struct EntropyRegularizedPolicyConfig {
   bool use_expln = false;        // gSDE: expln instead of exp for the std
   double clip_mean = 2.0;        // gSDE: Hardtanh bound on the mean (0 = none)
   bool normalize_images = true;  // SB3: image observations / 255 before the networks
+  // SB3 policy_kwargs features_extractor_class (CnnPolicy: NatureCNN), features_extractor_kwargs'
+  // features_dim, share_features_extractor (false: the actor and the critic have one each).
+  FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
+  int features_dim = 512;
+  bool share_features_extractor = false;
 
   // The actor's gSDE options (SB3 Actor keyword arguments).
   SacActorSde actor_sde(bool use_sde) const;
+  FeaturesExtractorSettings extractor() const {
+    return {features_extractor_class, features_dim, normalize_images};
+  }
 
  protected:
   template <class V, class Critics>
@@ -62,6 +71,9 @@ struct EntropyRegularizedPolicyConfig {
     v("clip_mean", clip_mean, "gSDE (use_sde): clip the mean to [-clip_mean, clip_mean] (0: off)",
       in_range(0, 1e6));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
+    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
+    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+    v("share_features_extractor", share_features_extractor, kOffPolicyShareFeaturesExtractorDoc);
   }
 };
 
@@ -175,6 +187,10 @@ class EntropyRegularizedActorCritic : public OffPolicyAlgorithm {
   // pathwise through the squashed Gaussian, one Adam step. Returns the loss.
   double update_actor(const Eigen::RowVectorXf& q_pi, const Eigen::MatrixXf& grad_actions,
                       float alpha, float lr);
+  // After the critics' backward and steps (ContinuousCritic::zero_grad_and_backward): the
+  // critic's NatureCNN learns from their summed loss, one Adam step with the same lr (SB3's one
+  // critic optimizer holds its parameters too). Nothing without a CNN.
+  void update_critic_features_extractor(float lr);
   // polyak_update(critic.parameters(), critic_target.parameters(), tau).
   void update_target_critics();
 
@@ -209,6 +225,7 @@ class EntropyRegularizedActorCritic : public OffPolicyAlgorithm {
   Rng train_rng_, predict_rng_;
   SacActor actor_;
   Adam actor_optimizer_;
+  ExtractorOptimizers extractor_optimizers_;  // CnnPolicy: the actor's and the critic's CNN
   ActingCopy<SacActor> acting_actor_{actor_};
   BoxActionSelection acting_;  // warmup samples, exploration noise, scaling to the Box
   Eigen::MatrixXf policy_noise_, next_noise_;

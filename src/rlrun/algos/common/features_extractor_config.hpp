@@ -19,7 +19,15 @@ enum class FeaturesExtractor { kFlatten, kNatureCnn };
 
 inline constexpr const char* kFeaturesExtractorDoc =
     "FlattenExtractor (SB3's MlpPolicy / MultiInputPolicy) or NatureCNN (SB3's CnnPolicy, for "
-    "image observations; SB3's default net_arch for it is [])";
+    "image observations; SB3's CnnPolicy has net_arch [] for PPO, A2C and DQN, [256, 256] for "
+    "SAC, TD3, DDPG and TQC)";
+
+inline constexpr const char* kFeaturesDimDoc =
+    "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)";
+
+inline constexpr const char* kOffPolicyShareFeaturesExtractorDoc =
+    "SB3's off-policy default false: the actor and the critic each have a NatureCNN (true is not "
+    "supported yet)";
 
 inline constexpr const char* kNormalizeImagesDoc =
     "divide image observations (a 3-D uint8 Box of 0-255) by 255 before the networks, NatureCNN or "

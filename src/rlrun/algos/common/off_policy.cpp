@@ -115,19 +115,26 @@ void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
 }
 
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
-                            const OffPolicyConfig& config, const NetArchPiQf& net_arch,
-                            int n_critics, int actor_outputs, int actor_copies,
-                            int critic_outputs) {
+                            const OffPolicyConfig& config, const BoxActorCriticShape& shape) {
   check_box_actor_spaces(out, setup);
   check_gradient_steps(out, config.gradient_steps);
-  check_net_arch(out, "policy.net_arch", net_arch.pi, net_arch.qf);
-  const int obs = network_input_dim(out, setup.observation_space);
+  check_net_arch(out, "policy.net_arch", shape.net_arch.pi, shape.net_arch.qf);
+  if (shape.share_features_extractor)
+    out.push_back({"policy.share_features_extractor",
+                   "true is not supported yet for off-policy algorithms: set false (SB3's "
+                   "default for SAC, TD3, DDPG and TQC; the actor and the critic each have a "
+                   "features extractor)"});
+  // The actor's CNN and its copies (target, acting copy), the critic's and its target's.
+  const FeaturesExtractorSettings& e = shape.extractor;
+  const int obs = features_extractor_output_dim(
+      out, "policy.features_extractor_class", e.kind, e.features_dim, e.normalize_images,
+      setup.observation_space, shape.actor_copies + 2, config.batch_size);
   const int act = setup.action_space.flat_dim();
-  check_network_memory(out, "policy.net_arch", obs, net_arch.pi, actor_outputs, actor_copies,
-                       config.batch_size);
+  check_network_memory(out, "policy.net_arch", obs, shape.net_arch.pi, shape.actor_outputs,
+                       shape.actor_copies, config.batch_size);
   // Each critic, its target and the second core's activations of both.
-  check_network_memory(out, "policy.net_arch", obs + act, net_arch.qf, critic_outputs,
-                       4 * n_critics, config.batch_size);
+  check_network_memory(out, "policy.net_arch", obs + act, shape.net_arch.qf, shape.critic_outputs,
+                       4 * shape.n_critics, config.batch_size);
   check_replay_buffer(out, config, setup);
 }
 

@@ -13,6 +13,7 @@
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/episode_stats.hpp"
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/her_replay_buffer.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/replay_buffer.hpp"
@@ -124,14 +125,23 @@ struct OffPolicyState {
 void check_replay_buffer(ConfigProblems& out, const OffPolicyConfig& config,
                          const AlgorithmSetup& setup);
 
+// The networks of SAC, TQC and TD3 as their checks see them.
+struct BoxActorCriticShape {
+  NetArchPiQf net_arch;
+  int n_critics = 2;
+  int actor_outputs = 1;                // the actor's last layer
+  int actor_copies = 2;                 // actor, target, acting copy, the second core's activations
+  int critic_outputs = 1;               // TQC: n_quantiles
+  FeaturesExtractorSettings extractor;  // in front of the actor and of the critic (one each)
+  bool share_features_extractor = false;
+};
+
 // SAC's, TQC's and TD3's checks: a bounded Box action space, gradient_steps, net_arch, the
-// memory of the actor (`actor_outputs` outputs, `actor_copies` copies: target, acting copy, the
-// second core's activations) and of n_critics critics of `critic_outputs` outputs (TQC:
-// n_quantiles) with their targets, and the replay buffer's.
+// features extractor (NatureCNN: SB3's image rules; one for the actor and its copies, one for
+// the critic and its target; share_features_extractor is not supported), the memory of the
+// actor and of n_critics critics with their targets, and the replay buffer's.
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
-                            const OffPolicyConfig& config, const NetArchPiQf& net_arch,
-                            int n_critics, int actor_outputs, int actor_copies,
-                            int critic_outputs = 1);
+                            const OffPolicyConfig& config, const BoxActorCriticShape& shape);
 
 // SB3 OffPolicyAlgorithm: the replay buffer (allocated on first use: learn or resume, never for
 // a model that is only evaluated) and the stream that samples it; learn(), SB3's learn and

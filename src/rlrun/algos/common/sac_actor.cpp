@@ -3,6 +3,7 @@
 #include "rlrun/nn/policy_graph.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include "rlrun/algos/common/training_state.hpp"
 
@@ -10,8 +11,14 @@ namespace rlrun {
 
 SacActor::SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch,
                    Activation activation, const SacActorSde& sde, ThreadPool* pool)
+    : SacActor(FeaturesExtractorNet(obs_dim), action_dim, net_arch, activation, sde, pool) {}
+
+SacActor::SacActor(FeaturesExtractorNet extractor, int action_dim, const std::vector<int>& net_arch,
+                   Activation activation, const SacActorSde& sde, ThreadPool* pool)
     : action_dim_(action_dim),
-      net_(obs_dim, net_arch, sde.use_sde ? action_dim : 2 * action_dim, activation, pool),
+      extractor_(std::move(extractor)),
+      net_(extractor_.out_dim(), net_arch, sde.use_sde ? action_dim : 2 * action_dim, activation,
+           pool),
       sde_options_(sde) {
   if (sde.use_sde) {
     // SB3 Actor: StateDependentNoiseDistribution(action_dim, full_std, use_expln,
@@ -28,6 +35,7 @@ SacActor::SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch
 }
 
 void SacActor::copy_parameters_from(const SacActor& other) {
+  extractor_.copy_parameters_from(other.extractor_);
   net().params() = other.net().params();
   if (use_sde()) sde_.log_std() = other.sde_.log_std();
 }
@@ -46,7 +54,7 @@ void SacActor::read_state(const StateReader& in) {
 }
 
 void SacActor::forward_heads(const Eigen::Ref<const Eigen::MatrixXf>& obs) {
-  const Eigen::MatrixXf& out = net_.forward(obs);
+  const Eigen::MatrixXf& out = net_.forward(extractor_.forward(obs));
   if (use_sde()) {
     // SB3 Actor: mu = Hardtanh(-clip_mean, clip_mean)(Linear(latent_pi)); latent_sde = latent_pi.
     const float c = sde_options_.clip_mean;
@@ -123,7 +131,7 @@ void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
       const auto raw = net_.output().array();
       grad_mean_ = (raw > -c && raw < c).select(grad_mean_.array(), 0.0f).matrix();
     }
-    net_.zero_grad_and_backward(grad_mean_, &grad_latent_);
+    backward_network(grad_mean_, &grad_latent_);
     return;
   }
   dist_.backward(grad_actions, grad_log_prob, grad_mean_, grad_log_std_);
@@ -133,7 +141,20 @@ void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
   // No gradient where the raw log_std was clamped (torch's clamp backward).
   SquashedGaussian::clamp_log_std_backward(net_.output().bottomRows(action_dim_),
                                            grad_head_.bottomRows(action_dim_));
-  net_.zero_grad_and_backward(grad_head_);
+  backward_network(grad_head_, nullptr);
+}
+
+void SacActor::backward_network(const Eigen::MatrixXf& grad_out,
+                                const Eigen::MatrixXf* grad_latent) {
+  if (!extractor_.learned()) {
+    net_.zero_grad_and_backward(grad_out, grad_latent);
+    return;
+  }
+  net_.zero_grad_and_backward(grad_out, grad_latent, &grad_features_);
+  // Without hidden layers gSDE's latent_pi is the features themselves: its gradient goes to
+  // the extractor directly (the network ignores it, having no hidden layer to send it to).
+  if (grad_latent && net_.net().num_layers() == 1) grad_features_ += *grad_latent;
+  extractor_.zero_grad_and_backward(grad_features_);
 }
 
 std::string SacActor::mu_name(const std::string& prefix) const {
@@ -142,6 +163,7 @@ std::string SacActor::mu_name(const std::string& prefix) const {
 }
 
 void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
+  extractor_.save(prefix, tensors);
   const Mlp& m = net();
   const int last = m.num_layers() - 1;
   for (int l = 0; l < last; ++l) {
@@ -162,6 +184,7 @@ void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
 }
 
 void SacActor::load(const std::string& prefix, const TensorMap& tensors) {
+  extractor_.load(prefix, tensors);
   Mlp& m = net();
   const int last = m.num_layers() - 1;
   for (int l = 0; l < last; ++l) {

@@ -17,10 +17,16 @@
 // nn.Hardtanh(-clip_mean, clip_mean) when clip_mean > 0, and log_std is the state-independent
 // matrix of a StateDependentNoise on latent_pi (learn_features and squash_output true): the
 // exploration noise is a function of the latent features, drawn anew by reset_noise.
+//
+// The network reads the output of the actor's features extractor (features_extractor_net.hpp):
+// the observation itself, or with SB3's CnnPolicy the actor's own NatureCNN, trained by the
+// actor loss through both the sample and its log-probability, saved as
+// <prefix>.features_extractor.*.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/nn/split_mlp.hpp"
@@ -47,14 +53,18 @@ class SacActor {
   // `pool` runs a minibatch's parts (SplitMlp).
   SacActor(int obs_dim, int action_dim, const std::vector<int>& net_arch, Activation activation,
            const SacActorSde& sde = {}, ThreadPool* pool = nullptr);
+  // The same behind a features extractor (the network reads extractor.out_dim() features).
+  SacActor(FeaturesExtractorNet extractor, int action_dim, const std::vector<int>& net_arch,
+           Activation activation, const SacActorSde& sde = {}, ThreadPool* pool = nullptr);
 
-  int obs_dim() const { return net_.net().in_dim(); }
   int action_dim() const { return action_dim_; }
+  FeaturesExtractorNet& features_extractor() { return extractor_; }
+  const FeaturesExtractorNet& features_extractor() const { return extractor_; }
   // The network's parameters and gradients (with gSDE log_std is in sde(), not here).
   Mlp& net() { return net_.net(); }
   const Mlp& net() const { return net_.net(); }
-  // The acting copy's refresh: the network's parameters and gSDE's log_std (same shapes, no
-  // allocation); the copy keeps its own exploration matrices.
+  // The acting copy's refresh: the extractor's and the network's parameters and gSDE's log_std
+  // (same shapes, no allocation); the copy keeps its own exploration matrices.
   void copy_parameters_from(const SacActor& other);
 
   bool use_sde() const { return sde_options_.use_sde; }
@@ -87,16 +97,16 @@ class SacActor {
 
   // Backward of a loss L(actions, log_prob) of the last sample, given dL/da (action_dim x batch)
   // and dL/dlog_prob: pathwise through the squashed Gaussian and the log_std clamp into the
-  // network: net().grads() becomes the loss's gradient (optimizer.zero_grad(); loss.backward()).
-  // With gSDE, sde().log_std_grad() too, and the gradient also reaches latent_pi through the
-  // noise and the variance (learn_features).
+  // network: net().grads() becomes the loss's gradient (optimizer.zero_grad(); loss.backward()),
+  // and a learned extractor's grads() too. With gSDE, sde().log_std_grad() too, and the
+  // gradient also reaches latent_pi through the noise and the variance (learn_features).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob);
 
   // SB3 state_dict names under `prefix` ("actor"): <prefix>.latent_pi.<2i>.weight/bias,
   // <prefix>.mu.weight/bias, <prefix>.log_std.weight/bias. With gSDE: <prefix>.mu.0.weight/bias
   // (mu is nn.Sequential(Linear, Hardtanh)) or <prefix>.mu.weight/bias without clip_mean, and
-  // the <prefix>.log_std matrix.
+  // the <prefix>.log_std matrix. A learned extractor: <prefix>.features_extractor.*.
   void save(const std::string& prefix, TensorMap& tensors) const;
   void load(const std::string& prefix, const TensorMap& tensors);
 
@@ -106,13 +116,18 @@ class SacActor {
   void forward_heads(const Eigen::Ref<const Eigen::MatrixXf>& obs);
   std::string mu_name(const std::string& prefix) const;
 
+  // The network's backward, then the extractor's from the network's input gradient.
+  void backward_network(const Eigen::MatrixXf& grad_out, const Eigen::MatrixXf* grad_latent);
+
   int action_dim_ = 0;
-  SplitMlp net_;  // obs -> net_arch -> [mu; raw log_std], or mu alone with gSDE
+  FeaturesExtractorNet extractor_;
+  SplitMlp net_;  // features -> net_arch -> [mu; raw log_std], or mu alone with gSDE
   SquashedGaussian dist_;
   SacActorSde sde_options_;
   StateDependentNoise sde_;
   // Workspaces, reused while the batch size stays the same.
-  Eigen::MatrixXf log_std_, grad_mean_, grad_log_std_, grad_head_, mu_, grad_latent_;
+  Eigen::MatrixXf log_std_, grad_mean_, grad_log_std_, grad_head_, mu_, grad_latent_,
+      grad_features_;
 };
 
 }  // namespace rlrun

@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/polyak.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/algos/common/training_state.hpp"
@@ -196,10 +197,7 @@ void DQN::random_actions(Eigen::Index n, Eigen::MatrixXf& actions) {
 
 // predict(deterministic): the greedy action, start + argmax Q; the value is every Q-value.
 void DQN::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  if (use_cnn_)
-    throw ExportError(
-        "a NatureCNN policy (CnnPolicy) cannot be exported yet: rlrun's ONNX, C and C++ exports "
-        "have no convolution");
+  if (use_cnn_) require_exportable(FeaturesExtractor::kNatureCnn);
   const std::string q = graph.mlp(acting_encoder().export_to(graph, obs), q_net_.net());
   std::string action = graph.argmax(q);
   if (action_start_ != 0.0f)

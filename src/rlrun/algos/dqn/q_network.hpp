@@ -32,8 +32,7 @@ struct QNetworkConfig {
     v("net_arch", net_arch, "hidden layer sizes of the Q-network", layer_width());
     v("activation_fn", activation_fn, kActivationFnDoc);
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
-    v("features_dim", features_dim,
-      "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)", in_range(1, 65536));
+    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
   }
 };

@@ -8,8 +8,10 @@ namespace rlrun {
 ConfigProblems SAC::check(const Config& config, const AlgorithmSetup& setup) {
   ConfigProblems out;
   // The actor's mean and log std heads; the actor and its acting copy.
-  check_box_actor_critic(out, setup, config.off_policy, config.policy.net_arch,
-                         config.policy.n_critics, 2 * setup.action_space.flat_dim(), 2);
+  const SacPolicyConfig& p = config.policy;
+  check_box_actor_critic(out, setup, config.off_policy,
+                         {p.net_arch, p.n_critics, 2 * setup.action_space.flat_dim(), 2, 1,
+                          p.extractor(), p.share_features_extractor});
   return out;
 }
 
@@ -65,10 +67,11 @@ EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr,
     grad_q = critic_.q(i).output() - target_q_;
     critic_losses_[i] = static_cast<double>(grad_q.squaredNorm()) * (0.5f * inv_n);
     grad_q *= inv_n;  // d critic_loss / d Q_i = (Q_i - target_q) / n
-    critic_.q(i).zero_grad_and_backward(grad_q);
+    critic_.zero_grad_and_backward(i, grad_q);
     critic_optimizers_[i].step(lr);
   });
   for (double loss : critic_losses_) stats.critic_loss += loss;
+  update_critic_features_extractor(lr);  // CnnPolicy: the critic's NatureCNN, same loss
 
   // The policy: actor_loss = (ent_coef * log_prob - min_i critic_i(obs, actions_pi)).mean(),
   // through the critics as just stepped (th.min sends the gradient to the smallest).
@@ -97,7 +100,7 @@ EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr,
 // predict(deterministic): the squashed mean unscaled to the Box; the value is the first
 // critic's Q(s, a) of that action.
 void SAC::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  const ExportedAction action = export_action(graph, obs);
+  const ExportedAction action = export_action(graph, obs);  // refuses a CNN
   if (with_value)
     graph.set_value(graph.mlp(graph.concat({action.features, action.scaled}), critic_.q(0).net()));
 }

@@ -28,22 +28,29 @@ const std::string kKeyLearningRate = "train/learning_rate";
 ConfigProblems TD3::check(const Config& config, const AlgorithmSetup& setup) {
   ConfigProblems out;
   // The actor, its target, its acting copy and the second core's activations.
-  check_box_actor_critic(out, setup, config.off_policy, config.policy.net_arch,
-                         config.policy.n_critics, setup.action_space.flat_dim(), 4);
+  const Td3PolicyConfig& p = config.policy;
+  check_box_actor_critic(out, setup, config.off_policy,
+                         {p.net_arch, p.n_critics, setup.action_space.flat_dim(), 4, 1,
+                          p.extractor(), p.share_features_extractor});
   return out;
 }
 
 TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
     : OffPolicyAlgorithm(id, valid_config(config, id).off_policy, setup,
                          BoxActionSelection::checked_action_dim(setup, id),
-                         {kSampleStream, "sample_rng"}, config.policy.normalize_images),
+                         {kSampleStream, "sample_rng"},
+                         encoder_normalizes_images(config.policy.features_extractor_class,
+                                                   config.policy.normalize_images)),
       config_(config),
       action_dim_(setup.action_space.flat_dim()),
       smoothing_rng_(setup.seed ^ kSmoothingStream),
-      actor_(features_dim(), action_dim_, config.policy.net_arch.pi, config.policy.activation_fn,
-             setup.pool),
+      actor_(FeaturesExtractorNet(config.policy.extractor(), setup.observation_space,
+                                  features_dim(), setup.pool),
+             action_dim_, config.policy.net_arch.pi, config.policy.activation_fn, setup.pool),
       actor_target_(actor_),
-      critic_(features_dim(), action_dim_, config.policy.net_arch.qf, config.policy.activation_fn,
+      critic_(FeaturesExtractorNet(config.policy.extractor(), setup.observation_space,
+                                   features_dim(), setup.pool),
+              action_dim_, config.policy.net_arch.qf, config.policy.activation_fn,
               config.policy.n_critics, /*n_outputs=*/1, setup.pool),
       critic_target_(critic_),
       acting_(setup, config.action_noise) {
@@ -51,12 +58,20 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
   // torch's default Linear init; Adam with torch's defaults (eps 1e-8) for actor and critics.
   Rng init_rng(setup.seed);
   actor_.net().init_torch_default(init_rng);
-  actor_target_ = actor_;
   critic_.init(init_rng);
+  // CnnPolicy: the actor's and the critic's NatureCNN (torch's default init) from a stream of
+  // their own, so that the heads start as without a CNN; the targets copy them.
+  Rng extractor_rng(setup.seed ^ kFeaturesExtractorInitStream);
+  actor_.features_extractor().init_torch_default(extractor_rng);
+  critic_.features_extractor().init_torch_default(extractor_rng);
+  actor_target_ = actor_;
   critic_target_ = critic_;
   actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
+  extractor_optimizers_ =
+      ExtractorOptimizers(actor_.features_extractor(), critic_.features_extractor(), setup.pool);
+  if (extractor_optimizers_.active()) checkpoint("extractor_optimizers", extractor_optimizers_);
   critic_grad_q_.resize(critic_.n_critics());
   critic_losses_.resize(critic_.n_critics());
   // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
@@ -110,15 +125,18 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
     grad_q = critic_.q(i).output() - target_q_;
     critic_losses_[i] = static_cast<double>(grad_q.squaredNorm()) * inv_n;
     grad_q *= 2.0f * inv_n;  // d critic_loss / d Q_i = 2 (Q_i - target_q) / n
-    critic_.q(i).zero_grad_and_backward(grad_q);
+    critic_.zero_grad_and_backward(i, grad_q);
     critic_optimizers_[i].step(lr);
   });
   for (double loss : critic_losses_) stats.critic_loss += loss;
+  // CnnPolicy: the critic's NatureCNN learns from the same loss (SB3's critic optimizer).
+  critic_.backward_features_extractor();
+  extractor_optimizers_.step_critic(lr);
 
   // Delayed policy updates: `if self._n_updates % self.policy_delay == 0`.
   if (n_updates_ % config_.policy_delay != 0) return stats;
-  // actor_loss = -critic.q1_forward(obs, actor(obs)).mean(), through critic 1 into the actor;
-  // one Adam step.
+  // actor_loss = -critic.q1_forward(obs, actor(obs)).mean(), through critic 1 into the actor
+  // (q1_forward takes the critic's CNN features without gradient); one Adam step.
   const Eigen::MatrixXf& q1 = critic_.q1_forward(obs, actor_.forward(obs));
   stats.actor_loss = -static_cast<double>(q1.sum()) * inv_n;
   stats.actor_updated = true;
@@ -126,12 +144,13 @@ Td3StepStats TD3::train_on_batch(const ReplayBatch& b, float lr) {
   critic_.action_gradient(0, grad_q_, grad_actions_);
   actor_.backward(grad_actions_);
   actor_optimizer_.step(lr);
+  extractor_optimizers_.step_actor(lr);
   acting_actor_.invalidate();
 
   // polyak_update(critic.parameters(), critic_target.parameters(), tau), the same for the actor.
   const auto tau = static_cast<float>(config_.off_policy.tau);
   polyak_update(critic_, critic_target_, tau);
-  polyak_update(actor_.net().params(), actor_target_.net().params(), tau);
+  polyak_update(actor_, actor_target_, tau);
   return stats;
 }
 
@@ -169,6 +188,7 @@ void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
 
 // predict(): tanh(mu(obs)) unscaled to the Box; the value is the first critic's Q(s, a).
 void TD3::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
+  require_exportable(actor_.features_extractor());
   const std::string features = acting_encoder().export_to(graph, obs);
   const std::string scaled = graph.activation(graph.mlp(features, actor_.net()), Activation::kTanh);
   graph.set_action(acting_.export_env_actions(graph, scaled));

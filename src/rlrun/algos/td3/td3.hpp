@@ -18,6 +18,7 @@
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/box_action_selection.hpp"
 #include "rlrun/algos/common/continuous_critic.hpp"
+#include "rlrun/algos/common/extractor_optimizers.hpp"
 #include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
@@ -33,6 +34,16 @@ struct Td3PolicyConfig {
   Activation activation_fn = Activation::kReLU;     // SB3 default nn.ReLU
   int n_critics = 2;             // number of Q-networks; targets use their minimum
   bool normalize_images = true;  // SB3: image observations / 255 before the networks
+  // SB3 policy_kwargs features_extractor_class (CnnPolicy: NatureCNN), features_extractor_kwargs'
+  // features_dim, share_features_extractor (false: actor and critic, and so their targets,
+  // have one each).
+  FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
+  int features_dim = 512;
+  bool share_features_extractor = false;
+
+  FeaturesExtractorSettings extractor() const {
+    return {features_extractor_class, features_dim, normalize_images};
+  }
 
   template <class V>
   void visit(V& v) {
@@ -40,6 +51,9 @@ struct Td3PolicyConfig {
     v("activation_fn", activation_fn, kActivationFnDoc);
     v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
+    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
+    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+    v("share_features_extractor", share_features_extractor, kOffPolicyShareFeaturesExtractorDoc);
   }
 };
 
@@ -92,7 +106,7 @@ class TD3 : public OffPolicyAlgorithm {
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) override;
   // SB3 TD3Policy.state_dict(): actor.mu.*, actor_target.mu.*, critic.qf<i>.*,
-  // critic_target.qf<i>.*
+  // critic_target.qf<i>.*, and with CnnPolicy each one's features_extractor.*
   void save(TensorMap& tensors) const override;
   void load(const TensorMap& tensors) override;
 
@@ -133,6 +147,7 @@ class TD3 : public OffPolicyAlgorithm {
   Td3Actor actor_, actor_target_;
   ContinuousCritic critic_, critic_target_;
   Adam actor_optimizer_;
+  ExtractorOptimizers extractor_optimizers_;  // CnnPolicy: the actor's and the critic's CNN
   // SB3 steps all critics with one Adam over their concatenated parameters; Adam is
   // element-wise with one step count, so one Adam per critic is the same update.
   std::vector<Adam> critic_optimizers_;

@@ -23,9 +23,10 @@ ConfigProblems TQC::check(const Config& config, const AlgorithmSetup& setup) {
   ConfigProblems out;
   // The actor's mean and log std heads, the actor and its acting copy; critics of n_quantiles
   // outputs.
-  check_box_actor_critic(out, setup, config.off_policy, config.policy.net_arch,
-                         config.policy.n_critics, 2 * setup.action_space.flat_dim(), 2,
-                         config.policy.n_quantiles);
+  const auto& policy = config.policy;
+  check_box_actor_critic(out, setup, config.off_policy,
+                         {policy.net_arch, policy.n_critics, 2 * setup.action_space.flat_dim(), 2,
+                          policy.n_quantiles, policy.extractor(), policy.share_features_extractor});
   if (const std::string p = drop_problem(config); !p.empty())
     out.push_back({"top_quantiles_to_drop_per_net", p});
   return out;
@@ -94,9 +95,10 @@ EntropyRegularizedStepStats TQC::train_on_batch(const ReplayBatch& b, float lr,
   for (int i = 0; i < n_critics; ++i) {
     stats.critic_loss += quantile_huber_loss(critic_.q(i).output(), target_quantiles_, scale,
                                              grad_quantiles_, pair_loss_);
-    critic_.q(i).zero_grad_and_backward(grad_quantiles_);
+    critic_.zero_grad_and_backward(i, grad_quantiles_);
   }
   for (Adam& optimizer : critic_optimizers_) optimizer.step(lr);
+  update_critic_features_extractor(lr);  // CnnPolicy: the critic's NatureCNN, same loss
 
   // The policy: qf_pi = critic(obs, actions_pi).mean(dim=2).mean(dim=1)   # every atom
   // actor_loss = (ent_coef * log_prob - qf_pi).mean(), through the critics as just stepped.

@@ -100,9 +100,7 @@ class Translation {
     x["eval"]["freq"] = kZooEvalFreq;
     x["eval"]["n_episodes"] = kZooEvalEpisodes;
     x["eval"]["deterministic"] = true;
-    // SB3 ActorCriticPolicy: a NatureCNN's heads default to net_arch [] (no hidden layers).
-    if (cnn_policy_ && !policy_["net_arch"].IsDefined())
-      policy_["net_arch"] = YAML::Node(YAML::NodeType::Sequence);
+    if (cnn_policy_ && !policy_["net_arch"].IsDefined()) cnn_default_net_arch();
     if (!policy_.IsNull() && policy_.size() > 0) {
       policy_.SetStyle(YAML::EmitterStyle::Flow);
       x["algo"]["policy"] = policy_;
@@ -111,6 +109,22 @@ class Translation {
   }
 
  private:
+  // SB3's net_arch for a CnnPolicy that sets none: ActorCriticPolicy's and DQNPolicy's heads
+  // have no hidden layer ([]); TD3Policy's (DDPG's too) [256, 256] instead of its MLP default
+  // [400, 300]; SACPolicy and TQCPolicy keep [256, 256], rlrun's default for them too.
+  void cnn_default_net_arch() {
+    const std::string& algo = entry_.algorithm;
+    if (algo == "PPO" || algo == "A2C" || algo == "DQN") {
+      policy_["net_arch"] = YAML::Node(YAML::NodeType::Sequence);
+    } else if (algo == "TD3" || algo == "DDPG") {
+      YAML::Node layers(YAML::NodeType::Sequence);
+      layers.push_back(256);
+      layers.push_back(256);
+      layers.SetStyle(YAML::EmitterStyle::Flow);
+      policy_["net_arch"] = layers;
+    }
+  }
+
   void translate(const std::string& key, const ConfigNode& value, YAML::Node& x,
                  std::vector<std::string>& notes, int n_envs) {
     const ConfigNode& e = entry_.node;

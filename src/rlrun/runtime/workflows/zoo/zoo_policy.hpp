@@ -3,9 +3,10 @@
 // (stable_baselines3/common/policies.py ActorCriticPolicy, sac/policies.py, td3/policies.py,
 // dqn/policies.py) become the rlrun keys of the same name; torch activation classes become
 // rlrun's names; net_arch as a list, dict(pi=..., vf=.../qf=...) or SB3 < 1.8's
-// [dict(pi=..., vf=...)]. CnnPolicy (PPO, A2C) becomes features_extractor_class: NatureCNN with
-// SB3's default net_arch [] unless policy_kwargs sets one; features_extractor_kwargs'
-// features_dim, normalize_images and share_features_extractor carry over. Keywords without
+// [dict(pi=..., vf=...)]. CnnPolicy becomes features_extractor_class: NatureCNN with SB3's
+// default net_arch for it unless policy_kwargs sets one ([] for PPO, A2C and DQN; [256, 256]
+// for SAC, TD3, DDPG and TQC); features_extractor_kwargs' features_dim, normalize_images and
+// share_features_extractor carry over. Keywords without
 // effect on an MLP policy (squash_output=False; share_features_extractor and normalize_images
 // where the algorithm has no CNN) are accepted and noted; any other keyword the algorithm's
 // policy lacks is refused.
@@ -19,7 +20,7 @@
 namespace rlrun::zoo {
 
 // Checks `policy: 'MlpPolicy'` (and MultiInputPolicy, and CnnPolicy for the algorithms that
-// have it: PPO, A2C); true for CnnPolicy. Throws ConfigError at the node for custom policies
+// have it: PPO, A2C, DQN, SAC, TD3, DDPG, TQC); true for CnnPolicy. Throws ConfigError at the node for custom policies
 // and a CnnPolicy of another algorithm.
 bool check_policy_name(const ConfigNode& policy, const std::string& algorithm);
 

@@ -1,0 +1,41 @@
+#pragma once
+// The optimizers of an off-policy CnnPolicy's two learned features extractors (SAC, TQC, TD3,
+// DDPG: the actor's NatureCNN and the critic's, features_extractor_net.hpp). SB3 puts each in
+// its module's one Adam (actor.optimizer over actor.parameters(), critic.optimizer over
+// critic.parameters()); Adam is element-wise with one step count per optimizer, so an Adam of
+// their own, stepped with the same learning rate right after the module's, is the same update.
+// Each is a SplitAdam: the 1.7 M parameters of an 84x84 NatureCNN are stepped on the run's
+// threads.
+#include "rlrun/algos/common/features_extractor_net.hpp"
+#include "rlrun/core/state_dict.hpp"
+#include "rlrun/core/thread_pool.hpp"
+#include "rlrun/nn/split_adam.hpp"
+
+namespace rlrun {
+
+class ExtractorOptimizers {
+ public:
+  ExtractorOptimizers() = default;
+  // Adams for the two extractors when they are learned; otherwise nothing to step.
+  ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet& critic, ThreadPool* pool);
+
+  // Whether there is anything to step (a CnnPolicy), and so anything to checkpoint.
+  bool active() const { return active_; }
+  // One Adam step of the actor's / the critic's extractor from its grads().
+  void step_actor(float lr) {
+    if (active_) actor_.step(lr);
+  }
+  void step_critic(float lr) {
+    if (active_) critic_.step(lr);
+  }
+
+  // Exact resume: both Adams' moments and step counts.
+  void write_state(StateWriter out) const;
+  void read_state(const StateReader& in);
+
+ private:
+  bool active_ = false;
+  SplitAdam actor_, critic_;
+};
+
+}  // namespace rlrun
