@@ -88,6 +88,10 @@ Action add_export(CLI::App& app, Registry& registry) {
     } catch (const ExportError& e) {
       throw RuntimeFailure("cannot export " + o->model + ": " + e.what());
     }
+    // A pixel policy's graph starts at the wrapper that renders or stacks frames.
+    const auto input = graph.metadata.find("observation_input");
+    if (input != graph.metadata.end())
+      std::printf("note: the exported policy reads %s\n", input->second.c_str());
     // meta.json's text is the model file's: quoted (one printable line) when printed.
     const std::string algorithm = quoted_text(model.file.meta.algorithm);
     const std::string env_id = quoted_text(model.file.meta.env_id);

@@ -198,11 +198,30 @@ TEST_CASE("SAC, TQC and TD3 CnnPolicy save SB3's names for every extractor",
   }
   CHECK(td3_tensors.count("actor_target.features_extractor.cnn.2.weight") == 1);
   CHECK(sac_tensors.count("features_extractor.cnn.0.weight") == 0);
-  // Exports have no convolution yet: refused, never a wrong graph.
+}
+
+TEST_CASE("SAC and TD3 CnnPolicy export as graphs that act as predict() does",
+          "[algos][sac][td3][cnn][deploy]") {
+  const ReplayBatch b = image_batch(7, 12);
+  auto check = [&](Algorithm& algo) {
+    PolicyGraph graph;
+    graph.add_input("obs", kSide * kSide);
+    algo.export_policy(graph, "obs", /*with_value=*/true);
+    const auto values = evaluate_graph(graph, {b.obs});
+    Eigen::MatrixXf expected;
+    algo.predict(b.obs, true, expected);
+    const Eigen::MatrixXf& got = values.at(graph.action());
+    REQUIRE(got.rows() == expected.rows());
+    CHECK((got - expected).cwiseAbs().maxCoeff() < 1e-5f);
+  };
   SAC sac(sac_cnn_config(), image_setup());
-  PolicyGraph graph;
-  CHECK_THROWS_WITH(sac.export_policy(graph, "obs", false),
-                    Catch::Contains("cannot be exported yet"));
+  sac.train_on_batch(b, 1e-2f, true);  // actor and critic CNNs apart from their start
+  check(sac);
+  TD3::Config td3_config = td3_cnn_config();
+  td3_config.policy_delay = 1;
+  TD3 td3(td3_config, image_setup());
+  td3.train_on_batch(b, 1e-2f);
+  check(td3);
 }
 
 TEST_CASE("TD3 CnnPolicy: critic CNN from the critic loss, actor CNN on delayed steps",

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "envs/python_env_runner.hpp"
 #include "rlrun/core/zip_archive.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 #include "rlrun/policy.hpp"
@@ -163,6 +164,7 @@ struct Case {
   const char* config;  // the experiment's env and algo sections
   int episodes;        // evaluation episodes to record (enough for 1000 steps; those are used)
   bool discrete;
+  bool python = false;  // a Python env of tests/python_envs (trained and evaluated with it)
 };
 
 void check_case(const Case& c) {
@@ -172,13 +174,16 @@ void check_case(const Case& c) {
   std::ofstream(config) << "run: {name: m, seed: 3, total_timesteps: " << c.timesteps
                         << ", out_dir: " << dir.str() << "/runs}\n"
                         << c.config;
-  const auto t = run_rlrun("train " + config + " --set run.console_interval=1e9");
+  auto rlrun = [&](const std::string& args) {
+    return c.python ? run_rlrun_python(args) : run_rlrun(args);
+  };
+  const auto t = rlrun("train " + config + " --set run.console_interval=1e9");
   INFO(t.output);
   REQUIRE(t.exit_code == 0);
   const std::string model = dir / "runs/m/seed3/model.zip";
   const std::string trajectory = dir / "steps.csv";
-  const auto e = run_rlrun("eval --model " + model + " --episodes " + std::to_string(c.episodes) +
-                           " --seed 11 --trajectory " + trajectory);
+  const auto e = rlrun("eval --model " + model + " --episodes " + std::to_string(c.episodes) +
+                       " --seed 11 --trajectory " + trajectory + (c.python ? " --trust" : ""));
   INFO(e.output);
   REQUIRE(e.exit_code == 0);
   const Trajectory steps = read_trajectory(trajectory, 1000);
@@ -191,7 +196,8 @@ void check_case(const Case& c) {
   REQUIRE(x.exit_code == 0);
 
   // The graph evaluator: the same actions.
-  const LoadedModel loaded = load_model(model, builtin_registry());
+  // As `rlrun export` loads it: the spaces only, no env built (so no Python started).
+  const LoadedModel loaded = load_model(model, builtin_registry(), {}, {}, ModelEnv::kSpacesOnly);
   const PolicyGraph graph = build_model_graph(loaded, /*with_value=*/true);
   const auto values = evaluate_graph(graph, split_inputs(graph, steps.obs));
   check_actions(values.at(graph.action()), steps.actions, c.discrete);
@@ -255,6 +261,41 @@ TEST_CASE("export onnx: Discrete, MultiDiscrete and MultiBinary actions (PPO, A2
               "env: {id: IdentityEnvMultiBinary-v0}\n"
               "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2}\n",
               100, true});
+}
+
+TEST_CASE(
+    "export onnx: CnnPolicy of PPO, A2C, DQN, SAC and TD3 on uint8 images (NatureCNN as Conv)",
+    "[deploy][onnx][cnn]") {
+  // BrightSide's Box(0, 255, (36, 36, 1), uint8) frames (tests/python_envs): the exported graph
+  // divides by 255, runs three Conv + Relu on the channels-last image (a Transpose to NCHW in
+  // ONNX) and the linear layer, on 1000 observations of evaluation episodes.
+  const std::string env =
+      "env: {id: \"python:rlrun_test_envs.pixels:BrightSide\", python: " + kPython + "}\n";
+  const std::string box_env =
+      "env: {id: \"python:rlrun_test_envs.pixels:BrightSideBox\", python: " + kPython + "}\n";
+  const std::string cnn = "features_extractor_class: NatureCNN, features_dim: 16";
+  const std::string ppo = env +
+                          "algo: {id: PPO, n_steps: 64, batch_size: 32, n_epochs: 1, policy: {" +
+                          cnn + ", net_arch: []}}\n";
+  const std::string a2c = env + "algo: {id: A2C, n_steps: 8, policy: {" + cnn +
+                          ", net_arch: [], share_features_extractor: false}}\n";
+  const std::string dqn = env +
+                          "algo: {id: DQN, learning_starts: 50, buffer_size: 500, "
+                          "batch_size: 16, policy: {" +
+                          cnn + ", net_arch: []}}\n";
+  const std::string sac = box_env +
+                          "algo: {id: SAC, learning_starts: 50, buffer_size: 500, "
+                          "batch_size: 16, policy: {" +
+                          cnn + ", net_arch: [32]}}\n";
+  const std::string td3 = box_env +
+                          "algo: {id: TD3, learning_starts: 50, buffer_size: 500, "
+                          "batch_size: 16, policy_delay: 1, policy: {" +
+                          cnn + ", net_arch: [32]}}\n";
+  check_case({"ppo_cnn", 128, ppo.c_str(), 130, true, true});
+  check_case({"a2c_cnn_separate", 64, a2c.c_str(), 130, true, true});
+  check_case({"dqn_cnn", 150, dqn.c_str(), 130, true, true});
+  check_case({"sac_cnn", 120, sac.c_str(), 130, false, true});
+  check_case({"td3_cnn", 120, td3.c_str(), 130, false, true});
 }
 
 TEST_CASE("export onnx: Dict, Discrete and MultiBinary observations (one-hot encodings)",
@@ -364,10 +405,23 @@ TEST_CASE("export: refusals are clear errors", "[deploy][onnx]") {
          "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 1}\n";
   REQUIRE(run_rlrun("train " + config).exit_code == 0);
   const std::string model = dir / "runs/m/seed1/model.zip";
-  // A stateful wrapper: named, and nothing written.
-  const auto stacked = run_rlrun("export --model " + model + " --output " + (dir / "p.onnx"));
-  CHECK(stacked.exit_code == 1);
-  CHECK(stacked.output.find("FrameStack") != std::string::npos);
+  // A wrapper that keeps frames but passes actions on: the graph reads its observations, and
+  // says so.
+  const auto stacked = run_rlrun("export --model " + model + " --output " + (dir / "s.onnx"));
+  INFO(stacked.output);
+  CHECK(stacked.exit_code == 0);
+  CHECK_THAT(stacked.output, Catch::Contains("reads the observations of the wrapper FrameStack") &&
+                                 Catch::Contains("obs [batch, 8]"));
+  // A stateful wrapper without an export (TimeFeature): named, and nothing written.
+  const std::string timed = dir / "timed.yaml";
+  std::ofstream(timed) << "run: {name: t, seed: 1, total_timesteps: 256, out_dir: " << dir.str()
+                       << "/runs}\nenv: {id: Pendulum-v1, wrappers: [{id: TimeFeature}]}\n"
+                          "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 1}\n";
+  REQUIRE(run_rlrun("train " + timed).exit_code == 0);
+  const auto refused = run_rlrun("export --model " + (dir / "runs/t/seed1/model.zip") +
+                                 " --output " + (dir / "p.onnx"));
+  CHECK(refused.exit_code == 1);
+  CHECK(refused.output.find("TimeFeature") != std::string::npos);
   CHECK_FALSE(std::ifstream(dir / "p.onnx").good());
   // An output in a directory that does not exist.
   const auto missing =

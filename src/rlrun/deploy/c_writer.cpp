@@ -47,8 +47,13 @@ class CWriter {
         at += in.width;
       }
     }
+    // Every intermediate tensor is a local array: a CNN's layer outputs make that large.
+    size_t stack_bytes = 0;
+    for (const GraphNode& n : graph_.nodes()) stack_bytes += sizeof(float) * n.width;
     h << "), the deterministic action out\n * (POLICY_ACTION_DIM floats; discrete actions as "
-         "their integer values). Reentrant: no\n * state, no dynamic memory. */\n"
+         "their integer values). Reentrant: no\n * state, no dynamic memory; "
+      << stack_bytes
+      << " bytes of stack (local arrays). */\n"
          "#ifndef RLRUN_POLICY_H\n#define RLRUN_POLICY_H\n\n"
       << "#define POLICY_OBS_DIM " << obs_dim << "\n#define POLICY_ACTION_DIM " << action_dim
       << "\n\n#ifdef __cplusplus\nextern \"C\" {\n#endif\n\n"
@@ -177,7 +182,35 @@ class CWriter {
         out << "    for (i = 0; i < " << n.width << "; ++i) " << y << "[i] = " << ref(x, "i")
             << " > 0.0f ? 1.0f : 0.0f;\n";
         return;
+      case GraphOp::kConv2d: emit_conv(n, y, out); return;
     }
+  }
+
+  // A direct convolution in the loop order of run_node (each sum starts from the bias).
+  void emit_conv(const GraphNode& n, const std::string& y, std::ostringstream& out) {
+    const Conv2dShape& s = n.conv;
+    const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w = n.weight;
+    const std::string weight = array("kernel", w.data(), w.size());
+    const std::string bias = array("bias", n.b);
+    const std::string k = std::to_string(s.kernel), stride = std::to_string(s.stride);
+    const std::string row = "(oy * " + stride + " + ki)", col = "(ox * " + stride + " + kj)";
+    const std::string at = s.channels_last
+                               ? "(" + row + " * " + std::to_string(s.in_width) + " + " + col +
+                                     ") * " + std::to_string(s.in_channels) + " + c"
+                               : "(c * " + std::to_string(s.in_height) + " + " + row + ") * " +
+                                     std::to_string(s.in_width) + " + " + col;
+    out << "    {\n        int o, oy, ox, c, ki, kj;\n"
+        << "        for (o = 0; o < " << s.out_channels << "; ++o)\n"
+        << "        for (oy = 0; oy < " << s.out_height() << "; ++oy)\n"
+        << "        for (ox = 0; ox < " << s.out_width() << "; ++ox) {\n"
+        << "            float s = " << bias << "[o];\n"
+        << "            for (c = 0; c < " << s.in_channels << "; ++c)\n"
+        << "            for (ki = 0; ki < " << k << "; ++ki)\n"
+        << "            for (kj = 0; kj < " << k << "; ++kj)\n"
+        << "                s += " << weight << "[o * " << s.patch_size() << " + (c * " << k
+        << " + ki) * " << k << " + kj] * " << ref(n.inputs.front(), at) << ";\n"
+        << "            " << y << "[(o * " << s.out_height() << " + oy) * " << s.out_width()
+        << " + ox] = s;\n        }\n    }\n";
   }
 
   const PolicyGraph& graph_;

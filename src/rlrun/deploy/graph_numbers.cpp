@@ -45,6 +45,10 @@ void check_graph_numbers(const PolicyGraph& graph) {
         check(n.a, Kind::kBound, name + " (Clamp low)");
         check(n.b, Kind::kBound, name + " (Clamp high)");
         break;
+      case GraphOp::kConv2d:
+        check(n.weight, Kind::kFinite, name + " (Conv2d weight)");
+        check(n.b, Kind::kFinite, name + " (Conv2d bias)");
+        break;
       case GraphOp::kOneHot:
         check(Eigen::VectorXf::Constant(1, n.start), Kind::kFinite, name + " (OneHot start)");
         break;

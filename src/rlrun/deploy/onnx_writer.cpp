@@ -24,8 +24,8 @@ namespace node_proto {
 constexpr int kInput = 1, kOutput = 2, kName = 3, kOpType = 4, kAttribute = 5;
 }
 namespace attribute_proto {
-constexpr int kName = 1, kF = 2, kI = 3, kType = 20;
-constexpr int kTypeFloat = 1, kTypeInt = 2;
+constexpr int kName = 1, kF = 2, kI = 3, kInts = 8, kType = 20;
+constexpr int kTypeFloat = 1, kTypeInt = 2, kTypeInts = 7;
 }  // namespace attribute_proto
 namespace tensor_proto {
 constexpr int kDims = 1, kDataType = 2, kName = 8, kRawData = 9;
@@ -107,13 +107,17 @@ class OnnxGraphWriter {
     return constant(base, {v.size()}, v.data(), static_cast<size_t>(v.size()));
   }
   std::string int64_constant(const std::string& base, int64_t value) {
+    return int64_constant(base, std::vector<int64_t>{value});
+  }
+  // A 1-D int64 tensor (a Slice bound, a Reshape shape).
+  std::string int64_constant(const std::string& base, const std::vector<int64_t>& values) {
     const std::string name = fresh(base);
     ProtoWriter t;
-    t.int64(tensor_proto::kDims, 1);
+    t.int64(tensor_proto::kDims, static_cast<int64_t>(values.size()));
     t.int64(tensor_proto::kDataType, tensor_proto::kInt64);
     t.bytes(tensor_proto::kName, name);
-    t.bytes(tensor_proto::kRawData,
-            std::string_view(reinterpret_cast<const char*>(&value), sizeof value));
+    t.bytes(tensor_proto::kRawData, std::string_view(reinterpret_cast<const char*>(values.data()),
+                                                     values.size() * sizeof(int64_t)));
     initializers_.push_back(std::move(t));
     return name;
   }
@@ -123,9 +127,13 @@ class OnnxGraphWriter {
     bool is_float = false;
     float f = 0;
     int64_t i = 0;
+    std::vector<int64_t> ints;  // a list attribute when not empty
   };
-  static Attribute int_attr(const std::string& name, int64_t i) { return {name, false, 0, i}; }
-  static Attribute float_attr(const std::string& name, float f) { return {name, true, f, 0}; }
+  static Attribute int_attr(const std::string& name, int64_t i) { return {name, false, 0, i, {}}; }
+  static Attribute float_attr(const std::string& name, float f) { return {name, true, f, 0, {}}; }
+  static Attribute ints_attr(const std::string& name, std::vector<int64_t> ints) {
+    return {name, false, 0, 0, std::move(ints)};
+  }
 
   // One NodeProto; returns its output's name (`output`, or a fresh one).
   std::string node(const std::string& op, const std::vector<std::string>& inputs,
@@ -139,7 +147,10 @@ class OnnxGraphWriter {
     for (const Attribute& a : attributes) {
       ProtoWriter attr;
       attr.bytes(attribute_proto::kName, a.name);
-      if (a.is_float)
+      if (!a.ints.empty()) {
+        for (int64_t v : a.ints) attr.int64(attribute_proto::kInts, v);
+        attr.int64(attribute_proto::kType, attribute_proto::kTypeInts);
+      } else if (a.is_float)
         attr.float32(attribute_proto::kF, a.f)
             .int64(attribute_proto::kType, attribute_proto::kTypeFloat);
       else
@@ -211,6 +222,7 @@ class OnnxGraphWriter {
         node("Cast", {node("ArgMax", {x}, "", {int_attr("axis", 1), int_attr("keepdims", 1)})}, out,
              {int_attr("to", tensor_proto::kFloat)});
         return;
+      case GraphOp::kConv2d: emit_conv(n); return;
       case GraphOp::kPositive: {
         const float zero = 0.0f;
         node("Cast", {node("Greater", {x, constant("zero", {}, &zero, 1)})}, out,
@@ -218,6 +230,28 @@ class OnnxGraphWriter {
         return;
       }
     }
+  }
+
+  // [batch, width] -> the image as ONNX's Conv reads it, [batch, C, H, W] (a Transpose from
+  // channels-last), Conv, and back to [batch, O * OH * OW] in (o, y, x) order.
+  void emit_conv(const GraphNode& n) {
+    const Conv2dShape& s = n.conv;
+    const std::string& x = n.inputs.front();
+    const int64_t c = s.in_channels, h = s.in_height, w = s.in_width;
+    const std::string image =
+        s.channels_last
+            ? node("Transpose", {node("Reshape", {x, int64_constant("shape", {-1, h, w, c})})}, "",
+                   {ints_attr("perm", {0, 3, 1, 2})})
+            : node("Reshape", {x, int64_constant("shape", {-1, c, h, w})});
+    // torch's weight (O, C, k, k) row-major: the rows of n.weight, each in (c, i, j) order.
+    const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weight = n.weight;
+    const std::string kernel =
+        constant(n.output + "_weight", {s.out_channels, c, s.kernel, s.kernel}, weight.data(),
+                 static_cast<size_t>(weight.size()));
+    const std::string conv = node("Conv", {image, kernel, constant(n.output + "_bias", n.b)}, "",
+                                  {ints_attr("kernel_shape", {s.kernel, s.kernel}),
+                                   ints_attr("strides", {s.stride, s.stride})});
+    node("Reshape", {conv, int64_constant("shape", {-1, n.width})}, n.output);
   }
 
   void output(const std::string& name, const std::string& tensor) {

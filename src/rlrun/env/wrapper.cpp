@@ -10,10 +10,7 @@
 
 namespace rlrun {
 
-namespace {
-
-// The wrapper's class name for the message ("rlrun::FrameStack" -> "FrameStack").
-std::string class_name(const Wrapper& w) {
+std::string wrapper_class_name(const Wrapper& w) {
   const char* mangled = typeid(w).name();
   int status = 0;
   std::unique_ptr<char, void (*)(void*)> demangled(
@@ -23,8 +20,10 @@ std::string class_name(const Wrapper& w) {
   return colon == std::string::npos ? name : name.substr(colon + 2);
 }
 
+namespace {
+
 [[noreturn]] void refuse(const Wrapper& w) {
-  throw ExportError("the wrapper " + class_name(w) + " of " + w.id() +
+  throw ExportError("the wrapper " + wrapper_class_name(w) + " of " + w.id() +
                     " cannot be exported: it keeps state between steps or has no export; train "
                     "without it to deploy the policy");
 }
@@ -37,7 +36,7 @@ std::string Wrapper::export_observation(PolicyGraph& /*graph*/, const std::strin
 }
 
 std::string Wrapper::export_action(PolicyGraph& /*graph*/, const std::string& action) const {
-  if (!exports_unchanged()) refuse(*this);
+  if (!exports_action_unchanged()) refuse(*this);
   return action;
 }
 

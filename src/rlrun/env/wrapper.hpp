@@ -65,6 +65,11 @@ class Wrapper : public Env {
   // the two, and a wrapper that does neither refuses with ExportError (it keeps state between
   // steps, as FrameStack, or has not said how).
   virtual bool exports_unchanged() const { return false; }
+  // A wrapper whose observation no graph can compute (it renders the env, or keeps frames
+  // between steps: AddRenderObservation, FrameStack, MaxAndSkip) but that passes actions on as
+  // they are says so here: the exported policy then reads this wrapper's observations, as an
+  // SB3 policy exported on its own reads preprocessed ones (runtime/io/model_graph.hpp).
+  virtual bool exports_action_unchanged() const { return exports_unchanged(); }
   virtual std::string export_observation(PolicyGraph& graph, const std::string& obs) const;
   virtual std::string export_action(PolicyGraph& graph, const std::string& action) const;
   // Puts `inner` in place of the inner env and returns the old one. For runtime code that
@@ -83,5 +88,8 @@ class Wrapper : public Env {
 
   EnvPtr inner_;
 };
+
+// The wrapper's class name for messages ("rlrun::FrameStack" -> "FrameStack").
+std::string wrapper_class_name(const Wrapper& w);
 
 }  // namespace rlrun

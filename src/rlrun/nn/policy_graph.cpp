@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "rlrun/nn/mlp.hpp"
+#include "rlrun/nn/nature_cnn.hpp"
 
 namespace rlrun {
 
@@ -142,6 +143,53 @@ std::string PolicyGraph::mlp(const std::string& input, const Mlp& net) {
   return x;
 }
 
+std::string PolicyGraph::conv2d(const std::string& input, const Conv2dShape& shape,
+                                const Eigen::MatrixXf& weight, const Eigen::VectorXf& bias) {
+  if (width(input) != shape.in_size() || weight.rows() != shape.out_channels ||
+      weight.cols() != shape.patch_size() || bias.size() != shape.out_channels ||
+      shape.out_height() < 1 || shape.out_width() < 1)
+    throw std::invalid_argument("convolution does not fit '" + input + "'");
+  GraphNode n;
+  n.op = GraphOp::kConv2d;
+  n.inputs = {input};
+  n.weight = weight;
+  n.b = bias;
+  n.conv = shape;
+  n.width = static_cast<int>(shape.out_size());
+  return add(std::move(n), "conv");
+}
+
+std::string PolicyGraph::nature_cnn(const std::string& input, const NatureCnn& cnn) {
+  using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  TensorMap t;
+  cnn.save("cnn", t);  // torch's layouts: (O, C, k, k) and (features, C * H * W), row-major
+  auto matrix = [&](const std::string& name, Eigen::Index rows) -> Eigen::MatrixXf {
+    const Tensor& w = t.at(name);
+    return Eigen::Map<const RowMajor>(w.data<float>(), rows, w.numel() / rows);
+  };
+  auto vector = [&](const std::string& name) -> Eigen::VectorXf {
+    const Tensor& b = t.at(name);
+    return Eigen::Map<const Eigen::VectorXf>(b.data<float>(), b.numel());
+  };
+  std::string x = input;
+  if (cnn.normalize_images()) {  // SB3 preprocess_obs: obs.float() / 255
+    const Eigen::Index n = width(input);
+    x = affine(x, Eigen::VectorXf::Zero(n), Eigen::VectorXf::Constant(n, 1.0f / 255.0f),
+               Eigen::VectorXf::Zero(n));
+  }
+  for (int l = 0; l < NatureCnn::kConvLayers; ++l) {
+    Conv2dShape shape = cnn.conv(l);
+    if (l > 0) shape.channels_last = false;  // the graph keeps torch's CHW between layers
+    const std::string name = "cnn.cnn." + std::to_string(2 * l);
+    x = activation(
+        conv2d(x, shape, matrix(name + ".weight", shape.out_channels), vector(name + ".bias")),
+        Activation::kReLU);
+  }
+  return activation(
+      dense(x, matrix("cnn.linear.0.weight", cnn.features_dim()), vector("cnn.linear.0.bias")),
+      Activation::kReLU);
+}
+
 namespace {
 
 float activate(Activation act, float v) {
@@ -198,6 +246,28 @@ void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, Graph
       }
       return;
     case GraphOp::kPositive: y = (x.array() > 0.0f).cast<float>(); return;
+    case GraphOp::kConv2d: {
+      // A direct convolution, output (o, y, x), each sum started from the bias.
+      const Conv2dShape& s = n.conv;
+      const int oh = s.out_height(), ow = s.out_width(), k = s.kernel;
+      auto in_index = [&](int c, int row, int col) -> Eigen::Index {
+        return s.channels_last ? (Eigen::Index{row} * s.in_width + col) * s.in_channels + c
+                               : (Eigen::Index{c} * s.in_height + row) * s.in_width + col;
+      };
+      for (Eigen::Index j = 0; j < batch; ++j)
+        for (int o = 0; o < s.out_channels; ++o)
+          for (int oy = 0; oy < oh; ++oy)
+            for (int ox = 0; ox < ow; ++ox) {
+              float sum = n.b(o);
+              for (int c = 0; c < s.in_channels; ++c)
+                for (int i = 0; i < k; ++i)
+                  for (int jj = 0; jj < k; ++jj)
+                    sum += n.weight(o, (Eigen::Index{c} * k + i) * k + jj) *
+                           x(in_index(c, oy * s.stride + i, ox * s.stride + jj), j);
+              y((Eigen::Index{o} * oh + oy) * ow + ox, j) = sum;
+            }
+      return;
+    }
   }
 }
 

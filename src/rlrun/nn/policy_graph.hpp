@@ -19,10 +19,12 @@
 #include <vector>
 
 #include "rlrun/nn/activation.hpp"
+#include "rlrun/nn/conv2d.hpp"
 
 namespace rlrun {
 
 class Mlp;
+class NatureCnn;
 
 // A model that cannot be exported as it is (a stateful wrapper, an algorithm without export).
 class ExportError : public std::runtime_error {
@@ -43,6 +45,11 @@ enum class GraphOp {
                 //   round(v) - start == k (round half to even, ONNX's Round)
   kArgMax,      // index of the first largest entry, as one float column
   kPositive,    // 1 where x > 0, else 0 (a Bernoulli's mode)
+  kConv2d,      // torch.nn.Conv2d without padding (SB3's NatureCNN's): the input one image of
+                //   conv.in_channels x in_height x in_width, channels-last (HWC) or -first (CHW)
+                //   as conv.channels_last says; weight out_channels x (C * k * k) in torch's
+                //   (c, i, j) order, b the bias; the output channels-first, flattened as torch
+                //   flattens it, (o, y, x)
 };
 
 struct GraphNode {
@@ -55,6 +62,7 @@ struct GraphNode {
   Activation activation = Activation::kTanh;  // kActivation
   int begin = 0;                              // kSlice
   float start = 0.0f;                         // kOneHot: the value of column 0
+  Conv2dShape conv;                           // kConv2d
 };
 
 struct GraphInput {
@@ -90,6 +98,11 @@ class PolicyGraph {
   // An Mlp's layers: Dense + activation per hidden layer, then the output layer (no
   // activation).
   std::string mlp(const std::string& input, const Mlp& net);
+  std::string conv2d(const std::string& input, const Conv2dShape& shape,
+                     const Eigen::MatrixXf& weight, const Eigen::VectorXf& bias);
+  // SB3's NatureCNN from its torch tensors: the image divided by 255 (normalize_images), three
+  // Conv2d + ReLU, the Linear layer + ReLU; the input the image in the CNN's layout.
+  std::string nature_cnn(const std::string& input, const NatureCnn& cnn);
 
   // The graph's results: the action (required) and, for --with-value, the critic's output.
   void set_action(const std::string& name) { action_ = name; }

@@ -18,6 +18,9 @@ namespace rlrun {
 
 class ActionRepeat : public Wrapper {
  public:
+  // The policy's action is passed on (the env repeats it); the observations, a frame or the
+  // max of the last two, are what the exported policy reads (env/wrapper.hpp).
+  bool exports_action_unchanged() const override { return true; }
   // Throws std::invalid_argument when skip < 1, or max_pool on an observation that is not a Box.
   ActionRepeat(EnvPtr inner, int skip, bool max_pool, const char* name);
 

@@ -21,6 +21,8 @@ namespace rlrun {
 
 class AddRenderObservation : public Wrapper {
  public:
+  // Observations only (rlrun export reads this wrapper's observations: env/wrapper.hpp).
+  bool exports_action_unchanged() const override { return true; }
   struct Config {
     bool render_only = true;
     std::string render_key = "pixels";

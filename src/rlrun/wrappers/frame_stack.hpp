@@ -26,6 +26,8 @@ namespace rlrun {
 
 class FrameStack : public Wrapper {
  public:
+  // Observations only (rlrun export reads this wrapper's observations: env/wrapper.hpp).
+  bool exports_action_unchanged() const override { return true; }
   struct Config {
     int n_stack = 4;                      // frames per observation
     std::string padding = "zero";         // what fills the stack after reset: zero | reset

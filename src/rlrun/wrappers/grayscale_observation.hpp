@@ -17,6 +17,8 @@ namespace rlrun {
 
 class GrayscaleObservation : public Wrapper {
  public:
+  // Observations only (rlrun export reads this wrapper's observations: env/wrapper.hpp).
+  bool exports_action_unchanged() const override { return true; }
   struct Config {
     bool keep_dim = false;
     std::string weights = "gymnasium";  // gymnasium (1.0, float) | opencv (0.29, SB3 WarpFrame)

@@ -14,6 +14,8 @@ namespace rlrun {
 
 class NoopReset : public Wrapper {
  public:
+  // The no-ops happen inside reset(): observations and actions pass as they are.
+  bool exports_unchanged() const override { return true; }
   struct Config {
     int noop_max = 30;
     template <class V>

@@ -24,6 +24,8 @@ YAML::Node encode(const ResizeShape& shape);
 
 class ResizeObservation : public Wrapper {
  public:
+  // Observations only (rlrun export reads this wrapper's observations: env/wrapper.hpp).
+  bool exports_action_unchanged() const override { return true; }
   struct Config {
     ResizeShape shape;
     template <class V>

@@ -41,3 +41,18 @@ class FloatBrightSide(BrightSide):
 
     def _draw(self):
         return super()._draw().astype(np.float32)
+
+
+class BrightSideBox(BrightSide):
+    """The same pictures with a continuous answer: Box(-1, 1, (1,)), -1 for left and +1 for
+    right; the reward is minus the distance to the right answer (for SAC / TD3 CnnPolicy)."""
+
+    def __init__(self):
+        super().__init__()
+        self.action_space = Box(-1.0, 1.0, shape=(1,), dtype=np.float32)
+
+    def step(self, action):
+        target = 1.0 if self.side == 1 else -1.0
+        reward = -abs(float(np.asarray(action).reshape(-1)[0]) - target)
+        self.steps += 1
+        return self._draw(), reward, False, self.steps >= 8, {}

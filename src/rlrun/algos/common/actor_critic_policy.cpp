@@ -226,8 +226,8 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
 
 void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
                                   const Space& action_space, bool with_value) const {
-  if (use_cnn_) require_exportable(FeaturesExtractor::kNatureCnn);
-  const std::string features = encoder_.export_to(graph, obs);
+  const std::string encoded = encoder_.export_to(graph, obs);
+  const std::string features = use_cnn_ ? graph.nature_cnn(encoded, cnn_) : encoded;
   const std::string head = graph.mlp(features, actor_);
   switch (head_) {
     case Head::kCategorical: graph.set_action(graph.argmax(head)); break;
@@ -245,7 +245,9 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
     case Head::kDiagGaussian:
     case Head::kStateDependentNoise: graph.set_action(head); break;
   }
-  if (with_value) graph.set_value(graph.mlp(features, critic_));
+  if (with_value)
+    graph.set_value(
+        graph.mlp(separate_value_cnn_ ? graph.nature_cnn(encoded, vf_cnn_) : features, critic_));
 }
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,

@@ -196,11 +196,17 @@ void EntropyRegularizedActorCritic::select_actions(const Eigen::MatrixXf& obs, b
 
 EntropyRegularizedActorCritic::ExportedAction EntropyRegularizedActorCritic::export_action(
     PolicyGraph& graph, const std::string& obs) const {
-  require_exportable(actor_.features_extractor());
-  const std::string features = acting_encoder().export_to(graph, obs);
-  const std::string scaled = actor_.export_mode(graph, features);
+  const std::string encoded = acting_encoder().export_to(graph, obs);
+  const std::string scaled =
+      actor_.export_mode(graph, actor_.features_extractor().export_to(graph, encoded));
   graph.set_action(acting_.export_env_actions(graph, scaled));
-  return {features, scaled};
+  return {encoded, scaled};
+}
+
+std::string EntropyRegularizedActorCritic::export_critic_input(PolicyGraph& graph,
+                                                               const ExportedAction& action) const {
+  return graph.concat(
+      {critic_.features_extractor().export_to(graph, action.encoded), action.scaled});
 }
 
 void EntropyRegularizedActorCritic::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs,

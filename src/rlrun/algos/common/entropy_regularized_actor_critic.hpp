@@ -165,11 +165,13 @@ class EntropyRegularizedActorCritic : public OffPolicyAlgorithm {
                                 const EntropyRegularizedPolicyConfig& policy,
                                 const AlgorithmSetup& setup, int critic_outputs);
 
-  // predict(deterministic) as graph nodes: sets the graph's action and returns the network
-  // input (`features`) and the action in [-1, 1] (`scaled`) for the algorithm's value.
+  // predict(deterministic) as graph nodes: sets the graph's action and returns the encoded
+  // observation and the action in [-1, 1] (`scaled`) for the algorithm's value.
   struct ExportedAction {
-    std::string features, scaled;
+    std::string encoded, scaled;
   };
+  // The critics' input for that action: cat(critic features, action) as graph nodes.
+  std::string export_critic_input(PolicyGraph& graph, const ExportedAction& action) const;
   ExportedAction export_action(PolicyGraph& graph, const std::string& obs) const;
 
   // ---- the shared pieces of one gradient step, in the order train_on_batch calls them ----

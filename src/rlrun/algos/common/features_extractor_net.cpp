@@ -51,15 +51,8 @@ void polyak_update(const FeaturesExtractorNet& source, FeaturesExtractorNet& tar
   if (source.learned()) polyak_update(source.cnn().params(), target.cnn().params(), tau);
 }
 
-void require_exportable(FeaturesExtractor kind) {
-  if (kind == FeaturesExtractor::kNatureCnn)
-    throw ExportError(
-        "a NatureCNN policy (CnnPolicy) cannot be exported yet: rlrun's ONNX, C and C++ exports "
-        "have no convolution");
-}
-
-void require_exportable(const FeaturesExtractorNet& extractor) {
-  if (extractor.learned()) require_exportable(FeaturesExtractor::kNatureCnn);
+std::string FeaturesExtractorNet::export_to(PolicyGraph& graph, const std::string& encoded) const {
+  return learned_ ? graph.nature_cnn(encoded, cnn_) : encoded;
 }
 
 }  // namespace rlrun

@@ -25,6 +25,8 @@
 
 namespace rlrun {
 
+class PolicyGraph;
+
 // SB3 policy_kwargs that choose and shape the extractor.
 struct FeaturesExtractorSettings {
   FeaturesExtractor kind = FeaturesExtractor::kFlatten;
@@ -64,6 +66,9 @@ class FeaturesExtractorNet {
   // The acting copy's refresh (same shapes, no allocation).
   void copy_parameters_from(const FeaturesExtractorNet& other);
 
+  // Deploying (nn/policy_graph.hpp): forward() as graph nodes from the encoded observation.
+  std::string export_to(PolicyGraph& graph, const std::string& encoded) const;
+
   // torch state_dict entries <prefix>.features_extractor.* (none for a flatten extractor).
   void save(const std::string& prefix, TensorMap& tensors) const;
   void load(const std::string& prefix, const TensorMap& tensors);
@@ -76,10 +81,5 @@ class FeaturesExtractorNet {
 
 // polyak_update(source.parameters(), target.parameters(), tau) of the extractor's part.
 void polyak_update(const FeaturesExtractorNet& source, FeaturesExtractorNet& target, float tau);
-
-// rlrun's exports (ONNX, C, C++) have no convolution yet: ExportError for a policy whose
-// extractor is a NatureCNN.
-void require_exportable(const FeaturesExtractorNet& extractor);
-void require_exportable(FeaturesExtractor kind);
 
 }  // namespace rlrun

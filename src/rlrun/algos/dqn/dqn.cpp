@@ -197,8 +197,9 @@ void DQN::random_actions(Eigen::Index n, Eigen::MatrixXf& actions) {
 
 // predict(deterministic): the greedy action, start + argmax Q; the value is every Q-value.
 void DQN::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  if (use_cnn_) require_exportable(FeaturesExtractor::kNatureCnn);
-  const std::string q = graph.mlp(acting_encoder().export_to(graph, obs), q_net_.net());
+  const std::string encoded = acting_encoder().export_to(graph, obs);
+  const std::string q =
+      graph.mlp(use_cnn_ ? graph.nature_cnn(encoded, cnn_) : encoded, q_net_.net());
   std::string action = graph.argmax(q);
   if (action_start_ != 0.0f)
     action = graph.affine(action, Eigen::VectorXf::Zero(1), Eigen::VectorXf::Ones(1),

@@ -100,9 +100,9 @@ EntropyRegularizedStepStats SAC::train_on_batch(const ReplayBatch& b, float lr,
 // predict(deterministic): the squashed mean unscaled to the Box; the value is the first
 // critic's Q(s, a) of that action.
 void SAC::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  const ExportedAction action = export_action(graph, obs);  // refuses a CNN
+  const ExportedAction action = export_action(graph, obs);
   if (with_value)
-    graph.set_value(graph.mlp(graph.concat({action.features, action.scaled}), critic_.q(0).net()));
+    graph.set_value(graph.mlp(export_critic_input(graph, action), critic_.q(0).net()));
 }
 
 }  // namespace rlrun

@@ -188,11 +188,15 @@ void TD3::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
 
 // predict(): tanh(mu(obs)) unscaled to the Box; the value is the first critic's Q(s, a).
 void TD3::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
-  require_exportable(actor_.features_extractor());
-  const std::string features = acting_encoder().export_to(graph, obs);
-  const std::string scaled = graph.activation(graph.mlp(features, actor_.net()), Activation::kTanh);
+  const std::string encoded = acting_encoder().export_to(graph, obs);
+  const std::string scaled = graph.activation(
+      graph.mlp(actor_.features_extractor().export_to(graph, encoded), actor_.net()),
+      Activation::kTanh);
   graph.set_action(acting_.export_env_actions(graph, scaled));
-  if (with_value) graph.set_value(graph.mlp(graph.concat({features, scaled}), critic_.q(0).net()));
+  if (with_value) {
+    const std::string features = critic_.features_extractor().export_to(graph, encoded);
+    graph.set_value(graph.mlp(graph.concat({features, scaled}), critic_.q(0).net()));
+  }
 }
 
 void TD3::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,

@@ -130,7 +130,7 @@ EntropyRegularizedStepStats TQC::train_on_batch(const ReplayBatch& b, float lr,
 void TQC::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
   const ExportedAction action = export_action(graph, obs);
   if (!with_value) return;
-  const std::string input = graph.concat({action.features, action.scaled});
+  const std::string input = export_critic_input(graph, action);
   std::vector<std::string> atoms;
   for (int i = 0; i < critic_.n_critics(); ++i)
     atoms.push_back(graph.mlp(input, critic_.q(i).net()));

@@ -12,8 +12,11 @@
 namespace rlrun {
 
 // Inputs: one per key of a Dict observation (named by the key, in the space's order), else
-// one named "obs". Throws ExportError for a multi-agent env, a wrapper that keeps state
-// between steps (FrameStack, TimeFeature) or an algorithm without export.
+// one named "obs" — of the env's observation, or of the outermost wrapper that renders or keeps
+// frames but passes actions on (AddRenderObservation, FrameStack, MaxAndSkip: the graph then
+// starts at what the policy reads; metadata "observation_input" says so). Throws ExportError
+// for a multi-agent env, a wrapper that keeps state and changes actions or has no export
+// (TimeFeature), or an algorithm without export.
 PolicyGraph build_model_graph(const LoadedModel& model, bool with_value);
 
 }  // namespace rlrun
