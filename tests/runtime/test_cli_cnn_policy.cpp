@@ -213,6 +213,52 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "cli: CombinedExtractor (MultiInputPolicy) on a frame and the state: PPO, DQN and SAC train, "
+    "save SB3's names and export from the Dict",
+    "[cli][cnn][combined]") {
+  TempDir dir("cnn_combined");
+  struct Run {
+    std::string algo, env, settings;
+  };
+  for (const Run& r : {Run{"PPO", "CartPole-v1", "n_steps: 64, batch_size: 32, n_epochs: 1"},
+                       Run{"DQN", "CartPole-v1",
+                           "learning_starts: 100, buffer_size: 500, "
+                           "batch_size: 16"},
+                       Run{"SAC", "Pendulum-v1",
+                           "learning_starts: 100, buffer_size: 500, "
+                           "batch_size: 16"}}) {
+    INFO(r.algo);
+    const std::string config = dir / (r.algo + ".yaml");
+    std::ofstream(config)
+        << "run: {name: " << r.algo << ", seed: 2, total_timesteps: 256, out_dir: " << dir.str()
+        << "/runs}\n"
+        << "env: {id: " << r.env
+        << ", wrappers: [{id: AddRenderObservation, width: 36, height: 36, render_only: false}]}\n"
+        << "algo: {id: " << r.algo << ", " << r.settings
+        << ", policy: {features_extractor_class: MultiInputPolicy, cnn_output_dim: 16, net_arch: "
+           "[32]}}\n";
+    const auto train = run_rlrun("--threads 2 train " + config);
+    INFO(train.output);
+    REQUIRE(train.exit_code == 0);
+    const std::string model = dir / ("runs/" + r.algo + "/seed2/model.zip");
+    const ModelFile file = read_model(model);
+    const std::string module = r.algo == "PPO"   ? "features_extractor"
+                               : r.algo == "DQN" ? "q_net.features_extractor"
+                                                 : "critic.features_extractor";
+    CHECK(file.tensors.at(module + ".extractors.pixels.cnn.0.weight").shape ==
+          std::vector<int64_t>{32, 3, 8, 8});
+    CHECK(file.tensors.count(module + ".extractors.state.cnn.0.weight") == 0);
+    // The graph starts at AddRenderObservation's Dict: the frame and the state as inputs.
+    const auto exported =
+        run_rlrun("export --model " + model + " --output " + dir / (r.algo + ".onnx"));
+    INFO(exported.output);
+    CHECK(exported.exit_code == 0);
+    CHECK_THAT(exported.output, Catch::Contains("inputs pixels [batch, 3888], state") &&
+                                    Catch::Contains("AddRenderObservation"));
+  }
+}
+
+TEST_CASE(
     "cli: PPO with share_features_extractor false trains two CNNs, the same on 1 and 2 "
     "threads",
     "[cli][cnn]") {

@@ -60,9 +60,8 @@ ConfigProblems check_actor_critic(const ActorCriticPolicyConfig& policy, int64_t
                                   " steps per rollout is more than rlrun's limit of 2^31 - 1"});
   check_net_arch(out, "policy.net_arch", policy.net_arch.pi, policy.net_arch.vf);
   const int features = features_extractor_output_dim(
-      out, "policy.features_extractor_class", policy.features_extractor_class, policy.features_dim,
-      policy.normalize_images, setup.observation_space, policy.share_features_extractor ? 1 : 2,
-      static_cast<double>(batch));
+      out, "policy.features_extractor_class", policy.extractor(), setup.observation_space,
+      policy.share_features_extractor ? 1 : 2, static_cast<double>(batch));
   const int head = setup.action_space.is_dict() ? 1 : action_net_size(setup.action_space);
   check_network_memory(out, "policy.net_arch", features, policy.net_arch.pi, head, 1,
                        static_cast<double>(batch));
@@ -130,15 +129,11 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
   const Activation act = config.activation_fn;
   // SB3 ActorCriticPolicy: the towers start from the features extractor's output;
   // MlpExtractor's policy_net (net_arch.pi) + action_net, value_net (net_arch.vf) + value head.
-  int obs_dim = encoder_.features_dim();
-  if (config.features_extractor_class == FeaturesExtractor::kNatureCnn) {
-    use_cnn_ = true;
-    separate_value_cnn_ = !config.share_features_extractor;
-    cnn_ = NatureCnn(require_image_input(observation_space, config.normalize_images),
-                     config.features_dim, config.normalize_images);
-    if (separate_value_cnn_) vf_cnn_ = cnn_;
-    obs_dim = config.features_dim;
-  }
+  extractor_ =
+      FeaturesExtractorNet(config.extractor(), observation_space, encoder_.features_dim(), nullptr);
+  separate_value_extractor_ = extractor_.learned() && !config.share_features_extractor;
+  if (separate_value_extractor_) vf_extractor_ = extractor_;
+  const int obs_dim = extractor_.out_dim();
   actor_ = Mlp(obs_dim, config.net_arch.pi, action_net_size(action_space), act);
   critic_ = Mlp(obs_dim, config.net_arch.vf, 1, act);
   if (config.ortho_init) {
@@ -146,19 +141,19 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
     // sqrt(2), action_net: 0.01, value_net: 1}, in that order; without a shared extractor the
     // features_extractor entry goes and pi_features_extractor, vf_features_extractor (sqrt(2))
     // come last.
-    if (use_cnn_ && !separate_value_cnn_) cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
+    if (!separate_value_extractor_) extractor_.init_orthogonal(init_rng, std::sqrt(2.0f));
     actor_.init_orthogonal(init_rng, std::sqrt(2.0f), 0.01f);
     critic_.init_orthogonal(init_rng, std::sqrt(2.0f), 1.0f);
-    if (separate_value_cnn_) {
-      cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
-      vf_cnn_.init_orthogonal(init_rng, std::sqrt(2.0f));
+    if (separate_value_extractor_) {
+      extractor_.init_orthogonal(init_rng, std::sqrt(2.0f));
+      vf_extractor_.init_orthogonal(init_rng, std::sqrt(2.0f));
     }
   } else {
     // SB3 ActorCriticPolicy._build skips init_weights: every module keeps torch's default
     // init, drawn as it is made: the extractors (features/pi, then vf), then the towers,
     // action_net, value_net; log_std is still log_std_init (below).
-    if (use_cnn_) cnn_.init_torch_default(init_rng);
-    if (separate_value_cnn_) vf_cnn_.init_torch_default(init_rng);
+    extractor_.init_torch_default(init_rng);
+    if (separate_value_extractor_) vf_extractor_.init_torch_default(init_rng);
     actor_.init_torch_default(init_rng);
     critic_.init_torch_default(init_rng);
   }
@@ -227,7 +222,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
 void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
                                   const Space& action_space, bool with_value) const {
   const std::string encoded = encoder_.export_to(graph, obs);
-  const std::string features = use_cnn_ ? graph.nature_cnn(encoded, cnn_) : encoded;
+  const std::string features = extractor_.export_to(graph, encoded);
   const std::string head = graph.mlp(features, actor_);
   switch (head_) {
     case Head::kCategorical: graph.set_action(graph.argmax(head)); break;
@@ -246,14 +241,14 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
     case Head::kStateDependentNoise: graph.set_action(head); break;
   }
   if (with_value)
-    graph.set_value(
-        graph.mlp(separate_value_cnn_ ? graph.nature_cnn(encoded, vf_cnn_) : features, critic_));
+    graph.set_value(graph.mlp(
+        separate_value_extractor_ ? vf_extractor_.export_to(graph, encoded) : features, critic_));
 }
 
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                        Eigen::RowVectorXf& values) {
-  if (separate_value_cnn_) {
-    values = critic_.forward(vf_cnn_.forward(encoder_(obs)));
+  if (separate_value_extractor_) {
+    values = critic_.forward(vf_extractor_.forward(encoder_(obs)));
     return;
   }
   values = critic_.forward(features(obs));
@@ -261,17 +256,16 @@ void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& 
 
 Eigen::Ref<const Eigen::MatrixXf> ActorCriticPolicy::features(
     const Eigen::Ref<const Eigen::MatrixXf>& obs) {
-  if (!use_cnn_) return encoder_(obs);
-  return cnn_.forward(encoder_(obs));
+  return extractor_.forward(encoder_(obs));
 }
 
 Eigen::Ref<const Eigen::MatrixXf> ActorCriticPolicy::value_features(
     const Eigen::Ref<const Eigen::MatrixXf>& obs,
     const Eigen::Ref<const Eigen::MatrixXf>& actor_features) {
-  if (!separate_value_cnn_) return actor_features;
+  if (!separate_value_extractor_) return actor_features;
   // A CNN's input is the observation itself (the encoder passes images through), so the
   // actor's encoding is still valid here.
-  return vf_cnn_.forward(encoder_(obs));
+  return vf_extractor_.forward(encoder_(obs));
 }
 
 void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
@@ -340,19 +334,19 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
         sde_.backward_scored(actions_, grad_log_prob, grad_entropy, grad_head_);
         break;
     }
-    actor_.backward(grad_head_, use_cnn_ ? &grad_features_ : nullptr);
+    actor_.backward(grad_head_, extractor_.learned() ? &grad_features_ : nullptr);
   };
   auto critic_part = [&] {
-    critic_.backward(grad_values, use_cnn_ ? &grad_features_critic_ : nullptr);
+    critic_.backward(grad_values, extractor_.learned() ? &grad_features_critic_ : nullptr);
   };
   run_pair(grad_values.size(), actor_part, critic_part);
-  if (separate_value_cnn_) {
-    cnn_.backward(grad_features_);
-    vf_cnn_.backward(grad_features_critic_);
-  } else if (use_cnn_) {
+  if (separate_value_extractor_) {
+    extractor_.backward(grad_features_);
+    vf_extractor_.backward(grad_features_critic_);
+  } else if (extractor_.learned()) {
     // The shared extractor gets both losses' gradients, as autograd sums them.
     grad_features_ += grad_features_critic_;
-    cnn_.backward(grad_features_);
+    extractor_.backward(grad_features_);
   }
 }
 
@@ -368,8 +362,8 @@ void ActorCriticPolicy::run_pair(Eigen::Index batch, const std::function<void()>
 }
 
 void ActorCriticPolicy::zero_grad() {
-  if (use_cnn_) cnn_.zero_grad();
-  if (separate_value_cnn_) vf_cnn_.zero_grad();
+  extractor_.zero_grad();
+  vf_extractor_.zero_grad();
   actor_.zero_grad();
   critic_.zero_grad();
   log_std_grad_.setZero();
@@ -379,8 +373,8 @@ void ActorCriticPolicy::zero_grad() {
 std::vector<ParamBlock> ActorCriticPolicy::param_blocks() {
   // SB3's parameter order: the features extractor(s), the towers and heads, log_std.
   std::vector<ParamBlock> blocks;
-  if (use_cnn_) blocks.push_back(cnn_.block());
-  if (separate_value_cnn_) blocks.push_back(vf_cnn_.block());
+  for (const ParamBlock& b : extractor_.blocks()) blocks.push_back(b);
+  for (const ParamBlock& b : vf_extractor_.blocks()) blocks.push_back(b);
   blocks.push_back(actor_.block());
   blocks.push_back(critic_.block());
   if (head_ == Head::kDiagGaussian)
@@ -400,11 +394,11 @@ double ActorCriticPolicy::mean_std() const {
 // vf_features_extractor.* when not (SB3 also lists the actor's under features_extractor.*, the
 // same module twice; rlrun writes each network once).
 void ActorCriticPolicy::save(TensorMap& tensors) const {
-  if (separate_value_cnn_) {
-    cnn_.save("pi_features_extractor", tensors);
-    vf_cnn_.save("vf_features_extractor", tensors);
-  } else if (use_cnn_) {
-    cnn_.save("features_extractor", tensors);
+  if (separate_value_extractor_) {
+    extractor_.save("pi_features_extractor", tensors);
+    vf_extractor_.save("vf_features_extractor", tensors);
+  } else {
+    extractor_.save("features_extractor", tensors);
   }
   save_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   save_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);
@@ -413,11 +407,11 @@ void ActorCriticPolicy::save(TensorMap& tensors) const {
 }
 
 void ActorCriticPolicy::load(const TensorMap& tensors) {
-  if (separate_value_cnn_) {
-    cnn_.load("pi_features_extractor", tensors);
-    vf_cnn_.load("vf_features_extractor", tensors);
-  } else if (use_cnn_) {
-    cnn_.load("features_extractor", tensors);
+  if (separate_value_extractor_) {
+    extractor_.load("pi_features_extractor", tensors);
+    vf_extractor_.load("vf_features_extractor", tensors);
+  } else {
+    extractor_.load("features_extractor", tensors);
   }
   load_mlp(actor_, "mlp_extractor.policy_net", "action_net", tensors);
   load_mlp(critic_, "mlp_extractor.value_net", "value_net", tensors);

@@ -15,6 +15,7 @@
 #include "rlrun/algos/common/activation_config.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/features_extractor_config.hpp"
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/net_arch.hpp"
 #include "rlrun/core/tensor.hpp"
 #include "rlrun/core/thread_pool.hpp"
@@ -54,8 +55,13 @@ struct ActorCriticPolicyConfig {
   // normalize_images, share_features_extractor.
   FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
   int features_dim = 512;
+  int cnn_output_dim = 256;
   bool normalize_images = true;
   bool share_features_extractor = true;
+
+  FeaturesExtractorSettings extractor() const {
+    return {features_extractor_class, features_dim, cnn_output_dim, normalize_images};
+  }
 
   template <class V>
   void visit(V& v) {
@@ -71,6 +77,7 @@ struct ActorCriticPolicyConfig {
     v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
     v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("share_features_extractor", share_features_extractor,
       "actor and critic read one NatureCNN (SB3's default for PPO and A2C); false: one each");
@@ -148,24 +155,27 @@ class ActorCriticPolicy {
   // calling thread alone). Never changes a result: the two write separate networks.
   void set_thread_pool(ThreadPool* pool) {
     pool_ = pool;
-    cnn_.set_thread_pool(pool);
-    vf_cnn_.set_thread_pool(pool);
+    extractor_.set_thread_pool(pool);
+    vf_extractor_.set_thread_pool(pool);
   }
 
   const ObservationEncoder& encoder() const { return encoder_; }
   // SB3's CnnPolicy: the NatureCNN (the actor's, shared with the critic unless
-  // share_features_extractor is false), or null for the flatten extractor.
-  const NatureCnn* cnn() const { return use_cnn_ ? &cnn_ : nullptr; }
+  // share_features_extractor is false; a CombinedExtractor's first), or null without one.
+  const NatureCnn* cnn() const { return extractor_.learned() ? &extractor_.cnn() : nullptr; }
   // The critic's own NatureCNN when share_features_extractor is false, else null.
-  const NatureCnn* value_cnn() const { return separate_value_cnn_ ? &vf_cnn_ : nullptr; }
+  const NatureCnn* value_cnn() const {
+    return separate_value_extractor_ ? &vf_extractor_.cnn() : nullptr;
+  }
+  const FeaturesExtractorNet& features_extractor() const { return extractor_; }
   const Mlp& actor() const { return actor_; }
   const Mlp& critic() const { return critic_; }
 
  private:
   void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
                 const std::function<void()>& critic_part);
-  // The heads' input for a batch of observations: the encoding, through the CNN when there
-  // is one (which then keeps what its backward needs).
+  // The heads' input for a batch of observations: the encoding through the features extractor
+  // (whose networks then keep what their backward needs).
   Eigen::Ref<const Eigen::MatrixXf> features(const Eigen::Ref<const Eigen::MatrixXf>& obs);
   // The critic's input: `actor_features` when the extractor is shared, else the observations
   // through the critic's own CNN (SB3 vf_features_extractor).
@@ -175,11 +185,13 @@ class ActorCriticPolicy {
 
   ThreadPool* pool_ = nullptr;
   ObservationEncoder encoder_;
-  bool use_cnn_ = false;
-  NatureCnn cnn_;
-  bool separate_value_cnn_ = false;  // share_features_extractor: false
-  NatureCnn vf_cnn_;
-  Eigen::MatrixXf grad_features_, grad_features_critic_;  // dL/d(CNN features), per head
+  // SB3's features_extractor (pi_features_extractor when not shared) and, with
+  // share_features_extractor false and an extractor that learns, the critic's own
+  // vf_features_extractor.
+  FeaturesExtractorNet extractor_;
+  bool separate_value_extractor_ = false;
+  FeaturesExtractorNet vf_extractor_;
+  Eigen::MatrixXf grad_features_, grad_features_critic_;  // dL/d(features), per head
   Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;
   Eigen::VectorXf low_, high_;

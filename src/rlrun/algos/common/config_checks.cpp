@@ -99,36 +99,65 @@ int network_input_dim(ConfigProblems& out, const Space& observation_space) {
   }
 }
 
+namespace {
+
+// Floats of one NatureCNN on `image` with `features` outputs: the linear layer dominates the
+// weights (the last convolution's output times features, as parameters, gradients and Adam's
+// two moments); a batch keeps every layer's output and its gradient (nn/nature_cnn.cpp); each
+// worker im2cols one image at a time (the first layer's patches are the largest: ~4x the image).
+double nature_cnn_floats(const ImageInput& image, int features, double batch) {
+  const auto shapes = NatureCnn::conv_shapes(image);
+  const auto flatten = static_cast<double>(shapes.back().out_size());
+  double per_image = image.size() + features, patches = 0;
+  for (const Conv2dShape& s : shapes) {
+    per_image += static_cast<double>(s.out_size());
+    patches = std::max(patches, static_cast<double>(s.patch_size() * s.out_pixels()));
+  }
+  return flatten * features * 4 + per_image * 2 * std::max(batch, 1.0) +
+         patches * 2 * available_cpus();
+}
+
+}  // namespace
+
 int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
-                                  FeaturesExtractor extractor, int features_dim,
-                                  bool normalize_images, const Space& observation_space,
+                                  const FeaturesExtractorSettings& e, const Space& space,
                                   int networks, double batch) {
-  if (extractor == FeaturesExtractor::kFlatten) return network_input_dim(out, observation_space);
+  if (e.kind == FeaturesExtractor::kFlatten) return network_input_dim(out, space);
+  const int fallback =
+      e.kind == FeaturesExtractor::kNatureCnn ? e.features_dim : network_input_dim(out, space);
   try {
-    const ImageInput image = require_image_input(observation_space, normalize_images);
-    // The linear layer dominates the weights: the last convolution's output times
-    // features_dim, as parameters, gradients and Adam's two moments. A batch keeps every
-    // layer's output and its gradient (nn/nature_cnn.cpp); each worker im2cols one image at a
-    // time (the first layer's patches are the largest: ~4x the image).
-    const auto shapes = NatureCnn::conv_shapes(image);
-    const auto flatten = static_cast<double>(shapes.back().out_size());
-    double per_image = image.size() + features_dim, patches = 0;
-    for (const Conv2dShape& s : shapes) {
-      per_image += static_cast<double>(s.out_size());
-      patches = std::max(patches, static_cast<double>(s.patch_size() * s.out_pixels()));
+    double floats = 0;
+    int features = 0;
+    if (e.kind == FeaturesExtractor::kNatureCnn) {
+      floats =
+          nature_cnn_floats(require_image_input(space, e.normalize_images), e.features_dim, batch);
+      features = e.features_dim;
+    } else {
+      if (space.kind() != SpaceKind::kDict)
+        throw std::invalid_argument(
+            "CombinedExtractor (SB3's MultiInputPolicy) reads Dict observations, not " +
+            space.describe() + ": use FlattenExtractor, or NatureCNN for an image");
+      // SB3 CombinedExtractor: a NatureCNN per image key (is_image_space, uint8), the rest
+      // flattened.
+      for (const Space& sub : space.subspaces()) {
+        if (const auto image = image_input(sub, /*normalize_images=*/true)) {
+          floats += nature_cnn_floats(*image, e.cnn_output_dim, batch);
+          features += e.cnn_output_dim;
+        } else {
+          features += ObservationEncoder(sub).features_dim();
+        }
+      }
     }
-    const double floats =
-        networks * (flatten * features_dim * 4 + per_image * 2 * std::max(batch, 1.0) +
-                    patches * 2 * available_cpus());
     const std::string problem =
-        memory_problem(floats * sizeof(float),
+        memory_problem(networks * floats * sizeof(float),
                        "NatureCNN's weights and the activations of a batch of " +
                            std::to_string(static_cast<int64_t>(std::max(batch, 1.0))) + " images");
     if (!problem.empty()) out.push_back({key, problem});
-  } catch (const std::invalid_argument& e) {
-    out.push_back({key, e.what()});
+    return features;
+  } catch (const std::invalid_argument& ex) {
+    out.push_back({key, ex.what()});
   }
-  return features_dim;
+  return fallback;
 }
 
 }  // namespace rlrun

@@ -52,12 +52,13 @@ void check_use_sde(ConfigProblems& out, bool use_sde, const AlgorithmSetup& setu
 int network_input_dim(ConfigProblems& out, const Space& observation_space);
 
 // What the heads read after SB3's features extractor: network_input_dim for FlattenExtractor;
-// for NatureCNN, features_dim, with the image checked (SB3's message under `key`) and the
-// memory of `networks` CNNs checked: weights with their gradients and Adam moments, the
-// activations of `batch` images forward and backward, and a worker's im2col patches per CPU.
+// for NatureCNN, features_dim, with the image checked (SB3's message under `key`); for
+// CombinedExtractor (a Dict, or a problem under `key`), cnn_output_dim per image key and the
+// other keys' widths. The memory of `networks` such extractors is checked: each CNN's weights
+// with their gradients and Adam moments, the activations of `batch` images forward and
+// backward, and a worker's im2col patches per CPU.
 int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
-                                  FeaturesExtractor extractor, int features_dim,
-                                  bool normalize_images, const Space& observation_space,
-                                  int networks, double batch);
+                                  const FeaturesExtractorSettings& extractor,
+                                  const Space& observation_space, int networks, double batch);
 
 }  // namespace rlrun

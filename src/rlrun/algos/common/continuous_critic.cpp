@@ -74,7 +74,7 @@ void ContinuousCritic::action_gradient(int i, const Eigen::Ref<const Eigen::Matr
 }
 
 void ContinuousCritic::save(const std::string& prefix, TensorMap& tensors) const {
-  extractor_.save(prefix, tensors);
+  extractor_.save(prefix + ".features_extractor", tensors);
   for (int i = 0; i < n_critics(); ++i) {
     const Mlp& net = q_[i].net();
     const std::string name = prefix + ".qf" + std::to_string(i);
@@ -83,7 +83,7 @@ void ContinuousCritic::save(const std::string& prefix, TensorMap& tensors) const
 }
 
 void ContinuousCritic::load(const std::string& prefix, const TensorMap& tensors) {
-  extractor_.load(prefix, tensors);
+  extractor_.load(prefix + ".features_extractor", tensors);
   for (int i = 0; i < n_critics(); ++i) {
     Mlp& net = q_[i].net();
     const std::string name = prefix + ".qf" + std::to_string(i);

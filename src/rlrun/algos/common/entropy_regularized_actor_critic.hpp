@@ -49,12 +49,13 @@ struct EntropyRegularizedPolicyConfig {
   // features_dim, share_features_extractor (false: the actor and the critic have one each).
   FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
   int features_dim = 512;
+  int cnn_output_dim = 256;
   bool share_features_extractor = false;
 
   // The actor's gSDE options (SB3 Actor keyword arguments).
   SacActorSde actor_sde(bool use_sde) const;
   FeaturesExtractorSettings extractor() const {
-    return {features_extractor_class, features_dim, normalize_images};
+    return {features_extractor_class, features_dim, cnn_output_dim, normalize_images};
   }
 
  protected:
@@ -73,6 +74,7 @@ struct EntropyRegularizedPolicyConfig {
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
     v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
     v("share_features_extractor", share_features_extractor, kOffPolicyShareFeaturesExtractorDoc);
   }
 };

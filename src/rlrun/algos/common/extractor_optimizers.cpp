@@ -6,26 +6,46 @@
 
 namespace rlrun {
 
+namespace {
+std::vector<SplitAdam> adams(FeaturesExtractorNet& extractor, ThreadPool* pool) {
+  std::vector<SplitAdam> out;
+  for (const ParamBlock& block : extractor.blocks()) out.emplace_back(block, AdamConfig{}, pool);
+  return out;
+}
+
+void write_adams(StateWriter out, const std::string& name, const std::vector<SplitAdam>& adams) {
+  for (size_t i = 0; i < adams.size(); ++i)
+    for (int k = 0; k < 2; ++k)
+      write_adam(out.sub(name + std::to_string(i) + "_" + std::to_string(k)), adams[i].part(k));
+}
+
+void read_adams(const StateReader& in, const std::string& name, std::vector<SplitAdam>& adams) {
+  for (size_t i = 0; i < adams.size(); ++i)
+    for (int k = 0; k < 2; ++k)
+      read_adam(in.sub(name + std::to_string(i) + "_" + std::to_string(k)), adams[i].part(k));
+}
+}  // namespace
+
 ExtractorOptimizers::ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet& critic,
                                          ThreadPool* pool)
-    : active_(actor.learned()) {
-  if (!active_) return;
-  actor_ = SplitAdam(actor.block(), AdamConfig{}, pool);
-  critic_ = SplitAdam(critic.block(), AdamConfig{}, pool);
+    : actor_(adams(actor, pool)), critic_(adams(critic, pool)) {}
+
+void ExtractorOptimizers::step_actor(float lr) {
+  for (SplitAdam& adam : actor_) adam.step(lr);
+}
+
+void ExtractorOptimizers::step_critic(float lr) {
+  for (SplitAdam& adam : critic_) adam.step(lr);
 }
 
 void ExtractorOptimizers::write_state(StateWriter out) const {
-  for (int k = 0; k < 2; ++k) {
-    write_adam(out.sub("actor" + std::to_string(k)), actor_.part(k));
-    write_adam(out.sub("critic" + std::to_string(k)), critic_.part(k));
-  }
+  write_adams(out, "actor", actor_);
+  write_adams(out, "critic", critic_);
 }
 
 void ExtractorOptimizers::read_state(const StateReader& in) {
-  for (int k = 0; k < 2; ++k) {
-    read_adam(in.sub("actor" + std::to_string(k)), actor_.part(k));
-    read_adam(in.sub("critic" + std::to_string(k)), critic_.part(k));
-  }
+  read_adams(in, "actor", actor_);
+  read_adams(in, "critic", critic_);
 }
 
 }  // namespace rlrun

@@ -4,8 +4,10 @@
 // its module's one Adam (actor.optimizer over actor.parameters(), critic.optimizer over
 // critic.parameters()); Adam is element-wise with one step count per optimizer, so an Adam of
 // their own, stepped with the same learning rate right after the module's, is the same update.
-// Each is a SplitAdam: the 1.7 M parameters of an 84x84 NatureCNN are stepped on the run's
-// threads.
+// Each network's is a SplitAdam: the 1.7 M parameters of an 84x84 NatureCNN are stepped on the
+// run's threads.
+#include <vector>
+
 #include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/core/state_dict.hpp"
 #include "rlrun/core/thread_pool.hpp"
@@ -16,26 +18,21 @@ namespace rlrun {
 class ExtractorOptimizers {
  public:
   ExtractorOptimizers() = default;
-  // Adams for the two extractors when they are learned; otherwise nothing to step.
+  // An Adam for each network of the two extractors (none for flatten extractors).
   ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet& critic, ThreadPool* pool);
 
   // Whether there is anything to step (a CnnPolicy), and so anything to checkpoint.
-  bool active() const { return active_; }
+  bool active() const { return !actor_.empty() || !critic_.empty(); }
   // One Adam step of the actor's / the critic's extractor from its grads().
-  void step_actor(float lr) {
-    if (active_) actor_.step(lr);
-  }
-  void step_critic(float lr) {
-    if (active_) critic_.step(lr);
-  }
+  void step_actor(float lr);
+  void step_critic(float lr);
 
-  // Exact resume: both Adams' moments and step counts.
+  // Exact resume: every Adam's moments and step count.
   void write_state(StateWriter out) const;
   void read_state(const StateReader& in);
 
  private:
-  bool active_ = false;
-  SplitAdam actor_, critic_;
+  std::vector<SplitAdam> actor_, critic_;
 };
 
 }  // namespace rlrun

@@ -1,7 +1,10 @@
 #include "rlrun/algos/common/features_extractor_net.hpp"
 
+#include <stdexcept>
+
 #include "rlrun/algos/common/polyak.hpp"
 #include "rlrun/env/image_space.hpp"
+#include "rlrun/env/observation_encoder.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
@@ -10,49 +13,133 @@ FeaturesExtractorNet::FeaturesExtractorNet(const FeaturesExtractorSettings& sett
                                            const Space& observation_space, int encoded_dim,
                                            ThreadPool* pool)
     : out_dim_(encoded_dim) {
-  if (settings.kind != FeaturesExtractor::kNatureCnn) return;
-  learned_ = true;
-  cnn_ = NatureCnn(require_image_input(observation_space, settings.normalize_images),
-                   settings.features_dim, settings.normalize_images);
-  cnn_.set_thread_pool(pool);
-  out_dim_ = settings.features_dim;
+  switch (settings.kind) {
+    case FeaturesExtractor::kFlatten: return;
+    case FeaturesExtractor::kNatureCnn:
+      cnns_.emplace_back(require_image_input(observation_space, settings.normalize_images),
+                         settings.features_dim, settings.normalize_images);
+      cnns_.back().set_thread_pool(pool);
+      out_dim_ = settings.features_dim;
+      return;
+    case FeaturesExtractor::kCombined: build_combined(settings, observation_space, pool); return;
+  }
+}
+
+void FeaturesExtractorNet::build_combined(const FeaturesExtractorSettings& settings,
+                                          const Space& space, ThreadPool* pool) {
+  if (space.kind() != SpaceKind::kDict)
+    throw std::invalid_argument(
+        "CombinedExtractor (SB3's MultiInputPolicy) reads Dict observations, not " +
+        space.describe() + ": use FlattenExtractor, or NatureCNN for an image");
+  // SB3 CombinedExtractor.__init__: for key, subspace in observation_space.spaces.items(),
+  // is_image_space(subspace, normalized_image=False) -> NatureCNN(cnn_output_dim), else
+  // nn.Flatten; rlrun's encoding lays the keys out in the same (sorted) order.
+  int in = 0, out = 0;
+  for (size_t i = 0; i < space.keys().size(); ++i) {
+    const Space& sub = space.subspaces()[i];
+    Part part;
+    part.key = space.keys()[i];
+    part.in = in;
+    part.in_width = ObservationEncoder(sub).features_dim();
+    part.out = out;
+    if (const auto image = image_input(sub, /*normalize_images=*/true)) {
+      part.cnn = static_cast<int>(cnns_.size());
+      cnns_.emplace_back(*image, settings.cnn_output_dim, settings.normalize_images);
+      cnns_.back().set_thread_pool(pool);
+      part.out_width = settings.cnn_output_dim;
+    } else {
+      part.out_width = part.in_width;
+    }
+    in += part.in_width;
+    out += part.out_width;
+    parts_.push_back(part);
+  }
+  combined_ = !cnns_.empty();
+  out_dim_ = out;
 }
 
 void FeaturesExtractorNet::init_torch_default(Rng& rng) {
-  if (learned_) cnn_.init_torch_default(rng);
+  for (NatureCnn& cnn : cnns_) cnn.init_torch_default(rng);
+}
+
+void FeaturesExtractorNet::init_orthogonal(Rng& rng, float gain) {
+  for (NatureCnn& cnn : cnns_) cnn.init_orthogonal(rng, gain);
 }
 
 Eigen::Ref<const Eigen::MatrixXf> FeaturesExtractorNet::forward(
     const Eigen::Ref<const Eigen::MatrixXf>& obs) {
-  if (!learned_) return obs;
-  return cnn_.forward(obs);
+  if (cnns_.empty()) return obs;
+  if (!combined_) return cnns_.front().forward(obs);
+  // SB3 CombinedExtractor.forward: th.cat([extractor(observations[key]) ...], dim=1).
+  features_.resize(out_dim_, obs.cols());
+  for (const Part& p : parts_) {
+    if (p.cnn < 0)
+      features_.middleRows(p.out, p.out_width) = obs.middleRows(p.in, p.in_width);
+    else
+      features_.middleRows(p.out, p.out_width) =
+          cnns_[p.cnn].forward(obs.middleRows(p.in, p.in_width));
+  }
+  return features_;
+}
+
+void FeaturesExtractorNet::zero_grad() {
+  for (NatureCnn& cnn : cnns_) cnn.zero_grad();
+}
+
+void FeaturesExtractorNet::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_features) {
+  if (!combined_) {
+    if (!cnns_.empty()) cnns_.front().backward(grad_features);
+    return;
+  }
+  for (const Part& p : parts_)
+    if (p.cnn >= 0) cnns_[p.cnn].backward(grad_features.middleRows(p.out, p.out_width));
 }
 
 void FeaturesExtractorNet::zero_grad_and_backward(
     const Eigen::Ref<const Eigen::MatrixXf>& grad_features) {
-  if (!learned_) return;
-  cnn_.zero_grad();
-  cnn_.backward(grad_features);
+  zero_grad();
+  backward(grad_features);
+}
+
+std::vector<ParamBlock> FeaturesExtractorNet::blocks() {
+  std::vector<ParamBlock> out;
+  for (NatureCnn& cnn : cnns_) out.push_back(cnn.block());
+  return out;
 }
 
 void FeaturesExtractorNet::copy_parameters_from(const FeaturesExtractorNet& other) {
-  if (learned_) cnn_.params() = other.cnn_.params();
-}
-
-void FeaturesExtractorNet::save(const std::string& prefix, TensorMap& tensors) const {
-  if (learned_) cnn_.save(prefix + ".features_extractor", tensors);
-}
-
-void FeaturesExtractorNet::load(const std::string& prefix, const TensorMap& tensors) {
-  if (learned_) cnn_.load(prefix + ".features_extractor", tensors);
-}
-
-void polyak_update(const FeaturesExtractorNet& source, FeaturesExtractorNet& target, float tau) {
-  if (source.learned()) polyak_update(source.cnn().params(), target.cnn().params(), tau);
+  for (size_t i = 0; i < cnns_.size(); ++i) cnns_[i].params() = other.cnns_[i].params();
 }
 
 std::string FeaturesExtractorNet::export_to(PolicyGraph& graph, const std::string& encoded) const {
-  return learned_ ? graph.nature_cnn(encoded, cnn_) : encoded;
+  if (cnns_.empty()) return encoded;
+  if (!combined_) return graph.nature_cnn(encoded, cnns_.front());
+  std::vector<std::string> parts;
+  for (const Part& p : parts_) {
+    const std::string slice = graph.slice(encoded, p.in, p.in_width);
+    parts.push_back(p.cnn < 0 ? slice : graph.nature_cnn(slice, cnns_[p.cnn]));
+  }
+  return graph.concat(parts);
+}
+
+std::string FeaturesExtractorNet::cnn_module(const std::string& module, int i) const {
+  if (!combined_) return module;
+  for (const Part& p : parts_)
+    if (p.cnn == i) return module + ".extractors." + p.key;
+  return module;
+}
+
+void FeaturesExtractorNet::save(const std::string& module, TensorMap& tensors) const {
+  for (int i = 0; i < num_cnns(); ++i) cnns_[i].save(cnn_module(module, i), tensors);
+}
+
+void FeaturesExtractorNet::load(const std::string& module, const TensorMap& tensors) {
+  for (int i = 0; i < num_cnns(); ++i) cnns_[i].load(cnn_module(module, i), tensors);
+}
+
+void polyak_update(const FeaturesExtractorNet& source, FeaturesExtractorNet& target, float tau) {
+  for (int i = 0; i < source.num_cnns(); ++i)
+    polyak_update(source.cnn(i).params(), target.cnn(i).params(), tau);
 }
 
 }  // namespace rlrun

@@ -1,20 +1,26 @@
 #pragma once
 // The features extractor module of one of SB3's networks (BaseModel.features_extractor,
-// common/torch_layers.py): what an actor, a critic or their targets run on the observation
-// before their MLP heads. FlattenExtractor has no parameters: the features are the observation
-// encoder's output itself. NatureCNN (CnnPolicy) is a network of its own (nn/nature_cnn.hpp),
-// trained by the loss of the module it belongs to.
+// common/torch_layers.py): what an actor, a critic, a Q-network or their targets run on the
+// encoded observation (env/observation_encoder.hpp) before their MLP heads.
+//   FlattenExtractor   no parameters: the features are the encoded observation itself
+//   NatureCNN          SB3's CnnPolicy: one network on an image (nn/nature_cnn.hpp)
+//   CombinedExtractor  SB3's MultiInputPolicy on a Dict: each key an image to SB3
+//                      (is_image_space with normalized_image=False: a uint8 Box of three
+//                      dimensions, 0-255) through a NatureCNN of its own with cnn_output_dim
+//                      features, every other key flattened, th.cat in the Dict's key order
+// The networks are trained by the loss of the module that owns the extractor.
 //
 // SB3's off-policy policies (sac/policies.py, td3/policies.py, sb3-contrib tqc/policies.py;
-// share_features_extractor=False, their default) give the actor, the critic and each target a
-// NatureCNN of its own: the critic's is trained by the critic loss (all n_critics Q-networks
+// share_features_extractor=False, their default) give the actor, the critic and each target an
+// extractor of its own: the critic's is trained by the critic loss (all n_critics Q-networks
 // read its features: common/policies.py ContinuousCritic), the actor's by the actor loss, and the
 // targets' follow by Polyak averaging like the rest of the target network. So SacActor,
-// Td3Actor and ContinuousCritic each hold one of these, and their copies, targets and
-// save names (`actor.features_extractor.cnn.0.weight`, `critic_target.features_extractor...`)
-// come with them.
+// Td3Actor and ContinuousCritic each hold one of these, and their copies, targets and save names
+// (`actor.features_extractor.cnn.0.weight`, `critic_target.features_extractor...`) come with
+// them. PPO/A2C (ActorCriticPolicy) and DQN hold theirs the same way.
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "rlrun/algos/common/features_extractor_config.hpp"
 #include "rlrun/core/tensor.hpp"
@@ -27,56 +33,76 @@ namespace rlrun {
 
 class PolicyGraph;
 
-// SB3 policy_kwargs that choose and shape the extractor.
-struct FeaturesExtractorSettings {
-  FeaturesExtractor kind = FeaturesExtractor::kFlatten;
-  int features_dim = 512;  // NatureCNN's output width
-  bool normalize_images = true;
-};
-
 class FeaturesExtractorNet {
  public:
   // A flatten extractor of `dim` features (the observation encoder's width).
   explicit FeaturesExtractorNet(int dim = 0) : out_dim_(dim) {}
-  // A NatureCNN reading observation_space's image (require_image_input: SB3's is_image_space
-  // rules, std::invalid_argument with its message); parameters start at zero.
+  // The extractor `settings` names for observation_space, whose encoding is `encoded_dim`
+  // floats wide. NatureCNN: require_image_input's rules (SB3's message, std::invalid_argument);
+  // CombinedExtractor: a Dict (std::invalid_argument otherwise). Parameters start at zero.
   FeaturesExtractorNet(const FeaturesExtractorSettings& settings, const Space& observation_space,
                        int encoded_dim, ThreadPool* pool);
 
-  // Whether it has parameters to learn (a NatureCNN).
-  bool learned() const { return learned_; }
+  // Whether it has parameters to learn (at least one NatureCNN).
+  bool learned() const { return !cnns_.empty(); }
   // Features per observation: the heads' input width.
   int out_dim() const { return out_dim_; }
-  const NatureCnn& cnn() const { return cnn_; }
-  NatureCnn& cnn() { return cnn_; }
+  // The NatureCNNs, in the Dict's key order for a CombinedExtractor.
+  int num_cnns() const { return static_cast<int>(cnns_.size()); }
+  const NatureCnn& cnn(int i = 0) const { return cnns_[i]; }
+  NatureCnn& cnn(int i = 0) { return cnns_[i]; }
+  // Batches split over the pool's threads (null: the calling thread); never changes a result.
+  void set_thread_pool(ThreadPool* pool) {
+    for (NatureCnn& c : cnns_) c.set_thread_pool(pool);
+  }
 
-  // torch's default Conv2d / Linear init (SB3 never applies ortho init to off-policy
-  // extractors); nothing for a flatten extractor.
+  // torch's default Conv2d / Linear init (SB3's off-policy extractors, and on-policy ones with
+  // ortho_init false); SB3's orthogonal init with `gain` (ActorCriticPolicy's ortho_init),
+  // network by network in key order.
   void init_torch_default(Rng& rng);
+  void init_orthogonal(Rng& rng, float gain);
 
   // features (out_dim x n) of the encoded observations obs: obs itself when flattening (no
-  // copy), else the CNN's output, kept for backward until the next forward.
+  // copy), else the networks' outputs, kept for backward until the next forward.
   Eigen::Ref<const Eigen::MatrixXf> forward(const Eigen::Ref<const Eigen::MatrixXf>& obs);
-  // optimizer.zero_grad(); features.backward(grad_features) for the last forward: grads()
-  // becomes the parameters' gradient. Nothing for a flatten extractor.
+  // Adds dL/d(parameters) of the last forward for dL/d(features) (out_dim x n) to grads();
+  // zero_grad_and_backward zeroes first (optimizer.zero_grad(); loss.backward()). Nothing for
+  // a flatten extractor.
+  void zero_grad();
+  void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_features);
   void zero_grad_and_backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_features);
 
-  // The parameters and their gradient (empty for a flatten extractor).
-  ParamBlock block() { return learned_ ? cnn_.block() : ParamBlock{nullptr, nullptr, 0}; }
+  // Each network's parameters and gradient (none for a flatten extractor).
+  std::vector<ParamBlock> blocks();
   // The acting copy's refresh (same shapes, no allocation).
   void copy_parameters_from(const FeaturesExtractorNet& other);
 
   // Deploying (nn/policy_graph.hpp): forward() as graph nodes from the encoded observation.
   std::string export_to(PolicyGraph& graph, const std::string& encoded) const;
 
-  // torch state_dict entries <prefix>.features_extractor.* (none for a flatten extractor).
-  void save(const std::string& prefix, TensorMap& tensors) const;
-  void load(const std::string& prefix, const TensorMap& tensors);
+  // torch state_dict entries of the module named `module` (e.g. "actor.features_extractor"):
+  // <module>.cnn.0.weight, ... for a NatureCNN, <module>.extractors.<key>.cnn.0.weight, ... for
+  // a CombinedExtractor's image keys; none for a flatten extractor.
+  void save(const std::string& module, TensorMap& tensors) const;
+  void load(const std::string& module, const TensorMap& tensors);
 
  private:
-  bool learned_ = false;
+  // A run of the encoded observation and where it goes in the features: through cnns_[cnn], or
+  // copied (cnn < 0).
+  struct Part {
+    int in = 0, in_width = 0, out = 0, out_width = 0;
+    int cnn = -1;
+    std::string key;
+  };
+  void build_combined(const FeaturesExtractorSettings& settings, const Space& observation_space,
+                      ThreadPool* pool);
+  std::string cnn_module(const std::string& module, int i) const;
+
   int out_dim_ = 0;
-  NatureCnn cnn_;
+  bool combined_ = false;  // a CombinedExtractor with at least one image key
+  std::vector<NatureCnn> cnns_;
+  std::vector<Part> parts_;
+  Eigen::MatrixXf features_;  // a CombinedExtractor's output
 };
 
 // polyak_update(source.parameters(), target.parameters(), tau) of the extractor's part.

@@ -126,9 +126,9 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
                    "features extractor)"});
   // The actor's CNN and its copies (target, acting copy), the critic's and its target's.
   const FeaturesExtractorSettings& e = shape.extractor;
-  const int obs = features_extractor_output_dim(
-      out, "policy.features_extractor_class", e.kind, e.features_dim, e.normalize_images,
-      setup.observation_space, shape.actor_copies + 2, config.batch_size);
+  const int obs = features_extractor_output_dim(out, "policy.features_extractor_class", e,
+                                                setup.observation_space, shape.actor_copies + 2,
+                                                config.batch_size);
   const int act = setup.action_space.flat_dim();
   check_network_memory(out, "policy.net_arch", obs, shape.net_arch.pi, shape.actor_outputs,
                        shape.actor_copies, config.batch_size);

@@ -163,7 +163,7 @@ std::string SacActor::mu_name(const std::string& prefix) const {
 }
 
 void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
-  extractor_.save(prefix, tensors);
+  extractor_.save(prefix + ".features_extractor", tensors);
   const Mlp& m = net();
   const int last = m.num_layers() - 1;
   for (int l = 0; l < last; ++l) {
@@ -184,7 +184,7 @@ void SacActor::save(const std::string& prefix, TensorMap& tensors) const {
 }
 
 void SacActor::load(const std::string& prefix, const TensorMap& tensors) {
-  extractor_.load(prefix, tensors);
+  extractor_.load(prefix + ".features_extractor", tensors);
   Mlp& m = net();
   const int last = m.num_layers() - 1;
   for (int l = 0; l < last; ++l) {

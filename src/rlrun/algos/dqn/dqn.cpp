@@ -46,9 +46,9 @@ ConfigProblems DQN::check(const Config& config, const AlgorithmSetup& setup) {
       setup.action_space.is_discrete() ? static_cast<int>(setup.action_space.n()) : 1;
   const QNetworkConfig& p = config.policy;
   // q_net's CNN and q_net_target's.
-  const int features = features_extractor_output_dim(
-      out, "policy.features_extractor_class", p.features_extractor_class, p.features_dim,
-      p.normalize_images, setup.observation_space, 2, config.off_policy.batch_size);
+  const int features =
+      features_extractor_output_dim(out, "policy.features_extractor_class", p.extractor(),
+                                    setup.observation_space, 2, config.off_policy.batch_size);
   // The Q-network, its target and the second core's activations of both.
   check_network_memory(out, "policy.net_arch", features, config.policy.net_arch, actions, 4,
                        config.off_policy.batch_size);
@@ -66,12 +66,12 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
       action_rng_(setup.seed ^ kActionStream),
       // DQNPolicy._build: q_net with torch's default Linear init, then q_net_target loaded
       // from q_net's state_dict.
+      extractor_(config.policy.extractor(), setup.observation_space, features_dim(), setup.pool),
       q_net_([&] {
         Rng init_rng(setup.seed);
-        const bool cnn = config.policy.features_extractor_class == FeaturesExtractor::kNatureCnn;
         return SplitMlp(
-            make_q_network(cnn ? config.policy.features_dim : features_dim(),
-                           static_cast<int>(setup.action_space.n()), config.policy, init_rng),
+            make_q_network(extractor_.out_dim(), static_cast<int>(setup.action_space.n()),
+                           config.policy, init_rng),
             setup.pool);
       }()),
       q_net_target_(q_net_),
@@ -86,28 +86,21 @@ DQN::DQN(const Config& config, const AlgorithmSetup& setup)
   checkpoint("action_rng", action_rng_);
   checkpoint("optimizer/adam0", optimizer_.part(0));
   checkpoint("optimizer/adam1", optimizer_.part(1));
-  if (config.policy.features_extractor_class == FeaturesExtractor::kNatureCnn) {
-    // SB3 QNetwork: NatureCNN(observation_space, features_dim) with torch's default init (DQN
-    // never applies ortho init); its own stream, as torch's draws cannot be replayed anyway.
-    use_cnn_ = true;
-    const QNetworkConfig& p = config.policy;
-    cnn_ = NatureCnn(require_image_input(setup.observation_space, p.normalize_images),
-                     p.features_dim, p.normalize_images);
-    Rng cnn_rng(setup.seed ^ kFeaturesExtractorInitStream);
-    cnn_.init_torch_default(cnn_rng);
-    cnn_.set_thread_pool(setup.pool);
-    cnn_target_ = cnn_;  // q_net_target.load_state_dict(q_net.state_dict())
-    act_cnn_ = cnn_;
-    cnn_optimizer_ = SplitAdam(cnn_.block(), AdamConfig{}, setup.pool);
-    checkpoint("optimizer/cnn_adam0", cnn_optimizer_.part(0));
-    checkpoint("optimizer/cnn_adam1", cnn_optimizer_.part(1));
+  // SB3 QNetwork: the extractor's networks (NatureCNN, a CombinedExtractor's per image key)
+  // with torch's default init (DQN never applies ortho init); their own stream, as torch's
+  // draws cannot be replayed anyway.
+  Rng extractor_rng(setup.seed ^ kFeaturesExtractorInitStream);
+  extractor_.init_torch_default(extractor_rng);
+  extractor_target_ = extractor_;  // q_net_target.load_state_dict(q_net.state_dict())
+  act_extractor_ = extractor_;
+  for (const ParamBlock& block : extractor_.blocks()) {
+    const std::string name =
+        "optimizer/cnn" +
+        (extractor_optimizers_.empty() ? "" : std::to_string(extractor_optimizers_.size()));
+    extractor_optimizers_.emplace_back(block, AdamConfig{}, setup.pool);
+    checkpoint(name + "_adam0", extractor_optimizers_.back().part(0));
+    checkpoint(name + "_adam1", extractor_optimizers_.back().part(1));
   }
-}
-
-Eigen::Ref<const Eigen::MatrixXf> DQN::features(NatureCnn& cnn,
-                                                const Eigen::Ref<const Eigen::MatrixXf>& obs) {
-  if (!use_cnn_) return obs;
-  return cnn.forward(obs);
 }
 
 // SB3 dqn/dqn.py DQN.train, one pass of its loop over gradient steps (CleanRL's dqn.py has the
@@ -120,7 +113,8 @@ double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   // with th.no_grad():
   //   next_q_values = q_net_target(next_obs).max(dim=1)
   //   target_q_values = rewards + (1 - dones) * gamma * next_q_values
-  const Eigen::MatrixXf& next_q = q_net_target_.forward(features(cnn_target_, batch_next_obs(b)));
+  const Eigen::MatrixXf& next_q =
+      q_net_target_.forward(extractor_target_.forward(batch_next_obs(b)));
   targets_.resize(n);
   for (Eigen::Index j = 0; j < n; ++j)
     targets_(j) = b.rewards(j) + (1.0f - b.dones(j)) * gamma * next_q.col(j).maxCoeff();
@@ -128,7 +122,7 @@ double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   // current_q_values = th.gather(q_net(obs), dim=1, index=actions)
   // loss = F.smooth_l1_loss(current_q_values, target_q_values): 0.5 d^2 where |d| < 1, else
   // |d| - 0.5, averaged; its gradient is d clamped to [-1, 1], over n, at the taken actions.
-  const Eigen::MatrixXf& q = q_net_.forward(features(cnn_, batch_obs(b)));
+  const Eigen::MatrixXf& q = q_net_.forward(extractor_.forward(batch_obs(b)));
   grad_q_.setZero(q.rows(), n);
   double loss = 0.0;
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -143,22 +137,22 @@ double DQN::train_on_batch(const ReplayBatch& b, float lr) {
   }
 
   // optimizer.zero_grad(); loss.backward() — through the features into the CNN, if any.
-  q_net_.zero_grad_and_backward(grad_q_);
-  if (use_cnn_) {
-    q_net_.backward_input(grad_q_, grad_features_);
-    cnn_.zero_grad();
-    cnn_.backward(grad_features_);
+  if (extractor_.learned()) {
+    q_net_.zero_grad_and_backward(grad_q_, nullptr, &grad_features_);
+    extractor_.zero_grad_and_backward(grad_features_);
+  } else {
+    q_net_.zero_grad_and_backward(grad_q_);
   }
   // th.nn.utils.clip_grad_norm_(q_net.parameters(), max_grad_norm): the gradient times
   // max_grad_norm / (norm + 1e-6) when that is below 1 (a NaN norm propagates, as torch's
   // default does); then optimizer.step(). The norm covers the CNN's parameters too.
-  const double sum_sq =
-      optimizer_.grad_sum_of_squares() + (use_cnn_ ? cnn_optimizer_.grad_sum_of_squares() : 0.0);
+  double sum_sq = optimizer_.grad_sum_of_squares();
+  for (const SplitAdam& adam : extractor_optimizers_) sum_sq += adam.grad_sum_of_squares();
   last_grad_norm_ = static_cast<float>(std::sqrt(sum_sq));
   const float clip = static_cast<float>(config_.max_grad_norm) / (last_grad_norm_ + 1e-6f);
   const float scale = clip < 1.0f || std::isnan(clip) ? clip : 1.0f;
   optimizer_.step(lr, scale);
-  if (use_cnn_) cnn_optimizer_.step(lr, scale);
+  for (SplitAdam& adam : extractor_optimizers_) adam.step(lr, scale);
   return loss / static_cast<double>(n);
 }
 
@@ -183,7 +177,7 @@ void DQN::on_step(Logger* logger) {
   if (n_calls_ % period == 0) {
     const auto tau = static_cast<float>(config_.off_policy.tau);
     polyak_update(q_net_.params(), q_net_target_.params(), tau);
-    if (use_cnn_) polyak_update(cnn_.params(), cnn_target_.params(), tau);
+    polyak_update(extractor_, extractor_target_, tau);
   }
   exploration_rate_ = exploration_schedule_(progress_remaining());
   if (logger) logger->record(key_exploration_rate_, exploration_rate_);
@@ -198,8 +192,7 @@ void DQN::random_actions(Eigen::Index n, Eigen::MatrixXf& actions) {
 // predict(deterministic): the greedy action, start + argmax Q; the value is every Q-value.
 void DQN::export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const {
   const std::string encoded = acting_encoder().export_to(graph, obs);
-  const std::string q =
-      graph.mlp(use_cnn_ ? graph.nature_cnn(encoded, cnn_) : encoded, q_net_.net());
+  const std::string q = graph.mlp(extractor_.export_to(graph, encoded), q_net_.net());
   std::string action = graph.argmax(q);
   if (action_start_ != 0.0f)
     action = graph.affine(action, Eigen::VectorXf::Zero(1), Eigen::VectorXf::Ones(1),
@@ -218,10 +211,10 @@ void DQN::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool determinist
   }
   if (act_net_stale_) {
     act_net_.params() = q_net_.params();  // same size: a copy, no allocation
-    if (use_cnn_) act_cnn_.params() = cnn_.params();
+    act_extractor_.copy_parameters_from(extractor_);
     act_net_stale_ = false;
   }
-  greedy_actions(act_net_.forward(features(act_cnn_, acting_features(obs))), action_start_,
+  greedy_actions(act_net_.forward(act_extractor_.forward(acting_features(obs))), action_start_,
                  actions);
 }
 
@@ -240,20 +233,16 @@ void DQN::select_actions(const Eigen::MatrixXf& obs, bool warmup, Eigen::MatrixX
 void DQN::save(TensorMap& tensors) const {
   save_q_network(q_net_.net(), "q_net", tensors);
   save_q_network(q_net_target_.net(), "q_net_target", tensors);
-  if (use_cnn_) {
-    cnn_.save("q_net.features_extractor", tensors);
-    cnn_target_.save("q_net_target.features_extractor", tensors);
-  }
+  extractor_.save("q_net.features_extractor", tensors);
+  extractor_target_.save("q_net_target.features_extractor", tensors);
   tensors["exploration_rate"] = scalar_tensor<double>(exploration_rate_);
 }
 
 void DQN::load(const TensorMap& tensors) {
   load_q_network(q_net_.net(), "q_net", tensors);
   load_q_network(q_net_target_.net(), "q_net_target", tensors);
-  if (use_cnn_) {
-    cnn_.load("q_net.features_extractor", tensors);
-    cnn_target_.load("q_net_target.features_extractor", tensors);
-  }
+  extractor_.load("q_net.features_extractor", tensors);
+  extractor_target_.load("q_net_target.features_extractor", tensors);
   if (tensors.count("exploration_rate"))
     exploration_rate_ = scalar_from<double>(tensors, "exploration_rate");
   act_net_stale_ = true;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <string>
 
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/off_policy.hpp"
 #include "rlrun/algos/dqn/exploration_schedule.hpp"
 #include "rlrun/algos/dqn/q_network.hpp"
@@ -108,8 +109,9 @@ class DQN : public OffPolicyAlgorithm {
     return q_net_.net();
   }
   const Mlp& q_net() const { return q_net_.net(); }
-  // The online network's NatureCNN (CnnPolicy), or null.
-  const NatureCnn* cnn() const { return use_cnn_ ? &cnn_ : nullptr; }
+  // The online network's NatureCNN (CnnPolicy; the first image key's for a
+  // CombinedExtractor), or null.
+  const NatureCnn* cnn() const { return extractor_.learned() ? &extractor_.cnn() : nullptr; }
   Mlp& q_net_target() { return q_net_target_.net(); }
   const Mlp& q_net_target() const { return q_net_target_.net(); }
   double exploration_rate() const { return exploration_rate_; }
@@ -121,14 +123,14 @@ class DQN : public OffPolicyAlgorithm {
   // SB3 DQN._on_step: the target update and the exploration schedule.
   void on_step(Logger* logger) override;
   void random_actions(Eigen::Index n, Eigen::MatrixXf& actions);
-  // What a Q-network's MLP reads of encoded observations: the observations themselves, or the
-  // features of that network's NatureCNN (SB3 QNetwork.extract_features).
-  Eigen::Ref<const Eigen::MatrixXf> features(NatureCnn& cnn,
-                                             const Eigen::Ref<const Eigen::MatrixXf>& obs);
 
   Config config_;
   float action_start_ = 0.0f;  // Discrete(n, start): env action = start + Q-network index
   Rng action_rng_;
+  // q_net's and q_net_target's features extractors (SB3's make_q_net builds one for each: a
+  // NatureCNN for CnnPolicy) and the acting copy; the online one's networks have an Adam each
+  // (SB3's one optimizer over q_net.parameters(), kept apart, the gradients clipped together).
+  FeaturesExtractorNet extractor_, extractor_target_, act_extractor_;
   SplitMlp q_net_, q_net_target_;
   // A copy of q_net_ for acting (batch n_envs or the evaluator's), so that q_net_'s buffers
   // keep the training batch size and nothing reallocates; refreshed after each train().
@@ -136,13 +138,8 @@ class DQN : public OffPolicyAlgorithm {
   bool act_net_stale_ = false;
   // SB3 2.x DQNPolicy: Adam over q_net's parameters only, torch defaults (eps 1e-8).
   SplitAdam optimizer_;
-  // CnnPolicy: q_net's and q_net_target's own NatureCNNs (SB3's make_q_net builds an extractor
-  // for each), the acting copy, and Adam over the online CNN — SB3's one optimizer over
-  // q_net.parameters(), kept as two whose gradients are clipped together.
-  bool use_cnn_ = false;
-  NatureCnn cnn_, cnn_target_, act_cnn_;
-  SplitAdam cnn_optimizer_;
-  Eigen::MatrixXf grad_features_;  // dL/d(CNN features), features_dim x batch
+  std::vector<SplitAdam> extractor_optimizers_;  // an Adam per network of extractor_
+  Eigen::MatrixXf grad_features_;                // dL/d(CNN features), features_dim x batch
   LinearDecay exploration_schedule_;
   double exploration_rate_ = 0.0;  // SB3 starts at 0 and sets it in the first _on_step
   int64_t n_calls_ = 0;

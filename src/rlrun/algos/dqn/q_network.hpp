@@ -25,7 +25,12 @@ struct QNetworkConfig {
   // normalize_images. The online and target networks have a NatureCNN each (make_q_net).
   FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
   int features_dim = 512;
+  int cnn_output_dim = 256;
   bool normalize_images = true;
+
+  FeaturesExtractorSettings extractor() const {
+    return {features_extractor_class, features_dim, cnn_output_dim, normalize_images};
+  }
 
   template <class V>
   void visit(V& v) {
@@ -33,6 +38,7 @@ struct QNetworkConfig {
     v("activation_fn", activation_fn, kActivationFnDoc);
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
     v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
   }
 };

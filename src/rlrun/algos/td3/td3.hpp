@@ -39,10 +39,11 @@ struct Td3PolicyConfig {
   // have one each).
   FeaturesExtractor features_extractor_class = FeaturesExtractor::kFlatten;
   int features_dim = 512;
+  int cnn_output_dim = 256;
   bool share_features_extractor = false;
 
   FeaturesExtractorSettings extractor() const {
-    return {features_extractor_class, features_dim, normalize_images};
+    return {features_extractor_class, features_dim, cnn_output_dim, normalize_images};
   }
 
   template <class V>
@@ -53,6 +54,7 @@ struct Td3PolicyConfig {
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
     v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
     v("share_features_extractor", share_features_extractor, kOffPolicyShareFeaturesExtractorDoc);
   }
 };

@@ -38,13 +38,13 @@ void Td3Actor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions) {
 }
 
 void Td3Actor::save(const std::string& prefix, TensorMap& tensors) const {
-  extractor_.save(prefix, tensors);
+  extractor_.save(prefix + ".features_extractor", tensors);
   const std::string tower = prefix + ".mu";
   save_mlp(net(), tower, tower + "." + std::to_string(2 * (net().num_layers() - 1)), tensors);
 }
 
 void Td3Actor::load(const std::string& prefix, const TensorMap& tensors) {
-  extractor_.load(prefix, tensors);
+  extractor_.load(prefix + ".features_extractor", tensors);
   const std::string tower = prefix + ".mu";
   load_mlp(net(), tower, tower + "." + std::to_string(2 * (net().num_layers() - 1)), tensors);
 }
