@@ -313,8 +313,77 @@ TEST_CASE(
   REQUIRE_FALSE(p.empty());
   CHECK_THAT(p.front().message, Catch::Contains("uint8"));
   sac.policy.share_features_extractor = true;
-  p = SAC::check(sac, image_setup());
-  REQUIRE(p.size() == 1);
-  CHECK(p.front().key == "policy.share_features_extractor");
+  CHECK(SAC::check(sac, image_setup()).empty());
   CHECK(SAC::check(sac_cnn_config(), image_setup()).empty());
+}
+
+TEST_CASE(
+    "SAC share_features_extractor: the critic reads the actor's CNN, which only the actor "
+    "loss trains; the target keeps a copy moved by Polyak",
+    "[algos][sac][cnn][gradcheck]") {
+  SAC::Config config = sac_cnn_config();
+  config.policy.share_features_extractor = true;
+  SAC sac(config, image_setup());
+  const NatureCnn& cnn = sac.actor().features_extractor().cnn();
+  CHECK(&sac.critic().features_extractor() == &sac.actor().features_extractor());
+  CHECK(&sac.critic_target().features_extractor() != &sac.actor().features_extractor());
+  CHECK(sac.critic_target().features_extractor().cnn().params() == cnn.params());
+
+  const int n = 5;
+  const ReplayBatch b = image_batch(n, 13);
+  const EntropyRegularizedStepStats stats = sac.train_on_batch(b, 0.0f, false);
+  const double alpha = stats.ent_coef;
+  // The actor loss's gradient with the critic's features held fixed (SB3 computes them under
+  // th.set_grad_enabled(False)): the critic reads the unperturbed CNN.
+  const NatureCnn fixed = cnn;
+  auto actor_loss = [&](const NatureCnn& perturbed) {
+    double loss = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const Eigen::VectorXd f = test::reference_features(perturbed, b.obs.col(j));
+      const auto [a, lp] =
+          test::actor_sample(sac.actor().net(), test::params_of(sac.actor().net()), kActDim, f,
+                             sac.last_policy_noise().col(j).cast<double>());
+      const double q = std::min(q_value(sac.critic(), 0, fixed, b.obs.col(j), a),
+                                q_value(sac.critic(), 1, fixed, b.obs.col(j), a));
+      loss += (alpha * lp - q) / n;
+    }
+    return loss;
+  };
+  check_cnn_gradient(cnn, actor_loss, "shared CNN");
+
+  // SB3's state dict lists the shared CNN under critic too; the target's is its own.
+  TensorMap tensors;
+  sac.save(tensors);
+  CHECK(tensors.count("critic.features_extractor.cnn.0.weight") == 1);
+  // Polyak: the target's CNN moves towards the actor's (critic.parameters() holds it).
+  config.off_policy.tau = 0.5;
+  SAC moving(config, image_setup());
+  const Eigen::VectorXf target0 = moving.critic_target().features_extractor().cnn().params();
+  moving.train_on_batch(b, 1e-2f, true);
+  const Eigen::VectorXf& actor1 = moving.actor().features_extractor().cnn().params();
+  CHECK(actor1 != target0);
+  CHECK((moving.critic_target().features_extractor().cnn().params() -
+         (0.5f * target0 + 0.5f * actor1))
+            .cwiseAbs()
+            .maxCoeff() < 1e-6f);
+}
+
+TEST_CASE(
+    "TD3 share_features_extractor: the critic target reads the actor target's CNN, moved "
+    "by both Polyak updates (SB3's 2 tau)",
+    "[algos][td3][cnn]") {
+  TD3::Config config = td3_cnn_config();
+  config.policy.share_features_extractor = true;
+  config.policy_delay = 1;
+  config.off_policy.tau = 0.25;
+  TD3 td3(config, image_setup());
+  CHECK(&td3.critic().features_extractor() == &td3.actor().features_extractor());
+  CHECK(&td3.critic_target().features_extractor() == &td3.actor_target().features_extractor());
+  const Eigen::VectorXf target0 = td3.actor_target().features_extractor().cnn().params();
+  td3.train_on_batch(image_batch(6, 14), 1e-2f);
+  const Eigen::VectorXf& actor1 = td3.actor().features_extractor().cnn().params();
+  const Eigen::VectorXf once = 0.75f * target0 + 0.25f * actor1;
+  const Eigen::VectorXf twice = 0.75f * once + 0.25f * actor1;
+  CHECK((td3.actor_target().features_extractor().cnn().params() - twice).cwiseAbs().maxCoeff() <
+        1e-6f);
 }

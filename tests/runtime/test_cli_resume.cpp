@@ -248,6 +248,12 @@ TEST_CASE(
     check_resume_equals_uninterrupted(
         {"pendulum_sac.yaml", "pendulum_sac", pixels, "step_400.zip", 1, false}, "KILL");
   }
+  SECTION("SAC, share_features_extractor") {
+    check_resume_equals_uninterrupted(
+        {"pendulum_sac.yaml", "pendulum_sac",
+         pixels + " --set algo.policy.share_features_extractor=true", "step_400.zip", 1, false},
+        "KILL");
+  }
   SECTION("TD3") {
     check_resume_equals_uninterrupted(
         {"pendulum_td3.yaml", "pendulum_td3", pixels, "step_400.zip", 1, false}, "KILL");

@@ -31,7 +31,7 @@ void ContinuousCritic::init(Rng& rng) {
 
 void ContinuousCritic::concat_input(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                     const Eigen::Ref<const Eigen::MatrixXf>& actions) {
-  const Eigen::Ref<const Eigen::MatrixXf> features = extractor_.forward(obs);
+  const Eigen::Ref<const Eigen::MatrixXf> features = features_extractor().forward(obs);
   obs_action_.resize(features.rows() + actions.rows(), features.cols());
   obs_action_ << features, actions;
 }
@@ -45,6 +45,22 @@ void ContinuousCritic::forward(const Eigen::Ref<const Eigen::MatrixXf>& obs,
 void ContinuousCritic::zero_grad_and_backward(int i,
                                               const Eigen::Ref<const Eigen::MatrixXf>& grad_q) {
   q_[i].zero_grad_and_backward(grad_q, nullptr, extractor_.learned() ? &grad_inputs_[i] : nullptr);
+}
+
+void ContinuousCritic::share_features_extractor(FeaturesExtractorNet& other) {
+  if (other.out_dim() != obs_dim_)
+    throw std::invalid_argument("ContinuousCritic: a shared extractor must give " +
+                                std::to_string(obs_dim_) + " features");
+  shared_ = &other;
+  extractor_ = FeaturesExtractorNet(obs_dim_);  // no parameters of its own
+  grad_inputs_.clear();
+}
+
+void ContinuousCritic::own_features_extractor_copy() {
+  if (!shared_) return;
+  extractor_ = *shared_;
+  shared_ = nullptr;
+  if (extractor_.learned()) grad_inputs_.resize(n_critics());
 }
 
 void ContinuousCritic::backward_features_extractor() {
@@ -74,7 +90,7 @@ void ContinuousCritic::action_gradient(int i, const Eigen::Ref<const Eigen::Matr
 }
 
 void ContinuousCritic::save(const std::string& prefix, TensorMap& tensors) const {
-  extractor_.save(prefix + ".features_extractor", tensors);
+  features_extractor().save(prefix + ".features_extractor", tensors);
   for (int i = 0; i < n_critics(); ++i) {
     const Mlp& net = q_[i].net();
     const std::string name = prefix + ".qf" + std::to_string(i);

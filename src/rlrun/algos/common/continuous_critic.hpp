@@ -43,8 +43,19 @@ class ContinuousCritic {
   // off-policy critics). A learned extractor is initialised apart (features_extractor()).
   void init(Rng& rng);
 
-  FeaturesExtractorNet& features_extractor() { return extractor_; }
-  const FeaturesExtractorNet& features_extractor() const { return extractor_; }
+  // The extractor the Q-networks read: the critic's own, or the one it shares.
+  FeaturesExtractorNet& features_extractor() { return shared_ ? *shared_ : extractor_; }
+  const FeaturesExtractorNet& features_extractor() const { return shared_ ? *shared_ : extractor_; }
+  // SB3's share_features_extractor=True: the Q-networks read `other` (the actor's extractor,
+  // that object itself) through th.set_grad_enabled(False) — the critic loss does not train it
+  // — and the critic's own extractor is dropped. The state dict still lists it under
+  // <prefix>.features_extractor, as SB3's does (the owner loads it). `other` must outlive this
+  // critic and any copy of it that shares it.
+  void share_features_extractor(FeaturesExtractorNet& other);
+  bool owns_features_extractor() const { return shared_ == nullptr; }
+  // A copy of a sharing critic made a target: an extractor of its own, a copy of the shared one
+  // (SB3 make_critic(features_extractor=None) + load_state_dict).
+  void own_features_extractor_copy();
 
   int n_critics() const { return static_cast<int>(q_.size()); }
   int n_outputs() const { return q_.front().net().out_dim(); }
@@ -108,6 +119,7 @@ class ContinuousCritic {
   int obs_dim_ = 0;  // features per observation
   ThreadPool* pool_ = nullptr;
   FeaturesExtractorNet extractor_;
+  FeaturesExtractorNet* shared_ = nullptr;  // share_features_extractor: the actor's
   std::vector<SplitMlp> q_;
   Eigen::MatrixXf obs_action_;
   // Learned extractor: each critic's dL/d(input) of its last backward, and their sum over the

@@ -63,16 +63,25 @@ EntropyRegularizedActorCritic::EntropyRegularizedActorCritic(
   // same run without a CNN; critic_target copies the critic, its CNN included.
   Rng extractor_rng(setup.seed ^ kFeaturesExtractorInitStream);
   actor_.features_extractor().init_torch_default(extractor_rng);
-  critic_.features_extractor().init_torch_default(extractor_rng);
+  if (policy.share_features_extractor && actor_.features_extractor().learned()) {
+    // SB3 SACPolicy._build with share_features_extractor: the critic reads the actor's
+    // extractor (not trained by the critic loss); critic_target gets its own copy of it,
+    // which Polyak averaging then moves towards the actor's.
+    critic_.share_features_extractor(actor_.features_extractor());
+  } else {
+    critic_.features_extractor().init_torch_default(extractor_rng);
+  }
   critic_target_ = critic_;
+  critic_target_.own_features_extractor_copy();
   if (config.use_sde)
     actor_optimizer_ = Adam({actor_.net().block(), actor_.sde().block()});
   else
     actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
-  extractor_optimizers_ =
-      ExtractorOptimizers(actor_.features_extractor(), critic_.features_extractor(), setup.pool);
+  extractor_optimizers_ = ExtractorOptimizers(
+      actor_.features_extractor(),
+      critic_.owns_features_extractor() ? &critic_.features_extractor() : nullptr, setup.pool);
   if (extractor_optimizers_.active()) checkpoint("extractor_optimizers", extractor_optimizers_);
   // Resume: RNG streams, exploration noise and every Adam's moments (the networks, targets
   // included, are in the model tensors).

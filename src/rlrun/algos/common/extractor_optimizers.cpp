@@ -26,9 +26,11 @@ void read_adams(const StateReader& in, const std::string& name, std::vector<Spli
 }
 }  // namespace
 
-ExtractorOptimizers::ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet& critic,
+ExtractorOptimizers::ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet* critic,
                                          ThreadPool* pool)
-    : actor_(adams(actor, pool)), critic_(adams(critic, pool)) {}
+    : actor_(adams(actor, pool)) {
+  if (critic) critic_ = adams(*critic, pool);
+}
 
 void ExtractorOptimizers::step_actor(float lr) {
   for (SplitAdam& adam : actor_) adam.step(lr);

@@ -18,8 +18,9 @@ namespace rlrun {
 class ExtractorOptimizers {
  public:
   ExtractorOptimizers() = default;
-  // An Adam for each network of the two extractors (none for flatten extractors).
-  ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet& critic, ThreadPool* pool);
+  // An Adam for each network of the two extractors (none for flatten extractors; none for the
+  // critic's when it shares the actor's: `critic` null).
+  ExtractorOptimizers(FeaturesExtractorNet& actor, FeaturesExtractorNet* critic, ThreadPool* pool);
 
   // Whether there is anything to step (a CnnPolicy), and so anything to checkpoint.
   bool active() const { return !actor_.empty() || !critic_.empty(); }

@@ -41,8 +41,8 @@ inline constexpr const char* kFeaturesDimDoc =
     "NatureCNN's output width (SB3 features_extractor_kwargs: features_dim)";
 
 inline constexpr const char* kOffPolicyShareFeaturesExtractorDoc =
-    "SB3's off-policy default false: the actor and the critic each have a NatureCNN (true is not "
-    "supported yet)";
+    "false (SB3's off-policy default): the actor and the critic each have a features extractor; "
+    "true: the critic reads the actor's, which only the actor loss trains";
 
 inline constexpr const char* kNormalizeImagesDoc =
     "divide image observations (a 3-D uint8 Box of 0-255) by 255 before the networks, NatureCNN or "

@@ -119,16 +119,12 @@ void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
   check_box_actor_spaces(out, setup);
   check_gradient_steps(out, config.gradient_steps);
   check_net_arch(out, "policy.net_arch", shape.net_arch.pi, shape.net_arch.qf);
-  if (shape.share_features_extractor)
-    out.push_back({"policy.share_features_extractor",
-                   "true is not supported yet for off-policy algorithms: set false (SB3's "
-                   "default for SAC, TD3, DDPG and TQC; the actor and the critic each have a "
-                   "features extractor)"});
-  // The actor's CNN and its copies (target, acting copy), the critic's and its target's.
+  // The actor's CNN and its copies (target, acting copy), the critic's (unless shared) and its
+  // target's.
   const FeaturesExtractorSettings& e = shape.extractor;
-  const int obs = features_extractor_output_dim(out, "policy.features_extractor_class", e,
-                                                setup.observation_space, shape.actor_copies + 2,
-                                                config.batch_size);
+  const int obs = features_extractor_output_dim(
+      out, "policy.features_extractor_class", e, setup.observation_space,
+      shape.actor_copies + (shape.share_features_extractor ? 1 : 2), config.batch_size);
   const int act = setup.action_space.flat_dim();
   check_network_memory(out, "policy.net_arch", obs, shape.net_arch.pi, shape.actor_outputs,
                        shape.actor_copies, config.batch_size);

@@ -137,9 +137,9 @@ struct BoxActorCriticShape {
 };
 
 // SAC's, TQC's and TD3's checks: a bounded Box action space, gradient_steps, net_arch, the
-// features extractor (NatureCNN: SB3's image rules; one for the actor and its copies, one for
-// the critic and its target; share_features_extractor is not supported), the memory of the
-// actor and of n_critics critics with their targets, and the replay buffer's.
+// features extractor (SB3's image rules; one for the actor and its copies, one for the critic
+// and its target unless shared), the memory of the actor and of n_critics critics with their
+// targets, and the replay buffer's.
 void check_box_actor_critic(ConfigProblems& out, const AlgorithmSetup& setup,
                             const OffPolicyConfig& config, const BoxActorCriticShape& shape);
 

@@ -63,14 +63,26 @@ TD3::TD3(const Config& config, const AlgorithmSetup& setup, std::string id)
   // their own, so that the heads start as without a CNN; the targets copy them.
   Rng extractor_rng(setup.seed ^ kFeaturesExtractorInitStream);
   actor_.features_extractor().init_torch_default(extractor_rng);
-  critic_.features_extractor().init_torch_default(extractor_rng);
+  const bool share =
+      config.policy.share_features_extractor && actor_.features_extractor().learned();
+  if (!share) critic_.features_extractor().init_torch_default(extractor_rng);
   actor_target_ = actor_;
-  critic_target_ = critic_;
+  if (share) {
+    // SB3 TD3Policy._build with share_features_extractor: the critic reads the actor's
+    // extractor, critic_target the actor target's ("the effective polyak coefficient for the
+    // features extractor will be 2 * tau": both target updates below move it).
+    critic_.share_features_extractor(actor_.features_extractor());
+    critic_target_ = critic_;
+    critic_target_.share_features_extractor(actor_target_.features_extractor());
+  } else {
+    critic_target_ = critic_;
+  }
   actor_optimizer_ = Adam({actor_.net().block()});
   for (int i = 0; i < critic_.n_critics(); ++i)
     critic_optimizers_.emplace_back(std::vector<ParamBlock>{critic_.q(i).net().block()});
-  extractor_optimizers_ =
-      ExtractorOptimizers(actor_.features_extractor(), critic_.features_extractor(), setup.pool);
+  extractor_optimizers_ = ExtractorOptimizers(
+      actor_.features_extractor(),
+      critic_.owns_features_extractor() ? &critic_.features_extractor() : nullptr, setup.pool);
   if (extractor_optimizers_.active()) checkpoint("extractor_optimizers", extractor_optimizers_);
   critic_grad_q_.resize(critic_.n_critics());
   critic_losses_.resize(critic_.n_critics());
