@@ -319,7 +319,7 @@ TEST_CASE(
 
 TEST_CASE(
     "SAC share_features_extractor: the critic reads the actor's CNN, which only the actor "
-    "loss trains; the target keeps a copy moved by Polyak",
+    "loss trains, and the target keeps a copy moved by Polyak",
     "[algos][sac][cnn][gradcheck]") {
   SAC::Config config = sac_cnn_config();
   config.policy.share_features_extractor = true;
