@@ -75,9 +75,7 @@ struct ActorCriticPolicyConfig {
     v("full_std", full_std,
       "gSDE (use_sde): log_std per latent feature and action (true) or per feature (false)");
     v("use_expln", use_expln, "gSDE (use_sde): expln instead of exp keeps the std positive");
-    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
-    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
-    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
+    visit_features_extractor(v, features_extractor_class, features_dim, cnn_output_dim);
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
     v("share_features_extractor", share_features_extractor,
       "actor and critic read one NatureCNN (SB3's default for PPO and A2C); false: one each");

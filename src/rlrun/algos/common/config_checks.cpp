@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/env/image_space.hpp"
 #include "rlrun/env/observation_encoder.hpp"
@@ -123,8 +124,6 @@ int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
                                   const FeaturesExtractorSettings& e, const Space& space,
                                   int networks, double batch) {
   if (e.kind == FeaturesExtractor::kFlatten) return network_input_dim(out, space);
-  const int fallback =
-      e.kind == FeaturesExtractor::kNatureCnn ? e.features_dim : network_input_dim(out, space);
   try {
     double floats = 0;
     int features = 0;
@@ -133,19 +132,10 @@ int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
           nature_cnn_floats(require_image_input(space, e.normalize_images), e.features_dim, batch);
       features = e.features_dim;
     } else {
-      if (space.kind() != SpaceKind::kDict)
-        throw std::invalid_argument(
-            "CombinedExtractor (SB3's MultiInputPolicy) reads Dict observations, not " +
-            space.describe() + ": use FlattenExtractor, or NatureCNN for an image");
-      // SB3 CombinedExtractor: a NatureCNN per image key (is_image_space, uint8), the rest
-      // flattened.
-      for (const Space& sub : space.subspaces()) {
-        if (const auto image = image_input(sub, /*normalize_images=*/true)) {
-          floats += nature_cnn_floats(*image, e.cnn_output_dim, batch);
-          features += e.cnn_output_dim;
-        } else {
-          features += ObservationEncoder(sub).features_dim();
-        }
+      // SB3 CombinedExtractor: a NatureCNN per image key, the rest flattened.
+      for (const CombinedKey& k : combined_extractor_keys(space)) {
+        if (k.image) floats += nature_cnn_floats(*k.image, e.cnn_output_dim, batch);
+        features += k.image ? e.cnn_output_dim : k.encoded_width;
       }
     }
     const std::string problem =
@@ -157,7 +147,8 @@ int features_extractor_output_dim(ConfigProblems& out, const std::string& key,
   } catch (const std::invalid_argument& ex) {
     out.push_back({key, ex.what()});
   }
-  return fallback;
+  // A width for the checks that follow.
+  return e.kind == FeaturesExtractor::kNatureCnn ? e.features_dim : network_input_dim(out, space);
 }
 
 }  // namespace rlrun

@@ -72,9 +72,7 @@ struct EntropyRegularizedPolicyConfig {
     v("clip_mean", clip_mean, "gSDE (use_sde): clip the mean to [-clip_mean, clip_mean] (0: off)",
       in_range(0, 1e6));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
-    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
-    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
-    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
+    visit_features_extractor(v, features_extractor_class, features_dim, cnn_output_dim);
     v("share_features_extractor", share_features_extractor, kOffPolicyShareFeaturesExtractorDoc);
   }
 };

@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/core/config_fields.hpp"
 
 namespace rlrun {
@@ -47,6 +48,15 @@ inline constexpr const char* kOffPolicyShareFeaturesExtractorDoc =
 inline constexpr const char* kNormalizeImagesDoc =
     "divide image observations (a 3-D uint8 Box of 0-255) by 255 before the networks, NatureCNN or "
     "flatten (SB3 normalize_images)";
+
+// The extractor's keys of a policy config, listed as each policy lists them.
+template <class V>
+void visit_features_extractor(V& v, FeaturesExtractor& kind, int& features_dim,
+                              int& cnn_output_dim) {
+  v("features_extractor_class", kind, kFeaturesExtractorDoc);
+  v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
+  v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
+}
 
 // Whether the observation encoder divides images by 255 (SB3 preprocess_obs): only before a
 // flatten extractor; a NatureCNN divides its own input (so do CombinedExtractor's).

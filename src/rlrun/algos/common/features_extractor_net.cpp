@@ -25,36 +25,43 @@ FeaturesExtractorNet::FeaturesExtractorNet(const FeaturesExtractorSettings& sett
   }
 }
 
-void FeaturesExtractorNet::build_combined(const FeaturesExtractorSettings& settings,
-                                          const Space& space, ThreadPool* pool) {
+std::vector<CombinedKey> combined_extractor_keys(const Space& space) {
   if (space.kind() != SpaceKind::kDict)
     throw std::invalid_argument(
         "CombinedExtractor (SB3's MultiInputPolicy) reads Dict observations, not " +
         space.describe() + ": use FlattenExtractor, or NatureCNN for an image");
   // SB3 CombinedExtractor.__init__: for key, subspace in observation_space.spaces.items(),
-  // is_image_space(subspace, normalized_image=False) -> NatureCNN(cnn_output_dim), else
-  // nn.Flatten; rlrun's encoding lays the keys out in the same (sorted) order.
-  int in = 0, out = 0;
+  // is_image_space(subspace, normalized_image=False) -> NatureCNN, else nn.Flatten; rlrun's
+  // encoding lays the keys out in the same (sorted) order.
+  std::vector<CombinedKey> keys;
   for (size_t i = 0; i < space.keys().size(); ++i) {
     const Space& sub = space.subspaces()[i];
+    keys.push_back({space.keys()[i], ObservationEncoder(sub).features_dim(),
+                    image_input(sub, /*normalize_images=*/true)});
+  }
+  return keys;
+}
+
+void FeaturesExtractorNet::build_combined(const FeaturesExtractorSettings& settings,
+                                          const Space& space, ThreadPool* pool) {
+  int in = 0, out = 0;
+  for (const CombinedKey& k : combined_extractor_keys(space)) {
     Part part;
-    part.key = space.keys()[i];
+    part.key = k.key;
     part.in = in;
-    part.in_width = ObservationEncoder(sub).features_dim();
+    part.in_width = k.encoded_width;
     part.out = out;
-    if (const auto image = image_input(sub, /*normalize_images=*/true)) {
+    part.out_width = k.encoded_width;
+    if (k.image) {  // NatureCNN(subspace, features_dim=cnn_output_dim)
       part.cnn = static_cast<int>(cnns_.size());
-      cnns_.emplace_back(*image, settings.cnn_output_dim, settings.normalize_images);
+      cnns_.emplace_back(*k.image, settings.cnn_output_dim, settings.normalize_images);
       cnns_.back().set_thread_pool(pool);
       part.out_width = settings.cnn_output_dim;
-    } else {
-      part.out_width = part.in_width;
     }
     in += part.in_width;
     out += part.out_width;
     parts_.push_back(part);
   }
-  combined_ = !cnns_.empty();
   out_dim_ = out;
 }
 
@@ -69,7 +76,7 @@ void FeaturesExtractorNet::init_orthogonal(Rng& rng, float gain) {
 Eigen::Ref<const Eigen::MatrixXf> FeaturesExtractorNet::forward(
     const Eigen::Ref<const Eigen::MatrixXf>& obs) {
   if (cnns_.empty()) return obs;
-  if (!combined_) return cnns_.front().forward(obs);
+  if (!combined()) return cnns_.front().forward(obs);
   // SB3 CombinedExtractor.forward: th.cat([extractor(observations[key]) ...], dim=1).
   features_.resize(out_dim_, obs.cols());
   for (const Part& p : parts_) {
@@ -87,7 +94,7 @@ void FeaturesExtractorNet::zero_grad() {
 }
 
 void FeaturesExtractorNet::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_features) {
-  if (!combined_) {
+  if (!combined()) {
     if (!cnns_.empty()) cnns_.front().backward(grad_features);
     return;
   }
@@ -113,7 +120,7 @@ void FeaturesExtractorNet::copy_parameters_from(const FeaturesExtractorNet& othe
 
 std::string FeaturesExtractorNet::export_to(PolicyGraph& graph, const std::string& encoded) const {
   if (cnns_.empty()) return encoded;
-  if (!combined_) return graph.nature_cnn(encoded, cnns_.front());
+  if (!combined()) return graph.nature_cnn(encoded, cnns_.front());
   std::vector<std::string> parts;
   for (const Part& p : parts_) {
     const std::string slice = graph.slice(encoded, p.in, p.in_width);
@@ -123,7 +130,7 @@ std::string FeaturesExtractorNet::export_to(PolicyGraph& graph, const std::strin
 }
 
 std::string FeaturesExtractorNet::cnn_module(const std::string& module, int i) const {
-  if (!combined_) return module;
+  if (!combined()) return module;
   for (const Part& p : parts_)
     if (p.cnn == i) return module + ".extractors." + p.key;
   return module;

@@ -19,6 +19,7 @@
 // (`actor.features_extractor.cnn.0.weight`, `critic_target.features_extractor...`) come with
 // them. PPO/A2C (ActorCriticPolicy) and DQN hold theirs the same way.
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,18 @@
 namespace rlrun {
 
 class PolicyGraph;
+
+// SB3 CombinedExtractor's reading of a Dict, key by key in the Dict's order: the key's width in
+// the encoded observation and, for a key that is an image to SB3 (is_image_space with
+// normalized_image=False: a uint8 Box of three dimensions, 0-255), the image its NatureCNN
+// reads. std::invalid_argument (SB3's reason) for a space that is not a Dict. Allocates no
+// network: the config checks size the CNNs from it before any is made.
+struct CombinedKey {
+  std::string key;
+  int encoded_width = 0;
+  std::optional<ImageInput> image;
+};
+std::vector<CombinedKey> combined_extractor_keys(const Space& space);
 
 class FeaturesExtractorNet {
  public:
@@ -96,10 +109,11 @@ class FeaturesExtractorNet {
   };
   void build_combined(const FeaturesExtractorSettings& settings, const Space& observation_space,
                       ThreadPool* pool);
+  // A CombinedExtractor with at least one image key (its features are assembled from parts).
+  bool combined() const { return !parts_.empty() && !cnns_.empty(); }
   std::string cnn_module(const std::string& module, int i) const;
 
   int out_dim_ = 0;
-  bool combined_ = false;  // a CombinedExtractor with at least one image key
   std::vector<NatureCnn> cnns_;
   std::vector<Part> parts_;
   Eigen::MatrixXf features_;  // a CombinedExtractor's output

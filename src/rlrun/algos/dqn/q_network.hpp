@@ -36,9 +36,7 @@ struct QNetworkConfig {
   void visit(V& v) {
     v("net_arch", net_arch, "hidden layer sizes of the Q-network", layer_width());
     v("activation_fn", activation_fn, kActivationFnDoc);
-    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
-    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
-    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
+    visit_features_extractor(v, features_extractor_class, features_dim, cnn_output_dim);
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
   }
 };

@@ -52,9 +52,7 @@ struct Td3PolicyConfig {
     v("activation_fn", activation_fn, kActivationFnDoc);
     v("n_critics", n_critics, "number of Q-networks; targets use their minimum", in_range(1, 100));
     v("normalize_images", normalize_images, kNormalizeImagesDoc);
-    v("features_extractor_class", features_extractor_class, kFeaturesExtractorDoc);
-    v("features_dim", features_dim, kFeaturesDimDoc, in_range(1, 65536));
-    v("cnn_output_dim", cnn_output_dim, kCnnOutputDimDoc, in_range(1, 65536));
+    visit_features_extractor(v, features_extractor_class, features_dim, cnn_output_dim);
     v("share_features_extractor", share_features_extractor, kOffPolicyShareFeaturesExtractorDoc);
   }
 };
