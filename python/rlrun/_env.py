@@ -18,6 +18,8 @@ import numpy as np
 from . import _core
 from . import _spaces
 
+_Namespace = types.SimpleNamespace
+
 class _GymnasiumLike:
     """Without gymnasium: what gymnasium.Env and gymnasium.vector.VectorEnv both give the
     classes rlrun builds on them (unwrapped, a lazily made np_random, a context manager)."""
@@ -124,6 +126,8 @@ class RlrunEnv(_EnvBase):
         self.observation_space = _spaces.from_description(self._core.observation_space)
         self.action_space = _spaces.from_description(self._core.action_space)
         self._box_obs = type(self.observation_space).__name__ == "Box"
+        # Images (Box of uint8, e.g. CarRacing-v3's) come back as uint8 arrays, as Gymnasium's.
+        self._uint8_obs = self._box_obs and np.dtype(self.observation_space.dtype) == np.uint8
         self._dict_action = type(self.action_space).__name__ == "Dict"
         can_render = self._core.can_render
         self.metadata = {
@@ -149,16 +153,32 @@ class RlrunEnv(_EnvBase):
         super().reset(seed=seed)
         if seed is not None and (not isinstance(seed, (int, np.integer)) or seed < 0):
             raise ValueError(f"seed must be a non-negative int, got {seed!r}")
+        if options:
+            self._apply_reset_options(options)
         obs, info = self._core.reset(None if seed is None else int(seed))
-        return (obs if self._box_obs else _spaces.from_flat(self.observation_space, obs)), info
+        return self._observation(obs), info
+
+    def _observation(self, obs):
+        if self._uint8_obs:
+            return obs.astype(np.uint8)
+        return obs if self._box_obs else _spaces.from_flat(self.observation_space, obs)
+
+    def _apply_reset_options(self, options: dict):
+        # CarRacing-v3's: options["randomize"] (Gymnasium's, with domain_randomize) and
+        # options["track"] (rlrun's: the track to build, as env.unwrapped.track gives it).
+        # Other envs take no options, as Gymnasium's own ignore theirs.
+        if not self._core.has_race_track:
+            return
+        if "track" in options:
+            self._core.set_next_track(options["track"])
+        if "randomize" in options:
+            self._core.set_next_randomize(bool(options["randomize"]))
 
     def step(self, action):
         if self._dict_action:
             action = _spaces.to_flat(self.action_space, action)
         obs, reward, terminated, truncated, info = self._core.step(action)
-        if not self._box_obs:
-            obs = _spaces.from_flat(self.observation_space, obs)
-        return obs, reward, terminated, truncated, info
+        return self._observation(obs), reward, terminated, truncated, info
 
     @property
     def compute_reward(self):
@@ -223,6 +243,47 @@ class RlrunEnv(_EnvBase):
     def _get_obs(self) -> np.ndarray:
         """The observation of the current state (the task's _get_obs), float32."""
         return self._physics().observation()
+
+    # Gymnasium's CarRacing attributes (gymnasium/envs/box2d/car_racing.py), on CarRacing-v3
+    # only: track (the (alpha, beta, x, y) points of the centre line), car (hull and wheels as
+    # Box2D and car_dynamics.py name them: car.hull.position, car.wheels[0].omega, ...; a
+    # snapshot), reward, tile_visited_count and t; plus set_track(track), rlrun's way to build a
+    # given track at the next reset (also reset(options={"track": track})): a seed need not
+    # give Gymnasium's track, a track set here does (docs/car_racing.md).
+    def _race_track(self):
+        if not self._core.has_race_track:
+            raise AttributeError(f"{self.id} has no race track")
+        return self._core
+
+    @property
+    def track(self) -> list:
+        return self._race_track().race_track()
+
+    def set_track(self, track):
+        """Builds ``track`` (a sequence of (alpha, beta, x, y)) at the next reset."""
+        self._race_track().set_next_track(track)
+
+    @property
+    def car(self):
+        state = self._race_track().race_car()
+        wheels = []
+        for w in state["wheels"]:
+            wheel = _Namespace(**{k: v for k, v in w.items() if k != "joint_angle"})
+            wheel.joint = _Namespace(angle=w["joint_angle"])
+            wheels.append(wheel)
+        return _Namespace(hull=_Namespace(**state["hull"]), wheels=wheels)
+
+    @property
+    def reward(self) -> float:
+        return self._race_track().race_reward()
+
+    @property
+    def tile_visited_count(self) -> int:
+        return self._race_track().race_tiles_visited()
+
+    @property
+    def t(self) -> float:
+        return self._race_track().race_time()
 
     def render(self):
         """An (H, W, 3) uint8 RGB frame of the current state (render_mode "rgb_array")."""

@@ -10,6 +10,7 @@
 #include "rlrun/core/config_node.hpp"
 #include "rlrun/env/goal_env.hpp"
 #include "rlrun/env/physics_state.hpp"
+#include "rlrun/env/race_track_state.hpp"
 #include "rlrun/frame.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
@@ -244,11 +245,91 @@ void bind_physics_state(py::class_<PyEnv>& env) {
       .def("observation", &physics_observation);
 }
 
+// CarRacing's track and car (env/race_track_state.hpp), for env.unwrapped.track, .set_track,
+// .car, .reward, .tile_visited_count and .t (python/rlrun/_env.py).
+RaceTrackState& race_track_of(PyEnv& self) {
+  RaceTrackState* racing = race_track_state_of(self.env());
+  if (!racing) throw py::attribute_error(self.env().id() + " has no race track");
+  return *racing;
+}
+
+py::list track_list(PyEnv& self) {
+  py::list out;
+  for (const TrackPoint& p : race_track_of(self).track())
+    out.append(py::make_tuple(p.alpha, p.beta, p.x, p.y));
+  return out;
+}
+
+// Gymnasium's track: a sequence of (alpha, beta, x, y).
+void set_next_track(PyEnv& self, const py::object& track) {
+  std::vector<TrackPoint> points;
+  for (const py::handle item : track) {
+    const auto values = py::cast<std::vector<double>>(item);
+    if (values.size() != 4)
+      throw py::value_error("set_track: each track point is (alpha, beta, x, y)");
+    points.push_back({values[0], values[1], values[2], values[3]});
+  }
+  try {
+    race_track_of(self).set_next_track(std::move(points));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("set_track: ") + e.what());
+  }
+}
+
+py::dict body_dict(const RigidBodyState& body) {
+  py::dict d;
+  d["position"] = py::make_tuple(body.position[0], body.position[1]);
+  d["linearVelocity"] = py::make_tuple(body.linear_velocity[0], body.linear_velocity[1]);
+  d["angle"] = body.angle;
+  d["angularVelocity"] = body.angular_velocity;
+  return d;
+}
+
+// The car as Box2D and car_dynamics.py name its parts (the Python side makes attributes of it).
+py::dict car_dict(PyEnv& self) {
+  CarState car;
+  try {
+    car = race_track_of(self).car();
+  } catch (const std::logic_error& e) {
+    throw py::value_error(e.what());
+  }
+  py::list wheels;
+  for (const WheelState& w : car.wheels) {
+    py::dict d = body_dict(w.body);
+    d["gas"] = w.gas;
+    d["brake"] = w.brake;
+    d["steer"] = w.steer;
+    d["omega"] = w.omega;
+    d["phase"] = w.phase;
+    d["joint_angle"] = w.joint_angle;
+    d["tiles"] = w.tiles;
+    wheels.append(d);
+  }
+  py::dict out;
+  out["hull"] = body_dict(car.hull);
+  out["wheels"] = wheels;
+  return out;
+}
+
+void bind_race_track(py::class_<PyEnv>& env) {
+  env.def_property_readonly("has_race_track",
+                            [](PyEnv& self) { return race_track_state_of(self.env()) != nullptr; })
+      .def("race_track", &track_list)
+      .def("set_next_track", &set_next_track, py::arg("track"))
+      .def("set_next_randomize",
+           [](PyEnv& self, bool randomize) { race_track_of(self).set_next_randomize(randomize); })
+      .def("race_car", &car_dict)
+      .def("race_reward", [](PyEnv& self) { return race_track_of(self).episode_reward(); })
+      .def("race_tiles_visited", [](PyEnv& self) { return race_track_of(self).tiles_visited(); })
+      .def("race_time", [](PyEnv& self) { return race_track_of(self).time(); });
+}
+
 }  // namespace
 
 void bind_env(py::module_& m) {
   py::class_<PyEnv> env(m, "Env");
   bind_physics_state(env);
+  bind_race_track(env);
   env.def(py::init<const std::string&, const std::string&, int>(), py::arg("id"),
           py::arg("kwargs_yaml") = "{}", py::arg("max_episode_steps") = -1)
       .def("reset", &PyEnv::reset, py::arg("seed"))
