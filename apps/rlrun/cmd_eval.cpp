@@ -47,11 +47,21 @@ void print_summary(const std::string& what, const std::string& how, const std::s
     for (double x : r.successes) s += x;
     std::printf("success_rate = %.3f\n", s / static_cast<double>(r.successes.size()));
   }
+  // An episode whose last info lacks a key (NaN; e.g. CarRacing's lap_finished, set only when
+  // an episode ends by itself, not at the time limit) does not count for that key's mean.
   for (size_t k = 0; k < r.metric_keys.size(); ++k) {
     double sum = 0;
-    for (const auto& episode : r.metrics) sum += episode[k];
-    std::printf("  %s = %.3f (mean over episodes)\n", r.metric_keys[k].c_str(),
-                sum / static_cast<double>(std::max<size_t>(r.metrics.size(), 1)));
+    size_t present = 0;
+    for (const auto& episode : r.metrics)
+      if (!std::isnan(episode[k])) sum += episode[k], ++present;
+    if (present == 0) continue;
+    if (present == r.metrics.size())
+      std::printf("  %s = %.3f (mean over episodes)\n", r.metric_keys[k].c_str(),
+                  sum / static_cast<double>(present));
+    else
+      std::printf("  %s = %.3f (mean over the %zu of %zu episodes that report it)\n",
+                  r.metric_keys[k].c_str(), sum / static_cast<double>(present), present,
+                  r.metrics.size());
   }
 }
 

@@ -355,8 +355,9 @@ TEST_CASE("Goal tasks: scenario files and settings", "[gripper_goal]") {
   config.scenario = "";
   config.reward_type = "shaped";
   CHECK_THROWS_AS(GripperReach(config), std::invalid_argument);
-  CHECK_THROWS_WITH(GripperReach(GripperGoalEnv::Config{"no/such.yaml"}),
-                    Catch::Contains("does not exist"));
+  GripperGoalEnv::Config missing;
+  missing.scenario = "no/such.yaml";
+  CHECK_THROWS_WITH(GripperReach(missing), Catch::Contains("does not exist"));
 }
 
 TEST_CASE("eval and record --policy scripted on the goal tasks", "[gripper_goal][cli]") {

@@ -157,8 +157,9 @@ TEST_CASE("GripperLift: scenario files", "[gripper]") {
   const float a[4] = {0, 0, 0, 0};
   while (!env.step(a, obs).truncated) ++steps;
   CHECK(steps + 1 == 20);
-  CHECK_THROWS_WITH(GripperLift(GripperLift::Config{"no/such.yaml"}),
-                    Catch::Contains("does not exist"));
+  GripperLift::Config missing;
+  missing.scenario = "no/such.yaml";
+  CHECK_THROWS_WITH(GripperLift(missing), Catch::Contains("does not exist"));
 }
 
 TEST_CASE("eval and record --policy scripted on the grasp task", "[gripper][cli]") {

@@ -60,7 +60,8 @@ GripperGoalEnv::GripperGoalEnv(GoalTask task, const Config& config)
       scenario_(load_goal_task_scenario(
           config.scenario.empty() ? shipped_grasp_scenario(scenario_name(task)) : config.scenario)),
       observation_size_(observation_size_of(task)),
-      action_space_(Space::box(-1.0f, 1.0f, {task == GoalTask::kPickAndPlace ? 4 : 3})) {
+      action_space_(Space::box(-1.0f, 1.0f, {task == GoalTask::kPickAndPlace ? 4 : 3})),
+      camera_(config.camera, id()) {
   if (config_.reward_type != "sparse" && config_.reward_type != "dense")
     throw std::invalid_argument(id() + ": reward_type is sparse or dense, not '" +
                                 config_.reward_type + "'");
@@ -70,16 +71,23 @@ GripperGoalEnv::GripperGoalEnv(GoalTask task, const Config& config)
                                 ": distance_threshold, palm_force, finger_force, "
                                 "substeps and solver_iterations must be positive");
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  observation_space_ = Space::dict({{"observation", Space::box(-kInf, kInf, {observation_size_})},
-                                    {"achieved_goal", Space::box(-kInf, kInf, {3})},
-                                    {"desired_goal", Space::box(-kInf, kInf, {3})}});
+  const Space state = Space::box(-kInf, kInf, {observation_size_});
+  std::vector<std::pair<std::string, Space>> keys = {
+      {"observation", camera_.uses_state() ? state : camera_.image_space()},
+      {"achieved_goal", Space::box(-kInf, kInf, {3})},
+      {"desired_goal", Space::box(-kInf, kInf, {3})}};
+  if (camera_.uses_state() && camera_.uses_pixels())
+    keys.push_back({"pixels", camera_.image_space()});
+  observation_space_ = Space::dict(std::move(keys));
   for (size_t i = 0; i < observation_space_.keys().size(); ++i) {
     const std::string& key = observation_space_.keys()[i];
     const size_t at = static_cast<size_t>(observation_space_.offset(i));
     (key == "achieved_goal"  ? at_achieved_
      : key == "desired_goal" ? at_desired_
+     : key == "pixels"       ? at_pixels_
                              : at_observation_) = at;
   }
+  if (!camera_.uses_state()) at_pixels_ = at_observation_;
   key_success_ = info_.add_key("is_success");
   key_distance_ = info_.add_key("distance");
 }
@@ -207,8 +215,14 @@ StepResult GripperGoalEnv::step(std::span<const float> action, std::span<float> 
   return result;
 }
 
-void GripperGoalEnv::write_observation(std::span<float> obs) const {
+void GripperGoalEnv::write_observation(std::span<float> obs) {
   const GripperWorld& w = *world_;
+  if (camera_.uses_pixels()) {
+    const size_t n = static_cast<size_t>(camera_.image_space().flat_dim());
+    camera_.write_image(w, {200, 40, 40}, obs.subspan(at_pixels_, n));
+  }
+  write_goals(obs);
+  if (!camera_.uses_state()) return;
   size_t i = at_observation_;
   const auto put = [&](double v) { obs[i++] = static_cast<float>(v); };
   for (double v : w.grasp_point()) put(v);
@@ -220,6 +234,9 @@ void GripperGoalEnv::write_observation(std::span<float> obs) const {
     for (double v : w.cube_velocity()) put(v);
     for (double v : w.cube_angular_velocity()) put(v);
   }
+}
+
+void GripperGoalEnv::write_goals(std::span<float> obs) const {
   const Vec3 achieved = achieved_goal();
   for (int k = 0; k < 3; ++k) {
     obs[at_achieved_ + k] = static_cast<float>(achieved[k]);

@@ -38,6 +38,7 @@
 #include "rlrun/env/goal_env.hpp"
 #include "rlrun/env_seeding.hpp"
 #include "rlrun/envs/gripper/goal_scenario.hpp"
+#include "rlrun/envs/gripper/gripper_camera_observation.hpp"
 #include "rlrun/envs/gripper/gripper_world.hpp"
 #include "rlrun/info.hpp"
 #include "rlrun/space.hpp"
@@ -57,6 +58,10 @@ class GripperGoalEnv : public Env, public GoalEnv {
     double finger_force = 10.0;
     int substeps = 10;
     int solver_iterations = 20;
+    // obs_type pixels: the `observation` key is the camera image; both: the state vector stays
+    // `observation` and the image comes as `pixels`. The goals stay vectors (HER relabels them)
+    // and the camera does not show the goal.
+    GripperCameraConfig camera;
 
     template <class V>
     void visit(V& v) {
@@ -75,6 +80,7 @@ class GripperGoalEnv : public Env, public GoalEnv {
       v("substeps", substeps, "physics steps of 1/240 s per action", in_range(1, 1000));
       v("solver_iterations", solver_iterations, "Bullet solver iterations per step (10-20)",
         in_range(1, 1000));
+      camera.visit(v);
     }
   };
 
@@ -119,7 +125,8 @@ class GripperGoalEnv : public Env, public GoalEnv {
   static float distance(const float* a, const float* b);
 
  private:
-  void write_observation(std::span<float> obs) const;
+  void write_observation(std::span<float> obs);
+  void write_goals(std::span<float> obs) const;
   // Writes the observation, then success and info from its goals; returns their distance.
   float observe(std::span<float> obs);
   float reward_of(float d) const;
@@ -132,6 +139,8 @@ class GripperGoalEnv : public Env, public GoalEnv {
   Space observation_space_;
   Space action_space_;
   size_t at_achieved_, at_desired_, at_observation_;  // where each key starts in a flat obs
+  GripperCameraObservation camera_;
+  size_t at_pixels_ = 0;  // the image's start (obs_type pixels: at_observation_)
   Info info_;
   EnvSeeding seeding_;
   std::unique_ptr<GripperWorld> world_;

@@ -25,8 +25,10 @@ GripperLift::GripperLift(const Config& config, bool easy)
       scenario_(load_grasp_scenario(config.scenario.empty()
                                         ? shipped_grasp_scenario(easy ? "lift_easy" : "lift")
                                         : config.scenario)),
-      observation_space_(Space::box(-std::numeric_limits<float>::infinity(),
-                                    std::numeric_limits<float>::infinity(), {kObsSize})),
+      camera_(config.camera, easy ? "GripperLiftEasy-v0" : "GripperLift-v0"),
+      observation_space_(
+          camera_.space(Space::box(-std::numeric_limits<float>::infinity(),
+                                   std::numeric_limits<float>::infinity(), {kObsSize}))),
       action_space_(Space::box(-1.0f, 1.0f, {4})) {
   if (!(config_.palm_force > 0) || !(config_.finger_force > 0) || config_.substeps < 1 ||
       config_.solver_iterations < 1)
@@ -113,8 +115,12 @@ double GripperLift::reward_and_success() {
   return reward;
 }
 
-void GripperLift::write_observation(std::span<float> obs) const {
+void GripperLift::write_observation(std::span<float> all) {
   const GripperWorld& w = *world_;
+  // The camera sees the cube red always (the render's green on success is an annotation).
+  camera_.write_pixels(w, Rgb{200, 40, 40}, all, observation_space_);
+  if (!camera_.uses_state()) return;
+  const std::span<float> obs = camera_.state_part(all, observation_space_);
   const Vec3 grasp = w.grasp_point(), palm_velocity = w.palm_velocity();
   const Vec3 cube = w.cube_position(), velocity = w.cube_velocity(),
              spin = w.cube_angular_velocity();

@@ -10,7 +10,8 @@
 //   obs     Box(26): grasp point (3) and palm velocity (3), finger opening and its rate (2),
 //           cube position (3), orientation quaternion x y z w (4), linear and angular
 //           velocity (6), cube minus grasp point (3), one contact flag per finger (2). World
-//           frame, metres, the table top at z = 0.
+//           frame, metres, the table top at z = 0. With obs_type pixels: a camera image
+//           instead, both: Dict{pixels, state} (gripper_camera_observation.hpp).
 //   reward  robosuite Lift's staged shaping (robosuite/environments/manipulation/lift.py):
 //           reach 1 - tanh(10 d) (d = |cube - grasp point|), + 0.25 while both fingers touch
 //           the cube, + lift progress min(1, rise / 5 cm) while they do; 2.25 (the maximum)
@@ -30,6 +31,7 @@
 #include "rlrun/env.hpp"
 #include "rlrun/env_seeding.hpp"
 #include "rlrun/envs/gripper/grasp_scenario.hpp"
+#include "rlrun/envs/gripper/gripper_camera_observation.hpp"
 #include "rlrun/envs/gripper/gripper_world.hpp"
 #include "rlrun/info.hpp"
 #include "rlrun/space.hpp"
@@ -44,6 +46,7 @@ class GripperLift : public Env {
     double finger_force = 10.0;  // N per finger
     int substeps = 10;           // physics steps of 1/240 s per action
     int solver_iterations = 20;
+    GripperCameraConfig camera;  // obs_type, camera, image_size
 
     template <class V>
     void visit(V& v) {
@@ -56,6 +59,7 @@ class GripperLift : public Env {
       v("substeps", substeps, "physics steps of 1/240 s per action", in_range(1, 1000));
       v("solver_iterations", solver_iterations, "Bullet solver iterations per step (10-20)",
         in_range(1, 1000));
+      camera.visit(v);
     }
   };
 
@@ -89,12 +93,13 @@ class GripperLift : public Env {
   bool success() const { return success_; }
 
  private:
-  void write_observation(std::span<float> obs) const;
+  void write_observation(std::span<float> obs);
   double reward_and_success();
 
   Config config_;
   bool easy_;
   GraspScenario scenario_;
+  GripperCameraObservation camera_;
   Space observation_space_;
   Space action_space_;
   Info info_;

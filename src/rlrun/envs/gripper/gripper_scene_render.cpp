@@ -138,9 +138,9 @@ void draw_sphere_shadow(Rasterizer& raster, const Vec3& centre, double radius) {
 
 void draw_gripper_scene(Rasterizer& raster, const Frame& frame, const GripperWorld& world,
                         const GripperCamera& camera, Rgb cube_color) {
-  raster.set_camera(
-      look_at(camera.eye, camera.target, {0, 0, 1}),
-      perspective(camera.fov_y, static_cast<float>(frame.width()) / frame.height(), 0.05f, 5.0f));
+  raster.set_camera(look_at(camera.eye, camera.target, {0, 0, 1}),
+                    perspective(camera.fov_y, static_cast<float>(frame.width()) / frame.height(),
+                                camera.near, 5.0f));
   raster.set_light(kTowardsLight, 0.35f);
   raster.clear({205, 222, 238});  // pale sky
   // The table top, checkered.

@@ -18,6 +18,7 @@ struct GripperCamera {
   Eigen::Vector3f eye{0.40f, -0.50f, 0.38f};
   Eigen::Vector3f target{0.0f, 0.0f, 0.09f};
   float fov_y = 0.85f;  // rad
+  float near = 0.05f;   // m: the near clipping plane
 };
 
 // Sets the camera and light, clears to the sky, draws the table, every box's shadow and the
