@@ -171,6 +171,7 @@ ActorOut gsde_actor(const Mlp& net, const Eigen::VectorXd& p, const Eigen::Matri
           case Activation::kTanh: a(k) = std::tanh(a(k)); break;
           case Activation::kELU: a(k) = a(k) > 0.0 ? a(k) : std::expm1(a(k)); break;
           case Activation::kLeakyReLU: a(k) = a(k) > 0.0 ? a(k) : kLeakyReLUSlope * a(k); break;
+          case Activation::kGELU: a(k) = test::gelu_reference(a(k)); break;
         }
       }
     } else {
@@ -212,8 +213,8 @@ TEST_CASE(
     "[algos][gsde][gradcheck]") {
   const int n = GENERATE(8, 40);  // 40: split over both cores (SplitMlp)
   // The latent's gradient passes each activation's derivative (Mlp::add_hidden_gradient).
-  const Activation activation =
-      GENERATE(Activation::kReLU, Activation::kTanh, Activation::kELU, Activation::kLeakyReLU);
+  const Activation activation = GENERATE(Activation::kReLU, Activation::kTanh, Activation::kELU,
+                                         Activation::kLeakyReLU, Activation::kGELU);
   INFO("batch " << n << ", " << activation_name(activation));
   const int obs_dim = 3, act_dim = 2;
   SAC::Config cfg;

@@ -139,15 +139,21 @@ TEST_CASE("activation_fn: names and torch's classes for every algorithm",
         Activation::kELU);
   CHECK(parse<DDPG::Config>("policy: {activation_fn: leaky_relu}").policy.activation_fn ==
         Activation::kLeakyReLU);
+  const PPO::Config gelu = parse<PPO::Config>("policy: {activation_fn: nn.GELU}");  // CarRacing
+  CHECK(gelu.policy.activation_fn == Activation::kGELU);
+  CHECK(resolved(gelu, "policy", "activation_fn") == "gelu");
+  CHECK(parse<DQN::Config>("policy: {activation_fn: gelu}").policy.activation_fn ==
+        Activation::kGELU);
   CHECK(resolved(PPO::Config{}, "policy", "activation_fn") == "tanh");
   CHECK(resolved(SAC::Config{}, "policy", "activation_fn") == "relu");
 
   const std::string typo = error_of<DQN::Config>("policy:\n  activation_fn: nn.Relu\n");
   CHECK_THAT(typo, Catch::Contains("exp.yaml:2:18: policy.activation_fn: unknown activation "
                                    "'nn.Relu' (did you mean 'nn.ReLU'?)"));
-  CHECK_THAT(typo, Catch::Contains("valid: tanh, relu, elu, leaky_relu"));
-  CHECK_THAT(error_of<SAC::Config>("policy: {activation_fn: gelu}"),
-             Catch::Contains("unknown activation 'gelu'"));
+  CHECK_THAT(typo, Catch::Contains("valid: tanh, relu, elu, leaky_relu, gelu (or torch's "
+                                   "nn.Tanh, nn.ReLU, nn.ELU, nn.LeakyReLU, nn.GELU)"));
+  CHECK_THAT(error_of<SAC::Config>("policy: {activation_fn: silu}"),
+             Catch::Contains("unknown activation 'silu'"));
 }
 
 TEST_CASE("ActorCriticPolicy: separate pi / vf towers under SB3's state_dict names",

@@ -338,6 +338,18 @@ TEST_CASE("export onnx: Box actions, normalised observations and action wrappers
               2, false});
 }
 
+TEST_CASE("export onnx: a GELU policy (Mul, Erf, Add: opset 13 has no Gelu), C's erfcf",
+          "[deploy][onnx]") {
+  // rl-zoo's PPO CarRacing-v3 policy_kwargs (nn.GELU, gSDE, log_std_init -2, no orthogonal
+  // init) on Pendulum, with two GELU layers in the actor.
+  check_case({"ppo_pendulum_gelu", 2048,
+              "env: {id: Pendulum-v1}\n"
+              "algo: {id: PPO, n_steps: 256, batch_size: 64, n_epochs: 2, use_sde: true,\n"
+              "       policy: {net_arch: {pi: [32, 32], vf: [32]}, activation_fn: gelu,\n"
+              "                log_std_init: -2, ortho_init: false}}\n",
+              5, false});
+}
+
 TEST_CASE("export onnx: TQC (SAC's squashed actor, the mean of every atom as the value)",
           "[deploy][onnx][tqc]") {
   check_case({"tqc_pendulum", 300,

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "grad_check.hpp"  // gelu_reference, gelu_grad_reference
 #include "rlrun/nn/dense_kernels.hpp"
 #include "rlrun/rng.hpp"
 
@@ -23,7 +24,7 @@ Eigen::MatrixXf random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
 }
 
 // What epilogue e makes of the product s (m x n), given the previous content c0 of the target,
-// the bias and the stored activation; in double.
+// the bias and the stored activation (kGELUGrad: the stored pre-activation); in double.
 Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixXd& c0,
                       const Eigen::VectorXd& bias, const Eigen::MatrixXd& act) {
   switch (e) {
@@ -41,20 +42,25 @@ Eigen::MatrixXd apply(Epilogue e, const Eigen::MatrixXd& s, const Eigen::MatrixX
       const Eigen::MatrixXd v = s.colwise() + bias;
       return v.unaryExpr([](double x) { return x > 0.0 ? x : 0.01 * x; });
     }
+    case Epilogue::kBiasGELU:  // torch.nn.GELU(approximate='none')
+      return (s.colwise() + bias).unaryExpr(&test::gelu_reference);
     case Epilogue::kTanhGrad: return s.cwiseProduct((1.0 - act.array().square()).matrix());
     case Epilogue::kReLUGrad:
       return (act.array() > 0.0).select(s, Eigen::MatrixXd::Zero(s.rows(), s.cols()));
     case Epilogue::kELUGrad:  // d/dv expm1(v) = exp(v) = a + 1 below 0
       return (act.array() > 0.0).select(s, s.cwiseProduct((act.array() + 1.0).matrix()));
     case Epilogue::kLeakyReLUGrad: return (act.array() > 0.0).select(s, 0.01 * s);
+    case Epilogue::kGELUGrad: return s.cwiseProduct(act.unaryExpr(&test::gelu_grad_reference));
   }
   return s;
 }
 
-const Epilogue kAll[] = {Epilogue::kStore,    Epilogue::kAdd,           Epilogue::kAddTransposed,
-                         Epilogue::kBias,     Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
-                         Epilogue::kBiasELU,  Epilogue::kBiasLeakyReLU, Epilogue::kTanhGrad,
-                         Epilogue::kReLUGrad, Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
+const Epilogue kAll[] = {
+    Epilogue::kStore,         Epilogue::kAdd,           Epilogue::kAddTransposed,
+    Epilogue::kBias,          Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
+    Epilogue::kBiasELU,       Epilogue::kBiasLeakyReLU, Epilogue::kBiasGELU,
+    Epilogue::kTanhGrad,      Epilogue::kReLUGrad,      Epilogue::kELUGrad,
+    Epilogue::kLeakyReLUGrad, Epilogue::kGELUGrad};
 
 // Runs one kernel product through every epilogue and compares with apply(). product(args, e)
 // must compute the m x n product s_ref into args.c.
@@ -66,18 +72,33 @@ void check_epilogues(Eigen::Index m, Eigen::Index n, const Eigen::MatrixXd& s_re
   // Stored outputs in (-1, 1): valid for tanh, elu (> -1) and either relu. At exactly 0 the
   // derivative is the one of the negative side (torch: relu' 0, leaky_relu' 0.01, elu' 1).
   act(0, 0) = 0.0f;
+  // GELU's backward reads a pre-activation: any value (here N(0, 2^2)).
+  const Eigen::MatrixXf pre_act = 2.0f * random_matrix(m, n, rng);
   for (Epilogue e : kAll) {
     const bool transposed = e == Epilogue::kAddTransposed;
     Eigen::MatrixXf c = random_matrix(transposed ? n : m, transposed ? m : n, rng);
+    Eigen::MatrixXf pre = Eigen::MatrixXf::Constant(m, n, -7.0f);
     const Eigen::MatrixXd c0 = c.cast<double>();
-    dense::EpilogueArgs args{
-        .c = c.data(), .ldc = c.rows(), .bias = bias.data(), .act = act.data(), .ld_act = m};
+    const Eigen::MatrixXf& stored = e == Epilogue::kGELUGrad ? pre_act : act;
+    dense::EpilogueArgs args{.c = c.data(),
+                             .ldc = c.rows(),
+                             .bias = bias.data(),
+                             .act = stored.data(),
+                             .ld_act = m,
+                             .pre = pre.data()};
     product(e, args);
-    const Eigen::MatrixXd expected = apply(e, s_ref, c0, bias.cast<double>(), act.cast<double>());
+    const Eigen::MatrixXd expected =
+        apply(e, s_ref, c0, bias.cast<double>(), stored.cast<double>());
     INFO("epilogue " << static_cast<int>(e));
     REQUIRE(c.rows() == expected.rows());
     const double err = (c.cast<double>() - expected).cwiseAbs().maxCoeff();
     CHECK(err < 1e-4 * (1.0 + expected.cwiseAbs().maxCoeff()));
+    // kBiasGELU keeps the pre-activation s + bias for the backward; the others leave pre alone.
+    const Eigen::MatrixXd expected_pre =
+        e == Epilogue::kBiasGELU ? Eigen::MatrixXd(s_ref.colwise() + bias.cast<double>())
+                                 : Eigen::MatrixXd::Constant(m, n, -7.0);
+    CHECK((pre.cast<double>() - expected_pre).cwiseAbs().maxCoeff() <
+          1e-4 * (1.0 + expected_pre.cwiseAbs().maxCoeff()));
   }
 }
 

@@ -13,14 +13,25 @@
 
 namespace rlrun::test {
 
+// torch.nn.GELU (approximate='none') in double: x (1 + erf(x / sqrt(2))) / 2, written as
+// x erfc(-x / sqrt(2)) / 2, which keeps its relative accuracy for negative x.
+inline double gelu_reference(double x) { return 0.5 * x * std::erfc(-x / std::sqrt(2.0)); }
+// Its derivative Phi(x) + x phi(x), phi(x) = exp(-x^2 / 2) / sqrt(2 pi).
+inline double gelu_grad_reference(double x) {
+  return 0.5 * std::erfc(-x / std::sqrt(2.0)) + x * std::exp(-0.5 * x * x) * 0.3989422804014327;
+}
+
 // An Mlp's forward pass in double from a parameter vector in Mlp::params()'s layout (per layer
 // the out x in weight column-major, then the bias), x in_dim x batch: the independent
-// re-implementation that the gradient checks differentiate.
+// re-implementation that the gradient checks differentiate. last_hidden (optional) receives
+// the input of the output layer (Mlp::last_hidden()).
 inline Eigen::MatrixXd mlp_forward(const Mlp& net, const Eigen::VectorXd& params,
-                                   const Eigen::MatrixXd& x) {
+                                   const Eigen::MatrixXd& x,
+                                   Eigen::MatrixXd* last_hidden = nullptr) {
   Eigen::MatrixXd a = x;
   Eigen::Index offset = 0;
   for (int l = 0; l < net.num_layers(); ++l) {
+    if (last_hidden != nullptr && l + 1 == net.num_layers()) *last_hidden = a;
     const int in = net.layer_in(l), out = net.layer_out(l);
     const Eigen::Map<const Eigen::MatrixXd> w(params.data() + offset, out, in);
     offset += static_cast<Eigen::Index>(in) * out;
@@ -37,6 +48,7 @@ inline Eigen::MatrixXd mlp_forward(const Mlp& net, const Eigen::VectorXd& params
         case Activation::kLeakyReLU:  // torch.nn.LeakyReLU(negative_slope=0.01)
           a = a.unaryExpr([](double v) { return v > 0.0 ? v : 0.01 * v; });
           break;
+        case Activation::kGELU: a = a.unaryExpr(&gelu_reference); break;
       }
     }
   }

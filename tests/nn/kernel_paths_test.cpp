@@ -1,14 +1,16 @@
 // One binary, every x86-64 CPU, the same bits (nn/dense_kernels.hpp, dense_kernel_set.hpp): the
 // AVX-512 and AVX2 kernels give bit-identical outputs and gradients on the same inputs, for every
-// kernel, epilogue and awkward shape; the baseline (SSE) kernels agree to rounding; tanh and exp
-// are accurate; and a short training run gives byte-equal models whichever path runs it.
+// kernel, epilogue and awkward shape; the baseline (SSE) kernels agree to rounding; tanh, exp and
+// GELU are accurate; and a short training run gives byte-equal models whichever path runs it.
 #include <Eigen/Core>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "grad_check.hpp"  // gelu_reference, gelu_grad_reference
 #include "rlrun/nn/dense_kernels.hpp"
 #include "rlrun/rng.hpp"
 
@@ -30,9 +32,11 @@ bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
 }
 
 constexpr Epilogue kEpilogues[] = {
-    Epilogue::kStore,    Epilogue::kAdd,      Epilogue::kAddTransposed, Epilogue::kBias,
-    Epilogue::kBiasTanh, Epilogue::kBiasReLU, Epilogue::kBiasELU,       Epilogue::kBiasLeakyReLU,
-    Epilogue::kTanhGrad, Epilogue::kReLUGrad, Epilogue::kELUGrad,       Epilogue::kLeakyReLUGrad};
+    Epilogue::kStore,         Epilogue::kAdd,           Epilogue::kAddTransposed,
+    Epilogue::kBias,          Epilogue::kBiasTanh,      Epilogue::kBiasReLU,
+    Epilogue::kBiasELU,       Epilogue::kBiasLeakyReLU, Epilogue::kBiasGELU,
+    Epilogue::kTanhGrad,      Epilogue::kReLUGrad,      Epilogue::kELUGrad,
+    Epilogue::kLeakyReLUGrad, Epilogue::kGELUGrad};
 
 // Everything one kernel table computes for one shape (m x n results, depth k), concatenated.
 std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n, dense::Index k,
@@ -41,18 +45,27 @@ std::vector<float> run_all(const KernelTable& t, dense::Index m, dense::Index n,
   const std::vector<float> a = random_values(m * k, rng), b = random_values(k * n, rng),
                            x = random_values(k * m, rng), bias = random_values(m, rng),
                            act = random_values(m * n, rng, 0.5), c0 = random_values(m * n, rng);
+  // GELU's backward reads the pre-activation: N(0, 5^2) reaches its tails and the cut at 13.
+  const std::vector<float> pre_act = random_values(m * n, rng, 5.0);
   std::vector<float> out;
   for (Epilogue e : kEpilogues) {
-    std::vector<float> act_tanh = act;  // a valid stored activation for each Grad epilogue
-    std::vector<float> c = c0;
+    // A valid stored activation (or pre-activation) for each Grad epilogue.
+    const std::vector<float>& stored = e == Epilogue::kGELUGrad ? pre_act : act;
+    std::vector<float> c = c0, pre(m * n, 0.0f);  // pre: kBiasGELU's pre-activations
     const dense::Index ldc = e == Epilogue::kAddTransposed ? n : m;
-    const dense::EpilogueArgs args{
-        .c = c.data(), .ldc = ldc, .bias = bias.data(), .act = act_tanh.data(), .ld_act = m};
+    const dense::EpilogueArgs args{.c = c.data(),
+                                   .ldc = ldc,
+                                   .bias = bias.data(),
+                                   .act = stored.data(),
+                                   .ld_act = m,
+                                   .pre = pre.data()};
     t.gemm_rows(m, n, k, a.data(), m, b.data(), 1, k, e, args);  // A (m x k) B (k x n)
     out.insert(out.end(), c.begin(), c.end());
+    if (e == Epilogue::kBiasGELU) out.insert(out.end(), pre.begin(), pre.end());
     c = c0;
     t.gemm_dot(m, n, k, x.data(), k, b.data(), k, e, args);  // X^T (m x k) B
     out.insert(out.end(), c.begin(), c.end());
+    if (e == Epilogue::kBiasGELU) out.insert(out.end(), pre.begin(), pre.end());
   }
   std::vector<float> at(k * m);
   t.transpose(m, k, a.data(), m, at.data(), k);
@@ -151,6 +164,62 @@ TEST_CASE("the kernels' tanh and exp are accurate and keep NaN", "[nn][kernels]"
     for (Epilogue e : {Epilogue::kBiasTanh, Epilogue::kBiasELU, Epilogue::kBiasReLU}) {
       t.gemm_rows(1, 1, 1, &nan, 1, &one, 1, 1, e, {.c = &y, .ldc = 1, .bias = &zero});
       CHECK(std::isnan(y));
+    }
+  }
+}
+
+TEST_CASE("the kernels' GELU and its derivative are accurate and keep NaN", "[nn][kernels]") {
+  // gelu(x) = x Phi(x) through kBiasGELU and s gelu'(x) = s (Phi(x) + x phi(x)) through
+  // kGELUGrad (s = 1), on 1x1 products, against double precision (std::erfc, which keeps the
+  // negative tail's relative accuracy), on every available path. x runs through the tiny values
+  // around 0 and past the kernels' cut at |x| = 13.2 (where gelu leaves float's normal range):
+  // the relative error counts down to 1e-30 (x = -11.6), the absolute one below.
+  std::vector<float> xs;
+  for (double x = -14.0; x <= 14.0; x += 0.0009765625 * 3.1) xs.push_back(static_cast<float>(x));
+  for (double x = 1e-30; x < 1.0; x *= 1.7) {
+    xs.push_back(static_cast<float>(x));
+    xs.push_back(static_cast<float>(-x));
+  }
+  for (KernelPath path : {KernelPath::kBaseline, KernelPath::kAvx2, KernelPath::kAvx512}) {
+    if (!dense::kernel_path_available(path)) continue;
+    INFO(dense::kernel_path_name(path));
+    const KernelTable& t = dense::kernels(path);
+    const float one = 1.0f, zero = 0.0f;
+    double worst_gelu = 0.0, worst_grad = 0.0;
+    for (const float xf : xs) {
+      float y = 0.0f, pre = 0.0f, g = 0.0f;
+      t.gemm_rows(1, 1, 1, &xf, 1, &one, 1, 1, Epilogue::kBiasGELU,
+                  {.c = &y, .ldc = 1, .bias = &zero, .pre = &pre});
+      REQUIRE(pre == xf);
+      const double x = xf;
+      const double want = test::gelu_reference(x);
+      worst_gelu = std::max(worst_gelu, std::abs(y - want) / std::max(std::abs(want), 1e-30));
+      t.gemm_rows(1, 1, 1, &one, 1, &one, 1, 1, Epilogue::kGELUGrad,
+                  {.c = &g, .ldc = 1, .act = &xf, .ld_act = 1});
+      // gelu' crosses 0 at x = -0.75: relative to the larger of its terms Phi(x), |x phi(x)|.
+      const double cdf = 0.5 * std::erfc(-x / std::sqrt(2.0));
+      const double want_grad = test::gelu_grad_reference(x);
+      worst_grad = std::max(
+          worst_grad, std::abs(g - want_grad) / std::max({cdf, std::abs(want_grad - cdf), 1e-30}));
+    }
+    CHECK(worst_gelu < 1e-6);  // scripts/data/fit_gelu.py: at most 9 ulp (5.4e-7)
+    CHECK(worst_grad < 1e-6);  // 5 ulp
+    const float nan = std::nanf(""), huge = 1e30f;
+    float y = 0.0f, pre = 0.0f;
+    t.gemm_rows(1, 1, 1, &nan, 1, &one, 1, 1, Epilogue::kBiasGELU,
+                {.c = &y, .ldc = 1, .bias = &zero, .pre = &pre});
+    CHECK(std::isnan(y));
+    t.gemm_rows(1, 1, 1, &one, 1, &one, 1, 1, Epilogue::kGELUGrad,
+                {.c = &y, .ldc = 1, .act = &nan, .ld_act = 1});
+    CHECK(std::isnan(y));
+    // Far beyond the cut: gelu(x) = x and 0, gelu' = 1 and 0 (x phi(x) is exactly 0 there).
+    for (const float x : {huge, -huge}) {
+      t.gemm_rows(1, 1, 1, &x, 1, &one, 1, 1, Epilogue::kBiasGELU,
+                  {.c = &y, .ldc = 1, .bias = &zero, .pre = &pre});
+      CHECK(y == (x > 0 ? x : 0.0f));
+      t.gemm_rows(1, 1, 1, &one, 1, &one, 1, 1, Epilogue::kGELUGrad,
+                  {.c = &y, .ldc = 1, .act = &x, .ld_act = 1});
+      CHECK(y == (x > 0 ? 1.0f : 0.0f));
     }
   }
 }

@@ -104,12 +104,67 @@ TEST_CASE("Mlp gradients match finite differences", "[nn]") {
       {5, {16, 24}, 3, Activation::kLeakyReLU, 2},
       {7, {9, 3, 11}, 5, Activation::kELU, 13},
       {1, {3}, 1, Activation::kLeakyReLU, 1},
+      // GELU, whose derivative the backward reads off the stored pre-activation, through the
+      // same shapes.
+      {3, {5, 7}, 2, Activation::kGELU, 4},
+      {20, {40, 17}, 9, Activation::kGELU, 37},
+      {13, {300, 13}, 3, Activation::kGELU, 9},
+      {4, {64, 64}, 2, Activation::kGELU, 1},
+      {5, {16, 24}, 3, Activation::kGELU, 2},
+      {7, {9, 3, 11}, 5, Activation::kGELU, 13},
+      {1, {3}, 1, Activation::kGELU, 1},
   };
   uint64_t seed = 11;
   for (const Case& c : cases) {
     INFO("in " << c.in << " hidden " << c.hidden.size() << " out " << c.out << " act "
                << activation_name(c.act) << " batch " << c.batch);
     check_mlp_gradients(c, seed++);
+  }
+}
+
+TEST_CASE("Mlp backward with grad_last_hidden matches finite differences for every activation",
+          "[nn]") {
+  // L = sum(weights .* y) + sum(v .* last_hidden()): the extra gradient enters before the last
+  // hidden layer's activation derivative (Mlp::add_hidden_gradient; gSDE with learn_features).
+  // Batch 2 and 17: the dot-product and the transposed-weight input gradient.
+  uint64_t seed = 61;
+  for (const auto& spelling : kActivationSpellings) {
+    for (const int batch : {2, 17}) {
+      INFO(spelling.name << " batch " << batch);
+      Rng rng(seed++);
+      Mlp net(4, {9, 20}, 3, spelling.act);
+      net.init_orthogonal(rng, std::sqrt(2.0f), 1.0f);
+      for (int l = 0; l < net.num_layers(); ++l)
+        net.bias(l) = random_matrix(net.layer_out(l), 1, rng, 0.1);
+      const Eigen::MatrixXf x = random_matrix(4, batch, rng);
+      const Eigen::MatrixXf weights = random_matrix(3, batch, rng);
+      const Eigen::MatrixXf v = random_matrix(20, batch, rng);
+      net.forward(x);
+      net.zero_grad();
+      Eigen::MatrixXf grad_x;
+      net.backward(weights, &grad_x, &v);
+      const Eigen::VectorXd params = net.params().cast<double>();
+      const Eigen::MatrixXd xd = x.cast<double>();
+      const auto loss = [&](const Eigen::VectorXd& p, const Eigen::MatrixXd& input) {
+        Eigen::MatrixXd hidden;
+        const Eigen::MatrixXd y = test::mlp_forward(net, p, input, &hidden);
+        return (y.array() * weights.cast<double>().array()).sum() +
+               (hidden.array() * v.cast<double>().array()).sum();
+      };
+      {
+        INFO("parameter gradient");
+        require_grad_close(
+            net.grads().cast<double>(),
+            numeric_gradient([&](const Eigen::VectorXd& p) { return loss(p, xd); }, params));
+      }
+      {
+        INFO("input gradient");
+        const auto loss_of_input = [&](const Eigen::VectorXd& xv) {
+          return loss(params, Eigen::Map<const Eigen::MatrixXd>(xv.data(), 4, batch));
+        };
+        require_grad_close(flat(grad_x), numeric_gradient(loss_of_input, flat(x)));
+      }
+    }
   }
 }
 
@@ -298,16 +353,23 @@ TEST_CASE("parse_activation and activation_name", "[nn]") {
   CHECK(parse_activation("relu") == Activation::kReLU);
   CHECK(parse_activation("elu") == Activation::kELU);
   CHECK(parse_activation("leaky_relu") == Activation::kLeakyReLU);
+  CHECK(parse_activation("gelu") == Activation::kGELU);
   // rl-zoo's policy_kwargs spell the torch class.
   CHECK(parse_activation("nn.Tanh") == Activation::kTanh);
   CHECK(parse_activation("nn.ReLU") == Activation::kReLU);
   CHECK(parse_activation("nn.ELU") == Activation::kELU);
   CHECK(parse_activation("nn.LeakyReLU") == Activation::kLeakyReLU);
+  CHECK(parse_activation("nn.GELU") == Activation::kGELU);
   CHECK(activation_name(Activation::kTanh) == "tanh");
   CHECK(activation_name(Activation::kReLU) == "relu");
   CHECK(activation_name(Activation::kELU) == "elu");
   CHECK(activation_name(Activation::kLeakyReLU) == "leaky_relu");
+  CHECK(activation_name(Activation::kGELU) == "gelu");
   CHECK_THROWS_AS(parse_activation("Tanh"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_activation("nn.Gelu"), std::invalid_argument);
+  CHECK_THROWS_WITH(parse_activation("swish"),
+                    Catch::Contains("valid: tanh, relu, elu, leaky_relu, gelu (or torch's "
+                                    "nn.Tanh, nn.ReLU, nn.ELU, nn.LeakyReLU, nn.GELU)"));
   CHECK_THROWS_AS(parse_activation("nn.relu"), std::invalid_argument);
   CHECK_THROWS_AS(parse_activation("sigmoid"), std::invalid_argument);
 }

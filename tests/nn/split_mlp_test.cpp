@@ -121,13 +121,15 @@ TEST_CASE(
   const int n = GENERATE(5, 37, 64, 600);
   // 6 inputs: the input gradient (rows 2..5) by dot products; 40: through the transposed first
   // weight, which the halves share (SplitMlp::transpose_for_halves), as they share the hidden
-  // layers' (300 and 200 rows: W^T split between the cores off a 16-float boundary too).
-  const int in_dim = GENERATE(6, 40);
+  // layers' (300 and 200 rows: W^T split between the cores off a 16-float boundary too). 7: a
+  // GELU network, whose parts keep their own pre-activations for the backward.
+  const int in_dim = GENERATE(6, 40, 7);
   INFO("batch " << n << ", " << in_dim << " inputs");
   Rng rng(3);
-  // 67 k and 76 k multiply-adds a column: 37 columns split.
-  Mlp net = in_dim == 6 ? Mlp(6, {256, 256}, 3, Activation::kReLU)
-                        : Mlp(40, {300, 200}, 20, Activation::kTanh);
+  // 67 k, 76 k and 68 k multiply-adds a column: 37 columns split.
+  Mlp net = in_dim == 6    ? Mlp(6, {256, 256}, 3, Activation::kReLU)
+            : in_dim == 40 ? Mlp(40, {300, 200}, 20, Activation::kTanh)
+                           : Mlp(7, {256, 256}, 2, Activation::kGELU);
   net.init_torch_default(rng);
   REQUIRE(column_parts(n, net.multiply_adds_per_column()) == (n >= 512 ? 4 : n >= 32 ? 2 : 1));
   const Eigen::MatrixXf x = random_matrix(in_dim, n, rng);

@@ -1,6 +1,6 @@
 // RLRUN_KERNELS: which vector instructions run the networks changes the speed of a run, never its
-// result (nn/dense_kernels.hpp). Short runs of PPO, DQN, TD3 and SAC on the AVX2 and the AVX-512
-// kernels give byte-equal models; a bad value is a usage error.
+// result (nn/dense_kernels.hpp). Short runs of PPO (tanh and GELU), DQN, TD3 and SAC on the AVX2
+// and the AVX-512 kernels give byte-equal models; a bad value is a usage error.
 #include <catch2/catch.hpp>
 #include <fstream>
 
@@ -20,15 +20,19 @@ TEST_CASE("cli: the AVX2 and AVX-512 kernels train byte-equal models", "[cli][ke
     return;
   }
   TempDir dir("kernels");
-  for (const auto& [algo, env, extra] :
-       {std::tuple{"PPO", "CartPole-v1", "n_steps: 128, batch_size: 64, n_epochs: 3"},
-        {"DQN", "CartPole-v1", "learning_starts: 200, batch_size: 64"},
-        {"TD3", "Pendulum-v1",
+  for (const auto& [name, algo, env, extra] :
+       {std::tuple{"PPO", "PPO", "CartPole-v1", "n_steps: 128, batch_size: 64, n_epochs: 3"},
+        {"DQN", "DQN", "CartPole-v1", "learning_starts: 200, batch_size: 64"},
+        {"TD3", "TD3", "Pendulum-v1",
          "learning_starts: 200, batch_size: 100, policy: {net_arch: [64, 64]}"},
-        {"SAC", "Pendulum-v1", "learning_starts: 200, batch_size: 256"}}) {
-    INFO(algo);
-    const std::string config = dir / (std::string(algo) + ".yaml");
-    std::ofstream(config) << "run: {name: " << algo
+        {"SAC", "SAC", "Pendulum-v1", "learning_starts: 200, batch_size: 256"},
+        // GELU's erf-based kernels (rl-zoo's PPO CarRacing policy_kwargs, on Pendulum).
+        {"PPO_gelu", "PPO", "Pendulum-v1",
+         "n_steps: 128, batch_size: 64, n_epochs: 3, use_sde: true, policy: {activation_fn: "
+         "gelu, log_std_init: -2, ortho_init: false, net_arch: {pi: [64], vf: [64]}}"}}) {
+    INFO(name);
+    const std::string config = dir / (std::string(name) + ".yaml");
+    std::ofstream(config) << "run: {name: " << name
                           << ", seed: 5, total_timesteps: 1500, out_dir: " << dir.str()
                           << "/runs}\n"
                           << "env: {id: " << env << ", n_envs: 2}\n"
@@ -41,8 +45,8 @@ TEST_CASE("cli: the AVX2 and AVX-512 kernels train byte-equal models", "[cli][ke
         run_command("RLRUN_KERNELS=avx2 " + std::string(RLRUN_BINARY) + " train " + config);
     INFO(narrow.output);
     REQUIRE(narrow.exit_code == 0);
-    check_same_tensors(dir / ("runs/" + std::string(algo) + "/seed5/model.zip"),
-                       dir / ("runs/" + std::string(algo) + "/seed5_2/model.zip"));
+    check_same_tensors(dir / ("runs/" + std::string(name) + "/seed5/model.zip"),
+                       dir / ("runs/" + std::string(name) + "/seed5_2/model.zip"));
   }
 }
 

@@ -367,6 +367,38 @@ CarRacing-v2:
   }
 }
 
+TEST_CASE("zoo import: activation_fn nn.GELU, as in the zoo's PPO CarRacing-v3 entry", "[zoo]") {
+  TempDir dir("zoo_gelu");
+  Registry registry = make_builtin_registry();
+  // The zoo's policy_kwargs for PPO on CarRacing-v3 (hyperparams/ppo.yml), over several lines.
+  const std::string file = write_file(dir, "ppo.yml", R"zoo(CarRacing-v3:
+  n_timesteps: !!float 4e6
+  policy: 'CnnPolicy'
+  use_sde: True
+  sde_sample_freq: 4
+  policy_kwargs: "dict(log_std_init=-2,
+                       ortho_init=False,
+                       activation_fn=nn.GELU,
+                       net_arch=dict(pi=[256], vf=[256]),
+                       )"
+Pendulum-v1:
+  n_timesteps: 1000
+  policy: 'MlpPolicy'
+  policy_kwargs: "dict(activation_fn=torch.nn.GELU)"
+)zoo");
+  const ZooImport car = translate_zoo_entry(read_zoo_entry(file, "CarRacing-v3", ""), registry);
+  const YAML::Node policy = car.experiment["algo"]["policy"];
+  CHECK(policy["activation_fn"].as<std::string>() == "gelu");
+  CHECK(policy["log_std_init"].as<double>() == -2.0);
+  CHECK(policy["ortho_init"].as<bool>() == false);
+  CHECK(policy["net_arch"]["pi"].as<std::vector<int>>() == std::vector<int>{256});
+  CHECK(policy["net_arch"]["vf"].as<std::vector<int>>() == std::vector<int>{256});
+  CHECK(policy["features_extractor_class"].as<std::string>() == "NatureCNN");
+  const YAML::Node pendulum =
+      translate_zoo_entry(read_zoo_entry(file, "Pendulum-v1", ""), registry).experiment;
+  CHECK(pendulum["algo"]["policy"]["activation_fn"].as<std::string>() == "gelu");
+}
+
 TEST_CASE("zoo import: the image wrappers of the zoo's CarRacing and atari entries", "[zoo]") {
   TempDir dir("zoo_images");
   Registry registry = make_builtin_registry();
@@ -473,7 +505,8 @@ MountainCar-v0:
   CHECK_THAT(pendulum, Catch::Contains(file + ":9:16") &&
                            Catch::Contains("env_wrapper my_package.MyWrapper"));
   const std::string acrobot = import_error(file, "Acrobot-v1");
-  CHECK_THAT(acrobot, Catch::Contains(file + ":13:18") && Catch::Contains("nn.Sigmoid"));
+  CHECK_THAT(acrobot, Catch::Contains(file + ":13:18") && Catch::Contains("nn.Sigmoid") &&
+                          Catch::Contains("nn.LeakyReLU and nn.GELU"));
   const std::string car = import_error(file, "MountainCar-v0");
   CHECK_THAT(car, Catch::Contains(file + ":17:13") && Catch::Contains("ParallelTrainCallback"));
   CHECK_THAT(car, Catch::Contains(file + ":18:14") && Catch::Contains("norm_obs_keys"));

@@ -149,6 +149,11 @@ class CWriter {
           case Activation::kLeakyReLU:
             f = v + " > 0.0f ? " + v + " : " + literal(kLeakyReLUSlope) + " * " + v;
             break;
+          case Activation::kGELU:
+            // torch.nn.GELU: x (1 + erf(x / sqrt(2))) / 2, written with C99's erfcf as
+            // x erfc(-x / sqrt(2)) / 2, which does not cancel for negative x.
+            f = "0.5f * " + v + " * erfcf(" + literal(-0.70710678118654752f) + " * " + v + ")";
+            break;
         }
         out << "    for (i = 0; i < " << n.width << "; ++i) " << y << "[i] = " << f << ";\n";
         return;

@@ -164,6 +164,19 @@ class OnnxGraphWriter {
 
   static bool all(const Eigen::VectorXf& v, float value) { return (v.array() == value).all(); }
 
+  // torch.nn.GELU (approximate='none'), x (1 + erf(x / sqrt(2))) / 2, from Mul, Erf and Add:
+  // ONNX's Gelu operator exists only from opset 20 (kOnnxOpset is 13), Erf from opset 9.
+  void gelu(const std::string& x, const std::string& out) {
+    const auto scalar = [&](const std::string& base, float value) {
+      return constant(base, {}, &value, 1);
+    };
+    const std::string scaled = node("Mul", {x, scalar("inv_sqrt2", 0.70710678118654752f)});
+    const std::string erf = node("Erf", {scaled});
+    const std::string one_plus_erf = node("Add", {erf, scalar("one", 1.0f)});
+    const std::string half_x = node("Mul", {x, scalar("half", 0.5f)});
+    node("Mul", {half_x, one_plus_erf}, out);
+  }
+
   void emit(const GraphNode& n) {
     const std::string& x = n.inputs.front();
     const std::string& out = n.output;
@@ -191,6 +204,7 @@ class OnnxGraphWriter {
           case Activation::kLeakyReLU:
             node("LeakyRelu", {x}, out, {float_attr("alpha", kLeakyReLUSlope)});
             return;
+          case Activation::kGELU: gelu(x, out); return;
         }
         return;
       case GraphOp::kAffine: {

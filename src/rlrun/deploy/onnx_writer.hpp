@@ -8,7 +8,8 @@
 // (deploy/graph_numbers.hpp), as are Dict keys that cannot be ONNX input names.
 //
 // Each graph node becomes standard operators: Dense -> Gemm (transB), activations -> Tanh /
-// Relu / Elu / LeakyRelu (torch's alpha 1 and 0.01), Affine -> Add, Mul, Add, Clamp -> Max,
+// Relu / Elu / LeakyRelu (torch's alpha 1 and 0.01) / GELU as Mul, Erf, Add, Mul (x (1 +
+// erf(x / sqrt(2))) / 2; opset 13 has no Gelu), Affine -> Add, Mul, Add, Clamp -> Max,
 // Min (per-column bounds, which Clip cannot take), OneHot -> Round, Sub, Equal, Cast,
 // ArgMax -> ArgMax (first maximum), Cast, Positive -> Greater, Cast, Slice and Concat as
 // themselves. Discrete actions come out as floats holding the index, as rlrun's own.

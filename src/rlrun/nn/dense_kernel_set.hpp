@@ -15,9 +15,9 @@
 // * gemm_dot reduces along the vector, so it always uses 16 logical lanes (term p goes to lane
 //   p mod 16) and adds the lanes in one fixed tree, whatever the register width (one zmm, two
 //   ymm or four xmm registers hold the 16 lanes);
-// * tanh and exp are our own rational / polynomial approximations built from +, *, /, fma,
-//   min, max and exact bit operations, so every lane follows the same sequence of correctly
-//   rounded operations;
+// * tanh, exp and GELU's normal CDF are our own rational / polynomial approximations built
+//   from +, *, /, fma, min, max and exact bit operations, so every lane follows the same
+//   sequence of correctly rounded operations;
 // * the translation units are compiled with -ffp-contract=off, so the compiler fuses nothing
 //   on its own. Only the SSE path (CPUs without FMA) rounds a * b + c twice and so differs in
 //   the last bits.
@@ -92,7 +92,71 @@ struct KernelSet {
     return x * p / q;
   }
 
-  enum class Act { kNone, kTanh, kReLU, kELU, kLeakyReLU };
+  // a * a - u exactly, for u = a * a rounded (a >= 0, a * a far from overflow): one fused
+  // multiply-add where V has it; else Dekker's product with Veltkamp's split (T. J. Dekker, "A
+  // floating-point technique for extending the available precision", Numer. Math. 18, 1971),
+  // every step exact, so the baseline path gets the same value.
+  static V square_error(V a, V u) {
+    if constexpr (V::kFusedMultiplyAdd) {
+      return fma(a, a, V::zero() - u);
+    } else {
+      const V c = a * V::set1(4097.0f);  // 2^12 + 1: hi keeps the upper 12 of 24 bits
+      const V hi = c - (c - a);
+      const V lo = a - hi;
+      return ((hi * hi - u) + V::set1(2.0f) * hi * lo) + lo * lo;
+    }
+  }
+
+  // The standard normal distribution at x for GELU (torch.nn.GELU's default, the exact
+  // x Phi(x)) and its derivative Phi(x) + x phi(x): cdf = Phi(x) and e = exp(-x^2 / 2) (phi(x)
+  // = e / sqrt(2 pi)). With a = |x|, Phi(-a) = e S(a) / 2, S(a) = erfcx(a / sqrt(2)) ~= P(a) /
+  // Q(a): the scaled-erfc form erfc(t) = exp(-t^2) R(t) of W. J. Cody ("Rational Chebyshev
+  // approximations for the error function", Math. Comp. 23, 1969), but one (4, 5) rational on
+  // [0, 13.2] fitted for rlrun by scripts/data/fit_gelu.py (relative error 5e-9 in exact
+  // arithmetic, positive coefficients), so no erf / erfc split and no branch; Phi(x) = 1 -
+  // Phi(-a) for x > 0. Phi(-a) keeps its relative accuracy far into the tail, where torch's
+  // float 1 + erf(x / sqrt(2)) cancels; a^2 is carried as its rounded value u plus its exact
+  // error du (exp(-(u + du) / 2) = exp(-u / 2) (1 - du / 2)), else e would be off by up to 4e-6
+  // relative at a = 13. Evaluated so, gelu is within 9 float ulp (6e-7 relative) of x Phi(x)
+  // and gelu' within 5 ulp of its larger term Phi or |x phi| (measured by the script and on
+  // every kernel path, where they are >= 1e-30). Beyond |x| = 13.2, where |gelu(x)| < 6e-39 is
+  // below float's normal range, Phi(-a) is taken as 0 (e too, so x phi(x) is 0 for any huge
+  // x). NaN stays NaN.
+  struct Normal {
+    V cdf;
+    V e;
+  };
+  static Normal normal(V x) {
+    const V abs_x = max(x, V::zero() - x);
+    const V a = min(V::set1(13.2f), abs_x);  // (the constant first: see exp)
+    const V u = a * a;
+    V e = exp(u * V::set1(-0.5f));
+    e = fma(e, square_error(a, u) * V::set1(-0.5f), e);
+    e = select_greater(abs_x, V::set1(13.2f), V::zero(), e);
+    V p = V::set1(8.021332324e-03f);
+    p = fma(p, a, V::set1(7.983950526e-02f));
+    p = fma(p, a, V::set1(3.622303307e-01f));
+    p = fma(p, a, V::set1(8.708534837e-01f));
+    p = fma(p, a, V::set1(1.0f));
+    V q = V::set1(1.005310286e-02f);
+    q = fma(q, a, V::set1(1.000714600e-01f));
+    q = fma(q, a, V::set1(4.638746083e-01f));
+    q = fma(q, a, V::set1(1.193686843e+00f));
+    q = fma(q, a, V::set1(1.668738365e+00f));
+    q = fma(q, a, V::set1(1.0f));
+    const V tail = e * V::set1(0.5f) * (p / q);  // Phi(-a)
+    return {select_greater(x, V::zero(), V::set1(1.0f) - tail, tail), e};
+  }
+
+  static V gelu(V x) { return x * normal(x).cdf; }
+
+  // s gelu'(z) = s (Phi(z) + z phi(z)), 1 / sqrt(2 pi) = 0.3989422804.
+  static V gelu_grad(V s, V z) {
+    const Normal n = normal(z);
+    return s * fma(z, n.e * V::set1(0.3989422804014327f), n.cdf);
+  }
+
+  enum class Act { kNone, kTanh, kReLU, kELU, kLeakyReLU, kGELU };
 
   // ELU (alpha 1) is exp(v) - 1 below 0: off by at most ~1 ulp of 1.0 (6e-8 absolute) for tiny
   // v, far below what a float32 layer resolves, and much cheaper than an expm1. LeakyReLU:
@@ -103,6 +167,7 @@ struct KernelSet {
     if constexpr (kAct == Act::kReLU) return max(V::zero(), v);  // NaN stays NaN, as in torch
     if constexpr (kAct == Act::kELU) return select_greater(v, V::zero(), v, exp(v) - V::set1(1.0f));
     if constexpr (kAct == Act::kLeakyReLU) return max(v, v * V::set1(kLeakyReLUSlope));
+    if constexpr (kAct == Act::kGELU) return gelu(v);
     return v;
   }
 
@@ -170,12 +235,34 @@ struct KernelSet {
     }
   };
 
+  // bias + GELU, also keeping the pre-activation v for the backward (kGELUGrad): gelu is not
+  // monotonic (its minimum is at v = -0.75), so its output does not determine v.
+  struct BiasGeluEpi {
+    float* c;
+    Index ldc;
+    const float* bias;
+    float* pre;
+    void packet(V s, Index i, Index j) const {
+      const V v = s + V::load(bias + i);
+      v.store(pre + i + j * ldc);
+      gelu(v).store(c + i + j * ldc);
+    }
+    void tail(V s, Index i, Index j, int /*skip*/) const { packet(s, i, j); }
+    void scalar(float s, Index i, Index j) const {
+      const float v = s + bias[i];
+      pre[i + j * ldc] = v;
+      c[i + j * ldc] = first_lane(gelu(V::set1(v)));
+    }
+  };
+
   // Backward through the activation, read off the stored output a: tanh' = 1 - a^2,
   // relu' = [a > 0] (torch's threshold_backward also gives 0 at exactly 0), elu' = 1 for a > 0
   // and exp(v) = a + 1 below, leaky_relu' = 1 for a > 0 and the slope below (torch's
   // leaky_relu_backward: self > 0 ? grad : grad * slope; a > 0 exactly when v > 0).
+  // GELU reads the pre-activation instead (a = v, from kBiasGELU's pre): gelu_grad.
   template <Act kAct>
   static V activation_grad(V s, V a) {
+    if constexpr (kAct == Act::kGELU) return gelu_grad(s, a);
     if constexpr (kAct == Act::kTanh) return s * (V::set1(1.0f) - a * a);
     if constexpr (kAct == Act::kReLU) return select_greater(a, V::zero(), s, V::zero());
     if constexpr (kAct == Act::kELU)
@@ -432,11 +519,13 @@ struct KernelSet {
       case Epilogue::kBiasReLU: return run(BiasEpi<Act::kReLU>{g.c, g.ldc, g.bias});
       case Epilogue::kBiasELU: return run(BiasEpi<Act::kELU>{g.c, g.ldc, g.bias});
       case Epilogue::kBiasLeakyReLU: return run(BiasEpi<Act::kLeakyReLU>{g.c, g.ldc, g.bias});
+      case Epilogue::kBiasGELU: return run(BiasGeluEpi{g.c, g.ldc, g.bias, g.pre});
       case Epilogue::kTanhGrad: return run(ActGradEpi<Act::kTanh>{g.c, g.ldc, g.act, g.ld_act});
       case Epilogue::kReLUGrad: return run(ActGradEpi<Act::kReLU>{g.c, g.ldc, g.act, g.ld_act});
       case Epilogue::kELUGrad: return run(ActGradEpi<Act::kELU>{g.c, g.ldc, g.act, g.ld_act});
       case Epilogue::kLeakyReLUGrad:
         return run(ActGradEpi<Act::kLeakyReLU>{g.c, g.ldc, g.act, g.ld_act});
+      case Epilogue::kGELUGrad: return run(ActGradEpi<Act::kGELU>{g.c, g.ldc, g.act, g.ld_act});
     }
   }
 

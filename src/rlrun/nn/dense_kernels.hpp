@@ -39,10 +39,12 @@ enum class Epilogue {
   kBiasReLU,       // c(i, j) = max(s + bias(i), 0)
   kBiasELU,        // c(i, j) = v > 0 ? v : exp(v) - 1, v = s + bias(i)   (nn.ELU, alpha 1)
   kBiasLeakyReLU,  // c(i, j) = max(v, 0.01 v), v = s + bias(i)   (nn.LeakyReLU, slope 0.01)
+  kBiasGELU,       // c(i, j) = v Phi(v), pre(i, j) = v = s + bias(i)   (nn.GELU, exact erf form)
   kTanhGrad,       // c(i, j) = s * (1 - act(i, j)^2)   (act = the layer's tanh output)
   kReLUGrad,       // c(i, j) = act(i, j) > 0 ? s : 0   (act = the layer's relu output)
   kELUGrad,        // c(i, j) = act(i, j) > 0 ? s : s * (act(i, j) + 1)   (elu output)
   kLeakyReLUGrad,  // c(i, j) = act(i, j) > 0 ? s : 0.01 s   (leaky_relu output)
+  kGELUGrad,       // c(i, j) = s * gelu'(act(i, j))   (act = the pre-activation, kBiasGELU's pre)
 };
 
 struct EpilogueArgs {
@@ -51,6 +53,9 @@ struct EpilogueArgs {
   const float* bias = nullptr;  // kBias*
   const float* act = nullptr;   // k*Grad
   Index ld_act = 0;
+  // kBiasGELU also writes the pre-activation v here (same shape and ldc as c): GELU's
+  // derivative cannot be read off its output (gelu is not monotonic), so kGELUGrad reads v.
+  float* pre = nullptr;
 };
 
 // C(i, j) <- epilogue(sum_k A(i, k) B(k, j)) for i < m, j < n, with A column-major (lda) and

@@ -23,18 +23,21 @@ dense::Epilogue forward_epilogue(Activation act) {
     case Activation::kReLU: return dense::Epilogue::kBiasReLU;
     case Activation::kELU: return dense::Epilogue::kBiasELU;
     case Activation::kLeakyReLU: return dense::Epilogue::kBiasLeakyReLU;
+    case Activation::kGELU: return dense::Epilogue::kBiasGELU;
   }
   throw std::logic_error("Mlp: unknown activation");
 }
 
 // The fused epilogue of the product that carries dL/d(layer output) back through a hidden
-// layer's activation (its derivative read off the stored output).
+// layer's activation (its derivative read off the stored output, GELU's off the stored
+// pre-activation).
 dense::Epilogue backward_epilogue(Activation act) {
   switch (act) {
     case Activation::kTanh: return dense::Epilogue::kTanhGrad;
     case Activation::kReLU: return dense::Epilogue::kReLUGrad;
     case Activation::kELU: return dense::Epilogue::kELUGrad;
     case Activation::kLeakyReLU: return dense::Epilogue::kLeakyReLUGrad;
+    case Activation::kGELU: return dense::Epilogue::kGELUGrad;
   }
   throw std::logic_error("Mlp: unknown activation");
 }
@@ -62,6 +65,7 @@ Mlp::Mlp(int in_dim, std::vector<int> hidden, int out_dim, Activation act)
   grads_ = Eigen::VectorXf::Zero(offset);
   acts_.assign(layers + 1, Eigen::MatrixXf());
   deltas_.assign(layers - 1, Eigen::MatrixXf());
+  if (act_ == Activation::kGELU) pre_acts_.assign(layers - 1, Eigen::MatrixXf());
   for (int l = 0; l < layers; ++l) wt_.emplace_back(dims_[l], dims_[l + 1]);
 }
 
@@ -145,7 +149,11 @@ const Eigen::MatrixXf& Mlp::forward_with(const float* p,
     const dense::Epilogue epilogue =
         l + 1 < layers ? forward_epilogue(act_) : dense::Epilogue::kBias;
     const float* w = p + w_offset_[l];
-    const dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = p + b_offset_[l]};
+    dense::EpilogueArgs args{.c = z.data(), .ldc = out, .bias = p + b_offset_[l]};
+    if (epilogue == dense::Epilogue::kBiasGELU) {
+      pre_acts_[l].resize(out, batch);
+      args.pre = pre_acts_[l].data();
+    }
     if (out >= dense::kLogicalLanes) {
       dense::gemm_rows(out, batch, in, w, out, acts_[l].data(), 1, in, epilogue, args);
     } else {
@@ -225,7 +233,8 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
     }
 
     // dL/d(input) = W^T delta, times act'(input) when the input is a hidden activation:
-    // e.g. tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation (dense_kernels.hpp).
+    // e.g. tanh' = 1 - a^2, relu' = [a > 0], read off the stored activation (dense_kernels.hpp);
+    // gelu' off the stored pre-activation.
     // For the network's input only rows [first, in) are wanted: the columns [first, in) of W.
     Eigen::Index first = 0;
     dense::EpilogueArgs args;
@@ -234,7 +243,7 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
       deltas_[l - 1].resize(in, batch);
       args.c = deltas_[l - 1].data();
       epilogue = backward_epilogue(act_);
-      args.act = input;
+      args.act = derivative_source(l - 1);
       args.ld_act = in;
     } else if (grad_input != nullptr) {
       first = first_input_row;
@@ -256,14 +265,20 @@ void Mlp::backward_pass(const float* p, const Eigen::Ref<const Eigen::MatrixXf>&
       dense::gemm_dot(rows, batch, out, w + first * out, out, delta, ld_delta, epilogue, args);
     }
     if (grad_hidden != nullptr && l + 1 == layers && l > 0)
-      add_hidden_gradient(grad_hidden, ld_grad_hidden, input, in, batch, deltas_[l - 1]);
+      add_hidden_gradient(grad_hidden, ld_grad_hidden, derivative_source(l - 1), in, batch,
+                          deltas_[l - 1]);
   }
+}
+
+const float* Mlp::derivative_source(int hidden_layer) const {
+  return act_ == Activation::kGELU ? pre_acts_[hidden_layer].data()
+                                   : acts_[hidden_layer + 1].data();
 }
 
 void Mlp::add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const float* act,
                               Eigen::Index rows, Eigen::Index batch, Eigen::MatrixXf& delta) const {
   // delta = (W^T delta_next) * act'(z) already; (W^T delta_next + g) * act'(z) adds g * act'(z),
-  // with act' read off the activation as the backward epilogues do.
+  // with act' read off the activation as the backward epilogues do (GELU: off z itself).
   const Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>> g(grad, rows, batch,
                                                                      Eigen::OuterStride<>(ld_grad));
   const Eigen::Map<const Eigen::MatrixXf> a(act, rows, batch);
@@ -275,6 +290,12 @@ void Mlp::add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const flo
       break;
     case Activation::kLeakyReLU:
       delta.array() += (a.array() > 0.0f).select(g.array(), g.array() * kLeakyReLUSlope);
+      break;
+    case Activation::kGELU:  // gelu'(z) = Phi(z) + z phi(z), Phi(z) = erfc(-z / sqrt(2)) / 2
+      delta.array() += g.array() * a.array().unaryExpr([](float z) {
+        constexpr float kInvSqrt2 = 0.70710678118654752f, kInvSqrt2Pi = 0.39894228040143268f;
+        return 0.5f * std::erfc(-z * kInvSqrt2) + z * kInvSqrt2Pi * std::exp(-0.5f * z * z);
+      });
       break;
   }
 }

@@ -80,8 +80,9 @@ class Mlp {
   void init_torch_default(Rng& rng);
 
   // Runs the network on x (in_dim x batch) and returns the output (out_dim x batch). Keeps a
-  // copy of x and every layer's output for backward; the buffers are reused, so no allocation
-  // happens while the batch size stays the same. The reference stays valid until the next call.
+  // copy of x and every layer's output for backward (with GELU also every hidden layer's
+  // pre-activation); the buffers are reused, so no allocation happens while the batch size
+  // stays the same. The reference stays valid until the next call.
   const Eigen::MatrixXf& forward(const Eigen::Ref<const Eigen::MatrixXf>& x);
   // The output of the last forward.
   const Eigen::MatrixXf& output() const { return acts_.back(); }
@@ -130,9 +131,13 @@ class Mlp {
   // Rows [begin, begin + count) of wt_[l] = W_l^T, from the parameters at p: a part of the
   // transpose, so that two cores can share one.
   void transpose_weight_rows(const float* p, int l, Eigen::Index begin, Eigen::Index count);
-  // delta (the last hidden layer's dL/dz) += grad * act'(act), act the layer's activations.
+  // delta (the last hidden layer's dL/dz) += grad * act'(z), act' read off `act`:
+  // derivative_source() of that layer.
   void add_hidden_gradient(const float* grad, Eigen::Index ld_grad, const float* act,
                            Eigen::Index rows, Eigen::Index batch, Eigen::MatrixXf& delta) const;
+  // What the activation derivative of hidden layer l is computed from in the last forward: its
+  // output, or for GELU its pre-activation (pre_acts_[l]).
+  const float* derivative_source(int hidden_layer) const;
 
   std::vector<int> hidden_;
   std::vector<int> dims_;  // in, hidden..., out
@@ -143,6 +148,9 @@ class Mlp {
   Eigen::VectorXf grads_;
   // acts_[0] = input, acts_[l + 1] = output of layer l (after its activation when hidden).
   std::vector<Eigen::MatrixXf> acts_{1};
+  // pre_acts_[l] = pre-activation z of hidden layer l (dims_[l + 1] x batch), kept by forward
+  // for GELU only, whose derivative cannot be read off its output; empty for the others.
+  std::vector<Eigen::MatrixXf> pre_acts_;
   // deltas_[l] = dL/d(pre-activation of hidden layer l), (dims_[l + 1] x batch).
   std::vector<Eigen::MatrixXf> deltas_;
   // wt_[l] = weight(l)^T (in x out), refreshed whenever a kernel wants the transposed layout.

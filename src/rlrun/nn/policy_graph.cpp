@@ -198,6 +198,10 @@ float activate(Activation act, float v) {
     case Activation::kReLU: return v > 0.0f ? v : 0.0f;
     case Activation::kELU: return v > 0.0f ? v : std::exp(v) - 1.0f;
     case Activation::kLeakyReLU: return v > 0.0f ? v : kLeakyReLUSlope * v;
+    case Activation::kGELU:
+      // torch.nn.GELU, x (1 + erf(x / sqrt(2))) / 2, as x erfc(-x / sqrt(2)) / 2 in double:
+      // no cancellation for negative x.
+      return static_cast<float>(0.5 * v * std::erfc(-v * 0.70710678118654752));
   }
   return v;
 }

@@ -36,7 +36,7 @@ enum class GraphOp {
   kConcat,      // inputs side by side (axis 1)
   kSlice,       // columns [begin, begin + width) of one input
   kDense,       // x W^T + b (weight: width x input width, torch's Linear layout)
-  kActivation,  // tanh / relu / elu / leaky_relu, elementwise
+  kActivation,  // tanh / relu / elu / leaky_relu / gelu, elementwise
   kAffine,      // (x + c) * a + b, per column (c, a, b: width), in that order: the
                 //   normalisation (x - mean) / std and the unscaling low + (a + 1) range / 2
                 //   round as rlrun's own code does

@@ -14,9 +14,8 @@ namespace rlrun {
 
 // The `rlrun list` line of every algorithm's activation_fn.
 inline constexpr const char* kActivationFnDoc =
-    "activation between hidden layers: tanh, relu, elu, leaky_relu (or torch's "
-    "nn.Tanh, "
-    "nn.ReLU, nn.ELU, nn.LeakyReLU)";
+    "activation between hidden layers: tanh, relu, elu, leaky_relu, gelu (or torch's nn.Tanh, "
+    "nn.ReLU, nn.ELU, nn.LeakyReLU, nn.GELU; gelu is the exact erf form, torch's default)";
 
 inline void decode(const ConfigNode& n, Activation& out) {
   const std::string name = n.as_string();
@@ -28,9 +27,7 @@ inline void decode(const ConfigNode& n, Activation& out) {
   for (const auto& s : kActivationSpellings) valid.emplace_back(s.name);
   for (const auto& s : kActivationSpellings) valid.emplace_back(s.torch_name);
   n.fail("unknown activation '" + name + "'" + did_you_mean(name, valid) +
-         "; valid: tanh, relu, elu, leaky_relu (or torch's nn.Tanh, nn.ReLU, "
-         "nn.ELU, "
-         "nn.LeakyReLU)");
+         "; valid: " + valid_activation_names());
 }
 
 inline YAML::Node encode(Activation act) { return YAML::Node(std::string(activation_name(act))); }

@@ -127,7 +127,8 @@ class PolicyTranslation {
           return YAML::Node(std::string(activation_name(*act)));
     }
     fail("policy_kwargs activation_fn " + v.describe() +
-         ": rlrun reads nn.Tanh, nn.ReLU, nn.ELU and nn.LeakyReLU (also th.nn.X, torch.nn.X)");
+         ": rlrun reads nn.Tanh, nn.ReLU, nn.ELU, nn.LeakyReLU and nn.GELU (also th.nn.X, "
+         "torch.nn.X)");
   }
 
   void no_effect(const std::string& key, const PyValue& v) {
