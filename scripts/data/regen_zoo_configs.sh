@@ -18,12 +18,16 @@ for algo in ppo a2c dqn sac td3 ddpg tqc; do
   file=hyperparams/$algo.yml
   for env in CartPole-v1 Pendulum-v1 MountainCar-v0 MountainCarContinuous-v0 Acrobot-v1 \
              LunarLander-v3 LunarLanderContinuous-v3 BipedalWalker-v3 BipedalWalkerHardcore-v3 \
+             CarRacing-v3 \
              HalfCheetah-v4 Hopper-v4 Walker2d-v4 Ant-v4 Humanoid-v4 Swimmer-v4 \
              HumanoidStandup-v4 InvertedPendulum-v4 InvertedDoublePendulum-v4 Reacher-v4 \
              Pusher-v4; do
     # Only the env's own entry (or its v2 name, for the MuJoCo tasks): `default` entries are
     # not tuned for it.
     grep -q -e "^$env:" -e "^${env%-v4}-v2:" "$file" || continue
+    # The zoo's SAC and TQC CarRacing entries read a pretrained autoencoder of another project
+    # (ae.wrapper.AutoencoderWrapper, logs/car_racing_rgb_160.pkl): rlrun refuses them by name.
+    [ "$env" = CarRacing-v3 ] && [ "$algo" != ppo ] && continue
     name=$(echo "${env%-v*}" | tr '[:upper:]' '[:lower:]')_$algo
     if "$rlrun" zoo import "$file" "$env" -o "$out/$name.yaml" 2>"$out/.$name.err"; then
       rm -f "$out/.$name.err"

@@ -757,3 +757,25 @@ TEST_CASE(
   CHECK(zoo_run_name("DQN", "../../x y\n") == "dqn_..-..-x-y-");
   CHECK(zoo_run_name("DQN", std::string(500, 'x')).size() == 104);
 }
+
+TEST_CASE("zoo import: the zoo's SAC CarRacing entry names a pretrained autoencoder: refused",
+          "[zoo]") {
+  // rl-baselines3-zoo's sac.yml and tqc.yml CarRacing entries read an autoencoder trained by
+  // another project (aae-train-donkeycar) from logs/car_racing_rgb_160.pkl.
+  TempDir dir("zoo_car_racing_sac");
+  const std::string file = write_file(dir, "sac.yml", R"zoo(CarRacing-v3:
+  env_wrapper:
+    - rl_zoo3.wrappers.FrameSkip:
+        skip: 2
+    - ae.wrapper.AutoencoderWrapper:
+        ae_path: "logs/car_racing_rgb_160.pkl"
+    - rl_zoo3.wrappers.HistoryWrapper:
+        horizon: 2
+  normalize: True
+  n_envs: 2
+  n_timesteps: !!float 1e6
+  policy: 'MlpPolicy'
+)zoo");
+  CHECK_THAT(import_error(file, "CarRacing-v3"),
+             Catch::Contains("ae.wrapper.AutoencoderWrapper") && Catch::Contains("sac.yml:5"));
+}
