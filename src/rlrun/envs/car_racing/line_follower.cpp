@@ -13,7 +13,7 @@ namespace {
 
 constexpr int kLookahead = 6;       // track points ahead of the nearest one (3.5 m each)
 constexpr int kBendHorizon = 14;    // points whose heading change sets the speed
-constexpr double kFastSpeed = 110;   // m/s on straights
+constexpr double kFastSpeed = 110;  // m/s on straights
 constexpr double kSlowSpeed = 45;   // m/s through the sharpest bends
 constexpr double kSteerGain = 2.5;  // steer action per radian of heading error
 
