@@ -7,7 +7,6 @@
 // does. The Python package offers this as env.unwrapped.track / .set_track / .car (python/,
 // docs/car_racing.md); race_track_state_of finds it through wrappers.
 #include <array>
-#include <optional>
 #include <span>
 #include <vector>
 

@@ -1,4 +1,5 @@
 #include "rlrun/envs/car_racing/car_dynamics.hpp"
+#include "rlrun/envs/car_racing/race_track.hpp"
 
 #include <box2d/box2d.h>
 
@@ -28,8 +29,6 @@ constexpr double kWheelRad = kWheelR * kSize;  // w.wheel_rad (front_k is 1 for 
 constexpr double kForceCoefficient = 205000 * kSize * kSize;
 constexpr double kBrakeForce = 15;  // BRAKE_FORCE, radians per second
 constexpr size_t kMaxSkidMarks = 30, kMaxSkidPoints = 30;
-
-double sign(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 
 b2PolygonShape polygon(const std::vector<std::array<double, 2>>& points) {
   std::vector<b2Vec2> vertices;

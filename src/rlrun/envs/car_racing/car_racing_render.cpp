@@ -73,12 +73,12 @@ void draw_body(const b2Body* body, const View& view, Rgb color, PolygonCanvas& c
   const b2Transform& t = body->GetTransform();
   for (const b2Fixture* f = body->GetFixtureList(); f; f = f->GetNext()) {
     const auto* shape = static_cast<const b2PolygonShape*>(f->GetShape());
-    std::vector<Point> p;
+    std::array<Point, b2_maxPolygonVertices> p;
     for (int k = 0; k < shape->m_count; ++k) {
       const b2Vec2 v = b2Mul(t, shape->m_vertices[k]);
-      p.push_back(view(v.x, v.y));
+      p[k] = view(v.x, v.y);
     }
-    canvas.polygon(p, color);
+    canvas.polygon(std::span<const Point>(p.data(), static_cast<size_t>(shape->m_count)), color);
   }
 }
 
@@ -89,7 +89,6 @@ void draw_wheel_stripe(const b2Body* body, double phase, const View& view, Polyg
   const double s1 = std::sin(a1), s2 = std::sin(a2);
   double c1 = std::cos(a1), c2 = std::cos(a2);
   if (s1 > 0 && s2 > 0) return;
-  const auto sign = [](double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); };
   if (s1 > 0) c1 = sign(c1);
   if (s2 > 0) c2 = sign(c2);
   const double w = kWheelW * kSize, r = kWheelR * kSize;

@@ -15,9 +15,6 @@ constexpr int kMaxTrackSteps = 2500;
 // A track read from outside: more points than Gymnasium's generator can make is refused.
 constexpr size_t kMaxTrackPoints = 10000;
 
-// numpy.sign: -1, 0 or +1.
-double sign(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
-
 // Python's seq[i] for -len <= i < len.
 template <class T>
 const T& wrapped(std::span<const T> seq, long i) {

@@ -26,6 +26,9 @@ inline constexpr double kGrassDim = kPlayfield / 20.0;   // GRASS_DIM: grass pat
 inline constexpr int kCheckpoints = 12;                  // CHECKPOINTS in _create_track
 
 using Vec2 = std::array<double, 2>;
+
+// numpy.sign, which Gymnasium's track, car and drawing code use: -1, 0 or +1.
+inline double sign(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 using Quad = std::array<Vec2, 4>;
 
 // One random closed track from `rng`, or nothing when this attempt fails (the loop does not

@@ -2,8 +2,6 @@
 
 #include <stdexcept>
 
-#include "rlrun/render/rasterizer.hpp"
-
 namespace rlrun {
 
 GripperCamera wrist_camera(const GripperWorld& world) {
@@ -60,9 +58,8 @@ std::span<float> GripperCameraObservation::state_part(std::span<float> obs,
 
 std::span<float> GripperCameraObservation::pixels_part(std::span<float> obs,
                                                        const Space& space) const {
-  const size_t n = static_cast<size_t>(config_.image_size) * config_.image_size * 3;
-  if (!state_) return obs.first(n);
-  return obs.subspan(static_cast<size_t>(space.offset(0)), n);
+  if (!state_) return obs.first(image_floats());
+  return obs.subspan(static_cast<size_t>(space.offset(0)), image_floats());
 }
 
 void GripperCameraObservation::write_pixels(const GripperWorld& world, Rgb cube_color,
@@ -72,9 +69,11 @@ void GripperCameraObservation::write_pixels(const GripperWorld& world, Rgb cube_
 
 void GripperCameraObservation::write_image(const GripperWorld& world, Rgb cube_color,
                                            std::span<float> out) {
-  if (!frame_) frame_ = std::make_unique<Frame>(config_.image_size, config_.image_size);
-  Rasterizer raster(*frame_);
-  draw_gripper_scene(raster, *frame_, world, wrist_ ? wrist_camera(world) : GripperCamera{},
+  if (!frame_) {
+    frame_ = std::make_unique<Frame>(config_.image_size, config_.image_size);
+    raster_ = std::make_unique<Rasterizer>(*frame_);
+  }
+  draw_gripper_scene(*raster_, *frame_, world, wrist_ ? wrist_camera(world) : GripperCamera{},
                      cube_color);
   const uint32_t* pixels = frame_->pixels();
   const int size = config_.image_size;

@@ -16,6 +16,7 @@
 #include "rlrun/envs/gripper/gripper_scene_render.hpp"
 #include "rlrun/envs/gripper/gripper_world.hpp"
 #include "rlrun/frame.hpp"
+#include "rlrun/render/rasterizer.hpp"
 #include "rlrun/space.hpp"
 
 namespace rlrun {
@@ -54,8 +55,12 @@ class GripperCameraObservation {
   // Draws the camera image into its part of `obs` (0-255 values, row-major H x W x 3).
   void write_pixels(const GripperWorld& world, Rgb cube_color, std::span<float> obs,
                     const Space& space);
-  // The image alone: Space::image({image_size, image_size, 3}), and drawing it into `out`.
+  // The image alone: Space::image({image_size, image_size, 3}), its number of floats, and
+  // drawing it into `out`.
   Space image_space() const;
+  size_t image_floats() const {
+    return static_cast<size_t>(config_.image_size) * config_.image_size * 3;
+  }
   void write_image(const GripperWorld& world, Rgb cube_color, std::span<float> out);
 
  private:
@@ -63,7 +68,9 @@ class GripperCameraObservation {
 
   GripperCameraConfig config_;
   bool pixels_ = false, state_ = true, wrist_ = false;
-  std::unique_ptr<Frame> frame_;  // made at the first image
+  // Made at the first image and kept: drawing allocates nothing per step.
+  std::unique_ptr<Frame> frame_;
+  std::unique_ptr<Rasterizer> raster_;  // draws into *frame_
 };
 
 }  // namespace rlrun

@@ -218,8 +218,7 @@ StepResult GripperGoalEnv::step(std::span<const float> action, std::span<float> 
 void GripperGoalEnv::write_observation(std::span<float> obs) {
   const GripperWorld& w = *world_;
   if (camera_.uses_pixels()) {
-    const size_t n = static_cast<size_t>(camera_.image_space().flat_dim());
-    camera_.write_image(w, {200, 40, 40}, obs.subspan(at_pixels_, n));
+    camera_.write_image(w, {200, 40, 40}, obs.subspan(at_pixels_, camera_.image_floats()));
   }
   write_goals(obs);
   if (!camera_.uses_state()) return;
