@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "rlrun/core/config_checks.hpp"
 #include "rlrun/env.hpp"
 #include "rlrun/env/race_track_state.hpp"
 #include "rlrun/env_seeding.hpp"
@@ -46,7 +47,7 @@ struct CarRacingConfig {
     v("domain_randomize", domain_randomize,
       "new random road, background and grass colours at every reset");
     v("lap_complete_percent", lap_complete_percent,
-      "fraction of the tiles to visit before reaching tile 0 again ends the lap");
+      "fraction of the tiles to visit before reaching tile 0 again ends the lap", unit_interval());
   }
 };
 

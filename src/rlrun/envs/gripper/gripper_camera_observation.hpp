@@ -31,8 +31,10 @@ struct GripperCameraConfig {
   void visit(V& v) {
     v("obs_type", obs_type,
       "state (the vector), pixels (a uint8 camera image, CnnPolicy) or both (Dict pixels + "
-      "state, MultiInputPolicy)");
-    v("camera", camera, "fixed (front-right, above the table) or wrist (on the palm)");
+      "state, MultiInputPolicy)",
+      OneOf{{"state", "pixels", "both"}});
+    v("camera", camera, "fixed (front-right, above the table) or wrist (on the palm)",
+      OneOf{{"fixed", "wrist"}});
     v("image_size", image_size, "camera image side in pixels", in_range(16, 512));
   }
 };
