@@ -28,4 +28,12 @@ double quantile_huber_loss(const Eigen::Ref<const Eigen::MatrixXf>& current,
                            const Eigen::Ref<const Eigen::MatrixXf>& target, float scale,
                            Eigen::MatrixXf& grad, Eigen::MatrixXf& rho);
 
+// The same for the samples (columns) [begin, end) only, into those columns of grad and rho,
+// which the caller has sized K x n and zeroed: samples are independent, so parts of a batch can
+// run on several threads and give the bits of one call (the loss is rho.sum() afterwards).
+void quantile_huber_columns(const Eigen::Ref<const Eigen::MatrixXf>& current,
+                            const Eigen::Ref<const Eigen::MatrixXf>& target, float scale,
+                            Eigen::MatrixXf& grad, Eigen::MatrixXf& rho, Eigen::Index begin,
+                            Eigen::Index end);
+
 }  // namespace rlrun

@@ -1,8 +1,11 @@
 #include "rlrun/algos/qrdqn/qrdqn.hpp"
 
+#include <algorithm>
+
 #include "rlrun/algos/common/quantile_huber_loss.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
 #include "rlrun/core/config_validation.hpp"
+#include "rlrun/core/thread_pool.hpp"
 #include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
@@ -96,9 +99,23 @@ double QRDQN::train_on_batch(const ReplayBatch& b, float lr) {
 
   // loss = quantile_huber_loss(current, target, sum_over_quantiles=True): summed over the
   // current quantiles, averaged over the batch and the target quantiles.
+  // The samples' K x T pairs in parts of a fixed size over the run's threads (the same bits on
+  // any number; the sum is taken over the whole matrix afterwards).
   const float scale = 1.0f / (static_cast<float>(n) * static_cast<float>(quantiles));
-  const double loss =
-      quantile_huber_loss(current_quantiles_, target_quantiles_, scale, grad_current_, rho_);
+  grad_current_.setZero(quantiles, n);
+  rho_.setZero(quantiles, n);
+  constexpr Eigen::Index kSamplesPerPart = 16;
+  const auto parts = static_cast<int>((n + kSamplesPerPart - 1) / kSamplesPerPart);
+  const auto part = [&](int p) {
+    const Eigen::Index begin = p * kSamplesPerPart;
+    quantile_huber_columns(current_quantiles_, target_quantiles_, scale, grad_current_, rho_, begin,
+                           std::min(n, begin + kSamplesPerPart));
+  };
+  if (setup_.pool && parts > 1)
+    setup_.pool->run(parts, part);
+  else
+    for (int p = 0; p < parts; ++p) part(p);
+  const double loss = static_cast<double>(rho_.sum());
 
   // loss.backward() through the gather: the gradient lands on the taken action's rows.
   grad_outputs_.setZero(out.rows(), n);
