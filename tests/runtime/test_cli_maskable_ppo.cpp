@@ -46,6 +46,17 @@ TEST_CASE("MaskablePPO: the GridWorld config trains, and eval and record use its
                             std::regex("mean_reward = (-?[0-9.]+) \\+/- [0-9.]+, "
                                        "mean_ep_length = ([0-9.]+)")));
   CHECK(std::stod(m[1].str()) == Approx(-std::stod(m[2].str())).margin(0.06));
+  const auto record = run_rlrun("record --model " + model + " --frames " + dir / "frames" +
+                                " --episodes 3 --stochastic");
+  INFO(record.output);
+  CHECK(record.exit_code == 0);
+  CHECK(record.output.find("(MaskablePPO stochastic)") != std::string::npos);
+  // Export writes the unmasked deterministic policy and says so.
+  const auto exported =
+      run_rlrun("export --model " + model + " --format c --output " + dir / "policy_c");
+  INFO(exported.output);
+  CHECK(exported.exit_code == 0);
+  CHECK(exported.output.find("takes no action masks") != std::string::npos);
   const auto list = run_rlrun("list MaskablePPO");
   CHECK(list.exit_code == 0);
   CHECK(list.output.find("target_kl") != std::string::npos);
