@@ -70,8 +70,7 @@ void ActionMaskReader::resolve(const Info& info, int total) {
   known_keys_ = info.keys().size();
 }
 
-void ActionMaskReader::read(const Info& info, int agents, std::span<float> out,
-                            const std::string& env_id, const std::string& where) {
+std::string ActionMaskReader::read(const Info& info, int agents, std::span<float> out) {
   const int total = agents * size_;
   if (static_cast<int>(indices_.size()) != total || info.keys().size() != known_keys_)
     resolve(info, total);
@@ -81,27 +80,25 @@ void ActionMaskReader::read(const Info& info, int agents, std::span<float> out,
     const int reported = reported_entries(info);
     const std::string needed = std::to_string(total) + " (" + action_space_.describe() +
                                (agents > 1 ? ", " + std::to_string(agents) + " agents" : "") + ")";
-    throw RuntimeFailure(env_id + " " + where + ": " +
-                         (reported == 0
-                              ? "the env reports no action mask (info action_mask.0, ...), which "
-                                "MaskablePPO needs; its entries must number " +
-                                    needed
-                              : "the env reports an action mask of " + std::to_string(reported) +
-                                    " entries, MaskablePPO needs " + needed));
+    if (reported == 0)
+      return "the env reports no action mask (info action_mask.0, ...), which MaskablePPO "
+             "needs; its entries must number " +
+             needed;
+    return "the env reports an action mask of " + std::to_string(reported) +
+           " entries, MaskablePPO needs " + needed;
   }
   for (int k = 0; k < total; ++k) out[k] = static_cast<float>(info.get(indices_[k]));
   for (int a = 0; a < agents; ++a) {
-    const std::string problem =
+    std::string problem =
         action_mask_problem(action_space_, out.subspan(static_cast<size_t>(a) * size_, size_));
     if (!problem.empty())
-      throw RuntimeFailure(env_id + " " + where +
-                           (agents > 1 ? " (agent " + std::to_string(a) + ")" : "") + ": " +
-                           problem);
+      return agents > 1 ? "agent " + std::to_string(a) + ": " + problem : problem;
   }
+  return "";
 }
 
 void read_action_masks(const VecEnv& env, std::vector<ActionMaskReader>& readers,
-                       Eigen::MatrixXf& masks, const std::string& where) {
+                       Eigen::MatrixXf& masks, int64_t step) {
   if (readers.empty()) readers.assign(env.num_copies(), ActionMaskReader(env.action_space()));
   const int size = readers.front().size();
   masks.resize(size, env.num_envs());
@@ -109,9 +106,13 @@ void read_action_masks(const VecEnv& env, std::vector<ActionMaskReader>& readers
   for (int c = 0; c < env.num_copies(); ++c) {
     const Env& copy = env.env(c);
     const int agents = copy.num_agents();
-    readers[c].read(copy.info(), agents,
-                    std::span<float>(masks.col(column).data(), static_cast<size_t>(size) * agents),
-                    copy.id() + " (env " + std::to_string(c) + ")", where);
+    const std::string problem = readers[c].read(
+        copy.info(), agents,
+        std::span<float>(masks.col(column).data(), static_cast<size_t>(size) * agents));
+    if (!problem.empty())
+      throw RuntimeFailure(copy.id() + " (env " + std::to_string(c) + ") " +
+                           (step < 0 ? "after reset()" : "at step " + std::to_string(step)) + ": " +
+                           problem);
     column += agents;
   }
 }

@@ -47,11 +47,11 @@ class ActionMaskReader {
   explicit ActionMaskReader(const Space& action_space);
 
   int size() const { return size_; }
-  // Writes `agents` masks (agent-major, agents * size() floats) into `out`. Throws
-  // RuntimeFailure naming `env_id` and `where` (e.g. "at step 1200") when the Info has no mask,
-  // a mask of another length, or a mask action_mask_problem refuses.
-  void read(const Info& info, int agents, std::span<float> out, const std::string& env_id,
-            const std::string& where);
+  // Writes `agents` masks (agent-major, agents * size() floats) into `out` and returns "", or
+  // returns what is wrong: the Info has no mask, a mask of another length, or a mask
+  // action_mask_problem refuses. (No allocation when the masks are fine: rollouts call it
+  // every step; the caller names the env and the step in its error.)
+  std::string read(const Info& info, int agents, std::span<float> out);
 
  private:
   void resolve(const Info& info, int total);
@@ -64,8 +64,10 @@ class ActionMaskReader {
 };
 
 // The current masks of every column of `env` (size x num_envs), read from each copy's Info
-// with one reader per copy (`readers` is resized to the copies). `where` ends the error text.
+// with one reader per copy (`readers` is resized to the copies). Throws RuntimeFailure naming
+// the env copy and the step: "GridWorld-v0 (env 0) at step 1200: ..." (`step` = the env steps
+// so far; negative: "after reset()").
 void read_action_masks(const VecEnv& env, std::vector<ActionMaskReader>& readers,
-                       Eigen::MatrixXf& masks, const std::string& where);
+                       Eigen::MatrixXf& masks, int64_t step);
 
 }  // namespace rlrun

@@ -62,7 +62,7 @@ void OnPolicyCollector::start(VecEnv& env) {
     return;
   }
   last_obs_ = env.reset();
-  if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, "after reset()");
+  if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, -1);
   last_episode_starts_.setOnes();
   iterations_ = 0;
 }
@@ -132,9 +132,7 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
     }
     last_obs_ = env.obs();
     // sb3-contrib get_action_masks(env) at the next step: the masks of the new observations.
-    if (mask_size_ > 0)
-      read_action_masks(env, mask_readers_, last_masks_,
-                        "at step " + std::to_string(num_timesteps));
+    if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, num_timesteps);
   }
   policy.predict_values(last_obs_, terminal_value_);
   compute_gae(buffer_.rewards, buffer_.values, buffer_.episode_starts, terminal_value_,

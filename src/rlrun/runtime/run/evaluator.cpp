@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "rlrun/core/errors.hpp"
 #include "rlrun/env/action_mask.hpp"
 #include "rlrun/env/step_all_agents.hpp"
 
@@ -47,9 +48,12 @@ ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministi
                                                   Eigen::MatrixXf& actions) {
     const int agents = static_cast<int>(obs.cols());
     masks->values.resize(masks->reader.size(), agents);
-    masks->reader.read(env.info(), agents,
-                       {masks->values.data(), static_cast<size_t>(masks->values.size())}, env.id(),
-                       "at step " + std::to_string(masks->calls++) + " of the episodes");
+    const std::string problem = masks->reader.read(
+        env.info(), agents, {masks->values.data(), static_cast<size_t>(masks->values.size())});
+    if (!problem.empty())
+      throw RuntimeFailure(env.id() + " at step " + std::to_string(masks->calls) +
+                           " of the episodes: " + problem);
+    ++masks->calls;
     algorithm.predict_masked(obs, masks->values, deterministic, actions);
   };
 }
