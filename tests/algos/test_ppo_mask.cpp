@@ -4,7 +4,9 @@
 // exact resume, checked checkpoints, GridWorld's mask, and the errors for bad masks.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "rlrun/algos/common/actor_critic_policy.hpp"
@@ -77,6 +79,42 @@ class MaskedEnv : public Env {
   std::vector<int> keys_;
   Space obs_space_ = Space::box(-1.0f, 1.0f, {1});
   Space act_space_ = Space::discrete(4);
+  Info info_;
+};
+
+// Three agents with Discrete(3) actions; agent a may take only action a (its mask is
+// action_mask.<3a> ... action_mask.<3a + 2>, agent-major).
+class MaskedAgentsEnv : public Env {
+ public:
+  MaskedAgentsEnv() {
+    for (int k = 0; k < 9; ++k) info_.set(info_.add_key(action_mask_key(k)), k % 4 == 0);
+  }
+  int num_agents() const override { return 3; }
+  const Space& observation_space() const override { return obs_space_; }
+  const Space& action_space() const override { return act_space_; }
+  void reset(std::optional<uint64_t>, std::span<float> obs) override {
+    std::fill(obs.begin(), obs.end(), 0.0f);
+  }
+  StepResult step(std::span<const float>, std::span<float>) override {
+    throw std::logic_error("several agents");
+  }
+  void step_agents(std::span<const float> actions, std::span<float> obs,
+                   std::span<StepResult> results) override {
+    const bool end = ++steps_ % 30 == 0;
+    for (int a = 0; a < 3; ++a) {
+      illegal_ += actions[a] != static_cast<float>(a);
+      results[a] = {1.0, false, end};
+    }
+    reset(std::nullopt, obs);
+  }
+  const Info& info() const override { return info_; }
+  std::string id() const override { return "MaskedAgents-v0"; }
+  int illegal() const { return illegal_; }
+
+ private:
+  int illegal_ = 0, steps_ = 0;
+  Space obs_space_ = Space::box(-1.0f, 1.0f, {1});
+  Space act_space_ = Space::discrete(3);
   Info info_;
 };
 
@@ -388,6 +426,21 @@ TEST_CASE("MaskablePPO takes only the actions the env's masks allow, in training
   masks.row(3).setOnes();
   algo.predict_masked(obs, masks, false, actions);
   CHECK((actions.array() == 3.0f).all());
+}
+
+TEST_CASE("a multi-agent env's masks are agent-major, one per column of the VecEnv",
+          "[algos][ppo_mask]") {
+  std::vector<EnvPtr> envs;
+  for (int i = 0; i < 2; ++i) envs.push_back(std::make_unique<MaskedAgentsEnv>());
+  VecEnv env(std::move(envs));
+  REQUIRE(env.num_envs() == 6);
+  MaskablePPO algo(small_config(), {env.observation_space(), env.action_space(), 6, 2});
+  TrainingHooks hooks;
+  algo.learn(env, 6 * 64, hooks);
+  for (int c = 0; c < 2; ++c) CHECK(static_cast<const MaskedAgentsEnv&>(env.env(c)).illegal() == 0);
+  MaskedAgentsEnv eval_env;
+  CHECK(evaluate_policy(algo, eval_env, 2, false, 1).returns.size() == 2);
+  CHECK(eval_env.illegal() == 0);
 }
 
 TEST_CASE("bad action masks stop MaskablePPO with the env and the step named",
