@@ -100,7 +100,7 @@ class Model:
 
     @property
     def algorithm(self) -> str:
-        """"PPO", "A2C", "DQN", "SAC", "TD3", "DDPG" or "TQC"."""
+        """"PPO", "A2C", "DQN", "SAC", "TD3", "DDPG", "TQC" or "QRDQN"."""
         return self._core.algorithm
 
     @property

@@ -12,12 +12,13 @@
 #include <fstream>
 #include <vector>
 
+#include "algos/discrete_replay_batch.hpp"
 #include "fakes/constant_env.hpp"
 #include "nn/grad_check.hpp"
 #include "nn/nature_cnn_gradient_check.hpp"
 #include "nn/nature_cnn_reference.hpp"
+#include "rlrun/algos/common/exploration_schedule.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
-#include "rlrun/algos/dqn/exploration_schedule.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/experiment/env_factory.hpp"
@@ -42,25 +43,6 @@ AlgorithmSetup discrete_setup(int obs_dim, int n_actions, int n_envs = 1, uint64
 // One sample through test::mlp_forward.
 Eigen::VectorXd mlp_forward(const Mlp& net, const Eigen::VectorXd& p, const Eigen::VectorXd& x) {
   return test::mlp_forward(net, p, x).col(0);
-}
-
-ReplayBatch random_batch(Rng& rng, int obs_dim, int n_actions, int n) {
-  ReplayBatch b;
-  b.obs.resize(obs_dim, n);
-  b.next_obs.resize(obs_dim, n);
-  b.actions.resize(1, n);
-  b.rewards.resize(n);
-  b.dones.resize(n);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < obs_dim; ++i) {
-      b.obs(i, j) = static_cast<float>(rng.uniform(-1, 1));
-      b.next_obs(i, j) = static_cast<float>(rng.uniform(-1, 1));
-    }
-    b.actions(0, j) = static_cast<float>(rng.below(n_actions));
-    b.rewards(j) = static_cast<float>(rng.uniform(-2, 2));
-    b.dones(j) = j % 4 == 0 ? 1.0f : 0.0f;
-  }
-  return b;
 }
 
 VecEnv constant_vec_env(int n_envs, bool truncate, int episode_length) {
@@ -138,7 +120,7 @@ TEST_CASE("DQN loss gradient w.r.t. every q_net parameter matches finite differe
   Rng rng(7);
   for (Eigen::Index i = 0; i < dqn.q_net_target().num_params(); ++i)
     dqn.q_net_target().params()(i) += static_cast<float>(rng.uniform(-0.5, 0.5));
-  const ReplayBatch b = random_batch(rng, obs_dim, n_actions, n);
+  const ReplayBatch b = test::random_discrete_batch(rng, obs_dim, n_actions, n);
   const double loss = dqn.train_on_batch(b, 0.0f);
   const Eigen::VectorXd analytic = dqn.q_net().grads().cast<double>();
 
@@ -191,7 +173,7 @@ TEST_CASE("DQN CnnPolicy: the loss gradient reaches q_net's NatureCNN, as centra
   DQN dqn(cfg, setup);
   REQUIRE(dqn.cnn() != nullptr);
   Rng rng(13);
-  ReplayBatch b = random_batch(rng, 36 * 36, n_actions, n);
+  ReplayBatch b = test::random_discrete_batch(rng, 36 * 36, n_actions, n);
   for (Eigen::Index k = 0; k < b.obs.size(); ++k) {
     b.obs.data()[k] = static_cast<float>(std::floor(rng.uniform(0.0, 256.0)));
     b.next_obs.data()[k] = static_cast<float>(std::floor(rng.uniform(0.0, 256.0)));
@@ -244,7 +226,7 @@ TEST_CASE(
   Rng rng(5);
   for (Eigen::Index i = 0; i < dqn.q_net_target().num_params(); ++i)
     dqn.q_net_target().params()(i) += static_cast<float>(rng.uniform(-0.05, 0.05));
-  const ReplayBatch b = random_batch(rng, obs_dim, n_actions, n);
+  const ReplayBatch b = test::random_discrete_batch(rng, obs_dim, n_actions, n);
   dqn.train_on_batch(b, 0.0f);
   const Eigen::VectorXd analytic = dqn.q_net().grads().cast<double>();
   const Eigen::VectorXd targets = dqn.td_targets().transpose().cast<double>();
@@ -291,7 +273,7 @@ TEST_CASE("DQN clips the gradient to max_grad_norm before its Adam step", "[algo
   cfg.max_grad_norm = 1e9;
   DQN unclipped(cfg, discrete_setup(5, 4, 1, 9));
   Rng rng(21);
-  const ReplayBatch b = random_batch(rng, 5, 4, 37);  // odd: unequal halves
+  const ReplayBatch b = test::random_discrete_batch(rng, 5, 4, 37);  // odd: unequal halves
   clipped.train_on_batch(b, 0.0f);
   unclipped.train_on_batch(b, 0.0f);
   const float norm = unclipped.q_net().grads().norm();
@@ -591,7 +573,7 @@ TEST_CASE("DQN update micro-benchmark (rl-zoo CartPole sizes)", "[.bench][dqn_be
   setup.pool = &testing::test_thread_pool();
   DQN dqn(cfg, setup);
   Rng rng(1);
-  const ReplayBatch b = random_batch(rng, 4, 2, 64);
+  const ReplayBatch b = test::random_discrete_batch(rng, 4, 2, 64);
   for (int i = 0; i < 200; ++i) dqn.train_on_batch(b, 1e-6f);
   const int iters = 2000;
   double best = 1e30;

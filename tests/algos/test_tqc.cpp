@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "algos/entropy_regularized_fixtures.hpp"
-#include "rlrun/algos/tqc/quantile_huber_loss.hpp"
+#include "rlrun/algos/common/quantile_huber_loss.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
 #include "rlrun/algos/tqc/truncated_quantiles.hpp"
 #include "rlrun/nn/policy_graph.hpp"

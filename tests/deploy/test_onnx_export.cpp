@@ -375,6 +375,14 @@ TEST_CASE("export onnx: TQC (SAC's squashed actor, the mean of every atom as the
               5, false});
 }
 
+TEST_CASE("export onnx: QRDQN (argmax of each action's quantile mean, the means as the value)",
+          "[deploy][onnx][qrdqn]") {
+  check_case({"qrdqn_cartpole", 2000,
+              "env: {id: CartPole-v1}\n"
+              "algo: {id: QRDQN, learning_starts: 500, policy: {net_arch: [32], n_quantiles: 7}}\n",
+              200, true});
+}
+
 TEST_CASE("export onnx: TD3 and DDPG (deterministic tanh actors, Q(s, a) as the value)",
           "[deploy][onnx]") {
   check_case({"td3_elu", 300,

@@ -24,6 +24,9 @@ MODELS = {
     "dqn": ("env: {id: MountainCar-v0}\n"
             "algo: {id: DQN, learning_starts: 50, batch_size: 16, buffer_size: 1000,"
             " policy: {net_arch: [16]}}\n", 200),
+    "qrdqn": ("env: {id: Acrobot-v1}\n"
+              "algo: {id: QRDQN, learning_starts: 50, batch_size: 16, buffer_size: 1000,"
+              " policy: {net_arch: [16], n_quantiles: 5}}\n", 200),
     "sac": ("env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},"
             " {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
             "algo: {id: SAC, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
@@ -100,6 +103,9 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
     def test_dqn(self):
         self.check_exact("dqn", "DQN")
+
+    def test_qrdqn(self):
+        self.check_exact("qrdqn", "QRDQN")
 
     def test_multidiscrete_observations_one_hot_encoded(self):
         # GridWorld's MultiDiscrete positions go in; the model's OneHotObservation encodes them.

@@ -210,6 +210,18 @@ TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][re
   check_resume_equals_uninterrupted(td3, "KILL");
 }
 
+TEST_CASE("resume: QRDQN resumes exactly from a checkpoint (the shared Q-learning state)",
+          "[cli][resume][qrdqn]") {
+  const ResumeCase qrdqn{"cartpole_qrdqn.yaml",
+                         "cartpole_qrdqn",
+                         " --set run.total_timesteps=3000 --set algo.learning_starts=500"
+                         " --set checkpoint.freq=1000 --set eval.freq=0",
+                         "step_1024.zip",
+                         1,
+                         false};
+  check_resume_equals_uninterrupted(qrdqn, "KILL");
+}
+
 TEST_CASE(
     "resume: DQN on pixels with optimize_memory_usage resumes exactly (uint8 observations in the "
     "checkpoint, the buffer wrapped)",

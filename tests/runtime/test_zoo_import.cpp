@@ -28,10 +28,14 @@ const std::string kZooData = std::string(RLRUN_SOURCE_DIR) + "/tests/data/zoo";
 const std::vector<std::string> kAlgos{"ppo", "a2c", "dqn", "sac", "td3", "ddpg"};
 const std::vector<std::string> kVersions{"", "2023-04", "2021-02", "2020-12"};
 
-// The files of a zoo version: sb3-contrib's TQC (tqc.yml) is kept for the current one only.
+// The files of a zoo version: sb3-contrib's TQC and QR-DQN (tqc.yml, qrdqn.yml) are kept for
+// the current one only.
 std::vector<std::string> algos_of(const std::string& version) {
   std::vector<std::string> algos = kAlgos;
-  if (version.empty()) algos.push_back("tqc");
+  if (version.empty()) {
+    algos.push_back("tqc");
+    algos.push_back("qrdqn");
+  }
   return algos;
 }
 
@@ -42,7 +46,8 @@ std::string default_env(const std::string& algo) {
 }
 
 bool off_policy(const std::string& algo) {
-  return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "dqn" || algo == "tqc";
+  return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "dqn" || algo == "tqc" ||
+         algo == "qrdqn";
 }
 
 // Imports `env` from `file` and checks the experiment; with `train`, trains it briefly: 2000
@@ -716,7 +721,6 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
   TempDir dir("zoo_missing_algo");
   const std::string entry = "CartPole-v1:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n";
   const std::vector<std::pair<std::string, std::string>> files{
-      {"qrdqn.yml", "rlrun has no QR-DQN (sb3-contrib's QRDQN) yet"},
       {"trpo.yml", "rlrun has no TRPO (sb3-contrib's TRPO) yet"},
       {"ars.yml", "rlrun has no ARS"},
       {"crossq.yml", "rlrun has no CrossQ"},

@@ -150,11 +150,11 @@ TEST_CASE("search space: bad parameters are errors at their line", "[tune]") {
 TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped configs", "[tune]") {
   Registry registry = make_builtin_registry();
   const std::vector<std::tuple<std::string, std::string, bool>> cases{
-      {"PPO", "cartpole_ppo.yaml", false},        {"A2C", "cartpole_a2c.yaml", false},
-      {"DQN", "cartpole_dqn.yaml", false},        {"SAC", "pendulum_sac.yaml", false},
-      {"TD3", "pendulum_td3.yaml", false},        {"DDPG", "pendulum_ddpg.yaml", false},
-      {"TQC", "pendulum_tqc.yaml", false},        {"DQN", "bitflipping_dqn_her.yaml", true},
-      {"SAC", "gripper_reach_sac_her.yaml", true}};
+      {"PPO", "cartpole_ppo.yaml", false},         {"A2C", "cartpole_a2c.yaml", false},
+      {"DQN", "cartpole_dqn.yaml", false},         {"SAC", "pendulum_sac.yaml", false},
+      {"TD3", "pendulum_td3.yaml", false},         {"DDPG", "pendulum_ddpg.yaml", false},
+      {"TQC", "pendulum_tqc.yaml", false},         {"DQN", "bitflipping_dqn_her.yaml", true},
+      {"SAC", "gripper_reach_sac_her.yaml", true}, {"QRDQN", "cartpole_qrdqn.yaml", false}};
   for (const auto& [algo, file, her] : cases) {
     INFO(algo << " " << file);
     auto space = zoo_space(algo, her);
@@ -179,6 +179,7 @@ TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped con
         CHECK(trial.user_attrs["gamma"].get<double>() ==
               Approx(1 - trial.params["one_minus_gamma"].get<double>()));
       }
+      if (algo == "QRDQN") CHECK(trial.asked.back() == "n_quantiles");  // after DQN's space
       if (algo == "TQC")
         CHECK(trial.params["top_quantiles_to_drop_per_net"].get<int>() <
               trial.params["n_quantiles"].get<int>());

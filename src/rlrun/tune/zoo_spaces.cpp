@@ -140,6 +140,14 @@ std::vector<Override> dqn(Zoo z, bool uses_her) {
   return out;
 }
 
+// sample_qrdqn_params: sample_dqn_params with sample_qrdqn set, which adds n_quantiles last.
+std::vector<Override> qrdqn(Zoo z, bool uses_her) {
+  std::vector<Override> out = dqn(z, false);
+  set(out, "algo.policy.n_quantiles", z.int_("n_quantiles", 5, 200));
+  if (uses_her) her(z, out);
+  return out;
+}
+
 // sample_sac_params (also the first half of sample_tqc_params).
 std::vector<Override> sac(Zoo z, bool uses_her) {
   std::vector<Override> out;
@@ -249,6 +257,9 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
   if (algo_id == "DQN")
     return std::make_unique<ZooSpace>("sample_dqn_params" + suffix,
                                       [uses_her](Zoo z) { return dqn(z, uses_her); });
+  if (algo_id == "QRDQN")
+    return std::make_unique<ZooSpace>("sample_qrdqn_params" + suffix,
+                                      [uses_her](Zoo z) { return qrdqn(z, uses_her); });
   if (algo_id == "SAC")
     return std::make_unique<ZooSpace>("sample_sac_params" + suffix,
                                       [uses_her](Zoo z) { return sac(z, uses_her); });
@@ -259,8 +270,9 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
   if (algo_id == "TQC")
     return std::make_unique<ZooSpace>("sample_tqc_params" + suffix,
                                       [uses_her](Zoo z) { return tqc(z, uses_her); });
-  throw UsageError("rl-zoo has no search space for " + algo_id +
-                   " (PPO, A2C, DQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
+  throw UsageError(
+      "rl-zoo has no search space for " + algo_id +
+      " (PPO, A2C, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
 }
 
 }  // namespace rlrun::tune

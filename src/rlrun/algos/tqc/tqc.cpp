@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/tqc/quantile_huber_loss.hpp"
+#include "rlrun/algos/common/quantile_huber_loss.hpp"
 #include "rlrun/algos/tqc/truncated_quantiles.hpp"
 #include "rlrun/core/config_validation.hpp"
 #include "rlrun/nn/policy_graph.hpp"

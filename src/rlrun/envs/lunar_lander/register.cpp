@@ -5,6 +5,7 @@
 // heuristic, eval/record --policy heuristic).
 #include "rlrun/core/config_fields.hpp"
 #include "rlrun/env/env_entry.hpp"
+#include "rlrun/env/mask_velocity.hpp"
 #include "rlrun/envs/lunar_lander/heuristic_policy.hpp"
 #include "rlrun/envs/lunar_lander/lunar_lander.hpp"
 
@@ -52,6 +53,10 @@ void register_lunar_lander(EnvEntries& out) {
       {"heuristic", "Gymnasium's heuristic(env, s) controller (lands: returns > 200)",
        [](Env& env, const PolicyOptions&) { return lunar_lander_heuristic_actions(env); }});
   EnvEntry continuous = continuous_alias(lander);
+  // rl-zoo's partially observable variants (MaskVelocityWrapper.velocity_indices: the
+  // velocities x_dot, y_dot and the angular velocity).
+  out.push_back(masked_velocity_entry(lander, {2, 3, 5}));
+  out.push_back(masked_velocity_entry(continuous, {2, 3, 5}));
   out.push_back(std::move(lander));
   out.push_back(std::move(continuous));
   // Steps of copies may run on several threads at once: each copy is its own b2World and RNG

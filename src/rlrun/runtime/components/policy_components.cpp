@@ -9,6 +9,7 @@
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/algos/ppo_mask/ppo_mask.hpp"
+#include "rlrun/algos/qrdqn/qrdqn.hpp"
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
@@ -83,6 +84,10 @@ void add_builtin_algorithms(Registry& r) {
       "SAC", "Soft Actor-Critic (SB3 semantics, learned entropy coefficient); Box actions"));
   r.add(make_algorithm_entry<DQN>(
       "DQN", "Deep Q-Network (SB3 semantics, epsilon-greedy, Huber loss); Discrete actions"));
+  r.add(make_algorithm_entry<QRDQN>(
+      "QRDQN",
+      "Quantile Regression DQN (sb3-contrib semantics: DQN with a distributional, "
+      "quantile-Huber critic); Discrete actions"));
   r.add(make_algorithm_entry<TD3>(
       "TD3", "Twin Delayed DDPG (SB3 semantics, clipped double-Q, delayed actor); Box actions"));
   r.add(make_algorithm_entry<DDPG>(

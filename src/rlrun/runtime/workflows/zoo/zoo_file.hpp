@@ -30,8 +30,8 @@ std::string algorithm_of_file(const std::string& path);
 // Loads `path` and picks the entry for `env_id`, or the entry named `entry_name` when given
 // (another env's settings for this env: `--entry PandaReach-v1` for GripperReach-v0).
 // `algorithm` empty: from the file name. Throws ConfigError (file:line:col where there is one)
-// for an unreadable file, an algorithm rlrun does not have (named: qrdqn.yml is sb3-contrib's
-// QR-DQN), no entry of that name (did-you-mean), no entry for the env and no `default`, or an
+// for an unreadable file, an algorithm rlrun does not have (named: trpo.yml is sb3-contrib's
+// TRPO), no entry of that name (did-you-mean), no entry for the env and no `default`, or an
 // entry over the bounds above.
 ZooEntry read_zoo_entry(const std::string& path, const std::string& env_id,
                         const std::string& algorithm, const std::string& entry_name = "");

@@ -109,12 +109,12 @@ class Translation {
   }
 
  private:
-  // SB3's net_arch for a CnnPolicy that sets none: ActorCriticPolicy's and DQNPolicy's heads
-  // have no hidden layer ([]); TD3Policy's (DDPG's too) [256, 256] instead of its MLP default
+  // SB3's net_arch for a CnnPolicy that sets none: ActorCriticPolicy's, DQNPolicy's and
+  // QRDQNPolicy's heads have no hidden layer ([]); TD3Policy's (DDPG's too) [256, 256] instead of its MLP default
   // [400, 300]; SACPolicy and TQCPolicy keep [256, 256], rlrun's default for them too.
   void cnn_default_net_arch() {
     const std::string& algo = entry_.algorithm;
-    if (algo == "PPO" || algo == "A2C" || algo == "DQN") {
+    if (algo == "PPO" || algo == "A2C" || algo == "DQN" || algo == "QRDQN") {
       policy_["net_arch"] = YAML::Node(YAML::NodeType::Sequence);
     } else if (algo == "TD3" || algo == "DDPG") {
       YAML::Node layers(YAML::NodeType::Sequence);

@@ -1,4 +1,4 @@
-#include "rlrun/algos/tqc/quantile_huber_loss.hpp"
+#include "rlrun/algos/common/quantile_huber_loss.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "rlrun/algos/dqn/q_network.hpp"
+#include "rlrun/algos/common/q_network.hpp"
 
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/nn/activation.hpp"
