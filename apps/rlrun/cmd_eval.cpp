@@ -225,12 +225,8 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
   record.seed = o.seed;
   record.policy_label =
       loaded.file.meta.algorithm + (o.stochastic ? " stochastic" : " deterministic");
-  const RecordResult recorded = record_episodes(
-      env,
-      [&](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
-        algorithm.predict(obs, deterministic, action);
-      },
-      record);
+  const RecordResult recorded =
+      record_episodes(env, model_action_fn(algorithm, env, deterministic), record);
   std::printf("recorded %s at %dx%d -> %s\n", count_of(recorded.frames, "frame").c_str(),
               recorded.width, recorded.height, o.record.c_str());
   return recorded.episodes;

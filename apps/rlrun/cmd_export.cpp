@@ -92,6 +92,11 @@ Action add_export(CLI::App& app, Registry& registry) {
     const auto input = graph.metadata.find("observation_input");
     if (input != graph.metadata.end())
       std::printf("note: the exported policy reads %s\n", input->second.c_str());
+    // MaskablePPO: the graph has no mask input (docs/maskable_ppo.md).
+    if (model.algorithm->action_mask_size() > 0)
+      std::printf(
+          "note: the exported policy takes no action masks: it returns the argmax over all "
+          "actions, as predict() without action_masks\n");
     // meta.json's text is the model file's: quoted (one printable line) when printed.
     const std::string algorithm = quoted_text(model.file.meta.algorithm);
     const std::string env_id = quoted_text(model.file.meta.env_id);

@@ -22,6 +22,7 @@
 #include "rlrun/runtime/experiment/env_factory.hpp"
 #include "rlrun/runtime/io/model_loader.hpp"
 #include "rlrun/runtime/io/observation_log.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
 #include "rlrun/runtime/run/recorder.hpp"
 #include "trust_option.hpp"
 
@@ -124,9 +125,7 @@ int run(const Options& o, Registry& registry) {
   if (policy == "model") {
     const bool deterministic = !o.stochastic;
     record.policy_label = algo_id + (deterministic ? " deterministic" : " stochastic");
-    act = [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
-      algorithm->predict(obs, deterministic, action);
-    };
+    act = model_action_fn(*algorithm, *env, deterministic);  // with the env's masks if any
   } else {
     PolicyOptions options;
     options.seed = o.seed;

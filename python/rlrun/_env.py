@@ -156,7 +156,27 @@ class RlrunEnv(_EnvBase):
         if options:
             self._apply_reset_options(options)
         obs, info = self._core.reset(None if seed is None else int(seed))
-        return self._observation(obs), info
+        return self._observation(obs), self._gather_action_mask(info)
+
+    def _gather_action_mask(self, info: dict) -> dict:
+        # An env's action mask travels as info keys action_mask.0, action_mask.1, ...
+        # (src/rlrun/env/action_mask.hpp); Python sees Gymnasium's info["action_mask"] (int8,
+        # PettingZoo's convention) and sb3-contrib's action_masks() method.
+        if "action_mask.0" not in info:
+            self._action_mask = None
+            return info
+        entries = []
+        while f"action_mask.{len(entries)}" in info:
+            entries.append(info.pop(f"action_mask.{len(entries)}"))
+        self._action_mask = np.asarray(entries, dtype=np.int8)
+        info["action_mask"] = self._action_mask.copy()
+        return info
+
+    def action_masks(self):
+        """sb3-contrib's action_masks(): the legal actions of the current state (bool), as the
+        env reported them with its last reset() or step(); None when it reports none."""
+        mask = getattr(self, "_action_mask", None)
+        return None if mask is None else mask.astype(bool)
 
     def _observation(self, obs):
         if self._uint8_obs:
@@ -178,7 +198,7 @@ class RlrunEnv(_EnvBase):
         if self._dict_action:
             action = _spaces.to_flat(self.action_space, action)
         obs, reward, terminated, truncated, info = self._core.step(action)
-        return self._observation(obs), reward, terminated, truncated, info
+        return self._observation(obs), reward, terminated, truncated, self._gather_action_mask(info)
 
     @property
     def compute_reward(self):

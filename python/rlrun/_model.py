@@ -125,9 +125,13 @@ class Model:
         """What the policy sees on top of the model's wrappers (e.g. one-hot, stacked)."""
         return _spaces.from_description(self._core.policy_observation_space)
 
-    def predict(self, observation, state=None, episode_start=None, deterministic: bool = False):
+    def predict(self, observation, state=None, episode_start=None, deterministic: bool = False,
+                action_masks=None):
         """SB3's ``predict``: returns ``(action, state)``; rlrun's policies are not recurrent,
-        so ``state`` comes back unchanged (None)."""
+        so ``state`` comes back unchanged (None). ``action_masks`` (MaskablePPO models, as
+        sb3-contrib's ``predict``): one mask per observation, True/1 for a legal action (n for
+        Discrete(n), sum(nvec) for MultiDiscrete, 2n for MultiBinary(n)); masked actions are
+        never chosen. None acts without masks."""
         if isinstance(observation, tuple) and len(observation) == 2 and isinstance(observation[1], dict):
             raise ValueError(
                 "You have passed a tuple to the predict() function instead of a Numpy array or a "
@@ -148,7 +152,18 @@ class Model:
             obs = np.asarray(observation)
             vectorized = _is_vectorized(obs, space)
             flat = np.ascontiguousarray(obs, dtype=np.float32).reshape(-1, self._obs_dim)
-        flat_actions = self._core.predict(flat, bool(deterministic))
+        masks = None
+        if action_masks is not None:
+            size = self._core.action_mask_size
+            if size == 0:
+                raise ValueError(f"predict: action_masks given, but {self.algorithm} takes no "
+                                 "action masks (MaskablePPO does)")
+            masks = np.asarray(action_masks, dtype=np.float32)
+            if masks.size != size * flat.shape[0]:
+                raise ValueError(f"predict: action_masks has {masks.size} entries; the model takes "
+                                 f"{size} per observation ({flat.shape[0]} observations)")
+            masks = np.ascontiguousarray(masks.reshape(flat.shape[0], size))
+        flat_actions = self._core.predict(flat, bool(deterministic), masks)
         actions = flat_actions.reshape((-1, *self.action_space.shape))
         if self._action_dtype is not np.float32:
             actions = actions.astype(self._action_dtype)

@@ -3,6 +3,8 @@
 // steps them). python/rlrun/_model.py adds SB3's predict() signature and batching rules.
 #include <pybind11/stl.h>
 
+#include <optional>
+
 #include "bindings.hpp"
 #include "rlrun/runtime/io/model_policy.hpp"
 
@@ -10,9 +12,10 @@ namespace rlrun::python {
 
 namespace {
 
-py::array_t<float> predict(ModelPolicy& model,
-                           py::array_t<float, py::array::c_style | py::array::forcecast> obs,
-                           bool deterministic) {
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+py::array_t<float> predict(ModelPolicy& model, FloatArray obs, bool deterministic,
+                           std::optional<FloatArray> action_masks) {
   // obs: (batch, obs_dim) C order = the bytes of an obs_dim x batch column-major matrix.
   const int obs_dim = model.observation_space().flat_dim();
   if (obs.ndim() != 2 || obs.shape(1) != obs_dim)
@@ -20,10 +23,23 @@ py::array_t<float> predict(ModelPolicy& model,
                           std::to_string(obs_dim) + ")");
   const Eigen::Index batch = obs.shape(0);
   const Eigen::Map<const Eigen::MatrixXf> in(obs.data(), obs_dim, batch);
+  // action_masks: (batch, mask size) C order, as sb3-contrib's predict(action_masks=...).
+  std::optional<Eigen::MatrixXf> masks;
+  if (action_masks) {
+    const int size = model.action_mask_size();
+    if (size == 0)
+      throw py::value_error("predict: action_masks given, but " + model.meta().algorithm +
+                            " takes no action masks (MaskablePPO does)");
+    if (action_masks->ndim() != 2 || action_masks->shape(1) != size ||
+        action_masks->shape(0) != batch)
+      throw py::value_error("predict: expected action_masks of shape (" + std::to_string(batch) +
+                            ", " + std::to_string(size) + "), one mask per observation");
+    masks = Eigen::Map<const Eigen::MatrixXf>(action_masks->data(), size, batch);
+  }
   Eigen::MatrixXf actions;
   {
     py::gil_scoped_release release;
-    model.predict(in, deterministic, actions);
+    model.predict(in, deterministic, actions, masks ? &*masks : nullptr);
   }
   py::array_t<float> out(
       {static_cast<py::ssize_t>(batch), static_cast<py::ssize_t>(actions.rows())});
@@ -44,7 +60,9 @@ void bind_model(py::module_& m) {
                }),
            py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
            py::arg("trust") = false)
-      .def("predict", &predict, py::arg("obs"), py::arg("deterministic"))
+      .def("predict", &predict, py::arg("obs"), py::arg("deterministic"),
+           py::arg("action_masks") = std::nullopt)
+      .def_property_readonly("action_mask_size", &ModelPolicy::action_mask_size)
       .def_property_readonly("algorithm",
                              [](const ModelPolicy& self) { return self.meta().algorithm; })
       .def_property_readonly("env_id", [](const ModelPolicy& self) { return self.meta().env_id; })

@@ -263,6 +263,22 @@ TEST_CASE("export onnx: Discrete, MultiDiscrete and MultiBinary actions (PPO, A2
               100, true});
 }
 
+TEST_CASE("export onnx: MaskablePPO exports its unmasked argmax (MultiBinary as two-way parts)",
+          "[deploy][onnx][ppo_mask]") {
+  // Envs without masks (use_masking: false), so that eval's actions are the unmasked argmax
+  // the graph computes; MultiBinary's head is 2n logits, one two-way categorical per entry.
+  check_case({"maskable_multibinary", 1024,
+              "env: {id: IdentityEnvMultiBinary-v0}\n"
+              "algo: {id: MaskablePPO, n_steps: 256, batch_size: 64, n_epochs: 2,"
+              " use_masking: false}\n",
+              100, true});
+  check_case({"maskable_multidiscrete", 1024,
+              "env: {id: IdentityEnvMultiDiscrete-v0}\n"
+              "algo: {id: MaskablePPO, n_steps: 256, batch_size: 64, n_epochs: 2,"
+              " use_masking: false}\n",
+              100, true});
+}
+
 TEST_CASE(
     "export onnx: CnnPolicy of PPO, A2C, DQN, SAC and TD3 on uint8 images (NatureCNN as Conv)",
     "[deploy][onnx][cnn]") {

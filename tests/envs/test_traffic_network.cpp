@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/action_mask.hpp"
 #include "rlrun/envs/traffic_network/light_agent.hpp"
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
 #include "rlrun/rng.hpp"
@@ -177,6 +178,36 @@ TEST_CASE("TrafficNetwork: one light's actions, observation and rewards follow s
   const LightCommand forced = held.decide(0, capped);
   CHECK(forced.change);
   CHECK(forced.green == "rrG");
+}
+
+TEST_CASE("TrafficNetwork: the min_green rule is each light's action mask", "[traffic_network]") {
+  LightAgent agent = make_agent(one_light({"GGr", "yyr", "rrG", "rry"}));
+  const LightTiming timing{5, 2, 5, 0};
+  agent.reset();
+  std::vector<float> mask(3);  // padded to 3 greens: index 2 is never legal
+  agent.action_mask(timing, mask);
+  CHECK(mask == std::vector<float>{1, 0, 0});  // only the current green before min_green
+  agent.advanced(7);
+  agent.action_mask(timing, mask);
+  CHECK(mask == std::vector<float>{1, 1, 0});
+  agent.decide(1, timing);
+  agent.action_mask(timing, mask);
+  CHECK(mask == std::vector<float>{0, 1, 0});
+
+  // The env reports every agent's mask, agent-major, after reset() and each step.
+  TrafficNetwork::Config config;
+  config.ts_ids = {"B1", "A0"};
+  TrafficNetwork env(config);
+  std::vector<float> obs(2 * env.observation_space().flat_dim()), masks(2 * 4);
+  env.reset(1, obs);
+  ActionMaskReader reader(env.action_space());
+  REQUIRE(reader.read(env.info(), 2, masks).empty());
+  CHECK(masks == std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0});
+  std::vector<StepResult> results(2);
+  const std::vector<float> keep{0, 0};
+  for (int i = 0; i < 2; ++i) env.step_agents(keep, obs, results);  // 10 s: min_green passed
+  REQUIRE(reader.read(env.info(), 2, masks).empty());
+  CHECK(masks == std::vector<float>{1, 1, 1, 1, 1, 1, 1, 1});
 }
 
 TEST_CASE("TrafficNetwork: the 4x4 grid is 16 agents with padded spaces and grid neighbours",

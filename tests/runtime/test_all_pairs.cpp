@@ -31,6 +31,8 @@ std::string smoke_settings(const AlgorithmEntry& entry) {
                                                        {"learning_starts", "64"},
                                                        {"train_freq", "4"},
                                                        {"target_update_interval", "50"},
+                                                       // MaskablePPO: classic envs have no masks
+                                                       {"use_masking", "false"},
                                                        {"policy", "{net_arch: [16, 16]}"}};
   std::string out;
   for (const auto& [key, value] : small)

@@ -60,6 +60,21 @@ class Algorithm {
   virtual void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                        Eigen::MatrixXf& actions) = 0;
 
+  // Invalid-action masking (env/action_mask.hpp; sb3-contrib's MaskablePPO): the entries of one
+  // observation's mask that predict_masked() takes; 0 when the algorithm takes no masks.
+  virtual int action_mask_size() const { return 0; }
+  // Whether evaluation and recording pass the env's masks to predict_masked() (MaskablePPO's
+  // use_masking).
+  virtual bool masks_from_env() const { return false; }
+  // predict() with `masks` (action_mask_size() x batch, 0/1): masked actions are never chosen.
+  // Throws std::invalid_argument for masks of another shape, entries other than 0/1 or no
+  // legal action.
+  virtual void predict_masked(const Eigen::Ref<const Eigen::MatrixXf>& /*obs*/,
+                              const Eigen::Ref<const Eigen::MatrixXf>& /*masks*/,
+                              bool /*deterministic*/, Eigen::MatrixXf& /*actions*/) {
+    throw std::logic_error(id() + " takes no action masks");
+  }
+
   virtual void save(TensorMap& tensors) const = 0;
   // Throws std::runtime_error when a tensor is missing or has another shape.
   virtual void load(const TensorMap& tensors) = 0;

@@ -1,5 +1,7 @@
 #include "rlrun/nn/categorical.hpp"
 
+#include "rlrun/nn/action_masking.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -27,6 +29,13 @@ void Categorical::set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits) {
     shifted.array() -= lse;
     probs_.col(j) = shifted.array().exp().matrix();
   }
+}
+
+void Categorical::set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits,
+                             const Eigen::Ref<const Eigen::MatrixXf>& masks) {
+  mask_logits(logits, masks, masked_);
+  set_logits(masked_);
+  probs_ = (masks.array() != 0.0f).select(probs_, 0.0f);
 }
 
 Eigen::Index Categorical::action_index(float action) const {

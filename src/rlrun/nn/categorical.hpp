@@ -14,6 +14,12 @@ class Categorical {
   // Normalises with a max-shifted log-sum-exp per column (torch: logits - logits.logsumexp()) and
   // caches log-probabilities and probabilities. Buffers are reused for a repeated shape.
   void set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits);
+  // With invalid-action masks (0/1, the logits' shape): sb3-contrib's MaskableCategorical
+  // (nn/action_masking.hpp), the logits of masked actions -1e8 before normalising. Their
+  // probability is set to exactly 0, as torch's exp(-1e8) is (Eigen's vectorised exp stops at
+  // about -88, giving 1e-38), so they are never sampled and add nothing to the entropy.
+  void set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits,
+                  const Eigen::Ref<const Eigen::MatrixXf>& masks);
 
   int num_actions() const { return static_cast<int>(log_probs_.rows()); }
   Eigen::Index batch() const { return log_probs_.cols(); }
@@ -45,6 +51,7 @@ class Categorical {
 
   Eigen::MatrixXf log_probs_;
   Eigen::MatrixXf probs_;
+  Eigen::MatrixXf masked_;  // the masked logits (set_logits with masks)
 };
 
 }  // namespace rlrun

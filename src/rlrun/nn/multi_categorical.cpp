@@ -26,6 +26,21 @@ void MultiCategorical::set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logit
   }
 }
 
+void MultiCategorical::set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits,
+                                  const Eigen::Ref<const Eigen::MatrixXf>& masks) {
+  if (logits.rows() != num_logits_ || masks.rows() != num_logits_)
+    throw std::invalid_argument("MultiCategorical::set_logits: " + std::to_string(logits.rows()) +
+                                " logits and " + std::to_string(masks.rows()) +
+                                " mask entries per column, expected " +
+                                std::to_string(num_logits_));
+  const int entries = num_entries();
+  for (int i = 0; i < entries; ++i) {
+    const int end = i + 1 < entries ? offsets_[i + 1] : num_logits_;
+    parts_[i].set_logits(logits.middleRows(offsets_[i], end - offsets_[i]),
+                         masks.middleRows(offsets_[i], end - offsets_[i]));
+  }
+}
+
 void MultiCategorical::load_row(const Eigen::Ref<const Eigen::MatrixXf>& actions, int i) {
   if (actions.rows() != num_entries() || actions.cols() != batch())
     throw std::invalid_argument("MultiCategorical: actions are " + std::to_string(actions.rows()) +

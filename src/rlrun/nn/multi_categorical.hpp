@@ -27,6 +27,10 @@ class MultiCategorical {
 
   // logits: sum(nvec) x batch. Buffers are reused for a repeated shape.
   void set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits);
+  // With masks of the logits' shape (each entry's rows its own mask): sb3-contrib's
+  // MaskableMultiCategoricalDistribution.apply_masking, Categorical::set_logits with masks.
+  void set_logits(const Eigen::Ref<const Eigen::MatrixXf>& logits,
+                  const Eigen::Ref<const Eigen::MatrixXf>& masks);
 
   // out(j) = sum_i log p_i(actions(i, j) | column j). Throws std::out_of_range for an entry
   // outside [0, nvec_i).

@@ -9,7 +9,9 @@
 #include "rlrun/algos/common/features_extractor_net.hpp"
 #include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/core/resource_limits.hpp"
+#include "rlrun/env/action_mask.hpp"
 #include "rlrun/env/image_space.hpp"
+#include "rlrun/nn/action_masking.hpp"
 
 namespace rlrun {
 
@@ -23,6 +25,15 @@ void draw(Distribution& dist, Rng& rng, bool deterministic, Actions& actions,
   else
     dist.sample(rng, actions);
   dist.log_prob(actions, log_probs);
+}
+
+// A categorical head's logits, with sb3-contrib's masking when there are masks.
+template <class Distribution>
+void set_logits(Distribution& dist, const Eigen::MatrixXf& logits, const Eigen::MatrixXf* masks) {
+  if (masks)
+    dist.set_logits(logits, *masks);
+  else
+    dist.set_logits(logits);
 }
 
 // The training side (SB3 evaluate_actions): log-probability of the taken actions, entropy.
@@ -95,37 +106,13 @@ int action_net_size(const Space& action_space) {
 
 ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space& action_space,
                                      const ActorCriticPolicyConfig& config, Rng& init_rng,
-                                     bool use_sde)
+                                     bool use_sde, bool maskable)
     : encoder_(observation_space, encoder_normalizes_images(config.features_extractor_class,
                                                             config.normalize_images)) {
   if (use_sde && !action_space.is_box())
     throw std::invalid_argument("use_sde: gSDE needs a Box action space, not " +
                                 action_space.describe());
-  // SB3 make_proba_distribution: the distribution follows the action space's class.
-  switch (action_space.kind()) {
-    case SpaceKind::kDiscrete:
-      head_ = Head::kCategorical;
-      action_dim_ = 1;
-      break;
-    case SpaceKind::kMultiDiscrete:
-      head_ = Head::kMultiCategorical;
-      action_dim_ = action_space.flat_dim();
-      multi_categorical_ = MultiCategorical(action_space.nvec());
-      break;
-    case SpaceKind::kMultiBinary:
-      head_ = Head::kBernoulli;
-      action_dim_ = action_space.flat_dim();
-      break;
-    case SpaceKind::kBox:
-      head_ = Head::kDiagGaussian;
-      action_dim_ = action_space.flat_dim();
-      low_ = Eigen::Map<const Eigen::VectorXf>(action_space.low().data(), action_dim_);
-      high_ = Eigen::Map<const Eigen::VectorXf>(action_space.high().data(), action_dim_);
-      break;
-    case SpaceKind::kDict:
-      throw std::invalid_argument("ActorCriticPolicy: action space " + action_space.describe() +
-                                  " is not supported (SB3 has no distribution for Dict actions)");
-  }
+  choose_distribution(action_space, maskable);
   const Activation act = config.activation_fn;
   // SB3 ActorCriticPolicy: the towers start from the features extractor's output;
   // MlpExtractor's policy_net (net_arch.pi) + action_net, value_net (net_arch.vf) + value head.
@@ -134,7 +121,8 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
   separate_value_extractor_ = extractor_.learned() && !config.share_features_extractor;
   if (separate_value_extractor_) vf_extractor_ = extractor_;
   const int obs_dim = extractor_.out_dim();
-  actor_ = Mlp(obs_dim, config.net_arch.pi, action_net_size(action_space), act);
+  actor_ =
+      Mlp(obs_dim, config.net_arch.pi, maskable ? mask_size_ : action_net_size(action_space), act);
   critic_ = Mlp(obs_dim, config.net_arch.vf, 1, act);
   if (config.ortho_init) {
     // SB3 policies.py _build: module_gains = {features_extractor: sqrt(2), mlp_extractor:
@@ -172,30 +160,78 @@ ActorCriticPolicy::ActorCriticPolicy(const Space& observation_space, const Space
   log_std_grad_ = Eigen::VectorXf::Zero(log_std_.size());
 }
 
+void ActorCriticPolicy::choose_distribution(const Space& action_space, bool maskable) {
+  mask_size_ = maskable ? action_mask_size(action_space) : 0;
+  if (maskable && mask_size_ == 0)
+    throw std::invalid_argument(
+        "action masking needs a Discrete, MultiDiscrete or MultiBinary "
+        "action space, not " +
+        action_space.describe());
+  // SB3 make_proba_distribution: the distribution follows the action space's class.
+  switch (action_space.kind()) {
+    case SpaceKind::kDiscrete:
+      head_ = Head::kCategorical;
+      action_dim_ = 1;
+      break;
+    case SpaceKind::kMultiDiscrete:
+      head_ = Head::kMultiCategorical;
+      action_dim_ = action_space.flat_dim();
+      categorical_parts_ = action_space.nvec();
+      multi_categorical_ = MultiCategorical(categorical_parts_);
+      break;
+    case SpaceKind::kMultiBinary:
+      head_ = Head::kBernoulli;
+      action_dim_ = action_space.flat_dim();
+      if (maskable) {
+        // sb3-contrib MaskableBernoulliDistribution: a MaskableMultiCategorical of [2] * n.
+        head_ = Head::kMultiCategorical;
+        categorical_parts_.assign(static_cast<size_t>(action_dim_), 2);
+        multi_categorical_ = MultiCategorical(categorical_parts_);
+      }
+      break;
+    case SpaceKind::kBox:
+      head_ = Head::kDiagGaussian;
+      action_dim_ = action_space.flat_dim();
+      low_ = Eigen::Map<const Eigen::VectorXf>(action_space.low().data(), action_dim_);
+      high_ = Eigen::Map<const Eigen::VectorXf>(action_space.high().data(), action_dim_);
+      break;
+    case SpaceKind::kDict:
+      throw std::invalid_argument("ActorCriticPolicy: action space " + action_space.describe() +
+                                  " is not supported (SB3 has no distribution for Dict actions)");
+  }
+}
+
 void ActorCriticPolicy::reset_noise(Rng& rng, int n_envs) {
   if (!use_sde()) throw std::logic_error("reset_noise() is only available when using gSDE");
   sde_.sample_weights(rng, n_envs);
 }
 
+void ActorCriticPolicy::check_masks(const Eigen::MatrixXf* masks) const {
+  if (masks != nullptr && mask_size_ == 0)
+    throw std::logic_error("action masks given to a policy without masking");
+}
+
 void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng,
                             bool deterministic, Eigen::MatrixXf& actions,
-                            Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs) {
+                            Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs,
+                            const Eigen::MatrixXf* masks) {
   const Eigen::Index n = obs.cols();
   actions.resize(action_dim_, n);
   values.resize(n);
   log_probs.resize(n);
   const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
+  check_masks(masks);
   const Eigen::MatrixXf& head = actor_.forward(features);
   switch (head_) {
     case Head::kCategorical:
-      categorical_.set_logits(head);
+      set_logits(categorical_, head, masks);
       // A 1 x n row of a column-major matrix has a stride; go through a contiguous row.
       action_row_.resize(n);
       draw(categorical_, rng, deterministic, action_row_, log_probs);
       actions.row(0) = action_row_;
       break;
     case Head::kMultiCategorical:
-      multi_categorical_.set_logits(head);
+      set_logits(multi_categorical_, head, masks);
       draw(multi_categorical_, rng, deterministic, actions, log_probs);
       break;
     case Head::kBernoulli:
@@ -219,8 +255,10 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
   values = critic_.forward(value_features(obs, features));
 }
 
+// The categorical parts come from the policy itself (a maskable MultiBinary policy has one per
+// entry, which the space's nvec does not list).
 void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
-                                  const Space& action_space, bool with_value) const {
+                                  const Space& /*action_space*/, bool with_value) const {
   const std::string encoded = encoder_.export_to(graph, obs);
   const std::string features = extractor_.export_to(graph, encoded);
   const std::string head = graph.mlp(features, actor_);
@@ -229,7 +267,7 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
     case Head::kMultiCategorical: {
       std::vector<std::string> parts;
       int begin = 0;
-      for (int64_t n : action_space.nvec()) {
+      for (int64_t n : categorical_parts_) {
         parts.push_back(graph.argmax(graph.slice(head, begin, static_cast<int>(n))));
         begin += static_cast<int>(n);
       }
@@ -271,12 +309,16 @@ Eigen::Ref<const Eigen::MatrixXf> ActorCriticPolicy::value_features(
 void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                          const Eigen::Ref<const Eigen::MatrixXf>& actions,
                                          Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
-                                         Eigen::RowVectorXf& entropy) {
+                                         Eigen::RowVectorXf& entropy,
+                                         const Eigen::MatrixXf* masks) {
   const Eigen::Index n = obs.cols();
   values.resize(n);
   log_prob.resize(n);
   entropy.resize(n);
+  check_masks(masks);
   actions_ = actions;
+  masked_batch_ = masks != nullptr;
+  if (masks) masks_ = *masks;
   // Actor and critic are independent: the critic runs on the second core (bit-identical
   // results either way).
   const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
@@ -285,12 +327,12 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
     const Eigen::MatrixXf& head = actor_.forward(features);
     switch (head_) {
       case Head::kCategorical:
-        categorical_.set_logits(head);
+        set_logits(categorical_, head, masks);
         action_row_ = actions.row(0);
         score(categorical_, action_row_, log_prob, entropy);
         break;
       case Head::kMultiCategorical:
-        multi_categorical_.set_logits(head);
+        set_logits(multi_categorical_, head, masks);
         score(multi_categorical_, actions, log_prob, entropy);
         break;
       case Head::kBernoulli:
@@ -334,6 +376,7 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
         sde_.backward_scored(actions_, grad_log_prob, grad_entropy, grad_head_);
         break;
     }
+    if (masked_batch_) mask_logit_gradient(masks_, grad_head_);
     actor_.backward(grad_head_, extractor_.learned() ? &grad_features_ : nullptr);
   };
   auto critic_part = [&] {

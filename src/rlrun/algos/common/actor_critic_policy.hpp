@@ -7,6 +7,10 @@
 // Gaussian with a state-independent `log_std` parameter for Box actions — or, with use_sde,
 // gSDE's StateDependentNoiseDistribution on the actor's latent features (learn_features false:
 // the latent is detached, as SB3's ActorCriticPolicy sets it).
+// With `maskable` it is sb3-contrib 2.4's MaskableActorCriticPolicy
+// (sb3_contrib/common/maskable/policies.py): the same networks and initialisation, masks
+// applied to the logits before the distribution (nn/action_masking.hpp), and MultiBinary as
+// one two-way categorical per entry (MaskableBernoulliDistribution: 2n logits).
 #include <Eigen/Core>
 #include <functional>
 #include <string>
@@ -97,8 +101,11 @@ class ActorCriticPolicy {
   // concatenated); actions of any space but Dict (std::invalid_argument). use_sde (Box actions
   // only, else std::invalid_argument) picks gSDE; its first exploration matrix is drawn from
   // init_rng after the weights, as SB3's proba_distribution_net samples one.
+  // `maskable` (Discrete, MultiDiscrete and MultiBinary actions, else std::invalid_argument)
+  // makes the masked policy: act() and evaluate_actions() then take masks.
   ActorCriticPolicy(const Space& observation_space, const Space& action_space,
-                    const ActorCriticPolicyConfig& config, Rng& init_rng, bool use_sde = false);
+                    const ActorCriticPolicyConfig& config, Rng& init_rng, bool use_sde = false,
+                    bool maskable = false);
 
   Head head() const { return head_; }
   // Box actions: a Gaussian with the learned log_std (SB3 logs train/std).
@@ -113,18 +120,24 @@ class ActorCriticPolicy {
   StateDependentNoise& sde() { return sde_; }
   // Floats per action (the rollout buffer's rows): 1 for Discrete, one per entry otherwise.
   int action_dim() const { return action_dim_; }
+  // Entries of one observation's action mask (env/action_mask.hpp), 0 for an unmasked policy.
+  int mask_size() const { return mask_size_; }
 
   // `obs` are the env's observations (input_dim x n) everywhere below; the policy encodes them.
-  // Rollout step: actions (act_dim x n, as sampled: unclipped), values and log-probs.
+  // Rollout step: actions (act_dim x n, as sampled: unclipped), values and log-probs. `masks`
+  // (mask_size() x n of 0/1, maskable policies only; null: no masking, as sb3-contrib's
+  // action_masks=None) remove illegal actions from the distribution.
   void act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& rng, bool deterministic,
-           Eigen::MatrixXf& actions, Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs);
+           Eigen::MatrixXf& actions, Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs,
+           const Eigen::MatrixXf* masks = nullptr);
   void predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::RowVectorXf& values);
 
-  // Training forward pass (SB3 evaluate_actions); keeps what backward() needs.
+  // Training forward pass (SB3 evaluate_actions); keeps what backward() needs. `masks` as in
+  // act(): log-probs and entropy of the masked distribution (sb3-contrib evaluate_actions).
   void evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                         const Eigen::Ref<const Eigen::MatrixXf>& actions,
                         Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
-                        Eigen::RowVectorXf& entropy);
+                        Eigen::RowVectorXf& entropy, const Eigen::MatrixXf* masks = nullptr);
   // Adds the gradients of a loss with the given partial derivatives w.r.t. the outputs of the
   // last evaluate_actions() to every parameter's gradient.
   void backward(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
@@ -145,6 +158,7 @@ class ActorCriticPolicy {
   // Deploying (nn/policy_graph.hpp): the deterministic act() from `obs` as graph nodes
   // (encoding, actor, the distribution's mode: argmax per categorical part, x > 0 for
   // Bernoulli, the mean for Gaussians and gSDE) and, with `with_value`, the critic's V(s).
+  // A maskable policy exports its unmasked mode: the graph has no mask input.
   // `action_space` is the one the policy was built for. Sets the graph's action and value.
   void export_to(PolicyGraph& graph, const std::string& obs, const Space& action_space,
                  bool with_value) const;
@@ -172,6 +186,11 @@ class ActorCriticPolicy {
  private:
   void run_pair(Eigen::Index batch, const std::function<void()>& actor_part,
                 const std::function<void()>& critic_part);
+  // The head, action_dim_ and mask_size_ for an action space (sb3-contrib's
+  // make_masked_proba_distribution with `maskable`, else SB3's make_proba_distribution).
+  void choose_distribution(const Space& action_space, bool maskable);
+  // std::logic_error for masks given to a policy built without masking.
+  void check_masks(const Eigen::MatrixXf* masks) const;
   // The heads' input for a batch of observations: the encoding through the features extractor
   // (whose networks then keep what their backward needs).
   Eigen::Ref<const Eigen::MatrixXf> features(const Eigen::Ref<const Eigen::MatrixXf>& obs);
@@ -192,6 +211,8 @@ class ActorCriticPolicy {
   Eigen::MatrixXf grad_features_, grad_features_critic_;  // dL/d(features), per head
   Head head_ = Head::kDiagGaussian;
   int action_dim_ = 1;
+  int mask_size_ = 0;
+  std::vector<int64_t> categorical_parts_;  // the categoricals' sizes (multi-categorical heads)
   Eigen::VectorXf low_, high_;
   Mlp actor_, critic_;
   Eigen::VectorXf log_std_, log_std_grad_;
@@ -202,6 +223,8 @@ class ActorCriticPolicy {
   StateDependentNoise sde_;
   // Workspaces for backward.
   Eigen::MatrixXf actions_, grad_head_, gaussian_sample_;
+  Eigen::MatrixXf masks_;      // evaluate_actions' masks, for backward
+  bool masked_batch_ = false;  // the last evaluate_actions() had masks
   Eigen::VectorXf grad_log_std_batch_;
   Eigen::RowVectorXf action_row_;
 };

@@ -15,8 +15,11 @@
 
 namespace rlrun {
 
-RolloutBuffer::RolloutBuffer(int n_steps, int n_envs, const Space& observation_space, int act_dim)
-    : obs(observation_space, int64_t{n_steps} * n_envs), actions(act_dim, n_steps * n_envs) {
+RolloutBuffer::RolloutBuffer(int n_steps, int n_envs, const Space& observation_space, int act_dim,
+                             int mask_size)
+    : obs(observation_space, int64_t{n_steps} * n_envs),
+      actions(act_dim, n_steps * n_envs),
+      action_masks(mask_size, mask_size > 0 ? n_steps * n_envs : 0) {
   for (StepEnvMatrix* m : {&rewards, &values, &episode_starts, &log_probs, &advantages, &returns})
     m->resize(n_steps, n_envs);
 }
@@ -36,14 +39,16 @@ std::string export_clip_to_box(PolicyGraph& graph, const Space& space, const std
 }
 
 OnPolicyCollector::OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim,
-                                     int sde_sample_freq)
+                                     int sde_sample_freq, int mask_size)
     : action_space_(setup.action_space),
-      buffer_(n_steps, setup.n_envs, setup.observation_space, act_dim),
+      buffer_(n_steps, setup.n_envs, setup.observation_space, act_dim, mask_size),
       last_obs_(setup.observation_space.flat_dim(), setup.n_envs),
       env_actions_(setup.action_space.flat_dim(), setup.n_envs),
       final_obs_(setup.observation_space.flat_dim(), 1),
       last_episode_starts_(Eigen::RowVectorXf::Ones(setup.n_envs)) {
   sde_sample_freq_ = sde_sample_freq;
+  mask_size_ = mask_size;
+  last_masks_ = Eigen::MatrixXf::Ones(mask_size, mask_size > 0 ? setup.n_envs : 0);
   if (n_steps < 1) throw std::invalid_argument("n_steps must be >= 1");
 }
 
@@ -57,6 +62,7 @@ void OnPolicyCollector::start(VecEnv& env) {
     return;
   }
   last_obs_ = env.reset();
+  if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, -1);
   last_episode_starts_.setOnes();
   iterations_ = 0;
 }
@@ -66,6 +72,7 @@ void OnPolicyCollector::write_state(StateWriter out) const {
   put_matrix(out, "last_episode_starts", last_episode_starts_);
   out.put_int("iterations", iterations_);
   episode_stats_.write_state(out.sub("episode_stats"));
+  if (mask_size_ > 0) put_matrix(out, "last_masks", last_masks_);
 }
 
 void OnPolicyCollector::read_state(const StateReader& in) {
@@ -73,6 +80,16 @@ void OnPolicyCollector::read_state(const StateReader& in) {
   get_matrix(in, "last_episode_starts", last_episode_starts_);
   iterations_ = in.get_count("iterations");
   episode_stats_.read_state(in.sub("episode_stats"));
+  if (mask_size_ > 0) {
+    get_matrix(in, "last_masks", last_masks_);  // the shape the configuration fixes
+    for (Eigen::Index e = 0; e < last_masks_.cols(); ++e) {
+      const std::string problem = action_mask_problem(
+          action_space_, {last_masks_.col(e).data(), static_cast<size_t>(mask_size_)});
+      if (!problem.empty())
+        throw StateMismatch("checkpoint state '" + in.prefix() + "last_masks' (env " +
+                            std::to_string(e) + "): " + problem);
+    }
+  }
   restored_ = true;
 }
 
@@ -85,7 +102,8 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
   for (int step = 0; step < n_steps; ++step) {
     if (policy.use_sde() && sde_sample_freq_ > 0 && step % sde_sample_freq_ == 0)
       policy.reset_noise(rng, n_envs);
-    policy.act(last_obs_, rng, false, step_actions_, step_values_, step_log_probs_);
+    policy.act(last_obs_, rng, false, step_actions_, step_values_, step_log_probs_,
+               mask_size_ > 0 ? &last_masks_ : nullptr);
     env_actions_ = step_actions_;
     clip_to_box(action_space_, env_actions_);
     env.step(env_actions_);
@@ -109,9 +127,12 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
       buffer_.episode_starts(step, e) = last_episode_starts_(e);
       buffer_.values(step, e) = step_values_(e);
       buffer_.log_probs(step, e) = step_log_probs_(e);
+      if (mask_size_ > 0) buffer_.action_masks.col(k) = last_masks_.col(e);
       last_episode_starts_(e) = env.done(e) ? 1.0f : 0.0f;
     }
     last_obs_ = env.obs();
+    // sb3-contrib get_action_masks(env) at the next step: the masks of the new observations.
+    if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, num_timesteps);
   }
   policy.predict_values(last_obs_, terminal_value_);
   compute_gae(buffer_.rewards, buffer_.values, buffer_.episode_starts, terminal_value_,
@@ -120,16 +141,19 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
 }
 
 OnPolicyAlgorithm::OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup,
-                                     const ActorCriticPolicyConfig& policy, const Rollout& rollout)
+                                     const ActorCriticPolicyConfig& policy, const Rollout& rollout,
+                                     bool maskable, bool env_masks)
     : setup_(setup),
       // The weights (and gSDE's first exploration matrix) from the seed itself.
       policy_([&] {
         Rng init_rng(setup.seed);
         return ActorCriticPolicy(setup.observation_space, setup.action_space, policy, init_rng,
-                                 rollout.use_sde);
+                                 rollout.use_sde, maskable);
       }()),
-      collector_(setup, rollout.n_steps, policy_.action_dim(), rollout.sde_sample_freq),
+      collector_(setup, rollout.n_steps, policy_.action_dim(), rollout.sde_sample_freq,
+                 maskable && env_masks ? policy_.mask_size() : 0),
       id_(std::move(id)),
+      env_masks_(maskable && env_masks),
       gamma_(static_cast<float>(rollout.gamma)),
       gae_lambda_(static_cast<float>(rollout.gae_lambda)),
       action_rng_(setup.seed ^ kActionStream) {
@@ -145,6 +169,28 @@ void OnPolicyAlgorithm::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bo
                                 Eigen::MatrixXf& actions) {
   policy_.act(obs, action_rng_, deterministic, actions, predict_values_, predict_log_probs_);
   clip_to_box(setup_.action_space, actions);
+}
+
+void OnPolicyAlgorithm::predict_masked(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                                       const Eigen::Ref<const Eigen::MatrixXf>& masks,
+                                       bool deterministic, Eigen::MatrixXf& actions) {
+  const int size = policy_.mask_size();
+  if (size == 0) throw std::logic_error(id_ + " takes no action masks");
+  if (masks.rows() != size || masks.cols() != obs.cols())
+    throw std::invalid_argument(id_ + ": action masks are " + std::to_string(masks.rows()) + " x " +
+                                std::to_string(masks.cols()) + ", expected " +
+                                std::to_string(size) + " x " + std::to_string(obs.cols()) +
+                                " (one mask of " + std::to_string(size) + " entries per " +
+                                "observation for " + setup_.action_space.describe() + ")");
+  predict_masks_ = masks;
+  for (Eigen::Index j = 0; j < predict_masks_.cols(); ++j) {
+    const std::string problem = action_mask_problem(
+        setup_.action_space, {predict_masks_.col(j).data(), static_cast<size_t>(size)});
+    if (!problem.empty())
+      throw std::invalid_argument(id_ + ": observation " + std::to_string(j) + ": " + problem);
+  }
+  policy_.act(obs, action_rng_, deterministic, actions, predict_values_, predict_log_probs_,
+              &predict_masks_);
 }
 
 void OnPolicyAlgorithm::export_policy(PolicyGraph& graph, const std::string& obs,

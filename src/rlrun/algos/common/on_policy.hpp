@@ -12,6 +12,7 @@
 #include "rlrun/algos/common/gae.hpp"
 #include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/algos/common/resumable_algorithm.hpp"
+#include "rlrun/env/action_mask.hpp"
 
 namespace rlrun {
 
@@ -21,12 +22,16 @@ class PolicyGraph;
 // which is also the flat index of the row-major StepEnvMatrix arrays.
 // Observations keep their space's dtype (uint8 images as bytes; SB3's RolloutBuffer holds
 // float32, so an image rollout here takes a quarter of its memory).
+// With mask_size > 0 it is sb3-contrib's MaskableRolloutBuffer (common/maskable/buffers.py):
+// each sample also keeps the action mask its action was drawn under.
 struct RolloutBuffer {
-  RolloutBuffer(int n_steps, int n_envs, const Space& observation_space, int act_dim);
+  RolloutBuffer(int n_steps, int n_envs, const Space& observation_space, int act_dim,
+                int mask_size = 0);
   int size() const { return static_cast<int>(actions.cols()); }
 
   ObservationColumns obs;
-  Eigen::MatrixXf actions;  // actions as sampled (before clipping to the Box bounds)
+  Eigen::MatrixXf actions;       // actions as sampled (before clipping to the Box bounds)
+  Eigen::MatrixXf action_masks;  // mask_size x size, 0/1 (empty without masking)
   StepEnvMatrix rewards, values, episode_starts, log_probs, advantages, returns;
 };
 
@@ -34,9 +39,12 @@ struct RolloutBuffer {
 class OnPolicyCollector {
  public:
   // sde_sample_freq: with a gSDE policy, new exploration matrices every that many steps of a
-  // rollout (<= 0: only at the start of each rollout), SB3's sde_sample_freq.
-  OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim,
-                    int sde_sample_freq = -1);
+  // rollout (<= 0: only at the start of each rollout), SB3's sde_sample_freq. mask_size > 0:
+  // sb3-contrib MaskablePPO's collect_rollouts, which reads every step's action masks from the
+  // envs (env/action_mask.hpp; an env without them is an error, as sb3-contrib's "Environment
+  // does not support action masking"), acts with them and keeps them in the buffer.
+  OnPolicyCollector(const AlgorithmSetup& setup, int n_steps, int act_dim, int sde_sample_freq = -1,
+                    int mask_size = 0);
 
   // SB3 collect_rollouts + compute_returns_and_advantage. Returns false when a callback
   // stopped training. `num_timesteps` counts all envs' steps. A gSDE policy draws its
@@ -48,7 +56,8 @@ class OnPolicyCollector {
   void start(VecEnv& env);
 
   // Resume: last observations, episode-start flags, the episode statistics and the iteration
-  // count (SB3 logs every log_interval iterations of one learn() call).
+  // count (SB3 logs every log_interval iterations of one learn() call); with masking the last
+  // observations' masks, checked on reading (shape, 0/1, a legal action) as untrusted data.
   void write_state(StateWriter out) const;
   void read_state(const StateReader& in);
   int64_t& iterations() { return iterations_; }
@@ -64,6 +73,9 @@ class OnPolicyCollector {
   bool restored_ = false;
   int64_t iterations_ = 0;
   int sde_sample_freq_ = -1;
+  int mask_size_ = 0;
+  std::vector<ActionMaskReader> mask_readers_;  // one per env copy
+  Eigen::MatrixXf last_masks_;                  // the masks of last_obs_ (mask_size x n_envs)
   Eigen::MatrixXf last_obs_, step_actions_, env_actions_, final_obs_;
   Eigen::RowVectorXf last_episode_starts_, step_values_, step_log_probs_, terminal_value_;
 };
@@ -87,7 +99,14 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) final;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
                Eigen::MatrixXf& actions) final;
+  // Masks (a maskable policy): the masked distribution's mode or a sample.
+  int action_mask_size() const final { return policy_.mask_size(); }
+  bool masks_from_env() const final { return env_masks_; }
+  void predict_masked(const Eigen::Ref<const Eigen::MatrixXf>& obs,
+                      const Eigen::Ref<const Eigen::MatrixXf>& masks, bool deterministic,
+                      Eigen::MatrixXf& actions) final;
   // predict(deterministic): the policy's mode, clipped to a Box; the value is the critic's V(s).
+  // A maskable policy exports its unmasked mode (the graph takes no masks; docs/deploy.md).
   void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const final;
   void save(TensorMap& tensors) const final { policy_.save(tensors); }
   void load(const TensorMap& tensors) final { policy_.load(tensors); }
@@ -106,8 +125,11 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
     int sde_sample_freq;
   };
   // `setup` and the settings as the algorithm's constructor validated them (valid_config).
+  // `maskable`: the masked policy of sb3-contrib's MaskablePPO; `env_masks` (with it): its
+  // rollouts and evaluations read the env's masks (learn(use_masking=True)).
   OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup,
-                    const ActorCriticPolicyConfig& policy, const Rollout& rollout);
+                    const ActorCriticPolicyConfig& policy, const Rollout& rollout,
+                    bool maskable = false, bool env_masks = false);
 
   // One update on the rollout just collected (collector_.buffer()), SB3 train(); records its
   // train/ values on `logger` if any.
@@ -120,9 +142,11 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
 
  private:
   std::string id_;
+  bool env_masks_ = false;
   float gamma_, gae_lambda_;
   Rng action_rng_;  // collection samples and predict()
   Eigen::RowVectorXf predict_values_, predict_log_probs_;
+  Eigen::MatrixXf predict_masks_;
 };
 
 }  // namespace rlrun

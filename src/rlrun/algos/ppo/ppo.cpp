@@ -48,30 +48,6 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
     v->resize(batch);
 }
 
-// What SB3's PPO.train logs: the minibatches' mean losses and clip fraction, the mean
-// approx_kl of the last epoch run, the last minibatch's loss.
-struct PPO::TrainStatistics {
-  double entropy_loss_sum = 0, pg_loss_sum = 0, value_loss_sum = 0, clip_fraction_sum = 0;
-  int n_minibatches = 0;
-  double last_loss = 0, approx_kl_sum = 0;
-  int approx_kl_count = 0;
-
-  void start_epoch() {
-    approx_kl_sum = 0;
-    approx_kl_count = 0;
-  }
-  void add(const PpoLossTerms& t) {
-    pg_loss_sum += t.policy_loss;
-    value_loss_sum += t.value_loss;
-    entropy_loss_sum += t.entropy_loss;
-    clip_fraction_sum += t.clip_fraction;
-    approx_kl_sum += t.approx_kl;
-    ++approx_kl_count;
-    ++n_minibatches;
-    last_loss = t.loss;
-  }
-};
-
 void PPO::train(double progress_remaining, Logger* logger) {
   const float lr = static_cast<float>(config_.learning_rate(progress_remaining));
   const float clip_range = static_cast<float>(config_.clip_range(progress_remaining));
@@ -82,7 +58,7 @@ void PPO::train(double progress_remaining, Logger* logger) {
   const float vf_coef = static_cast<float>(config_.vf_coef);
   const int size = static_cast<int>(indices_.size());
 
-  TrainStatistics statistics;
+  PpoTrainStatistics statistics;
   bool continue_training = true;
   std::vector<ParamBlock> blocks = policy_.param_blocks();
 
@@ -142,7 +118,7 @@ void PPO::gather_minibatch(int start, int batch) {
   }
 }
 
-void PPO::record_statistics(Logger& logger, const TrainStatistics& s, float lr, float clip_range,
+void PPO::record_statistics(Logger& logger, const PpoTrainStatistics& s, float lr, float clip_range,
                             std::optional<float> clip_range_vf) const {
   const RolloutBuffer& rollout = collector_.buffer();
   const double n = std::max(s.n_minibatches, 1);

@@ -9,6 +9,7 @@
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
 #include "rlrun/algos/common/on_policy.hpp"
+#include "rlrun/algos/ppo/ppo_loss.hpp"
 #include "rlrun/core/schedule.hpp"
 #include "rlrun/nn/adam.hpp"
 
@@ -77,8 +78,7 @@ class PPO : public OnPolicyAlgorithm {
   // The minibatch of rollout columns indices_[start, start + batch) into the mb_ workspaces
   // (SB3 RolloutBuffer.get).
   void gather_minibatch(int start, int batch);
-  struct TrainStatistics;  // ppo.cpp
-  void record_statistics(Logger& logger, const TrainStatistics& statistics, float lr,
+  void record_statistics(Logger& logger, const PpoTrainStatistics& statistics, float lr,
                          float clip_range, std::optional<float> clip_range_vf) const;
 
   Config config_;

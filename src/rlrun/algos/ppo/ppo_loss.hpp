@@ -34,4 +34,28 @@ PpoLossTerms ppo_loss(const PpoLossInputs& in, float clip_range, std::optional<f
 // In place: (a - mean) / (std + 1e-8) with the unbiased std, as torch's .std() in SB3.
 void normalize_advantages(Eigen::RowVectorXf& advantages);
 
+// What SB3's PPO.train (and sb3-contrib's MaskablePPO.train) logs: the minibatches' mean
+// losses and clip fraction, the mean approx_kl of the last epoch run, the last minibatch's loss.
+struct PpoTrainStatistics {
+  double entropy_loss_sum = 0, pg_loss_sum = 0, value_loss_sum = 0, clip_fraction_sum = 0;
+  int n_minibatches = 0;
+  double last_loss = 0, approx_kl_sum = 0;
+  int approx_kl_count = 0;
+
+  void start_epoch() {
+    approx_kl_sum = 0;
+    approx_kl_count = 0;
+  }
+  void add(const PpoLossTerms& t) {
+    pg_loss_sum += t.policy_loss;
+    value_loss_sum += t.value_loss;
+    entropy_loss_sum += t.entropy_loss;
+    clip_fraction_sum += t.clip_fraction;
+    approx_kl_sum += t.approx_kl;
+    ++approx_kl_count;
+    ++n_minibatches;
+    last_loss = t.loss;
+  }
+};
+
 }  // namespace rlrun

@@ -1,4 +1,5 @@
 #include "rlrun/envs/grid_world/grid_world.hpp"
+#include "rlrun/env/action_mask.hpp"
 #include "rlrun/env/discrete_action.hpp"
 
 #include <limits>
@@ -15,6 +16,18 @@ GridWorld::GridWorld(const Config& config)
   if (config_.max_steps < 1) throw std::invalid_argument("GridWorld-v0: max_steps must be >= 1");
   key_success_ = info_.add_key("is_success");
   key_bumped_ = info_.add_key("bumped");
+  for (int a = 0; a < kNumActions; ++a) key_mask_[a] = info_.add_key(action_mask_key(a));
+}
+
+void GridWorld::write_info(bool at_goal, bool bumped) {
+  info_.clear();
+  info_.set(key_success_, at_goal ? 1.0 : 0.0);
+  info_.set(key_bumped_, bumped ? 1.0 : 0.0);
+  // The moves that stay on the grid; every cell has at least two.
+  info_.set(key_mask_[kUp], row_ > 0 ? 1.0 : 0.0);
+  info_.set(key_mask_[kRight], col_ < config_.size - 1 ? 1.0 : 0.0);
+  info_.set(key_mask_[kDown], row_ < config_.size - 1 ? 1.0 : 0.0);
+  info_.set(key_mask_[kLeft], col_ > 0 ? 1.0 : 0.0);
 }
 
 int GridWorld::shortest_path_length(int row, int col) const {
@@ -34,9 +47,7 @@ void GridWorld::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   }
   steps_ = 0;
   has_state_ = true;
-  info_.clear();
-  info_.set(key_success_, 0.0);
-  info_.set(key_bumped_, 0.0);
+  write_info(false, false);
   write_observation(obs);
 }
 
@@ -67,9 +78,7 @@ StepResult GridWorld::step(std::span<const float> action, std::span<float> obs) 
     result.reward += config_.timeout_reward;
     result.truncated = true;
   }
-  info_.clear();
-  info_.set(key_success_, at_goal ? 1.0 : 0.0);
-  info_.set(key_bumped_, bumped ? 1.0 : 0.0);
+  write_info(at_goal, bumped);
   write_observation(obs);
   return result;
 }
@@ -93,6 +102,7 @@ void GridWorld::read_state(const StateReader& in) {
   row_ = static_cast<int>(in.get_int_in("row", 0, config_.size - 1));
   col_ = static_cast<int>(in.get_int_in("col", 0, config_.size - 1));
   steps_ = static_cast<int>(in.get_int_in("steps", 0, std::numeric_limits<int>::max()));
+  write_info(false, false);  // the restored cell's mask
 }
 
 }  // namespace rlrun

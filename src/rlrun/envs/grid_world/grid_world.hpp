@@ -13,7 +13,9 @@
 //   reward       move_reward per move, wall_reward for a move into the wall, plus
 //                goal_reward on reaching the goal and timeout_reward on the truncating step.
 //                With the defaults the return from (0, 0) is -(steps taken), optimum -8.
-//   info         is_success (reached the goal), bumped (this move hit the wall)
+//   info         is_success (reached the goal), bumped (this move hit the wall), and the
+//                action mask of the new state (env/action_mask.hpp, for MaskablePPO):
+//                action_mask.0 ... action_mask.3, 0 for the moves into the wall, 1 otherwise
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -94,7 +96,11 @@ class GridWorld : public Env {
   Space action_space_;
   Info info_;
   EnvSeeding seeding_;  // Gymnasium seeding rules + the env's Rng
+  // Sets is_success, bumped and the action mask of the current cell.
+  void write_info(bool at_goal, bool bumped);
+
   int key_success_, key_bumped_;
+  int key_mask_[kNumActions];
   bool has_state_ = false;
   int row_ = 0, col_ = 0;
   int steps_ = 0;

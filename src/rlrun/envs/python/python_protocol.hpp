@@ -44,10 +44,11 @@ inline size_t request_bytes(int act_dim) {
 
 // Bounds on what a worker may send (it runs the user's own code, but a broken env must not
 // make rlrun allocate without limit): handshake JSON (a Box of an 84x84x3 image with bounds
-// is ~0.5 MB), an error text, a frame (4096 x 4096 RGB), info keys per env.
+// is ~0.5 MB), an error text, a frame (4096 x 4096 RGB), info keys per env (256 of the env's
+// own and up to 4096 entries of an action mask, env/action_mask.hpp).
 inline constexpr uint32_t kMaxHandshakeBytes = 64u << 20;
 inline constexpr uint32_t kMaxErrorBytes = 1u << 20;
 inline constexpr uint32_t kMaxReplyBytes = 64u << 20;
-inline constexpr int kMaxInfoKeys = 256;
+inline constexpr int kMaxInfoKeys = 256 + 4096;
 
 }  // namespace rlrun::python_protocol

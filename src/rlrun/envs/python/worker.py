@@ -26,7 +26,7 @@ faulthandler.enable()  # a crash inside the env prints its Python stack before r
 PROTOCOL_VERSION = 1
 KIND_NAMES = ("Dict", "MultiDiscrete", "MultiBinary", "Discrete", "Box")
 UNSUPPORTED = ("Tuple", "Text", "Graph", "Sequence", "OneOf")
-MAX_INFO_KEYS = 256
+MAX_INFO_KEYS = 256 + 4096  # python_protocol.hpp: numeric keys and an action mask's entries
 
 
 class EnvError(Exception):
@@ -324,6 +324,14 @@ class Worker:
         self.obs_view = np.frombuffer(self.reply, dtype=np.float32, count=self.obs_dim,
                                       offset=15)
         self.info_keys = {}
+        # sb3-contrib's ActionMasker / get_action_masks: env.action_masks(), through wrappers.
+        self.mask_method = None
+        getter = getattr(self.env, "get_wrapper_attr", None)
+        try:
+            method = getter("action_masks") if getter else getattr(self.env, "action_masks")
+            self.mask_method = method if callable(method) else None
+        except AttributeError:
+            pass
         self.warned = set()
         self.step_count = 0
         metadata = getattr(self.env, "metadata", None) or {}
@@ -356,6 +364,24 @@ class Worker:
             return bool(value)
         fail(f"step() returned {name} = {value!r} ({type(value).__name__}); it must be a bool")
 
+    def action_mask_items(self, info):
+        """The env's action mask as info items action_mask.0, action_mask.1, ...
+        (src/rlrun/env/action_mask.hpp): sb3-contrib's action_masks() method (found through
+        wrappers as get_action_masks does), else Gymnasium's info["action_mask"]."""
+        np = self.np
+        mask = None
+        if self.mask_method is not None:
+            mask = self.mask_method()
+        elif info is not None and "action_mask" in info:
+            mask = info["action_mask"]
+        if mask is None:
+            return []
+        try:
+            mask = np.asarray(mask, dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError):
+            fail(f"the action mask is a {type(mask).__name__}; it must be an array of 0/1 or bools")
+        return [(f"action_mask.{i}", value) for i, value in enumerate(mask.tolist())]
+
     def finish(self, obs, info, reward, terminated, truncated, what):
         np = self.np
         self.obs_codec.write(obs, self.obs_view, what)
@@ -364,7 +390,8 @@ class Worker:
         values = []
         if info is not None and not hasattr(info, "items"):
             fail(f"the info of {what.split(' ')[-1]} is a {type(info).__name__}; it must be a dict")
-        for key, value in (info.items() if info else ()):
+        items = list(info.items()) if info else []
+        for key, value in items + self.action_mask_items(info):
             if isinstance(value, (bool, int, float, np.bool_, np.integer, np.floating)) or (
                     isinstance(value, np.ndarray) and value.shape == () and
                     value.dtype.kind in "biuf"):

@@ -85,6 +85,14 @@ void LightAgent::set_approaches(ApproachLayout layout, std::vector<int> edge_slo
   edge_slots_ = std::move(edge_slots);
 }
 
+void LightAgent::action_mask(const LightTiming& timing, std::span<float> mask) const {
+  const bool may_change = since_change_ >= timing.yellow_time + timing.min_green;
+  for (size_t k = 0; k < mask.size(); ++k) {
+    const int green = static_cast<int>(k);
+    mask[k] = green < num_greens() && (may_change || green == green_) ? 1.0f : 0.0f;
+  }
+}
+
 LightCommand LightAgent::decide(int action, const LightTiming& timing) {
   LightCommand command;
   int next = action;

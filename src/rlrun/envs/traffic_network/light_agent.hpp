@@ -91,6 +91,12 @@ class LightAgent {
   // `seconds` of simulation passed.
   void advanced(int seconds) { since_change_ += seconds; }
 
+  // The action mask of the next decision (env/action_mask.hpp, for MaskablePPO), one entry per
+  // index of the padded action space (mask.size()): before yellow_time + min_green have passed
+  // only the current green is legal (every other action would keep it anyway), afterwards each
+  // of the light's greens; the padding past its own greens is never legal.
+  void action_mask(const LightTiming& timing, std::span<float> mask) const;
+
   // Writes the observation: `phase_width` floats of one-hot, 1 flag, `lane_width` densities,
   // `lane_width` queues (obs.size() == phase_width + 1 + 2 * lane_width).
   void observe(const std::vector<LaneReading>& lanes, const LightTiming& timing, int phase_width,

@@ -11,6 +11,7 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/shipped_data.hpp"
+#include "rlrun/env/action_mask.hpp"
 #include "rlrun/envs/sumo/tripinfo.hpp"
 
 namespace rlrun {
@@ -114,6 +115,9 @@ TrafficNetwork::TrafficNetwork(const Config& config, std::string name,
   key_travel_ = info_.find("avg_travel_time");
   key_throughput_ = info_.find("throughput");
   key_mean_queue_ = info_.find("mean_queue");
+  for (int k = 0; k < num_agents() * phase_width_; ++k)
+    key_masks_.push_back(info_.add_key(action_mask_key(k)));
+  mask_.resize(static_cast<size_t>(phase_width_));
 }
 
 TrafficNetwork::~TrafficNetwork() {
@@ -460,6 +464,11 @@ void TrafficNetwork::update_info() {
   for (const LightAgent& agent : agents_) halting += agent.queue(reading_.lanes);
   set_info(key_time_, reading_.time);
   set_info(key_queue_, halting);
+  for (size_t a = 0; a < agents_.size(); ++a) {
+    agents_[a].action_mask(timing_, mask_);
+    for (int k = 0; k < phase_width_; ++k)
+      info_.set(key_masks_[a * static_cast<size_t>(phase_width_) + k], mask_[k]);
+  }
 }
 
 void TrafficNetwork::write_observations(std::span<float> obs) const {

@@ -27,7 +27,9 @@
 //                at the last step the episode metrics from SUMO's tripinfo output (vehicles
 //                that arrived): mean_delay (mean timeLoss, RESCO's delay), avg_waiting_time,
 //                avg_travel_time (duration), throughput; and mean_queue (halting vehicles per
-//                agent on its incoming lanes, averaged over the decisions).
+//                agent on its incoming lanes, averaged over the decisions). Every step also
+//                the agents' action masks, agent-major (action_mask.<a * greens + k>,
+//                env/action_mask.hpp): the min_green rule as a mask, for MaskablePPO.
 //   control      set_control(): the agents (default), the lights' own programs (the
 //                fixed-time baseline: SUMO runs exactly as a plain `sumo` would) or SUMO's
 //                actuated control on the agents' lights (the actuated baseline).
@@ -257,6 +259,8 @@ class TrafficNetwork : public Env, public SplitStep {
   std::unique_ptr<PrivateTempDir> work_dir_;  // tripinfo and actuated programs; goes with the env
   int key_time_, key_queue_, key_delay_, key_waiting_, key_travel_, key_throughput_,
       key_mean_queue_;
+  std::vector<int> key_masks_;  // action_mask.<a * phase_width_ + k>
+  std::vector<float> mask_;     // one agent's mask (update_info)
 };
 
 }  // namespace rlrun

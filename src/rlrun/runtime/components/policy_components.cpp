@@ -8,6 +8,7 @@
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
+#include "rlrun/algos/ppo_mask/ppo_mask.hpp"
 #include "rlrun/algos/qrdqn/qrdqn.hpp"
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
@@ -95,6 +96,10 @@ void add_builtin_algorithms(Registry& r) {
   r.add(make_algorithm_entry<TQC>("TQC",
                                   "Truncated Quantile Critics (sb3-contrib semantics: SAC with "
                                   "truncated distributional critics); Box actions"));
+  r.add(make_algorithm_entry<MaskablePPO>(
+      "MaskablePPO",
+      "PPO with invalid-action masks (sb3-contrib semantics, env reports "
+      "info action_mask.*); Discrete/MultiDiscrete/MultiBinary actions"));
 }
 
 const Registry& policy_registry() {

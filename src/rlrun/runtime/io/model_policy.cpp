@@ -61,16 +61,25 @@ const Space& ModelPolicy::observation_space() const {
 const Space& ModelPolicy::action_space() const { return loaded_.env->unwrapped().action_space(); }
 
 void ModelPolicy::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-                          Eigen::MatrixXf& actions) {
+                          Eigen::MatrixXf& actions, const Eigen::MatrixXf* masks) {
   const int obs_dim = observation_space().flat_dim();
   const int act_dim = action_space().flat_dim();
   if (obs.rows() != obs_dim)
     throw std::invalid_argument("predict: an observation has " + std::to_string(obs.rows()) +
                                 " values, the model's env " + std::to_string(obs_dim));
   Algorithm& algorithm = *loaded_.algorithm;
+  if (masks && algorithm.action_mask_size() == 0)
+    throw std::invalid_argument("predict: action_masks given, but " + meta().algorithm +
+                                " takes no action masks (MaskablePPO does)");
+  const auto act = [&](const Eigen::Ref<const Eigen::MatrixXf>& in, Eigen::MatrixXf& out) {
+    if (masks)
+      algorithm.predict_masked(in, *masks, deterministic, out);
+    else
+      algorithm.predict(in, deterministic, out);
+  };
   const Eigen::Index batch = obs.cols();
   if (!feed_) {
-    algorithm.predict(obs, deterministic, actions);
+    act(obs, actions);
     return;
   }
   Env& stack = *loaded_.env;
@@ -84,7 +93,7 @@ void ModelPolicy::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool det
   };
   for (Eigen::Index j = 0; j < batch; ++j)
     reset_at(j, {policy_obs_.col(j).data(), static_cast<size_t>(policy_obs_dim)});
-  algorithm.predict(policy_obs_, deterministic, policy_actions_);
+  act(policy_obs_, policy_actions_);
   actions.resize(act_dim, batch);
   for (Eigen::Index j = 0; j < batch; ++j) {
     // Each action follows a reset with its own observation, as in a one-by-one predict, so the

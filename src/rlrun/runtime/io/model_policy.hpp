@@ -46,10 +46,16 @@ class ModelPolicy {
   const Space& policy_action_space() const { return loaded_.env->action_space(); }
   int num_agents() const { return loaded_.env->num_agents(); }
 
+  // Entries of one action mask the model takes (MaskablePPO, env/action_mask.hpp), 0 for none.
+  // Masks are over policy_action_space(): the env's own unless an action wrapper changes it.
+  int action_mask_size() const { return loaded_.algorithm->action_mask_size(); }
+
   // obs: observation_space().flat_dim() x batch (a column per observation); actions: resized
-  // to action_space().flat_dim() x batch.
+  // to action_space().flat_dim() x batch. `masks` (action_mask_size() x batch of 0/1, or null
+  // for none: sb3-contrib's predict(action_masks=None)) keep the policy to legal actions;
+  // masks for a model without masking throw std::invalid_argument.
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-               Eigen::MatrixXf& actions);
+               Eigen::MatrixXf& actions, const Eigen::MatrixXf* masks = nullptr);
 
  private:
   LoadedModel loaded_;

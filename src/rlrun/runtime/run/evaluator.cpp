@@ -1,7 +1,11 @@
 #include "rlrun/runtime/run/evaluator.hpp"
 
 #include <cmath>
+#include <memory>
+#include <string>
 
+#include "rlrun/core/errors.hpp"
+#include "rlrun/env/action_mask.hpp"
 #include "rlrun/env/step_all_agents.hpp"
 
 namespace rlrun {
@@ -29,13 +33,34 @@ double EvalResult::mean_length() const {
   return lengths.empty() ? std::nan("") : s / static_cast<double>(lengths.size());
 }
 
+ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic) {
+  if (!algorithm.masks_from_env())
+    return [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
+      algorithm.predict(obs, deterministic, actions);
+    };
+  struct Masks {
+    ActionMaskReader reader;
+    Eigen::MatrixXf values;
+    int64_t calls = 0;
+  };
+  auto masks = std::make_shared<Masks>(Masks{ActionMaskReader(env.action_space()), {}, 0});
+  return [&algorithm, &env, deterministic, masks](const Eigen::MatrixXf& obs,
+                                                  Eigen::MatrixXf& actions) {
+    const int agents = static_cast<int>(obs.cols());
+    masks->values.resize(masks->reader.size(), agents);
+    const std::string problem = masks->reader.read(
+        env.info(), agents, {masks->values.data(), static_cast<size_t>(masks->values.size())});
+    if (!problem.empty())
+      throw RuntimeFailure(env.id() + " at step " + std::to_string(masks->calls) +
+                           " of the episodes: " + problem);
+    ++masks->calls;
+    algorithm.predict_masked(obs, masks->values, deterministic, actions);
+  };
+}
+
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
                            std::optional<uint64_t> seed) {
-  return evaluate_policy(
-      [&](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
-        algorithm.predict(obs, deterministic, actions);
-      },
-      env, n_episodes, seed);
+  return evaluate_policy(model_action_fn(algorithm, env, deterministic), env, n_episodes, seed);
 }
 
 EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
@@ -55,7 +80,9 @@ EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
   std::vector<int> metric_indices;
   const std::vector<std::string>& keys = env.unwrapped().info().keys();
   for (const std::string& key : keys) {
-    if (key == "is_success" || key.rfind("episode.", 0) == 0 || key == "TimeLimit.truncated")
+    // Not metrics: Monitor's and TimeLimit's keys, and the action mask (env/action_mask.hpp).
+    if (key == "is_success" || key.rfind("episode.", 0) == 0 || key == "TimeLimit.truncated" ||
+        key.rfind("action_mask.", 0) == 0)
       continue;
     const int index = env.info().find(key);
     if (index < 0) continue;

@@ -31,6 +31,15 @@ struct EvalResult {
   double mean_length() const;
 };
 
+// A trained model's ActionFn for episodes of `env`: predict(), or predict_masked() with the
+// masks `env` reports for its current state (env/action_mask.hpp) when the algorithm reads
+// them (MaskablePPO's use_masking: sb3-contrib's evaluate_policy and MaskableEvalCallback pass
+// get_action_masks(env) at every step). Call it right after env's reset() or step(), as
+// evaluate_policy and record_episodes do. A missing, wrong-length or all-0 mask throws
+// RuntimeFailure naming the env and the step.
+ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic);
+
+// evaluate_policy(model_action_fn(algorithm, env, deterministic), ...).
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
                            std::optional<uint64_t> seed);
 EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,

@@ -10,6 +10,7 @@
 #include "rlrun/runtime/experiment/env_factory.hpp"
 #include "rlrun/runtime/experiment/env_statistics.hpp"
 #include "rlrun/runtime/io/log_sinks.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
 #include "rlrun/runtime/run/recorder.hpp"
 
 namespace rlrun {
@@ -47,12 +48,8 @@ bool VideoCallback::on_step(int64_t num_timesteps) {
   options.keep_going = [] { return !interrupt_requested(); };
   const bool deterministic = config_.deterministic;
   Algorithm& algorithm = context_.algorithm;
-  const RecordResult r = record_episodes(
-      *env_,
-      [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
-        algorithm.predict(obs, deterministic, action);
-      },
-      options);
+  const RecordResult r =
+      record_episodes(*env_, model_action_fn(algorithm, *env_, deterministic), options);
   if (context_.message)
     context_.message("video at " + count_of(num_timesteps, "step") + ": " + options.video_path +
                      " (" + count_of(r.frames, "frame") + ", return " +

@@ -18,6 +18,9 @@ namespace {
 const std::vector<std::pair<std::string, std::string>> kAlgorithms{
     {"ppo", "PPO"}, {"a2c", "A2C"},   {"dqn", "DQN"}, {"sac", "SAC"},
     {"td3", "TD3"}, {"ddpg", "DDPG"}, {"tqc", "TQC"}, {"qrdqn", "QRDQN"}};
+// sb3-contrib's MaskablePPO under rl-zoo's name (rl_zoo3/utils.py ALGOS["ppo_mask"]) and its
+// own, compared without '-' and '_' as kNotInRlrun's names are.
+const std::vector<std::string> kMaskablePPONames{"ppomask", "maskableppo"};
 
 // The algorithms of rl-zoo 2.4's files (rl_zoo3/utils.py ALGOS, from sb3-contrib) and of
 // sb3-contrib that rlrun does not have, by the names a file or --algo gives them (lower case,
@@ -29,8 +32,6 @@ const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
     {"ppolstm", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
     {"recurrentppo",
      "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
-    {"ppomask", "rlrun has no MaskablePPO (sb3-contrib's MaskablePPO) yet"},
-    {"maskableppo", "rlrun has no MaskablePPO (sb3-contrib's MaskablePPO) yet"},
     // rl-zoo keeps its her.yml from before SB3 1.1 for reference (entries with model_class).
     {"her",
      "rl-zoo's her.yml predates SB3 1.1, where HER became a replay buffer "
@@ -84,6 +85,11 @@ std::string rlrun_algorithm(const std::string& name) {
   const std::string wanted = ascii_lower(name);
   for (const auto& [zoo, rlrun] : kAlgorithms)
     if (wanted == zoo) return rlrun;
+  std::string key;
+  for (const char c : wanted)
+    if (c != '-' && c != '_') key += c;
+  for (const std::string& name : kMaskablePPONames)
+    if (key == name) return "MaskablePPO";
   return "";
 }
 
