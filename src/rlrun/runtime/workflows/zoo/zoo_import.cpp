@@ -114,7 +114,8 @@ class Translation {
   // [400, 300]; SACPolicy and TQCPolicy keep [256, 256], rlrun's default for them too.
   void cnn_default_net_arch() {
     const std::string& algo = entry_.algorithm;
-    if (algo == "PPO" || algo == "A2C" || algo == "DQN" || algo == "QRDQN") {
+    if (algo == "PPO" || algo == "MaskablePPO" || algo == "A2C" || algo == "DQN" ||
+        algo == "QRDQN") {
       policy_["net_arch"] = YAML::Node(YAML::NodeType::Sequence);
     } else if (algo == "TD3" || algo == "DDPG") {
       YAML::Node layers(YAML::NodeType::Sequence);

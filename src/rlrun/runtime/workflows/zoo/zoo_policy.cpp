@@ -154,10 +154,12 @@ bool check_policy_name(const ConfigNode& policy, const std::string& algorithm) {
   const std::string name = policy.as_string();
   if (name == "MlpPolicy" || name == "MultiInputPolicy") return false;
   if (name == "CnnPolicy") {
-    for (const char* with_cnn : {"PPO", "A2C", "DQN", "QRDQN", "SAC", "TD3", "DDPG", "TQC"})
+    for (const char* with_cnn :
+         {"PPO", "MaskablePPO", "A2C", "DQN", "QRDQN", "SAC", "TD3", "DDPG", "TQC"})
       if (algorithm == with_cnn) return true;
     policy.fail(
-        "CnnPolicy: rlrun's convolutional policy (NatureCNN) is built for PPO, A2C, DQN, "
+        "CnnPolicy: rlrun's convolutional policy (NatureCNN) is built for PPO, MaskablePPO, A2C, "
+        "DQN, "
         "QRDQN, SAC, TD3, DDPG and TQC, not yet for " +
         algorithm);
   }
