@@ -97,7 +97,11 @@ def check_env(test, env, steps=50):
             test.assertIsInstance(info, dict)
             for k, v in info.items():
                 test.assertIsInstance(k, str)
-                test.assertIsInstance(v, float)
+                if k == "action_mask":  # sb3-contrib's form: one 0/1 int8 entry per action
+                    test.assertEqual(np.asarray(v).dtype, np.int8)
+                    test.assertTrue(set(np.asarray(v).tolist()) <= {0, 1})
+                else:
+                    test.assertIsInstance(v, float)
             seen.append(obs)
             if terminated or truncated:
                 obs, _ = env.reset()
