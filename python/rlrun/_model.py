@@ -100,7 +100,7 @@ class Model:
 
     @property
     def algorithm(self) -> str:
-        """"PPO", "A2C", "DQN", "SAC", "TD3", "DDPG", "TQC" or "QRDQN"."""
+        """"PPO", "A2C", "DQN", "SAC", "TD3", "DDPG", "TQC", "QRDQN", "CrossQ" or "MaskablePPO"."""
         return self._core.algorithm
 
     @property

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates configs/zoo/ with `rlrun zoo import` from a checkout of rl-baselines3-zoo:
-# the entries of its algorithm files (SB3's six and sb3-contrib's TQC and QR-DQN) for the classic-control,
+# the entries of its algorithm files (SB3's six and sb3-contrib's TQC, QR-DQN and CrossQ) for the classic-control,
 # Box2D and MuJoCo tasks (docs/zoo.md). MuJoCo entries the zoo keeps under v2 only (PPO's
 # InvertedPendulum-v2, Reacher-v2, ...) are imported for the v4 task (docs/mujoco.md).
 #   scripts/data/regen_zoo_configs.sh ZOO_CHECKOUT [RLRUN_BINARY]
@@ -14,7 +14,7 @@ out=$here/configs/zoo
 mkdir -p "$out"
 failed=0
 cd "$zoo"  # the written files name hyperparams/<algo>.yml, not this machine's path
-for algo in ppo a2c dqn qrdqn sac td3 ddpg tqc; do
+for algo in ppo a2c dqn qrdqn sac td3 ddpg tqc crossq; do
   file=hyperparams/$algo.yml
   for env in CartPole-v1 Pendulum-v1 MountainCar-v0 MountainCarContinuous-v0 Acrobot-v1 \
              LunarLander-v3 LunarLanderContinuous-v3 BipedalWalker-v3 BipedalWalkerHardcore-v3 \

@@ -354,6 +354,20 @@ TEST_CASE("export onnx: Box actions, normalised observations and action wrappers
               2, false});
 }
 
+TEST_CASE("export onnx: CrossQ (eval-mode BatchRenorm folded into the dense layers)",
+          "[deploy][onnx][crossq]") {
+  check_case({"crossq_pendulum", 600,
+              "env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation}]}\n"
+              "algo: {id: CrossQ, learning_starts: 100, batch_size: 32,\n"
+              "       policy: {net_arch: {pi: [16, 16], qf: [32]}, renorm_warmup_steps: 200}}\n",
+              5, false});
+  check_case({"crossq_gsde", 300,
+              "env: {id: MountainCarContinuous-v0}\n"
+              "algo: {id: CrossQ, learning_starts: 100, batch_size: 32, use_sde: true,\n"
+              "       policy: {net_arch: [16], use_expln: true, log_std_init: -1}}\n",
+              2, false});
+}
+
 TEST_CASE("export onnx: a GELU policy (Mul, Erf, Add: opset 13 has no Gelu), C's erfcf",
           "[deploy][onnx]") {
   // rl-zoo's PPO CarRacing-v3 policy_kwargs (nn.GELU, gSDE, log_std_init -2, no orthogonal

@@ -30,6 +30,9 @@ MODELS = {
     "sac": ("env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},"
             " {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
             "algo: {id: SAC, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
+    "crossq": ("env: {id: Pendulum-v1}\n"
+               "algo: {id: CrossQ, learning_starts: 50, batch_size: 16,"
+               " policy: {net_arch: [16], renorm_warmup_steps: 60}}\n", 150),
     "td3": ("env: {id: MountainCarContinuous-v0}\n"
             "algo: {id: TD3, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
     "ddpg": ("env: {id: Pendulum-v1}\n"
@@ -106,6 +109,9 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
     def test_qrdqn(self):
         self.check_exact("qrdqn", "QRDQN")
+
+    def test_crossq(self):
+        self.check_exact("crossq", "CrossQ")
 
     def test_multidiscrete_observations_one_hot_encoded(self):
         # GridWorld's MultiDiscrete positions go in; the model's OneHotObservation encodes them.

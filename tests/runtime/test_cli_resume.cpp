@@ -305,6 +305,22 @@ TEST_CASE("resume: a TQC run killed after a checkpoint ends as the uninterrupted
   check_resume_equals_uninterrupted(tqc, "KILL");
 }
 
+// CrossQ's training state is in its model tensors too: the BatchRenorm running statistics and
+// step counts (renorm_warmup_steps lowered so that the cut falls in the renorm phase).
+TEST_CASE("resume: a CrossQ run killed after a checkpoint ends as the uninterrupted run",
+          "[cli][resume][crossq]") {
+  const ResumeCase crossq{"pendulum_crossq.yaml",
+                          "pendulum_crossq",
+                          " --set run.total_timesteps=1200 --set algo.learning_starts=200"
+                          " --set algo.batch_size=64 --set 'algo.policy.net_arch=[64, 64]'"
+                          " --set algo.policy.renorm_warmup_steps=150"
+                          " --set checkpoint.freq=400 --set run.log_interval=1",
+                          "step_400.zip",
+                          1,
+                          false};
+  check_resume_equals_uninterrupted(crossq, "KILL");
+}
+
 TEST_CASE("resume: --timesteps extends a finished run from its last checkpoint", "[cli][resume]") {
   TempDir dir("resume_extend");
   const std::string config = std::string(RLRUN_SOURCE_DIR) + "/configs/cartpole_ppo.yaml";

@@ -28,32 +28,34 @@ const std::string kZooData = std::string(RLRUN_SOURCE_DIR) + "/tests/data/zoo";
 const std::vector<std::string> kAlgos{"ppo", "a2c", "dqn", "sac", "td3", "ddpg"};
 const std::vector<std::string> kVersions{"", "2023-04", "2021-02", "2020-12"};
 
-// The files of a zoo version: sb3-contrib's TQC and QR-DQN (tqc.yml, qrdqn.yml) are kept for
-// the current one only.
+// The files of a zoo version: sb3-contrib's TQC, QR-DQN and CrossQ (tqc.yml, qrdqn.yml,
+// crossq.yml) are kept for the current one only.
 std::vector<std::string> algos_of(const std::string& version) {
   std::vector<std::string> algos = kAlgos;
   if (version.empty()) {
     algos.push_back("tqc");
     algos.push_back("qrdqn");
+    algos.push_back("crossq");
   }
   return algos;
 }
 
 // The env a `default` entry is tried on: one without an entry of its own.
 std::string default_env(const std::string& algo) {
-  return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "tqc" ? "IdentityEnvBox-v0"
-                                                                           : "IdentityEnv-v0";
+  return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "tqc" || algo == "crossq"
+             ? "IdentityEnvBox-v0"
+             : "IdentityEnv-v0";
 }
 
 bool off_policy(const std::string& algo) {
   return algo == "sac" || algo == "td3" || algo == "ddpg" || algo == "dqn" || algo == "tqc" ||
-         algo == "qrdqn";
+         algo == "qrdqn" || algo == "crossq";
 }
 
 // Imports `env` from `file` and checks the experiment; with `train`, trains it briefly: 2000
 // steps (at least one rollout), with learning_starts lowered to 1500 so that off-policy
-// entries take (500) gradient steps, and a replay buffer of at most 100000 transitions. Returns ""
-// or the error.
+// entries take (500) gradient steps (CrossQ's 10), and a replay buffer of at most 100000
+// transitions. Returns "" or the error.
 std::string import_and_train(const std::string& file, const std::string& algo,
                              const std::string& env, const std::string& out_dir, bool train) {
   try {
@@ -62,7 +64,12 @@ std::string import_and_train(const std::string& file, const std::string& algo,
                                        "eval.freq=0", "run.console_interval=1000"};
     // The entry as imported, to read the values the overrides bound.
     const ZooImport imported = translate_zoo_entry(read_zoo_entry(file, env, ""), registry);
-    if (off_policy(algo)) {
+    if (algo == "crossq") {
+      // 10 gradient steps (3 of the actor): CrossQ's critics are 1024 to 2048 wide and pass
+      // 2 x batch_size columns (MuJoCo's 2048-wide entries: ~0.4 s a step on 2 cores).
+      overrides.push_back("algo.learning_starts=1990");
+      overrides.push_back("algo.buffer_size=100000");
+    } else if (off_policy(algo)) {
       const YAML::Node a = imported.experiment["algo"];
       if (a["learning_starts"] && a["learning_starts"].as<double>() > 1500)
         overrides.push_back("algo.learning_starts=1500");
@@ -723,7 +730,6 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
   const std::vector<std::pair<std::string, std::string>> files{
       {"trpo.yml", "rlrun has no TRPO (sb3-contrib's TRPO) yet"},
       {"ars.yml", "rlrun has no ARS"},
-      {"crossq.yml", "rlrun has no CrossQ"},
       {"ppo_lstm.yml", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm)"},
       {"her.yml", "HER became a replay buffer"}};
   for (const auto& [name, message] : files) {

@@ -6,6 +6,7 @@
 // buffer stores; the env gets it unscaled to [low, high] (unscale_action). The actors end in
 // tanh, so the Box must be bounded.
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 
 #include "rlrun/algos/algorithm.hpp"
@@ -71,6 +72,17 @@ class BoxActionSelection {
   ActionNoise noise_;
   Eigen::MatrixXf noise_sample_;
 };
+
+// gSDE's exploration matrices while collecting (SAC, TQC, CrossQ; SB3 collect_rollouts):
+// reset_noise(n_envs) when a collection starts, then, with sde_sample_freq > 0, whenever
+// num_collected_steps % sde_sample_freq == 0 (so twice at the start), from the current log_std.
+template <class Actor>
+void reset_collect_noise(Actor& acting, Rng& rng, int n_envs, int64_t collected_steps,
+                         int sde_sample_freq) {
+  if (collected_steps == 0) acting.reset_noise(rng, n_envs);
+  if (sde_sample_freq > 0 && collected_steps % sde_sample_freq == 0)
+    acting.reset_noise(rng, n_envs);
+}
 
 // The acting copy of SAC's or TD3's actor: a separate network, so that acting on a few
 // observations never resizes the training network's buffers. It takes the trained weights when

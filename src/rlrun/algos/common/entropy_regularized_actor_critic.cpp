@@ -177,14 +177,10 @@ void EntropyRegularizedActorCritic::train(int gradient_steps, Logger* logger) {
 }
 
 void EntropyRegularizedActorCritic::before_collect_step(int64_t collected_steps) {
-  if (!config_.use_sde) return;
-  // SB3 collect_rollouts: reset_noise(n_envs) when it starts, then, with sde_sample_freq > 0,
-  // whenever num_collected_steps % sde_sample_freq == 0 (so twice at the start), from the
-  // current log_std (get() refreshes the acting copy).
-  SacActor& acting = acting_actor_.get();
-  if (collected_steps == 0) acting.reset_noise(acting_.action_rng(), setup_.n_envs);
-  if (config_.sde_sample_freq > 0 && collected_steps % config_.sde_sample_freq == 0)
-    acting.reset_noise(acting_.action_rng(), setup_.n_envs);
+  // get() refreshes the acting copy: the noise comes from the current log_std.
+  if (config_.use_sde)
+    reset_collect_noise(acting_actor_.get(), acting_.action_rng(), setup_.n_envs, collected_steps,
+                        config_.sde_sample_freq);
 }
 
 void EntropyRegularizedActorCritic::record_rollout_logs(Logger& logger) {

@@ -108,7 +108,12 @@ void SacActor::mode(const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixX
 }
 
 std::string SacActor::export_mode(PolicyGraph& graph, const std::string& features) const {
-  std::string mean = graph.mlp(features, net_.net());
+  return export_mode_from_output(graph, graph.mlp(features, net_.net()));
+}
+
+std::string SacActor::export_mode_from_output(PolicyGraph& graph,
+                                              const std::string& net_output) const {
+  std::string mean = net_output;
   if (use_sde()) {
     const float c = sde_options_.clip_mean;
     if (c > 0.0f)
@@ -146,7 +151,7 @@ void SacActor::backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
 
 void SacActor::backward_network(const Eigen::MatrixXf& grad_out,
                                 const Eigen::MatrixXf* grad_latent) {
-  if (!extractor_.learned()) {
+  if (!extractor_.learned() && !keep_input_gradient_) {
     net_.zero_grad_and_backward(grad_out, grad_latent);
     return;
   }
@@ -154,7 +159,7 @@ void SacActor::backward_network(const Eigen::MatrixXf& grad_out,
   // Without hidden layers gSDE's latent_pi is the features themselves: its gradient goes to
   // the extractor directly (the network ignores it, having no hidden layer to send it to).
   if (grad_latent && net_.net().num_layers() == 1) grad_features_ += *grad_latent;
-  extractor_.zero_grad_and_backward(grad_features_);
+  if (extractor_.learned()) extractor_.zero_grad_and_backward(grad_features_);
 }
 
 std::string SacActor::mu_name(const std::string& prefix) const {

@@ -72,6 +72,9 @@ class SacActor {
   // `features` to the action in [-1, 1]: tanh of the mean (gSDE: of the mean clipped to
   // +-clip_mean).
   std::string export_mode(PolicyGraph& graph, const std::string& features) const;
+  // The same from the node of the network's output (`net_output`: [mu; log_std], or mu with
+  // gSDE), e.g. of a network that folds more layers in front of this one's (CrossQ).
+  std::string export_mode_from_output(PolicyGraph& graph, const std::string& net_output) const;
   const StateDependentNoise& sde() const { return sde_; }
   StateDependentNoise& sde() { return sde_; }
   // SB3 Actor.reset_noise(batch_size): new exploration matrices (gSDE only).
@@ -102,6 +105,12 @@ class SacActor {
   // gradient also reaches latent_pi through the noise and the variance (learn_features).
   void backward(const Eigen::Ref<const Eigen::MatrixXf>& grad_actions,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob);
+  // With keep_input_gradient(true), backward() also leaves dL/d(network input) (features x
+  // batch, gSDE's latent gradient included when the network has no hidden layer) in
+  // input_gradient(): CrossQ's actor puts its batch-renormalised layers in front of heads
+  // built as a SacActor without hidden layers.
+  void keep_input_gradient(bool keep) { keep_input_gradient_ = keep; }
+  const Eigen::MatrixXf& input_gradient() const { return grad_features_; }
 
   // SB3 state_dict names under `prefix` ("actor"): <prefix>.latent_pi.<2i>.weight/bias,
   // <prefix>.mu.weight/bias, <prefix>.log_std.weight/bias. With gSDE: <prefix>.mu.0.weight/bias
@@ -125,6 +134,7 @@ class SacActor {
   SquashedGaussian dist_;
   SacActorSde sde_options_;
   StateDependentNoise sde_;
+  bool keep_input_gradient_ = false;
   // Workspaces, reused while the batch size stays the same.
   Eigen::MatrixXf log_std_, grad_mean_, grad_log_std_, grad_head_, mu_, grad_latent_,
       grad_features_;

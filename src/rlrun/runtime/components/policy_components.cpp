@@ -5,6 +5,7 @@
 #include "rlrun/runtime/components/policy_components.hpp"
 
 #include "rlrun/algos/a2c/a2c.hpp"
+#include "rlrun/algos/crossq/crossq.hpp"
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
@@ -96,6 +97,10 @@ void add_builtin_algorithms(Registry& r) {
   r.add(make_algorithm_entry<TQC>("TQC",
                                   "Truncated Quantile Critics (sb3-contrib semantics: SAC with "
                                   "truncated distributional critics); Box actions"));
+  r.add(make_algorithm_entry<CrossQ>(
+      "CrossQ",
+      "CrossQ (sb3-contrib semantics: SAC with batch-renormalised networks, no target "
+      "networks, a joint critic pass over s and s'); Box actions"));
   r.add(make_algorithm_entry<MaskablePPO>(
       "MaskablePPO",
       "PPO with invalid-action masks (sb3-contrib semantics, env reports "
