@@ -375,6 +375,14 @@ TEST_CASE("export onnx: TQC (SAC's squashed actor, the mean of every atom as the
               5, false});
 }
 
+TEST_CASE("export onnx: TRPO (the actor-critic policy, gSDE's mean as the action)",
+          "[deploy][onnx][trpo]") {
+  check_case({"trpo_pendulum_sde", 1024,
+              "env: {id: Pendulum-v1, n_envs: 2}\n"
+              "algo: {id: TRPO, n_steps: 256, use_sde: true, policy: {net_arch: [32, 32]}}\n",
+              5, false});
+}
+
 TEST_CASE("export onnx: QRDQN (argmax of each action's quantile mean, the means as the value)",
           "[deploy][onnx][qrdqn]") {
   check_case({"qrdqn_cartpole", 2000,

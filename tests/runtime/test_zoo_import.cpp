@@ -28,13 +28,14 @@ const std::string kZooData = std::string(RLRUN_SOURCE_DIR) + "/tests/data/zoo";
 const std::vector<std::string> kAlgos{"ppo", "a2c", "dqn", "sac", "td3", "ddpg"};
 const std::vector<std::string> kVersions{"", "2023-04", "2021-02", "2020-12"};
 
-// The files of a zoo version: sb3-contrib's TQC and QR-DQN (tqc.yml, qrdqn.yml) are kept for
-// the current one only.
+// The files of a zoo version: sb3-contrib's TQC, QR-DQN and TRPO (tqc.yml, qrdqn.yml, trpo.yml)
+// are kept for the current one only.
 std::vector<std::string> algos_of(const std::string& version) {
   std::vector<std::string> algos = kAlgos;
   if (version.empty()) {
     algos.push_back("tqc");
     algos.push_back("qrdqn");
+    algos.push_back("trpo");
   }
   return algos;
 }
@@ -721,7 +722,6 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
   TempDir dir("zoo_missing_algo");
   const std::string entry = "CartPole-v1:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n";
   const std::vector<std::pair<std::string, std::string>> files{
-      {"trpo.yml", "rlrun has no TRPO (sb3-contrib's TRPO) yet"},
       {"ars.yml", "rlrun has no ARS"},
       {"crossq.yml", "rlrun has no CrossQ"},
       {"ppo_lstm.yml", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm)"},
@@ -731,6 +731,7 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
     const std::string error = import_error(write_file(dir, name, entry), "CartPole-v1");
     CHECK_THAT(error, Catch::Contains(message) && !Catch::Contains("pass --algo"));
   }
+  CHECK(read_zoo_entry(write_file(dir, "trpo.yml", entry), "CartPole-v1", "").algorithm == "TRPO");
   // MaskablePPO is rlrun's (algos/ppo_mask/), by rl-zoo's name or sb3-contrib's.
   for (const char* name : {"ppo_mask", "maskable_ppo", "MaskablePPO"})
     CHECK(read_zoo_entry(write_file(dir, "tuned.yml", entry), "CartPole-v1", name).algorithm ==

@@ -13,6 +13,7 @@
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
+#include "rlrun/algos/trpo/trpo.hpp"
 #include "rlrun/wrappers/action_repeat.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
@@ -100,6 +101,10 @@ void add_builtin_algorithms(Registry& r) {
       "MaskablePPO",
       "PPO with invalid-action masks (sb3-contrib semantics, env reports "
       "info action_mask.*); Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<TRPO>(
+      "TRPO",
+      "Trust Region Policy Optimization (sb3-contrib semantics: natural gradient by conjugate "
+      "gradient, KL line search); Box/Discrete/MultiDiscrete/MultiBinary actions"));
 }
 
 const Registry& policy_registry() {
