@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "algos/zoo_learning_bar.hpp"
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/trpo/conjugate_gradient.hpp"
 #include "rlrun/algos/trpo/trpo.hpp"
@@ -334,32 +335,6 @@ TEST_CASE("TRPO with gSDE runs through the registry and logs sb3-contrib's keys"
 
 TEST_CASE("TRPO learns the zoo's CartPole-v1 and Pendulum-v1 entries in seeds 1-3",
           "[.slow][algos][trpo_slow]") {
-  struct Bar {
-    const char* env;
-    const char* config;
-    double bar;
-  };
-  for (const Bar& bar : {Bar{"CartPole-v1", "configs/zoo/cartpole_trpo.yaml", 475.0},
-                         Bar{"Pendulum-v1", "configs/zoo/pendulum_trpo.yaml", -400.0}}) {
-    int passed = 0;
-    for (uint64_t seed : {1, 2, 3}) {
-      testing::TempDir dir("trpo_slow_" + std::to_string(seed));
-      Registry registry = make_builtin_registry();
-      const Experiment e = load_experiment(
-          std::string(RLRUN_SOURCE_DIR) + "/" + bar.config,
-          {"run.out_dir=" + dir.str(), "run.seed=" + std::to_string(seed)}, registry);
-      const TrainOutcome outcome =
-          train_experiment(e, builtin_registry(), testing::test_execution());
-      const ModelFile model = read_model(outcome.model_path);
-      const Experiment stored = experiment_from_model(model, builtin_registry());
-      EnvPtr env = make_env(stored.env, builtin_registry(), "", 0.0);
-      auto loaded = algorithm_from_model(model, stored, builtin_registry(),
-                                         env->observation_space(), env->action_space());
-      const double mean = evaluate_policy(*loaded, *env, 20, true, 1000).mean_return();
-      std::printf("TRPO %s seed %llu: %.1f s, eval %.1f\n", bar.env,
-                  static_cast<unsigned long long>(seed), outcome.wall_seconds, mean);
-      passed += mean >= bar.bar;
-    }
-    CHECK(passed >= 2);
-  }
+  testing::check_zoo_learning_bar("configs/zoo/cartpole_trpo.yaml", 475.0);
+  testing::check_zoo_learning_bar("configs/zoo/pendulum_trpo.yaml", -400.0);
 }

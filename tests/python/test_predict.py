@@ -30,6 +30,8 @@ MODELS = {
     "trpo": ("env: {id: CartPole-v1, n_envs: 2}\n"
              "algo: {id: TRPO, n_steps: 64, batch_size: 32, n_critic_updates: 2,"
              " policy: {net_arch: [16]}}\n", 256),
+    "ars": ("env: {id: Pendulum-v1, normalize: {norm_obs: true, norm_reward: false}}\n"
+            "algo: {id: ARS, n_delta: 2, zero_policy: false, policy: {net_arch: [8]}}\n", 2000),
     "sac": ("env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},"
             " {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
             "algo: {id: SAC, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
@@ -112,6 +114,9 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
     def test_trpo(self):
         self.check_exact("trpo", "TRPO")
+
+    def test_ars(self):
+        self.check_exact("ars", "ARS")
 
     def test_multidiscrete_observations_one_hot_encoded(self):
         # GridWorld's MultiDiscrete positions go in; the model's OneHotObservation encodes them.

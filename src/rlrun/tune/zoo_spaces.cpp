@@ -122,6 +122,22 @@ std::vector<Override> trpo(Zoo z) {
   return out;
 }
 
+// sample_ars_params + convert_ars_params: n_delta a power of two, n_top a fraction of it (at
+// least one).
+std::vector<Override> ars(Zoo z) {
+  std::vector<Override> out;
+  const int64_t n_delta = int64_t{1} << z.int_("n_delta_pow", 2, 6);
+  const double learning_rate = z.float_("learning_rate", 1e-5, 0.002, true);
+  const double delta_std = z.float_("delta_std", 0.01, 0.3);
+  const double top_frac_size = z.float_("top_frac_size", 0.05, 1.0);
+  set(out, "algo.n_delta", n_delta);
+  set(out, "algo.learning_rate", learning_rate);
+  set(out, "algo.delta_std", delta_std);
+  set(out, "algo.n_top",
+      std::max<int64_t>(static_cast<int64_t>(top_frac_size * static_cast<double>(n_delta)), 1));
+  return out;
+}
+
 // sample_her_params: appended by the off-policy spaces when the experiment uses HER.
 void her(Zoo z, std::vector<Override>& out) {
   set(out, "algo.replay_buffer_kwargs.n_sampled_goal", z.int_("n_sampled_goal", 1, 5));
@@ -286,6 +302,7 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
   if (algo_id == "PPO") return std::make_unique<ZooSpace>("sample_ppo_params", ppo);
   if (algo_id == "A2C") return std::make_unique<ZooSpace>("sample_a2c_params", a2c);
   if (algo_id == "TRPO") return std::make_unique<ZooSpace>("sample_trpo_params", trpo);
+  if (algo_id == "ARS") return std::make_unique<ZooSpace>("sample_ars_params", ars);
   const std::string suffix = uses_her ? " + sample_her_params" : "";
   if (algo_id == "DQN")
     return std::make_unique<ZooSpace>("sample_dqn_params" + suffix,
@@ -305,7 +322,7 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
                                       [uses_her](Zoo z) { return tqc(z, uses_her); });
   throw UsageError(
       "rl-zoo has no search space for " + algo_id +
-      " (PPO, A2C, TRPO, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
+      " (PPO, A2C, TRPO, ARS, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
 }
 
 }  // namespace rlrun::tune

@@ -5,6 +5,7 @@
 #include "rlrun/runtime/components/policy_components.hpp"
 
 #include "rlrun/algos/a2c/a2c.hpp"
+#include "rlrun/algos/ars/ars.hpp"
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
@@ -105,6 +106,10 @@ void add_builtin_algorithms(Registry& r) {
       "TRPO",
       "Trust Region Policy Optimization (sb3-contrib semantics: natural gradient by conjugate "
       "gradient, KL line search); Box/Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<ARS>(
+      "ARS",
+      "Augmented Random Search (sb3-contrib semantics: antithetic weight perturbations, the "
+      "n_top best directions); Box/Discrete actions"));
 }
 
 const Registry& policy_registry() {

@@ -16,8 +16,8 @@ namespace {
 
 // rl-zoo's algorithm names (rl_zoo3/utils.py ALGOS) that rlrun implements.
 const std::vector<std::pair<std::string, std::string>> kAlgorithms{
-    {"ppo", "PPO"},   {"a2c", "A2C"}, {"dqn", "DQN"},     {"sac", "SAC"},  {"td3", "TD3"},
-    {"ddpg", "DDPG"}, {"tqc", "TQC"}, {"qrdqn", "QRDQN"}, {"trpo", "TRPO"}};
+    {"ppo", "PPO"},   {"a2c", "A2C"}, {"dqn", "DQN"},     {"sac", "SAC"},   {"td3", "TD3"},
+    {"ddpg", "DDPG"}, {"tqc", "TQC"}, {"qrdqn", "QRDQN"}, {"trpo", "TRPO"}, {"ars", "ARS"}};
 // sb3-contrib's MaskablePPO under rl-zoo's name (rl_zoo3/utils.py ALGOS["ppo_mask"]) and its
 // own, compared without '-' and '_' as kNotInRlrun's names are.
 const std::vector<std::string> kMaskablePPONames{"ppomask", "maskableppo"};
@@ -26,7 +26,6 @@ const std::vector<std::string> kMaskablePPONames{"ppomask", "maskableppo"};
 // sb3-contrib that rlrun does not have, by the names a file or --algo gives them (lower case,
 // without '-' and '_': qrdqn.yml, ppo_lstm.yml, --algo qr-dqn), and what to say.
 const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
-    {"ars", "rlrun has no ARS (sb3-contrib's ARS) yet"},
     {"crossq", "rlrun has no CrossQ (sb3-contrib's CrossQ) yet"},
     {"ppolstm", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
     {"recurrentppo",
@@ -38,7 +37,7 @@ const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
      "entry from tqc.yml, sac.yml, ..."}};
 
 const char* const kImported =
-    "rlrun imports zoo files of ppo, ppo_mask, a2c, dqn, qrdqn, trpo, sac, td3, ddpg and tqc";
+    "rlrun imports zoo files of ppo, ppo_mask, a2c, dqn, qrdqn, trpo, ars, sac, td3, ddpg and tqc";
 
 // Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}. The MuJoCo
 // tasks' v2 and v3 ids run on mujoco-py, which Gymnasium 1.0 still registers but nobody can
