@@ -71,7 +71,33 @@ class RlrunVectorEnv(_VectorBase):
                 if mask.any():
                     infos[key] = np.where(mask, values[:, j], 0.0)
                     infos["_" + key] = mask
+        self._gather_action_masks(infos)
         return infos
+
+    def _gather_action_masks(self, infos: dict) -> None:
+        # An env's mask travels as info keys action_mask.0, action_mask.1, ...
+        # (src/rlrun/env/action_mask.hpp); here they become one (num_envs, n) int8 array
+        # infos["action_mask"] with its "_action_mask" row mask, as rlrun.make's info["action_mask"]
+        # per env. After a same-step auto-reset the row is the new episode's first state's mask
+        # (the ending step's is in infos["final_info"]).
+        n = 0
+        while f"action_mask.{n}" in infos:
+            n += 1
+        if n == 0:
+            return
+        columns = [infos.pop(f"action_mask.{i}") for i in range(n)]
+        rows = infos.pop("_action_mask.0")
+        for i in range(1, n):
+            infos.pop(f"_action_mask.{i}")
+        infos["action_mask"] = np.stack(columns, axis=1).astype(np.int8)
+        infos["_action_mask"] = rows
+
+    def action_masks(self):
+        """sb3-contrib's ``env_method("action_masks")`` for every env at once: a (num_envs, n)
+        bool array of each env's legal actions in its current state (after an auto-reset, the
+        new episode's), or None when the env reports no masks."""
+        mask = getattr(self, "_action_mask", None)
+        return None if mask is None else mask.astype(bool)
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         """Resets every env; with a seed, env i is seeded seed + i (Gymnasium's rule)."""
@@ -80,12 +106,15 @@ class RlrunVectorEnv(_VectorBase):
                 raise ValueError(f"seed must be a non-negative int, got {seed!r}")
             self._np_random = np.random.default_rng(seed)
         obs, values = self._core.reset(None if seed is None else int(seed))
-        return _spaces.batch_from_flat(self.single_observation_space, obs), self._infos(values)
+        infos = self._infos(values)
+        self._action_mask = infos.get("action_mask")
+        return _spaces.batch_from_flat(self.single_observation_space, obs), infos
 
     def step(self, actions):
         flat = _spaces.batch_to_flat(self.single_action_space, actions, self.num_envs)
-        obs, rewards, terminated, truncated, final_obs, values = self._core.step(flat)
+        obs, rewards, terminated, truncated, final_obs, values, step_values = self._core.step(flat)
         infos = self._infos(values)
+        self._action_mask = infos.get("action_mask")
         if final_obs is not None:
             # As Gymnasium's SAME_STEP SyncVectorEnv fills them through VectorEnv._add_info:
             # arrays over all envs (zeros where no episode ended) with `_` masks, a Dict's keys
@@ -96,7 +125,7 @@ class RlrunVectorEnv(_VectorBase):
             if isinstance(finals, dict):
                 finals = {**finals, **{"_" + k: done for k in list(finals)}}
             infos["final_obs"], infos["_final_obs"] = finals, done
-            infos["final_info"] = self._infos(np.where(done[:, None], values, np.nan))
+            infos["final_info"] = self._infos(np.where(done[:, None], step_values, np.nan))
             infos["_final_info"] = done
         return (_spaces.batch_from_flat(self.single_observation_space, obs), rewards, terminated,
                 truncated, infos)

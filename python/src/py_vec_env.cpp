@@ -42,13 +42,18 @@ class PyVecEnv {
     return out;
   }
 
-  py::array_t<double> info_values() const {
+  // The info values of the last step (`current` false: VecEnv's info(i), copied before the
+  // auto-reset) or of each env's current state (`current`: after an auto-reset the new
+  // episode's first one, what Gymnasium's same-step mode returns as infos, with the step's
+  // under final_info). A multi-agent env's slots share a copy: they keep the step's.
+  py::array_t<double> info_values(bool current = false) const {
     const int n = vec_.num_envs();
+    const bool per_copy = current && vec_.num_copies() == n;
     const py::ssize_t k = static_cast<py::ssize_t>(keys_.size());
     py::array_t<double> out({static_cast<py::ssize_t>(n), k});
     double* data = out.mutable_data();
     for (int i = 0; i < n; ++i) {
-      const Info& info = vec_.info(i);
+      const Info& info = per_copy ? vec_.env(i).info() : vec_.info(i);
       for (py::ssize_t j = 0; j < k; ++j)
         data[i * k + j] = j < static_cast<py::ssize_t>(info.values().size())
                               ? info.values()[static_cast<size_t>(j)]
@@ -100,7 +105,7 @@ class PyVecEnv {
     // final_obs only when an episode ended (rows of envs that did not end are NaN).
     py::object final_obs = any_done ? py::object(obs_copy(vec_.final_obs())) : py::none();
     return py::make_tuple(obs_copy(vec_.obs()), rewards, terminated, truncated, final_obs,
-                          info_values());
+                          info_values(/*current=*/true), info_values());
   }
 
   VecEnv vec_;
@@ -117,7 +122,8 @@ void bind_vec_env(py::module_& m) {
       .def("reset", &PyVecEnv::reset, py::arg("seed"),
            "(obs (n, obs_dim) float32, info values (n, keys) float64, NaN = absent)")
       .def("step", &PyVecEnv::step, py::arg("actions"),
-           "(obs, rewards, terminated, truncated, final_obs or None, info values)")
+           "(obs, rewards, terminated, truncated, final_obs or None, info values of each env's "
+           "current state (after an auto-reset: the new episode's), info values of the step)")
       .def_property_readonly("num_envs", [](const PyVecEnv& self) { return self.vec_.num_envs(); })
       .def_property_readonly("info_keys", [](const PyVecEnv& self) { return self.keys_; })
       .def_property_readonly(

@@ -14,7 +14,7 @@ out=$here/configs/zoo
 mkdir -p "$out"
 failed=0
 cd "$zoo"  # the written files name hyperparams/<algo>.yml, not this machine's path
-for algo in ppo a2c dqn qrdqn sac td3 ddpg tqc crossq; do
+for algo in ppo a2c dqn qrdqn trpo ars sac td3 ddpg tqc crossq; do
   file=hyperparams/$algo.yml
   for env in CartPole-v1 Pendulum-v1 MountainCar-v0 MountainCarContinuous-v0 Acrobot-v1 \
              LunarLander-v3 LunarLanderContinuous-v3 BipedalWalker-v3 BipedalWalkerHardcore-v3 \

@@ -165,6 +165,7 @@ struct Case {
   int episodes;        // evaluation episodes to record (enough for 1000 steps; those are used)
   bool discrete;
   bool python = false;  // a Python env of tests/python_envs (trained and evaluated with it)
+  bool value = true;    // the algorithm has a value to export (ARS has none)
 };
 
 void check_case(const Case& c) {
@@ -205,12 +206,14 @@ void check_case(const Case& c) {
   // ONNX Runtime: the same actions, and the value output as the evaluator computes it.
   const nlohmann::json ort = run_onnxruntime(onnx, graph, steps.obs, dir);
   check_actions(from_json(ort["action"], steps.obs.cols()), steps.actions, c.discrete);
-  REQUIRE(ort.contains("value"));
-  const Eigen::MatrixXf value = from_json(ort["value"], steps.obs.cols());
-  const Eigen::MatrixXf& expected_value = values.at(graph.value());
-  REQUIRE(value.rows() == expected_value.rows());
-  CHECK(((value - expected_value).array().abs() <= 1e-4f * expected_value.array().abs().max(1.0f))
-            .all());
+  CHECK(ort.contains("value") == c.value);
+  if (c.value) {
+    const Eigen::MatrixXf value = from_json(ort["value"], steps.obs.cols());
+    const Eigen::MatrixXf& expected_value = values.at(graph.value());
+    REQUIRE(value.rows() == expected_value.rows());
+    CHECK(((value - expected_value).array().abs() <= 1e-4f * expected_value.array().abs().max(1.0f))
+              .all());
+  }
 
   // rlrun::Policy (the embeddable library), one observation at a time and as one batch.
   const Policy policy = Policy::load(model);
@@ -387,6 +390,27 @@ TEST_CASE("export onnx: TQC (SAC's squashed actor, the mean of every atom as the
               "algo: {id: TQC, learning_starts: 100, batch_size: 32,\n"
               "       policy: {net_arch: [16, 16], n_quantiles: 5, n_critics: 3}}\n",
               5, false});
+}
+
+TEST_CASE("export onnx: TRPO (the actor-critic policy, gSDE's mean as the action)",
+          "[deploy][onnx][trpo]") {
+  check_case({"trpo_pendulum_sde", 1024,
+              "env: {id: Pendulum-v1, n_envs: 2}\n"
+              "algo: {id: TRPO, n_steps: 256, use_sde: true, policy: {net_arch: [32, 32]}}\n",
+              5, false});
+}
+
+TEST_CASE("export onnx: ARS (tanh scaled to the bounds; a linear policy's argmax)",
+          "[deploy][onnx][ars]") {
+  check_case({"ars_pendulum", 3200,
+              "env: {id: Pendulum-v1}\n"
+              "algo: {id: ARS, n_delta: 4, zero_policy: false, policy: {net_arch: [16]}}\n",
+              5, false, false, false});
+  check_case({"ars_cartpole_linear", 2000,
+              "env: {id: CartPole-v1}\n"
+              "algo: {id: ARS, n_delta: 2, policy: {net_arch: [], with_bias: false,"
+              " squash_output: false}}\n",
+              100, true, false, false});
 }
 
 TEST_CASE("export onnx: QRDQN (argmax of each action's quantile mean, the means as the value)",

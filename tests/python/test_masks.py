@@ -81,3 +81,31 @@ class MaskedPredict(TempDirMixin, unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class VectorMasks(unittest.TestCase):
+    def test_make_vec_gives_each_envs_current_mask_across_auto_resets(self):
+        env = rlrun.make_vec("GridWorld-v0", 3)
+        obs, infos = env.reset(seed=5)
+        self.assertEqual(infos["action_mask"].shape, (3, 4))
+        self.assertEqual(infos["action_mask"].dtype, np.int8)
+        self.assertNotIn("action_mask.0", infos)
+        rng = np.random.default_rng(0)
+        resets = 0
+        for _ in range(400):
+            masks = env.action_masks()
+            for i in range(3):
+                np.testing.assert_array_equal(masks[i], grid_mask(*obs[i]))
+            # A legal move for every env, from its mask.
+            actions = np.array([rng.choice(np.flatnonzero(m)) for m in masks])
+            obs, _, terminated, truncated, infos = env.step(actions)
+            done = terminated | truncated
+            resets += int(done.sum())
+            # After an auto-reset the mask is the new first state's, the ending one's is in
+            # final_info.
+            np.testing.assert_array_equal(infos["action_mask"].astype(bool), env.action_masks())
+            if done.any():
+                self.assertIn("action_mask", infos["final_info"])
+        self.assertGreater(resets, 0)
+        env.close()
+

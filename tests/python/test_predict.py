@@ -27,6 +27,11 @@ MODELS = {
     "qrdqn": ("env: {id: Acrobot-v1}\n"
               "algo: {id: QRDQN, learning_starts: 50, batch_size: 16, buffer_size: 1000,"
               " policy: {net_arch: [16], n_quantiles: 5}}\n", 200),
+    "trpo": ("env: {id: CartPole-v1, n_envs: 2}\n"
+             "algo: {id: TRPO, n_steps: 64, batch_size: 32, n_critic_updates: 2,"
+             " policy: {net_arch: [16]}}\n", 256),
+    "ars": ("env: {id: Pendulum-v1, normalize: {norm_obs: true, norm_reward: false}}\n"
+            "algo: {id: ARS, n_delta: 2, zero_policy: false, policy: {net_arch: [8]}}\n", 2000),
     "sac": ("env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},"
             " {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
             "algo: {id: SAC, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
@@ -109,6 +114,12 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
     def test_qrdqn(self):
         self.check_exact("qrdqn", "QRDQN")
+
+    def test_trpo(self):
+        self.check_exact("trpo", "TRPO")
+
+    def test_ars(self):
+        self.check_exact("ars", "ARS")
 
     def test_crossq(self):
         self.check_exact("crossq", "CrossQ")

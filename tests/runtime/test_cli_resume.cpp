@@ -210,6 +210,29 @@ TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][re
   check_resume_equals_uninterrupted(td3, "KILL");
 }
 
+TEST_CASE("resume: TRPO with gSDE resumes exactly (critic Adam, shuffles, conjugate gradient)",
+          "[cli][resume][trpo]") {
+  const ResumeCase trpo{"zoo/pendulum_trpo.yaml",
+                        "trpo_Pendulum-v1",
+                        " --set run.seed=1 --set run.total_timesteps=61440"
+                        " --set checkpoint.freq=8192 --set eval.freq=0 --set algo.n_steps=512",
+                        "step_8192.zip",
+                        2,
+                        false};
+  check_resume_equals_uninterrupted(trpo, "KILL");
+}
+
+TEST_CASE("resume: ARS with env.normalize resumes exactly (weights, directions' stream)",
+          "[cli][resume][ars]") {
+  const ResumeCase ars{"zoo/pendulum_ars.yaml",
+                       "ars_Pendulum-v1",
+                       " --set run.seed=1 --set checkpoint.freq=16000 --set eval.freq=0",
+                       "step_16000.zip",
+                       1,
+                       false};
+  check_resume_equals_uninterrupted(ars, "KILL");
+}
+
 TEST_CASE("resume: QRDQN resumes exactly from a checkpoint (the shared Q-learning state)",
           "[cli][resume][qrdqn]") {
   const ResumeCase qrdqn{"cartpole_qrdqn.yaml",

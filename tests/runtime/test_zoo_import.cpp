@@ -28,13 +28,15 @@ const std::string kZooData = std::string(RLRUN_SOURCE_DIR) + "/tests/data/zoo";
 const std::vector<std::string> kAlgos{"ppo", "a2c", "dqn", "sac", "td3", "ddpg"};
 const std::vector<std::string> kVersions{"", "2023-04", "2021-02", "2020-12"};
 
-// The files of a zoo version: sb3-contrib's TQC, QR-DQN and CrossQ (tqc.yml, qrdqn.yml,
-// crossq.yml) are kept for the current one only.
+// The files of a zoo version: sb3-contrib's TQC, QR-DQN, TRPO, ARS and CrossQ (tqc.yml,
+// qrdqn.yml, trpo.yml, ars.yml, crossq.yml) are kept for the current one only.
 std::vector<std::string> algos_of(const std::string& version) {
   std::vector<std::string> algos = kAlgos;
   if (version.empty()) {
     algos.push_back("tqc");
     algos.push_back("qrdqn");
+    algos.push_back("trpo");
+    algos.push_back("ars");
     algos.push_back("crossq");
   }
   return algos;
@@ -728,8 +730,6 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
   TempDir dir("zoo_missing_algo");
   const std::string entry = "CartPole-v1:\n  n_timesteps: 1000\n  policy: 'MlpPolicy'\n";
   const std::vector<std::pair<std::string, std::string>> files{
-      {"trpo.yml", "rlrun has no TRPO (sb3-contrib's TRPO) yet"},
-      {"ars.yml", "rlrun has no ARS"},
       {"ppo_lstm.yml", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm)"},
       {"her.yml", "HER became a replay buffer"}};
   for (const auto& [name, message] : files) {
@@ -737,6 +737,8 @@ TEST_CASE("zoo import: an algorithm rlrun lacks is named before anything else", 
     const std::string error = import_error(write_file(dir, name, entry), "CartPole-v1");
     CHECK_THAT(error, Catch::Contains(message) && !Catch::Contains("pass --algo"));
   }
+  CHECK(read_zoo_entry(write_file(dir, "trpo.yml", entry), "CartPole-v1", "").algorithm == "TRPO");
+  CHECK(read_zoo_entry(write_file(dir, "ars.yml", entry), "CartPole-v1", "").algorithm == "ARS");
   // MaskablePPO is rlrun's (algos/ppo_mask/), by rl-zoo's name or sb3-contrib's.
   for (const char* name : {"ppo_mask", "maskable_ppo", "MaskablePPO"})
     CHECK(read_zoo_entry(write_file(dir, "tuned.yml", entry), "CartPole-v1", name).algorithm ==

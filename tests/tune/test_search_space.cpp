@@ -154,7 +154,8 @@ TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped con
       {"DQN", "cartpole_dqn.yaml", false},         {"SAC", "pendulum_sac.yaml", false},
       {"TD3", "pendulum_td3.yaml", false},         {"DDPG", "pendulum_ddpg.yaml", false},
       {"TQC", "pendulum_tqc.yaml", false},         {"DQN", "bitflipping_dqn_her.yaml", true},
-      {"SAC", "gripper_reach_sac_her.yaml", true}, {"QRDQN", "cartpole_qrdqn.yaml", false}};
+      {"SAC", "gripper_reach_sac_her.yaml", true}, {"QRDQN", "cartpole_qrdqn.yaml", false},
+      {"TRPO", "zoo/pendulum_trpo.yaml", false},   {"ARS", "zoo/pendulum_ars.yaml", false}};
   for (const auto& [algo, file, her] : cases) {
     INFO(algo << " " << file);
     auto space = zoo_space(algo, her);
@@ -180,6 +181,12 @@ TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped con
               Approx(1 - trial.params["one_minus_gamma"].get<double>()));
       }
       if (algo == "QRDQN") CHECK(trial.asked.back() == "n_quantiles");  // after DQN's space
+      if (algo == "ARS")
+        CHECK(trial.asked == std::vector<std::string>{"n_delta_pow", "learning_rate", "delta_std",
+                                                      "top_frac_size"});
+      if (algo == "TRPO")
+        CHECK(trial.user_attrs["n_steps"].get<int64_t>() ==
+              int64_t{1} << trial.params["n_steps_pow"].get<int64_t>());
       if (algo == "TQC")
         CHECK(trial.params["top_quantiles_to_drop_per_net"].get<int>() <
               trial.params["n_quantiles"].get<int>());

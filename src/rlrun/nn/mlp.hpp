@@ -107,6 +107,11 @@ class Mlp {
   // but the critic's optimizer.zero_grad() discards it before it is ever used).
   void backward_input(const Eigen::Ref<const Eigen::MatrixXf>& grad_output,
                       Eigen::MatrixXf& grad_input, int first_input_row = 0);
+  // Forward-mode derivative (a Jacobian-vector product) at the last forward: d_output
+  // (out_dim x batch) = d(output)/d(params) * d_params, for a direction d_params laid out as
+  // params() and a fixed input. TRPO's Fisher-vector products (algos/trpo/) use it; defined in
+  // mlp_jvp.cpp.
+  void jvp(const Eigen::Ref<const Eigen::VectorXf>& d_params, Eigen::MatrixXf& d_output) const;
 
  private:
   friend class SplitMlp;

@@ -273,6 +273,22 @@ void StateDependentNoise::backward_sampled(
   backward_std(grad_var_, &grad_u_, grad_latent);
 }
 
+void StateDependentNoise::variance_tangent(const Eigen::Ref<const Eigen::MatrixXf>& d_log_std,
+                                           Eigen::MatrixXf& d_variance) const {
+  // variance(i, j) = sum_k s(k, j)^2 std(k, i)^2, std(k, i) = get_std(log_std(k, c(i))) with
+  // c(i) = i (full_std) or 0: d variance(i, j) = sum_k s(k, j)^2 2 std(k, i) std'(k, c(i))
+  // d log_std(k, c(i)).
+  Eigen::MatrixXf factor;
+  std_derivative(factor);
+  Eigen::MatrixXf d_std_sq(latent_dim(), action_dim_);
+  for (Eigen::Index i = 0; i < action_dim_; ++i) {
+    const Eigen::Index c = options_.full_std ? i : 0;
+    d_std_sq.col(i) =
+        (2.0f * std_.col(i).array() * factor.col(c).array() * d_log_std.col(c).array()).matrix();
+  }
+  d_variance.noalias() = d_std_sq.transpose() * latent_sq_;
+}
+
 void StateDependentNoise::backward_std(const Eigen::MatrixXf& grad_var,
                                        const Eigen::MatrixXf* grad_noise,
                                        Eigen::MatrixXf* grad_latent) {

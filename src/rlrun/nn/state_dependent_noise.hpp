@@ -127,6 +127,16 @@ class StateDependentNoise {
                         const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
                         Eigen::MatrixXf& grad_mean, Eigen::MatrixXf* grad_latent = nullptr);
 
+  // TRPO's Fisher-vector product (the variance's part of it), at the last set():
+  // d_variance (action_dim x n) = d(variance)/d(log_std) * d_log_std for a direction shaped as
+  // log_std(), and the reverse, which ADDS J^T grad_var to log_std_grad() (the latent is
+  // detached here, learn_features or not).
+  void variance_tangent(const Eigen::Ref<const Eigen::MatrixXf>& d_log_std,
+                        Eigen::MatrixXf& d_variance) const;
+  void add_variance_gradient(const Eigen::MatrixXf& grad_var) {
+    backward_std(grad_var, nullptr, nullptr);
+  }
+
  private:
   // d std / d log_std for every entry of log_std_ (exp or expln).
   void std_derivative(Eigen::MatrixXf& out) const;

@@ -90,6 +90,54 @@ std::vector<Override> a2c(Zoo z) {
   return out;
 }
 
+// sample_trpo_params + convert_onpolicy_params (rl-zoo 2.6 and later): powers of two for the
+// batch and rollout sizes; the user attributes show the true values.
+std::vector<Override> trpo(Zoo z) {
+  std::vector<Override> out;
+  const int64_t batch_size_pow = z.int_("batch_size_pow", 2, 10);
+  const int64_t n_steps_pow = z.int_("n_steps_pow", 5, 12);
+  const double one_minus_gamma = z.float_("one_minus_gamma", 0.0001, 0.03, true);
+  const double one_minus_gae_lambda = z.float_("one_minus_gae_lambda", 0.0001, 0.1, true);
+  const double learning_rate = z.float_("learning_rate", 1e-5, 0.002, true);
+  const int64_t n_critic_updates = z.int_("n_critic_updates", 5, 30);
+  const int64_t cg_max_steps = z.int_("cg_max_steps", 5, 30);
+  const double target_kl = z.float_("target_kl", 0.001, 0.1, true);
+  const std::string net_arch = z.categorical("net_arch", {"small", "medium"});
+  const std::string activation_fn = z.categorical("activation_fn", {"tanh", "relu"});
+  z.trial.set_user_attr("gamma", 1 - one_minus_gamma);
+  z.trial.set_user_attr("n_steps", int64_t{1} << n_steps_pow);
+  z.trial.set_user_attr("batch_size", int64_t{1} << batch_size_pow);
+  set(out, "algo.n_steps", int64_t{1} << n_steps_pow);
+  set(out, "algo.batch_size", int64_t{1} << batch_size_pow);
+  set(out, "algo.gamma", 1 - one_minus_gamma);
+  set(out, "algo.gae_lambda", 1 - one_minus_gae_lambda);
+  set(out, "algo.learning_rate", learning_rate);
+  set(out, "algo.n_critic_updates", n_critic_updates);
+  set(out, "algo.cg_max_steps", cg_max_steps);
+  set(out, "algo.target_kl", target_kl);
+  set_yaml(
+      out, "algo.policy.net_arch",
+      net_arch == "small" ? "{pi: [64, 64], vf: [64, 64]}" : "{pi: [256, 256], vf: [256, 256]}");
+  set(out, "algo.policy.activation_fn", activation_fn);
+  return out;
+}
+
+// sample_ars_params + convert_ars_params: n_delta a power of two, n_top a fraction of it (at
+// least one).
+std::vector<Override> ars(Zoo z) {
+  std::vector<Override> out;
+  const int64_t n_delta = int64_t{1} << z.int_("n_delta_pow", 2, 6);
+  const double learning_rate = z.float_("learning_rate", 1e-5, 0.002, true);
+  const double delta_std = z.float_("delta_std", 0.01, 0.3);
+  const double top_frac_size = z.float_("top_frac_size", 0.05, 1.0);
+  set(out, "algo.n_delta", n_delta);
+  set(out, "algo.learning_rate", learning_rate);
+  set(out, "algo.delta_std", delta_std);
+  set(out, "algo.n_top",
+      std::max<int64_t>(static_cast<int64_t>(top_frac_size * static_cast<double>(n_delta)), 1));
+  return out;
+}
+
 // sample_her_params: appended by the off-policy spaces when the experiment uses HER.
 void her(Zoo z, std::vector<Override>& out) {
   set(out, "algo.replay_buffer_kwargs.n_sampled_goal", z.int_("n_sampled_goal", 1, 5));
@@ -253,6 +301,8 @@ class ZooSpace : public StudySpace {
 std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her) {
   if (algo_id == "PPO") return std::make_unique<ZooSpace>("sample_ppo_params", ppo);
   if (algo_id == "A2C") return std::make_unique<ZooSpace>("sample_a2c_params", a2c);
+  if (algo_id == "TRPO") return std::make_unique<ZooSpace>("sample_trpo_params", trpo);
+  if (algo_id == "ARS") return std::make_unique<ZooSpace>("sample_ars_params", ars);
   const std::string suffix = uses_her ? " + sample_her_params" : "";
   if (algo_id == "DQN")
     return std::make_unique<ZooSpace>("sample_dqn_params" + suffix,
@@ -272,7 +322,7 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
                                       [uses_her](Zoo z) { return tqc(z, uses_her); });
   throw UsageError(
       "rl-zoo has no search space for " + algo_id +
-      " (PPO, A2C, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
+      " (PPO, A2C, TRPO, ARS, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
 }
 
 }  // namespace rlrun::tune

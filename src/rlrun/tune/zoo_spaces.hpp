@@ -11,7 +11,7 @@
 
 namespace rlrun::tune {
 
-// The zoo's space for an algorithm id (PPO, A2C, DQN, SAC, TD3, DDPG, TQC), with HER's two
+// The zoo's space for an algorithm id (PPO, A2C, TRPO, ARS, DQN, QRDQN, SAC, TD3, DDPG, TQC), with HER's two
 // parameters when the experiment uses HerReplayBuffer. UsageError for an algorithm the zoo has
 // no space for.
 std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her);

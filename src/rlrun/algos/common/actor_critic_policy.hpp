@@ -86,6 +86,14 @@ struct ActorCriticPolicyConfig {
   }
 };
 
+// An action distribution's parameters for a batch, as TRPO keeps the old one (sb3-contrib's
+// old_distribution): the actor's output (logits or means, one column per sample) and, for
+// Gaussian actions, the standard deviations (action_dim x n).
+struct ActionDistributionParams {
+  Eigen::MatrixXf head;
+  Eigen::MatrixXf sigma;
+};
+
 class ActorCriticPolicy {
  public:
   // The distribution over actions, from the action space's kind.
@@ -143,6 +151,31 @@ class ActorCriticPolicy {
   void backward(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
                 const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy);
+
+  // TRPO (algos/trpo/; defined in actor_critic_fisher.cpp). The actor's parameters as one
+  // vector: the actor tower with action_net, then log_std (sb3-contrib's actor_params, every
+  // parameter the KL divergence reaches). Only for policies without a learned features
+  // extractor (std::logic_error otherwise).
+  Eigen::Index actor_param_count() const;
+  void get_actor_params(Eigen::VectorXf& theta) const;
+  void set_actor_params(const Eigen::VectorXf& theta);
+  // The actor parameters' gradient (after backward()), in the same layout.
+  void get_actor_grads(Eigen::VectorXf& grad) const;
+  // The distribution of the last evaluate_actions().
+  ActionDistributionParams distribution() const;
+  // kl_divergence(distribution, old).mean() of sb3-contrib's TRPO for the last
+  // evaluate_actions(): torch's KL per sample for categoricals (summed over a MultiDiscrete's
+  // parts), per entry for Bernoulli and Gaussian actions, averaged over all of them.
+  double mean_kl(const ActionDistributionParams& old) const;
+  // F v at the last evaluate_actions(), F the Hessian of that mean KL in the parameters at the
+  // old distribution (sb3-contrib's hessian_vector_product without damping): the Fisher
+  // information J^T M J of the distribution's parameters, exact. Overwrites the actor's
+  // gradients.
+  void fisher_vector_product(const Eigen::VectorXf& v, Eigen::VectorXf& out);
+  // The critic alone (TRPO's value updates): dL/dV of the last predict_values() into the
+  // critic's gradients, and the critic's optimizer blocks.
+  void backward_values(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values);
+  std::vector<ParamBlock> critic_blocks();
 
   void zero_grad();
   std::vector<ParamBlock> param_blocks();

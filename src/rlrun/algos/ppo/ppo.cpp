@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include "rlrun/algos/common/explained_variance.hpp"
 #include "rlrun/algos/common/rng_streams.hpp"
@@ -25,10 +26,15 @@ ConfigProblems PPO::check(const Config& config, const AlgorithmSetup& setup) {
 }
 
 PPO::PPO(const Config& config, const AlgorithmSetup& setup)
-    : OnPolicyAlgorithm("PPO", setup, valid_config(config, "PPO").policy,
-                        {config.n_steps, config.gamma, config.gae_lambda, config.use_sde,
-                         config.sde_sample_freq}),
+    : PPO("PPO", valid_config(config, "PPO"), setup, Masking{}) {}
+
+PPO::PPO(std::string id, const Config& config, const AlgorithmSetup& setup, Masking masking)
+    : OnPolicyAlgorithm(
+          std::move(id), setup, config.policy,
+          {config.n_steps, config.gamma, config.gae_lambda, config.use_sde, config.sde_sample_freq},
+          masking.maskable, masking.use_masking),
       config_(config),
+      masking_(masking),
       shuffle_rng_(setup.seed ^ kSampleStream) {
   // SB3 ActorCriticPolicy: Adam with eps=1e-5 "to avoid NaN".
   AdamConfig adam;
@@ -43,6 +49,7 @@ PPO::PPO(const Config& config, const AlgorithmSetup& setup)
   const int batch = std::min(config_.batch_size, size);
   mb_obs_.resize(obs_dim, batch);
   mb_act_.resize(policy_.action_dim(), batch);
+  mb_masks_.resize(masking_.use_masking ? policy_.mask_size() : 0, batch);
   for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_, &values_pred_,
                                 &grad_values_, &grad_log_prob_, &grad_entropy_})
     v->resize(batch);
@@ -71,7 +78,10 @@ void PPO::train(double progress_remaining, Logger* logger) {
 
     for (int start = 0; start < size; start += config_.batch_size) {
       gather_minibatch(start, std::min(config_.batch_size, size - start));
-      policy_.evaluate_actions(mb_obs_, mb_act_, values_pred_, log_prob_, entropy_);
+      // MaskablePPO: evaluate_actions(..., action_masks=rollout_data.action_masks); with
+      // use_masking false no masks are stored (sb3-contrib's action_masks of ones).
+      policy_.evaluate_actions(mb_obs_, mb_act_, values_pred_, log_prob_, entropy_,
+                               masking_.use_masking ? &mb_masks_ : nullptr);
 
       if (config_.normalize_advantage) normalize_advantages(mb_adv_);
       const PpoLossTerms t =
@@ -89,8 +99,11 @@ void PPO::train(double progress_remaining, Logger* logger) {
       clip_grad_norm(blocks, static_cast<float>(config_.max_grad_norm));
       optimizer_.step(lr);
     }
-    ++n_updates_;
+    if (!masking_.maskable) ++n_updates_;
   }
+  // sb3-contrib ppo_mask.py: `self._n_updates += self.n_epochs` after the loop, also when
+  // target_kl stopped it early (SB3's PPO counts the epochs run).
+  if (masking_.maskable) n_updates_ += config_.n_epochs;
 
   if (logger) record_statistics(*logger, statistics, lr, clip_range, clip_range_vf);
 }
@@ -100,6 +113,7 @@ void PPO::gather_minibatch(int start, int batch) {
   if (mb_obs_.cols() != batch) {
     mb_obs_.resize(Eigen::NoChange, batch);
     mb_act_.resize(Eigen::NoChange, batch);
+    mb_masks_.resize(Eigen::NoChange, batch);
     for (Eigen::RowVectorXf* v : {&mb_adv_, &mb_ret_, &mb_old_logp_, &mb_old_val_, &values_pred_,
                                   &grad_values_, &grad_log_prob_, &grad_entropy_})
       v->resize(batch);
@@ -107,10 +121,13 @@ void PPO::gather_minibatch(int start, int batch) {
   // Columns copied as raw blocks: Eigen's per-column assignment of a run-time size (3 floats
   // for Pendulum) costs more than the copy. Observations come out of their storage as floats.
   const Eigen::Index obs_rows = rollout.obs.rows(), act_rows = rollout.actions.rows();
+  const Eigen::Index mask_rows = mb_masks_.rows();
   for (int j = 0; j < batch; ++j) {
     const int k = indices_[start + j];
     rollout.obs.get(k, mb_obs_.data() + j * obs_rows);
     std::copy_n(rollout.actions.data() + k * act_rows, act_rows, mb_act_.data() + j * act_rows);
+    std::copy_n(rollout.action_masks.data() + k * mask_rows, mask_rows,
+                mb_masks_.data() + j * mask_rows);
     mb_adv_(j) = rollout.advantages.data()[k];
     mb_ret_(j) = rollout.returns.data()[k];
     mb_old_logp_(j) = rollout.log_probs.data()[k];

@@ -5,6 +5,7 @@
 // minibatches, clipped surrogate, optional clipped value loss, advantage normalisation,
 // global gradient-norm clipping, Adam (eps 1e-5 as SB3's ActorCriticPolicy sets it).
 #include <optional>
+#include <string>
 
 #include "rlrun/algos/common/actor_critic_policy.hpp"
 #include "rlrun/algos/common/config_checks.hpp"
@@ -71,23 +72,33 @@ class PPO : public OnPolicyAlgorithm {
 
   PPO(const Config& config, const AlgorithmSetup& setup);
 
+ protected:
+  // MaskablePPO (algos/ppo_mask/) is this update with the rollout's action masks.
+  struct Masking {
+    bool maskable = false;     // MaskableActorCriticPolicy, rollouts read and keep masks
+    bool use_masking = false;  // the loss's log-probs and entropy use the stored masks
+  };
+  PPO(std::string id, const Config& config, const AlgorithmSetup& setup, Masking masking);
+
  private:
   // SB3 PPO.train: n_epochs over the rollout in shuffled minibatches of the clipped surrogate,
-  // the (optionally clipped) value loss and the entropy bonus.
+  // the (optionally clipped) value loss and the entropy bonus (sb3-contrib MaskablePPO.train:
+  // the same with the rollout's masks).
   void train(double progress_remaining, Logger* logger) override;
   // The minibatch of rollout columns indices_[start, start + batch) into the mb_ workspaces
-  // (SB3 RolloutBuffer.get).
+  // (SB3 RolloutBuffer.get; masks too when they are used, MaskableRolloutBuffer.get).
   void gather_minibatch(int start, int batch);
   void record_statistics(Logger& logger, const PpoTrainStatistics& statistics, float lr,
                          float clip_range, std::optional<float> clip_range_vf) const;
 
   Config config_;
+  Masking masking_;
   Rng shuffle_rng_;
   Adam optimizer_;
 
   // Minibatch workspaces, allocated once in the constructor.
   std::vector<int> indices_;
-  Eigen::MatrixXf mb_obs_, mb_act_;
+  Eigen::MatrixXf mb_obs_, mb_act_, mb_masks_;
   Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;
   Eigen::RowVectorXf values_pred_, log_prob_, entropy_, grad_values_, grad_log_prob_, grad_entropy_;
 };

@@ -1,7 +1,8 @@
 #pragma once
 // MaskablePPO: PPO with invalid-action masking (Huang and Ontañón 2020, arXiv:2006.14171) with
 // sb3-contrib 2.4's semantics, defaults and key names (sb3_contrib/ppo_mask/ppo_mask.py,
-// common/maskable/). It is rlrun's PPO (algos/ppo/) where sb3-contrib's differs:
+// common/maskable/). It is rlrun's PPO (algos/ppo/, whose update takes the masks) where
+// sb3-contrib's differs:
 //   * the policy is MaskableActorCriticPolicy (algos/common/actor_critic_policy.hpp with
 //     `maskable`): illegal actions' logits are -1e8 before the softmax, the entropy sums over
 //     the legal ones, MultiBinary is one two-way categorical per entry (2n logits);
@@ -15,16 +16,12 @@
 // predict(action_masks=None).
 #include <optional>
 
-#include "rlrun/algos/common/actor_critic_policy.hpp"
-#include "rlrun/algos/common/config_checks.hpp"
-#include "rlrun/algos/common/on_policy.hpp"
-#include "rlrun/algos/ppo/ppo_loss.hpp"
+#include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/core/schedule.hpp"
-#include "rlrun/nn/adam.hpp"
 
 namespace rlrun {
 
-class MaskablePPO : public OnPolicyAlgorithm {
+class MaskablePPO : public PPO {
  public:
   // sb3-contrib MaskablePPO.__init__'s parameters and defaults (PPO's, without gSDE).
   struct Config {
@@ -81,22 +78,8 @@ class MaskablePPO : public OnPolicyAlgorithm {
   MaskablePPO(const Config& config, const AlgorithmSetup& setup);
 
  private:
-  // sb3-contrib MaskablePPO.train: PPO's update with the rollout's masks.
-  void train(double progress_remaining, Logger* logger) override;
-  // Rollout columns indices_[start, start + batch) into the mb_ workspaces, masks included
-  // (MaskableRolloutBuffer.get).
-  void gather_minibatch(int start, int batch);
-  void record_statistics(Logger& logger, const PpoTrainStatistics& statistics, float lr,
-                         float clip_range, std::optional<float> clip_range_vf) const;
-
-  Config config_;
-  Rng shuffle_rng_;
-  Adam optimizer_;
-
-  std::vector<int> indices_;
-  Eigen::MatrixXf mb_obs_, mb_act_, mb_masks_;
-  Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;
-  Eigen::RowVectorXf values_pred_, log_prob_, entropy_, grad_values_, grad_log_prob_, grad_entropy_;
+  // PPO's settings with gSDE off (sb3-contrib's MaskablePPO has none).
+  static PPO::Config ppo_config(const Config& config);
 };
 
 }  // namespace rlrun

@@ -5,6 +5,7 @@
 #include "rlrun/runtime/components/policy_components.hpp"
 
 #include "rlrun/algos/a2c/a2c.hpp"
+#include "rlrun/algos/ars/ars.hpp"
 #include "rlrun/algos/crossq/crossq.hpp"
 #include "rlrun/algos/ddpg/ddpg.hpp"
 #include "rlrun/algos/dqn/dqn.hpp"
@@ -14,6 +15,7 @@
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
 #include "rlrun/algos/tqc/tqc.hpp"
+#include "rlrun/algos/trpo/trpo.hpp"
 #include "rlrun/wrappers/action_repeat.hpp"
 #include "rlrun/wrappers/box_as_discrete.hpp"
 #include "rlrun/wrappers/clip_action.hpp"
@@ -105,6 +107,14 @@ void add_builtin_algorithms(Registry& r) {
       "MaskablePPO",
       "PPO with invalid-action masks (sb3-contrib semantics, env reports "
       "info action_mask.*); Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<TRPO>(
+      "TRPO",
+      "Trust Region Policy Optimization (sb3-contrib semantics: natural gradient by conjugate "
+      "gradient, KL line search); Box/Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<ARS>(
+      "ARS",
+      "Augmented Random Search (sb3-contrib semantics: antithetic weight perturbations, the "
+      "n_top best directions); Box/Discrete actions"));
 }
 
 const Registry& policy_registry() {

@@ -16,8 +16,9 @@ namespace {
 
 // rl-zoo's algorithm names (rl_zoo3/utils.py ALGOS) that rlrun implements.
 const std::vector<std::pair<std::string, std::string>> kAlgorithms{
-    {"ppo", "PPO"},   {"a2c", "A2C"}, {"dqn", "DQN"},     {"sac", "SAC"},      {"td3", "TD3"},
-    {"ddpg", "DDPG"}, {"tqc", "TQC"}, {"qrdqn", "QRDQN"}, {"crossq", "CrossQ"}};
+    {"ppo", "PPO"},   {"a2c", "A2C"},   {"dqn", "DQN"},      {"sac", "SAC"},
+    {"td3", "TD3"},   {"ddpg", "DDPG"}, {"tqc", "TQC"},      {"qrdqn", "QRDQN"},
+    {"trpo", "TRPO"}, {"ars", "ARS"},   {"crossq", "CrossQ"}};
 // sb3-contrib's MaskablePPO under rl-zoo's name (rl_zoo3/utils.py ALGOS["ppo_mask"]) and its
 // own, compared without '-' and '_' as kNotInRlrun's names are.
 const std::vector<std::string> kMaskablePPONames{"ppomask", "maskableppo"};
@@ -26,8 +27,6 @@ const std::vector<std::string> kMaskablePPONames{"ppomask", "maskableppo"};
 // sb3-contrib that rlrun does not have, by the names a file or --algo gives them (lower case,
 // without '-' and '_': qrdqn.yml, ppo_lstm.yml, --algo qr-dqn), and what to say.
 const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
-    {"trpo", "rlrun has no TRPO (sb3-contrib's TRPO) yet"},
-    {"ars", "rlrun has no ARS (sb3-contrib's ARS) yet"},
     {"ppolstm", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
     {"recurrentppo",
      "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
@@ -38,7 +37,8 @@ const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
      "entry from tqc.yml, sac.yml, ..."}};
 
 const char* const kImported =
-    "rlrun imports zoo files of ppo, a2c, dqn, qrdqn, sac, td3, ddpg, tqc and crossq";
+    "rlrun imports zoo files of ppo, ppo_mask, a2c, dqn, qrdqn, trpo, ars, sac, td3, ddpg, tqc "
+    "and crossq";
 
 // Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}. The MuJoCo
 // tasks' v2 and v3 ids run on mujoco-py, which Gymnasium 1.0 still registers but nobody can

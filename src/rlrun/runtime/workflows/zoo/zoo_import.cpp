@@ -134,6 +134,12 @@ class Translation {
       x["run"]["total_timesteps"] = value.yaml();
     } else if (key == "n_envs") {
       x["env"]["n_envs"] = value.yaml();
+    } else if (key == "policy" && entry_.algorithm == "ARS" &&
+               value.as_string() == "LinearPolicy") {
+      // sb3-contrib's ARSLinearPolicy: ARSPolicy with net_arch [], no bias, no tanh.
+      policy_["net_arch"] = YAML::Node(YAML::NodeType::Sequence);
+      policy_["with_bias"] = false;
+      policy_["squash_output"] = false;
     } else if (key == "policy") {
       if (check_policy_name(value, entry_.algorithm)) {
         policy_["features_extractor_class"] = "NatureCNN";
