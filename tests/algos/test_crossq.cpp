@@ -337,7 +337,7 @@ TEST_CASE(
 
 TEST_CASE(
     "CrossQ train step: next actions in eval mode, the joint critic pass, target, critic loss, "
-    "actor loss and temperature match a double re-computation; gradients match finite "
+    "actor loss and temperature match a double re-computation, and gradients match finite "
     "differences",
     "[algos][crossq][gradcheck]") {
   const int n = GENERATE(6, 40);  // 40: the products split over two cores
@@ -475,7 +475,7 @@ TEST_CASE("CrossQ defaults are sb3-contrib 2.4's", "[algos][crossq]") {
                   std::invalid_argument);
 }
 
-TEST_CASE("CrossQ model tensors use sb3-contrib's names and load back; the exported graph",
+TEST_CASE("CrossQ model tensors use sb3-contrib's names and load back, and the exported graph",
           "[algos][crossq]") {
   CrossQ::Config cfg = small_config();
   cfg.policy.net_arch = {{8}, {8}};

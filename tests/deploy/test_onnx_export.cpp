@@ -400,7 +400,7 @@ TEST_CASE("export onnx: TRPO (the actor-critic policy, gSDE's mean as the action
               5, false});
 }
 
-TEST_CASE("export onnx: ARS (tanh scaled to the bounds; a linear policy's argmax)",
+TEST_CASE("export onnx: ARS (tanh scaled to the bounds, a linear policy's argmax)",
           "[deploy][onnx][ars]") {
   check_case({"ars_pendulum", 3200,
               "env: {id: Pendulum-v1}\n"
