@@ -9,7 +9,9 @@
 #include <string>
 
 #include "algos/zoo_learning_bar.hpp"
+#include "fakes/constant_env.hpp"
 #include "rlrun/algos/ars/ars.hpp"
+#include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/experiment/env_factory.hpp"
 #include "rlrun/runtime/io/model_loader.hpp"
@@ -112,6 +114,30 @@ TEST_CASE("ARS acts as ARSPolicy: tanh and scale, clip, or argmax", "[algos][ars
     CHECK(actions(0, 0) == 3.0f);  // start 1 + index 2
     CHECK(actions(0, 1) == 1.0f);  // all zero but -1 for output 2: argmax 0
   }
+}
+
+TEST_CASE("ARS evaluates candidates on a copy: callbacks during an update see the weights",
+          "[algos][ars]") {
+  // sb3-contrib evaluates each candidate with train_policy, a deep copy; an EvalCallback that
+  // runs between two steps evaluates model.policy, the unperturbed weights.
+  ARS::Config c;
+  c.n_delta = 2;
+  c.zero_policy = false;
+  c.policy.net_arch = {4};
+  ARS ars(c, AlgorithmSetup{Space::box(-1.0f, 1.0f, {1}), Space::discrete(2), 1, 0});
+  std::vector<EnvPtr> envs;
+  envs.push_back(std::make_unique<fakes::ConstantEnv>(false, 5));
+  VecEnv env(std::move(envs));
+  const Eigen::VectorXf before = ars.weights();
+  int checked = 0;
+  TrainingHooks hooks;
+  hooks.on_step = [&](int64_t) {
+    CHECK(ars.weights() == before);  // the update has not been applied yet
+    ++checked;
+    return true;
+  };
+  ars.learn(env, 20, hooks);  // one update: 4 candidates x 5 steps
+  CHECK(checked == 20);
 }
 
 TEST_CASE("ARS counts env steps as evaluate_policy's callback does", "[algos][ars]") {

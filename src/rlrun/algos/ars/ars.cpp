@@ -104,13 +104,15 @@ void ARS::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
     Eigen::VectorXd candidate_returns(2 * config_.n_delta);
     episode_returns_.clear();
     episode_lengths_.clear();
+    candidate_net_ = net_;
     for (int c = 0; c < 2 * config_.n_delta; ++c) {
       const float sign = c < config_.n_delta ? 1.0f : -1.0f;
-      set_weights(w + (sign * static_cast<float>(delta_std)) *
-                          deltas.row(c % config_.n_delta).transpose());
+      const Eigen::VectorXf candidate =
+          w + (sign * static_cast<float>(delta_std)) * deltas.row(c % config_.n_delta).transpose();
+      for (size_t i = 0; i < learned_.size(); ++i)
+        candidate_net_.params()(learned_[i]) = candidate(static_cast<Eigen::Index>(i));
       candidate_returns(c) = evaluate_candidate(env, hooks, keep_going);
     }
-    set_weights(w);
     double return_std = 0;
     const double step_size = apply_update(candidate_returns, deltas, learning_rate, return_std);
     if (hooks.logger) record_update(*hooks.logger, delta_std, learning_rate, step_size, return_std);
@@ -151,7 +153,7 @@ double ARS::evaluate_candidate(VecEnv& env, TrainingHooks& hooks, bool& keep_goi
     return false;
   };
   while (collecting()) {
-    predict(env.obs(), true, actions_);
+    act(candidate_net_, env.obs(), actions_);
     env.step(actions_);
     current_rewards += env.original_rewards();
     current_lengths.array() += 1.0;
@@ -220,7 +222,11 @@ void ARS::record_update(Logger& log, double delta_std, double learning_rate, dou
 void ARS::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool /*deterministic*/,
                   Eigen::MatrixXf& actions) {
   // "Non deterministic action does not really make sense for ARS": always the network's.
-  const Eigen::MatrixXf& out = net_.forward(encoder_(obs));
+  act(net_, obs, actions);
+}
+
+void ARS::act(Mlp& net, const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& actions) {
+  const Eigen::MatrixXf& out = net.forward(encoder_(obs));
   if (action_space_.is_discrete()) {
     actions.resize(1, out.cols());
     for (Eigen::Index j = 0; j < out.cols(); ++j) {

@@ -106,9 +106,11 @@ class ARS : public ResumableAlgorithm {
                       double learning_rate, double& return_std);
 
  private:
-  // evaluate_policy(policy, env, n_eval_episodes): the summed returns plus the alive bonus.
-  // False when a hook asked to stop.
+  // evaluate_policy(candidate, env, n_eval_episodes) with candidate_net_: the summed returns
+  // plus the alive bonus. keep_going turns false when a hook asked to stop.
   double evaluate_candidate(VecEnv& env, TrainingHooks& hooks, bool& keep_going);
+  // ARSPolicy.forward then predict's scaling or clipping, with the given network.
+  void act(Mlp& net, const Eigen::Ref<const Eigen::MatrixXf>& obs, Eigen::MatrixXf& actions);
   void record_update(Logger& log, double delta_std, double learning_rate, double step_size,
                      double return_std) const;
 
@@ -117,6 +119,9 @@ class ARS : public ResumableAlgorithm {
   Space action_space_;
   ObservationEncoder encoder_;
   Mlp net_;
+  // The candidate being evaluated (sb3-contrib's train_policy, a deep copy): callbacks that act
+  // during the evaluations (an eval every N steps) see net_, the current weights.
+  Mlp candidate_net_;
   std::vector<Eigen::Index> learned_;  // indices into net_.params() that ARS moves
   Rng rng_;
   int64_t n_updates_ = 0;
