@@ -72,12 +72,19 @@ void ActorCriticPolicy::get_actor_grads(Eigen::VectorXf& grad) const {
 }
 
 ActionDistributionParams ActorCriticPolicy::distribution() const {
-  ActionDistributionParams d;
-  d.head = actor_.output();
+  return {actor_.output(), gaussian_sigma()};
+}
+
+Eigen::MatrixXf ActorCriticPolicy::gaussian_sigma() const {
   if (head_ == Head::kDiagGaussian)
-    d.sigma = log_std_.array().exp().matrix().replicate(1, d.head.cols());
-  if (use_sde()) d.sigma = sde_.sigma();
-  return d;
+    return log_std_.array().exp().matrix().replicate(1, actor_.output().cols());
+  if (use_sde()) return sde_.sigma();
+  return {};
+}
+
+std::vector<int64_t> ActorCriticPolicy::categorical_part_sizes() const {
+  return head_ == Head::kCategorical ? std::vector<int64_t>{actor_.output().rows()}
+                                     : categorical_parts_;
 }
 
 double ActorCriticPolicy::mean_kl(const ActionDistributionParams& old) const {
@@ -102,8 +109,7 @@ double ActorCriticPolicy::mean_kl(const ActionDistributionParams& old) const {
     return sum / static_cast<double>(now.head.size());
   }
   // Categorical, or a MultiDiscrete's categoricals summed: sum p (log p - log q).
-  const std::vector<int64_t> parts =
-      head_ == Head::kCategorical ? std::vector<int64_t>{now.head.rows()} : categorical_parts_;
+  const std::vector<int64_t> parts = categorical_part_sizes();
   Eigen::VectorXd log_p, log_q;
   for (Eigen::Index j = 0; j < n; ++j) {
     Eigen::Index first = 0;
@@ -129,7 +135,7 @@ void ActorCriticPolicy::fisher_vector_product(const Eigen::VectorXf& v, Eigen::V
   g.resize(rows, n);
   if (gaussian()) {
     const double scale = 1.0 / (static_cast<double>(n) * static_cast<double>(rows));
-    const Eigen::MatrixXf sigma = distribution().sigma;
+    const Eigen::MatrixXf sigma = gaussian_sigma();
     g = (tangent.array() / sigma.array().square() * static_cast<float>(scale)).matrix();
     const Eigen::VectorXf d_log_std = v.tail(actor_param_count() - actor_.num_params());
     if (head_ == Head::kDiagGaussian) {
@@ -146,8 +152,7 @@ void ActorCriticPolicy::fisher_vector_product(const Eigen::VectorXf& v, Eigen::V
     const Eigen::ArrayXXf p = (1.0f + (-head.array()).exp()).inverse();
     g = (p * (1.0f - p) * tangent.array() / static_cast<float>(n * rows)).matrix();
   } else {
-    const std::vector<int64_t> parts =
-        head_ == Head::kCategorical ? std::vector<int64_t>{rows} : categorical_parts_;
+    const std::vector<int64_t> parts = categorical_part_sizes();
     Eigen::VectorXd log_p;
     for (Eigen::Index j = 0; j < n; ++j) {
       Eigen::Index first = 0;

@@ -222,6 +222,11 @@ class ActorCriticPolicy {
   // The head, action_dim_ and mask_size_ for an action space (sb3-contrib's
   // make_masked_proba_distribution with `maskable`, else SB3's make_proba_distribution).
   void choose_distribution(const Space& action_space, bool maskable);
+  // TRPO's helpers (actor_critic_fisher.cpp): the Gaussian standard deviations of the last
+  // evaluate_actions() (action_dim x n; empty for other heads), and the categoricals' sizes
+  // (one part for Discrete).
+  Eigen::MatrixXf gaussian_sigma() const;
+  std::vector<int64_t> categorical_part_sizes() const;
   // std::logic_error for masks given to a policy built without masking.
   void check_masks(const Eigen::MatrixXf* masks) const;
   // The heads' input for a batch of observations: the encoding through the features extractor
