@@ -172,12 +172,11 @@ void RecurrentPPO::predict_recurrent(const Eigen::Ref<const Eigen::MatrixXf>& ob
                                 " x " + std::to_string(states.cols()) + ", expected " +
                                 std::to_string(2 * rows) + " x " + std::to_string(n));
   // The state's rows: the actor's h of every layer, then its c (sb3-contrib's (h, c) pair).
-  RnnStates rnn = recurrent_.zero_states(n);
-  rnn.pi.h = states.topRows(rows);
-  rnn.pi.c = states.bottomRows(rows);
-  recurrent_.predict(obs, episode_starts, rnn, action_rng_, deterministic, actions);
-  states.topRows(rows) = rnn.pi.h;
-  states.bottomRows(rows) = rnn.pi.c;
+  predict_state_.h = states.topRows(rows);
+  predict_state_.c = states.bottomRows(rows);
+  recurrent_.predict(obs, episode_starts, predict_state_, action_rng_, deterministic, actions);
+  states.topRows(rows) = predict_state_.h;
+  states.bottomRows(rows) = predict_state_.c;
   clip_to_box(setup_.action_space, actions);
 }
 

@@ -114,6 +114,7 @@ class RecurrentPPO : public OnPolicyAlgorithm {
   // flat_[i]: the rollout sample at sb3-contrib's flattened index i (env by env), rotated.
   std::vector<int> flat_;
   SequenceBatch sequences_;
+  Lstm::State predict_state_;  // predict_recurrent's actor state (its caller keeps the real one)
   Eigen::MatrixXf mb_act_;
   Eigen::RowVectorXf mb_adv_, mb_ret_, mb_old_logp_, mb_old_val_;
   Eigen::RowVectorXf values_pred_, log_prob_, entropy_, grad_values_, grad_log_prob_, grad_entropy_;

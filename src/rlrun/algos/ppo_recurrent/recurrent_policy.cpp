@@ -118,9 +118,8 @@ float RecurrentActorCritic::terminal_value(const Eigen::MatrixXf& final_obs, int
   Lstm::State vf{states_.vf.h.col(env), states_.vf.c.col(env)};
   no_starts_.setZero(1);
   value_latent(features(final_obs), no_starts_, 1, vf);
-  Eigen::RowVectorXf value;
-  heads_.predict_values(latent_vf_, value);
-  return value(0);
+  heads_.predict_values(latent_vf_, scratch_values_);
+  return scratch_values_(0);
 }
 
 void RecurrentActorCritic::last_values(const Eigen::MatrixXf& obs,
@@ -141,13 +140,13 @@ void RecurrentActorCritic::stored_states(Eigen::Index k, RnnStates& out,
 
 void RecurrentActorCritic::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                    const Eigen::Ref<const Eigen::RowVectorXf>& episode_starts,
-                                   RnnStates& states, Rng& rng, bool deterministic,
+                                   Lstm::State& actor_state, Rng& rng, bool deterministic,
                                    Eigen::MatrixXf& actions) {
-  // sb3-contrib predict -> get_distribution: the actor's LSTM only; the critic's state is
-  // returned as given (predict's state is the actor's (h, c)).
-  latent_pi_ = lstm_actor_.forward(features(obs), episode_starts, obs.cols(), states.pi);
-  Eigen::RowVectorXf values, log_probs;
-  heads_.act_on_latents(latent_pi_, latent_pi_, rng, deterministic, actions, values, log_probs);
+  // sb3-contrib predict -> get_distribution: the actor's LSTM only (predict's state is the
+  // actor's (h, c)). The heads' value output is not used.
+  latent_pi_ = lstm_actor_.forward(features(obs), episode_starts, obs.cols(), actor_state);
+  heads_.act_on_latents(latent_pi_, latent_pi_, rng, deterministic, actions, scratch_values_,
+                        scratch_log_probs_);
 }
 
 void RecurrentActorCritic::evaluate_actions(const SequenceBatch& batch,

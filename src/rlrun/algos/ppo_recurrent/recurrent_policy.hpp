@@ -89,9 +89,10 @@ class RecurrentActorCritic final : public RolloutPolicy {
   void stored_states(Eigen::Index k, RnnStates& out, Eigen::Index column) const;
   const RnnStates& current_states() const { return states_; }
 
-  // predict() with memory (sb3-contrib's predict(state, episode_start)): `states` in and out.
+  // predict() with memory (sb3-contrib's predict(state, episode_start)): the actor's LSTM
+  // state in and out.
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs,
-               const Eigen::Ref<const Eigen::RowVectorXf>& episode_starts, RnnStates& states,
+               const Eigen::Ref<const Eigen::RowVectorXf>& episode_starts, Lstm::State& actor_state,
                Rng& rng, bool deterministic, Eigen::MatrixXf& actions);
 
   // The update's forward pass (evaluate_actions on a SequenceBatch): values, log-probs and
@@ -147,7 +148,7 @@ class RecurrentActorCritic final : public RolloutPolicy {
   Eigen::MatrixXf latent_pi_, latent_vf_, mb_latent_pi_, mb_latent_vf_;
   Eigen::MatrixXf grad_pi_, grad_vf_, grad_pi_pad_, grad_vf_pad_, grad_features_, grad_more_;
   std::vector<Eigen::Index> columns_;  // the last evaluate_actions' sample columns
-  Eigen::RowVectorXf no_starts_;
+  Eigen::RowVectorXf no_starts_, scratch_values_, scratch_log_probs_;
 };
 
 }  // namespace rlrun
