@@ -19,6 +19,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/env/env_checker.hpp"
+#include "rlrun/env/random_actions.hpp"
 #include "rlrun/env/space_text.hpp"
 #include "rlrun/env/step_all_agents.hpp"
 #include "rlrun/rng.hpp"
@@ -91,7 +92,8 @@ CheckTarget target_from_config(const std::string& path, const std::vector<std::s
   t.params = flow(exp.resolved["env"]["kwargs"]);
   t.time_limit = exp.env.section.max_episode_steps.value_or(entry.max_episode_steps);
   t.env = entry.build(exp.env.kwargs,
-                      EnvContext{exp.env.section.python.value, exp.env.section.startup_timeout});
+                      EnvContext{exp.env.section.python.value, exp.env.section.startup_timeout,
+                                 exp.env.section.opponent, exp.env.section.learner_side});
   if (t.time_limit > 0) t.env = std::make_unique<TimeLimit>(std::move(t.env), t.time_limit);
   for (const WrapperSpec& w : exp.env.wrappers)
     t.env = registry.find_wrapper(w.id)->make(std::move(t.env), w.params);
@@ -112,6 +114,7 @@ RandomBaseline play_random(Env& env, int episodes, uint64_t seed) {
   std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) * agents);
   std::vector<float> action(act_dim * agents);
   std::vector<StepResult> results;
+  RandomActions random_actions(env.action_space());  // legal ones when the env masks them
   std::vector<double> returns;
   double total_length = 0;
   RandomBaseline b;
@@ -120,8 +123,7 @@ RandomBaseline play_random(Env& env, int episodes, uint64_t seed) {
     env.reset(e == 0 ? std::optional<uint64_t>(seed) : std::nullopt, obs);
     double ret = 0;
     for (int64_t t = 1;; ++t) {
-      for (int a = 0; a < agents; ++a)
-        env.action_space().sample(rng, std::span<float>(action.data() + a * act_dim, act_dim));
+      random_actions.sample(env.info(), agents, rng, action);
       const StepResult r = step_all_agents(env, action, obs, results);
       ret += r.reward;
       if (r.terminated || r.truncated || t >= 100000) {
@@ -164,9 +166,10 @@ Action add_check_env(CLI::App& app, Registry& registry) {
                   "with an id: an env parameter, e.g. --set step_size=0.1; with a file: any "
                   "config value, e.g. --set env.kwargs.step_size=0.1 (repeatable)")
       ->allow_extra_args(false);
-  sub->add_option("--python", options->python,
-                  "interpreter of a python:/gymnasium: id (default: python3 on PATH; for a "
-                  "file: its env.python)");
+  sub->add_option(
+      "--python", options->python,
+      "interpreter of a python:/gymnasium:/pettingzoo: id (default: python3 on PATH; for a "
+      "file: its env.python)");
   sub->add_option("--seed", options->seed, "seed of the checks and the random episodes")
       ->check(seed_value());
   sub->add_option("--steps", options->steps, "random steps per determinism rollout")

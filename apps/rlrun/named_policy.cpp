@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/env/random_actions.hpp"
 #include "rlrun/rng.hpp"
 
 namespace rlrun::cli {
@@ -12,13 +13,17 @@ NamedPolicy named_policy(const std::string& name, Env& env, const Registry& regi
   if (name == "random") {
     auto rng = std::make_shared<Rng>(options.seed ^ 0x5eedull);
     const Space space = env.action_space();
-    return {[rng, space](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
-              // One column per observation column (per agent of a multi-agent env).
-              action.resize(space.flat_dim(), obs.cols());
-              for (Eigen::Index c = 0; c < action.cols(); ++c)
-                space.sample(*rng, {action.col(c).data(), static_cast<size_t>(action.rows())});
-            },
-            "random policy"};
+    // Legal actions of the state the env is in, when it masks them (env/random_actions.hpp).
+    auto random_actions = std::make_shared<RandomActions>(space);
+    Env* played = &env;
+    return {
+        [rng, space, random_actions, played](const Eigen::MatrixXf& obs, Eigen::MatrixXf& action) {
+          // One column per observation column (per agent of a multi-agent env).
+          action.resize(space.flat_dim(), obs.cols());
+          random_actions->sample(played->info(), static_cast<int>(obs.cols()), *rng,
+                                 {action.data(), static_cast<size_t>(action.size())});
+        },
+        "random policy"};
   }
   // The env's own baselines, as its folder registered them (env/env_entry.hpp).
   std::string offered = "random";

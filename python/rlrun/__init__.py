@@ -6,6 +6,7 @@
     env = rlrun.make("CartPole-v1")              # a gymnasium.Env when Gymnasium is installed
     envs = rlrun.make_vec("CartPole-v1", 64)     # stepped together in C++
     run_dir = rlrun.train("configs/cartpole_ppo.yaml", seed=3)
+    lights = rlrun.parallel_env("TrafficNetwork-v0")  # PettingZoo's Parallel API (rlrun.env: AEC)
 """
 
 import os as _os
@@ -20,6 +21,7 @@ from ._core import ConfigError, Interrupted, RuntimeFailure, UsageError
 from ._core import __version__
 from ._env import RlrunEnv, make
 from ._model import Model, load
+from ._pettingzoo import RlrunAECEnv, RlrunParallelEnv, env, parallel_env
 from ._spaces import HAVE_GYMNASIUM
 from ._train import train
 from ._vector import RlrunVectorEnv, make_vec
@@ -47,7 +49,9 @@ __all__ = [
     "HAVE_GYMNASIUM",
     "Interrupted",
     "Model",
+    "RlrunAECEnv",
     "RlrunEnv",
+    "RlrunParallelEnv",
     "RlrunVectorEnv",
     "RuntimeFailure",
     "UsageError",
@@ -57,5 +61,7 @@ __all__ = [
     "load_plugin",
     "make",
     "make_vec",
+    "env",
+    "parallel_env",
     "train",
 ]

@@ -6,9 +6,12 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "rlrun/env.hpp"
+#include "rlrun/frame.hpp"
 #include "rlrun/runtime/components/registry.hpp"
 
 namespace rlrun::python {
@@ -29,10 +32,14 @@ py::dict space_dict(const Space& space);
 // `max_episode_steps` (< 0: the registered limit; 0: none), as gymnasium.make stacks it.
 EnvPtr make_registered_env(const std::string& id, const std::string& kwargs_yaml,
                            int max_episode_steps);
+// The env's current frame as an (H, W, 3) uint8 array (Gymnasium's rgb_array), None when it
+// cannot draw; `frame` and `rgb` are the caller's buffers, kept between calls.
+py::object render_rgb(Env& env, std::unique_ptr<Frame>& frame, std::vector<uint8_t>& rgb);
 // The present values of an Info (absent ones are NaN) as a dict of floats.
 py::dict info_dict(const Info& info);
 
 void bind_env(py::module_& m);
+void bind_multi_agent_env(py::module_& m);
 void bind_vec_env(py::module_& m);
 void bind_model(py::module_& m);
 void bind_train(py::module_& m);

@@ -82,6 +82,7 @@ PYBIND11_MODULE(_core, m) {
       [](const std::string& path) { return rlrun::load_plugin(path, module_registry()); },
       py::arg("path"), "Loads an env plugin library (as --plugin); returns its resolved path.");
   bind_env(m);
+  bind_multi_agent_env(m);
   bind_vec_env(m);
   bind_model(m);
   bind_train(m);

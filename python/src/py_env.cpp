@@ -29,6 +29,17 @@ EnvPtr make_registered_env(const std::string& id, const std::string& kwargs_yaml
   return env;
 }
 
+py::object render_rgb(Env& env, std::unique_ptr<Frame>& frame, std::vector<uint8_t>& rgb) {
+  const RenderSpec spec = env.render_spec();
+  if (spec.width <= 0) return py::none();
+  if (!frame) frame = std::make_unique<Frame>(spec.width, spec.height);
+  if (!env.render(*frame)) return py::none();
+  frame->to_rgb(rgb);
+  py::array_t<uint8_t> out({spec.height, spec.width, 3});
+  std::copy(rgb.begin(), rgb.end(), out.mutable_data());
+  return out;
+}
+
 py::dict info_dict(const Info& info) {
   py::dict d;
   for (size_t i = 0; i < info.keys().size(); ++i)
@@ -120,17 +131,7 @@ class PyEnv {
   }
 
   // Gymnasium's render_mode="rgb_array": an (H, W, 3) uint8 array, None if the env cannot draw.
-  py::object render() {
-    Env& e = env();
-    const RenderSpec spec = e.render_spec();
-    if (spec.width <= 0) return py::none();
-    if (!frame_) frame_ = std::make_unique<Frame>(spec.width, spec.height);
-    if (!e.render(*frame_)) return py::none();
-    frame_->to_rgb(rgb_);
-    py::array_t<uint8_t> out({spec.height, spec.width, 3});
-    std::copy(rgb_.begin(), rgb_.end(), out.mutable_data());
-    return out;
-  }
+  py::object render() { return render_rgb(env(), frame_, rgb_); }
 
   void close() {
     frame_.reset();

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <exception>
 
+#include "rlrun/env/random_actions.hpp"
 #include "rlrun/env/space_text.hpp"
 #include "rlrun/rng.hpp"
 
@@ -148,13 +149,13 @@ class Checker {
     const size_t act_dim = static_cast<size_t>(act_space.flat_dim());
     std::vector<float> action(act_dim * agents());
     std::vector<StepResult> results(static_cast<size_t>(agents()));
+    RandomActions random_actions(act_space);  // legal ones when the env masks its actions
     std::vector<Record> records;
     records.reserve(steps_ + 1);
     Record first{reset(seed_, "reset(seed)"), 0.0, false, false, env_.info().values()};
     records.push_back(std::move(first));
     for (int t = 0; t < steps_; ++t) {
-      for (int a = 0; a < agents(); ++a)
-        act_space.sample(action_rng, std::span<float>(action.data() + a * act_dim, act_dim));
+      random_actions.sample(env_.info(), agents(), action_rng, action);
       Record r{Obs(obs_size()), 0.0, false, false, {}};
       phase_ = "step() " + std::to_string(t);
       if (agents() == 1) {
@@ -163,10 +164,12 @@ class Checker {
         env_.step_agents(action, r.obs, results);
       }
       const StepResult result = results[0];
+      const bool ended = result.terminated || result.truncated;
       r.reward = 0;
       for (const StepResult& each : results) {
         r.reward += each.reward;
-        if (each.terminated != result.terminated || each.truncated != result.truncated)
+        // Together, each with its own reason (one terminated, another truncated at the end).
+        if ((each.terminated || each.truncated) != ended)
           problem("the agents did not end their episode together (step " + std::to_string(t) +
                   "): rlrun's multi-agent envs end all agents at once");
       }

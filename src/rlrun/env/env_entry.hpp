@@ -33,6 +33,10 @@ struct PolicyEntry {
 struct EnvContext {
   std::string python = "python3";
   double startup_timeout = 60.0;
+  // Turn-based PettingZoo games (pettingzoo: envs): who plays the seats the learner does not
+  // ("self" or "random") and the learner's seat ("alternate", "first", "second").
+  std::string opponent = "self";
+  std::string learner_side = "alternate";
 };
 
 struct EnvEntry {

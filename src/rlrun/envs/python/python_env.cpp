@@ -35,19 +35,25 @@ T take(const std::vector<std::byte>& body, size_t& at) {
 struct PythonEnv::Handshake {
   Space observation_space, action_space;
   int obs_dim = 0, act_dim = 0;
+  int num_agents = 1;
+  std::vector<std::string> agent_names;  // a PettingZoo env's; empty for a Gymnasium env
   bool can_render = false;
   double render_fps = 30.0;
   std::optional<int> max_episode_steps;
 };
 
 PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
-                     double startup_timeout)
+                     double startup_timeout, const TurnBasedSeats& turn_based)
     : target_(std::move(target)), startup_timeout_(startup_timeout) {
   // Keys every Python env declares up front: the Monitor writes is_success into
   // <i>.monitor.csv only for keys known when it is built (empty when the env never reports it).
   is_success_ = info_.add_key("is_success");
   worker_ = std::make_unique<PythonWorker>(python, python_worker_script());
-  const json spec = {{"target", target_}, {"kwargs", json::parse(kwargs_json)}};
+  const json spec = {
+      {"target", target_},
+      {"kwargs", json::parse(kwargs_json)},
+      {"turn_based",
+       {{"opponent", turn_based.opponent}, {"learner_side", turn_based.learner_side}}}};
   const std::string text = spec.dump();
   const uint32_t length = static_cast<uint32_t>(text.size());
   std::vector<std::byte> message(4 + text.size());
@@ -117,6 +123,15 @@ void PythonEnv::ready() const {
     h->act_dim = reply.at("act_dim").get<int>();
     if (h->obs_dim != h->observation_space.flat_dim() || h->act_dim != h->action_space.flat_dim())
       throw std::invalid_argument("sizes disagree with the spaces");
+    h->num_agents = reply.value("num_agents", 1);
+    if (h->num_agents < 1 || h->num_agents > protocol::kMaxAgents)
+      throw std::invalid_argument(std::to_string(h->num_agents) + " agents (at most " +
+                                  std::to_string(protocol::kMaxAgents) + ")");
+    if (reply.contains("agents") && reply["agents"].is_array() && h->num_agents > 1) {
+      h->agent_names = reply["agents"].get<std::vector<std::string>>();
+      if (static_cast<int>(h->agent_names.size()) != h->num_agents)
+        throw std::invalid_argument("agent names disagree with num_agents");
+    }
     h->can_render = reply.value("render_mode", json()).is_string() &&
                     reply["render_mode"].get<std::string>() == "rgb_array";
     h->render_fps = reply.value("render_fps", 30.0);
@@ -128,7 +143,7 @@ void PythonEnv::ready() const {
   } catch (const std::exception& e) {
     fail(std::string("its worker's handshake does not describe the env: ") + e.what());
   }
-  request_.assign(protocol::request_bytes(h->act_dim), std::byte{0});
+  request_.assign(protocol::request_bytes(h->act_dim * h->num_agents), std::byte{0});
   worker_->set_request_bytes(request_.size());
   handshake_ = std::move(h);
 }
@@ -204,7 +219,41 @@ void PythonEnv::reset(std::optional<uint64_t> seed, std::span<float> obs) {
   ++episode_;
   step_ = 0;
   was_reset_ = true;
-  read_step_reply(obs, "in reset()");
+  reset_results_.resize(static_cast<size_t>(handshake_->num_agents));
+  read_step_reply(obs, reset_results_, "in reset()");
+}
+
+int PythonEnv::num_agents() const {
+  ready();
+  return handshake_->num_agents;
+}
+
+std::string PythonEnv::agent_name(int agent) const {
+  ready();
+  if (handshake_->agent_names.empty()) return "agent_" + std::to_string(agent);
+  return handshake_->agent_names.at(static_cast<size_t>(agent));
+}
+
+void PythonEnv::step_agents(std::span<const float> actions, std::span<float> obs,
+                            std::span<StepResult> results) {
+  start_step_agents(actions);
+  finish_step_agents(obs, results);
+}
+
+void PythonEnv::start_step_agents(std::span<const float> actions) {
+  ready();
+  const size_t floats = static_cast<size_t>(handshake_->act_dim) * handshake_->num_agents;
+  if (actions.size() != floats)
+    throw std::invalid_argument(target_ + ": step_agents() takes " + std::to_string(floats) +
+                                " action floats, got " + std::to_string(actions.size()));
+  request_[0] = static_cast<std::byte>(protocol::kStep);
+  std::memcpy(request_.data() + 1, actions.data(), actions.size_bytes());
+  send_request();
+  ++step_;
+}
+
+void PythonEnv::finish_step_agents(std::span<float> obs, std::span<StepResult> results) {
+  read_step_reply(obs, results, "in step()");
 }
 
 StepResult PythonEnv::step(std::span<const float> action, std::span<float> obs) {
@@ -214,31 +263,34 @@ StepResult PythonEnv::step(std::span<const float> action, std::span<float> obs) 
 
 void PythonEnv::start_step(std::span<const float> action) {
   ready();
-  if (static_cast<int>(action.size()) != handshake_->act_dim)
-    throw std::invalid_argument(target_ + ": step() takes " + std::to_string(handshake_->act_dim) +
-                                " action floats, got " + std::to_string(action.size()));
-  request_[0] = static_cast<std::byte>(protocol::kStep);
-  std::memcpy(request_.data() + 1, action.data(), action.size_bytes());
-  send_request();
-  ++step_;
+  if (handshake_->num_agents != 1)
+    throw std::invalid_argument(target_ + " has " + std::to_string(handshake_->num_agents) +
+                                " agents: step them with step_agents()");
+  start_step_agents(action);
 }
 
 StepResult PythonEnv::finish_step(std::span<float> obs) {
-  return read_step_reply(obs, "in step()");
+  StepResult result;
+  read_step_reply(obs, std::span(&result, 1), "in step()");
+  return result;
 }
 
-StepResult PythonEnv::read_step_reply(std::span<float> obs, const char* during) {
+void PythonEnv::read_step_reply(std::span<float> obs, std::span<StepResult> results,
+                                const char* during) {
   const std::vector<std::byte>& body = receive(during);
-  const size_t obs_bytes = 4 * static_cast<size_t>(handshake_->obs_dim);
-  if (obs.size() != static_cast<size_t>(handshake_->obs_dim))
-    throw std::invalid_argument(target_ + ": observation buffer of " + std::to_string(obs.size()) +
-                                " floats, the space has " + std::to_string(handshake_->obs_dim));
+  const size_t agents = static_cast<size_t>(handshake_->num_agents);
+  const size_t obs_floats = static_cast<size_t>(handshake_->obs_dim) * agents;
+  const size_t obs_bytes = 4 * obs_floats;
+  if (obs.size() != obs_floats || results.size() != agents)
+    throw std::invalid_argument(target_ + ": buffers for " + std::to_string(results.size()) +
+                                " agents and " + std::to_string(obs.size()) +
+                                " observation floats; the env has " + std::to_string(agents) +
+                                " agents of " + std::to_string(handshake_->obs_dim));
   try {
     size_t at = 0;
-    StepResult result;
-    result.reward = take<double>(body, at);
-    result.terminated = take<uint8_t>(body, at) != 0;
-    result.truncated = take<uint8_t>(body, at) != 0;
+    for (StepResult& r : results) r.reward = take<double>(body, at);
+    for (StepResult& r : results) r.terminated = take<uint8_t>(body, at) != 0;
+    for (StepResult& r : results) r.truncated = take<uint8_t>(body, at) != 0;
     if (at + obs_bytes > body.size()) throw std::out_of_range("observation");
     std::memcpy(obs.data(), body.data() + at, obs_bytes);
     at += obs_bytes;
@@ -261,7 +313,6 @@ StepResult PythonEnv::read_step_reply(std::span<float> obs, const char* during) 
       info_.set(info_index_[index], value);
     }
     if (at != body.size()) throw std::out_of_range("trailing bytes");
-    return result;
   } catch (const std::out_of_range& e) {
     fail(std::string("its worker sent a malformed reply ") + during + " (" + e.what() + ")");
   }

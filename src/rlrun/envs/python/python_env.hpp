@@ -13,6 +13,10 @@
 // (an exception, a crash, an observation that does not fit its space, NaN) ends the run with a
 // RuntimeFailure that names the env, the worker's pid, the step and episode, and carries the
 // Python traceback. A Python env cannot snapshot itself, so checkpoints hold the model only.
+//
+// `pettingzoo:module:function` builds a PettingZoo env (pettingzoo_agents.py): its agents are
+// this env's agents (num_agents(), step_agents(), named as PettingZoo names them), sharing one
+// policy.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -20,18 +24,27 @@
 #include <vector>
 
 #include "rlrun/env.hpp"
+#include "rlrun/env/agent_names.hpp"
 #include "rlrun/env/split_step.hpp"
 #include "rlrun/envs/python/python_worker.hpp"
 
 namespace rlrun {
 
-class PythonEnv : public Env, public SplitStep {
+// A turn-based PettingZoo game's opponent and the learner's seat (env.opponent,
+// env.learner_side; pettingzoo_agents.py).
+struct TurnBasedSeats {
+  std::string opponent = "self";
+  std::string learner_side = "alternate";
+};
+
+class PythonEnv : public Env, public SplitStep, public AgentNames {
  public:
   // `target` is the env id ("python:module:Attr" or "gymnasium:ID"), `kwargs_json` a JSON
   // object, `python` the interpreter (a name on PATH or a path), `startup_timeout` the seconds
   // its worker may take to import the module and build the env (env.startup_timeout).
   PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
-            double startup_timeout = kDefaultStartupTimeout);
+            double startup_timeout = kDefaultStartupTimeout,
+            const TurnBasedSeats& turn_based = TurnBasedSeats{});
   static constexpr double kDefaultStartupTimeout = 60.0;
   ~PythonEnv() override;
 
@@ -45,6 +58,15 @@ class PythonEnv : public Env, public SplitStep {
   StepResult finish_step(std::span<float> obs) override;
   const Info& info() const override { return info_; }
   std::string id() const override { return target_; }
+
+  // A PettingZoo env's agents (1 for a Gymnasium env), all stepped by one request.
+  int num_agents() const override;
+  std::string agent_name(int agent) const override;
+  void step_agents(std::span<const float> actions, std::span<float> obs,
+                   std::span<StepResult> results) override;
+  bool splits_agents() const override { return true; }
+  void start_step_agents(std::span<const float> actions) override;
+  void finish_step_agents(std::span<float> obs, std::span<StepResult> results) override;
 
   RenderSpec render_spec() const override;
   bool render(Frame& frame) const override;
@@ -65,7 +87,8 @@ class PythonEnv : public Env, public SplitStep {
   void send_request() const;
   // Reads a reply; on 'E' throws with the worker's text. Returns the body.
   const std::vector<std::byte>& receive(const char* during) const;
-  StepResult read_step_reply(std::span<float> obs, const char* during);
+  // Reads every agent's reward, flags and observation (agent-major) and the info.
+  void read_step_reply(std::span<float> obs, std::span<StepResult> results, const char* during);
   // Fetches a frame into frame_rgb_ (height x width x 3); false when the env gives none.
   bool fetch_frame() const;
 
@@ -83,6 +106,7 @@ class PythonEnv : public Env, public SplitStep {
   int64_t episode_ = 0;  // for messages: episode and step where something went wrong
   int64_t step_ = 0;
   bool was_reset_ = false;
+  std::vector<StepResult> reset_results_;  // the flags a reset reply carries (all false)
 };
 
 }  // namespace rlrun

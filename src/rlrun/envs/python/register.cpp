@@ -1,6 +1,8 @@
 // Python envs (python_env.hpp): two id families, expanded per id by the registry.
 //   python:<module>:<Attr>   Attr(**env.kwargs), Attr a class or function of the module
 //   gymnasium:<ID>           gymnasium.make(ID, **env.kwargs), with Gymnasium's own TimeLimit
+//   pettingzoo:<module>:<fn> fn(**env.kwargs), a PettingZoo env: its agents share one policy
+//                            (pettingzoo_agents.py)
 // env.kwargs is passed through as JSON (kwargs_json.hpp); env.python picks the interpreter.
 #include <memory>
 #include <regex>
@@ -41,28 +43,28 @@ EnvEntry python_entry(const std::string& id, std::string description) {
   };
   entry.make_in_context = [id](const AnyConfig& kwargs, const EnvContext& context) -> EnvPtr {
     return std::make_unique<PythonEnv>(id, kwargs_json(kwargs.get<YAML::Node>()),
-                                       interpreter(context.python), context.startup_timeout);
+                                       interpreter(context.python), context.startup_timeout,
+                                       TurnBasedSeats{context.opponent, context.learner_side});
   };
   entry.params = [] { return std::vector<FieldDoc>{}; };
   return entry;
 }
 
-EnvEntry python_family() {
+// python:<module>:<Attr> and pettingzoo:<module>:<function>: `prefix` and the same form.
+EnvEntry module_family(const std::string& prefix, const std::string& description,
+                       const std::string& example, const std::string& kind) {
   EnvEntry family;
-  family.id = "python:";
-  family.description =
-      "python:<module>:<Class>: a Gymnasium env written in Python, Class(**kwargs), one worker "
-      "process per env (env.python: the interpreter)";
+  family.id = prefix;
+  family.description = description;
   family.params = [] { return std::vector<FieldDoc>{}; };
-  family.expand = [](const std::string& id) {
-    static const std::regex form(
-        "python:([A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)*):"
-        "([A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)*)");
+  family.expand = [prefix, example, kind](const std::string& id) {
+    static const std::string name = "[A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)*";
+    const std::regex form(prefix + "(" + name + "):(" + name + ")");
     if (!std::regex_match(id, form))
-      throw std::invalid_argument("'" + id +
-                                  "' is not a Python env id: write "
-                                  "python:<module>:<Class>, e.g. python:my_pkg.my_envs:MyEnv");
-    return python_entry(id, "Python env " + id.substr(7));
+      throw std::invalid_argument("'" + id + "' is not a " + kind + " id: write " + prefix +
+                                  "<module>:<" + (prefix == "python:" ? "Class" : "function") +
+                                  ">, e.g. " + example);
+    return python_entry(id, kind + " " + id.substr(prefix.size()));
   };
   return family;
 }
@@ -88,8 +90,17 @@ EnvEntry gymnasium_family() {
 }  // namespace
 
 void register_python(EnvEntries& out) {
-  out.push_back(python_family());
+  out.push_back(module_family(
+      "python:",
+      "python:<module>:<Class>: a Gymnasium env written in Python, Class(**kwargs), one worker "
+      "process per env (env.python: the interpreter)",
+      "python:my_pkg.my_envs:MyEnv", "Python env"));
   out.push_back(gymnasium_family());
+  out.push_back(module_family(
+      "pettingzoo:",
+      "pettingzoo:<module>:<function>: a PettingZoo env (parallel or AEC), function(**kwargs), "
+      "its agents sharing one policy; turn-based games as one agent playing the seat to move",
+      "pettingzoo:pettingzoo.classic.tictactoe_v3:env", "PettingZoo env"));
 }
 
 }  // namespace rlrun::envs

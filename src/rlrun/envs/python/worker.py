@@ -195,7 +195,8 @@ class Codec:
 
 
 def load_target(target, kwargs):
-    """python:module:Attr -> Attr(**kwargs); gymnasium:ID -> gymnasium.make(ID, **kwargs)."""
+    """python:module:Attr -> Attr(**kwargs); gymnasium:ID -> gymnasium.make(ID, **kwargs);
+    pettingzoo:module:function -> function(**kwargs) (pettingzoo_agents.py takes it on)."""
     family, _, rest = target.partition(":")
     if family == "gymnasium":
         try:
@@ -301,35 +302,43 @@ class Worker:
         self.channel = channel
         self.target = spec["target"]
         self.env = load_target(self.target, spec.get("kwargs") or {})
-        for attr in ("reset", "step", "observation_space", "action_space"):
-            if not hasattr(self.env, attr):
-                fail(f"{self.target} built a {type(self.env).__module__}."
-                     f"{type(self.env).__qualname__}, which is not a Gymnasium env: it has no "
-                     f"'{attr}' (a gymnasium.Env has reset, step, observation_space and "
-                     "action_space)")
-        self.obs_codec = Codec(self.env.observation_space, "observation_space", np)
-        self.act_codec = Codec(self.env.action_space, "action_space", np)
+        # A PettingZoo env: its agents (pettingzoo_agents.py); None for a Gymnasium env.
+        self.agents = None
+        if self.target.startswith("pettingzoo:"):
+            self.agents = pettingzoo_agents(self.env, np, spec.get("turn_based"))
+            self.obs_codec, self.act_codec = self.agents.obs_codec, self.agents.act_codec
+        else:
+            for attr in ("reset", "step", "observation_space", "action_space"):
+                if not hasattr(self.env, attr):
+                    fail(f"{self.target} built a {type(self.env).__module__}."
+                         f"{type(self.env).__qualname__}, which is not a Gymnasium env: it has "
+                         f"no '{attr}' (a gymnasium.Env has reset, step, observation_space and "
+                         "action_space; a PettingZoo env is built with pettingzoo:module:function)")
+            self.obs_codec = Codec(self.env.observation_space, "observation_space", np)
+            self.act_codec = Codec(self.env.action_space, "action_space", np)
         if self.act_codec.kind == "Dict":
             self.act_codec.action(None)
         self.act_dim = self.act_codec.size
         self.obs_dim = self.obs_codec.size
-        # Requests are fixed-size frames: op byte + max(seed, action) payload.
-        self.request = bytearray(1 + max(9, 4 * self.act_dim))
+        k = self.num_agents = len(self.agents.names) if self.agents else 1
+        # Requests are fixed-size frames: op byte + max(seed, every agent's action) payload.
+        self.request = bytearray(1 + max(9, 4 * self.act_dim * k))
         self.request_view = memoryview(self.request)
-        self.action_view = np.frombuffer(self.request, dtype=np.float32, count=self.act_dim,
-                                         offset=1)
-        # Reply: 'K', u32 length, f64 reward, u8 terminated, u8 truncated, obs floats, info.
-        self.fixed = 1 + 4 + 8 + 2 + 4 * self.obs_dim
+        self.action_view = np.frombuffer(self.request, dtype=np.float32,
+                                         count=self.act_dim * k, offset=1)
+        # Reply: 'K', u32 length, f64 reward[k], u8 terminated[k], u8 truncated[k], obs floats
+        # (agent-major), info.
+        self.fixed = 1 + 4 + 10 * k + 4 * self.obs_dim * k
         self.reply = bytearray(self.fixed)
-        self.obs_view = np.frombuffer(self.reply, dtype=np.float32, count=self.obs_dim,
-                                      offset=15)
+        self.obs_view = np.frombuffer(self.reply, dtype=np.float32, count=self.obs_dim * k,
+                                      offset=5 + 10 * k)
         self.info_keys = {}
         # sb3-contrib's ActionMasker / get_action_masks: env.action_masks(), through wrappers.
         self.mask_method = None
-        getter = getattr(self.env, "get_wrapper_attr", None)
+        getter = getattr(self.env, "get_wrapper_attr", None) if not self.agents else None
         try:
             method = getter("action_masks") if getter else getattr(self.env, "action_masks")
-            self.mask_method = method if callable(method) else None
+            self.mask_method = method if callable(method) and not self.agents else None
         except AttributeError:
             pass
         self.warned = set()
@@ -340,7 +349,8 @@ class Worker:
         self.handshake = {
             "ok": True, "protocol": PROTOCOL_VERSION,
             "observation_space": self.obs_codec.describe, "action_space": self.act_codec.describe,
-            "obs_dim": self.obs_dim, "act_dim": self.act_dim,
+            "obs_dim": self.obs_dim, "act_dim": self.act_dim, "num_agents": k,
+            "agents": [str(a) for a in self.agents.names] if self.agents else [],
             "render_mode": self.render_mode if isinstance(self.render_mode, str) else None,
             "render_fps": float(metadata.get("render_fps") or 30) if hasattr(metadata, "get") else 30.0,
             "max_episode_steps": getattr(spec_obj, "max_episode_steps", None),
@@ -383,15 +393,55 @@ class Worker:
         return [(f"action_mask.{i}", value) for i, value in enumerate(mask.tolist())]
 
     def finish(self, obs, info, reward, terminated, truncated, what):
-        np = self.np
         self.obs_codec.write(obs, self.obs_view, what)
+        self.send_reply([reward], [terminated], [truncated], info, self.action_mask_items(info))
+
+    def finish_agents(self, rows, info, what):
+        """Every agent's (observation or None, mask or None, reward, terminated, truncated)."""
+        np = self.np
+        views = self.obs_view.reshape(self.num_agents, self.obs_dim)
+        masks = []
+        for i, (obs, mask, _, _, _) in enumerate(rows):
+            if obs is None:
+                views[i].fill(0.0)  # an agent that has left (black death)
+            else:
+                self.obs_codec.write(obs, views[i], f"{what} of agent '{self.agents.names[i]}'")
+            masks.append(None if mask is None else np.asarray(mask, dtype=np.float64).reshape(-1))
+        items = []
+        size = max((len(m) for m in masks if m is not None), default=0)
+        if size:  # agents without a mask (gone) may take any action
+            for i, m in enumerate(masks):
+                values = m if m is not None else np.ones(size)
+                if len(values) != size:
+                    fail(f"agent '{self.agents.names[i]}'s action mask has {len(values)} "
+                         f"entries, the others' {size}")
+                items += [(f"action_mask.{i * size + j}", v) for j, v in enumerate(values.tolist())]
+        rewards = []
+        for i, (_, _, reward, _, _) in enumerate(rows):
+            rewards.append(self.reward_value(reward, f"the reward of agent '{self.agents.names[i]}'"))
+        self.send_reply(rewards, [r[3] for r in rows], [r[4] for r in rows], info, items)
+
+    def reward_value(self, reward, what):
+        np = self.np
+        if isinstance(reward, np.ndarray) and reward.shape in ((), (1,)) and reward.dtype.kind in "iuf":
+            reward = reward.reshape(-1)[0].item()
+        if not isinstance(reward, (int, float, np.integer, np.floating)) or isinstance(
+                reward, (bool, np.bool_)):
+            fail(f"{what} is {reward!r} ({type(reward).__name__}); it must be a number")
+        reward = float(reward)
+        if reward != reward or reward in (float("inf"), float("-inf")):
+            fail(f"{what} is {reward}; rewards must be finite")
+        return reward
+
+    def send_reply(self, rewards, terminated, truncated, info, mask_items):
+        np = self.np
         tail = bytearray()
         new_keys = []
         values = []
         if info is not None and not hasattr(info, "items"):
-            fail(f"the info of {what.split(' ')[-1]} is a {type(info).__name__}; it must be a dict")
+            fail(f"the info is a {type(info).__name__}; it must be a dict")
         items = list(info.items()) if info else []
-        for key, value in items + self.action_mask_items(info):
+        for key, value in items + mask_items:
             if isinstance(value, (bool, int, float, np.bool_, np.integer, np.floating)) or (
                     isinstance(value, np.ndarray) and value.shape == () and
                     value.dtype.kind in "biuf"):
@@ -411,11 +461,17 @@ class Worker:
             tail += v
         # The fixed part holds the observation view, so it is never resized; the info goes
         # after it in the same sendmsg.
-        struct.pack_into("<cIdBB", self.reply, 0, b"K", self.fixed - 5 + len(tail), reward,
-                         terminated, truncated)
+        k = self.num_agents
+        struct.pack_into(f"<cI{k}d{k}B{k}B", self.reply, 0, b"K", self.fixed - 5 + len(tail),
+                         *rewards, *map(bool, terminated), *map(bool, truncated))
         self.channel.send_parts(self.reply, tail)
 
     def reset(self, has_seed, seed):
+        if self.agents:
+            rows, info = self.agents.reset(has_seed, seed)
+            self.step_count = 0
+            self.finish_agents(rows, info, "the observation of reset()")
+            return
         result = self.env.reset(seed=seed) if has_seed else self.env.reset()
         if not isinstance(result, tuple) or len(result) != 2:
             fail("reset() returned " + (f"{len(result)} values" if isinstance(result, tuple)
@@ -425,6 +481,12 @@ class Worker:
         self.finish(result[0], result[1], 0.0, False, False, "the observation of reset()")
 
     def step(self):
+        if self.agents:
+            rows, info = self.agents.step(
+                self.action_view.reshape(self.num_agents, self.act_dim))
+            self.step_count += 1
+            self.finish_agents(rows, info, "the observation of step()")
+            return
         action = self.act_codec.action(self.action_view)
         result = self.env.step(action)
         if not isinstance(result, tuple) or len(result) != 5:

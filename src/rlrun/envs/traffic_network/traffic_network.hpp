@@ -44,6 +44,7 @@
 #include "rlrun/core/private_temp_dir.hpp"
 #include "rlrun/core/trusted_values.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/agent_names.hpp"
 #include "rlrun/env/split_step.hpp"
 #include "rlrun/env_seeding.hpp"
 #include "rlrun/envs/sumo/network_geometry.hpp"
@@ -56,7 +57,7 @@
 
 namespace rlrun {
 
-class TrafficNetwork : public Env, public SplitStep {
+class TrafficNetwork : public Env, public SplitStep, public AgentNames {
  public:
   struct Config {
     SimulatorInput scenario;  // scenarios/*.yaml or a .sumocfg
@@ -153,6 +154,10 @@ class TrafficNetwork : public Env, public SplitStep {
   const Info& info() const override { return info_; }
   std::string id() const override { return name_; }
   int num_agents() const override { return static_cast<int>(agents_.size()); }
+  // PettingZoo's agent names (env/agent_names.hpp): the traffic light ids, as sumo-rl's.
+  std::string agent_name(int agent) const override {
+    return agents_.at(static_cast<size_t>(agent)).id();
+  }
 
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;

@@ -35,7 +35,8 @@ const EnvEntry& env_entry(const EnvSpec& spec, const Registry& registry) {
 EnvPtr make_registered_env(const EnvSpec& spec, const Registry& registry) {
   const EnvEntry& entry = env_entry(spec, registry);
   return entry.build(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs,
-                     EnvContext{spec.section.python.value, spec.section.startup_timeout});
+                     EnvContext{spec.section.python.value, spec.section.startup_timeout,
+                                spec.section.opponent, spec.section.learner_side});
 }
 
 // `n` registered envs, all started before any is asked its spaces (a Python env's worker

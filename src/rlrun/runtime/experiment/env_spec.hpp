@@ -22,8 +22,10 @@ struct EnvSectionConfig {
   int n_envs = 1;                        // parallel env copies (SB3 n_envs)
   std::optional<int> max_episode_steps;  // override the registered time limit
   bool auto_wrap = false;                // add the action-space wrapper the algorithm needs
-  ProgramPath python{"python3"};         // interpreter of python:/gymnasium: envs
+  ProgramPath python{"python3"};         // interpreter of python:/gymnasium:/pettingzoo: envs
   double startup_timeout = 60.0;         // seconds their worker may take to build the env
+  std::string opponent = "self";         // turn-based pettingzoo: games (pettingzoo_agents.py)
+  std::string learner_side = "alternate";
   // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
   std::optional<std::vector<std::string>> info_keywords;
   NormalizeSetting normalize;  // SB3 VecNormalize (wrappers/vec_normalize.hpp)
@@ -37,12 +39,23 @@ struct EnvSectionConfig {
       "wrap Discrete envs with DiscreteAsBox / Box envs with BoxAsDiscrete when the algorithm "
       "needs it");
     v("python", python,
-      "Python interpreter for python:/gymnasium: envs (a name on PATH or a path, e.g. a "
+      "Python interpreter for python:/gymnasium:/pettingzoo: envs (a name on PATH or a path, e.g. "
+      "a "
       "virtualenv's bin/python); the default python3 gives way to $RLRUN_PYTHON when set");
     v("startup_timeout", startup_timeout,
-      "seconds a python:/gymnasium: env's worker may take to import its module and build the "
+      "seconds a python:/gymnasium:/pettingzoo: env's worker may take to import its module and "
+      "build the "
       "env (its __init__) before rlrun stops it with an error",
       in_range(0, 1e6).open_low());
+    v("opponent", opponent,
+      "turn-based pettingzoo: games (tic-tac-toe, connect four): who plays the seats the learner "
+      "does not. self: the one policy plays whichever seat is to move (PettingZoo's SB3 "
+      "tutorial); random: random legal moves, the learner plays one seat",
+      OneOf{{"self", "random"}});
+    v("learner_side", learner_side,
+      "with opponent: random, the learner's seat: alternate (first, second, ... by episode), "
+      "first or second",
+      OneOf{{"alternate", "first", "second"}});
     v("info_keywords", info_keywords,
       "info keys read at each episode's end: monitor.csv columns, rollout/<key> and eval/<key> "
       "means (SB3's Monitor info_keywords); null = the env's metrics and is_success, [] = none");
