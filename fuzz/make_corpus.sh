@@ -38,6 +38,11 @@ algo: {id: TD3, buffer_size: 16, learning_starts: 8, batch_size: 4, policy: {net
 train a2c 'run: {name: a2c, seed: 1, total_timesteps: 40}
 env: {id: Acrobot-v1, wrappers: [{id: FrameStack, n_stack: 2}]}
 algo: {id: A2C, n_steps: 5, policy: {net_arch: [4]}}'
+# RecurrentPPO: LSTM tensors, and the envs' LSTM states in the checkpoint's training state.
+train recurrentppo 'run: {name: recurrentppo, seed: 1, total_timesteps: 64}
+env: {id: CartPoleNoVel-v1, n_envs: 2}
+algo: {id: RecurrentPPO, n_steps: 16, batch_size: 16, n_epochs: 1, policy: {lstm_hidden_size: 4, net_arch: [4]}}
+checkpoint: {freq: 64}'
 
 python3 - "$WORK/runs" "$OUT" <<'PY'
 import pathlib, struct, sys, zipfile

@@ -229,8 +229,9 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
   record.seed = o.seed;
   record.policy_label =
       loaded.file.meta.algorithm + (o.stochastic ? " stochastic" : " deterministic");
-  const RecordResult recorded =
-      record_episodes(env, model_action_fn(algorithm, env, deterministic), record);
+  std::function<void()> start_episode;
+  const ActionFn act = model_action_fn(algorithm, env, deterministic, &start_episode);
+  const RecordResult recorded = record_episodes(env, act, record, start_episode);
   std::printf("recorded %s at %dx%d -> %s\n", count_of(recorded.frames, "frame").c_str(),
               recorded.width, recorded.height, o.record.c_str());
   return recorded.episodes;

@@ -125,10 +125,12 @@ int run(const Options& o, Registry& registry) {
 
   give_opponent_model(o.game, *env, registry);
   PolicyFn act;
+  std::function<void()> start_episode;  // a recurrent model's state reset
   if (policy == "model") {
     const bool deterministic = !o.stochastic;
     record.policy_label = algo_id + (deterministic ? " deterministic" : " stochastic");
-    act = model_action_fn(*algorithm, *env, deterministic);  // with the env's masks if any
+    // With the env's masks if any, the recurrent state if any.
+    act = model_action_fn(*algorithm, *env, deterministic, &start_episode);
   } else {
     PolicyOptions options;
     options.seed = o.seed;
@@ -137,7 +139,7 @@ int run(const Options& o, Registry& registry) {
     act = std::move(named.act);
     record.policy_label = named.label;
   }
-  const RecordResult r = record_episodes(*env, act, record);
+  const RecordResult r = record_episodes(*env, act, record, start_episode);
   print_summary(r,
                 "recorded " + count_of(static_cast<int64_t>(r.episodes.returns.size()), "episode") +
                     " of " + env->id() + " (" + record.policy_label + ")",

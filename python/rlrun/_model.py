@@ -127,8 +127,12 @@ class Model:
 
     def predict(self, observation, state=None, episode_start=None, deterministic: bool = False,
                 action_masks=None):
-        """SB3's ``predict``: returns ``(action, state)``; rlrun's policies are not recurrent,
-        so ``state`` comes back unchanged (None). ``action_masks`` (MaskablePPO models, as
+        """SB3's ``predict``: returns ``(action, state)``. A RecurrentPPO model takes and returns
+        sb3-contrib's LSTM state, a pair ``(h, c)`` of arrays (n_lstm_layers, n_envs,
+        lstm_hidden_size); ``state=None`` starts from zeros and ``episode_start`` (one flag per
+        observation; None: all False) zeroes an observation's state first, as sb3-contrib's
+        ``RecurrentPPO.predict``. Other models are not recurrent: ``state`` comes back unchanged.
+        ``action_masks`` (MaskablePPO models, as
         sb3-contrib's ``predict``): one mask per observation, True/1 for a legal action (n for
         Discrete(n), sum(nvec) for MultiDiscrete, 2n for MultiBinary(n)); masked actions are
         never chosen. None acts without masks."""
@@ -163,13 +167,56 @@ class Model:
                 raise ValueError(f"predict: action_masks has {masks.size} entries; the model takes "
                                  f"{size} per observation ({flat.shape[0]} observations)")
             masks = np.ascontiguousarray(masks.reshape(flat.shape[0], size))
-        flat_actions = self._core.predict(flat, bool(deterministic), masks)
+        flat_state, starts = self._recurrent_input(state, episode_start, flat.shape[0])
+        flat_actions, next_state = self._core.predict(flat, bool(deterministic), masks, flat_state,
+                                                      starts)
+        if next_state is not None:
+            state = self._recurrent_output(next_state)
         actions = flat_actions.reshape((-1, *self.action_space.shape))
         if self._action_dtype is not np.float32:
             actions = actions.astype(self._action_dtype)
         if not vectorized:
             actions = actions.squeeze(axis=0)
         return actions, state
+
+    def _recurrent_input(self, state, episode_start, n):
+        """sb3-contrib's (h, c) state as the core's (n, state size) rows: each observation's h
+        of every layer, then its c."""
+        size = self._core.recurrent_state_size
+        if size == 0:
+            return None, None
+        layers = self._core.recurrent_layers
+        hidden = size // (2 * layers)
+        if state is None:
+            flat_state = np.zeros((n, size), dtype=np.float32)
+        else:
+            if not (isinstance(state, tuple) and len(state) == 2):
+                raise ValueError("predict: a RecurrentPPO state is the pair (h, c) that predict "
+                                 "returned")
+            parts = []
+            for part in state:
+                part = np.asarray(part, dtype=np.float32)
+                if part.shape != (layers, n, hidden):
+                    raise ValueError(f"predict: expected state arrays of shape ({layers}, {n}, "
+                                     f"{hidden}), got {part.shape}")
+                parts.append(part.transpose(1, 0, 2).reshape(n, layers * hidden))
+            flat_state = np.ascontiguousarray(np.concatenate(parts, axis=1))
+        if episode_start is None:
+            starts = np.zeros(n, dtype=np.float32)
+        else:
+            starts = np.asarray(episode_start, dtype=np.float32).reshape(-1)
+            if starts.size != n:
+                raise ValueError(f"predict: episode_start has {starts.size} entries for {n} "
+                                 "observations")
+        return flat_state, np.ascontiguousarray(starts)
+
+    def _recurrent_output(self, flat_state):
+        layers = self._core.recurrent_layers
+        n, size = flat_state.shape
+        hidden = size // (2 * layers)
+        h = flat_state[:, :layers * hidden].reshape(n, layers, hidden).transpose(1, 0, 2)
+        c = flat_state[:, layers * hidden:].reshape(n, layers, hidden).transpose(1, 0, 2)
+        return np.ascontiguousarray(h), np.ascontiguousarray(c)
 
     def __repr__(self):
         return f"<rlrun.Model {self.algorithm} on {self.env_id}, {self.num_timesteps} steps: {self.path}>"

@@ -14,8 +14,11 @@ namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
-py::array_t<float> predict(ModelPolicy& model, FloatArray obs, bool deterministic,
-                           std::optional<FloatArray> action_masks) {
+// Returns the actions and, for a recurrent model given `state` (batch, state size) and
+// `episode_start` (batch,), the next state in the same layout.
+py::tuple predict(ModelPolicy& model, FloatArray obs, bool deterministic,
+                  std::optional<FloatArray> action_masks, std::optional<FloatArray> state,
+                  std::optional<FloatArray> episode_start) {
   // obs: (batch, obs_dim) C order = the bytes of an obs_dim x batch column-major matrix.
   const int obs_dim = model.observation_space().flat_dim();
   if (obs.ndim() != 2 || obs.shape(1) != obs_dim)
@@ -36,15 +39,39 @@ py::array_t<float> predict(ModelPolicy& model, FloatArray obs, bool deterministi
                             ", " + std::to_string(size) + "), one mask per observation");
     masks = Eigen::Map<const Eigen::MatrixXf>(action_masks->data(), size, batch);
   }
+  // state: (batch, state size) C order = a state size x batch column-major matrix.
+  std::optional<Eigen::MatrixXf> states;
+  Eigen::RowVectorXf starts;
+  if (state) {
+    const int size = model.recurrent_state_size();
+    if (size == 0)
+      throw py::value_error("predict: a state given, but " + model.meta().algorithm +
+                            " has no recurrent state (RecurrentPPO does)");
+    if (state->ndim() != 2 || state->shape(0) != batch || state->shape(1) != size)
+      throw py::value_error("predict: expected a state of shape (" + std::to_string(batch) + ", " +
+                            std::to_string(size) + ")");
+    if (!episode_start || episode_start->size() != batch)
+      throw py::value_error("predict: expected episode_start of shape (" + std::to_string(batch) +
+                            ",)");
+    states = Eigen::Map<const Eigen::MatrixXf>(state->data(), size, batch);
+    starts = Eigen::Map<const Eigen::RowVectorXf>(episode_start->data(), batch);
+  }
   Eigen::MatrixXf actions;
   {
     py::gil_scoped_release release;
-    model.predict(in, deterministic, actions, masks ? &*masks : nullptr);
+    Eigen::MatrixXf no_states;
+    const ModelPolicy::RecurrentInput recurrent{states ? *states : no_states, starts};
+    model.predict(in, deterministic, actions, masks ? &*masks : nullptr,
+                  states ? &recurrent : nullptr);
   }
   py::array_t<float> out(
       {static_cast<py::ssize_t>(batch), static_cast<py::ssize_t>(actions.rows())});
   std::copy(actions.data(), actions.data() + actions.size(), out.mutable_data());
-  return out;
+  if (!states) return py::make_tuple(out, py::none());
+  py::array_t<float> next(
+      {static_cast<py::ssize_t>(batch), static_cast<py::ssize_t>(states->rows())});
+  std::copy(states->data(), states->data() + states->size(), next.mutable_data());
+  return py::make_tuple(out, next);
 }
 
 }  // namespace
@@ -61,7 +88,10 @@ void bind_model(py::module_& m) {
            py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
            py::arg("trust") = false)
       .def("predict", &predict, py::arg("obs"), py::arg("deterministic"),
-           py::arg("action_masks") = std::nullopt)
+           py::arg("action_masks") = std::nullopt, py::arg("state") = std::nullopt,
+           py::arg("episode_start") = std::nullopt)
+      .def_property_readonly("recurrent_state_size", &ModelPolicy::recurrent_state_size)
+      .def_property_readonly("recurrent_layers", &ModelPolicy::recurrent_layers)
       .def_property_readonly("action_mask_size", &ModelPolicy::action_mask_size)
       .def_property_readonly("algorithm",
                              [](const ModelPolicy& self) { return self.meta().algorithm; })

@@ -339,7 +339,8 @@ TEST_CASE("MaskablePPO's rollout buffer keeps the mask each action was drawn und
   TrainingHooks hooks;
   int64_t steps = 0;
   collector.start(env);
-  REQUIRE(collector.collect(env, policy, rng, 0.99f, 0.95f, hooks, steps));
+  FeedForwardRollout rollout(policy);
+  REQUIRE(collector.collect(env, rollout, rng, 0.99f, 0.95f, hooks, steps));
   const RolloutBuffer& buffer = collector.buffer();
   REQUIRE(buffer.action_masks.rows() == 4);
   REQUIRE(buffer.action_masks.cols() == 120);

@@ -32,6 +32,9 @@ MODELS = {
              " policy: {net_arch: [16]}}\n", 256),
     "ars": ("env: {id: Pendulum-v1, normalize: {norm_obs: true, norm_reward: false}}\n"
             "algo: {id: ARS, n_delta: 2, zero_policy: false, policy: {net_arch: [8]}}\n", 2000),
+    "ppo_lstm": ("env: {id: Pendulum-v1, n_envs: 2, normalize: true}\n"
+                 "algo: {id: RecurrentPPO, n_steps: 32, batch_size: 16, n_epochs: 1,"
+                 " policy: {lstm_hidden_size: 8, n_lstm_layers: 2, net_arch: [16]}}\n", 128),
     "sac": ("env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},"
             " {id: RescaleAction, min_action: -0.5, max_action: 0.5}]}\n"
             "algo: {id: SAC, learning_starts: 50, batch_size: 16, policy: {net_arch: [16]}}\n", 150),
@@ -123,6 +126,26 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
 
     def test_crossq(self):
         self.check_exact("crossq", "CrossQ")
+
+    def test_recurrent_ppo_carries_sb3_contribs_state(self):
+        model = rlrun.load(self.models["ppo_lstm"])
+        self.assertEqual(model.algorithm, "RecurrentPPO")
+        rows = self.trajectories["ppo_lstm"]
+        self.assertEqual(len(rows), 200)
+        state, stateless_differs = None, False
+        for row in rows:
+            # sb3-contrib's loop: the state predict returned, episode_start at the first step.
+            action, state = model.predict(row["obs"], state=state,
+                                          episode_start=np.array([row["step"] == 0]),
+                                          deterministic=True)
+            self.assertEqual([s.shape for s in state], [(2, 1, 8), (2, 1, 8)])
+            np.testing.assert_array_equal(np.asarray(action, dtype=np.float32).reshape(-1),
+                                          row["action"], err_msg=f"step {row['step']}")
+            fresh, _ = model.predict(row["obs"], deterministic=True)
+            stateless_differs |= bool(np.any(fresh != action))
+        self.assertTrue(stateless_differs)  # the state matters
+        with self.assertRaises(ValueError):
+            model.predict(rows[0]["obs"], state=(np.zeros((1, 1, 8)), np.zeros((1, 1, 8))))
 
     def test_multidiscrete_observations_one_hot_encoded(self):
         # GridWorld's MultiDiscrete positions go in; the model's OneHotObservation encodes them.

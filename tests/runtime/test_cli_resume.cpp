@@ -236,6 +236,18 @@ TEST_CASE("resume: TRPO with gSDE resumes exactly (critic Adam, shuffles, conjug
   check_resume_equals_uninterrupted(trpo, "KILL");
 }
 
+TEST_CASE("resume: RecurrentPPO resumes exactly (the envs' LSTM states, VecNormalize)",
+          "[cli][resume][ppo_recurrent]") {
+  const ResumeCase recurrent{"cartpole_novel_recurrent_ppo.yaml",
+                             "cartpole_novel_recurrent_ppo",
+                             " --set run.total_timesteps=4096 --set checkpoint.freq=1024"
+                             " --set algo.n_epochs=2 --set algo.policy.lstm_hidden_size=16",
+                             "step_1024.zip",
+                             8,
+                             false};
+  check_resume_equals_uninterrupted(recurrent, "KILL");
+}
+
 TEST_CASE("resume: ARS with env.normalize resumes exactly (weights, directions' stream)",
           "[cli][resume][ars]") {
   const ResumeCase ars{"zoo/pendulum_ars.yaml",

@@ -152,12 +152,19 @@ TEST_CASE("search space: bad parameters are errors at their line", "[tune]") {
 TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped configs", "[tune]") {
   Registry registry = make_builtin_registry();
   const std::vector<std::tuple<std::string, std::string, bool>> cases{
-      {"PPO", "cartpole_ppo.yaml", false},         {"A2C", "cartpole_a2c.yaml", false},
-      {"DQN", "cartpole_dqn.yaml", false},         {"SAC", "pendulum_sac.yaml", false},
-      {"TD3", "pendulum_td3.yaml", false},         {"DDPG", "pendulum_ddpg.yaml", false},
-      {"TQC", "pendulum_tqc.yaml", false},         {"DQN", "bitflipping_dqn_her.yaml", true},
-      {"SAC", "gripper_reach_sac_her.yaml", true}, {"QRDQN", "cartpole_qrdqn.yaml", false},
-      {"TRPO", "zoo/pendulum_trpo.yaml", false},   {"ARS", "zoo/pendulum_ars.yaml", false}};
+      {"PPO", "cartpole_ppo.yaml", false},
+      {"A2C", "cartpole_a2c.yaml", false},
+      {"DQN", "cartpole_dqn.yaml", false},
+      {"SAC", "pendulum_sac.yaml", false},
+      {"TD3", "pendulum_td3.yaml", false},
+      {"DDPG", "pendulum_ddpg.yaml", false},
+      {"TQC", "pendulum_tqc.yaml", false},
+      {"DQN", "bitflipping_dqn_her.yaml", true},
+      {"SAC", "gripper_reach_sac_her.yaml", true},
+      {"QRDQN", "cartpole_qrdqn.yaml", false},
+      {"TRPO", "zoo/pendulum_trpo.yaml", false},
+      {"ARS", "zoo/pendulum_ars.yaml", false},
+      {"RecurrentPPO", "cartpole_novel_recurrent_ppo.yaml", false}};
   for (const auto& [algo, file, her] : cases) {
     INFO(algo << " " << file);
     auto space = zoo_space(algo, her);
@@ -174,7 +181,7 @@ TEST_CASE("search space: rl-zoo's spaces give valid overrides of the shipped con
       }
       if (her) CHECK(trial.params.contains("goal_selection_strategy"));
       // The space is the zoo's: the names Optuna shows are the zoo's.
-      if (algo == "PPO") {
+      if (algo == "PPO" || algo == "RecurrentPPO") {
         CHECK(trial.asked == std::vector<std::string>{
                                  "batch_size", "n_steps", "one_minus_gamma", "one_minus_gae_lambda",
                                  "learning_rate", "ent_coef", "clip_range", "n_epochs",

@@ -75,6 +75,22 @@ class Algorithm {
     throw std::logic_error(id() + " takes no action masks");
   }
 
+  // Recurrent policies (sb3-contrib's RecurrentPPO): the floats of one observation's recurrent
+  // state (0: the policy has none). predict_recurrent() is predict() that carries `states`
+  // (recurrent_state_size() x batch, in and out; zeros to begin with) from call to call,
+  // zeroing an observation's state first where `episode_starts` is 1 (sb3-contrib's
+  // predict(obs, state, episode_start)).
+  virtual int recurrent_state_size() const { return 0; }
+  // The LSTM layers the state holds: its rows are every layer's h, then every layer's c, each
+  // recurrent_state_size() / (2 * layers) floats (torch's (num_layers, n, hidden) pair).
+  virtual int recurrent_layers() const { return 0; }
+  virtual void predict_recurrent(const Eigen::Ref<const Eigen::MatrixXf>& /*obs*/,
+                                 const Eigen::Ref<const Eigen::RowVectorXf>& /*episode_starts*/,
+                                 Eigen::MatrixXf& /*states*/, bool /*deterministic*/,
+                                 Eigen::MatrixXf& /*actions*/) {
+    throw std::logic_error(id() + " has no recurrent state");
+  }
+
   virtual void save(TensorMap& tensors) const = 0;
   // Throws std::runtime_error when a tensor is missing or has another shape.
   virtual void load(const TensorMap& tensors) = 0;

@@ -300,6 +300,8 @@ class ZooSpace : public StudySpace {
 
 std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her) {
   if (algo_id == "PPO") return std::make_unique<ZooSpace>("sample_ppo_params", ppo);
+  // rl-zoo's sample_ppo_lstm_params returns sample_ppo_params (its LSTM sizes commented out).
+  if (algo_id == "RecurrentPPO") return std::make_unique<ZooSpace>("sample_ppo_lstm_params", ppo);
   if (algo_id == "A2C") return std::make_unique<ZooSpace>("sample_a2c_params", a2c);
   if (algo_id == "TRPO") return std::make_unique<ZooSpace>("sample_trpo_params", trpo);
   if (algo_id == "ARS") return std::make_unique<ZooSpace>("sample_ars_params", ars);
@@ -322,7 +324,8 @@ std::unique_ptr<StudySpace> zoo_space(const std::string& algo_id, bool uses_her)
                                       [uses_her](Zoo z) { return tqc(z, uses_her); });
   throw UsageError(
       "rl-zoo has no search space for " + algo_id +
-      " (PPO, A2C, TRPO, ARS, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the parameters out");
+      " (PPO, RecurrentPPO, A2C, TRPO, ARS, DQN, QRDQN, SAC, TD3, DDPG, TQC have one); write the "
+      "parameters out");
 }
 
 }  // namespace rlrun::tune

@@ -215,13 +215,22 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
                             bool deterministic, Eigen::MatrixXf& actions,
                             Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs,
                             const Eigen::MatrixXf* masks) {
-  const Eigen::Index n = obs.cols();
+  const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
+  act_on_latents(features, value_features(obs, features), rng, deterministic, actions, values,
+                 log_probs, masks);
+}
+
+void ActorCriticPolicy::act_on_latents(const Eigen::Ref<const Eigen::MatrixXf>& pi_in,
+                                       const Eigen::Ref<const Eigen::MatrixXf>& vf_in, Rng& rng,
+                                       bool deterministic, Eigen::MatrixXf& actions,
+                                       Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_probs,
+                                       const Eigen::MatrixXf* masks) {
+  const Eigen::Index n = pi_in.cols();
   actions.resize(action_dim_, n);
   values.resize(n);
   log_probs.resize(n);
-  const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
   check_masks(masks);
-  const Eigen::MatrixXf& head = actor_.forward(features);
+  const Eigen::MatrixXf& head = actor_.forward(pi_in);
   switch (head_) {
     case Head::kCategorical:
       set_logits(categorical_, head, masks);
@@ -252,7 +261,7 @@ void ActorCriticPolicy::act(const Eigen::Ref<const Eigen::MatrixXf>& obs, Rng& r
       sde_.log_prob(actions, log_probs);
       break;
   }
-  values = critic_.forward(value_features(obs, features));
+  values = critic_.forward(vf_in);
 }
 
 // The categorical parts come from the policy itself (a maskable MultiBinary policy has one per
@@ -311,7 +320,18 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
                                          Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
                                          Eigen::RowVectorXf& entropy,
                                          const Eigen::MatrixXf* masks) {
-  const Eigen::Index n = obs.cols();
+  const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
+  evaluate_latents(features, value_features(obs, features), actions, values, log_prob, entropy,
+                   masks);
+}
+
+void ActorCriticPolicy::evaluate_latents(const Eigen::Ref<const Eigen::MatrixXf>& pi_in,
+                                         const Eigen::Ref<const Eigen::MatrixXf>& vf_in,
+                                         const Eigen::Ref<const Eigen::MatrixXf>& actions,
+                                         Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
+                                         Eigen::RowVectorXf& entropy,
+                                         const Eigen::MatrixXf* masks) {
+  const Eigen::Index n = pi_in.cols();
   values.resize(n);
   log_prob.resize(n);
   entropy.resize(n);
@@ -321,10 +341,8 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
   if (masks) masks_ = *masks;
   // Actor and critic are independent: the critic runs on the second core (bit-identical
   // results either way).
-  const Eigen::Ref<const Eigen::MatrixXf> features = this->features(obs);
-  const Eigen::Ref<const Eigen::MatrixXf> critic_features = value_features(obs, features);
   auto actor_part = [&] {
-    const Eigen::MatrixXf& head = actor_.forward(features);
+    const Eigen::MatrixXf& head = actor_.forward(pi_in);
     switch (head_) {
       case Head::kCategorical:
         set_logits(categorical_, head, masks);
@@ -349,13 +367,30 @@ void ActorCriticPolicy::evaluate_actions(const Eigen::Ref<const Eigen::MatrixXf>
         break;
     }
   };
-  auto critic_part = [&] { values = critic_.forward(critic_features); };
+  auto critic_part = [&] { values = critic_.forward(vf_in); };
   run_pair(n, actor_part, critic_part);
 }
 
 void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
                                  const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
                                  const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy) {
+  const bool learned = extractor_.learned();
+  backward_latents(grad_values, grad_log_prob, grad_entropy, learned ? &grad_features_ : nullptr,
+                   learned ? &grad_features_critic_ : nullptr);
+  if (separate_value_extractor_) {
+    extractor_.backward(grad_features_);
+    vf_extractor_.backward(grad_features_critic_);
+  } else if (learned) {
+    // The shared extractor gets both losses' gradients, as autograd sums them.
+    grad_features_ += grad_features_critic_;
+    extractor_.backward(grad_features_);
+  }
+}
+
+void ActorCriticPolicy::backward_latents(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
+                                         const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
+                                         const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy,
+                                         Eigen::MatrixXf* grad_pi_in, Eigen::MatrixXf* grad_vf_in) {
   auto actor_part = [&] {
     switch (head_) {
       case Head::kCategorical:
@@ -377,20 +412,10 @@ void ActorCriticPolicy::backward(const Eigen::Ref<const Eigen::RowVectorXf>& gra
         break;
     }
     if (masked_batch_) mask_logit_gradient(masks_, grad_head_);
-    actor_.backward(grad_head_, extractor_.learned() ? &grad_features_ : nullptr);
+    actor_.backward(grad_head_, grad_pi_in);
   };
-  auto critic_part = [&] {
-    critic_.backward(grad_values, extractor_.learned() ? &grad_features_critic_ : nullptr);
-  };
+  auto critic_part = [&] { critic_.backward(grad_values, grad_vf_in); };
   run_pair(grad_values.size(), actor_part, critic_part);
-  if (separate_value_extractor_) {
-    extractor_.backward(grad_features_);
-    vf_extractor_.backward(grad_features_critic_);
-  } else if (extractor_.learned()) {
-    // The shared extractor gets both losses' gradients, as autograd sums them.
-    grad_features_ += grad_features_critic_;
-    extractor_.backward(grad_features_);
-  }
 }
 
 void ActorCriticPolicy::run_pair(Eigen::Index batch, const std::function<void()>& actor_part,

@@ -177,6 +177,25 @@ class ActorCriticPolicy {
   void backward_values(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values);
   std::vector<ParamBlock> critic_blocks();
 
+  // Recurrent policies (sb3-contrib's RecurrentActorCriticPolicy, algos/ppo_recurrent/): act(),
+  // evaluate_actions() and backward() on inputs the caller computed, the actor tower's `pi_in`
+  // and the critic tower's `vf_in` (the LSTMs' outputs), for a policy built on a Box of their
+  // width with the Flatten extractor. backward_latents also writes dL/d(pi_in) and dL/d(vf_in)
+  // where given.
+  void act_on_latents(const Eigen::Ref<const Eigen::MatrixXf>& pi_in,
+                      const Eigen::Ref<const Eigen::MatrixXf>& vf_in, Rng& rng, bool deterministic,
+                      Eigen::MatrixXf& actions, Eigen::RowVectorXf& values,
+                      Eigen::RowVectorXf& log_probs, const Eigen::MatrixXf* masks = nullptr);
+  void evaluate_latents(const Eigen::Ref<const Eigen::MatrixXf>& pi_in,
+                        const Eigen::Ref<const Eigen::MatrixXf>& vf_in,
+                        const Eigen::Ref<const Eigen::MatrixXf>& actions,
+                        Eigen::RowVectorXf& values, Eigen::RowVectorXf& log_prob,
+                        Eigen::RowVectorXf& entropy, const Eigen::MatrixXf* masks = nullptr);
+  void backward_latents(const Eigen::Ref<const Eigen::RowVectorXf>& grad_values,
+                        const Eigen::Ref<const Eigen::RowVectorXf>& grad_log_prob,
+                        const Eigen::Ref<const Eigen::RowVectorXf>& grad_entropy,
+                        Eigen::MatrixXf* grad_pi_in, Eigen::MatrixXf* grad_vf_in);
+
   void zero_grad();
   std::vector<ParamBlock> param_blocks();
   // exp(log_std).mean(), SB3's train/std (over the log_std matrix with gSDE); NaN without a

@@ -93,7 +93,7 @@ void OnPolicyCollector::read_state(const StateReader& in) {
   restored_ = true;
 }
 
-bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng, float gamma,
+bool OnPolicyCollector::collect(VecEnv& env, RolloutPolicy& policy, Rng& rng, float gamma,
                                 float gae_lambda, TrainingHooks& hooks, int64_t& num_timesteps) {
   const int n_envs = env.num_envs();
   const int n_steps = static_cast<int>(buffer_.rewards.rows());
@@ -102,8 +102,8 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
   for (int step = 0; step < n_steps; ++step) {
     if (policy.use_sde() && sde_sample_freq_ > 0 && step % sde_sample_freq_ == 0)
       policy.reset_noise(rng, n_envs);
-    policy.act(last_obs_, rng, false, step_actions_, step_values_, step_log_probs_,
-               mask_size_ > 0 ? &last_masks_ : nullptr);
+    policy.act(step, last_obs_, last_episode_starts_, rng, step_actions_, step_values_,
+               step_log_probs_, mask_size_ > 0 ? &last_masks_ : nullptr);
     env_actions_ = step_actions_;
     clip_to_box(action_space_, env_actions_);
     env.step(env_actions_);
@@ -117,8 +117,7 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
       // gamma * V(final_obs) added to its reward, since GAE then treats it as an episode end.
       if (env.truncated(e) && !env.terminated(e)) {
         final_obs_ = env.final_obs().col(e);
-        policy.predict_values(final_obs_, terminal_value_);
-        reward += gamma * terminal_value_(0);
+        reward += gamma * policy.terminal_value(final_obs_, e);
       }
       const int k = step * n_envs + e;
       buffer_.obs.set(k, last_obs_.col(e).data());
@@ -134,7 +133,7 @@ bool OnPolicyCollector::collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng
     // sb3-contrib get_action_masks(env) at the next step: the masks of the new observations.
     if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, num_timesteps);
   }
-  policy.predict_values(last_obs_, terminal_value_);
+  policy.last_values(last_obs_, last_episode_starts_, terminal_value_);
   compute_gae(buffer_.rewards, buffer_.values, buffer_.episode_starts, terminal_value_,
               last_episode_starts_, gamma, gae_lambda, buffer_.advantages, buffer_.returns);
   return true;
@@ -152,12 +151,33 @@ OnPolicyAlgorithm::OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup
       }()),
       collector_(setup, rollout.n_steps, policy_.action_dim(), rollout.sde_sample_freq,
                  maskable && env_masks ? policy_.mask_size() : 0),
+      action_rng_(setup.seed ^ kActionStream),
       id_(std::move(id)),
       env_masks_(maskable && env_masks),
       gamma_(static_cast<float>(rollout.gamma)),
-      gae_lambda_(static_cast<float>(rollout.gae_lambda)),
-      action_rng_(setup.seed ^ kActionStream) {
-  policy_.set_thread_pool(setup.pool);
+      gae_lambda_(static_cast<float>(rollout.gae_lambda)) {
+  register_state();
+}
+
+OnPolicyAlgorithm::OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup,
+                                     const Space& policy_input,
+                                     const ActorCriticPolicyConfig& policy, const Rollout& rollout)
+    : setup_(setup),
+      policy_([&] {
+        Rng init_rng(setup.seed);
+        return ActorCriticPolicy(policy_input, setup.action_space, policy, init_rng,
+                                 rollout.use_sde, false);
+      }()),
+      collector_(setup, rollout.n_steps, policy_.action_dim(), rollout.sde_sample_freq, 0),
+      action_rng_(setup.seed ^ kActionStream),
+      id_(std::move(id)),
+      gamma_(static_cast<float>(rollout.gamma)),
+      gae_lambda_(static_cast<float>(rollout.gae_lambda)) {
+  register_state();
+}
+
+void OnPolicyAlgorithm::register_state() {
+  policy_.set_thread_pool(setup_.pool);
   checkpoint("num_timesteps", num_timesteps_);
   checkpoint("n_updates", n_updates_);
   checkpoint("action_rng", action_rng_);
@@ -206,7 +226,8 @@ void OnPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHook
   const int log_interval = hooks.log_interval > 0 ? hooks.log_interval : 1;
   int64_t& iteration = collector_.iterations();
   while (num_timesteps_ < total_timesteps) {
-    if (!collector_.collect(env, policy_, action_rng_, gamma_, gae_lambda_, hooks, num_timesteps_))
+    if (!collector_.collect(env, rollout_policy(), action_rng_, gamma_, gae_lambda_, hooks,
+                            num_timesteps_))
       break;
     ++iteration;
     const double progress_remaining =

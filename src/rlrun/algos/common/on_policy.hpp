@@ -12,6 +12,7 @@
 #include "rlrun/algos/common/gae.hpp"
 #include "rlrun/algos/common/observation_columns.hpp"
 #include "rlrun/algos/common/resumable_algorithm.hpp"
+#include "rlrun/algos/common/rollout_policy.hpp"
 #include "rlrun/env/action_mask.hpp"
 
 namespace rlrun {
@@ -49,7 +50,7 @@ class OnPolicyCollector {
   // SB3 collect_rollouts + compute_returns_and_advantage. Returns false when a callback
   // stopped training. `num_timesteps` counts all envs' steps. A gSDE policy draws its
   // exploration matrices (reset_noise) from rng.
-  bool collect(VecEnv& env, ActorCriticPolicy& policy, Rng& rng, float gamma, float gae_lambda,
+  bool collect(VecEnv& env, RolloutPolicy& policy, Rng& rng, float gamma, float gae_lambda,
                TrainingHooks& hooks, int64_t& num_timesteps);
   // Called by learn() at its start: reset the envs, every env starts an episode — unless a
   // training state was just restored, in which case the envs continue where they were.
@@ -98,7 +99,7 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
   std::string id() const override { return id_; }
   void learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) final;
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-               Eigen::MatrixXf& actions) final;
+               Eigen::MatrixXf& actions) override;
   // Masks (a maskable policy): the masked distribution's mode or a sample.
   int action_mask_size() const final { return policy_.mask_size(); }
   bool masks_from_env() const final { return env_masks_; }
@@ -107,9 +108,9 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
                       Eigen::MatrixXf& actions) final;
   // predict(deterministic): the policy's mode, clipped to a Box; the value is the critic's V(s).
   // A maskable policy exports its unmasked mode (the graph takes no masks; docs/deploy.md).
-  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const final;
-  void save(TensorMap& tensors) const final { policy_.save(tensors); }
-  void load(const TensorMap& tensors) final { policy_.load(tensors); }
+  void export_policy(PolicyGraph& graph, const std::string& obs, bool with_value) const override;
+  void save(TensorMap& tensors) const override { policy_.save(tensors); }
+  void load(const TensorMap& tensors) override { policy_.load(tensors); }
 
   const ActorCriticPolicy& policy() const { return policy_; }
   // The last rollout's rewards (after timeout bootstrapping) and values, n_steps x n_envs.
@@ -130,6 +131,13 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
   OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup,
                     const ActorCriticPolicyConfig& policy, const Rollout& rollout,
                     bool maskable = false, bool env_masks = false);
+  // RecurrentPPO (algos/ppo_recurrent/): policy_ holds only the towers and heads, built on
+  // `policy_input` (a Box of the LSTM's width), and rollouts run through rollout_policy().
+  OnPolicyAlgorithm(std::string id, const AlgorithmSetup& setup, const Space& policy_input,
+                    const ActorCriticPolicyConfig& policy, const Rollout& rollout);
+
+  // What the rollouts act with: policy_ itself unless an algorithm puts layers in front of it.
+  virtual RolloutPolicy& rollout_policy() { return feed_forward_; }
 
   // One update on the rollout just collected (collector_.buffer()), SB3 train(); records its
   // train/ values on `logger` if any.
@@ -139,12 +147,16 @@ class OnPolicyAlgorithm : public ResumableAlgorithm {
   ActorCriticPolicy policy_;
   OnPolicyCollector collector_;
   int64_t n_updates_ = 0;
+  Rng action_rng_;  // collection samples and predict()
 
  private:
+  // The training state's items (ResumableAlgorithm::checkpoint), once per constructor.
+  void register_state();
+
+  FeedForwardRollout feed_forward_{policy_};
   std::string id_;
   bool env_masks_ = false;
   float gamma_, gae_lambda_;
-  Rng action_rng_;  // collection samples and predict()
   Eigen::RowVectorXf predict_values_, predict_log_probs_;
   Eigen::MatrixXf predict_masks_;
 };

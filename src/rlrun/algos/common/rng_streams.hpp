@@ -20,5 +20,8 @@ inline constexpr uint64_t kPredictStream = 0xda942042e4dd58b5ULL;
 // The initial weights of a features extractor an off-policy algorithm adds to its networks
 // (DQN's NatureCNN), so that choosing one leaves the heads' initial weights unchanged.
 inline constexpr uint64_t kFeaturesExtractorInitStream = 0x2b992ddfa23249d7ULL;
+// RecurrentPPO's recurrent layers (its extractor, LSTMs and Linear critic), so that the towers
+// and heads start as PPO's would from the seed.
+inline constexpr uint64_t kRecurrentInitStream = 0x94d049bb133111ebULL;
 
 }  // namespace rlrun

@@ -105,7 +105,9 @@ void PPO::train(double progress_remaining, Logger* logger) {
   // target_kl stopped it early (SB3's PPO counts the epochs run).
   if (masking_.maskable) n_updates_ += config_.n_epochs;
 
-  if (logger) record_statistics(*logger, statistics, lr, clip_range, clip_range_vf);
+  if (logger)
+    record_ppo_statistics(*logger, statistics, collector_.buffer(), policy_, n_updates_, lr,
+                          clip_range, clip_range_vf);
 }
 
 void PPO::gather_minibatch(int start, int batch) {
@@ -133,28 +135,6 @@ void PPO::gather_minibatch(int start, int batch) {
     mb_old_logp_(j) = rollout.log_probs.data()[k];
     mb_old_val_(j) = rollout.values.data()[k];
   }
-}
-
-void PPO::record_statistics(Logger& logger, const PpoTrainStatistics& s, float lr, float clip_range,
-                            std::optional<float> clip_range_vf) const {
-  const RolloutBuffer& rollout = collector_.buffer();
-  const double n = std::max(s.n_minibatches, 1);
-  logger.record("train/entropy_loss", s.entropy_loss_sum / n);
-  logger.record("train/policy_gradient_loss", s.pg_loss_sum / n);
-  logger.record("train/value_loss", s.value_loss_sum / n);
-  logger.record("train/approx_kl", s.approx_kl_count ? s.approx_kl_sum / s.approx_kl_count : 0.0);
-  logger.record("train/clip_fraction", s.clip_fraction_sum / n);
-  logger.record("train/loss", s.last_loss);
-  // Flattened in SB3's order (rollout_buffer.values.flatten(): step by step, the envs of a
-  // step in turn), which is also the buffer's storage order, so the sums read memory in line.
-  logger.record("train/explained_variance",
-                explained_variance(rollout.values.reshaped<Eigen::RowMajor>(),
-                                   rollout.returns.reshaped<Eigen::RowMajor>()));
-  if (policy_.gaussian()) logger.record("train/std", policy_.mean_std());
-  logger.record("train/n_updates", static_cast<double>(n_updates_));
-  logger.record("train/clip_range", clip_range);
-  if (clip_range_vf) logger.record("train/clip_range_vf", *clip_range_vf);
-  logger.record("train/learning_rate", lr);
 }
 
 }  // namespace rlrun

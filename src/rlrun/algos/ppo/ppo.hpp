@@ -88,8 +88,6 @@ class PPO : public OnPolicyAlgorithm {
   // The minibatch of rollout columns indices_[start, start + batch) into the mb_ workspaces
   // (SB3 RolloutBuffer.get; masks too when they are used, MaskableRolloutBuffer.get).
   void gather_minibatch(int start, int batch);
-  void record_statistics(Logger& logger, const PpoTrainStatistics& statistics, float lr,
-                         float clip_range, std::optional<float> clip_range_vf) const;
 
   Config config_;
   Masking masking_;

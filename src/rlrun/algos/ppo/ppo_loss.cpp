@@ -1,5 +1,8 @@
 #include "rlrun/algos/ppo/ppo_loss.hpp"
 
+#include "rlrun/algos/common/explained_variance.hpp"
+#include "rlrun/algos/common/on_policy.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -54,6 +57,29 @@ PpoLossTerms ppo_loss(const PpoLossInputs& in, float clip_range, std::optional<f
   t.entropy_loss = -entropy_sum * inv_batch;
   t.loss = t.policy_loss + ent_coef * t.entropy_loss + vf_coef * t.value_loss;
   return t;
+}
+
+void record_ppo_statistics(Logger& logger, const PpoTrainStatistics& s,
+                           const RolloutBuffer& rollout, const ActorCriticPolicy& policy,
+                           int64_t n_updates, float lr, float clip_range,
+                           std::optional<float> clip_range_vf) {
+  const double n = std::max(s.n_minibatches, 1);
+  logger.record("train/entropy_loss", s.entropy_loss_sum / n);
+  logger.record("train/policy_gradient_loss", s.pg_loss_sum / n);
+  logger.record("train/value_loss", s.value_loss_sum / n);
+  logger.record("train/approx_kl", s.approx_kl_count ? s.approx_kl_sum / s.approx_kl_count : 0.0);
+  logger.record("train/clip_fraction", s.clip_fraction_sum / n);
+  logger.record("train/loss", s.last_loss);
+  // Flattened in SB3's order (rollout_buffer.values.flatten(): step by step, the envs of a
+  // step in turn), which is also the buffer's storage order, so the sums read memory in line.
+  logger.record("train/explained_variance",
+                explained_variance(rollout.values.reshaped<Eigen::RowMajor>(),
+                                   rollout.returns.reshaped<Eigen::RowMajor>()));
+  if (policy.gaussian()) logger.record("train/std", policy.mean_std());
+  logger.record("train/n_updates", static_cast<double>(n_updates));
+  logger.record("train/clip_range", clip_range);
+  if (clip_range_vf) logger.record("train/clip_range_vf", *clip_range_vf);
+  logger.record("train/learning_rate", lr);
 }
 
 }  // namespace rlrun

@@ -7,6 +7,7 @@
 // with r = exp(log_prob - old_log_prob). Advantages are normalised before (SB3 does it per
 // minibatch, with torch's unbiased std).
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 
 namespace rlrun {
@@ -57,5 +58,16 @@ struct PpoTrainStatistics {
     last_loss = t.loss;
   }
 };
+
+// SB3's PPO.train logs (and sb3-contrib's MaskablePPO and RecurrentPPO, the same keys): the
+// statistics' means, train/explained_variance of the rollout, train/std of a Gaussian policy,
+// n_updates, the clip ranges and the learning rate.
+struct RolloutBuffer;
+class ActorCriticPolicy;
+class Logger;
+void record_ppo_statistics(Logger& logger, const PpoTrainStatistics& statistics,
+                           const RolloutBuffer& rollout, const ActorCriticPolicy& policy,
+                           int64_t n_updates, float lr, float clip_range,
+                           std::optional<float> clip_range_vf);
 
 }  // namespace rlrun

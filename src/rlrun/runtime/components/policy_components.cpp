@@ -11,6 +11,7 @@
 #include "rlrun/algos/dqn/dqn.hpp"
 #include "rlrun/algos/ppo/ppo.hpp"
 #include "rlrun/algos/ppo_mask/ppo_mask.hpp"
+#include "rlrun/algos/ppo_recurrent/ppo_recurrent.hpp"
 #include "rlrun/algos/qrdqn/qrdqn.hpp"
 #include "rlrun/algos/sac/sac.hpp"
 #include "rlrun/algos/td3/td3.hpp"
@@ -107,6 +108,10 @@ void add_builtin_algorithms(Registry& r) {
       "MaskablePPO",
       "PPO with invalid-action masks (sb3-contrib semantics, env reports "
       "info action_mask.*); Discrete/MultiDiscrete/MultiBinary actions"));
+  r.add(make_algorithm_entry<RecurrentPPO>(
+      "RecurrentPPO",
+      "PPO with an LSTM policy (sb3-contrib semantics: recurrent states reset at episode "
+      "starts, minibatches of sequences); Box/Discrete/MultiDiscrete/MultiBinary actions"));
   r.add(make_algorithm_entry<TRPO>(
       "TRPO",
       "Trust Region Policy Optimization (sb3-contrib semantics: natural gradient by conjugate "

@@ -61,7 +61,8 @@ const Space& ModelPolicy::observation_space() const {
 const Space& ModelPolicy::action_space() const { return loaded_.env->unwrapped().action_space(); }
 
 void ModelPolicy::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-                          Eigen::MatrixXf& actions, const Eigen::MatrixXf* masks) {
+                          Eigen::MatrixXf& actions, const Eigen::MatrixXf* masks,
+                          const RecurrentInput* recurrent) {
   const int obs_dim = observation_space().flat_dim();
   const int act_dim = action_space().flat_dim();
   if (obs.rows() != obs_dim)
@@ -71,8 +72,14 @@ void ModelPolicy::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool det
   if (masks && algorithm.action_mask_size() == 0)
     throw std::invalid_argument("predict: action_masks given, but " + meta().algorithm +
                                 " takes no action masks (MaskablePPO does)");
+  if (recurrent && algorithm.recurrent_state_size() == 0)
+    throw std::invalid_argument("predict: a state given, but " + meta().algorithm +
+                                " has no recurrent state (RecurrentPPO does)");
   const auto act = [&](const Eigen::Ref<const Eigen::MatrixXf>& in, Eigen::MatrixXf& out) {
-    if (masks)
+    if (recurrent)
+      algorithm.predict_recurrent(in, recurrent->episode_starts, recurrent->states, deterministic,
+                                  out);
+    else if (masks)
       algorithm.predict_masked(in, *masks, deterministic, out);
     else
       algorithm.predict(in, deterministic, out);

@@ -54,8 +54,18 @@ class ModelPolicy {
   // to action_space().flat_dim() x batch. `masks` (action_mask_size() x batch of 0/1, or null
   // for none: sb3-contrib's predict(action_masks=None)) keep the policy to legal actions;
   // masks for a model without masking throw std::invalid_argument.
+  // A recurrent model (RecurrentPPO): `recurrent` carries each observation's state
+  // (recurrent_state_size() x batch, in and out) and its episode-start flags, as sb3-contrib's
+  // predict(obs, state, episode_start); null starts every observation from zeros.
+  struct RecurrentInput {
+    Eigen::MatrixXf& states;
+    const Eigen::RowVectorXf& episode_starts;
+  };
+  int recurrent_state_size() const { return loaded_.algorithm->recurrent_state_size(); }
+  int recurrent_layers() const { return loaded_.algorithm->recurrent_layers(); }
   void predict(const Eigen::Ref<const Eigen::MatrixXf>& obs, bool deterministic,
-               Eigen::MatrixXf& actions, const Eigen::MatrixXf* masks = nullptr);
+               Eigen::MatrixXf& actions, const Eigen::MatrixXf* masks = nullptr,
+               const RecurrentInput* recurrent = nullptr);
 
  private:
   LoadedModel loaded_;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "rlrun/core/errors.hpp"
@@ -33,7 +34,32 @@ double EvalResult::mean_length() const {
   return lengths.empty() ? std::nan("") : s / static_cast<double>(lengths.size());
 }
 
-ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic) {
+namespace {
+ActionFn recurrent_action_fn(Algorithm& algorithm, bool deterministic,
+                             std::function<void()>* start_episode) {
+  if (start_episode == nullptr)
+    throw std::logic_error(algorithm.id() + " is recurrent: its episodes need a start hook");
+  struct Memory {
+    Eigen::MatrixXf states;
+    Eigen::RowVectorXf starts;
+    bool episode_start = true;
+  };
+  auto memory = std::make_shared<Memory>();
+  *start_episode = [memory] { memory->episode_start = true; };
+  return [&algorithm, deterministic, memory](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
+    const Eigen::Index n = obs.cols();
+    if (memory->states.cols() != n) memory->states.setZero(algorithm.recurrent_state_size(), n);
+    memory->starts.setConstant(n, memory->episode_start ? 1.0f : 0.0f);
+    memory->episode_start = false;
+    algorithm.predict_recurrent(obs, memory->starts, memory->states, deterministic, actions);
+  };
+}
+}  // namespace
+
+ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic,
+                         std::function<void()>* start_episode) {
+  if (algorithm.recurrent_state_size() > 0)
+    return recurrent_action_fn(algorithm, deterministic, start_episode);
   if (!algorithm.masks_from_env())
     return [&algorithm, deterministic](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
       algorithm.predict(obs, deterministic, actions);
@@ -60,11 +86,14 @@ ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministi
 
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
                            std::optional<uint64_t> seed) {
-  return evaluate_policy(model_action_fn(algorithm, env, deterministic), env, n_episodes, seed);
+  std::function<void()> start_episode;
+  const ActionFn act = model_action_fn(algorithm, env, deterministic, &start_episode);
+  return evaluate_policy(act, env, n_episodes, seed, start_episode);
 }
 
 EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
-                           std::optional<uint64_t> seed) {
+                           std::optional<uint64_t> seed,
+                           const std::function<void()>& start_episode) {
   EvalResult result;
   const int obs_dim = env.observation_space().flat_dim();
   // Several agents (include/rlrun/env.hpp): one column each, stepped together; the episode's
@@ -91,6 +120,7 @@ EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
   }
   for (int episode = 0; episode < n_episodes; ++episode) {
     env.reset(episode == 0 ? seed : std::nullopt, {obs.data(), obs_size});
+    if (start_episode) start_episode();
     double episode_return = 0;
     int64_t length = 0;
     while (true) {

@@ -37,12 +37,19 @@ struct EvalResult {
 // get_action_masks(env) at every step). Call it right after env's reset() or step(), as
 // evaluate_policy and record_episodes do. A missing, wrong-length or all-0 mask throws
 // RuntimeFailure naming the env and the step.
-ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic);
+// A recurrent model (Algorithm::recurrent_state_size() > 0, RecurrentPPO) carries its state
+// from step to step and zeroes it where an episode starts (sb3-contrib's evaluate_policy passes
+// episode_starts): `start_episode` then receives the hook to call after every reset()
+// (std::logic_error when it is null).
+ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic,
+                         std::function<void()>* start_episode = nullptr);
 
-// evaluate_policy(model_action_fn(algorithm, env, deterministic), ...).
+// evaluate_policy(model_action_fn(algorithm, env, deterministic, &start_episode), ...).
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,
                            std::optional<uint64_t> seed);
+// `start_episode` (may be empty) is called after each reset, before the episode's first action.
 EvalResult evaluate_policy(const ActionFn& policy, Env& env, int n_episodes,
-                           std::optional<uint64_t> seed);
+                           std::optional<uint64_t> seed,
+                           const std::function<void()>& start_episode = {});
 
 }  // namespace rlrun

@@ -93,7 +93,8 @@ class FrameOutput {
 
 }  // namespace
 
-RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptions& options) {
+RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptions& options,
+                             const std::function<void()>& start_episode) {
   if (options.episodes < 1) throw UsageError("episodes must be >= 1");
   RecordResult result;
   // Made after the first reset: an env may know its frame size only once it has a state to
@@ -134,6 +135,7 @@ RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptio
 
   for (int episode = 0; episode < options.episodes && !result.interrupted; ++episode) {
     env.reset(episode == 0 ? options.seed : std::nullopt, {obs.data(), obs_size});
+    if (start_episode) start_episode();
     if (!output) output = std::make_unique<FrameOutput>(env, options, result);
     double episode_return = 0;
     int64_t length = 0;

@@ -43,7 +43,10 @@ using PolicyFn = std::function<void(const Eigen::MatrixXf& obs, Eigen::MatrixXf&
 
 // Throws UsageError when the env cannot render or the size is invalid, RuntimeFailure when
 // ffmpeg is missing or fails (no video file is left behind then).
-RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptions& options);
+// `start_episode` (may be empty) is called after each reset, before the episode's first action
+// (a recurrent model zeroes its state there; model_action_fn gives it).
+RecordResult record_episodes(Env& env, const PolicyFn& policy, const RecordOptions& options,
+                             const std::function<void()>& start_episode = {});
 
 // Frames drawn from an observation log (runtime/io/observation_log.hpp: .npy chunks of shape
 // (steps, obs_dim)), one per row, with env.render_observation(); the overlay names the file

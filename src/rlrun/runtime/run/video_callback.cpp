@@ -48,8 +48,9 @@ bool VideoCallback::on_step(int64_t num_timesteps) {
   options.keep_going = [] { return !interrupt_requested(); };
   const bool deterministic = config_.deterministic;
   Algorithm& algorithm = context_.algorithm;
-  const RecordResult r =
-      record_episodes(*env_, model_action_fn(algorithm, *env_, deterministic), options);
+  std::function<void()> start_episode;
+  const PolicyFn act = model_action_fn(algorithm, *env_, deterministic, &start_episode);
+  const RecordResult r = record_episodes(*env_, act, options, start_episode);
   if (context_.message)
     context_.message("video at " + count_of(num_timesteps, "step") + ": " + options.video_path +
                      " (" + count_of(r.frames, "frame") + ", return " +

@@ -19,17 +19,19 @@ const std::vector<std::pair<std::string, std::string>> kAlgorithms{
     {"ppo", "PPO"},   {"a2c", "A2C"},   {"dqn", "DQN"},      {"sac", "SAC"},
     {"td3", "TD3"},   {"ddpg", "DDPG"}, {"tqc", "TQC"},      {"qrdqn", "QRDQN"},
     {"trpo", "TRPO"}, {"ars", "ARS"},   {"crossq", "CrossQ"}};
-// sb3-contrib's MaskablePPO under rl-zoo's name (rl_zoo3/utils.py ALGOS["ppo_mask"]) and its
-// own, compared without '-' and '_' as kNotInRlrun's names are.
-const std::vector<std::string> kMaskablePPONames{"ppomask", "maskableppo"};
+// sb3-contrib's MaskablePPO and RecurrentPPO under rl-zoo's names (rl_zoo3/utils.py
+// ALGOS["ppo_mask"], ALGOS["ppo_lstm"]) and their own, compared without '-' and '_' as
+// kNotInRlrun's names are.
+const std::vector<std::pair<std::string, std::string>> kContribPPONames{
+    {"ppomask", "MaskablePPO"},
+    {"maskableppo", "MaskablePPO"},
+    {"ppolstm", "RecurrentPPO"},
+    {"recurrentppo", "RecurrentPPO"}};
 
 // The algorithms of rl-zoo 2.4's files (rl_zoo3/utils.py ALGOS, from sb3-contrib) and of
 // sb3-contrib that rlrun does not have, by the names a file or --algo gives them (lower case,
 // without '-' and '_': qrdqn.yml, ppo_lstm.yml, --algo qr-dqn), and what to say.
 const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
-    {"ppolstm", "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
-    {"recurrentppo",
-     "rlrun has no RecurrentPPO (sb3-contrib's RecurrentPPO, rl-zoo's ppo_lstm) yet"},
     // rl-zoo keeps its her.yml from before SB3 1.1 for reference (entries with model_class).
     {"her",
      "rl-zoo's her.yml predates SB3 1.1, where HER became a replay buffer "
@@ -37,8 +39,8 @@ const std::vector<std::pair<std::string, std::string>> kNotInRlrun{
      "entry from tqc.yml, sac.yml, ..."}};
 
 const char* const kImported =
-    "rlrun imports zoo files of ppo, ppo_mask, a2c, dqn, qrdqn, trpo, ars, sac, td3, ddpg, tqc "
-    "and crossq";
+    "rlrun imports zoo files of ppo, ppo_mask, ppo_lstm, a2c, dqn, qrdqn, trpo, ars, sac, td3, "
+    "ddpg, tqc and crossq";
 
 // Env ids whose zoo entries were renamed with Gymnasium's versions: {old, new}. The MuJoCo
 // tasks' v2 and v3 ids run on mujoco-py, which Gymnasium 1.0 still registers but nobody can
@@ -87,8 +89,8 @@ std::string rlrun_algorithm(const std::string& name) {
   std::string key;
   for (const char c : wanted)
     if (c != '-' && c != '_') key += c;
-  for (const std::string& name : kMaskablePPONames)
-    if (key == name) return "MaskablePPO";
+  for (const auto& [name, algorithm] : kContribPPONames)
+    if (key == name) return algorithm;
   return "";
 }
 

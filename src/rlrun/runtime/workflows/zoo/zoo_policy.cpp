@@ -152,6 +152,15 @@ class PolicyTranslation {
 
 bool check_policy_name(const ConfigNode& policy, const std::string& algorithm) {
   const std::string name = policy.as_string();
+  // sb3-contrib RecurrentPPO's policy_aliases: the same policies with an LSTM.
+  const bool recurrent = algorithm == "RecurrentPPO";
+  if (recurrent) {
+    if (name == "MlpLstmPolicy" || name == "MultiInputLstmPolicy") return false;
+    if (name == "CnnLstmPolicy") return true;
+    policy.fail("policy '" + name +
+                "': RecurrentPPO's policies are MlpLstmPolicy, CnnLstmPolicy and "
+                "MultiInputLstmPolicy");
+  }
   if (name == "MlpPolicy" || name == "MultiInputPolicy") return false;
   if (name == "CnnPolicy") {
     for (const char* with_cnn :
