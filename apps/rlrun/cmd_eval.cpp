@@ -15,6 +15,7 @@
 #include "cli_values.hpp"
 #include "commands.hpp"
 #include "env_by_id.hpp"
+#include "game_opponent_option.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "policy_comparison.hpp"
@@ -127,9 +128,11 @@ std::string settings_text(const PolicyOptions& options) {
 // The env `eval --policy` runs in: --env ID's, or --config CFG's env.
 template <class Options>
 EnvPtr policy_env(const Options& o, Registry& registry) {
-  return o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env, registry,
-                                     "", unix_time_now())
-                          : env_by_id(o.env_id, registry, o.overrides);
+  EnvPtr env = o.env_id.empty() ? make_env(load_experiment(o.config, o.overrides, registry).env,
+                                           registry, "", unix_time_now())
+                                : env_by_id(o.env_id, registry, o.overrides);
+  give_opponent_model(o.game, *env, registry);
+  return env;
 }
 
 // "a,b,c" -> {a, b, c}: --policy's names.
@@ -211,6 +214,7 @@ struct EvalOptions {
   std::string
       trajectory;      // every step's env observation and action (runtime/run/trajectory_tap.hpp)
   bool trust = false;  // --trust: run what the model file names (trust_option.hpp)
+  GameOpponentOptions game;  // --opponent, --side (two-player games)
 };
 
 // The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
@@ -239,6 +243,7 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
   const LoadedModel loaded =
       load_model(o.model, registry, o.overrides, model_trust(o.trust, o.model, registry));
   const ModelFile& model = loaded.file;
+  give_opponent_model(o.game, *loaded.env, registry);
   const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*loaded.env);
   const Experiment& experiment = loaded.experiment;
   // The baseline runs the same episodes on an env of its own; it is built (and checked to
@@ -247,6 +252,7 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
   std::optional<NamedPolicy> baseline_policy;
   if (!o.baseline.empty()) {
     baseline_env = make_model_env(model, experiment, registry);
+    give_opponent_model(o.game, *baseline_env, registry);
     baseline_policy = named_policy(o.baseline, *baseline_env, registry, policy_options(o));
   }
   const EvalResult r = run_model_episodes(o, loaded);
@@ -313,8 +319,10 @@ Action add_eval(CLI::App& app, Registry& registry) {
                   "also write every step's env observation and action (as the env itself sees "
                   "them, below the model's wrappers) to this CSV, floats with 9 significant "
                   "digits (exact float32)");
+  add_game_opponent_options(sub, options->game);
   return [options, &registry]() {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
+    add_game_opponent_overrides(options->game, options->overrides);
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
     if (options->model.empty())
       throw UsageError("eval needs --model FILE, or --policy P with --env ID");

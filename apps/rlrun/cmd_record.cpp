@@ -12,6 +12,7 @@
 #include "cli_values.hpp"
 #include "commands.hpp"
 #include "env_by_id.hpp"
+#include "game_opponent_option.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
@@ -41,7 +42,8 @@ struct Options {
   std::optional<double> fps;
   bool stochastic = false;
   bool no_overlay = false;
-  bool trust = false;  // --trust: run what the model file names (trust_option.hpp)
+  bool trust = false;        // --trust: run what the model file names (trust_option.hpp)
+  GameOpponentOptions game;  // --opponent, --side (two-player games)
 };
 
 // "600x400" -> width, height, bounded up front (render/video_limits.hpp): a size ffmpeg would
@@ -121,6 +123,7 @@ int run(const Options& o, Registry& registry) {
     env = env_by_id(o.env_id, registry, o.overrides);
   }
 
+  give_opponent_model(o.game, *env, registry);
   PolicyFn act;
   std::function<void()> start_episode;  // a recurrent model's state reset
   if (policy == "model") {
@@ -185,7 +188,11 @@ Action add_record(CLI::App& app, Registry& registry) {
   sub->add_flag("--no-overlay", options->no_overlay, "no text (env id, episode, step, return)");
   add_plugin_option(sub, options->plugins);
   add_trust_option(sub, options->trust);
-  return [options, deterministic, &registry]() { return run(*options, registry); };
+  add_game_opponent_options(sub, options->game);
+  return [options, deterministic, &registry]() {
+    add_game_opponent_overrides(options->game, options->overrides);
+    return run(*options, registry);
+  };
 }
 
 }  // namespace rlrun::cli

@@ -190,6 +190,20 @@ TEST_CASE("resume: SAC killed after a checkpoint ends as the uninterrupted run",
   check_resume_equals_uninterrupted(kSac, "KILL");
 }
 
+TEST_CASE("resume: MaskablePPO self-play on tic-tac-toe resumes with its pool of past selves",
+          "[cli][resume][board_games]") {
+  // Snapshots every 2048 steps (one iteration of 8 envs x 256), a checkpoint at 4096: the
+  // resumed run rebuilds the pool (and the snapshots unfinished games play) from it.
+  const ResumeCase self_play{"tictactoe_self_play.yaml",
+                             "tictactoe_self_play",
+                             " --set run.total_timesteps=12288 --set self_play.freq=2048"
+                             " --set self_play.pool_size=2 --set checkpoint.freq=4096",
+                             "step_4096.zip",
+                             8,
+                             false};
+  check_resume_equals_uninterrupted(self_play, "KILL");
+}
+
 TEST_CASE("resume: DQN and TD3 runs resume exactly from a checkpoint", "[cli][resume]") {
   const ResumeCase dqn{"cartpole_dqn.yaml",
                        "cartpole_dqn",

@@ -14,8 +14,8 @@ namespace rlrun {
 
 namespace {
 
-const std::vector<std::string> kSections{"run",        "env",     "algo",  "eval",
-                                         "checkpoint", "obs_log", "video", "plugins"};
+const std::vector<std::string> kSections{"run",     "env",   "algo",      "eval",   "checkpoint",
+                                         "obs_log", "video", "self_play", "plugins"};
 
 // Problems found so far, one line each; a step that throws ConfigError adds its lines and
 // parsing goes on, so one run of `rlrun train` shows every problem of every file.
@@ -146,6 +146,7 @@ void parse_callbacks(const ConfigNode& root, Experiment& exp, Problems& problems
   }
   problems.attempt(
       [&] { exp.checkpoint = read_config<CheckpointConfig>(root.child("checkpoint")); });
+  problems.attempt([&] { exp.self_play = read_config<SelfPlayConfig>(root.child("self_play")); });
   const ConfigNode obs_log = root.child("obs_log");
   if (problems.attempt([&] { exp.obs_log = read_config<ObsLogConfig>(obs_log); }) &&
       exp.obs_log.env >= exp.env.section.n_envs)
@@ -227,6 +228,8 @@ YAML::Node resolve(const Experiment& exp, const Registry& registry) {
   resolved["checkpoint"] = write_config(exp.checkpoint);
   resolved["obs_log"] = write_config(exp.obs_log);
   resolved["video"] = write_config(exp.video);
+  // Only when on, so the resolved config of every other run stays as it was.
+  if (exp.self_play.freq > 0) resolved["self_play"] = write_config(exp.self_play);
   return resolved;
 }
 

@@ -3,7 +3,7 @@
 //   run:  {name, seed, total_timesteps, out_dir, log_interval, tensorboard_log, ...}
 //   env:  {id, n_envs, max_episode_steps, kwargs: {...}, wrappers: [{id: ..., ...}]}
 //   algo: {id, <hyperparameters>, policy: {...}}
-//   eval, checkpoint, obs_log, video: the callbacks' sections
+//   eval, checkpoint, obs_log, video, self_play: the callbacks' sections
 // Each section is plain data in a header of its own beside this one (run_config.hpp,
 // env_spec.hpp, eval_config.hpp, ...); this file reads a whole file into them.
 // Every unknown key or id is a ConfigError with file:line:col and a did-you-mean. `resolved`
@@ -25,6 +25,7 @@
 #include "rlrun/runtime/experiment/eval_config.hpp"
 #include "rlrun/runtime/experiment/obs_log_config.hpp"
 #include "rlrun/runtime/experiment/run_config.hpp"
+#include "rlrun/runtime/experiment/self_play_config.hpp"
 #include "rlrun/runtime/experiment/video_config.hpp"
 
 namespace rlrun {
@@ -44,6 +45,7 @@ struct Experiment {
   CheckpointConfig checkpoint;
   ObsLogConfig obs_log;
   VideoConfig video;
+  SelfPlayConfig self_play;
   std::vector<std::string> plugins;  // the libraries the env needs (absolute paths)
   YAML::Node resolved;
 };

@@ -47,6 +47,9 @@ struct TrainingContext {
   std::function<void(const std::string&)> save_checkpoint;
   bool resuming = false;  // continuing a run: append to its files, do not start them anew
   EvaluationListener on_evaluation;  // optional: told of every evaluation (EvalCallback)
+  // A new algorithm of the run's configuration (self-play rebuilds its snapshots from their
+  // saved model tensors in one).
+  std::function<std::unique_ptr<Algorithm>()> make_algorithm;
 };
 
 class Callback {

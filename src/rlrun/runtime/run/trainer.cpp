@@ -226,15 +226,20 @@ void TrainingRun::build_logging() {
                                                       [this] { bar_->clear(); }));
   logger_.add_sink(std::make_unique<ConsoleTableSink>(log_->table(), 0.0));
   if (!experiment_.run.tensorboard_log.value.empty()) build_tensorboard_log();
-  context_.emplace(TrainingContext{experiment_.env, experiment_.run.seed, registry_,
-                                   outcome_.run_dir, *algorithm_, *env_, &logger_,
-                                   [this](const std::string& message) {
-                                     bar_->clear();
-                                     log_->line(message);
-                                   },
-                                   [this](const std::string& name) { save_model(name); },
-                                   [this](const std::string& name) { save_checkpoint(name); },
-                                   resuming_, on_evaluation_});
+  context_.emplace(TrainingContext{
+      experiment_.env, experiment_.run.seed, registry_, outcome_.run_dir, *algorithm_, *env_,
+      &logger_,
+      [this](const std::string& message) {
+        bar_->clear();
+        log_->line(message);
+      },
+      [this](const std::string& name) { save_model(name); },
+      [this](const std::string& name) { save_checkpoint(name); }, resuming_, on_evaluation_,
+      [this] {
+        const AlgorithmSetup setup{env_->observation_space(), env_->action_space(),
+                                   env_->num_envs(), experiment_.run.seed, execution_.pool};
+        return make_algorithm(experiment_, registry_, setup);
+      }});
   callbacks_ = make_callbacks(experiment_, *context_);
   last_checkpoint_ = resuming_ ? resume_->path : "";
 }

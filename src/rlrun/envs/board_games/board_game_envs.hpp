@@ -1,0 +1,31 @@
+#pragma once
+// The registered board-game envs: TicTacToe-v0 and ConnectFour-v0, each BoardGameEnv over its
+// rules, with its own default minimax depth (tic-tac-toe's 9 is perfect play; connect four's 2
+// is the benchmark opponent).
+#include <memory>
+
+#include "rlrun/envs/board_games/board_game_env.hpp"
+#include "rlrun/envs/board_games/connect_four.hpp"
+#include "rlrun/envs/board_games/tic_tac_toe.hpp"
+
+namespace rlrun::board_games {
+
+class TicTacToeEnv : public BoardGameEnv {
+ public:
+  struct Config : BoardGameConfig {
+    Config() { minimax_depth = 9; }
+  };
+  TicTacToeEnv() : TicTacToeEnv(Config{}) {}
+  explicit TicTacToeEnv(const Config& config)
+      : BoardGameEnv(std::make_unique<TicTacToe>(), config) {}
+};
+
+class ConnectFourEnv : public BoardGameEnv {
+ public:
+  struct Config : BoardGameConfig {};
+  ConnectFourEnv() : ConnectFourEnv(Config{}) {}
+  explicit ConnectFourEnv(const Config& config)
+      : BoardGameEnv(std::make_unique<ConnectFour>(), config) {}
+};
+
+}  // namespace rlrun::board_games
