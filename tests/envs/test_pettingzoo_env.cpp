@@ -1,8 +1,10 @@
 // pettingzoo:<module>:<function> envs (src/rlrun/envs/python/pettingzoo_agents.py): PettingZoo
 // envs written in Python, trained by the real rlrun binary with real worker processes. The envs
-// are tests/python_envs/rlrun_test_envs/multi_agent.py (PettingZoo's API without PettingZoo;
-// tests/python/test_pettingzoo.py runs PettingZoo's own envs when it is installed).
+// are tests/python_envs/rlrun_test_envs/multi_agent.py and turn_game.py (PettingZoo's API
+// without PettingZoo; tests/python/test_pettingzoo.py runs PettingZoo's own envs when it is
+// installed).
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <regex>
 #include <string>
 
@@ -13,7 +15,7 @@ using namespace rlrun::testing;
 namespace {
 
 const std::string kHoming = "pettingzoo:rlrun_test_envs.multi_agent:parallel_env";
-const std::string kTurnTicTacToe = "pettingzoo:rlrun_test_envs.multi_agent:turn_env";
+const std::string kTurnTicTacToe = "pettingzoo:rlrun_test_envs.turn_game:env";
 
 // "mean_reward = X" of `rlrun eval`'s summary.
 double mean_reward(const std::string& output) {
@@ -88,6 +90,21 @@ TEST_CASE("A turn-based PettingZoo game: MaskablePPO keeps to the mask and beats
   INFO(eval.output);
   REQUIRE(eval.exit_code == 0);
   CHECK(mean_reward(eval.output) > random_vs_random + 0.3);
+}
+
+TEST_CASE("rlrun record films a PettingZoo game through its render(), padding an odd frame",
+          "[python]") {
+  TempDir dir("pettingzoo_record");
+  const std::string video = dir.str() + "/game.mp4";
+  const CommandResult r = run_rlrun_python("record --env " + kTurnTicTacToe +
+                                           " --policy random --episodes 1 --output " + video +
+                                           " --set env.python=" + kPython);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  // The env's 33 x 31 frame (no render_mode in the kwargs: rlrun asked for rgb_array, as
+  // raw_env's metadata offers it) in a 34 x 32 video.
+  CHECK(r.output.find("at 34x32") != std::string::npos);
+  CHECK(std::filesystem::file_size(video) > 0);
 }
 
 TEST_CASE("PettingZoo agents whose spaces differ are refused with the reason", "[python]") {

@@ -32,7 +32,7 @@ MODELS = {
              " policy: {net_arch: [16]}}\n", 256),
     "ars": ("env: {id: Pendulum-v1, normalize: {norm_obs: true, norm_reward: false}}\n"
             "algo: {id: ARS, n_delta: 2, zero_policy: false, policy: {net_arch: [8]}}\n", 2000),
-    "ppo_lstm": ("env: {id: Pendulum-v1, n_envs: 2, normalize: true}\n"
+    "ppo_lstm": ("env: {id: PendulumNoVel-v1, n_envs: 2, normalize: true}\n"
                  "algo: {id: RecurrentPPO, n_steps: 32, batch_size: 16, n_epochs: 1,"
                  " policy: {lstm_hidden_size: 8, n_lstm_layers: 2, net_arch: [16]}}\n", 128),
     "sac": ("env: {id: Pendulum-v1, wrappers: [{id: NormalizeObservation},"
@@ -132,6 +132,10 @@ class PredictMatchesEval(TempDirMixin, unittest.TestCase):
         self.assertEqual(model.algorithm, "RecurrentPPO")
         rows = self.trajectories["ppo_lstm"]
         self.assertEqual(len(rows), 200)
+        # PendulumNoVel-v1: the trajectory holds the observations the env id gives (as
+        # rlrun.make's), the angular velocity masked to 0.
+        self.assertTrue(all(row["obs"][2] == 0.0 for row in rows))
+        self.assertTrue(any(row["obs"][0] != 0.0 for row in rows))
         state, stateless_differs = None, False
         for row in rows:
             # sb3-contrib's loop: the state predict returned, episode_start at the first step.

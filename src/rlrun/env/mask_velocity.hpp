@@ -22,6 +22,9 @@ class MaskVelocity : public Wrapper {
   void reset(std::optional<uint64_t> seed, std::span<float> obs) override;
   StepResult step(std::span<const float> action, std::span<float> obs) override;
   std::string id() const override { return id_; }
+  // The masking is the env id's (CartPoleNoVel-v1 sees no velocities): a trajectory records,
+  // and Python's predict takes, the masked observations, as rlrun.make gives them.
+  bool belongs_to_env() const override { return true; }
   // The masked observation as a graph: a policy exported from such a model applies the mask to
   // the observations it is given.
   std::string export_observation(PolicyGraph& graph, const std::string& obs) const override;

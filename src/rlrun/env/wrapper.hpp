@@ -72,6 +72,10 @@ class Wrapper : public Env {
   virtual bool exports_action_unchanged() const { return exports_unchanged(); }
   virtual std::string export_observation(PolicyGraph& graph, const std::string& obs) const;
   virtual std::string export_action(PolicyGraph& graph, const std::string& action) const;
+  // True for a wrapper that the env's registration applies as part of the env id
+  // (MaskVelocity for the zoo's *NoVel ids): its observations are the env's own, so layers slipped
+  // in "right above the env" (runtime/experiment/base_layer.hpp) go above it.
+  virtual bool belongs_to_env() const { return false; }
   // Puts `inner` in place of the inner env and returns the old one. For runtime code that
   // slips a layer under a built stack (runtime/run/trajectory_tap.hpp records what the env itself
   // sees; runtime/io/model_policy.hpp feeds the stack observations from elsewhere): the new

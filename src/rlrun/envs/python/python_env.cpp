@@ -348,7 +348,9 @@ RenderSpec PythonEnv::render_spec() const {
   if (!handshake_->can_render) return {};
   if (frame_width_ == 0 && was_reset_) fetch_frame();
   if (frame_width_ == 0) return {600, 400, handshake_->render_fps};  // Gymnasium's usual size
-  return {frame_width_, frame_height_, handshake_->render_fps};
+  // Even sizes, as H.264 in yuv420p needs (an odd frame, connect four's 891 x 774 in PettingZoo,
+  // is drawn letterboxed into the next even size).
+  return {(frame_width_ + 1) / 2 * 2, (frame_height_ + 1) / 2 * 2, handshake_->render_fps};
 }
 
 // The env's rgb_array frame, scaled to the frame (nearest pixel) and letterboxed in black.

@@ -229,7 +229,10 @@ def load_target(target, kwargs):
     if not callable(factory):
         fail(f"{module_name}:{attr} is a {type(factory).__name__}, not a class or function "
              "that builds an env")
-    if "render_mode" not in kwargs and wants_render_mode(factory):
+    # PettingZoo's env modules build with functions (env, parallel_env) that have no metadata:
+    # their class, raw_env, says which render modes there are.
+    described = factory if hasattr(factory, "metadata") else getattr(module, "raw_env", factory)
+    if "render_mode" not in kwargs and wants_render_mode(factory, described):
         kwargs = dict(kwargs, render_mode="rgb_array")
     return factory(**kwargs)
 
@@ -246,8 +249,8 @@ def gymnasium_render_modes(gymnasium, env_id):
         return []
 
 
-def wants_render_mode(factory):
-    modes = getattr(factory, "metadata", {}) or {}
+def wants_render_mode(factory, described=None):
+    modes = getattr(described if described is not None else factory, "metadata", {}) or {}
     if "rgb_array" not in (modes.get("render_modes", []) if hasattr(modes, "get") else []):
         return False
     import inspect

@@ -12,13 +12,20 @@
 
 namespace rlrun {
 
-// `wrap` receives the innermost env and returns the layer that replaces it (owning it).
-// Throws std::logic_error for a stack without wrappers (make_env always adds a Monitor).
+// `wrap` receives the env (the registered env, with the wrappers that belong to its id:
+// Wrapper::belongs_to_env) and returns the layer that replaces it (owning it). Throws
+// std::logic_error for a stack without wrappers (make_env always adds a Monitor).
 template <class Layer>
 Layer& insert_base_layer(Env& stack, const std::function<std::unique_ptr<Layer>(EnvPtr)>& wrap) {
   const std::vector<Wrapper*> chain = wrapper_chain(stack);
-  if (chain.empty()) throw std::logic_error(stack.id() + ": the env has no wrapper stack");
-  Wrapper* innermost = chain.back();
+  size_t above_env = chain.size();  // the wrappers from the outermost down, before the env's own
+  for (size_t k = 0; k < chain.size(); ++k)
+    if (chain[k]->belongs_to_env()) {
+      above_env = k;
+      break;
+    }
+  if (above_env == 0) throw std::logic_error(stack.id() + ": the env has no wrapper stack");
+  Wrapper* innermost = chain[above_env - 1];
   std::unique_ptr<Layer> layer = wrap(innermost->exchange_inner(nullptr));
   Layer& out = *layer;
   innermost->exchange_inner(std::move(layer));
