@@ -78,6 +78,7 @@ class RlrunParallelEnv(_Agents, _ParallelBase):
         self._core = _core.MultiAgentEnv(id, kwargs_text(kwargs),
                                          -1 if max_episode_steps is None else int(max_episode_steps))
         self.possible_agents = list(self._core.agent_names)
+        self._index = {a: i for i, a in enumerate(self.possible_agents)}  # row of each agent
         self.agents: list[str] = []
         # One space object per agent, the same object on every call (api_test checks `is`; an
         # agent's action space is seeded on its own).
@@ -132,7 +133,7 @@ class RlrunParallelEnv(_Agents, _ParallelBase):
         obs, rewards, terminated, truncated, info, masks = self._core.step(self._actions)
         self._last_obs = obs
         agents = self.agents
-        index = {a: i for i, a in enumerate(self.possible_agents)}
+        index = self._index
         out = (
             self._per_agent(obs, agents),
             {a: float(rewards[index[a]]) for a in agents},
@@ -182,7 +183,7 @@ class RlrunParallelEnv(_Agents, _ParallelBase):
         return row.copy() if self._box_obs else _spaces.from_flat(self._obs_space, row)
 
     def _per_agent(self, obs, agents=None) -> dict:
-        index = {a: i for i, a in enumerate(self.possible_agents)}
+        index = self._index
         return {a: self._agent_obs(obs[index[a]]) for a in (agents or self.possible_agents)}
 
     def _infos(self, info: dict, masks, agents=None) -> dict:
