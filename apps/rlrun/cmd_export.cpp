@@ -107,11 +107,12 @@ Action add_export(CLI::App& app, Registry& registry) {
         throw RuntimeFailure("cannot write " + o->output + ": not a directory");
       write_text_atomic((std::filesystem::path(o->output) / "policy.h").string(), c.header);
       write_text_atomic((std::filesystem::path(o->output) / "policy.c").string(), c.source);
+      const std::string state =
+          graph.state_width() > 0 ? "state[" + std::to_string(graph.state_width()) + "], " : "";
       std::printf(
-          "exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], "
-          "action[%d])\n",
+          "exported %s (%s on %s) to %s/policy.c and policy.h: policy_act(obs[%d], %saction[%d])\n",
           o->model.c_str(), algorithm.c_str(), env_id.c_str(), o->output.c_str(),
-          graph.observation_width(), graph.width(graph.action()));
+          graph.observation_width(), state.c_str(), graph.width(graph.action()));
       return 0;
     } else {
       write_text_atomic(o->output, onnx);
@@ -120,13 +121,22 @@ Action add_export(CLI::App& app, Registry& registry) {
     for (const GraphInput& in : graph.inputs())
       inputs += (inputs.empty() ? "" : ", ") + quoted_text(in.name) + " [batch, " +
                 std::to_string(in.width) + "]";
-    std::printf(
-        "exported %s (%s on %s) to %s: inputs %s; outputs action [batch, %d]%s\n", o->model.c_str(),
-        algorithm.c_str(), env_id.c_str(), o->output.c_str(), inputs.c_str(),
-        graph.width(graph.action()),
-        graph.value().empty()
-            ? ""
-            : (", value [batch, " + std::to_string(graph.width(graph.value())) + "]").c_str());
+    std::string outputs = "action [batch, " + std::to_string(graph.width(graph.action())) + "]";
+    if (!graph.value().empty())
+      outputs += ", value [batch, " + std::to_string(graph.width(graph.value())) + "]";
+    if (graph.state_width() > 0) {
+      const std::string state = " [batch, " + std::to_string(graph.state_width()) + "]";
+      inputs += std::string(", ") + PolicyGraph::kStateInput + state;
+      outputs += std::string(", ") + PolicyGraph::kStateOutput + state;
+    }
+    std::printf("exported %s (%s on %s) to %s: inputs %s; outputs %s\n", o->model.c_str(),
+                algorithm.c_str(), env_id.c_str(), o->output.c_str(), inputs.c_str(),
+                outputs.c_str());
+    if (graph.state_width() > 0)
+      std::printf(
+          "note: the policy is recurrent: feed %s back as %s at the next step, zeros at the "
+          "start of every episode\n",
+          PolicyGraph::kStateOutput, PolicyGraph::kStateInput);
     return 0;
   };
 }

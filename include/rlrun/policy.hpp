@@ -7,6 +7,9 @@
 //     policy.act(observation, action);               // one observation
 //     policy.act_batch(observations, actions, n);    // n observations, row after row
 //
+// A recurrent policy (RecurrentPPO) has a state of state_size() floats that each step reads and
+// replaces: zeros at the start of every episode, then act(observation, state, action).
+//
 // It acts as `rlrun eval` does, deterministically: the env's own observation in (a Dict's keys
 // concatenated in key order), the env's own action out (discrete actions as their integer
 // values), with the model's observation normalisation, its network, the distribution's mode and
@@ -41,13 +44,24 @@ class Policy {
   const std::string& env_id() const;
   const std::string& algorithm() const;
 
+  // Floats of a recurrent policy's state (its LSTM's h of every layer, then its c, as
+  // sb3-contrib's (h, c) pair); 0 for a feed-forward policy.
+  std::size_t state_size() const;
+
   // One observation -> one action. Throws std::invalid_argument when a span has the wrong
-  // size (nothing is read or written then).
+  // size (nothing is read or written then), or for a recurrent policy (it needs its state).
   void act(std::span<const float> observation, std::span<float> action) const;
   // `count` observations (count * observation_size() floats, one after another) -> count
   // actions. Throws std::invalid_argument for spans of other sizes.
   void act_batch(std::span<const float> observations, std::span<float> actions,
                  std::size_t count) const;
+  // A recurrent policy's step: `state` (state_size() floats per observation) is read and
+  // replaced by the next one. Zero a state where its episode starts (sb3-contrib's
+  // episode_start). Throws std::invalid_argument for spans of other sizes.
+  void act(std::span<const float> observation, std::span<float> state,
+           std::span<float> action) const;
+  void act_batch(std::span<const float> observations, std::span<float> states,
+                 std::span<float> actions, std::size_t count) const;
 
  private:
   struct Impl;

@@ -34,6 +34,7 @@ namespace {
 struct Trajectory {
   int obs_dim = 0, act_dim = 0;
   Eigen::MatrixXf obs, actions;  // a column per step
+  std::vector<float> starts;     // 1 where an episode starts (its step 0)
 };
 
 // The first `limit` steps of an `rlrun eval --trajectory` file.
@@ -62,6 +63,7 @@ Trajectory read_trajectory(const std::string& path, int limit) {
   t.obs.resize(t.obs_dim, n);
   t.actions.resize(t.act_dim, n);
   for (Eigen::Index j = 0; j < n; ++j) {
+    t.starts.push_back(rows[j][1] == 0.0f ? 1.0f : 0.0f);
     for (int i = 0; i < t.obs_dim; ++i) t.obs(i, j) = rows[j][2 + i];
     for (int i = 0; i < t.act_dim; ++i) t.actions(i, j) = rows[j][2 + t.obs_dim + i];
   }
@@ -80,11 +82,18 @@ std::vector<Eigen::MatrixXf> split_inputs(const PolicyGraph& graph, const Eigen:
   return inputs;
 }
 
-// Runs the ONNX file with onnxruntime-node; returns the parsed output JSON.
+// Runs the ONNX file with onnxruntime-node; returns the parsed output JSON. With `starts`, a
+// recurrent graph runs one step at a time, its state zeroed where an episode starts
+// (tests/deploy/onnx_run.js).
 nlohmann::json run_onnxruntime(const std::string& model, const PolicyGraph& graph,
-                               const Eigen::MatrixXf& obs, const TempDir& dir) {
+                               const Eigen::MatrixXf& obs, const TempDir& dir,
+                               const std::vector<float>* starts = nullptr) {
   nlohmann::json request;
   request["batch"] = obs.cols();
+  if (starts) {
+    request["starts"] = *starts;
+    request["state_width"] = graph.state_width();
+  }
   const std::vector<Eigen::MatrixXf> inputs = split_inputs(graph, obs);
   for (size_t k = 0; k < inputs.size(); ++k) {
     // Row-major [batch, width]: rlrun's column-major width x batch, read in memory order.
@@ -121,9 +130,10 @@ void check_actions(const Eigen::MatrixXf& got, const Eigen::MatrixXf& expected, 
 }
 
 // Exports the model as C99, compiles it with a small driver (tests/deploy/c_policy_main.c) under
-// -std=c99 -Wall -Wextra -Werror -pedantic and runs it on `obs`; returns its actions.
+// -std=c99 -Wall -Wextra -Werror -pedantic and runs it on `obs`; returns its actions. A recurrent
+// policy's steps are each preceded by their episode-start flag (`starts`).
 Eigen::MatrixXf run_c_export(const std::string& model, const Eigen::MatrixXf& obs, int action_dim,
-                             const TempDir& dir) {
+                             const TempDir& dir, const std::vector<float>* starts = nullptr) {
   const std::string c_dir = dir / "c_policy";
   const auto x = run_rlrun("export --model " + model + " --format c --output " + c_dir);
   INFO(x.output);
@@ -135,9 +145,15 @@ Eigen::MatrixXf run_c_export(const std::string& model, const Eigen::MatrixXf& ob
   INFO(cc.output);
   REQUIRE(cc.exit_code == 0);
   const std::string in_path = dir / "obs.f32", out_path = dir / "actions.f32";
+  Eigen::MatrixXf steps = obs;
+  if (starts) {
+    steps.resize(obs.rows() + 1, obs.cols());
+    steps.row(0) = Eigen::Map<const Eigen::RowVectorXf>(starts->data(), obs.cols());
+    steps.bottomRows(obs.rows()) = obs;
+  }
   std::ofstream(in_path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(obs.data()),
-             static_cast<std::streamsize>(obs.size() * sizeof(float)));
+      .write(reinterpret_cast<const char*>(steps.data()),
+             static_cast<std::streamsize>(steps.size() * sizeof(float)));
   const CommandResult run =
       run_command("'" + binary + "' '" + in_path + "' '" + out_path + "' 2>&1");
   INFO(run.output);
@@ -168,9 +184,13 @@ struct Case {
   bool value = true;    // the algorithm has a value to export (ARS has none)
 };
 
-void check_case(const Case& c) {
-  INFO(c.name);
-  TempDir dir(std::string("onnx_") + c.name);
+// A trained model, its evaluation's first 1000 steps and its ONNX export (with the value).
+struct Exported {
+  std::string model, onnx;
+  Trajectory steps;
+};
+
+Exported train_and_export(const Case& c, const TempDir& dir) {
   const std::string config = dir / "exp.yaml";
   std::ofstream(config) << "run: {name: m, seed: 3, total_timesteps: " << c.timesteps
                         << ", out_dir: " << dir.str() << "/runs}\n"
@@ -195,6 +215,25 @@ void check_case(const Case& c) {
       run_rlrun("export --model " + model + " --format onnx --output " + onnx + " --with-value");
   INFO(x.output);
   REQUIRE(x.exit_code == 0);
+  return {model, onnx, steps};
+}
+
+// Debian's onnx checker, with shape inference, accepts the graph.
+void check_onnx_file(const std::string& onnx) {
+  const CommandResult check =
+      run_command("/usr/bin/python3 -c \"import onnx; m = onnx.load('" + onnx +
+                  "'); onnx.checker.check_model(m, full_check=True); "
+                  "print(m.opset_import[0].version, {p.key: p.value for p in "
+                  "m.metadata_props}['env_id'])\" 2>&1");
+  INFO(check.output);
+  REQUIRE(check.exit_code == 0);
+  CHECK(check.output.find("13 ") == 0);
+}
+
+void check_case(const Case& c) {
+  INFO(c.name);
+  TempDir dir(std::string("onnx_") + c.name);
+  const auto [model, onnx, steps] = train_and_export(c, dir);
 
   // The graph evaluator: the same actions.
   // As `rlrun export` loads it: the spaces only, no env built (so no Python started).
@@ -231,16 +270,62 @@ void check_case(const Case& c) {
 
   // The C export, compiled and run: the same actions.
   check_actions(run_c_export(model, steps.obs, steps.act_dim, dir), steps.actions, c.discrete);
+  check_onnx_file(onnx);
+}
 
-  // Debian's onnx checker, with shape inference, accepts the graph.
-  const CommandResult check =
-      run_command("/usr/bin/python3 -c \"import onnx; m = onnx.load('" + onnx +
-                  "'); onnx.checker.check_model(m, full_check=True); "
-                  "print(m.opset_import[0].version, {p.key: p.value for p in "
-                  "m.metadata_props}['env_id'])\" 2>&1");
-  INFO(check.output);
-  REQUIRE(check.exit_code == 0);
-  CHECK(check.output.find("13 ") == 0);
+// A recurrent policy (RecurrentPPO) over the evaluation's 1000 steps, one step at a time: the
+// state starts at zeros, is zeroed where an episode starts and each step's state_out is the next
+// step's state_in — what `rlrun eval` does with the policy's LSTM state. Every export acts as
+// eval did.
+void check_recurrent_case(const Case& c) {
+  INFO(c.name);
+  TempDir dir(std::string("onnx_") + c.name);
+  const auto [model, onnx, steps] = train_and_export(c, dir);
+  const Eigen::Index n = steps.obs.cols();
+
+  // The graph evaluator, the state carried by hand.
+  const LoadedModel loaded = load_model(model, builtin_registry(), {}, {}, ModelEnv::kSpacesOnly);
+  const PolicyGraph graph = build_model_graph(loaded, /*with_value=*/true);
+  REQUIRE(graph.state_width() > 0);
+  Eigen::MatrixXf actions(steps.act_dim, n), values(graph.width(graph.value()), n);
+  Eigen::MatrixXf state = Eigen::MatrixXf::Zero(graph.state_width(), 1);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (steps.starts[j] != 0.0f) state.setZero();
+    std::vector<Eigen::MatrixXf> inputs = split_inputs(graph, steps.obs.col(j));
+    inputs.push_back(state);
+    const auto out = evaluate_graph(graph, inputs);
+    actions.col(j) = out.at(graph.action());
+    values.col(j) = out.at(graph.value());
+    state = out.at(graph.state_output());
+  }
+  check_actions(actions, steps.actions, c.discrete);
+
+  // ONNX Runtime, one session run per step.
+  const nlohmann::json ort = run_onnxruntime(onnx, graph, steps.obs, dir, &steps.starts);
+  check_actions(from_json(ort["action"], n), steps.actions, c.discrete);
+  const Eigen::MatrixXf ort_values = from_json(ort["value"], n);
+  CHECK(((ort_values - values).array().abs() <= 1e-4f * values.array().abs().max(1.0f)).all());
+
+  // rlrun::Policy without the value: the actor's state alone.
+  const Policy policy = Policy::load(model);
+  REQUIRE(policy.state_size() > 0);
+  REQUIRE(policy.state_size() <= static_cast<size_t>(graph.state_width()));
+  std::vector<float> policy_state(policy.state_size());
+  Eigen::MatrixXf single(steps.act_dim, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (steps.starts[j] != 0.0f) std::fill(policy_state.begin(), policy_state.end(), 0.0f);
+    policy.act({steps.obs.col(j).data(), policy.observation_size()}, policy_state,
+               {single.col(j).data(), policy.action_size()});
+  }
+  check_actions(single, steps.actions, c.discrete);
+  std::vector<float> action(policy.action_size());
+  CHECK_THROWS_AS(policy.act({steps.obs.col(0).data(), policy.observation_size()}, action),
+                  std::invalid_argument);
+
+  // The C export: policy_act(obs, state, action).
+  check_actions(run_c_export(model, steps.obs, steps.act_dim, dir, &steps.starts), steps.actions,
+                c.discrete);
+  check_onnx_file(onnx);
 }
 
 }  // namespace
@@ -419,6 +504,29 @@ TEST_CASE("export onnx: QRDQN (argmax of each action's quantile mean, the means 
               "env: {id: CartPole-v1}\n"
               "algo: {id: QRDQN, learning_starts: 500, policy: {net_arch: [32], n_quantiles: 7}}\n",
               200, true});
+}
+
+TEST_CASE("export onnx: RecurrentPPO (the LSTM step with its state as input and output)",
+          "[deploy][onnx][ppo_recurrent]") {
+  // Two stacked layers with the critic's own LSTM (its state follows the actor's when the
+  // value is exported); a continuous policy with the critic on the actor's LSTM; and the
+  // Linear critic. Short untrained episodes: many starts among the 1000 steps.
+  check_recurrent_case({"recurrent_cartpole_novel", 512,
+                        "env: {id: CartPoleNoVel-v1}\n"
+                        "algo: {id: RecurrentPPO, n_steps: 128, batch_size: 64, n_epochs: 1,\n"
+                        "       policy: {lstm_hidden_size: 8, n_lstm_layers: 2, net_arch: [16]}}\n",
+                        120, true});
+  check_recurrent_case({"recurrent_pendulum_shared", 512,
+                        "env: {id: PendulumNoVel-v1}\n"
+                        "algo: {id: RecurrentPPO, n_steps: 128, batch_size: 64, n_epochs: 1,\n"
+                        "       policy: {lstm_hidden_size: 8, shared_lstm: true,\n"
+                        "                enable_critic_lstm: false, net_arch: [16]}}\n",
+                        5, false});
+  check_recurrent_case({"recurrent_pendulum_linear_critic", 512,
+                        "env: {id: Pendulum-v1}\n"
+                        "algo: {id: RecurrentPPO, n_steps: 128, batch_size: 64, n_epochs: 1,\n"
+                        "       policy: {lstm_hidden_size: 8, enable_critic_lstm: false}}\n",
+                        5, false});
 }
 
 TEST_CASE("export onnx: TD3 and DDPG (deterministic tanh actors, Q(s, a) as the value)",

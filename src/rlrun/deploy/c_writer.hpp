@@ -1,9 +1,11 @@
 #pragma once
 // A PolicyGraph as dependency-free C99 (`rlrun export --format c`): policy.h declares
 //     void policy_act(const float *obs, float *action);
+// (a recurrent policy's: `void policy_act(const float *obs, float *state, float *action);`, the
+// state POLICY_STATE_DIM floats updated in place, zeros at an episode's start)
 // and policy.c defines it with the weights as `static const float` arrays. One observation per
 // call (the flat observation: a Dict's keys concatenated in key order, as the ONNX inputs are
-// listed), no dynamic memory, no libm beyond tanhf and expf; every intermediate is a fixed-size
+// listed), no dynamic memory, no libm beyond tanhf, expf and erfcf; every intermediate is a fixed-size
 // local array. For microcontrollers and plain C programs (RLtools ships the same idea).
 // The arithmetic is the graph's, in float: dense layers sum in input order, ELU is
 // expf(x) - 1, the one-hot rounds half away from zero (observation values are integers).

@@ -56,7 +56,8 @@ void check_graph_numbers(const PolicyGraph& graph) {
       case GraphOp::kSlice:
       case GraphOp::kActivation:
       case GraphOp::kArgMax:
-      case GraphOp::kPositive: break;
+      case GraphOp::kPositive:
+      case GraphOp::kLstmCell: break;
     }
   }
 }

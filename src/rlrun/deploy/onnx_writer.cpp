@@ -41,9 +41,12 @@ class OnnxGraphWriter {
     g.bytes(graph_proto::kName, "rlrun_policy");
     for (const GraphInput& in : graph_.inputs())
       g.message(graph_proto::kInput, value_info(in.name, in.width));
+    if (graph_.state_width() > 0)
+      g.message(graph_proto::kInput, value_info(PolicyGraph::kStateInput, graph_.state_width()));
     for (const GraphNode& n : graph_.nodes()) emit(n);
     output("action", graph_.action());
     if (!graph_.value().empty()) output("value", graph_.value());
+    if (graph_.state_width() > 0) output(PolicyGraph::kStateOutput, graph_.state_output());
     for (const ProtoWriter& node : nodes_) g.message(graph_proto::kNode, node);
     for (const ProtoWriter& init : initializers_) g.message(graph_proto::kInitializer, init);
     for (const ProtoWriter& out : outputs_) g.message(graph_proto::kOutput, out);
@@ -237,6 +240,7 @@ class OnnxGraphWriter {
              {int_attr("to", tensor_proto::kFloat)});
         return;
       case GraphOp::kConv2d: emit_conv(n); return;
+      case GraphOp::kLstmCell: emit_lstm_cell(n); return;
       case GraphOp::kPositive: {
         const float zero = 0.0f;
         node("Cast", {node("Greater", {x, constant("zero", {}, &zero, 1)})}, out,
@@ -268,6 +272,22 @@ class OnnxGraphWriter {
     node("Reshape", {conv, int64_constant("shape", {-1, n.width})}, n.output);
   }
 
+  // One LSTM layer's step from Add, Slice, Sigmoid, Tanh and Mul (ONNX's own LSTM operator
+  // runs whole sequences and keeps its state apart; a step is these few nodes).
+  void emit_lstm_cell(const GraphNode& n) {
+    const int64_t h = n.width / 2;
+    const std::string gates = node("Add", {n.inputs[0], n.inputs[1]});
+    auto gate = [&](int64_t k) {
+      return node("Slice", {gates, int64_constant("starts", k * h),
+                            int64_constant("ends", (k + 1) * h), int64_constant("axes", 1)});
+    };
+    const std::string i = node("Sigmoid", {gate(0)}), f = node("Sigmoid", {gate(1)});
+    const std::string g = node("Tanh", {gate(2)}), o = node("Sigmoid", {gate(3)});
+    const std::string c = node("Add", {node("Mul", {f, n.inputs[2]}), node("Mul", {i, g})});
+    const std::string hidden = node("Mul", {o, node("Tanh", {c})});
+    node("Concat", {hidden, c}, n.output, {int_attr("axis", 1)});
+  }
+
   void output(const std::string& name, const std::string& tensor) {
     node("Identity", {tensor}, name);
     outputs_.push_back(value_info(name, graph_.width(tensor)));
@@ -284,7 +304,8 @@ std::string onnx_model_bytes(const PolicyGraph& graph) {
   if (graph.action().empty()) throw ExportError("the policy graph has no action output");
   for (const GraphInput& in : graph.inputs()) {
     // Input names are the file's interface: refused, not rewritten, when they cannot be one.
-    if (in.name == "action" || in.name == "value")
+    if (in.name == "action" || in.name == "value" ||
+        (graph.state_width() > 0 && in.name == PolicyGraph::kStateOutput))
       throw ExportError("a Dict observation key named '" + in.name +
                         "' would clash with the ONNX output of that name");
     if (in.name.rfind("rlrun/", 0) == 0)

@@ -5,6 +5,10 @@
 namespace rlrun {
 
 GraphPolicy::GraphPolicy(PolicyGraph graph) : graph_(std::move(graph)) {
+  if (graph_.state_width() > 0)
+    throw ExportError(
+        "a self-play opponent must be feed-forward: this policy has a recurrent "
+        "state");
   if (graph_.inputs().size() != 1)
     throw ExportError("a self-play opponent reads one observation input, the graph has " +
                       std::to_string(graph_.inputs().size()));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rlrun/nn/lstm.hpp"
 #include "rlrun/nn/mlp.hpp"
 #include "rlrun/nn/nature_cnn.hpp"
 
@@ -15,6 +16,23 @@ void PolicyGraph::add_input(const std::string& name, int width) {
   inputs_.push_back({name, width});
   observation_width_ += width;
   widths_[name] = width;
+}
+
+std::string PolicyGraph::add_state_input(int width) {
+  if (width < 1 || state_width_ > 0)
+    throw std::invalid_argument("graph state input: one, with columns");
+  if (widths_.count(kStateInput))
+    throw ExportError(std::string("a Dict observation key named '") + kStateInput +
+                      "' would clash with the recurrent state's input of that name");
+  state_width_ = width;
+  widths_[kStateInput] = width;
+  return kStateInput;
+}
+
+void PolicyGraph::set_state_output(const std::string& name) {
+  if (state_width_ == 0 || width(name) != state_width_)
+    throw std::invalid_argument("the state output '" + name + "' does not fit the state input");
+  state_output_ = name;
 }
 
 int PolicyGraph::width(const std::string& name) const {
@@ -143,6 +161,42 @@ std::string PolicyGraph::mlp(const std::string& input, const Mlp& net) {
   return x;
 }
 
+std::string PolicyGraph::lstm_cell(const std::string& input_gates, const std::string& hidden_gates,
+                                   const std::string& cell) {
+  const int h = width(cell);
+  if (width(input_gates) != 4 * h || width(hidden_gates) != 4 * h)
+    throw std::invalid_argument("LSTM cell gates do not fit '" + cell + "'");
+  GraphNode n;
+  n.op = GraphOp::kLstmCell;
+  n.inputs = {input_gates, hidden_gates, cell};
+  n.width = 2 * h;
+  return add(std::move(n), "lstm");
+}
+
+PolicyGraph::LstmStep PolicyGraph::lstm(const std::string& input, const Lstm& net,
+                                        const std::string& state) {
+  const int hidden = net.hidden_size(), layers = net.num_layers();
+  if (width(state) != net.state_size() || width(input) != net.input_size())
+    throw std::invalid_argument("LSTM does not fit '" + input + "' and '" + state + "'");
+  std::vector<std::string> h_next, c_next;
+  std::string x = input;
+  for (int layer = 0; layer < layers; ++layer) {
+    const std::string h = slice(state, layer * hidden, hidden);
+    const std::string c = slice(state, (layers + layer) * hidden, hidden);
+    // As Lstm::forward_layer: both biases with the input's product, W_hh h added per step.
+    const std::string input_gates =
+        dense(x, net.weight_ih(layer), net.bias_ih(layer) + net.bias_hh(layer));
+    const std::string hidden_gates =
+        dense(h, net.weight_hh(layer), Eigen::VectorXf::Zero(4 * hidden));
+    const std::string cell = lstm_cell(input_gates, hidden_gates, c);
+    x = slice(cell, 0, hidden);
+    h_next.push_back(x);
+    c_next.push_back(slice(cell, hidden, hidden));
+  }
+  h_next.insert(h_next.end(), c_next.begin(), c_next.end());
+  return {x, concat(h_next)};
+}
+
 std::string PolicyGraph::conv2d(const std::string& input, const Conv2dShape& shape,
                                 const Eigen::MatrixXf& weight, const Eigen::VectorXf& bias) {
   if (width(input) != shape.in_size() || weight.rows() != shape.out_channels ||
@@ -206,6 +260,8 @@ float activate(Activation act, float v) {
   return v;
 }
 
+float sigmoid(float v) { return 1.0f / (1.0f + std::exp(-v)); }
+
 }  // namespace
 
 void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, GraphBlock y) {
@@ -250,6 +306,19 @@ void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, Graph
       }
       return;
     case GraphOp::kPositive: y = (x.array() > 0.0f).cast<float>(); return;
+    case GraphOp::kLstmCell: {
+      const ConstGraphBlock& hidden_gates = inputs[1];
+      const ConstGraphBlock& c = inputs[2];
+      const int h = n.width / 2;
+      for (Eigen::Index j = 0; j < batch; ++j)
+        for (int k = 0; k < h; ++k) {
+          auto gate = [&](int g) { return x(g * h + k, j) + hidden_gates(g * h + k, j); };
+          const float c_next = sigmoid(gate(1)) * c(k, j) + sigmoid(gate(0)) * std::tanh(gate(2));
+          y(k, j) = sigmoid(gate(3)) * std::tanh(c_next);
+          y(h + k, j) = c_next;
+        }
+      return;
+    }
     case GraphOp::kConv2d: {
       // A direct convolution, output (o, y, x), each sum started from the bias.
       const Conv2dShape& s = n.conv;
@@ -277,12 +346,21 @@ void run_node(const GraphNode& n, std::span<const ConstGraphBlock> inputs, Graph
 
 std::map<std::string, Eigen::MatrixXf> evaluate_graph(const PolicyGraph& graph,
                                                       const std::vector<Eigen::MatrixXf>& inputs) {
-  if (inputs.size() != graph.inputs().size())
-    throw std::invalid_argument("evaluate_graph: " + std::to_string(graph.inputs().size()) +
-                                " inputs expected");
+  const size_t observations = graph.inputs().size();
+  if (inputs.size() != observations + (graph.state_width() > 0 ? 1 : 0))
+    throw std::invalid_argument("evaluate_graph: " + std::to_string(observations) +
+                                " observation inputs expected" +
+                                (graph.state_width() > 0 ? " and the state" : ""));
   std::map<std::string, Eigen::MatrixXf> values;
   const Eigen::Index batch = inputs.empty() ? 0 : inputs.front().cols();
-  for (size_t i = 0; i < inputs.size(); ++i) {
+  if (graph.state_width() > 0) {
+    const Eigen::MatrixXf& state = inputs.back();
+    if (state.rows() != graph.state_width() || state.cols() != batch)
+      throw std::invalid_argument("evaluate_graph: the state must be " +
+                                  std::to_string(graph.state_width()) + " x batch");
+    values[PolicyGraph::kStateInput] = state;
+  }
+  for (size_t i = 0; i < observations; ++i) {
     if (inputs[i].rows() != graph.inputs()[i].width || inputs[i].cols() != batch)
       throw std::invalid_argument("evaluate_graph: input '" + graph.inputs()[i].name +
                                   "' must be " + std::to_string(graph.inputs()[i].width) +

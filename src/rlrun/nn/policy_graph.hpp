@@ -11,6 +11,11 @@
 // tensor; the graph is topologically ordered by construction (a node may only read names that
 // exist). Every tensor is float32 with a batch dimension and a fixed width; discrete actions are
 // floats holding the index (as rlrun's actions are).
+//
+// A recurrent policy (RecurrentPPO's LSTM) has a state: one more input, "state_in", and one more
+// output, "state_out", of the same width. A caller feeds each step's state_out back as the next
+// step's state_in, and zeros where an episode starts (what sb3-contrib's predict does with
+// episode_start).
 #include <Eigen/Core>
 #include <map>
 #include <span>
@@ -23,6 +28,7 @@
 
 namespace rlrun {
 
+class Lstm;
 class Mlp;
 class NatureCnn;
 
@@ -45,6 +51,11 @@ enum class GraphOp {
                 //   round(v) - start == k (round half to even, ONNX's Round)
   kArgMax,      // index of the first largest entry, as one float column
   kPositive,    // 1 where x > 0, else 0 (a Bernoulli's mode)
+  kLstmCell,    // one step of one torch.nn.LSTM layer from three inputs: the input's gates
+                //   W_ih x + b_ih + b_hh (4H), the hidden state's W_hh h (4H) and c (H); their
+                //   sum's rows i, f, g, o (torch's order) give c' = sigmoid(f) c +
+                //   sigmoid(i) tanh(g) and h' = sigmoid(o) tanh(c'); the output is h' then c'
+                //   (2H), as nn/lstm.cpp computes them
   kConv2d,      // torch.nn.Conv2d without padding (SB3's NatureCNN's): the input one image of
                 //   conv.in_channels x in_height x in_width, channels-last (HWC) or -first (CHW)
                 //   as conv.channels_last says; weight out_channels x (C * k * k) in torch's
@@ -75,6 +86,15 @@ class PolicyGraph {
   // The observation's inputs: one per Dict key (in the space's order), else one named "obs".
   void add_input(const std::string& name, int width);
   const std::vector<GraphInput>& inputs() const { return inputs_; }
+  // The recurrent state's input (kStateInput, `width` floats per batch row; added once, after
+  // the observation's inputs) and the tensor that is the next step's state (same width).
+  static constexpr const char* kStateInput = "state_in";
+  static constexpr const char* kStateOutput = "state_out";
+  std::string add_state_input(int width);
+  void set_state_output(const std::string& name);
+  // Floats of the recurrent state (0: the policy has none).
+  int state_width() const { return state_width_; }
+  const std::string& state_output() const { return state_output_; }
   // Floats of one whole observation: the inputs' widths together (a Dict's keys in order).
   int observation_width() const { return observation_width_; }
   const std::vector<GraphNode>& nodes() const { return nodes_; }
@@ -98,6 +118,15 @@ class PolicyGraph {
   // An Mlp's layers: Dense + activation per hidden layer, then the output layer (no
   // activation).
   std::string mlp(const std::string& input, const Mlp& net);
+  // One step of a (stacked) LSTM from `state`, a tensor of net.state_size() floats laid out as
+  // rlrun's recurrent states are (every layer's h, then every layer's c): the last layer's h
+  // and the next state in the same layout.
+  struct LstmStep {
+    std::string output, next_state;
+  };
+  LstmStep lstm(const std::string& input, const Lstm& net, const std::string& state);
+  std::string lstm_cell(const std::string& input_gates, const std::string& hidden_gates,
+                        const std::string& cell);
   std::string conv2d(const std::string& input, const Conv2dShape& shape,
                      const Eigen::MatrixXf& weight, const Eigen::VectorXf& bias);
   // SB3's NatureCNN from its torch tensors: the image divided by 255 (normalize_images), three
@@ -117,6 +146,8 @@ class PolicyGraph {
   std::string add(GraphNode node, const char* prefix);
   std::vector<GraphInput> inputs_;
   int observation_width_ = 0;
+  int state_width_ = 0;
+  std::string state_output_;
   std::vector<GraphNode> nodes_;
   std::map<std::string, int> widths_;
   std::string action_, value_;
@@ -133,7 +164,8 @@ using ConstGraphBlock = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<
 void run_node(const GraphNode& node, std::span<const ConstGraphBlock> inputs, GraphBlock out);
 
 // Runs the graph: inputs[i] is inputs()[i].width x batch (a column per observation, as rlrun's
-// matrices); returns every tensor's value by name, each width x batch. For tests and the
+// matrices), then, for a recurrent graph, the state (state_width() x batch); returns every
+// tensor's value by name, each width x batch. For tests and the
 // reference path; the library's fast path is rlrun::Policy.
 std::map<std::string, Eigen::MatrixXf> evaluate_graph(const PolicyGraph& graph,
                                                       const std::vector<Eigen::MatrixXf>& inputs);

@@ -292,6 +292,13 @@ void ActorCriticPolicy::export_to(PolicyGraph& graph, const std::string& obs,
         separate_value_extractor_ ? vf_extractor_.export_to(graph, encoded) : features, critic_));
 }
 
+std::string ActorCriticPolicy::export_value(PolicyGraph& graph, const std::string& obs) const {
+  const std::string encoded = encoder_.export_to(graph, obs);
+  return graph.mlp(separate_value_extractor_ ? vf_extractor_.export_to(graph, encoded)
+                                             : extractor_.export_to(graph, encoded),
+                   critic_);
+}
+
 void ActorCriticPolicy::predict_values(const Eigen::Ref<const Eigen::MatrixXf>& obs,
                                        Eigen::RowVectorXf& values) {
   if (separate_value_extractor_) {

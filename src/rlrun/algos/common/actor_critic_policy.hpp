@@ -214,6 +214,9 @@ class ActorCriticPolicy {
   // `action_space` is the one the policy was built for. Sets the graph's action and value.
   void export_to(PolicyGraph& graph, const std::string& obs, const Space& action_space,
                  bool with_value) const;
+  // The critic's V(s) of `obs` alone as graph nodes; returns its tensor (RecurrentPPO's critic
+  // reads another latent than its actor).
+  std::string export_value(PolicyGraph& graph, const std::string& obs) const;
 
   // The threads a training minibatch's actor and critic passes share (null, the default: the
   // calling thread alone). Never changes a result: the two write separate networks.

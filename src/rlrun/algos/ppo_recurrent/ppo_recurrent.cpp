@@ -180,11 +180,10 @@ void RecurrentPPO::predict_recurrent(const Eigen::Ref<const Eigen::MatrixXf>& ob
   clip_to_box(setup_.action_space, actions);
 }
 
-void RecurrentPPO::export_policy(PolicyGraph& /*graph*/, const std::string& /*obs*/,
-                                 bool /*with_value*/) const {
-  throw ExportError(
-      "RecurrentPPO's LSTM policy cannot be exported yet (its step with the state as input and "
-      "output is not in rlrun's graph format)");
+void RecurrentPPO::export_policy(PolicyGraph& graph, const std::string& obs,
+                                 bool with_value) const {
+  recurrent_.export_to(graph, obs, setup_.action_space, with_value);
+  graph.set_action(export_clip_to_box(graph, setup_.action_space, graph.action()));
 }
 
 }  // namespace rlrun

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "rlrun/core/state_dict.hpp"
+#include "rlrun/nn/policy_graph.hpp"
 
 namespace rlrun {
 
@@ -147,6 +148,36 @@ void RecurrentActorCritic::predict(const Eigen::Ref<const Eigen::MatrixXf>& obs,
   latent_pi_ = lstm_actor_.forward(features(obs), episode_starts, obs.cols(), actor_state);
   heads_.act_on_latents(latent_pi_, latent_pi_, rng, deterministic, actions, scratch_values_,
                         scratch_log_probs_);
+}
+
+void RecurrentActorCritic::export_to(PolicyGraph& graph, const std::string& obs,
+                                     const Space& action_space, bool with_value) const {
+  const std::string features = extractor_.export_to(graph, encoder_.export_to(graph, obs));
+  const int actor_state = lstm_actor_.state_size();
+  const bool critic_state = with_value && critic_ == Critic::kLstm;
+  const std::string state =
+      graph.add_state_input(actor_state + (critic_state ? lstm_critic_.state_size() : 0));
+  const PolicyGraph::LstmStep actor =
+      graph.lstm(features, lstm_actor_, graph.slice(state, 0, actor_state));
+  heads_.export_to(graph, actor.output, action_space, /*with_value=*/false);
+  if (!with_value) {
+    graph.set_state_output(actor.next_state);
+    return;
+  }
+  switch (critic_) {
+    case Critic::kLstm: {
+      const PolicyGraph::LstmStep critic = graph.lstm(
+          features, lstm_critic_, graph.slice(state, actor_state, lstm_critic_.state_size()));
+      graph.set_value(heads_.export_value(graph, critic.output));
+      graph.set_state_output(graph.concat({actor.next_state, critic.next_state}));
+      return;
+    }
+    case Critic::kSharedLstm: graph.set_value(heads_.export_value(graph, actor.output)); break;
+    case Critic::kLinear:
+      graph.set_value(heads_.export_value(graph, graph.mlp(features, critic_linear_)));
+      break;
+  }
+  graph.set_state_output(actor.next_state);
 }
 
 void RecurrentActorCritic::evaluate_actions(const SequenceBatch& batch,

@@ -95,6 +95,14 @@ class RecurrentActorCritic final : public RolloutPolicy {
                const Eigen::Ref<const Eigen::RowVectorXf>& episode_starts, Lstm::State& actor_state,
                Rng& rng, bool deterministic, Eigen::MatrixXf& actions);
 
+  // Deploying (nn/policy_graph.hpp): one step of the deterministic policy from `obs` and the
+  // graph's state input (the actor LSTM's h and c of every layer, predict()'s state), the
+  // heads' export on its output, and the next state as the state output. With `with_value`
+  // the critic's V(s) too: from the actor's latent (shared_lstm), the Linear critic, or the
+  // critic's own LSTM, whose state then follows the actor's in the graph's state.
+  void export_to(PolicyGraph& graph, const std::string& obs, const Space& action_space,
+                 bool with_value) const;
+
   // The update's forward pass (evaluate_actions on a SequenceBatch): values, log-probs and
   // entropies of the minibatch's samples, in its order; backward() takes their loss gradients.
   void evaluate_actions(const SequenceBatch& batch,

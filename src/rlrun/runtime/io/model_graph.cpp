@@ -79,6 +79,12 @@ PolicyGraph build_model_graph(const LoadedModel& model, bool with_value) {
   graph.metadata["action_space"] = meta.action_space;
   graph.metadata["num_timesteps"] = std::to_string(meta.num_timesteps);
   graph.metadata["deterministic"] = "true";
+  if (graph.state_width() > 0)
+    graph.metadata["recurrent_state"] =
+        std::to_string(graph.state_width()) +
+        " floats: the LSTM's h of every layer, then its c (the critic's LSTM's after the "
+        "actor's when the value is exported); feed state_out back as state_in, zeros at the "
+        "start of every episode";
   return graph;
 }
 
