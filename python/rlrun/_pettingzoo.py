@@ -325,10 +325,21 @@ def parallel_env(id: str, **kwargs) -> RlrunParallelEnv:
     """rlrun's env `id` under PettingZoo's Parallel API (a ``pettingzoo.ParallelEnv`` when
     PettingZoo is installed). ``kwargs`` are the env's own (checked strictly, as rlrun.make's),
     plus ``render_mode`` (None or "rgb_array") and ``max_episode_steps``."""
+    from ._board_games import is_board_game
+
+    if is_board_game(id):
+        raise ValueError(f"{id} is turn-based: its two seats are an AEC env, rlrun.env({id!r}) "
+                         "(PettingZoo's classic games are not parallelizable either)")
     return RlrunParallelEnv(id, **kwargs)
 
 
-def env(id: str, **kwargs) -> RlrunAECEnv:
+def env(id: str, **kwargs):
     """rlrun's env `id` under PettingZoo's AEC API (a ``pettingzoo.AECEnv`` when PettingZoo is
-    installed); the same kwargs as parallel_env."""
+    installed); the same kwargs as parallel_env. The board games (TicTacToe-v0, ConnectFour-v0)
+    are both of their seats, as PettingZoo's tictactoe_v3 and connect_four_v3
+    (python/rlrun/_board_games.py); ``kwargs`` then is ``render_mode`` alone."""
+    from ._board_games import RlrunBoardGameEnv, is_board_game
+
+    if is_board_game(id):
+        return RlrunBoardGameEnv(id, **kwargs)
     return RlrunAECEnv(id, **kwargs)

@@ -40,6 +40,7 @@ py::dict info_dict(const Info& info);
 
 void bind_env(py::module_& m);
 void bind_multi_agent_env(py::module_& m);
+void bind_board_game(py::module_& m);
 void bind_vec_env(py::module_& m);
 void bind_model(py::module_& m);
 void bind_train(py::module_& m);

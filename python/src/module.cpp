@@ -83,6 +83,7 @@ PYBIND11_MODULE(_core, m) {
       py::arg("path"), "Loads an env plugin library (as --plugin); returns its resolved path.");
   bind_env(m);
   bind_multi_agent_env(m);
+  bind_board_game(m);
   bind_vec_env(m);
   bind_model(m);
   bind_train(m);

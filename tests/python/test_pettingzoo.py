@@ -242,6 +242,145 @@ def have_pettingzoo_classic() -> bool:
         return False
 
 
+class BoardGameSeatsTest(unittest.TestCase):
+    """rlrun.env("TicTacToe-v0") / ("ConnectFour-v0"): both seats under the AEC API, with
+    PettingZoo classic's agents, observations, masks, rewards and illegal-move ending
+    (python/rlrun/_board_games.py)."""
+
+    def play(self, env, moves):
+        """Plays `moves` in turn from a reset; returns the agents that moved, in order."""
+        env.reset(seed=0)
+        movers = []
+        for move in moves:
+            movers.append(env.agent_selection)
+            env.step(move)
+        return movers
+
+    def finish(self, env):
+        """The dead steps after a game's end: every agent steps with None and leaves."""
+        left = []
+        while env.agents:
+            self.assertTrue(env.terminations[env.agent_selection])
+            left.append(env.agent_selection)
+            env.step(None)
+        return left
+
+    def test_tictactoe_win_rewards_and_dead_steps(self):
+        env = rlrun.env("TicTacToe-v0")
+        self.assertEqual(env.possible_agents, ["player_1", "player_2"])
+        self.assertIs(env.observation_space("player_1"), env.observation_space("player_1"))
+        env.reset(seed=3)
+        obs = env.observe("player_1")
+        self.assertEqual(obs["observation"].shape, (3, 3, 2))
+        self.assertEqual(obs["observation"].dtype, np.int8)
+        np.testing.assert_array_equal(obs["action_mask"], np.ones(9, np.int8))
+        np.testing.assert_array_equal(env.observe("player_2")["action_mask"], np.zeros(9, np.int8))
+        # player_1 takes squares 0, 3, 6 (a line: squares run down the columns, board.py),
+        # player_2 takes 1 and 4.
+        movers = self.play(env, [0, 1, 3, 4, 6])
+        self.assertEqual(movers, ["player_1", "player_2"] * 2 + ["player_1"])
+        self.assertEqual(env.rewards, {"player_1": 1, "player_2": -1})
+        self.assertTrue(all(env.terminations.values()))
+        self.assertFalse(any(env.truncations.values()))
+        # The loser is selected after the end; its plane 1 holds the winner's three marks.
+        self.assertEqual(env.agent_selection, "player_2")
+        obs, reward, terminated, _, _ = env.last()
+        self.assertEqual((reward, terminated), (-1, True))
+        self.assertEqual(int(obs["observation"][:, :, 1].sum()), 3)
+        # Square k sits at [k // 3][k % 3] (observe(): squares reshaped to 3 x 3).
+        np.testing.assert_array_equal(obs["observation"][:, 0, 1], [1, 1, 1])
+        self.assertEqual(self.finish(env), ["player_2", "player_1"])
+        self.assertEqual(env.agents, [])
+
+    def test_connect_four_draw_free_win_and_illegal_move(self):
+        env = rlrun.env("ConnectFour-v0")
+        self.assertEqual(env.possible_agents, ["player_0", "player_1"])
+        # player_0 stacks four in column 3, player_1 plays column 0 between.
+        self.play(env, [3, 0, 3, 0, 3, 0, 3])
+        self.assertEqual(env.rewards, {"player_0": 1, "player_1": -1})
+        board = env.observe("player_0")["observation"]
+        self.assertEqual(board.shape, (6, 7, 2))
+        np.testing.assert_array_equal(board[2:, 3, 0], [1, 1, 1, 1])  # pieces fall to the bottom
+        self.finish(env)
+        # A full column is illegal: the mover loses (-1), the other gets 0, everyone is done.
+        movers = self.play(env, [0, 0, 0, 0, 0, 0])
+        self.assertEqual(env.observe(env.agent_selection)["action_mask"][0], 0)
+        mover = env.agent_selection
+        env.step(0)
+        self.assertEqual(env._cumulative_rewards[mover], -1.0)
+        self.assertEqual(sum(env._cumulative_rewards.values()), -1.0)
+        self.assertTrue(all(env.terminations.values()) and all(env.truncations.values()))
+        self.assertEqual(len(self.finish(env)), 2)
+        self.assertEqual(movers[0], "player_0")
+
+    def test_bad_input(self):
+        env = rlrun.env("TicTacToe-v0")
+        env.reset()
+        with self.assertRaises(ValueError):
+            env.step(9)  # not in Discrete(9)
+        with self.assertRaises(ValueError):
+            env.step(None)  # a live agent must move
+        with self.assertRaisesRegex(ValueError, "rlrun.make"):
+            rlrun.env("TicTacToe-v0", opponent="minimax")
+        with self.assertRaisesRegex(ValueError, "turn-based"):
+            rlrun.parallel_env("ConnectFour-v0")
+
+    def test_render(self):
+        env = rlrun.env("ConnectFour-v0", render_mode="rgb_array")
+        self.play(env, [3])
+        frame = env.render()
+        self.assertEqual(frame.shape, (600, 700, 3))
+        self.assertEqual(frame.dtype, np.uint8)
+        self.assertIsNone(rlrun.env("TicTacToe-v0").render())
+
+    @unittest.skipUnless(rlrun._pettingzoo.HAVE_PETTINGZOO, "PettingZoo is not importable")
+    def test_pettingzoo_api_test(self):
+        import pettingzoo
+        from pettingzoo.test import api_test
+
+        for id in ("TicTacToe-v0", "ConnectFour-v0"):
+            env = rlrun.env(id)
+            self.assertIsInstance(env, pettingzoo.AECEnv)
+            api_test(env, num_cycles=1000)
+
+    @unittest.skipUnless(have_pettingzoo_classic(), "PettingZoo's classic games are not importable")
+    def test_same_games_as_pettingzoo(self):
+        """The same moves in rlrun's game and PettingZoo's own (random legal games, an illegal
+        move in some): the same agents, selections, observations, masks, rewards and flags."""
+        from pettingzoo.classic import connect_four_v3, tictactoe_v3
+
+        rng = np.random.default_rng(0)
+        for id, upstream in (("TicTacToe-v0", tictactoe_v3), ("ConnectFour-v0", connect_four_v3)):
+            for game in range(150):
+                ours, theirs = rlrun.env(id), upstream.env()
+                ours.reset(seed=game)
+                theirs.reset(seed=game)
+                step = 0
+                while theirs.agents or ours.agents:
+                    self.assertEqual(ours.agents, theirs.agents)
+                    self.assertEqual(ours.agent_selection, theirs.agent_selection)
+                    for agent in theirs.agents:
+                        a, b = ours.observe(agent), theirs.observe(agent)
+                        np.testing.assert_array_equal(a["observation"], b["observation"])
+                        np.testing.assert_array_equal(a["action_mask"], b["action_mask"])
+                    self.assertEqual(ours.rewards, theirs.rewards)
+                    self.assertEqual(ours._cumulative_rewards, theirs._cumulative_rewards)
+                    self.assertEqual(ours.terminations, theirs.terminations)
+                    self.assertEqual(ours.truncations, theirs.truncations)
+                    obs, _, terminated, truncated, _ = theirs.last()
+                    if terminated or truncated:
+                        action = None
+                    elif game % 10 == 0 and step == 3 and not obs["action_mask"].all():
+                        action = int(np.flatnonzero(obs["action_mask"] == 0)[0])  # illegal
+                    else:
+                        action = int(rng.choice(np.flatnonzero(obs["action_mask"])))
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore")
+                        ours.step(action)
+                        theirs.step(action)
+                    step += 1
+
+
 @unittest.skipUnless(have_pettingzoo_classic(), "PettingZoo's classic games are not importable")
 class TrainPettingZooEnvsTest(unittest.TestCase):
     """PettingZoo's own envs trained by the rlrun binary (env.id: pettingzoo:module:function);

@@ -76,8 +76,6 @@ class BoardGameEnv : public Env, public PlaysAgainstPool {
   int64_t pool_snapshot_in_use() const override { return pool_snapshot_id_; }
 
  private:
-  static constexpr int kCellPixels = 100;
-
   int choose_learner_side();
   void choose_pool_opponent();
   // The snapshot a restored state names, once the pool that holds it is there.

@@ -1,11 +1,10 @@
 // The board games' picture (Gymnasium's render_mode="rgb_array"; PettingZoo draws the same
-// boards from images): tic-tac-toe as a 3x3 grid with the first player's X in red and the
-// second's O in black, connect four as a blue frame with red (first) and yellow (second) discs.
+// boards from images).
 #include <array>
 #include <stdexcept>
 
+#include "rlrun/envs/board_games/board_drawing.hpp"
 #include "rlrun/envs/board_games/board_game_env.hpp"
-#include "rlrun/frame.hpp"
 
 namespace rlrun::board_games {
 
@@ -45,18 +44,24 @@ void draw_discs(const BoardGame& game, const BoardPosition& position, Frame& fra
 
 }  // namespace
 
-RenderSpec BoardGameEnv::render_spec() const {
-  return {kCellPixels * game_->draw_cols(), kCellPixels * game_->draw_rows(), 2.0};
+RenderSpec board_render_spec(const BoardGame& game) {
+  return {kCellPixels * game.draw_cols(), kCellPixels * game.draw_rows(), 2.0};
 }
+
+void draw_board(const BoardGame& game, const BoardPosition& position, Frame& frame) {
+  frame.begin_scene(game.draw_cols(), game.draw_rows(), {255, 255, 255}, /*y_up=*/false);
+  if (game.draws_marks())
+    draw_marks(game, position, frame);
+  else
+    draw_discs(game, position, frame);
+  frame.end_scene();
+}
+
+RenderSpec BoardGameEnv::render_spec() const { return board_render_spec(*game_); }
 
 bool BoardGameEnv::render(Frame& frame) const {
   if (!has_state_) throw std::logic_error(id() + ": call reset() before render()");
-  frame.begin_scene(game_->draw_cols(), game_->draw_rows(), {255, 255, 255}, /*y_up=*/false);
-  if (game_->draws_marks())
-    draw_marks(*game_, position_, frame);
-  else
-    draw_discs(*game_, position_, frame);
-  frame.end_scene();
+  draw_board(*game_, position_, frame);
   return true;
 }
 
