@@ -32,7 +32,7 @@ import numpy as np
 
 from . import _core
 from . import _spaces
-from ._pettingzoo import _AECBase, _Agents
+from ._pettingzoo import _AECBase, _Turns
 
 # PettingZoo's agent names per game (tictactoe.py: player_1, player_2; connect_four.py:
 # player_0, player_1).
@@ -47,7 +47,7 @@ def is_board_game(id: str) -> bool:
     return id in _core.board_game_ids()
 
 
-class RlrunBoardGameEnv(_Agents, _AECBase):
+class RlrunBoardGameEnv(_Turns, _AECBase):
     """Both seats of TicTacToe-v0 or ConnectFour-v0 under PettingZoo's AEC API. Build it with
     ``rlrun.env(id)``."""
 
@@ -106,19 +106,6 @@ class RlrunBoardGameEnv(_Agents, _AECBase):
         else:
             mask = np.zeros(self._game.num_actions, dtype=np.int8)
         return {"observation": self._game.planes(seat), "action_mask": mask}
-
-    def last(self, observe: bool = True):
-        agent = self.agent_selection
-        if agent is None:
-            raise RuntimeError("last(): call reset() first")
-        return (self.observe(agent) if observe else None, self._cumulative_rewards[agent],
-                self.terminations[agent], self.truncations[agent], self.infos[agent])
-
-    def agent_iter(self, max_iter: int = 2**63):
-        """The agent to act, until no agents are left (or max_iter turns)."""
-        while self.agents and max_iter > 0:
-            max_iter -= 1
-            yield self.agent_selection
 
     def step(self, action) -> None:
         agent = self.agent_selection

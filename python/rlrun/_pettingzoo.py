@@ -69,6 +69,24 @@ class _Agents:
         return self
 
 
+class _Turns(_Agents):
+    """What an AEC env gives of its turns (AECEnv.last and agent_iter): the selected agent's
+    observation and the rewards it accumulated since it last acted."""
+
+    def last(self, observe: bool = True):
+        agent = self.agent_selection
+        if agent is None:
+            raise RuntimeError("last(): call reset() first")
+        return (self.observe(agent) if observe else None, self._cumulative_rewards[agent],
+                self.terminations[agent], self.truncations[agent], self.infos[agent])
+
+    def agent_iter(self, max_iter: int = 2**63):
+        """The agent to act, until no agents are left (or max_iter turns)."""
+        while self.agents and max_iter > 0:
+            max_iter -= 1
+            yield self.agent_selection
+
+
 class RlrunParallelEnv(_Agents, _ParallelBase):
     """One of rlrun's envs under PettingZoo's Parallel API. Build it with
     ``rlrun.parallel_env(id, **kwargs)``."""
@@ -203,7 +221,7 @@ class RlrunParallelEnv(_Agents, _ParallelBase):
         return np.asarray(action, dtype=np.float32).reshape(-1)
 
 
-class RlrunAECEnv(_Agents, _AECBase):
+class RlrunAECEnv(_Turns, _AECBase):
     """One of rlrun's envs under PettingZoo's AEC API. Build it with ``rlrun.env(id, **kwargs)``."""
 
     def __init__(self, id: str, **kwargs):
@@ -245,19 +263,6 @@ class RlrunAECEnv(_Agents, _AECBase):
 
     def observe(self, agent: str):
         return self._observations[agent]
-
-    def last(self, observe: bool = True):
-        agent = self.agent_selection
-        if agent is None:
-            raise RuntimeError("last(): call reset() first")
-        return (self.observe(agent) if observe else None, self._cumulative_rewards[agent],
-                self.terminations[agent], self.truncations[agent], self.infos[agent])
-
-    def agent_iter(self, max_iter: int = 2**63):
-        """The agent to act, until no agents are left (or max_iter turns)."""
-        while self.agents and max_iter > 0:
-            max_iter -= 1
-            yield self.agent_selection
 
     def step(self, action) -> None:
         agent = self.agent_selection
