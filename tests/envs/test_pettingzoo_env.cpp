@@ -120,3 +120,25 @@ TEST_CASE("PettingZoo agents whose spaces differ are refused with the reason", "
   CHECK(bad.output.find("is not a PettingZoo env id: write pettingzoo:<module>:<function>") !=
         std::string::npos);
 }
+
+TEST_CASE("A PettingZoo env that breaks the API's contract gets a clear error, not a crash",
+          "[python]") {
+  // Each factory of tests/python_envs/rlrun_test_envs/multi_agent.py breaks one rule; check-env
+  // stops with the worker's reason.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"duplicate_agents_env", "possible_agents name 'walker_0' more than once"},
+      {"missing_agent_env", "step() returned no observations for the live agent(s) ['walker_0']"},
+      {"unknown_agent_env",
+       "step() returned rewards for ['ghost'], which possible_agents does not"},
+      {"unknown_live_agent_env", "after step() env.agents holds ['ghost']"},
+  };
+  for (const auto& [factory, message] : cases) {
+    INFO(factory);
+    const CommandResult r = run_rlrun_python(
+        "check-env pettingzoo:rlrun_test_envs.multi_agent:" + factory + " --python " + kPython);
+    INFO(r.output);
+    CHECK(r.exit_code != 0);
+    CHECK(r.output.find(message) != std::string::npos);
+    CHECK(r.output.find("Traceback") == std::string::npos);
+  }
+}

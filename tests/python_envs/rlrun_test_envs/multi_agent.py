@@ -72,3 +72,45 @@ def uneven_env(**kwargs):
     env = Homing(**kwargs)
     env._act_spaces[env.possible_agents[-1]] = Discrete(5)
     return env
+
+
+class _Misbehaving(Homing):
+    """Homing whose step() breaks PettingZoo's contract in one way (`fault`), from the second
+    step on, for the worker's refusals."""
+
+    def __init__(self, fault, **kwargs):
+        super().__init__(**kwargs)
+        self.fault = fault
+
+    def step(self, actions):
+        obs, rewards, terminations, truncations, infos = super().step(actions)
+        if self.cycle >= 2:
+            if self.fault == "missing":
+                obs.pop(next(iter(obs)))
+            elif self.fault == "unknown":
+                rewards["ghost"] = 0.0
+            elif self.fault == "agents":
+                self.agents = self.agents + ["ghost"]
+        return obs, rewards, terminations, truncations, infos
+
+
+def duplicate_agents_env(**kwargs):
+    """possible_agents names one agent twice (refused)."""
+    env = Homing(**kwargs)
+    env.possible_agents = env.possible_agents + env.possible_agents[:1]
+    return env
+
+
+def missing_agent_env(**kwargs):
+    """step() leaves a live agent out of the observations (refused)."""
+    return _Misbehaving("missing", leave_early=False, **kwargs)
+
+
+def unknown_agent_env(**kwargs):
+    """step() returns a reward for an agent that is not one of possible_agents (refused)."""
+    return _Misbehaving("unknown", leave_early=False, **kwargs)
+
+
+def unknown_live_agent_env(**kwargs):
+    """env.agents grows an agent that is not one of possible_agents (refused)."""
+    return _Misbehaving("agents", leave_early=False, **kwargs)

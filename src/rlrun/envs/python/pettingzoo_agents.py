@@ -52,6 +52,10 @@ class PettingZooAgents:
         self.env, self.np, self.names = env, np, list(agents)
         if not self.names:
             fail(f"{describe_env} has no agents (possible_agents is empty)")
+        twice = sorted({repr(a) for a in self.names if self.names.count(a) > 1})
+        if twice:
+            fail(f"{describe_env}'s possible_agents name {', '.join(twice)} more than once: each "
+                 "agent needs its own id")
         self.obs_codec = self.act_codec = None
         self.masked_obs = False
         for agent in self.names:
@@ -91,18 +95,47 @@ class ParallelAgents(PettingZooAgents):
         if names is None:
             fail("the parallel env has no possible_agents: rlrun needs the agents up front")
         super().__init__(env, np, names, "the parallel env")
+        self.index = {a: i for i, a in enumerate(self.names)}
         self.finished = {}
 
     def reset(self, has_seed, seed):
         result = self.env.reset(seed=seed) if has_seed else self.env.reset()
         obs, infos = result if isinstance(result, tuple) and len(result) == 2 else (result, {})
         self.finished = {}
+        live = self.live_agents("reset()")
+        self.check_dicts("reset()", live, observations=obs, infos=infos)
         return self.rows(obs, infos, {}, over=False, gone=set())
 
-    def step(self, rows):
+    def live_agents(self, call):
+        """env.agents after `call`, each one of possible_agents (once)."""
         live = list(getattr(self.env, "agents", self.names))
-        index = {a: i for i, a in enumerate(self.names)}
-        actions = {a: self.act_codec.action(rows[index[a]]) for a in live if a in index}
+        unknown = [a for a in live if a not in self.index]
+        if unknown:
+            fail(f"after {call} env.agents holds {unknown!r}, which possible_agents does not "
+                 f"name (possible_agents: {self.names!r})")
+        if len(set(live)) != len(live):
+            fail(f"after {call} env.agents names an agent twice: {live!r}")
+        return live
+
+    def check_dicts(self, call, live, **dicts):
+        """Each dict a call returned is keyed by known agents and holds every live one."""
+        for what, values in dicts.items():
+            if not hasattr(values, "keys"):
+                fail(f"{call} returned {what} as a {type(values).__name__}, not a dict keyed "
+                     "by agent")
+            unknown = [a for a in values.keys() if a not in self.index]
+            if unknown:
+                fail(f"{call} returned {what} for {unknown!r}, which possible_agents does not "
+                     f"name (possible_agents: {self.names!r})")
+            missing = [a for a in live if a not in values] if what != "infos" else []
+            if missing:
+                fail(f"{call} returned no {what} for the live agent(s) {missing!r} (the dict "
+                     f"has {list(values.keys())!r})")
+
+    def step(self, rows):
+        live = self.live_agents("the last step")
+        index = self.index
+        actions = {a: self.act_codec.action(rows[index[a]]) for a in live}
         gone = set(self.finished)  # agents that left in earlier steps: black death
         result = self.env.step(actions)
         if not isinstance(result, tuple) or len(result) != 5:
@@ -110,6 +143,9 @@ class ParallelAgents(PettingZooAgents):
                  else f"a {type(result).__name__}") + "; PettingZoo's parallel step returns "
                  "(observations, rewards, terminations, truncations, infos)")
         obs, rewards, terminations, truncations, infos = result
+        self.check_dicts("step()", live, observations=obs, rewards=rewards,
+                         terminations=terminations, truncations=truncations, infos=infos)
+        self.live_agents("step()")
         for a in self.names:
             if a not in self.finished and (terminations.get(a) or truncations.get(a)):
                 self.finished[a] = (bool(terminations.get(a)), bool(truncations.get(a)))
@@ -178,6 +214,9 @@ class TurnBasedAgents(PettingZooAgents):
     def step(self, rows):
         env = self.env
         mover = env.agent_selection if self.opponent == "self" else self.learner
+        if mover not in self.seats:
+            fail(f"agent_selection is {mover!r}, which possible_agents does not name "
+                 f"(possible_agents: {self.seats!r})")
         if env.agent_selection != mover:
             fail(f"it is '{env.agent_selection}''s turn, not the learner's ('{mover}')")
         env.step(self.act_codec.action(rows[0]))
