@@ -325,6 +325,78 @@ TEST_CASE("TrafficNetwork: a .sumocfg scenario: its files and times, fixed-time 
   CHECK(info_of(env, "throughput") > 500);
 }
 
+TEST_CASE("TrafficNetwork: a scenario's begin holds under every control and backend",
+          "[traffic_network]") {
+  // Half an hour into the grid's demand (YAML begin/end, and a .sumocfg's <time>): every
+  // episode — the agents', max-pressure's, actuated's, the lights' own programs — starts at
+  // the scenario's begin (the first decision one second later) and ends at its end, 60
+  // decisions of 5 s; the fixed-time episode equals plain `sumo -b 1800 -e 2100`, and the agents'
+  // episodes see the same half-hour's traffic (not the 35 minutes from second 0).
+  TempDir dir("traffic_network_begin");
+  const std::string grid = kSource + "/sumo_data/grid4x4/";
+  const std::string yaml =
+      write(dir / "late.yaml", "name: late\nnet_file: " + grid + "grid4x4.net.xml\nroute_files: [" +
+                                   grid + "grid4x4.rou.xml]\nbegin: 1800\nend: 2100\n");
+  const std::string cfg =
+      write(dir / "late.sumocfg",
+            "<configuration>\n  <input>\n    <net-file value=\"" + grid +
+                "grid4x4.net.xml\"/>\n    <route-files value=\"" + grid +
+                "grid4x4.rou.xml\"/>\n  </input>\n  <time>\n    <begin value=\"1800\"/>\n"
+                "    <end value=\"2100\"/>\n  </time>\n</configuration>\n");
+  const CommandResult sumo = run_command("sumo -n '" + grid + "grid4x4.net.xml' -r '" + grid +
+                                         "grid4x4.rou.xml' -b 1800 -e 2100 --seed 7 "
+                                         "--no-step-log --tripinfo-output '" +
+                                         dir / "plain.xml" + "'");
+  INFO(sumo.output);
+  REQUIRE(sumo.exit_code == 0);
+  const Trips plain = read_trips(dir / "plain.xml");
+  REQUIRE(plain.count > 100);
+
+  const auto cycling = [](TrafficNetwork&, const std::vector<float>&, std::vector<float>& a,
+                          int t) {
+    for (size_t i = 0; i < a.size(); ++i) a[i] = static_cast<float>((t / 4 + i) % 4);
+  };
+  for (const std::string& scenario : {yaml, cfg}) {
+    for (const std::string backend : {"libsumo", "traci"}) {
+      TrafficNetwork::Config config;
+      config.scenario.value = scenario;
+      config.backend = backend;
+      TrafficNetwork env(config);
+      env.watch_outgoing_lanes();
+      CHECK(env.scenario().begin == 1800);
+      for (const std::string control : {"agents", "max-pressure", "actuated", "fixed-time"}) {
+        INFO(scenario << ", " << backend << ", " << control);
+        if (control == "actuated") env.set_control(TrafficNetwork::Control::kActuated);
+        if (control == "fixed-time") env.set_control(TrafficNetwork::Control::kOwnPrograms);
+        std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) *
+                               env.num_agents());
+        env.reset(7, obs);
+        CHECK(info_of(env, "sim_time") == 1801.0);
+        int decisions = 0;
+        run_episode(
+            env, 7,
+            [&](TrafficNetwork& e, const std::vector<float>& o, std::vector<float>& a, int t) {
+              ++decisions;
+              if (control == "max-pressure")
+                kMaxPressure(e, o, a, t);
+              else
+                cycling(e, o, a, t);
+            });
+        CHECK(decisions == 60);
+        CHECK(info_of(env, "sim_time") == 2100.0);
+        const double throughput = info_of(env, "throughput");
+        if (control == "fixed-time") {
+          CHECK(throughput == plain.count);
+          CHECK(info_of(env, "mean_delay") == Approx(plain.time_loss).epsilon(1e-12));
+        } else {
+          CHECK(throughput > 0.5 * plain.count);
+          CHECK(throughput < 1.5 * plain.count);
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("TrafficNetwork: agents, max-pressure and actuated control run, libsumo equals traci",
           "[traffic_network]") {
   TrafficNetwork::Config config;

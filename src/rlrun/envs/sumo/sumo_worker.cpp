@@ -128,7 +128,12 @@ void SumoWorker::subscribe_vehicles(const std::string& junction, NetworkReading&
   wire::Writer w(wire::kSubscribeVehicles);
   send(w.str(junction).framed());
   wire::Reader reply = answer();
+  // Subscribing reads the vehicles, not the clock: only advance() moves the time. The worker's
+  // reading has not stepped yet at the start of an episode (its time is 0, not the scenario's
+  // begin), and a subscription made mid-episode (rlrun record) must not rewind the env's time.
+  const double time = out.time;
   wire::read_reading(reply, out);
+  out.time = time;
 }
 
 void SumoWorker::start_advance(double time) {
