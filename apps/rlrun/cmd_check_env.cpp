@@ -91,9 +91,7 @@ CheckTarget target_from_config(const std::string& path, const std::vector<std::s
   t.description = entry.description;
   t.params = flow(exp.resolved["env"]["kwargs"]);
   t.time_limit = exp.env.section.max_episode_steps.value_or(entry.max_episode_steps);
-  t.env = entry.build(exp.env.kwargs,
-                      EnvContext{exp.env.section.python.value, exp.env.section.startup_timeout,
-                                 exp.env.section.opponent, exp.env.section.learner_side});
+  t.env = entry.build(exp.env.kwargs, env_context(exp.env.section));
   if (t.time_limit > 0) t.env = std::make_unique<TimeLimit>(std::move(t.env), t.time_limit);
   for (const WrapperSpec& w : exp.env.wrappers)
     t.env = registry.find_wrapper(w.id)->make(std::move(t.env), w.params);

@@ -185,7 +185,8 @@ TEST_CASE("EvalCallback: a failed evaluations.csv row stops with the file and er
                           *algorithm,     env,
                           nullptr,        ignore,
                           ignore,         ignore,
-                          false,          {}};
+                          false,          {},
+                          {}};
   EvalCallback callback(context, experiment.eval);
   const std::string path = dir / "evaluations.csv";
   FileSizeLimit limit(fs::file_size(path) + 10);  // the header fits, a row does not

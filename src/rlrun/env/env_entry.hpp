@@ -37,6 +37,8 @@ struct EnvContext {
   // ("self" or "random") and the learner's seat ("alternate", "first", "second").
   std::string opponent = "self";
   std::string learner_side = "alternate";
+  // pettingzoo: envs: the observing agent's indicator in its observation (none, agent, type).
+  std::string agent_indicator = "none";
 };
 
 struct EnvEntry {

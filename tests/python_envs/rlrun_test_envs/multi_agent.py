@@ -114,3 +114,26 @@ def unknown_agent_env(**kwargs):
 def unknown_live_agent_env(**kwargs):
     """env.agents grows an agent that is not one of possible_agents (refused)."""
     return _Misbehaving("agents", leave_early=False, **kwargs)
+
+
+class Sides(Homing):
+    """Two walkers start in the middle of the line; walker_0's home is the left end, walker_1's
+    the right end, and an observation is the position alone. One shared policy cannot tell the
+    walkers apart, so at most one of them walks home; with env.agent_indicator both can."""
+
+    def __init__(self, size=7, max_cycles=12):
+        super().__init__(n_agents=2, size=size, max_cycles=max_cycles, leave_early=True)
+        self._obs_spaces = {a: Box(0.0, 1.0, shape=(1,), dtype=np.float32) for a in self.possible_agents}
+
+    def _obs(self, agent):
+        return np.array([self.pos[agent]], dtype=np.float32) / (self.size - 1)
+
+    def reset(self, seed=None, options=None):
+        super().reset(seed=seed, options=options)
+        for i, a in enumerate(self.possible_agents):
+            self.pos[a], self.home[a] = self.size // 2, 0 if i == 0 else self.size - 1
+        return {a: self._obs(a) for a in self.agents}, {a: {} for a in self.agents}
+
+
+def sides_env(**kwargs):
+    return Sides(**kwargs)

@@ -21,7 +21,9 @@
 #
 # The agents share one policy, so their spaces must be equal; an observation that is a dict of
 # "observation" and "action_mask" (PettingZoo classic's) is the observation plus the mask
-# (the mask in info["action_mask"] is read too), for MaskablePPO.
+# (the mask in info["action_mask"] is read too), for MaskablePPO. env.agent_indicator adds
+# which agent (or agent type) observes to its observation, as SuperSuit's agent_indicator_v0
+# does, so that the shared policy can act differently per agent (AgentIndicator below).
 
 
 def agent_space(env, kind, agent):
@@ -44,11 +46,91 @@ def split_masked_space(space):
     return space, False
 
 
+class IndicatedBox:
+    """A Box space by its attributes (worker.py's Codec reads shape, dtype, low and high)."""
+
+    def __init__(self, low, high, dtype):
+        self.low, self.high, self.dtype, self.shape = low, high, dtype, low.shape
+
+
+class IndicatedDiscrete:
+    def __init__(self, n):
+        self.n, self.start = n, 0
+
+
+class AgentIndicator:
+    """Which agent observes, added to its observation (SuperSuit's agent_indicator_v0 layout,
+    supersuit/utils/agent_indicator.py): `mode` "agent" gives each agent of `names` its own
+    indicator, "type" one per type of the `<type>_<n>` names (pursuers, evaders, ...). A flat
+    Box gets one column per indicator (1 for the observing agent's, else 0); an image Box (H, W)
+    or (H, W, C) one channel per indicator (the Box's lowest high, 255 for uint8 images, in the
+    observing agent's channel); a Discrete n becomes n * indicators (value * indicators +
+    index)."""
+
+    def __init__(self, mode, names, space, np):
+        self.np = np
+        if mode == "type":
+            bad = [a for a in names if "_" not in str(a) or not str(a).rsplit("_", 1)[1].isdigit()]
+            if bad:
+                fail(f"agent_indicator: type needs agents named <type>_<n>; {bad!r} are not")
+            kinds = list(dict.fromkeys(str(a).rsplit("_", 1)[0] for a in names))
+            self.index = {a: kinds.index(str(a).rsplit("_", 1)[0]) for a in names}
+        else:
+            self.index = {a: i for i, a in enumerate(names)}
+        self.count = max(self.index.values()) + 1
+        kind = space_kind(space, "the observation space")
+        self.kind = kind
+        if kind == "Discrete":
+            if int(getattr(space, "start", 0)) != 0:
+                fail("agent_indicator: a Discrete observation space must start at 0")
+            self.n = int(space.n)
+            self.space = IndicatedDiscrete(self.n * self.count)
+            return
+        shape = tuple(getattr(space, "shape", None) or ())
+        if kind != "Box" or len(shape) not in (1, 2, 3):
+            fail(f"agent_indicator: the observation space must be a Box of 1, 2 or 3 dimensions "
+                 f"or a Discrete (SuperSuit's rule), not {space}")
+        dtype = np.dtype(space.dtype)
+        low = np.broadcast_to(np.asarray(space.low, dtype), shape)
+        high = np.broadcast_to(np.asarray(space.high, dtype), shape)
+        if len(shape) == 1:
+            self.value = 1
+            extra = (self.count,)
+            axis = 0
+        else:
+            self.value = np.min(high)
+            if len(shape) == 2:
+                low, high = low[:, :, None], high[:, :, None]
+            extra = low.shape[:2] + (self.count,)
+            axis = 2
+        self.image = len(shape) > 1
+        self.space = IndicatedBox(np.concatenate([low, np.zeros(extra, dtype)], axis=axis),
+                                  np.concatenate([high, np.full(extra, self.value, dtype)],
+                                                 axis=axis), dtype)
+
+    def apply(self, agent, value):
+        np, k = self.np, self.index[agent]
+        if self.kind == "Discrete":
+            return int(value) * self.count + k
+        value = np.asarray(value, dtype=self.space.dtype)
+        if not self.image:
+            out = np.zeros(value.shape[0] + self.count, self.space.dtype)
+            out[:value.shape[0]] = value
+            out[value.shape[0] + k] = self.value
+            return out
+        if value.ndim == 2:
+            value = value[:, :, None]
+        out = np.zeros(value.shape[:2] + (value.shape[2] + self.count,), self.space.dtype)
+        out[:, :, :value.shape[2]] = value
+        out[:, :, value.shape[2] + k] = self.value
+        return out
+
+
 class PettingZooAgents:
     """What the worker needs of a PettingZoo env: one agent's spaces (the same for all), the
     agents' names, and reset / step of all agents at once as flat rows."""
 
-    def __init__(self, env, np, agents, describe_env):
+    def __init__(self, env, np, agents, describe_env, indicator="none"):
         self.env, self.np, self.names = env, np, list(agents)
         if not self.names:
             fail(f"{describe_env} has no agents (possible_agents is empty)")
@@ -71,12 +153,22 @@ class PettingZooAgents:
                      "equal (SuperSuit's pad_observations_v0 and pad_action_space_v0 make them so)")
         if self.act_codec.kind == "Dict":
             self.act_codec.action(None)  # refused with worker.py's reason
+        # The indicator of the observing agent (or seat, for a turn-based game's mover).
+        self.indicator = None
+        if indicator != "none":
+            obs_space, _ = split_masked_space(agent_space(env, "observation", self.names[0]))
+            self.indicator = AgentIndicator(indicator, self.names, obs_space, np)
+            self.obs_codec = Codec(self.indicator.space, "observation_space with agent_indicator",
+                                   np)
 
-    def observation(self, value):
-        """The observation without the mask; the mask or None."""
+    def observation(self, value, agent=None):
+        """The observation without the mask (with `agent`'s indicator); the mask or None."""
+        mask = None
         if self.masked_obs and hasattr(value, "keys"):
-            return value["observation"], value["action_mask"]
-        return value, None
+            value, mask = value["observation"], value["action_mask"]
+        if self.indicator is not None and agent is not None:
+            value = self.indicator.apply(agent, value)
+        return value, mask
 
     @staticmethod
     def mask_of(info, from_obs):
@@ -90,11 +182,11 @@ class PettingZooAgents:
 class ParallelAgents(PettingZooAgents):
     """A ParallelEnv: every live agent acts each step."""
 
-    def __init__(self, env, np):
+    def __init__(self, env, np, indicator="none"):
         names = getattr(env, "possible_agents", None)
         if names is None:
             fail("the parallel env has no possible_agents: rlrun needs the agents up front")
-        super().__init__(env, np, names, "the parallel env")
+        super().__init__(env, np, names, "the parallel env", indicator)
         self.index = {a: i for i, a in enumerate(self.names)}
         self.finished = {}
 
@@ -161,7 +253,7 @@ class ParallelAgents(PettingZooAgents):
             reward = 0.0
             if a not in gone:
                 if a in obs:
-                    value, mask = self.observation(obs[a])
+                    value, mask = self.observation(obs[a], a)
                 agent_info = infos.get(a) if hasattr(infos, "get") else None
                 mask = self.mask_of(agent_info, mask)
                 reward = rewards.get(a, 0.0)
@@ -181,11 +273,11 @@ class TurnBasedAgents(PettingZooAgents):
     first, second, or alternate by episode) and random legal moves play the others inside the
     env, so its reward is its own over its move and the replies (+1 a win, -1 a loss)."""
 
-    def __init__(self, env, np, opponent="self", learner_side="alternate"):
+    def __init__(self, env, np, opponent="self", learner_side="alternate", indicator="none"):
         names = getattr(env, "possible_agents", None)
         if not names:
             fail("the AEC env has no possible_agents")
-        super().__init__(env, np, names, "the AEC env")
+        super().__init__(env, np, names, "the AEC env", indicator)
         self.seats = list(names)
         self.names = ["mover" if opponent == "self" else "learner"]  # one column
         self.opponent, self.learner_side = opponent, learner_side
@@ -255,23 +347,24 @@ class TurnBasedAgents(PettingZooAgents):
 
     def current(self, agent, reward, terminated, truncated):
         env = self.env
-        value, mask = self.observation(env.observe(agent))
+        value, mask = self.observation(env.observe(agent), agent)
         info = env.infos.get(agent, {}) if hasattr(env, "infos") else {}
         return [(value, self.mask_of(info, mask), reward, terminated, truncated)], info
 
 
-def pettingzoo_agents(env, np, turn_based=None):
+def pettingzoo_agents(env, np, turn_based=None, indicator="none"):
     """The PettingZooAgents of a PettingZoo env, as its API and metadata say; `turn_based`:
-    {"opponent", "learner_side"} for a turn-based game (env.opponent, env.learner_side)."""
+    {"opponent", "learner_side"} for a turn-based game (env.opponent, env.learner_side);
+    `indicator`: env.agent_indicator (none, agent or type)."""
     if not hasattr(env, "agent_iter"):
-        return ParallelAgents(env, np)
+        return ParallelAgents(env, np, indicator)
     metadata = getattr(env, "metadata", None) or {}
     if metadata.get("is_parallelizable"):
         try:
             from pettingzoo.utils.conversions import aec_to_parallel
         except ImportError as e:
             fail(f"the AEC env is parallelizable but pettingzoo.utils cannot be imported: {e}")
-        return ParallelAgents(aec_to_parallel(env), np)
+        return ParallelAgents(aec_to_parallel(env), np, indicator)
     turn_based = turn_based or {}
     return TurnBasedAgents(env, np, turn_based.get("opponent", "self"),
-                           turn_based.get("learner_side", "alternate"))
+                           turn_based.get("learner_side", "alternate"), indicator)

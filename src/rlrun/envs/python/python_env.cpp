@@ -43,7 +43,7 @@ struct PythonEnv::Handshake {
 };
 
 PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
-                     double startup_timeout, const TurnBasedSeats& turn_based)
+                     double startup_timeout, const PettingZooSettings& pettingzoo)
     : target_(std::move(target)), startup_timeout_(startup_timeout) {
   // Keys every Python env declares up front: the Monitor writes is_success into
   // <i>.monitor.csv only for keys known when it is built (empty when the env never reports it).
@@ -53,7 +53,8 @@ PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::str
       {"target", target_},
       {"kwargs", json::parse(kwargs_json)},
       {"turn_based",
-       {{"opponent", turn_based.opponent}, {"learner_side", turn_based.learner_side}}}};
+       {{"opponent", pettingzoo.opponent}, {"learner_side", pettingzoo.learner_side}}},
+      {"agent_indicator", pettingzoo.agent_indicator}};
   const std::string text = spec.dump();
   const uint32_t length = static_cast<uint32_t>(text.size());
   std::vector<std::byte> message(4 + text.size());

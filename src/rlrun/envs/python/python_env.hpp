@@ -30,11 +30,13 @@
 
 namespace rlrun {
 
-// A turn-based PettingZoo game's opponent and the learner's seat (env.opponent,
-// env.learner_side; pettingzoo_agents.py).
-struct TurnBasedSeats {
+// How a pettingzoo: env's agents are seen (pettingzoo_agents.py): a turn-based game's opponent
+// and the learner's seat (env.opponent, env.learner_side), and the observing agent's indicator
+// in every observation (env.agent_indicator: none, agent, type).
+struct PettingZooSettings {
   std::string opponent = "self";
   std::string learner_side = "alternate";
+  std::string agent_indicator = "none";
 };
 
 class PythonEnv : public Env, public SplitStep, public AgentNames {
@@ -44,7 +46,7 @@ class PythonEnv : public Env, public SplitStep, public AgentNames {
   // its worker may take to import the module and build the env (env.startup_timeout).
   PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
             double startup_timeout = kDefaultStartupTimeout,
-            const TurnBasedSeats& turn_based = TurnBasedSeats{});
+            const PettingZooSettings& pettingzoo = PettingZooSettings{});
   static constexpr double kDefaultStartupTimeout = 60.0;
   ~PythonEnv() override;
 

@@ -3,7 +3,8 @@
 // file). One Unix stream socket per worker; little-endian, packed.
 //
 // Handshake: rlrun sends u32 length + JSON {"target": "python:mod:Class" | "gymnasium:ID" |
-// "pettingzoo:mod:function", "kwargs": {...}, "turn_based": {"opponent", "learner_side"}};
+// "pettingzoo:mod:function", "kwargs": {...}, "turn_based": {"opponent", "learner_side"},
+// "agent_indicator": "none" | "agent" | "type"};
 // the worker answers u32 length + JSON: {"ok": true, "protocol": 1, "observation_space": S,
 // "action_space": S, "obs_dim", "act_dim", "render_mode", "render_fps", "max_episode_steps",
 // "num_agents", "agents", "class", "python", "python_version", ...} or

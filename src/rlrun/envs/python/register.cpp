@@ -42,9 +42,10 @@ EnvEntry python_entry(const std::string& id, std::string description) {
     return AnyConfig::of_yaml(copy, copy);
   };
   entry.make_in_context = [id](const AnyConfig& kwargs, const EnvContext& context) -> EnvPtr {
-    return std::make_unique<PythonEnv>(id, kwargs_json(kwargs.get<YAML::Node>()),
-                                       interpreter(context.python), context.startup_timeout,
-                                       TurnBasedSeats{context.opponent, context.learner_side});
+    return std::make_unique<PythonEnv>(
+        id, kwargs_json(kwargs.get<YAML::Node>()), interpreter(context.python),
+        context.startup_timeout,
+        PettingZooSettings{context.opponent, context.learner_side, context.agent_indicator});
   };
   entry.params = [] { return std::vector<FieldDoc>{}; };
   return entry;

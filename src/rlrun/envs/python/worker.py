@@ -308,7 +308,8 @@ class Worker:
         # A PettingZoo env: its agents (pettingzoo_agents.py); None for a Gymnasium env.
         self.agents = None
         if self.target.startswith("pettingzoo:"):
-            self.agents = pettingzoo_agents(self.env, np, spec.get("turn_based"))
+            self.agents = pettingzoo_agents(self.env, np, spec.get("turn_based"),
+                                            spec.get("agent_indicator", "none"))
             self.obs_codec, self.act_codec = self.agents.obs_codec, self.agents.act_codec
         else:
             for attr in ("reset", "step", "observation_space", "action_space"):

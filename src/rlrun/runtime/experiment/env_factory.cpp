@@ -17,6 +17,11 @@ double unix_time_now() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
+EnvContext env_context(const EnvSectionConfig& section) {
+  return EnvContext{section.python.value, section.startup_timeout, section.opponent,
+                    section.learner_side, section.agent_indicator};
+}
+
 namespace {
 
 [[noreturn]] void fail_at_env(const EnvSpec& spec, const std::string& message) {
@@ -35,8 +40,7 @@ const EnvEntry& env_entry(const EnvSpec& spec, const Registry& registry) {
 EnvPtr make_registered_env(const EnvSpec& spec, const Registry& registry) {
   const EnvEntry& entry = env_entry(spec, registry);
   return entry.build(spec.kwargs.empty() ? entry.parse(ConfigNode()) : spec.kwargs,
-                     EnvContext{spec.section.python.value, spec.section.startup_timeout,
-                                spec.section.opponent, spec.section.learner_side});
+                     env_context(spec.section));
 }
 
 // `n` registered envs, all started before any is asked its spaces (a Python env's worker

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "rlrun/env/env_entry.hpp"
 #include "rlrun/env/env_spaces.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/components/registry.hpp"
@@ -16,6 +17,10 @@ namespace rlrun {
 // `monitor_path` empty: statistics only, no file. `tap_observations` puts an ObservationTap
 // (wrappers/observation_tap.hpp) right above the Monitor, for the obs_log callback.
 // `append_monitor` continues the monitor file of a resumed run.
+// What the env section (not the env's kwargs) decides about how the env is built: the Python
+// interpreter and start-up time, a PettingZoo game's opponent and seat, the agent indicator.
+EnvContext env_context(const EnvSectionConfig& section);
+
 EnvPtr make_env(const EnvSpec& spec, const Registry& registry, const std::string& monitor_path,
                 double t_start, bool tap_observations = false, bool append_monitor = false);
 

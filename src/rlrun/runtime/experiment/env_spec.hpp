@@ -26,6 +26,7 @@ struct EnvSectionConfig {
   double startup_timeout = 60.0;         // seconds their worker may take to build the env
   std::string opponent = "self";         // turn-based pettingzoo: games (pettingzoo_agents.py)
   std::string learner_side = "alternate";
+  std::string agent_indicator = "none";  // pettingzoo: envs (SuperSuit's agent_indicator_v0)
   // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
   std::optional<std::vector<std::string>> info_keywords;
   NormalizeSetting normalize;  // SB3 VecNormalize (wrappers/vec_normalize.hpp)
@@ -56,6 +57,11 @@ struct EnvSectionConfig {
       "with opponent: random, the learner's seat: alternate (first, second, ... by episode), "
       "first or second",
       OneOf{{"alternate", "first", "second"}});
+    v("agent_indicator", agent_indicator,
+      "pettingzoo: envs: add which agent observes to its observation, as SuperSuit's "
+      "agent_indicator_v0 (so the shared policy can act per agent): none, agent (one indicator "
+      "per agent) or type (one per <type>_<n> agent type)",
+      OneOf{{"none", "agent", "type"}});
     v("info_keywords", info_keywords,
       "info keys read at each episode's end: monitor.csv columns, rollout/<key> and eval/<key> "
       "means (SB3's Monitor info_keywords); null = the env's metrics and is_success, [] = none");
