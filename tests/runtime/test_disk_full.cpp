@@ -180,12 +180,18 @@ TEST_CASE("EvalCallback: a failed evaluations.csv row stops with the file and er
   std::unique_ptr<Algorithm> algorithm =
       registry.find_algorithm(experiment.algo.id)->make(experiment.algo.params, setup);
   const auto ignore = [](const std::string&) {};
-  TrainingContext context{experiment.env, experiment.run.seed,
-                          registry,       dir.str(),
-                          *algorithm,     env,
-                          nullptr,        ignore,
-                          ignore,         ignore,
-                          false,          {},
+  TrainingContext context{experiment.env,
+                          experiment.run.seed,
+                          registry,
+                          dir.str(),
+                          *algorithm,
+                          env,
+                          nullptr,
+                          ignore,
+                          ignore,
+                          ignore,
+                          false,
+                          {},
                           {}};
   EvalCallback callback(context, experiment.eval);
   const std::string path = dir / "evaluations.csv";
