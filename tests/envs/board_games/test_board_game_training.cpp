@@ -31,7 +31,8 @@ TEST_CASE("board games training: a short MaskablePPO run beats the random player
   TempDir dir("tictactoe_smoke");
   const auto train = run_rlrun("train " + config("tictactoe_maskable_ppo.yaml") +
                                " --set run.total_timesteps=30000 --set env.kwargs.opponent=random"
-                               " --set env.kwargs.opponent_random_moves=0 --set run.out_dir=" +
+                               " --set env.kwargs.opponent_random_moves=0"
+                               " --set algo.learning_rate=1e-3 --set run.out_dir=" +
                                dir.str());
   INFO(train.output.substr(train.output.size() > 3000 ? train.output.size() - 3000 : 0));
   REQUIRE(train.exit_code == 0);
