@@ -125,6 +125,8 @@ void export_like_the_cli(const LoadedModel& loaded) {
     std::vector<Eigen::MatrixXf> inputs;
     for (const GraphInput& in : graph.inputs())
       inputs.push_back(Eigen::MatrixXf::Zero(in.width, 1));
+    // A recurrent policy (RecurrentPPO) also reads its state: zeros, an episode's start.
+    if (graph.state_width() > 0) inputs.push_back(Eigen::MatrixXf::Zero(graph.state_width(), 1));
     (void)evaluate_graph(graph, inputs);
   } catch (const ExportError&) {
   }
