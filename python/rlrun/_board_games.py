@@ -75,11 +75,7 @@ class RlrunBoardGameEnv(_Turns, _AECBase):
             for a in self.possible_agents}
         self.action_spaces = {a: _spaces.from_description({"kind": "Discrete", "n": n, "start": 0})
                               for a in self.possible_agents}
-        self.agents: list[str] = []
-        self.rewards: dict[str, float] = {}
-        self._cumulative_rewards: dict[str, float] = {}
-        self.terminations: dict[str, bool] = {}
-        self.truncations: dict[str, bool] = {}
+        self._begin([], 0)
         self.infos: dict[str, dict] = {}
         self.agent_selection = None
         self._skip_agent_selection = None
@@ -88,11 +84,7 @@ class RlrunBoardGameEnv(_Turns, _AECBase):
     def reset(self, seed: int | None = None, options: dict | None = None) -> None:
         # The games have no randomness: the seed is accepted, as PettingZoo's are.
         self._game.reset()
-        self.agents = list(self.possible_agents)
-        self.rewards = dict.fromkeys(self.agents, 0)
-        self._cumulative_rewards = dict.fromkeys(self.agents, 0)
-        self.terminations = dict.fromkeys(self.agents, False)
-        self.truncations = dict.fromkeys(self.agents, False)
+        self._begin(self.possible_agents, 0)
         self.infos = {a: {} for a in self.agents}
         self.agent_selection = self.possible_agents[0]
         self._skip_agent_selection = None
@@ -168,11 +160,7 @@ class RlrunBoardGameEnv(_Turns, _AECBase):
     def _was_dead_step(self, action) -> None:
         if action is not None:
             raise ValueError("when an agent is dead, the only valid action is None")
-        agent = self.agent_selection
-        for table in (self.terminations, self.truncations, self.rewards, self._cumulative_rewards,
-                      self.infos):
-            del table[agent]
-        self.agents.remove(agent)
+        self._drop(self.agent_selection)
         dead = [a for a in self.agents if self.terminations[a] or self.truncations[a]]
         if dead:
             if self._skip_agent_selection is None:

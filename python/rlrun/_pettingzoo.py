@@ -73,6 +73,22 @@ class _Turns(_Agents):
     """What an AEC env gives of its turns (AECEnv.last and agent_iter): the selected agent's
     observation and the rewards it accumulated since it last acted."""
 
+    def _begin(self, agents, zero) -> None:
+        """The per-agent tables at an episode's start (no agents: before the first reset);
+        `zero` is the rewards' type of zero (PettingZoo's classic games count in ints)."""
+        self.agents = list(agents)
+        self.rewards = dict.fromkeys(self.agents, zero)
+        self._cumulative_rewards = dict.fromkeys(self.agents, zero)
+        self.terminations = dict.fromkeys(self.agents, False)
+        self.truncations = dict.fromkeys(self.agents, False)
+
+    def _drop(self, agent: str) -> None:
+        """A done agent leaves every table (its dead step, AECEnv._was_dead_step)."""
+        for table in (self.terminations, self.truncations, self.rewards, self._cumulative_rewards,
+                      self.infos):
+            del table[agent]
+        self.agents.remove(agent)
+
     def last(self, observe: bool = True):
         agent = self.agent_selection
         if agent is None:
@@ -231,11 +247,7 @@ class RlrunAECEnv(_Turns, _AECBase):
         self.render_mode = self._parallel.render_mode
         self.observation_spaces = self._parallel.observation_spaces
         self.action_spaces = self._parallel.action_spaces
-        self.agents: list[str] = []
-        self.rewards: dict[str, float] = {}
-        self._cumulative_rewards: dict[str, float] = {}
-        self.terminations: dict[str, bool] = {}
-        self.truncations: dict[str, bool] = {}
+        self._begin([], 0.0)
         self.infos: dict[str, dict] = {}
         self.agent_selection = None
         self._observations: dict[str, Any] = {}
@@ -248,11 +260,7 @@ class RlrunAECEnv(_Turns, _AECBase):
 
     def reset(self, seed: int | None = None, options: dict | None = None) -> None:
         self._observations, self.infos = self._parallel.reset(seed=seed, options=options)
-        self.agents = list(self._parallel.agents)
-        self.rewards = dict.fromkeys(self.agents, 0.0)
-        self._cumulative_rewards = dict.fromkeys(self.agents, 0.0)
-        self.terminations = dict.fromkeys(self.agents, False)
-        self.truncations = dict.fromkeys(self.agents, False)
+        self._begin(self._parallel.agents, 0.0)
         self._start_cycle()
 
     def _start_cycle(self) -> None:
@@ -297,10 +305,7 @@ class RlrunAECEnv(_Turns, _AECBase):
     def _remove_done_agent(self, agent: str, action) -> None:
         if action is not None:
             raise ValueError(f"{agent} is done: the only valid action is None")
-        for table in (self.terminations, self.truncations, self.rewards, self._cumulative_rewards,
-                      self.infos):
-            del table[agent]
-        self.agents.remove(agent)
+        self._drop(agent)
         self._cycle.remove(agent)
         self.rewards = dict.fromkeys(self.agents, 0.0)
         done = [a for a in self.agents if self.terminations[a] or self.truncations[a]]

@@ -134,7 +134,10 @@ class PettingZooAgents:
         self.env, self.np, self.names = env, np, list(agents)
         if not self.names:
             fail(f"{describe_env} has no agents (possible_agents is empty)")
-        twice = sorted({repr(a) for a in self.names if self.names.count(a) > 1})
+        seen, twice = set(), set()
+        for a in self.names:
+            (twice if a in seen else seen).add(a)
+        twice = sorted(repr(a) for a in twice)
         if twice:
             fail(f"{describe_env}'s possible_agents name {', '.join(twice)} more than once: each "
                  "agent needs its own id")
@@ -189,13 +192,14 @@ class ParallelAgents(PettingZooAgents):
         super().__init__(env, np, names, "the parallel env", indicator)
         self.index = {a: i for i, a in enumerate(self.names)}
         self.finished = {}
+        self.live = list(self.names)
 
     def reset(self, has_seed, seed):
         result = self.env.reset(seed=seed) if has_seed else self.env.reset()
         obs, infos = result if isinstance(result, tuple) and len(result) == 2 else (result, {})
         self.finished = {}
-        live = self.live_agents("reset()")
-        self.check_dicts("reset()", live, observations=obs, infos=infos)
+        self.live = self.live_agents("reset()")
+        self.check_dicts("reset()", self.live, observations=obs, infos=infos)
         return self.rows(obs, infos, {}, over=False, gone=set())
 
     def live_agents(self, call):
@@ -225,7 +229,7 @@ class ParallelAgents(PettingZooAgents):
                      f"has {list(values.keys())!r})")
 
     def step(self, rows):
-        live = self.live_agents("the last step")
+        live = self.live  # env.agents as the last reset or step left it (checked then)
         index = self.index
         actions = {a: self.act_codec.action(rows[index[a]]) for a in live}
         gone = set(self.finished)  # agents that left in earlier steps: black death
@@ -237,7 +241,7 @@ class ParallelAgents(PettingZooAgents):
         obs, rewards, terminations, truncations, infos = result
         self.check_dicts("step()", live, observations=obs, rewards=rewards,
                          terminations=terminations, truncations=truncations, infos=infos)
-        self.live_agents("step()")
+        self.live = self.live_agents("step()")
         for a in self.names:
             if a not in self.finished and (terminations.get(a) or truncations.get(a)):
                 self.finished[a] = (bool(terminations.get(a)), bool(truncations.get(a)))
