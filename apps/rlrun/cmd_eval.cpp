@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "game_opponent_option.hpp"
+#include "model_player.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "policy_comparison.hpp"
@@ -218,19 +219,17 @@ struct EvalOptions {
 };
 
 // The model's episodes: evaluate_policy's, or the same episodes filmed (record_episodes).
-EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
-  Env& env = *loaded.env;
-  Algorithm& algorithm = *loaded.algorithm;
+EvalResult run_model_episodes(const EvalOptions& o, ModelPlayer& player) {
+  Env& env = player.env();
   const bool deterministic = !o.stochastic;
-  if (o.record.empty()) return evaluate_policy(algorithm, env, o.episodes, deterministic, o.seed);
+  std::function<void()> start_episode;
+  const ActionFn act = player.act(deterministic, &start_episode);
+  if (o.record.empty()) return evaluate_policy(act, env, o.episodes, o.seed, start_episode);
   RecordOptions record;
   record.video_path = o.record;
   record.episodes = o.episodes;
   record.seed = o.seed;
-  record.policy_label =
-      loaded.file.meta.algorithm + (o.stochastic ? " stochastic" : " deterministic");
-  std::function<void()> start_episode;
-  const ActionFn act = model_action_fn(algorithm, env, deterministic, &start_episode);
+  record.policy_label = player.label + (o.stochastic ? " stochastic" : " deterministic");
   const RecordResult recorded = record_episodes(env, act, record, start_episode);
   std::printf("recorded %s at %dx%d -> %s\n", count_of(recorded.frames, "frame").c_str(),
               recorded.width, recorded.height, o.record.c_str());
@@ -239,13 +238,13 @@ EvalResult run_model_episodes(const EvalOptions& o, const LoadedModel& loaded) {
 
 int evaluate_model(const EvalOptions& o, Registry& registry) {
   check_outputs(o);
-  // Normalisation statistics frozen; tensors read within the config's budget.
-  const LoadedModel loaded =
-      load_model(o.model, registry, o.overrides, model_trust(o.trust, o.model, registry));
-  const ModelFile& model = loaded.file;
-  give_opponent_model(o.game, *loaded.env, registry);
-  const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(*loaded.env);
-  const Experiment& experiment = loaded.experiment;
+  // Normalisation statistics frozen; tensors read within the config's budget. A per-agent
+  // run's directory plays each agent through its own model.
+  ModelPlayer player = load_model_player(o.model, registry, o.overrides, o.trust);
+  const ModelFile& model = player.first().file;
+  give_opponent_model(o.game, player.env(), registry);
+  const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(player.env());
+  const Experiment& experiment = player.first().experiment;
   // The baseline runs the same episodes on an env of its own; it is built (and checked to
   // fit the env) before anything is evaluated.
   EnvPtr baseline_env;
@@ -255,9 +254,9 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
     give_opponent_model(o.game, *baseline_env, registry);
     baseline_policy = named_policy(o.baseline, *baseline_env, registry, policy_options(o));
   }
-  const EvalResult r = run_model_episodes(o, loaded);
+  const EvalResult r = run_model_episodes(o, player);
   std::vector<std::pair<std::string, EvalResult>> runs{{model.meta.algorithm, r}};
-  print_summary(model.meta.algorithm, o.stochastic ? " (stochastic)" : " (deterministic)",
+  print_summary(player.label, o.stochastic ? " (stochastic)" : " (deterministic)",
                 experiment.env.id, o.episodes, r);
   if (baseline_policy) {
     const EvalResult baseline =
@@ -278,7 +277,9 @@ Action add_eval(CLI::App& app, Registry& registry) {
   CLI::App* sub =
       app.add_subcommand("eval", "evaluate a trained model (needs only the model file)");
   CLI::Option* model_option =
-      sub->add_option("--model", options->model, "model.zip written by rlrun train");
+      sub->add_option("--model", options->model,
+                      "model.zip written by rlrun train, or a per-agent run's directory (its "
+                      "agents.json): every agent plays its own model");
   CLI::Option* policy_option = sub->add_option(
       "--policy", options->policy,
       "evaluate a policy without a model: random, or one that comes with the env (`rlrun list "

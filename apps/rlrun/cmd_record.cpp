@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "env_by_id.hpp"
 #include "game_opponent_option.hpp"
+#include "model_player.hpp"
 #include "named_policy.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
@@ -107,42 +108,38 @@ int run(const Options& o, Registry& registry) {
   if (policy == "model" && o.model.empty()) throw UsageError("--policy model needs --model FILE");
   if (policy.empty()) throw UsageError("without --model, choose a policy: --policy random");
 
+  std::optional<ModelPlayer> player;  // statistics frozen; a per-agent run's whole team
   EnvPtr env;
-  std::unique_ptr<Algorithm> algorithm;
-  std::string algo_id;
   if (!o.model.empty()) {
-    LoadedModel model = load_model(o.model, registry, o.overrides,  // statistics frozen
-                                   model_trust(o.trust, o.model, registry));
-    env = std::move(model.env);
-    algorithm = std::move(model.algorithm);
-    algo_id = model.file.meta.algorithm;
+    player = load_model_player(o.model, registry, o.overrides, o.trust);
   } else if (!o.config.empty()) {
     const Experiment experiment = load_experiment(o.config, o.overrides, registry);
     env = make_env(experiment.env, registry, "", unix_time_now());
   } else {
     env = env_by_id(o.env_id, registry, o.overrides);
   }
+  Env& played = player ? player->env() : *env;
 
-  give_opponent_model(o.game, *env, registry);
+  give_opponent_model(o.game, played, registry);
   PolicyFn act;
   std::function<void()> start_episode;  // a recurrent model's state reset
   if (policy == "model") {
     const bool deterministic = !o.stochastic;
-    record.policy_label = algo_id + (deterministic ? " deterministic" : " stochastic");
+    record.policy_label = player->label + (deterministic ? " deterministic" : " stochastic");
     // With the env's masks if any, the recurrent state if any.
-    act = model_action_fn(*algorithm, *env, deterministic, &start_episode);
+    act = player->act(deterministic, &start_episode);
   } else {
     PolicyOptions options;
     options.seed = o.seed;
     if (o.green_time) options.settings["green_time"] = *o.green_time;
-    NamedPolicy named = named_policy(policy, *env, registry, options);
+    NamedPolicy named = named_policy(policy, played, registry, options);
     act = std::move(named.act);
     record.policy_label = named.label;
   }
-  const RecordResult r = record_episodes(*env, act, record, start_episode);
+  const RecordResult r = record_episodes(played, act, record, start_episode);
   print_summary(r,
                 "recorded " + count_of(static_cast<int64_t>(r.episodes.returns.size()), "episode") +
-                    " of " + env->id() + " (" + record.policy_label + ")",
+                    " of " + played.id() + " (" + record.policy_label + ")",
                 o);
   return r.interrupted ? 130 : 0;
 }

@@ -70,7 +70,8 @@ TEST_CASE("validation: a file with three problems reports all three", "[cli][con
   CHECK(has(r, "three.yaml:2:24: env.wrapers: unknown key 'wrapers' (did you mean 'wrappers'?)"));
   CHECK(has(r,
             "valid keys: n_envs, max_episode_steps, auto_wrap, python, startup_timeout, opponent, "
-            "learner_side, agent_indicator, info_keywords, normalize, id, kwargs, wrappers"));
+            "learner_side, agent_indicator, agent_policies, info_keywords, normalize, id, kwargs, "
+            "wrappers"));
   CHECK(has(r, "three.yaml:3:24: algo.gamma: must be in [0, 1], got 2"));
   CHECK(has(r, "three.yaml:3:39: algo.clip_range: must be > 0, got -0.2"));
 }

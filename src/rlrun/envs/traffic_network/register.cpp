@@ -29,7 +29,7 @@ void register_traffic_network(EnvEntries& out) {
   EnvEntry entry = make_env_entry<TrafficNetwork>(
       "TrafficNetwork-v0",
       "any SUMO network, every traffic light an agent (sumo-rl's phases, observation and "
-      "rewards), one shared policy",
+      "rewards), shared or per-agent policies",
       0);
   entry.policies.push_back(
       {"fixed-time", "the network's own signal programs, untouched (a plain sumo run)",

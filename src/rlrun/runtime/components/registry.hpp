@@ -49,6 +49,13 @@ class Registry {
   void add(EnvEntry entry) { envs_.push_back(std::move(entry)); }
   void add(WrapperEntry entry) { wrappers_.push_back(std::move(entry)); }
   void add(AlgorithmEntry entry) { algorithms_.push_back(std::move(entry)); }
+  // Puts `entry` in place of the env of its id (a family member too): a run that builds that
+  // env in its own way (per-agent training's seats, runtime/run/per_agent_training.hpp) works
+  // on a copy of the registry with it.
+  void replace_env(EnvEntry entry) {
+    std::erase_if(envs_, [&](const EnvEntry& e) { return e.id == entry.id; });
+    envs_.insert(envs_.begin(), std::move(entry));
+  }
 
   // `id_node` is the YAML node holding the id, for the error position.
   // Ids of a family (EnvEntry::expand, e.g. python:module:Class) are expanded on first use.

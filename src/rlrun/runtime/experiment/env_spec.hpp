@@ -27,6 +27,9 @@ struct EnvSectionConfig {
   std::string opponent = "self";         // turn-based pettingzoo: games (pettingzoo_agents.py)
   std::string learner_side = "alternate";
   std::string agent_indicator = "none";  // pettingzoo: envs (SuperSuit's agent_indicator_v0)
+  // Multi-agent envs: one policy shared by the agents, or one learner per agent
+  // (runtime/run/per_agent_training.hpp).
+  std::string agent_policies = "shared";
   // SB3's Monitor info_keywords; null = the env's declared metrics (env/env_entry.hpp).
   std::optional<std::vector<std::string>> info_keywords;
   NormalizeSetting normalize;  // SB3 VecNormalize (wrappers/vec_normalize.hpp)
@@ -62,6 +65,11 @@ struct EnvSectionConfig {
       "agent_indicator_v0 (so the shared policy can act per agent): none, agent (one indicator "
       "per agent) or type (one per <type>_<n> agent type)",
       OneOf{{"none", "agent", "type"}});
+    v("agent_policies", agent_policies,
+      "multi-agent envs: shared (one policy learns from every agent, SuperSuit's parameter "
+      "sharing) or per_agent (independent learners: each agent its own networks, optimiser and "
+      "run directory under agents/)",
+      OneOf{{"shared", "per_agent"}});
     v("info_keywords", info_keywords,
       "info keys read at each episode's end: monitor.csv columns, rollout/<key> and eval/<key> "
       "means (SB3's Monitor info_keywords); null = the env's metrics and is_success, [] = none");

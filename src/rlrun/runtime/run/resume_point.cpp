@@ -7,6 +7,7 @@
 
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/io/agent_team_file.hpp"
 #include "rlrun/runtime/io/model_budget.hpp"
 #include "rlrun/runtime/run/checkpoint_callback.hpp"
 
@@ -25,6 +26,10 @@ std::vector<std::string> resume_candidates(const std::string& run_dir_or_checkpo
   std::error_code ec;
   if (fs::is_directory(run_dir_or_checkpoint, ec)) {
     const DirHandle run = DirHandle::open(run_dir_or_checkpoint);
+    if (run.kind(kAgentTeamFile) != EntryKind::kMissing)
+      throw UsageError("cannot resume " + run_dir_or_checkpoint +
+                       ": a per-agent run (env.agent_policies: per_agent, its " + kAgentTeamFile +
+                       ") cannot be resumed: its learners' checkpoints hold their models only");
     const std::optional<DirHandle> checkpoints = run.subdir("checkpoints");
     std::vector<std::string> found;
     if (checkpoints)

@@ -16,6 +16,7 @@
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/core/zip_archive.hpp"
+#include "rlrun/env/agent_seats.hpp"
 #include "rlrun/env/vec_env.hpp"
 #include "rlrun/runtime/experiment/env_factory.hpp"
 #include "rlrun/runtime/experiment/env_statistics.hpp"
@@ -29,6 +30,7 @@
 #include "rlrun/runtime/io/tensorboard/learning_curve_image.hpp"
 #include "rlrun/runtime/io/tensorboard/tensorboard_log.hpp"
 #include "rlrun/runtime/run/init_from.hpp"
+#include "rlrun/runtime/run/per_agent_training.hpp"
 #include "rlrun/runtime/run/progress_bar.hpp"
 #include "rlrun/runtime/run/resume_point.hpp"
 #include "rlrun/runtime/run/training_callbacks.hpp"
@@ -369,11 +371,19 @@ TrainOutcome TrainingRun::run() {
   TrainingHooks training_hooks = hooks();
   outcome_.start_timesteps = algorithm_->num_timesteps();  // a resumed run's checkpoint step
   const auto start = std::chrono::steady_clock::now();
-  algorithm_->learn(*env_, experiment_.run.total_timesteps, training_hooks);
+  std::string stopped_by_others;
+  try {
+    algorithm_->learn(*env_, experiment_.run.total_timesteps, training_hooks);
+  } catch (const SeatsStopped& e) {
+    // A per-agent run's other learner stopped (Ctrl-C seen a step earlier there, or a failure
+    // there): this one cannot step its shared env, and keeps what it has learnt so far.
+    stopped_by_others = e.what();
+  }
   outcome_.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outcome_.timesteps = algorithm_->num_timesteps();
-  outcome_.interrupted = interrupt_requested();
+  outcome_.interrupted = interrupt_requested() || !stopped_by_others.empty();
+  if (!stopped_by_others.empty()) outcome_.stop_reason = stopped_by_others;
   finish();
   return outcome_;
 }
@@ -420,6 +430,18 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
                               const ExecutionContext& execution,
                               const std::vector<std::string>& resume_from,
                               EvaluationListener on_evaluation) {
+  const auto train_one = [](const Experiment& one, const Registry& components,
+                            const ExecutionContext& threads, EvaluationListener listener) {
+    TrainingRun run(one, components, threads, {}, std::move(listener));
+    return run.run();
+  };
+  if (experiment.env.section.agent_policies == "per_agent") {
+    if (!resume_from.empty())
+      throw UsageError(
+          "a per-agent run (env.agent_policies: per_agent) cannot be resumed: its "
+          "learners' checkpoints hold their models only");
+    return train_per_agent(experiment, registry, execution, std::move(on_evaluation), train_one);
+  }
   TrainingRun run(experiment, registry, execution, resume_from, std::move(on_evaluation));
   return run.run();
 }

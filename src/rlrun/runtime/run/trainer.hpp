@@ -22,26 +22,10 @@
 
 #include "rlrun/core/execution_context.hpp"
 #include "rlrun/runtime/experiment/experiment.hpp"
-#include "rlrun/runtime/io/session_summary.hpp"
 #include "rlrun/runtime/run/callback.hpp"
+#include "rlrun/runtime/run/train_outcome.hpp"
 
 namespace rlrun {
-
-struct TrainOutcome {
-  std::string run_dir;
-  std::string model_path;
-  int64_t start_timesteps = 0;  // the step count this session began at (a resumed run's checkpoint)
-  int64_t timesteps = 0;        // ... and ended at: the run's total
-  double wall_seconds = 0;      // this session's training time
-  bool interrupted = false;
-  std::string checkpoint_path;  // written on interruption: resume from it
-  std::string stop_reason;      // set when a callback stopped training early
-};
-
-// The session's summary line's numbers (runtime/io/session_summary.hpp).
-inline SessionSummary session_summary(const TrainOutcome& outcome) {
-  return {outcome.interrupted, outcome.start_timesteps, outcome.timesteps, outcome.wall_seconds};
-}
 
 // `resume_from` non-empty: continue the run these checkpoints belong to (newest first, as
 // runtime/run/resume_point.hpp lists them; a damaged one is skipped with a note), with

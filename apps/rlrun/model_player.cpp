@@ -1,0 +1,51 @@
+#include "model_player.hpp"
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/plural.hpp"
+#include "rlrun/runtime/io/agent_team_file.hpp"
+#include "rlrun/runtime/run/team_actions.hpp"
+#include "trust_option.hpp"
+
+namespace rlrun::cli {
+
+ActionFn ModelPlayer::act(bool deterministic, std::function<void()>* start_episode) {
+  if (models.size() == 1)
+    return model_action_fn(*models.front().algorithm, env(), deterministic, start_episode);
+  std::vector<Algorithm*> algorithms;
+  for (LoadedModel& model : models) algorithms.push_back(model.algorithm.get());
+  return team_action_fn(algorithms, env(), deterministic, start_episode);
+}
+
+ModelPlayer load_model_player(const std::string& path, Registry& registry,
+                              const std::vector<std::string>& overrides, bool trust) {
+  ModelPlayer player;
+  const std::optional<std::string> team_dir = agent_team_directory(path);
+  if (!team_dir) {
+    player.models.push_back(
+        load_model(path, registry, overrides, model_trust(trust, path, registry)));
+    player.label = player.first().file.meta.algorithm;
+    return player;
+  }
+  const AgentTeamModels team = read_agent_team(*team_dir);
+  for (size_t a = 0; a < team.model_paths.size(); ++a) {
+    const std::string& model = team.model_paths[a];
+    // The first model's env is played; the others only turn into policies.
+    player.models.push_back(load_model(model, registry, overrides,
+                                       model_trust(trust, model, registry),
+                                       a == 0 ? ModelEnv::kRun : ModelEnv::kSpacesOnly));
+    const LoadedModel& loaded = player.models.back();
+    if (loaded.experiment.env.id != team.team.env_id)
+      throw RuntimeFailure(model + " is a model of " + loaded.experiment.env.id + ", not of " +
+                           team.team.env_id + " as " + *team_dir + "/" + kAgentTeamFile + " says");
+  }
+  const int agents = player.env().num_agents();
+  if (agents != static_cast<int>(team.model_paths.size()))
+    throw RuntimeFailure(*team_dir + "/" + kAgentTeamFile + " lists " +
+                         count_of(static_cast<int64_t>(team.model_paths.size()), "agent") +
+                         " but " + team.team.env_id + " has " + std::to_string(agents));
+  player.label =
+      player.first().file.meta.algorithm + ", one per agent (" + count_of(agents, "agent") + ")";
+  return player;
+}
+
+}  // namespace rlrun::cli

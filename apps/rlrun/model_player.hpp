@@ -1,0 +1,32 @@
+#pragma once
+// What `rlrun eval --model` and `rlrun record --model` play: one model file, or the run
+// directory of a per-agent run (runtime/run/per_agent_training.hpp; its agents.json, or the
+// directory holding it), whose agents each act through their own model.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rlrun/runtime/components/registry.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/run/evaluator.hpp"
+
+namespace rlrun::cli {
+
+struct ModelPlayer {
+  // The models; the first one's env is the env played (a team's: the whole multi-agent env).
+  std::vector<LoadedModel> models;
+  std::string label;  // "PPO", or "PPO, one per agent (3 agents)"
+
+  Env& env() { return *models.front().env; }
+  const LoadedModel& first() const { return models.front(); }
+  // The joint action; `start_episode` as model_action_fn's.
+  ActionFn act(bool deterministic, std::function<void()>* start_episode);
+};
+
+// Loads `path` (a model file, a per-agent run directory or its agents.json) as `eval` and
+// `record` do: statistics frozen, weights within the budget, `overrides` and `trust` applied to
+// every model file. A team's models must agree on the env and the agents' number.
+ModelPlayer load_model_player(const std::string& path, Registry& registry,
+                              const std::vector<std::string>& overrides, bool trust);
+
+}  // namespace rlrun::cli
