@@ -63,6 +63,13 @@ TEST_CASE("env.agent_policies: per_agent: each walker learns its own way home, p
   INFO(by_file.output);
   CHECK(by_file.exit_code == 0);
 
+  // `rlrun report <team>` reports its agents' runs (the team directory has no data of its own).
+  const CommandResult report = run_rlrun_python("report " + team);
+  INFO(report.output);
+  CHECK(report.exit_code == 0);
+  CHECK(report.output.find("| walker_0 | 1 (1) |") != std::string::npos);
+  CHECK(report.output.find("| walker_1 | 1 (2) |") != std::string::npos);
+
   // A per-agent run cannot be resumed (its learners' checkpoints hold their models only).
   const CommandResult resume = run_rlrun_python("train --resume " + team);
   INFO(resume.output);

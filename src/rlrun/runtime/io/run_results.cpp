@@ -14,6 +14,7 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/rng.hpp"
 #include "rlrun/runtime/experiment/experiment.hpp"
+#include "rlrun/runtime/io/agent_team_file.hpp"
 #include "rlrun/runtime/io/log_sinks.hpp"
 #include "rlrun/runtime/io/model_file.hpp"
 #include "rlrun/runtime/io/run_directory.hpp"
@@ -98,7 +99,10 @@ std::vector<std::string> find_run_dirs(const std::vector<std::string>& paths) {
   for (const std::string& path : paths) {
     if (!fs::is_directory(path)) throw UsageError(path + " is not a directory");
     const size_t before = dirs.size();
-    if (exists_here(fs::path(path) / "config.yaml")) {
+    // A per-agent run's team directory (runtime/io/agent_team_file.hpp) holds no training data
+    // of its own: its agents' run directories below it are the runs.
+    if (exists_here(fs::path(path) / "config.yaml") &&
+        !exists_here(fs::path(path) / kAgentTeamFile)) {
       dirs.push_back(path);
     } else {
       for (const auto& entry : fs::recursive_directory_iterator(path))
