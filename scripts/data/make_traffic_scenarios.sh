@@ -13,6 +13,15 @@
 #   arterial4x4  4 east-west arterials (3 lanes + left-turn lane, 60 km/h) crossing 4
 #                north-south streets (1 lane, 40 km/h) 250 m apart, 16 lights; demand weighted
 #                by lanes, so most of it runs along the arterials (RESCO's arterial4x4 idea).
+#   random25     an irregular network (netgenerate --rand: junctions of 2-6 roads at random
+#                distances, 2 lanes, 50 km/h) with netconvert's guessed and joined lights: 25
+#                lights of 2 to 6 greens and 8 to 36 links; 07:00-08:00 (begin 25200), about
+#                3070 vehicles with a peak in the middle of the hour (2250 -> 4500 -> 2250/h).
+#   spider15     a spider web (netgenerate --spider: 5 arms, 3 rings 150 m apart): 15 lights,
+#                rings of 3-green five-way ... and 2-green outer junctions; 07:00-08:00, about
+#                2500 vehicles with a peak (1800 -> 3600 -> 1800/h).
+# The two irregular ones check that nothing was fitted to regular grids; their lights are
+# netconvert's own programs (fixed-time is weak there, as on many imported city networks).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
@@ -92,4 +101,41 @@ netconvert -n "$work/a.nod.xml" -e "$work/a.edg.xml" -t "$work/a.typ.xml" \
 # Weighted by lanes: the arterials carry most trips; 2400 vehicles/h, peak 2400 -> 5100 -> 2400.
 make_demand "$dir/arterial4x4.net.xml" "$dir" arterial4x4 "1.5" "1.5 1.0 0.7 1.0 1.5" --lanes
 
-echo "made: $(ls sumo_data/grid4x4 sumo_data/arterial4x4 | tr '\n' ' ')"
+# One morning hour, 07:00-08:00, its demand peaking in the middle (the periods are randomTrips'
+# seconds between departures in five equal parts of the hour).
+make_morning_demand() {  # net dir name seed periods...
+  local net=$1 dir=$2 name=$3 seed=$4
+  shift 4
+  "$PY" "$TOOLS/randomTrips.py" -n "$net" -b 25200 -e 28800 -p "$@" --fringe-factor 10 \
+    --min-distance 400 --seed "$seed" --validate --prefix v \
+    -o "$work/$name.trips.xml" -r "$dir/$name.rou.xml" >/dev/null
+  rm -f "$dir"/*.rou.alt.xml
+  "$PY" - "$dir/$name.rou.xml" <<'STRIP'
+import re, sys
+path = sys.argv[1]
+text = open(path).read()
+text = re.sub(r"<!--.*?-->\s*", "", text, flags=re.S)
+text = re.sub(r'<routes [^>]*>', "<routes>", text, count=1)
+open(path, "w").write(text)
+STRIP
+}
+
+# --- random25 --------------------------------------------------------------------------------
+dir=sumo_data/random25
+mkdir -p "$dir"
+netgenerate --rand --rand.iterations 45 --rand.min-distance 120 --rand.max-distance 300 \
+  --rand.connectivity 0.9 --rand.neighbor-dist1 0 --rand.neighbor-dist2 0 \
+  --rand.neighbor-dist3 10 --rand.neighbor-dist4 10 --rand.neighbor-dist5 2 --rand.neighbor-dist6 1 \
+  --default.lanenumber 2 --default.speed 13.89 --tls.guess true --tls.guess.threshold 30 \
+  --junctions.join true --no-turnarounds true --seed 7 -o "$dir/random25.net.xml" >/dev/null 2>&1
+make_morning_demand "$dir/random25.net.xml" "$dir" random25 44 1.6 1.1 0.8 1.1 1.6
+
+# --- spider15 --------------------------------------------------------------------------------
+dir=sumo_data/spider15
+mkdir -p "$dir"
+netgenerate --spider --spider.arm-number 5 --spider.circle-number 3 --spider.space-radius 150 \
+  --default.lanenumber 2 --default.speed 13.89 -j traffic_light --tls.default-type static \
+  --no-turnarounds true --seed 7 -o "$dir/spider15.net.xml" >/dev/null 2>&1
+make_morning_demand "$dir/spider15.net.xml" "$dir" spider15 45 2.0 1.4 1.0 1.4 2.0
+
+echo "made: $(ls sumo_data/grid4x4 sumo_data/arterial4x4 sumo_data/random25 sumo_data/spider15 | tr '\n' ' ')"
