@@ -4,6 +4,7 @@
 // (agents.json) is read as untrusted input: a run_dir that leaves the run directory, or a model
 // behind a link, is refused.
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -192,4 +193,53 @@ TEST_CASE("env.agent_policies: per_agent on TrafficNetwork-v0: one learner per t
   CHECK(eval.output.find("PPO, one per agent (16 agents) on TrafficNetwork-v0") !=
         std::string::npos);
   CHECK(eval.output.find("max-pressure on TrafficNetwork-v0") != std::string::npos);
+}
+
+TEST_CASE("A real city network SUMO's package ships: baselines, and one learner per light",
+          "[traffic_network][per_agent]") {
+  // tools/game/DRT/osm.net.xml of Debian's sumo-tools: imported from OpenStreetMap, 15 lights,
+  // ids of joined OSM nodes up to 170 characters. Demand: randomTrips.py with a fixed seed.
+  const char* home = std::getenv("SUMO_HOME");
+  const std::string sumo_home = home && *home ? home : "/usr/share/sumo";
+  const std::string net = sumo_home + "/tools/game/DRT/osm.net.xml";
+  REQUIRE(fs::is_regular_file(net));  // Debian package sumo-tools (scripts/setup.sh)
+  TempDir dir("per_agent_osm");
+  const std::string routes = dir.str() + "/drt.rou.xml";
+  const CommandResult trips = run_command(
+      "/usr/bin/python3 " + sumo_home + "/tools/randomTrips.py -n " + net +
+      " -b 0 -e 900 -p 1.5 --fringe-factor 10 --min-distance 300 --seed 3 --validate -o " +
+      dir.str() + "/trips.xml -r " + routes);
+  INFO(trips.output);
+  REQUIRE(trips.exit_code == 0);
+  const std::string scenario =
+      write_file(dir.str() + "/drt.yaml", "name: drt\nnet_file: " + net + "\nroute_files: [" +
+                                              routes + "]\nbegin: 0\nend: 900\n");
+  const CommandResult baselines =
+      run_rlrun_python("eval --env TrafficNetwork-v0 --set env.kwargs.scenario=" + scenario +
+                       " --policy fixed-time,max-pressure --episodes 1");
+  INFO(baselines.output);
+  REQUIRE(baselines.exit_code == 0);
+  CHECK(baselines.output.find("| max-pressure |") != std::string::npos);
+
+  const std::string config =
+      write_file(dir.str() + "/drt_ppo.yaml",
+                 "run: {name: drt, seed: 1, total_timesteps: 128, out_dir: " + dir.str() +
+                     "/runs}\n"
+                     "env: {id: TrafficNetwork-v0, agent_policies: per_agent, kwargs: {scenario: " +
+                     scenario + "}}\nalgo: {id: PPO, n_steps: 64, batch_size: 32, n_epochs: 1}\n");
+  const CommandResult train = run_rlrun_python("train " + config);
+  INFO(train.output);
+  REQUIRE(train.exit_code == 0);
+  const std::string team = dir.str() + "/runs/drt/seed1";
+  int learners = 0;
+  for (const auto& entry : fs::directory_iterator(team + "/agents")) {
+    ++learners;
+    CHECK(entry.path().filename().string().size() <= 96);  // the long cluster ids cut
+  }
+  CHECK(learners == 15);
+  const CommandResult eval = run_rlrun_python("eval --model " + team + " --episodes 1 --trust");
+  INFO(eval.output);
+  REQUIRE(eval.exit_code == 0);
+  CHECK(eval.output.find("PPO, one per agent (15 agents) on TrafficNetwork-v0") !=
+        std::string::npos);
 }

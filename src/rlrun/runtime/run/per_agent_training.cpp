@@ -38,6 +38,10 @@ std::vector<std::string> agent_directory_names(const std::vector<std::string>& a
       name += plain ? c : '_';
     }
     if (name.empty() || name.front() == '.' || name.front() == '-') name = "agent_" + name;
+    // netconvert's joined junctions have ids of many OSM node ids ("cluster_1560223404_..."),
+    // which can pass the 255 bytes a file name may have: cut, and made distinct by the index.
+    constexpr size_t kLongest = 96;
+    if (name.size() > kLongest) name = name.substr(0, kLongest - 16) + "_" + std::to_string(a);
     if (std::find(names.begin(), names.end(), name) != names.end()) name += "_" + std::to_string(a);
     names.push_back(std::move(name));
   }
