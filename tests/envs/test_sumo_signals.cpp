@@ -74,6 +74,7 @@ TEST_CASE("One Ctrl-C stops training while its SUMO worker does not answer", "[t
   // while it runs a step: either way one Ctrl-C ends rlrun and says which wait it was.
   CHECK(
       (output.find("has not answered in a simulation step 5 s after Ctrl-C") != std::string::npos ||
+       output.find("has not answered to start SUMO 5 s after Ctrl-C") != std::string::npos ||
        output.find("while waiting for the SUMO worker (pid ") != std::string::npos));
   CHECK(all_gone(workers, 10));  // killed, stopped or not
 }

@@ -8,12 +8,14 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <csignal>
 #include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/interrupt.hpp"
 #include "rlrun/env/action_mask.hpp"
 #include "rlrun/envs/traffic_network/light_agent.hpp"
 #include "rlrun/envs/traffic_network/traffic_network.hpp"
@@ -704,4 +706,31 @@ TEST_CASE("TrafficNetwork: train a shared PPO policy, evaluate, record, compare 
                              dir / "two");
   CHECK(two.exit_code != 0);
   CHECK(two.output.find("one simulation per process") != std::string::npos);
+}
+
+TEST_CASE(
+    "TrafficNetwork: after one Ctrl-C, SUMO still starts at a reset (training's rollout "
+    "reaches its safe point)",
+    "[traffic_network]") {
+  // SUMO starts again at every reset; a first Ctrl-C in a rollout that crosses an episode's end
+  // must let it start, or the run stops without its model (it did, 2 Ctrl-Cs in 3). Every way
+  // SUMO is started: in a worker process (libsumo, traci) and as rlrun's own TraCI client.
+  for (const auto& [backend, own_process] : std::vector<std::pair<std::string, bool>>{
+           {"libsumo", true}, {"traci", true}, {"traci", false}}) {
+    INFO(backend << (own_process ? " in a worker" : " in rlrun"));
+    TrafficNetwork::Config config;
+    config.scenario.value = kSource + "/scenarios/spider15.yaml";
+    config.backend = backend;
+    config.own_process = own_process;
+    TrafficNetwork env(config);
+    std::vector<float> obs(static_cast<size_t>(env.observation_space().flat_dim()) *
+                           env.num_agents());
+    install_interrupt_handlers();
+    std::raise(SIGINT);
+    REQUIRE(interrupt_count() == 1);
+    CHECK_NOTHROW(env.reset(1, obs));
+    CHECK(info_of(env, "sim_time") == 25201.0);
+    clear_interrupts();
+    use_default_interrupt_actions();
+  }
 }

@@ -105,12 +105,12 @@ SumoProcess::SumoProcess(const Options& options)
   }
   close(log_fd);
   // SUMO listens after loading the network (milliseconds); poll instead of libtraci's
-  // one-second retry sleep, and for Ctrl-C (core/worker_wait.hpp: nothing to save yet).
+  // one-second retry sleep, and for Ctrl-C: SUMO starts at every reset, so a first Ctrl-C lets
+  // it load within the grace period (core/worker_wait.hpp) and training reach its safe point.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   WorkerWait starting;
   starting.who = "SUMO (pid " + std::to_string(pid_) + ")";
   starting.what = "to accept the TraCI connection";
-  starting.starting = true;
   while (true) {
     try {
       check_worker_wait(starting);
