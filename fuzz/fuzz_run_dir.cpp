@@ -10,7 +10,8 @@
 // FIFO outside the run, /dev/zero, the run itself, the link itself. The directory is built in a
 // private temporary directory, then read as those commands read it: the reports' run results
 // (the run named, and found by searching its parent), the resume candidates and each one's
-// header, progress.csv's header as a resumed CsvSink reads it, the stale-temporary clean-up.
+// header, progress.csv's header as a resumed CsvSink reads it, the stale-temporary clean-up,
+// and a per-agent team's agents.json with its agents' run directories (eval/record --model RUN).
 // Refusing is fine (RuntimeFailure, UsageError, ConfigError); a crash, a sanitizer report, a
 // hang (a FIFO waited on), unbounded memory (/dev/zero read to its end), a descriptor left open,
 // or any change outside the run directory (written, truncated, deleted) is a bug.
@@ -30,6 +31,7 @@
 #include "private_file.hpp"
 #include "rlrun/core/dir_handle.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/runtime/io/agent_team_file.hpp"
 #include "rlrun/runtime/io/log_sinks.hpp"
 #include "rlrun/runtime/io/model_file.hpp"
 #include "rlrun/runtime/io/run_lock.hpp"
@@ -175,6 +177,7 @@ void refusable(F&& read) {
 void read_like_the_commands(const fs::path& root, const fs::path& run) {
   refusable([&] { group_runs(read_runs({run.string()})); });   // report/plot RUN
   refusable([&] { group_runs(read_runs({root.string()})); });  // report/plot DIR
+  refusable([&] { read_agent_team(run.string()); });           // eval --model TEAM_RUN
   refusable([&] {                                              // train --resume RUN
     for (const std::string& candidate : resume_candidates(run.string()))
       refusable([&] { read_model_header(candidate); });

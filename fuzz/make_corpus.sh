@@ -102,6 +102,15 @@ def entries(replace={}):
     entries({"checkpoints": b"@@ link checkpoints\noutside"}) + b"\n@@ link config.yaml\nfifo")
 (out / "stale_temporaries").write_bytes(
     entries() + b"\n@@ file .config.yaml.Ab12Cd.tmp\nhalf\n@@ file checkpoints/step_96.zip.tmp.Xy34Zw\nhalf")
+# A per-agent run's team (runtime/io/agent_team_file.hpp): agents.json naming each agent's run
+# directory; one team as written, one whose second agent's directory is a link out of the run.
+team = (b'@@ file agents.json\n{"format": "rlrun agents", "version": 1, "env": "CartPole-v1", '
+        b'"algorithm": "PPO", "agents": [{"name": "a", "run_dir": "agents/a"}, '
+        b'{"name": "b", "run_dir": "agents/b"}]}\n'
+        b"@@ file config.yaml\nrun: {name: team}\n@@ dir agents\n@@ dir agents/a\n"
+        b"@@ file agents/a/model.zip\nPK\n")
+(out / "agent_team").write_bytes(team + b"@@ dir agents/b\n@@ file agents/b/model.zip\nPK")
+(out / "agent_team_link").write_bytes(team + b"@@ link agents/b\noutside")
 PY
 ls "$OUT"/run_dir | wc -l | sed 's/^/run_dir seeds: /'
 
