@@ -30,6 +30,19 @@ PY=${PYTHON:-/usr/bin/python3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
+# Without the generators' comments (temporary paths) and the schema reference: a route file
+# that names an XML schema is validated by default, which fails without SUMO_HOME.
+strip_route_file() {  # path
+  "$PY" - "$1" <<'STRIP'
+import re, sys
+path = sys.argv[1]
+text = open(path).read()
+text = re.sub(r"<!--.*?-->\s*", "", text, flags=re.S)
+text = re.sub(r'<routes [^>]*>', "<routes>", text, count=1)
+open(path, "w").write(text)
+STRIP
+}
+
 make_demand() {  # net dir name period-list(base) period-list(peak) extra-args...
   local net=$1 dir=$2 name=$3 base=$4 peak=$5
   shift 5
@@ -40,17 +53,8 @@ make_demand() {  # net dir name period-list(base) period-list(peak) extra-args..
     --min-distance 400 --seed 43 --validate "$@" --prefix p \
     -o "$work/$name.peak.trips.xml" -r "$dir/${name}_peak.rou.xml" >/dev/null
   rm -f "$dir"/*.rou.alt.xml
-  # Without the generators' comments (temporary paths) and the schema reference: a route file
-  # that names an XML schema is validated by default, which fails without SUMO_HOME.
   for f in "$dir/$name.rou.xml" "$dir/${name}_peak.rou.xml"; do
-    "$PY" - "$f" <<'STRIP'
-import re, sys
-path = sys.argv[1]
-text = open(path).read()
-text = re.sub(r"<!--.*?-->\s*", "", text, flags=re.S)
-text = re.sub(r'<routes [^>]*>', "<routes>", text, count=1)
-open(path, "w").write(text)
-STRIP
+    strip_route_file "$f"
   done
 }
 
@@ -110,14 +114,7 @@ make_morning_demand() {  # net dir name seed periods...
     --min-distance 400 --seed "$seed" --validate --prefix v \
     -o "$work/$name.trips.xml" -r "$dir/$name.rou.xml" >/dev/null
   rm -f "$dir"/*.rou.alt.xml
-  "$PY" - "$dir/$name.rou.xml" <<'STRIP'
-import re, sys
-path = sys.argv[1]
-text = open(path).read()
-text = re.sub(r"<!--.*?-->\s*", "", text, flags=re.S)
-text = re.sub(r'<routes [^>]*>', "<routes>", text, count=1)
-open(path, "w").write(text)
-STRIP
+  strip_route_file "$dir/$name.rou.xml"
 }
 
 # --- random25 --------------------------------------------------------------------------------

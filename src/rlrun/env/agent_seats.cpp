@@ -25,7 +25,6 @@ std::shared_ptr<SharedMultiAgentEnv> SeatTable::claim(int agent,
       throw RuntimeFailure(env->id() + " has " + std::to_string(env->num_agents()) +
                            " agents where the learners expected " + std::to_string(agents()));
     envs_.push_back(std::make_shared<SharedMultiAgentEnv>(*this, std::move(env)));
-    waiting_.push_back(&envs_.back()->round_done_);
     claims_.push_back(0);
   }
   std::shared_ptr<SharedMultiAgentEnv> shared = envs_[index];
@@ -39,7 +38,7 @@ void SeatTable::leave(int agent, const std::string& why) {
   if (stopped_.empty())
     stopped_ = "agent " + names_[agent] + "'s learner stopped (" + why +
                "), so the other agents' learners cannot step their shared env";
-  for (std::condition_variable* waiting : waiting_) waiting->notify_all();
+  changed_.notify_all();
 }
 
 SharedMultiAgentEnv::SharedMultiAgentEnv(SeatTable& table, EnvPtr env)
@@ -50,11 +49,6 @@ SharedMultiAgentEnv::SharedMultiAgentEnv(SeatTable& table, EnvPtr env)
       actions_(static_cast<size_t>(act_dim_) * table.agents(), 0.0f),
       obs_(static_cast<size_t>(obs_dim_) * table.agents(), 0.0f),
       results_(static_cast<size_t>(table.agents())) {}
-
-SharedMultiAgentEnv::~SharedMultiAgentEnv() {
-  const std::lock_guard<std::mutex> lock(table_.mutex_);
-  std::erase(table_.waiting_, &round_done_);
-}
 
 void SharedMultiAgentEnv::run_round(Op op) {
   try {
@@ -84,9 +78,9 @@ void SharedMultiAgentEnv::meet(std::unique_lock<std::mutex>& lock, int agent, Op
     arrived_ = 0;
     op_ = Op::kNone;
     ++round_;
-    round_done_.notify_all();
+    table_.changed_.notify_all();
   } else {
-    round_done_.wait(lock, [&] { return round_ != round || !table_.stopped_.empty(); });
+    table_.changed_.wait(lock, [&] { return round_ != round || !table_.stopped_.empty(); });
     if (round_ == round) throw SeatsStopped(table_.stopped_);
   }
   if (failed_round_ == round) std::rethrow_exception(failure_);

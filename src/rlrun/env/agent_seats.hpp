@@ -66,8 +66,9 @@ class SeatTable {
   friend class SharedMultiAgentEnv;
   std::vector<std::string> names_;
   std::mutex mutex_;  // guards everything below and every shared env's rendezvous
-  // Every live shared env's round_done_, for leave() (before envs_: it outlives them).
-  std::vector<std::condition_variable*> waiting_;
+  // Signalled when any shared env's round is done or a learner leaves: a seat waits at one
+  // shared env at a time, so k learners are at most k - 1 waiters (each checks its own round).
+  std::condition_variable changed_;
   // Shared env m until every agent has claimed it (then null: its seats keep it alive).
   std::vector<std::shared_ptr<SharedMultiAgentEnv>> envs_;
   std::vector<int> claims_;      // per shared env: how many agents have claimed it
@@ -79,7 +80,6 @@ class SeatTable {
 class SharedMultiAgentEnv {
  public:
   SharedMultiAgentEnv(SeatTable& table, EnvPtr env);
-  ~SharedMultiAgentEnv();
   SharedMultiAgentEnv(const SharedMultiAgentEnv&) = delete;
   SharedMultiAgentEnv& operator=(const SharedMultiAgentEnv&) = delete;
 
@@ -104,7 +104,6 @@ class SharedMultiAgentEnv {
   EnvPtr env_;
   const int obs_dim_;
   const int act_dim_;
-  std::condition_variable round_done_;
   Op op_ = Op::kNone;
   int arrived_ = 0;
   uint64_t round_ = 0;

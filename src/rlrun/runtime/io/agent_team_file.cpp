@@ -106,17 +106,18 @@ AgentTeamModels read_agent_team(const std::string& team_dir) {
       throw RuntimeFailure(shown + ": agent " + member.name + "'s run_dir \"" + member.run_dir +
                            "\" is not a relative path of plain names inside the run directory");
     // Every directory on the way is opened without following a link (DirHandle::subdir).
-    DirHandle at = DirHandle::open(team_dir);
+    const DirHandle* at = &dir;
+    std::optional<DirHandle> below;
     for (const std::string& part : *parts) {
-      std::optional<DirHandle> next = at.subdir(part);
-      if (!next)
+      below = at->subdir(part);
+      if (!below)
         throw RuntimeFailure(shown + ": agent " + member.name + "'s run directory " + team_dir +
                              "/" + member.run_dir + " does not exist");
-      at = std::move(*next);
+      at = &*below;
     }
-    if (at.kind("model.zip") != EntryKind::kRegular)
+    if (at->kind("model.zip") != EntryKind::kRegular)
       throw RuntimeFailure(shown + ": agent " + member.name + " has no model file " +
-                           at.child("model.zip") + " (a regular file, not a link)");
+                           at->child("model.zip") + " (a regular file, not a link)");
     models.model_paths.push_back(team_dir + "/" + member.run_dir + "/model.zip");
     models.team.agents.push_back(std::move(member));
   }

@@ -72,16 +72,20 @@ ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministi
   auto masks = std::make_shared<Masks>(Masks{ActionMaskReader(env.action_space()), {}, 0});
   return [&algorithm, &env, deterministic, masks](const Eigen::MatrixXf& obs,
                                                   Eigen::MatrixXf& actions) {
-    const int agents = static_cast<int>(obs.cols());
-    masks->values.resize(masks->reader.size(), agents);
-    const std::string problem = masks->reader.read(
-        env.info(), agents, {masks->values.data(), static_cast<size_t>(masks->values.size())});
-    if (!problem.empty())
-      throw RuntimeFailure(env.id() + " at step " + std::to_string(masks->calls) +
-                           " of the episodes: " + problem);
-    ++masks->calls;
+    read_env_action_masks(masks->reader, env, static_cast<int>(obs.cols()), masks->calls++,
+                          masks->values);
     algorithm.predict_masked(obs, masks->values, deterministic, actions);
   };
+}
+
+void read_env_action_masks(ActionMaskReader& reader, const Env& env, int agents, int64_t step,
+                           Eigen::MatrixXf& masks) {
+  masks.resize(reader.size(), agents);
+  const std::string problem =
+      reader.read(env.info(), agents, {masks.data(), static_cast<size_t>(masks.size())});
+  if (!problem.empty())
+    throw RuntimeFailure(env.id() + " at step " + std::to_string(step) +
+                         " of the episodes: " + problem);
 }
 
 EvalResult evaluate_policy(Algorithm& algorithm, Env& env, int n_episodes, bool deterministic,

@@ -9,6 +9,7 @@
 
 #include "rlrun/algos/algorithm.hpp"
 #include "rlrun/env.hpp"
+#include "rlrun/env/action_mask.hpp"
 
 namespace rlrun {
 
@@ -41,6 +42,12 @@ struct EvalResult {
 // from step to step and zeroes it where an episode starts (sb3-contrib's evaluate_policy passes
 // episode_starts): `start_episode` then receives the hook to call after every reset()
 // (std::logic_error when it is null).
+// The action masks `env`'s Info holds for `agents` columns into `masks` (mask size x agents),
+// read at the episodes' step `step`; a mask the env got wrong (no legal action, a missing
+// entry) is a RuntimeFailure naming the env and the step.
+void read_env_action_masks(ActionMaskReader& reader, const Env& env, int agents, int64_t step,
+                           Eigen::MatrixXf& masks);
+
 ActionFn model_action_fn(Algorithm& algorithm, const Env& env, bool deterministic,
                          std::function<void()>* start_episode = nullptr);
 

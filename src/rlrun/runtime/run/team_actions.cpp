@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "rlrun/core/errors.hpp"
 #include "rlrun/env/action_mask.hpp"
 
 namespace rlrun {
@@ -51,14 +50,8 @@ ActionFn team_action_fn(const std::vector<Algorithm*>& models, const Env& env, b
     };
   return [team, &env](const Eigen::MatrixXf& obs, Eigen::MatrixXf& actions) {
     const int agents = static_cast<int>(obs.cols());
-    if (team->any_masked) {
-      team->masks.resize(team->masks_of_env.size(), agents);
-      const std::string problem = team->masks_of_env.read(
-          env.info(), agents, {team->masks.data(), static_cast<size_t>(team->masks.size())});
-      if (!problem.empty())
-        throw RuntimeFailure(env.id() + " at step " + std::to_string(team->calls) +
-                             " of the episodes: " + problem);
-    }
+    if (team->any_masked)
+      read_env_action_masks(team->masks_of_env, env, agents, team->calls, team->masks);
     ++team->calls;
     for (int a = 0; a < agents; ++a) {
       team->column = obs.col(a);
