@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Rebuilds the model, npy, export, journal and run_dir seed corpora of the fuzz targets
+# Rebuilds the model, npy, export, journal, run_dir and sb3 seed corpora of the fuzz targets
 # (fuzz/corpus/) from tiny runs of the rlrun binary and of Optuna (the config corpus is the
 # shipped configs plus a few hand-written files). The journal seeds need Optuna 3.1 (PYTHON=...,
 # default python3).
@@ -13,8 +13,33 @@ RLRUN=$(realpath "${1:-build/rlrun}")
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 OUT=fuzz/corpus
-rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/* "$OUT"/run_dir/* "$OUT"/export/*
-mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal" "$OUT/run_dir" "$OUT/export"
+rm -f "$OUT"/model/* "$OUT"/npy/* "$OUT"/journal/* "$OUT"/run_dir/* "$OUT"/export/* "$OUT"/sb3/*
+mkdir -p "$OUT/model" "$OUT/npy" "$OUT/config" "$OUT/journal" "$OUT/run_dir" "$OUT/export" \
+  "$OUT/sb3"
+
+# The SB3 corpus (fuzz_sb3.cpp) from the real SB3 files of tests/data/sb3: each space pickle
+# (0x00 + it), each torch file of the smallest models (0x01 + it), every pickle of `data`
+# (0x02 + it). Only Python's standard zip, json and base64 modules touch them: no unpickling.
+python3 - "$OUT/sb3" <<'PY'
+import base64, json, pathlib, sys, zipfile
+out = pathlib.Path(sys.argv[1])
+for case in sorted(pathlib.Path("tests/data/sb3").iterdir()):
+    if not (case / "model.zip").exists() or case.name.startswith("evil"):
+        continue
+    with zipfile.ZipFile(case / "model.zip") as z:
+        data = json.loads(z.read("data"))
+        small = case.name in ("a2c_cartpole", "ppo_multi_input")
+        for name in ("policy.pth", "pytorch_variables.pth") if small else ():
+            (out / f"torch_{case.name}_{name}").write_bytes(b"\x01" + z.read(name))
+    for key, value in data.items():
+        if isinstance(value, dict) and ":serialized:" in value:
+            pickle = base64.b64decode(value[":serialized:"])
+            tag = b"\x00" if key.endswith("_space") else b"\x02"
+            if len(pickle) <= 4096:
+                (out / f"pickle_{case.name}_{key}").write_bytes(tag + pickle)
+PY
+ls "$OUT"/sb3 | wc -l | sed 's/^/sb3 seeds: /'
+
 
 train() {  # name config-text
   printf '%s\n' "$2" > "$WORK/$1.yaml"

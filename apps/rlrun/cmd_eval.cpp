@@ -287,7 +287,9 @@ Action add_eval(CLI::App& app, Registry& registry) {
       "separated by commas (a,b,c) are compared on the same episodes in one table; needs "
       "--env ID or --config CFG");
   policy_option->excludes(model_option);
-  sub->add_option("--env", options->env_id, "env id for --policy")->needs(policy_option);
+  sub->add_option("--env", options->env_id,
+                  "env id for --policy; with --model, the env to play (needed for an SB3 model "
+                  "file, which does not record it: docs/sb3_models.md)");
   sub->add_option("--config", options->config, "experiment file whose env --policy runs in")
       ->needs(policy_option);
   sub->add_option("--episodes", options->episodes, "number of episodes")->transform(integer_in(1));
@@ -325,6 +327,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     add_game_opponent_overrides(options->game, options->overrides);
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
+    add_model_env_override(options->env_id, options->overrides);
     if (options->model.empty())
       throw UsageError("eval needs --model FILE, or --policy P with --env ID");
     return evaluate_model(*options, registry);

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "model_player.hpp"
 #include "plugin_option.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
@@ -23,6 +24,7 @@ namespace {
 
 struct ExportOptions {
   std::string model;
+  std::string env_id;  // --env: the env of an SB3 model file (it does not record one)
   std::string format = "onnx";
   std::string output;
   bool with_value = false;
@@ -61,6 +63,9 @@ Action add_export(CLI::App& app, Registry& registry) {
       "--with-value", o->with_value,
       "onnx: add a second output `value`: V(s) for PPO/A2C, every Q-value for DQN, the first "
       "critic's Q(s, action) for SAC/TD3/DDPG, mean quantile for TQC");
+  sub->add_option("--env", o->env_id,
+                  "the env the model acts in: needed for an SB3 model file, which does not "
+                  "record it (docs/sb3_models.md)");
   add_plugin_option(sub, o->plugins);
   sub->add_option("--set", o->overrides,
                   "override a value of the model's config (a model file is untrusted: this is "
@@ -70,6 +75,7 @@ Action add_export(CLI::App& app, Registry& registry) {
   return [o, &registry]() {
     load_plugin_options(o->plugins, registry);
     check_output_directory(o->output);
+    add_model_env_override(o->env_id, o->overrides);
     // The policy graph is built on the model's env stack (its wrappers' exports) over the env's
     // spaces as the file records them: no env is built, so none of its code runs.
     const LoadedModel model =

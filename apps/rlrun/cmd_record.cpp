@@ -111,7 +111,9 @@ int run(const Options& o, Registry& registry) {
   std::optional<ModelPlayer> player;  // statistics frozen; a per-agent run's whole team
   EnvPtr env;
   if (!o.model.empty()) {
-    player = load_model_player(o.model, registry, o.overrides, o.trust);
+    std::vector<std::string> overrides = o.overrides;
+    add_model_env_override(o.env_id, overrides);
+    player = load_model_player(o.model, registry, overrides, o.trust);
   } else if (!o.config.empty()) {
     const Experiment experiment = load_experiment(o.config, o.overrides, registry);
     env = make_env(experiment.env, registry, "", unix_time_now());
@@ -157,7 +159,9 @@ Action add_record(CLI::App& app, Registry& registry) {
                   "override a value of --config, or of the model's config (a model file is "
                   "untrusted: this is how you vouch for a program or file it names; repeatable)")
       ->allow_extra_args(false);
-  sub->add_option("--env", options->env_id, "env id (with --policy random or --from-obs)");
+  sub->add_option("--env", options->env_id,
+                  "env id (with --policy random or --from-obs; with --model, the env to play: "
+                  "needed for an SB3 model file)");
   sub->add_option("--policy", options->policy,
                   "model (default with --model), random, or one that comes with the env "
                   "(fixed-time: traffic task; scripted: grasp task)");

@@ -16,6 +16,10 @@ ActionFn ModelPlayer::act(bool deterministic, std::function<void()>* start_episo
   return team_action_fn(algorithms, env(), deterministic, start_episode);
 }
 
+void add_model_env_override(const std::string& env_id, std::vector<std::string>& overrides) {
+  if (!env_id.empty()) overrides.insert(overrides.begin(), "env.id=" + env_id);
+}
+
 ModelPlayer load_model_player(const std::string& path, Registry& registry,
                               const std::vector<std::string>& overrides, bool trust) {
   ModelPlayer player;

@@ -26,6 +26,11 @@ struct ModelPlayer {
 // Loads `path` (a model file, a per-agent run directory or its agents.json) as `eval` and
 // `record` do: statistics frozen, weights within the budget, `overrides` and `trust` applied to
 // every model file. A team's models must agree on the env and the agents' number.
+// `--env ID` with `--model`: the env the model plays, as the override env.id=ID before the
+// user's --set values (an SB3 model file does not record its env; an rlrun one is played on
+// another env with the same spaces). Nothing when `env_id` is empty.
+void add_model_env_override(const std::string& env_id, std::vector<std::string>& overrides);
+
 ModelPlayer load_model_player(const std::string& path, Registry& registry,
                               const std::vector<std::string>& overrides, bool trust);
 

@@ -222,8 +222,12 @@ class Model:
         return f"<rlrun.Model {self.algorithm} on {self.env_id}, {self.num_timesteps} steps: {self.path}>"
 
 
-def load(path: str | os.PathLike, overrides=None, trust: bool = False) -> Model:
-    """Loads a model file written by ``rlrun train`` (model.zip, best_model.zip, a checkpoint).
+def load(
+    path: str | os.PathLike, overrides=None, trust: bool = False, env: str | None = None
+) -> Model:
+    """Loads a model file written by ``rlrun train`` (model.zip, best_model.zip, a checkpoint),
+    or one Stable-Baselines3 saved (``model.save(...)``; docs/sb3_models.md), which does not
+    record its env: name it with ``env="CartPole-v1"`` (as ``rlrun eval --env``).
 
     Model files are untrusted input (docs/security.md): the file is read in two phases within
     a budget its own configuration justifies, and can name no program or plugin. Problems
@@ -234,4 +238,7 @@ def load(path: str | os.PathLike, overrides=None, trust: bool = False) -> Model:
     plugin libraries) instead of vouching for each with ``overrides``; each such value is
     printed on stderr before it is used.
     """
+    overrides = list(overrides or [])
+    if env is not None:  # before the caller's own, as rlrun eval puts --env before --set
+        overrides.insert(0, "env.id=" + str(env))
     return Model(path, overrides, trust)

@@ -77,41 +77,69 @@ ZipReader::ZipReader(const std::string& path) : path_(path) {
     throw RuntimeFailure(path + ": not a readable model file (" + why + ")");
   }
   try {
-    const zip_int64_t count = zip_get_num_entries(zip_, 0);
-    if (count < 0 || static_cast<uint64_t>(count) > kMaxZipMembers)
-      throw RuntimeFailure(path + ": holds " + std::to_string(count) + " members, more than the " +
-                           std::to_string(kMaxZipMembers) + " a model file may have");
-    std::set<std::string> seen;
-    entries_.reserve(static_cast<size_t>(count));
-    for (zip_int64_t i = 0; i < count; ++i) {
-      zip_stat_t st;
-      zip_stat_init(&st);
-      if (zip_stat_index(zip_, static_cast<zip_uint64_t>(i), 0, &st) != 0)
-        throw RuntimeFailure(path + ": cannot read member " + std::to_string(i) + " (" +
-                             zip_strerror(zip_) + ")");
-      const uint64_t needed = ZIP_STAT_NAME | ZIP_STAT_SIZE | ZIP_STAT_COMP_METHOD;
-      if ((st.valid & needed) != needed || !st.name)
-        throw RuntimeFailure(path + ": member " + std::to_string(i) + " has no name or size");
-      ZipEntry entry;
-      entry.index = static_cast<uint64_t>(i);
-      entry.name = st.name;  // a copy: libzip's string lives only as long as the archive
-      entry.size = st.size;
-      entry.method = st.comp_method;
-      entry.encrypted =
-          (st.valid & ZIP_STAT_ENCRYPTION_METHOD) && st.encryption_method != ZIP_EM_NONE;
-      const std::string problem = name_problem(entry.name);
-      if (!problem.empty())
-        throw RuntimeFailure(path + ": member '" + printable_name(entry.name) + "' has " + problem +
-                             "; not a model file written by rlrun");
-      if (!seen.insert(entry.name).second)
-        throw RuntimeFailure(path + ": member '" + printable_name(entry.name) +
-                             "' appears twice; not a model file written by rlrun");
-      entry.directory = entry.name.back() == '/';
-      entries_.push_back(std::move(entry));
-    }
+    list_members();
   } catch (...) {
     zip_discard(zip_);
     throw;
+  }
+}
+
+ZipReader::ZipReader(std::vector<uint8_t> bytes, const std::string& name)
+    : path_(name), memory_(std::move(bytes)) {
+  zip_error_t error;
+  zip_error_init(&error);
+  zip_source_t* source = zip_source_buffer_create(memory_.data(), memory_.size(), 0, &error);
+  if (source) {
+    zip_ = zip_open_from_source(source, ZIP_RDONLY, &error);
+    if (!zip_) zip_source_free(source);  // zip_open_from_source keeps it only on success
+  }
+  if (!zip_) {
+    const std::string why = zip_error_strerror(&error);
+    zip_error_fini(&error);
+    throw RuntimeFailure(name + ": not a readable zip archive (" + why + ")");
+  }
+  zip_error_fini(&error);
+  try {
+    list_members();
+  } catch (...) {
+    zip_discard(zip_);
+    throw;
+  }
+}
+
+void ZipReader::list_members() {
+  const std::string& path = path_;
+  const zip_int64_t count = zip_get_num_entries(zip_, 0);
+  if (count < 0 || static_cast<uint64_t>(count) > kMaxZipMembers)
+    throw RuntimeFailure(path + ": holds " + std::to_string(count) + " members, more than the " +
+                         std::to_string(kMaxZipMembers) + " a model file may have");
+  std::set<std::string> seen;
+  entries_.reserve(static_cast<size_t>(count));
+  for (zip_int64_t i = 0; i < count; ++i) {
+    zip_stat_t st;
+    zip_stat_init(&st);
+    if (zip_stat_index(zip_, static_cast<zip_uint64_t>(i), 0, &st) != 0)
+      throw RuntimeFailure(path + ": cannot read member " + std::to_string(i) + " (" +
+                           zip_strerror(zip_) + ")");
+    const uint64_t needed = ZIP_STAT_NAME | ZIP_STAT_SIZE | ZIP_STAT_COMP_METHOD;
+    if ((st.valid & needed) != needed || !st.name)
+      throw RuntimeFailure(path + ": member " + std::to_string(i) + " has no name or size");
+    ZipEntry entry;
+    entry.index = static_cast<uint64_t>(i);
+    entry.name = st.name;  // a copy: libzip's string lives only as long as the archive
+    entry.size = st.size;
+    entry.method = st.comp_method;
+    entry.encrypted =
+        (st.valid & ZIP_STAT_ENCRYPTION_METHOD) && st.encryption_method != ZIP_EM_NONE;
+    const std::string problem = name_problem(entry.name);
+    if (!problem.empty())
+      throw RuntimeFailure(path + ": member '" + printable_name(entry.name) + "' has " + problem +
+                           "; not a model file written by rlrun");
+    if (!seen.insert(entry.name).second)
+      throw RuntimeFailure(path + ": member '" + printable_name(entry.name) +
+                           "' appears twice; not a model file written by rlrun");
+    entry.directory = entry.name.back() == '/';
+    entries_.push_back(std::move(entry));
   }
 }
 

@@ -39,6 +39,9 @@ class ZipReader {
  public:
   // Opens and checks the member list. Throws RuntimeFailure.
   explicit ZipReader(const std::string& path);
+  // An archive held in memory (a zip inside a zip: torch's files inside SB3's, core/
+  // torch_state_dict.hpp), with the same checks; `name` stands for its path in messages.
+  ZipReader(std::vector<uint8_t> bytes, const std::string& name);
   ~ZipReader();
   ZipReader(const ZipReader&) = delete;
   ZipReader& operator=(const ZipReader&) = delete;
@@ -55,7 +58,10 @@ class ZipReader {
 
  private:
   friend class ZipMemberReader;
+  void list_members();  // the checks at the top of this file
+
   std::string path_;
+  std::vector<uint8_t> memory_;  // the archive's bytes when opened from memory
   zip_t* zip_ = nullptr;
   std::vector<ZipEntry> entries_;
 };

@@ -77,8 +77,8 @@ double wrap(double x, double m, double big_m) {
 double bound(double x, double m, double big_m) { return std::min(std::max(x, m), big_m); }
 
 // np_random.uniform(-0.1, 0.1, size=(4,)).astype(np.float32): the start state is float32.
-bool initial_state(Rng& rng, std::span<double> state) {
-  for (double& s : state) s = static_cast<float>(rng.uniform(-kResetBound, kResetBound));
+bool initial_state(NumpyRandom& np_random, std::span<double> state) {
+  for (double& s : state) s = static_cast<float>(np_random.uniform(-kResetBound, kResetBound));
   return true;
 }
 

@@ -32,8 +32,8 @@ Space make_observation_space() {
 }
 
 // np_random.uniform(low=-0.05, high=0.05, size=(4,))
-bool initial_state(Rng& rng, std::span<double> state) {
-  for (double& s : state) s = rng.uniform(-kResetBound, kResetBound);
+bool initial_state(NumpyRandom& np_random, std::span<double> state) {
+  for (double& s : state) s = np_random.uniform(-kResetBound, kResetBound);
   return false;
 }
 

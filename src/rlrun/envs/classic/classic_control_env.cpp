@@ -20,7 +20,7 @@ void ClassicControlEnv::reset(std::optional<uint64_t> seed, std::span<float> obs
   seeding_.on_reset(seed);
   info_.clear();
   state_is_float32_ = spec_.initial_state(
-      rng(), std::span<double>(state_.data(), static_cast<size_t>(state_dim())));
+      np_random(), std::span<double>(state_.data(), static_cast<size_t>(state_dim())));
   last_action_ = std::numeric_limits<double>::quiet_NaN();  // e.g. pendulum.py's last_u = None
   reset_bookkeeping();
   has_state_ = true;

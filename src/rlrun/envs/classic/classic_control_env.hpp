@@ -1,7 +1,8 @@
 #pragma once
 // Shared base of the five classic-control envs (gymnasium/envs/classic_control/*.py).
-// It owns what they all have in common: the two spaces, the env's own Rng with Gymnasium's
-// seeding rules, an (empty) Info, the id and picture size, and the flat float64 physical state
+// It owns what they all have in common: the two spaces, the env's own np_random with
+// Gymnasium's seeding rules and numpy's stream (env/gymnasium_seeding.hpp: reset(seed=s) draws
+// Gymnasium's initial state for s), an (empty) Info, the id and picture size, and the flat float64 physical state
 // (`state_`, in Gymnasium's `env.unwrapped.state` order) that tests can read and overwrite the
 // way Gymnasium code does with `env.unwrapped.state = ...`. The reference replay
 // (tests/envs/test_gym_reference.cpp) relies on that to start every recorded episode from
@@ -15,9 +16,9 @@
 #include <string>
 
 #include "rlrun/env.hpp"
-#include "rlrun/env_seeding.hpp"
+#include "rlrun/env/gymnasium_seeding.hpp"
+#include "rlrun/env/numpy_random.hpp"
 #include "rlrun/info.hpp"
-#include "rlrun/rng.hpp"
 #include "rlrun/space.hpp"
 
 namespace rlrun {
@@ -30,9 +31,9 @@ struct ClassicSpec {
   // Gymnasium's state array is float32 at times (Acrobot right after reset(),
   // MountainCarContinuous after a step): such envs track the dtype, saved with the state.
   bool tracks_float32_state;
-  // The reset() body after super().reset(): the initial state drawn from the env's Rng;
+  // The reset() body after super().reset(): the initial state drawn from the env's np_random;
   // returns whether Gymnasium holds it as float32.
-  bool (*initial_state)(Rng& rng, std::span<double> state);
+  bool (*initial_state)(NumpyRandom& np_random, std::span<double> state);
   // The float32 observation of a state.
   void (*observation)(std::span<const double> state, std::span<float> obs);
   // The picture of a state (Gymnasium's render(), <env>_render.cpp); `last_action` is the
@@ -52,8 +53,8 @@ class ClassicControlEnv : public Env {
   std::string id() const override { return spec_.id; }
   RenderSpec render_spec() const override { return spec_.render; }
 
-  // gymnasium/core.py Env.reset(seed=...): a seed reseeds the env's Rng; no seed continues
-  // its stream, except that the very first reset without any seed draws one from
+  // gymnasium/core.py Env.reset(seed=...): a seed reseeds the env's np_random; no seed
+  // continues its stream, except that the very first reset without any seed draws one from
   // std::random_device (Gymnasium seeds np_random from OS entropy in that case).
   void reset(std::optional<uint64_t> seed, std::span<float> obs) final;
 
@@ -66,7 +67,7 @@ class ClassicControlEnv : public Env {
   // (float32 or float64, see ClassicSpec). Throws std::invalid_argument on a wrong size.
   void set_state(std::span<const double> state, std::span<float> obs);
 
-  Rng& rng() { return seeding_.rng(); }
+  NumpyRandom& np_random() { return seeding_.random(); }
 
   // Rendering (Gymnasium's render_mode="rgb_array", drawn like its pygame code). render()
   // draws the current state and throws std::logic_error before the first reset();
@@ -75,7 +76,7 @@ class ClassicControlEnv : public Env {
   bool render(Frame& frame) const override;
   bool render_observation(std::span<const float> obs, Frame& frame) const override;
 
-  // Resume: the Rng, the seeding/reset flags, the physical state (and its dtype) and each
+  // Resume: np_random, the seeding/reset flags, the physical state (and its dtype) and each
   // env's extra bookkeeping (write_extra_state), so a restored env continues bit-identically.
   bool can_save_state() const override { return true; }
   void write_state(StateWriter& out) const override;
@@ -112,7 +113,7 @@ class ClassicControlEnv : public Env {
 
  private:
   ClassicSpec spec_;
-  EnvSeeding seeding_;
+  GymnasiumSeeding seeding_;
   bool has_state_ = false;
 };
 

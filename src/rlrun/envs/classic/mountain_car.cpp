@@ -15,8 +15,8 @@ constexpr double kGravity = 0.0025;
 
 }  // namespace
 
-bool mountain_car_initial_state(Rng& rng, std::span<double> state) {
-  state[0] = rng.uniform(-0.6, -0.4);
+bool mountain_car_initial_state(NumpyRandom& np_random, std::span<double> state) {
+  state[0] = np_random.uniform(-0.6, -0.4);
   state[1] = 0.0;
   return false;
 }

@@ -26,7 +26,7 @@ struct MountainCarConfig {
 inline constexpr double kMountainCarMinPosition = -1.2;
 inline constexpr double kMountainCarMaxPosition = 0.6;
 inline constexpr double kMountainCarMaxSpeed = 0.07;
-bool mountain_car_initial_state(Rng& rng, std::span<double> state);
+bool mountain_car_initial_state(NumpyRandom& np_random, std::span<double> state);
 void mountain_car_observation(std::span<const double> state, std::span<float> obs);
 Space mountain_car_observation_space();
 

@@ -34,9 +34,9 @@ double angle_normalize(double x) {
 }
 
 // theta ~ U(-pi, pi), theta_dot ~ U(-1, 1) (DEFAULT_X, DEFAULT_Y).
-bool initial_state(Rng& rng, std::span<double> state) {
-  state[0] = rng.uniform(-kResetTheta, kResetTheta);
-  state[1] = rng.uniform(-kResetThetaDot, kResetThetaDot);
+bool initial_state(NumpyRandom& np_random, std::span<double> state) {
+  state[0] = np_random.uniform(-kResetTheta, kResetTheta);
+  state[1] = np_random.uniform(-kResetThetaDot, kResetThetaDot);
   return false;
 }
 

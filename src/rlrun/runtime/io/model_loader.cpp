@@ -1,9 +1,12 @@
 #include "rlrun/runtime/io/model_loader.hpp"
 
+#include <cstdio>
+
 #include "rlrun/core/errors.hpp"
 #include "rlrun/runtime/experiment/env_factory.hpp"
 #include "rlrun/runtime/experiment/env_statistics.hpp"
 #include "rlrun/runtime/io/model_budget.hpp"
+#include "rlrun/runtime/io/sb3/sb3_model_file.hpp"
 
 namespace rlrun {
 
@@ -106,11 +109,53 @@ EnvPtr model_env(const ModelFile& model, const Experiment& experiment, const Reg
   return make_env(experiment.env, registry, "", unix_time_now());
 }
 
+// The env id the user gave for a model file that does not record one (an SB3 file): the last
+// `env.id=ID` override, which the commands' --env ID adds.
+std::string overridden_env_id(const std::vector<std::string>& overrides) {
+  std::string id;
+  for (const std::string& o : overrides)
+    if (o.starts_with("env.id=")) id = o.substr(7);
+  return id;
+}
+
+// An SB3 file is read whole (its weights are in torch's format, not in members of their own).
+ModelFile read_sb3_model_for(const std::string& path, const std::vector<std::string>& overrides) {
+  const std::string env_id = overridden_env_id(overrides);
+  if (env_id.empty())
+    throw RuntimeFailure(path +
+                         " is an SB3 model file, which does not record the env it was trained "
+                         "on: name it with --env ID (for example --env CartPole-v1)");
+  return read_sb3_model(path, env_id);
+}
+
+// SB3 files from gym's days record observation bounds Gymnasium has changed since (CartPole's
+// velocity bounds were float32's largest value, now infinity; LunarLander's were infinite, now
+// finite). SB3's predict does not read observation bounds and rl_zoo3.enjoy plays such files
+// without a space check, so a Box of the same shape and dtype is taken as the env's, with a
+// note. Image boxes (uint8) and action spaces must match exactly: their bounds matter.
+void adopt_observation_bounds(ModelFile& model, const Space& env_space) {
+  if (model.meta.observation_space == env_space.describe() || !env_space.is_box() ||
+      env_space.dtype() != BoxDtype::kFloat32 || !model.meta.env_spaces)
+    return;
+  const Space& recorded = model.meta.env_spaces->observation;
+  if (!recorded.is_box() || recorded.dtype() != BoxDtype::kFloat32 ||
+      recorded.shape() != env_space.shape() || model.meta.observation_space != recorded.describe())
+    return;
+  std::fprintf(stderr,
+               "note: %s records observations %s, the env has %s: the same shape and dtype, "
+               "played as SB3's predict plays it\n",
+               model.path.c_str(), model.meta.observation_space.c_str(),
+               env_space.describe().c_str());
+  model.meta.observation_space = env_space.describe();
+  model.meta.env_spaces->observation = env_space;
+}
+
 LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
                                  const std::vector<std::string>& overrides, const ModelTrust& trust,
                                  ModelEnv use) {
   LoadedModel loaded;
-  loaded.file = read_model_header(path);
+  const bool sb3 = is_sb3_model_file(path);
+  loaded.file = sb3 ? read_sb3_model_for(path, overrides) : read_model_header(path);
   const ModelFile& model = loaded.file;
   // Without recorded spaces the env must say them, so this program must have it (the deploy
   // library's registry holds no env).
@@ -126,11 +171,13 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
   loaded.experiment = experiment_from_model(model, registry, overrides, trust, use);
   // make_model_env's env, before its statistics are read.
   loaded.env = model_env(model, loaded.experiment, registry, use);
+  if (sb3) adopt_observation_bounds(loaded.file, loaded.env->observation_space());
   loaded.algorithm =
       make_model_algorithm(model, loaded.experiment, registry, loaded.env->observation_space(),
                            loaded.env->action_space());
-  read_model_tensors(loaded.file, ModelParts::kModel,
-                     model_tensor_budget(*loaded.algorithm, *loaded.env));
+  if (!sb3)
+    read_model_tensors(loaded.file, ModelParts::kModel,
+                       model_tensor_budget(*loaded.algorithm, *loaded.env));
   load_weights(model, *loaded.algorithm);
   load_frozen_statistics(model, *loaded.env);
   return loaded;

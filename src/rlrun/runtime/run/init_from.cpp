@@ -5,11 +5,15 @@
 #include "rlrun/runtime/experiment/env_statistics.hpp"
 #include "rlrun/runtime/io/model_budget.hpp"
 #include "rlrun/runtime/io/model_file.hpp"
+#include "rlrun/runtime/io/sb3/sb3_model_file.hpp"
 
 namespace rlrun {
 
 std::string initialize_from_model(const std::string& path, Algorithm& algorithm, VecEnv& env) {
-  ModelFile model = read_model_header(path);
+  // An SB3 file holds no env id: it is read as a model of this run's env, whose spaces must
+  // then be the file's.
+  const bool sb3 = is_sb3_model_file(path);
+  ModelFile model = sb3 ? read_sb3_model(path, env.env(0).id()) : read_model_header(path);
   const std::string refused = "cannot initialise from " + path + ": ";
   if (model.meta.algorithm != algorithm.id())
     throw UsageError(refused + "it holds a " + model.meta.algorithm + " model, this run trains " +
@@ -22,7 +26,8 @@ std::string initialize_from_model(const std::string& path, Algorithm& algorithm,
                      ", this run's env takes " + env.action_space().describe());
   // The run's algorithm must take the file's weights, so its size bounds what is read (the
   // statistics: env 0's, which every env shares).
-  read_model_tensors(model, ModelParts::kModel, model_tensor_budget(algorithm, env.env(0)));
+  if (!sb3)
+    read_model_tensors(model, ModelParts::kModel, model_tensor_budget(algorithm, env.env(0)));
   try {
     algorithm.load(model.tensors);
   } catch (const std::exception& e) {

@@ -1,0 +1,375 @@
+#include "rlrun/runtime/io/sb3/sb3_model_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "rlrun/core/base64.hpp"
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/pickle_reader.hpp"
+#include "rlrun/core/quoted_text.hpp"
+#include "rlrun/core/torch_state_dict.hpp"
+#include "rlrun/core/zip_reader.hpp"
+#include "rlrun/runtime/io/non_finite_check.hpp"
+#include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
+#include "rlrun/runtime/io/sb3/sb3_vec_normalize.hpp"
+
+namespace rlrun {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// `data` is a few KiB (a few MiB with a large _last_obs); policy.pth holds the weights.
+constexpr uint64_t kMaxDataBytes = uint64_t{64} << 20;
+// The zoo's largest policies (Atari CnnPolicy) are under 20 MiB.
+constexpr uint64_t kMaxPolicyBytes = uint64_t{256} << 20;
+constexpr uint64_t kMaxVariablesBytes = uint64_t{1} << 20;
+
+// What the policy class says: which family of algorithms (sb3-contrib's QR-DQN and TQC are
+// DQN's and SAC's with quantile heads).
+enum class PolicyFamily { kActorCritic, kDqn, kQrDqn, kSac, kTqc, kTd3 };
+
+bool has_sde(PolicyFamily family) {
+  return family == PolicyFamily::kActorCritic || family == PolicyFamily::kSac ||
+         family == PolicyFamily::kTqc;
+}
+bool entropy_regularized(PolicyFamily family) {
+  return family == PolicyFamily::kSac || family == PolicyFamily::kTqc;
+}
+
+class Sb3Reader {
+ public:
+  Sb3Reader(const std::string& path, const std::string& env_id)
+      : path_(path), env_id_(env_id), archive_(path) {}
+
+  ModelFile read() {
+    data_ = parse_data();
+    const PolicyFamily family = policy_family();
+    if (uses_sde() && !has_sde(family)) fail("it says use_sde=True for a policy without gSDE");
+    const Space observation_space = space("observation_space");
+    const Space action_space = space("action_space");
+    ModelFile model;
+    model.path = path_;
+    model.tensors = policy_tensors(family);
+    model.meta.algorithm = algorithm(family);
+    model.meta.env_id = env_id_;
+    model.meta.observation_space = observation_space.describe();
+    model.meta.action_space = action_space.describe();
+    // No wrappers: the env's spaces are the agent's (how it draws is not recorded).
+    model.meta.env_spaces = EnvSpaces{observation_space, action_space, 1, {}};
+    if (data_.contains("num_timesteps") && data_["num_timesteps"].is_number_integer())
+      model.meta.num_timesteps = data_["num_timesteps"].get<int64_t>();
+    // VecNormalize's statistics beside the model become rlrun's env.normalize, frozen in play.
+    std::optional<NormalizeSetting> normalize;
+    if (const std::optional<std::string> pkl = find_sb3_vec_normalize(path_)) {
+      Sb3VecNormalize vec_normalize = read_sb3_vec_normalize(*pkl, observation_space.flat_dim());
+      normalize = vec_normalize.setting;
+      model.wrapper_statistics = std::move(vec_normalize.statistics);
+      // SB3 keeps the env's space; the policy of rlrun's env.normalize sees the normalised one
+      // (wrappers/normalize_observation.cpp).
+      if (normalize->norm_obs && observation_space.is_box()) {
+        const float clip = static_cast<float>(normalize->clip_obs);
+        model.meta.observation_space =
+            Space::box(-clip, clip, observation_space.shape()).describe();
+      }
+    }
+    model.config_yaml =
+        config_yaml(family, model.meta.algorithm, model.tensors, action_space, normalize);
+    const std::string problem = describe_non_finite(model.tensors);
+    if (!problem.empty()) fail(problem);
+    return model;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw RuntimeFailure(path_ + ": " + why + " (an SB3 model file: docs/sb3_models.md)");
+  }
+
+  Json parse_data() {
+    const ZipEntry* entry = archive_.find("data");
+    if (!entry) fail("no `data` member");
+    const std::vector<uint8_t> bytes = archive_.read(*entry, kMaxDataBytes);
+    Json data = Json::parse(bytes.begin(), bytes.end(), nullptr, /*allow_exceptions=*/false);
+    if (!data.is_object()) fail("its `data` member is not a JSON object");
+    return data;
+  }
+
+  // A cloudpickled entry of `data`: {":type:": ..., ":serialized:": base64, ...}.
+  PickleDocument pickled(const char* key, const PickleGlobalFilter& allowed) const {
+    const auto found = data_.find(key);
+    if (found == data_.end() || !found->is_object() || !found->contains(":serialized:") ||
+        !(*found)[":serialized:"].is_string())
+      fail(std::string("its `data` has no serialized '") + key + "'");
+    const std::optional<std::vector<uint8_t>> bytes =
+        decode_base64((*found)[":serialized:"].get_ref<const std::string&>());
+    if (!bytes) fail(std::string("'") + key + "' in `data` is not base64");
+    return read_pickle(bytes->data(), bytes->size(), path_ + ": data['" + key + "']", allowed);
+  }
+
+  PolicyFamily policy_family() {
+    // The class is only compared with SB3's names, never imported: any SB3 or sb3-contrib name
+    // may appear, nothing else.
+    const PickleDocument document =
+        pickled("policy_class", [](const std::string& module, const std::string&) {
+          return module.starts_with("stable_baselines3.") || module.starts_with("sb3_contrib.");
+        });
+    const PickleValue& c = document.root();
+    if (c.kind != PickleKind::kGlobal) fail("its policy_class is not a class");
+    if (c.text.find("Cnn") != std::string::npos)
+      fail("its policy is " + c.text + ": rlrun reads MlpPolicy and MultiInputPolicy files");
+    static const std::map<std::pair<std::string, std::string>, PolicyFamily> known = {
+        {{"stable_baselines3.common.policies", "ActorCriticPolicy"}, PolicyFamily::kActorCritic},
+        {{"stable_baselines3.common.policies", "MultiInputActorCriticPolicy"},
+         PolicyFamily::kActorCritic},
+        {{"stable_baselines3.dqn.policies", "DQNPolicy"}, PolicyFamily::kDqn},
+        {{"stable_baselines3.dqn.policies", "MultiInputPolicy"}, PolicyFamily::kDqn},
+        {{"stable_baselines3.sac.policies", "SACPolicy"}, PolicyFamily::kSac},
+        {{"stable_baselines3.sac.policies", "MultiInputPolicy"}, PolicyFamily::kSac},
+        {{"stable_baselines3.td3.policies", "TD3Policy"}, PolicyFamily::kTd3},
+        {{"stable_baselines3.td3.policies", "MultiInputPolicy"}, PolicyFamily::kTd3},
+        {{"sb3_contrib.qrdqn.policies", "QRDQNPolicy"}, PolicyFamily::kQrDqn},
+        {{"sb3_contrib.qrdqn.policies", "MultiInputPolicy"}, PolicyFamily::kQrDqn},
+        {{"sb3_contrib.tqc.policies", "TQCPolicy"}, PolicyFamily::kTqc},
+        {{"sb3_contrib.tqc.policies", "MultiInputPolicy"}, PolicyFamily::kTqc},
+    };
+    const auto found = known.find({c.module, c.text});
+    if (found == known.end())
+      fail("its policy class is " + c.module + "." + c.text +
+           "; rlrun reads the MlpPolicy and MultiInputPolicy of PPO, A2C, DQN, SAC, TD3, DDPG, "
+           "and sb3-contrib's QR-DQN and TQC");
+    return found->second;
+  }
+
+  std::string algorithm(PolicyFamily family) const {
+    switch (family) {
+      case PolicyFamily::kActorCritic: return data_.contains("clip_range") ? "PPO" : "A2C";
+      case PolicyFamily::kDqn: return "DQN";
+      case PolicyFamily::kQrDqn: return "QRDQN";
+      case PolicyFamily::kSac: return "SAC";
+      case PolicyFamily::kTqc: return "TQC";
+      case PolicyFamily::kTd3: {
+        // DDPG is TD3 with policy_delay=1, target_policy_noise=0.1, target_noise_clip=0
+        // (stable_baselines3/ddpg/ddpg.py).
+        const bool ddpg = data_.value("policy_delay", Json()) == 1 &&
+                          data_.value("target_noise_clip", Json()) == 0.0;
+        return ddpg ? "DDPG" : "TD3";
+      }
+    }
+    return "";
+  }
+
+  Space space(const char* key) const {
+    const PickleDocument document = pickled(key, is_sb3_space_global);
+    return sb3_space(document.root(), path_ + ": data['" + key + "']");
+  }
+
+  TensorMap torch_member(const char* name, uint64_t max_bytes, bool required) const {
+    const ZipEntry* entry = archive_.find(name);
+    if (!entry) {
+      if (required) fail(std::string("no ") + name + " member");
+      return {};
+    }
+    return read_torch_tensors(archive_.read(*entry, max_bytes), archive_.describe(*entry),
+                              max_bytes);
+  }
+
+  // DQNPolicy.q_net is a QNetwork whose Sequential is also named q_net (QR-DQN's quantile_net
+  // likewise): q_net.q_net.0.weight is rlrun's q_net.0.weight. Every other name is rlrun's.
+  static std::string rlrun_name(PolicyFamily family, const std::string& name) {
+    const char* net = family == PolicyFamily::kDqn     ? "q_net"
+                      : family == PolicyFamily::kQrDqn ? "quantile_net"
+                                                       : nullptr;
+    if (!net) return name;
+    for (const std::string& owner : {std::string(net), std::string(net) + "_target"}) {
+      const std::string nested = owner + "." + net + ".";
+      if (name.starts_with(nested)) return owner + "." + name.substr(nested.size());
+    }
+    return name;
+  }
+
+  bool uses_sde() const { return data_.contains("use_sde") && data_["use_sde"] == true; }
+
+  // SB3's state_dict under rlrun's names (algos/*: save/load write SB3's names).
+  TensorMap policy_tensors(PolicyFamily family) const {
+    TensorMap sb3 = torch_member("policy.pth", kMaxPolicyBytes, true);
+    TensorMap out;
+    for (auto& [name, tensor] : sb3) {
+      if (tensor.dtype != DType::kFloat32)
+        fail("tensor '" + quoted_text(name) + "' is not float32");
+      out[rlrun_name(family, name)] = std::move(tensor);
+    }
+    if (entropy_regularized(family)) {
+      // SB3 before 1.0 named the file tensors.pth.
+      TensorMap variables = torch_member("pytorch_variables.pth", kMaxVariablesBytes, false);
+      if (variables.empty()) variables = torch_member("tensors.pth", kMaxVariablesBytes, false);
+      if (variables.count("log_ent_coef")) out["log_ent_coef"] = variables["log_ent_coef"];
+    }
+    return out;
+  }
+
+  // Output sizes of the Linear layers `<prefix>0`, `<prefix>2`, ... (a torch Sequential whose
+  // odd entries are activations), in order.
+  static std::vector<int> layer_widths(const TensorMap& tensors, const std::string& prefix) {
+    std::vector<int> widths;
+    for (int index = 0;; index += 2) {
+      const auto found = tensors.find(prefix + std::to_string(index) + ".weight");
+      if (found == tensors.end() || found->second.shape.size() != 2) return widths;
+      widths.push_back(static_cast<int>(found->second.shape[0]));
+    }
+  }
+  static std::vector<int> hidden_widths(const TensorMap& tensors, const std::string& prefix) {
+    std::vector<int> widths = layer_widths(tensors, prefix);
+    if (!widths.empty()) widths.pop_back();  // the output layer
+    return widths;
+  }
+  static int count_critics(const TensorMap& tensors) {
+    int n = 0;
+    while (tensors.count("critic.qf" + std::to_string(n) + ".0.weight")) ++n;
+    return n;
+  }
+
+  // An attribute of policy_kwargs: SB3 writes the dict as JSON, or (when it holds classes) as
+  // a serialized entry beside which each attribute is JSON or its str().
+  std::optional<Json> policy_kwarg(const char* name) const {
+    const auto kwargs = data_.find("policy_kwargs");
+    if (kwargs == data_.end() || !kwargs->is_object() || !kwargs->contains(name))
+      return std::nullopt;
+    return (*kwargs)[name];
+  }
+
+  // "<class 'torch.nn.modules.activation.ReLU'>" -> "relu".
+  std::string activation(PolicyFamily family) const {
+    const std::optional<Json> value = policy_kwarg("activation_fn");
+    if (!value) return family == PolicyFamily::kActorCritic ? "tanh" : "relu";
+    static const std::map<std::string, std::string> names = {{"Tanh", "tanh"},
+                                                             {"ReLU", "relu"},
+                                                             {"ELU", "elu"},
+                                                             {"LeakyReLU", "leaky_relu"},
+                                                             {"GELU", "gelu"}};
+    const std::string text = value->is_string() ? value->get<std::string>() : "";
+    const std::string prefix = "<class 'torch.nn.modules.activation.";
+    if (text.starts_with(prefix) && text.ends_with("'>")) {
+      const auto found = names.find(text.substr(prefix.size(), text.size() - prefix.size() - 2));
+      if (found != names.end()) return found->second;
+    }
+    fail("its activation_fn '" + quoted_text(value->dump()) +
+         "' is not one rlrun has (torch.nn Tanh, ReLU, ELU, LeakyReLU, GELU)");
+  }
+
+  void check_extractor() const {
+    const std::optional<Json> value = policy_kwarg("features_extractor_class");
+    if (!value) return;
+    const std::string text = value->is_string() ? value->get<std::string>() : value->dump();
+    for (const char* ok : {"torch_layers.FlattenExtractor'>", "torch_layers.CombinedExtractor'>"})
+      if (text.ends_with(ok)) return;
+    fail("its features extractor is '" + quoted_text(text) +
+         "'; rlrun reads SB3's FlattenExtractor and CombinedExtractor");
+  }
+
+  // The networks' sizes, read off the weights.
+  YAML::Node policy_node(PolicyFamily family, const TensorMap& tensors,
+                         const Space& action_space) const {
+    YAML::Node policy;
+    YAML::Node net_arch;
+    switch (family) {
+      case PolicyFamily::kActorCritic:
+        net_arch["pi"] = layer_widths(tensors, "mlp_extractor.policy_net.");
+        net_arch["vf"] = layer_widths(tensors, "mlp_extractor.value_net.");
+        break;
+      case PolicyFamily::kDqn: net_arch = hidden_widths(tensors, "q_net."); break;
+      case PolicyFamily::kQrDqn: {
+        net_arch = hidden_widths(tensors, "quantile_net.");
+        // The head outputs n_quantiles per action.
+        const std::vector<int> all = layer_widths(tensors, "quantile_net.");
+        const int actions = action_space.is_discrete() ? static_cast<int>(action_space.n()) : 0;
+        if (all.empty() || actions <= 0 || all.back() % actions != 0)
+          fail("its quantile network does not fit its action space");
+        policy["n_quantiles"] = all.back() / actions;
+        break;
+      }
+      case PolicyFamily::kSac:
+      case PolicyFamily::kTqc:
+      case PolicyFamily::kTd3: {
+        net_arch["pi"] = family == PolicyFamily::kTd3 ? hidden_widths(tensors, "actor.mu.")
+                                                      : layer_widths(tensors, "actor.latent_pi.");
+        net_arch["qf"] = hidden_widths(tensors, "critic.qf0.");
+        policy["n_critics"] = count_critics(tensors);
+        const std::vector<int> critic = layer_widths(tensors, "critic.qf0.");
+        if (family == PolicyFamily::kTqc && !critic.empty()) policy["n_quantiles"] = critic.back();
+        break;
+      }
+    }
+    policy["net_arch"] = net_arch;
+    policy["activation_fn"] = activation(family);
+    if (const std::optional<Json> v = policy_kwarg("normalize_images"); v && v->is_boolean())
+      policy["normalize_images"] = v->get<bool>();
+    return policy;
+  }
+
+  // gSDE (use_sde=True): the policy_kwargs that shape it (stable_baselines3/common/
+  // distributions.py StateDependentNoiseDistribution; SAC's Actor clip_mean), SB3's defaults
+  // where the file has none.
+  void add_sde(PolicyFamily family, YAML::Node& algo, YAML::Node& policy) const {
+    algo["use_sde"] = true;
+    if (data_.contains("sde_sample_freq") && data_["sde_sample_freq"].is_number_integer())
+      algo["sde_sample_freq"] = data_["sde_sample_freq"].get<int64_t>();
+    for (const char* flag : {"full_std", "use_expln"})
+      if (const std::optional<Json> v = policy_kwarg(flag); v && v->is_boolean())
+        policy[flag] = v->get<bool>();
+    if (const std::optional<Json> v = policy_kwarg("log_std_init"); v && v->is_number())
+      policy["log_std_init"] = v->get<double>();
+    if (entropy_regularized(family)) {
+      const std::optional<Json> v = policy_kwarg("clip_mean");
+      policy["clip_mean"] = v && v->is_number() ? v->get<double>() : 2.0;  // SB3's Actor default
+    }
+  }
+
+  std::string config_yaml(PolicyFamily family, const std::string& algo, const TensorMap& tensors,
+                          const Space& action_space,
+                          const std::optional<NormalizeSetting>& normalize) const {
+    check_extractor();
+    YAML::Node root;
+    root["run"]["name"] = "sb3_model";
+    root["env"]["id"] = env_id_;
+    if (normalize) root["env"]["normalize"] = encode(*normalize);
+    root["algo"]["id"] = algo;
+    YAML::Node policy = policy_node(family, tensors, action_space);
+    if (uses_sde()) {
+      YAML::Node algo_node = root["algo"];
+      add_sde(family, algo_node, policy);
+    }
+    if (entropy_regularized(family) && !tensors.count("log_ent_coef")) {
+      const Json ent_coef = data_.value("ent_coef", Json());
+      if (ent_coef.is_number()) root["algo"]["ent_coef"] = ent_coef.get<double>();
+    }
+    root["algo"]["policy"] = policy;
+    YAML::Emitter out;
+    out << root;
+    return std::string(out.c_str()) + "\n";
+  }
+
+  std::string path_;
+  std::string env_id_;
+  ZipReader archive_;
+  Json data_;
+};
+
+}  // namespace
+
+bool is_sb3_model_file(const std::string& path) {
+  try {
+    const ZipReader archive(path);
+    return archive.find("data") && archive.find("policy.pth") && !archive.find("meta.json");
+  } catch (const RuntimeFailure&) {
+    return false;
+  }
+}
+
+ModelFile read_sb3_model(const std::string& path, const std::string& env_id) {
+  return Sb3Reader(path, env_id).read();
+}
+
+}  // namespace rlrun

@@ -1,0 +1,149 @@
+#include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
+
+#include <stdexcept>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/numpy_pickle.hpp"
+#include "rlrun/core/quoted_text.hpp"
+
+namespace rlrun {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what, const std::string& why) {
+  throw RuntimeFailure(what + ": " + why);
+}
+
+// The (key, value, ...) items of a dict, or of an OrderedDict made by a call.
+const std::vector<const PickleValue*>* dict_items(const PickleValue& value) {
+  if (value.kind == PickleKind::kDict) return &value.items;
+  const PickleValue* callee = value.callee();
+  if (callee && callee->is_global("collections", "OrderedDict") && value.added_pairs)
+    return &value.added_items;
+  if (callee && callee->is_global("collections", "OrderedDict") && value.added_items.empty())
+    return &value.added_items;
+  return nullptr;
+}
+
+// The space's attribute `name` from its pickled __dict__ (the last one set, as Python keeps).
+const PickleValue* attribute(const PickleValue& state, const char* name) {
+  const std::vector<const PickleValue*>* items = dict_items(state);
+  const PickleValue* found = nullptr;
+  for (std::size_t i = 0; items && i + 1 < items->size(); i += 2)
+    if ((*items)[i]->kind == PickleKind::kString && (*items)[i]->text == name)
+      found = (*items)[i + 1];
+  return found;
+}
+const PickleValue& required(const PickleValue& state, const char* name, const std::string& what) {
+  const PickleValue* value = attribute(state, name);
+  if (!value) fail(what, std::string("a space without its '") + name + "' attribute");
+  return *value;
+}
+
+std::vector<float> floats(const NumpyArray& array) {
+  std::vector<float> out;
+  for (const double v : array.to_doubles()) out.push_back(static_cast<float>(v));
+  return out;
+}
+
+Space box(const PickleValue& state, const std::string& what) {
+  const NumpyArray low = numpy_array(required(state, "low", what), what);
+  const NumpyArray high = numpy_array(required(state, "high", what), what);
+  const NumpyDtype dtype = numpy_dtype(required(state, "dtype", what), what);
+  // float64 Boxes (Gymnasium's MuJoCo tasks) are float32 to rlrun, as to SB3's policy, which
+  // casts observations to float32 (obs_as_tensor).
+  BoxDtype box_dtype = BoxDtype::kFloat32;
+  if (dtype.kind == 'u' && dtype.item_bytes == 1)
+    box_dtype = BoxDtype::kUint8;
+  else if (dtype.kind != 'f')
+    fail(what, "a Box of " + dtype.name() + " (rlrun's Box holds floats or uint8)");
+  if (low.shape != high.shape) fail(what, "a Box whose low and high differ in shape");
+  std::vector<int> shape;
+  for (const int64_t d : low.shape) {
+    if (d <= 0 || d > (int64_t{1} << 30)) fail(what, "a Box dimension of " + std::to_string(d));
+    shape.push_back(static_cast<int>(d));
+  }
+  if (shape.empty()) shape.push_back(1);  // a 0-d Box holds one number
+  return Space::box(floats(low), floats(high), shape, box_dtype);
+}
+
+Space discrete(const PickleValue& state, const std::string& what) {
+  const int64_t n = pickled_integer(required(state, "n", what), what);
+  const PickleValue* start = attribute(state, "start");
+  return Space::discrete(n, start ? pickled_integer(*start, what) : 0);
+}
+
+Space multi_discrete(const PickleValue& state, const std::string& what) {
+  const NumpyArray nvec = numpy_array(required(state, "nvec", what), what);
+  if (nvec.shape.size() != 1) fail(what, "a MultiDiscrete of more than one dimension");
+  if (const PickleValue* start = attribute(state, "start"))
+    for (const double s : numpy_array(*start, what).to_doubles())
+      if (s != 0) fail(what, "a MultiDiscrete whose values do not start at 0");
+  std::vector<int64_t> counts;
+  for (const double v : nvec.to_doubles()) counts.push_back(static_cast<int64_t>(v));
+  return Space::multi_discrete(counts);
+}
+
+Space multi_binary(const PickleValue& state, const std::string& what) {
+  const PickleValue& n = required(state, "n", what);
+  if (n.kind != PickleKind::kInt || n.integer <= 0 || n.integer > (int64_t{1} << 30))
+    fail(what, "a MultiBinary whose n is not a positive int (rlrun reads one dimension)");
+  return Space::multi_binary(static_cast<int>(n.integer));
+}
+
+Space dict(const PickleValue& state, const std::string& what, bool nested) {
+  if (nested) fail(what, "a Dict inside a Dict (SB3's MultiInputPolicy reads one level)");
+  const std::vector<const PickleValue*>* items = dict_items(required(state, "spaces", what));
+  if (!items || items->empty()) fail(what, "a Dict without spaces");
+  std::vector<std::pair<std::string, Space>> entries;
+  for (std::size_t i = 0; i + 1 < items->size(); i += 2) {
+    const PickleValue& key = *(*items)[i];
+    if (key.kind != PickleKind::kString || key.text.empty() || key.text.size() > 100)
+      fail(what, "a Dict key that is not a short string");
+    entries.emplace_back(key.text,
+                         sb3_space(*(*items)[i + 1], what + "['" + quoted_text(key.text) + "']"));
+  }
+  return Space::dict(std::move(entries));
+}
+
+}  // namespace
+
+bool is_sb3_space_global(const std::string& module, const std::string& name) {
+  // Gymnasium's, and gym's before it (SB3 1.x files: gym 0.21's spaces, the same attributes).
+  for (const char* package : {"gymnasium.spaces.", "gym.spaces."}) {
+    if (!module.starts_with(package)) continue;
+    const std::string file = module.substr(std::string(package).size());
+    return (file == "box" && name == "Box") || (file == "discrete" && name == "Discrete") ||
+           (file == "multi_discrete" && name == "MultiDiscrete") ||
+           (file == "multi_binary" && name == "MultiBinary") || (file == "dict" && name == "Dict");
+  }
+  if (module == "collections") return name == "OrderedDict";
+  // A seeded space's generator: kept in the tree, never read.
+  if (module == "numpy.random._pickle")
+    return name == "__generator_ctor" || name == "__bit_generator_ctor" ||
+           name == "__randomstate_ctor";
+  return is_numpy_pickle_global(module, name);
+}
+
+Space sb3_space(const PickleValue& value, const std::string& what) {
+  const PickleValue* callee = value.callee();
+  const bool space_class = callee && (callee->module.starts_with("gymnasium.spaces.") ||
+                                      callee->module.starts_with("gym.spaces."));
+  if (!space_class || !value.state)
+    fail(what, describe_pickle_value(value) + ", not a Gymnasium space");
+  const PickleValue& state = *value.state;
+  try {
+    if (callee->text == "Box") return box(state, what);
+    if (callee->text == "Discrete") return discrete(state, what);
+    if (callee->text == "MultiDiscrete") return multi_discrete(state, what);
+    if (callee->text == "MultiBinary") return multi_binary(state, what);
+    if (callee->text == "Dict") return dict(state, what, what.find('[') != std::string::npos);
+  } catch (const std::invalid_argument& e) {  // Space's own checks
+    fail(what, e.what());
+  }
+  fail(what, "a " + callee->text +
+                 " space (rlrun reads Box, Discrete, MultiDiscrete, "
+                 "MultiBinary and Dict)");
+}
+
+}  // namespace rlrun

@@ -1,0 +1,26 @@
+#pragma once
+// Gymnasium spaces as SB3 stores them in a model file's `data` (the cloudpickled
+// `observation_space` and `action_space` entries), read into rlrun's Space without running the
+// pickle (core/pickle_reader.hpp). A space pickles by reference to its class, then its
+// __dict__ (gymnasium/spaces/box.py, discrete.py, multi_discrete.py, multi_binary.py, dict.py;
+// SB3 1.x files hold gym 0.21's spaces, gym.spaces.*, with the attributes read here):
+//   NEWOBJ(gymnasium.spaces.box.Box, ()) BUILD({'dtype': ..., '_shape': ..., 'low': array,
+//   'high': array, ..., '_np_random': None or a numpy Generator})
+// The random generator (numpy.random._pickle's constructors) is not read: rlrun's spaces are
+// seeded by rlrun.
+#include <string>
+
+#include "rlrun/core/pickle_reader.hpp"
+#include "rlrun/space.hpp"
+
+namespace rlrun {
+
+// The globals a pickled space may name (gymnasium's space classes, numpy's array, dtype,
+// scalar and random-generator constructors, collections.OrderedDict).
+bool is_sb3_space_global(const std::string& module, const std::string& name);
+
+// Box (float32 or uint8), Discrete, MultiDiscrete, MultiBinary, and a Dict of those. Throws
+// RuntimeFailure naming `what` for any other value.
+Space sb3_space(const PickleValue& value, const std::string& what);
+
+}  // namespace rlrun

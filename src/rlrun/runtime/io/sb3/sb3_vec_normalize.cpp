@@ -1,0 +1,141 @@
+#include "rlrun/runtime/io/sb3/sb3_vec_normalize.hpp"
+
+#include <fcntl.h>
+
+#include <cstring>
+#include <filesystem>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/numpy_pickle.hpp"
+#include "rlrun/core/pickle_reader.hpp"
+#include "rlrun/core/regular_file.hpp"
+#include "rlrun/runtime/io/non_finite_check.hpp"
+#include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
+
+namespace rlrun {
+
+namespace {
+
+// The pickle holds the spaces and the last observations of the training envs: a few KiB.
+constexpr uint64_t kMaxVecNormalizeBytes = uint64_t{16} << 20;
+
+bool vec_normalize_global(const std::string& module, const std::string& name) {
+  if (module == "stable_baselines3.common.vec_env.vec_normalize") return name == "VecNormalize";
+  if (module == "stable_baselines3.common.running_mean_std") return name == "RunningMeanStd";
+  return is_sb3_space_global(module, name);
+}
+
+class VecNormalizeReader {
+ public:
+  VecNormalizeReader(const std::string& path, int64_t observation_dim)
+      : path_(path), observation_dim_(observation_dim) {}
+
+  Sb3VecNormalize read() {
+    const FileDescriptor fd = open_regular_file(AT_FDCWD, path_, O_RDONLY, path_);
+    if (!fd) fail("no such file");
+    const std::string bytes = read_bounded(fd.get(), kMaxVecNormalizeBytes, path_);
+    const PickleDocument document = read_pickle(reinterpret_cast<const uint8_t*>(bytes.data()),
+                                                bytes.size(), path_, vec_normalize_global);
+    const PickleValue& root = document.root();
+    const PickleValue* callee = root.callee();
+    if (!callee || callee->text != "VecNormalize" || !root.state)
+      fail("holds " + describe_pickle_value(root) + ", not a VecNormalize");
+    const PickleValue& state = *root.state;
+    Sb3VecNormalize out;
+    out.setting.enabled = true;
+    out.setting.norm_obs = flag(state, "norm_obs");
+    out.setting.norm_reward = flag(state, "norm_reward");
+    out.setting.clip_obs = number(state, "clip_obs");
+    out.setting.clip_reward = number(state, "clip_reward");
+    out.setting.gamma = number(state, "gamma");
+    out.setting.epsilon = number(state, "epsilon");
+    if (out.setting.norm_obs)
+      running_statistics(attribute(state, "obs_rms"), "NormalizeObservation", observation_dim_,
+                         out.statistics);
+    if (out.setting.norm_reward)
+      running_statistics(attribute(state, "ret_rms"), "NormalizeReward", 1, out.statistics);
+    const std::string problem = describe_non_finite(out.statistics, "statistic");
+    if (!problem.empty()) fail(problem);
+    return out;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw RuntimeFailure(path_ + ": " + why + " (SB3's vecnormalize.pkl: docs/sb3_models.md)");
+  }
+
+  // The attribute `name` of a pickled object's __dict__ (the last one set).
+  const PickleValue& attribute(const PickleValue& state, const char* name) const {
+    const PickleValue* found = nullptr;
+    if (state.kind == PickleKind::kDict)
+      for (std::size_t i = 0; i + 1 < state.items.size(); i += 2)
+        if (state.items[i]->kind == PickleKind::kString && state.items[i]->text == name)
+          found = state.items[i + 1];
+    if (!found) fail(std::string("no '") + name + "' attribute");
+    return *found;
+  }
+  bool flag(const PickleValue& state, const char* name) const {
+    const PickleValue& value = attribute(state, name);
+    if (value.kind != PickleKind::kBool) fail(std::string("'") + name + "' is not a bool");
+    return value.boolean;
+  }
+  double number(const PickleValue& state, const char* name) const {
+    return pickled_number(attribute(state, name), path_ + ": '" + name + "'");
+  }
+
+  // RunningMeanStd's mean, var (float64, `dim` values) and count, under rlrun's names.
+  void running_statistics(const PickleValue& rms, const char* wrapper, int64_t dim,
+                          TensorMap& out) const {
+    const PickleValue* callee = rms.callee();
+    if (!callee || callee->text != "RunningMeanStd" || !rms.state)
+      fail(std::string("its ") + (dim == 1 ? "ret_rms" : "obs_rms") + " is " +
+           describe_pickle_value(rms) + ", not a RunningMeanStd of one array");
+    const std::string prefix = std::string("wrappers/") + wrapper + "/";
+    for (const char* field : {"mean", "var"})
+      out[prefix + field] = doubles(attribute(*rms.state, field), dim, field);
+    Tensor count;
+    count.dtype = DType::kFloat64;
+    count.shape = {1};
+    const double n = number(*rms.state, "count");
+    count.bytes.resize(sizeof n);
+    std::memcpy(count.bytes.data(), &n, sizeof n);
+    out[prefix + "count"] = std::move(count);
+  }
+  Tensor doubles(const PickleValue& value, int64_t dim, const char* field) const {
+    std::vector<double> values;
+    if (is_numpy_array(value))
+      values = numpy_array(value, path_).to_doubles();
+    else
+      values = {pickled_number(value, path_)};
+    if (static_cast<int64_t>(values.size()) != dim)
+      fail(std::string("its ") + field + " holds " + std::to_string(values.size()) +
+           " values, the model's observations " + std::to_string(dim));
+    Tensor t;
+    t.dtype = DType::kFloat64;
+    t.shape = {dim};
+    t.bytes.resize(values.size() * sizeof(double));
+    std::memcpy(t.bytes.data(), values.data(), t.bytes.size());
+    return t;
+  }
+
+  std::string path_;
+  int64_t observation_dim_;
+};
+
+}  // namespace
+
+std::optional<std::string> find_sb3_vec_normalize(const std::string& model_path) {
+  const std::filesystem::path model(model_path);
+  std::error_code ec;
+  for (const std::filesystem::path& candidate :
+       {model.parent_path() / "vecnormalize.pkl",
+        model.parent_path() / model.stem() / "vecnormalize.pkl"})
+    if (std::filesystem::exists(candidate, ec)) return candidate.string();
+  return std::nullopt;
+}
+
+Sb3VecNormalize read_sb3_vec_normalize(const std::string& path, int64_t observation_dim) {
+  return VecNormalizeReader(path, observation_dim).read();
+}
+
+}  // namespace rlrun

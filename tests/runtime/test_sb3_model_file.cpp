@@ -1,0 +1,275 @@
+// SB3 model files (runtime/io/sb3/sb3_model_file.hpp) against what the real SB3 2.4.1 did with
+// them: tests/data/sb3/<case>/ holds a model.zip SB3 trained and saved, observations, SB3's
+// deterministic predict() on them and its episode returns on seeded resets
+// (scripts/data/make_sb3_models.sh made them with SB3's source and Debian's torch).
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "rlrun/core/errors.hpp"
+#include "rlrun/core/npy.hpp"
+#include "rlrun/env/graph_policy.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/io/model_graph.hpp"
+#include "rlrun/runtime/io/model_loader.hpp"
+#include "rlrun/runtime/io/sb3/sb3_model_file.hpp"
+#include "runtime/cli_runner.hpp"
+#include "test_paths.hpp"
+
+using namespace rlrun;
+using namespace rlrun::testing;
+
+namespace {
+
+std::string case_dir(const std::string& name) {
+  return std::string(RLRUN_SOURCE_DIR) + "/tests/data/sb3/" + name;
+}
+
+Tensor read_npy(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  return decode_npy(bytes, path);
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+struct Sb3Case {
+  const char* name;
+  const char* env_id;
+  const char* algorithm;
+};
+
+const Sb3Case kCases[] = {
+    {"ppo_cartpole", "CartPole-v1", "PPO"},
+    {"a2c_cartpole", "CartPole-v1", "A2C"},
+    {"dqn_cartpole", "CartPole-v1", "DQN"},
+    {"ppo_pendulum", "Pendulum-v1", "PPO"},
+    {"sac_pendulum", "Pendulum-v1", "SAC"},
+    {"td3_pendulum", "Pendulum-v1", "TD3"},
+    {"ddpg_pendulum", "Pendulum-v1", "DDPG"},
+    // Trained inside VecNormalize; vecnormalize.pkl beside model.zip (rl-zoo's layout).
+    {"ppo_pendulum_vecnormalize", "Pendulum-v1", "PPO"},
+    // gSDE (use_sde=True), as rl-zoo trains many continuous tasks.
+    {"ppo_sde_pendulum", "Pendulum-v1", "PPO"},
+    {"sac_sde_pendulum", "Pendulum-v1", "SAC"},
+    // sb3-contrib 2.4.0.
+    {"qrdqn_cartpole", "CartPole-v1", "QRDQN"},
+    {"tqc_pendulum", "Pendulum-v1", "TQC"},
+};
+
+// What the env's frozen NormalizeObservation does to an observation: VecNormalize.normalize_obs
+// with the file's defaults (epsilon 1e-8, clip_obs 10), in double as both compute it.
+void normalize_observations(const TensorMap& statistics, Eigen::MatrixXf& observations) {
+  const auto mean = statistics.find("wrappers/NormalizeObservation/mean");
+  if (mean == statistics.end()) return;
+  const Tensor& var = statistics.at("wrappers/NormalizeObservation/var");
+  for (Eigen::Index i = 0; i < observations.rows(); ++i)
+    for (Eigen::Index j = 0; j < observations.cols(); ++j) {
+      const double z = (observations(i, j) - mean->second.data<double>()[i]) /
+                       std::sqrt(var.data<double>()[i] + 1e-8);
+      observations(i, j) = static_cast<float>(std::clamp(z, -10.0, 10.0));
+    }
+}
+
+// rlrun's deterministic actions on the case's observations (act_dim x n).
+Eigen::MatrixXf rlrun_actions(const Sb3Case& c, Eigen::MatrixXf& observations) {
+  LoadedModel model = load_model(case_dir(c.name) + "/model.zip", builtin_registry(),
+                                 {std::string("env.id=") + c.env_id});
+  CHECK(model.file.meta.algorithm == c.algorithm);
+  const Tensor obs = read_npy(case_dir(c.name) + "/observations.npy");
+  REQUIRE(obs.dtype == DType::kFloat32);
+  REQUIRE(obs.shape.size() == 2);
+  // (n, obs_dim) C order is obs_dim x n column-major: one observation per column.
+  observations = Eigen::Map<const Eigen::MatrixXf>(obs.data<float>(), obs.shape[1], obs.shape[0]);
+  normalize_observations(model.file.wrapper_statistics, observations);
+  Eigen::MatrixXf actions;
+  model.algorithm->predict(observations, /*deterministic=*/true, actions);
+  return actions;
+}
+
+}  // namespace
+
+TEST_CASE("SB3 model files give SB3's deterministic actions", "[sb3]") {
+  for (const Sb3Case& c : kCases) {
+    INFO(c.name);
+    Eigen::MatrixXf observations;
+    const Eigen::MatrixXf actions = rlrun_actions(c, observations);
+    const Tensor expected = read_npy(case_dir(c.name) + "/actions.npy");
+    REQUIRE(actions.cols() == expected.shape[0]);
+    REQUIRE(expected.shape[0] == 1000);
+    if (expected.dtype == DType::kInt64) {  // Discrete: exactly SB3's
+      REQUIRE(actions.rows() == 1);
+      int differ = 0;
+      for (int i = 0; i < actions.cols(); ++i)
+        differ += static_cast<int64_t>(actions(0, i)) != expected.data<int64_t>()[i];
+      CHECK(differ == 0);
+    } else {  // Box: within 1e-5 of SB3's float32 actions
+      REQUIRE(expected.dtype == DType::kFloat32);
+      const Eigen::Map<const Eigen::MatrixXf> sb3(expected.data<float>(), actions.rows(),
+                                                  actions.cols());
+      CHECK((actions - sb3).cwiseAbs().maxCoeff() <= 1e-5f);
+    }
+  }
+}
+
+TEST_CASE("rlrun eval of an SB3 model file gives SB3's returns on the same seeds", "[sb3][cli]") {
+  // The classic-control envs draw Gymnasium's initial state for a seed (numpy's PCG64:
+  // env/numpy_random.hpp), so each seeded episode is SB3's episode.
+  for (const Sb3Case& c : kCases) {
+    INFO(c.name);
+    const nlohmann::json returns = read_json(case_dir(c.name) + "/returns.json");
+    for (size_t i = 0; i < returns["seeds"].size(); ++i) {
+      const int seed = returns["seeds"][i].get<int>();
+      const double sb3 = returns["episode_returns"][i].get<double>();
+      INFO("seed " << seed);
+      const CommandResult r = run_command(std::string(RLRUN_BINARY) + " eval --model " +
+                                          case_dir(c.name) + "/model.zip --env " + c.env_id +
+                                          " --episodes 1 --seed " + std::to_string(seed) + " 2>&1");
+      REQUIRE(r.exit_code == 0);
+      const auto at = r.output.find("mean_reward = ");
+      REQUIRE(at != std::string::npos);
+      const double rlrun = std::stod(r.output.substr(at + 14));
+      // The summary prints two decimals; Box actions within 1e-5 of SB3's move Pendulum's
+      // return by far less.
+      CHECK(std::abs(rlrun - sb3) <= 0.006);
+    }
+  }
+}
+
+TEST_CASE("SB3 model files give SB3's Q-values and action log-probabilities", "[sb3]") {
+  // Actions alone hide a wrong network where one action wins everywhere (the short DQN run):
+  // the logits behind the argmax are compared, DQN's as SB3's q_net output, PPO's and A2C's as
+  // the Categorical's log-probabilities (log-softmax of the logits).
+  for (const auto& [name, file] : {std::pair{"dqn_cartpole", "q_values.npy"},
+                                   {"ppo_cartpole", "action_log_probs.npy"},
+                                   {"a2c_cartpole", "action_log_probs.npy"}}) {
+    INFO(name);
+    const LoadedModel model = load_model(case_dir(name) + "/model.zip", builtin_registry(),
+                                         {"env.id=CartPole-v1"}, {}, ModelEnv::kSpacesOnly);
+    const GraphPolicy policy(build_model_graph(model, false));
+    const Tensor obs = read_npy(case_dir(name) + "/observations.npy");
+    const Tensor expected = read_npy(case_dir(name) + "/" + file);
+    const bool log_softmax = std::string(file) == "action_log_probs.npy";
+    float worst = 0;
+    for (int64_t i = 0; i < obs.shape[0]; ++i) {
+      float out[2];
+      policy.logits({obs.data<float>() + i * obs.shape[1], static_cast<size_t>(obs.shape[1])}, out);
+      if (log_softmax) {
+        const float top = std::max(out[0], out[1]);
+        const float log_sum = top + std::log(std::exp(out[0] - top) + std::exp(out[1] - top));
+        out[0] -= log_sum, out[1] -= log_sum;
+      }
+      for (int a = 0; a < 2; ++a)
+        worst = std::max(worst, std::abs(out[a] - expected.data<float>()[i * 2 + a]));
+    }
+    CHECK(worst <= 1e-5f);
+  }
+}
+
+TEST_CASE("VecNormalize statistics beside an SB3 model become env.normalize", "[sb3]") {
+  const ModelFile model =
+      read_sb3_model(case_dir("ppo_pendulum_vecnormalize") + "/model.zip", "Pendulum-v1");
+  CHECK_THAT(model.config_yaml, Catch::Contains("normalize:") && Catch::Contains("0.98"));
+  for (const char* key : {"wrappers/NormalizeObservation/mean", "wrappers/NormalizeObservation/var",
+                          "wrappers/NormalizeObservation/count", "wrappers/NormalizeReward/var"})
+    CHECK(model.wrapper_statistics.count(key) == 1);
+  CHECK(model.wrapper_statistics.at("wrappers/NormalizeObservation/mean").shape ==
+        std::vector<int64_t>{3});
+  // Without the file beside it, the model has no statistics.
+  CHECK(read_sb3_model(case_dir("ppo_pendulum") + "/model.zip", "Pendulum-v1")
+            .wrapper_statistics.empty());
+}
+
+TEST_CASE("SB3 1.x files with gym's spaces and bounds play on Gymnasium's env", "[sb3][cli]") {
+  // ppo_cartpole's weights with gym 0.21's CartPole space (velocities bounded by float32's
+  // largest value, gym.spaces names, protocol 4): the same episodes as ppo_cartpole.
+  const nlohmann::json returns = read_json(case_dir("ppo_cartpole") + "/returns.json");
+  const CommandResult r =
+      run_command(std::string(RLRUN_BINARY) + " eval --model " + case_dir("ppo_cartpole_gym_era") +
+                  "/model.zip --env CartPole-v1 --episodes 1 --seed 0 2>&1");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("3.40282e+38") && Catch::Contains("the same shape"));
+  const double sb3 = returns["episode_returns"][0].get<double>();
+  CHECK_THAT(r.output,
+             Catch::Contains("mean_reward = " + std::to_string(static_cast<int>(sb3)) + ".00"));
+}
+
+TEST_CASE("an SB3 model file needs --env and says so", "[sb3][cli]") {
+  const CommandResult r = run_command(std::string(RLRUN_BINARY) + " eval --model " +
+                                      case_dir("ppo_cartpole") + "/model.zip 2>&1");
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("SB3 model file") && Catch::Contains("--env"));
+}
+
+TEST_CASE("an SB3 model file on an env of other spaces is refused", "[sb3][cli]") {
+  const CommandResult r =
+      run_command(std::string(RLRUN_BINARY) + " eval --model " + case_dir("ppo_cartpole") +
+                  "/model.zip --env Pendulum-v1 2>&1");
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("trained on observations"));
+}
+
+TEST_CASE("SB3 files whose pickles would run code are refused and nothing runs",
+          "[sb3][cli][security]") {
+  // The fixtures' pickles run `touch /tmp/rlrun_pwned` when Python unpickles them.
+  const std::string marker = "/tmp/rlrun_pwned";
+  std::filesystem::remove(marker);
+  for (const char* name : {"evil_os_system", "evil_torch"}) {
+    INFO(name);
+    const CommandResult r = run_command(std::string(RLRUN_BINARY) + " eval --model " +
+                                        case_dir(name) + "/model.zip --env CartPole-v1 2>&1");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::Contains("system") && Catch::Contains("does not read"));
+  }
+  CHECK_FALSE(std::filesystem::exists(marker));
+}
+
+TEST_CASE("run.init_from fine-tunes an SB3 model file", "[sb3][cli]") {
+  const std::string dir = std::filesystem::temp_directory_path() / "rlrun_sb3_init_from_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string sb3 = case_dir("ppo_cartpole") + "/model.zip";
+  std::ofstream(dir + "/finetune.yaml")
+      << "run: {name: finetune, seed: 1, total_timesteps: 256, out_dir: " << dir
+      << ", init_from: " << sb3 << "}\n"
+      << "env: {id: CartPole-v1}\n"
+      << "algo: {id: PPO, n_steps: 128, batch_size: 64, n_epochs: 1}\n";  // SB3's default net
+  const CommandResult r =
+      run_command(std::string(RLRUN_BINARY) + " train " + dir + "/finetune.yaml 2>&1");
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.output,
+             Catch::Contains("initialised from " + sb3 + " (PPO, CartPole-v1, 512 steps)"));
+  // Another network than the file's is refused, naming the reason.
+  std::ofstream(dir + "/other.yaml")
+      << "run: {name: other, seed: 1, total_timesteps: 256, out_dir: " << dir
+      << ", init_from: " << sb3 << "}\n"
+      << "env: {id: CartPole-v1}\n"
+      << "algo: {id: PPO, n_steps: 128, batch_size: 64, policy: {net_arch: [8]}}\n";
+  const CommandResult other =
+      run_command(std::string(RLRUN_BINARY) + " train " + dir + "/other.yaml 2>&1");
+  CHECK(other.exit_code != 0);
+  CHECK_THAT(other.output, Catch::Contains("cannot initialise from"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("rlrun export reads SB3 model files", "[sb3][cli]") {
+  const std::string dir = std::filesystem::temp_directory_path() / "rlrun_sb3_export_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const CommandResult r =
+      run_command(std::string(RLRUN_BINARY) + " export --model " + case_dir("sac_pendulum") +
+                  "/model.zip --env Pendulum-v1 " + "--format c --output " + dir + "/c 2>&1");
+  CHECK(r.exit_code == 0);
+  CHECK(std::filesystem::exists(dir + "/c/policy.c"));
+  std::filesystem::remove_all(dir);
+}
