@@ -32,6 +32,15 @@ class Sb3ModelFiles(unittest.TestCase):
         self.assertEqual(self.check("sac_pendulum", "Pendulum-v1").algorithm, "SAC")
         self.assertEqual(self.check("td3_pendulum", "Pendulum-v1").algorithm, "TD3")
 
+    def test_multi_input_policy(self):
+        # A Dict-observation env defined in the fixture script: predict needs only the spaces
+        # the file records, so the env need not exist in rlrun.
+        model = rlrun.load(os.path.join(SB3_DIR, "ppo_multi_input", "model.zip"), env="DictObsEnv")
+        observations = np.load(os.path.join(SB3_DIR, "ppo_multi_input", "observations.npz"))
+        expected = np.load(os.path.join(SB3_DIR, "ppo_multi_input", "actions.npy"))
+        actions, _ = model.predict({k: observations[k] for k in ("a", "b")}, deterministic=True)
+        np.testing.assert_array_equal(actions, expected)
+
     def test_vec_normalize_beside_the_model(self):
         # predict() takes the env's raw observations and normalises them with the frozen
         # statistics of vecnormalize.pkl, as rl_zoo3.enjoy plays such a model.

@@ -91,6 +91,8 @@ Space multi_binary(const PickleValue& state, const std::string& what) {
   return Space::multi_binary(static_cast<int>(n.integer));
 }
 
+Space space_of(const PickleValue& value, const std::string& what, bool inside_dict);
+
 Space dict(const PickleValue& state, const std::string& what, bool nested) {
   if (nested) fail(what, "a Dict inside a Dict (SB3's MultiInputPolicy reads one level)");
   const std::vector<const PickleValue*>* items = dict_items(required(state, "spaces", what));
@@ -100,10 +102,31 @@ Space dict(const PickleValue& state, const std::string& what, bool nested) {
     const PickleValue& key = *(*items)[i];
     if (key.kind != PickleKind::kString || key.text.empty() || key.text.size() > 100)
       fail(what, "a Dict key that is not a short string");
-    entries.emplace_back(key.text,
-                         sb3_space(*(*items)[i + 1], what + "['" + quoted_text(key.text) + "']"));
+    entries.emplace_back(
+        key.text, space_of(*(*items)[i + 1], what + "['" + quoted_text(key.text) + "']", true));
   }
   return Space::dict(std::move(entries));
+}
+
+Space space_of(const PickleValue& value, const std::string& what, bool inside_dict) {
+  const PickleValue* callee = value.callee();
+  const bool space_class = callee && (callee->module.starts_with("gymnasium.spaces.") ||
+                                      callee->module.starts_with("gym.spaces."));
+  if (!space_class || !value.state)
+    fail(what, describe_pickle_value(value) + ", not a Gymnasium space");
+  const PickleValue& state = *value.state;
+  try {
+    if (callee->text == "Box") return box(state, what);
+    if (callee->text == "Discrete") return discrete(state, what);
+    if (callee->text == "MultiDiscrete") return multi_discrete(state, what);
+    if (callee->text == "MultiBinary") return multi_binary(state, what);
+    if (callee->text == "Dict") return dict(state, what, inside_dict);
+  } catch (const std::invalid_argument& e) {  // Space's own checks
+    fail(what, e.what());
+  }
+  fail(what, "a " + callee->text +
+                 " space (rlrun reads Box, Discrete, MultiDiscrete, "
+                 "MultiBinary and Dict)");
 }
 
 }  // namespace
@@ -126,24 +149,7 @@ bool is_sb3_space_global(const std::string& module, const std::string& name) {
 }
 
 Space sb3_space(const PickleValue& value, const std::string& what) {
-  const PickleValue* callee = value.callee();
-  const bool space_class = callee && (callee->module.starts_with("gymnasium.spaces.") ||
-                                      callee->module.starts_with("gym.spaces."));
-  if (!space_class || !value.state)
-    fail(what, describe_pickle_value(value) + ", not a Gymnasium space");
-  const PickleValue& state = *value.state;
-  try {
-    if (callee->text == "Box") return box(state, what);
-    if (callee->text == "Discrete") return discrete(state, what);
-    if (callee->text == "MultiDiscrete") return multi_discrete(state, what);
-    if (callee->text == "MultiBinary") return multi_binary(state, what);
-    if (callee->text == "Dict") return dict(state, what, what.find('[') != std::string::npos);
-  } catch (const std::invalid_argument& e) {  // Space's own checks
-    fail(what, e.what());
-  }
-  fail(what, "a " + callee->text +
-                 " space (rlrun reads Box, Discrete, MultiDiscrete, "
-                 "MultiBinary and Dict)");
+  return space_of(value, what, false);
 }
 
 }  // namespace rlrun
