@@ -211,6 +211,7 @@ struct EvalOptions {
   std::string baseline;                // fixed-time (traffic task) or scripted (grasp task)
   std::optional<int> green_time;       // --green-time (the traffic task's fixed-time plan)
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
+  std::string zoo_model;               // --zoo-model DIR: an rl-zoo run folder
   std::vector<std::string> overrides;  // --set: the user's values over the model's config
   std::string
       trajectory;      // every step's env observation and action (runtime/run/trajectory_tap.hpp)
@@ -287,6 +288,11 @@ Action add_eval(CLI::App& app, Registry& registry) {
       "separated by commas (a,b,c) are compared on the same episodes in one table; needs "
       "--env ID or --config CFG");
   policy_option->excludes(model_option);
+  CLI::Option* zoo_option = sub->add_option(
+      "--zoo-model", options->zoo_model,
+      "an rl-baselines3-zoo run folder (<algo>/<env>_<n>/, as rl-trained-agents has them): its "
+      "<env>.zip on its env, VecNormalize statistics frozen, as rl_zoo3.enjoy plays it");
+  zoo_option->excludes(model_option)->excludes(policy_option);
   sub->add_option("--env", options->env_id,
                   "env id for --policy; with --model, the env to play (needed for an SB3 model "
                   "file, which does not record it: docs/sb3_models.md)");
@@ -327,6 +333,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     add_game_opponent_overrides(options->game, options->overrides);
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
+    resolve_zoo_model(options->zoo_model, options->model, options->env_id);
     add_model_env_override(options->env_id, options->overrides);
     if (options->model.empty())
       throw UsageError("eval needs --model FILE, or --policy P with --env ID");

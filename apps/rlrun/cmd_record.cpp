@@ -34,6 +34,7 @@ namespace {
 
 struct Options {
   std::string model, config, env_id, from_obs, policy;
+  std::string zoo_model;          // --zoo-model DIR: an rl-zoo run folder
   std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
@@ -152,7 +153,11 @@ Action add_record(CLI::App& app, Registry& registry) {
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "record", "record a policy as an mp4 video (needs the ffmpeg program) and/or PNG frames");
-  sub->add_option("--model", options->model, "model.zip written by rlrun train");
+  CLI::Option* model_option =
+      sub->add_option("--model", options->model, "model.zip written by rlrun train");
+  sub->add_option("--zoo-model", options->zoo_model,
+                  "an rl-baselines3-zoo run folder (<algo>/<env>_<n>/): its model on its env")
+      ->excludes(model_option);
   sub->add_option("--config", options->config,
                   "experiment file whose env to record (with --policy random)");
   sub->add_option("--set", options->overrides,
@@ -192,6 +197,7 @@ Action add_record(CLI::App& app, Registry& registry) {
   add_game_opponent_options(sub, options->game);
   return [options, deterministic, &registry]() {
     add_game_opponent_overrides(options->game, options->overrides);
+    resolve_zoo_model(options->zoo_model, options->model, options->env_id);
     return run(*options, registry);
   };
 }

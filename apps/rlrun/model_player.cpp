@@ -1,9 +1,12 @@
 #include "model_player.hpp"
 
+#include <cstdio>
+
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/io/agent_team_file.hpp"
 #include "rlrun/runtime/run/team_actions.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_run_folder.hpp"
 #include "trust_option.hpp"
 
 namespace rlrun::cli {
@@ -14,6 +17,14 @@ ActionFn ModelPlayer::act(bool deterministic, std::function<void()>* start_episo
   std::vector<Algorithm*> algorithms;
   for (LoadedModel& model : models) algorithms.push_back(model.algorithm.get());
   return team_action_fn(algorithms, env(), deterministic, start_episode);
+}
+
+void resolve_zoo_model(const std::string& dir, std::string& model, std::string& env_id) {
+  if (dir.empty()) return;
+  const zoo::ZooRunFolder folder = zoo::find_zoo_run_folder(dir, /*best=*/false);
+  model = folder.model_path;
+  if (env_id.empty()) env_id = folder.env_id;
+  for (const std::string& note : folder.notes) std::fprintf(stderr, "%s\n", note.c_str());
 }
 
 void add_model_env_override(const std::string& env_id, std::vector<std::string>& overrides) {

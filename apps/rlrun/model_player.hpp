@@ -31,6 +31,11 @@ struct ModelPlayer {
 // another env with the same spaces). Nothing when `env_id` is empty.
 void add_model_env_override(const std::string& env_id, std::vector<std::string>& overrides);
 
+// `--zoo-model DIR` (an rl-zoo run folder: runtime/workflows/zoo/zoo_run_folder.hpp): sets
+// `model` to its model file and `env_id` to its env unless the user named one, and prints
+// what of the zoo's config.yml is not applied. Nothing when `dir` is empty.
+void resolve_zoo_model(const std::string& dir, std::string& model, std::string& env_id);
+
 ModelPlayer load_model_player(const std::string& path, Registry& registry,
                               const std::vector<std::string>& overrides, bool trust);
 

@@ -262,6 +262,40 @@ TEST_CASE("run.init_from fine-tunes an SB3 model file", "[sb3][cli]") {
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("rlrun eval --zoo-model plays an rl-zoo run folder", "[sb3][cli]") {
+  // The layout rl_zoo3.train leaves: <algo>/<env>_<n>/<env>.zip, <env>/vecnormalize.pkl and
+  // <env>/config.yml (the zoo's yaml.dump of an OrderedDict).
+  const std::filesystem::path root =
+      std::filesystem::temp_directory_path() / "rlrun_zoo_model_test";
+  std::filesystem::remove_all(root);
+  const std::filesystem::path folder = root / "ppo" / "Pendulum-v1_1";
+  std::filesystem::create_directories(folder / "Pendulum-v1");
+  const std::string source = case_dir("ppo_pendulum_vecnormalize");
+  std::filesystem::copy_file(source + "/model.zip", folder / "Pendulum-v1.zip");
+  std::filesystem::copy_file(source + "/vecnormalize.pkl",
+                             folder / "Pendulum-v1" / "vecnormalize.pkl");
+  std::ofstream(folder / "Pendulum-v1" / "config.yml")
+      << "!!python/object/apply:collections.OrderedDict\n"
+      << "- - - env_wrapper\n    - sb3_contrib.common.wrappers.TimeFeatureWrapper\n"
+      << "  - - normalize\n    - true\n  - - policy\n    - MlpPolicy\n";
+  const nlohmann::json returns = read_json(source + "/returns.json");
+  const CommandResult r = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
+                                      folder.string() + " --episodes 1 --seed 0 2>&1");
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("PPO on Pendulum-v1") &&
+                           Catch::Contains("sets env_wrapper, which rlrun does not apply"));
+  const auto at = r.output.find("mean_reward = ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::abs(std::stod(r.output.substr(at + 14)) -
+                 returns["episode_returns"][0].get<double>()) <= 0.006);
+  // A folder not named <env>_<n> is a usage error.
+  const CommandResult wrong = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
+                                          (root / "ppo").string() + " 2>&1");
+  CHECK(wrong.exit_code == 2);
+  CHECK_THAT(wrong.output, Catch::Contains("<env>_<n>"));
+  std::filesystem::remove_all(root);
+}
+
 TEST_CASE("rlrun export reads SB3 model files", "[sb3][cli]") {
   const std::string dir = std::filesystem::temp_directory_path() / "rlrun_sb3_export_test";
   std::filesystem::remove_all(dir);

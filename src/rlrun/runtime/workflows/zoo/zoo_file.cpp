@@ -168,6 +168,12 @@ std::vector<std::string> candidates(const std::string& env_id, std::string& trai
 
 }  // namespace
 
+std::string current_env_id(const std::string& zoo_env_id) {
+  for (const auto& [old_id, new_id] : kRenamed)
+    if (zoo_env_id == old_id) return new_id;
+  return zoo_env_id;
+}
+
 std::string algorithm_of_file(const std::string& path) {
   return rlrun_algorithm(std::filesystem::path(path).stem().string());
 }

@@ -24,6 +24,10 @@ struct ZooEntry {
   ConfigNode node;         // the entry (positions in `file`)
 };
 
+// rlrun's id of an env the zoo names by a retired Gymnasium id (LunarLander-v2 -> -v3, the
+// MuJoCo tasks' -v2/-v3 -> -v4); any other id as it is.
+std::string current_env_id(const std::string& zoo_env_id);
+
 // The rlrun algorithm of a zoo file name (`ppo.yml` -> PPO), or "" when the name says none.
 std::string algorithm_of_file(const std::string& path);
 
