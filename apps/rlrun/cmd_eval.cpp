@@ -212,6 +212,7 @@ struct EvalOptions {
   std::optional<int> green_time;       // --green-time (the traffic task's fixed-time plan)
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   std::string zoo_model;               // --zoo-model DIR: an rl-zoo run folder
+  YAML::Node zoo_env;                  // its env settings (resolve_zoo_model)
   std::vector<std::string> overrides;  // --set: the user's values over the model's config
   std::string
       trajectory;      // every step's env observation and action (runtime/run/trajectory_tap.hpp)
@@ -241,7 +242,7 @@ int evaluate_model(const EvalOptions& o, Registry& registry) {
   check_outputs(o);
   // Normalisation statistics frozen; tensors read within the config's budget. A per-agent
   // run's directory plays each agent through its own model.
-  ModelPlayer player = load_model_player(o.model, registry, o.overrides, o.trust);
+  ModelPlayer player = load_model_player(o.model, registry, o.overrides, o.trust, o.zoo_env);
   const ModelFile& model = player.first().file;
   give_opponent_model(o.game, player.env(), registry);
   const TrajectoryTap* tap = o.trajectory.empty() ? nullptr : &tap_trajectory(player.env());
@@ -333,7 +334,8 @@ Action add_eval(CLI::App& app, Registry& registry) {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     add_game_opponent_overrides(options->game, options->overrides);
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
-    resolve_zoo_model(options->zoo_model, options->model, options->env_id);
+    options->zoo_env =
+        resolve_zoo_model(options->zoo_model, registry, options->model, options->env_id);
     add_model_env_override(options->env_id, options->overrides);
     if (options->model.empty())
       throw UsageError("eval needs --model FILE, or --policy P with --env ID");

@@ -35,6 +35,7 @@ namespace {
 struct Options {
   std::string model, config, env_id, from_obs, policy;
   std::string zoo_model;          // --zoo-model DIR: an rl-zoo run folder
+  YAML::Node zoo_env;             // its env settings (resolve_zoo_model)
   std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
@@ -114,7 +115,7 @@ int run(const Options& o, Registry& registry) {
   if (!o.model.empty()) {
     std::vector<std::string> overrides = o.overrides;
     add_model_env_override(o.env_id, overrides);
-    player = load_model_player(o.model, registry, overrides, o.trust);
+    player = load_model_player(o.model, registry, overrides, o.trust, o.zoo_env);
   } else if (!o.config.empty()) {
     const Experiment experiment = load_experiment(o.config, o.overrides, registry);
     env = make_env(experiment.env, registry, "", unix_time_now());
@@ -197,7 +198,8 @@ Action add_record(CLI::App& app, Registry& registry) {
   add_game_opponent_options(sub, options->game);
   return [options, deterministic, &registry]() {
     add_game_opponent_overrides(options->game, options->overrides);
-    resolve_zoo_model(options->zoo_model, options->model, options->env_id);
+    options->zoo_env =
+        resolve_zoo_model(options->zoo_model, registry, options->model, options->env_id);
     return run(*options, registry);
   };
 }

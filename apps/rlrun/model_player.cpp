@@ -19,12 +19,14 @@ ActionFn ModelPlayer::act(bool deterministic, std::function<void()>* start_episo
   return team_action_fn(algorithms, env(), deterministic, start_episode);
 }
 
-void resolve_zoo_model(const std::string& dir, std::string& model, std::string& env_id) {
-  if (dir.empty()) return;
-  const zoo::ZooRunFolder folder = zoo::find_zoo_run_folder(dir, /*best=*/false);
+YAML::Node resolve_zoo_model(const std::string& dir, const Registry& registry, std::string& model,
+                             std::string& env_id) {
+  if (dir.empty()) return YAML::Node();
+  const zoo::ZooRunFolder folder = zoo::find_zoo_run_folder(dir, /*best=*/false, registry);
   model = folder.model_path;
   if (env_id.empty()) env_id = folder.env_id;
   for (const std::string& note : folder.notes) std::fprintf(stderr, "%s\n", note.c_str());
+  return folder.env_section;
 }
 
 void add_model_env_override(const std::string& env_id, std::vector<std::string>& overrides) {
@@ -32,12 +34,14 @@ void add_model_env_override(const std::string& env_id, std::vector<std::string>&
 }
 
 ModelPlayer load_model_player(const std::string& path, Registry& registry,
-                              const std::vector<std::string>& overrides, bool trust) {
+                              const std::vector<std::string>& overrides, bool trust,
+                              const YAML::Node& sb3_env_section) {
   ModelPlayer player;
   const std::optional<std::string> team_dir = agent_team_directory(path);
   if (!team_dir) {
-    player.models.push_back(
-        load_model(path, registry, overrides, model_trust(trust, path, registry)));
+    player.models.push_back(load_model(path, registry, overrides,
+                                       model_trust(trust, path, registry), ModelEnv::kRun,
+                                       sb3_env_section));
     player.label = player.first().file.meta.algorithm;
     return player;
   }

@@ -23,9 +23,6 @@ struct ModelPlayer {
   ActionFn act(bool deterministic, std::function<void()>* start_episode);
 };
 
-// Loads `path` (a model file, a per-agent run directory or its agents.json) as `eval` and
-// `record` do: statistics frozen, weights within the budget, `overrides` and `trust` applied to
-// every model file. A team's models must agree on the env and the agents' number.
 // `--env ID` with `--model`: the env the model plays, as the override env.id=ID before the
 // user's --set values (an SB3 model file does not record its env; an rlrun one is played on
 // another env with the same spaces). Nothing when `env_id` is empty.
@@ -33,10 +30,17 @@ void add_model_env_override(const std::string& env_id, std::vector<std::string>&
 
 // `--zoo-model DIR` (an rl-zoo run folder: runtime/workflows/zoo/zoo_run_folder.hpp): sets
 // `model` to its model file and `env_id` to its env unless the user named one, and prints
-// what of the zoo's config.yml is not applied. Nothing when `dir` is empty.
-void resolve_zoo_model(const std::string& dir, std::string& model, std::string& env_id);
+// what of the zoo's config.yml is not applied. Returns the folder's env settings for
+// load_model_player (nothing when `dir` is empty).
+YAML::Node resolve_zoo_model(const std::string& dir, const Registry& registry, std::string& model,
+                             std::string& env_id);
 
+// Loads `path` (a model file, a per-agent run directory or its agents.json) as `eval` and
+// `record` do: statistics frozen, weights within the budget, `overrides` and `trust` applied to
+// every model file. A team's models must agree on the env and the agents' number.
+// `sb3_env_section`: resolve_zoo_model's env settings for an SB3 model file.
 ModelPlayer load_model_player(const std::string& path, Registry& registry,
-                              const std::vector<std::string>& overrides, bool trust);
+                              const std::vector<std::string>& overrides, bool trust,
+                              const YAML::Node& sb3_env_section = YAML::Node());
 
 }  // namespace rlrun::cli

@@ -274,20 +274,28 @@ TEST_CASE("rlrun eval --zoo-model plays an rl-zoo run folder", "[sb3][cli]") {
   std::filesystem::copy_file(source + "/model.zip", folder / "Pendulum-v1.zip");
   std::filesystem::copy_file(source + "/vecnormalize.pkl",
                              folder / "Pendulum-v1" / "vecnormalize.pkl");
+  const std::string eval = std::string(RLRUN_BINARY) + " eval --zoo-model " + folder.string() +
+                           " --episodes 1 --seed 0 2>&1";
+  // Without config.yml: SB3's episode (the statistics of vecnormalize.pkl frozen).
+  const nlohmann::json returns = read_json(source + "/returns.json");
+  const CommandResult plain = run_command(eval);
+  CHECK(plain.exit_code == 0);
+  CHECK_THAT(plain.output, Catch::Contains("PPO on Pendulum-v1"));
+  const auto at = plain.output.find("mean_reward = ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::abs(std::stod(plain.output.substr(at + 14)) -
+                 returns["episode_returns"][0].get<double>()) <= 0.006);
+  // config.yml's env_wrapper is applied as `rlrun zoo import` translates it; frame_stack is
+  // named in a note.
   std::ofstream(folder / "Pendulum-v1" / "config.yml")
       << "!!python/object/apply:collections.OrderedDict\n"
-      << "- - - env_wrapper\n    - sb3_contrib.common.wrappers.TimeFeatureWrapper\n"
-      << "  - - normalize\n    - true\n  - - policy\n    - MlpPolicy\n";
-  const nlohmann::json returns = read_json(source + "/returns.json");
-  const CommandResult r = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
-                                      folder.string() + " --episodes 1 --seed 0 2>&1");
-  CHECK(r.exit_code == 0);
-  CHECK_THAT(r.output, Catch::Contains("PPO on Pendulum-v1") &&
-                           Catch::Contains("sets env_wrapper, which rlrun does not apply"));
-  const auto at = r.output.find("mean_reward = ");
-  REQUIRE(at != std::string::npos);
-  CHECK(std::abs(std::stod(r.output.substr(at + 14)) -
-                 returns["episode_returns"][0].get<double>()) <= 0.006);
+      << "- - - env_wrapper\n"
+      << "    - - gym.wrappers.TimeLimit:\n          max_episode_steps: 100\n"
+      << "  - - frame_stack\n    - 2\n  - - policy\n    - MlpPolicy\n";
+  const CommandResult wrapped = run_command(eval);
+  CHECK(wrapped.exit_code == 0);
+  CHECK_THAT(wrapped.output, Catch::Contains("mean_ep_length = 100.0") &&
+                                 Catch::Contains("sets frame_stack, which rlrun does not apply"));
   // A folder not named <env>_<n> is a usage error.
   const CommandResult wrong = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
                                           (root / "ppo").string() + " 2>&1");

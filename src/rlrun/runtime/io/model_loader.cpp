@@ -119,13 +119,14 @@ std::string overridden_env_id(const std::vector<std::string>& overrides) {
 }
 
 // An SB3 file is read whole (its weights are in torch's format, not in members of their own).
-ModelFile read_sb3_model_for(const std::string& path, const std::vector<std::string>& overrides) {
+ModelFile read_sb3_model_for(const std::string& path, const std::vector<std::string>& overrides,
+                             const YAML::Node& env_section) {
   const std::string env_id = overridden_env_id(overrides);
   if (env_id.empty())
     throw RuntimeFailure(path +
                          " is an SB3 model file, which does not record the env it was trained "
                          "on: name it with --env ID (for example --env CartPole-v1)");
-  return read_sb3_model(path, env_id);
+  return read_sb3_model(path, env_id, env_section);
 }
 
 // SB3 files from gym's days record observation bounds Gymnasium has changed since (CartPole's
@@ -152,10 +153,11 @@ void adopt_observation_bounds(ModelFile& model, const Space& env_space) {
 
 LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
                                  const std::vector<std::string>& overrides, const ModelTrust& trust,
-                                 ModelEnv use) {
+                                 ModelEnv use, const YAML::Node& sb3_env_section) {
   LoadedModel loaded;
   const bool sb3 = is_sb3_model_file(path);
-  loaded.file = sb3 ? read_sb3_model_for(path, overrides) : read_model_header(path);
+  loaded.file =
+      sb3 ? read_sb3_model_for(path, overrides, sb3_env_section) : read_model_header(path);
   const ModelFile& model = loaded.file;
   // Without recorded spaces the env must say them, so this program must have it (the deploy
   // library's registry holds no env).
@@ -187,11 +189,11 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
 
 LoadedModel load_model(const std::string& path, const Registry& registry,
                        const std::vector<std::string>& overrides, const ModelTrust& trust,
-                       ModelEnv use) {
+                       ModelEnv use, const YAML::Node& sb3_env_section) {
   // The config in the file sizes the env and networks built before any tensor is read: a
   // size beyond this machine's memory is the file's problem, said as such.
   try {
-    return load_model_unguarded(path, registry, overrides, trust, use);
+    return load_model_unguarded(path, registry, overrides, trust, use, sb3_env_section);
   } catch (const std::bad_alloc&) {
     throw RuntimeFailure(path +
                          ": its config.yaml describes an env or networks larger than this "

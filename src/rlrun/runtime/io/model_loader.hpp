@@ -54,9 +54,11 @@ struct LoadedModel {
   std::unique_ptr<Algorithm> algorithm;
 };
 // `overrides`, `trust` and `use` as for experiment_from_model; with kSpacesOnly, `env` cannot
-// be stepped.
+// be stepped. `sb3_env_section`: for an SB3 file, env settings from beside it
+// (runtime/io/sb3/sb3_model_file.hpp), read as untrusted as the file.
 LoadedModel load_model(const std::string& path, const Registry& registry,
                        const std::vector<std::string>& overrides = {}, const ModelTrust& trust = {},
-                       ModelEnv use = ModelEnv::kRun);
+                       ModelEnv use = ModelEnv::kRun,
+                       const YAML::Node& sb3_env_section = YAML::Node());
 
 }  // namespace rlrun

@@ -42,8 +42,8 @@ bool entropy_regularized(PolicyFamily family) {
 
 class Sb3Reader {
  public:
-  Sb3Reader(const std::string& path, const std::string& env_id)
-      : path_(path), env_id_(env_id), archive_(path) {}
+  Sb3Reader(const std::string& path, const std::string& env_id, const YAML::Node& env_section)
+      : path_(path), env_id_(env_id), env_section_(env_section), archive_(path) {}
 
   ModelFile read() {
     data_ = parse_data();
@@ -334,6 +334,8 @@ class Sb3Reader {
     YAML::Node root;
     root["run"]["name"] = "sb3_model";
     root["env"]["id"] = env_id_;
+    for (const char* key : {"wrappers", "max_episode_steps"})
+      if (env_section_.IsMap() && env_section_[key]) root["env"][key] = env_section_[key];
     if (normalize) root["env"]["normalize"] = encode(*normalize);
     root["algo"]["id"] = algo;
     YAML::Node policy = policy_node(family, tensors, action_space);
@@ -353,6 +355,7 @@ class Sb3Reader {
 
   std::string path_;
   std::string env_id_;
+  YAML::Node env_section_;
   ZipReader archive_;
   Json data_;
 };
@@ -368,8 +371,9 @@ bool is_sb3_model_file(const std::string& path) {
   }
 }
 
-ModelFile read_sb3_model(const std::string& path, const std::string& env_id) {
-  return Sb3Reader(path, env_id).read();
+ModelFile read_sb3_model(const std::string& path, const std::string& env_id,
+                         const YAML::Node& env_section) {
+  return Sb3Reader(path, env_id, env_section).read();
 }
 
 }  // namespace rlrun

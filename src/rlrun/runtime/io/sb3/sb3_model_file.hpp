@@ -19,6 +19,8 @@
 // with policy_delay 1 and no target noise), the env id is the caller's (`--env ID`).
 #include <string>
 
+#include <yaml-cpp/yaml.h>
+
 #include "rlrun/runtime/io/model_file.hpp"
 
 namespace rlrun {
@@ -33,6 +35,10 @@ bool is_sb3_model_file(const std::string& path);
 // for DQN's q_net.q_net.* -> q_net.*). Throws RuntimeFailure naming the file and the reason:
 // a policy rlrun does not read (CnnPolicy, a custom features extractor, gSDE), a space it does
 // not hold, a pickle naming anything outside its allowlist, a malformed member.
-ModelFile read_sb3_model(const std::string& path, const std::string& env_id);
+// `env_section` (untrusted, like the file): env settings the model was trained with that the
+// file does not hold — the `wrappers` (and `max_episode_steps`) an rl-zoo run folder's
+// config.yml names (runtime/workflows/zoo/zoo_run_folder.hpp) — written into its config.yml.
+ModelFile read_sb3_model(const std::string& path, const std::string& env_id,
+                         const YAML::Node& env_section = YAML::Node());
 
 }  // namespace rlrun

@@ -11,6 +11,7 @@
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/regular_file.hpp"
 #include "rlrun/runtime/workflows/zoo/zoo_file.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_wrappers.hpp"
 
 namespace rlrun::zoo {
 
@@ -26,39 +27,49 @@ std::string env_of_folder_name(const std::string& name) {
   return name.substr(0, underscore);
 }
 
-// The zoo's hyperparameters that change the env the model saw and that rlrun does not apply to
-// an SB3 file (the observation check then refuses a model they changed). The file is the
-// zoo's yaml.dump of an OrderedDict: `!!python/object/apply:collections.OrderedDict` over the
-// call's one argument, a list of [key, value] pairs; read as untrusted text
+// The zoo's hyperparameters that change the env the model saw: env_wrapper is translated into
+// `folder.env_section` as `rlrun zoo import` translates it; frame_stack is not applied yet. The
+// file is the zoo's yaml.dump of an OrderedDict: `!!python/object/apply:collections.OrderedDict`
+// over the call's one argument, a list of [key, value] pairs; read as untrusted text
 // (core/config_node.hpp's bounds), never through a link.
-std::vector<std::string> unapplied_settings(const std::string& config_file) {
-  std::vector<std::string> notes;
+void read_zoo_config(const std::string& config_file, int registered_limit, ZooRunFolder& folder) {
   ConfigNode root;
   try {
     const FileDescriptor fd = open_regular_file(AT_FDCWD, config_file, O_RDONLY, config_file);
-    if (!fd) return notes;
+    if (!fd) return;
     root = ConfigNode::load_string(read_bounded(fd.get(), kMaxConfigBytes, config_file),
                                    config_file, ConfigTrust::kUntrusted);
   } catch (const std::runtime_error&) {  // a link, a FIFO, too long, not YAML
-    return {"note: " + config_file + " is not a file rlrun reads; its settings are unread"};
+    folder.notes.push_back("note: " + config_file +
+                           " is not a file rlrun reads; its settings are unread");
+    return;
   }
-  if (!root.is_sequence() || root.size() != 1 || !root.at(0).is_sequence()) return notes;
+  if (!root.is_sequence() || root.size() != 1 || !root.at(0).is_sequence()) return;
   const ConfigNode pairs = root.at(0);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const ConfigNode pair = pairs.at(i);
     if (!pair.is_sequence() || pair.size() != 2 || !pair.at(0).is_scalar()) continue;
     const std::string key = pair.at(0).yaml().Scalar();
-    const YAML::Node value = pair.at(1).yaml();
-    if ((key == "env_wrapper" || key == "frame_stack") && value.IsDefined() && !value.IsNull())
-      notes.push_back("note: " + config_file + " sets " + key +
-                      ", which rlrun does not apply to SB3 model files yet (docs/sb3_models.md)");
+    const ConfigNode value = pair.at(1);
+    if (!value.defined()) continue;
+    if (key == "frame_stack") {
+      folder.notes.push_back("note: " + config_file +
+                             " sets frame_stack, which rlrun does not apply to SB3 model files "
+                             "yet (docs/sb3_models.md)");
+    } else if (key == "env_wrapper") {
+      try {
+        translate_env_wrappers(value, folder.env_section, registered_limit, folder.notes);
+      } catch (const ConfigError& e) {
+        folder.notes.push_back(std::string("note: env_wrapper not applied: ") + e.what());
+        folder.env_section = YAML::Node(YAML::NodeType::Map);
+      }
+    }
   }
-  return notes;
 }
 
 }  // namespace
 
-ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best) {
+ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best, const Registry& registry) {
   std::filesystem::path folder(dir);
   if (folder.filename().empty()) folder = folder.parent_path();  // a trailing '/'
   std::error_code ec;
@@ -75,7 +86,10 @@ ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best) {
                      " in it");
   out.model_path = model.string();
   out.env_id = current_env_id(zoo_env);
-  out.notes = unapplied_settings((folder / zoo_env / "config.yml").string());
+  out.env_section = YAML::Node(YAML::NodeType::Map);
+  const EnvEntry* env = registry.find_env(out.env_id);
+  read_zoo_config((folder / zoo_env / "config.yml").string(), env ? env->max_episode_steps : 0,
+                  out);
   return out;
 }
 

@@ -6,21 +6,28 @@
 //   <env>/config.yml     the hyperparameters used; <env>/vecnormalize.pkl the VecNormalize
 //                        statistics (read beside the model: runtime/io/sb3/sb3_vec_normalize.hpp)
 // `rlrun eval --zoo-model DIR` plays it as `python -m rl_zoo3.enjoy --algo <algo> --env <env>
-// -f logs/` does: the model of the folder on the folder's env (rlrun's id for it), with the
-// statistics frozen.
+// -f logs/` does: the model of the folder on the folder's env (rlrun's id for it), wrapped in
+// the config.yml's `env_wrapper` (translated as `rlrun zoo import` translates it:
+// zoo_wrappers.hpp), with the statistics frozen.
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 #include <vector>
+
+#include "rlrun/runtime/components/registry.hpp"
 
 namespace rlrun::zoo {
 
 struct ZooRunFolder {
   std::string model_path;
   std::string env_id;              // rlrun's id of the folder's env
-  std::vector<std::string> notes;  // what the zoo's config.yml asks that rlrun does not apply
+  YAML::Node env_section;          // `wrappers` (and `max_episode_steps`) from env_wrapper
+  std::vector<std::string> notes;  // what of the zoo's config.yml is not applied, and why
 };
 
 // `dir` must be named <env>_<n> and hold <env>.zip (or best_model.zip with `best`). Throws
-// UsageError naming what is missing.
-ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best);
+// UsageError naming what is missing. config.yml is untrusted: what it names that rlrun does
+// not translate becomes a note, never an error (the model's observation check decides).
+ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best, const Registry& registry);
 
 }  // namespace rlrun::zoo
