@@ -184,7 +184,21 @@ class PickleMachine {
     if (entries_ > kMaxPickleEntries)
       fail("more than " + std::to_string(kMaxPickleEntries) + " values: not a file rlrun reads");
   }
-  void push(PickleValue* value) { stack_.push_back(value); }
+  // The stack, the marks and the memo hold pointers, not values, but a pickle of DUPs, MARKs or
+  // BINPUTs grows them by a word per input byte: they share the values' bound.
+  void push(PickleValue* value) {
+    grow_check();
+    stack_.push_back(value);
+  }
+  void grow_check() const {
+    if (stack_.size() + marks_.size() + memo_.size() >= kMaxPickleEntries)
+      fail("more than " + std::to_string(kMaxPickleEntries) +
+           " values on the stack and in the memo: not a file rlrun reads");
+  }
+  void memoize(uint64_t key) {
+    grow_check();
+    memo_[key] = top();
+  }
   PickleValue* pop() {
     if (stack_.size() <= floor()) fail("the stack is empty");
     PickleValue* value = stack_.back();
@@ -241,7 +255,7 @@ class PickleMachine {
       case kFrame:  // a hint for buffering readers: the whole input is in memory already
         if (little_endian(8) > size_ - position_) fail("a FRAME runs past the end");
         return true;
-      case kMark: marks_.push_back(stack_.size()); return true;
+      case kMark: grow_check(), marks_.push_back(stack_.size()); return true;
       case kPop: pop(); return true;
       case kPopMark: pop_mark(); return true;
       case kDup: push(top()); return true;
@@ -365,9 +379,9 @@ class PickleMachine {
 
   bool memo_op(uint8_t op) {
     switch (op) {
-      case kBinPut: memo_[next_byte()] = top(); return true;
-      case kLongBinPut: memo_[little_endian(4)] = top(); return true;
-      case kMemoize: memo_[memo_.size()] = top(); return true;
+      case kBinPut: memoize(next_byte()); return true;
+      case kLongBinPut: memoize(little_endian(4)); return true;
+      case kMemoize: memoize(memo_.size()); return true;
       case kBinGet:
       case kLongBinGet: {
         const uint64_t key = op == kBinGet ? next_byte() : little_endian(4);
@@ -477,6 +491,24 @@ PickleDocument read_pickle(const uint8_t* bytes, std::size_t size, const std::st
   PickleMachine machine(bytes, size, what, allowed, document);
   machine.run();
   return document;
+}
+
+const std::vector<const PickleValue*>* pickle_dict_items(const PickleValue& value) {
+  if (value.kind == PickleKind::kDict) return &value.items;
+  const PickleValue* callee = value.callee();
+  if (callee && callee->is_global("collections", "OrderedDict") && !value.via_newobj &&
+      value.arguments().items.empty() && (value.added_pairs || value.added_items.empty()))
+    return &value.added_items;
+  return nullptr;
+}
+
+const PickleValue* pickle_dict_get(const PickleValue& dict, std::string_view key) {
+  const std::vector<const PickleValue*>* items = pickle_dict_items(dict);
+  const PickleValue* found = nullptr;
+  for (std::size_t i = 0; items && i + 1 < items->size(); i += 2)
+    if ((*items)[i]->kind == PickleKind::kString && (*items)[i]->text == key)
+      found = (*items)[i + 1];
+  return found;
 }
 
 std::string describe_pickle_value(const PickleValue& value) {

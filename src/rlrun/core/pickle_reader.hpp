@@ -19,8 +19,8 @@
 // STACK_GLOBAL REDUCE NEWOBJ BUILD BINPERSID. Refused, with the opcode's name: the text
 // opcodes of protocols 0-1, INST, OBJ, NEWOBJ_EX, EXT1/2/4, PERSID, NEXT_BUFFER and
 // READONLY_BUFFER (out-of-band buffers), and any byte that is no opcode.
-// Bounds: the caller bounds the input's size; values, memo entries and stack depth are then
-// bounded by it (each opcode adds at most one node), the result's nesting is at most
+// Bounds: whatever the input's size, at most 2^18 values and container items, and at most 2^18
+// pointers on the stack, marks and memo together; the result's nesting is at most
 // kMaxPickleDepth and a structure that contains itself (a list appended to itself through the
 // memo) is refused, so code that walks the result needs no cycle checks of its own.
 #include <cstddef>
@@ -28,6 +28,7 @@
 #include <deque>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rlrun {
@@ -98,5 +99,13 @@ PickleDocument read_pickle(const uint8_t* bytes, std::size_t size, const std::st
 
 // A value's kind as Python would name it, for messages ("int", "tuple", "global os.system").
 std::string describe_pickle_value(const PickleValue& value);
+
+// The (key, value, key, value, ...) items of a dict, or of a collections.OrderedDict (a call
+// with no arguments whose items SETITEMS added: how state_dict() and spaces' dicts pickle);
+// nullptr for any other value.
+const std::vector<const PickleValue*>* pickle_dict_items(const PickleValue& value);
+// The value of the str key `key` in such a dict (the last one set, as Python keeps), or
+// nullptr: an attribute of an object's pickled __dict__.
+const PickleValue* pickle_dict_get(const PickleValue& dict, std::string_view key);
 
 }  // namespace rlrun

@@ -124,12 +124,9 @@ class TorchFileReader {
   // The dict's (key, value, ...) list: a plain dict, or an OrderedDict (what state_dict()
   // returns) whose items SETITEMS added; its state (`_metadata`, module versions) is unused.
   const std::vector<const PickleValue*>& root_pairs(const PickleValue& root) const {
-    if (root.kind == PickleKind::kDict) return root.items;
-    const PickleValue* callee = root.callee();
-    if (callee && callee->is_global("collections", "OrderedDict") && !root.via_newobj &&
-        root.arguments().items.empty() && (root.added_pairs || root.added_items.empty()))
-      return root.added_items;
-    fail("holds " + describe_pickle_value(root) + ", not a dict of tensors");
+    const std::vector<const PickleValue*>* pairs = pickle_dict_items(root);
+    if (!pairs) fail("holds " + describe_pickle_value(root) + ", not a dict of tensors");
+    return *pairs;
   }
 
   Tensor tensor(const PickleValue& value, const std::string& name, int depth) {

@@ -14,28 +14,8 @@ namespace {
   throw RuntimeFailure(what + ": " + why);
 }
 
-// The (key, value, ...) items of a dict, or of an OrderedDict made by a call.
-const std::vector<const PickleValue*>* dict_items(const PickleValue& value) {
-  if (value.kind == PickleKind::kDict) return &value.items;
-  const PickleValue* callee = value.callee();
-  if (callee && callee->is_global("collections", "OrderedDict") && value.added_pairs)
-    return &value.added_items;
-  if (callee && callee->is_global("collections", "OrderedDict") && value.added_items.empty())
-    return &value.added_items;
-  return nullptr;
-}
-
-// The space's attribute `name` from its pickled __dict__ (the last one set, as Python keeps).
-const PickleValue* attribute(const PickleValue& state, const char* name) {
-  const std::vector<const PickleValue*>* items = dict_items(state);
-  const PickleValue* found = nullptr;
-  for (std::size_t i = 0; items && i + 1 < items->size(); i += 2)
-    if ((*items)[i]->kind == PickleKind::kString && (*items)[i]->text == name)
-      found = (*items)[i + 1];
-  return found;
-}
 const PickleValue& required(const PickleValue& state, const char* name, const std::string& what) {
-  const PickleValue* value = attribute(state, name);
+  const PickleValue* value = pickle_dict_get(state, name);
   if (!value) fail(what, std::string("a space without its '") + name + "' attribute");
   return *value;
 }
@@ -69,14 +49,14 @@ Space box(const PickleValue& state, const std::string& what) {
 
 Space discrete(const PickleValue& state, const std::string& what) {
   const int64_t n = pickled_integer(required(state, "n", what), what);
-  const PickleValue* start = attribute(state, "start");
+  const PickleValue* start = pickle_dict_get(state, "start");
   return Space::discrete(n, start ? pickled_integer(*start, what) : 0);
 }
 
 Space multi_discrete(const PickleValue& state, const std::string& what) {
   const NumpyArray nvec = numpy_array(required(state, "nvec", what), what);
   if (nvec.shape.size() != 1) fail(what, "a MultiDiscrete of more than one dimension");
-  if (const PickleValue* start = attribute(state, "start"))
+  if (const PickleValue* start = pickle_dict_get(state, "start"))
     for (const double s : numpy_array(*start, what).to_doubles())
       if (s != 0) fail(what, "a MultiDiscrete whose values do not start at 0");
   std::vector<int64_t> counts;
@@ -95,7 +75,7 @@ Space space_of(const PickleValue& value, const std::string& what, bool inside_di
 
 Space dict(const PickleValue& state, const std::string& what, bool nested) {
   if (nested) fail(what, "a Dict inside a Dict (SB3's MultiInputPolicy reads one level)");
-  const std::vector<const PickleValue*>* items = dict_items(required(state, "spaces", what));
+  const std::vector<const PickleValue*>* items = pickle_dict_items(required(state, "spaces", what));
   if (!items || items->empty()) fail(what, "a Dict without spaces");
   std::vector<std::pair<std::string, Space>> entries;
   for (std::size_t i = 0; i + 1 < items->size(); i += 2) {

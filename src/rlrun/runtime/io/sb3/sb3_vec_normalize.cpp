@@ -2,7 +2,6 @@
 
 #include <fcntl.h>
 
-#include <cstring>
 #include <filesystem>
 
 #include "rlrun/core/errors.hpp"
@@ -11,6 +10,7 @@
 #include "rlrun/core/regular_file.hpp"
 #include "rlrun/runtime/io/non_finite_check.hpp"
 #include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
+#include "rlrun/state.hpp"
 
 namespace rlrun {
 
@@ -64,13 +64,9 @@ class VecNormalizeReader {
     throw RuntimeFailure(path_ + ": " + why + " (SB3's vecnormalize.pkl: docs/sb3_models.md)");
   }
 
-  // The attribute `name` of a pickled object's __dict__ (the last one set).
+  // The attribute `name` of a pickled object's __dict__.
   const PickleValue& attribute(const PickleValue& state, const char* name) const {
-    const PickleValue* found = nullptr;
-    if (state.kind == PickleKind::kDict)
-      for (std::size_t i = 0; i + 1 < state.items.size(); i += 2)
-        if (state.items[i]->kind == PickleKind::kString && state.items[i]->text == name)
-          found = state.items[i + 1];
+    const PickleValue* found = pickle_dict_get(state, name);
     if (!found) fail(std::string("no '") + name + "' attribute");
     return *found;
   }
@@ -83,25 +79,20 @@ class VecNormalizeReader {
     return pickled_number(attribute(state, name), path_ + ": '" + name + "'");
   }
 
-  // RunningMeanStd's mean, var (float64, `dim` values) and count, under rlrun's names.
+  // RunningMeanStd's mean, var (`dim` values) and count, under the names rlrun's own
+  // RunningMeanStd::write gives them (wrappers/running_mean_std.cpp).
   void running_statistics(const PickleValue& rms, const char* wrapper, int64_t dim,
                           TensorMap& out) const {
     const PickleValue* callee = rms.callee();
     if (!callee || callee->text != "RunningMeanStd" || !rms.state)
       fail(std::string("its ") + (dim == 1 ? "ret_rms" : "obs_rms") + " is " +
            describe_pickle_value(rms) + ", not a RunningMeanStd of one array");
-    const std::string prefix = std::string("wrappers/") + wrapper + "/";
+    StateWriter writer(out, std::string("wrappers/") + wrapper + "/");
     for (const char* field : {"mean", "var"})
-      out[prefix + field] = doubles(attribute(*rms.state, field), dim, field);
-    Tensor count;
-    count.dtype = DType::kFloat64;
-    count.shape = {1};
-    const double n = number(*rms.state, "count");
-    count.bytes.resize(sizeof n);
-    std::memcpy(count.bytes.data(), &n, sizeof n);
-    out[prefix + "count"] = std::move(count);
+      writer.put_vector(field, doubles(attribute(*rms.state, field), dim, field));
+    writer.put_double("count", number(*rms.state, "count"));
   }
-  Tensor doubles(const PickleValue& value, int64_t dim, const char* field) const {
+  std::vector<double> doubles(const PickleValue& value, int64_t dim, const char* field) const {
     std::vector<double> values;
     if (is_numpy_array(value))
       values = numpy_array(value, path_).to_doubles();
@@ -110,12 +101,7 @@ class VecNormalizeReader {
     if (static_cast<int64_t>(values.size()) != dim)
       fail(std::string("its ") + field + " holds " + std::to_string(values.size()) +
            " values, the model's observations " + std::to_string(dim));
-    Tensor t;
-    t.dtype = DType::kFloat64;
-    t.shape = {dim};
-    t.bytes.resize(values.size() * sizeof(double));
-    std::memcpy(t.bytes.data(), values.data(), t.bytes.size());
-    return t;
+    return values;
   }
 
   std::string path_;

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "rlrun/core/tensor.hpp"
+#include "rlrun/tensor.hpp"
 #include "rlrun/wrappers/vec_normalize.hpp"
 
 namespace rlrun {
