@@ -4,12 +4,14 @@
 #include "rlrun/core/trusted_values.hpp"
 #include "rlrun/runtime/components/plugin_loader.hpp"
 #include "rlrun/runtime/io/model_file.hpp"
+#include "rlrun/runtime/io/sb3/sb3_model_file.hpp"
 
 namespace rlrun {
 
 void load_accepted_plugins(const std::string& model_path, const ModelTrust& trust,
                            Registry& registry) {
-  if (!trust.accepted) return;
+  // An SB3 file names no plugin (runtime/io/sb3/sb3_model_file.hpp): nothing to load.
+  if (!trust.accepted || is_sb3_model_file(model_path)) return;
   const ModelFile header = read_model_header(model_path);  // meta.json and config.yaml, bounded
   ConfigNode root;
   try {
