@@ -211,7 +211,7 @@ TEST_CASE("an SB3 model file needs --env and says so", "[sb3][cli]") {
   CHECK_THAT(r.output, Catch::Contains("SB3 model file") && Catch::Contains("--env"));
 }
 
-TEST_CASE("--trust takes an SB3 model file as it takes rlrun's", "[sb3][cli]") {
+TEST_CASE("rlrun eval --trust takes an SB3 model file as it takes rlrun's", "[sb3][cli]") {
   const CommandResult r =
       run_command(std::string(RLRUN_BINARY) + " eval --model " + case_dir("ppo_cartpole") +
                   "/model.zip --env CartPole-v1 --trust --episodes 1 2>&1");
