@@ -1,5 +1,6 @@
 // rlrun export --model FILE --format onnx --output policy.onnx [--with-value] [--set k=v]... [--trust]
 // rlrun export --model FILE --format c --output DIR        (DIR/policy.c, DIR/policy.h)
+// rlrun export --model FILE --format sb3 --output model.zip (Stable-Baselines3's model file)
 // The model's deterministic policy as a file that runs without rlrun (deploy/): the env's
 // observation in, the env's action out, as `rlrun eval` acts (docs/deploy.md).
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include "rlrun/runtime/io/model_graph.hpp"
 #include "rlrun/runtime/io/model_loader.hpp"
 #include "rlrun/runtime/io/run_directory.hpp"
+#include "rlrun/runtime/io/sb3/sb3_model_writer.hpp"
 #include "trust_option.hpp"
 
 namespace rlrun::cli {
@@ -43,6 +45,20 @@ void check_output_directory(const std::string& output) {
                          " does not exist");
 }
 
+// The model as SB3's model file (runtime/io/sb3/sb3_model_writer.hpp).
+int export_sb3(const LoadedModel& model, const std::string& path, const std::string& output) {
+  const Sb3ModelExport sb3 = sb3_model_export(model);
+  write_zip_atomic(output, sb3.members);
+  const std::string algorithm = quoted_text(model.file.meta.algorithm);
+  std::printf(
+      "exported %s (%s on %s) to %s: a Stable-Baselines3 %s model file; in Python: "
+      "%s.load(\"%s\")\n",
+      path.c_str(), algorithm.c_str(), quoted_text(model.file.meta.env_id).c_str(), output.c_str(),
+      kSb3FormatVersion, sb3.load_class.c_str(), output.c_str());
+  for (const std::string& note : sb3.notes) std::printf("note: %s\n", note.c_str());
+  return 0;
+}
+
 }  // namespace
 
 Action add_export(CLI::App& app, Registry& registry) {
@@ -53,11 +69,13 @@ Action add_export(CLI::App& app, Registry& registry) {
   sub->add_option("--model", o->model, "the model file (model.zip, best_model.zip, a checkpoint)")
       ->required();
   sub->add_option("--format", o->format,
-                  "onnx (one file) or c (a directory with policy.c and policy.h, C99)")
-      ->check(CLI::IsMember({"onnx", "c"}));
-  sub->add_option("-o,--output", o->output,
-                  "the file to write (onnx: e.g. policy.onnx) or the directory (c; created if "
-                  "its parent exists)")
+                  "onnx (one file), c (a directory with policy.c and policy.h, C99) or sb3 (a "
+                  "Stable-Baselines3 model.zip that PPO.load(...) etc. open: docs/sb3_models.md)")
+      ->check(CLI::IsMember({"onnx", "c", "sb3"}));
+  sub->add_option(
+         "-o,--output", o->output,
+         "the file to write (onnx: e.g. policy.onnx; sb3: e.g. model.zip) or the directory (c; "
+         "created if its parent exists)")
       ->required();
   sub->add_flag(
       "--with-value", o->with_value,
@@ -81,6 +99,7 @@ Action add_export(CLI::App& app, Registry& registry) {
     const LoadedModel model =
         load_model(o->model, registry, o->overrides, model_trust(o->trust, o->model, registry),
                    ModelEnv::kSpacesOnly);
+    if (o->format == "sb3") return export_sb3(model, o->model, o->output);
     // The whole output is made before anything is written: a refusal leaves nothing behind.
     PolicyGraph graph;
     CSource c;

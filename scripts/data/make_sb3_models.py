@@ -47,7 +47,8 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 
 try:  # sb3-contrib's cases are made when it is importable (make_sb3_models.sh: SB3_CONTRIB_SRC)
     import sb3_contrib
-    from sb3_contrib import QRDQN, TQC
+    from sb3_contrib import QRDQN, TQC, MaskablePPO, RecurrentPPO
+    from sb3_contrib.common.wrappers import ActionMasker
 except ImportError:
     sb3_contrib = None
 
@@ -187,6 +188,33 @@ if sb3_contrib is not None:
              buffer_size=1000, target_update_interval=100),
         600,
     )
+    # MaskablePPO trains behind sb3-contrib's ActionMasker (every action allowed here);
+    # predict without masks is the argmax over all actions.
+    CASES["maskable_ppo_cartpole"] = (
+        MaskablePPO,
+        "MlpPolicy",
+        "CartPole-v1",
+        dict(policy_kwargs=dict(net_arch=[32]), n_steps=256, batch_size=64),
+        512,
+    )
+    # RecurrentPPO: actions.npy is predict() on the 1000 observations as 1000 envs from a zero
+    # LSTM state; returns.json carries the state along each episode.
+    CASES["recurrent_ppo_cartpole"] = (
+        RecurrentPPO,
+        "MlpLstmPolicy",
+        "CartPole-v1",
+        dict(policy_kwargs=dict(lstm_hidden_size=16, net_arch=[16]), n_steps=128, batch_size=64),
+        256,
+    )
+    CASES["recurrent_ppo_pendulum"] = (
+        RecurrentPPO,
+        "MlpLstmPolicy",
+        "Pendulum-v1",
+        dict(policy_kwargs=dict(lstm_hidden_size=16, n_lstm_layers=2, shared_lstm=True,
+                                enable_critic_lstm=False, net_arch=[16]),
+             n_steps=128, batch_size=64),
+        256,
+    )
     CASES["tqc_pendulum"] = (
         TQC,
         "MlpPolicy",
@@ -220,9 +248,13 @@ def episode_returns(model, env_id):
     for seed in RETURN_SEEDS:
         env = make_env(env_id)
         obs, _ = env.reset(seed=seed)
-        total, done = 0.0, False
+        total, done, state, first = 0.0, False, None, True
         while not done:
-            action = model.predict(obs, deterministic=True)[0]
+            # A recurrent policy carries its state along the episode (reset at its start);
+            # the others ignore state and episode_start.
+            action, state = model.predict(obs, state=state, episode_start=np.array([first]),
+                                          deterministic=True)
+            first = False
             obs, reward, terminated, truncated, _ = env.step(action)
             total += float(reward)
             done = terminated or truncated
@@ -262,7 +294,10 @@ def make_case(out_dir, name, spec):
     case_dir = os.path.join(out_dir, name)
     os.makedirs(case_dir, exist_ok=True)
     # The env the model trains on; SB3 wraps it in a DummyVecEnv (and Monitor) itself.
-    model = algo(policy, make_env(env_id), seed=0, device="cpu", verbose=0, **kwargs)
+    env = make_env(env_id)
+    if sb3_contrib is not None and algo is MaskablePPO:
+        env = ActionMasker(env, lambda e: np.ones(e.action_space.n, dtype=bool))
+    model = algo(policy, env, seed=0, device="cpu", verbose=0, **kwargs)
     model.learn(total_timesteps=steps)
     model.save(os.path.join(case_dir, "model.zip"))
 

@@ -1,5 +1,7 @@
 #include "rlrun/core/base64.hpp"
 
+#include <algorithm>
+
 namespace rlrun {
 
 namespace {
@@ -32,6 +34,21 @@ std::optional<std::vector<uint8_t>> decode_base64(std::string_view text) {
     out.push_back(static_cast<uint8_t>(group >> 16));
     if (padding < 2) out.push_back(static_cast<uint8_t>(group >> 8));
     if (padding < 1) out.push_back(static_cast<uint8_t>(group));
+  }
+  return out;
+}
+
+std::string encode_base64(const std::vector<uint8_t>& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t at = 0; at < bytes.size(); at += 3) {
+    const size_t n = std::min<size_t>(3, bytes.size() - at);
+    uint32_t group = 0;
+    for (size_t i = 0; i < n; ++i) group |= static_cast<uint32_t>(bytes[at + i]) << (16 - 8 * i);
+    for (size_t i = 0; i < 4; ++i)
+      out.push_back(i <= n ? kAlphabet[(group >> (18 - 6 * i)) & 63] : '=');
   }
   return out;
 }

@@ -13,6 +13,7 @@
 #include "rlrun/core/torch_state_dict.hpp"
 #include "rlrun/core/zip_reader.hpp"
 #include "rlrun/runtime/io/non_finite_check.hpp"
+#include "rlrun/runtime/io/sb3/sb3_net_arch.hpp"
 #include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
 #include "rlrun/runtime/io/sb3/sb3_vec_normalize.hpp"
 
@@ -135,17 +136,33 @@ class Sb3Reader {
         {{"sb3_contrib.tqc.policies", "TQCPolicy"}, PolicyFamily::kTqc},
         {{"sb3_contrib.tqc.policies", "MultiInputPolicy"}, PolicyFamily::kTqc},
     };
+    // sb3-contrib's MaskablePPO and RecurrentPPO: PPO's actor-critic (the same tensor names),
+    // the second with its LSTMs in front (sb3_contrib/common/{maskable,recurrent}/policies.py).
+    static const std::map<std::pair<std::string, std::string>, std::string> ppo_variants = {
+        {{"sb3_contrib.common.maskable.policies", "MaskableActorCriticPolicy"}, "MaskablePPO"},
+        {{"sb3_contrib.common.maskable.policies", "MaskableMultiInputActorCriticPolicy"},
+         "MaskablePPO"},
+        {{"sb3_contrib.common.recurrent.policies", "RecurrentActorCriticPolicy"}, "RecurrentPPO"},
+        {{"sb3_contrib.common.recurrent.policies", "RecurrentMultiInputActorCriticPolicy"},
+         "RecurrentPPO"},
+    };
+    if (const auto variant = ppo_variants.find({c.module, c.text}); variant != ppo_variants.end()) {
+      ppo_variant_ = variant->second;
+      return PolicyFamily::kActorCritic;
+    }
     const auto found = known.find({c.module, c.text});
     if (found == known.end())
       fail("its policy class is " + c.module + "." + c.text +
            "; rlrun reads the MlpPolicy and MultiInputPolicy of PPO, A2C, DQN, SAC, TD3, DDPG, "
-           "and sb3-contrib's QR-DQN and TQC");
+           "and sb3-contrib's QR-DQN, TQC, MaskablePPO and RecurrentPPO (MlpLstmPolicy)");
     return found->second;
   }
 
   std::string algorithm(PolicyFamily family) const {
     switch (family) {
-      case PolicyFamily::kActorCritic: return data_.contains("clip_range") ? "PPO" : "A2C";
+      case PolicyFamily::kActorCritic:
+        if (!ppo_variant_.empty()) return ppo_variant_;
+        return data_.contains("clip_range") ? "PPO" : "A2C";
       case PolicyFamily::kDqn: return "DQN";
       case PolicyFamily::kQrDqn: return "QRDQN";
       case PolicyFamily::kSac: return "SAC";
@@ -210,27 +227,6 @@ class Sb3Reader {
     return out;
   }
 
-  // Output sizes of the Linear layers `<prefix>0`, `<prefix>2`, ... (a torch Sequential whose
-  // odd entries are activations), in order.
-  static std::vector<int> layer_widths(const TensorMap& tensors, const std::string& prefix) {
-    std::vector<int> widths;
-    for (int index = 0;; index += 2) {
-      const auto found = tensors.find(prefix + std::to_string(index) + ".weight");
-      if (found == tensors.end() || found->second.shape.size() != 2) return widths;
-      widths.push_back(static_cast<int>(found->second.shape[0]));
-    }
-  }
-  static std::vector<int> hidden_widths(const TensorMap& tensors, const std::string& prefix) {
-    std::vector<int> widths = layer_widths(tensors, prefix);
-    if (!widths.empty()) widths.pop_back();  // the output layer
-    return widths;
-  }
-  static int count_critics(const TensorMap& tensors) {
-    int n = 0;
-    while (tensors.count("critic.qf" + std::to_string(n) + ".0.weight")) ++n;
-    return n;
-  }
-
   // An attribute of policy_kwargs: SB3 writes the dict as JSON, or (when it holds classes) as
   // a serialized entry beside which each attribute is JSON or its str().
   std::optional<Json> policy_kwarg(const char* name) const {
@@ -276,14 +272,15 @@ class Sb3Reader {
     YAML::Node net_arch;
     switch (family) {
       case PolicyFamily::kActorCritic:
-        net_arch["pi"] = layer_widths(tensors, "mlp_extractor.policy_net.");
-        net_arch["vf"] = layer_widths(tensors, "mlp_extractor.value_net.");
+        net_arch["pi"] = sb3_layer_widths(tensors, "mlp_extractor.policy_net.");
+        net_arch["vf"] = sb3_layer_widths(tensors, "mlp_extractor.value_net.");
+        if (ppo_variant_ == "RecurrentPPO") add_lstm(tensors, policy);
         break;
-      case PolicyFamily::kDqn: net_arch = hidden_widths(tensors, "q_net."); break;
+      case PolicyFamily::kDqn: net_arch = sb3_hidden_widths(tensors, "q_net."); break;
       case PolicyFamily::kQrDqn: {
-        net_arch = hidden_widths(tensors, "quantile_net.");
+        net_arch = sb3_hidden_widths(tensors, "quantile_net.");
         // The head outputs n_quantiles per action.
-        const std::vector<int> all = layer_widths(tensors, "quantile_net.");
+        const std::vector<int> all = sb3_layer_widths(tensors, "quantile_net.");
         const int actions = action_space.is_discrete() ? static_cast<int>(action_space.n()) : 0;
         if (all.empty() || actions <= 0 || all.back() % actions != 0)
           fail("its quantile network does not fit its action space");
@@ -293,11 +290,12 @@ class Sb3Reader {
       case PolicyFamily::kSac:
       case PolicyFamily::kTqc:
       case PolicyFamily::kTd3: {
-        net_arch["pi"] = family == PolicyFamily::kTd3 ? hidden_widths(tensors, "actor.mu.")
-                                                      : layer_widths(tensors, "actor.latent_pi.");
-        net_arch["qf"] = hidden_widths(tensors, "critic.qf0.");
-        policy["n_critics"] = count_critics(tensors);
-        const std::vector<int> critic = layer_widths(tensors, "critic.qf0.");
+        net_arch["pi"] = family == PolicyFamily::kTd3
+                             ? sb3_hidden_widths(tensors, "actor.mu.")
+                             : sb3_layer_widths(tensors, "actor.latent_pi.");
+        net_arch["qf"] = sb3_hidden_widths(tensors, "critic.qf0.");
+        policy["n_critics"] = sb3_critic_count(tensors);
+        const std::vector<int> critic = sb3_layer_widths(tensors, "critic.qf0.");
         if (family == PolicyFamily::kTqc && !critic.empty()) policy["n_quantiles"] = critic.back();
         break;
       }
@@ -307,6 +305,22 @@ class Sb3Reader {
     if (const std::optional<Json> v = policy_kwarg("normalize_images"); v && v->is_boolean())
       policy["normalize_images"] = v->get<bool>();
     return policy;
+  }
+
+  // RecurrentPPO's LSTMs, read off the weights as torch.nn.LSTM names them (weight_hh_l<k> is
+  // 4*hidden x hidden): the actor's layers; the critic has its own LSTM (lstm_critic:
+  // enable_critic_lstm), a Linear (critic: neither), or reads the actor's (shared_lstm).
+  void add_lstm(const TensorMap& tensors, YAML::Node& policy) const {
+    const auto hh = tensors.find("lstm_actor.weight_hh_l0");
+    if (hh == tensors.end() || hh->second.shape.size() != 2)
+      fail("its recurrent policy has no lstm_actor.weight_hh_l0");
+    int layers = 0;
+    while (tensors.count("lstm_actor.weight_ih_l" + std::to_string(layers))) ++layers;
+    policy["lstm_hidden_size"] = static_cast<int>(hh->second.shape[1]);
+    policy["n_lstm_layers"] = layers;
+    const bool critic_lstm = tensors.count("lstm_critic.weight_hh_l0") > 0;
+    policy["enable_critic_lstm"] = critic_lstm;
+    policy["shared_lstm"] = !critic_lstm && !tensors.count("critic.weight");
   }
 
   // gSDE (use_sde=True): the policy_kwargs that shape it (stable_baselines3/common/
@@ -358,6 +372,7 @@ class Sb3Reader {
   YAML::Node env_section_;
   ZipReader archive_;
   Json data_;
+  std::string ppo_variant_;  // "MaskablePPO" or "RecurrentPPO" for sb3-contrib's policy classes
 };
 
 }  // namespace

@@ -31,9 +31,11 @@ bool is_sb3_model_file(const std::string& path);
 
 // The whole file as an rlrun ModelFile: meta (algorithm, `env_id`, the spaces), a config.yaml
 // that builds the same policy (networks from the tensors' shapes, activation_fn from
-// policy_kwargs) and the tensors under rlrun's names (the same as SB3's state_dict names but
-// for DQN's q_net.q_net.* -> q_net.*). Throws RuntimeFailure naming the file and the reason:
-// a policy rlrun does not read (CnnPolicy, a custom features extractor, gSDE), a space it does
+// policy_kwargs; RecurrentPPO's LSTM sizes and critic kind) and the tensors under rlrun's
+// names (the same as SB3's state_dict names but for DQN's q_net.q_net.* -> q_net.*). SB3's
+// PPO, A2C, DQN, SAC, TD3, DDPG and sb3-contrib's QR-DQN, TQC, MaskablePPO and RecurrentPPO.
+// Throws RuntimeFailure naming the file and the reason:
+// a policy rlrun does not read (CnnPolicy, a custom features extractor), a space it does
 // not hold, a pickle naming anything outside its allowlist, a malformed member.
 // `env_section` (untrusted, like the file): env settings the model was trained with that the
 // file does not hold — the `wrappers` (and `max_episode_steps`) an rl-zoo run folder's

@@ -1,10 +1,13 @@
 #include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/numpy_pickle.hpp"
+#include "rlrun/core/numpy_pickle_writer.hpp"
 #include "rlrun/core/quoted_text.hpp"
+#include "rlrun/core/utf8_text.hpp"
 
 namespace rlrun {
 
@@ -109,7 +112,116 @@ Space space_of(const PickleValue& value, const std::string& what, bool inside_di
                  "MultiBinary and Dict)");
 }
 
+// Writing: NEWOBJ(cls, ()) then BUILD with the attributes of `state` written by the caller
+// between begin_space_state() and end_space_state().
+void begin_space_state(PickleWriter& p, const char* file, const char* name) {
+  p.global_ref(std::string("gymnasium.spaces.") + file, name);
+  p.empty_tuple();
+  p.new_object();
+  p.empty_dict();
+  p.mark();
+}
+void end_space_state(PickleWriter& p) {
+  p.text("_np_random");
+  p.none();
+  p.set_items();
+  p.build();
+}
+
+std::vector<int64_t> dims(const std::vector<int>& shape) {
+  return std::vector<int64_t>(shape.begin(), shape.end());
+}
+
+void pickle_box(PickleWriter& p, const Space& space) {
+  const bool uint8 = space.is_uint8_box();
+  const std::vector<int64_t> shape = dims(space.shape());
+  const auto bounds = [&](const std::vector<float>& values) {
+    if (!uint8) return pickle_numpy_float32_array(p, values, shape);
+    std::vector<uint8_t> bytes;
+    for (const float v : values) bytes.push_back(static_cast<uint8_t>(v));
+    pickle_numpy_array(p, "u1", shape, bytes);
+  };
+  std::vector<bool> below;
+  std::vector<bool> above;
+  for (const float v : space.low()) below.push_back(!std::isinf(v));
+  for (const float v : space.high()) above.push_back(!std::isinf(v));
+  begin_space_state(p, "box", "Box");
+  p.text("dtype");
+  pickle_numpy_dtype(p, uint8 ? "u1" : "f4");
+  p.text("_shape");
+  p.int_tuple(shape);
+  p.text("low");
+  bounds(space.low());
+  p.text("high");
+  bounds(space.high());
+  p.text("bounded_below");
+  pickle_numpy_bool_array(p, below, shape);
+  p.text("bounded_above");
+  pickle_numpy_bool_array(p, above, shape);
+  end_space_state(p);
+}
+
+void pickle_space(PickleWriter& p, const Space& space) {
+  switch (space.kind()) {
+    case SpaceKind::kBox: return pickle_box(p, space);
+    case SpaceKind::kDiscrete:
+      begin_space_state(p, "discrete", "Discrete");
+      p.text("n");
+      pickle_numpy_int64(p, space.n());
+      p.text("start");
+      pickle_numpy_int64(p, space.start());
+      p.text("_shape");
+      p.empty_tuple();
+      p.text("dtype");
+      pickle_numpy_dtype(p, "i8");
+      return end_space_state(p);
+    case SpaceKind::kMultiDiscrete:
+      begin_space_state(p, "multi_discrete", "MultiDiscrete");
+      p.text("nvec");
+      pickle_numpy_int64_array(p, space.nvec());
+      p.text("start");
+      pickle_numpy_int64_array(p, std::vector<int64_t>(space.nvec().size(), 0));
+      p.text("_shape");
+      p.int_tuple({static_cast<int64_t>(space.nvec().size())});
+      p.text("dtype");
+      pickle_numpy_dtype(p, "i8");
+      return end_space_state(p);
+    case SpaceKind::kMultiBinary:
+      begin_space_state(p, "multi_binary", "MultiBinary");
+      p.text("n");
+      p.integer(space.n());
+      p.text("_shape");
+      p.int_tuple({space.n()});
+      p.text("dtype");
+      pickle_numpy_dtype(p, "i1");
+      return end_space_state(p);
+    case SpaceKind::kDict:
+      begin_space_state(p, "dict", "Dict");
+      p.text("spaces");
+      p.empty_dict();
+      p.mark();
+      for (std::size_t i = 0; i < space.keys().size(); ++i) {
+        // Python decodes the key as UTF-8; a key that is not printable UTF-8 is refused
+        // rather than written as a pickle that would not load.
+        if (printable_utf8(space.keys()[i]) != space.keys()[i])
+          throw RuntimeFailure("the Dict key '" + quoted_text(space.keys()[i]) +
+                               "' is not printable UTF-8 (a Python str)");
+        p.text(space.keys()[i]);
+        pickle_space(p, space.subspaces()[i]);
+      }
+      p.set_items();
+      p.text("_shape");
+      p.none();
+      p.text("dtype");
+      p.none();
+      return end_space_state(p);
+  }
+  throw RuntimeFailure("a space Gymnasium has no class for: " + space.describe());
+}
+
 }  // namespace
+
+void pickle_gymnasium_space(PickleWriter& p, const Space& space) { pickle_space(p, space); }
 
 bool is_sb3_space_global(const std::string& module, const std::string& name) {
   // Gymnasium's, and gym's before it (SB3 1.x files: gym 0.21's spaces, the same attributes).

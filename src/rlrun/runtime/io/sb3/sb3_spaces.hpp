@@ -11,6 +11,7 @@
 #include <string>
 
 #include "rlrun/core/pickle_reader.hpp"
+#include "rlrun/core/pickle_writer.hpp"
 #include "rlrun/space.hpp"
 
 namespace rlrun {
@@ -22,5 +23,11 @@ bool is_sb3_space_global(const std::string& module, const std::string& name);
 // Box (float32 or uint8), Discrete, MultiDiscrete, MultiBinary, and a Dict of those. Throws
 // RuntimeFailure naming `what` for any other value.
 Space sb3_space(const PickleValue& value, const std::string& what);
+
+// The other way (`rlrun export --format sb3`): `space` as Gymnasium 1.0 pickles it, in the form
+// above, onto `p` (protocol 3 or higher), with `_np_random` None (Space.__setstate__ takes
+// that, as a space never sampled). A float32 Box stays float32, a uint8 Box uint8; Discrete's
+// n and start are np.int64, MultiDiscrete's nvec and start int64 arrays, MultiBinary int8.
+void pickle_gymnasium_space(PickleWriter& p, const Space& space);
 
 }  // namespace rlrun
