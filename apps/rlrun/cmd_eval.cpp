@@ -212,6 +212,7 @@ struct EvalOptions {
   std::optional<int> green_time;       // --green-time (the traffic task's fixed-time plan)
   std::string policy, env_id, config;  // a policy without a model, in an env or config's env
   std::string zoo_model;               // --zoo-model DIR: an rl-zoo run folder
+  zoo::ZooModelChoice zoo_choice;      // --load-best, --load-checkpoint N, --load-last-checkpoint
   YAML::Node zoo_env;                  // its env settings (resolve_zoo_model)
   std::vector<std::string> overrides;  // --set: the user's values over the model's config
   std::string
@@ -294,6 +295,7 @@ Action add_eval(CLI::App& app, Registry& registry) {
       "an rl-baselines3-zoo run folder (<algo>/<env>_<n>/, as rl-trained-agents has them): its "
       "<env>.zip on its env, VecNormalize statistics frozen, as rl_zoo3.enjoy plays it");
   zoo_option->excludes(model_option)->excludes(policy_option);
+  add_zoo_model_choice_options(sub, zoo_option, options->zoo_choice);
   sub->add_option("--env", options->env_id,
                   "env id for --policy; with --model, the env to play (needed for an SB3 model "
                   "file, which does not record it: docs/sb3_models.md)");
@@ -334,8 +336,8 @@ Action add_eval(CLI::App& app, Registry& registry) {
     load_plugin_options(options->plugins, registry);  // model files name theirs: not loaded
     add_game_opponent_overrides(options->game, options->overrides);
     if (!options->policy.empty()) return evaluate_without_model(*options, registry);
-    options->zoo_env =
-        resolve_zoo_model(options->zoo_model, registry, options->model, options->env_id);
+    options->zoo_env = resolve_zoo_model(options->zoo_model, options->zoo_choice, registry,
+                                         options->model, options->env_id);
     add_model_env_override(options->env_id, options->overrides);
     if (options->model.empty())
       throw UsageError("eval needs --model FILE, or --policy P with --env ID");

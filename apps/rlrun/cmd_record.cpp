@@ -34,9 +34,10 @@ namespace {
 
 struct Options {
   std::string model, config, env_id, from_obs, policy;
-  std::string zoo_model;          // --zoo-model DIR: an rl-zoo run folder
-  YAML::Node zoo_env;             // its env settings (resolve_zoo_model)
-  std::optional<int> green_time;  // --green-time (the traffic task's fixed-time plan)
+  std::string zoo_model;           // --zoo-model DIR: an rl-zoo run folder
+  zoo::ZooModelChoice zoo_choice;  // --load-best, --load-checkpoint N, --load-last-checkpoint
+  YAML::Node zoo_env;              // its env settings (resolve_zoo_model)
+  std::optional<int> green_time;   // --green-time (the traffic task's fixed-time plan)
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
   std::string output, frames, size;
@@ -156,9 +157,11 @@ Action add_record(CLI::App& app, Registry& registry) {
       "record", "record a policy as an mp4 video (needs the ffmpeg program) and/or PNG frames");
   CLI::Option* model_option =
       sub->add_option("--model", options->model, "model.zip written by rlrun train");
-  sub->add_option("--zoo-model", options->zoo_model,
-                  "an rl-baselines3-zoo run folder (<algo>/<env>_<n>/): its model on its env")
-      ->excludes(model_option);
+  CLI::Option* zoo_option =
+      sub->add_option("--zoo-model", options->zoo_model,
+                      "an rl-baselines3-zoo run folder (<algo>/<env>_<n>/): its model on its env")
+          ->excludes(model_option);
+  add_zoo_model_choice_options(sub, zoo_option, options->zoo_choice);
   sub->add_option("--config", options->config,
                   "experiment file whose env to record (with --policy random)");
   sub->add_option("--set", options->overrides,
@@ -198,8 +201,8 @@ Action add_record(CLI::App& app, Registry& registry) {
   add_game_opponent_options(sub, options->game);
   return [options, deterministic, &registry]() {
     add_game_opponent_overrides(options->game, options->overrides);
-    options->zoo_env =
-        resolve_zoo_model(options->zoo_model, registry, options->model, options->env_id);
+    options->zoo_env = resolve_zoo_model(options->zoo_model, options->zoo_choice, registry,
+                                         options->model, options->env_id);
     return run(*options, registry);
   };
 }

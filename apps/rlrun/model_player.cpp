@@ -1,7 +1,9 @@
 #include "model_player.hpp"
 
 #include <cstdio>
+#include <limits>
 
+#include "cli_values.hpp"
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/plural.hpp"
 #include "rlrun/runtime/io/agent_team_file.hpp"
@@ -19,14 +21,28 @@ ActionFn ModelPlayer::act(bool deterministic, std::function<void()>* start_episo
   return team_action_fn(algorithms, env(), deterministic, start_episode);
 }
 
-YAML::Node resolve_zoo_model(const std::string& dir, const Registry& registry, std::string& model,
-                             std::string& env_id) {
+YAML::Node resolve_zoo_model(const std::string& dir, const zoo::ZooModelChoice& choice,
+                             const Registry& registry, std::string& model, std::string& env_id) {
   if (dir.empty()) return YAML::Node();
-  const zoo::ZooRunFolder folder = zoo::find_zoo_run_folder(dir, /*best=*/false, registry);
+  const zoo::ZooRunFolder folder = zoo::find_zoo_run_folder(dir, choice, registry);
   model = folder.model_path;
   if (env_id.empty()) env_id = folder.env_id;
   for (const std::string& note : folder.notes) std::fprintf(stderr, "%s\n", note.c_str());
   return folder.env_section;
+}
+
+void add_zoo_model_choice_options(CLI::App* sub, CLI::Option* zoo_option,
+                                  zoo::ZooModelChoice& choice) {
+  CLI::Option* best = sub->add_flag("--load-best", choice.best,
+                                    "--zoo-model: play best_model.zip (the best evaluation's)");
+  CLI::Option* checkpoint = sub->add_option("--load-checkpoint", choice.checkpoint,
+                                            "--zoo-model: play rl_model_<N>_steps.zip")
+                                ->transform(integer_in(1, std::numeric_limits<int64_t>::max()));
+  CLI::Option* last = sub->add_flag("--load-last-checkpoint", choice.last_checkpoint,
+                                    "--zoo-model: play the checkpoint with the most steps");
+  for (CLI::Option* option : {best, checkpoint, last}) option->needs(zoo_option);
+  best->excludes(checkpoint)->excludes(last);
+  checkpoint->excludes(last);
 }
 
 void add_model_env_override(const std::string& env_id, std::vector<std::string>& overrides) {

@@ -2,6 +2,7 @@
 // What `rlrun eval --model` and `rlrun record --model` play: one model file, or the run
 // directory of a per-agent run (runtime/run/per_agent_training.hpp; its agents.json, or the
 // directory holding it), whose agents each act through their own model.
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "rlrun/runtime/components/registry.hpp"
 #include "rlrun/runtime/io/model_loader.hpp"
 #include "rlrun/runtime/run/evaluator.hpp"
+#include "rlrun/runtime/workflows/zoo/zoo_run_folder.hpp"
 
 namespace rlrun::cli {
 
@@ -32,8 +34,11 @@ void add_model_env_override(const std::string& env_id, std::vector<std::string>&
 // `model` to its model file and `env_id` to its env unless the user named one, and prints
 // what of the zoo's config.yml is not applied. Returns the folder's env settings for
 // load_model_player (nothing when `dir` is empty).
-YAML::Node resolve_zoo_model(const std::string& dir, const Registry& registry, std::string& model,
-                             std::string& env_id);
+YAML::Node resolve_zoo_model(const std::string& dir, const zoo::ZooModelChoice& choice,
+                             const Registry& registry, std::string& model, std::string& env_id);
+// rl_zoo3.enjoy's --load-best, --load-checkpoint N, --load-last-checkpoint, for --zoo-model.
+void add_zoo_model_choice_options(CLI::App* sub, CLI::Option* zoo_option,
+                                  zoo::ZooModelChoice& choice);
 
 // Loads `path` (a model file, a per-agent run directory or its agents.json) as `eval` and
 // `record` do: statistics frozen, weights within the budget, `overrides` and `trust` applied to

@@ -294,6 +294,27 @@ TEST_CASE("rlrun eval --zoo-model plays an rl-zoo run folder", "[sb3][cli]") {
   REQUIRE(at != std::string::npos);
   CHECK(std::abs(std::stod(plain.output.substr(at + 14)) -
                  returns["episode_returns"][0].get<double>()) <= 0.006);
+  // rl_zoo3.enjoy's --load-best and checkpoints: the same model under the zoo's other names,
+  // with <env>/vecnormalize.pkl still found (the same return).
+  std::filesystem::copy_file(source + "/model.zip", folder / "best_model.zip");
+  std::filesystem::copy_file(source + "/model.zip", folder / "rl_model_2000_steps.zip");
+  std::ofstream(folder / "rl_model_100_steps.zip") << "not a zip";
+  for (const char* choice :
+       {" --load-best", " --load-checkpoint 2000", " --load-last-checkpoint"}) {
+    INFO(choice);
+    const CommandResult chosen =
+        run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " + folder.string() + choice +
+                    " --episodes 1 --seed 0 2>&1");
+    REQUIRE(chosen.exit_code == 0);
+    const std::string summary = plain.output.substr(at, plain.output.find('\n', at) - at);
+    CHECK(chosen.output.find(summary) != std::string::npos);
+  }
+  const CommandResult missing = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
+                                            folder.string() + " --load-checkpoint 7 2>&1");
+  CHECK(missing.exit_code == 2);
+  CHECK_THAT(missing.output, Catch::Contains("no rl_model_7_steps.zip in it"));
+  CHECK(run_command(std::string(RLRUN_BINARY) + " eval --load-best --env CartPole-v1 2>&1")
+            .exit_code == 2);  // --load-best needs --zoo-model
   // config.yml's env_wrapper is applied as `rlrun zoo import` translates it; frame_stack is
   // named in a note.
   std::ofstream(folder / "Pendulum-v1" / "config.yml")

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 
 #include <filesystem>
+#include <vector>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/numpy_pickle.hpp"
@@ -112,10 +113,18 @@ class VecNormalizeReader {
 
 std::optional<std::string> find_sb3_vec_normalize(const std::string& model_path) {
   const std::filesystem::path model(model_path);
+  std::vector<std::filesystem::path> candidates = {
+      model.parent_path() / "vecnormalize.pkl",
+      model.parent_path() / model.stem() / "vecnormalize.pkl"};
+  // An rl-zoo run folder <env>_<n>/ keeps them in <env>/ for every model in it (best_model.zip,
+  // rl_model_<N>_steps.zip), as rl_zoo3.enjoy reads them.
+  const std::string folder = model.parent_path().filename().string();
+  const std::size_t underscore = folder.rfind('_');
+  if (underscore != std::string::npos && underscore > 0 && underscore + 1 < folder.size() &&
+      folder.find_first_not_of("0123456789", underscore + 1) == std::string::npos)
+    candidates.push_back(model.parent_path() / folder.substr(0, underscore) / "vecnormalize.pkl");
   std::error_code ec;
-  for (const std::filesystem::path& candidate :
-       {model.parent_path() / "vecnormalize.pkl",
-        model.parent_path() / model.stem() / "vecnormalize.pkl"})
+  for (const std::filesystem::path& candidate : candidates)
     if (std::filesystem::exists(candidate, ec)) return candidate.string();
   return std::nullopt;
 }

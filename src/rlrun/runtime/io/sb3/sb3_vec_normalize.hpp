@@ -16,7 +16,9 @@
 namespace rlrun {
 
 // The file beside an SB3 model: `<dir>/vecnormalize.pkl`, else rl-zoo's
-// `<dir>/<stem>/vecnormalize.pkl` (model `<dir>/<stem>.zip`), if it exists.
+// `<dir>/<stem>/vecnormalize.pkl` (model `<dir>/<stem>.zip`), else, in an rl-zoo run folder
+// `<env>_<n>/`, `<env>_<n>/<env>/vecnormalize.pkl` (its best model and checkpoints), if it
+// exists.
 std::optional<std::string> find_sb3_vec_normalize(const std::string& model_path);
 
 struct Sb3VecNormalize {

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <stdexcept>
@@ -67,9 +68,40 @@ void read_zoo_config(const std::string& config_file, int registered_limit, ZooRu
   }
 }
 
+// rl_model_<N>_steps.zip -> N; 0 for any other name.
+int64_t checkpoint_steps(const std::string& name) {
+  const std::string prefix = "rl_model_", suffix = "_steps.zip";
+  if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) ||
+      !name.ends_with(suffix))
+    return 0;
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.size() > 18) return 0;
+  for (const char c : digits)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return 0;
+  return std::stoll(digits);
+}
+
+// The file name of the chosen model in `folder`.
+std::string chosen_model(const std::filesystem::path& folder, const std::string& zoo_env,
+                         const ZooModelChoice& choice, const std::string& dir) {
+  if (choice.best) return "best_model.zip";
+  if (choice.checkpoint > 0) return "rl_model_" + std::to_string(choice.checkpoint) + "_steps.zip";
+  if (!choice.last_checkpoint) return zoo_env + ".zip";
+  int64_t last = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    if (entry.is_regular_file(ec)) last = std::max(last, checkpoint_steps(entry.path().filename()));
+  if (last == 0)
+    throw UsageError("--zoo-model " + quoted_text(dir) +
+                     ": --load-last-checkpoint finds no rl_model_<N>_steps.zip in it");
+  return "rl_model_" + std::to_string(last) + "_steps.zip";
+}
+
 }  // namespace
 
-ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best, const Registry& registry) {
+ZooRunFolder find_zoo_run_folder(const std::string& dir, const ZooModelChoice& choice,
+                                 const Registry& registry) {
   std::filesystem::path folder(dir);
   if (folder.filename().empty()) folder = folder.parent_path();  // a trailing '/'
   std::error_code ec;
@@ -80,7 +112,7 @@ ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best, const Regist
     throw UsageError("--zoo-model " + quoted_text(dir) +
                      ": a zoo run folder is named <env>_<n> (e.g. ppo/CartPole-v1_1)");
   ZooRunFolder out;
-  const std::filesystem::path model = folder / (best ? "best_model.zip" : zoo_env + ".zip");
+  const std::filesystem::path model = folder / chosen_model(folder, zoo_env, choice, dir);
   if (!std::filesystem::is_regular_file(model, ec))
     throw UsageError("--zoo-model " + quoted_text(dir) + ": no " + model.filename().string() +
                      " in it");

@@ -11,6 +11,7 @@
 // zoo_wrappers.hpp), with the statistics frozen.
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,20 @@ struct ZooRunFolder {
   std::vector<std::string> notes;  // what of the zoo's config.yml is not applied, and why
 };
 
-// `dir` must be named <env>_<n> and hold <env>.zip (or best_model.zip with `best`). Throws
-// UsageError naming what is missing. config.yml is untrusted: what it names that rlrun does
-// not translate becomes a note, never an error (the model's observation check decides).
-ZooRunFolder find_zoo_run_folder(const std::string& dir, bool best, const Registry& registry);
+// Which model of the folder, as rl_zoo3.enjoy's --load-best, --load-checkpoint N and
+// --load-last-checkpoint choose (rl_zoo3/enjoy.py): <env>.zip by default, best_model.zip
+// (EvalCallback's), rl_model_<N>_steps.zip (CheckpointCallback's), or the one of those with
+// the most steps.
+struct ZooModelChoice {
+  bool best = false;
+  int64_t checkpoint = 0;  // > 0: that checkpoint
+  bool last_checkpoint = false;
+};
+
+// `dir` must be named <env>_<n> and hold the chosen model. Throws UsageError naming what is
+// missing. config.yml is untrusted: what it names that rlrun does not translate becomes a
+// note, never an error (the model's observation check decides).
+ZooRunFolder find_zoo_run_folder(const std::string& dir, const ZooModelChoice& choice,
+                                 const Registry& registry);
 
 }  // namespace rlrun::zoo
