@@ -43,7 +43,7 @@ import torch
 
 import stable_baselines3
 from stable_baselines3 import A2C, DDPG, DQN, PPO, SAC, TD3
-from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+from stable_baselines3.common.vec_env import DummyVecEnv, VecFrameStack, VecNormalize
 
 try:  # sb3-contrib's cases are made when it is importable (make_sb3_models.sh: SB3_CONTRIB_SRC)
     import sb3_contrib
@@ -347,6 +347,60 @@ def make_case(out_dir, name, spec):
 VEC_NORMALIZE_CASE = "ppo_pendulum_vecnormalize"
 
 
+FRAME_STACK_CASE = "ppo_cartpole_framestack"
+
+
+def make_frame_stack_case(out_dir):
+    """PPO on CartPole-v1 trained inside VecFrameStack(n_stack=2), as rl-zoo's `frame_stack: 2`
+    wraps the env: observations.npy holds stacked observations (oldest frame first) met by a
+    seeded random walk through a VecFrameStack; returns.json one deterministic episode per seed
+    through a fresh VecFrameStack (zero padding after reset), as rl_zoo3.enjoy plays it."""
+    case_dir = os.path.join(out_dir, FRAME_STACK_CASE)
+    os.makedirs(case_dir, exist_ok=True)
+
+    def stacked():
+        return VecFrameStack(DummyVecEnv([lambda: make_env("CartPole-v1")]), n_stack=2)
+
+    model = PPO("MlpPolicy", stacked(), seed=0, device="cpu", verbose=0, n_steps=256,
+                batch_size=64, policy_kwargs=dict(net_arch=[16]))
+    model.learn(total_timesteps=512)
+    model.save(os.path.join(case_dir, "model.zip"))
+    venv = stacked()
+    venv.seed(OBS_SEED)
+    venv.action_space.seed(OBS_SEED)
+    obs = venv.reset()
+    collected = []
+    while len(collected) < N_OBS:
+        collected.append(obs[0])
+        obs, _, _, _ = venv.step(np.array([venv.action_space.sample()]))
+    observations = np.stack(collected).astype(np.float32)
+    np.save(os.path.join(case_dir, "observations.npy"), observations)
+    np.save(os.path.join(case_dir, "actions.npy"),
+            model.predict(observations, deterministic=True)[0])
+    returns = []
+    for seed in RETURN_SEEDS:
+        venv = stacked()
+        venv.seed(seed)
+        obs = venv.reset()
+        total, done = 0.0, False
+        while not done:
+            obs, reward, dones, _ = venv.step(model.predict(obs, deterministic=True)[0])
+            total += float(reward[0])
+            done = bool(dones[0])
+        returns.append(total)
+    with open(os.path.join(case_dir, "returns.json"), "w") as f:
+        json.dump({"seeds": RETURN_SEEDS, "episode_returns": returns}, f, indent=2)
+        f.write("\n")
+    info = {"algorithm": "PPO", "env_id": "CartPole-v1", "policy": "MlpPolicy",
+            "policy_kwargs": "{'net_arch': [16]}", "frame_stack": "VecFrameStack(n_stack=2)",
+            "training_timesteps": 512, "stable_baselines3": stable_baselines3.__version__,
+            "torch": torch.__version__, "gymnasium": gym.__version__, "numpy": np.__version__}
+    with open(os.path.join(case_dir, "info.json"), "w") as f:
+        json.dump(info, f, indent=2)
+        f.write("\n")
+    print(f"{FRAME_STACK_CASE}: returns written", flush=True)
+
+
 def make_vec_normalize_case(out_dir):
     """PPO on Pendulum-v1 trained inside VecNormalize (observations and rewards, gamma 0.98),
     saved as rl-zoo saves a run: model.zip and vecnormalize.pkl side by side. observations.npy
@@ -498,6 +552,8 @@ def main():
             make_case(out_dir, name, spec)
     if not only or VEC_NORMALIZE_CASE in only:
         make_vec_normalize_case(out_dir)
+    if not only or FRAME_STACK_CASE in only:
+        make_frame_stack_case(out_dir)
     if not only or GYM_ERA_CASE in only or "ppo_cartpole" in only:
         make_gym_era_case(out_dir)
     make_evil(out_dir)

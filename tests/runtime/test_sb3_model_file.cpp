@@ -324,13 +324,44 @@ TEST_CASE("rlrun eval --zoo-model plays an rl-zoo run folder", "[sb3][cli]") {
       << "  - - frame_stack\n    - 2\n  - - policy\n    - MlpPolicy\n";
   const CommandResult wrapped = run_command(eval);
   CHECK(wrapped.exit_code == 0);
-  CHECK_THAT(wrapped.output, Catch::Contains("mean_ep_length = 100.0") &&
-                                 Catch::Contains("sets frame_stack, which rlrun does not apply"));
+  CHECK_THAT(wrapped.output,
+             Catch::Contains("mean_ep_length = 100.0") &&
+                 Catch::Contains("sets frame_stack over VecNormalize's statistics"));
   // A folder not named <env>_<n> is a usage error.
   const CommandResult wrong = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
                                           (root / "ppo").string() + " 2>&1");
   CHECK(wrong.exit_code == 2);
   CHECK_THAT(wrong.output, Catch::Contains("<env>_<n>"));
+  std::filesystem::remove_all(root);
+}
+
+TEST_CASE("rlrun eval --zoo-model stacks frames as the zoo's frame_stack", "[sb3][cli]") {
+  // A model SB3 trained inside VecFrameStack(n_stack=2), in a run folder whose config.yml says
+  // frame_stack: 2: rlrun plays SB3's episodes (zero padding after reset, oldest frame first).
+  const std::filesystem::path root =
+      std::filesystem::temp_directory_path() / "rlrun_zoo_frame_stack_test";
+  std::filesystem::remove_all(root);
+  const std::filesystem::path folder = root / "ppo" / "CartPole-v1_1";
+  std::filesystem::create_directories(folder / "CartPole-v1");
+  const std::string source = case_dir("ppo_cartpole_framestack");
+  std::filesystem::copy_file(source + "/model.zip", folder / "CartPole-v1.zip");
+  const std::string eval =
+      std::string(RLRUN_BINARY) + " eval --zoo-model " + folder.string() + " --episodes 1 --seed ";
+  // Without config.yml the env's observations do not fit the model's: refused.
+  CHECK(run_command(eval + "0 2>&1").exit_code != 0);
+  std::ofstream(folder / "CartPole-v1" / "config.yml")
+      << "!!python/object/apply:collections.OrderedDict\n"
+      << "- - - frame_stack\n    - 2\n  - - policy\n    - MlpPolicy\n";
+  const nlohmann::json returns = read_json(source + "/returns.json");
+  for (size_t i = 0; i < returns["seeds"].size(); ++i) {
+    const int seed = returns["seeds"][i].get<int>();
+    INFO("seed " << seed);
+    const CommandResult r = run_command(eval + std::to_string(seed) + " 2>&1");
+    REQUIRE(r.exit_code == 0);
+    const auto at = r.output.find("mean_reward = ");
+    REQUIRE(at != std::string::npos);
+    CHECK(std::stod(r.output.substr(at + 14)) == returns["episode_returns"][i].get<double>());
+  }
   std::filesystem::remove_all(root);
 }
 

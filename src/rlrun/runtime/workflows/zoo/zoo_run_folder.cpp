@@ -28,12 +28,39 @@ std::string env_of_folder_name(const std::string& name) {
   return name.substr(0, underscore);
 }
 
+// rl-zoo's `frame_stack: N`: VecFrameStack over the whole stack, as FrameStack's sb3 layout
+// (wrappers/frame_stack.hpp), last in env.wrappers. Not with VecNormalize statistics: rl-zoo
+// stacks normalised observations (VecFrameStack outside VecNormalize), and rlrun's
+// env.normalize sits outside its wrappers (as `rlrun zoo import` refuses the same).
+void add_frame_stack(const ConfigNode& value, bool normalized, const std::string& config_file,
+                     ZooRunFolder& folder) {
+  if (normalized) {
+    folder.notes.push_back("note: " + config_file +
+                           " sets frame_stack over VecNormalize's statistics, which rlrun does "
+                           "not apply (it would stack before normalising; docs/sb3_models.md)");
+    return;
+  }
+  int n_stack = 0;
+  if (!value.is_scalar() || !YAML::convert<int>::decode(value.yaml(), n_stack) || n_stack < 1 ||
+      n_stack > 1000) {
+    folder.notes.push_back("note: " + config_file +
+                           ": frame_stack is not a number of frames (1-1000); not applied");
+    return;
+  }
+  YAML::Node wrapper(YAML::NodeType::Map);
+  wrapper["id"] = "FrameStack";
+  wrapper["n_stack"] = n_stack;
+  wrapper["layout"] = "sb3";
+  folder.env_section["wrappers"].push_back(wrapper);
+}
+
 // The zoo's hyperparameters that change the env the model saw: env_wrapper is translated into
-// `folder.env_section` as `rlrun zoo import` translates it; frame_stack is not applied yet. The
+// `folder.env_section` as `rlrun zoo import` translates it, frame_stack by add_frame_stack. The
 // file is the zoo's yaml.dump of an OrderedDict: `!!python/object/apply:collections.OrderedDict`
 // over the call's one argument, a list of [key, value] pairs; read as untrusted text
 // (core/config_node.hpp's bounds), never through a link.
-void read_zoo_config(const std::string& config_file, int registered_limit, ZooRunFolder& folder) {
+void read_zoo_config(const std::string& config_file, int registered_limit, bool normalized,
+                     ZooRunFolder& folder) {
   ConfigNode root;
   try {
     const FileDescriptor fd = open_regular_file(AT_FDCWD, config_file, O_RDONLY, config_file);
@@ -47,6 +74,7 @@ void read_zoo_config(const std::string& config_file, int registered_limit, ZooRu
   }
   if (!root.is_sequence() || root.size() != 1 || !root.at(0).is_sequence()) return;
   const ConfigNode pairs = root.at(0);
+  ConfigNode frame_stack;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const ConfigNode pair = pairs.at(i);
     if (!pair.is_sequence() || pair.size() != 2 || !pair.at(0).is_scalar()) continue;
@@ -54,9 +82,7 @@ void read_zoo_config(const std::string& config_file, int registered_limit, ZooRu
     const ConfigNode value = pair.at(1);
     if (!value.defined()) continue;
     if (key == "frame_stack") {
-      folder.notes.push_back("note: " + config_file +
-                             " sets frame_stack, which rlrun does not apply to SB3 model files "
-                             "yet (docs/sb3_models.md)");
+      frame_stack = value;  // applied after env_wrapper's wrappers, as rl-zoo stacks last
     } else if (key == "env_wrapper") {
       try {
         translate_env_wrappers(value, folder.env_section, registered_limit, folder.notes);
@@ -66,6 +92,7 @@ void read_zoo_config(const std::string& config_file, int registered_limit, ZooRu
       }
     }
   }
+  if (frame_stack.defined()) add_frame_stack(frame_stack, normalized, config_file, folder);
 }
 
 // rl_model_<N>_steps.zip -> N; 0 for any other name.
@@ -120,8 +147,9 @@ ZooRunFolder find_zoo_run_folder(const std::string& dir, const ZooModelChoice& c
   out.env_id = current_env_id(zoo_env);
   out.env_section = YAML::Node(YAML::NodeType::Map);
   const EnvEntry* env = registry.find_env(out.env_id);
+  const bool normalized = std::filesystem::exists(folder / zoo_env / "vecnormalize.pkl", ec);
   read_zoo_config((folder / zoo_env / "config.yml").string(), env ? env->max_episode_steps : 0,
-                  out);
+                  normalized, out);
   return out;
 }
 

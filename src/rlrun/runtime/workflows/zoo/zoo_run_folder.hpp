@@ -8,7 +8,7 @@
 // `rlrun eval --zoo-model DIR` plays it as `python -m rl_zoo3.enjoy --algo <algo> --env <env>
 // -f logs/` does: the model of the folder on the folder's env (rlrun's id for it), wrapped in
 // the config.yml's `env_wrapper` (translated as `rlrun zoo import` translates it:
-// zoo_wrappers.hpp), with the statistics frozen.
+// zoo_wrappers.hpp) and `frame_stack` (FrameStack, SB3's layout), with the statistics frozen.
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
