@@ -47,7 +47,7 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecFrameStack, VecNorm
 
 try:  # sb3-contrib's cases are made when it is importable (make_sb3_models.sh: SB3_CONTRIB_SRC)
     import sb3_contrib
-    from sb3_contrib import QRDQN, TQC, MaskablePPO, RecurrentPPO
+    from sb3_contrib import QRDQN, TQC, TRPO, MaskablePPO, RecurrentPPO
     from sb3_contrib.common.wrappers import ActionMasker
 except ImportError:
     sb3_contrib = None
@@ -214,6 +214,13 @@ if sb3_contrib is not None:
                                 enable_critic_lstm=False, net_arch=[16]),
              n_steps=128, batch_size=64),
         256,
+    )
+    CASES["trpo_pendulum"] = (
+        TRPO,
+        "MlpPolicy",
+        "Pendulum-v1",
+        dict(policy_kwargs=dict(net_arch=[32]), n_steps=256, batch_size=64),
+        512,
     )
     CASES["tqc_pendulum"] = (
         TQC,

@@ -43,11 +43,12 @@ CASES = [
     ("ddpg_pendulum", "Pendulum-v1", "DDPG"),
     ("qrdqn_cartpole", "CartPole-v1", "QRDQN"),
     ("tqc_pendulum", "Pendulum-v1", "TQC"),
+    ("trpo_pendulum", "Pendulum-v1", "TRPO"),
     ("maskable_ppo_cartpole", "CartPole-v1", "MaskablePPO"),
     ("recurrent_ppo_cartpole", "CartPole-v1", "RecurrentPPO"),
     ("recurrent_ppo_pendulum", "Pendulum-v1", "RecurrentPPO"),
 ]
-CONTRIB = {"QRDQN", "TQC", "MaskablePPO", "RecurrentPPO"}
+CONTRIB = {"QRDQN", "TQC", "TRPO", "MaskablePPO", "RecurrentPPO"}
 
 
 def load_class(algorithm):
@@ -125,8 +126,10 @@ class Sb3Export(unittest.TestCase):
                 data = json.loads(archive.read("data"))
                 policy_class = unpickle(
                     base64.b64decode(data["policy_class"][":serialized:"]))
+                # TRPO keeps SB3's ActorCriticPolicy; the other contrib ones have their own.
+                own_policy = algorithm in CONTRIB and algorithm != "TRPO"
                 self.assertTrue(policy_class.qualname.startswith(
-                    "sb3_contrib." if algorithm in CONTRIB else "stable_baselines3."))
+                    "sb3_contrib." if own_policy else "stable_baselines3."))
                 space = unpickle(
                     base64.b64decode(data["observation_space"][":serialized:"]))
                 self.assertEqual(space.qualname, "gymnasium.spaces.box.Box")
@@ -138,7 +141,8 @@ class Sb3Export(unittest.TestCase):
                 self.assertIn("net_arch", kwargs)
                 self.assertTrue(kwargs["activation_fn"].qualname.startswith("torch.nn.modules."))
                 expected_pth = {"policy.pth", "pytorch_variables.pth"}
-                if algorithm in ("PPO", "A2C", "DQN", "QRDQN", "MaskablePPO", "RecurrentPPO"):
+                if algorithm in ("PPO", "A2C", "DQN", "QRDQN", "TRPO", "MaskablePPO",
+                                 "RecurrentPPO"):
                     expected_pth.add("policy.optimizer.pth")
                 else:
                     expected_pth |= {"actor.optimizer.pth", "critic.optimizer.pth"}
@@ -278,6 +282,8 @@ class Sb3LoadsExport(unittest.TestCase):
                                 "policy: {net_arch: [16], n_quantiles: 7}}")
             trained["TQC"] = ("Pendulum-v1", "{id: TQC, learning_starts: 64, "
                               "policy: {net_arch: [16], n_quantiles: 6, n_critics: 3}}")
+            trained["TRPO"] = ("Pendulum-v1", "{id: TRPO, n_steps: 128, batch_size: 64, "
+                               "policy: {net_arch: [16]}}")
             trained["RecurrentPPO"] = ("Pendulum-v1", "{id: RecurrentPPO, n_steps: 64, "
                                        "batch_size: 32, policy: {lstm_hidden_size: 8, "
                                        "n_lstm_layers: 2, net_arch: [8]}}")

@@ -58,6 +58,7 @@ const Sb3Case kCases[] = {
     // sb3-contrib 2.4.0.
     {"qrdqn_cartpole", "CartPole-v1", "QRDQN"},
     {"tqc_pendulum", "Pendulum-v1", "TQC"},
+    {"trpo_pendulum", "Pendulum-v1", "TRPO"},
     {"maskable_ppo_cartpole", "CartPole-v1", "MaskablePPO"},
     // actions.npy from a zero LSTM state per observation; returns.json carries the state
     // along each episode, as rlrun eval does.

@@ -92,6 +92,7 @@ TEST_CASE("SB3 model files written by rlrun read back as the files SB3 wrote", "
                         // sb3-contrib's
                         {"qrdqn_cartpole", "CartPole-v1"},
                         {"tqc_pendulum", "Pendulum-v1"},
+                        {"trpo_pendulum", "Pendulum-v1"},
                         {"maskable_ppo_cartpole", "CartPole-v1"},
                         {"recurrent_ppo_cartpole", "CartPole-v1"},
                         {"recurrent_ppo_pendulum", "Pendulum-v1"}};

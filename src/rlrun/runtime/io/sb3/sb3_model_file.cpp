@@ -154,7 +154,7 @@ class Sb3Reader {
     if (found == known.end())
       fail("its policy class is " + c.module + "." + c.text +
            "; rlrun reads the MlpPolicy and MultiInputPolicy of PPO, A2C, DQN, SAC, TD3, DDPG, "
-           "and sb3-contrib's QR-DQN, TQC, MaskablePPO and RecurrentPPO (MlpLstmPolicy)");
+           "and sb3-contrib's QR-DQN, TQC, TRPO, MaskablePPO and RecurrentPPO (MlpLstmPolicy)");
     return found->second;
   }
 
@@ -162,6 +162,9 @@ class Sb3Reader {
     switch (family) {
       case PolicyFamily::kActorCritic:
         if (!ppo_variant_.empty()) return ppo_variant_;
+        // sb3-contrib's TRPO keeps SB3's ActorCriticPolicy; its conjugate-gradient settings
+        // tell it apart (sb3_contrib/trpo/trpo.py).
+        if (data_.contains("cg_max_steps")) return "TRPO";
         return data_.contains("clip_range") ? "PPO" : "A2C";
       case PolicyFamily::kDqn: return "DQN";
       case PolicyFamily::kQrDqn: return "QRDQN";

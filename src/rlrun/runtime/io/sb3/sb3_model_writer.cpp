@@ -79,6 +79,9 @@ const Sb3Algorithm* sb3_algorithm(const std::string& id) {
       {"RecurrentPPO",
        {Family::kActorCritic, "sb3_contrib.common.recurrent.policies", "RecurrentActorCriticPolicy",
         "RecurrentMultiInputActorCriticPolicy", 3e-4, "sb3_contrib.RecurrentPPO"}},
+      {"TRPO",
+       {Family::kActorCritic, "stable_baselines3.common.policies", "ActorCriticPolicy",
+        "MultiInputActorCriticPolicy", 1e-3, "sb3_contrib.TRPO"}},
       {"QRDQN",
        {Family::kDqn, "sb3_contrib.qrdqn.policies", "QRDQNPolicy", "MultiInputPolicy", 5e-5,
         "sb3_contrib.QRDQN", true}},
@@ -110,6 +113,10 @@ const std::vector<std::string>& hyperparameters(const std::string& id) {
   static const std::map<std::string, std::vector<std::string>> known = {
       {"PPO", ppo},
       {"RecurrentPPO", ppo},
+      {"TRPO",
+       {"learning_rate", "n_steps", "batch_size", "gamma", "cg_max_steps", "cg_damping",
+        "line_search_shrinking_factor", "line_search_max_iter", "n_critic_updates", "gae_lambda",
+        "use_sde", "sde_sample_freq", "normalize_advantage", "target_kl", "sub_sampling_factor"}},
       {"MaskablePPO",
        {"learning_rate", "n_steps", "batch_size", "n_epochs", "gamma", "gae_lambda", "clip_range",
         "clip_range_vf", "normalize_advantage", "ent_coef", "vf_coef", "max_grad_norm",
@@ -667,7 +674,7 @@ Sb3ModelExport sb3_model_export(const LoadedModel& model) {
                          " as an SB3 model file: its algorithm " +
                          quoted_text(model.file.meta.algorithm) +
                          " is not one of SB3's (PPO, A2C, DQN, SAC, TD3, DDPG) or "
-                         "sb3-contrib's this writer writes (QRDQN, TQC, MaskablePPO, "
+                         "sb3-contrib's this writer writes (QRDQN, TQC, TRPO, MaskablePPO, "
                          "RecurrentPPO)");
   return Sb3Writer(model, *algo).write();
 }

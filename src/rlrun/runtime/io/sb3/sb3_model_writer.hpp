@@ -19,10 +19,10 @@
 //   system_info.txt              who wrote it
 // Written from the model's resolved configuration: its hyperparameters under SB3's names,
 // schedules as their initial value (SB3 would pickle a function: code), n_envs, num_timesteps.
-// sb3-contrib's MaskablePPO and RecurrentPPO are written too (their files are PPO's with
-// their policy classes, and RecurrentPPO's LSTM tensors). Refused with the reason: algorithms
-// neither has a class for here (QR-DQN, TQC, ...), CNN or other non-flatten features
-// extractors.
+// sb3-contrib's QR-DQN, TQC, TRPO, MaskablePPO and RecurrentPPO are written too (DQN's, SAC's
+// and PPO's files with their policy classes and settings; RecurrentPPO's LSTM tensors).
+// Refused with the reason: algorithms neither has a class for here (ARS, CrossQ, ...), CNN or
+// other non-flatten features extractors.
 #include <string>
 #include <vector>
 
