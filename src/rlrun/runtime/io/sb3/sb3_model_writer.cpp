@@ -11,6 +11,7 @@
 
 #include "rlrun/core/base64.hpp"
 #include "rlrun/core/errors.hpp"
+#include "rlrun/core/float_format.hpp"
 #include "rlrun/core/pickle_writer.hpp"
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/schedule.hpp"
@@ -382,13 +383,7 @@ class Sb3Writer {
   static Json space_entry(const Space& space) {
     PickleWriter p(kDataProtocol);
     pickle_gymnasium_space(p, space);
-    static const std::map<SpaceKind, std::string> types = {
-        {SpaceKind::kBox, "box.Box"},
-        {SpaceKind::kDiscrete, "discrete.Discrete"},
-        {SpaceKind::kMultiDiscrete, "multi_discrete.MultiDiscrete"},
-        {SpaceKind::kMultiBinary, "multi_binary.MultiBinary"},
-        {SpaceKind::kDict, "dict.Dict"}};
-    return serialized("<class 'gymnasium.spaces." + types.at(space.kind()) + "'>", p.finish());
+    return serialized("<class '" + gymnasium_space_class(space) + "'>", p.finish());
   }
 
   // The env's wrappers are rlrun's: SB3's file has no place for them, and the policy expects
@@ -510,7 +505,8 @@ class Sb3Writer {
     try {
       const Schedule schedule = Schedule::parse(value.get<std::string>());
       notes_.push_back(name + " '" + quoted_text(value.get<std::string>()) +
-                       "' is written as its initial value " + std::to_string(schedule.initial()) +
+                       "' is written as its initial value " +
+                       python_float_repr(schedule.initial()) +
                        ": SB3's file would hold its schedule as a pickled function");
       return schedule.initial();
     } catch (const std::invalid_argument&) {
@@ -518,9 +514,13 @@ class Sb3Writer {
     }
   }
 
+  // Read once (data's learning_rate and every optimizer's lr): a schedule's note is said once.
   double learning_rate() {
-    const std::optional<double> lr = schedule_value("learning_rate");
-    return lr ? *lr : algo_.default_learning_rate;
+    if (!learning_rate_) {
+      const std::optional<double> lr = schedule_value("learning_rate");
+      learning_rate_ = lr ? *lr : algo_.default_learning_rate;
+    }
+    return *learning_rate_;
   }
 
   void add_hyperparameter(Json& data, const std::string& name) {
@@ -659,6 +659,7 @@ class Sb3Writer {
   YAML::Node config_;
   TensorMap tensors_;
   std::vector<std::string> notes_;
+  std::optional<double> learning_rate_;  // learning_rate()
 };
 
 }  // namespace sb3_writer

@@ -112,10 +112,27 @@ Space space_of(const PickleValue& value, const std::string& what, bool inside_di
                  "MultiBinary and Dict)");
 }
 
+// Gymnasium's module (under gymnasium.spaces) and class for each kind of space.
+struct GymnasiumClass {
+  const char* file;
+  const char* name;
+};
+GymnasiumClass gymnasium_class(SpaceKind kind) {
+  switch (kind) {
+    case SpaceKind::kBox: return {"box", "Box"};
+    case SpaceKind::kDiscrete: return {"discrete", "Discrete"};
+    case SpaceKind::kMultiDiscrete: return {"multi_discrete", "MultiDiscrete"};
+    case SpaceKind::kMultiBinary: return {"multi_binary", "MultiBinary"};
+    case SpaceKind::kDict: return {"dict", "Dict"};
+  }
+  throw RuntimeFailure("a space Gymnasium has no class for");
+}
+
 // Writing: NEWOBJ(cls, ()) then BUILD with the attributes of `state` written by the caller
 // between begin_space_state() and end_space_state().
-void begin_space_state(PickleWriter& p, const char* file, const char* name) {
-  p.global_ref(std::string("gymnasium.spaces.") + file, name);
+void begin_space_state(PickleWriter& p, SpaceKind kind) {
+  const GymnasiumClass c = gymnasium_class(kind);
+  p.global_ref(std::string("gymnasium.spaces.") + c.file, c.name);
   p.empty_tuple();
   p.new_object();
   p.empty_dict();
@@ -145,7 +162,7 @@ void pickle_box(PickleWriter& p, const Space& space) {
   std::vector<bool> above;
   for (const float v : space.low()) below.push_back(!std::isinf(v));
   for (const float v : space.high()) above.push_back(!std::isinf(v));
-  begin_space_state(p, "box", "Box");
+  begin_space_state(p, SpaceKind::kBox);
   p.text("dtype");
   pickle_numpy_dtype(p, uint8 ? "u1" : "f4");
   p.text("_shape");
@@ -165,7 +182,7 @@ void pickle_space(PickleWriter& p, const Space& space) {
   switch (space.kind()) {
     case SpaceKind::kBox: return pickle_box(p, space);
     case SpaceKind::kDiscrete:
-      begin_space_state(p, "discrete", "Discrete");
+      begin_space_state(p, SpaceKind::kDiscrete);
       p.text("n");
       pickle_numpy_int64(p, space.n());
       p.text("start");
@@ -176,7 +193,7 @@ void pickle_space(PickleWriter& p, const Space& space) {
       pickle_numpy_dtype(p, "i8");
       return end_space_state(p);
     case SpaceKind::kMultiDiscrete:
-      begin_space_state(p, "multi_discrete", "MultiDiscrete");
+      begin_space_state(p, SpaceKind::kMultiDiscrete);
       p.text("nvec");
       pickle_numpy_int64_array(p, space.nvec());
       p.text("start");
@@ -187,7 +204,7 @@ void pickle_space(PickleWriter& p, const Space& space) {
       pickle_numpy_dtype(p, "i8");
       return end_space_state(p);
     case SpaceKind::kMultiBinary:
-      begin_space_state(p, "multi_binary", "MultiBinary");
+      begin_space_state(p, SpaceKind::kMultiBinary);
       p.text("n");
       p.integer(space.n());
       p.text("_shape");
@@ -196,7 +213,7 @@ void pickle_space(PickleWriter& p, const Space& space) {
       pickle_numpy_dtype(p, "i1");
       return end_space_state(p);
     case SpaceKind::kDict:
-      begin_space_state(p, "dict", "Dict");
+      begin_space_state(p, SpaceKind::kDict);
       p.text("spaces");
       p.empty_dict();
       p.mark();
@@ -222,6 +239,11 @@ void pickle_space(PickleWriter& p, const Space& space) {
 }  // namespace
 
 void pickle_gymnasium_space(PickleWriter& p, const Space& space) { pickle_space(p, space); }
+
+std::string gymnasium_space_class(const Space& space) {
+  const GymnasiumClass c = gymnasium_class(space.kind());
+  return std::string("gymnasium.spaces.") + c.file + "." + c.name;
+}
 
 bool is_sb3_space_global(const std::string& module, const std::string& name) {
   // Gymnasium's, and gym's before it (SB3 1.x files: gym 0.21's spaces, the same attributes).

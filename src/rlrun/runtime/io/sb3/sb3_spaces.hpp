@@ -29,5 +29,7 @@ Space sb3_space(const PickleValue& value, const std::string& what);
 // that, as a space never sampled). A float32 Box stays float32, a uint8 Box uint8; Discrete's
 // n and start are np.int64, MultiDiscrete's nvec and start int64 arrays, MultiBinary int8.
 void pickle_gymnasium_space(PickleWriter& p, const Space& space);
+// The Gymnasium class that pickle names for `space`: "gymnasium.spaces.box.Box", ...
+std::string gymnasium_space_class(const Space& space);
 
 }  // namespace rlrun

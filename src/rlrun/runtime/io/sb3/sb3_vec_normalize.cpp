@@ -1,4 +1,5 @@
 #include "rlrun/runtime/io/sb3/sb3_vec_normalize.hpp"
+#include "rlrun/runtime/io/sb3/rl_zoo_folder_name.hpp"
 
 #include <fcntl.h>
 
@@ -118,11 +119,8 @@ std::optional<std::string> find_sb3_vec_normalize(const std::string& model_path)
       model.parent_path() / model.stem() / "vecnormalize.pkl"};
   // An rl-zoo run folder <env>_<n>/ keeps them in <env>/ for every model in it (best_model.zip,
   // rl_model_<N>_steps.zip), as rl_zoo3.enjoy reads them.
-  const std::string folder = model.parent_path().filename().string();
-  const std::size_t underscore = folder.rfind('_');
-  if (underscore != std::string::npos && underscore > 0 && underscore + 1 < folder.size() &&
-      folder.find_first_not_of("0123456789", underscore + 1) == std::string::npos)
-    candidates.push_back(model.parent_path() / folder.substr(0, underscore) / "vecnormalize.pkl");
+  const std::string env = rl_zoo_folder_env(model.parent_path().filename().string());
+  if (!env.empty()) candidates.push_back(model.parent_path() / env / "vecnormalize.pkl");
   std::error_code ec;
   for (const std::filesystem::path& candidate : candidates)
     if (std::filesystem::exists(candidate, ec)) return candidate.string();

@@ -11,22 +11,13 @@
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/regular_file.hpp"
+#include "rlrun/runtime/io/sb3/rl_zoo_folder_name.hpp"
 #include "rlrun/runtime/workflows/zoo/zoo_file.hpp"
 #include "rlrun/runtime/workflows/zoo/zoo_wrappers.hpp"
 
 namespace rlrun::zoo {
 
 namespace {
-
-// "CartPole-v1_1" -> "CartPole-v1"; "" when the name does not end in _<digits>.
-std::string env_of_folder_name(const std::string& name) {
-  const auto underscore = name.rfind('_');
-  if (underscore == std::string::npos || underscore == 0 || underscore + 1 == name.size())
-    return "";
-  for (size_t i = underscore + 1; i < name.size(); ++i)
-    if (!std::isdigit(static_cast<unsigned char>(name[i]))) return "";
-  return name.substr(0, underscore);
-}
 
 // rl-zoo's `frame_stack: N`: VecFrameStack over the whole stack, as FrameStack's sb3 layout
 // (wrappers/frame_stack.hpp), last in env.wrappers. Not with VecNormalize statistics: rl-zoo
@@ -134,7 +125,7 @@ ZooRunFolder find_zoo_run_folder(const std::string& dir, const ZooModelChoice& c
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
     throw UsageError("--zoo-model " + quoted_text(dir) + ": no such directory");
-  const std::string zoo_env = env_of_folder_name(folder.filename().string());
+  const std::string zoo_env = rl_zoo_folder_env(folder.filename().string());
   if (zoo_env.empty())
     throw UsageError("--zoo-model " + quoted_text(dir) +
                      ": a zoo run folder is named <env>_<n> (e.g. ppo/CartPole-v1_1)");
