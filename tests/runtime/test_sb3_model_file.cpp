@@ -14,6 +14,10 @@
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
+#include "rlrun/core/torch_file_writer.hpp"
+#include "rlrun/core/torch_state_dict.hpp"
+#include "rlrun/core/zip_archive.hpp"
+#include "rlrun/core/zip_reader.hpp"
 #include "rlrun/env/graph_policy.hpp"
 #include "rlrun/runtime/components/builtins.hpp"
 #include "rlrun/runtime/io/model_graph.hpp"
@@ -242,6 +246,28 @@ TEST_CASE("SB3 files whose pickles would run code are refused and nothing runs",
     CHECK_THAT(r.output, Catch::Contains("system") && Catch::Contains("does not read"));
   }
   CHECK_FALSE(std::filesystem::exists(marker));
+}
+
+TEST_CASE("an SB3 recurrent policy whose LSTM weights do not fit its hidden size is refused",
+          "[sb3]") {
+  // recurrent_ppo_cartpole with lstm_actor.weight_hh_l0 reshaped from [64, 16] to [1, 1024]:
+  // read naively, a hidden size of 1024 (a 4096 x 1024 matrix per LSTM) from 4 KiB of weights.
+  const std::string source = case_dir("recurrent_ppo_cartpole") + "/model.zip";
+  const ZipReader original(source);
+  ZipMembers members;
+  for (const ZipEntry& entry : original.entries())
+    members[entry.name] = original.read(entry, uint64_t{1} << 24);
+  TensorMap tensors = read_torch_tensors(members["policy.pth"], "policy.pth", uint64_t{1} << 24);
+  tensors["lstm_actor.weight_hh_l0"].shape = {1, 1024};
+  std::vector<std::pair<std::string, const Tensor*>> ordered;
+  for (const auto& [name, tensor] : tensors) ordered.emplace_back(name, &tensor);
+  members["policy.pth"] = torch_save_state_dict(ordered);
+  const std::string crafted =
+      (std::filesystem::temp_directory_path() / "rlrun_sb3_bad_lstm.zip").string();
+  write_zip_atomic(crafted, members);
+  CHECK_THROWS_WITH(read_sb3_model(crafted, "CartPole-v1"),
+                    Catch::Contains("lstm_actor.weight_hh_l0 is not 4*hidden x hidden"));
+  std::filesystem::remove(crafted);
 }
 
 TEST_CASE("run.init_from fine-tunes an SB3 model file", "[sb3][cli]") {

@@ -313,13 +313,26 @@ class Sb3Reader {
   // RecurrentPPO's LSTMs, read off the weights as torch.nn.LSTM names them (weight_hh_l<k> is
   // 4*hidden x hidden): the actor's layers; the critic has its own LSTM (lstm_critic:
   // enable_critic_lstm), a Linear (critic: neither), or reads the actor's (shared_lstm).
+  // Each layer's weight_hh must be 4*hidden x hidden: the network rlrun builds holds what the
+  // file holds, so a file cannot declare a hidden size its weights do not pay for (a [1, H]
+  // tensor naming H = 65536 would make rlrun allocate 4*H*H floats; docs/security.md).
   void add_lstm(const TensorMap& tensors, YAML::Node& policy) const {
     const auto hh = tensors.find("lstm_actor.weight_hh_l0");
     if (hh == tensors.end() || hh->second.shape.size() != 2)
       fail("its recurrent policy has no lstm_actor.weight_hh_l0");
+    const int64_t hidden = hh->second.shape[1];
     int layers = 0;
     while (tensors.count("lstm_actor.weight_ih_l" + std::to_string(layers))) ++layers;
-    policy["lstm_hidden_size"] = static_cast<int>(hh->second.shape[1]);
+    for (const char* lstm : {"lstm_actor", "lstm_critic"})
+      for (int layer = 0; layer < layers; ++layer) {
+        const std::string name = std::string(lstm) + ".weight_hh_l" + std::to_string(layer);
+        const auto found = tensors.find(name);
+        if (found == tensors.end()) continue;  // no critic LSTM
+        if (found->second.shape != std::vector<int64_t>{4 * hidden, hidden})
+          fail("its " + name + " is not 4*hidden x hidden (hidden " + std::to_string(hidden) +
+               ", from lstm_actor.weight_hh_l0)");
+      }
+    policy["lstm_hidden_size"] = static_cast<int>(hidden);
     policy["n_lstm_layers"] = layers;
     const bool critic_lstm = tensors.count("lstm_critic.weight_hh_l0") > 0;
     policy["enable_critic_lstm"] = critic_lstm;

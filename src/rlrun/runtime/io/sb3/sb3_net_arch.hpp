@@ -11,12 +11,16 @@
 
 namespace rlrun {
 
-// Output sizes of the Linear layers `<prefix>0`, `<prefix>2`, ..., in order.
+// Output sizes of the Linear layers `<prefix>0`, `<prefix>2`, ..., in order, as long as each
+// layer reads the one before (its weight is [width, previous width]). The file is untrusted:
+// a chain of [W, 1] weights would otherwise name W x W layers its bytes do not hold; cut at
+// the first mismatch, the network built from the widths cannot load the file's tensors.
 inline std::vector<int> sb3_layer_widths(const TensorMap& tensors, const std::string& prefix) {
   std::vector<int> widths;
   for (int index = 0;; index += 2) {
     const auto found = tensors.find(prefix + std::to_string(index) + ".weight");
     if (found == tensors.end() || found->second.shape.size() != 2) return widths;
+    if (!widths.empty() && found->second.shape[1] != widths.back()) return widths;
     widths.push_back(static_cast<int>(found->second.shape[0]));
   }
 }
