@@ -6,9 +6,13 @@ extension) into a wheel, so that a virtualenv gets rlrun with one command and no
 
 The wheel format is PEP 427 (a zip with <name>-<version>.dist-info/{METADATA, WHEEL, RECORD};
 RECORD lists every file with its urlsafe-base64 sha256 and size). The wheel is for this
-interpreter's ABI and this machine: the extension links Debian's shared libraries (SUMO,
-Bullet, yaml-cpp, libzip, Cairo); it carries rlrun's shipped data (configs, scenarios, SUMO
-networks) in rlrun/share/rlrun (docs/python.md).
+interpreter's ABI (CPython 3.11 on Debian 12) and any Debian 12 machine with an x86-64-v2 CPU:
+the shared libraries the extension links beyond Debian's base system (Bullet, Box2D, MuJoCo,
+Cairo and the X11 pieces it pulls in, yaml-cpp, libzip, SUMO's TraCI client, ...; `ldd` says
+which) travel in rlrun/.libs, where the extension's DT_RPATH ($ORIGIN/.libs, set at link time:
+python/CMakeLists.txt) finds them and their own dependencies. It carries rlrun's shipped data
+(configs, scenarios, SUMO networks) in rlrun/share/rlrun (docs/python.md). TrafficNetwork-v0's
+SUMO worker runs SUMO itself, which the target machine provides (apt install sumo).
 
     build_wheel.py --package build/python/rlrun --version 0.1.0 --out build/python/dist
 """
@@ -17,6 +21,7 @@ import argparse
 import base64
 import hashlib
 import os
+import subprocess
 import sys
 import sysconfig
 import zipfile
@@ -26,6 +31,33 @@ def wheel_tag() -> str:
     impl = f"cp{sys.version_info.major}{sys.version_info.minor}"
     platform = sysconfig.get_platform().replace("-", "_").replace(".", "_")
     return f"{impl}-{impl}-{platform}"
+
+
+# Libraries every Debian 12 system has (glibc, and the Priority: required packages libgcc-s1,
+# libstdc++6 (apt needs it) and zlib1g): not bundled. Any other library the extension links is.
+BASE_SYSTEM = ("linux-vdso.so", "ld-linux-x86-64.so", "libc.so", "libm.so", "libdl.so",
+               "libpthread.so", "librt.so", "libresolv.so", "libgcc_s.so", "libstdc++.so",
+               "libz.so")
+
+
+def in_base_system(soname: str) -> bool:
+    return any(soname == s or soname.startswith(s + ".") for s in BASE_SYSTEM)
+
+
+def bundled_libraries(extension: str):
+    """(soname, path) of every library `extension` loads, directly or not, outside the base
+    system, as the dynamic loader resolves them here (ldd)."""
+    out = subprocess.run(["ldd", extension], check=True, stdout=subprocess.PIPE, text=True).stdout
+    libraries = []
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) >= 3 and parts[1] == "=>":
+            soname, path = parts[0], parts[2]
+            if path == "not":
+                raise SystemExit(f"build_wheel: {extension} needs {soname}, which is not found")
+            if not in_base_system(soname):
+                libraries.append((soname, os.path.realpath(path)))
+    return libraries
 
 
 def record_line(name: str, data: bytes) -> str:
@@ -52,10 +84,14 @@ def main() -> int:
             if data or name.endswith((".py", ".so")) or name == "rlrun-sumo-worker":
                 path = os.path.join(root, name)
                 files.append((os.path.join("rlrun", os.path.relpath(path, args.package)), path))
-    if not any(arc.endswith(".so") for arc, _ in files):
+    extensions = [path for arc, path in files
+                  if arc.startswith("rlrun/_core.") and arc.endswith(".so")]
+    if not extensions:
         print(f"build_wheel: no extension module in {args.package}: build the rlrun_python target first",
               file=sys.stderr)
         return 1
+    for soname, path in bundled_libraries(extensions[0]):
+        files.append((f"rlrun/.libs/{soname}", path))
 
     tag = wheel_tag()
     dist_info = f"rlrun-{args.version}.dist-info"
@@ -92,7 +128,7 @@ def main() -> int:
 
         for arcname, path in files:
             with open(path, "rb") as f:
-                executable = path.endswith(".so") or path.endswith("rlrun-sumo-worker")
+                executable = ".so" in os.path.basename(path) or path.endswith("rlrun-sumo-worker")
                 add(arcname, f.read(), 0o755 if executable else 0o644)
         add(f"{dist_info}/METADATA", metadata.encode())
         add(f"{dist_info}/WHEEL", wheel.encode())
@@ -102,7 +138,9 @@ def main() -> int:
         info.external_attr = (0o100644) << 16
         whl.writestr(info, record, compress_type=zipfile.ZIP_DEFLATED)
     os.replace(temp, target)
-    print(f"build_wheel: {target}")
+    bundled = sum(1 for arc, _ in files if arc.startswith("rlrun/.libs/"))
+    print(f"build_wheel: {target} ({os.path.getsize(target) / 1e6:.1f} MB, {bundled} shared "
+          "libraries bundled in rlrun/.libs)")
     return 0
 
 

@@ -6,6 +6,7 @@
     env = rlrun.make("CartPole-v1")              # a gymnasium.Env when Gymnasium is installed
     envs = rlrun.make_vec("CartPole-v1", 64)     # stepped together in C++
     run_dir = rlrun.train("configs/cartpole_ppo.yaml", seed=3)
+    model = rlrun.PPO("MlpPolicy", "CartPole-v1").learn(10_000)   # SB3's API (_algorithms.py)
     lights = rlrun.parallel_env("TrafficNetwork-v0")  # PettingZoo's Parallel API (rlrun.env: AEC)
 """
 
@@ -19,12 +20,16 @@ if _sys.executable:
 
 from ._core import ConfigError, Interrupted, RuntimeFailure, UsageError
 from ._core import __version__
+from . import callbacks
+from ._algorithms import (A2C, ARS, DDPG, DQN, PPO, QRDQN, SAC, TD3, TQC, TRPO, BaseAlgorithm,
+                          CrossQ, MaskablePPO, RecurrentPPO)
 from ._env import RlrunEnv, make
 from ._model import Model, load
 from ._pettingzoo import RlrunAECEnv, RlrunParallelEnv, env, parallel_env
 from ._spaces import HAVE_GYMNASIUM
 from ._train import train
 from ._vector import RlrunVectorEnv, make_vec
+from .evaluation import evaluate_policy
 
 
 def load_plugin(path) -> str:
@@ -45,6 +50,22 @@ def list_envs():
 
 
 __all__ = [
+    "A2C",
+    "ARS",
+    "BaseAlgorithm",
+    "CrossQ",
+    "DDPG",
+    "DQN",
+    "MaskablePPO",
+    "PPO",
+    "QRDQN",
+    "RecurrentPPO",
+    "SAC",
+    "TD3",
+    "TQC",
+    "TRPO",
+    "callbacks",
+    "evaluate_policy",
     "ConfigError",
     "HAVE_GYMNASIUM",
     "Interrupted",

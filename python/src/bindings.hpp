@@ -44,5 +44,6 @@ void bind_board_game(py::module_& m);
 void bind_vec_env(py::module_& m);
 void bind_model(py::module_& m);
 void bind_train(py::module_& m);
+void bind_training_session(py::module_& m);
 
 }  // namespace rlrun::python

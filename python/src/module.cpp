@@ -87,4 +87,5 @@ PYBIND11_MODULE(_core, m) {
   bind_vec_env(m);
   bind_model(m);
   bind_train(m);
+  bind_training_session(m);
 }

@@ -3,6 +3,8 @@
 // steps them). python/rlrun/_model.py adds SB3's predict() signature and batching rules.
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cstring>
 #include <optional>
 
 #include "bindings.hpp"
@@ -76,7 +78,24 @@ py::tuple predict(ModelPolicy& model, FloatArray obs, bool deterministic,
 
 }  // namespace
 
+namespace model_detail {
+
+// A copy of a tensor as a numpy array of its dtype and shape.
+py::array tensor_array(const Tensor& t) {
+  py::dtype dtype = t.dtype == DType::kFloat32   ? py::dtype::of<float>()
+                    : t.dtype == DType::kFloat64 ? py::dtype::of<double>()
+                    : t.dtype == DType::kInt64   ? py::dtype::of<int64_t>()
+                    : t.dtype == DType::kUInt64  ? py::dtype::of<uint64_t>()
+                                                 : py::dtype::of<uint8_t>();
+  py::array out(dtype, std::vector<py::ssize_t>(t.shape.begin(), t.shape.end()));
+  std::memcpy(out.mutable_data(), t.bytes.data(), std::min<size_t>(t.bytes.size(), out.nbytes()));
+  return out;
+}
+
+}  // namespace model_detail
+
 void bind_model(py::module_& m) {
+  using model_detail::tensor_array;
   py::class_<ModelPolicy>(m, "Model")
       .def(py::init(
                [](const std::string& path, const std::vector<std::string>& overrides, bool trust) {
@@ -112,6 +131,13 @@ void bind_model(py::module_& m) {
       .def_property_readonly(
           "policy_action_space",
           [](const ModelPolicy& self) { return space_dict(self.policy_action_space()); })
+      .def_property_readonly("tensors",
+                             [](const ModelPolicy& self) {
+                               py::dict out;
+                               for (const auto& [name, t] : self.tensors())
+                                 out[py::str(name)] = tensor_array(t);
+                               return out;
+                             })
       .def_property_readonly("config_yaml", [](const ModelPolicy& self) {
         return dump_yaml(self.experiment().resolved);
       });

@@ -12,33 +12,11 @@
 #include "rlrun/core/execution_context.hpp"
 #include "rlrun/core/interrupt.hpp"
 #include "rlrun/runtime/run/trainer.hpp"
+#include "scoped_training_signals.hpp"
 
 namespace rlrun::python {
 
 namespace {
-
-// Python's handlers for SIGINT and SIGTERM, put back when training ends however it ends.
-class ScopedTrainingSignals {
- public:
-  ScopedTrainingSignals() {
-    sigaction(SIGINT, nullptr, &old_int_);
-    sigaction(SIGTERM, nullptr, &old_term_);
-    clear_interrupts();
-    install_interrupt_handlers();
-  }
-  ~ScopedTrainingSignals() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-    // The outcome has been taken: a later wait (rlrun.make's worker) must not see this Ctrl-C.
-    clear_interrupts();
-  }
-  ScopedTrainingSignals(const ScopedTrainingSignals&) = delete;
-  ScopedTrainingSignals& operator=(const ScopedTrainingSignals&) = delete;
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
 
 py::dict run(const Experiment& experiment) {
   TrainOutcome outcome;

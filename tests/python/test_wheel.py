@@ -67,6 +67,40 @@ class WheelInVirtualenv(TempDirMixin, unittest.TestCase):
         self.assertIn("grasp (26,)", run.stdout)
         self.assertIn("network (32, 29)", run.stdout)
 
+        # Another Debian 12 machine lacks the -dev packages' libraries: what the extension
+        # loads must come from the wheel (rlrun/.libs) or the base system every Debian 12 has.
+        # The dynamic loader's own log (LD_DEBUG=libs) of this process after numpy's import
+        # names every library it initialises.
+        probe = ("import os, sys, numpy\n"
+                 "os.write(2, f'RLRUN-IMPORT {os.getpid()}\\n'.encode())\n"
+                 "import rlrun\n"
+                 "rlrun.make('CartPole-v1').reset(seed=0)\n")
+        run = subprocess.run([os.path.join(venv, "bin", "python"), "-c", probe], cwd=self.tmp,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             env=dict(env, LD_DEBUG="libs"))
+        self.assertEqual(run.returncode, 0, run.stderr[-3000:])
+        marker = next(line for line in run.stderr.splitlines() if line.startswith("RLRUN-IMPORT"))
+        pid = marker.split()[1]
+        after = run.stderr[run.stderr.index(marker):]
+        loaded = [line.split("calling init:")[1].strip() for line in after.splitlines()
+                  if line.strip().startswith(pid + ":") and "calling init:" in line]
+        package = os.path.realpath(os.path.dirname(subprocess.run(
+            [os.path.join(venv, "bin", "python"), "-c", "import rlrun; print(rlrun.__file__)"],
+            stdout=subprocess.PIPE, text=True, env=env, check=True).stdout.strip()))
+        self.assertTrue(any(p.endswith("libyaml-cpp.so.0.7") for p in loaded), loaded)
+        # Debian 12's base system, and what its python3.11 itself depends on (the stdlib's
+        # extension modules load these: _ssl, _ctypes, pyexpat, _bz2, _lzma, ...).
+        base = ("libc.so", "libm.so", "libgcc_s.so", "libstdc++.so", "libz.so", "ld-linux",
+                "libcrypto.so", "libssl.so", "libffi.so", "libexpat.so", "libbz2.so",
+                "liblzma.so", "libmpdec.so", "libuuid.so", "libsqlite3.so", "libtinfo.so",
+                "libncursesw.so", "libreadline.so")
+        for path in loaded:
+            real = os.path.realpath(path)
+            if real.startswith(package) or "/python3" in real:  # the wheel; Python's own modules
+                continue
+            self.assertTrue(os.path.basename(path).startswith(base),
+                            f"{path} was loaded from outside the wheel: {loaded}")
+
 
 if __name__ == "__main__":
     unittest.main()

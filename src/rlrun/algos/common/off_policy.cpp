@@ -229,7 +229,9 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
                  {}};
   // A restored state continues the envs where the checkpoint left them; the last
   // observations are the VecEnv's (the loop below keeps last_obs == env.obs() at safe points).
-  call.last_obs = s.restored ? env.obs() : env.reset();
+  const bool continuing = !s.restored && s.continued_env == &env;
+  s.continued_env = &env;
+  call.last_obs = s.restored || continuing ? env.obs() : env.reset();
   // SB3 _last_original_obs: what the replay buffer stores, VecNormalize's original observations
   // (the same as last_obs without env.normalize). A checkpoint carries it; one written before
   // rlrun kept it holds the VecEnv's.

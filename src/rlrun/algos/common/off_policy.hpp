@@ -113,6 +113,9 @@ struct OffPolicyState {
   // Set by read_state: the next learn() continues from the restored envs' observations
   // instead of resetting them (SB3 learn(reset_num_timesteps=False) after loading a buffer).
   bool restored = false;
+  // The env the last learn() stepped: a learn() on it again continues its episodes (SB3's
+  // learn(reset_num_timesteps=False); runtime/run/trainer.hpp's TrainingSession).
+  const VecEnv* continued_env = nullptr;
 
   // Exact resume: the replay buffer, episode statistics and counters.
   void write_state(StateWriter out) const;

@@ -59,8 +59,18 @@ void OnPolicyCollector::start(VecEnv& env) {
                                 std::to_string(last_obs_.cols()));
   if (restored_) {
     restored_ = false;
+    continued_env_ = &env;
     return;
   }
+  if (continued_env_ == &env) {
+    // The envs' present observations: a learn() a callback stopped left last_obs_ a step
+    // behind them (as SB3's collect_rollouts returns before it updates _last_obs).
+    last_obs_ = env.obs();
+    for (int i = 0; i < env.num_envs(); ++i) last_episode_starts_(i) = env.done(i) ? 1.0f : 0.0f;
+    if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, -1);
+    return;
+  }
+  continued_env_ = &env;
   last_obs_ = env.reset();
   if (mask_size_ > 0) read_action_masks(env, mask_readers_, last_masks_, -1);
   last_episode_starts_.setOnes();

@@ -72,6 +72,9 @@ class OnPolicyCollector {
   RolloutBuffer buffer_;
   EpisodeStats episode_stats_;
   bool restored_ = false;
+  // The env the last learn() stepped: a learn() on it again continues its episodes (SB3's
+  // learn(reset_num_timesteps=False); runtime/run/trainer.hpp's TrainingSession).
+  const VecEnv* continued_env_ = nullptr;
   int64_t iterations_ = 0;
   int sde_sample_freq_ = -1;
   int mask_size_ = 0;

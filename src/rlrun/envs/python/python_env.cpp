@@ -44,11 +44,17 @@ struct PythonEnv::Handshake {
 
 PythonEnv::PythonEnv(std::string target, std::string kwargs_json, const std::string& python,
                      double startup_timeout, const PettingZooSettings& pettingzoo)
-    : target_(std::move(target)), startup_timeout_(startup_timeout) {
+    : PythonEnv(std::move(target), std::move(kwargs_json),
+                std::make_unique<PythonWorker>(python, python_worker_script()), startup_timeout,
+                pettingzoo) {}
+
+PythonEnv::PythonEnv(std::string target, std::string kwargs_json,
+                     std::unique_ptr<PythonWorker> worker, double startup_timeout,
+                     const PettingZooSettings& pettingzoo)
+    : target_(std::move(target)), startup_timeout_(startup_timeout), worker_(std::move(worker)) {
   // Keys every Python env declares up front: the Monitor writes is_success into
   // <i>.monitor.csv only for keys known when it is built (empty when the env never reports it).
   is_success_ = info_.add_key("is_success");
-  worker_ = std::make_unique<PythonWorker>(python, python_worker_script());
   const json spec = {
       {"target", target_},
       {"kwargs", json::parse(kwargs_json)},

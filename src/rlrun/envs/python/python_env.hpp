@@ -48,6 +48,10 @@ class PythonEnv : public Env, public SplitStep, public AgentNames {
             double startup_timeout = kDefaultStartupTimeout,
             const PettingZooSettings& pettingzoo = PettingZooSettings{});
   static constexpr double kDefaultStartupTimeout = 60.0;
+  // The same over a worker already started (an in-process one: python_live_env.hpp).
+  PythonEnv(std::string target, std::string kwargs_json, std::unique_ptr<PythonWorker> worker,
+            double startup_timeout = kDefaultStartupTimeout,
+            const PettingZooSettings& pettingzoo = PettingZooSettings{});
   ~PythonEnv() override;
 
   const Space& observation_space() const override;

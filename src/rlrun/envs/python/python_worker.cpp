@@ -42,6 +42,11 @@ PythonWorker::PythonWorker(const std::string& python, const std::string& script)
   fd_ = worker.fd;
 }
 
+PythonWorker::PythonWorker(InProcess, int fd, const std::string& python)
+    : python_(python), fd_(fd), pid_(getpid()), in_process_(true) {
+  started_ = std::chrono::steady_clock::now();
+}
+
 PythonWorker::~PythonWorker() { stop(); }
 
 void PythonWorker::await(short events, const WorkerWait& wait) {
@@ -115,6 +120,7 @@ bool PythonWorker::wait_for_exit(double seconds) {
 }
 
 std::string PythonWorker::how_it_ended() {
+  if (in_process_) return "(a thread of this process serving a live env object) closed its socket";
   if (pid_ <= 0) return "was not started";
   if (!wait_for_exit(3.0)) {
     kill(pid_, SIGKILL);
@@ -130,7 +136,14 @@ std::string PythonWorker::how_it_ended() {
 }
 
 void PythonWorker::stop() {
-  if (pid_ <= 0 || reaped_) {
+  if (in_process_ && fd_ >= 0 && request_bytes_ > 0 && !hung_) {
+    // The serving thread returns on this request, leaving the env object open: its owner
+    // closes it (SB3's model.env.close()).
+    std::vector<std::byte> request(request_bytes_, std::byte{0});
+    request[0] = static_cast<std::byte>(python_protocol::kClose);
+    (void)send(fd_, request.data(), request.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  }
+  if (in_process_ || pid_ <= 0 || reaped_) {
     if (fd_ >= 0) close(fd_);
     fd_ = -1;
     return;

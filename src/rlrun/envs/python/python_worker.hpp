@@ -28,6 +28,11 @@ class PythonWorker {
   // Starts the worker (fork + exec; fast: the interpreter then starts in parallel with the
   // caller). Throws RuntimeFailure when `python` is not an executable / on PATH.
   PythonWorker(const std::string& python, const std::string& script);
+  // A worker that already runs in this process (a thread of the `rlrun` Python package serving
+  // a live env object, python_live_env.hpp) at the other end of the connected socket `fd`,
+  // which this object now owns. pid() is this process's; stop() closes the socket only.
+  struct InProcess {};
+  PythonWorker(InProcess, int fd, const std::string& python);
   ~PythonWorker();
   PythonWorker(const PythonWorker&) = delete;
   PythonWorker& operator=(const PythonWorker&) = delete;
@@ -66,6 +71,7 @@ class PythonWorker {
   pid_t pid_ = -1;
   int status_ = 0;
   bool reaped_ = false;
+  bool in_process_ = false;
   bool hung_ = false;
   bool awaiting_reply_ = false;
   std::chrono::steady_clock::time_point started_;

@@ -3,14 +3,17 @@
 //   gymnasium:<ID>           gymnasium.make(ID, **env.kwargs), with Gymnasium's own TimeLimit
 //   pettingzoo:<module>:<fn> fn(**env.kwargs), a PettingZoo env: its agents share one policy
 //                            (pettingzoo_agents.py)
+//   python-object:<n>        a live env object of the `rlrun` Python package (python_live_env.hpp)
 // env.kwargs is passed through as JSON (kwargs_json.hpp); env.python picks the interpreter.
 #include <memory>
 #include <regex>
 
+#include "rlrun/core/errors.hpp"
 #include "rlrun/core/process_settings.hpp"
 #include "rlrun/env/env_entry.hpp"
 #include "rlrun/envs/python/kwargs_json.hpp"
 #include "rlrun/envs/python/python_env.hpp"
+#include "rlrun/envs/python/python_live_env.hpp"
 
 namespace rlrun::envs {
 
@@ -88,6 +91,37 @@ EnvEntry gymnasium_family() {
   return family;
 }
 
+// python-object:<n>: the connector's socket to the package's thread serving object n.
+EnvEntry live_object_family() {
+  EnvEntry family;
+  family.id = "python-object:";
+  family.description =
+      "python-object:<n>: a gymnasium.Env object passed to rlrun.PPO(...) and the like from "
+      "Python, stepped in that interpreter (only there)";
+  family.params = [] { return std::vector<FieldDoc>{}; };
+  family.expand = [](const std::string& id) {
+    static const std::regex form("python-object:[0-9]{1,12}");
+    if (!std::regex_match(id, form))
+      throw std::invalid_argument("'" + id + "' is not a live env object's id (python-object:<n>)");
+    EnvEntry entry = python_entry(id, "a live env object of the rlrun Python package");
+    const int64_t number = std::stoll(id.substr(14));
+    entry.make_in_context = [id, number](const AnyConfig& kwargs, const EnvContext& context) {
+      const LiveEnvConnector& connect = live_env_connector();
+      if (!connect)
+        throw RuntimeFailure(id +
+                             " names an env object that lives in a Python interpreter: it can be "
+                             "built only there, by the rlrun package (rlrun.PPO(policy, env)); "
+                             "name the env by its id (env.id) to use it here");
+      auto worker = std::make_unique<PythonWorker>(PythonWorker::InProcess{}, connect(number),
+                                                   interpreter(context.python));
+      return std::make_unique<PythonEnv>(id, kwargs_json(kwargs.get<YAML::Node>()),
+                                         std::move(worker), context.startup_timeout);
+    };
+    return entry;
+  };
+  return family;
+}
+
 }  // namespace
 
 void register_python(EnvEntries& out) {
@@ -102,6 +136,7 @@ void register_python(EnvEntries& out) {
       "pettingzoo:<module>:<function>: a PettingZoo env (parallel or AEC), function(**kwargs), "
       "its agents sharing one policy; turn-based games as one agent playing the seat to move",
       "pettingzoo:pettingzoo.classic.tictactoe_v3:env", "PettingZoo env"));
+  out.push_back(live_object_family());
 }
 
 }  // namespace rlrun::envs

@@ -21,8 +21,6 @@ import struct
 import sys
 import traceback
 
-faulthandler.enable()  # a crash inside the env prints its Python stack before rlrun reports it
-
 PROTOCOL_VERSION = 1
 KIND_NAMES = ("Dict", "MultiDiscrete", "MultiBinary", "Discrete", "Box")
 UNSUPPORTED = ("Tuple", "Text", "Graph", "Sequence", "OneOf")
@@ -300,11 +298,14 @@ class Channel:
 
 
 class Worker:
-    def __init__(self, channel, np, spec):
+    def __init__(self, channel, np, spec, live_env=None):
+        """live_env: an env object of this interpreter to serve (serve_live_env) instead of
+        building one from spec's target; its owner closes it, not the close request."""
         self.np = np
         self.channel = channel
         self.target = spec["target"]
-        self.env = load_target(self.target, spec.get("kwargs") or {})
+        self.live = live_env is not None
+        self.env = live_env if self.live else load_target(self.target, spec.get("kwargs") or {})
         # A PettingZoo env: its agents (pettingzoo_agents.py); None for a Gymnasium env.
         self.agents = None
         if self.target.startswith("pettingzoo:"):
@@ -544,7 +545,7 @@ class Worker:
                 elif op == 0x46:  # 'F'
                     self.render()
                 elif op == 0x43:  # 'C'
-                    close = getattr(self.env, "close", None)
+                    close = None if self.live else getattr(self.env, "close", None)
                     if close:
                         close()
                     return
@@ -564,7 +565,33 @@ def env_traceback():
     return "".join(traceback.format_exception(exc_type, exc, tb)).rstrip()
 
 
+def serve_live_env(fd, env):
+    """Serves `env`, an object of this interpreter, to rlrun over the connected socket `fd`
+    (python_live_env.hpp): the `rlrun` package runs this in a thread while rlrun trains. Returns
+    when rlrun closes the env or the socket; an exception in the env goes to rlrun as in a
+    worker process."""
+    import numpy as np
+    channel = Channel(fd)
+    try:
+        spec = channel.recv_json()
+        try:
+            worker = Worker(channel, np, spec, live_env=env)
+        except EnvError as e:
+            channel.send_json({"ok": False, "error": str(e)})
+            return
+        except Exception:
+            channel.send_json({"ok": False, "error": env_traceback()})
+            return
+        channel.send_json(worker.handshake)
+        worker.serve()
+    except (EOFError, BrokenPipeError, ConnectionResetError, OSError):
+        pass  # rlrun closed the socket: it is done with this env
+    finally:
+        channel.sock.close()
+
+
 def main():
+    faulthandler.enable()  # a crash inside the env prints its Python stack before rlrun reports it
     # Ctrl-C reaches the whole process group; rlrun handles it (checkpoint, then closes this
     # worker's socket). rlrun ignored SIGINT before exec; keep it so.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -596,4 +623,5 @@ def main():
     os._exit(0)
 
 
-main()
+if __name__ == "__main__":  # `python -c <this file> FD`; the rlrun package imports it instead
+    main()

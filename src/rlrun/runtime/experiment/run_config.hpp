@@ -17,6 +17,7 @@ struct RunConfig {
   std::optional<int> log_interval;   // progress.csv rows every N iterations (on-policy) or
                                      // episodes (off-policy); null = SB3's default (1 / 4)
   double console_interval = 2.0;     // min seconds between console tables
+  int verbose = 1;                   // SB3's verbose: 0 = nothing on the console
   std::string init_from;             // model file whose weights start the run (empty: none)
   OutputPath tensorboard_log;        // SB3's tensorboard_log: DIR for TensorBoard event files
   std::optional<std::string> tb_log_name;  // SB3's tb_log_name; null = the run name
@@ -34,6 +35,10 @@ struct RunConfig {
       at_least(1));
     v("console_interval", console_interval, "minimum seconds between console summaries",
       in_range(0, 1e9));
+    v("verbose", verbose,
+      "console output as SB3's verbose: 0 = none (log.txt and progress.csv are written all "
+      "the same), 1 = the run's lines, tables and progress bar",
+      in_range(0, 2));
     v("init_from", init_from,
       "model file whose weights (and normalisation statistics) start this run; empty = none");
     v("tensorboard_log", tensorboard_log,

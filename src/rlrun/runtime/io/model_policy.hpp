@@ -38,6 +38,8 @@ class ModelPolicy {
 
   const ModelMeta& meta() const { return loaded_.file.meta; }
   const Experiment& experiment() const { return loaded_.experiment; }
+  // The algorithm's tensors as the file holds them (rlrun's names; docs/model_format.md).
+  const TensorMap& tensors() const { return loaded_.file.tensors; }
   // The env's own spaces: what predict() takes and returns.
   const Space& observation_space() const;
   const Space& action_space() const;

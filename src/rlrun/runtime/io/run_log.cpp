@@ -4,11 +4,11 @@
 
 namespace rlrun {
 
-RunLog::RunLog(const std::string& path)
-    : file_(CheckedFile::run_file(path, CheckedFile::Mode::kAppend)) {}
+RunLog::RunLog(const std::string& path, bool echo)
+    : file_(CheckedFile::run_file(path, CheckedFile::Mode::kAppend)), echo_(echo) {}
 
 void RunLog::line(const std::string& text) {
-  std::cout << text << std::endl;
+  if (echo_) std::cout << text << std::endl;
   check();  // tables written before this line stay before it
   file_ << text << '\n';
   file_.flush();

@@ -13,7 +13,8 @@ namespace rlrun {
 class RunLog {
  public:
   // Throws RuntimeFailure when the file cannot be opened.
-  explicit RunLog(const std::string& path);
+  // `echo`: also print each line on stdout.
+  explicit RunLog(const std::string& path, bool echo = true);
   // Prints and appends one line; throws RuntimeFailure when the file cannot be written.
   void line(const std::string& text);
   // Where the console tables for log.txt go; check() writes them out.
@@ -24,6 +25,7 @@ class RunLog {
  private:
   CheckedFile file_;
   std::ostringstream tables_;
+  bool echo_ = true;
 };
 
 }  // namespace rlrun

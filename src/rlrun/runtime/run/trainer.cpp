@@ -40,7 +40,7 @@ namespace rlrun {
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace trainer_detail {
 
 // Removes a new run directory unless dismissed: a run that fails while being set up (bad
 // --init-from model, env that cannot start) leaves no half-made directory behind, so the next
@@ -91,7 +91,12 @@ class TrainingRun {
     new_run_guard_->dismiss();  // set up: from here on the run's files are worth keeping
   }
 
-  TrainOutcome run();
+  // Trains until the run's total env steps reach `total_timesteps`; may be called again to
+  // continue (TrainingSession). `extra`: callbacks of the caller, after the config's.
+  TrainOutcome run(int64_t total_timesteps,
+                   const std::vector<std::unique_ptr<Callback>>& extra = {});
+  TrainingContext& context() { return *context_; }
+  int64_t num_timesteps() const { return algorithm_->num_timesteps(); }
 
  private:
   void open_run_directory(const std::vector<std::string>& resume_from);
@@ -127,6 +132,8 @@ class TrainingRun {
   TensorBoardLog* tensorboard_ = nullptr;  // owned by logger_; null without run.tensorboard_log
   std::optional<TrainingContext> context_;
   std::vector<std::unique_ptr<Callback>> callbacks_;
+  // run()'s caller's callbacks (not part of the config: not in checkpoints).
+  const std::vector<std::unique_ptr<Callback>>* extra_callbacks_ = nullptr;
   std::string last_checkpoint_;
   bool resumable_ = false;  // the envs can save their state: checkpoints resume exactly
   EvaluationListener on_evaluation_;
@@ -157,7 +164,8 @@ void TrainingRun::open_run_directory(const std::vector<std::string>& resume_from
   if (!new_run_guard_) new_run_guard_.emplace("");
   dir_->remove(kFinishedMarker);  // training again
   dir_->write_atomic("config.yaml", dump_yaml(experiment_.resolved));
-  log_.emplace(outcome_.run_dir + "/log.txt");  // not through a link (core/checked_file.hpp)
+  // Not through a link (core/checked_file.hpp); on the console unless run.verbose is 0.
+  log_.emplace(outcome_.run_dir + "/log.txt", experiment_.run.verbose > 0);
   announce();
 }
 
@@ -220,12 +228,14 @@ void TrainingRun::announce_agents() {
 }
 
 void TrainingRun::build_logging() {
-  bar_.emplace(experiment_.run.total_timesteps, isatty(STDOUT_FILENO) != 0);
+  bar_.emplace(experiment_.run.total_timesteps,  // run() renews it
+               isatty(STDOUT_FILENO) != 0 && experiment_.run.verbose > 0);
   auto csv_sink = std::make_unique<CsvSink>(outcome_.run_dir + "/progress.csv", resuming_);
   progress_csv_ = csv_sink.get();
   logger_.add_sink(std::move(csv_sink));
-  logger_.add_sink(std::make_unique<ConsoleTableSink>(std::cout, experiment_.run.console_interval,
-                                                      [this] { bar_->clear(); }));
+  if (experiment_.run.verbose > 0)
+    logger_.add_sink(std::make_unique<ConsoleTableSink>(std::cout, experiment_.run.console_interval,
+                                                        [this] { bar_->clear(); }));
   logger_.add_sink(std::make_unique<ConsoleTableSink>(log_->table(), 0.0));
   if (!experiment_.run.tensorboard_log.value.empty()) build_tensorboard_log();
   context_.emplace(TrainingContext{
@@ -340,6 +350,7 @@ bool TrainingRun::at_safe_point(int64_t num_timesteps) {
   const std::string problem = describe_non_finite(logger_.pending());
   if (!problem.empty()) stop_diverged(problem);
   for (const auto& callback : callbacks_) callback->at_safe_point(num_timesteps);
+  for (const auto& callback : *extra_callbacks_) callback->at_safe_point(num_timesteps);
   log_->check();
   if (!interrupt_requested()) return true;
   if (!resumable_) return false;  // nothing to resume from: just stop, model.zip follows
@@ -359,6 +370,8 @@ TrainingHooks TrainingRun::hooks() {
     bool continue_training = true;  // SB3 CallbackList: every callback runs, any can stop
     for (const auto& callback : callbacks_)
       continue_training = callback->on_step(num_timesteps) && continue_training;
+    for (const auto& callback : *extra_callbacks_)
+      continue_training = callback->on_step(num_timesteps) && continue_training;
     return continue_training && interrupt_count() < 2;
   };
   // Parameters once per log row: cheap next to the updates between rows.
@@ -367,13 +380,18 @@ TrainingHooks TrainingRun::hooks() {
   return hooks;
 }
 
-TrainOutcome TrainingRun::run() {
+TrainOutcome TrainingRun::run(int64_t total_timesteps,
+                              const std::vector<std::unique_ptr<Callback>>& extra) {
+  extra_callbacks_ = &extra;
+  outcome_.checkpoint_path.clear();
+  outcome_.stop_reason.clear();
+  bar_.emplace(total_timesteps, isatty(STDOUT_FILENO) != 0 && experiment_.run.verbose > 0);
   TrainingHooks training_hooks = hooks();
   outcome_.start_timesteps = algorithm_->num_timesteps();  // a resumed run's checkpoint step
   const auto start = std::chrono::steady_clock::now();
   std::string stopped_by_others;
   try {
-    algorithm_->learn(*env_, experiment_.run.total_timesteps, training_hooks);
+    algorithm_->learn(*env_, total_timesteps, training_hooks);
   } catch (const SeatsStopped& e) {
     // A per-agent run's other learner stopped (Ctrl-C seen a step earlier there, or a failure
     // there): this one cannot step its shared env, and keeps what it has learnt so far.
@@ -385,13 +403,17 @@ TrainOutcome TrainingRun::run() {
   outcome_.interrupted = interrupt_requested() || !stopped_by_others.empty();
   if (!stopped_by_others.empty()) outcome_.stop_reason = stopped_by_others;
   finish();
+  extra_callbacks_ = nullptr;
   return outcome_;
 }
 
 void TrainingRun::finish() {
-  for (const auto& callback : callbacks_) {
-    callback->on_training_end(outcome_.timesteps, !outcome_.checkpoint_path.empty());
-    if (outcome_.stop_reason.empty()) outcome_.stop_reason = callback->stop_reason();
+  using Callbacks = std::vector<std::unique_ptr<Callback>>;
+  for (const Callbacks* list : {static_cast<const Callbacks*>(&callbacks_), extra_callbacks_}) {
+    for (const auto& callback : *list) {
+      callback->on_training_end(outcome_.timesteps, !outcome_.checkpoint_path.empty());
+      if (outcome_.stop_reason.empty()) outcome_.stop_reason = callback->stop_reason();
+    }
   }
   bar_->finish();
   logger_.flush();
@@ -424,7 +446,9 @@ void TrainingRun::finish() {
                " (rlrun train --resume " + outcome_.run_dir + " continues from it)");
 }
 
-}  // namespace
+}  // namespace trainer_detail
+
+using trainer_detail::TrainingRun;
 
 TrainOutcome train_experiment(const Experiment& experiment, const Registry& registry,
                               const ExecutionContext& execution,
@@ -433,7 +457,7 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
   const auto train_one = [](const Experiment& one, const Registry& components,
                             const ExecutionContext& threads, EvaluationListener listener) {
     TrainingRun run(one, components, threads, {}, std::move(listener));
-    return run.run();
+    return run.run(one.run.total_timesteps);
   };
   if (experiment.env.section.agent_policies == "per_agent") {
     if (!resume_from.empty())
@@ -443,7 +467,34 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
     return train_per_agent(experiment, registry, execution, std::move(on_evaluation), train_one);
   }
   TrainingRun run(experiment, registry, execution, resume_from, std::move(on_evaluation));
-  return run.run();
+  return run.run(experiment.run.total_timesteps);
 }
+
+struct TrainingSession::Impl {
+  Impl(Experiment e, const Registry& registry, const ExecutionContext& execution)
+      : experiment(std::move(e)), run(experiment, registry, execution, {}, {}) {}
+  Experiment experiment;  // before run, which refers to it
+  TrainingRun run;
+};
+
+TrainingSession::TrainingSession(Experiment experiment, const Registry& registry,
+                                 const ExecutionContext& execution) {
+  if (experiment.env.section.agent_policies == "per_agent")
+    throw UsageError("a per-agent run (env.agent_policies: per_agent) trains with rlrun.train");
+  impl_ = std::make_unique<Impl>(std::move(experiment), registry, execution);
+}
+
+TrainingSession::~TrainingSession() = default;
+
+TrainOutcome TrainingSession::learn(int64_t total_timesteps,
+                                    const std::vector<std::unique_ptr<Callback>>& extra) {
+  return impl_->run.run(total_timesteps, extra);
+}
+
+TrainingContext& TrainingSession::context() { return impl_->run.context(); }
+
+int64_t TrainingSession::num_timesteps() const { return impl_->run.num_timesteps(); }
+
+const Experiment& TrainingSession::experiment() const { return impl_->experiment; }
 
 }  // namespace rlrun

@@ -17,6 +17,8 @@
 // PPO/A2C update or off-policy round), where a checkpoint is written; a second Ctrl-C stops at
 // the next env step without one. A NaN or inf in a loss or a parameter stops the run with a
 // RuntimeFailure naming the step and the quantity; nothing non-finite is ever saved.
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,5 +38,30 @@ TrainOutcome train_experiment(const Experiment& experiment, const Registry& regi
                               const ExecutionContext& execution,
                               const std::vector<std::string>& resume_from = {},
                               EvaluationListener on_evaluation = {});
+
+// A training that goes on over several learn() calls in one process: SB3's model.learn() as
+// the Python API offers it (python/rlrun/_algorithms.py). The run directory, envs, algorithm
+// (optimizer moments, replay buffer, RNG streams) and the config's callbacks live from the
+// constructor to the destructor; each learn() trains until the run's total env steps reach
+// its argument and ends as train_experiment does (model.zip, summary line, `finished`).
+class TrainingSession {
+ public:
+  TrainingSession(Experiment experiment, const Registry& registry,
+                  const ExecutionContext& execution);
+  ~TrainingSession();
+  TrainingSession(const TrainingSession&) = delete;
+  TrainingSession& operator=(const TrainingSession&) = delete;
+
+  // `extra`: the caller's callbacks (built on context()), told of this learn() only.
+  TrainOutcome learn(int64_t total_timesteps,
+                     const std::vector<std::unique_ptr<Callback>>& extra = {});
+  TrainingContext& context();
+  int64_t num_timesteps() const;
+  const Experiment& experiment() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace rlrun
