@@ -354,6 +354,25 @@ TEST_CASE("rlrun eval --zoo-model plays an rl-zoo run folder", "[sb3][cli]") {
   CHECK_THAT(wrapped.output,
              Catch::Contains("mean_ep_length = 100.0") &&
                  Catch::Contains("sets frame_stack over VecNormalize's statistics"));
+  // args.yml's env_kwargs (rl_zoo3.enjoy passes them to the env): Pendulum's g, a setting the
+  // model's return shows; a keyword the env does not have is refused by name.
+  std::filesystem::remove(folder / "Pendulum-v1" / "config.yml");
+  std::ofstream(folder / "Pendulum-v1" / "args.yml")
+      << "!!python/object/apply:collections.OrderedDict\n"
+      << "- - - algo\n    - ppo\n  - - env_kwargs\n    - g: 2.0\n  - - seed\n    - 1\n";
+  const CommandResult light = run_command(eval);
+  CHECK(light.exit_code == 0);
+  const auto light_at = light.output.find("mean_reward = ");
+  REQUIRE(light_at != std::string::npos);
+  CHECK(std::abs(std::stod(light.output.substr(light_at + 14)) -
+                 returns["episode_returns"][0].get<double>()) > 1.0);
+  std::ofstream(folder / "Pendulum-v1" / "args.yml")
+      << "!!python/object/apply:collections.OrderedDict\n"
+      << "- - - env_kwargs\n    - gravity_typo: 2.0\n";
+  const CommandResult typo = run_command(eval);
+  CHECK(typo.exit_code != 0);
+  CHECK_THAT(typo.output, Catch::Contains("gravity_typo"));
+  std::filesystem::remove(folder / "Pendulum-v1" / "args.yml");
   // A folder not named <env>_<n> is a usage error.
   const CommandResult wrong = run_command(std::string(RLRUN_BINARY) + " eval --zoo-model " +
                                           (root / "ppo").string() + " 2>&1");

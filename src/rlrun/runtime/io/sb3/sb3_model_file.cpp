@@ -364,7 +364,7 @@ class Sb3Reader {
     YAML::Node root;
     root["run"]["name"] = "sb3_model";
     root["env"]["id"] = env_id_;
-    for (const char* key : {"wrappers", "max_episode_steps"})
+    for (const char* key : {"kwargs", "wrappers", "max_episode_steps"})
       if (env_section_.IsMap() && env_section_[key]) root["env"][key] = env_section_[key];
     if (normalize) root["env"]["normalize"] = encode(*normalize);
     root["algo"]["id"] = algo;

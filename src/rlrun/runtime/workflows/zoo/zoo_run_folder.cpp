@@ -45,35 +45,46 @@ void add_frame_stack(const ConfigNode& value, bool normalized, const std::string
   folder.env_section["wrappers"].push_back(wrapper);
 }
 
-// The zoo's hyperparameters that change the env the model saw: env_wrapper is translated into
-// `folder.env_section` as `rlrun zoo import` translates it, frame_stack by add_frame_stack. The
-// file is the zoo's yaml.dump of an OrderedDict: `!!python/object/apply:collections.OrderedDict`
-// over the call's one argument, a list of [key, value] pairs; read as untrusted text
-// (core/config_node.hpp's bounds), never through a link.
-void read_zoo_config(const std::string& config_file, int registered_limit, bool normalized,
-                     ZooRunFolder& folder) {
+// The [key, value] pairs of a file rl-zoo writes with yaml.dump of an OrderedDict (config.yml,
+// args.yml): `!!python/object/apply:collections.OrderedDict` over the call's one argument, a list
+// of pairs. Read as untrusted text (core/config_node.hpp's bounds), never through a link; an
+// undefined node when the file is absent or not of that form (a note says so when unreadable).
+ConfigNode ordered_dict_pairs(const std::string& file, ZooRunFolder& folder) {
   ConfigNode root;
   try {
-    const FileDescriptor fd = open_regular_file(AT_FDCWD, config_file, O_RDONLY, config_file);
-    if (!fd) return;
-    root = ConfigNode::load_string(read_bounded(fd.get(), kMaxConfigBytes, config_file),
-                                   config_file, ConfigTrust::kUntrusted);
+    const FileDescriptor fd = open_regular_file(AT_FDCWD, file, O_RDONLY, file);
+    if (!fd) return {};
+    root = ConfigNode::load_string(read_bounded(fd.get(), kMaxConfigBytes, file), file,
+                                   ConfigTrust::kUntrusted);
   } catch (const std::runtime_error&) {  // a link, a FIFO, too long, not YAML
-    folder.notes.push_back("note: " + config_file +
-                           " is not a file rlrun reads; its settings are unread");
-    return;
+    folder.notes.push_back("note: " + file + " is not a file rlrun reads; its settings are unread");
+    return {};
   }
-  if (!root.is_sequence() || root.size() != 1 || !root.at(0).is_sequence()) return;
-  const ConfigNode pairs = root.at(0);
-  ConfigNode frame_stack;
+  if (!root.is_sequence() || root.size() != 1 || !root.at(0).is_sequence()) return {};
+  return root.at(0);
+}
+
+// Calls `use(key, value)` for each well-formed pair with a defined value.
+template <class Use>
+void for_each_pair(const ConfigNode& pairs, Use use) {
+  if (!pairs.defined()) return;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const ConfigNode pair = pairs.at(i);
     if (!pair.is_sequence() || pair.size() != 2 || !pair.at(0).is_scalar()) continue;
-    const std::string key = pair.at(0).yaml().Scalar();
-    const ConfigNode value = pair.at(1);
-    if (!value.defined()) continue;
+    if (pair.at(1).defined()) use(pair.at(0).yaml().Scalar(), pair.at(1));
+  }
+}
+
+// The zoo's hyperparameters that change the env the model saw (config.yml): env_wrapper is
+// translated into `folder.env_section` as `rlrun zoo import` translates it, frame_stack by
+// add_frame_stack.
+void read_zoo_config(const std::string& config_file, int registered_limit, bool normalized,
+                     ZooRunFolder& folder) {
+  ConfigNode frame_stack;
+  for_each_pair(ordered_dict_pairs(config_file, folder), [&](const std::string& key,
+                                                             const ConfigNode& value) {
     if (key == "frame_stack") {
-      frame_stack = value;  // applied after env_wrapper's wrappers, as rl-zoo stacks last
+      frame_stack = value;  // applied after env_wrapper's, as rl-zoo stacks last
     } else if (key == "env_wrapper") {
       try {
         translate_env_wrappers(value, folder.env_section, registered_limit, folder.notes);
@@ -82,8 +93,28 @@ void read_zoo_config(const std::string& config_file, int registered_limit, bool 
         folder.env_section = YAML::Node(YAML::NodeType::Map);
       }
     }
-  }
+  });
   if (frame_stack.defined()) add_frame_stack(frame_stack, normalized, config_file, folder);
+}
+
+// The env's keyword arguments the run was trained with (args.yml's env_kwargs, the command
+// line's --env-kwargs), which rl_zoo3/enjoy.py passes to the env it evaluates: env.kwargs. They
+// are the model's untrusted config like the rest (a value that names a program or file needs
+// --set or --trust), and the env's own Config checks them.
+void read_zoo_args(const std::string& args_file, ZooRunFolder& folder) {
+  for_each_pair(
+      ordered_dict_pairs(args_file, folder), [&](const std::string& key, const ConfigNode& value) {
+        if (key != "env_kwargs" || value.yaml().IsNull()) return;
+        if (!value.is_map()) {
+          folder.notes.push_back("note: " + args_file + ": env_kwargs is not a map; not applied");
+          return;
+        }
+        if (value.size() == 0) return;
+        folder.env_section["kwargs"] = YAML::Clone(value.yaml());
+        folder.notes.push_back("note: " + args_file +
+                               ": its env_kwargs are the env's kwargs (env.kwargs), as "
+                               "rl_zoo3.enjoy passes them");
+      });
 }
 
 // rl_model_<N>_steps.zip -> N; 0 for any other name.
@@ -141,6 +172,7 @@ ZooRunFolder find_zoo_run_folder(const std::string& dir, const ZooModelChoice& c
   const bool normalized = std::filesystem::exists(folder / zoo_env / "vecnormalize.pkl", ec);
   read_zoo_config((folder / zoo_env / "config.yml").string(), env ? env->max_episode_steps : 0,
                   normalized, out);
+  read_zoo_args((folder / zoo_env / "args.yml").string(), out);
   return out;
 }
 

@@ -21,8 +21,8 @@ namespace rlrun::zoo {
 
 struct ZooRunFolder {
   std::string model_path;
-  std::string env_id;              // rlrun's id of the folder's env
-  YAML::Node env_section;          // `wrappers` (and `max_episode_steps`) from env_wrapper
+  std::string env_id;      // rlrun's id of the folder's env
+  YAML::Node env_section;  // `wrappers`, `max_episode_steps` (env_wrapper), `kwargs` (args.yml)
   std::vector<std::string> notes;  // what of the zoo's config.yml is not applied, and why
 };
 
