@@ -455,6 +455,62 @@ def make_vec_normalize_case(out_dir):
     print(f"{VEC_NORMALIZE_CASE}: written", flush=True)
 
 
+CNN_CASE = "ppo_cnn_gripper_pixels"
+CNN_OBSERVATIONS = 32  # 36x36x3 uint8 images: 124 KB of observations.npy
+
+
+class PixelStand(gym.Env):
+    """The spaces of rlrun's GripperLift-v0 with obs_type: pixels, image_size: 36 (a uint8
+    camera image, Box(4) moves in [-1, 1]), with random images: SB3 builds and updates its
+    CnnPolicy (NatureCNN after VecTransposeImage) on it. No physics: only the spaces matter to
+    the file, and the test compares predictions on the saved images."""
+
+    def __init__(self):
+        self.observation_space = gym.spaces.Box(0, 255, (36, 36, 3), np.uint8)
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
+        self.t = 0
+
+    def reset(self, seed=None, options=None):
+        super().reset(seed=seed)
+        self.t = 0
+        return self.observation_space.sample(), {}
+
+    def step(self, action):
+        self.t += 1
+        obs = self.np_random.integers(0, 256, (36, 36, 3), dtype=np.uint8)
+        return obs, float(-np.sum(np.square(action))), False, self.t >= 50, {}
+
+
+def make_cnn_case(out_dir):
+    """PPO with SB3's CnnPolicy (NatureCNN, features_dim 64 to keep the file small) after one
+    update on PixelStand: model.zip, CNN_OBSERVATIONS images (HWC, as the env gives them) and
+    SB3's deterministic actions and values for them."""
+    env = PixelStand()
+    env.reset(seed=0)
+    model = PPO("CnnPolicy", env, n_steps=64, batch_size=32, n_epochs=1, seed=0,
+                policy_kwargs=dict(features_extractor_kwargs=dict(features_dim=64)))
+    model.learn(64)
+    rng = np.random.default_rng(OBS_SEED)
+    observations = rng.integers(0, 256, (CNN_OBSERVATIONS, 36, 36, 3), dtype=np.uint8)
+    case_dir = os.path.join(out_dir, CNN_CASE)
+    os.makedirs(case_dir, exist_ok=True)
+    model.save(os.path.join(case_dir, "model.zip"))
+    np.save(os.path.join(case_dir, "observations.npy"), observations)
+    np.save(os.path.join(case_dir, "actions.npy"), model.predict(observations, deterministic=True)[0])
+    with torch.no_grad():
+        obs_t, _ = model.policy.obs_to_tensor(observations)
+        np.save(os.path.join(case_dir, "values.npy"),
+                model.policy.predict_values(obs_t).cpu().numpy().astype(np.float32))
+    info = {"algo": "PPO", "policy": "CnnPolicy", "env": "GripperLift-v0 (obs_type: pixels, "
+            "image_size: 36) spaces, PixelStand in scripts/data/make_sb3_models.py",
+            "training_timesteps": 64, "stable_baselines3": stable_baselines3.__version__,
+            "torch": torch.__version__, "gymnasium": gym.__version__, "numpy": np.__version__}
+    with open(os.path.join(case_dir, "info.json"), "w") as f:
+        json.dump(info, f, indent=2)
+        f.write("\n")
+    print(f"{CNN_CASE}: written", flush=True)
+
+
 GYM_ERA_CASE = "ppo_cartpole_gym_era"
 
 
@@ -561,6 +617,8 @@ def main():
         make_vec_normalize_case(out_dir)
     if not only or FRAME_STACK_CASE in only:
         make_frame_stack_case(out_dir)
+    if not only or CNN_CASE in only:
+        make_cnn_case(out_dir)
     if not only or GYM_ERA_CASE in only or "ppo_cartpole" in only:
         make_gym_era_case(out_dir)
     make_evil(out_dir)

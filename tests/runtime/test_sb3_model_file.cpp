@@ -125,6 +125,39 @@ TEST_CASE("SB3 model files give SB3's deterministic actions", "[sb3]") {
   }
 }
 
+TEST_CASE("SB3's CnnPolicy files give SB3's actions on the same images", "[sb3]") {
+  // PPO's CnnPolicy (NatureCNN, features_dim 64) on GripperLift-v0's pixel spaces: the file
+  // holds the channels-first space of SB3's VecTransposeImage and the one extractor under
+  // three names; rlrun reads them as its own CnnPolicy on the env's channels-last images.
+  const std::string dir = case_dir("ppo_cnn_gripper_pixels");
+  LoadedModel model = load_model(
+      dir + "/model.zip", builtin_registry(),
+      {"env.id=GripperLift-v0", "env.kwargs.obs_type=pixels", "env.kwargs.image_size=36"});
+  CHECK(model.file.meta.algorithm == "PPO");
+  CHECK(model.file.tensors.count("features_extractor.cnn.0.weight") == 1);
+  CHECK(model.file.tensors.count("pi_features_extractor.cnn.0.weight") == 0);
+  const Tensor images = read_npy(dir + "/observations.npy");
+  REQUIRE(images.dtype == DType::kUInt8);
+  REQUIRE(images.shape == std::vector<int64_t>{32, 36, 36, 3});
+  const int64_t dim = 36 * 36 * 3;
+  Eigen::MatrixXf observations(dim, 32);
+  for (int64_t i = 0; i < 32 * dim; ++i)
+    observations(i % dim, i / dim) = static_cast<float>(images.data<uint8_t>()[i]);
+  Eigen::MatrixXf actions;
+  model.algorithm->predict(observations, /*deterministic=*/true, actions);
+  const Tensor expected = read_npy(dir + "/actions.npy");
+  REQUIRE(expected.shape == std::vector<int64_t>{32, 4});
+  const Eigen::Map<const Eigen::MatrixXf> sb3(expected.data<float>(), 4, 32);
+  CHECK((actions - sb3).cwiseAbs().maxCoeff() <= 1e-5f);
+  // rlrun eval plays it on the rendered camera images.
+  const CommandResult r =
+      run_command(std::string(RLRUN_BINARY) + " eval --model " + dir +
+                  "/model.zip --env GripperLift-v0 --set env.kwargs.obs_type=pixels --set "
+                  "env.kwargs.image_size=36 --set env.max_episode_steps=20 --episodes 1 2>&1");
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("mean_ep_length = 20.0"));
+}
+
 TEST_CASE("rlrun eval of an SB3 model file gives SB3's returns on the same seeds", "[sb3][cli]") {
   // The classic-control envs draw Gymnasium's initial state for a seed (numpy's PCG64:
   // env/numpy_random.hpp), so each seeded episode is SB3's episode.

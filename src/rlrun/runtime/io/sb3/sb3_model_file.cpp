@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -50,7 +51,10 @@ class Sb3Reader {
     data_ = parse_data();
     const PolicyFamily family = policy_family();
     if (uses_sde() && !has_sde(family)) fail("it says use_sde=True for a policy without gSDE");
-    const Space observation_space = space("observation_space");
+    // A CnnPolicy's file holds the space after SB3's VecTransposeImage (channels first); the
+    // env, and rlrun's CnnPolicy (which transposes as SB3 does), see it channels last.
+    const Space observation_space =
+        cnn_ ? channels_last(space("observation_space")) : space("observation_space");
     const Space action_space = space("action_space");
     ModelFile model;
     model.path = path_;
@@ -119,8 +123,15 @@ class Sb3Reader {
         });
     const PickleValue& c = document.root();
     if (c.kind != PickleKind::kGlobal) fail("its policy_class is not a class");
+    // SB3's CnnPolicy of PPO and A2C (stable_baselines3/common/policies.py): the actor-critic
+    // over a NatureCNN.
+    if (c.module == "stable_baselines3.common.policies" && c.text == "ActorCriticCnnPolicy") {
+      cnn_ = true;
+      return PolicyFamily::kActorCritic;
+    }
     if (c.text.find("Cnn") != std::string::npos)
-      fail("its policy is " + c.text + ": rlrun reads MlpPolicy and MultiInputPolicy files");
+      fail("its policy is " + c.text +
+           ": rlrun reads the CnnPolicy of PPO and A2C, and MlpPolicy and MultiInputPolicy files");
     static const std::map<std::pair<std::string, std::string>, PolicyFamily> known = {
         {{"stable_baselines3.common.policies", "ActorCriticPolicy"}, PolicyFamily::kActorCritic},
         {{"stable_baselines3.common.policies", "MultiInputActorCriticPolicy"},
@@ -215,6 +226,7 @@ class Sb3Reader {
   // SB3's state_dict under rlrun's names (algos/*: save/load write SB3's names).
   TensorMap policy_tensors(PolicyFamily family) const {
     TensorMap sb3 = torch_member("policy.pth", kMaxPolicyBytes, true);
+    if (cnn_) drop_shared_extractor_copies(sb3);
     TensorMap out;
     for (auto& [name, tensor] : sb3) {
       if (tensor.dtype != DType::kFloat32)
@@ -258,10 +270,53 @@ class Sb3Reader {
          "' is not one rlrun has (torch.nn Tanh, ReLU, ELU, LeakyReLU, GELU)");
   }
 
+  // SB3's ActorCriticPolicy with share_features_extractor=True names its one extractor three
+  // times (features_extractor, pi_features_extractor, vf_features_extractor): rlrun keeps the
+  // first, as its own CnnPolicy names it. Separate extractors are not read yet.
+  void drop_shared_extractor_copies(TensorMap& tensors) const {
+    for (const char* copy : {"pi_features_extractor.", "vf_features_extractor."}) {
+      for (auto it = tensors.begin(); it != tensors.end();) {
+        if (!it->first.starts_with(copy)) {
+          ++it;
+          continue;
+        }
+        const auto shared = tensors.find("features_extractor." + it->first.substr(strlen(copy)));
+        if (shared == tensors.end() || shared->second.shape != it->second.shape ||
+            shared->second.bytes != it->second.bytes)
+          fail(
+              "its CnnPolicy has separate actor and critic extractors "
+              "(share_features_extractor=False), which rlrun does not read yet");
+        it = tensors.erase(it);
+      }
+    }
+  }
+
+  // SB3's transposed image space (C, H, W) back to the env's (H, W, C).
+  Space channels_last(const Space& chw) const {
+    if (!chw.is_box() || chw.shape().size() != 3 || chw.dtype() != BoxDtype::kUint8)
+      fail("its CnnPolicy's observation space is not a uint8 image (C, H, W)");
+    const int c = chw.shape()[0], h = chw.shape()[1], w = chw.shape()[2];
+    std::vector<float> low(chw.low().size()), high(chw.high().size());
+    for (int k = 0; k < c; ++k)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const size_t from = (static_cast<size_t>(k) * h + y) * w + x;
+          const size_t to = (static_cast<size_t>(y) * w + x) * c + k;
+          low[to] = chw.low()[from];
+          high[to] = chw.high()[from];
+        }
+    return Space::box(std::move(low), std::move(high), {h, w, c}, BoxDtype::kUint8);
+  }
+
   void check_extractor() const {
     const std::optional<Json> value = policy_kwarg("features_extractor_class");
-    if (!value) return;
+    if (!value) return;  // SB3's default: FlattenExtractor, or NatureCNN for a CnnPolicy
     const std::string text = value->is_string() ? value->get<std::string>() : value->dump();
+    if (cnn_) {
+      if (text.ends_with("torch_layers.NatureCNN'>")) return;
+      fail("its CnnPolicy's features extractor is '" + quoted_text(text) +
+           "'; rlrun reads SB3's NatureCNN");
+    }
     for (const char* ok : {"torch_layers.FlattenExtractor'>", "torch_layers.CombinedExtractor'>"})
       if (text.ends_with(ok)) return;
     fail("its features extractor is '" + quoted_text(text) +
@@ -277,6 +332,7 @@ class Sb3Reader {
       case PolicyFamily::kActorCritic:
         net_arch["pi"] = sb3_layer_widths(tensors, "mlp_extractor.policy_net.");
         net_arch["vf"] = sb3_layer_widths(tensors, "mlp_extractor.value_net.");
+        if (cnn_) add_nature_cnn(tensors, policy);
         if (ppo_variant_ == "RecurrentPPO") add_lstm(tensors, policy);
         break;
       case PolicyFamily::kDqn: net_arch = sb3_hidden_widths(tensors, "q_net."); break;
@@ -308,6 +364,16 @@ class Sb3Reader {
     if (const std::optional<Json> v = policy_kwarg("normalize_images"); v && v->is_boolean())
       policy["normalize_images"] = v->get<bool>();
     return policy;
+  }
+
+  // NatureCNN's output width, read off its linear layer (the convolutions are NatureCNN's own;
+  // loading the tensors checks their shapes against the network rlrun builds).
+  void add_nature_cnn(const TensorMap& tensors, YAML::Node& policy) const {
+    const auto linear = tensors.find("features_extractor.linear.0.weight");
+    if (linear == tensors.end() || linear->second.shape.size() != 2)
+      fail("its CnnPolicy has no features_extractor.linear.0.weight");
+    policy["features_extractor_class"] = "NatureCNN";
+    policy["features_dim"] = static_cast<int>(linear->second.shape[0]);
   }
 
   // RecurrentPPO's LSTMs, read off the weights as torch.nn.LSTM names them (weight_hh_l<k> is
@@ -389,6 +455,7 @@ class Sb3Reader {
   ZipReader archive_;
   Json data_;
   std::string ppo_variant_;  // "MaskablePPO" or "RecurrentPPO" for sb3-contrib's policy classes
+  bool cnn_ = false;         // SB3's ActorCriticCnnPolicy
 };
 
 }  // namespace
