@@ -47,7 +47,10 @@ CASES = [
     ("maskable_ppo_cartpole", "CartPole-v1", "MaskablePPO"),
     ("recurrent_ppo_cartpole", "CartPole-v1", "RecurrentPPO"),
     ("recurrent_ppo_pendulum", "Pendulum-v1", "RecurrentPPO"),
+    ("ppo_cnn_gripper_pixels", "GripperLift-v0", "PPO"),
 ]
+# The env settings a case's model needs (`--set` for rlrun; SB3's file does not record them).
+CASE_SETTINGS = {"ppo_cnn_gripper_pixels": ["env.kwargs.obs_type=pixels", "env.kwargs.image_size=36"]}
 CONTRIB = {"QRDQN", "TQC", "TRPO", "MaskablePPO", "RecurrentPPO"}
 
 
@@ -110,8 +113,9 @@ class Sb3Export(unittest.TestCase):
         cls.written = {}
         for case, env_id, _ in CASES:
             path = os.path.join(cls.dir, case + ".zip")
+            settings = [a for v in CASE_SETTINGS.get(case, []) for a in ("--set", v)]
             run("export", "--model", os.path.join(SB3_DIR, case, "model.zip"), "--env", env_id,
-                "--format", "sb3", "--output", path)
+                *settings, "--format", "sb3", "--output", path)
             cls.written[case] = path
 
     @classmethod
@@ -187,7 +191,7 @@ class Sb3Export(unittest.TestCase):
     def test_rlrun_reads_the_written_files_and_acts_as_sb3(self):
         for case, env_id, algorithm in CASES:
             with self.subTest(case=case):
-                model = rlrun.load(self.written[case], env=env_id)
+                model = rlrun.load(self.written[case], CASE_SETTINGS.get(case), env=env_id)
                 self.assertEqual(model.algorithm, algorithm)
                 observations = np.load(os.path.join(SB3_DIR, case, "observations.npy"))
                 expected = np.load(os.path.join(SB3_DIR, case, "actions.npy"))
@@ -263,8 +267,9 @@ class Sb3LoadsExport(unittest.TestCase):
             if algorithm in CONTRIB and not contrib_source():
                 continue
             path = os.path.join(work, case + ".zip")
+            settings = [a for v in CASE_SETTINGS.get(case, []) for a in ("--set", v)]
             run("export", "--model", os.path.join(SB3_DIR, case, "model.zip"), "--env", env_id,
-                "--format", "sb3", "--output", path)
+                *settings, "--format", "sb3", "--output", path)
             cases.append((path, algorithm, os.path.join(SB3_DIR, case, "observations.npy"),
                           os.path.join(SB3_DIR, case, "model.zip"), env_id))
         trained = {

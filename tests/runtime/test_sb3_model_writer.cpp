@@ -73,6 +73,22 @@ TEST_CASE("Gymnasium spaces pickled for SB3 read back as the same spaces", "[sb3
   }
 }
 
+TEST_CASE("image spaces transpose as SB3's VecTransposeImage does", "[sb3]") {
+  // An (H, W, C) = (2, 3, 4) image whose bounds number the elements in row-major order:
+  // numpy's transpose(2, 0, 1) puts element (y, x, c) at (c, y, x).
+  std::vector<float> low(24), high(24);
+  for (int i = 0; i < 24; ++i) low[i] = static_cast<float>(i), high[i] = 255.0f;
+  const Space hwc = Space::box(low, high, {2, 3, 4}, BoxDtype::kUint8);
+  const Space chw = channels_first_image(hwc);
+  REQUIRE(chw.shape() == std::vector<int>{4, 2, 3});
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x)
+      for (int c = 0; c < 4; ++c)
+        CHECK(chw.low()[(c * 2 + y) * 3 + x] == hwc.low()[(y * 3 + x) * 4 + c]);
+  CHECK(chw.dtype() == BoxDtype::kUint8);
+  CHECK(channels_last_image(chw) == hwc);
+}
+
 TEST_CASE("SB3 model files written by rlrun read back as the files SB3 wrote", "[sb3]") {
   // Each of SB3's own files, read, written back and read again: the same tensors under the
   // same names, the same algorithm, and SB3's deterministic actions on its observations.
@@ -145,6 +161,39 @@ TEST_CASE("SB3 model files written by rlrun read back as the files SB3 wrote", "
       CHECK((actions - sb3_actions).cwiseAbs().maxCoeff() <= 1e-5f);
     }
   }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("SB3 CnnPolicy files written by rlrun read back as the file SB3 wrote", "[sb3]") {
+  // PPO's CnnPolicy: ActorCriticCnnPolicy, the channels-first space SB3 keeps, the shared
+  // NatureCNN under its three names, one optimizer param per unique tensor. (SB3 itself loads
+  // such files and predicts the same: scripts/data/check_sb3_export.sh.)
+  const std::string original = case_dir("ppo_cnn_gripper_pixels") + "/model.zip";
+  const std::vector<std::string> env = {"env.id=GripperLift-v0", "env.kwargs.obs_type=pixels",
+                                        "env.kwargs.image_size=36"};
+  const LoadedModel model =
+      load_model(original, builtin_registry(), env, {}, ModelEnv::kSpacesOnly);
+  const Sb3ModelExport sb3 = sb3_model_export(model);
+  const std::vector<uint8_t>& pth = sb3.members.at("policy.pth");
+  const std::string text(pth.begin(), pth.end());
+  for (const char* name : {"features_extractor.cnn.0.weight", "pi_features_extractor.cnn.0.weight",
+                           "vf_features_extractor.linear.0.bias"})
+    CHECK(text.find(name) != std::string::npos);
+  // (read_sb3_model below takes these tensors only from an ActorCriticCnnPolicy.)
+  const std::filesystem::path dir = fresh_dir("rlrun_sb3_cnn_writer_test");
+  const std::string written = (dir / "cnn.zip").string();
+  write_zip_atomic(written, sb3.members);
+  const ModelFile before = read_sb3_model(original, "GripperLift-v0");
+  const ModelFile after = read_sb3_model(written, "GripperLift-v0");
+  CHECK(after.meta.observation_space == before.meta.observation_space);
+  CHECK(after.meta.algorithm == "PPO");
+  REQUIRE(after.tensors.size() == before.tensors.size());
+  for (const auto& [name, tensor] : before.tensors) {
+    INFO(name);
+    REQUIRE(after.tensors.count(name) == 1);
+    CHECK(after.tensors.at(name).bytes == tensor.bytes);
+  }
+  CHECK(after.config_yaml.find("features_dim: 64") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

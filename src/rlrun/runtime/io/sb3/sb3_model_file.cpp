@@ -295,17 +295,7 @@ class Sb3Reader {
   Space channels_last(const Space& chw) const {
     if (!chw.is_box() || chw.shape().size() != 3 || chw.dtype() != BoxDtype::kUint8)
       fail("its CnnPolicy's observation space is not a uint8 image (C, H, W)");
-    const int c = chw.shape()[0], h = chw.shape()[1], w = chw.shape()[2];
-    std::vector<float> low(chw.low().size()), high(chw.high().size());
-    for (int k = 0; k < c; ++k)
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-          const size_t from = (static_cast<size_t>(k) * h + y) * w + x;
-          const size_t to = (static_cast<size_t>(y) * w + x) * c + k;
-          low[to] = chw.low()[from];
-          high[to] = chw.high()[from];
-        }
-    return Space::box(std::move(low), std::move(high), {h, w, c}, BoxDtype::kUint8);
+    return channels_last_image(chw);
   }
 
   void check_extractor() const {

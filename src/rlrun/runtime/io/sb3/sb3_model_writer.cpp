@@ -285,6 +285,7 @@ class Sb3Writer {
         config_(model.experiment.resolved["algo"]) {
     model_.algorithm->save(tensors_);
     if (tensors_.empty()) fail("the model holds no tensors");
+    cnn_ = tensors_.count("features_extractor.cnn.0.weight") > 0;
   }
 
   Sb3ModelExport write() {
@@ -317,11 +318,21 @@ class Sb3Writer {
     throw RuntimeFailure("cannot write " + model_.file.path + " as an SB3 model file: " + why);
   }
 
+  // SB3's CnnPolicy of PPO, A2C and TRPO (ActorCriticCnnPolicy, one NatureCNN shared by actor
+  // and critic) is written; other extractors with weights are not yet.
+  bool writes_cnn() const {
+    return cnn_ && algo_.family == Family::kActorCritic &&
+           (id_ == "PPO" || id_ == "A2C" || id_ == "TRPO") && observation_space().is_box() &&
+           observation_space().shape().size() == 3;
+  }
+
   void check_policy() const {
     for (const auto& [name, tensor] : tensors_) {
-      if (name.find("features_extractor") != std::string::npos)
+      if (name.find("features_extractor") != std::string::npos &&
+          !(writes_cnn() && name.starts_with("features_extractor.")))
         fail("its policy has a features extractor with weights ('" + quoted_text(name) +
-             "'): SB3's MlpPolicy and MultiInputPolicy (flatten) are written, CnnPolicy not yet");
+             "'): SB3's MlpPolicy, MultiInputPolicy (flatten) and the CnnPolicy of PPO, A2C "
+             "and TRPO with one shared NatureCNN are written, this one not yet");
       if (!is_policy_tensor(name) && !kAlgorithmAttributes.count(name))
         fail("its tensor '" + quoted_text(name) + "' has no place in SB3's file");
       if (is_policy_tensor(name) && tensor.dtype != DType::kFloat32)
@@ -340,10 +351,14 @@ class Sb3Writer {
   Json header_entries() {
     Json data;
     const bool dict = observation_space().is_dict();
-    data["policy_class"] = serialized(
-        "<class 'abc.ABCMeta'>",
-        global_pickle(algo_.policy_module, dict ? algo_.multi_input_policy : algo_.mlp_policy),
-        {{"__module__", algo_.policy_module}});
+    const char* policy_module =
+        writes_cnn() ? "stable_baselines3.common.policies" : algo_.policy_module;
+    const char* policy_class = writes_cnn() ? "ActorCriticCnnPolicy"
+                               : dict       ? algo_.multi_input_policy
+                                            : algo_.mlp_policy;
+    data["policy_class"] =
+        serialized("<class 'abc.ABCMeta'>", global_pickle(policy_module, policy_class),
+                   {{"__module__", policy_module}});
     data["verbose"] = 0;
     data["policy_kwargs"] = policy_kwargs().entry();
     data["num_timesteps"] = model_.file.meta.num_timesteps;
@@ -359,7 +374,9 @@ class Sb3Writer {
     data["tensorboard_log"] = nullptr;
     data["_last_obs"] = nullptr;
     data["_episode_num"] = 0;
-    data["observation_space"] = space_entry(observation_space());
+    // SB3 keeps the space its VecTransposeImage made (channels first) for a CnnPolicy.
+    data["observation_space"] =
+        space_entry(writes_cnn() ? channels_first_image(observation_space()) : observation_space());
     data["action_space"] = space_entry(model_.env->action_space());
     const Json n_envs = scalar_json(model_.experiment.resolved["env"]["n_envs"]);
     data["n_envs"] = n_envs.is_number_integer() ? n_envs : Json(1);
@@ -430,6 +447,10 @@ class Sb3Writer {
         // MaskableActorCriticPolicy has no continuous-action settings (Discrete actions only).
         if (id_ != "MaskablePPO")
           copy_policy_settings(kwargs, {"log_std_init", "full_std", "use_expln"});
+        if (writes_cnn()) {  // NatureCNN is CnnPolicy's default class: its width is what varies
+          const Tensor& linear = tensors_.at("features_extractor.linear.0.weight");
+          kwargs.plain["features_extractor_kwargs"] = {{"features_dim", linear.shape.at(0)}};
+        }
         if (id_ == "RecurrentPPO")
           copy_policy_settings(
               kwargs, {"lstm_hidden_size", "n_lstm_layers", "shared_lstm", "enable_critic_lstm"});
@@ -567,7 +588,7 @@ class Sb3Writer {
   bool is_policy_tensor(const std::string& name) const {
     static const std::map<Family, std::vector<std::string>> prefixes = {
         {Family::kActorCritic,
-         {"mlp_extractor.", "action_net.", "value_net.", "log_std",
+         {"mlp_extractor.", "action_net.", "value_net.", "log_std", "features_extractor.",
           // RecurrentPPO's: the LSTMs and the critic's Linear (sb3_contrib/common/recurrent)
           "lstm_actor.", "lstm_critic.", "critic."}},
         {Family::kDqn, {"q_net.", "q_net_target.", "quantile_net.", "quantile_net_target."}},
@@ -591,6 +612,12 @@ class Sb3Writer {
           sb3_name = owner + q_net() + "." + name.substr(owner.size());
       policy.emplace_back(renamed[name] = sb3_name, &tensor);
     }
+    const auto unique_parameters = static_cast<int64_t>(policy.size());
+    // SB3's ActorCriticPolicy names its one shared extractor three times in its state_dict.
+    if (writes_cnn())
+      for (const auto& [name, tensor] : tensors_)
+        if (name.starts_with("features_extractor."))
+          for (const char* copy : {"pi_", "vf_"}) policy.emplace_back(copy + name, &tensor);
     members["policy.pth"] = torch_save_state_dict(policy);
     const double lr = learning_rate();
     const auto count = [&](const std::string& prefix) {
@@ -602,7 +629,7 @@ class Sb3Writer {
       case Family::kActorCritic:
         members["policy.optimizer.pth"] = optimizer_file(
             uses_rms_prop() ? rmsprop_group(lr, rms_prop_eps()) : adam_group(lr, 1e-5),
-            static_cast<int64_t>(policy.size()));
+            unique_parameters);
         members["pytorch_variables.pth"] = torch_save_state_dict({});
         return;
       case Family::kDqn:
@@ -656,6 +683,7 @@ class Sb3Writer {
   const LoadedModel& model_;
   const Sb3Algorithm& algo_;
   std::string id_;
+  bool cnn_ = false;  // the model has a NatureCNN (features_extractor.cnn.*)
   YAML::Node config_;
   TensorMap tensors_;
   std::vector<std::string> notes_;

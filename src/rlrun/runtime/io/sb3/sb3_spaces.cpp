@@ -1,5 +1,6 @@
 #include "rlrun/runtime/io/sb3/sb3_spaces.hpp"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -264,6 +265,40 @@ bool is_sb3_space_global(const std::string& module, const std::string& name) {
 
 Space sb3_space(const PickleValue& value, const std::string& what) {
   return space_of(value, what, false);
+}
+
+namespace sb3_spaces_detail {
+
+// `space` (a 3-d Box) with its axes in the order `axes` (numpy's transpose).
+Space transposed_box(const Space& space, const std::array<int, 3>& axes) {
+  const std::vector<int>& in = space.shape();
+  if (!space.is_box() || in.size() != 3)
+    throw std::invalid_argument("an image space is a 3-dimensional Box");
+  const std::vector<int> out = {in[axes[0]], in[axes[1]], in[axes[2]]};
+  std::vector<float> low(space.low().size()), high(space.high().size());
+  std::array<int, 3> at{};  // the output element's index along each output axis
+  for (at[0] = 0; at[0] < out[0]; ++at[0])
+    for (at[1] = 0; at[1] < out[1]; ++at[1])
+      for (at[2] = 0; at[2] < out[2]; ++at[2]) {
+        std::array<int, 3> source{};
+        for (int k = 0; k < 3; ++k) source[axes[k]] = at[k];
+        const size_t from =
+            (static_cast<size_t>(source[0]) * in[1] + source[1]) * in[2] + source[2];
+        const size_t to = (static_cast<size_t>(at[0]) * out[1] + at[1]) * out[2] + at[2];
+        low[to] = space.low()[from];
+        high[to] = space.high()[from];
+      }
+  return Space::box(std::move(low), std::move(high), out, space.dtype());
+}
+
+}  // namespace sb3_spaces_detail
+
+Space channels_first_image(const Space& hwc) {
+  return sb3_spaces_detail::transposed_box(hwc, {2, 0, 1});
+}
+
+Space channels_last_image(const Space& chw) {
+  return sb3_spaces_detail::transposed_box(chw, {1, 2, 0});
 }
 
 }  // namespace rlrun

@@ -32,4 +32,10 @@ void pickle_gymnasium_space(PickleWriter& p, const Space& space);
 // The Gymnasium class that pickle names for `space`: "gymnasium.spaces.box.Box", ...
 std::string gymnasium_space_class(const Space& space);
 
+// SB3's VecTransposeImage (stable_baselines3/common/vec_env/vec_transpose.py): a CnnPolicy's
+// file keeps the image space channels first, (C, H, W), where the env's is (H, W, C). Both
+// take a 3-dimensional Box and keep its dtype and per-element bounds.
+Space channels_first_image(const Space& hwc);
+Space channels_last_image(const Space& chw);
+
 }  // namespace rlrun
