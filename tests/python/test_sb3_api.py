@@ -186,6 +186,35 @@ class TrainingApi(TempDirMixin, unittest.TestCase):
                 action, _ = model.predict(observations)
                 self.assertEqual(len(action), 1)
 
+    def test_ctrl_c_stops_learn_which_raises_and_the_model_goes_on(self):
+        script = textwrap.dedent(f"""
+            import sys
+            sys.path.insert(0, {os.path.dirname(os.path.abspath(__file__))!r})
+            import rlrun
+            from test_sb3_api import Corridor
+            model = rlrun.PPO("MlpPolicy", Corridor(), n_steps=128, verbose=0,
+                              out_dir={os.path.join(self.tmp, "ctrl_c")!r})
+            print("ready", flush=True)
+            try:
+                model.learn(100_000_000)
+            except KeyboardInterrupt:
+                print("interrupted", model.num_timesteps, flush=True)
+            before = model.num_timesteps
+            model.learn(128)
+            print("continued", model.num_timesteps - before, flush=True)
+        """)
+        proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True)
+        self.assertEqual(proc.stdout.readline().strip(), "ready")
+        import signal
+        import time
+        time.sleep(1.0)
+        proc.send_signal(signal.SIGINT)
+        output = proc.communicate(timeout=120)[0]
+        self.assertEqual(proc.returncode, 0, output)
+        self.assertIn("interrupted", output)
+        self.assertIn("continued 128", output)
+
     def test_verbose_zero_prints_nothing(self):
         script = textwrap.dedent(f"""
             import rlrun
