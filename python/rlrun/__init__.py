@@ -28,6 +28,7 @@ from ._model import Model, load
 from ._pettingzoo import RlrunAECEnv, RlrunParallelEnv, env, parallel_env
 from ._spaces import HAVE_GYMNASIUM
 from ._train import train
+from ._vec_env import DummyVecEnv
 from ._vector import RlrunVectorEnv, make_vec
 from .evaluation import evaluate_policy
 
@@ -56,6 +57,7 @@ __all__ = [
     "CrossQ",
     "DDPG",
     "DQN",
+    "DummyVecEnv",
     "MaskablePPO",
     "PPO",
     "QRDQN",

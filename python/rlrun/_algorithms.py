@@ -12,14 +12,17 @@ CPU). rlrun-only keywords: ``n_envs`` (copies of an env named by id) and the oth
 (``normalize``, ``frame_stack``, ...), and ``run_dir``'s parent ``out_dir`` (default: a
 temporary directory removed at exit).
 
-The env is an id (rlrun's own env, else ``gymnasium:<id>``), ``rlrun.make(...)``'s env, or a
+The env is an id (rlrun's own env, else ``gymnasium:<id>``), ``rlrun.make(...)``'s env, a
 live object with Gymnasium's API — stepped where it lives, in this interpreter
-(python/rlrun/_live_env.py).
+(python/rlrun/_live_env.py) — or a vectorized env whose envs live here (SB3's DummyVecEnv as
+``make_vec_env`` makes it, Gymnasium's SyncVectorEnv): its envs are stepped one after the other.
+A VecEnv wrapper (VecNormalize, VecFrameStack) is refused with the keyword that does the same.
 
 Training lives in the model between calls, as in SB3: ``learn()`` continues with the same
 envs, optimizer moments and replay buffer; ``num_timesteps`` keeps counting (SB3's default
 ``reset_num_timesteps=True`` starts its count again, rlrun always continues, so schedules and
-logs run on). ``save(path)`` writes rlrun's model file (``rlrun eval --model`` reads it;
+logs run on). ``progress_bar=True`` shows tqdm's bar (a text line without tqdm);
+``log_interval`` has SB3's meaning and default. ``save(path)`` writes rlrun's model file (``rlrun eval --model`` reads it;
 ``rlrun export --format sb3`` makes SB3's); ``load(path)`` reads rlrun's or SB3's.
 """
 
@@ -36,7 +39,7 @@ import numpy as np
 from . import _core, _live_env
 from ._model import load as _load_model
 from ._vec_env import DummyVecEnv
-from .callbacks import _Dispatcher, as_callback
+from .callbacks import CallbackList, ProgressBarCallback, _Dispatcher, as_callback
 
 _POLICIES = ("MlpPolicy", "MultiInputPolicy", "CnnPolicy", "MlpLstmPolicy", "CnnLstmPolicy",
              "MultiInputLstmPolicy")  # the last three: sb3-contrib's RecurrentPPO
@@ -94,6 +97,26 @@ def _zoo_entry(policy: str, kwargs: dict, n_envs: int) -> dict:
     return entry
 
 
+def _vec_env_members(env) -> list:
+    """The Gymnasium envs a model trains on: the env itself, or the envs of a vectorized env
+    that holds them in this interpreter (SB3's DummyVecEnv, as make_vec_env returns it, rlrun's
+    own, Gymnasium's SyncVectorEnv), stepped one after the other as DummyVecEnv does."""
+    if not hasattr(env, "num_envs") or hasattr(env, "unwrapped") and not hasattr(env, "envs"):
+        return [env]
+    kind = type(env).__name__
+    if hasattr(env, "venv"):
+        raise TypeError(
+            f"env: {kind} wraps a VecEnv; rlrun applies the same as keywords (VecNormalize: "
+            "normalize=True or normalize=dict(...); VecFrameStack: frame_stack=N) to the "
+            "unwrapped env or env id")
+    members = getattr(env, "envs", None)
+    if not isinstance(members, (list, tuple)) or not members:
+        raise TypeError(
+            f"env: {kind} steps its envs elsewhere (in worker processes); pass the env id with "
+            "n_envs=N (rlrun steps the copies on its own threads), or a DummyVecEnv")
+    return list(members)
+
+
 def _registered(env_id: str) -> bool:
     return any(e == env_id for e, _, _ in _core.list_envs())
 
@@ -141,6 +164,7 @@ class BaseAlgorithm:
     """One of SB3's algorithms on rlrun (the subclasses below name which)."""
 
     algorithm = ""  # rlrun's algorithm id
+    _default_log_interval = 1  # SB3's learn(log_interval=...) default for the algorithm
 
     def __init__(self, policy, env, *args, **kwargs):
         if args:
@@ -175,13 +199,13 @@ class BaseAlgorithm:
             return
         if env is None:
             raise TypeError("env: pass an env id or a Gymnasium env")
-        if hasattr(env, "num_envs") and not hasattr(env, "unwrapped"):
-            raise TypeError("env: pass one Gymnasium env or an env id (with n_envs=N for several "
-                            "copies); a vectorized env object is not supported")
-        if n_envs not in (None, 1):
-            raise ValueError("n_envs: a live env object is one env; pass an env id for several")
+        envs = _vec_env_members(env)
+        if n_envs not in (None, len(envs)):
+            raise ValueError(f"n_envs={n_envs}: the env object holds {len(envs)} env(s); pass an "
+                             "env id for copies made by rlrun")
+        self._n_envs = len(envs)
         self._env = env
-        self._live = _live_env.register(env)
+        self._live = _live_env.register(envs)
         self._env_id = f"python-object:{self._live}"
 
     def _run_overrides(self, out_dir):
@@ -210,7 +234,7 @@ class BaseAlgorithm:
                 self._env = gymnasium.make(self._env_id[len("gymnasium:"):])
             else:
                 self._env = make(self._env_id)
-        if not isinstance(self._env, DummyVecEnv):
+        if not hasattr(self._env, "num_envs"):  # a VecEnv given to the model stays as it is
             self._env = DummyVecEnv([self._env])
             if self.seed is not None:
                 self._env.seed(self.seed)
@@ -221,26 +245,33 @@ class BaseAlgorithm:
         return self.get_env()
 
     # -- training --------------------------------------------------------------------------
-    def learn(self, total_timesteps: int, callback=None, log_interval: int = 1,
+    def learn(self, total_timesteps: int, callback=None, log_interval=None,
               tb_log_name: str = "", reset_num_timesteps: bool = True,
               progress_bar: bool = False):
-        """Trains ``total_timesteps`` more env steps (over all envs) and returns the model."""
+        """Trains ``total_timesteps`` more env steps (over all envs) and returns the model.
+        ``log_interval``: a progress.csv row (and, with verbose=1, a console table) every N
+        iterations (on-policy) or N episodes (off-policy); default SB3's for the algorithm."""
         if self._session is None:
             raise RuntimeError("this model was loaded without an env to train on: "
                                f"{type(self).__name__}.load(path, env=...) to train it")
         callback = as_callback(callback)
+        if progress_bar:
+            callback = CallbackList(([callback] if callback is not None else []) +
+                                    [ProgressBarCallback()])
         if callback is not None:
             callback.init_callback(self)
             callback.on_training_start(locals(), globals())
-        self._learn(int(total_timesteps), callback)
+        if log_interval is None:
+            log_interval = self._default_log_interval
+        self._learn(int(total_timesteps), callback, int(log_interval))
         if callback is not None:
             callback.on_training_end()
         return self
 
-    def _learn(self, total_timesteps, callback):
+    def _learn(self, total_timesteps, callback, log_interval=None):
         target = self._session.num_timesteps + total_timesteps
         dispatch = _Dispatcher(callback, self, target) if callback is not None else None
-        outcome = self._session.learn(target, dispatch)
+        outcome = self._session.learn(target, dispatch, log_interval)
         self.run_dir = outcome["run_dir"]
         self._model_path = outcome["model_path"]
         self._model = _load_model(self._model_path, trust=True)
@@ -311,21 +342,22 @@ class BaseAlgorithm:
         return f"<rlrun.{type(self).__name__} on {self._env_id}, {self.num_timesteps} steps>"
 
 
-def _algorithm_class(name: str, doc: str):
+def _algorithm_class(name: str, doc: str, log_interval: int = 1):
     return type(name, (BaseAlgorithm,), {"algorithm": name, "__doc__": doc,
-                                         "__module__": "rlrun"})
+                                         "__module__": "rlrun",
+                                         "_default_log_interval": log_interval})
 
 
 PPO = _algorithm_class("PPO", "SB3's PPO on rlrun (stable_baselines3/ppo/ppo.py).")
-A2C = _algorithm_class("A2C", "SB3's A2C on rlrun (stable_baselines3/a2c/a2c.py).")
-DQN = _algorithm_class("DQN", "SB3's DQN on rlrun (stable_baselines3/dqn/dqn.py).")
-SAC = _algorithm_class("SAC", "SB3's SAC on rlrun (stable_baselines3/sac/sac.py).")
-TD3 = _algorithm_class("TD3", "SB3's TD3 on rlrun (stable_baselines3/td3/td3.py).")
-DDPG = _algorithm_class("DDPG", "SB3's DDPG on rlrun (stable_baselines3/ddpg/ddpg.py).")
-TQC = _algorithm_class("TQC", "sb3-contrib's TQC on rlrun.")
-QRDQN = _algorithm_class("QRDQN", "sb3-contrib's QR-DQN on rlrun.")
+A2C = _algorithm_class("A2C", "SB3's A2C on rlrun (stable_baselines3/a2c/a2c.py).", 100)
+DQN = _algorithm_class("DQN", "SB3's DQN on rlrun (stable_baselines3/dqn/dqn.py).", 4)
+SAC = _algorithm_class("SAC", "SB3's SAC on rlrun (stable_baselines3/sac/sac.py).", 4)
+TD3 = _algorithm_class("TD3", "SB3's TD3 on rlrun (stable_baselines3/td3/td3.py).", 4)
+DDPG = _algorithm_class("DDPG", "SB3's DDPG on rlrun (stable_baselines3/ddpg/ddpg.py).", 4)
+TQC = _algorithm_class("TQC", "sb3-contrib's TQC on rlrun.", 4)
+QRDQN = _algorithm_class("QRDQN", "sb3-contrib's QR-DQN on rlrun.", 4)
 TRPO = _algorithm_class("TRPO", "sb3-contrib's TRPO on rlrun.")
 ARS = _algorithm_class("ARS", "sb3-contrib's ARS on rlrun.")
-CrossQ = _algorithm_class("CrossQ", "sb3-contrib's CrossQ on rlrun.")
+CrossQ = _algorithm_class("CrossQ", "sb3-contrib's CrossQ on rlrun.", 4)
 MaskablePPO = _algorithm_class("MaskablePPO", "sb3-contrib's MaskablePPO on rlrun.")
 RecurrentPPO = _algorithm_class("RecurrentPPO", "sb3-contrib's RecurrentPPO on rlrun.")

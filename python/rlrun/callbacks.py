@@ -10,10 +10,12 @@ attributes SB3's BaseCallback reads (num_timesteps, get_env(), logger).
 ``self.locals`` holds, after each env step, SB3's common keys of collect_rollouts: ``new_obs``
 (the batch of observations the policy sees next, shaped by the observation space), ``rewards``
 (float32), ``dones`` (bool), ``infos`` (one dict per env: the env's numeric info, with
-``terminal_observation`` and ``TimeLimit.truncated`` where an episode ended), ``n_envs``,
-``num_timesteps`` and ``total_timesteps``. Where rlrun differs from SB3: the step runs in C++,
-so ``locals`` has no ``actions``, ``values`` or ``log_probs``, and ``_on_rollout_end`` comes
-after the update that follows the rollout (SB3: just before it).
+``terminal_observation`` and ``TimeLimit.truncated`` where an episode ended), ``actions``
+(the actions the envs were stepped with: SB3's ``clipped_actions`` for a Box, indices for
+Discrete), ``n_envs``, ``num_timesteps`` and ``total_timesteps``. ``_on_rollout_end`` comes
+where SB3 calls it: after a rollout, before the update that learns from it. Where rlrun
+differs from SB3: the step runs in C++, so ``locals`` has no ``values`` or ``log_probs``
+(tensors SB3's rollout loop holds in torch).
 """
 
 from __future__ import annotations
@@ -198,6 +200,52 @@ class StopTrainingOnMaxEpisodes(BaseCallback):
         return continue_training
 
 
+class ProgressBarCallback(BaseCallback):
+    """SB3's ``learn(progress_bar=True)``: a bar of env steps over this ``learn()`` call, with
+    tqdm when it is installed (SB3 uses tqdm.rich), else a line of text on stderr redrawn at
+    most ten times a second."""
+
+    def __init__(self):
+        super().__init__()
+        self._bar = None
+        self._start = 0
+        self._total = 0
+        self._shown = 0.0
+
+    def _on_training_start(self) -> None:
+        self._start = self.model.num_timesteps
+        self._total = int(self.locals.get("total_timesteps", 0))
+        try:
+            from tqdm import tqdm
+            self._bar = tqdm(total=self._total, unit="steps")
+        except ImportError:
+            self._bar = None
+
+    def _on_step(self) -> bool:
+        done = self.num_timesteps - self._start
+        if self._bar is not None:
+            self._bar.update(done - self._bar.n)
+            return True
+        import sys
+        import time
+        now = time.monotonic()
+        if now - self._shown >= 0.1 or done >= self._total:
+            self._shown = now
+            fraction = min(done / self._total, 1.0) if self._total > 0 else 1.0
+            bar = "#" * int(fraction * 30)
+            sys.stderr.write(f"\r{fraction:6.1%} [{bar:<30}] {done}/{self._total} steps")
+            sys.stderr.flush()
+        return True
+
+    def _on_training_end(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+        else:
+            import sys
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
 def as_callback(callback):
     """SB3's BaseAlgorithm._init_callback: None, a list, a function or a callback object."""
     if callback is None:
@@ -220,11 +268,12 @@ class _Dispatcher:
         self.model = model
         self.total_timesteps = total_timesteps
         self.space = model.observation_space
+        self.action_space = model.action_space
 
     def _shape(self, flat):
         return _spaces.batch_from_flat(self.space, np.asarray(flat, dtype=np.float32))
 
-    def __call__(self, event, num_timesteps, new_obs, rewards, dones, infos):
+    def __call__(self, event, num_timesteps, new_obs, rewards, dones, infos, actions=None):
         self.model.num_timesteps = int(num_timesteps)
         if event == "rollout_start":
             self.callback.on_rollout_start()
@@ -238,6 +287,8 @@ class _Dispatcher:
                 info["terminal_observation"] = _spaces.from_flat(self.space, last)
         self.callback.update_locals({
             "new_obs": self._shape(new_obs),
+            "actions": _spaces.batch_from_flat(self.action_space,
+                                               np.asarray(actions, dtype=np.float32)),
             "rewards": rewards,
             "dones": dones,
             "infos": infos,

@@ -29,11 +29,11 @@ namespace rlrun::python {
 
 namespace session_detail {
 
-// Calls `dispatch(event, num_timesteps, new_obs, rewards, dones, infos)` (python/rlrun/
+// Calls `dispatch(event, num_timesteps, new_obs, rewards, dones, infos, actions)` (python/rlrun/
 // callbacks.py's _Dispatcher) after every env step ("step"; its result false stops training, as
-// SB3's callback.on_step()) and at every safe point ("rollout_end": after the update that
-// follows a rollout, where SB3 calls it just before), preceded by "rollout_start" before a
-// rollout's first step. An exception in the callback stops training; learn() raises it.
+// SB3's callback.on_step()) and where SB3 calls on_rollout_end ("rollout_end": after a rollout,
+// before the update that learns from it), preceded by "rollout_start" before a rollout's first
+// step. An exception in the callback stops training; learn() raises it.
 class PythonCallback : public Callback {
  public:
   PythonCallback(py::object dispatch, TrainingContext& context)
@@ -49,9 +49,11 @@ class PythonCallback : public Callback {
     try {
       if (!in_rollout_) {
         in_rollout_ = true;
-        dispatch_("rollout_start", num_timesteps, py::none(), py::none(), py::none(), py::none());
+        dispatch_("rollout_start", num_timesteps, py::none(), py::none(), py::none(), py::none(),
+                  py::none());
       }
-      if (py::bool_(dispatch_("step", num_timesteps, new_obs(), rewards(), dones(), infos())))
+      if (py::bool_(
+              dispatch_("step", num_timesteps, new_obs(), rewards(), dones(), infos(), actions())))
         return true;
       stop_reason_ = "the Python callback's on_step returned False";
     } catch (...) {
@@ -61,12 +63,13 @@ class PythonCallback : public Callback {
     return false;
   }
 
-  void at_safe_point(int64_t num_timesteps) override {
+  void on_rollout_end(int64_t num_timesteps) override {
     py::gil_scoped_acquire gil;
     in_rollout_ = false;
     if (error_) return;
     try {
-      dispatch_("rollout_end", num_timesteps, py::none(), py::none(), py::none(), py::none());
+      dispatch_("rollout_end", num_timesteps, py::none(), py::none(), py::none(), py::none(),
+                py::none());
     } catch (...) {
       error_ = std::current_exception();
       stop_reason_ = "the Python callback raised an exception";
@@ -85,6 +88,16 @@ class PythonCallback : public Callback {
     auto view = out.mutable_unchecked<2>();
     for (Eigen::Index i = 0; i < obs.cols(); ++i)
       for (Eigen::Index j = 0; j < obs.rows(); ++j) view(i, j) = obs(j, i);
+    return out;
+  }
+  // The actions the envs were stepped with, one row per env (the Python side shapes them by
+  // the action space).
+  py::array_t<float> actions() const {
+    const Eigen::MatrixXf& actions = context_.env.last_actions();  // act_dim x n_envs
+    py::array_t<float> out({actions.cols(), actions.rows()});
+    auto view = out.mutable_unchecked<2>();
+    for (Eigen::Index i = 0; i < actions.cols(); ++i)
+      for (Eigen::Index j = 0; j < actions.rows(); ++j) view(i, j) = actions(j, i);
     return out;
   }
   py::array_t<float> rewards() const {  // SB3's VecEnv rewards are float32
@@ -157,7 +170,7 @@ class PySession {
     session_.reset();
   }
 
-  py::dict learn(int64_t total_timesteps, py::object dispatch) {
+  py::dict learn(int64_t total_timesteps, py::object dispatch, std::optional<int> log_interval) {
     std::vector<std::unique_ptr<Callback>> extra;
     PythonCallback* callback = nullptr;
     if (!dispatch.is_none()) {
@@ -169,7 +182,7 @@ class PySession {
     {
       ScopedTrainingSignals signals;
       py::gil_scoped_release release;
-      outcome = session_->learn(total_timesteps, extra);
+      outcome = session_->learn(total_timesteps, extra, log_interval);
     }
     if (callback) callback->rethrow();
     py::dict d;
@@ -220,7 +233,8 @@ void bind_training_session(py::module_& m) {
             return std::make_unique<PySession>(PySession::FromText{}, text, origin, overrides);
           },
           py::arg("text"), py::arg("origin"), py::arg("overrides"))
-      .def("learn", &PySession::learn, py::arg("total_timesteps"), py::arg("dispatch"))
+      .def("learn", &PySession::learn, py::arg("total_timesteps"), py::arg("dispatch"),
+           py::arg("log_interval") = py::none())
       .def_property_readonly("num_timesteps", &PySession::num_timesteps)
       .def_property_readonly("config_yaml", &PySession::config_yaml);
   m.def(

@@ -28,6 +28,7 @@ class Corridor:
         self.observation_space = Box(0.0, 1.0, (5,), np.float32)
         self.action_space = Discrete(2)
         self.pos, self.t, self.steps, self.resets, self.seeds = 0, 0, 0, 0, []
+        self.actions = []
 
     def _obs(self):
         obs = np.zeros(5, np.float32)
@@ -42,6 +43,7 @@ class Corridor:
 
     def step(self, action):
         self.steps += 1
+        self.actions.append(int(action))
         self.t += 1
         self.pos = max(0, min(4, self.pos + (1 if int(action) == 1 else -1)))
         done = self.pos == 4
@@ -92,6 +94,74 @@ class TrainingApi(TempDirMixin, unittest.TestCase):
         mean, std = rlrun.evaluate_policy(model, env, n_eval_episodes=4)
         self.assertAlmostEqual(mean, 0.7, places=5)  # the shortest way: 3 x -0.1, then +1
         self.assertEqual(std, 0.0)
+
+    def test_locals_actions_rollout_end_and_log_interval(self):
+        # locals["actions"] are the actions the env was stepped with; _on_rollout_end once per
+        # rollout; log_interval as SB3's (A2C's default 100 iterations a progress.csv row).
+        env = Corridor()
+
+        class Actions(BaseCallback):
+            def __init__(self):
+                super().__init__()
+                self.actions, self.rollout_ends = [], []
+
+            def _on_step(self):
+                self.actions.append(self.locals["actions"].copy())
+                return True
+
+            def _on_rollout_end(self):
+                self.rollout_ends.append(self.num_timesteps)
+
+        model = rlrun.A2C("MlpPolicy", env, n_steps=5, seed=4, out_dir=os.path.join(self.tmp, "a"))
+        seen = Actions()
+        model.learn(1000, callback=seen)
+        self.assertEqual(seen.actions[0].shape, (1,))
+        self.assertEqual(seen.actions[0].dtype, np.int64)
+        self.assertEqual([int(a[0]) for a in seen.actions], env.actions)
+        self.assertEqual(seen.rollout_ends, list(range(5, 1001, 5)))
+        def rows():
+            with open(os.path.join(model.run_dir, "progress.csv")) as f:
+                return f.read().splitlines()
+
+        self.assertEqual(len(rows()), 1 + 2)  # a header, iterations 100 and 200
+        model.learn(500, log_interval=20)
+        self.assertEqual(len(rows()), 1 + 2 + 5)
+
+        box = rlrun.SAC("MlpPolicy", "Pendulum-v1", learning_starts=50, seed=1,
+                        out_dir=os.path.join(self.tmp, "b"))
+        actions = []
+        box.learn(60, callback=lambda l, g: actions.append(l["actions"].copy()) or True)
+        self.assertEqual(actions[0].shape, (1, 1))
+        self.assertTrue(all(-2.0 <= a[0, 0] <= 2.0 for a in actions))  # the env's own bounds
+
+    def test_vectorized_env_objects_and_progress_bar(self):
+        # A DummyVecEnv of live envs (SB3's make_vec_env gives one): its envs are the n_envs.
+        envs = [Corridor(), Corridor(), Corridor()]
+        vec = rlrun.DummyVecEnv(envs)
+        model = rlrun.PPO("MlpPolicy", vec, n_steps=32, batch_size=48, seed=7,
+                          out_dir=os.path.join(self.tmp, "vec"))
+        self.assertIs(model.get_env(), vec)
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            model.learn(192, progress_bar=True)
+        self.assertEqual(model.num_timesteps, 192)
+        self.assertEqual([e.steps for e in envs], [64, 64, 64])
+        self.assertEqual(sorted(e.seeds[0] for e in envs), [7, 8, 9])
+        self.assertIn("192/192", err.getvalue())  # tqdm's bar, or rlrun's line without it
+
+        class Elsewhere:  # like SB3's SubprocVecEnv: its envs are in other processes
+            num_envs = 2
+            observation_space = envs[0].observation_space
+            action_space = envs[0].action_space
+
+        with self.assertRaisesRegex(TypeError, "n_envs=N"):
+            rlrun.PPO("MlpPolicy", Elsewhere())
+
+        class Normalized(Elsewhere):  # like VecNormalize: a wrapper of a VecEnv
+            venv = vec
+
+        with self.assertRaisesRegex(TypeError, "normalize=True"):
+            rlrun.PPO("MlpPolicy", Normalized())
 
     def test_learn_continues_stops_and_raises(self):
         model = rlrun.PPO("MlpPolicy", "CartPole-v1", n_steps=64, batch_size=64, seed=1,

@@ -36,6 +36,10 @@ struct TrainingHooks {
   // Called after every VecEnv step with the total env steps so far; false stops training
   // (SB3's callback.on_step()).
   std::function<bool(int64_t num_timesteps)> on_step;
+  // Called where SB3 calls callback.on_rollout_end(): after a rollout was collected, before
+  // the update that learns from it (on-policy: before train(); off-policy: before the
+  // gradient steps of the round; ARS: after evaluating its candidates, as sb3-contrib's evaluate_candidates).
+  std::function<void(int64_t num_timesteps)> on_rollout_end;
   // Called after each log dump (console progress bar, etc.).
   std::function<void(int64_t num_timesteps)> on_log;
   // Called where learn() can stop and later resume exactly (after each train(): on-policy

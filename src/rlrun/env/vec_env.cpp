@@ -108,6 +108,7 @@ void VecEnv::step(const Eigen::Ref<const Eigen::MatrixXf>& actions) {
                                 " x " + std::to_string(num_envs()) + ", got " +
                                 std::to_string(actions.rows()) + " x " +
                                 std::to_string(actions.cols()));
+  last_actions_ = actions;
   if (!split_.empty()) {
     // Every started step is finished, also when one copy fails: a copy left with a reply
     // unread would read it as the answer to its next request. The first error is rethrown. A

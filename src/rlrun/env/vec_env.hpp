@@ -83,6 +83,9 @@ class VecEnv {
   void step(const Eigen::Ref<const Eigen::MatrixXf>& actions);
 
   const Eigen::MatrixXf& obs() const { return obs_; }
+  // The actions of the last step() (act_dim x n_envs; empty before one): SB3's `actions` in a
+  // callback's locals (python/src/py_training_session.cpp).
+  const Eigen::MatrixXf& last_actions() const { return last_actions_; }
   const Eigen::VectorXd& rewards() const { return rewards_; }
   bool terminated(int i) const { return terminated_[i] != 0; }
   bool truncated(int i) const { return truncated_[i] != 0; }
@@ -157,6 +160,7 @@ class VecEnv {
   int obs_dim_ = 0;
   int act_dim_ = 0;
   Eigen::MatrixXf obs_;
+  Eigen::MatrixXf last_actions_;
   Eigen::MatrixXf final_obs_;
   Eigen::VectorXd rewards_;
   // uint8_t rather than vector<bool> so that element access is a plain load.

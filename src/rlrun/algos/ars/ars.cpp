@@ -113,6 +113,7 @@ void ARS::learn(VecEnv& env, int64_t total_timesteps, TrainingHooks& hooks) {
         candidate_net_.params()(learned_[i]) = candidate(static_cast<Eigen::Index>(i));
       candidate_returns(c) = evaluate_candidate(env, hooks, keep_going);
     }
+    if (hooks.on_rollout_end) hooks.on_rollout_end(num_timesteps_);
     double return_std = 0;
     const double step_size = apply_update(candidate_returns, deltas, learning_rate, return_std);
     if (hooks.logger) record_update(*hooks.logger, delta_std, learning_rate, step_size, return_std);

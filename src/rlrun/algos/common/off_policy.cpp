@@ -241,6 +241,7 @@ void OffPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHoo
 
   while (num_timesteps_ < total_timesteps) {
     if (!collect_rollouts(call)) break;
+    if (hooks.on_rollout_end) hooks.on_rollout_end(num_timesteps_);
     if (num_timesteps_ > 0 && num_timesteps_ > config_.learning_starts) {
       const int64_t steps = config_.gradient_steps >= 0 ? config_.gradient_steps
                                                         : call.collected_steps * setup_.n_envs;

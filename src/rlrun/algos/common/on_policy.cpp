@@ -239,6 +239,7 @@ void OnPolicyAlgorithm::learn(VecEnv& env, int64_t total_timesteps, TrainingHook
     if (!collector_.collect(env, rollout_policy(), action_rng_, gamma_, gae_lambda_, hooks,
                             num_timesteps_))
       break;
+    if (hooks.on_rollout_end) hooks.on_rollout_end(num_timesteps_);
     ++iteration;
     const double progress_remaining =
         1.0 - static_cast<double>(num_timesteps_) / static_cast<double>(total_timesteps);

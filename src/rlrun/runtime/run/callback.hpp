@@ -60,6 +60,9 @@ class Callback {
   // At each point where training can stop and resume exactly (TrainingHooks::at_safe_point:
   // after each PPO/A2C iteration, after each off-policy collect-and-train round).
   virtual void at_safe_point(int64_t /*num_timesteps*/) {}
+  // Where SB3 calls callback.on_rollout_end() (TrainingHooks::on_rollout_end): after a
+  // rollout, before the update that learns from it.
+  virtual void on_rollout_end(int64_t /*num_timesteps*/) {}
   // Once after training ends, also after an early stop or Ctrl-C (SB3 on_training_end).
   // `resumable`: training stopped at a safe point that a checkpoint holds (Ctrl-C), so work
   // in progress belongs in that checkpoint, not in files.

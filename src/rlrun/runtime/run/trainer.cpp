@@ -377,6 +377,10 @@ TrainingHooks TrainingRun::hooks() {
   // Parameters once per log row: cheap next to the updates between rows.
   hooks.on_log = [this](int64_t) { finite_model_tensors(); };
   hooks.at_safe_point = [this](int64_t num_timesteps) { return at_safe_point(num_timesteps); };
+  hooks.on_rollout_end = [this](int64_t num_timesteps) {
+    for (const auto& callback : callbacks_) callback->on_rollout_end(num_timesteps);
+    for (const auto& callback : *extra_callbacks_) callback->on_rollout_end(num_timesteps);
+  };
   return hooks;
 }
 
@@ -487,7 +491,9 @@ TrainingSession::TrainingSession(Experiment experiment, const Registry& registry
 TrainingSession::~TrainingSession() = default;
 
 TrainOutcome TrainingSession::learn(int64_t total_timesteps,
-                                    const std::vector<std::unique_ptr<Callback>>& extra) {
+                                    const std::vector<std::unique_ptr<Callback>>& extra,
+                                    std::optional<int> log_interval) {
+  if (log_interval) impl_->experiment.run.log_interval = *log_interval;  // the run reads it here
   return impl_->run.run(total_timesteps, extra);
 }
 

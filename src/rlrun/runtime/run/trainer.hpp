@@ -19,6 +19,7 @@
 // RuntimeFailure naming the step and the quantity; nothing non-finite is ever saved.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,11 @@ class TrainingSession {
   TrainingSession& operator=(const TrainingSession&) = delete;
 
   // `extra`: the caller's callbacks (built on context()), told of this learn() only.
+  // `log_interval`: SB3's learn(log_interval=...) for this call (run.log_interval's meaning);
+  // unset keeps the experiment's.
   TrainOutcome learn(int64_t total_timesteps,
-                     const std::vector<std::unique_ptr<Callback>>& extra = {});
+                     const std::vector<std::unique_ptr<Callback>>& extra = {},
+                     std::optional<int> log_interval = std::nullopt);
   TrainingContext& context();
   int64_t num_timesteps() const;
   const Experiment& experiment() const;
