@@ -460,14 +460,15 @@ CNN_OBSERVATIONS = 32  # 36x36x3 uint8 images: 124 KB of observations.npy
 
 
 class PixelStand(gym.Env):
-    """The spaces of rlrun's GripperLift-v0 with obs_type: pixels, image_size: 36 (a uint8
-    camera image, Box(4) moves in [-1, 1]), with random images: SB3 builds and updates its
+    """An env with an rlrun task's image spaces and random images: SB3 builds and updates its
     CnnPolicy (NatureCNN after VecTransposeImage) on it. No physics: only the spaces matter to
-    the file, and the test compares predictions on the saved images."""
+    the file, and the test compares predictions on the saved images. By default the spaces of
+    rlrun's GripperLift-v0 with obs_type: pixels, image_size: 36 (a uint8 camera image, Box(4)
+    moves in [-1, 1])."""
 
-    def __init__(self):
-        self.observation_space = gym.spaces.Box(0, 255, (36, 36, 3), np.uint8)
-        self.action_space = gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
+    def __init__(self, shape=(36, 36, 3), action_space=None):
+        self.observation_space = gym.spaces.Box(0, 255, shape, np.uint8)
+        self.action_space = action_space or gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
         self.t = 0
 
     def reset(self, seed=None, options=None):
@@ -477,8 +478,9 @@ class PixelStand(gym.Env):
 
     def step(self, action):
         self.t += 1
-        obs = self.np_random.integers(0, 256, (36, 36, 3), dtype=np.uint8)
-        return obs, float(-np.sum(np.square(action))), False, self.t >= 50, {}
+        obs = self.np_random.integers(0, 256, self.observation_space.shape, dtype=np.uint8)
+        reward = float(-np.sum(np.square(np.asarray(action, dtype=np.float64))))
+        return obs, reward, False, self.t >= 50, {}
 
 
 def make_cnn_case(out_dir):
@@ -509,6 +511,130 @@ def make_cnn_case(out_dir):
         json.dump(info, f, indent=2)
         f.write("\n")
     print(f"{CNN_CASE}: written", flush=True)
+
+
+def save_without_optimizers(model, case_dir):
+    """model.zip as SB3 saves it, less the optimizers' files (*optimizer.pth): rlrun does not
+    read them, and with a CNN each holds two more copies of every extractor's weights."""
+    full = os.path.join(case_dir, "full.zip")
+    model.save(full)
+    with zipfile.ZipFile(full) as zin, zipfile.ZipFile(os.path.join(case_dir, "model.zip"), "w",
+                                                       zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            if not item.filename.endswith("optimizer.pth"):
+                zout.writestr(item, zin.read(item.filename))
+    os.remove(full)
+
+
+def write_info(case_dir, info):
+    """info.json: how the case was made, with the versions that made it."""
+    info = dict(info, stable_baselines3=stable_baselines3.__version__, torch=torch.__version__,
+                gymnasium=gym.__version__, numpy=np.__version__)
+    with open(os.path.join(case_dir, "info.json"), "w") as f:
+        json.dump(info, f, indent=2)
+        f.write("\n")
+
+
+# SB3's off-policy CnnPolicy: each network (DQN's q_net and its target; SAC's actor, critic
+# and critic target) has its own NatureCNN. On the spaces of rlrun's pixel CartPole-v1 and
+# Pendulum-v1: wrappers AddRenderObservation (36x36) and GrayscaleObservation (keep_dim), so
+# Box(0, 255, (36, 36, 1), uint8). The optimizers' files are left out of the fixture (rlrun
+# does not read them; each would hold two more copies of every extractor's weights).
+OFF_POLICY_CNN_CASES = {
+    "dqn_cnn_cartpole_pixels": (DQN, gym.spaces.Discrete(2), "CartPole-v1",
+                                dict(learning_starts=32, buffer_size=200, batch_size=16,
+                                     target_update_interval=16)),
+    "sac_cnn_pendulum_pixels": (SAC, gym.spaces.Box(-2.0, 2.0, (1,), np.float32), "Pendulum-v1",
+                                dict(learning_starts=32, buffer_size=200, batch_size=16,
+                                     policy_kwargs=dict(net_arch=[32]))),
+}
+
+
+def make_off_policy_cnn_case(out_dir, name):
+    algo, action_space, env_id, kwargs = OFF_POLICY_CNN_CASES[name]
+    env = PixelStand((36, 36, 1), action_space)
+    env.reset(seed=0)
+    kwargs = dict(kwargs)
+    policy_kwargs = dict(kwargs.pop("policy_kwargs", {}))
+    policy_kwargs["features_extractor_kwargs"] = dict(features_dim=16)
+    model = algo("CnnPolicy", env, seed=0, policy_kwargs=policy_kwargs, **kwargs)
+    model.learn(64)
+    rng = np.random.default_rng(OBS_SEED)
+    observations = rng.integers(0, 256, (CNN_OBSERVATIONS, 36, 36, 1), dtype=np.uint8)
+    case_dir = os.path.join(out_dir, name)
+    os.makedirs(case_dir, exist_ok=True)
+    save_without_optimizers(model, case_dir)
+    np.save(os.path.join(case_dir, "observations.npy"), observations)
+    np.save(os.path.join(case_dir, "actions.npy"),
+            model.predict(observations, deterministic=True)[0])
+    info = {"algo": algo.__name__, "policy": "CnnPolicy",
+            "env": f"{env_id} with wrappers AddRenderObservation (36x36), GrayscaleObservation "
+                   "(keep_dim) spaces, PixelStand in scripts/data/make_sb3_models.py",
+            "training_timesteps": 64, "left_out": "the optimizers' files (*optimizer.pth)"}
+    write_info(case_dir, info)
+    print(f"{name}: written", flush=True)
+
+
+class PixelStateStand(gym.Env):
+    """The spaces of rlrun's GripperLift-v0 with obs_type: both, image_size: 36 (Dict of a uint8
+    camera image and the 26-float state; Box(4) moves), with random values, for SB3's
+    MultiInputPolicy (CombinedExtractor: a NatureCNN for the image key after VecTransposeImage,
+    the state flattened)."""
+
+    def __init__(self):
+        self.observation_space = gym.spaces.Dict({
+            "pixels": gym.spaces.Box(0, 255, (36, 36, 3), np.uint8),
+            "state": gym.spaces.Box(-np.inf, np.inf, (26,), np.float32)})
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
+        self.t = 0
+
+    def _obs(self):
+        return {"pixels": self.np_random.integers(0, 256, (36, 36, 3), dtype=np.uint8),
+                "state": self.np_random.normal(size=26).astype(np.float32)}
+
+    def reset(self, seed=None, options=None):
+        super().reset(seed=seed)
+        self.t = 0
+        return self._obs(), {}
+
+    def step(self, action):
+        self.t += 1
+        return self._obs(), float(-np.sum(np.square(action))), False, self.t >= 50, {}
+
+
+# MultiInputPolicy over an image and a vector: PPO's one CombinedExtractor under SB3's three
+# names (an off-policy one, an extractor per network, is checked against SB3 itself by
+# scripts/data/check_sb3_export.sh rather than shipped: each NatureCNN over three channels is
+# 0.3 MB). cnn_output_dim 16; the optimizers' files left out.
+MULTI_INPUT_CNN_CASES = {
+    "ppo_multi_input_gripper_both": (PPO, dict(n_steps=64, batch_size=32, n_epochs=1)),
+}
+
+
+def make_multi_input_cnn_case(out_dir, name):
+    algo, kwargs = MULTI_INPUT_CNN_CASES[name]
+    env = PixelStateStand()
+    env.reset(seed=0)
+    kwargs = dict(kwargs)
+    policy_kwargs = dict(kwargs.pop("policy_kwargs", {}))
+    policy_kwargs["features_extractor_kwargs"] = dict(cnn_output_dim=16)
+    model = algo("MultiInputPolicy", env, seed=0, policy_kwargs=policy_kwargs, **kwargs)
+    model.learn(64)
+    rng = np.random.default_rng(OBS_SEED)
+    observations = {"pixels": rng.integers(0, 256, (CNN_OBSERVATIONS, 36, 36, 3), dtype=np.uint8),
+                    "state": rng.normal(size=(CNN_OBSERVATIONS, 26)).astype(np.float32)}
+    case_dir = os.path.join(out_dir, name)
+    os.makedirs(case_dir, exist_ok=True)
+    save_without_optimizers(model, case_dir)
+    np.savez(os.path.join(case_dir, "observations.npz"), **observations)
+    np.save(os.path.join(case_dir, "actions.npy"),
+            model.predict(observations, deterministic=True)[0])
+    info = {"algo": algo.__name__, "policy": "MultiInputPolicy",
+            "env": "GripperLift-v0 (obs_type: both, image_size: 36) spaces, PixelStateStand in "
+                   "scripts/data/make_sb3_models.py",
+            "training_timesteps": 64, "left_out": "the optimizers' files (*optimizer.pth)"}
+    write_info(case_dir, info)
+    print(f"{name}: written", flush=True)
 
 
 GYM_ERA_CASE = "ppo_cartpole_gym_era"
@@ -619,6 +745,12 @@ def main():
         make_frame_stack_case(out_dir)
     if not only or CNN_CASE in only:
         make_cnn_case(out_dir)
+    for name in OFF_POLICY_CNN_CASES:
+        if not only or name in only:
+            make_off_policy_cnn_case(out_dir, name)
+    for name in MULTI_INPUT_CNN_CASES:
+        if not only or name in only:
+            make_multi_input_cnn_case(out_dir, name)
     if not only or GYM_ERA_CASE in only or "ppo_cartpole" in only:
         make_gym_era_case(out_dir)
     make_evil(out_dir)

@@ -48,10 +48,33 @@ CASES = [
     ("recurrent_ppo_cartpole", "CartPole-v1", "RecurrentPPO"),
     ("recurrent_ppo_pendulum", "Pendulum-v1", "RecurrentPPO"),
     ("ppo_cnn_gripper_pixels", "GripperLift-v0", "PPO"),
+    ("dqn_cnn_cartpole_pixels", "CartPole-v1", "DQN"),
+    ("sac_cnn_pendulum_pixels", "Pendulum-v1", "SAC"),
+    ("ppo_multi_input_gripper_both", "GripperLift-v0", "PPO"),
 ]
+# rlrun's pixel CartPole / Pendulum: 36x36 gray frames (uint8, channels last).
+PIXELS = ("[{id: AddRenderObservation, width: 36, height: 36}, "
+          "{id: GrayscaleObservation, keep_dim: true}]")
 # The env settings a case's model needs (`--set` for rlrun; SB3's file does not record them).
-CASE_SETTINGS = {"ppo_cnn_gripper_pixels": ["env.kwargs.obs_type=pixels", "env.kwargs.image_size=36"]}
+CASE_SETTINGS = {"ppo_cnn_gripper_pixels": ["env.kwargs.obs_type=pixels", "env.kwargs.image_size=36"],
+                 "dqn_cnn_cartpole_pixels": [f"env.wrappers={PIXELS}"],
+                 "sac_cnn_pendulum_pixels": [f"env.wrappers={PIXELS}"],
+                 "ppo_multi_input_gripper_both": ["env.kwargs.obs_type=both",
+                                                  "env.kwargs.image_size=36"]}
 CONTRIB = {"QRDQN", "TQC", "TRPO", "MaskablePPO", "RecurrentPPO"}
+
+
+def observations_path(case):
+    """A fixture's observations: observations.npy, or observations.npz for a Dict's keys."""
+    path = os.path.join(SB3_DIR, case, "observations.npy")
+    return path if os.path.exists(path) else os.path.join(SB3_DIR, case, "observations.npz")
+
+
+def load_observations(path):
+    observations = np.load(path)
+    if hasattr(observations, "files"):  # a Dict's keys (.npz)
+        return {k: observations[k] for k in observations.files}
+    return observations
 
 
 def load_class(algorithm):
@@ -136,6 +159,8 @@ class Sb3Export(unittest.TestCase):
                     "sb3_contrib." if own_policy else "stable_baselines3."))
                 space = unpickle(
                     base64.b64decode(data["observation_space"][":serialized:"]))
+                if space.qualname == "gymnasium.spaces.dict.Dict":  # a MultiInputPolicy's
+                    space = space.state["spaces"]["pixels"]
                 self.assertEqual(space.qualname, "gymnasium.spaces.box.Box")
                 self.assertEqual(set(space.state),
                                  {"dtype", "_shape", "low", "high", "bounded_below",
@@ -190,10 +215,15 @@ class Sb3Export(unittest.TestCase):
 
     def test_rlrun_reads_the_written_files_and_acts_as_sb3(self):
         for case, env_id, algorithm in CASES:
+            if any(v.startswith("env.wrappers=") for v in CASE_SETTINGS.get(case, [])):
+                # rlrun.load's predict takes the env's own observations (the state the wrappers
+                # render): these files' predictions on images are checked in C++
+                # (tests/runtime/test_sb3_model_writer.cpp, test_sb3_model_file.cpp).
+                continue
             with self.subTest(case=case):
                 model = rlrun.load(self.written[case], CASE_SETTINGS.get(case), env=env_id)
                 self.assertEqual(model.algorithm, algorithm)
-                observations = np.load(os.path.join(SB3_DIR, case, "observations.npy"))
+                observations = load_observations(observations_path(case))
                 expected = np.load(os.path.join(SB3_DIR, case, "actions.npy"))
                 actions, _ = model.predict(observations, deterministic=True)
                 np.testing.assert_allclose(actions, expected, atol=1e-5, rtol=0)
@@ -210,6 +240,8 @@ for path, load_class, obs_path in cases:
     module, name = load_class.rsplit(".", 1)
     model = getattr(importlib.import_module(module), name).load(path, device="cpu")
     observations = np.load(obs_path)
+    if hasattr(observations, "files"):  # a Dict's keys (.npz)
+        observations = {k: observations[k] for k in observations.files}
     actions, _ = model.predict(observations, deterministic=True)
     out[path] = actions.tolist()
 print(json.dumps(out))
@@ -253,9 +285,11 @@ class Sb3LoadsExport(unittest.TestCase):
             for path, algo, obs, model_path, env_id in cases:
                 with self.subTest(model=path):
                     model = rlrun.load(model_path, env=env_id) if env_id else rlrun.load(model_path)
-                    mine, _ = model.predict(np.load(obs), deterministic=True)
-                    np.testing.assert_allclose(np.asarray(sb3_actions[path]).reshape(mine.shape),
-                                               mine, atol=1e-5, rtol=0)
+                    mine, _ = model.predict(load_observations(obs), deterministic=True)
+                    theirs = np.asarray(sb3_actions[path]).reshape(mine.shape)
+                    print(f"{os.path.basename(path)}: max |SB3 - rlrun| = "
+                          f"{np.max(np.abs(theirs - mine)):.2g}", file=sys.stderr)
+                    np.testing.assert_allclose(theirs, mine, atol=1e-5, rtol=0)
         finally:
             shutil.rmtree(work, ignore_errors=True)
 
@@ -270,7 +304,7 @@ class Sb3LoadsExport(unittest.TestCase):
             settings = [a for v in CASE_SETTINGS.get(case, []) for a in ("--set", v)]
             run("export", "--model", os.path.join(SB3_DIR, case, "model.zip"), "--env", env_id,
                 *settings, "--format", "sb3", "--output", path)
-            cases.append((path, algorithm, os.path.join(SB3_DIR, case, "observations.npy"),
+            cases.append((path, algorithm, observations_path(case),
                           os.path.join(SB3_DIR, case, "model.zip"), env_id))
         trained = {
             "PPO": ("CartPole-v1", "{id: PPO, n_steps: 128, batch_size: 64, "
@@ -293,8 +327,40 @@ class Sb3LoadsExport(unittest.TestCase):
                                        "batch_size: 32, policy: {lstm_hidden_size: 8, "
                                        "n_lstm_layers: 2, net_arch: [8]}}")
         rng = np.random.default_rng(0)
-        for algorithm, (env_id, algo) in trained.items():
-            name = algorithm.lower()
+        trained = {(a, a.lower()): (env_id, algo) for a, (env_id, algo) in trained.items()}
+        # CnnPolicy (NatureCNN, features_dim 16) of each algorithm on envs that see images:
+        # CarRacing-v3 with discrete actions (96x96x3), GripperLift-v0's 36x36 camera. The
+        # off-policy ones have an extractor per network (SAC's also shared), PPO's separate.
+        cnn = "features_extractor_class: NatureCNN, features_dim: 16"
+        off = "learning_starts: 64, buffer_size: 500, batch_size: 16"
+        car = "CarRacing-v3, kwargs: {continuous: false}"
+        gripper = "GripperLift-v0, kwargs: {obs_type: pixels, image_size: 36}"
+        trained[("DQN", "dqn_cnn")] = (car, f"{{id: DQN, {off}, policy: {{{cnn}}}}}")
+        trained[("SAC", "sac_cnn")] = (gripper, f"{{id: SAC, {off}, policy: {{{cnn}, "
+                                       "net_arch: [16]}}")
+        trained[("SAC", "sac_cnn_shared")] = (
+            gripper, f"{{id: SAC, {off}, policy: {{{cnn}, net_arch: [16], "
+            "share_features_extractor: true}}")
+        trained[("TD3", "td3_cnn")] = (gripper, f"{{id: TD3, {off}, policy: {{{cnn}, "
+                                       "net_arch: [16]}}")
+        trained[("PPO", "ppo_cnn_separate")] = (
+            gripper, f"{{id: PPO, n_steps: 128, batch_size: 64, policy: {{{cnn}, "
+            "net_arch: [], share_features_extractor: false}}")
+        if contrib_source():
+            trained[("QRDQN", "qrdqn_cnn")] = (
+                car, f"{{id: QRDQN, {off}, policy: {{{cnn}, n_quantiles: 5}}}}")
+            trained[("TQC", "tqc_cnn")] = (
+                gripper, f"{{id: TQC, {off}, policy: {{{cnn}, net_arch: [16], "
+                "n_quantiles: 5, n_critics: 2}}")
+        # MultiInputPolicy over an image and a vector (CombinedExtractor, cnn_output_dim 16).
+        both = "GripperLift-v0, kwargs: {obs_type: both, image_size: 36}"
+        combined = "features_extractor_class: CombinedExtractor, cnn_output_dim: 16"
+        trained[("PPO", "ppo_multi_input_cnn")] = (
+            both, f"{{id: PPO, n_steps: 128, batch_size: 64, policy: {{{combined}}}}}")
+        trained[("SAC", "sac_multi_input_cnn")] = (
+            both, f"{{id: SAC, {off}, policy: {{{combined}, net_arch: [16]}}}}")
+        for (algorithm, name), (env_id, algo) in trained.items():
+            pixels = env_id in (car, gripper)
             config = os.path.join(work, name + ".yaml")
             with open(config, "w") as f:
                 f.write(f"run: {{name: {name}, seed: 2, total_timesteps: 256, out_dir: {work}}}\n"
@@ -303,9 +369,17 @@ class Sb3LoadsExport(unittest.TestCase):
             model = os.path.join(work, name, "seed2", "model.zip")
             path = os.path.join(work, name + "_sb3.zip")
             run("export", "--model", model, "--format", "sb3", "--output", path)
-            dim = 4 if env_id == "CartPole-v1" else 3
             obs = os.path.join(work, name + "_obs.npy")
-            np.save(obs, rng.uniform(-1, 1, size=(1000, dim)).astype(np.float32))
+            if env_id == both:
+                obs = os.path.join(work, name + "_obs.npz")
+                np.savez(obs, pixels=rng.integers(0, 256, size=(200, 36, 36, 3), dtype=np.uint8),
+                         state=rng.normal(size=(200, 26)).astype(np.float32))
+            elif pixels:
+                shape = (96, 96, 3) if env_id == car else (36, 36, 3)
+                np.save(obs, rng.integers(0, 256, size=(200,) + shape, dtype=np.uint8))
+            else:
+                dim = 4 if env_id == "CartPole-v1" else 3
+                np.save(obs, rng.uniform(-1, 1, size=(1000, dim)).astype(np.float32))
             cases.append((path, algorithm, obs, model, None))
         return cases
 

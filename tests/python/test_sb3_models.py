@@ -41,6 +41,34 @@ class Sb3ModelFiles(unittest.TestCase):
         actions, _ = model.predict({k: observations[k] for k in ("a", "b")}, deterministic=True)
         np.testing.assert_array_equal(actions, expected)
 
+    def test_multi_input_policy_over_an_image_and_a_vector(self):
+        # SB3's CombinedExtractor: a NatureCNN (cnn_output_dim 16) for the image key, which the
+        # file keeps channels first (VecTransposeImage) and rlrun reads as the env's HWC; the
+        # extractor under SB3's three names. GripperLift-v0's obs_type both has these spaces.
+        case = "ppo_multi_input_gripper_both"
+        model = rlrun.load(os.path.join(SB3_DIR, case, "model.zip"),
+                           ["env.kwargs.obs_type=both", "env.kwargs.image_size=36"],
+                           env="GripperLift-v0")
+        self.assertEqual(model.observation_space["pixels"].shape, (36, 36, 3))
+        tensors = model._core.tensors
+        self.assertEqual(tensors["features_extractor.extractors.pixels.linear.0.weight"].shape,
+                         (16, 64))
+        self.assertNotIn("pi_features_extractor.extractors.pixels.cnn.0.weight", tensors)
+        observations = np.load(os.path.join(SB3_DIR, case, "observations.npz"))
+        expected = np.load(os.path.join(SB3_DIR, case, "actions.npy"))
+        actions, _ = model.predict({k: observations[k] for k in ("pixels", "state")},
+                                   deterministic=True)
+        np.testing.assert_allclose(actions, expected, atol=1e-5, rtol=0)
+
+    def test_off_policy_cnn_policies(self):
+        # DQN's and SAC's CnnPolicy: an extractor per network. Their spaces are pixel
+        # CartPole's / Pendulum's; predict needs only the spaces the file records.
+        for case, env_id in (("dqn_cnn_cartpole_pixels", "CartPole-v1"),
+                             ("sac_cnn_pendulum_pixels", "Pendulum-v1")):
+            with self.subTest(case=case):
+                model = self.check(case, env_id)
+                self.assertEqual(model.observation_space.shape, (36, 36, 1))
+
     def test_vec_normalize_beside_the_model(self):
         # predict() takes the env's raw observations and normalises them with the frozen
         # statistics of vecnormalize.pkl, as rl_zoo3.enjoy plays such a model.

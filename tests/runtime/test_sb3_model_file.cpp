@@ -125,6 +125,18 @@ TEST_CASE("SB3 model files give SB3's deterministic actions", "[sb3]") {
   }
 }
 
+// A fixture's uint8 images (N, H, W, C) as N columns of floats, the layout predict() takes.
+static Eigen::MatrixXf image_columns(const std::string& npy, const std::vector<int64_t>& shape) {
+  const Tensor images = read_npy(npy);
+  REQUIRE(images.dtype == DType::kUInt8);
+  REQUIRE(images.shape == shape);
+  const int64_t n = shape[0], dim = shape[1] * shape[2] * shape[3];
+  Eigen::MatrixXf columns(dim, n);
+  for (int64_t i = 0; i < n * dim; ++i)
+    columns(i % dim, i / dim) = static_cast<float>(images.data<uint8_t>()[i]);
+  return columns;
+}
+
 TEST_CASE("SB3's CnnPolicy files give SB3's actions on the same images", "[sb3]") {
   // PPO's CnnPolicy (NatureCNN, features_dim 64) on GripperLift-v0's pixel spaces: the file
   // holds the channels-first space of SB3's VecTransposeImage and the one extractor under
@@ -136,13 +148,7 @@ TEST_CASE("SB3's CnnPolicy files give SB3's actions on the same images", "[sb3]"
   CHECK(model.file.meta.algorithm == "PPO");
   CHECK(model.file.tensors.count("features_extractor.cnn.0.weight") == 1);
   CHECK(model.file.tensors.count("pi_features_extractor.cnn.0.weight") == 0);
-  const Tensor images = read_npy(dir + "/observations.npy");
-  REQUIRE(images.dtype == DType::kUInt8);
-  REQUIRE(images.shape == std::vector<int64_t>{32, 36, 36, 3});
-  const int64_t dim = 36 * 36 * 3;
-  Eigen::MatrixXf observations(dim, 32);
-  for (int64_t i = 0; i < 32 * dim; ++i)
-    observations(i % dim, i / dim) = static_cast<float>(images.data<uint8_t>()[i]);
+  const Eigen::MatrixXf observations = image_columns(dir + "/observations.npy", {32, 36, 36, 3});
   Eigen::MatrixXf actions;
   model.algorithm->predict(observations, /*deterministic=*/true, actions);
   const Tensor expected = read_npy(dir + "/actions.npy");
@@ -156,6 +162,54 @@ TEST_CASE("SB3's CnnPolicy files give SB3's actions on the same images", "[sb3]"
                   "env.kwargs.image_size=36 --set env.max_episode_steps=20 --episodes 1 2>&1");
   CHECK(r.exit_code == 0);
   CHECK_THAT(r.output, Catch::Contains("mean_ep_length = 20.0"));
+}
+
+TEST_CASE("SB3's off-policy CnnPolicy files (DQN, SAC) give SB3's actions on the same images",
+          "[sb3]") {
+  // Each network has its own NatureCNN (features_dim 16): DQN's q_net and q_net_target, SAC's
+  // actor, critic and critic_target, under SB3's names, which are rlrun's. The spaces are those
+  // of rlrun's pixel CartPole / Pendulum (36x36 gray frames, channels last).
+  struct Case {
+    const char* name;
+    const char* env;
+    const char* algorithm;
+    std::vector<const char*> extractors;
+  };
+  const Case cases[] = {
+      {"dqn_cnn_cartpole_pixels", "CartPole-v1", "DQN", {"q_net.", "q_net_target."}},
+      {"sac_cnn_pendulum_pixels", "Pendulum-v1", "SAC", {"actor.", "critic.", "critic_target."}},
+  };
+  const std::string pixels =
+      "env.wrappers=[{id: AddRenderObservation, width: 36, height: 36}, "
+      "{id: GrayscaleObservation, keep_dim: true}]";
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const std::string dir = case_dir(c.name);
+    LoadedModel model = load_model(dir + "/model.zip", builtin_registry(),
+                                   {std::string("env.id=") + c.env, pixels});
+    CHECK(model.file.meta.algorithm == c.algorithm);
+    for (const char* owner : c.extractors)
+      CHECK(model.file.tensors.count(std::string(owner) + "features_extractor.cnn.0.weight") == 1);
+    CHECK(model.experiment.resolved["algo"]["policy"]["features_dim"].as<int>() == 16);
+    const Eigen::MatrixXf observations = image_columns(dir + "/observations.npy", {32, 36, 36, 1});
+    Eigen::MatrixXf actions;
+    model.algorithm->predict(observations, /*deterministic=*/true, actions);
+    const Tensor expected = read_npy(dir + "/actions.npy");
+    REQUIRE(expected.numel() == actions.size());
+    for (Eigen::Index i = 0; i < actions.cols(); ++i) {
+      const float sb3 = expected.dtype == DType::kInt64
+                            ? static_cast<float>(expected.data<int64_t>()[i])
+                            : expected.data<float>()[i];
+      CHECK(std::abs(actions(0, i) - sb3) <= 1e-5f);
+    }
+    // rlrun eval plays it on the env's own rendered frames.
+    const CommandResult r = run_command(std::string(RLRUN_BINARY) + " eval --model " + dir +
+                                        "/model.zip --env " + c.env + " --set '" + pixels +
+                                        "' --set env.max_episode_steps=10 --episodes 1 2>&1");
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.output, Catch::Contains("mean_ep_length = 10.0"));
+  }
 }
 
 TEST_CASE("rlrun eval of an SB3 model file gives SB3's returns on the same seeds", "[sb3][cli]") {

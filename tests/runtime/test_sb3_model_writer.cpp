@@ -10,6 +10,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 #include "rlrun/core/errors.hpp"
 #include "rlrun/core/npy.hpp"
@@ -194,6 +195,51 @@ TEST_CASE("SB3 CnnPolicy files written by rlrun read back as the file SB3 wrote"
     CHECK(after.tensors.at(name).bytes == tensor.bytes);
   }
   CHECK(after.config_yaml.find("features_dim: 64") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("SB3 off-policy CnnPolicy files written by rlrun read back as the file SB3 wrote",
+          "[sb3]") {
+  // DQN's and SAC's CnnPolicy (dqn/sac policies.py CnnPolicy): every network's own NatureCNN
+  // under SB3's names (DQN's q_net.features_extractor beside q_net.q_net), the features_dim in
+  // policy_kwargs; SAC's critic optimizer holds the critic's extractor (not shared).
+  const std::string pixels =
+      "env.wrappers=[{id: AddRenderObservation, width: 36, height: 36}, "
+      "{id: GrayscaleObservation, keep_dim: true}]";
+  const std::filesystem::path dir = fresh_dir("rlrun_sb3_cnn_off_policy_writer_test");
+  for (const auto& [name, env, policy_class] :
+       {std::tuple{"dqn_cnn_cartpole_pixels", "CartPole-v1", "stable_baselines3.dqn.policies"},
+        std::tuple{"sac_cnn_pendulum_pixels", "Pendulum-v1", "stable_baselines3.sac.policies"}}) {
+    INFO(name);
+    const std::string original = case_dir(name) + "/model.zip";
+    const LoadedModel model =
+        load_model(original, builtin_registry(), {std::string("env.id=") + env, pixels}, {},
+                   ModelEnv::kSpacesOnly);
+    const Sb3ModelExport sb3 = sb3_model_export(model);
+    const std::vector<uint8_t>& data = sb3.members.at("data");
+    const std::string data_text(data.begin(), data.end());
+    CHECK(data_text.find(policy_class) != std::string::npos);
+    CHECK(data_text.find("\"features_dim\": 16") != std::string::npos);
+    const std::vector<uint8_t>& pth = sb3.members.at("policy.pth");
+    const std::string text(pth.begin(), pth.end());
+    if (std::string(name).starts_with("dqn")) {
+      CHECK(text.find("q_net.features_extractor.cnn.0.weight") != std::string::npos);
+      CHECK(text.find("q_net.q_net.0.weight") != std::string::npos);
+      CHECK(text.find("q_net.q_net.features_extractor") == std::string::npos);
+    }
+    const std::string written = (dir / (std::string(name) + ".zip")).string();
+    write_zip_atomic(written, sb3.members);
+    const ModelFile before = read_sb3_model(original, env);
+    const ModelFile after = read_sb3_model(written, env);
+    CHECK(after.meta.observation_space == before.meta.observation_space);
+    CHECK(after.meta.algorithm == before.meta.algorithm);
+    REQUIRE(after.tensors.size() == before.tensors.size());
+    for (const auto& [tensor_name, tensor] : before.tensors) {
+      INFO(tensor_name);
+      REQUIRE(after.tensors.count(tensor_name) == 1);
+      CHECK(after.tensors.at(tensor_name).bytes == tensor.bytes);
+    }
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -134,11 +134,13 @@ ModelFile read_sb3_model_for(const std::string& path, const std::vector<std::str
 // finite). SB3's predict does not read observation bounds and rl_zoo3.enjoy plays such files
 // without a space check, so a Box of the same shape and dtype is taken as the env's, with a
 // note. Image boxes (uint8) and action spaces must match exactly: their bounds matter.
-void adopt_observation_bounds(ModelFile& model, const Space& env_space) {
+// `policy_spaces`: the spaces the file records its policy saw.
+void adopt_observation_bounds(ModelFile& model, const std::optional<EnvSpaces>& policy_spaces,
+                              const Space& env_space) {
   if (model.meta.observation_space == env_space.describe() || !env_space.is_box() ||
-      env_space.dtype() != BoxDtype::kFloat32 || !model.meta.env_spaces)
+      env_space.dtype() != BoxDtype::kFloat32 || !policy_spaces)
     return;
-  const Space& recorded = model.meta.env_spaces->observation;
+  const Space& recorded = policy_spaces->observation;
   if (!recorded.is_box() || recorded.dtype() != BoxDtype::kFloat32 ||
       recorded.shape() != env_space.shape() || model.meta.observation_space != recorded.describe())
     return;
@@ -148,7 +150,19 @@ void adopt_observation_bounds(ModelFile& model, const Space& env_space) {
                model.path.c_str(), model.meta.observation_space.c_str(),
                env_space.describe().c_str());
   model.meta.observation_space = env_space.describe();
-  model.meta.env_spaces->observation = env_space;
+  if (model.meta.env_spaces) model.meta.env_spaces->observation = env_space;
+}
+
+// An SB3 file records the spaces its policy saw, which are the env's own only when nothing
+// wraps the env: with wrappers (the user's --set env.wrappers, a zoo folder's env_wrapper and
+// frame_stack) the env's own spaces are needed under them, which an env of this program
+// declares (with how it renders, for AddRenderObservation).
+bool sb3_env_is_wrapped(const std::vector<std::string>& overrides, const YAML::Node& env_section) {
+  if (env_section.IsMap() && env_section["wrappers"] && env_section["wrappers"].size() > 0)
+    return true;
+  for (const std::string& o : overrides)
+    if (o.starts_with("env.wrappers")) return true;
+  return false;
 }
 
 LoadedModel load_model_unguarded(const std::string& path, const Registry& registry,
@@ -158,6 +172,10 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
   const bool sb3 = is_sb3_model_file(path);
   loaded.file =
       sb3 ? read_sb3_model_for(path, overrides, sb3_env_section) : read_model_header(path);
+  const std::optional<EnvSpaces> policy_spaces = loaded.file.meta.env_spaces;
+  if (sb3 && sb3_env_is_wrapped(overrides, sb3_env_section) &&
+      registry.find_env(loaded.file.meta.env_id))
+    loaded.file.meta.env_spaces.reset();
   const ModelFile& model = loaded.file;
   // Without recorded spaces the env must say them, so this program must have it (the deploy
   // library's registry holds no env).
@@ -173,7 +191,7 @@ LoadedModel load_model_unguarded(const std::string& path, const Registry& regist
   loaded.experiment = experiment_from_model(model, registry, overrides, trust, use);
   // make_model_env's env, before its statistics are read.
   loaded.env = model_env(model, loaded.experiment, registry, use);
-  if (sb3) adopt_observation_bounds(loaded.file, loaded.env->observation_space());
+  if (sb3) adopt_observation_bounds(loaded.file, policy_spaces, loaded.env->observation_space());
   loaded.algorithm =
       make_model_algorithm(model, loaded.experiment, registry, loaded.env->observation_space(),
                            loaded.env->action_space());

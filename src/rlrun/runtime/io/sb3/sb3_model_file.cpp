@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 
 #include "rlrun/core/base64.hpp"
 #include "rlrun/core/errors.hpp"
@@ -53,8 +54,9 @@ class Sb3Reader {
     if (uses_sde() && !has_sde(family)) fail("it says use_sde=True for a policy without gSDE");
     // A CnnPolicy's file holds the space after SB3's VecTransposeImage (channels first); the
     // env, and rlrun's CnnPolicy (which transposes as SB3 does), see it channels last.
-    const Space observation_space =
-        cnn_ ? channels_last(space("observation_space")) : space("observation_space");
+    // A Dict's image keys likewise (MultiInputPolicy: CombinedExtractor's NatureCNNs).
+    const Space observation_space = cnn_ ? channels_last(space("observation_space"))
+                                         : channels_last_dict_images(space("observation_space"));
     const Space action_space = space("action_space");
     ModelFile model;
     model.path = path_;
@@ -123,15 +125,21 @@ class Sb3Reader {
         });
     const PickleValue& c = document.root();
     if (c.kind != PickleKind::kGlobal) fail("its policy_class is not a class");
-    // SB3's CnnPolicy of PPO and A2C (stable_baselines3/common/policies.py): the actor-critic
-    // over a NatureCNN.
-    if (c.module == "stable_baselines3.common.policies" && c.text == "ActorCriticCnnPolicy") {
+    // SB3's CnnPolicy of each algorithm: its MlpPolicy over a NatureCNN (one shared by actor
+    // and critic for PPO and A2C, stable_baselines3/common/policies.py ActorCriticCnnPolicy;
+    // the off-policy ones' CnnPolicy in their policies.py, each network with its own).
+    static const std::map<std::pair<std::string, std::string>, PolicyFamily> cnn_policies = {
+        {{"stable_baselines3.common.policies", "ActorCriticCnnPolicy"}, PolicyFamily::kActorCritic},
+        {{"stable_baselines3.dqn.policies", "CnnPolicy"}, PolicyFamily::kDqn},
+        {{"stable_baselines3.sac.policies", "CnnPolicy"}, PolicyFamily::kSac},
+        {{"stable_baselines3.td3.policies", "CnnPolicy"}, PolicyFamily::kTd3},
+        {{"sb3_contrib.qrdqn.policies", "CnnPolicy"}, PolicyFamily::kQrDqn},
+        {{"sb3_contrib.tqc.policies", "CnnPolicy"}, PolicyFamily::kTqc},
+    };
+    if (const auto found = cnn_policies.find({c.module, c.text}); found != cnn_policies.end()) {
       cnn_ = true;
-      return PolicyFamily::kActorCritic;
+      return found->second;
     }
-    if (c.text.find("Cnn") != std::string::npos)
-      fail("its policy is " + c.text +
-           ": rlrun reads the CnnPolicy of PPO and A2C, and MlpPolicy and MultiInputPolicy files");
     static const std::map<std::pair<std::string, std::string>, PolicyFamily> known = {
         {{"stable_baselines3.common.policies", "ActorCriticPolicy"}, PolicyFamily::kActorCritic},
         {{"stable_baselines3.common.policies", "MultiInputActorCriticPolicy"},
@@ -156,11 +164,19 @@ class Sb3Reader {
         {{"sb3_contrib.common.recurrent.policies", "RecurrentActorCriticPolicy"}, "RecurrentPPO"},
         {{"sb3_contrib.common.recurrent.policies", "RecurrentMultiInputActorCriticPolicy"},
          "RecurrentPPO"},
+        {{"sb3_contrib.common.maskable.policies", "MaskableActorCriticCnnPolicy"}, "MaskablePPO"},
+        {{"sb3_contrib.common.recurrent.policies", "RecurrentActorCriticCnnPolicy"},
+         "RecurrentPPO"},
     };
     if (const auto variant = ppo_variants.find({c.module, c.text}); variant != ppo_variants.end()) {
       ppo_variant_ = variant->second;
+      cnn_ = c.text.find("Cnn") != std::string::npos;
       return PolicyFamily::kActorCritic;
     }
+    if (c.text.find("Cnn") != std::string::npos)
+      fail("its policy is " + c.module + "." + c.text +
+           ": rlrun reads the CnnPolicy of PPO, A2C, DQN, SAC, TD3, DDPG, and sb3-contrib's "
+           "QR-DQN, TQC, TRPO, MaskablePPO and RecurrentPPO (CnnLstmPolicy)");
     const auto found = known.find({c.module, c.text});
     if (found == known.end())
       fail("its policy class is " + c.module + "." + c.text +
@@ -224,9 +240,9 @@ class Sb3Reader {
   bool uses_sde() const { return data_.contains("use_sde") && data_["use_sde"] == true; }
 
   // SB3's state_dict under rlrun's names (algos/*: save/load write SB3's names).
-  TensorMap policy_tensors(PolicyFamily family) const {
+  TensorMap policy_tensors(PolicyFamily family) {
     TensorMap sb3 = torch_member("policy.pth", kMaxPolicyBytes, true);
-    if (cnn_) drop_shared_extractor_copies(sb3);
+    if (family == PolicyFamily::kActorCritic) drop_extractor_aliases(sb3);
     TensorMap out;
     for (auto& [name, tensor] : sb3) {
       if (tensor.dtype != DType::kFloat32)
@@ -270,25 +286,45 @@ class Sb3Reader {
          "' is not one rlrun has (torch.nn Tanh, ReLU, ELU, LeakyReLU, GELU)");
   }
 
-  // SB3's ActorCriticPolicy with share_features_extractor=True names its one extractor three
-  // times (features_extractor, pi_features_extractor, vf_features_extractor): rlrun keeps the
-  // first, as its own CnnPolicy names it. Separate extractors are not read yet.
-  void drop_shared_extractor_copies(TensorMap& tensors) const {
-    for (const char* copy : {"pi_features_extractor.", "vf_features_extractor."}) {
-      for (auto it = tensors.begin(); it != tensors.end();) {
-        if (!it->first.starts_with(copy)) {
-          ++it;
-          continue;
-        }
-        const auto shared = tensors.find("features_extractor." + it->first.substr(strlen(copy)));
-        if (shared == tensors.end() || shared->second.shape != it->second.shape ||
-            shared->second.bytes != it->second.bytes)
-          fail(
-              "its CnnPolicy has separate actor and critic extractors "
-              "(share_features_extractor=False), which rlrun does not read yet");
-        it = tensors.erase(it);
-      }
+  // SB3's ActorCriticPolicy names its extractors three times (stable_baselines3/common/
+  // policies.py): features_extractor, and pi_features_extractor (the same module) and
+  // vf_features_extractor (the same one again with share_features_extractor=True, else its
+  // own). rlrun names them as its own CnnPolicy does: features_extractor when shared, else
+  // pi_features_extractor and vf_features_extractor.
+  void drop_extractor_aliases(TensorMap& tensors) {
+    const auto same = [&](const std::string& a, const std::string& b) {
+      const auto x = tensors.find(a), y = tensors.find(b);
+      return x != tensors.end() && y != tensors.end() && x->second.shape == y->second.shape &&
+             x->second.bytes == y->second.bytes;
+    };
+    std::vector<std::string> suffixes;
+    for (const auto& [name, tensor] : tensors)
+      if (name.starts_with("features_extractor."))
+        suffixes.push_back(name.substr(strlen("features_extractor.")));
+    if (suffixes.empty()) return;  // no weights: a flatten extractor
+    bool shared = true;
+    for (const std::string& suffix : suffixes) {
+      if (!same("features_extractor." + suffix, "pi_features_extractor." + suffix))
+        fail("its pi_features_extractor is not its features_extractor (SB3 makes them one)");
+      shared = shared && same("features_extractor." + suffix, "vf_features_extractor." + suffix);
     }
+    const char* dropped[] = {"pi_features_extractor.", "vf_features_extractor."};
+    const char* separate[] = {"features_extractor."};
+    for (const char* prefix :
+         shared ? std::span<const char* const>(dropped) : std::span<const char* const>(separate))
+      std::erase_if(tensors, [&](const auto& entry) { return entry.first.starts_with(prefix); });
+    separate_extractors_ = !shared;
+  }
+
+  // A CnnPolicy, or a MultiInputPolicy whose CombinedExtractor has a NatureCNN for an image key
+  // (features_extractor.extractors.<key>.cnn.*, under each network's name).
+  bool has_cnn(const TensorMap& tensors) const {
+    if (cnn_) return true;
+    for (const auto& [name, tensor] : tensors)
+      if (name.find("features_extractor.extractors.") != std::string::npos &&
+          name.ends_with(".cnn.0.weight"))
+        return true;
+    return false;
   }
 
   // SB3's transposed image space (C, H, W) back to the env's (H, W, C).
@@ -322,12 +358,16 @@ class Sb3Reader {
       case PolicyFamily::kActorCritic:
         net_arch["pi"] = sb3_layer_widths(tensors, "mlp_extractor.policy_net.");
         net_arch["vf"] = sb3_layer_widths(tensors, "mlp_extractor.value_net.");
-        if (cnn_) add_nature_cnn(tensors, policy);
+        if (has_cnn(tensors)) add_nature_cnn(tensors, "", policy);
         if (ppo_variant_ == "RecurrentPPO") add_lstm(tensors, policy);
         break;
-      case PolicyFamily::kDqn: net_arch = sb3_hidden_widths(tensors, "q_net."); break;
+      case PolicyFamily::kDqn:
+        net_arch = sb3_hidden_widths(tensors, "q_net.");
+        if (has_cnn(tensors)) add_nature_cnn(tensors, "q_net.", policy);
+        break;
       case PolicyFamily::kQrDqn: {
         net_arch = sb3_hidden_widths(tensors, "quantile_net.");
+        if (has_cnn(tensors)) add_nature_cnn(tensors, "quantile_net.", policy);
         // The head outputs n_quantiles per action.
         const std::vector<int> all = sb3_layer_widths(tensors, "quantile_net.");
         const int actions = action_space.is_discrete() ? static_cast<int>(action_space.n()) : 0;
@@ -346,6 +386,7 @@ class Sb3Reader {
         policy["n_critics"] = sb3_critic_count(tensors);
         const std::vector<int> critic = sb3_layer_widths(tensors, "critic.qf0.");
         if (family == PolicyFamily::kTqc && !critic.empty()) policy["n_quantiles"] = critic.back();
+        if (has_cnn(tensors)) add_nature_cnn(tensors, "actor.", policy);
         break;
       }
     }
@@ -358,12 +399,32 @@ class Sb3Reader {
 
   // NatureCNN's output width, read off its linear layer (the convolutions are NatureCNN's own;
   // loading the tensors checks their shapes against the network rlrun builds).
-  void add_nature_cnn(const TensorMap& tensors, YAML::Node& policy) const {
-    const auto linear = tensors.find("features_extractor.linear.0.weight");
+  // A CnnPolicy's NatureCNN (features_dim), or a MultiInputPolicy's CombinedExtractor with a
+  // NatureCNN per image key (cnn_output_dim), each width read off the first extractor's linear
+  // layer. `network`: where that extractor is, "" for the actor-critic's own.
+  void add_nature_cnn(const TensorMap& tensors, const std::string& network,
+                      YAML::Node& policy) const {
+    const std::string owner =
+        (network.empty() && separate_extractors_ ? "pi_" : network) + "features_extractor.";
+    const std::string combined = owner + "extractors.";
+    auto linear = tensors.end();
+    for (auto it = tensors.begin(); it != tensors.end(); ++it)
+      if (it->first.ends_with(".linear.0.weight") &&
+          (it->first == owner + "linear.0.weight" || it->first.starts_with(combined))) {
+        linear = it;
+        break;
+      }
     if (linear == tensors.end() || linear->second.shape.size() != 2)
-      fail("its CnnPolicy has no features_extractor.linear.0.weight");
-    policy["features_extractor_class"] = "NatureCNN";
-    policy["features_dim"] = static_cast<int>(linear->second.shape[0]);
+      fail("its policy's NatureCNN has no linear layer (" + owner + "linear.0.weight)");
+    const bool per_key = linear->first.starts_with(combined);
+    policy["features_extractor_class"] = per_key ? "CombinedExtractor" : "NatureCNN";
+    policy[per_key ? "cnn_output_dim" : "features_dim"] = static_cast<int>(linear->second.shape[0]);
+    // SB3's default: shared by PPO's actor and critic, separate for the off-policy ones.
+    const std::optional<Json> shared = policy_kwarg("share_features_extractor");
+    if (network.empty())
+      policy["share_features_extractor"] = !separate_extractors_;
+    else if (shared && shared->is_boolean())
+      policy["share_features_extractor"] = shared->get<bool>();
   }
 
   // RecurrentPPO's LSTMs, read off the weights as torch.nn.LSTM names them (weight_hh_l<k> is
@@ -445,7 +506,8 @@ class Sb3Reader {
   ZipReader archive_;
   Json data_;
   std::string ppo_variant_;  // "MaskablePPO" or "RecurrentPPO" for sb3-contrib's policy classes
-  bool cnn_ = false;         // SB3's ActorCriticCnnPolicy
+  bool cnn_ = false;         // one of SB3's CnnPolicy classes
+  bool separate_extractors_ = false;  // an actor-critic CnnPolicy's own extractor per network
 };
 
 }  // namespace

@@ -48,6 +48,7 @@ struct Sb3Algorithm {
   const char* multi_input_policy;
   double default_learning_rate;
   const char* load_class;  // what opens the file in Python
+  const char* cnn_policy;  // its CnnPolicy class (in policy_module)
   // sb3-contrib's distributional variants: QR-DQN (DQN's family, its network quantile_net)
   // and TQC (SAC's family): n_quantiles outputs per action or per critic.
   bool quantiles = false;
@@ -57,38 +58,40 @@ const Sb3Algorithm* sb3_algorithm(const std::string& id) {
   static const std::map<std::string, Sb3Algorithm> known = {
       {"PPO",
        {Family::kActorCritic, "stable_baselines3.common.policies", "ActorCriticPolicy",
-        "MultiInputActorCriticPolicy", 3e-4, "stable_baselines3.PPO"}},
+        "MultiInputActorCriticPolicy", 3e-4, "stable_baselines3.PPO", "ActorCriticCnnPolicy"}},
       {"A2C",
        {Family::kActorCritic, "stable_baselines3.common.policies", "ActorCriticPolicy",
-        "MultiInputActorCriticPolicy", 7e-4, "stable_baselines3.A2C"}},
+        "MultiInputActorCriticPolicy", 7e-4, "stable_baselines3.A2C", "ActorCriticCnnPolicy"}},
       {"DQN",
        {Family::kDqn, "stable_baselines3.dqn.policies", "DQNPolicy", "MultiInputPolicy", 1e-4,
-        "stable_baselines3.DQN"}},
+        "stable_baselines3.DQN", "CnnPolicy"}},
       {"SAC",
        {Family::kSac, "stable_baselines3.sac.policies", "SACPolicy", "MultiInputPolicy", 3e-4,
-        "stable_baselines3.SAC"}},
+        "stable_baselines3.SAC", "CnnPolicy"}},
       {"TD3",
        {Family::kTd3, "stable_baselines3.td3.policies", "TD3Policy", "MultiInputPolicy", 1e-3,
-        "stable_baselines3.TD3"}},
+        "stable_baselines3.TD3", "CnnPolicy"}},
       {"DDPG",
        {Family::kTd3, "stable_baselines3.td3.policies", "TD3Policy", "MultiInputPolicy", 1e-3,
-        "stable_baselines3.DDPG"}},
+        "stable_baselines3.DDPG", "CnnPolicy"}},
       // sb3-contrib 2.4: PPO's actor-critic under their own policy classes.
       {"MaskablePPO",
        {Family::kActorCritic, "sb3_contrib.common.maskable.policies", "MaskableActorCriticPolicy",
-        "MaskableMultiInputActorCriticPolicy", 3e-4, "sb3_contrib.MaskablePPO"}},
+        "MaskableMultiInputActorCriticPolicy", 3e-4, "sb3_contrib.MaskablePPO",
+        "MaskableActorCriticCnnPolicy"}},
       {"RecurrentPPO",
        {Family::kActorCritic, "sb3_contrib.common.recurrent.policies", "RecurrentActorCriticPolicy",
-        "RecurrentMultiInputActorCriticPolicy", 3e-4, "sb3_contrib.RecurrentPPO"}},
+        "RecurrentMultiInputActorCriticPolicy", 3e-4, "sb3_contrib.RecurrentPPO",
+        "RecurrentActorCriticCnnPolicy"}},
       {"TRPO",
        {Family::kActorCritic, "stable_baselines3.common.policies", "ActorCriticPolicy",
-        "MultiInputActorCriticPolicy", 1e-3, "sb3_contrib.TRPO"}},
+        "MultiInputActorCriticPolicy", 1e-3, "sb3_contrib.TRPO", "ActorCriticCnnPolicy"}},
       {"QRDQN",
        {Family::kDqn, "sb3_contrib.qrdqn.policies", "QRDQNPolicy", "MultiInputPolicy", 5e-5,
-        "sb3_contrib.QRDQN", true}},
+        "sb3_contrib.QRDQN", "CnnPolicy", true}},
       {"TQC",
        {Family::kSac, "sb3_contrib.tqc.policies", "TQCPolicy", "MultiInputPolicy", 3e-4,
-        "sb3_contrib.TQC", true}},
+        "sb3_contrib.TQC", "CnnPolicy", true}},
   };
   const auto found = known.find(id);
   return found == known.end() ? nullptr : &found->second;
@@ -285,7 +288,12 @@ class Sb3Writer {
         config_(model.experiment.resolved["algo"]) {
     model_.algorithm->save(tensors_);
     if (tensors_.empty()) fail("the model holds no tensors");
-    cnn_ = tensors_.count("features_extractor.cnn.0.weight") > 0;
+    for (const auto& [name, tensor] : tensors_) {
+      if (name.ends_with("features_extractor.cnn.0.weight")) cnn_ = true;
+      if (name.find("features_extractor.extractors.") != std::string::npos &&
+          name.ends_with(".cnn.0.weight"))
+        combined_cnn_ = true;
+    }
   }
 
   Sb3ModelExport write() {
@@ -318,21 +326,19 @@ class Sb3Writer {
     throw RuntimeFailure("cannot write " + model_.file.path + " as an SB3 model file: " + why);
   }
 
-  // SB3's CnnPolicy of PPO, A2C and TRPO (ActorCriticCnnPolicy, one NatureCNN shared by actor
-  // and critic) is written; other extractors with weights are not yet.
+  // SB3's CnnPolicy (NatureCNN over an image; shared or separate extractors as configured).
   bool writes_cnn() const {
-    return cnn_ && algo_.family == Family::kActorCritic &&
-           (id_ == "PPO" || id_ == "A2C" || id_ == "TRPO") && observation_space().is_box() &&
-           observation_space().shape().size() == 3;
+    return cnn_ && observation_space().is_box() && observation_space().shape().size() == 3;
   }
+  // SB3's MultiInputPolicy whose CombinedExtractor has a NatureCNN per image key.
+  bool writes_combined_cnn() const { return combined_cnn_ && observation_space().is_dict(); }
 
   void check_policy() const {
     for (const auto& [name, tensor] : tensors_) {
-      if (name.find("features_extractor") != std::string::npos &&
-          !(writes_cnn() && name.starts_with("features_extractor.")))
+      if (name.find("features_extractor") != std::string::npos && !writes_cnn() &&
+          !writes_combined_cnn())
         fail("its policy has a features extractor with weights ('" + quoted_text(name) +
-             "'): SB3's MlpPolicy, MultiInputPolicy (flatten) and the CnnPolicy of PPO, A2C "
-             "and TRPO with one shared NatureCNN are written, this one not yet");
+             "') that SB3's MlpPolicy, MultiInputPolicy and CnnPolicy do not have");
       if (!is_policy_tensor(name) && !kAlgorithmAttributes.count(name))
         fail("its tensor '" + quoted_text(name) + "' has no place in SB3's file");
       if (is_policy_tensor(name) && tensor.dtype != DType::kFloat32)
@@ -351,9 +357,8 @@ class Sb3Writer {
   Json header_entries() {
     Json data;
     const bool dict = observation_space().is_dict();
-    const char* policy_module =
-        writes_cnn() ? "stable_baselines3.common.policies" : algo_.policy_module;
-    const char* policy_class = writes_cnn() ? "ActorCriticCnnPolicy"
+    const char* policy_module = algo_.policy_module;
+    const char* policy_class = writes_cnn() ? algo_.cnn_policy
                                : dict       ? algo_.multi_input_policy
                                             : algo_.mlp_policy;
     data["policy_class"] =
@@ -375,8 +380,10 @@ class Sb3Writer {
     data["_last_obs"] = nullptr;
     data["_episode_num"] = 0;
     // SB3 keeps the space its VecTransposeImage made (channels first) for a CnnPolicy.
+    // (and each image key of a Dict).
     data["observation_space"] =
-        space_entry(writes_cnn() ? channels_first_image(observation_space()) : observation_space());
+        space_entry(writes_cnn() ? channels_first_image(observation_space())
+                                 : channels_first_dict_images(observation_space()));
     data["action_space"] = space_entry(model_.env->action_space());
     const Json n_envs = scalar_json(model_.experiment.resolved["env"]["n_envs"]);
     data["n_envs"] = n_envs.is_number_integer() ? n_envs : Json(1);
@@ -447,10 +454,6 @@ class Sb3Writer {
         // MaskableActorCriticPolicy has no continuous-action settings (Discrete actions only).
         if (id_ != "MaskablePPO")
           copy_policy_settings(kwargs, {"log_std_init", "full_std", "use_expln"});
-        if (writes_cnn()) {  // NatureCNN is CnnPolicy's default class: its width is what varies
-          const Tensor& linear = tensors_.at("features_extractor.linear.0.weight");
-          kwargs.plain["features_extractor_kwargs"] = {{"features_dim", linear.shape.at(0)}};
-        }
         if (id_ == "RecurrentPPO")
           copy_policy_settings(
               kwargs, {"lstm_hidden_size", "n_lstm_layers", "shared_lstm", "enable_critic_lstm"});
@@ -482,6 +485,12 @@ class Sb3Writer {
         }
         break;
     }
+    // NatureCNN is CnnPolicy's default class, CombinedExtractor MultiInputPolicy's: their
+    // widths are what varies.
+    if (writes_cnn())
+      kwargs.plain["features_extractor_kwargs"] = {{"features_dim", features_dim()}};
+    if (writes_combined_cnn())
+      kwargs.plain["features_extractor_kwargs"] = {{"cnn_output_dim", features_dim()}};
     kwargs.classes.emplace_back("activation_fn", activation_class(activation_name()));
     if (uses_rms_prop()) {  // A2C's __init__ does this (stable_baselines3/a2c/a2c.py)
       kwargs.classes.emplace_back("optimizer_class", ClassRef{"torch.optim.rmsprop", "RMSprop"});
@@ -489,6 +498,27 @@ class Sb3Writer {
           {"alpha", 0.99}, {"eps", rms_prop_eps()}, {"weight_decay", 0}};
     }
     return kwargs;
+  }
+
+  // NatureCNN's output width (a CombinedExtractor's per image key), off the first extractor's
+  // linear layer.
+  int64_t features_dim() const {
+    for (const auto& [name, tensor] : tensors_)
+      if (name.find("features_extractor.") != std::string::npos &&
+          name.ends_with("linear.0.weight") && tensor.shape.size() == 2)
+        return tensor.shape[0];
+    fail("its NatureCNN has no linear layer");
+  }
+
+  // SAC's and TQC's critic optimizer leaves out a features extractor shared with the actor
+  // (sac/policies.py, tqc/policies.py _build); TD3's takes all the critic's parameters.
+  bool critic_optimizer_skips_extractor() const {
+    return algo_.family == Family::kSac && (writes_cnn() || writes_combined_cnn()) &&
+           flag_in_policy("share_features_extractor", false);
+  }
+  bool flag_in_policy(const char* name, bool fallback) const {
+    const Json value = scalar_json(config_["policy"][name]);
+    return value.is_boolean() ? value.get<bool>() : fallback;
   }
 
   // "q_net", or QR-DQN's "quantile_net": the network DQN's family nests under its own name.
@@ -589,6 +619,7 @@ class Sb3Writer {
     static const std::map<Family, std::vector<std::string>> prefixes = {
         {Family::kActorCritic,
          {"mlp_extractor.", "action_net.", "value_net.", "log_std", "features_extractor.",
+          "pi_features_extractor.", "vf_features_extractor.",
           // RecurrentPPO's: the LSTMs and the critic's Linear (sb3_contrib/common/recurrent)
           "lstm_actor.", "lstm_critic.", "critic."}},
         {Family::kDqn, {"q_net.", "q_net_target.", "quantile_net.", "quantile_net_target."}},
@@ -608,16 +639,21 @@ class Sb3Writer {
       if (!is_policy_tensor(name)) continue;
       std::string sb3_name = name;
       for (const std::string& owner : {q_net() + ".", q_net() + "_target."})
-        if (algo_.family == Family::kDqn && name.starts_with(owner))
+        if (algo_.family == Family::kDqn && name.starts_with(owner) &&
+            !name.starts_with(owner + "features_extractor."))
           sb3_name = owner + q_net() + "." + name.substr(owner.size());
       policy.emplace_back(renamed[name] = sb3_name, &tensor);
     }
     const auto unique_parameters = static_cast<int64_t>(policy.size());
-    // SB3's ActorCriticPolicy names its one shared extractor three times in its state_dict.
-    if (writes_cnn())
-      for (const auto& [name, tensor] : tensors_)
+    // SB3's ActorCriticPolicy names its extractors three times in its state_dict:
+    // features_extractor is pi_features_extractor, and vf_features_extractor too when shared.
+    if ((writes_cnn() || writes_combined_cnn()) && algo_.family == Family::kActorCritic)
+      for (const auto& [name, tensor] : tensors_) {
         if (name.starts_with("features_extractor."))
           for (const char* copy : {"pi_", "vf_"}) policy.emplace_back(copy + name, &tensor);
+        if (name.starts_with("pi_features_extractor."))
+          policy.emplace_back(name.substr(strlen("pi_")), &tensor);
+      }
     members["policy.pth"] = torch_save_state_dict(policy);
     const double lr = learning_rate();
     const auto count = [&](const std::string& prefix) {
@@ -640,7 +676,10 @@ class Sb3Writer {
         return;
       case Family::kSac:
         members["actor.optimizer.pth"] = optimizer_file(adam_group(lr, 1e-8), count("actor."));
-        members["critic.optimizer.pth"] = optimizer_file(adam_group(lr, 1e-8), count("critic."));
+        members["critic.optimizer.pth"] = optimizer_file(
+            adam_group(lr, 1e-8),
+            count("critic.") -
+                (critic_optimizer_skips_extractor() ? count("critic.features_extractor.") : 0));
         write_entropy_coefficient(members, lr);
         return;
       case Family::kTd3:
@@ -683,7 +722,8 @@ class Sb3Writer {
   const LoadedModel& model_;
   const Sb3Algorithm& algo_;
   std::string id_;
-  bool cnn_ = false;  // the model has a NatureCNN (features_extractor.cnn.*)
+  bool cnn_ = false;           // the model has a NatureCNN (features_extractor.cnn.*)
+  bool combined_cnn_ = false;  // ... per image key (features_extractor.extractors.<k>.cnn.*)
   YAML::Node config_;
   TensorMap tensors_;
   std::vector<std::string> notes_;

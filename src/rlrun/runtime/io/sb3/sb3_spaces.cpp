@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
@@ -9,6 +10,7 @@
 #include "rlrun/core/numpy_pickle_writer.hpp"
 #include "rlrun/core/quoted_text.hpp"
 #include "rlrun/core/utf8_text.hpp"
+#include "rlrun/env/image_space.hpp"
 
 namespace rlrun {
 
@@ -299,6 +301,38 @@ Space channels_first_image(const Space& hwc) {
 
 Space channels_last_image(const Space& chw) {
   return sb3_spaces_detail::transposed_box(chw, {1, 2, 0});
+}
+
+namespace sb3_spaces_detail {
+bool is_3d_pixel_box(const Space& space) {
+  return is_pixel_box(space) && space.shape().size() == 3;
+}
+bool smallest_axis_first(const std::vector<int>& shape) {
+  return shape[0] < shape[1] && shape[0] < shape[2];
+}
+Space map_dict_images(const Space& space, const std::function<Space(const Space&)>& map) {
+  if (!space.is_dict()) return space;
+  std::vector<std::pair<std::string, Space>> entries;
+  for (size_t i = 0; i < space.keys().size(); ++i) {
+    const Space& sub = space.subspaces()[i];
+    entries.emplace_back(space.keys()[i], is_3d_pixel_box(sub) ? map(sub) : sub);
+  }
+  return Space::dict(std::move(entries));
+}
+}  // namespace sb3_spaces_detail
+
+Space channels_first_dict_images(const Space& space) {
+  return sb3_spaces_detail::map_dict_images(space, [](const Space& image) {
+    return sb3_spaces_detail::smallest_axis_first(image.shape()) ? image
+                                                                 : channels_first_image(image);
+  });
+}
+
+Space channels_last_dict_images(const Space& space) {
+  return sb3_spaces_detail::map_dict_images(space, [](const Space& image) {
+    return sb3_spaces_detail::smallest_axis_first(image.shape()) ? channels_last_image(image)
+                                                                 : image;
+  });
 }
 
 }  // namespace rlrun

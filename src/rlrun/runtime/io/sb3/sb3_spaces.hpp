@@ -37,5 +37,10 @@ std::string gymnasium_space_class(const Space& space);
 // take a 3-dimensional Box and keep its dtype and per-element bounds.
 Space channels_first_image(const Space& hwc);
 Space channels_last_image(const Space& chw);
+// The same for the image keys of a Dict (SB3's VecTransposeImage transposes each key that
+// is_image_space calls an image and that is not channels-first already: smallest axis first);
+// other keys, and other spaces, as they are.
+Space channels_first_dict_images(const Space& space);
+Space channels_last_dict_images(const Space& space);
 
 }  // namespace rlrun
