@@ -4,7 +4,7 @@ dummy_vec_env.py): what ``model.get_env()`` returns and ``evaluate_policy`` step
 ``reset()`` returns the batch of observations only; ``step(actions)`` returns ``(obs, rewards,
 dones, infos)`` with rewards float32, dones = terminated or truncated, and an env that finished
 reset at once, its last observation in ``infos[i]["terminal_observation"]`` and
-``infos[i]["TimeLimit.truncated"]`` set when it was truncated.
+``infos[i]["TimeLimit.truncated"]`` at every step (true when it was truncated), as SB3's.
 """
 
 from __future__ import annotations

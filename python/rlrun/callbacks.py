@@ -10,7 +10,8 @@ attributes SB3's BaseCallback reads (num_timesteps, get_env(), logger).
 ``self.locals`` holds, after each env step, SB3's common keys of collect_rollouts: ``new_obs``
 (the batch of observations the policy sees next, shaped by the observation space), ``rewards``
 (float32), ``dones`` (bool), ``infos`` (one dict per env: the env's numeric info, with
-``terminal_observation`` and ``TimeLimit.truncated`` where an episode ended), ``actions``
+``TimeLimit.truncated`` at every step and ``terminal_observation`` where an episode ended),
+``actions``
 (the actions the envs were stepped with: SB3's ``clipped_actions`` for a Box, indices for
 Discrete), ``n_envs``, ``num_timesteps`` and ``total_timesteps``. ``_on_rollout_end`` comes
 where SB3 calls it: after a rollout, before the update that learns from it. Where rlrun

@@ -114,8 +114,8 @@ class PythonCallback : public Callback {
     for (int i = 0; i < n; ++i) view(i) = context_.env.done(i);
     return out;
   }
-  // Each env's info (numeric keys), with SB3 VecEnv's terminal_observation (flat; the Python
-  // side shapes it) and TimeLimit.truncated where an episode ended.
+  // Each env's info (numeric keys), with SB3 DummyVecEnv's TimeLimit.truncated (every step) and
+  // terminal_observation where an episode ended (flat; the Python side shapes it).
   py::list infos() const {
     const VecEnv& env = context_.env;
     py::list out;
@@ -126,8 +126,8 @@ class PythonCallback : public Callback {
         py::array_t<float> terminal(last.size());
         std::copy(last.data(), last.data() + last.size(), terminal.mutable_data());
         info["terminal_observation"] = terminal;
-        info["TimeLimit.truncated"] = env.truncated(i) && !env.terminated(i);
       }
+      info["TimeLimit.truncated"] = env.truncated(i) && !env.terminated(i);
       out.append(info);
     }
     return out;

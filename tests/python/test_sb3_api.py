@@ -107,6 +107,8 @@ class TrainingApi(TempDirMixin, unittest.TestCase):
 
             def _on_step(self):
                 self.actions.append(self.locals["actions"].copy())
+                # SB3's DummyVecEnv sets it at every step.
+                assert self.locals["infos"][0]["TimeLimit.truncated"] in (True, False)
                 return True
 
             def _on_rollout_end(self):
@@ -148,6 +150,20 @@ class TrainingApi(TempDirMixin, unittest.TestCase):
         self.assertEqual([e.steps for e in envs], [64, 64, 64])
         self.assertEqual(sorted(e.seeds[0] for e in envs), [7, 8, 9])
         self.assertIn("192/192", err.getvalue())  # tqdm's bar, or rlrun's line without it
+
+        # SB3's make_vec_env gives its envs render_mode="rgb_array"; one whose render() fails
+        # (Gymnasium's CartPole without pygame) still trains: it is taken as not rendering.
+        class NoPygame(Corridor):
+            render_mode = "rgb_array"
+
+            def render(self):
+                raise ImportError("pygame is not installed")
+
+        broken = rlrun.PPO("MlpPolicy", rlrun.DummyVecEnv([NoPygame(), NoPygame()]), n_steps=16,
+                           batch_size=32, out_dir=os.path.join(self.tmp, "norender"))
+        with contextlib.redirect_stderr(io.StringIO()):
+            broken.learn(64)
+        self.assertEqual(broken.num_timesteps, 64)
 
         class Elsewhere:  # like SB3's SubprocVecEnv: its envs are in other processes
             num_envs = 2

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -352,8 +353,24 @@ bool PythonEnv::fetch_frame() const {
 // state to draw (Gymnasium's classic envs return None), so the size is asked for then.
 RenderSpec PythonEnv::render_spec() const {
   ready();
-  if (!handshake_->can_render) return {};
-  if (frame_width_ == 0 && was_reset_) fetch_frame();
+  if (!handshake_->can_render || render_probe_failed_) return {};
+  if (frame_width_ == 0 && was_reset_) {
+    // Asking is not rendering: an env whose render() fails here (SB3's make_vec_env sets
+    // render_mode="rgb_array", and Gymnasium's classic envs then need pygame) is one that does
+    // not render; training goes on, and recording it says why.
+    try {
+      fetch_frame();
+    } catch (const RuntimeFailure& e) {
+      render_probe_failed_ = true;
+      const std::string what = e.what();
+      const size_t last_line = what.find_last_of('\n', what.size() > 1 ? what.size() - 2 : 0);
+      std::fprintf(
+          stderr, "note: %s: render() failed, so it is taken as an env that does not render (%s)\n",
+          target_.c_str(),
+          (last_line == std::string::npos ? what : what.substr(last_line + 1)).c_str());
+      return {};
+    }
+  }
   if (frame_width_ == 0) return {600, 400, handshake_->render_fps};  // Gymnasium's usual size
   // Even sizes, as H.264 in yuv420p needs (an odd frame, connect four's 891 x 774 in PettingZoo,
   // is drawn letterboxed into the next even size).

@@ -106,6 +106,7 @@ class PythonEnv : public Env, public SplitStep, public AgentNames {
   mutable std::vector<std::byte> reply_;
   mutable std::vector<uint8_t> frame_rgb_;
   mutable int frame_width_ = 0, frame_height_ = 0;
+  mutable bool render_probe_failed_ = false;  // render_spec()'s render() failed
   Info info_;
   std::vector<int> info_index_;  // the worker's key index -> info_'s
   int is_success_ = -1;
