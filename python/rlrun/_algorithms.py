@@ -121,15 +121,33 @@ def _registered(env_id: str) -> bool:
     return any(e == env_id for e, _, _ in _core.list_envs())
 
 
+# Tensors of rlrun's model that SB3 keeps on the algorithm, not in its policy's state_dict.
+_ALGORITHM_ATTRIBUTES = ("log_ent_coef", "ent_coef_tensor", "exploration_rate")
+
+
+def _sb3_name(algorithm: str, name: str) -> str:
+    """rlrun's tensor name as SB3's policy names it: the same, but for DQN's and QR-DQN's
+    network, which SB3's QNetwork / QuantileNetwork nest under their own name
+    (q_net.0.weight -> q_net.q_net.0.weight; stable_baselines3/dqn/policies.py)."""
+    net = {"DQN": "q_net", "QRDQN": "quantile_net"}.get(algorithm)
+    if net:
+        for owner in (net, net + "_target"):
+            if name.startswith(owner + ".") and not name.startswith(owner + ".features_extractor."):
+                return f"{owner}.{net}.{name[len(owner) + 1:]}"
+    return name
+
+
 class _Policy:
-    """``model.policy``: the model's tensors as numpy arrays (rlrun's names;
-    docs/model_format.md), read-only copies of the last saved weights."""
+    """``model.policy``: the policy's tensors as numpy arrays under SB3's names (its
+    ``policy.state_dict()``), read-only copies of the last saved weights (after each learn())."""
 
     def __init__(self, model):
         self._model = model
 
     def state_dict(self):
-        return dict(self._model._core.tensors)
+        algorithm = self._model.algorithm
+        return {_sb3_name(algorithm, k): v for k, v in self._model._core.tensors.items()
+                if k not in _ALGORITHM_ATTRIBUTES}
 
     def named_parameters(self):
         return list(self.state_dict().items())

@@ -208,7 +208,9 @@ class TrainingApi(TempDirMixin, unittest.TestCase):
                           out_dir=os.path.join(self.tmp, "dqn"))
         model.learn(300)
         shapes = {k: v.shape for k, v in model.policy.state_dict().items()}
-        self.assertEqual(shapes["q_net.0.weight"], (32, 4))
+        self.assertEqual(shapes["q_net.q_net.0.weight"], (32, 4))  # SB3's names
+        self.assertEqual(shapes["q_net_target.q_net.2.weight"], (2, 32))
+        self.assertNotIn("exploration_rate", shapes)  # the algorithm's, not the policy's
         path = os.path.join(self.tmp, "dqn_cartpole")
         model.save(path)  # ".zip" added, as SB3 does
         loaded = rlrun.DQN.load(path + ".zip", out_dir=os.path.join(self.tmp, "dqn2"))
