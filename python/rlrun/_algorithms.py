@@ -112,7 +112,8 @@ def _vec_env_members(env) -> list:
     members = getattr(env, "envs", None)
     if not isinstance(members, (list, tuple)) or not members:
         raise TypeError(
-            f"env: {kind} steps its envs elsewhere (in worker processes); pass the env id with "
+            f"env: {kind} does not hold its envs here as a list `envs` (SB3's SubprocVecEnv "
+            "steps them in worker processes, rlrun.make_vec in C++); pass the env id with "
             "n_envs=N (rlrun steps the copies on its own threads), or a DummyVecEnv")
     return list(members)
 
