@@ -362,12 +362,13 @@ RenderSpec PythonEnv::render_spec() const {
       fetch_frame();
     } catch (const RuntimeFailure& e) {
       render_probe_failed_ = true;
-      const std::string what = e.what();
-      const size_t last_line = what.find_last_of('\n', what.size() > 1 ? what.size() - 2 : 0);
+      // The error's last line: a Python traceback ends with the exception and its message.
+      std::string what = e.what();
+      while (!what.empty() && what.back() == '\n') what.pop_back();
+      const std::string last = what.substr(what.find_last_of('\n') + 1);  // npos + 1 == 0
       std::fprintf(
           stderr, "note: %s: render() failed, so it is taken as an env that does not render (%s)\n",
-          target_.c_str(),
-          (last_line == std::string::npos ? what : what.substr(last_line + 1)).c_str());
+          target_.c_str(), last.c_str());
       return {};
     }
   }

@@ -2,11 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <span>
 
 #include "rlrun/core/base64.hpp"
 #include "rlrun/core/errors.hpp"
@@ -240,7 +240,7 @@ class Sb3Reader {
   bool uses_sde() const { return data_.contains("use_sde") && data_["use_sde"] == true; }
 
   // SB3's state_dict under rlrun's names (algos/*: save/load write SB3's names).
-  TensorMap policy_tensors(PolicyFamily family) {
+  TensorMap policy_tensors(PolicyFamily family) const {
     TensorMap sb3 = torch_member("policy.pth", kMaxPolicyBytes, true);
     if (family == PolicyFamily::kActorCritic) drop_extractor_aliases(sb3);
     TensorMap out;
@@ -291,7 +291,7 @@ class Sb3Reader {
   // vf_features_extractor (the same one again with share_features_extractor=True, else its
   // own). rlrun names them as its own CnnPolicy does: features_extractor when shared, else
   // pi_features_extractor and vf_features_extractor.
-  void drop_extractor_aliases(TensorMap& tensors) {
+  void drop_extractor_aliases(TensorMap& tensors) const {
     const auto same = [&](const std::string& a, const std::string& b) {
       const auto x = tensors.find(a), y = tensors.find(b);
       return x != tensors.end() && y != tensors.end() && x->second.shape == y->second.shape &&
@@ -308,24 +308,19 @@ class Sb3Reader {
         fail("its pi_features_extractor is not its features_extractor (SB3 makes them one)");
       shared = shared && same("features_extractor." + suffix, "vf_features_extractor." + suffix);
     }
-    const char* dropped[] = {"pi_features_extractor.", "vf_features_extractor."};
-    const char* separate[] = {"features_extractor."};
-    for (const char* prefix :
-         shared ? std::span<const char* const>(dropped) : std::span<const char* const>(separate))
+    const auto erase = [&](const std::string& prefix) {
       std::erase_if(tensors, [&](const auto& entry) { return entry.first.starts_with(prefix); });
-    separate_extractors_ = !shared;
+    };
+    if (shared) {
+      erase("pi_features_extractor.");
+      erase("vf_features_extractor.");
+    } else {
+      erase("features_extractor.");
+    }
   }
 
-  // A CnnPolicy, or a MultiInputPolicy whose CombinedExtractor has a NatureCNN for an image key
-  // (features_extractor.extractors.<key>.cnn.*, under each network's name).
-  bool has_cnn(const TensorMap& tensors) const {
-    if (cnn_) return true;
-    for (const auto& [name, tensor] : tensors)
-      if (name.find("features_extractor.extractors.") != std::string::npos &&
-          name.ends_with(".cnn.0.weight"))
-        return true;
-    return false;
-  }
+  // A CnnPolicy, or a MultiInputPolicy whose CombinedExtractor has a NatureCNN for an image key.
+  bool has_cnn(const TensorMap& tensors) const { return cnn_ || sb3_has_combined_cnn(tensors); }
 
   // SB3's transposed image space (C, H, W) back to the env's (H, W, C).
   Space channels_last(const Space& chw) const {
@@ -404,8 +399,12 @@ class Sb3Reader {
   // layer. `network`: where that extractor is, "" for the actor-critic's own.
   void add_nature_cnn(const TensorMap& tensors, const std::string& network,
                       YAML::Node& policy) const {
-    const std::string owner =
-        (network.empty() && separate_extractors_ ? "pi_" : network) + "features_extractor.";
+    // An actor-critic's separate extractors are pi_/vf_features_extractor (drop_extractor_aliases).
+    const bool separate =
+        network.empty() && std::any_of(tensors.begin(), tensors.end(), [](const auto& t) {
+          return t.first.starts_with("pi_features_extractor.");
+        });
+    const std::string owner = (separate ? "pi_" : network) + "features_extractor.";
     const std::string combined = owner + "extractors.";
     auto linear = tensors.end();
     for (auto it = tensors.begin(); it != tensors.end(); ++it)
@@ -422,7 +421,7 @@ class Sb3Reader {
     // SB3's default: shared by PPO's actor and critic, separate for the off-policy ones.
     const std::optional<Json> shared = policy_kwarg("share_features_extractor");
     if (network.empty())
-      policy["share_features_extractor"] = !separate_extractors_;
+      policy["share_features_extractor"] = !separate;
     else if (shared && shared->is_boolean())
       policy["share_features_extractor"] = shared->get<bool>();
   }
@@ -507,7 +506,6 @@ class Sb3Reader {
   Json data_;
   std::string ppo_variant_;  // "MaskablePPO" or "RecurrentPPO" for sb3-contrib's policy classes
   bool cnn_ = false;         // one of SB3's CnnPolicy classes
-  bool separate_extractors_ = false;  // an actor-critic CnnPolicy's own extractor per network
 };
 
 }  // namespace

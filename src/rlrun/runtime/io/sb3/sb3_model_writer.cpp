@@ -288,12 +288,9 @@ class Sb3Writer {
         config_(model.experiment.resolved["algo"]) {
     model_.algorithm->save(tensors_);
     if (tensors_.empty()) fail("the model holds no tensors");
-    for (const auto& [name, tensor] : tensors_) {
+    for (const auto& [name, tensor] : tensors_)
       if (name.ends_with("features_extractor.cnn.0.weight")) cnn_ = true;
-      if (name.find("features_extractor.extractors.") != std::string::npos &&
-          name.ends_with(".cnn.0.weight"))
-        combined_cnn_ = true;
-    }
+    combined_cnn_ = sb3_has_combined_cnn(tensors_);
   }
 
   Sb3ModelExport write() {

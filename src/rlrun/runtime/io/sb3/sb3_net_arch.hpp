@@ -33,6 +33,16 @@ inline std::vector<int> sb3_hidden_widths(const TensorMap& tensors, const std::s
   return widths;
 }
 
+// A MultiInputPolicy's CombinedExtractor with a NatureCNN for an image key: its convolutions
+// are <network>.features_extractor.extractors.<key>.cnn.* (torch_layers.py CombinedExtractor).
+inline bool sb3_has_combined_cnn(const TensorMap& tensors) {
+  for (const auto& [name, tensor] : tensors)
+    if (name.find("features_extractor.extractors.") != std::string::npos &&
+        name.ends_with(".cnn.0.weight"))
+      return true;
+  return false;
+}
+
 // SAC's and TD3's critics: critic.qf0, critic.qf1, ...
 inline int sb3_critic_count(const TensorMap& tensors) {
   int n = 0;

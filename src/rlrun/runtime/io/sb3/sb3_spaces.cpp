@@ -2,7 +2,7 @@
 
 #include <array>
 #include <cmath>
-#include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include "rlrun/core/errors.hpp"
@@ -304,35 +304,28 @@ Space channels_last_image(const Space& chw) {
 }
 
 namespace sb3_spaces_detail {
-bool is_3d_pixel_box(const Space& space) {
-  return is_pixel_box(space) && space.shape().size() == 3;
-}
-bool smallest_axis_first(const std::vector<int>& shape) {
-  return shape[0] < shape[1] && shape[0] < shape[2];
-}
-Space map_dict_images(const Space& space, const std::function<Space(const Space&)>& map) {
+// Each key of a Dict that SB3's is_image_space calls an image (env/image_space.hpp) and whose
+// layout is not `channels_last` yet, transposed by `transpose`; other keys as they are.
+Space dict_images_as(const Space& space, bool channels_last,
+                     Space (*transpose)(const Space& image)) {
   if (!space.is_dict()) return space;
   std::vector<std::pair<std::string, Space>> entries;
   for (size_t i = 0; i < space.keys().size(); ++i) {
     const Space& sub = space.subspaces()[i];
-    entries.emplace_back(space.keys()[i], is_3d_pixel_box(sub) ? map(sub) : sub);
+    const std::optional<ImageInput> image = image_input(sub, /*normalize_images=*/true);
+    entries.emplace_back(space.keys()[i],
+                         image && image->channels_last != channels_last ? transpose(sub) : sub);
   }
   return Space::dict(std::move(entries));
 }
 }  // namespace sb3_spaces_detail
 
 Space channels_first_dict_images(const Space& space) {
-  return sb3_spaces_detail::map_dict_images(space, [](const Space& image) {
-    return sb3_spaces_detail::smallest_axis_first(image.shape()) ? image
-                                                                 : channels_first_image(image);
-  });
+  return sb3_spaces_detail::dict_images_as(space, /*channels_last=*/false, channels_first_image);
 }
 
 Space channels_last_dict_images(const Space& space) {
-  return sb3_spaces_detail::map_dict_images(space, [](const Space& image) {
-    return sb3_spaces_detail::smallest_axis_first(image.shape()) ? channels_last_image(image)
-                                                                 : image;
-  });
+  return sb3_spaces_detail::dict_images_as(space, /*channels_last=*/true, channels_last_image);
 }
 
 }  // namespace rlrun
