@@ -14,6 +14,9 @@
 #include "rlrun/envs/classic/cartpole.hpp"
 #include "rlrun/envs/lunar_lander/lunar_lander.hpp"
 #include "rlrun/envs/mujoco/half_cheetah.hpp"
+#include "rlrun/runtime/components/builtins.hpp"
+#include "rlrun/runtime/experiment/env_factory.hpp"
+#include "rlrun/runtime/experiment/experiment.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 
 using namespace rlrun;
@@ -73,4 +76,43 @@ TEST_CASE("VecEnv on a pool: copies nobody vouched for stay on one thread",
   unvouched.set_parallel_step_seconds(0.0);
   trace_random_steps(unvouched, 40, 11);
   CHECK_FALSE(unvouched.steps_in_parallel());
+}
+
+TEST_CASE("VecEnv on a pool: env.normalize's batched statistics keep copies independent",
+          "[vec_env][thread_pool]") {
+  // SB3's VecNormalize sits above the VecEnv: the copies step, then the batch updates the
+  // statistics. rlrun's step hook does that on the calling thread, so the copies may step at
+  // once (before, any statistics wrapper kept a run with env.normalize on one thread).
+  EnvSpec spec = default_env_spec("CartPole-v1", builtin_registry(), "test");
+  spec.section.normalize.enabled = true;  // observations and rewards, VecNormalize's defaults
+  VecEnv serial = make_vec_env(spec, builtin_registry(), 4, "");
+  const VecEnvTrace want = trace_random_steps(serial, 300, 5);
+  CHECK(std::count(want.dones.begin(), want.dones.end(), 1) > 0);
+  for (const int threads : {1, 2, 3}) {
+    INFO(threads << " threads");
+    ThreadPool pool(threads);
+    VecEnv pooled = make_vec_env(spec, builtin_registry(), 4, "");
+    pooled.set_thread_pool(&pool);
+    pooled.set_parallel_step_seconds(0.0);
+    const VecEnvTrace got = trace_random_steps(pooled, 300, 5);
+    CHECK(pooled.steps_in_parallel() == (threads > 1));
+    CHECK(got.obs == want.obs);
+    CHECK(got.final_obs == want.final_obs);
+    CHECK(got.rewards == want.rewards);
+    CHECK(got.dones == want.dones);
+  }
+  SECTION("a per-copy NormalizeObservation of env.wrappers shares statistics while stepping") {
+    const Experiment e =
+        parse_experiment(ConfigNode::load_string("run: {name: t}\nenv: {id: CartPole-v1, wrappers: "
+                                                 "[{id: NormalizeObservation}]}\nalgo: {id: PPO}\n",
+                                                 "wrapped.yaml"),
+                         builtin_registry());
+    const EnvSpec& wrapped = e.env;
+    ThreadPool pool(2);
+    VecEnv pooled = make_vec_env(wrapped, builtin_registry(), 4, "");
+    pooled.set_thread_pool(&pool);
+    pooled.set_parallel_step_seconds(0.0);
+    trace_random_steps(pooled, 20, 5);
+    CHECK_FALSE(pooled.steps_in_parallel());
+  }
 }

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Score an RLtools Ant-v4 PPO policy and an rlrun model on the *same* start states.
+
+RLtools' zoo prints the mean return of 100 episodes whose start states come from its own random
+engine; `rlrun eval --seed 1000` scores other ones. This script takes the policy out of both
+(RLtools: the `checkpoint.h` its benchmark build writes beside its results, a code export of the
+actor with its observation standardisation; rlrun: `model.zip` through the Python package, whose
+`predict` applies the model's NormalizeObservation statistics) and runs both on the same
+`--episodes` start states of Gymnasium's Ant-v4 distribution (gymnasium/envs/mujoco/ant_v4.py,
+`reset_model`: qpos = init_qpos + U(-0.1, 0.1), qvel = init_qvel + 0.1 N(0, 1)), drawn here with
+numpy and set with `env.unwrapped.set_state`. The env is rlrun's Ant-v4 (Gymnasium's rules,
+TimeLimit 1000); both policies' mean actions are clipped to the action space [-1, 1] before the
+env, as SB3 does and as RLtools' env clamps them. The result is a paired comparison: the
+per-episode differences' mean and standard error.
+
+Usage (docs/rltools.md, "Ant-v4"):
+  PYTHONPATH=build/python /usr/bin/python3 scripts/bench/rltools_cross_eval_ant.py \
+      --checkpoint DIR/.../checkpoint.h --model runs/.../model.zip [--episodes 100]
+Prints one line per policy, then a `cross_eval` line for scripts to parse.
+"""
+import argparse
+import re
+import sys
+
+import numpy as np
+
+ACTIVATIONS = {
+    "IDENTITY": lambda x: x,
+    "RELU": lambda x: np.maximum(x, 0),
+    "TANH": np.tanh,
+    # RLtools' FAST_TANH (include/rl_tools/math/operations_generic.h, `fast_tanh`).
+    "FAST_TANH": lambda x: np.clip(x, -3, 3) * (27 + np.clip(x, -3, 3) ** 2) / (27 + 9 * np.clip(x, -3, 3) ** 2),
+}
+
+
+def _memory_arrays(text):
+    """Every `constexpr float|double memory[] = {...}` array in `text` (hex floats), in order."""
+    return [np.array([float.fromhex(v.strip().rstrip("fF")) for v in body.split(",")], dtype=np.float64)
+            for body in re.findall(r"constexpr (?:float|double) memory\[\] = \{([^}]*)\}", text)]
+
+
+def rltools_policy(path):
+    """The deterministic actor of an RLtools checkpoint.h: an optional standardize layer (mean,
+    precision), then dense layers with the activations the file names, in order; the output's
+    first ACTION_DIM columns are the Gaussian's mean (the learned log std comes after the dense
+    layers and is not used). The file's own example input and output check the forward pass."""
+    with open(path) as f:
+        text = f.read()
+    parts = text.split("namespace rl_tools::checkpoint::example")
+    if len(parts) != 3:
+        raise SystemExit(f"{path}: not an RLtools checkpoint.h (no example input/output)")
+    actor = parts[0]
+    arrays = _memory_arrays(actor)
+    standardize = "layers::standardize::" in actor
+    if standardize:
+        obs_mean, obs_precision, arrays = arrays[0], arrays[1], arrays[2:]
+    activations = re.findall(r"dense::Configuration<.*?ActivationFunction::(\w+)", actor)
+    if not activations or len(arrays) < 2 * len(activations):
+        raise SystemExit(f"{path}: found {len(activations)} dense layers and {len(arrays)} arrays")
+    unknown = set(activations) - set(ACTIVATIONS)
+    if unknown:
+        raise SystemExit(f"{path}: activation {sorted(unknown)} not known to this script")
+    example_in, example_out = (_memory_arrays(part)[0] for part in parts[1:])
+    inputs = obs_mean.size if standardize else None
+    layers = []
+    for i, name in enumerate(activations):
+        weights, bias = arrays[2 * i], arrays[2 * i + 1]
+        fan_in = weights.size // bias.size
+        if inputs is not None and fan_in != inputs:
+            raise SystemExit(f"{path}: layer {i} takes {fan_in} inputs, the previous gives {inputs}")
+        layers.append((weights.reshape(bias.size, fan_in), bias, ACTIVATIONS[name]))
+        inputs = bias.size
+    obs_dim = layers[0][0].shape[1]
+
+    def mean_action(obs):
+        x = obs.astype(np.float64)
+        if standardize:
+            x = (x - obs_mean) * np.where(obs_precision != 0, obs_precision, 1)
+        for weights, bias, activation in layers:
+            x = activation(x @ weights.T + bias)
+        return x
+
+    batch = example_in.reshape(-1, obs_dim)
+    expected = example_out.reshape(batch.shape[0], -1)
+    got = mean_action(batch)
+    error = np.abs(got[:, :expected.shape[1]] - expected).max()
+    if error > 1e-3 * max(1.0, np.abs(expected).max()):
+        raise SystemExit(f"{path}: forward pass differs from the file's example by {error}")
+    return lambda obs: np.clip(mean_action(obs[None])[0], -1.0, 1.0)
+
+
+def rlrun_policy(path):
+    import rlrun  # PYTHONPATH=build/python (docs/python.md)
+    model = rlrun.load(path)
+    if model.env_id != "Ant-v4":
+        raise SystemExit(f"{path}: a model of {model.env_id}, not Ant-v4")
+    return lambda obs: np.asarray(model.predict(obs, deterministic=True)[0], dtype=np.float64)
+
+
+def start_states(env, episodes, seed):
+    """Gymnasium's Ant-v4 reset distribution (ant_v4.py `reset_model`, reset_noise_scale 0.1)."""
+    rng = np.random.default_rng(seed)
+    u = env.unwrapped
+    nq, nv = len(u.init_qpos), len(u.init_qvel)
+    return [(u.init_qpos + rng.uniform(-0.1, 0.1, nq), u.init_qvel + 0.1 * rng.standard_normal(nv))
+            for _ in range(episodes)]
+
+
+def episode_return(env, policy, qpos, qvel):
+    """The return of one episode from (qpos, qvel), and whether it ended unhealthy (a fall)."""
+    env.reset(seed=0)
+    env.unwrapped.set_state(qpos, qvel)
+    obs = env.unwrapped._get_obs()
+    total = 0.0
+    while True:
+        obs, reward, terminated, truncated, _ = env.step(policy(obs).astype(np.float32))
+        total += reward
+        if terminated or truncated:
+            return total, terminated
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--checkpoint", required=True, help="RLtools' checkpoint.h")
+    parser.add_argument("--model", required=True, help="rlrun's model.zip")
+    parser.add_argument("--episodes", type=int, default=100)
+    parser.add_argument("--states-seed", type=int, default=12345)
+    args = parser.parse_args()
+
+    import rlrun
+    env = rlrun.make("Ant-v4")
+    states = start_states(env, args.episodes, args.states_seed)
+    policies = {"rltools": rltools_policy(args.checkpoint), "rlrun": rlrun_policy(args.model)}
+    episodes = {name: [episode_return(env, policy, *state) for state in states]
+                for name, policy in policies.items()}
+    returns = {name: np.array([r for r, _ in runs]) for name, runs in episodes.items()}
+    difference = returns["rltools"] - returns["rlrun"]
+    n = len(states)
+    for name, values in returns.items():
+        falls = sum(fell for _, fell in episodes[name])
+        print(f"{name}: mean {values.mean():.1f}, median {np.median(values):.1f}, min "
+              f"{values.min():.1f}, {falls} of {n} episodes ended unhealthy before step 1000")
+    print(f"common_states ({n} episodes): RLtools {returns['rltools'].mean():.1f}, rlrun "
+          f"{returns['rlrun'].mean():.1f}, paired difference {difference.mean():+.1f} +/- "
+          f"{difference.std() / np.sqrt(n):.1f} (standard error)")
+    print(f"cross_eval common_states {n} {returns['rltools'].mean():.2f} "
+          f"{returns['rlrun'].mean():.2f} {difference.mean():.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
