@@ -24,10 +24,13 @@ Usage (docs/rltools.md; scripts/bench/rltools.sh calls it):
 Prints one line per policy and start-state set, then `cross_eval` lines for scripts to parse.
 """
 import argparse
-import re
+import os
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rltools_checkpoint import fast_tanh, read_actor_export  # noqa: E402 (beside this script)
 
 
 # --- RLtools' evaluation start states ---------------------------------------------------------
@@ -84,20 +87,6 @@ def gymnasium_start_states(seed, episodes):
 
 # --- the two policies, as functions from observations (n, 3) to torques (n,) in [-2, 2] ------
 
-def _memory_arrays(text):
-    """Every `constexpr float memory[] = {...}` array in `text` (hex floats), in order."""
-    return [np.array([float.fromhex(v.strip().rstrip("fF")) for v in body.split(",")],
-                     dtype=np.float32)
-            for body in re.findall(r"constexpr float memory\[\] = \{([^}]*)\}", text)]
-
-
-def _fast_tanh(x):
-    # RLtools' FAST_TANH (include/rl_tools/math/operations_generic.h, `fast_tanh`).
-    x = np.clip(x, -3.0, 3.0)
-    x2 = x * x
-    return x * (27 + x2) / (27 + 9 * x2)
-
-
 def rltools_policy(path):
     """The deterministic actor in an RLtools checkpoint.h (its code export of the actor).
 
@@ -105,16 +94,10 @@ def rltools_policy(path):
     with a tanh output. PPO: a standardize layer (mean, precision), FAST_TANH MLP, identity
     output. Actions are in [-1, 1] units; the env multiplies by max_torque 2. The file's own
     example input and output (13 observations) check the forward pass."""
-    with open(path) as f:
-        text = f.read()
-    parts = text.split("namespace rl_tools::checkpoint::example")
-    if len(parts) != 3:
-        raise SystemExit(f"{path}: not an RLtools checkpoint.h (no example input/output)")
-    actor = parts[0]
-    arrays = _memory_arrays(actor)
-    standardize = "layers::standardize::" in actor
+    export = read_actor_export(path)
+    arrays, standardize = export.arrays, export.standardize is not None
     if standardize:
-        obs_mean, obs_precision, arrays = arrays[0], arrays[1], arrays[2:]
+        obs_mean, obs_precision = export.standardize
     if len(arrays) < 6:
         raise SystemExit(f"{path}: expected three dense layers, found {len(arrays)} arrays")
     w0, b0, w1, b1, w2, b2 = arrays[:6]
@@ -125,15 +108,12 @@ def rltools_policy(path):
     def raw_action(obs):
         if standardize:
             x = (obs - obs_mean) * np.where(obs_precision != 0, obs_precision, 1)
-            h = _fast_tanh(_fast_tanh(x @ w0.T + b0) @ w1.T + b1)
+            h = fast_tanh(fast_tanh(x @ w0.T + b0) @ w1.T + b1)
             return (h @ w2.T + b2)[:, 0]
         h = np.maximum(np.maximum(obs @ w0.T + b0, 0) @ w1.T + b1, 0)
         return np.tanh((h @ w2.T + b2)[:, 0])
 
-    examples = [_memory_arrays(part) for part in parts[1:]]
-    if not all(examples):
-        raise SystemExit(f"{path}: not an RLtools checkpoint.h (empty example input/output)")
-    example_in, example_out = examples[0][0].reshape(-1, 3), examples[1][0]
+    example_in, example_out = export.example_in.reshape(-1, 3), export.example_out
     error = np.abs(raw_action(example_in) - example_out).max()
     if error > 1e-4:
         raise SystemExit(f"{path}: forward pass differs from the file's example by {error}")

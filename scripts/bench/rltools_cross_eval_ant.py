@@ -19,24 +19,21 @@ Usage (docs/rltools.md, "Ant-v4"):
 Prints one line per policy, then a `cross_eval` line for scripts to parse.
 """
 import argparse
+import os
 import re
 import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rltools_checkpoint import fast_tanh, read_actor_export  # noqa: E402 (beside this script)
+
 ACTIVATIONS = {
     "IDENTITY": lambda x: x,
     "RELU": lambda x: np.maximum(x, 0),
     "TANH": np.tanh,
-    # RLtools' FAST_TANH (include/rl_tools/math/operations_generic.h, `fast_tanh`).
-    "FAST_TANH": lambda x: np.clip(x, -3, 3) * (27 + np.clip(x, -3, 3) ** 2) / (27 + 9 * np.clip(x, -3, 3) ** 2),
+    "FAST_TANH": fast_tanh,
 }
-
-
-def _memory_arrays(text):
-    """Every `constexpr float|double memory[] = {...}` array in `text` (hex floats), in order."""
-    return [np.array([float.fromhex(v.strip().rstrip("fF")) for v in body.split(",")], dtype=np.float64)
-            for body in re.findall(r"constexpr (?:float|double) memory\[\] = \{([^}]*)\}", text)]
 
 
 def rltools_policy(path):
@@ -44,23 +41,17 @@ def rltools_policy(path):
     precision), then dense layers with the activations the file names, in order; the output's
     first ACTION_DIM columns are the Gaussian's mean (the learned log std comes after the dense
     layers and is not used). The file's own example input and output check the forward pass."""
-    with open(path) as f:
-        text = f.read()
-    parts = text.split("namespace rl_tools::checkpoint::example")
-    if len(parts) != 3:
-        raise SystemExit(f"{path}: not an RLtools checkpoint.h (no example input/output)")
-    actor = parts[0]
-    arrays = _memory_arrays(actor)
-    standardize = "layers::standardize::" in actor
+    export = read_actor_export(path)
+    arrays, standardize = export.arrays, export.standardize is not None
     if standardize:
-        obs_mean, obs_precision, arrays = arrays[0], arrays[1], arrays[2:]
-    activations = re.findall(r"dense::Configuration<.*?ActivationFunction::(\w+)", actor)
+        obs_mean, obs_precision = (a.astype(np.float64) for a in export.standardize)
+    activations = re.findall(r"dense::Configuration<.*?ActivationFunction::(\w+)", export.text)
     if not activations or len(arrays) < 2 * len(activations):
         raise SystemExit(f"{path}: found {len(activations)} dense layers and {len(arrays)} arrays")
     unknown = set(activations) - set(ACTIVATIONS)
     if unknown:
         raise SystemExit(f"{path}: activation {sorted(unknown)} not known to this script")
-    example_in, example_out = (_memory_arrays(part)[0] for part in parts[1:])
+    example_in, example_out = export.example_in, export.example_out
     inputs = obs_mean.size if standardize else None
     layers = []
     for i, name in enumerate(activations):
@@ -68,7 +59,8 @@ def rltools_policy(path):
         fan_in = weights.size // bias.size
         if inputs is not None and fan_in != inputs:
             raise SystemExit(f"{path}: layer {i} takes {fan_in} inputs, the previous gives {inputs}")
-        layers.append((weights.reshape(bias.size, fan_in), bias, ACTIVATIONS[name]))
+        layers.append((weights.reshape(bias.size, fan_in).astype(np.float64), bias.astype(np.float64),
+                       ACTIVATIONS[name]))
         inputs = bias.size
     obs_dim = layers[0][0].shape[1]
 
