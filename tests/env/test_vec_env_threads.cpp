@@ -33,17 +33,18 @@ VecEnv copies(int n, int max_steps) {
   return VecEnv(std::move(envs));
 }
 
-template <class E>
-void check_pooled_equals_serial(int n, int max_steps, int steps) {
-  VecEnv serial = copies<E>(n, max_steps);
+// `make_copies()` builds the same VecEnv each call; stepped on pools of 1 to 8 threads it must
+// go parallel (on more than one) and give the bits of stepping one copy after another.
+template <class MakeCopies>
+void check_pooled_equals_serial(const MakeCopies& make_copies, int steps) {
+  VecEnv serial = make_copies();
   const VecEnvTrace want = trace_random_steps(serial, steps, 11);
   REQUIRE_FALSE(serial.steps_in_parallel());
   CHECK(std::count(want.dones.begin(), want.dones.end(), 1) > 0);  // auto-resets happened
   for (const int threads : {1, 2, 3, 8}) {
     INFO(threads << " threads");
     ThreadPool pool(threads);
-    VecEnv pooled = copies<E>(n, max_steps);
-    pooled.set_independent_copies(true);
+    VecEnv pooled = make_copies();
     pooled.set_thread_pool(&pool);
     pooled.set_parallel_step_seconds(0.0);
     const VecEnvTrace got = trace_random_steps(pooled, steps, 11);
@@ -53,6 +54,17 @@ void check_pooled_equals_serial(int n, int max_steps, int steps) {
     CHECK(got.rewards == want.rewards);
     CHECK(got.dones == want.dones);
   }
+}
+
+template <class E>
+void check_pooled_equals_serial(int n, int max_steps, int steps) {
+  check_pooled_equals_serial(
+      [&] {
+        VecEnv env = copies<E>(n, max_steps);
+        env.set_independent_copies(true);
+        return env;
+      },
+      steps);
 }
 
 }  // namespace
@@ -85,22 +97,7 @@ TEST_CASE("VecEnv on a pool: env.normalize's batched statistics keep copies inde
   // once (before, any statistics wrapper kept a run with env.normalize on one thread).
   EnvSpec spec = default_env_spec("CartPole-v1", builtin_registry(), "test");
   spec.section.normalize.enabled = true;  // observations and rewards, VecNormalize's defaults
-  VecEnv serial = make_vec_env(spec, builtin_registry(), 4, "");
-  const VecEnvTrace want = trace_random_steps(serial, 300, 5);
-  CHECK(std::count(want.dones.begin(), want.dones.end(), 1) > 0);
-  for (const int threads : {1, 2, 3}) {
-    INFO(threads << " threads");
-    ThreadPool pool(threads);
-    VecEnv pooled = make_vec_env(spec, builtin_registry(), 4, "");
-    pooled.set_thread_pool(&pool);
-    pooled.set_parallel_step_seconds(0.0);
-    const VecEnvTrace got = trace_random_steps(pooled, 300, 5);
-    CHECK(pooled.steps_in_parallel() == (threads > 1));
-    CHECK(got.obs == want.obs);
-    CHECK(got.final_obs == want.final_obs);
-    CHECK(got.rewards == want.rewards);
-    CHECK(got.dones == want.dones);
-  }
+  check_pooled_equals_serial([&] { return make_vec_env(spec, builtin_registry(), 4, ""); }, 300);
   SECTION("a per-copy NormalizeObservation of env.wrappers shares statistics while stepping") {
     const Experiment e =
         parse_experiment(ConfigNode::load_string("run: {name: t}\nenv: {id: CartPole-v1, wrappers: "

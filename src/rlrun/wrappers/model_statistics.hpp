@@ -27,6 +27,9 @@ class ModelStatistics {
   // Uses `first`'s statistics from now on; throws std::invalid_argument if `first` is another
   // kind of wrapper or has another dimension.
   virtual void share_statistics_with(ModelStatistics& first) = 0;
+  // Whether step() and reset() update the statistics themselves (shared by a VecEnv's copies, so
+  // those copies cannot step at once) rather than leave them to a batch update after the step.
+  virtual bool steps_update_statistics() const = 0;
 };
 
 }  // namespace rlrun

@@ -36,7 +36,7 @@ class RunningStatisticsWrapper : public Wrapper, public ModelStatistics, public 
   // Batched mode: reset() and step() leave the statistics alone; the VecEnv's hook calls the
   // wrapper's batch functions.
   void set_batched(bool batched) { batched_ = batched; }
-  bool batched() const { return batched_; }
+  bool steps_update_statistics() const override { return !batched_; }
 
  protected:
   explicit RunningStatisticsWrapper(EnvPtr inner) : Wrapper(std::move(inner)) {}

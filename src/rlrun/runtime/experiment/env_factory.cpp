@@ -8,7 +8,6 @@
 #include "rlrun/runtime/experiment/env_statistics.hpp"
 #include "rlrun/wrappers/monitor.hpp"
 #include "rlrun/wrappers/observation_tap.hpp"
-#include "rlrun/wrappers/running_statistics_wrapper.hpp"
 #include "rlrun/wrappers/time_limit.hpp"
 #include "rlrun/wrappers/vec_normalize.hpp"
 
@@ -145,20 +144,6 @@ EnvPtr adapt_action_space(EnvPtr env, const EnvSpec& spec, const Registry& regis
   fail_at_env(spec, message);
 }
 
-namespace {
-
-// Whether stepping or resetting `env` updates statistics shared with the other copies: a
-// statistics wrapper that is not in env.normalize's batched mode (wrappers/vec_normalize.hpp).
-bool steps_share_statistics(Env& env) {
-  for (ModelStatistics* stats : model_statistics(env)) {
-    const auto* running = dynamic_cast<const RunningStatisticsWrapper*>(stats);
-    if (!running || !running->batched()) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
                     const std::string& monitor_dir, int tap_env, bool append_monitor) {
   const double t_start = unix_time_now();
@@ -176,8 +161,12 @@ VecEnv make_vec_env(const EnvSpec& spec, const Registry& registry, int n_envs,
   // hook updates their statistics after every copy stepped, on the calling thread, so they
   // keep the copies independent (as SB3's VecNormalize sits above its VecEnv). The wrappers of
   // env.wrappers are otherwise per copy.
+  const std::vector<ModelStatistics*> statistics = model_statistics(vec.env(0));
+  const bool steps_update_statistics =
+      std::any_of(statistics.begin(), statistics.end(),
+                  [](const ModelStatistics* s) { return s->steps_update_statistics(); });
   vec.set_independent_copies(env_entry(spec, registry).independent_copies &&
-                             !steps_share_statistics(vec.env(0)) && tap_env < 0);
+                             !steps_update_statistics && tap_env < 0);
   return vec;
 }
 
