@@ -9,6 +9,11 @@
 #   REPS=3 (runs of each variant, seeds 1..REPS)   OUT=FILE (also write the table there)
 #   CPUS=0,1 (the cores the runs are pinned to: one-core runs use the first)
 #   KEEP=DIR (keep every run's directory there: RLtools' checkpoint.h, rlrun's model.zip, logs)
+#   TABLES_ONLY=1 (with KEEP: run nothing, remake the tables from that directory's results)
+#   ANT_TD3_STEP_LIMIT=N (ant_td3 only: a shorter run, for speed on a budget; RLtools built from a
+#     tree whose src/rl/zoo/ant-v4/td3.h has STEP_LIMIT = N, which its replay buffer's capacity
+#     follows; rlrun then trains N + 1 steps with buffer_size N. The bench checks that RLtools
+#     printed the same limit. docs/rltools.md, "TD3 on a shorter budget")
 # RLTOOLS_BUILD_*: RLtools CMake build directories (either may be left unset to skip it) holding
 # src/rl/zoo/rl_zoo_pendulum_v1_{sac,td3,ppo} and, for the Ant experiments (RLtools configured
 # with RL_TOOLS_RL_ENVIRONMENTS_ENABLE_MUJOCO), rl_zoo_ant_v4_{ppo,td3}. RLRUN: the rlrun binary
@@ -66,7 +71,17 @@ describe() {
   esac
   run_name=rltools_$(basename "$config" .yaml)
   budget=$(awk '$1 == "total_timesteps:" { print $2; exit }' "$config")
+  rlrun_overrides=()
+  rltools_limit=""  # the STEP_LIMIT RLtools must print ("" = not checked)
+  if [[ $1 == ant_td3 && -n "${ANT_TD3_STEP_LIMIT:-}" ]]; then
+    # RLtools' TD3 loop tests `step > STEP_LIMIT` after its increment: STEP_LIMIT + 1 env steps
+    # (as the config's 1000001); its buffer holds STEP_LIMIT transitions (zoo td3.h).
+    budget=$((ANT_TD3_STEP_LIMIT + 1)) rltools_limit=$ANT_TD3_STEP_LIMIT
+    rlrun_overrides=(--timesteps "$budget" --set "algo.buffer_size=$ANT_TD3_STEP_LIMIT")
+  fi
 }
+[[ -z "${ANT_TD3_STEP_LIMIT:-}" || "$ANT_TD3_STEP_LIMIT" =~ ^[1-9][0-9]*$ ]] ||
+  { echo "bench_rltools: ANT_TD3_STEP_LIMIT must be a positive integer" >&2; exit 2; }
 is_pendulum() { [[ $1 == sac || $1 == td3 || $1 == ppo ]]; }
 for experiment in "${experiments[@]}"; do
   describe "$experiment"
@@ -83,6 +98,8 @@ PYTHONPATH=$rlrun_pythonpath "$python" -c 'import numpy, rlrun' 2>/dev/null || {
   echo "bench_rltools: no numpy or rlrun Python package for $python (PYTHONPATH=$rlrun_pythonpath):" \
        "the same-start-state returns are skipped (docs/python.md)" >&2
 }
+[[ -z "${TABLES_ONLY:-}" || -n "${KEEP:-}" ]] ||
+  { echo "bench_rltools: TABLES_ONLY needs KEEP (the directory of an earlier run)" >&2; exit 2; }
 if [[ -n "${KEEP:-}" ]]; then
   out=$KEEP
   mkdir -p "$out"
@@ -92,6 +109,24 @@ else
 fi
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
+
+# TD3 Ant: milliseconds per training step (one env step, one critic update, the actor every
+# second) from step 30 000 on, when both act with the policy and train. The wall times alone
+# do not compare equal work: RLtools trains from step 100, rlrun from learning_starts 20 000
+# (configs/rltools/ant_td3.yaml), 2 % of a 1 M run and 20 % of a 100 000 one.
+# RLtools: its "Loop step: N, ... (elapsed: E s)" lines; rlrun: progress.csv's
+# time/total_timesteps and time/time_elapsed.
+td3_step_ms_rltools() {
+  awk '/^Loop step: / { n = $3; sub(/,$/, "", n); n += 0; e = $(NF - 1)
+                        if (n >= 30000) { if (n0 == "") { n0 = n; e0 = e } n1 = n; e1 = e } }
+       END { if (n1 > n0) printf "%.3f\n", 1000 * (e1 - e0) / (n1 - n0); else print "-" }' "$1"
+}
+td3_step_ms_rlrun() {
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+           { n = $c["time/total_timesteps"] + 0; e = $c["time/time_elapsed"]
+             if (n >= 30000) { if (n0 == "") { n0 = n; e0 = e } n1 = n; e1 = e } }
+           END { if (n1 > n0) printf "%.3f\n", 1000 * (e1 - e0) / (n1 - n0); else print "-" }' "$1"
+}
 
 # RLtools zoo run on `cores` (1 or 2): writes "wall own_time return env_steps" to
 # $out/<experiment>.rltools-<kind>-c<cores>.<seed>.
@@ -114,7 +149,12 @@ run_rltools() {
     tail -5 "$log" >&2
     exit 1
   fi
-  # RLtools @9acdf5c8's Ant zoo aborts in free() after writing its final checkpoint.h, its
+  if [[ -n "$rltools_limit" ]] && ! grep -q "Step: [0-9]*/$rltools_limit " "$log"; then
+    echo "bench_rltools: $kind $experiment was not built with STEP_LIMIT $rltools_limit" \
+         "(ANT_TD3_STEP_LIMIT); it printed: $(grep -m1 'Mean return:' "$log")" >&2
+    exit 1
+  fi
+  # RLtools @9acdf5c8's Ant PPO zoo aborts in free() after writing its final checkpoint.h, its
   # result already printed (docs/rltools.md): kept, with the exit status shown.
   ((status == 0)) || echo "bench_rltools: $kind $experiment seed $seed exited with status $status" \
     "after printing its result ($(tail -1 "$log"))" >&2
@@ -124,6 +164,7 @@ run_rltools() {
     END { printf "%.2f %s %s %d\n", wall, (t == "" ? "-" : t), r, steps }' "$log" \
     >"$out/$experiment.rltools-$kind-c$cores.$seed"
   find "$dir" -name checkpoint.h -print -quit >"$out/$experiment.checkpoint-$kind.$seed"
+  [[ $experiment != ant_td3 ]] || td3_step_ms_rltools "$log" >"$out/$experiment.step-ms-rltools-$kind-c$cores.$seed"
 }
 
 # Both policies of a seed on the same start states: writes "rltools_own rlrun_own rltools_common
@@ -135,8 +176,8 @@ run_cross_eval() {
   ((cross_eval)) || return 0
   case $experiment in
     sac | td3 | ppo) tool=rltools_cross_eval.py args=(--rltools-seed "$seed") ;;
-    ant_ppo) tool=rltools_cross_eval_ant.py args=() ;;
-    *) return 0 ;;  # TD3's actor export is not read by either tool
+    ant_ppo | ant_td3) tool=rltools_cross_eval_ant.py args=() ;;
+    *) return 0 ;;
   esac
   describe "$experiment"
   checkpoint=$(cat "$out/$experiment.checkpoint-openblas.$seed" 2>/dev/null ||
@@ -159,17 +200,35 @@ run_rlrun() {
   cpu_list=$([[ $threads == 1 ]] && echo "$one_core" || echo "$two_cores")
   start=$(now)
   taskset -c "$cpu_list" "$rlrun" --threads "$threads" train "$config" --seed "$seed" \
-    --out "$dir" >"$out/rlrun-t$threads-$experiment-$seed.log" 2>&1 ||
+    "${rlrun_overrides[@]}" --out "$dir" >"$out/rlrun-t$threads-$experiment-$seed.log" 2>&1 ||
     { echo "bench_rltools: rlrun train failed:" >&2; tail -5 "$out/rlrun-t$threads-$experiment-$seed.log" >&2; exit 1; }
   end=$(now)
   ret=$("$rlrun" --threads 1 eval --model "$dir/$run_name/seed$seed/model.zip" \
           --episodes "$episodes" --seed 1000 | sed -n 's/.*mean_reward = \([-0-9.e+]*\).*/\1/p')
   printf "%s - %s %d\n" "$(elapsed "$start" "$end")" "$ret" "$budget" >"$out/$experiment.rlrun-t$threads.$seed"
+  [[ $experiment != ant_td3 ]] ||
+    td3_step_ms_rlrun "$dir/$run_name/seed$seed/progress.csv" >"$out/$experiment.step-ms-rlrun-t$threads.$seed"
 }
 
+# The variants with results $out/<prefix><variant>.<seed>, in the tables' order.
+variants_with() {
+  local variant
+  for variant in rltools-openblas-c1 rlrun-t1 rltools-plain-c1 rlrun-t2 rltools-openblas-c2; do
+    compgen -G "$out/$1$variant.*" >/dev/null && echo "$variant"
+  done
+  return 0
+}
+variant_name() {
+  case $1 in
+    rltools-openblas-c*) echo "RLtools + OpenBLAS" ;;
+    rltools-plain-c*) echo "RLtools (no BLAS)" ;;
+    rlrun-t*) echo "rlrun --threads ${1#rlrun-t}" ;;
+  esac
+}
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "-"; else if (NR % 2) print v[(NR + 1) / 2]; else printf "%.2f\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 for experiment in "${experiments[@]}"; do
+  [[ -z "${TABLES_ONLY:-}" ]] || break
   for ((seed = 1; seed <= reps; ++seed)); do
     # A B A B: RLtools and rlrun alternate, so a change in machine load hits both.
     if [[ -n "${rltools_dirs[openblas]:-}" ]]; then
@@ -196,13 +255,8 @@ table=$(
   echo "| experiment | implementation | cores | env steps | wall s (median of $reps) | RLtools' own time s | env steps/s | return, $episodes episodes (median) | returns by seed |"
   echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
   for experiment in "${experiments[@]}"; do
-    for variant in rltools-openblas-c1 rlrun-t1 rltools-plain-c1 rlrun-t2 rltools-openblas-c2; do
-      compgen -G "$out/$experiment.$variant.*" >/dev/null || continue
-      case $variant in
-        rltools-openblas-c*) name="RLtools + OpenBLAS" ;;
-        rltools-plain-c*) name="RLtools (no BLAS)" ;;
-        rlrun-t*) name="rlrun --threads ${variant#rlrun-t}" ;;
-      esac
+    for variant in $(variants_with "$experiment."); do
+      name=$(variant_name "$variant")
       cores=${variant##*[ct]}
       mapfile -t files < <(ls -v "$out/$experiment.$variant".*)
       wall=$(cat "${files[@]}" | awk '{ print $1 }' | median)
@@ -216,6 +270,19 @@ table=$(
     done
   done
 )
+# TD3 Ant's time per training step (td3_step_ms_*), where the wall times do not compare equal work.
+step_ms=$(
+  compgen -G "$out/*.step-ms-*" >/dev/null || exit 0
+  echo "| experiment | implementation | cores | ms per training step from step 30 000 (median) | by seed |"
+  echo "| --- | --- | --- | --- | --- |"
+  for experiment in "${experiments[@]}"; do
+    for variant in $(variants_with "$experiment.step-ms-"); do
+      values=$(cat $(ls -v "$out/$experiment.step-ms-$variant".*))
+      echo "| $experiment | $(variant_name "$variant") | ${variant##*[ct]} | $(median <<<"$values") | $(paste -sd ' ' <<<"$values") |"
+    done
+  done
+)
+[[ -z "$step_ms" ]] || table+=$'\n\nTD3 per training step (one env step, one critic update, the actor every second), where both act with the policy and train; RLtools also trains during its 20 000 random steps, rlrun not (docs/rltools.md):\n\n'"$step_ms"
 # The same Pendulum policies on the same start states (columns of $out/<experiment>.cross.<seed>).
 same_states=$(
   compgen -G "$out/*.cross.*" >/dev/null || exit 0

@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""Score an RLtools Ant-v4 PPO policy and an rlrun model on the *same* start states.
+"""Score an RLtools Ant-v4 PPO or TD3 policy and an rlrun model on the *same* start states.
 
 RLtools' zoo prints the mean return of 100 episodes whose start states come from its own random
 engine; `rlrun eval --seed 1000` scores other ones. This script takes the policy out of both
 (RLtools: the `checkpoint.h` its benchmark build writes beside its results, a code export of the
-actor with its observation standardisation; rlrun: `model.zip` through the Python package, whose
+actor, PPO's with its observation standardisation, TD3's an MLP followed by its exploration-noise
+layer, which the export's example shows is off when evaluating; rlrun: `model.zip` through the Python package, whose
 `predict` applies the model's NormalizeObservation statistics) and runs both on the same
 `--episodes` start states of Gymnasium's Ant-v4 distribution (gymnasium/envs/mujoco/ant_v4.py,
 `reset_model`: qpos = init_qpos + U(-0.1, 0.1), qvel = init_qvel + 0.1 N(0, 1)), drawn here with
@@ -38,9 +39,11 @@ ACTIVATIONS = {
 
 def rltools_policy(path):
     """The deterministic actor of an RLtools checkpoint.h: an optional standardize layer (mean,
-    precision), then dense layers with the activations the file names, in order; the output's
-    first ACTION_DIM columns are the Gaussian's mean (the learned log std comes after the dense
-    layers and is not used). The file's own example input and output check the forward pass."""
+    precision; PPO), then dense layers with the activations the file names, in order (PPO's
+    Sequential of dense layers or TD3's MLP: input_layer, hidden_layer_i, output_layer); the
+    output's first ACTION_DIM columns are the action (PPO: the Gaussian's mean, its learned log
+    std after the dense layers unused; TD3: the tanh output, the td3_sampling layer after it has
+    no parameters). The file's own example input and output check the forward pass."""
     export = read_actor_export(path)
     arrays, standardize = export.arrays, export.standardize is not None
     if standardize:

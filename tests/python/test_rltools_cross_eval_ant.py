@@ -53,6 +53,30 @@ def write_ppo_checkpoint(path, mean, precision, layers, log_std, example_in, exa
         f.write("namespace rl_tools::checkpoint::example::output {\n" + memory(example_out) + "}\n")
 
 
+def write_td3_checkpoint(path, layers, example_in, example_out):
+    """A file in the layout of RLtools' export of its TD3 actor (checkpoint::save_code of a
+    Sequential): layer_0 an MLP (input_layer, hidden_layer_i, output_layer namespaces, each a
+    dense Configuration line after its weights and biases, then the MLP's own Configuration line
+    naming both activations), layer_1 the td3_sampling layer, without parameters."""
+    names = (["input_layer"] + [f"hidden_layer_{i}" for i in range(len(layers) - 2)]
+             + ["output_layer"])
+    activation_type = "::rl_tools::nn::activation_functions::ActivationFunction::"
+    with open(path, "w") as f:
+        f.write("namespace rl_tools::checkpoint::actor {\nnamespace layer_0 {\n")
+        for name, (weights, bias, activation) in zip(names, layers):
+            f.write(f"namespace {name} {{\nnamespace weights {{\n{memory(weights)}}}\n"
+                    f"namespace biases {{\n{memory(bias)}}}\n}}\n")
+            f.write(f"namespace {name} {{\nusing CONFIG = ::rl_tools::nn::layers::dense::"
+                    f"Configuration<TYPE_POLICY, unsigned long, {bias.size}, "
+                    f"{activation_type}{activation}, I, G>;\n}}\n")
+        f.write(f"using CONFIG = ::rl_tools::nn_models::mlp::Configuration<TYPE_POLICY, unsigned "
+                f"long, 8, {len(layers)}, 16, {activation_type}RELU, {activation_type}TANH, I>;\n}}\n")
+        f.write("namespace layer_1 {\nusing PARAMETERS = struct PARAMETERS{ static constexpr float "
+                "STD = 0.1; };\nusing CONFIG = ::rl_tools::nn::layers::td3_sampling::"
+                "Configuration<float, unsigned long, PARAMETERS>;\n}\n}\n")
+        f.write("namespace rl_tools::checkpoint::example::input {\n" + memory(example_in) + "}\n")
+        f.write("namespace rl_tools::checkpoint::example::output {\n" + memory(example_out) + "}\n")
+
 def random_actor(rng, obs_dim=27, hidden=16, actions=8):
     mean = rng.normal(size=obs_dim).astype(np.float32)
     precision = rng.uniform(0.5, 2.0, obs_dim).astype(np.float32)
@@ -67,10 +91,10 @@ def random_actor(rng, obs_dim=27, hidden=16, actions=8):
 
 
 def forward(mean, precision, layers, obs):
-    x = (obs - mean) * np.where(precision != 0, precision, 1)
+    x = obs if mean is None else (obs - mean) * np.where(precision != 0, precision, 1)
     for weights, bias, activation in layers:
         x = x @ weights.T + bias
-        x = np.maximum(x, 0) if activation == "RELU" else x
+        x = {"RELU": lambda v: np.maximum(v, 0), "TANH": np.tanh}.get(activation, lambda v: v)(x)
     return x
 
 
@@ -92,6 +116,25 @@ class RltoolsCrossEvalAnt(TempDirMixin, unittest.TestCase):
         layers[1] = (layers[1][0], layers[1][1], "SOFTPLUS")
         write_ppo_checkpoint(path, mean, precision, layers, np.full(8, -0.7), obs, out)
         with self.assertRaisesRegex(SystemExit, "not known to this script"):
+            cross_eval.rltools_policy(path)
+
+    def test_reads_an_rltools_td3_actor(self):
+        # TD3's export: no standardize layer, an MLP ending in tanh, the exploration-noise layer
+        # after it (off in the example, as when RLtools evaluates).
+        rng = np.random.default_rng(1)
+        _, _, layers = random_actor(rng)
+        layers[2] = (layers[2][0] * 4, layers[2][1], "TANH")  # outputs reaching saturation
+        obs = rng.normal(size=(13, 27)).astype(np.float32)
+        out = forward(None, None, layers, obs)
+        self.assertGreater(np.abs(out).max(), 0.9)
+        path = os.path.join(self.tmp, "checkpoint.h")
+        write_td3_checkpoint(path, layers, obs, out)
+        policy = cross_eval.rltools_policy(path)
+        for row in range(13):
+            np.testing.assert_allclose(policy(obs[row]), out[row], rtol=1e-5, atol=1e-5)
+        # An example with exploration noise in it is not the deterministic actor: refused.
+        write_td3_checkpoint(path, layers, obs, np.clip(out + 0.1 * rng.normal(size=out.shape), -1, 1))
+        with self.assertRaisesRegex(SystemExit, "differs from the file's example"):
             cross_eval.rltools_policy(path)
 
     @unittest.skipUnless(have_ant(), "this build has no MuJoCo envs (RLRUN_WITH_MUJOCO)")
