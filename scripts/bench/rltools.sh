@@ -34,8 +34,10 @@
 # on Pendulum (docs/rltools.md, "The return on the same start states"). So each Pendulum seed's
 # RLtools policy (the checkpoint.h its benchmark build writes) and rlrun's single-thread model
 # are also scored by scripts/bench/rltools_cross_eval.py on RLtools' own 100 start states and on
-# 10 000 common ones (needs numpy and rlrun's Python package: PYTHON, default /usr/bin/python3,
-# with RLRUN_PYTHONPATH, default build/python; skipped with a note when either is missing).
+# 10 000 common ones, each Ant seed's by scripts/bench/rltools_cross_eval_ant.py on RLtools' own
+# 100 and 100 common ones (needs numpy and rlrun's Python package: PYTHON, default
+# /usr/bin/python3, with RLRUN_PYTHONPATH, default build/python; skipped with a note when either
+# is missing).
 # Run it on a quiet machine: the variants share the cores with nothing else.
 # OpenBLAS picks its kernels by CPU model; one older than the CPU (Debian 12's 0.3.21 on a Zen 4
 # or Zen 5) falls back to its AVX2 "Haswell" kernels on an AVX-512 CPU. OPENBLAS_CORETYPE (e.g.
@@ -169,14 +171,14 @@ run_rltools() {
 
 # Both policies of a seed on the same start states: writes "rltools_own rlrun_own rltools_common
 # rlrun_common" (mean returns; "- -" for a set not scored) to $out/<experiment>.cross.<seed>.
-# Pendulum: RLtools' own 100 start states and 10 000 common ones (rltools_cross_eval.py); Ant
-# PPO: 100 common ones (rltools_cross_eval_ant.py; RLtools' own draws are not reproduced).
+# Pendulum: RLtools' own 100 start states and 10 000 common ones (rltools_cross_eval.py); Ant:
+# RLtools' own 100 and 100 common ones (rltools_cross_eval_ant.py).
 run_cross_eval() {
   local experiment=$1 seed=$2 checkpoint tool args
   ((cross_eval)) || return 0
   case $experiment in
     sac | td3 | ppo) tool=rltools_cross_eval.py args=(--rltools-seed "$seed") ;;
-    ant_ppo | ant_td3) tool=rltools_cross_eval_ant.py args=() ;;
+    ant_ppo | ant_td3) tool=rltools_cross_eval_ant.py args=(--rltools-seed "$seed") ;;
     *) return 0 ;;
   esac
   describe "$experiment"
@@ -301,7 +303,7 @@ same_states=$(
     done
   done
 )
-[[ -z "$same_states" ]] || table+=$'\n\nThe same policies on the same start states, Gymnasium\'s Pendulum and rlrun\'s Ant-v4 (scripts/bench/rltools_cross_eval.py, rltools_cross_eval_ant.py). On its own 100 states RLtools\' Pendulum SAC and TD3 score what it printed; its PPO ~1 point more, as Gymnasium charges the clamped torque and RLtools the unclamped one:\n\n'"$same_states"
+[[ -z "$same_states" ]] || table+=$'\n\nThe same policies on the same start states, Gymnasium\'s Pendulum and rlrun\'s Ant-v4 (scripts/bench/rltools_cross_eval.py, rltools_cross_eval_ant.py). On its own 100 states RLtools\' Pendulum SAC and TD3 score what it printed; its PPO ~1 point more, as Gymnasium charges the clamped torque and RLtools the unclamped one; its Ant episodes are replayed on Gymnasium\'s rules (its first step differs, docs/rltools.md):\n\n'"$same_states"
 header="RLtools' zoo beside rlrun, $(date -u +%Y-%m-%d), $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')), pinned to cores $two_cores, load before the last run: $(cut -d' ' -f1-3 /proc/loadavg), OpenBLAS kernels: ${OPENBLAS_CORETYPE:-chosen by OpenBLAS}"
 printf '%s\n\n%s\n' "$header" "$table"
 [[ -z "${OUT:-}" ]] || printf '%s\n\n%s\n' "$header" "$table" >"$OUT"

@@ -30,44 +30,15 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rltools_checkpoint import fast_tanh, read_actor_export  # noqa: E402 (beside this script)
+from libstdcxx_random import mt19937_stream, uniform_float  # noqa: E402 (beside this script)
+from rltools_checkpoint import fast_tanh, read_actor_export  # noqa: E402
 
 
 # --- RLtools' evaluation start states ---------------------------------------------------------
 # zoo.cpp seeds an std::mt19937 with seed + 1 (include/rl_tools/random/operations_cpu.h, `init`)
 # and draws, per episode, theta then theta_dot with std::uniform_real_distribution<float>
-# (rl/environments/pendulum/operations_generic.h, `sample_initial_state`). libstdc++ turns one
-# 32-bit draw into a float as float(u) / 2^32 (generate_canonical<float, 24>), then a + x (b - a).
-
-def mt19937_stream(seed):
-    """The 32-bit outputs of C++'s std::mt19937(seed) (Matsumoto & Nishimura 1998)."""
-    state = [0] * 624
-    state[0] = seed & 0xFFFFFFFF
-    for i in range(1, 624):
-        state[i] = (1812433253 * (state[i - 1] ^ (state[i - 1] >> 30)) + i) & 0xFFFFFFFF
-    index = 624
-    while True:
-        if index == 624:
-            for i in range(624):
-                y = (state[i] & 0x80000000) | (state[(i + 1) % 624] & 0x7FFFFFFF)
-                state[i] = state[(i + 397) % 624] ^ (y >> 1) ^ (0x9908B0DF if y & 1 else 0)
-            index = 0
-        y = state[index]
-        index += 1
-        y ^= y >> 11
-        y ^= (y << 7) & 0x9D2C5680
-        y ^= (y << 15) & 0xEFC60000
-        y ^= y >> 18
-        yield y
-
-
-def uniform_float(draw, low, high):
-    """libstdc++'s std::uniform_real_distribution<float>(low, high) from one 32-bit draw."""
-    x = np.float32(draw) / np.float32(4294967296.0)
-    if x >= np.float32(1.0):
-        x = np.nextafter(np.float32(1.0), np.float32(0.0))
-    return np.float32(x * (np.float32(high) - np.float32(low))) + np.float32(low)
-
+# (rl/environments/pendulum/operations_generic.h, `sample_initial_state`); libstdcxx_random.py
+# has the engine and the draws.
 
 def rltools_start_states(seed, episodes=100):
     stream = mt19937_stream(seed + 1)

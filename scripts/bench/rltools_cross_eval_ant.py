@@ -3,21 +3,29 @@
 
 RLtools' zoo prints the mean return of 100 episodes whose start states come from its own random
 engine; `rlrun eval --seed 1000` scores other ones. This script takes the policy out of both
-(RLtools: the `checkpoint.h` its benchmark build writes beside its results, a code export of the
-actor, PPO's with its observation standardisation, TD3's an MLP followed by its exploration-noise
-layer, which the export's example shows is off when evaluating; rlrun: `model.zip` through the Python package, whose
-`predict` applies the model's NormalizeObservation statistics) and runs both on the same
-`--episodes` start states of Gymnasium's Ant-v4 distribution (gymnasium/envs/mujoco/ant_v4.py,
-`reset_model`: qpos = init_qpos + U(-0.1, 0.1), qvel = init_qvel + 0.1 N(0, 1)), drawn here with
-numpy and set with `env.unwrapped.set_state`. The env is rlrun's Ant-v4 (Gymnasium's rules,
-TimeLimit 1000); both policies' mean actions are clipped to the action space [-1, 1] before the
-env, as SB3 does and as RLtools' env clamps them. The result is a paired comparison: the
-per-episode differences' mean and standard error.
+(RLtools: the `checkpoint.h` its benchmark build writes beside its results, a code export of
+the actor, PPO's with its observation standardisation, TD3's an MLP followed by its
+exploration-noise layer, which the export's example shows is off when evaluating; rlrun:
+`model.zip` through the Python package, whose `predict` applies the model's NormalizeObservation
+statistics) and runs both from the same start states, set with `env.unwrapped.set_state`:
+
+  * `--episodes` states of Gymnasium's Ant-v4 distribution (gymnasium/envs/mujoco/ant_v4.py,
+    `reset_model`: qpos = init_qpos + U(-0.1, 0.1), qvel = init_qvel + 0.1 N(0, 1)), drawn
+    with numpy, and
+  * with `--rltools-seed`, RLtools' own 100 evaluation states of that run, redrawn as its
+    libstdc++ draws them (libstdcxx_random.py): the episodes behind the return it printed,
+    replayed on Gymnasium's rules (RLtools' first step measures the torso's move from the
+    model's initial pose, not from the start state: up to 2 apart in that step's reward).
+
+The env is rlrun's Ant-v4 (Gymnasium's rules, TimeLimit 1000); both policies' mean actions are
+clipped to the action space [-1, 1] before the env, as SB3 does and as RLtools' env clamps them.
+The result is a paired comparison: the per-episode differences' mean and standard error.
 
 Usage (docs/rltools.md, "Ant-v4"):
   PYTHONPATH=build/python /usr/bin/python3 scripts/bench/rltools_cross_eval_ant.py \
-      --checkpoint DIR/.../checkpoint.h --model runs/.../model.zip [--episodes 100]
-Prints one line per policy, then a `cross_eval` line for scripts to parse.
+      --checkpoint DIR/.../checkpoint.h --model runs/.../model.zip [--episodes 100] \
+      [--rltools-seed SEED]
+Prints one line per policy and set of states, then `cross_eval` lines for scripts to parse.
 """
 import argparse
 import os
@@ -27,7 +35,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rltools_checkpoint import fast_tanh, read_actor_export  # noqa: E402 (beside this script)
+from libstdcxx_random import mt19937_stream, normal_float, uniform_double  # noqa: E402 (beside)
+from rltools_checkpoint import fast_tanh, read_actor_export  # noqa: E402
 
 ACTIVATIONS = {
     "IDENTITY": lambda x: x,
@@ -101,6 +110,22 @@ def start_states(env, episodes, seed):
             for _ in range(episodes)]
 
 
+def rltools_start_states(init_qpos, init_qvel, seed, episodes=100):
+    """The start states of RLtools' final evaluation for a run's seed (zoo.cpp: a std::mt19937
+    seeded with seed + 1, rl/utils/evaluation: the 100 episodes' states drawn in order before
+    any step; rl/environments/mujoco/ant/operations_cpu.h, `sample_initial_state`: each qpos
+    entry init + uniform_real_distribution<double>(-0.1, 0.1), then each qvel entry init +
+    normal_distribution<float>(0, 0.1)). RLtools' init_q and init_q_dot are the model's qpos0
+    and zero velocities, as Gymnasium's init_qpos and init_qvel."""
+    stream = mt19937_stream(seed + 1)
+    states = []
+    for _ in range(episodes):
+        qpos = [q + uniform_double(stream, -0.1, 0.1) for q in init_qpos]
+        qvel = [v + float(normal_float(stream, 0.0, 0.1)) for v in init_qvel]
+        states.append((np.array(qpos), np.array(qvel)))
+    return states
+
+
 def episode_return(env, policy, qpos, qvel):
     """The return of one episode from (qpos, qvel), and whether it ended unhealthy (a fall)."""
     env.reset(seed=0)
@@ -114,18 +139,9 @@ def episode_return(env, policy, qpos, qvel):
             return total, terminated
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--checkpoint", required=True, help="RLtools' checkpoint.h")
-    parser.add_argument("--model", required=True, help="rlrun's model.zip")
-    parser.add_argument("--episodes", type=int, default=100)
-    parser.add_argument("--states-seed", type=int, default=12345)
-    args = parser.parse_args()
-
-    import rlrun
-    env = rlrun.make("Ant-v4")
-    states = start_states(env, args.episodes, args.states_seed)
-    policies = {"rltools": rltools_policy(args.checkpoint), "rlrun": rlrun_policy(args.model)}
+def score(env, policies, states, label):
+    """Both policies from every state: one line each, the paired difference, a `cross_eval`
+    line (label, episodes, RLtools' mean, rlrun's mean, the mean difference) for scripts."""
     episodes = {name: [episode_return(env, policy, *state) for state in states]
                 for name, policy in policies.items()}
     returns = {name: np.array([r for r, _ in runs]) for name, runs in episodes.items()}
@@ -133,13 +149,33 @@ def main():
     n = len(states)
     for name, values in returns.items():
         falls = sum(fell for _, fell in episodes[name])
-        print(f"{name}: mean {values.mean():.1f}, median {np.median(values):.1f}, min "
+        print(f"{label} {name}: mean {values.mean():.1f}, median {np.median(values):.1f}, min "
               f"{values.min():.1f}, {falls} of {n} episodes ended unhealthy before step 1000")
-    print(f"common_states ({n} episodes): RLtools {returns['rltools'].mean():.1f}, rlrun "
+    print(f"{label} ({n} episodes): RLtools {returns['rltools'].mean():.1f}, rlrun "
           f"{returns['rlrun'].mean():.1f}, paired difference {difference.mean():+.1f} +/- "
           f"{difference.std() / np.sqrt(n):.1f} (standard error)")
-    print(f"cross_eval common_states {n} {returns['rltools'].mean():.2f} "
+    print(f"cross_eval {label} {n} {returns['rltools'].mean():.2f} "
           f"{returns['rlrun'].mean():.2f} {difference.mean():.2f}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--checkpoint", required=True, help="RLtools' checkpoint.h")
+    parser.add_argument("--model", required=True, help="rlrun's model.zip")
+    parser.add_argument("--episodes", type=int, default=100)
+    parser.add_argument("--states-seed", type=int, default=12345)
+    parser.add_argument("--rltools-seed", type=int,
+                        help="also RLtools' own 100 evaluation states of the run with this seed")
+    args = parser.parse_args()
+
+    import rlrun
+    env = rlrun.make("Ant-v4")
+    policies = {"rltools": rltools_policy(args.checkpoint), "rlrun": rlrun_policy(args.model)}
+    if args.rltools_seed is not None:
+        u = env.unwrapped
+        score(env, policies, rltools_start_states(u.init_qpos, u.init_qvel, args.rltools_seed),
+              "rltools_states")
+    score(env, policies, start_states(env, args.episodes, args.states_seed), "common_states")
     return 0
 
 

@@ -3,8 +3,10 @@ python3 and PYTHONPATH=build/python; RLRUN_BINARY names the rlrun binary of the 
 
 import csv
 import os
+import shutil
 import subprocess
 import tempfile
+import unittest
 
 import numpy as np
 
@@ -66,3 +68,18 @@ class TempDirMixin:
     @classmethod
     def tearDownClass(cls):
         cls._tmp.cleanup()
+
+
+def compiled_cpp_lines(directory, name, source, *args):
+    """Compiles C++ `source` (-O0: no fused multiply-adds) in `directory`, runs it with `args` and
+    returns its output's lines split into fields; skips the test without a C++ compiler."""
+    compiler = shutil.which("c++") or shutil.which("g++")
+    if compiler is None:
+        raise unittest.SkipTest("no C++ compiler to write the reference values")
+    binary = os.path.join(directory, name)
+    if not os.path.exists(binary):
+        with open(binary + ".cpp", "w") as f:
+            f.write(source)
+        subprocess.run([compiler, "-O0", "-o", binary, binary + ".cpp"], check=True)
+    out = subprocess.run([binary, *map(str, args)], check=True, capture_output=True, text=True)
+    return [line.split() for line in out.stdout.splitlines()]

@@ -5,13 +5,11 @@ checked against the file's own example), and rlrun models scored in batches."""
 
 import importlib.util
 import os
-import shutil
-import subprocess
 import unittest
 
 import numpy as np
 
-from rlrun_testing import TempDirMixin, train_model
+from rlrun_testing import TempDirMixin, compiled_cpp_lines, train_model
 
 SOURCE_DIR = os.environ.get("RLRUN_SOURCE_DIR",
                             os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -63,18 +61,9 @@ class RltoolsCrossEval(TempDirMixin, unittest.TestCase):
         self.assertEqual(next(stream), 4123659995)
 
     def test_rltools_start_states_equal_libstdcxx_draws(self):
-        compiler = shutil.which("c++") or shutil.which("g++")
-        if compiler is None:
-            self.skipTest("no C++ compiler to write the reference draws")
-        source = os.path.join(self.tmp, "states.cpp")
-        binary = os.path.join(self.tmp, "states")
-        with open(source, "w") as f:
-            f.write(STATES_CPP)
-        subprocess.run([compiler, "-O0", "-o", binary, source], check=True)
         for seed in (1, 7, 123):
-            out = subprocess.run([binary, str(seed)], check=True, capture_output=True, text=True)
-            expected = np.array([[float.fromhex(v) for v in line.split()]
-                                 for line in out.stdout.splitlines()])
+            expected = np.array([[float.fromhex(v) for v in line] for line in
+                                 compiled_cpp_lines(self.tmp, "states", STATES_CPP, seed)])
             np.testing.assert_array_equal(cross_eval.rltools_start_states(seed), expected,
                                           err_msg=f"seed {seed}")
 

@@ -11,7 +11,7 @@ import unittest
 import numpy as np
 
 import rlrun
-from rlrun_testing import TempDirMixin, train_model
+from rlrun_testing import TempDirMixin, compiled_cpp_lines, train_model
 
 SOURCE_DIR = os.environ.get("RLRUN_SOURCE_DIR",
                             os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -20,6 +20,26 @@ spec = importlib.util.spec_from_file_location(
     os.path.join(SOURCE_DIR, "scripts", "bench", "rltools_cross_eval_ant.py"))
 cross_eval = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(cross_eval)
+
+
+# RLtools' Ant evaluation draws, written by C++ with libstdc++ as RLtools makes them
+# (random/operations_cpu.h: std::mt19937(seed + 1), a fresh distribution object per draw;
+# mujoco/ant/operations_cpu.h: 15 qpos offsets, then 14 qvel offsets, per episode).
+ANT_DRAWS_CPP = r"""
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+int main(int argc, char** argv) {
+  std::mt19937 engine(static_cast<std::mt19937::result_type>(std::atoi(argv[1]) + 1));
+  for (int episode = 0; episode < std::atoi(argv[2]); ++episode) {
+    for (int i = 0; i < 15; ++i)
+      std::printf("%a ", std::uniform_real_distribution<double>(-0.1, 0.1)(engine));
+    for (int i = 0; i < 14; ++i)
+      std::printf("%a ", static_cast<double>(std::normal_distribution<float>(0.0, 0.1)(engine)));
+    std::printf("\n");
+  }
+}
+"""
 
 
 def have_ant():
@@ -136,6 +156,21 @@ class RltoolsCrossEvalAnt(TempDirMixin, unittest.TestCase):
         write_td3_checkpoint(path, layers, obs, np.clip(out + 0.1 * rng.normal(size=out.shape), -1, 1))
         with self.assertRaisesRegex(SystemExit, "differs from the file's example"):
             cross_eval.rltools_policy(path)
+
+    def test_rltools_start_states_equal_libstdcxx_draws(self):
+        # Ant's qpos0 (torso at 0.75, upright) and zero velocities, as RLtools' init_q, init_q_dot.
+        init_qpos = np.array([0, 0, 0.75, 1, 0, 0, 0] + [0] * 8, dtype=np.float64)
+        init_qvel = np.zeros(14)
+        for seed in (1, 4, 77):
+            draws = np.array([[float.fromhex(v) for v in line] for line in
+                              compiled_cpp_lines(self.tmp, "draws", ANT_DRAWS_CPP, seed, 100)])
+            self.assertEqual(draws.shape, (100, 29))
+            states = cross_eval.rltools_start_states(init_qpos, init_qvel, seed)
+            self.assertEqual(len(states), 100)
+            np.testing.assert_array_equal(np.array([q for q, _ in states]),
+                                          init_qpos + draws[:, :15], err_msg=f"seed {seed}")
+            np.testing.assert_array_equal(np.array([v for _, v in states]),
+                                          init_qvel + draws[:, 15:], err_msg=f"seed {seed}")
 
     @unittest.skipUnless(have_ant(), "this build has no MuJoCo envs (RLRUN_WITH_MUJOCO)")
     def test_runs_both_policies_from_the_same_start_states(self):
