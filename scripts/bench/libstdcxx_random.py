@@ -42,7 +42,12 @@ def mt19937_stream(seed):
 
 def canonical_float(stream):
     """generate_canonical<float, 24>: one draw, float(u) / 2^32."""
-    x = np.float32(next(stream)) / np.float32(4294967296.0)
+    return float_of_draw(next(stream))
+
+
+def float_of_draw(draw):
+    """generate_canonical<float, 24> of one 32-bit draw (a result of 1 becomes the float below)."""
+    x = np.float32(draw) / np.float32(4294967296.0)
     return np.nextafter(np.float32(1.0), np.float32(0.0)) if x >= np.float32(1.0) else x
 
 
@@ -56,9 +61,7 @@ def canonical_double(stream):
 
 def uniform_float(draw, low, high):
     """std::uniform_real_distribution<float>(low, high) from one 32-bit draw."""
-    x = np.float32(draw) / np.float32(4294967296.0)
-    if x >= np.float32(1.0):
-        x = np.nextafter(np.float32(1.0), np.float32(0.0))
+    x = float_of_draw(draw)
     return np.float32(x * (np.float32(high) - np.float32(low))) + np.float32(low)
 
 
