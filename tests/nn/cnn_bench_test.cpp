@@ -1,5 +1,5 @@
 // Micro-benchmark of NatureCNN forward + backward (nn/nature_cnn.hpp) on SB3's Atari-sized
-// input, 4x84x84, batch 256 and the acting batch of 8. Hidden: run with
+// input, 4x84x84, batch 256 and the acting batch of 8, and on the zoo's CarRacing input. Hidden: run with
 // `rlrun_tests "[cnn_bench]"` (RLRUN_THREADS=1 for one core). Prints throughput; asserts
 // nothing about time (docs/benchmarks.md). FLOPs counted exactly: 2 per multiply-add forward;
 // backward the weight gradients (as many) plus the input gradients of every layer but the first
@@ -18,8 +18,8 @@
 namespace rlrun {
 namespace {
 
-void bench(int batch, ThreadPool* pool) {
-  NatureCnn net({4, 84, 84, false}, 512);
+void bench(int batch, ThreadPool* pool, ImageInput image = {4, 84, 84, false}) {
+  NatureCnn net(image, 512);
   Rng rng(1);
   net.init_orthogonal(rng, std::sqrt(2.0f));
   net.set_thread_pool(pool);
@@ -46,10 +46,10 @@ void bench(int batch, ThreadPool* pool) {
     best_fwd = std::min(best_fwd, std::chrono::duration<double>(t2 - t1).count() / iters);
   }
   std::printf(
-      "NatureCNN 4x84x84 batch %3d, %d thread(s): fwd+bwd %8.2f ms %6.1f GFLOP/s | fwd %7.2f ms "
+      "NatureCNN %dx%dx%d batch %3d, %d thread(s): fwd+bwd %8.2f ms %6.1f GFLOP/s | fwd %7.2f ms "
       "%6.1f GFLOP/s\n",
-      batch, pool ? pool->threads() : 1, best * 1e3, total / best * 1e-9, best_fwd * 1e3,
-      forward / best_fwd * 1e-9);
+      image.channels, image.height, image.width, batch, pool ? pool->threads() : 1, best * 1e3,
+      total / best * 1e-9, best_fwd * 1e3, forward / best_fwd * 1e-9);
   CHECK(net.output().allFinite());
 }
 
@@ -59,6 +59,8 @@ TEST_CASE("NatureCNN forward+backward micro-benchmark", "[.bench][cnn_bench]") {
   bench(256, nullptr);
   bench(8, nullptr);
   bench(256, &testing::test_thread_pool());
+  // The zoo's CarRacing entry: 64x64 gray, 2 frames stacked channels-last, minibatch 128.
+  bench(128, nullptr, {2, 64, 64, true});
 }
 
 }  // namespace rlrun

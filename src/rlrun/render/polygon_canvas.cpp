@@ -1,6 +1,7 @@
 #include "rlrun/render/polygon_canvas.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,13 +9,15 @@ namespace rlrun {
 
 namespace {
 constexpr int kMaxSamplesPerSide = 16384;
+// resolve()'s channel sums hold up to 16 x 16 samples a pixel.
+constexpr int kMaxSupersample = 16;
 
 uint32_t pack(Rgb c) { return (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | uint32_t{c.b}; }
 }  // namespace
 
 PolygonCanvas::PolygonCanvas(int width, int height, int supersample)
     : width_(width), height_(height), ss_(supersample) {
-  if (width <= 0 || height <= 0 || supersample <= 0 ||
+  if (width <= 0 || height <= 0 || supersample <= 0 || supersample > kMaxSupersample ||
       int64_t{width} * supersample > kMaxSamplesPerSide ||
       int64_t{height} * supersample > kMaxSamplesPerSide)
     throw std::invalid_argument("PolygonCanvas: bad size " + std::to_string(width) + "x" +
@@ -81,28 +84,54 @@ void PolygonCanvas::polyline(std::span<const Point> points, double width, Rgb co
   }
 }
 
+// Channel sums two at a time in 16-bit fields of a 32-bit word: red and blue are bits 16-23 and
+// 0-7 of a sample already (0x00RRGGBB), green alone after a shift, and up to 16 x 16 samples
+// a pixel (256 x 255 < 2^16) never carry into the next field. Sums go down the sample columns
+// first (contiguous, so the compiler vectorizes them), then across each pixel's columns.
+// Resolving the 96x96 CarRacing observation (16 samples a pixel) with three shifts and masks
+// per channel and sample took 13 % of a whole PPO CarRacing run.
+namespace {
+constexpr uint32_t kRedBlue = 0x00ff00ffu, kGreen = 0xffu, kField = 0xffffu;
+}  // namespace
+
 void PolygonCanvas::resolve(std::span<uint8_t> rgb) const {
   if (rgb.size() != static_cast<size_t>(width_) * height_ * 3)
     throw std::invalid_argument("PolygonCanvas::resolve: wrong buffer size");
   const uint32_t count = static_cast<uint32_t>(ss_ * ss_);
   const uint32_t round = count / 2;
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x) {
-      uint32_t r = 0, g = 0, b = 0;
-      for (int sy = 0; sy < ss_; ++sy) {
-        const uint32_t* s =
-            samples_.data() + static_cast<size_t>(y * ss_ + sy) * sample_width_ + x * ss_;
-        for (int sx = 0; sx < ss_; ++sx) {
-          r += (s[sx] >> 16) & 0xff;
-          g += (s[sx] >> 8) & 0xff;
-          b += s[sx] & 0xff;
-        }
+  const int shift = std::has_single_bit(count) ? std::countr_zero(count) : -1;
+  const size_t columns = static_cast<size_t>(sample_width_);
+  std::vector<uint32_t> red_blue(columns), green(columns);
+  for (int y = 0; y < height_; ++y) {
+    std::fill(red_blue.begin(), red_blue.end(), 0);
+    std::fill(green.begin(), green.end(), 0);
+    for (int sy = 0; sy < ss_; ++sy) {
+      const uint32_t* s = samples_.data() + static_cast<size_t>(y * ss_ + sy) * columns;
+      for (size_t i = 0; i < columns; ++i) {
+        red_blue[i] += s[i] & kRedBlue;
+        green[i] += (s[i] >> 8) & kGreen;
       }
-      uint8_t* out = rgb.data() + (static_cast<size_t>(y) * width_ + x) * 3;
-      out[0] = static_cast<uint8_t>((r + round) / count);
-      out[1] = static_cast<uint8_t>((g + round) / count);
-      out[2] = static_cast<uint8_t>((b + round) / count);
     }
+    uint8_t* out = rgb.data() + static_cast<size_t>(y) * width_ * 3;
+    // Rounded means: a shift when the sample count is a power of two (4x4 here), since
+    // divisions cost as much as all the additions.
+    const auto write = [&](auto mean) {
+      for (size_t x = 0; x < static_cast<size_t>(width_); ++x, out += 3) {
+        uint32_t rb = 0, g = 0;
+        for (size_t i = x * static_cast<size_t>(ss_); i < (x + 1) * static_cast<size_t>(ss_); ++i) {
+          rb += red_blue[i];
+          g += green[i];
+        }
+        out[0] = static_cast<uint8_t>(mean((rb >> 16) + round));
+        out[1] = static_cast<uint8_t>(mean(g + round));
+        out[2] = static_cast<uint8_t>(mean((rb & kField) + round));
+      }
+    };
+    if (shift >= 0)
+      write([shift](uint32_t v) { return v >> shift; });
+    else
+      write([count](uint32_t v) { return v / count; });
+  }
 }
 
 void PolygonCanvas::resolve(Frame& frame) const {

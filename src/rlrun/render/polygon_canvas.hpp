@@ -17,7 +17,7 @@ namespace rlrun {
 class PolygonCanvas {
  public:
   // Throws std::invalid_argument unless the sizes are positive and the samples fit (16384
-  // per side at most).
+  // per side and 16 per pixel and axis at most).
   PolygonCanvas(int width, int height, int supersample);
 
   int width() const { return width_; }
