@@ -1,6 +1,6 @@
 // Micro-benchmark of NatureCNN forward + backward (nn/nature_cnn.hpp) on SB3's Atari-sized
-// input, 4x84x84, batch 256 and the acting batch of 8, and on the zoo's CarRacing input. Hidden: run with
-// `rlrun_tests "[cnn_bench]"` (RLRUN_THREADS=1 for one core). Prints throughput; asserts
+// input, 4x84x84, batch 256 and the acting batch of 8, and on the zoo's CarRacing input.
+// Hidden: run with `rlrun_tests "[cnn_bench]"` (RLRUN_THREADS=1 for one core). Prints throughput; asserts
 // nothing about time (docs/benchmarks.md). FLOPs counted exactly: 2 per multiply-add forward;
 // backward the weight gradients (as many) plus the input gradients of every layer but the first
 // (an image has no gradient).

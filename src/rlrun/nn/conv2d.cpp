@@ -12,8 +12,6 @@ namespace rlrun {
 namespace {
 using Index = std::ptrdiff_t;
 
-// Calls run(input_offset, patch_offset, length) for every contiguous run of floats that patch p
-// copies from the input: a kernel row of all channels (HWC) or of one channel (CHW).
 // Copies a patch run of n floats. The runs are short (a CHW kernel row is 8 floats, an HWC one
 // of a 2-frame stack 16): a call to memcpy for each was most of im2col's time, so whole
 // 8-float blocks go by fixed-size copies the compiler inlines.
@@ -24,6 +22,8 @@ inline void copy_run(float* dst, const float* src, Index n) {
   for (; t < n; ++t) dst[t] = src[t];
 }
 
+// Calls run(input_offset, patch_offset, length) for every contiguous run of floats that patch p
+// copies from the input: a kernel row of all channels (HWC) or of one channel (CHW).
 template <class F>
 void for_each_patch_run(const Conv2dShape& s, Index p, F&& run) {
   const Index oy = p / s.out_width(), ox = p % s.out_width();

@@ -11,6 +11,8 @@ namespace {
 constexpr int kMaxSamplesPerSide = 16384;
 // resolve()'s channel sums hold up to 16 x 16 samples a pixel.
 constexpr int kMaxSupersample = 16;
+// resolve()'s channel fields (below).
+constexpr uint32_t kRedBlue = 0x00ff00ffu, kGreen = 0xffu, kField = 0xffffu;
 
 uint32_t pack(Rgb c) { return (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | uint32_t{c.b}; }
 }  // namespace
@@ -90,10 +92,6 @@ void PolygonCanvas::polyline(std::span<const Point> points, double width, Rgb co
 // first (contiguous, so the compiler vectorizes them), then across each pixel's columns.
 // Resolving the 96x96 CarRacing observation (16 samples a pixel) with three shifts and masks
 // per channel and sample took 13 % of a whole PPO CarRacing run.
-namespace {
-constexpr uint32_t kRedBlue = 0x00ff00ffu, kGreen = 0xffu, kField = 0xffffu;
-}  // namespace
-
 void PolygonCanvas::resolve(std::span<uint8_t> rgb) const {
   if (rgb.size() != static_cast<size_t>(width_) * height_ * 3)
     throw std::invalid_argument("PolygonCanvas::resolve: wrong buffer size");
@@ -101,6 +99,8 @@ void PolygonCanvas::resolve(std::span<uint8_t> rgb) const {
   const uint32_t round = count / 2;
   const int shift = std::has_single_bit(count) ? std::countr_zero(count) : -1;
   const size_t columns = static_cast<size_t>(sample_width_);
+  // Fresh vectors per frame (3 KiB, small beside the 590 KiB of samples read): the compiler
+  // then knows they do not alias the samples; member scratch vectors were not faster here.
   std::vector<uint32_t> red_blue(columns), green(columns);
   for (int y = 0; y < height_; ++y) {
     std::fill(red_blue.begin(), red_blue.end(), 0);
